@@ -80,7 +80,8 @@ impl Cylinder {
         // A few ulps of slack absorb the round-off of d = χR computed by the caller.
         let limit = r * (1.0 - km);
         check_range("d", d, 0.0, limit * (1.0 + 8.0 * f64::EPSILON))?;
-        Self::new((d / r).min(1.0 - km), km)
+        let chi = (d / r).min(1.0 - km);
+        Self::new(chi, km.min(1.0 - chi))
     }
 
     /// γ = (Ĩ_C + 1 + 2χ)/(4πχ), the paper's Eq. (dega2); infinite for χ = 0.
