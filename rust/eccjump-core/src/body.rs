@@ -29,7 +29,15 @@ impl Cylinder {
     /// (the 0/0 of χ²/(1 − k_m) at k_m = 1 is taken as 0, its limit along χ ≤ 1 − k_m).
     pub fn new(chi: f64, km: f64) -> Result<Self> {
         check_range("chi", chi, 0.0, 1.0)?;
-        check_range("km", km, 0.0, 1.0 - chi)?;
+        // 1 − χ is itself rounded (1 − 0.9 < 0.1 in binary), so allow a few ulps above it:
+        // users write Cylinder(0.9, 0.1) and mean the boundary.
+        if !(km.is_finite() && km >= 0.0 && km <= 1.0 - chi + 4.0 * f64::EPSILON) {
+            return Err(Error::InvalidParameter {
+                name: "km",
+                value: km,
+                allowed: format!("[0, 1 - chi] = [0, {}]", 1.0 - chi),
+            });
+        }
         let (ic, icm) = if chi == 0.0 {
             (km, km)
         } else {
@@ -64,7 +72,7 @@ impl Cylinder {
         let ic = ic.clamp(lo, 1.0);
         let disc = ((1.0 - ic) * (1.0 - ic) + 4.0 * lo).max(0.0);
         let km = 2.0 * (ic - lo) / ((1.0 + ic) + disc.sqrt());
-        Self::new(chi, km.clamp(0.0, 1.0 - chi))
+        Self::new(chi, km.max(0.0))
     }
 
     /// The paper's model: a uniform thin shell of mass m_C and radius R plus a line mass
@@ -80,8 +88,7 @@ impl Cylinder {
         // A few ulps of slack absorb the round-off of d = χR computed by the caller.
         let limit = r * (1.0 - km);
         check_range("d", d, 0.0, limit * (1.0 + 8.0 * f64::EPSILON))?;
-        let chi = (d / r).min(1.0 - km);
-        Self::new(chi, km.min(1.0 - chi))
+        Self::new((d / r).min(1.0 - km), km)
     }
 
     /// γ = (Ĩ_C + 1 + 2χ)/(4πχ), the paper's Eq. (dega2); infinite for χ = 0.
