@@ -1,0 +1,1 @@
+//! One adaptive Dormand–Prince step: error norm and step-size control (to be written).
