@@ -6,14 +6,16 @@
 //! - [`body`]: the cylinder (χ, k_m) and its inertias;
 //! - [`rolling`]: pure-rolling equation of motion and contact forces;
 //! - [`roots`]: bracketing root finders;
+//! - [`roll`]: a pure-rolling run with its contact events;
 //! - [`ode`]: a generic Dormand–Prince 5(4) integrator with dense output and events;
 //! - [`error`]: the one error enum.
 
 pub mod body;
 pub mod error;
 pub mod ode;
-pub mod roots;
+pub mod roll;
 pub mod rolling;
+pub mod roots;
 
 pub use body::Cylinder;
 pub use error::{Error, Result};

@@ -1,4 +1,11 @@
-//! The pyo3 bridge: converts, validates and releases the GIL; no physics lives here.
+//! The pyo3 bridge of eccjump: converts arguments, lets the core validate them, releases
+//! the GIL around the numerical work and maps core errors to Python exceptions. No physics
+//! lives here; the typed Python layer is `python/eccjump`.
+
+mod body;
+mod errors;
+mod roll;
+mod rule;
 
 use pyo3::prelude::*;
 
@@ -6,4 +13,9 @@ use pyo3::prelude::*;
 mod _core {
     #[pymodule_export]
     const VERSION: &str = env!("CARGO_PKG_VERSION");
+
+    #[pymodule_export]
+    use crate::body::{body_derived, body_from_inertia, body_from_shell_and_line};
+    #[pymodule_export]
+    use crate::roll::roll;
 }

@@ -1,0 +1,143 @@
+"""The ``eccjump`` command line. Angles are in degrees here (radians in the Python API)."""
+
+from __future__ import annotations
+
+import argparse
+import json
+import math
+import sys
+from collections.abc import Sequence
+
+from eccjump.body import Cylinder
+from eccjump.rolling import RollResult, roll
+
+
+def _add_body_args(p: argparse.ArgumentParser) -> None:
+    p.add_argument("--chi", type=float, required=True, help="CM offset d/R, in [0, 1]")
+    p.add_argument("--km", type=float, required=True, help="shell mass fraction, in [0, 1-chi]")
+
+
+def _roll_parser(sub: argparse._SubParsersAction) -> None:
+    p = sub.add_parser(
+        "roll",
+        help="integrate pure rolling until lift-off, slip or a limit",
+        description="Integrate pure rolling from (theta0, omega0) until an "
+        "event ends it; print what happened.",
+    )
+    p.add_argument("--alpha", type=float, required=True, help="ramp angle [deg], in [0, 90]")
+    _add_body_args(p)
+    p.add_argument("--mu-s", type=float, default=None, help="static friction coefficient")
+    p.add_argument("--theta0", type=float, default=0.0, help="initial angle [deg]")
+    p.add_argument(
+        "--omega0", type=float, default=0.0, help="initial angular velocity [sqrt(g/R) rad]"
+    )
+    p.add_argument("--theta-max", type=float, default=math.inf, help="stop at this angle [deg]")
+    p.add_argument("--t-max", type=float, default=1000.0, help="stop at this time [sqrt(R/g)]")
+    p.add_argument(
+        "--rule",
+        choices=("paper", "normal_force"),
+        default="paper",
+        help="lift-off rule (default: the paper's)",
+    )
+    p.add_argument("--rtol", type=float, default=1e-10)
+    p.add_argument("--atol", type=float, default=1e-12)
+    p.add_argument("--json", action="store_true", help="print machine-readable JSON")
+    p.set_defaults(func=_cmd_roll)
+
+
+def _roll_summary(res: RollResult) -> dict[str, object]:
+    end = len(res.t) - 1
+    return {
+        "body": {"chi": res.body.chi, "km": res.body.km, "Ic": res.body.Ic, "Icm": res.body.Icm},
+        "alpha_deg": math.degrees(res.alpha),
+        "mu_s": res.mu_s,
+        "rule": res.rule,
+        "status": res.status,
+        "message": res.message,
+        "terminal_event": res.terminal_event,
+        "t": float(res.t[end]),
+        "theta_deg": math.degrees(res.theta[end]),
+        "omega": float(res.omega[end]),
+        "Fx": float(res.Fx[end]),
+        "Fy": float(res.Fy[end]),
+        "friction_ratio": (
+            abs(float(res.Fx[end])) / float(res.Fy[end]) if res.Fy[end] > 0 else None
+        ),
+        "events": [
+            {"name": e.name, "t": e.t, "theta_deg": math.degrees(e.theta), "omega": e.omega}
+            for e in res.events
+        ],
+        "steps": end,
+        "nfev": res.nfev,
+        "units": "g = R = M = 1: time in sqrt(R/g), omega in sqrt(g/R) rad, forces in M g",
+    }
+
+
+def _cmd_roll(args: argparse.Namespace) -> int:
+    body = Cylinder(args.chi, args.km)
+    res = roll(
+        body,
+        math.radians(args.alpha),
+        theta0=math.radians(args.theta0),
+        omega0=args.omega0,
+        mu_s=args.mu_s,
+        t_max=args.t_max,
+        theta_max=math.radians(args.theta_max),
+        rtol=args.rtol,
+        atol=args.atol,
+        rule=args.rule,
+    )
+    s = _roll_summary(res)
+    if args.json:
+        print(json.dumps(s, indent=2))
+        return 0
+    ratio = s["friction_ratio"]
+    rows = [
+        (
+            "body",
+            f"chi = {body.chi:g}, km = {body.km:g}  (Ic = {body.Ic:.6g}, Icm = {body.Icm:.6g})",
+        ),
+        ("ramp", f"alpha = {args.alpha:g} deg, mu_s = {args.mu_s}, rule = {args.rule}"),
+        ("outcome", f"{res.message}"),
+        ("time t", f"{s['t']:.10g} sqrt(R/g)"),
+        ("angle theta", f"{s['theta_deg']:.10g} deg"),
+        ("rate theta'", f"{s['omega']:.10g} sqrt(g/R)"),
+        ("friction Fx", f"{s['Fx']:+.6e} M g"),
+        ("normal Fy", f"{s['Fy']:+.6e} M g"),
+        ("|Fx|/Fy", "n/a (Fy <= 0)" if ratio is None else f"{ratio:.6g}"),
+        ("steps", f"{s['steps']} accepted, {res.nfev} evaluations"),
+    ]
+    width = max(len(k) for k, _ in rows)
+    for k, v in rows:
+        print(f"{k:<{width}}  {v}")
+    if res.events:
+        print("\nevents")
+        print(f"  {'name':<18} {'t':>16} {'theta [deg]':>16} {'omega':>14}")
+        for e in res.events:
+            print(f"  {e.name:<18} {e.t:>16.10f} {math.degrees(e.theta):>16.10f} {e.omega:>14.10f}")
+    return 0
+
+
+def build_parser() -> argparse.ArgumentParser:
+    parser = argparse.ArgumentParser(
+        prog="eccjump",
+        description="Dynamics of an eccentric cylinder on a ramp: lift-off, slip, JARM regions.",
+    )
+    sub = parser.add_subparsers(dest="command", required=True)
+    _roll_parser(sub)
+    return parser
+
+
+def main(argv: Sequence[str] | None = None) -> int:
+    """Entry point of the ``eccjump`` console script."""
+    parser = build_parser()
+    args = parser.parse_args(argv)
+    try:
+        return int(args.func(args))
+    except ValueError as err:
+        print(f"eccjump: error: {err}", file=sys.stderr)
+        return 2
+
+
+if __name__ == "__main__":
+    sys.exit(main())

@@ -1,0 +1,203 @@
+"""Pure rolling: :func:`roll` integrates the rolling equation with the Rust RK45 core.
+
+Equations (units g = R = M = 1; see ``docs/physics.md``):
+
+* rolling equation (paper Eq. roll-eq):
+  theta'' (Ic + 1 + 2 chi cos theta) = chi theta'^2 sin theta + chi sin(alpha + theta) + sin alpha
+* contact force on the cylinder, x down the ramp, y normal to it (paper Eq. Njump):
+  Fx = -sin alpha - chi theta'^2 sin theta + (1 + chi cos theta) theta''
+  Fy =  cos alpha - chi theta'^2 cos theta - chi theta'' sin theta
+* the paper's lift-off condition (Eq. jumpcondition): chi theta'^2 cos theta - cos alpha = 0.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, replace
+from typing import Literal, NamedTuple
+
+import numpy as np
+from numpy.typing import NDArray
+
+from eccjump import _core
+from eccjump.body import Cylinder
+from eccjump.dense import DenseSolution
+from eccjump.units import Units
+
+Rule = Literal["paper", "normal_force"]
+EVENT_NAMES = ("liftoff", "normal_force_zero", "slip", "theta_limit")
+
+
+class Event(NamedTuple):
+    """An event met during a run: its name, time and state (dimensionless units)."""
+
+    name: str
+    t: float
+    theta: float
+    omega: float
+
+
+@dataclass(frozen=True)
+class RollResult:
+    """The outcome of :func:`roll`, in the spirit of scipy's ``OdeResult``.
+
+    Arrays hold the accepted steps (the initial point first, the terminal event last), in
+    units g = R = M = 1 unless converted with :meth:`to_si`.
+
+    Attributes
+    ----------
+    t : time [sqrt(R/g)]
+    theta : angle of the vector C -> CM from the ramp normal [rad]
+    omega : angular velocity theta' [sqrt(g/R) rad]
+    omega_dot : angular acceleration theta'' from the rolling equation [g/R rad]
+    Fx : friction force on the cylinder along the ramp, positive down the ramp [M g]
+    Fy : normal force on the cylinder [M g]
+    l : distance rolled along the ramp, theta - theta0 [R]
+    events : every event met, in time order (see :data:`EVENT_NAMES`)
+    terminal_event : name of the event that ended the run, or None
+    status : 0 reached t_max, 1 a terminal event, -1 the integrator failed
+    message : what happened, in words
+    nfev : right-hand-side evaluations
+    sol : dense output ``sol(t) -> (theta, omega)`` when asked for, else None
+    """
+
+    body: Cylinder
+    alpha: float
+    mu_s: float | None
+    rule: str
+    t: NDArray[np.float64]
+    theta: NDArray[np.float64]
+    omega: NDArray[np.float64]
+    omega_dot: NDArray[np.float64]
+    Fx: NDArray[np.float64]
+    Fy: NDArray[np.float64]
+    events: tuple[Event, ...]
+    terminal_event: str | None
+    status: int
+    message: str
+    nfev: int
+    sol: DenseSolution | None
+    units: Units | None = None
+
+    @property
+    def success(self) -> bool:
+        """True unless the integrator failed."""
+        return self.status >= 0
+
+    @property
+    def l(self) -> NDArray[np.float64]:  # noqa: E743 - the paper's name for the distance
+        """Distance rolled along the ramp (pure rolling: l - l0 = R (theta - theta0))."""
+        scale = 1.0 if self.units is None else self.units.length
+        return (self.theta - self.theta[0]) * scale
+
+    def event(self, name: str) -> Event | None:
+        """The first event called ``name``, or None."""
+        if name not in EVENT_NAMES:
+            raise ValueError(f"name = {name!r} is not one of {EVENT_NAMES}")
+        return next((e for e in self.events if e.name == name), None)
+
+    def to_si(
+        self, units: Units | None = None, *, g: float = 9.81, R: float = 1.0, M: float = 1.0
+    ) -> RollResult:
+        """The same run in SI units for gravity ``g`` [m/s²], radius ``R`` [m], mass ``M``
+        [kg]: angles unchanged, times x sqrt(R/g), rates x sqrt(g/R), forces x M g.
+        The dense output is dropped (it stays available on the dimensionless result)."""
+        if self.units is not None:
+            raise ValueError("units: this result is already in SI units")
+        u = units if units is not None else Units(g=g, R=R, M=M)
+        return replace(
+            self,
+            t=self.t * u.time,
+            omega=self.omega * u.rate,
+            omega_dot=self.omega_dot * u.acceleration,
+            Fx=self.Fx * u.force,
+            Fy=self.Fy * u.force,
+            events=tuple(
+                Event(e.name, e.t * u.time, e.theta, e.omega * u.rate) for e in self.events
+            ),
+            sol=None,
+            units=u,
+        )
+
+
+def roll(
+    body: Cylinder,
+    alpha: float,
+    *,
+    theta0: float = 0.0,
+    omega0: float = 0.0,
+    mu_s: float | None = None,
+    t_max: float = 1000.0,
+    theta_max: float = math.inf,
+    rtol: float = 1e-10,
+    atol: float = 1e-12,
+    dense_output: bool = False,
+    max_steps: int = 1_000_000,
+    rule: Rule = "paper",
+) -> RollResult:
+    """Integrate pure rolling of ``body`` on a ramp of angle ``alpha`` until an event ends it.
+
+    Parameters
+    ----------
+    body : Cylinder
+    alpha : ramp angle [rad], in [0, pi/2].
+    theta0, omega0 : initial angle [rad] and angular velocity [sqrt(g/R) rad].
+    mu_s : static friction coefficient, >= 0; None means enough friction (no slip event).
+    t_max : largest time [sqrt(R/g)], > 0.
+    theta_max : the run ends when theta reaches this angle [rad] (event ``theta_limit``).
+    rtol, atol : tolerances of the Dormand–Prince 5(4) integrator (scipy's meaning).
+    dense_output : keep the interpolant, returned as ``sol``.
+    max_steps : step limit; reaching it ends the run with status -1.
+    rule : ``"paper"`` ends the run at the paper's lift-off condition
+        chi theta'^2 cos theta = cos alpha; ``"normal_force"`` keeps rolling until Fy = 0 or
+        (with ``mu_s``) the friction cone is left, recording the paper's condition as an event.
+
+    Events (located on the dense output to near machine precision): ``liftoff`` (paper's
+    condition, rising), ``normal_force_zero`` (Fy = 0), ``slip`` (mu_s Fy = |Fx|),
+    ``theta_limit``. A contact condition already violated at t = 0 ends the run at once.
+
+    Raises
+    ------
+    ValueError
+        For any parameter outside its range; the message names it.
+    """
+    if not isinstance(body, Cylinder):
+        raise TypeError(f"body must be a Cylinder, not {type(body).__name__}")
+    if isinstance(max_steps, bool) or not isinstance(max_steps, int | np.integer) or max_steps < 1:
+        raise ValueError(f"max_steps = {max_steps!r} is outside the allowed range [1, inf)")
+    raw = _core.roll(
+        body.chi,
+        body.km,
+        float(alpha),
+        float(theta0),
+        float(omega0),
+        None if mu_s is None else float(mu_s),
+        float(t_max),
+        float(theta_max),
+        float(rtol),
+        float(atol),
+        int(max_steps),
+        bool(dense_output),
+        str(rule),
+    )
+    sol = None
+    if dense_output and "dense_h" in raw:
+        sol = DenseSolution(raw["dense_t_old"], raw["dense_h"], raw["dense_y_old"], raw["dense_q"])
+    return RollResult(
+        body=body,
+        alpha=float(alpha),
+        mu_s=None if mu_s is None else float(mu_s),
+        rule=str(rule),
+        t=raw["t"],
+        theta=raw["theta"],
+        omega=raw["omega"],
+        omega_dot=raw["omega_dot"],
+        Fx=raw["fx"],
+        Fy=raw["fy"],
+        events=tuple(Event(*e) for e in raw["events"]),
+        terminal_event=raw["terminal_event"],
+        status=raw["status"],
+        message=raw["message"],
+        nfev=raw["nfev"],
+        sol=sol,
+    )

@@ -1,0 +1,336 @@
+//! A pure-rolling run: the rolling equation integrated by the Dormand–Prince driver, with
+//! the built-in contact events, until the first terminal one (or t_max / θ_max).
+//!
+//! Events (all located on the dense output to near machine precision):
+//! - `Liftoff`: the paper's jump condition χ θ̇² cos θ − cos α = 0, rising;
+//! - `NormalForceZero`: F_y = 0, falling (the contact would need to pull);
+//! - `Slip`: μ_s F_y − |F_x| = 0, falling (the rolling branch leaves the friction cone);
+//! - `ThetaLimit`: θ = θ_max, rising.
+//!
+//! Which of them end the run is set by the lift-off [`Rule`].
+
+use crate::error::{check_positive, check_range, Error, Result};
+use crate::ode::{
+    self, DenseStep, Direction, EventFunctions, EventSpec, Observation, OdeSystem, SolverOptions,
+    State, Status,
+};
+use crate::rolling::Rolling;
+
+/// When the body is taken to leave the ramp.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Rule {
+    /// The paper's rule: lift-off when the free-flight normal acceleration
+    /// χ θ̇² cos θ − cos α first reaches 0 (rising).
+    Paper,
+    /// The classical unilateral-contact rule: keep rolling while F_y > 0 and
+    /// |F_x| ≤ μ_s F_y; the paper's lift-off condition is recorded but does not stop the run.
+    NormalForce,
+}
+
+/// The built-in events of a rolling run, in the order of their indices.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+#[repr(u8)]
+pub enum RollEvent {
+    Liftoff = 0,
+    NormalForceZero = 1,
+    Slip = 2,
+    ThetaLimit = 3,
+}
+
+impl RollEvent {
+    pub const ALL: [RollEvent; 4] = [
+        RollEvent::Liftoff,
+        RollEvent::NormalForceZero,
+        RollEvent::Slip,
+        RollEvent::ThetaLimit,
+    ];
+
+    /// A stable lower-case name, used by the Python layer and the command line.
+    pub fn name(self) -> &'static str {
+        match self {
+            RollEvent::Liftoff => "liftoff",
+            RollEvent::NormalForceZero => "normal_force_zero",
+            RollEvent::Slip => "slip",
+            RollEvent::ThetaLimit => "theta_limit",
+        }
+    }
+}
+
+/// The rolling equation as a first-order system in y = (θ, θ̇).
+impl OdeSystem<2> for Rolling {
+    #[inline]
+    fn rhs(&self, _t: f64, y: &State<2>) -> State<2> {
+        State::<2>::new(y[1], self.omega_dot(y[0], y[1]))
+    }
+}
+
+/// The event functions of a rolling run.
+#[derive(Debug, Clone, Copy)]
+pub struct RollEvents {
+    pub rolling: Rolling,
+    /// μ_s; `None` disables the slip event.
+    pub mu_s: Option<f64>,
+    pub theta_max: f64,
+    pub rule: Rule,
+}
+
+impl RollEvents {
+    /// g_k at a state, as a function of θ and θ̇ only.
+    pub fn value_at(&self, event: RollEvent, theta: f64, omega: f64) -> f64 {
+        match event {
+            RollEvent::Liftoff => self.rolling.liftoff_function(theta, omega),
+            RollEvent::NormalForceZero => self.rolling.kinematics(theta, omega).fy,
+            RollEvent::Slip => {
+                let k = self.rolling.kinematics(theta, omega);
+                // The margin, not the ratio: it stays finite as F_y → 0.
+                self.mu_s.map_or(1.0, |mu| mu * k.fy - k.fx.abs())
+            }
+            RollEvent::ThetaLimit => theta - self.theta_max,
+        }
+    }
+
+    /// Whether the event ends the run under the chosen rule.
+    pub fn is_terminal(&self, event: RollEvent) -> bool {
+        match event {
+            RollEvent::Liftoff => self.rule == Rule::Paper,
+            RollEvent::Slip => self.mu_s.is_some(),
+            RollEvent::NormalForceZero | RollEvent::ThetaLimit => true,
+        }
+    }
+}
+
+impl EventFunctions<2> for RollEvents {
+    fn count(&self) -> usize {
+        RollEvent::ALL.len()
+    }
+    fn spec(&self, k: usize) -> EventSpec {
+        let event = RollEvent::ALL[k];
+        let direction = match event {
+            RollEvent::Liftoff | RollEvent::ThetaLimit => Direction::Rising,
+            RollEvent::NormalForceZero | RollEvent::Slip => Direction::Falling,
+        };
+        EventSpec {
+            direction,
+            terminal: self.is_terminal(event),
+        }
+    }
+    fn value(&self, k: usize, _t: f64, y: &State<2>) -> f64 {
+        self.value_at(RollEvent::ALL[k], y[0], y[1])
+    }
+}
+
+/// The inputs of a rolling run besides the body and ramp.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct RollOptions {
+    pub theta0: f64,
+    pub omega0: f64,
+    pub mu_s: Option<f64>,
+    pub t_max: f64,
+    pub theta_max: f64,
+    pub rule: Rule,
+    pub solver: SolverOptions,
+    /// Keep the dense output of every step (for `sol(t)` in Python).
+    pub dense_output: bool,
+}
+
+impl Default for RollOptions {
+    fn default() -> Self {
+        Self {
+            theta0: 0.0,
+            omega0: 0.0,
+            mu_s: None,
+            t_max: 1e3,
+            theta_max: f64::INFINITY,
+            rule: Rule::Paper,
+            solver: SolverOptions::default(),
+            dense_output: false,
+        }
+    }
+}
+
+impl RollOptions {
+    /// Checks every option, naming the first bad one.
+    pub fn validate(&self) -> Result<()> {
+        let big = f64::MAX;
+        check_range("theta0", self.theta0, -big, big)?;
+        check_range("omega0", self.omega0, -big, big)?;
+        if let Some(mu) = self.mu_s {
+            check_range("mu_s", mu, 0.0, big)?;
+        }
+        check_positive("t_max", self.t_max)?;
+        if self.theta_max.is_nan() || self.theta_max <= self.theta0 {
+            return Err(Error::InvalidParameter {
+                name: "theta_max",
+                value: self.theta_max,
+                allowed: format!("(theta0, inf] = ({}, inf]", self.theta0),
+            });
+        }
+        check_range("rtol", self.solver.rtol, 1e-15, 1.0)?;
+        check_positive("atol", self.solver.atol)?;
+        if self.solver.max_steps == 0 {
+            return Err(Error::InvalidParameter {
+                name: "max_steps",
+                value: 0.0,
+                allowed: "[1, inf)".to_string(),
+            });
+        }
+        Ok(())
+    }
+}
+
+/// One event met during the run.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct EventHit {
+    pub event: RollEvent,
+    pub t: f64,
+    pub theta: f64,
+    pub omega: f64,
+}
+
+/// How a run ended.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum RollStatus {
+    /// t reached t_max without a terminal event.
+    TimeLimit,
+    /// A terminal event ended the run.
+    Event(RollEvent),
+    /// The integrator failed (step limit, step too small, non-finite values).
+    Failed(Status),
+}
+
+impl RollStatus {
+    /// scipy's convention: 0 reached the end, 1 a terminal event, −1 a failure.
+    pub fn code(self) -> i32 {
+        match self {
+            RollStatus::TimeLimit => 0,
+            RollStatus::Event(_) => 1,
+            RollStatus::Failed(_) => -1,
+        }
+    }
+
+    pub fn message(self) -> String {
+        match self {
+            RollStatus::TimeLimit => "reached t_max".to_string(),
+            RollStatus::Event(e) => format!("terminal event: {}", e.name()),
+            RollStatus::Failed(Status::MaxSteps) => {
+                "step limit reached (max_steps) before the end".to_string()
+            }
+            RollStatus::Failed(Status::StepTooSmall) => {
+                "step size became too small: the motion is singular here (e.g. χ = 1, k_m = 0 \
+                 at θ = π)"
+                    .to_string()
+            }
+            RollStatus::Failed(Status::NonFinite) => {
+                "non-finite value in the equations of motion".to_string()
+            }
+            RollStatus::Failed(s) => format!("integrator stopped: {s:?}"),
+        }
+    }
+}
+
+/// The recorded run: accepted steps (with the initial point and the end point), events, and
+/// optionally the dense output of every step.
+#[derive(Debug, Clone, PartialEq)]
+pub struct RollRun {
+    pub t: Vec<f64>,
+    pub theta: Vec<f64>,
+    pub omega: Vec<f64>,
+    pub events: Vec<EventHit>,
+    pub status: RollStatus,
+    pub nfev: usize,
+    pub dense: Vec<DenseStep<2>>,
+}
+
+/// Integrates pure rolling from (θ0, θ̇0) until a terminal event, t_max or θ_max.
+pub fn roll(rolling: &Rolling, opts: &RollOptions) -> Result<RollRun> {
+    opts.validate()?;
+    let events = RollEvents {
+        rolling: *rolling,
+        mu_s: opts.mu_s,
+        theta_max: opts.theta_max,
+        rule: opts.rule,
+    };
+    let mut run = RollRun {
+        t: vec![0.0],
+        theta: vec![opts.theta0],
+        omega: vec![opts.omega0],
+        events: Vec::new(),
+        status: RollStatus::TimeLimit,
+        nfev: 0,
+        dense: Vec::new(),
+    };
+    // A contact event that already holds at t = 0 ends the run there: the integrator
+    // looks for crossings only, and a run that starts outside the contact conditions
+    // must not roll on as if it were inside them.
+    if let Some(event) = violated_at_start(&events, opts.theta0, opts.omega0) {
+        run.events.push(EventHit {
+            event,
+            t: 0.0,
+            theta: opts.theta0,
+            omega: opts.omega0,
+        });
+        run.status = RollStatus::Event(event);
+        return Ok(run);
+    }
+    let y0 = State::<2>::new(opts.theta0, opts.omega0);
+    let outcome = ode::solve(
+        rolling,
+        &events,
+        0.0,
+        y0,
+        opts.t_max,
+        &opts.solver,
+        &mut |obs: Observation<'_, 2>| match obs {
+            Observation::Step { dense, t, y } => {
+                run.t.push(t);
+                run.theta.push(y[0]);
+                run.omega.push(y[1]);
+                if opts.dense_output {
+                    run.dense.push(*dense);
+                }
+            }
+            Observation::Event { index, t, y } => run.events.push(EventHit {
+                event: RollEvent::ALL[index],
+                t,
+                theta: y[0],
+                omega: y[1],
+            }),
+        },
+    );
+    run.nfev = outcome.nfev;
+    run.status = match outcome.status {
+        Status::Finished => RollStatus::TimeLimit,
+        Status::Event(k) => RollStatus::Event(RollEvent::ALL[k]),
+        other => RollStatus::Failed(other),
+    };
+    // The last accepted step ends past a terminal event: end the record at the event.
+    if let Status::Event(_) = outcome.status {
+        while run.t.len() > 1 && *run.t.last().unwrap() > outcome.t {
+            run.t.pop();
+            run.theta.pop();
+            run.omega.pop();
+        }
+        if *run.t.last().unwrap() < outcome.t {
+            run.t.push(outcome.t);
+            run.theta.push(outcome.y[0]);
+            run.omega.push(outcome.y[1]);
+        }
+    }
+    Ok(run)
+}
+
+/// The terminal event whose condition is already met at the start, if any.
+fn violated_at_start(events: &RollEvents, theta: f64, omega: f64) -> Option<RollEvent> {
+    RollEvent::ALL.into_iter().find(|&e| {
+        let g = events.value_at(e, theta, omega);
+        let outside = match e {
+            RollEvent::Liftoff | RollEvent::ThetaLimit => g > 0.0,
+            // Contact needs a strictly positive normal force (on a vertical ramp at rest
+            // F_y = 0: the body is not pressed onto the ramp at all).
+            RollEvent::NormalForceZero => g <= 0.0,
+            RollEvent::Slip => g < 0.0,
+        };
+        // θ_max is validated to lie above θ0, so it never fires here.
+        events.is_terminal(e) && outside
+    })
+}
