@@ -1,0 +1,292 @@
+"""Pure rolling through the Rust RK45 core, checked against independent routes."""
+
+import math
+
+import numpy as np
+import pytest
+from eccjump import Cylinder, Units, roll
+from hypothesis import given, settings
+from hypothesis import strategies as st
+from scipy.integrate import solve_ivp
+from scipy.optimize import brentq
+
+
+def rolling_rhs(alpha, chi, ic):
+    """The rolling equation, written again here from the Lagrangian of the rolling body."""
+
+    def f(_t, y):
+        th, w = y
+        a = ic + 1 + 2 * chi * math.cos(th)
+        return [w, (chi * w * w * math.sin(th) + chi * math.sin(alpha + th) + math.sin(alpha)) / a]
+
+    return f
+
+
+def energy(alpha, chi, ic, th, w):
+    height = -(th + chi * np.sin(th)) * math.sin(alpha) + chi * np.cos(th) * math.cos(alpha)
+    return 0.5 * (ic + 1 + 2 * chi * np.cos(th)) * w**2 + height
+
+
+@st.composite
+def setups(draw):
+    chi = draw(st.floats(0.0, 0.95))
+    km = draw(st.floats(0.0, 1.0)) * (1 - chi)
+    alpha = draw(st.floats(0.0, math.pi / 2))
+    theta0 = draw(st.floats(-math.pi, math.pi))
+    omega0 = draw(st.floats(0.0, 2.0))
+    return Cylinder(chi, km), alpha, theta0, omega0
+
+
+@settings(max_examples=60, deadline=None)
+@given(setups())
+def test_energy_is_conserved(s):
+    body, alpha, theta0, omega0 = s
+    r = roll(body, alpha, theta0=theta0, omega0=omega0, t_max=20.0, theta_max=theta0 + 30)
+    assert r.success, r.message
+    e = energy(alpha, body.chi, body.Ic, r.theta, r.omega)
+    assert np.max(np.abs(e - e[0])) < 1e-7 * max(1.0, np.max(np.abs(r.omega)) ** 2)
+
+
+@settings(max_examples=40, deadline=None)
+@given(setups())
+def test_agrees_with_scipy_dop853(s):
+    body, alpha, theta0, omega0 = s
+    r = roll(body, alpha, theta0=theta0, omega0=omega0, t_max=10.0, theta_max=theta0 + 20)
+    ref = solve_ivp(
+        rolling_rhs(alpha, body.chi, body.Ic),
+        (0, r.t[-1]),
+        [theta0, omega0],
+        method="DOP853",
+        rtol=1e-12,
+        atol=1e-12,
+        dense_output=True,
+    )
+    th, w = ref.sol(r.t)
+    scale = 1 + np.max(np.abs(th))
+    assert np.max(np.abs(th - r.theta)) < 1e-7 * scale
+    assert np.max(np.abs(w - r.omega)) < 1e-7 * scale
+
+
+def test_scale_invariance_against_an_si_integration():
+    # Integrate the dimensional equation in SI for a real body (R = 0.3 m, g = 9.81) with
+    # scipy, and compare with the dimensionless run converted by to_si.
+    g, R, M = 9.81, 0.3, 2.0
+    body = Cylinder(0.4, 0.3)
+    alpha = math.radians(25)
+    r = roll(body, alpha, theta_max=4.0).to_si(g=g, R=R, M=M)
+    d, ic = body.chi * R, body.Ic * M * R * R
+
+    def f(_t, y):
+        th, w = y
+        num = M * d * w * w * math.sin(th) + M * g * (d * math.sin(alpha + th) / R * R)
+        num = M * d * w * w * math.sin(th) * R + M * g * R * (
+            d * math.sin(alpha + th) + R * math.sin(alpha)
+        )
+        den = ic + M * R * R + 2 * M * R * d * math.cos(th)
+        return [w, num / den / R * R / R]
+
+    # theta'' (I_C + M R^2 + 2 M R d cos) = M R d w^2 sin + M g (d sin(a+th) + R sin a)
+    def f2(_t, y):
+        th, w = y
+        den = ic + M * R * R + 2 * M * R * d * math.cos(th)
+        num = M * R * d * w * w * math.sin(th) + M * g * (
+            d * math.sin(alpha + th) + R * math.sin(alpha)
+        )
+        return [w, num / den]
+
+    ref = solve_ivp(
+        f2, (0, r.t[-1]), [0, 0], method="DOP853", rtol=1e-12, atol=1e-12, dense_output=True
+    )
+    th, w = ref.sol(r.t)
+    assert np.allclose(th, r.theta, atol=1e-8)
+    assert np.allclose(w, r.omega, atol=1e-8 * math.sqrt(g / R))
+    # Forces scale with M g: Fy at the start is M g cos(alpha).
+    assert r.Fy[0] == pytest.approx(M * g * math.cos(alpha), rel=1e-12)
+    assert r.units == Units(g, R, M)
+
+
+def J(theta, alpha, chi, km):
+    """The paper's Eq. (Jta), typed in independently of the package."""
+    gamma = (km**2 + 2 * km * chi - chi**2 - 2 * chi - 1) / (4 * math.pi * (km - 1) * chi)
+    num = chi * math.cos(alpha) - chi * math.cos(alpha + theta) + theta * math.sin(alpha)
+    return -1 + num * math.cos(theta) / (
+        (2 * math.pi * gamma + math.cos(theta) - 1) * math.cos(alpha)
+    )
+
+
+@pytest.mark.parametrize(
+    ("alpha_deg", "chi", "km"),
+    [(40, 0.15, 0.02), (30, 0.5, 0.4), (60, 0.1, 0.5), (10, 0.3, 0.2), (75, 0.05, 0.01)],
+)
+def test_liftoff_from_rest_is_the_first_root_of_J(alpha_deg, chi, km):
+    alpha = math.radians(alpha_deg)
+    r = roll(Cylinder(chi, km), alpha)
+    assert r.terminal_event == "liftoff", r.message
+    th_j = r.event("liftoff").theta
+    # The first rising zero of J: scan J on a fine grid up to just past the event, bracket.
+    grid = np.linspace(1e-9, th_j + 0.05, 20001)
+    vals = np.array([J(t, alpha, chi, km) for t in grid])
+    k = int(np.argmax((vals[:-1] < 0) & (vals[1:] >= 0)))
+    root = brentq(J, grid[k], grid[k + 1], args=(alpha, chi, km), xtol=1e-15, rtol=1e-15)
+    assert th_j == pytest.approx(root, abs=1e-9)
+
+
+def test_reference_point_of_the_physics_notes():
+    r = roll(Cylinder(0.15, 0.02), math.radians(40), mu_s=1.0)
+    assert r.terminal_event == "liftoff"
+    assert math.degrees(r.theta[-1]) == pytest.approx(334.344, abs=1e-3)
+    assert r.Fy[-1] == pytest.approx(0.01543, abs=1e-5)
+    assert r.Fx[-1] == pytest.approx(-0.00516, abs=1e-5)
+    assert r.event("slip") is None
+
+
+def test_slips_first_at_the_second_reference_point():
+    r = roll(Cylinder(0.5, 0.4), math.radians(30), mu_s=1.0)
+    assert r.terminal_event == "slip"
+    assert math.degrees(r.theta[-1]) == pytest.approx(316.47, abs=0.01)
+    assert abs(r.Fx[-1]) == pytest.approx(r.Fy[-1], rel=1e-8)
+
+
+@settings(max_examples=30, deadline=None)
+@given(setups())
+def test_forces_satisfy_newton_euler_recomputed_from_the_trajectory(s):
+    body, alpha, theta0, omega0 = s
+    r = roll(
+        body,
+        alpha,
+        theta0=theta0,
+        omega0=omega0,
+        t_max=5.0,
+        theta_max=theta0 + 10,
+        dense_output=True,
+    )
+    if len(r.t) < 3:
+        return
+    chi = body.chi
+    # Centre of mass: x = l + chi sin(theta), y = 1 + chi cos(theta), l = theta - theta0.
+    ts = np.linspace(r.t[0], r.t[-1], 7)[1:-1]
+    h = 1e-4 * max(1e-3, r.t[-1])
+    ts = ts[(ts - 2 * h > r.t[0]) & (ts + 2 * h < r.t[-1])]
+    for t in ts:
+        pts = np.array([r.sol(t + k * h)[0] for k in (-2, -1, 0, 1, 2)])
+        x = pts - theta0 + chi * np.sin(pts)
+        y = 1 + chi * np.cos(pts)
+        d2 = np.array([-1, 16, -30, 16, -1]) / (12 * h * h)
+        ax, ay = d2 @ x, d2 @ y
+        th, w = r.sol(t)
+        fx_ne = ax - math.sin(alpha)  # F = M (a_cm - g), g = (sin a, -cos a)
+        fy_ne = ay + math.cos(alpha)
+        # The package's forces at the same state, by the interpolated state:
+        k = body.Ic + 1 + 2 * chi * math.cos(th)
+        acc = (chi * w * w * math.sin(th) + chi * math.sin(alpha + th) + math.sin(alpha)) / k
+        fx = -math.sin(alpha) - chi * w * w * math.sin(th) + (1 + chi * math.cos(th)) * acc
+        fy = math.cos(alpha) - chi * w * w * math.cos(th) - chi * acc * math.sin(th)
+        assert fx_ne == pytest.approx(fx, abs=2e-4)
+        assert fy_ne == pytest.approx(fy, abs=2e-4)
+        # Torque about the CM: Icm theta'' = chi sin(th) Fy - (1 + chi cos th) Fx.
+        assert body.Icm * acc == pytest.approx(
+            chi * math.sin(th) * fy - (1 + chi * math.cos(th)) * fx, abs=1e-12
+        )
+    # The arrays returned are the same formulas at the step points.
+    i = len(r.t) // 2
+    th, w = r.theta[i], r.omega[i]
+    k = body.Ic + 1 + 2 * chi * math.cos(th)
+    acc = (chi * w * w * math.sin(th) + chi * math.sin(alpha + th) + math.sin(alpha)) / k
+    assert r.omega_dot[i] == pytest.approx(acc, rel=1e-12, abs=1e-14)
+    assert r.Fy[i] == pytest.approx(
+        math.cos(alpha) - chi * w * w * math.cos(th) - chi * acc * math.sin(th),
+        rel=1e-12,
+        abs=1e-14,
+    )
+
+
+def test_accepted_steps_match_scipy_rk45_step_for_step():
+    body, alpha = Cylinder(0.3, 0.2), math.radians(35)
+    r = roll(body, alpha, t_max=3.0, rtol=1e-6, atol=1e-9, theta_max=1e9)
+    ref = solve_ivp(
+        rolling_rhs(alpha, body.chi, body.Ic),
+        (0, 3.0),
+        [0.0, 0.0],
+        method="RK45",
+        rtol=1e-6,
+        atol=1e-9,
+    )
+    assert r.status == 0
+    assert len(r.t) == len(ref.t)
+    np.testing.assert_allclose(r.t, ref.t, rtol=1e-12, atol=1e-15)
+    np.testing.assert_allclose(r.theta, ref.y[0], rtol=1e-10, atol=1e-13)
+    assert r.nfev == ref.nfev
+
+
+def test_dense_output_matches_the_steps():
+    r = roll(Cylinder(0.3, 0.2), 0.5, dense_output=True)
+    y = r.sol(r.t)
+    np.testing.assert_allclose(y[0], r.theta, rtol=1e-13, atol=1e-13)
+    assert r.sol(float(r.t[1])).shape == (2,)
+    with pytest.raises(ValueError, match="outside"):
+        r.sol(r.t[-1] + 1.0)
+
+
+def test_si_conversion_keeps_angles_and_scales_the_rest():
+    r = roll(Cylinder(0.3, 0.2), 0.5)
+    si = r.to_si(g=9.81, R=0.5, M=2.0)
+    np.testing.assert_array_equal(si.theta, r.theta)
+    np.testing.assert_allclose(si.t, r.t * math.sqrt(0.5 / 9.81))
+    np.testing.assert_allclose(si.Fy, r.Fy * 2 * 9.81)
+    np.testing.assert_allclose(si.l, r.l * 0.5)
+
+
+def test_rule_normal_force_rolls_past_the_papers_liftoff():
+    body, alpha = Cylinder(0.15, 0.02), math.radians(40)
+    paper = roll(body, alpha, mu_s=1.0)
+    classical = roll(body, alpha, mu_s=1.0, rule="normal_force")
+    assert classical.event("liftoff").theta == pytest.approx(paper.theta[-1], abs=1e-12)
+    assert classical.terminal_event in ("slip", "normal_force_zero")
+    assert classical.theta[-1] > paper.theta[-1]
+
+
+def test_bit_reproducible():
+    a = roll(Cylinder(0.41, 0.22), 0.7, mu_s=0.9)
+    b = roll(Cylinder(0.41, 0.22), 0.7, mu_s=0.9)
+    assert a.theta.tobytes() == b.theta.tobytes() and a.t.tobytes() == b.t.tobytes()
+
+
+def test_singular_body_ends_with_a_status_not_a_crash():
+    r = roll(Cylinder(1.0, 0.0), 0.01, theta0=3.0, omega0=0.0, t_max=50.0, max_steps=20000)
+    assert r.status in (-1, 0, 1)
+    assert isinstance(r.message, str) and r.message
+
+
+def test_step_limit_gives_status_minus_one():
+    r = roll(Cylinder(0.3, 0.2), 0.5, max_steps=3, rtol=1e-12)
+    assert r.status == -1 and "max_steps" in r.message
+
+
+@pytest.mark.parametrize(
+    ("kwargs", "name"),
+    [
+        ({"alpha": -0.1}, "alpha"),
+        ({"alpha": 2.0}, "alpha"),
+        ({"alpha": math.nan}, "alpha"),
+        ({"theta0": math.inf}, "theta0"),
+        ({"mu_s": -1.0}, "mu_s"),
+        ({"t_max": 0.0}, "t_max"),
+        ({"rtol": 0.0}, "rtol"),
+        ({"atol": -1.0}, "atol"),
+        ({"theta_max": -1.0}, "theta_max"),
+        ({"max_steps": 0}, "max_steps"),
+        ({"rule": "bogus"}, "rule"),
+    ],
+)
+def test_invalid_input_raises_value_error(kwargs, name):
+    args = {"alpha": 0.5, **kwargs}
+    alpha = args.pop("alpha")
+    with pytest.raises(ValueError, match=name):
+        roll(Cylinder(0.3, 0.2), alpha, **args)
+
+
+def test_vertical_ramp_and_flat_ramp():
+    flat = roll(Cylinder(0.0, 0.5), 0.0, t_max=5.0)
+    assert flat.status == 0 and np.all(flat.theta == 0.0)
+    wall = roll(Cylinder(0.2, 0.1), math.pi / 2)
+    assert wall.terminal_event == "normal_force_zero" and len(wall.t) == 1
