@@ -76,15 +76,6 @@ def test_scale_invariance_against_an_si_integration():
     r = roll(body, alpha, theta_max=4.0).to_si(g=g, R=R, M=M)
     d, ic = body.chi * R, body.Ic * M * R * R
 
-    def f(_t, y):
-        th, w = y
-        num = M * d * w * w * math.sin(th) + M * g * (d * math.sin(alpha + th) / R * R)
-        num = M * d * w * w * math.sin(th) * R + M * g * R * (
-            d * math.sin(alpha + th) + R * math.sin(alpha)
-        )
-        den = ic + M * R * R + 2 * M * R * d * math.cos(th)
-        return [w, num / den / R * R / R]
-
     # theta'' (I_C + M R^2 + 2 M R d cos) = M R d w^2 sin + M g (d sin(a+th) + R sin a)
     def f2(_t, y):
         th, w = y
