@@ -4,9 +4,10 @@ import math
 import pickle
 
 import pytest
-from eccjump import Cylinder, Units
 from hypothesis import given
 from hypothesis import strategies as st
+
+from eccjump import Cylinder, Units
 
 unit = st.floats(0.0, 1.0)
 

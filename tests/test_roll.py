@@ -4,11 +4,12 @@ import math
 
 import numpy as np
 import pytest
-from eccjump import Cylinder, Units, roll
 from hypothesis import given, settings
 from hypothesis import strategies as st
 from scipy.integrate import solve_ivp
 from scipy.optimize import brentq
+
+from eccjump import Cylinder, Units, roll
 
 
 def rolling_rhs(alpha, chi, ic):
