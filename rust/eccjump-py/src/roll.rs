@@ -107,8 +107,7 @@ fn to_dict<'py>(py: Python<'py>, rolling: &Rolling, run: RollRun) -> PyResult<Bo
         }
         d.set_item("dense_t_old", t_old.into_pyarray(py))?;
         d.set_item("dense_h", h.into_pyarray(py))?;
-        let y_old: Bound<'py, PyArray2<f64>> =
-            PyArray1::from_vec(py, y_old).reshape([n, 2])?;
+        let y_old: Bound<'py, PyArray2<f64>> = PyArray1::from_vec(py, y_old).reshape([n, 2])?;
         d.set_item("dense_y_old", y_old)?;
         let q: Bound<'py, PyArray1<f64>> = PyArray1::from_vec(py, q);
         d.set_item("dense_q", q.reshape([n, 2, 4])?)?;

@@ -53,9 +53,17 @@ pub enum Status {
 #[derive(Debug, Clone, Copy)]
 pub enum Observation<'a, const N: usize> {
     /// An accepted step from dense.t_old to t, ending in y.
-    Step { dense: &'a DenseStep<N>, t: f64, y: &'a State<N> },
+    Step {
+        dense: &'a DenseStep<N>,
+        t: f64,
+        y: &'a State<N>,
+    },
     /// Event k met at (t, y) (terminal or not); `y` is the dense output at t.
-    Event { index: usize, t: f64, y: &'a State<N> },
+    Event {
+        index: usize,
+        t: f64,
+        y: &'a State<N>,
+    },
 }
 
 /// The end of an integration.
