@@ -155,6 +155,7 @@ fn locate<E: EventFunctions<N>, const N: usize>(
         Ok(r) => r,
         // Brent has a guaranteed bisection fallback; should it still not converge in
         // 200 iterations, bisect to the last bit, which always terminates.
+        Err(_) if bad => return Err(NonFiniteEvent),
         Err(_) => {
             let g2 = |t: f64| {
                 let v = events.value(k, t, &dense.eval(t));
@@ -260,4 +261,20 @@ pub fn scan_step<E: EventFunctions<N>, const N: usize>(
         }
     }
     Ok(None)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn crossings_need_a_nonzero_left_value() {
+        use Direction::*;
+        assert!(crosses(Rising, -1.0, 1.0) && crosses(Rising, -1.0, 0.0));
+        assert!(!crosses(Rising, 0.0, 1.0) && !crosses(Rising, 1.0, -1.0));
+        assert!(crosses(Falling, 1.0, -1.0) && crosses(Falling, 1.0, 0.0));
+        assert!(!crosses(Falling, 0.0, -1.0) && !crosses(Falling, -1.0, 1.0));
+        assert!(crosses(Any, 1.0, -1.0) && crosses(Any, -1.0, 1.0));
+        assert!(!crosses(Any, 0.0, 0.0) && !crosses(Any, 1.0, 2.0));
+    }
 }
