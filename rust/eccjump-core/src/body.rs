@@ -43,10 +43,7 @@ impl Cylinder {
         } else {
             // 1 − k_m ≥ χ > 0 here, so the division is safe.
             let one_minus = 1.0 - km;
-            (
-                km + chi * chi / one_minus,
-                km * (one_minus + chi * chi) / one_minus,
-            )
+            (km + chi * chi / one_minus, km * (one_minus + chi * chi) / one_minus)
         };
         Ok(Self { chi, km, ic, icm })
     }

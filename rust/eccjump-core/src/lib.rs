@@ -12,8 +12,8 @@
 pub mod body;
 pub mod error;
 pub mod ode;
-pub mod rolling;
 pub mod roots;
+pub mod rolling;
 
 pub use body::Cylinder;
 pub use error::{Error, Result};

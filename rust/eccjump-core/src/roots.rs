@@ -39,20 +39,10 @@ pub fn brent<F: FnMut(f64) -> f64>(
     let (mut xblk, mut fblk) = (0.0f64, 0.0f64);
     let (mut spre, mut scur) = (0.0f64, 0.0f64);
     if fpre == 0.0 {
-        return Ok(Root {
-            x: xpre,
-            lo: xpre,
-            hi: xpre,
-            evaluations: 0,
-        });
+        return Ok(Root { x: xpre, lo: xpre, hi: xpre, evaluations: 0 });
     }
     if fcur == 0.0 {
-        return Ok(Root {
-            x: xcur,
-            lo: xcur,
-            hi: xcur,
-            evaluations: 0,
-        });
+        return Ok(Root { x: xcur, lo: xcur, hi: xcur, evaluations: 0 });
     }
     if fpre.is_nan() || fcur.is_nan() || fpre.signum() == fcur.signum() {
         return Err(bracket_error(a, b, fa, fb));
@@ -75,17 +65,8 @@ pub fn brent<F: FnMut(f64) -> f64>(
         let delta = 0.5 * (xtol + rtol * xcur.abs());
         let sbis = 0.5 * (xblk - xcur);
         if fcur == 0.0 || sbis.abs() < delta {
-            let (lo, hi) = if xcur < xblk {
-                (xcur, xblk)
-            } else {
-                (xblk, xcur)
-            };
-            return Ok(Root {
-                x: xcur,
-                lo,
-                hi,
-                evaluations: iter,
-            });
+            let (lo, hi) = if xcur < xblk { (xcur, xblk) } else { (xblk, xcur) };
+            return Ok(Root { x: xcur, lo, hi, evaluations: iter });
         }
         if spre.abs() > delta && fcur.abs() < fpre.abs() {
             let stry = if xpre == xblk {
@@ -117,16 +98,10 @@ pub fn brent<F: FnMut(f64) -> f64>(
         }
         fcur = f(xcur);
         if fcur.is_nan() {
-            return Err(Error::NoConvergence {
-                what: "brent (f returned NaN)",
-                iterations: iter,
-            });
+            return Err(Error::NoConvergence { what: "brent (f returned NaN)", iterations: iter });
         }
     }
-    Err(Error::NoConvergence {
-        what: "brent",
-        iterations: max_iter,
-    })
+    Err(Error::NoConvergence { what: "brent", iterations: max_iter })
 }
 
 /// Bisection on [a, b] (fa, fb of opposite signs) until the midpoint is no longer strictly
@@ -134,20 +109,10 @@ pub fn brent<F: FnMut(f64) -> f64>(
 /// Deterministic and robust for functions with nearby extrema, where Brent may stall.
 pub fn bisect<F: FnMut(f64) -> f64>(mut f: F, a: f64, b: f64, fa: f64, fb: f64) -> Result<Root> {
     if fa == 0.0 {
-        return Ok(Root {
-            x: a,
-            lo: a,
-            hi: a,
-            evaluations: 0,
-        });
+        return Ok(Root { x: a, lo: a, hi: a, evaluations: 0 });
     }
     if fb == 0.0 {
-        return Ok(Root {
-            x: b,
-            lo: b,
-            hi: b,
-            evaluations: 0,
-        });
+        return Ok(Root { x: b, lo: b, hi: b, evaluations: 0 });
     }
     if fa.is_nan() || fb.is_nan() || fa.signum() == fb.signum() {
         return Err(bracket_error(a, b, fa, fb));
@@ -159,21 +124,11 @@ pub fn bisect<F: FnMut(f64) -> f64>(mut f: F, a: f64, b: f64, fa: f64, fb: f64) 
         if mid <= lo.min(hi) || mid >= lo.max(hi) {
             let x = if flo.abs() <= f(hi).abs() { lo } else { hi };
             let (l, h) = if lo < hi { (lo, hi) } else { (hi, lo) };
-            return Ok(Root {
-                x,
-                lo: l,
-                hi: h,
-                evaluations: iter + 1,
-            });
+            return Ok(Root { x, lo: l, hi: h, evaluations: iter + 1 });
         }
         let fm = f(mid);
         if fm == 0.0 {
-            return Ok(Root {
-                x: mid,
-                lo: mid,
-                hi: mid,
-                evaluations: iter + 1,
-            });
+            return Ok(Root { x: mid, lo: mid, hi: mid, evaluations: iter + 1 });
         }
         if fm.signum() == flo.signum() {
             lo = mid;
@@ -182,10 +137,7 @@ pub fn bisect<F: FnMut(f64) -> f64>(mut f: F, a: f64, b: f64, fa: f64, fb: f64) 
             hi = mid;
         }
     }
-    Err(Error::NoConvergence {
-        what: "bisection",
-        iterations: 2100,
-    })
+    Err(Error::NoConvergence { what: "bisection", iterations: 2100 })
 }
 
 #[cfg(test)]
