@@ -1,5 +1,6 @@
 //! The 4th-order dense output of one Dormand–Prince step (scipy's `RkDenseOutput`).
 
+use super::tableau::P;
 use super::State;
 
 /// Dense output on [t_old, t_old + h]: y(t_old + σh) = y_old + h Σ_j Q_j σ^(j+1), j = 0..3.
@@ -13,7 +14,22 @@ pub struct DenseStep<const N: usize> {
 }
 
 impl<const N: usize> DenseStep<N> {
+    /// The interpolant of the step of size h from (t_old, y_old) with the 7 stages K
+    /// (the last being the FSAL derivative at the step end): Q_j = Σ_i K_i P_ij, as
+    /// scipy's `K.T.dot(P)`.
+    #[inline]
+    pub fn from_stages(t_old: f64, h: f64, y_old: State<N>, k: &[State<N>; 7]) -> Self {
+        let mut q = [State::<N>::zeros(); 4];
+        for (j, qj) in q.iter_mut().enumerate() {
+            for (ki, pi) in k.iter().zip(P.iter()) {
+                *qj += ki * pi[j];
+            }
+        }
+        Self { t_old, h, y_old, q }
+    }
+
     /// The interpolated state at t (meaningful for t in [t_old, t_old + h]).
+    #[inline]
     pub fn eval(&self, t: f64) -> State<N> {
         let s = (t - self.t_old) / self.h;
         // Horner in σ: y_old + h σ (Q0 + σ (Q1 + σ (Q2 + σ Q3))).

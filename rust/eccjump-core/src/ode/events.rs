@@ -1,6 +1,7 @@
 //! Event functions g_k(t, y): their specs, and location of their zeros on the dense output.
 
-use super::State;
+use super::{DenseStep, State};
+use crate::roots;
 
 /// Which zero crossings of g count.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -43,5 +44,237 @@ impl<const N: usize> EventFunctions<N> for NoEvents {
     }
     fn value(&self, _k: usize, _t: f64, _y: &State<N>) -> f64 {
         unreachable!("NoEvents has no events")
+    }
+}
+
+// ---------------------------------------------------------------------------------------
+// Detection and location of event zeros within one accepted step.
+//
+// Each step is cut into `samples + 1` sub-intervals by equally spaced interior points of
+// the dense output; a crossing of event k is a sign change of g_k over a sub-interval.
+// Zeros are attributed to the sub-interval they END: a crossing needs a strictly nonzero
+// g at the left end. Hence a zero exactly at a sample or step boundary is reported once
+// (by the interval it closes), and a zero at the very start t0 is never reported.
+//
+// Nothing is stored per event (the number of events is only known at run time and the
+// loop must not allocate): a first pass walks each event's samples to find the earliest
+// sub-interval with any crossing — the common "nothing happens" case costs
+// samples + 2 evaluations of each g. Only when something crosses, a second pass sweeps
+// the sub-intervals in time order from there, re-evaluating g at their ends (the same
+// points, hence the same values), and locates the roots with Brent's method.
+// ---------------------------------------------------------------------------------------
+
+/// Does the change of g from `a` to `b` (in the order of integration) count as a
+/// crossing for `direction`? The left value must be nonzero (see above).
+#[inline]
+pub fn crosses(direction: Direction, a: f64, b: f64) -> bool {
+    let rising = a < 0.0 && b >= 0.0;
+    let falling = a > 0.0 && b <= 0.0;
+    match direction {
+        Direction::Any => rising || falling,
+        Direction::Rising => rising,
+        Direction::Falling => falling,
+    }
+}
+
+/// An event function returned NaN or ±inf while the step was scanned.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct NonFiniteEvent;
+
+/// An event met within a step.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct EventHit<const N: usize> {
+    pub index: usize,
+    pub t: f64,
+    pub y: State<N>,
+}
+
+/// The sample points of one accepted step: its two ends (exact states) and `samples`
+/// equally spaced interior points of the dense output.
+struct StepSamples<'a, const N: usize> {
+    dense: &'a DenseStep<N>,
+    t_new: f64,
+    y_new: &'a State<N>,
+    samples: usize,
+}
+
+impl<const N: usize> StepSamples<'_, N> {
+    /// Sample point j = 0..=samples + 1 (0 is the step start, samples + 1 its end).
+    #[inline]
+    fn point(&self, j: usize) -> (f64, State<N>) {
+        if j == 0 {
+            (self.dense.t_old, self.dense.y_old)
+        } else if j > self.samples {
+            (self.t_new, *self.y_new)
+        } else {
+            let t = self.dense.t_old + self.dense.h * (j as f64 / (self.samples + 1) as f64);
+            (t, self.dense.eval(t))
+        }
+    }
+
+    /// The state at a located root time (exact at the step end).
+    #[inline]
+    fn state_at(&self, t: f64) -> State<N> {
+        if t == self.t_new {
+            *self.y_new
+        } else {
+            self.dense.eval(t)
+        }
+    }
+}
+
+#[inline]
+fn checked(g: f64) -> Result<f64, NonFiniteEvent> {
+    if g.is_finite() {
+        Ok(g)
+    } else {
+        Err(NonFiniteEvent)
+    }
+}
+
+/// Locates the zero of g_k on the sub-interval [ta, tb] (in integration order) where
+/// g goes from ga to gb, to within ~4ε|t|. Returns the end of Brent's final bracket on
+/// the far side of the crossing, so that g at the reported point has already changed
+/// sign (or is zero): restarting the integration there does not find the same event.
+fn locate<E: EventFunctions<N>, const N: usize>(
+    events: &E,
+    k: usize,
+    dense: &DenseStep<N>,
+    (ta, ga): (f64, f64),
+    (tb, gb): (f64, f64),
+) -> Result<f64, NonFiniteEvent> {
+    let mut bad = false;
+    let g = |t: f64| {
+        let v = events.value(k, t, &dense.eval(t));
+        bad |= !v.is_finite();
+        v
+    };
+    let xtol = 4.0 * f64::EPSILON * ta.abs().max(tb.abs());
+    let rtol = 4.0 * f64::EPSILON;
+    let root = match roots::brent(g, ta, tb, ga, gb, xtol, rtol, 200) {
+        Ok(r) => r,
+        // Brent has a guaranteed bisection fallback; should it still not converge in
+        // 200 iterations, bisect to the last bit, which always terminates.
+        Err(_) if bad => return Err(NonFiniteEvent),
+        Err(_) => {
+            let g2 = |t: f64| {
+                let v = events.value(k, t, &dense.eval(t));
+                bad |= !v.is_finite();
+                v
+            };
+            roots::bisect(g2, ta, tb, ga, gb).map_err(|_| NonFiniteEvent)?
+        }
+    };
+    if bad {
+        return Err(NonFiniteEvent);
+    }
+    Ok(if tb >= ta { root.hi } else { root.lo })
+}
+
+/// Finds the events of one accepted step (dense output `dense`, ending at (t_new, y_new))
+/// and hands each to `report` in time order (ties by event index), stopping after the
+/// first terminal one, which is returned.
+pub fn scan_step<E: EventFunctions<N>, const N: usize>(
+    events: &E,
+    dense: &DenseStep<N>,
+    t_new: f64,
+    y_new: &State<N>,
+    samples: usize,
+    mut report: impl FnMut(EventHit<N>),
+) -> Result<Option<EventHit<N>>, NonFiniteEvent> {
+    let n_events = events.count();
+    if n_events == 0 {
+        return Ok(None);
+    }
+    let pts = StepSamples {
+        dense,
+        t_new,
+        y_new,
+        samples,
+    };
+    let last = samples + 1;
+
+    // Pass 1: the earliest sub-interval (ending at sample j_first) with any crossing.
+    let mut j_first = usize::MAX;
+    for k in 0..n_events {
+        let dir = events.spec(k).direction;
+        let (t, y) = pts.point(0);
+        let mut ga = checked(events.value(k, t, &y))?;
+        // Only sub-intervals before the earliest crossing found so far can matter.
+        for j in 1..=last.min(j_first.saturating_sub(1)) {
+            let (t, y) = pts.point(j);
+            let gb = checked(events.value(k, t, &y))?;
+            if crosses(dir, ga, gb) {
+                j_first = j;
+                break;
+            }
+            ga = gb;
+        }
+    }
+    if j_first == usize::MAX {
+        return Ok(None);
+    }
+
+    // Pass 2: sweep the sub-intervals in time order. Within one sub-interval several
+    // events may cross; they are reported in order of (time, index) by repeatedly
+    // picking the smallest one after the previous report (no buffer needed; more than
+    // one crossing in a sub-interval is rare, so the quadratic cost is irrelevant).
+    let forward = dense.h >= 0.0;
+    let later = |a: (f64, usize), b: (f64, usize)| -> bool {
+        // Is a strictly after b in integration order (ties broken by index)?
+        if a.0 == b.0 {
+            a.1 > b.1
+        } else {
+            (a.0 > b.0) == forward
+        }
+    };
+    for j in j_first..=last {
+        let (ta, ya) = pts.point(j - 1);
+        let (tb, yb) = pts.point(j);
+        let mut prev: Option<(f64, usize)> = None;
+        loop {
+            let mut best: Option<(f64, usize)> = None;
+            for k in 0..n_events {
+                let dir = events.spec(k).direction;
+                let ga = checked(events.value(k, ta, &ya))?;
+                let gb = checked(events.value(k, tb, &yb))?;
+                if !crosses(dir, ga, gb) {
+                    continue;
+                }
+                let t = locate(events, k, dense, (ta, ga), (tb, gb))?;
+                let cand = (t, k);
+                if prev.is_none_or(|p| later(cand, p)) && best.is_none_or(|b| later(b, cand)) {
+                    best = Some(cand);
+                }
+            }
+            let Some((t, k)) = best else { break };
+            let hit = EventHit {
+                index: k,
+                t,
+                y: pts.state_at(t),
+            };
+            report(hit);
+            if events.spec(k).terminal {
+                return Ok(Some(hit));
+            }
+            prev = best;
+        }
+    }
+    Ok(None)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn crossings_need_a_nonzero_left_value() {
+        use Direction::*;
+        assert!(crosses(Rising, -1.0, 1.0) && crosses(Rising, -1.0, 0.0));
+        assert!(!crosses(Rising, 0.0, 1.0) && !crosses(Rising, 1.0, -1.0));
+        assert!(crosses(Falling, 1.0, -1.0) && crosses(Falling, 1.0, 0.0));
+        assert!(!crosses(Falling, 0.0, -1.0) && !crosses(Falling, -1.0, 1.0));
+        assert!(crosses(Any, 1.0, -1.0) && crosses(Any, -1.0, 1.0));
+        assert!(!crosses(Any, 0.0, 0.0) && !crosses(Any, 1.0, 2.0));
     }
 }

@@ -1,6 +1,12 @@
 //! The driver loop: initial step, adaptive steps, events, limits and statuses.
-//! (Interface fixed; implementation to be written.)
+//!
+//! Mirrors scipy's `solve_ivp(method="RK45")` loop (f0, `select_initial_step`, then
+//! `RK45.step` until t_bound), with events found on each accepted step's dense output.
+//! Everything lives on the stack; results go to the observer, so the loop never
+//! allocates.
 
+use super::events::{scan_step, NonFiniteEvent};
+use super::stepper::{all_finite, select_initial_step, StepStatus, Stepper};
 use super::{DenseStep, EventFunctions, OdeSystem, State};
 
 /// Integration options, with scipy's meanings.
@@ -81,6 +87,14 @@ pub struct Outcome<const N: usize> {
 
 /// Integrates y' = f(t, y) from (t0, y0) towards t_end (> t0), reporting every accepted
 /// step and every event to `observer`. Never panics; any failure ends in a [`Status`].
+///
+/// Within one step, events are reported before the [`Observation::Step`] that contains
+/// them. On a terminal event the step is reported truncated at the event (its `t`, `y`
+/// are the event point; its dense output still spans the whole step) and the outcome is
+/// the event point. Integration backwards (t_end < t0) works too; event directions are
+/// then meant along the integration. Non-finite t0, t_end or y0 give
+/// [`Status::NonFinite`] at once. On [`Status::NonFinite`] or [`Status::StepTooSmall`]
+/// the outcome is the last accepted, fully checked point.
 pub fn solve<S, E, O, const N: usize>(
     sys: &S,
     events: &E,
@@ -95,6 +109,108 @@ where
     E: EventFunctions<N>,
     O: FnMut(Observation<'_, N>),
 {
-    let _ = (sys, events, t_end, opts, observer);
-    todo!("Dormand–Prince driver: t0 = {t0}, y0 = {y0:?}")
+    let mut out = Outcome {
+        status: Status::NonFinite,
+        t: t0,
+        y: y0,
+        nfev: 0,
+        n_accepted: 0,
+        n_rejected: 0,
+    };
+    if !t0.is_finite() || !t_end.is_finite() || !all_finite(&y0) {
+        return out;
+    }
+    let f0 = sys.rhs(t0, &y0);
+    out.nfev = 1;
+    if !all_finite(&f0) {
+        return out;
+    }
+    let direction = if t_end >= t0 { 1.0 } else { -1.0 };
+    let h_abs = match opts.first_step {
+        Some(h) => h,
+        None => match select_initial_step(
+            sys,
+            t0,
+            &y0,
+            t_end,
+            opts.max_step,
+            &f0,
+            direction,
+            opts.rtol,
+            opts.atol,
+            &mut out.nfev,
+        ) {
+            Some(h) => h,
+            None => return out,
+        },
+    };
+    let mut st = Stepper::new(
+        t0,
+        y0,
+        f0,
+        h_abs,
+        t_end,
+        opts.max_step,
+        opts.rtol,
+        opts.atol,
+    );
+
+    loop {
+        if st.t == t_end {
+            out.status = Status::Finished;
+            return out;
+        }
+        if out.n_accepted >= opts.max_steps {
+            out.status = Status::MaxSteps;
+            return out;
+        }
+        match st.step(sys, &mut out.nfev, &mut out.n_rejected) {
+            StepStatus::Accepted => {}
+            StepStatus::TooSmall => {
+                out.status = Status::StepTooSmall;
+                return out;
+            }
+            StepStatus::NonFinite => {
+                out.status = Status::NonFinite;
+                return out;
+            }
+        }
+        let dense: DenseStep<N> = st.dense();
+        let scan = scan_step(events, &dense, st.t, &st.y, opts.event_samples, |hit| {
+            observer(Observation::Event {
+                index: hit.index,
+                t: hit.t,
+                y: &hit.y,
+            })
+        });
+        match scan {
+            Err(NonFiniteEvent) => {
+                // The step's events are unknown: stop at its start, the last checked point.
+                out.status = Status::NonFinite;
+                return out;
+            }
+            Ok(Some(hit)) => {
+                out.n_accepted += 1;
+                observer(Observation::Step {
+                    dense: &dense,
+                    t: hit.t,
+                    y: &hit.y,
+                });
+                out.status = Status::Event(hit.index);
+                out.t = hit.t;
+                out.y = hit.y;
+                return out;
+            }
+            Ok(None) => {
+                out.n_accepted += 1;
+                observer(Observation::Step {
+                    dense: &dense,
+                    t: st.t,
+                    y: &st.y,
+                });
+                out.t = st.t;
+                out.y = st.y;
+            }
+        }
+    }
 }
