@@ -23,6 +23,20 @@ def rolling_rhs(alpha, chi, ic):
     return f
 
 
+def rolling_rhs_as_in_the_core(alpha, chi, ic):
+    """The same equation with the core's exact floating-point operations: step sizes depend on
+    an error estimate that cancels ~7 digits, so step-for-step comparisons need identical
+    rounding of the right-hand side."""
+    sa, ca = math.sin(alpha), math.cos(alpha)
+
+    def f(_t, y):
+        th, w = y
+        s, c = math.sin(th), math.cos(th)
+        return [w, (chi * w * w * s + chi * (sa * c + ca * s) + sa) / (ic + 1.0 + 2.0 * chi * c)]
+
+    return f
+
+
 def energy(alpha, chi, ic, th, w):
     height = -(th + chi * np.sin(th)) * math.sin(alpha) + chi * np.cos(th) * math.cos(alpha)
     return 0.5 * (ic + 1 + 2 * chi * np.cos(th)) * w**2 + height
@@ -63,9 +77,11 @@ def test_agrees_with_scipy_dop853(s):
         dense_output=True,
     )
     th, w = ref.sol(r.t)
-    scale = 1 + np.max(np.abs(th))
-    assert np.max(np.abs(th - r.theta)) < 1e-7 * scale
-    assert np.max(np.abs(w - r.omega)) < 1e-7 * scale
+    # Both are accurate to ~1e-10 locally; near chi = 1, km = 0 the contact inertia almost
+    # vanishes at theta = pi and the motion amplifies local errors over many turns.
+    scale = (1 + np.max(np.abs(th))) / (body.Ic + 1 - 2 * body.chi)
+    assert np.max(np.abs(th - r.theta)) < 1e-8 * scale
+    assert np.max(np.abs(w - r.omega)) < 1e-8 * scale
 
 
 def test_scale_invariance_against_an_si_integration():
@@ -108,9 +124,10 @@ def J(theta, alpha, chi, km):
 
 @pytest.mark.parametrize(
     ("alpha_deg", "chi", "km"),
-    [(40, 0.15, 0.02), (30, 0.5, 0.4), (60, 0.1, 0.5), (10, 0.3, 0.2), (75, 0.05, 0.01)],
+    [(40, 0.15, 0.02), (60, 0.1, 0.5), (75, 0.05, 0.01), (20, 0.1, 0.1)],
 )
 def test_liftoff_from_rest_is_the_first_root_of_J(alpha_deg, chi, km):
+    # Points where the paper's lift-off comes first (elsewhere F_y = 0 is met earlier).
     alpha = math.radians(alpha_deg)
     r = roll(Cylinder(chi, km), alpha)
     assert r.terminal_event == "liftoff", r.message
@@ -196,7 +213,7 @@ def test_accepted_steps_match_scipy_rk45_step_for_step():
     body, alpha = Cylinder(0.3, 0.2), math.radians(35)
     r = roll(body, alpha, t_max=3.0, rtol=1e-6, atol=1e-9, theta_max=1e9)
     ref = solve_ivp(
-        rolling_rhs(alpha, body.chi, body.Ic),
+        rolling_rhs_as_in_the_core(alpha, body.chi, body.Ic),
         (0, 3.0),
         [0.0, 0.0],
         method="RK45",

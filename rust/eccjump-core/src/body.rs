@@ -41,8 +41,9 @@ impl Cylinder {
         let (ic, icm) = if chi == 0.0 {
             (km, km)
         } else {
-            // 1 − k_m ≥ χ > 0 here, so the division is safe.
-            let one_minus = 1.0 - km;
+            // 1 − k_m ≥ χ > 0 for valid input; the max() only absorbs the rounding slack
+            // allowed above, so the division is always safe.
+            let one_minus = (1.0 - km).max(chi);
             (
                 km + chi * chi / one_minus,
                 km * (one_minus + chi * chi) / one_minus,

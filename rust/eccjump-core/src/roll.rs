@@ -85,7 +85,9 @@ impl RollEvents {
                 // The margin, not the ratio: it stays finite as F_y → 0.
                 self.mu_s.map_or(1.0, |mu| mu * k.fy - k.fx.abs())
             }
-            RollEvent::ThetaLimit => theta - self.theta_max,
+            // θ_max = ∞ disables the event (a constant, finite g never crosses).
+            RollEvent::ThetaLimit if self.theta_max.is_finite() => theta - self.theta_max,
+            RollEvent::ThetaLimit => -1.0,
         }
     }
 
