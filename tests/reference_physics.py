@@ -94,7 +94,7 @@ def deg(x, as_mpf=False):
 
 
 def _check_body(chi, km):
-    tol = mpf(10) ** (-(DPS - 5))
+    tol = mpf(10) ** -12  # accept k_m = (1 - chi) rounded in double precision
     if chi < 0 or chi > 1 or km < 0 or km > 1 - chi + tol:
         raise ValueError(f"need 0 <= chi <= 1 and 0 <= k_m <= 1 - chi, got {chi}, {km}")
 
@@ -305,14 +305,18 @@ def _refine_root(f, lo, hi):
 
 
 def _first_up_crossing(f, lo, hi, nsamp):
-    """First sub-interval of [lo, hi] where f goes from < 0 to >= 0, refined to a root."""
+    """First point of [lo, hi] where f goes from < 0 to >= 0 (sampled, then refined).
+
+    f(lo) == 0 counts as a root at lo; if f(lo) > 0 the scan waits for f to go negative
+    first (the rule was met before lo; callers that care must look before lo).
+    """
     prev_x, prev_f = lo, f(lo)
-    if prev_f >= 0:
+    if prev_f == 0:
         return lo
     for i in range(1, nsamp + 1):
         x = lo + (hi - lo) * i / nsamp
         fx = f(x)
-        if fx >= 0:
+        if fx >= 0 and prev_f < 0:
             return x if fx == 0 else _refine_root(f, prev_x, x)
         prev_x, prev_f = x, fx
     return None
