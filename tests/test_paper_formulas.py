@@ -693,3 +693,28 @@ def test_theta_jump_in_window_and_bracket_signs(alpha_deg, chi_, km_):
                 assert 2 * nn * mp.pi - a <= tj <= 2 * nn * mp.pi
                 fy = rp.forces_at_jump(tj, a, chi_, km_, as_mpf=True)[1]
                 assert fy > 0  # green window: F_y,J > 0 (Eq. signs0)
+
+
+def test_reference_edge_cases():
+    """chi = 0, k_m = 0, chi = 1 and alpha = pi/2 are handled on purpose."""
+    with mp.workdps(30):
+        assert rp.ic_tilde(0, 1) == 1.0 and rp.icm_tilde(0, "0.3") == pytest.approx(0.3)
+        assert rp.gamma(0, "0.5") == float("inf")
+        assert rp.theta_jump(1, rp.deg(30), 0, "0.5") is None
+        assert rp.first_liftoff(rp.deg(30), 0, "0.5") is None
+        assert rp.icm_tilde(1, 0) == 0.0 and rp.icm_tilde("0.4", 0) == 0.0
+        # k_m = 0 (I_CM = 0): mu stays finite at sin(theta) = 0
+        assert abs(rp.mu_jump("0.4", 0, 2 * mp.pi)) < 1e-28
+        assert rp.mu_jump("0.4", "0.1", 0) == float("inf")  # k_m > 0: diverges
+        with pytest.raises(ValueError):
+            rp.ic_tilde("0.5", "0.6")  # k_m > 1 - chi
+        # alpha = pi/2: J of the paper divides by cos(alpha) = 0; the lift-off function doesn't
+        a = mp.pi / 2
+        v = rp.liftoff_function(5.5, a, "0.3", "0.1", as_mpf=True)
+        assert v > 0  # cos(theta) > 0, theta'^2 > 0 and cos(alpha) = 0
+        # chi = 1, k_m = 0: the one singular point of the rolling equation
+        with pytest.raises(ZeroDivisionError):
+            rp.theta_ddot_rolling(mp.pi, 1, "0.3", 1, 0)
+        # Painleve case of the slip branch: D <= 0 is reported, not divided through
+        *_, dd = rp.slip_dynamics(1.0, 1.0, "0.3", "0.9", 0, 2, 1, as_mpf=True)
+        assert dd <= 0
