@@ -147,9 +147,7 @@ def _thdd(th, td2, a, chi, ic):
     """th'' of pure rolling given th'^2 (see module docstring)."""
     ip = ic + 1 + 2 * chi * mp.cos(th)
     if ip == 0:
-        raise ZeroDivisionError(
-            "I_C + 1 + 2 chi cos(theta) = 0 (chi = 1, k_m = 0, theta = pi)"
-        )
+        raise ZeroDivisionError("I_C + 1 + 2 chi cos(theta) = 0 (chi = 1, k_m = 0, theta = pi)")
     return (chi * td2 * mp.sin(th) + chi * mp.sin(a + th) + mp.sin(a)) / ip
 
 
@@ -244,9 +242,7 @@ def slip_dynamics(theta, theta_dot, alpha, chi, km, mu_k, sigma, as_mpf=False):
     sliding contact) and then th'', l'', F_x, F_y are returned as nan.
     """
     with mp.workdps(DPS):
-        th, td, a, chi, km, mu_k, sigma = map(
-            mpf, (theta, theta_dot, alpha, chi, km, mu_k, sigma)
-        )
+        th, td, a, chi, km, mu_k, sigma = map(mpf, (theta, theta_dot, alpha, chi, km, mu_k, sigma))
         icm = _icm(chi, km)
         s, c = mp.sin(th), mp.cos(th)
         k = chi * s - sigma * mu_k * (1 + chi * c)
@@ -362,7 +358,7 @@ def first_liftoff(alpha, chi, km, n_max=20, samples_per_turn=2000, as_mpf=False)
             step = min(step, a / 20)
         per_turn = int(mp.ceil(2 * mp.pi / step))
         for n in range(1, n_max + 1):
-            # lift-off needs cos th > 0: only scan (2pi(n-1), 2pi(n-1) + pi/2] U [2pi n - pi/2, 2pi n]
+            # lift-off needs cos th > 0: scan (2pi(n-1), +pi/2] and [2pi n - pi/2, 2pi n]
             for lo, hi in (
                 (2 * mp.pi * (n - 1), 2 * mp.pi * (n - 1) + mp.pi / 2),
                 (2 * mp.pi * n - mp.pi / 2, 2 * mp.pi * n),
@@ -469,9 +465,7 @@ class PathViolation:
     fy: object
 
 
-def path_check(
-    alpha, chi, km, mu_s, theta_end=None, samples_per_turn=3600, as_mpf=False
-):
+def path_check(alpha, chi, km, mu_s, theta_end=None, samples_per_turn=3600, as_mpf=False):
     """Dense-sampling check of pure rolling from rest at th0 = 0.
 
     Tests F_y > 0 and mu_s F_y - |F_x| >= 0 (not the ratio) at samples with step
@@ -512,8 +506,6 @@ def path_check(
                             lo = mid
                 _, fx, fy = margin(hi)
                 kind = "normal" if fy <= 0 else "friction"
-                return PathViolation(
-                    _out(hi, as_mpf), kind, _out(fx, as_mpf), _out(fy, as_mpf)
-                )
+                return PathViolation(_out(hi, as_mpf), kind, _out(fx, as_mpf), _out(fy, as_mpf))
             prev = t
         return None

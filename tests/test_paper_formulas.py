@@ -76,9 +76,7 @@ def _solve_rolling():
     return sp.simplify(sol[0]), fx, fy
 
 
-THDD_ROLL, FX_ROLL, FY_ROLL = (
-    _solve_rolling()
-)  # theta''(theta, theta'), F(theta, theta', theta'')
+THDD_ROLL, FX_ROLL, FY_ROLL = _solve_rolling()  # theta''(theta, theta'), F(theta, theta', theta'')
 
 
 def _zero(expr):
@@ -157,12 +155,7 @@ def test_normalslip1():
     ]
     sol = sp.solve(eqs, [Fx_s, Fy_s, ldd, thdd], dict=True)[0]
     printed = (M * I_CM * (d * thd**2 * sp.cos(theta) - g * sp.cos(alpha))) / (
-        M
-        * d
-        * (
-            sigma * mu_k * sp.sin(theta) * (d * sp.cos(theta) + R)
-            - d * sp.sin(theta) ** 2
-        )
+        M * d * (sigma * mu_k * sp.sin(theta) * (d * sp.cos(theta) + R) - d * sp.sin(theta) ** 2)
         - I_CM
     )
     assert sp.simplify(sol[Fy_s] - printed) == 0
@@ -236,21 +229,9 @@ def test_njump():
     fx = (
         M
         * R
-        * (
-            -g / R * sp.sin(alpha)
-            - X * thd**2 * sp.sin(theta)
-            + (1 + X * sp.cos(theta)) * thdd
-        )
+        * (-g / R * sp.sin(alpha) - X * thd**2 * sp.sin(theta) + (1 + X * sp.cos(theta)) * thdd)
     )
-    fy = (
-        M
-        * R
-        * (
-            g / R * sp.cos(alpha)
-            - X * thd**2 * sp.cos(theta)
-            - X * thdd * sp.sin(theta)
-        )
-    )
+    fy = M * R * (g / R * sp.cos(alpha) - X * thd**2 * sp.cos(theta) - X * thdd * sp.sin(theta))
     assert sp.simplify(FX_ROLL.subs(d, chi * R) - fx) == 0
     assert sp.simplify(FY_ROLL.subs(d, chi * R) - fy) == 0
 
@@ -278,22 +259,14 @@ def test_jump6_and_njumpfn():
         * sp.sin(alpha + theta)
         / den
     )
-    fyj = -(
-        g
-        * M
-        * chi
-        * (1 + chi * sp.cos(theta))
-        * sp.tan(theta)
-        * sp.sin(alpha + theta)
-        / den
-    )
+    fyj = -(g * M * chi * (1 + chi * sp.cos(theta)) * sp.tan(theta) * sp.sin(alpha + theta) / den)
     assert _zero(FX_J.subs(KM_SUBS) - fxj)
     assert _zero(FY_J.subs(KM_SUBS) - fyj)
 
 
-MU_PRINTED = (
-    (-(k_m**2) + k_m + chi**2) / ((k_m - 1) * chi**2) + sp.cos(theta) ** 2
-) / (sp.sin(theta) * (1 / chi + sp.cos(theta)))
+MU_PRINTED = ((-(k_m**2) + k_m + chi**2) / ((k_m - 1) * chi**2) + sp.cos(theta) ** 2) / (
+    sp.sin(theta) * (1 / chi + sp.cos(theta))
+)
 
 
 def test_ineq2_is_signed_force_ratio():
@@ -306,9 +279,9 @@ def test_ineq2_is_signed_force_ratio():
         for _ in range(50):
             c, km = _draw_body(rng)
             th = mpf(rng.uniform(-7, 7))
-            assert abs(rp.mu_jump(c, km, th, as_mpf=True) - f(c, km, th)) < mpf(
-                10
-            ) ** -20 * (1 + abs(f(c, km, th)))
+            assert abs(rp.mu_jump(c, km, th, as_mpf=True) - f(c, km, th)) < mpf(10) ** -20 * (
+                1 + abs(f(c, km, th))
+            )
 
 
 @settings(max_examples=60, deadline=None, database=None)
@@ -364,9 +337,9 @@ def test_km0_mu_vanishes_at_full_turn():
 def _energy_td2():
     """theta'^2(theta) from energy conservation, derived and verified against roll-eq."""
     v_cm = sp.Matrix([R * thd + d * sp.cos(theta) * thd, -d * sp.sin(theta) * thd])
-    height = -(R * theta + d * sp.sin(theta)) * sp.sin(alpha) + (
-        R + d * sp.cos(theta)
-    ) * sp.cos(alpha)
+    height = -(R * theta + d * sp.sin(theta)) * sp.sin(alpha) + (R + d * sp.cos(theta)) * sp.cos(
+        alpha
+    )
     E = M * (v_cm.dot(v_cm)) / 2 + I_CM * thd**2 / 2 + M * g * height
     dE = sp.diff(E, theta) * thd + sp.diff(E, thd) * thdd  # chain rule along the motion
     assert sp.simplify(dE.subs(thdd, THDD_ROLL)) == 0  # energy conserved in rolling
@@ -378,15 +351,12 @@ def _energy_td2():
 
 
 TD2_REST = _energy_td2()
-GAMMA_PRINTED = (k_m**2 + 2 * k_m * chi - chi**2 - 2 * chi - 1) / (
-    4 * sp.pi * (k_m - 1) * chi
-)
+GAMMA_PRINTED = (k_m**2 + 2 * k_m * chi - chi**2 - 2 * chi - 1) / (4 * sp.pi * (k_m - 1) * chi)
 
 
 def _J_printed(th):
     return -1 + (
-        (chi * sp.cos(alpha) - chi * sp.cos(alpha + th) + th * sp.sin(alpha))
-        * sp.cos(th)
+        (chi * sp.cos(alpha) - chi * sp.cos(alpha + th) + th * sp.sin(alpha)) * sp.cos(th)
     ) / ((2 * sp.pi * GAMMA_PRINTED + sp.cos(th) - 1) * sp.cos(alpha))
 
 
@@ -395,9 +365,7 @@ def test_dega2():
     assert sp.simplify(GAMMA_PRINTED - (ICT_km + 1 + 2 * chi) / (4 * sp.pi * chi)) == 0
     with mp.workdps(30):
         exact = GAMMA_PRINTED.subs({chi: sp.Rational(1, 2), k_m: sp.Rational(2, 5)})
-        assert (
-            abs(rp.gamma("0.5", "0.4", as_mpf=True) - mpf(str(sp.N(exact, 40)))) < 1e-28
-        )
+        assert abs(rp.gamma("0.5", "0.4", as_mpf=True) - mpf(str(sp.N(exact, 40)))) < 1e-28
 
 
 def test_jta():
@@ -616,16 +584,11 @@ def test_reference_point_jarm_40deg():
         first = rp.first_liftoff(a, "0.15", "0.02", as_mpf=True)
         tj = rp.theta_jump(1, a, "0.15", "0.02", as_mpf=True)
         assert first is not None and first[1] == 1
-        assert (
-            abs(first[0] - tj) < mpf(10) ** -20
-        )  # the root on turn 1 is the first lift-off
+        assert abs(first[0] - tj) < mpf(10) ** -20  # the root on turn 1 is the first lift-off
         tj_deg = tj * 180 / mp.pi
         print("theta_J [deg] =", mp.nstr(tj_deg, 20))
         assert abs(tj_deg - mpf("334.344")) < mpf("0.0005")
-        assert (
-            abs(rp.liftoff_function(tj, a, "0.15", "0.02", as_mpf=True))
-            < mpf(10) ** -25
-        )
+        assert abs(rp.liftoff_function(tj, a, "0.15", "0.02", as_mpf=True)) < mpf(10) ** -25
         fx, fy = rp.forces_at_jump(tj, a, "0.15", "0.02", as_mpf=True)
         print("F_x,J =", mp.nstr(fx, 20), " F_y,J =", mp.nstr(fy, 20))
         assert abs(fy - mpf("0.01543")) < mpf("0.000005")
@@ -651,9 +614,7 @@ def test_reference_point_slip_first_30deg():
         first = rp.first_liftoff(a, "0.5", "0.4", as_mpf=True)
         assert first is not None and v.theta < first[0]
         print("first lift-off (rule 1) [deg] =", mp.nstr(first[0] * 180 / mp.pi, 20))
-        assert (
-            abs(v.fy - v.fx) < mpf(10) ** -20
-        )  # mu_s F_y = |F_x| with mu_s = 1, F_x > 0
+        assert abs(v.fy - v.fx) < mpf(10) ** -20  # mu_s F_y = |F_x| with mu_s = 1, F_x > 0
 
 
 def test_reference_point_mu_s_min():
@@ -668,9 +629,7 @@ def test_reference_point_mu_s_min():
         )
         assert abs(m - mpf("1.3916")) < mpf("0.00005")
         assert 3 * mp.pi / 2 < th < 2 * mp.pi
-        dmu = sp.diff(MU_PRINTED, theta).subs(
-            {chi: sp.Rational(1, 2), k_m: sp.Rational(2, 5)}
-        )
+        dmu = sp.diff(MU_PRINTED, theta).subs({chi: sp.Rational(1, 2), k_m: sp.Rational(2, 5)})
         assert abs(sp.N(dmu.subs(theta, sp.Float(str(th), 30)), 30)) < 1e-20
 
 

@@ -299,3 +299,17 @@ def test_vertical_ramp_and_flat_ramp():
     assert flat.status == 0 and np.all(flat.theta == 0.0)
     wall = roll(Cylinder(0.2, 0.1), math.pi / 2)
     assert wall.terminal_event == "normal_force_zero" and len(wall.t) == 1
+
+
+@pytest.mark.parametrize(
+    ("alpha_deg", "chi", "km"),
+    [("40", "0.15", "0.02"), ("60", "0.1", "0.5"), ("75", "0.05", "0.01")],
+)
+def test_liftoff_matches_the_30_digit_reference(alpha_deg, chi, km):
+    import reference_physics as ref
+
+    alpha = ref.mp.radians(ref.mp.mpf(alpha_deg))
+    expected = ref.first_liftoff(alpha, chi, km)[0]
+    r = roll(Cylinder(float(chi), float(km)), float(alpha), rtol=1e-12, atol=1e-14)
+    assert r.terminal_event == "liftoff"
+    assert r.theta[-1] == pytest.approx(expected, abs=1e-9)

@@ -8,7 +8,6 @@ Prints Rust source to paste over the constants in the test.
     python3 rust/eccjump-core/tests/scipy_rk45_reference.py
 """
 
-import numpy as np
 import scipy
 from scipy.integrate import solve_ivp
 
