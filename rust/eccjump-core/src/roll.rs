@@ -119,6 +119,23 @@ impl EventFunctions<2> for RollEvents {
     fn value(&self, k: usize, _t: f64, y: &State<2>) -> f64 {
         self.value_at(RollEvent::ALL[k], y[0], y[1])
     }
+    /// All events from one evaluation of the kinematics (one sin_cos per sample).
+    #[inline]
+    fn values(&self, first: usize, _t: f64, y: &State<2>, out: &mut [f64]) {
+        let k = self.rolling.kinematics(y[0], y[1]);
+        let chi = self.rolling.body.chi;
+        for (i, o) in out.iter_mut().enumerate() {
+            *o = match RollEvent::ALL[first + i] {
+                RollEvent::Liftoff => {
+                    // χ θ̇² cos θ − cos α, from the kinematics' own cos θ.
+                    chi * k.omega * k.omega * k.cos_theta - self.rolling.cos_a
+                }
+                RollEvent::NormalForceZero => k.fy,
+                RollEvent::Slip => self.mu_s.map_or(1.0, |mu| mu * k.fy - k.fx.abs()),
+                RollEvent::ThetaLimit => self.value_at(RollEvent::ThetaLimit, y[0], y[1]),
+            };
+        }
+    }
 }
 
 /// The inputs of a rolling run besides the body and ramp.

@@ -32,6 +32,8 @@ pub struct Kinematics {
     pub fx: f64,
     /// Normal force, per M g.
     pub fy: f64,
+    /// cos θ, kept for callers that need more functions of the same state.
+    pub cos_theta: f64,
 }
 
 impl Rolling {
@@ -81,6 +83,7 @@ impl Rolling {
             omega_dot: acc,
             fx: -self.sin_a - chi * w2 * s + (1.0 + chi * c) * acc,
             fy: self.cos_a - chi * w2 * c - chi * acc * s,
+            cos_theta: c,
         }
     }
 

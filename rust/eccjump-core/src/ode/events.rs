@@ -30,7 +30,19 @@ pub trait EventFunctions<const N: usize> {
     fn spec(&self, k: usize) -> EventSpec;
     /// g_k(t, y).
     fn value(&self, k: usize, t: f64, y: &State<N>) -> f64;
+    /// g_first, g_first+1, … at one point, into `out`. Override it when the events share
+    /// work (trigonometry of the state, say): the step scan calls this at every sample.
+    #[inline]
+    fn values(&self, first: usize, t: f64, y: &State<N>, out: &mut [f64]) {
+        for (i, o) in out.iter_mut().enumerate() {
+            *o = self.value(first + i, t, y);
+        }
+    }
 }
+
+/// Events evaluated together per sample in the step scan (a stack buffer; more events
+/// are handled in chunks of this size).
+pub const EVENT_CHUNK: usize = 8;
 
 /// The empty event set.
 pub struct NoEvents;
@@ -132,6 +144,15 @@ fn checked(g: f64) -> Result<f64, NonFiniteEvent> {
     }
 }
 
+#[inline]
+fn check_all(g: &[f64]) -> Result<(), NonFiniteEvent> {
+    if g.iter().all(|v| v.is_finite()) {
+        Ok(())
+    } else {
+        Err(NonFiniteEvent)
+    }
+}
+
 /// Locates the zero of g_k on the sub-interval [ta, tb] (in integration order) where
 /// g goes from ga to gb, to within ~4ε|t|. Returns the end of Brent's final bracket on
 /// the far side of the crossing, so that g at the reported point has already changed
@@ -195,20 +216,27 @@ pub fn scan_step<E: EventFunctions<N>, const N: usize>(
     let last = samples + 1;
 
     // Pass 1: the earliest sub-interval (ending at sample j_first) with any crossing.
+    // All events of a chunk are evaluated together at each sample, so the dense output
+    // and any shared work of the event functions are computed once per sample.
     let mut j_first = usize::MAX;
-    for k in 0..n_events {
-        let dir = events.spec(k).direction;
+    let mut g_a = [0.0; EVENT_CHUNK];
+    let mut g_b = [0.0; EVENT_CHUNK];
+    for first in (0..n_events).step_by(EVENT_CHUNK) {
+        let m = (n_events - first).min(EVENT_CHUNK);
         let (t, y) = pts.point(0);
-        let mut ga = checked(events.value(k, t, &y))?;
+        events.values(first, t, &y, &mut g_a[..m]);
+        check_all(&g_a[..m])?;
         // Only sub-intervals before the earliest crossing found so far can matter.
         for j in 1..=last.min(j_first.saturating_sub(1)) {
             let (t, y) = pts.point(j);
-            let gb = checked(events.value(k, t, &y))?;
-            if crosses(dir, ga, gb) {
+            events.values(first, t, &y, &mut g_b[..m]);
+            check_all(&g_b[..m])?;
+            let any = (0..m).any(|i| crosses(events.spec(first + i).direction, g_a[i], g_b[i]));
+            if any {
                 j_first = j;
                 break;
             }
-            ga = gb;
+            g_a = g_b;
         }
     }
     if j_first == usize::MAX {

@@ -16,7 +16,7 @@ pub mod stepper;
 pub mod tableau;
 
 pub use dense::DenseStep;
-pub use events::{Direction, EventFunctions, EventSpec, NoEvents};
+pub use events::{Direction, EventFunctions, EventSpec, NoEvents, EVENT_CHUNK};
 pub use solver::{solve, Observation, Outcome, SolverOptions, Status};
 
 /// A state vector of fixed size N.
