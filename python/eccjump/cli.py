@@ -12,6 +12,14 @@ from eccjump.body import Cylinder
 from eccjump.rolling import RollResult, roll
 
 
+def _ramp_degrees(text: str) -> float:
+    """An --alpha value: degrees in [0, 90] (checked here, so the message speaks degrees)."""
+    value = float(text)
+    if not (0.0 <= value <= 90.0):
+        raise argparse.ArgumentTypeError(f"{value!r} is outside the allowed range [0, 90] deg")
+    return value
+
+
 def _add_body_args(p: argparse.ArgumentParser) -> None:
     p.add_argument("--chi", type=float, required=True, help="CM offset d/R, in [0, 1]")
     p.add_argument("--km", type=float, required=True, help="shell mass fraction, in [0, 1-chi]")
@@ -24,7 +32,9 @@ def _roll_parser(sub: argparse._SubParsersAction) -> None:
         description="Integrate pure rolling from (theta0, omega0) until an "
         "event ends it; print what happened.",
     )
-    p.add_argument("--alpha", type=float, required=True, help="ramp angle [deg], in [0, 90]")
+    p.add_argument(
+        "--alpha", type=_ramp_degrees, required=True, help="ramp angle [deg], in [0, 90]"
+    )
     _add_body_args(p)
     p.add_argument("--mu-s", type=float, default=None, help="static friction coefficient")
     p.add_argument("--theta0", type=float, default=0.0, help="initial angle [deg]")
@@ -45,11 +55,11 @@ def _roll_parser(sub: argparse._SubParsersAction) -> None:
     p.set_defaults(func=_cmd_roll)
 
 
-def _roll_summary(res: RollResult) -> dict[str, object]:
+def _roll_summary(res: RollResult, alpha_deg: float) -> dict[str, object]:
     end = len(res.t) - 1
     return {
         "body": {"chi": res.body.chi, "km": res.body.km, "Ic": res.body.Ic, "Icm": res.body.Icm},
-        "alpha_deg": math.degrees(res.alpha),
+        "alpha_deg": alpha_deg,
         "mu_s": res.mu_s,
         "rule": res.rule,
         "status": res.status,
@@ -87,7 +97,7 @@ def _cmd_roll(args: argparse.Namespace) -> int:
         atol=args.atol,
         rule=args.rule,
     )
-    s = _roll_summary(res)
+    s = _roll_summary(res, args.alpha)
     if args.json:
         print(json.dumps(s, indent=2))
         return 0
@@ -137,6 +147,9 @@ def main(argv: Sequence[str] | None = None) -> int:
     except ValueError as err:
         print(f"eccjump: error: {err}", file=sys.stderr)
         return 2
+    except BrokenPipeError:  # e.g. `eccjump roll ... | head`
+        sys.stderr.close()
+        return 0
 
 
 if __name__ == "__main__":
