@@ -11,9 +11,11 @@
 
 pub mod body;
 pub mod error;
+pub mod from_rest;
+pub mod jump_point;
 pub mod ode;
-pub mod roots;
 pub mod rolling;
+pub mod roots;
 
 pub use body::Cylinder;
 pub use error::{Error, Result};

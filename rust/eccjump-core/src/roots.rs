@@ -24,6 +24,7 @@ fn bracket_error(a: f64, b: f64, fa: f64, fb: f64) -> Error {
 
 /// Brent's method on [a, b] given f(a) = fa and f(b) = fb of opposite signs (or one zero).
 /// Converges when the bracket is below `xtol + rtol |x|`; `rtol` ≥ 4 ε is sensible.
+#[allow(clippy::too_many_arguments)] // (f, a, b, fa, fb, tolerances, limit): as designed
 pub fn brent<F: FnMut(f64) -> f64>(
     mut f: F,
     a: f64,
