@@ -13,6 +13,7 @@ pub mod body;
 pub mod error;
 pub mod from_rest;
 pub mod jump_point;
+pub mod path;
 pub mod ode;
 pub mod rolling;
 pub mod roots;
