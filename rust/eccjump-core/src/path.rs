@@ -156,9 +156,9 @@ impl Watch {
 #[inline]
 fn violated(k: usize, g: f64) -> bool {
     if k == G_MPLUS || k == G_MMINUS {
-        !(g >= 0.0)
+        g.is_nan() || g < 0.0
     } else {
-        !(g > 0.0)
+        g.is_nan() || g <= 0.0
     }
 }
 
@@ -400,7 +400,7 @@ impl RollingPath {
             }
             let bad = if k == G_ENERGY {
                 // From rest E(θ0) = 0: fine if the body accelerates forward.
-                p0.g[k] < 0.0 || (p0.g[k] == 0.0 && !(p0.dg[k] > 0.0))
+                p0.g[k] < 0.0 || (p0.g[k] == 0.0 && (p0.dg[k].is_nan() || p0.dg[k] <= 0.0))
             } else if k == G_NOLIFT {
                 // Lift-off at the start: L(θ0) ≥ 0 and not falling.
                 violated(k, p0.g[k]) && !(p0.g[k] == 0.0 && p0.dg[k] > 0.0)
