@@ -12,6 +12,7 @@
 pub mod body;
 pub mod error;
 pub mod from_rest;
+pub mod jarm;
 pub mod jump_point;
 pub mod path;
 pub mod ode;

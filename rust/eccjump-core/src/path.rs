@@ -388,8 +388,14 @@ impl RollingPath {
     /// Scans the rolling path from θ0 to `theta_end` and stops at the first violated watched
     /// constraint (ties resolved in the order lift-off, normal force, friction, energy).
     pub fn scan(&self, theta_end: f64, watch: Watch) -> PathScan {
+        self.scan_from(self.theta0, theta_end, watch)
+    }
+
+    /// As [`Self::scan`], but starting at θ_start ≥ θ0 on the same path (e.g. to continue
+    /// past an event); the extrema are then over [θ_start, θ_event].
+    pub fn scan_from(&self, theta_start: f64, theta_end: f64, watch: Watch) -> PathScan {
         let mut evals = 1u32;
-        let p0 = self.eval(self.theta0);
+        let p0 = self.eval(theta_start);
         let mut min_fy = Extremum::start(p0.fy, p0.theta, f64::INFINITY);
         let mut max_r = Extremum::start(p0.ratio(), p0.theta, f64::NEG_INFINITY);
         // Violations at the start itself.
@@ -413,7 +419,7 @@ impl RollingPath {
         }
         let mut pa = p0;
         // A generous cap on cells (the floor step keeps progress finite anyway).
-        let max_cells = ((theta_end - self.theta0) / (TAU / SAMPLES_PER_TURN) * 64.0 + 1e5) as u64;
+        let max_cells = ((theta_end - theta_start) / (TAU / SAMPLES_PER_TURN) * 64.0 + 1e5) as u64;
         let mut cells = 0u64;
         loop {
             cells += 1;
