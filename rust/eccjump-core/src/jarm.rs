@@ -118,6 +118,10 @@ pub struct JarmOptions {
     /// Initial angle θ0 and angular velocity θ̇0 ≥ 0 (default: rest at 0).
     pub theta0: f64,
     pub omega0: f64,
+    /// Refine the reported path extrema (max friction ratio, min F_y) to full precision
+    /// (default); if false they are cell estimates (relative error ~1e-4) and the map is
+    /// faster. The classification itself does not depend on it.
+    pub refine_extrema: bool,
 }
 
 impl Default for JarmOptions {
@@ -128,6 +132,7 @@ impl Default for JarmOptions {
             max_turns: 10_000,
             theta0: 0.0,
             omega0: 0.0,
+            refine_extrema: true,
         }
     }
 }
@@ -284,6 +289,7 @@ pub fn classify(alpha: f64, chi: f64, km: f64, mu_s: f64, o: &JarmOptions) -> Ja
         friction: true,
         liftoff: o.rule == LiftoffRule::Paper,
         energy: true,
+        refine_extrema: o.refine_extrema,
     };
     let s = path.scan(theta_end, watch);
     let th = s.at.theta;
@@ -329,6 +335,7 @@ pub fn classify(alpha: f64, chi: f64, km: f64, mu_s: f64, o: &JarmOptions) -> Ja
                     friction: false,
                     liftoff: true,
                     energy: true,
+                    refine_extrema: false,
                 },
             );
             let tl = lift.at.theta;
@@ -541,9 +548,14 @@ mod tests {
         // α = π/2 from rest: F_y = 0 at the start.
         let r = classify(FRAC_PI_2, 0.3, 0.2, 1.0, &o);
         assert!(!r.is_jarm, "{r:?}");
-        // χ = 1, k_m = 0: the friction ratio |tan(θ/2)| diverges at θ = π; slips first.
+        // χ = 1, k_m = 0 (Ĩ_CM = 0): F_x = χ sin θ F_y/(1 + χ cos θ), so the friction ratio is
+        // |tan(θ/2)| (diverging at the singular θ = π) and margins vanish with F_y.
         let r = classify(0.5, 1.0, 0.0, 1.0, &o);
+        assert_eq!(r.reason, Reason::NormalForceLost, "{r:?}");
+        assert!((0.5 * r.theta_event).tan() < 1.0);
+        let r = classify(0.5, 1.0, 0.0, 0.3, &o);
         assert_eq!(r.reason, Reason::SlipBefore, "{r:?}");
+        assert!(((0.5 * r.theta_event).tan() - 0.3).abs() < 1e-9);
         let r = classify(0.5, 1.0, 0.0, 1e6, &o);
         assert!(!r.is_jarm && r.theta_event < PI, "{r:?}");
         // Tiny α: many turns, bounded, or the turn cap.
