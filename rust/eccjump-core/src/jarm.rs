@@ -290,6 +290,7 @@ pub fn classify(alpha: f64, chi: f64, km: f64, mu_s: f64, o: &JarmOptions) -> Ja
         liftoff: o.rule == LiftoffRule::Paper,
         energy: true,
         refine_extrema: o.refine_extrema,
+        coarseness: 1,
     };
     let s = path.scan(theta_end, watch);
     let th = s.at.theta;
@@ -336,6 +337,7 @@ pub fn classify(alpha: f64, chi: f64, km: f64, mu_s: f64, o: &JarmOptions) -> Ja
                     liftoff: true,
                     energy: true,
                     refine_extrema: false,
+                    coarseness: 3,
                 },
             );
             let tl = lift.at.theta;

@@ -15,6 +15,7 @@ pub mod from_rest;
 pub mod jarm;
 pub mod jump_point;
 pub mod path;
+pub mod region;
 pub mod ode;
 pub mod rolling;
 pub mod roots;

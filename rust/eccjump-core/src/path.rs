@@ -142,6 +142,9 @@ pub struct Watch {
     /// their derivative; otherwise they are the best sample or cubic-Hermite cell estimate
     /// (relative error ~1e-4). Costs ~2 × 10 evaluations per scan.
     pub refine_extrema: bool,
+    /// Grid step multiplier (1 = the rigorous grid). Only for cheap auxiliary scans of the
+    /// smooth lift-off function (e.g. to name a failure reason), never for the path checks.
+    pub coarseness: u8,
 }
 
 impl Watch {
@@ -151,6 +154,7 @@ impl Watch {
         liftoff: true,
         energy: true,
         refine_extrema: true,
+        coarseness: 1,
     };
 
     #[inline]
@@ -439,7 +443,7 @@ impl RollingPath {
         let mut cells = 0u64;
         loop {
             cells += 1;
-            let h = self.step(&pa);
+            let h = self.step(&pa) * watch.coarseness.max(1) as f64;
             let tb = (pa.theta + h).min(theta_end);
             let pb = self.eval(tb);
             evals += 1;
