@@ -74,7 +74,7 @@ fn check_len(name: &'static str, got: usize, want: usize) -> Result<()> {
     }
 }
 
-fn split<'a, T>(s: Option<&'a mut [T]>, total: usize) -> Vec<Option<&'a mut [T]>> {
+fn split<T>(s: Option<&mut [T]>, total: usize) -> Vec<Option<&mut [T]>> {
     let nch = total.div_ceil(CHUNK);
     match s {
         Some(s) => s.chunks_mut(CHUNK).map(Some).collect(),
