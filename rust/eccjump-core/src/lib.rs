@@ -10,6 +10,7 @@
 //! - [`error`]: the one error enum.
 
 pub mod body;
+pub mod boundary;
 pub mod error;
 pub mod from_rest;
 pub mod jarm;
