@@ -8,11 +8,23 @@
 //! - [`roots`]: bracketing root finders;
 //! - [`roll`]: a pure-rolling run with its contact events;
 //! - [`ode`]: a generic Dormand–Prince 5(4) integrator with dense output and events;
+//! - [`jump_point`]: the paper's Sec. 3.1, forces and friction at a jump point;
+//! - [`from_rest`]: the paper's Sec. 3.2, J(θ), its brackets and θ_{n,J};
+//! - [`path`]: rigorous scan of the contact conditions along pure rolling;
+//! - [`jarm`]: classification of one parameter point (reason codes, lift-off rules);
+//! - [`region`]: parallel maps over points and grids;
+//! - [`boundary`]: JARM boundaries in α and μ_s by bisection;
 //! - [`error`]: the one error enum.
 
 pub mod body;
+pub mod boundary;
 pub mod error;
+pub mod from_rest;
+pub mod jarm;
+pub mod jump_point;
 pub mod ode;
+pub mod path;
+pub mod region;
 pub mod roll;
 pub mod rolling;
 pub mod roots;

@@ -1,0 +1,236 @@
+//! Boundaries of the JARM region: for fixed (χ, k_m, μ_s, n) the α-intervals where the point
+//! is a JARM (coarse scan in α, then bisection of each transition on the classification to
+//! 1e-12), and for fixed (α, χ, k_m) the smallest μ_s that gives a JARM. Parallel over many
+//! (χ, k_m) with a local rayon pool; each entry is computed independently (bit-identical for
+//! any thread count).
+
+use crate::error::{Error, Result};
+use crate::jarm::{classify, JarmOptions};
+use rayon::prelude::*;
+use std::f64::consts::FRAC_PI_2;
+
+/// Bisection tolerance on α and (relative) on μ_s.
+pub const TOL: f64 = 1e-12;
+
+fn is_jarm(alpha: f64, chi: f64, km: f64, mu_s: f64, o: &JarmOptions) -> bool {
+    classify(alpha, chi, km, mu_s, o).is_jarm
+}
+
+/// Bisects a transition of `f` between a (value fa) and b (value !fa) down to `TOL`.
+fn bisect_bool<F: Fn(f64) -> bool>(f: F, mut a: f64, mut b: f64, fa: bool) -> (f64, f64) {
+    while (b - a).abs() > TOL {
+        let m = 0.5 * (a + b);
+        if m == a || m == b {
+            break;
+        }
+        if f(m) == fa {
+            a = m;
+        } else {
+            b = m;
+        }
+    }
+    (a, b)
+}
+
+/// The α-intervals [α_min, α_max] ⊂ (0, π/2] where (χ, k_m, μ_s) is a JARM under `o` (set
+/// `o.n` for a given turn). `n_scan` coarse samples (≥ 2); intervals narrower than the scan
+/// step can be missed. Each end is the JARM side of a bisection to 1e-12.
+pub fn alpha_intervals(
+    chi: f64,
+    km: f64,
+    mu_s: f64,
+    o: &JarmOptions,
+    n_scan: usize,
+) -> Vec<(f64, f64)> {
+    let n = n_scan.max(2);
+    let f = |a: f64| is_jarm(a, chi, km, mu_s, o);
+    let mut out = Vec::new();
+    let mut prev_a = FRAC_PI_2 / n as f64;
+    let mut prev = f(prev_a);
+    let mut lo = if prev { Some(prev_a) } else { None };
+    for i in 2..=n {
+        let a = FRAC_PI_2 * i as f64 / n as f64;
+        let cur = f(a);
+        if cur != prev {
+            let (x, y) = bisect_bool(f, prev_a, a, prev);
+            if cur {
+                lo = Some(y);
+            } else if let Some(l) = lo.take() {
+                out.push((l, x));
+            }
+        }
+        prev = cur;
+        prev_a = a;
+    }
+    if let Some(l) = lo {
+        out.push((l, FRAC_PI_2));
+    }
+    out
+}
+
+/// The smallest μ_s that gives a JARM at (α, χ, k_m) (bisection on μ_s, relative 1e-12):
+/// +∞ if none up to 1e6. By monotonicity in μ_s (tested in `jarm`), every larger μ_s is one.
+pub fn mu_s_min_path(alpha: f64, chi: f64, km: f64, o: &JarmOptions) -> f64 {
+    let f = |m: f64| is_jarm(alpha, chi, km, m, o);
+    if f(0.0) {
+        return 0.0;
+    }
+    let mut hi = 1.0;
+    while !f(hi) {
+        hi *= 2.0;
+        if hi > 1e6 {
+            return f64::INFINITY;
+        }
+    }
+    let mut lo = if hi > 1.0 { 0.5 * hi } else { 0.0 };
+    while hi - lo > TOL * hi {
+        let m = 0.5 * (lo + hi);
+        if m <= lo || m >= hi {
+            break;
+        }
+        if f(m) {
+            hi = m;
+        } else {
+            lo = m;
+        }
+    }
+    hi
+}
+
+fn pool(n_threads: usize) -> Result<rayon::ThreadPool> {
+    rayon::ThreadPoolBuilder::new()
+        .num_threads(n_threads)
+        .build()
+        .map_err(|_| Error::InvalidParameter {
+            name: "n_threads",
+            value: n_threads as f64,
+            allowed: "a thread count the system can start".to_string(),
+        })
+}
+
+/// For many (χ_i, k_m,i): the first α-interval's ends (NaN, NaN if none) into `amin`, `amax`.
+#[allow(clippy::too_many_arguments)]
+pub fn alpha_bounds_many(
+    chi: &[f64],
+    km: &[f64],
+    mu_s: f64,
+    o: &JarmOptions,
+    n_scan: usize,
+    n_threads: usize,
+    amin: &mut [f64],
+    amax: &mut [f64],
+) -> Result<()> {
+    let n = chi.len();
+    for (name, len) in [("km", km.len()), ("amin", amin.len()), ("amax", amax.len())] {
+        if len != n {
+            return Err(Error::InvalidParameter {
+                name,
+                value: len as f64,
+                allowed: format!("length {n}"),
+            });
+        }
+    }
+    pool(n_threads)?.install(|| {
+        amin.par_iter_mut()
+            .zip(amax.par_iter_mut())
+            .enumerate()
+            .for_each(|(i, (lo, hi))| {
+                let v = alpha_intervals(chi[i], km[i], mu_s, o, n_scan);
+                let (a, b) = v.first().copied().unwrap_or((f64::NAN, f64::NAN));
+                *lo = a;
+                *hi = b;
+            });
+    });
+    Ok(())
+}
+
+/// For many (α_i, χ_i, k_m,i): μ_s,min along the path into `out`.
+pub fn mu_s_min_path_many(
+    alpha: &[f64],
+    chi: &[f64],
+    km: &[f64],
+    o: &JarmOptions,
+    n_threads: usize,
+    out: &mut [f64],
+) -> Result<()> {
+    let n = alpha.len();
+    for (name, len) in [("chi", chi.len()), ("km", km.len()), ("out", out.len())] {
+        if len != n {
+            return Err(Error::InvalidParameter {
+                name,
+                value: len as f64,
+                allowed: format!("length {n}"),
+            });
+        }
+    }
+    pool(n_threads)?.install(|| {
+        out.par_iter_mut()
+            .enumerate()
+            .for_each(|(i, m)| *m = mu_s_min_path(alpha[i], chi[i], km[i], o));
+    });
+    Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn alpha_interval_agrees_with_dense_scan() {
+        let o = JarmOptions {
+            n: 1,
+            refine_extrema: false,
+            ..Default::default()
+        };
+        let (chi, km, mu) = (0.15, 0.02, 1.0);
+        let v = alpha_intervals(chi, km, mu, &o, 90);
+        assert!(!v.is_empty());
+        // 40° is inside.
+        assert!(
+            v.iter()
+                .any(|&(a, b)| a < 40f64.to_radians() && 40f64.to_radians() < b),
+            "{v:?}"
+        );
+        for &(a, b) in &v {
+            assert!(is_jarm(a, chi, km, mu, &o) && is_jarm(b, chi, km, mu, &o));
+            if a > FRAC_PI_2 / 90.0 {
+                assert!(!is_jarm(a - 2e-12, chi, km, mu, &o));
+            }
+            if b < FRAC_PI_2 {
+                assert!(!is_jarm(b + 2e-12, chi, km, mu, &o));
+            }
+        }
+        // Dense scan: every JARM sample lies in an interval, every other one outside.
+        for i in 1..=3000 {
+            let a = FRAC_PI_2 * i as f64 / 3000.0;
+            let inside = v.iter().any(|&(l, h)| l <= a && a <= h);
+            assert_eq!(inside, is_jarm(a, chi, km, mu, &o), "{a}");
+        }
+        // Parallel, bit-identical.
+        let chis = [0.15, 0.1, 0.2, 0.05];
+        let kms = [0.02, 0.1, 0.0, 0.3];
+        let (mut l1, mut h1, mut l2, mut h2) = ([0.0; 4], [0.0; 4], [0.0; 4], [0.0; 4]);
+        alpha_bounds_many(&chis, &kms, mu, &o, 90, 1, &mut l1, &mut h1).unwrap();
+        alpha_bounds_many(&chis, &kms, mu, &o, 90, 2, &mut l2, &mut h2).unwrap();
+        let bits = |v: &[f64; 4]| v.map(|x| x.to_bits());
+        assert_eq!(bits(&l1), bits(&l2));
+        assert_eq!(bits(&h1), bits(&h2));
+        assert_eq!(l1[0].to_bits(), v[0].0.to_bits());
+    }
+
+    #[test]
+    fn mu_s_min_along_the_path() {
+        let o = JarmOptions::default();
+        let (a, chi, km) = (40f64.to_radians(), 0.15, 0.02);
+        let m = mu_s_min_path(a, chi, km, &o);
+        assert!(m < 1.0);
+        assert!(is_jarm(a, chi, km, m, &o));
+        assert!(!is_jarm(a, chi, km, m * (1.0 - 1e-9), &o));
+        // Paper rule: it is the largest friction ratio on the path up to θ_J (incl. μ(θ_J)).
+        let r = classify(a, chi, km, 10.0, &o);
+        assert!((r.max_ratio - m).abs() < 1e-9 * m, "{} {m}", r.max_ratio);
+        let mut out = [0.0];
+        mu_s_min_path_many(&[a], &[chi], &[km], &o, 2, &mut out).unwrap();
+        assert_eq!(out[0].to_bits(), m.to_bits());
+    }
+}

@@ -1,0 +1,863 @@
+//! The rigorous path conditions along pure rolling (Sec. 3.2, Eqs. extraineqcondition1/2).
+//!
+//! Along pure rolling from (θ0, θ̇0), energy conservation gives θ̇² = w(θ) = 2E(θ)/Ĩ_P(θ) with
+//! E(θ) = ½Ĩ_P(θ0)θ̇0² + (θ − θ0) sin α + χ[cos(α + θ0) − cos(α + θ)] and Ĩ_P = Ĩ_C + 1 + 2χ cos θ.
+//! With a = θ̈ (roll-eq) and w' = dθ̇²/dθ = 2a, differentiating roll-eq along the path gives
+//!
+//!   a' = χ (4 a sin θ + w cos θ + cos(α + θ))/Ĩ_P,
+//!   F_x  = −sin α − χ w sin θ + (1 + χ cos θ) a,   F_x' = −3χ a sin θ − χ w cos θ + (1 + χ cos θ) a',
+//!   F_y  =  cos α − χ w cos θ − χ a sin θ,          F_y' = −3χ a cos θ + χ w sin θ − χ a' sin θ,
+//!   L    =  χ w cos θ − cos α,                       L'   = 2χ a cos θ − χ w sin θ,
+//!   E'   =  sin α + χ sin(α + θ).
+//!
+//! The constraints are tracked as functions g that must stay positive: F_y (> 0), the two
+//! smooth friction margins M± = μ_s F_y ∓ F_x (≥ 0; together ⇔ μ_s F_y − |F_x| ≥ 0, tested as a
+//! margin, never as a ratio), −L (< 0 until the paper's lift-off) and E (> 0, else the body
+//! stops and rocks back). "A thin violation between sample points must not be missed": the
+//! functions and their analytic derivatives are sampled on a grid of ≤ 2π/32 (finer where
+//! Ĩ_P is small: step ≤ ¼√(Ĩ_P/χ), the width of the near-singular peak at θ = π for χ → 1,
+//! k_m → 0); a violation inside a cell needs an interior minimum, i.e. a sign change − → + of
+//! g' on the cell; its value is estimated by the cubic Hermite interpolant, and unless that is
+//! clearly positive (> 10 % of the smaller end value) the minimum is located by Brent on g'
+//! and checked; crossings are refined by Brent. The assumption is only that g' changes sign
+//! at most once per cell, which the grid guarantees for these trig polynomials over Ĩ_P^k.
+//!
+//! The evaluation uses one `sin_cos` of (θ − θ0)/2 per point, no heap allocation.
+
+use crate::rolling::Rolling;
+use crate::roots::brent;
+use std::f64::consts::TAU;
+
+/// Samples per turn of the scanning grid.
+pub const SAMPLES_PER_TURN: f64 = 24.0;
+
+/// Indices of the tracked constraint functions.
+pub const G_FY: usize = 0;
+pub const G_MPLUS: usize = 1;
+pub const G_MMINUS: usize = 2;
+pub const G_NOLIFT: usize = 3;
+pub const G_ENERGY: usize = 4;
+const NG: usize = 5;
+
+/// Everything along the rolling path at one θ.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct PathPoint {
+    pub theta: f64,
+    pub sin_t: f64,
+    pub cos_t: f64,
+    /// θ̇² (2E/Ĩ_P).
+    pub omega_sq: f64,
+    /// θ̈.
+    pub omega_dot: f64,
+    pub fx: f64,
+    pub fy: f64,
+    /// dF_x/dθ and dF_y/dθ along the path.
+    pub dfx: f64,
+    pub dfy: f64,
+    /// The lift-off function χθ̇² cos θ − cos α.
+    pub lift: f64,
+    /// g[k] and dg[k]/dθ for the constraint functions (see the `G_*` indices).
+    pub g: [f64; NG],
+    pub dg: [f64; NG],
+}
+
+impl PathPoint {
+    /// |F_x|/F_y, +∞ where F_y ≤ 0.
+    #[inline]
+    pub fn ratio(&self) -> f64 {
+        if self.fy > 0.0 {
+            self.fx.abs() / self.fy
+        } else {
+            f64::INFINITY
+        }
+    }
+
+    /// Sign test of d(|F_x|/F_y)/dθ > 0 without division (F_y > 0 assumed).
+    #[inline]
+    fn ratio_rising(&self) -> bool {
+        self.fx.signum() * self.dfx * self.fy - self.fx.abs() * self.dfy > 0.0
+    }
+
+    #[inline]
+    fn ratio_derivative(&self) -> f64 {
+        (self.fx.signum() * self.dfx * self.fy - self.fx.abs() * self.dfy) / (self.fy * self.fy)
+    }
+}
+
+/// The precomputed rolling path from (θ0, θ̇0) with static friction μ_s.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct RollingPath {
+    chi: f64,
+    ic: f64,
+    sin_a: f64,
+    cos_a: f64,
+    theta0: f64,
+    s0: f64,
+    c0: f64,
+    sa0: f64,
+    ca0: f64,
+    k0: f64,
+    mu_s: f64,
+}
+
+/// What ended a scan.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum PathEvent {
+    /// F_y ≤ 0.
+    NormalForce,
+    /// μ_s F_y − |F_x| < 0.
+    Slip,
+    /// The lift-off function reached 0 from below (the paper's jump condition).
+    Liftoff,
+    /// θ̇² returned to 0: the body stops and rolls back.
+    RocksBack,
+    /// Nothing happened before the end of the scan.
+    End,
+}
+
+/// The outcome of a scan along the rolling path.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct PathScan {
+    pub event: PathEvent,
+    /// The state where the scan stopped (the event, or the end).
+    pub at: PathPoint,
+    /// The largest |F_x|/F_y on [θ0, θ_event] and where (∞ if F_y reached 0).
+    pub max_ratio: f64,
+    pub theta_max_ratio: f64,
+    /// The smallest F_y on [θ0, θ_event] and where.
+    pub min_fy: f64,
+    pub theta_min_fy: f64,
+    /// Function evaluations used (a cost measure).
+    pub evaluations: u32,
+}
+
+/// Which constraints a scan watches.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct Watch {
+    pub normal_force: bool,
+    pub friction: bool,
+    pub liftoff: bool,
+    pub energy: bool,
+    /// Refine the reported extrema (max friction ratio, min F_y) to full precision by Brent on
+    /// their derivative; otherwise they are the best sample or cubic-Hermite cell estimate
+    /// (relative error ~1e-4). Costs ~2 × 10 evaluations per scan.
+    pub refine_extrema: bool,
+    /// Grid step multiplier (1 = the rigorous grid). Only for cheap auxiliary scans of the
+    /// smooth lift-off function (e.g. to name a failure reason), never for the path checks.
+    pub coarseness: u8,
+}
+
+impl Watch {
+    pub const ALL: Watch = Watch {
+        normal_force: true,
+        friction: true,
+        liftoff: true,
+        energy: true,
+        refine_extrema: true,
+        coarseness: 1,
+    };
+
+    #[inline]
+    fn active(&self, k: usize) -> bool {
+        match k {
+            G_FY => self.normal_force,
+            G_MPLUS | G_MMINUS => self.friction,
+            G_NOLIFT => self.liftoff,
+            _ => self.energy,
+        }
+    }
+}
+
+/// Violation test; NaN counts as a violation (never silently passes). Margins may touch 0.
+#[inline]
+fn violated(k: usize, g: f64) -> bool {
+    if k == G_MPLUS || k == G_MMINUS {
+        g.is_nan() || g < 0.0
+    } else {
+        g.is_nan() || g <= 0.0
+    }
+}
+
+/// The minimum on t ∈ [0, 1] of the cubic Hermite interpolant with values g0, g1 and scaled
+/// slopes m0 = h g0' < 0 < m1 = h g1'.
+#[inline]
+fn hermite_min(g0: f64, m0: f64, g1: f64, m1: f64) -> (f64, f64) {
+    let b = 3.0 * (g1 - g0) - 2.0 * m0 - m1;
+    let c = 2.0 * (g0 - g1) + m0 + m1;
+    let disc = (b * b - 3.0 * c * m0).max(0.0);
+    let den = b + disc.sqrt();
+    let t = if den > 0.0 {
+        (-m0 / den).clamp(0.0, 1.0)
+    } else {
+        0.5
+    };
+    (t, g0 + t * (m0 + t * (b + t * c)))
+}
+
+/// The running extremum of a tracked quantity (for reporting): the best sample, and the cell
+/// whose interior extremum (Hermite estimate) is best, refined at the end.
+#[derive(Clone, Copy)]
+struct Extremum {
+    value: f64,
+    theta: f64,
+    cell_est: f64,
+    cell_theta: f64,
+    cell: Option<(f64, f64)>,
+}
+
+impl Extremum {
+    fn start(value: f64, theta: f64, worst: f64) -> Self {
+        Self {
+            value,
+            theta,
+            cell_est: worst,
+            cell_theta: f64::NAN,
+            cell: None,
+        }
+    }
+}
+
+impl RollingPath {
+    /// A path on the ramp `r` from (θ0, θ̇0); μ_s is used by the friction margins.
+    pub fn new(r: &Rolling, theta0: f64, omega0: f64, mu_s: f64) -> Self {
+        let (s0, c0) = theta0.sin_cos();
+        let (sa0, ca0) = (r.sin_a * c0 + r.cos_a * s0, r.cos_a * c0 - r.sin_a * s0);
+        let k0 = 0.5 * r.contact_inertia(c0) * omega0 * omega0;
+        Self {
+            chi: r.body.chi,
+            ic: r.body.ic,
+            sin_a: r.sin_a,
+            cos_a: r.cos_a,
+            theta0,
+            s0,
+            c0,
+            sa0,
+            ca0,
+            k0,
+            mu_s,
+        }
+    }
+
+    /// θ0 of the path.
+    pub fn theta0(&self) -> f64 {
+        self.theta0
+    }
+
+    /// The available kinetic energy E(θ) at θ (θ̇² = 2E/Ĩ_P).
+    #[inline]
+    pub fn energy(&self, theta: f64) -> f64 {
+        let u = 0.5 * (theta - self.theta0);
+        let (su, cu) = u.sin_cos();
+        self.k0
+            + (theta - self.theta0) * self.sin_a
+            + 2.0 * self.chi * (self.sa0 * cu + self.ca0 * su) * su
+    }
+
+    /// All path quantities at θ: one `sin_cos`, no allocation.
+    #[inline]
+    pub fn eval(&self, theta: f64) -> PathPoint {
+        let chi = self.chi;
+        let d = theta - self.theta0;
+        let (su, cu) = (0.5 * d).sin_cos();
+        let sd = 2.0 * su * cu;
+        let cd = (cu - su) * (cu + su);
+        let s = self.s0 * cd + self.c0 * sd;
+        let c = self.c0 * cd - self.s0 * sd;
+        // E = K0 + (θ − θ0) sin α + χ[cos(α+θ0) − cos(α+θ)], the bracket as 2 sin(α+θ0+u) sin u.
+        let e = self.k0 + d * self.sin_a + 2.0 * chi * (self.sa0 * cu + self.ca0 * su) * su;
+        let sin_at = self.sin_a * c + self.cos_a * s;
+        let cos_at = self.cos_a * c - self.sin_a * s;
+        let de = self.sin_a + chi * sin_at;
+        let inv_ip = 1.0 / (self.ic + 1.0 + 2.0 * chi * c);
+        let w = 2.0 * e * inv_ip;
+        let acc = (chi * w * s + chi * sin_at + self.sin_a) * inv_ip;
+        let dacc = chi * (4.0 * acc * s + w * c + cos_at) * inv_ip;
+        let one_c = 1.0 + chi * c;
+        let fx = -self.sin_a - chi * w * s + one_c * acc;
+        let fy = self.cos_a - chi * w * c - chi * acc * s;
+        let dfx = -3.0 * chi * acc * s - chi * w * c + one_c * dacc;
+        let dfy = -3.0 * chi * acc * c + chi * w * s - chi * dacc * s;
+        let lift = chi * w * c - self.cos_a;
+        let dlift = 2.0 * chi * acc * c - chi * w * s;
+        let mu = self.mu_s;
+        PathPoint {
+            theta,
+            sin_t: s,
+            cos_t: c,
+            omega_sq: w,
+            omega_dot: acc,
+            fx,
+            fy,
+            dfx,
+            dfy,
+            lift,
+            g: [fy, mu * fy - fx, mu * fy + fx, -lift, e],
+            dg: [dfy, mu * dfy - dfx, mu * dfy + dfx, -dlift, de],
+        }
+    }
+
+    /// Grid step at a point: ≤ 2π/32, and ≤ ¼√(Ĩ_P/χ) near the singular peak.
+    #[inline]
+    fn step(&self, p: &PathPoint) -> f64 {
+        let hmax = TAU / SAMPLES_PER_TURN;
+        let ip = self.ic + 1.0 + 2.0 * self.chi * p.cos_t;
+        let h = 0.25 * (ip / self.chi).sqrt();
+        let floor = 1e-9 * (1.0 + p.theta.abs());
+        if h < hmax {
+            h.max(floor)
+        } else {
+            hmax
+        }
+    }
+
+    /// Root of g_k on [lo, hi] with g_k(lo) not violated and g_k(hi) violated.
+    fn crossing(&self, k: usize, lo: &PathPoint, hi: &PathPoint, evals: &mut u32) -> f64 {
+        let (fa, fb) = (lo.g[k], hi.g[k]);
+        if !fb.is_finite() {
+            // Refine a non-finite end by bisection on "violated".
+            let (mut a, mut b) = (lo.theta, hi.theta);
+            for _ in 0..200 {
+                let m = 0.5 * (a + b);
+                if m <= a || m >= b {
+                    break;
+                }
+                *evals += 1;
+                if violated(k, self.eval(m).g[k]) {
+                    b = m;
+                } else {
+                    a = m;
+                }
+            }
+            return b;
+        }
+        let mut n = 0u32;
+        let r = brent(
+            |t| {
+                n += 1;
+                self.eval(t).g[k]
+            },
+            lo.theta,
+            hi.theta,
+            fa,
+            fb,
+            0.0,
+            4.0 * f64::EPSILON,
+            200,
+        );
+        *evals += n;
+        match r {
+            Ok(r) => r.hi.min(r.x.max(r.lo)),
+            Err(_) => hi.theta,
+        }
+    }
+
+    /// The point where dg_k changes sign − → + on [lo, hi] (a minimum of g_k).
+    fn min_location(&self, k: usize, lo: &PathPoint, hi: &PathPoint, evals: &mut u32) -> PathPoint {
+        let mut n = 0u32;
+        let r = brent(
+            |t| {
+                n += 1;
+                self.eval(t).dg[k]
+            },
+            lo.theta,
+            hi.theta,
+            lo.dg[k],
+            hi.dg[k],
+            0.0,
+            4.0 * f64::EPSILON,
+            200,
+        );
+        *evals += n + 1;
+        let x = r.map(|r| r.x).unwrap_or(0.5 * (lo.theta + hi.theta));
+        self.eval(x)
+    }
+
+    /// The first θ in (a, b] where g_k is violated, given it is not violated at a.
+    fn first_violation(
+        &self,
+        k: usize,
+        a: &PathPoint,
+        b: &PathPoint,
+        evals: &mut u32,
+    ) -> Option<f64> {
+        let (ga, da, gb, db) = (a.g[k], a.dg[k], b.g[k], b.dg[k]);
+        let vb = violated(k, gb);
+        if da < 0.0 && db > 0.0 {
+            if !vb {
+                let h = b.theta - a.theta;
+                let (_, est) = hermite_min(ga, h * da, gb, h * db);
+                if est > 0.1 * ga.min(gb) {
+                    return None;
+                }
+            }
+            let m = self.min_location(k, a, b, evals);
+            if violated(k, m.g[k]) {
+                return Some(self.crossing(k, a, &m, evals));
+            }
+            if vb {
+                return Some(self.crossing(k, &m, b, evals));
+            }
+            None
+        } else if vb {
+            Some(self.crossing(k, a, b, evals))
+        } else {
+            None
+        }
+    }
+
+    /// Scans the rolling path from θ0 to `theta_end` and stops at the first violated watched
+    /// constraint (ties resolved in the order lift-off, normal force, friction, energy).
+    pub fn scan(&self, theta_end: f64, watch: Watch) -> PathScan {
+        self.scan_from(self.theta0, theta_end, watch)
+    }
+
+    /// As [`Self::scan`], but starting at θ_start ≥ θ0 on the same path (e.g. to continue
+    /// past an event); the extrema are then over [θ_start, θ_event].
+    pub fn scan_from(&self, theta_start: f64, theta_end: f64, watch: Watch) -> PathScan {
+        let mut evals = 1u32;
+        let p0 = self.eval(theta_start);
+        let mut min_fy = Extremum::start(p0.fy, p0.theta, f64::INFINITY);
+        let mut max_r = Extremum::start(p0.ratio(), p0.theta, f64::NEG_INFINITY);
+        // Violations at the start itself.
+        let order = [G_NOLIFT, G_FY, G_MPLUS, G_MMINUS, G_ENERGY];
+        for &k in &order {
+            if !watch.active(k) {
+                continue;
+            }
+            let bad = if k == G_ENERGY {
+                // From rest E(θ0) = 0: fine if the body accelerates forward.
+                p0.g[k] < 0.0 || (p0.g[k] == 0.0 && (p0.dg[k].is_nan() || p0.dg[k] <= 0.0))
+            } else if k == G_NOLIFT {
+                // Lift-off at the start: L(θ0) ≥ 0 and not falling.
+                violated(k, p0.g[k]) && !(p0.g[k] == 0.0 && p0.dg[k] > 0.0)
+            } else {
+                violated(k, p0.g[k])
+            };
+            if bad {
+                return self.finish(event_of(k), p0, min_fy, max_r, evals, watch.refine_extrema);
+            }
+        }
+        let mut pa = p0;
+        // A generous cap on cells (the floor step keeps progress finite anyway).
+        let max_cells = ((theta_end - theta_start) / (TAU / SAMPLES_PER_TURN) * 64.0 + 1e5) as u64;
+        let mut cells = 0u64;
+        loop {
+            cells += 1;
+            let h = self.step(&pa) * watch.coarseness.max(1) as f64;
+            let tb = (pa.theta + h).min(theta_end);
+            let pb = self.eval(tb);
+            evals += 1;
+            let mut best: Option<(f64, usize)> = None;
+            for &k in &order {
+                if !watch.active(k) {
+                    continue;
+                }
+                if let Some(x) = self.first_violation(k, &pa, &pb, &mut evals) {
+                    // Near-ties go to the earlier constraint in `order` (at Ĩ_CM = 0 the
+                    // margins vanish with F_y: that is a loss of normal force).
+                    if best.is_none_or(|(bx, _)| x < bx - 1e-12 * (1.0 + bx.abs())) {
+                        best = Some((x, k));
+                    }
+                }
+            }
+            if let Some((x, k)) = best {
+                let px = self.eval(x);
+                evals += 1;
+                track(&pa, &px, &mut min_fy, &mut max_r);
+                return self.finish(event_of(k), px, min_fy, max_r, evals, watch.refine_extrema);
+            }
+            track(&pa, &pb, &mut min_fy, &mut max_r);
+            if tb >= theta_end || cells > max_cells {
+                return self.finish(
+                    PathEvent::End,
+                    pb,
+                    min_fy,
+                    max_r,
+                    evals,
+                    watch.refine_extrema,
+                );
+            }
+            pa = pb;
+        }
+    }
+
+    fn finish(
+        &self,
+        event: PathEvent,
+        at: PathPoint,
+        min_fy: Extremum,
+        max_r: Extremum,
+        mut evals: u32,
+        refine: bool,
+    ) -> PathScan {
+        // Refine the reported extrema inside their cells (Brent on the derivative).
+        let mut min_fy = min_fy;
+        let mut max_r = max_r;
+        if !refine {
+            // Cheap estimates: the cell's cubic Hermite extremum where it beats the samples.
+            if min_fy.cell.is_some() && min_fy.cell_est < min_fy.value {
+                min_fy.value = min_fy.cell_est;
+                min_fy.theta = min_fy.cell_theta;
+            }
+            if max_r.cell.is_some() && max_r.cell_est > max_r.value {
+                max_r.value = max_r.cell_est;
+                max_r.theta = max_r.cell_theta;
+            }
+            min_fy.cell = None;
+            max_r.cell = None;
+        }
+        if let Some((lo, hi)) = min_fy.cell {
+            let (pl, ph) = (self.eval(lo), self.eval(hi));
+            let m = self.min_location(G_FY, &pl, &ph, &mut evals);
+            if m.fy < min_fy.value {
+                min_fy.value = m.fy;
+                min_fy.theta = m.theta;
+            }
+        }
+        if let Some((lo, hi)) = max_r.cell {
+            let (pl, ph) = (self.eval(lo), self.eval(hi));
+            let (dl, dh) = (pl.ratio_derivative(), ph.ratio_derivative());
+            if dl > 0.0 && dh < 0.0 {
+                let mut n = 0u32;
+                if let Ok(r) = brent(
+                    |t| {
+                        n += 1;
+                        self.eval(t).ratio_derivative()
+                    },
+                    lo,
+                    hi,
+                    dl,
+                    dh,
+                    0.0,
+                    4.0 * f64::EPSILON,
+                    200,
+                ) {
+                    let p = self.eval(r.x);
+                    if p.ratio() > max_r.value {
+                        max_r.value = p.ratio();
+                        max_r.theta = p.theta;
+                    }
+                }
+                evals += n + 1;
+            }
+        }
+        PathScan {
+            event,
+            at,
+            max_ratio: max_r.value,
+            theta_max_ratio: max_r.theta,
+            min_fy: min_fy.value,
+            theta_min_fy: min_fy.theta,
+            evaluations: evals,
+        }
+    }
+}
+
+fn event_of(k: usize) -> PathEvent {
+    match k {
+        G_FY => PathEvent::NormalForce,
+        G_MPLUS | G_MMINUS => PathEvent::Slip,
+        G_NOLIFT => PathEvent::Liftoff,
+        _ => PathEvent::RocksBack,
+    }
+}
+
+/// Updates the reported extrema with the cell [a, b]: end values, and an interior extremum
+/// (derivative sign change) estimated by the cubic Hermite interpolant, refined at the end.
+#[inline]
+fn track(a: &PathPoint, b: &PathPoint, min_fy: &mut Extremum, max_r: &mut Extremum) {
+    let h = b.theta - a.theta;
+    if b.fy < min_fy.value {
+        min_fy.value = b.fy;
+        min_fy.theta = b.theta;
+    }
+    let (da, db) = (a.dg[G_FY], b.dg[G_FY]);
+    if da < 0.0 && db > 0.0 {
+        let (t, est) = hermite_min(a.fy, h * da, b.fy, h * db);
+        if est < min_fy.cell_est {
+            min_fy.cell_est = est;
+            min_fy.cell_theta = a.theta + t * h;
+            min_fy.cell = Some((a.theta, b.theta));
+        }
+    }
+    let rb = b.ratio();
+    if rb > max_r.value {
+        max_r.value = rb;
+        max_r.theta = b.theta;
+    }
+    if a.fy > 0.0
+        && b.fy > 0.0
+        && a.fx.signum() == b.fx.signum()
+        && a.ratio_rising()
+        && !b.ratio_rising()
+    {
+        let (ra, rda, rdb) = (a.ratio(), a.ratio_derivative(), b.ratio_derivative());
+        if rda > 0.0 && rdb < 0.0 {
+            let (t, est) = hermite_min(-ra, -h * rda, -rb, -h * rdb);
+            if -est > max_r.cell_est {
+                max_r.cell_est = -est;
+                max_r.cell_theta = a.theta + t * h;
+                max_r.cell = Some((a.theta, b.theta));
+            }
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::body::Cylinder;
+
+    fn ramp(chi: f64, km: f64, alpha_deg: f64) -> Rolling {
+        Rolling::new(Cylinder::new(chi, km).unwrap(), alpha_deg.to_radians()).unwrap()
+    }
+
+    #[test]
+    fn path_point_agrees_with_rolling_and_derivatives() {
+        for &(chi, km, a, th0, w0) in &[
+            (0.3, 0.2, 25.0, 0.0, 0.0),
+            (0.7, 0.05, 50.0, 1.0, 0.5),
+            (0.9, 0.02, 10.0, -0.3, 2.0),
+        ] {
+            let r = ramp(chi, km, a);
+            let p = RollingPath::new(&r, th0, w0, 0.8);
+            for i in 1..40 {
+                let th = th0 + 0.31 * i as f64;
+                let q = p.eval(th);
+                let w2 = r.omega_sq(th0, w0, th);
+                assert!((q.omega_sq - w2).abs() < 1e-12 * (1.0 + w2));
+                let k = r.kinematics(th, w2.sqrt());
+                let tol = 1e-12 * (1.0 + w2);
+                assert!(
+                    (q.fx - k.fx).abs() < tol && (q.fy - k.fy).abs() < tol,
+                    "{th}"
+                );
+                let ip = r.contact_inertia(th.cos());
+                assert!((q.omega_dot - k.omega_dot).abs() < tol * (1.0 + 1.0 / ip));
+                let hh = 1e-6;
+                let (qp, qm) = (p.eval(th + hh), p.eval(th - hh));
+                assert!(
+                    ((qp.omega_sq - qm.omega_sq) / (2.0 * hh) - 2.0 * q.omega_dot).abs()
+                        < 1e-6 * (1.0 + q.omega_dot.abs())
+                );
+                for kk in 0..NG {
+                    let fd = (qp.g[kk] - qm.g[kk]) / (2.0 * hh);
+                    assert!(
+                        (fd - q.dg[kk]).abs() < 1e-6 * (1.0 + fd.abs()),
+                        "{kk} {fd} {}",
+                        q.dg[kk]
+                    );
+                }
+            }
+        }
+    }
+
+    /// The paper's FxL2 and FyL2, typed exactly as printed (g = M = 1).
+    fn fx_l2(alpha: f64, chi: f64, gamma: f64, th: f64) -> f64 {
+        use std::f64::consts::PI;
+        let (sa, ca) = alpha.sin_cos();
+        let pg = PI * gamma;
+        -1.0 / (4.0 * chi * (2.0 * pg + th.cos() - 1.0).powi(2))
+            * (sa
+                * (16.0 * PI * PI * gamma * gamma * chi - 16.0 * pg * chi - 4.0 * pg - chi * chi
+                    + 3.0 * chi
+                    + 2.0
+                    + 2.0 * pg * chi * chi
+                    + 2.0 * (-1.0 + (-3.0 + 6.0 * pg) * chi) * th.cos()
+                    + chi * (2.0 * th).cos()
+                    - 2.0 * th * th.sin()
+                    - 4.0 * th * chi * th.sin()
+                    + 8.0 * pg * th * chi * th.sin()
+                    + th * chi * (2.0 * th).sin())
+                + chi
+                    * (2.0 * ca * (-1.0 - 2.0 * chi + 4.0 * pg * chi + chi * th.cos()) * th.sin()
+                        - (-2.0 + 4.0 * pg + chi) * (alpha + th).sin()
+                        - chi
+                            * ((-3.0 + 6.0 * pg) * (alpha + 2.0 * th).sin()
+                                + (alpha + 3.0 * th).sin())))
+    }
+
+    fn fy_l2(alpha: f64, chi: f64, gamma: f64, th: f64) -> f64 {
+        use std::f64::consts::PI;
+        let (sa, ca) = alpha.sin_cos();
+        let pg = PI * gamma;
+        1.0 / (4.0 * (2.0 * pg + th.cos() - 1.0).powi(2))
+            * (ca
+                * (6.0 - 16.0 * pg + 16.0 * PI * PI * gamma * gamma - 4.0 * chi
+                    + 2.0 * pg * chi
+                    + (-8.0 - 8.0 * pg * (-2.0 + chi) + 7.0 * chi) * th.cos()
+                    + (2.0 - 4.0 * chi + 6.0 * pg * chi) * (2.0 * th).cos()
+                    + chi * (3.0 * th).cos())
+                - sa * (3.0 * th + 4.0 * (-1.0 + 2.0 * pg) * th * th.cos() + th * (2.0 * th).cos()
+                    - 2.0 * th.sin()
+                    + 4.0 * pg * th.sin()
+                    + 3.0 * chi * th.sin()
+                    + (2.0 * th).sin()
+                    - 3.0 * chi * (2.0 * th).sin()
+                    + 6.0 * pg * chi * (2.0 * th).sin()
+                    + chi * (3.0 * th).sin()))
+    }
+
+    #[test]
+    fn forces_match_the_papers_fxl2_fyl2() {
+        for &(chi, km, a) in &[
+            (0.15, 0.02, 40.0),
+            (0.5, 0.4, 30.0),
+            (0.8, 0.1, 12.0),
+            (0.05, 0.9, 80.0),
+        ] {
+            let r = ramp(chi, km, a);
+            let p = RollingPath::new(&r, 0.0, 0.0, 1.0);
+            let gamma = r.body.gamma();
+            for i in 1..200 {
+                let th = 0.05 * i as f64;
+                let q = p.eval(th);
+                let (fx, fy) = (
+                    fx_l2(r.alpha, chi, gamma, th),
+                    fy_l2(r.alpha, chi, gamma, th),
+                );
+                assert!(
+                    (q.fx - fx).abs() < 1e-10 * (1.0 + fx.abs()),
+                    "{chi} {th}: {} {fx}",
+                    q.fx
+                );
+                assert!(
+                    (q.fy - fy).abs() < 1e-10 * (1.0 + fy.abs()),
+                    "{chi} {th}: {} {fy}",
+                    q.fy
+                );
+            }
+        }
+    }
+
+    /// Brute force: the first violation on a dense grid of 1e5 points.
+    fn brute(p: &RollingPath, theta_end: f64, watch: Watch) -> Option<(f64, usize)> {
+        let n = 100_000;
+        for i in 0..=n {
+            let th = p.theta0() + (theta_end - p.theta0()) * i as f64 / n as f64;
+            let q = p.eval(th);
+            for &k in &[G_NOLIFT, G_FY, G_MPLUS, G_MMINUS, G_ENERGY] {
+                if watch.active(k) && i > 0 && violated(k, q.g[k]) {
+                    return Some((th, k));
+                }
+            }
+        }
+        None
+    }
+
+    #[test]
+    fn scan_agrees_with_dense_sampling() {
+        let mut checked = 0;
+        for &(chi, km, a, mu) in &[
+            (0.15, 0.02, 40.0, 1.0),
+            (0.5, 0.4, 30.0, 1.0),
+            (0.3, 0.1, 20.0, 0.7),
+            (0.9, 0.05, 15.0, 1.0),
+            (0.6, 0.3, 60.0, 2.0),
+            (0.05, 0.2, 80.0, 1.0),
+            (0.99, 0.0, 30.0, 5.0),
+            (0.4, 0.5, 8.0, 0.5),
+        ] {
+            let r = ramp(chi, km, a);
+            let p = RollingPath::new(&r, 0.0, 0.0, mu);
+            let end = 4.0 * TAU;
+            let s = p.scan(end, Watch::ALL);
+            let b = brute(&p, end, Watch::ALL);
+            match (s.event, b) {
+                (PathEvent::End, None) => {}
+                (ev, Some((th, k))) => {
+                    assert_eq!(ev, event_of(k), "{chi} {km} {a}");
+                    assert!(
+                        s.at.theta <= th && th - s.at.theta < 1e-3,
+                        "{} {th}",
+                        s.at.theta
+                    );
+                    checked += 1;
+                }
+                (ev, None) => panic!("{ev:?} but brute force found nothing"),
+            }
+            // Reported extrema against dense sampling on [0, θ_event].
+            let n = 100_000;
+            let (mut mr, mut mf) = (0.0f64, f64::INFINITY);
+            for i in 0..=n {
+                let q = p.eval(s.at.theta * i as f64 / n as f64);
+                mr = mr.max(q.ratio());
+                mf = mf.min(q.fy);
+            }
+            assert!(
+                s.min_fy <= mf + 1e-12 && mf - s.min_fy < 1e-8,
+                "{} {mf}",
+                s.min_fy
+            );
+            if mr.is_finite() {
+                assert!(
+                    s.max_ratio >= mr - 1e-12 && s.max_ratio - mr < 1e-6,
+                    "{} {mr}",
+                    s.max_ratio
+                );
+            }
+        }
+        assert!(checked >= 6);
+    }
+
+    #[test]
+    fn reference_slip_near_316_degrees() {
+        let r = ramp(0.5, 0.4, 30.0);
+        let p = RollingPath::new(&r, 0.0, 0.0, 1.0);
+        let s = p.scan(2.0 * TAU, Watch::ALL);
+        assert_eq!(s.event, PathEvent::Slip);
+        assert!(
+            (s.at.theta.to_degrees() - 316.47).abs() < 0.01,
+            "{}",
+            s.at.theta.to_degrees()
+        );
+        assert!((s.at.ratio() - 1.0).abs() < 1e-9);
+    }
+
+    #[test]
+    fn thin_violation_between_samples_is_found() {
+        // Choose μ_s just below the interior maximum of the friction ratio on the path, so
+        // that the margin dips below 0 on a sliver much thinner than the grid step.
+        let r = ramp(0.3, 0.1, 20.0);
+        let big = RollingPath::new(&r, 0.0, 0.0, 1e6);
+        let w = Watch {
+            normal_force: true,
+            friction: false,
+            ..Watch::ALL
+        };
+        let s = big.scan(4.0 * TAU, w);
+        // Find an interior local maximum of the ratio well before the event.
+        let (mut best, mut th_best) = (0.0, 0.0);
+        let n = 200_000;
+        for i in 1..n {
+            let th = 0.8 * s.at.theta * i as f64 / n as f64;
+            let q = big.eval(th);
+            if q.ratio() > best {
+                best = q.ratio();
+                th_best = th;
+            }
+        }
+        assert!(th_best > 0.1 && th_best < 0.79 * s.at.theta, "{th_best}");
+        let mu = best * (1.0 - 1e-9);
+        let p = RollingPath::new(&r, 0.0, 0.0, mu);
+        let sc = p.scan(4.0 * TAU, Watch::ALL);
+        assert_eq!(sc.event, PathEvent::Slip);
+        assert!(
+            (sc.at.theta - th_best).abs() < 1e-3,
+            "{} {th_best}",
+            sc.at.theta
+        );
+        // The violation is thinner than the grid step by orders of magnitude.
+        let width = {
+            let (mut lo, mut hi) = (th_best, th_best);
+            while p.eval(lo).g[G_MPLUS].min(p.eval(lo).g[G_MMINUS]) < 0.0 {
+                lo -= 1e-7;
+            }
+            while p.eval(hi).g[G_MPLUS].min(p.eval(hi).g[G_MMINUS]) < 0.0 {
+                hi += 1e-7;
+            }
+            hi - lo
+        };
+        assert!(width < 1e-3, "{width}");
+    }
+}
