@@ -4,7 +4,7 @@
 //! First-jump semantics: the body leaves at the FIRST θ where the lift-off rule holds; every
 //! path condition is checked on the way there, and the first thing that happens decides.
 //!
-//! Two lift-off rules ([`LiftoffRule`]):
+//! Two lift-off rules ([`Rule`]):
 //! - `Paper`: lift-off at the first rising zero θ_L of L = χθ̇² cos θ − cos α. JARM iff the
 //!   path keeps F_y > 0 and μ_s F_y − |F_x| ≥ 0 on [θ0, θ_L), θ_L lies in a green window
 //!   2πn − α < θ_L < 2πn with F_y,J > 0, and μ(θ_L) ≤ μ_s (Eq. ineq2).
@@ -25,6 +25,7 @@ use crate::body::Cylinder;
 use crate::jump_point::{green_turn, jump_forces, mu};
 use crate::path::{PathEvent, PathScan, RollingPath, Watch};
 use crate::rolling::Rolling;
+pub use crate::rule::Rule;
 use std::f64::consts::{FRAC_PI_2, PI, TAU};
 
 /// Why a point is or is not a JARM. `#[repr(u8)]` with stable values (the bridge exports them).
@@ -97,20 +98,10 @@ impl Reason {
     }
 }
 
-/// The lift-off rule (see the module docs).
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
-pub enum LiftoffRule {
-    /// Lift-off at the first rising zero of χθ̇² cos θ − cos α (the paper's rule; default).
-    #[default]
-    Paper,
-    /// Classical: lift-off when F_y = 0, or at slip onset when no sliding contact exists.
-    NormalForce,
-}
-
 /// Options of a classification.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct JarmOptions {
-    pub rule: LiftoffRule,
+    pub rule: Rule,
     /// Required turn n ≥ 1, or 0 for automatic (the first jump, whatever its turn).
     pub n: u32,
     /// Turn cap of the search.
@@ -127,7 +118,7 @@ pub struct JarmOptions {
 impl Default for JarmOptions {
     fn default() -> Self {
         Self {
-            rule: LiftoffRule::Paper,
+            rule: Rule::Paper,
             n: 0,
             max_turns: 10_000,
             theta0: 0.0,
@@ -161,7 +152,7 @@ pub struct JarmResult {
 }
 
 impl JarmResult {
-    fn new(reason: Reason) -> Self {
+    pub fn new(reason: Reason) -> Self {
         Self {
             is_jarm: reason == Reason::Jarm,
             reason,
@@ -287,7 +278,7 @@ pub fn classify(alpha: f64, chi: f64, km: f64, mu_s: f64, o: &JarmOptions) -> Ja
     let watch = Watch {
         normal_force: true,
         friction: true,
-        liftoff: o.rule == LiftoffRule::Paper,
+        liftoff: o.rule == Rule::Paper,
         energy: true,
         refine_extrema: o.refine_extrema,
         coarseness: 1,
@@ -302,7 +293,7 @@ pub fn classify(alpha: f64, chi: f64, km: f64, mu_s: f64, o: &JarmOptions) -> Ja
             x.theta_event = th;
             x
         }
-        (LiftoffRule::Paper, PathEvent::Liftoff) => {
+        (Rule::Paper, PathEvent::Liftoff) => {
             if at_start {
                 liftoff_earlier(&s, th)
             } else {
@@ -324,8 +315,8 @@ pub fn classify(alpha: f64, chi: f64, km: f64, mu_s: f64, o: &JarmOptions) -> Ja
                 }
             }
         }
-        (LiftoffRule::Paper, PathEvent::NormalForce) => failure(Reason::NormalForceLost, &s, th),
-        (LiftoffRule::Paper, PathEvent::Slip) => {
+        (Rule::Paper, PathEvent::NormalForce) => failure(Reason::NormalForceLost, &s, th),
+        (Rule::Paper, PathEvent::Slip) => {
             // Continue along rolling to the paper's lift-off point: if it is in a green
             // window and ineq2 fails there, the jump-point test alone rejects the point.
             let lift = path.scan_from(
@@ -352,14 +343,14 @@ pub fn classify(alpha: f64, chi: f64, km: f64, mu_s: f64, o: &JarmOptions) -> Ja
                 failure(Reason::SlipBefore, &s, th)
             }
         }
-        (LiftoffRule::NormalForce, PathEvent::NormalForce) => {
+        (Rule::NormalForce, PathEvent::NormalForce) => {
             if at_start {
                 liftoff_earlier(&s, th)
             } else {
                 jarm_at(&s)
             }
         }
-        (LiftoffRule::NormalForce, PathEvent::Slip) => {
+        (Rule::NormalForce, PathEvent::Slip) => {
             let p = &s.at;
             let sigma = if p.fx < 0.0 { -1.0 } else { 1.0 };
             let k = chi * p.sin_t - sigma * mu_s * (1.0 + chi * p.cos_t);
@@ -373,7 +364,7 @@ pub fn classify(alpha: f64, chi: f64, km: f64, mu_s: f64, o: &JarmOptions) -> Ja
                 jarm_at(&s)
             }
         }
-        (LiftoffRule::NormalForce, PathEvent::Liftoff) => jarm_at(&s), // not watched
+        (Rule::NormalForce, PathEvent::Liftoff) => jarm_at(&s), // not watched
     };
     if o.n > 0 {
         res = restrict_to_turn(res, o.n);
@@ -477,7 +468,7 @@ mod tests {
             0.02,
             1.0,
             &JarmOptions {
-                rule: LiftoffRule::NormalForce,
+                rule: Rule::NormalForce,
                 ..o
             },
         );
@@ -507,7 +498,7 @@ mod tests {
             0.4,
             1.0,
             &JarmOptions {
-                rule: LiftoffRule::NormalForce,
+                rule: Rule::NormalForce,
                 ..o
             },
         );
@@ -597,7 +588,7 @@ mod tests {
         // within a hair of the boundary (μ_s ± 2 %) are skipped.
         let o = JarmOptions::default();
         let k = JarmOptions {
-            rule: LiftoffRule::NormalForce,
+            rule: Rule::NormalForce,
             ..o
         };
         let (mut agree, mut both, mut skipped, mut max_dth) = (0, 0, 0, 0.0f64);

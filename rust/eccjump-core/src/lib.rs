@@ -14,6 +14,7 @@
 //! - [`jarm`]: classification of one parameter point (reason codes, lift-off rules);
 //! - [`region`]: parallel maps over points and grids;
 //! - [`boundary`]: JARM boundaries in α and μ_s by bisection;
+//! - [`rule`]: the lift-off rule shared by runs and classification;
 //! - [`error`]: the one error enum.
 
 pub mod body;
@@ -21,6 +22,7 @@ pub mod boundary;
 pub mod error;
 pub mod from_rest;
 pub mod jarm;
+pub mod jarm_ode;
 pub mod jump_point;
 pub mod ode;
 pub mod path;
@@ -28,6 +30,7 @@ pub mod region;
 pub mod roll;
 pub mod rolling;
 pub mod roots;
+pub mod rule;
 
 pub use body::Cylinder;
 pub use error::{Error, Result};

@@ -15,17 +15,7 @@ use crate::ode::{
     State, Status,
 };
 use crate::rolling::Rolling;
-
-/// When the body is taken to leave the ramp.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub enum Rule {
-    /// The paper's rule: lift-off when the free-flight normal acceleration
-    /// χ θ̇² cos θ − cos α first reaches 0 (rising).
-    Paper,
-    /// The classical unilateral-contact rule: keep rolling while F_y > 0 and
-    /// |F_x| ≤ μ_s F_y; the paper's lift-off condition is recorded but does not stop the run.
-    NormalForce,
-}
+pub use crate::rule::Rule;
 
 /// The built-in events of a rolling run, in the order of their indices.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]

@@ -1,6 +1,6 @@
 //! Parsing of the lift-off rule name shared by every entry point.
 
-use eccjump_core::roll::Rule;
+use eccjump_core::rule::Rule;
 use pyo3::exceptions::PyValueError;
 use pyo3::PyResult;
 
