@@ -4,9 +4,9 @@
 //! (χ, k_m) with a local rayon pool; each entry is computed independently (bit-identical for
 //! any thread count).
 
-use crate::error::{Error, Result};
+use crate::error::Result;
 use crate::jarm::{classify, JarmOptions};
-use rayon::prelude::*;
+use crate::parallel::{check_len, par_fill};
 use std::f64::consts::FRAC_PI_2;
 
 /// Bisection tolerance on α and (relative) on μ_s.
@@ -97,51 +97,22 @@ pub fn mu_s_min_path(alpha: f64, chi: f64, km: f64, o: &JarmOptions) -> f64 {
     hi
 }
 
-fn pool(n_threads: usize) -> Result<rayon::ThreadPool> {
-    rayon::ThreadPoolBuilder::new()
-        .num_threads(n_threads)
-        .build()
-        .map_err(|_| Error::InvalidParameter {
-            name: "n_threads",
-            value: n_threads as f64,
-            allowed: "a thread count the system can start".to_string(),
-        })
-}
-
-/// For many (χ_i, k_m,i): the first α-interval's ends (NaN, NaN if none) into `amin`, `amax`.
-#[allow(clippy::too_many_arguments)]
-pub fn alpha_bounds_many(
+/// For many (χ_i, k_m,i): all α-intervals of JARM, each end to 1e-12 (in parallel,
+/// bit-identical for any thread count).
+pub fn alpha_intervals_many(
     chi: &[f64],
     km: &[f64],
     mu_s: f64,
     o: &JarmOptions,
     n_scan: usize,
     n_threads: usize,
-    amin: &mut [f64],
-    amax: &mut [f64],
-) -> Result<()> {
-    let n = chi.len();
-    for (name, len) in [("km", km.len()), ("amin", amin.len()), ("amax", amax.len())] {
-        if len != n {
-            return Err(Error::InvalidParameter {
-                name,
-                value: len as f64,
-                allowed: format!("length {n}"),
-            });
-        }
-    }
-    pool(n_threads)?.install(|| {
-        amin.par_iter_mut()
-            .zip(amax.par_iter_mut())
-            .enumerate()
-            .for_each(|(i, (lo, hi))| {
-                let v = alpha_intervals(chi[i], km[i], mu_s, o, n_scan);
-                let (a, b) = v.first().copied().unwrap_or((f64::NAN, f64::NAN));
-                *lo = a;
-                *hi = b;
-            });
-    });
-    Ok(())
+) -> Result<Vec<Vec<(f64, f64)>>> {
+    check_len("km", km.len(), chi.len())?;
+    let mut out = vec![Vec::new(); chi.len()];
+    par_fill(&mut out, n_threads, |i| {
+        alpha_intervals(chi[i], km[i], mu_s, o, n_scan)
+    })?;
+    Ok(out)
 }
 
 /// For many (α_i, χ_i, k_m,i): μ_s,min along the path into `out`.
@@ -153,22 +124,13 @@ pub fn mu_s_min_path_many(
     n_threads: usize,
     out: &mut [f64],
 ) -> Result<()> {
-    let n = alpha.len();
-    for (name, len) in [("chi", chi.len()), ("km", km.len()), ("out", out.len())] {
-        if len != n {
-            return Err(Error::InvalidParameter {
-                name,
-                value: len as f64,
-                allowed: format!("length {n}"),
-            });
-        }
-    }
-    pool(n_threads)?.install(|| {
-        out.par_iter_mut()
-            .enumerate()
-            .for_each(|(i, m)| *m = mu_s_min_path(alpha[i], chi[i], km[i], o));
-    });
-    Ok(())
+    let n = out.len();
+    check_len("alpha", alpha.len(), n)?;
+    check_len("chi", chi.len(), n)?;
+    check_len("km", km.len(), n)?;
+    par_fill(out, n_threads, |i| {
+        mu_s_min_path(alpha[i], chi[i], km[i], o)
+    })
 }
 
 #[cfg(test)]
@@ -209,13 +171,16 @@ mod tests {
         // Parallel, bit-identical.
         let chis = [0.15, 0.1, 0.2, 0.05];
         let kms = [0.02, 0.1, 0.0, 0.3];
-        let (mut l1, mut h1, mut l2, mut h2) = ([0.0; 4], [0.0; 4], [0.0; 4], [0.0; 4]);
-        alpha_bounds_many(&chis, &kms, mu, &o, 90, 1, &mut l1, &mut h1).unwrap();
-        alpha_bounds_many(&chis, &kms, mu, &o, 90, 2, &mut l2, &mut h2).unwrap();
-        let bits = |v: &[f64; 4]| v.map(|x| x.to_bits());
-        assert_eq!(bits(&l1), bits(&l2));
-        assert_eq!(bits(&h1), bits(&h2));
-        assert_eq!(l1[0].to_bits(), v[0].0.to_bits());
+        let v1 = alpha_intervals_many(&chis, &kms, mu, &o, 90, 1).unwrap();
+        let v2 = alpha_intervals_many(&chis, &kms, mu, &o, 90, 2).unwrap();
+        let bits = |v: &Vec<Vec<(f64, f64)>>| -> Vec<(u64, u64)> {
+            v.iter()
+                .flatten()
+                .map(|&(a, b)| (a.to_bits(), b.to_bits()))
+                .collect()
+        };
+        assert_eq!(bits(&v1), bits(&v2));
+        assert_eq!(v1[0][0].0.to_bits(), v[0].0.to_bits());
     }
 
     #[test]

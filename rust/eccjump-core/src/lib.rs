@@ -12,7 +12,8 @@
 //! - [`from_rest`]: the paper's Sec. 3.2, J(θ), its brackets and θ_{n,J};
 //! - [`path`]: rigorous scan of the contact conditions along pure rolling;
 //! - [`jarm`]: classification of one parameter point (reason codes, lift-off rules);
-//! - [`region`]: parallel maps over points and grids;
+//! - [`parallel`]: bit-reproducible parallel maps over independent points;
+//! - [`region`]: JARM maps over points and grids;
 //! - [`boundary`]: JARM boundaries in α and μ_s by bisection;
 //! - [`rule`]: the lift-off rule shared by runs and classification;
 //! - [`error`]: the one error enum.
@@ -25,6 +26,7 @@ pub mod jarm;
 pub mod jarm_ode;
 pub mod jump_point;
 pub mod ode;
+pub mod parallel;
 pub mod path;
 pub mod region;
 pub mod roll;

@@ -5,10 +5,10 @@
 //! Each point is computed independently (no per-point heap allocation, no reduction whose
 //! order depends on scheduling), so results are bit-identical for any thread count.
 
-use crate::error::{Error, Result};
+use crate::error::Result;
 use crate::jarm::{classify, JarmOptions, JarmResult};
 use crate::jarm_ode::classify_ode;
-use rayon::prelude::*;
+use crate::parallel::{check_len, par_fill};
 
 /// Which route classifies a point.
 #[derive(Debug, Clone, Copy, PartialEq, Default)]
@@ -34,44 +34,6 @@ pub fn classify_with(
         Method::ClosedForm => classify(alpha, chi, km, mu_s, opts),
         Method::Ode { rtol, atol } => classify_ode(alpha, chi, km, mu_s, opts, rtol, atol),
     }
-}
-
-/// Points handed to one task; small enough to balance uneven per-point costs.
-const CHUNK: usize = 256;
-
-fn check_len(name: &'static str, got: usize, want: usize) -> Result<()> {
-    if got == want {
-        Ok(())
-    } else {
-        Err(Error::InvalidParameter {
-            name,
-            value: got as f64,
-            allowed: format!("length {want}"),
-        })
-    }
-}
-
-/// Fills `out[i] = point(i)` in parallel on a local pool of `n_threads` (0 = all cores).
-pub fn par_fill<F>(out: &mut [JarmResult], n_threads: usize, point: F) -> Result<()>
-where
-    F: Fn(usize) -> JarmResult + Sync,
-{
-    let pool = rayon::ThreadPoolBuilder::new()
-        .num_threads(n_threads)
-        .build()
-        .map_err(|_| Error::InvalidParameter {
-            name: "n_threads",
-            value: n_threads as f64,
-            allowed: "a thread count the system can start".to_string(),
-        })?;
-    pool.install(|| {
-        out.par_chunks_mut(CHUNK).enumerate().for_each(|(k, ch)| {
-            for (i, o) in ch.iter_mut().enumerate() {
-                *o = point(k * CHUNK + i);
-            }
-        })
-    });
-    Ok(())
 }
 
 /// Classifies a list of points (α_i, χ_i, k_m,i, μ_s,i); all inputs have the length of
