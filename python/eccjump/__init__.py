@@ -5,9 +5,12 @@ behind a typed Python API. Units: g = R = M = 1 unless converted with :class:`Un
 angles in radians.
 """
 
+from eccjump import closed_form
 from eccjump._core import VERSION as __version__
 from eccjump.body import Cylinder
+from eccjump.boundary import alpha_intervals, mu_s_min_path
 from eccjump.dense import DenseSolution
+from eccjump.classification import JarmResult, Reason, Region, jarm, region
 from eccjump.rolling import EVENT_NAMES, Event, RollResult, roll
 from eccjump.units import Units
 
@@ -16,8 +19,16 @@ __all__ = [
     "Cylinder",
     "DenseSolution",
     "Event",
+    "JarmResult",
+    "Reason",
+    "Region",
     "RollResult",
     "Units",
     "__version__",
+    "alpha_intervals",
+    "closed_form",
+    "jarm",
+    "mu_s_min_path",
+    "region",
     "roll",
 ]

@@ -2,6 +2,9 @@
 
 from typing import Any
 
+import numpy as np
+from numpy.typing import NDArray
+
 VERSION: str
 
 def body_derived(chi: float, km: float) -> tuple[float, float, float]: ...
@@ -22,3 +25,60 @@ def roll(
     dense_output: bool,
     rule: str,
 ) -> dict[str, Any]: ...
+def jarm_points(
+    alpha: NDArray[np.float64],
+    chi: NDArray[np.float64],
+    km: NDArray[np.float64],
+    mu_s: NDArray[np.float64],
+    n: int | None,
+    rule: str,
+    method: str,
+    rtol: float,
+    atol: float,
+    theta0: float,
+    omega0: float,
+    max_turns: int,
+    refine_extrema: bool,
+    n_threads: int,
+) -> dict[str, NDArray[Any]]: ...
+def jarm_grid(
+    alpha: NDArray[np.float64],
+    chi: NDArray[np.float64],
+    frac: NDArray[np.float64],
+    mu_s: float,
+    n: int | None,
+    rule: str,
+    method: str,
+    rtol: float,
+    atol: float,
+    theta0: float,
+    omega0: float,
+    max_turns: int,
+    refine_extrema: bool,
+    n_threads: int,
+) -> dict[str, NDArray[Any]]: ...
+def reason_codes() -> list[tuple[int, str]]: ...
+def pointwise(
+    name: str,
+    inputs: list[NDArray[np.float64]],
+    n: int,
+    theta0: float = 0.0,
+    omega0: float = 0.0,
+) -> list[NDArray[np.float64]]: ...
+def alpha_intervals(
+    chi: NDArray[np.float64],
+    km: NDArray[np.float64],
+    mu_s: float,
+    n: int | None,
+    rule: str,
+    n_scan: int,
+    n_threads: int,
+) -> list[list[tuple[float, float]]]: ...
+def mu_s_min_path(
+    alpha: NDArray[np.float64],
+    chi: NDArray[np.float64],
+    km: NDArray[np.float64],
+    n: int | None,
+    rule: str,
+    n_threads: int,
+) -> NDArray[np.float64]: ...

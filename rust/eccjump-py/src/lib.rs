@@ -2,8 +2,12 @@
 //! the GIL around the numerical work and maps core errors to Python exceptions. No physics
 //! lives here; the typed Python layer is `python/eccjump`.
 
+mod analysis;
 mod body;
+mod boundary;
 mod errors;
+mod jarm;
+mod options;
 mod roll;
 mod rule;
 
@@ -15,7 +19,13 @@ mod _core {
     const VERSION: &str = env!("CARGO_PKG_VERSION");
 
     #[pymodule_export]
+    use crate::analysis::pointwise;
+    #[pymodule_export]
     use crate::body::{body_derived, body_from_inertia, body_from_shell_and_line};
+    #[pymodule_export]
+    use crate::boundary::{alpha_intervals, mu_s_min_path};
+    #[pymodule_export]
+    use crate::jarm::{jarm_grid, jarm_points, reason_codes};
     #[pymodule_export]
     use crate::roll::roll;
 }

@@ -1,0 +1,46 @@
+"""Helpers that turn user input into the contiguous float64 arrays the Rust bridge takes."""
+
+from __future__ import annotations
+
+import numpy as np
+from numpy.typing import ArrayLike, NDArray
+
+
+def broadcast_flat(
+    **arrays: ArrayLike,
+) -> tuple[tuple[int, ...], list[NDArray[np.float64]]]:
+    """Broadcast the named inputs together; return the common shape and contiguous 1-D float64
+    copies. Raises ValueError naming the inputs when the shapes do not broadcast, and TypeError
+    for non-numeric input."""
+    try:
+        converted = [np.asarray(v, dtype=np.float64) for v in arrays.values()]
+    except (TypeError, ValueError) as err:
+        raise TypeError(
+            f"inputs {', '.join(arrays)} must be real numbers or arrays: {err}"
+        ) from err
+    try:
+        b = np.broadcast_arrays(*converted)
+    except ValueError as err:
+        shapes = ", ".join(f"{k}{np.shape(v)}" for k, v in zip(arrays, converted, strict=True))
+        raise ValueError(f"shapes do not broadcast: {shapes}") from err
+    shape = b[0].shape if b else ()
+    return shape, [np.ascontiguousarray(x.ravel()) for x in b]
+
+
+def axis(name: str, values: ArrayLike) -> NDArray[np.float64]:
+    """A 1-D coordinate axis as a contiguous float64 array."""
+    a = np.ascontiguousarray(np.asarray(values, dtype=np.float64))
+    if a.ndim == 0:
+        a = a.reshape(1)
+    if a.ndim != 1:
+        raise ValueError(f"{name} must be a 1-D array of coordinates, got shape {a.shape}")
+    return a
+
+
+def turn(n: int | None) -> int | None:
+    """Validate a turn number: None (automatic) or an integer >= 1."""
+    if n is None:
+        return None
+    if isinstance(n, bool) or not isinstance(n, int | np.integer) or n < 1:
+        raise ValueError(f"n = {n!r} is outside the allowed range [1, inf) (None: automatic)")
+    return int(n)

@@ -1,0 +1,46 @@
+"""JARM boundaries found by bisection, without a dense grid: the alpha-intervals of the
+paper's Figure 4 surfaces for given bodies, and the smallest mu_s that gives a JARM."""
+
+from __future__ import annotations
+
+import numpy as np
+from numpy.typing import ArrayLike, NDArray
+
+from eccjump import _core
+from eccjump._arrays import broadcast_flat, turn
+from eccjump.classification import Rule
+
+
+def alpha_intervals(
+    chi: ArrayLike,
+    km: ArrayLike,
+    mu_s: float,
+    n: int | None = None,
+    *,
+    rule: Rule = "paper",
+    n_scan: int = 180,
+    n_threads: int = 0,
+) -> list[list[tuple[float, float]]]:
+    """For each body (chi, km) (broadcast, flattened): the intervals (alpha_lo, alpha_hi) [rad]
+    of ramp angles that give a JARM, each end located to 1e-12 by bisection after a scan of
+    ``n_scan`` angles over (0, pi/2] (an interval narrower than pi/(2 n_scan) can be missed)."""
+    if n_scan < 2:
+        raise ValueError(f"n_scan = {n_scan!r} is outside the allowed range [2, inf)")
+    _, (c, k) = broadcast_flat(chi=chi, km=km)
+    return _core.alpha_intervals(c, k, float(mu_s), turn(n), str(rule), int(n_scan), int(n_threads))
+
+
+def mu_s_min_path(
+    alpha: ArrayLike,
+    chi: ArrayLike,
+    km: ArrayLike,
+    n: int | None = None,
+    *,
+    rule: Rule = "paper",
+    n_threads: int = 0,
+) -> NDArray[np.float64]:
+    """The smallest mu_s that gives a JARM at each (alpha, chi, km) (relative 1e-12; inf if
+    none up to 1e6). Under the paper's rule it equals the largest friction ratio |Fx|/Fy on
+    the rolling path up to the jump, including mu(theta_J)."""
+    shape, (a, c, k) = broadcast_flat(alpha=alpha, chi=chi, km=km)
+    return _core.mu_s_min_path(a, c, k, turn(n), str(rule), int(n_threads)).reshape(shape)

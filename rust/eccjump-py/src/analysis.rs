@@ -1,0 +1,138 @@
+//! The paper's closed forms, element-wise over equal-length 1-D arrays (the Python layer
+//! broadcasts). Each kind names a core function; invalid points raise ValueError naming the
+//! parameter and the index.
+
+use crate::errors::to_py;
+use eccjump_core::error::Result as CoreResult;
+use eccjump_core::{from_rest, jump_point, Cylinder, Rolling};
+use numpy::{IntoPyArray, PyArray1, PyReadonlyArray1};
+use pyo3::exceptions::PyValueError;
+use pyo3::prelude::*;
+use std::f64::consts::TAU;
+
+/// Number of inputs, outputs and the per-point function of each kind.
+type PointFn = fn(&[f64], u32, (f64, f64)) -> CoreResult<[f64; 2]>;
+
+fn body(chi: f64, km: f64) -> CoreResult<Cylinder> {
+    Cylinder::new(chi, km)
+}
+
+fn ramp(alpha: f64, chi: f64, km: f64) -> CoreResult<Rolling> {
+    Rolling::new(body(chi, km)?, alpha)
+}
+
+fn opt(v: Option<f64>) -> f64 {
+    v.unwrap_or(f64::NAN)
+}
+
+fn kind(name: &str) -> Option<(usize, usize, PointFn)> {
+    Some(match name {
+        // (alpha, chi, km, theta_J) -> (Fx_J, Fy_J): Eqs. jump6, Njumpfn.
+        "jump_forces" => (4, 2, |x, _, _| {
+            let f = jump_point::jump_forces(&body(x[1], x[2])?, x[0], x[3]);
+            Ok([f.fx, f.fy])
+        }),
+        // (chi, km, theta_J) -> mu: Eq. ineq2 (signed).
+        "mu" => (3, 1, |x, _, _| {
+            Ok([jump_point::mu(&body(x[0], x[1])?, x[2]), 0.0])
+        }),
+        // (alpha, theta_J) -> n of the green window 2πn − α < θ_J < 2πn, or 0.
+        "green" => (2, 1, |x, _, _| {
+            Ok([
+                jump_point::green_turn(x[0], x[1]).map_or(0.0, f64::from),
+                0.0,
+            ])
+        }),
+        // (chi, km) -> (mu_s_min, theta at the minimum relative to 2πn).
+        "mu_s_min" => (2, 2, |x, _, _| {
+            let (m, t) = jump_point::mu_s_min(&body(x[0], x[1])?);
+            Ok([m, t])
+        }),
+        // (chi, km, mu_s) -> (theta_J_min, theta_J_max) on turn n (n = 0: relative to 2πn).
+        "theta_j_range" => (3, 2, |x, n, _| {
+            let r = jump_point::theta_j_range(&body(x[0], x[1])?, x[2]);
+            let shift = TAU * n as f64;
+            Ok([opt(r.map(|v| v.0 + shift)), opt(r.map(|v| v.1 + shift))])
+        }),
+        // (chi, km, mu_s) -> alpha_min = 2πn − theta_J_max.
+        "alpha_min" => (3, 1, |x, n, _| {
+            Ok([opt(jump_point::alpha_min(&body(x[0], x[1])?, x[2], n)), 0.0])
+        }),
+        // (chi, km) -> gamma: Eq. dega2.
+        "gamma" => (2, 1, |x, _, _| Ok([body(x[0], x[1])?.gamma(), 0.0])),
+        // (theta, alpha, chi, km) -> J(theta): Eq. Jta as printed.
+        "J" => (4, 1, |x, _, _| {
+            Ok([from_rest::j_paper(&ramp(x[1], x[2], x[3])?, x[0]), 0.0])
+        }),
+        // (theta, alpha, chi, km) -> chi θ̇² cos θ − cos α along rolling from (θ0, θ̇0).
+        "liftoff" => (4, 1, |x, _, (t0, w0)| {
+            let r = ramp(x[1], x[2], x[3])?;
+            Ok([from_rest::liftoff_from(&r, t0, w0, x[0]), 0.0])
+        }),
+        // (alpha, chi, km) -> J(2πn − α), J(2πn): Eqs. JtaC1, JtaC2.
+        "jtac" => (3, 2, |x, n, _| {
+            let r = ramp(x[0], x[1], x[2])?;
+            Ok([from_rest::jtac1(&r, n), from_rest::jtac2(&r, n)])
+        }),
+        // (alpha, chi, km) -> θ_{n,J}: the root in [2πn − α, 2πn], or NaN.
+        "theta_nj" => (3, 1, |x, n, _| {
+            Ok([opt(from_rest::theta_nj(&ramp(x[0], x[1], x[2])?, n)), 0.0])
+        }),
+        // (theta, alpha, chi, km) -> (Fx, Fy) along rolling from (θ0, θ̇0), by energy.
+        "path_forces" => (4, 2, |x, _, (t0, w0)| {
+            let r = ramp(x[1], x[2], x[3])?;
+            let k = r.kinematics(x[0], r.omega_sq(t0, w0, x[0]).max(0.0).sqrt());
+            Ok([k.fx, k.fy])
+        }),
+        _ => return None,
+    })
+}
+
+/// Evaluates closed form `name` at every point of the input arrays.
+#[pyfunction]
+#[pyo3(signature = (name, inputs, n, theta0=0.0, omega0=0.0))]
+pub fn pointwise<'py>(
+    py: Python<'py>,
+    name: &str,
+    inputs: Vec<PyReadonlyArray1<'py, f64>>,
+    n: u32,
+    theta0: f64,
+    omega0: f64,
+) -> PyResult<Vec<Bound<'py, PyArray1<f64>>>> {
+    let (n_in, n_out, f) =
+        kind(name).ok_or_else(|| PyValueError::new_err(format!("no closed form {name:?}")))?;
+    if inputs.len() != n_in {
+        return Err(PyValueError::new_err(format!(
+            "{name} takes {n_in} arrays, got {}",
+            inputs.len()
+        )));
+    }
+    let cols: Vec<&[f64]> = inputs
+        .iter()
+        .map(|a| a.as_slice())
+        .collect::<Result<_, _>>()?;
+    let len = cols.first().map_or(0, |c| c.len());
+    if cols.iter().any(|c| c.len() != len) {
+        return Err(PyValueError::new_err("inputs must have equal lengths"));
+    }
+    let outs = py
+        .detach(|| {
+            let mut outs = vec![Vec::with_capacity(len); n_out];
+            let mut x = vec![0.0; n_in];
+            for i in 0..len {
+                for (xj, c) in x.iter_mut().zip(&cols) {
+                    *xj = c[i];
+                }
+                let y = f(&x, n, (theta0, omega0)).map_err(|e| (i, e))?;
+                for (o, v) in outs.iter_mut().zip(y) {
+                    o.push(v);
+                }
+            }
+            Ok(outs)
+        })
+        .map_err(|(i, e)| {
+            let err = to_py(e);
+            PyValueError::new_err(format!("at index {i}: {}", err.value(py)))
+        })?;
+    Ok(outs.into_iter().map(|o| o.into_pyarray(py)).collect())
+}

@@ -1,0 +1,111 @@
+//! JARM classification of points and grids: arrays in, one array per result field out.
+
+use crate::errors::to_py;
+use crate::options::{jarm_options, parse_method};
+use eccjump_core::jarm::{JarmResult, Reason};
+use eccjump_core::region::{classify_grid, classify_points};
+use numpy::{IntoPyArray, PyReadonlyArray1};
+use pyo3::prelude::*;
+use pyo3::types::PyDict;
+
+/// Struct of arrays from the per-point results (the output is O(points), nothing more).
+fn to_dict<'py>(py: Python<'py>, res: &[JarmResult]) -> PyResult<Bound<'py, PyDict>> {
+    let d = PyDict::new(py);
+    macro_rules! field {
+        ($name:literal, $f:expr) => {
+            d.set_item(
+                $name,
+                res.iter().map($f).collect::<Vec<_>>().into_pyarray(py),
+            )?;
+        };
+    }
+    field!("is_jarm", |r| r.is_jarm);
+    field!("reason", |r| r.reason as u8);
+    field!("n", |r| r.n);
+    field!("theta_J", |r| r.theta_j);
+    field!("theta_event", |r| r.theta_event);
+    field!("Fx_J", |r| r.fx_j);
+    field!("Fy_J", |r| r.fy_j);
+    field!("max_ratio", |r| r.max_ratio);
+    field!("theta_max_ratio", |r| r.theta_max_ratio);
+    field!("min_Fy", |r| r.min_fy);
+    field!("theta_min_Fy", |r| r.theta_min_fy);
+    Ok(d)
+}
+
+fn empty(len: usize) -> Vec<JarmResult> {
+    vec![JarmResult::new(Reason::InvalidParams); len]
+}
+
+/// Classifies equal-length 1-D arrays of points (μ_s may have length 1).
+#[pyfunction]
+#[pyo3(signature = (alpha, chi, km, mu_s, n, rule, method, rtol, atol, theta0, omega0,
+                    max_turns, refine_extrema, n_threads))]
+#[allow(clippy::too_many_arguments)]
+pub fn jarm_points<'py>(
+    py: Python<'py>,
+    alpha: PyReadonlyArray1<'py, f64>,
+    chi: PyReadonlyArray1<'py, f64>,
+    km: PyReadonlyArray1<'py, f64>,
+    mu_s: PyReadonlyArray1<'py, f64>,
+    n: Option<u32>,
+    rule: &str,
+    method: &str,
+    rtol: f64,
+    atol: f64,
+    theta0: f64,
+    omega0: f64,
+    max_turns: u32,
+    refine_extrema: bool,
+    n_threads: usize,
+) -> PyResult<Bound<'py, PyDict>> {
+    let opts = jarm_options(rule, n, max_turns, theta0, omega0, refine_extrema)?;
+    let method = parse_method(method, rtol, atol)?;
+    let (a, c, k, m) = (
+        alpha.as_slice()?,
+        chi.as_slice()?,
+        km.as_slice()?,
+        mu_s.as_slice()?,
+    );
+    let mut out = empty(a.len());
+    py.detach(|| classify_points(a, c, k, m, method, &opts, n_threads, &mut out))
+        .map_err(to_py)?;
+    to_dict(py, &out)
+}
+
+/// Classifies the grid alpha × chi × frac (k_m = frac·(1 − χ)), flat in C order.
+#[pyfunction]
+#[pyo3(signature = (alpha, chi, frac, mu_s, n, rule, method, rtol, atol, theta0, omega0,
+                    max_turns, refine_extrema, n_threads))]
+#[allow(clippy::too_many_arguments)]
+pub fn jarm_grid<'py>(
+    py: Python<'py>,
+    alpha: PyReadonlyArray1<'py, f64>,
+    chi: PyReadonlyArray1<'py, f64>,
+    frac: PyReadonlyArray1<'py, f64>,
+    mu_s: f64,
+    n: Option<u32>,
+    rule: &str,
+    method: &str,
+    rtol: f64,
+    atol: f64,
+    theta0: f64,
+    omega0: f64,
+    max_turns: u32,
+    refine_extrema: bool,
+    n_threads: usize,
+) -> PyResult<Bound<'py, PyDict>> {
+    let opts = jarm_options(rule, n, max_turns, theta0, omega0, refine_extrema)?;
+    let method = parse_method(method, rtol, atol)?;
+    let (a, c, f) = (alpha.as_slice()?, chi.as_slice()?, frac.as_slice()?);
+    let mut out = empty(a.len() * c.len() * f.len());
+    py.detach(|| classify_grid(a, c, f, mu_s, method, &opts, n_threads, &mut out))
+        .map_err(to_py)?;
+    to_dict(py, &out)
+}
+
+/// (code, name) of every reason, for the Python IntEnum.
+#[pyfunction]
+pub fn reason_codes() -> Vec<(u8, &'static str)> {
+    Reason::ALL.iter().map(|r| (r.code(), r.name())).collect()
+}

@@ -1,0 +1,257 @@
+"""JARM analysis (the paper's Section 3) through the Python API, against independent routes:
+the paper's printed formulas (sympy, typed as printed), the 30-digit mpmath reference, and the
+integrator (`roll`)."""
+
+import math
+
+import numpy as np
+import pytest
+import reference_physics as ref
+import sympy as sp
+import test_paper_formulas as paper
+from hypothesis import assume, given, settings
+from hypothesis import strategies as st
+
+import eccjump
+from eccjump import Cylinder, Reason, closed_form, jarm, region, roll
+
+DEG = math.pi / 180
+
+
+def printed(expr):
+    """A printed formula of the paper as a numpy function of (theta, alpha, chi, km)."""
+    e = expr.subs({paper.g: 1, paper.M: 1, paper.R: 1})
+    return sp.lambdify((paper.theta, paper.alpha, paper.chi, paper.k_m), e, "numpy")
+
+
+@st.composite
+def bodies(draw, chi_min=0.01):
+    chi = draw(st.floats(chi_min, 0.99))
+    km = draw(st.floats(0.0, 0.99)) * (1 - chi)
+    return chi, km
+
+
+# --- reference points of the physics notes -----------------------------------------------
+
+
+def test_reference_jarm_point():
+    r = jarm(40 * DEG, 0.15, 0.02, 1.0)
+    assert bool(r.is_jarm) and Reason(int(r.reason)) == Reason.JARM and int(r.n) == 1
+    assert float(r.theta_J) == pytest.approx(334.34383789184907204 * DEG, abs=1e-12)
+    assert float(r.Fy_J) == pytest.approx(0.015427991249042646579, abs=1e-12)
+    assert float(r.Fx_J) == pytest.approx(-0.0051639030551486398888, abs=1e-12)
+
+
+def test_reference_slip_point():
+    r = jarm(30 * DEG, 0.5, 0.4, 1.0)
+    assert Reason(int(r.reason)) == Reason.SLIP_BEFORE
+    assert float(r.theta_event) == pytest.approx(316.47167723304615645 * DEG, abs=1e-10)
+
+
+def test_reference_mu_s_min():
+    m, phi = closed_form.mu_s_min(0.5, 0.4)
+    assert float(m) == pytest.approx(1.391618525237494122, rel=1e-12)
+    assert float(phi) + 2 * math.pi == pytest.approx(302.48574753796158606 * DEG, abs=1e-9)
+
+
+# --- the paper's printed formulas against ours ---------------------------------------------
+
+
+@settings(max_examples=40, deadline=None)
+@given(bodies(), st.floats(0.05, math.pi / 2 - 0.05), st.floats(0.05, 6.2))
+def test_printed_FxL2_FyL2_match_path_forces(body, alpha, theta):
+    chi, km = body
+    fx_p, fy_p = (printed(e) for e in paper._fl2_printed())
+    fx, fy = closed_form.path_forces(theta, alpha, chi, km)
+    scale = 1 + abs(fx_p(theta, alpha, chi, km))
+    assert float(fx) == pytest.approx(fx_p(theta, alpha, chi, km), abs=1e-10 * scale)
+    assert float(fy) == pytest.approx(fy_p(theta, alpha, chi, km), abs=1e-10 * scale)
+
+
+@settings(max_examples=40, deadline=None)
+@given(bodies(), st.floats(0.05, math.pi / 2 - 0.05), st.floats(-1.5, -0.01))
+def test_printed_jump6_Njumpfn_ineq2_Jta_dega2(body, alpha, phi):
+    chi, km = body
+    theta = 2 * math.pi + phi
+    # jump forces from the 30-digit reference, itself checked symbolically against the paper
+    fx_r, fy_r = ref.forces_at_jump(theta, alpha, chi, km)
+    fx, fy = closed_form.jump_forces(alpha, chi, km, theta)
+    assert float(fx) == pytest.approx(fx_r, rel=1e-9, abs=1e-12)
+    assert float(fy) == pytest.approx(fy_r, rel=1e-9, abs=1e-12)
+    mu_p = printed(paper.MU_PRINTED)(theta, alpha, chi, km)
+    assert float(closed_form.mu(chi, km, theta)) == pytest.approx(mu_p, rel=1e-9)
+    j_p = printed(paper._J_printed(paper.theta))(theta, alpha, chi, km)
+    assert float(closed_form.J(theta, alpha, chi, km)) == pytest.approx(j_p, rel=1e-9, abs=1e-12)
+    g_p = printed(paper.GAMMA_PRINTED)(theta, alpha, chi, km)
+    assert float(closed_form.gamma(chi, km)) == pytest.approx(g_p, rel=1e-13)
+    # J = L / cos(alpha) with L the lift-off function
+    lift = closed_form.liftoff_function(theta, alpha, chi, km)
+    assert float(lift) == pytest.approx(
+        float(closed_form.J(theta, alpha, chi, km)) * math.cos(alpha), abs=1e-12
+    )
+
+
+@settings(max_examples=30, deadline=None)
+@given(bodies(), st.floats(0.2, math.pi / 2 - 0.05), st.integers(1, 3))
+def test_theta_nJ_against_brackets_and_reference(body, alpha, n):
+    chi, km = body
+    c1, c2 = closed_form.J_brackets(alpha, chi, km, n)
+    th = float(closed_form.theta_nJ(alpha, chi, km, n))
+    if c1 < 0 < c2:
+        assert 2 * math.pi * n - alpha <= th <= 2 * math.pi * n
+        assert abs(float(closed_form.liftoff_function(th, alpha, chi, km))) < 1e-12
+        expected = ref.theta_jump(n, alpha, chi, km)
+        if expected is not None:
+            assert th == pytest.approx(expected, abs=1e-11)
+    else:
+        assert math.isnan(th)
+
+
+# --- invariants ------------------------------------------------------------------------------
+
+
+@settings(max_examples=60, deadline=None)
+@given(bodies(chi_min=0.0), st.floats(0.0, 10.0))
+def test_alpha_zero_never_jarm(body, mu_s):
+    chi, km = body
+    for rule in ("paper", "normal_force"):
+        assert not bool(jarm(0.0, chi, km, mu_s, rule=rule).is_jarm)
+
+
+@settings(max_examples=80, deadline=None)
+@given(bodies(), st.floats(0.01, math.pi / 2), st.floats(0.0, 3.0), st.floats(0.0, 3.0))
+def test_region_grows_monotonically_with_mu_s(body, alpha, m1, m2):
+    chi, km = body
+    lo, hi = sorted((m1, m2))
+    if bool(jarm(alpha, chi, km, lo).is_jarm):
+        assert bool(jarm(alpha, chi, km, hi).is_jarm)
+
+
+@settings(max_examples=60, deadline=None)
+@given(bodies(), st.floats(0.02, math.pi / 2 - 0.02), st.sampled_from([0.7, 1.0, 2.0]))
+def test_classification_agrees_with_the_integrator(body, alpha, mu_s):
+    """The closed-form verdict and what `roll` (RK45 with events) sees along the path."""
+    chi, km = body
+    # k_m = 0 (I_CM = 0): F_y and the friction margin vanish together, a tie by construction.
+    assume(km > 1e-3)
+    r = jarm(alpha, chi, km, mu_s)
+    reason = Reason(int(r.reason))
+    run = roll(Cylinder(chi, km), alpha, mu_s=mu_s, t_max=1e4)
+    decided = {
+        "liftoff": Reason.JARM,
+        "normal_force_zero": Reason.NORMAL_FORCE_LOST,
+        "slip": Reason.SLIP_BEFORE,
+    }
+    # Skip points whose deciding events are nearly simultaneous (a boundary).
+    assume(run.terminal_event in decided)
+    e = run.event(run.terminal_event)
+    th_event = r.theta_J if reason == Reason.JARM else r.theta_event
+    assume(abs(float(th_event) - e.theta) < 1e-6)
+    if reason == Reason.SLIP_AT_JUMP:
+        assert run.terminal_event == "slip"
+    else:
+        assert decided[run.terminal_event] == reason
+    if reason == Reason.JARM:
+        # rtol = 1e-10 per step, over up to tens of turns
+        assert e.theta == pytest.approx(float(r.theta_J), abs=1e-9 * (1 + e.theta))
+
+
+def test_first_jump_semantics_turns_do_not_overlap():
+    a = np.linspace(0.5, 89.5, 60) * DEG
+    c = np.linspace(0.02, 0.6, 25)
+    f = np.linspace(0.0, 0.9, 10)
+    auto = region(1.0, alpha=a, chi=c, km=f)
+    seen = np.zeros(auto.result.n.shape, dtype=int)
+    for n in (1, 2, 3, 4):
+        rn = region(1.0, n, alpha=a, chi=c, km=f)
+        seen += rn.is_jarm
+        # a JARM on turn n is exactly an automatic JARM whose turn is n
+        np.testing.assert_array_equal(rn.is_jarm, auto.is_jarm & (auto.result.n == n))
+    assert seen.max() <= 1
+
+
+def test_region_is_bit_identical_for_any_thread_count():
+    a = np.linspace(1, 89, 23) * DEG
+    c = np.linspace(0.01, 0.9, 17)
+    f = np.linspace(0.0, 0.95, 13)
+    r1 = region(0.7, alpha=a, chi=c, km=f, n_threads=1)
+    r2 = region(0.7, alpha=a, chi=c, km=f, n_threads=2)
+    r3 = region(0.7, alpha=a, chi=c, km=f, n_threads=3)
+    for name in eccjump.classification.FIELDS:
+        x1 = getattr(r1.result, name)
+        assert (
+            x1.tobytes() == getattr(r2.result, name).tobytes() == getattr(r3.result, name).tobytes()
+        )
+
+
+def test_region_grid_matches_pointwise_jarm():
+    a = np.array([30, 40, 60]) * DEG
+    c = np.array([0.1, 0.15, 0.5])
+    f = np.array([0.0, 0.5])
+    g = region(1.0, alpha=a, chi=c, km=f)
+    A, C, F = np.meshgrid(a, c, f, indexing="ij")
+    p = jarm(A, C, F * (1 - C), 1.0, refine_extrema=False)
+    np.testing.assert_array_equal(g.result.reason, p.reason)
+    assert g.km.shape == (3, 2)
+
+
+def test_boundaries_bracket_the_region_exactly():
+    (intervals,) = eccjump.alpha_intervals(0.15, 0.02, 1.0, n=1)
+    assert intervals
+    for lo, hi in intervals:
+        assert bool(jarm(lo, 0.15, 0.02, 1.0, n=1).is_jarm)
+        assert bool(jarm(hi, 0.15, 0.02, 1.0, n=1).is_jarm)
+        if lo > 0.01:
+            assert not bool(jarm(lo - 2e-12, 0.15, 0.02, 1.0, n=1).is_jarm)
+        if hi < math.pi / 2:
+            assert not bool(jarm(hi + 2e-12, 0.15, 0.02, 1.0, n=1).is_jarm)
+    assert any(lo < 40 * DEG < hi for lo, hi in intervals)
+
+
+def test_mu_s_min_path_is_the_jarm_threshold():
+    m = float(eccjump.mu_s_min_path(40 * DEG, 0.15, 0.02))
+    assert bool(jarm(40 * DEG, 0.15, 0.02, m).is_jarm)
+    assert not bool(jarm(40 * DEG, 0.15, 0.02, m * (1 - 1e-9)).is_jarm)
+    r = jarm(40 * DEG, 0.15, 0.02, 10.0)
+    assert m == pytest.approx(float(r.max_ratio), rel=1e-9)
+
+
+def test_invalid_points_are_flagged_not_raised():
+    r = jarm([40 * DEG, -1.0, 40 * DEG, math.nan], [0.15, 0.15, 1.5, 0.15], 0.02, 1.0)
+    assert [Reason(int(x)) for x in r.reason] == [
+        Reason.JARM,
+        Reason.INVALID_PARAMS,
+        Reason.INVALID_PARAMS,
+        Reason.INVALID_PARAMS,
+    ]
+
+
+@pytest.mark.parametrize(
+    ("kwargs", "match"),
+    [
+        ({"n": 0}, "n = 0"),
+        ({"rule": "bogus"}, "rule"),
+        ({"method": "euler"}, "method"),
+        ({"n_threads": -1}, "n_threads"),
+        ({"omega0": -1.0}, "omega0"),
+    ],
+)
+def test_whole_call_errors(kwargs, match):
+    with pytest.raises(ValueError, match=match):
+        jarm(0.5, 0.2, 0.1, 1.0, **kwargs)
+
+
+def test_shape_errors():
+    with pytest.raises(ValueError, match="broadcast"):
+        jarm(np.zeros(3), np.zeros(4), 0.1, 1.0)
+    with pytest.raises(ValueError, match="1-D"):
+        region(1.0, alpha=np.zeros((2, 2)), chi=[0.1], km=[0.1])
+    with pytest.raises(ValueError, match="index 1"):
+        closed_form.mu([0.1, 2.0], 0.0, 5.0)
+
+
+def test_broadcasting_keeps_shapes():
+    r = jarm(np.linspace(0.1, 1.5, 4)[:, None], np.array([0.1, 0.2, 0.3]), 0.01, 1.0)
+    assert r.shape == (4, 3) and r.theta_J.shape == (4, 3)
+    fx, fy = closed_form.jump_forces(0.7, 0.15, 0.02, np.linspace(5.6, 6.2, 5))
+    assert fx.shape == fy.shape == (5,)
