@@ -9,6 +9,7 @@ use pyo3::prelude::*;
 /// For each (χ_i, k_m,i): the list of (α_lo, α_hi) intervals of JARM.
 #[pyfunction]
 #[pyo3(signature = (chi, km, mu_s, n, rule, n_scan, n_threads))]
+#[allow(clippy::too_many_arguments)]
 pub fn alpha_intervals<'py>(
     py: Python<'py>,
     chi: PyReadonlyArray1<'py, f64>,
