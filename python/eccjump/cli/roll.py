@@ -1,12 +1,10 @@
-"""The ``eccjump`` command line. Angles are in degrees here (radians in the Python API)."""
+"""``eccjump roll``: one pure-rolling run, printed as a table or JSON."""
 
 from __future__ import annotations
 
 import argparse
 import json
 import math
-import sys
-from collections.abc import Sequence
 
 from eccjump.body import Cylinder
 from eccjump.rolling import RollResult, roll
@@ -25,7 +23,7 @@ def _add_body_args(p: argparse.ArgumentParser) -> None:
     p.add_argument("--km", type=float, required=True, help="shell mass fraction, in [0, 1-chi]")
 
 
-def _roll_parser(sub: argparse._SubParsersAction) -> None:
+def add_parser(sub: argparse._SubParsersAction) -> None:
     p = sub.add_parser(
         "roll",
         help="integrate pure rolling until lift-off, slip or a limit",
@@ -126,31 +124,3 @@ def _cmd_roll(args: argparse.Namespace) -> int:
         for e in res.events:
             print(f"  {e.name:<18} {e.t:>16.10f} {math.degrees(e.theta):>16.10f} {e.omega:>14.10f}")
     return 0
-
-
-def build_parser() -> argparse.ArgumentParser:
-    parser = argparse.ArgumentParser(
-        prog="eccjump",
-        description="Dynamics of an eccentric cylinder on a ramp: lift-off, slip, JARM regions.",
-    )
-    sub = parser.add_subparsers(dest="command", required=True)
-    _roll_parser(sub)
-    return parser
-
-
-def main(argv: Sequence[str] | None = None) -> int:
-    """Entry point of the ``eccjump`` console script."""
-    parser = build_parser()
-    args = parser.parse_args(argv)
-    try:
-        return int(args.func(args))
-    except ValueError as err:
-        print(f"eccjump: error: {err}", file=sys.stderr)
-        return 2
-    except BrokenPipeError:  # e.g. `eccjump roll ... | head`
-        sys.stderr.close()
-        return 0
-
-
-if __name__ == "__main__":
-    sys.exit(main())

@@ -1,0 +1,53 @@
+"""The command line, run as a user would: through the installed console script."""
+
+import json
+import shutil
+import subprocess
+import sys
+
+import pytest
+
+from eccjump.cli import main
+
+
+def run(*args: str) -> subprocess.CompletedProcess:
+    exe = shutil.which("eccjump")
+    cmd = [exe, *args] if exe else [sys.executable, "-m", "eccjump.cli", *args]
+    return subprocess.run(cmd, capture_output=True, text=True, timeout=120, check=False)
+
+
+def test_roll_table_names_the_event_and_the_angle():
+    p = run("roll", "--alpha", "40", "--chi", "0.15", "--km", "0.02", "--mu-s", "1")
+    assert p.returncode == 0, p.stderr
+    assert "terminal event: liftoff" in p.stdout
+    assert "334.34383" in p.stdout
+
+
+def test_roll_json_is_machine_readable():
+    p = run("roll", "--alpha", "30", "--chi", "0.5", "--km", "0.4", "--mu-s", "1", "--json")
+    data = json.loads(p.stdout)
+    assert data["terminal_event"] == "slip"
+    assert data["theta_deg"] == pytest.approx(316.4716772, abs=1e-6)
+    assert data["events"][0]["name"] == "slip"
+
+
+@pytest.mark.parametrize(
+    ("args", "message"),
+    [
+        (["--alpha", "100", "--chi", "0.1", "--km", "0.1"], "[0, 90]"),
+        (["--alpha", "10", "--chi", "0.5", "--km", "0.6"], "km = 0.6"),
+    ],
+)
+def test_bad_input_is_a_clear_error(args, message, capsys):
+    with pytest.raises(SystemExit) if "100" in args else _no_exit():
+        code = main(["roll", *args])
+        assert code == 2
+    assert message in capsys.readouterr().err
+
+
+class _no_exit:
+    def __enter__(self):
+        return self
+
+    def __exit__(self, *exc):
+        return False
