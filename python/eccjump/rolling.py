@@ -1,6 +1,6 @@
 """Pure rolling: :func:`roll` integrates the rolling equation with the Rust RK45 core.
 
-Equations (units g = R = M = 1; see ``docs/physics.md``):
+Equations (units g = R = M = 1; ``docs/paper_formulas.md`` lists how each was checked):
 
 * rolling equation (paper Eq. roll-eq):
   theta'' (Ic + 1 + 2 chi cos theta) = chi theta'^2 sin theta + chi sin(alpha + theta) + sin alpha
