@@ -189,14 +189,14 @@ def classify_closed_form(
         if hits.size:
             i = hits[0]
             a, b = th[i - 1], th[i]
-            cands = []  # (θ, priority, kind)
+            cands = []  # (θ, kind), in the order that wins near-ties
             if lift[i] >= 0.0:
-                cands.append((_root(p.lift, a, b), 0, "lift"))
+                cands.append((_root(p.lift, a, b), "lift"))
             if fy[i] <= 0.0:
-                cands.append((_root(p.fy, a, b), 1, "fy"))
+                cands.append((_root(p.fy, a, b), "fy"))
             if mu_s * fy[i] - abs(fx[i]) < 0.0:
-                cands.append((_root(p.margin, a, b), 2, "slip"))
-            t_ev, _, kind = min(cands)
+                cands.append((_root(p.margin, a, b), "slip"))
+            t_ev, kind = _first(cands, 1e-12)
             if kind == "lift":
                 return p.judge_liftoff(t_ev)
             if kind == "fy":
@@ -204,6 +204,16 @@ def classify_closed_form(
             return p.judge_slip(t_ev, _next_liftoff(p, t_ev, end, samples_per_turn, block_turns))
         start = stop
     return Verdict(TURN_LIMIT if n_star > max_turns else NO_ROOT, math.nan, math.nan)
+
+
+def _first(cands, rel: float):
+    """The earliest (θ, kind); near-ties (within rel (1 + θ)) go to the earlier entry: at
+    Ĩ_CM = 0 the slip margin vanishes together with F_y, and that is a loss of normal force."""
+    best = None
+    for t, kind in cands:
+        if best is None or t < best[0] - rel * (1.0 + abs(best[0])):
+            best = (t, kind)
+    return best
 
 
 def _root(f, a: float, b: float) -> float:
@@ -301,10 +311,18 @@ def classify_ode(
         atol=atol,
         events=[ev_lift, ev_fy, ev_slip, ev_end],
     )
-    hit = [(ys[0][0], i, ys[0]) for i, ys in enumerate(sol.y_events) if len(ys)]
+    hit = [(ys[0][0], i) for i, ys in enumerate(sol.y_events) if len(ys)]
     if not hit:
         return Verdict(NO_ROOT, math.nan, math.nan)
-    t_ev, kind, y_ev = min(hit, key=lambda h: (h[0], h[1]))
+    t_ev, kind = _first(hit, 1e-9)
+    y_ev = sol.y_events[kind][0]
+    # scipy drops the events after the first terminal one in a step: resolve near-ties by the
+    # values at the event (at Ĩ_CM = 0 the slip margin vanishes together with F_y).
+    _, _, fy_ev, l_ev = state(y_ev)
+    if kind > 0 and l_ev >= -1e-9:
+        kind = 0
+    elif kind > 1 and fy_ev <= 1e-9:
+        kind = 1
     if kind == 0:
         return p.judge_liftoff(t_ev)
     if kind == 1:

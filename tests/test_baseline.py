@@ -89,3 +89,15 @@ def test_reference_points():
     assert v.reason == bl.SLIP_BEFORE
     assert math.degrees(v.theta_event) == pytest.approx(316.47, abs=1e-2)
     assert bl.classify_closed_form(math.pi / 2, 0.3, 0.2, 1.0).reason == bl.LIFTOFF_EARLIER
+
+
+@pytest.mark.parametrize("method", ["closed_form", "ode"])
+@pytest.mark.parametrize("a_deg, chi", [(79.2, 0.195), (28.8, 0.675), (45.0, 0.075)])
+def test_km0_near_tie_is_normal_force_lost(method, a_deg, chi):
+    """At k_m = 0 (Ĩ_CM = 0) the slip margin vanishes together with F_y: eccjump calls that a
+    loss of normal force, and so must the baseline."""
+    a = math.radians(a_deg)
+    ref = eccjump.jarm(a, chi, 0.0, MU_S)
+    fn = bl.classify_closed_form if method == "closed_form" else bl.classify_ode
+    assert int(ref.reason) == bl.NORMAL_FORCE_LOST
+    assert fn(a, chi, 0.0, MU_S).reason == bl.NORMAL_FORCE_LOST
