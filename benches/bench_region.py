@@ -60,17 +60,18 @@ def _reset_peak_rss() -> bool:
 
 
 def time_eccjump(method: str, alpha, chi, frac, threads: int, repeat: int):
-    """Best wall time of eccjump.region over `repeat` runs, the last Region, peak RSS [MiB]
-    above the RSS before the runs (NaN if the peak cannot be reset)."""
+    """(wall, CPU) seconds of the fastest of `repeat` eccjump.region runs (CPU summed over
+    threads), the last Region, RSS before and peak RSS during the runs [MiB] (NaN if the
+    peak cannot be reset)."""
     eccjump.region(MU_S, alpha=alpha[:4], chi=chi[:4], km=frac[:4], method=method)  # warm-up
     rss0 = _proc_status("VmRSS")
     can_reset = _reset_peak_rss()
-    best, reg = math.inf, None
+    best, reg = (math.inf, math.inf), None
     for _ in range(repeat):
         reg = None  # free the previous map first
-        t0 = time.perf_counter()
+        t0, c0 = time.perf_counter(), time.process_time()
         reg = eccjump.region(MU_S, alpha=alpha, chi=chi, km=frac, method=method, n_threads=threads)
-        best = min(best, time.perf_counter() - t0)
+        best = min(best, (time.perf_counter() - t0, time.process_time() - c0))
     peak = _proc_status("VmHWM") if can_reset else math.nan
     return best, reg, rss0, peak
 
@@ -87,11 +88,11 @@ def time_baseline(method: str, a, c, k):
     fn = bl.classify_closed_form if method == "closed_form" else bl.classify_ode
     reasons = np.empty(a.size, int)
     thj = np.empty(a.size)
-    t0 = time.perf_counter()
+    t0, c0 = time.perf_counter(), time.process_time()
     for i in range(a.size):
         v = fn(float(a[i]), float(c[i]), float(k[i]), MU_S)
         reasons[i], thj[i] = v.reason, v.theta_J
-    return time.perf_counter() - t0, reasons, thj
+    return (time.perf_counter() - t0, time.process_time() - c0), reasons, thj
 
 
 def main() -> None:
@@ -108,6 +109,7 @@ def main() -> None:
         "--routes", default="closed_form,ode", help="comma-separated routes (closed_form,ode)"
     )
     args = p.parse_args()
+    load = os.getloadavg() if hasattr(os, "getloadavg") else (math.nan,) * 3
 
     alpha, chi, frac = grid(args.grid)
     npts = alpha.size * chi.size * frac.size
@@ -125,7 +127,7 @@ def main() -> None:
     notes = []
     for method in args.routes.split(","):
         k = args.baseline_points if method == "closed_form" else args.ode_points
-        t_ecc, reg, rss0, peak = time_eccjump(
+        (t_ecc, c_ecc), reg, rss0, peak = time_eccjump(
             method, alpha, chi, frac, args.threads, max(1, args.repeat)
         )
         stub = bool(np.all(reg.result.reason == eccjump.Reason.INVALID_PARAMS))
@@ -133,7 +135,7 @@ def main() -> None:
         ia, ic, ik = subsample(alpha, chi, frac, k, args.seed)
         a, c = alpha[ia], chi[ic]
         km = frac[ik] * (1.0 - c)
-        t_bl, reasons, thj = time_baseline(method, a, c, km)
+        (t_bl, c_bl), reasons, thj = time_baseline(method, a, c, km)
         # agreement with eccjump on the subsample (the closed-form map if this route is a stub)
         ref_reason = reg.result.reason[ia, ic, ik].astype(int)
         ref_thj = reg.result.theta_J[ia, ic, ik]
@@ -154,25 +156,37 @@ def main() -> None:
         out_mib = sum(getattr(reg.result, f).nbytes for f in FIELDS) / 2**20
         rows.append(
             dict(m=method, te=t_ecc, pe=pps_ecc, nj=njarm, k=k, tb=t_bl, pb=pps_bl, stub=stub)
+            | dict(ce=c_ecc, cb=c_bl)
             | dict(sj=same_j, sr=same_r, dth=dth, peak=peak, rss0=rss0, out=out_mib)
         )
 
     print()
     hdr = (
-        f"{'route':<12}{'eccjump time':>13}{'eccjump pts/s':>15}{'JARMs':>8}{'| baseline':>11}"
-        f"{'pts':>5}{'time':>9}{'pts/s':>10}{'speed-up':>11}{'agree is_jarm':>15}"
-        f"{'agree reason':>14}{'max|dθ_J|':>11}"
+        f"{'route':<12}{'side':<10}{'points':>9}{'wall s':>9}{'CPU s':>9}{'pts/s (wall)':>14}"
+        f"{'pts/CPU-s':>12}{'speed-up wall':>15}{'per CPU-s':>11}{'JARMs':>7}{'agree':>14}"
     )
     print(hdr)
     print("-" * len(hdr))
     for r in rows:
-        ratio = "n/a (stub)" if r["stub"] else f"{r['pe'] / r['pb']:,.0f}x"
+        pc_e, pc_b = npts / r["ce"], r["k"] / r["cb"]
+        if r["stub"]:
+            sw = sc = "n/a (stub)"
+        else:
+            sw, sc = f"{r['pe'] / r['pb']:,.0f}x", f"{pc_e / pc_b:,.0f}x"
         print(
-            f"{r['m']:<12}{r['te']:>12.3f}s{r['pe']:>15,.0f}{r['nj']:>8}{'|':>3}{'':>8}"
-            f"{r['k']:>5}{r['tb']:>8.2f}s{r['pb']:>10.1f}{ratio:>11}"
-            f"{'{}/{}'.format(r['sj'], r['k']):>15}{'{}/{}'.format(r['sr'], r['k']):>14}"
-            f"{r['dth']:>11.1e}"
+            f"{r['m']:<12}{'eccjump':<10}{npts:>9}{r['te']:>9.3f}{r['ce']:>9.3f}{r['pe']:>14,.0f}"
+            f"{pc_e:>12,.0f}{sw:>15}{sc:>11}{r['nj']:>7}"
         )
+        agree = f"{r['sj']}/{r['k']}, {r['sr']}/{r['k']}"
+        print(
+            f"{'':<12}{'baseline':<10}{r['k']:>9}{r['tb']:>9.3f}{r['cb']:>9.3f}{r['pb']:>14,.1f}"
+            f"{pc_b:>12,.1f}{'':>15}{'':>11}{'':>7}{agree:>14}"
+        )
+    print(
+        "agree: baseline = eccjump on is_jarm, on the reason code (subsample); largest "
+        "|theta_J difference| of common JARMs: "
+        + ", ".join(f"{r['m']} {r['dth']:.1e} rad" for r in rows)
+    )
     print()
     for r in rows:
         print(
@@ -180,6 +194,8 @@ def main() -> None:
             f"{r['rss0']:.0f} MiB, so +{r['peak'] - r['rss0']:.0f} MiB; the returned arrays "
             f"are {r['out']:.0f} MiB)"
         )
+    load2 = os.getloadavg() if hasattr(os, "getloadavg") else (math.nan,) * 3
+    print(f"load average (1 min) at start {load[0]:.2f}, at end {load2[0]:.2f}")
     for n in notes:
         print("note:", n)
 
