@@ -1,0 +1,85 @@
+"""``eccjump figures``: write the gallery (the paper's Fig. 3b and 4, slices, a trajectory)."""
+
+from __future__ import annotations
+
+import argparse
+import math
+import time
+from pathlib import Path
+
+#: Figure names, in the order they are written.
+FIGURES = ("fig3b", "fig4a", "fig4b", "fig4_slices", "trajectory")
+
+
+def _positive_int(text: str) -> int:
+    value = int(text)
+    if value < 2:
+        raise argparse.ArgumentTypeError(f"{value!r} is outside the allowed range [2, inf)")
+    return value
+
+
+def add_parser(sub: argparse._SubParsersAction) -> None:
+    p = sub.add_parser(
+        "figures",
+        help="write the figures (paper's Fig. 3b, Fig. 4a/b, slices, a trajectory) as PNG",
+        description="Write fig3b.png, fig4a.png (mu_s = 0.7, n = 1, 2, 3), fig4b.png "
+        "(mu_s = 1), fig4_slices.png (mu_s = 1) and trajectory.png (alpha = 40 deg, "
+        "chi = 0.15, k_m = 0.02, mu_s = 1) into a directory; print the paths written.",
+    )
+    p.add_argument("-o", "--outdir", type=Path, default=Path("."), help="output directory")
+    p.add_argument("--dpi", type=int, default=110, help="resolution of the PNG files")
+    p.add_argument(
+        "--resolution",
+        type=_positive_int,
+        default=36,
+        help="(chi, k_m) mesh points per axis of the 3-D regions (default 36)",
+    )
+    p.add_argument(
+        "--slice-resolution",
+        type=_positive_int,
+        default=120,
+        help="points along each 2-D slice (default 120)",
+    )
+    p.add_argument(
+        "--n-scan",
+        type=_positive_int,
+        default=90,
+        help="ramp angles scanned per body before the exact bisection (default 90)",
+    )
+    p.add_argument(
+        "--only", choices=FIGURES, nargs="+", default=None, help="write only these figures"
+    )
+    p.set_defaults(func=_cmd_figures)
+
+
+def _cmd_figures(args: argparse.Namespace) -> int:
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    from eccjump import plot
+    from eccjump.body import Cylinder
+    from eccjump.rolling import roll
+
+    args.outdir.mkdir(parents=True, exist_ok=True)
+    res, n_scan = args.resolution, args.n_scan
+    makers = {
+        "fig3b": lambda: plot.fig3b(0.5, 0.4),
+        "fig4a": lambda: plot.fig4(0.7, (1, 2, 3), resolution=res, n_scan=n_scan),
+        "fig4b": lambda: plot.fig4(1.0, (1, 2, 3), resolution=res, n_scan=n_scan),
+        "fig4_slices": lambda: plot.fig4_slices(
+            1.0, (1, 2, 3), resolution=args.slice_resolution, n_scan=n_scan
+        ),
+        "trajectory": lambda: plot.trajectory(
+            roll(Cylinder(0.15, 0.02), math.radians(40.0), mu_s=1.0, dense_output=True)
+        ),
+    }
+    for name in args.only or FIGURES:
+        start = time.perf_counter()
+        fig = makers[name]()
+        path = args.outdir / f"{name}.png"
+        fig.savefig(path, dpi=args.dpi)
+        plt.close(fig)
+        print(f"{path}  ({time.perf_counter() - start:.1f} s)", flush=True)
+    return 0
