@@ -136,6 +136,80 @@ impl EventFunctions<2> for RollEvents {
             };
         }
     }
+    /// Change bounds from bounds on the partial derivatives of each g in θ and θ̇ over
+    /// the step (|sin|, |cos| ≤ 1, |θ̇| ≤ W, contact inertia ≥ Ĩ_C + 1 − 2χ), times the
+    /// bounds on |dθ/dt|, |dθ̇/dt| of the interpolant.
+    #[inline]
+    fn change_bounds(&self, first: usize, dense: &DenseStep<2>, out: &mut [f64]) {
+        let b = self.change_bounds_all(dense);
+        for (i, o) in out.iter_mut().enumerate() {
+            *o = b[first + i];
+        }
+    }
+}
+
+impl RollEvents {
+    /// [`EventFunctions::change_bounds`] of all four events.
+    ///
+    /// Along the interpolant (θ(t), θ̇(t)), |dg/dt| ≤ G_θ |dθ/dt| + G_ω |dθ̇/dt| with
+    /// G_θ ≥ |∂g/∂θ|, G_ω ≥ |∂g/∂θ̇| over the step. With W ≥ |θ̇|, s = sin θ, c = cos θ,
+    /// θ̈ = N/D, N = χθ̇²s + χ sin(α+θ) + sin α, D = Ĩ_C + 1 + 2χc ≥ D_min = Ĩ_C + 1 − 2χ:
+    ///   |θ̈| ≤ A = (χW² + χ + sin α)/D_min,
+    ///   |∂θ̈/∂θ| ≤ A_θ = (χW² + χ)/D_min + 2χ A/D_min,   |∂θ̈/∂θ̇| ≤ A_ω = 2χW/D_min;
+    /// lift-off χθ̇²c − cos α: G_θ = χW², G_ω = 2χW;
+    /// F_y = cos α − χθ̇²c − χθ̈s: G_θ = χW² + χA + χA_θ, G_ω = 2χW + χA_ω;
+    /// F_x = −sin α − χθ̇²s + (1 + χc)θ̈: G_θ = χW² + χA + (1+χ)A_θ, G_ω = 2χW + (1+χ)A_ω;
+    /// slip μF_y − |F_x|: μ G(F_y) + G(F_x); θ − θ_max: G_θ = 1, G_ω = 0.
+    /// The rounding allowance δ = 2⁻⁴⁰ (M + G_θ Θ + G_ω W), with M the sum of the
+    /// magnitudes of g's terms and Θ ≥ |θ|, is hundreds of times the error of a few
+    /// roundings in g, of the 1-ulp sin_cos, and of the interpolant (including its
+    /// mismatch with the exact step end). A disabled event is a constant: bound 0.
+    /// A singular body (D_min ≤ 0) gives +∞ for the force events: never skipped.
+    pub fn change_bounds_all(&self, dense: &DenseStep<2>) -> [f64; 4] {
+        let bounds = dense.bounds();
+        let (theta_max, w) = (bounds.value[0], bounds.value[1]);
+        let (theta_rate, omega_rate) = (bounds.rate[0], bounds.rate[1]);
+        let h = dense.h.abs();
+        let chi = self.rolling.body.chi;
+        let (sa, ca) = (self.rolling.sin_a, self.rolling.cos_a);
+        // δ = 2⁻⁴⁰ (M + G_θ Θ + G_ω W); the bound is L |h| + 4δ.
+        let bound = |(m, g_theta, g_omega): (f64, f64, f64)| {
+            let delta = (m + g_theta * theta_max + g_omega * w) * (1.0 / (1u64 << 40) as f64);
+            (g_theta * theta_rate + g_omega * omega_rate) * h + 4.0 * delta
+        };
+        let chi_w2 = chi * w * w;
+        let liftoff = bound((chi_w2 + ca, chi_w2, 2.0 * chi * w));
+        let d_min = self.rolling.contact_inertia(-1.0);
+        let (fy, slip) = if d_min > 0.0 {
+            let a = (chi_w2 + chi + sa) / d_min;
+            let a_theta = (chi_w2 + chi) / d_min + 2.0 * chi * a / d_min;
+            let a_omega = 2.0 * chi * w / d_min;
+            // (M, G_θ, G_ω) of F_y and F_x.
+            let fy = (
+                ca + chi_w2 + chi * a,
+                chi_w2 + chi * a + chi * a_theta,
+                2.0 * chi * w + chi * a_omega,
+            );
+            let fx = (
+                sa + chi_w2 + (1.0 + chi) * a,
+                chi_w2 + chi * a + (1.0 + chi) * a_theta,
+                2.0 * chi * w + (1.0 + chi) * a_omega,
+            );
+            let slip = self.mu_s.map_or(0.0, |mu| {
+                bound((mu * fy.0 + fx.0, mu * fy.1 + fx.1, mu * fy.2 + fx.2))
+            });
+            (bound(fy), slip)
+        } else {
+            let slip = if self.mu_s.is_some() { f64::INFINITY } else { 0.0 };
+            (f64::INFINITY, slip)
+        };
+        let theta_limit = if self.theta_max.is_finite() {
+            bound((theta_max + self.theta_max.abs(), 1.0, 0.0))
+        } else {
+            0.0
+        };
+        [liftoff, fy, slip, theta_limit]
+    }
 }
 
 /// The inputs of a rolling run besides the body and ramp.
