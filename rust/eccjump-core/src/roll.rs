@@ -14,7 +14,8 @@ use crate::ode::{
     self, DenseStep, Direction, EventFunctions, EventSpec, Observation, OdeSystem, SolverOptions,
     State, Status,
 };
-use crate::rolling::Rolling;
+use crate::rolling::{Kinematics, Rolling};
+use std::cell::Cell;
 
 /// When the body is taken to leave the ramp.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -122,19 +123,7 @@ impl EventFunctions<2> for RollEvents {
     /// All events from one evaluation of the kinematics (one sin_cos per sample).
     #[inline]
     fn values(&self, first: usize, _t: f64, y: &State<2>, out: &mut [f64]) {
-        let k = self.rolling.kinematics(y[0], y[1]);
-        let chi = self.rolling.body.chi;
-        for (i, o) in out.iter_mut().enumerate() {
-            *o = match RollEvent::ALL[first + i] {
-                RollEvent::Liftoff => {
-                    // χ θ̇² cos θ − cos α, from the kinematics' own cos θ.
-                    chi * k.omega * k.omega * k.cos_theta - self.rolling.cos_a
-                }
-                RollEvent::NormalForceZero => k.fy,
-                RollEvent::Slip => self.mu_s.map_or(1.0, |mu| mu * k.fy - k.fx.abs()),
-                RollEvent::ThetaLimit => self.value_at(RollEvent::ThetaLimit, y[0], y[1]),
-            };
-        }
+        self.values_from(&self.rolling.kinematics(y[0], y[1]), first, y, out);
     }
     /// Change bounds from bounds on the partial derivatives of each g in θ and θ̇ over
     /// the step (|sin|, |cos| ≤ 1, |θ̇| ≤ W, contact inertia ≥ Ĩ_C + 1 − 2χ), times the
@@ -149,6 +138,23 @@ impl EventFunctions<2> for RollEvents {
 }
 
 impl RollEvents {
+    /// g_first, g_first+1, … at y from its kinematics `k`.
+    #[inline]
+    fn values_from(&self, k: &Kinematics, first: usize, y: &State<2>, out: &mut [f64]) {
+        let chi = self.rolling.body.chi;
+        for (i, o) in out.iter_mut().enumerate() {
+            *o = match RollEvent::ALL[first + i] {
+                RollEvent::Liftoff => {
+                    // χ θ̇² cos θ − cos α, from the kinematics' own cos θ.
+                    chi * k.omega * k.omega * k.cos_theta - self.rolling.cos_a
+                }
+                RollEvent::NormalForceZero => k.fy,
+                RollEvent::Slip => self.mu_s.map_or(1.0, |mu| mu * k.fy - k.fx.abs()),
+                RollEvent::ThetaLimit => self.value_at(RollEvent::ThetaLimit, y[0], y[1]),
+            };
+        }
+    }
+
     /// [`EventFunctions::change_bounds`] of all four events.
     ///
     /// Along the interpolant (θ(t), θ̇(t)), |dg/dt| ≤ G_θ |dθ/dt| + G_ω |dθ̇/dt| with
@@ -200,7 +206,11 @@ impl RollEvents {
             });
             (bound(fy), slip)
         } else {
-            let slip = if self.mu_s.is_some() { f64::INFINITY } else { 0.0 };
+            let slip = if self.mu_s.is_some() {
+                f64::INFINITY
+            } else {
+                0.0
+            };
             (f64::INFINITY, slip)
         };
         let theta_limit = if self.theta_max.is_finite() {
@@ -209,6 +219,68 @@ impl RollEvents {
             0.0
         };
         [liftoff, fy, slip, theta_limit]
+    }
+}
+
+/// The rolling system and its events with a one-entry memo of (sin θ, cos θ), keyed on
+/// the bits of θ. Each accepted step ends with the FSAL evaluation of the right-hand
+/// side at the new state; the step scan then evaluates the events there and the
+/// observer records the forces there, and both find sin_cos of that θ in the memo.
+/// sin_cos is a pure function, so hits and misses give identical bits.
+struct Memo<'a> {
+    events: &'a RollEvents,
+    /// (θ, sin θ, cos θ) of the last evaluation; θ = NaN at first, whose sin_cos is NaN.
+    trig: Cell<(f64, f64, f64)>,
+}
+
+impl Memo<'_> {
+    #[inline]
+    fn sin_cos(&self, theta: f64) -> (f64, f64) {
+        let (th, s, c) = self.trig.get();
+        if th.to_bits() == theta.to_bits() {
+            return (s, c);
+        }
+        let (s, c) = theta.sin_cos();
+        self.trig.set((theta, s, c));
+        (s, c)
+    }
+
+    #[inline]
+    fn kinematics(&self, theta: f64, omega: f64) -> Kinematics {
+        let (s, c) = self.sin_cos(theta);
+        self.events.rolling.kinematics_sc(theta, omega, s, c)
+    }
+}
+
+impl OdeSystem<2> for Memo<'_> {
+    #[inline]
+    fn rhs(&self, _t: f64, y: &State<2>) -> State<2> {
+        let (s, c) = self.sin_cos(y[0]);
+        State::<2>::new(y[1], self.events.rolling.omega_dot_sc(s, c, y[1]))
+    }
+}
+
+impl EventFunctions<2> for Memo<'_> {
+    #[inline]
+    fn count(&self) -> usize {
+        self.events.count()
+    }
+    #[inline]
+    fn spec(&self, k: usize) -> EventSpec {
+        self.events.spec(k)
+    }
+    #[inline]
+    fn value(&self, k: usize, t: f64, y: &State<2>) -> f64 {
+        self.events.value(k, t, y)
+    }
+    #[inline]
+    fn values(&self, first: usize, _t: f64, y: &State<2>, out: &mut [f64]) {
+        self.events
+            .values_from(&self.kinematics(y[0], y[1]), first, y, out);
+    }
+    #[inline]
+    fn change_bounds(&self, first: usize, dense: &DenseStep<2>, out: &mut [f64]) {
+        self.events.change_bounds(first, dense, out);
     }
 }
 
@@ -328,10 +400,41 @@ pub struct RollRun {
     pub t: Vec<f64>,
     pub theta: Vec<f64>,
     pub omega: Vec<f64>,
+    /// θ̈, F_x and F_y at each recorded point ([`Rolling::kinematics`]).
+    pub omega_dot: Vec<f64>,
+    pub fx: Vec<f64>,
+    pub fy: Vec<f64>,
     pub events: Vec<EventHit>,
     pub status: RollStatus,
     pub nfev: usize,
     pub dense: Vec<DenseStep<2>>,
+}
+
+/// Points reserved per recorded array up front: a run to lift-off at the default
+/// tolerances takes about a hundred steps; longer runs grow the arrays by doubling.
+const RESERVE: usize = 256;
+
+impl RollRun {
+    /// Records one point with its kinematics.
+    #[inline]
+    fn push(&mut self, t: f64, k: &Kinematics) {
+        self.t.push(t);
+        self.theta.push(k.theta);
+        self.omega.push(k.omega);
+        self.omega_dot.push(k.omega_dot);
+        self.fx.push(k.fx);
+        self.fy.push(k.fy);
+    }
+
+    #[inline]
+    fn pop(&mut self) {
+        self.t.pop();
+        self.theta.pop();
+        self.omega.pop();
+        self.omega_dot.pop();
+        self.fx.pop();
+        self.fy.pop();
+    }
 }
 
 /// Integrates pure rolling from (θ0, θ̇0) until a terminal event, t_max or θ_max.
@@ -343,15 +446,24 @@ pub fn roll(rolling: &Rolling, opts: &RollOptions) -> Result<RollRun> {
         theta_max: opts.theta_max,
         rule: opts.rule,
     };
+    let memo = Memo {
+        events: &events,
+        trig: Cell::new((f64::NAN, f64::NAN, f64::NAN)),
+    };
+    let capacity = RESERVE.min(opts.solver.max_steps.saturating_add(2));
     let mut run = RollRun {
-        t: vec![0.0],
-        theta: vec![opts.theta0],
-        omega: vec![opts.omega0],
+        t: Vec::with_capacity(capacity),
+        theta: Vec::with_capacity(capacity),
+        omega: Vec::with_capacity(capacity),
+        omega_dot: Vec::with_capacity(capacity),
+        fx: Vec::with_capacity(capacity),
+        fy: Vec::with_capacity(capacity),
         events: Vec::new(),
         status: RollStatus::TimeLimit,
         nfev: 0,
-        dense: Vec::new(),
+        dense: Vec::with_capacity(if opts.dense_output { capacity } else { 0 }),
     };
+    run.push(0.0, &memo.kinematics(opts.theta0, opts.omega0));
     // A contact event that already holds at t = 0 ends the run there: the integrator
     // looks for crossings only, and a run that starts outside the contact conditions
     // must not roll on as if it were inside them.
@@ -367,17 +479,15 @@ pub fn roll(rolling: &Rolling, opts: &RollOptions) -> Result<RollRun> {
     }
     let y0 = State::<2>::new(opts.theta0, opts.omega0);
     let outcome = ode::solve(
-        rolling,
-        &events,
+        &memo,
+        &memo,
         0.0,
         y0,
         opts.t_max,
         &opts.solver,
         &mut |obs: Observation<'_, 2>| match obs {
             Observation::Step { dense, t, y } => {
-                run.t.push(t);
-                run.theta.push(y[0]);
-                run.omega.push(y[1]);
+                run.push(t, &memo.kinematics(y[0], y[1]));
                 if opts.dense_output {
                     run.dense.push(*dense);
                 }
@@ -398,15 +508,11 @@ pub fn roll(rolling: &Rolling, opts: &RollOptions) -> Result<RollRun> {
     };
     // The last accepted step ends past a terminal event: end the record at the event.
     if let Status::Event(_) = outcome.status {
-        while run.t.len() > 1 && *run.t.last().unwrap() > outcome.t {
-            run.t.pop();
-            run.theta.pop();
-            run.omega.pop();
+        while run.t.len() > 1 && run.t.last().is_some_and(|&t| t > outcome.t) {
+            run.pop();
         }
-        if *run.t.last().unwrap() < outcome.t {
-            run.t.push(outcome.t);
-            run.theta.push(outcome.y[0]);
-            run.omega.push(outcome.y[1]);
+        if run.t.last().is_some_and(|&t| t < outcome.t) {
+            run.push(outcome.t, &memo.kinematics(outcome.y[0], outcome.y[1]));
         }
     }
     Ok(run)

@@ -177,13 +177,21 @@ where
             }
         }
         let dense: DenseStep<N> = st.dense();
-        let scan = scan_step(events, &dense, st.t, &st.y, opts.event_samples, &mut carry, |hit| {
-            observer(Observation::Event {
-                index: hit.index,
-                t: hit.t,
-                y: &hit.y,
-            })
-        });
+        let scan = scan_step(
+            events,
+            &dense,
+            st.t,
+            &st.y,
+            opts.event_samples,
+            &mut carry,
+            |hit| {
+                observer(Observation::Event {
+                    index: hit.index,
+                    t: hit.t,
+                    y: &hit.y,
+                })
+            },
+        );
         match scan {
             Err(NonFiniteEvent) => {
                 // The step's events are unknown: stop at its start, the last checked point.
