@@ -533,3 +533,104 @@ fn violated_at_start(events: &RollEvents, theta: f64, omega: f64) -> Option<Roll
         events.is_terminal(e) && outside
     })
 }
+
+#[cfg(test)]
+mod skip_tests {
+    use super::*;
+    use crate::body::Cylinder;
+
+    /// The roll events without change bounds: the scan always walks the interior samples.
+    struct NoSkip(RollEvents);
+
+    impl EventFunctions<2> for NoSkip {
+        fn count(&self) -> usize {
+            self.0.count()
+        }
+        fn spec(&self, k: usize) -> EventSpec {
+            self.0.spec(k)
+        }
+        fn value(&self, k: usize, t: f64, y: &State<2>) -> f64 {
+            self.0.value(k, t, y)
+        }
+        fn values(&self, first: usize, t: f64, y: &State<2>, out: &mut [f64]) {
+            self.0.values(first, t, y, out)
+        }
+    }
+
+    fn cases() -> Vec<(Rolling, RollEvents)> {
+        let mut out = Vec::new();
+        for &(chi, km, alpha_deg, mu_s, rule, theta_max) in &[
+            (0.15, 0.02, 40.0, None, Rule::Paper, f64::INFINITY),
+            (0.5, 0.1, 20.0, Some(0.4), Rule::NormalForce, f64::INFINITY),
+            (0.9, 0.1, 60.0, None, Rule::NormalForce, 40.0),
+            (0.3, 0.3, 5.0, Some(2.0), Rule::Paper, 7.0),
+        ] {
+            let r =
+                Rolling::new(Cylinder::new(chi, km).unwrap(), f64::to_radians(alpha_deg)).unwrap();
+            let ev = RollEvents {
+                rolling: r,
+                mu_s,
+                theta_max,
+                rule,
+            };
+            out.push((r, ev));
+        }
+        out
+    }
+
+    #[test]
+    fn skipping_interior_samples_changes_nothing() {
+        let opts = SolverOptions::default();
+        for (r, ev) in cases() {
+            let mut with = Vec::new();
+            let a = ode::solve(&r, &ev, 0.0, State::<2>::zeros(), 50.0, &opts, &mut |o| {
+                if let Observation::Event { index, t, .. } = o {
+                    with.push((index, t));
+                }
+            });
+            let mut without = Vec::new();
+            let b = ode::solve(
+                &r,
+                &NoSkip(ev),
+                0.0,
+                State::<2>::zeros(),
+                50.0,
+                &opts,
+                &mut |o| {
+                    if let Observation::Event { index, t, .. } = o {
+                        without.push((index, t));
+                    }
+                },
+            );
+            assert_eq!(a, b);
+            assert_eq!(with, without);
+        }
+    }
+
+    #[test]
+    fn change_bounds_bound_the_change_along_each_step() {
+        let opts = SolverOptions::default();
+        for (r, ev) in cases() {
+            let mut steps = 0;
+            ode::solve(&r, &ev, 0.0, State::<2>::zeros(), 50.0, &opts, &mut |o| {
+                if let Observation::Step { dense, .. } = o {
+                    steps += 1;
+                    let bound = ev.change_bounds_all(dense);
+                    let g = |t: f64| {
+                        let mut v = [0.0; 4];
+                        ev.values(0, t, &dense.eval(t), &mut v);
+                        v
+                    };
+                    let g0 = g(dense.t_old);
+                    for i in 1..=64 {
+                        let gi = g(dense.t_old + dense.h * (i as f64 / 64.0));
+                        for k in 0..4 {
+                            assert!((gi[k] - g0[k]).abs() <= bound[k], "event {k}");
+                        }
+                    }
+                }
+            });
+            assert!(steps > 5);
+        }
+    }
+}
