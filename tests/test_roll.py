@@ -313,3 +313,17 @@ def test_liftoff_matches_the_30_digit_reference(alpha_deg, chi, km):
     r = roll(Cylinder(float(chi), float(km)), float(alpha), rtol=1e-12, atol=1e-14)
     assert r.terminal_event == "liftoff"
     assert r.theta[-1] == pytest.approx(expected, abs=1e-9)
+
+
+def test_fast_result_construction_equals_the_dataclass_init():
+    import dataclasses
+
+    from eccjump.rolling import RollResult
+
+    r = roll(Cylinder(0.15, 0.02), math.radians(40))
+    names = [f.name for f in dataclasses.fields(RollResult)]
+    assert list(vars(r)) == names
+    again = RollResult(**{n: getattr(r, n) for n in names})
+    assert repr(again) == repr(r) and hash(again.events) == hash(r.events)
+    with pytest.raises(dataclasses.FrozenInstanceError):
+        r.status = 0

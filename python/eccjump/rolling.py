@@ -120,6 +120,15 @@ class RollResult:
         )
 
 
+def _result(values: dict[str, object]) -> RollResult:
+    """A RollResult from the values of all its fields, without the per-field
+    ``object.__setattr__`` calls of the frozen dataclass ``__init__`` (a large share of
+    the cost of a short run). The field set is checked by the tests."""
+    result = object.__new__(RollResult)
+    object.__setattr__(result, "__dict__", values)
+    return result
+
+
 def roll(
     body: Cylinder,
     alpha: float,
@@ -183,21 +192,24 @@ def roll(
     sol = None
     if dense_output and "dense_h" in raw:
         sol = DenseSolution(raw["dense_t_old"], raw["dense_h"], raw["dense_y_old"], raw["dense_q"])
-    return RollResult(
-        body=body,
-        alpha=float(alpha),
-        mu_s=None if mu_s is None else float(mu_s),
-        rule=str(rule),
-        t=raw["t"],
-        theta=raw["theta"],
-        omega=raw["omega"],
-        omega_dot=raw["omega_dot"],
-        Fx=raw["fx"],
-        Fy=raw["fy"],
-        events=tuple(Event(*e) for e in raw["events"]),
-        terminal_event=raw["terminal_event"],
-        status=raw["status"],
-        message=raw["message"],
-        nfev=raw["nfev"],
-        sol=sol,
+    return _result(
+        {
+            "body": body,
+            "alpha": float(alpha),
+            "mu_s": None if mu_s is None else float(mu_s),
+            "rule": str(rule),
+            "t": raw["t"],
+            "theta": raw["theta"],
+            "omega": raw["omega"],
+            "omega_dot": raw["omega_dot"],
+            "Fx": raw["fx"],
+            "Fy": raw["fy"],
+            "events": tuple([Event(*e) for e in raw["events"]]),
+            "terminal_event": raw["terminal_event"],
+            "status": raw["status"],
+            "message": raw["message"],
+            "nfev": raw["nfev"],
+            "sol": sol,
+            "units": None,
+        }
     )

@@ -14,8 +14,9 @@ use crate::ode::{
     self, DenseStep, Direction, EventFunctions, EventSpec, Observation, OdeSystem, SolverOptions,
     State, Status,
 };
-use crate::rolling::Rolling;
+use crate::rolling::{Kinematics, Rolling};
 pub use crate::rule::Rule;
+use std::cell::Cell;
 
 /// The built-in events of a rolling run, in the order of their indices.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -112,7 +113,24 @@ impl EventFunctions<2> for RollEvents {
     /// All events from one evaluation of the kinematics (one sin_cos per sample).
     #[inline]
     fn values(&self, first: usize, _t: f64, y: &State<2>, out: &mut [f64]) {
-        let k = self.rolling.kinematics(y[0], y[1]);
+        self.values_from(&self.rolling.kinematics(y[0], y[1]), first, y, out);
+    }
+    /// Change bounds from bounds on the partial derivatives of each g in θ and θ̇ over
+    /// the step (|sin|, |cos| ≤ 1, |θ̇| ≤ W, contact inertia ≥ Ĩ_C + 1 − 2χ), times the
+    /// bounds on |dθ/dt|, |dθ̇/dt| of the interpolant.
+    #[inline]
+    fn change_bounds(&self, first: usize, dense: &DenseStep<2>, out: &mut [f64]) {
+        let b = self.change_bounds_all(dense);
+        for (i, o) in out.iter_mut().enumerate() {
+            *o = b[first + i];
+        }
+    }
+}
+
+impl RollEvents {
+    /// g_first, g_first+1, … at y from its kinematics `k`.
+    #[inline]
+    fn values_from(&self, k: &Kinematics, first: usize, y: &State<2>, out: &mut [f64]) {
         let chi = self.rolling.body.chi;
         for (i, o) in out.iter_mut().enumerate() {
             *o = match RollEvent::ALL[first + i] {
@@ -125,6 +143,134 @@ impl EventFunctions<2> for RollEvents {
                 RollEvent::ThetaLimit => self.value_at(RollEvent::ThetaLimit, y[0], y[1]),
             };
         }
+    }
+
+    /// [`EventFunctions::change_bounds`] of all four events.
+    ///
+    /// Along the interpolant (θ(t), θ̇(t)), |dg/dt| ≤ G_θ |dθ/dt| + G_ω |dθ̇/dt| with
+    /// G_θ ≥ |∂g/∂θ|, G_ω ≥ |∂g/∂θ̇| over the step. With W ≥ |θ̇|, s = sin θ, c = cos θ,
+    /// θ̈ = N/D, N = χθ̇²s + χ sin(α+θ) + sin α, D = Ĩ_C + 1 + 2χc ≥ D_min = Ĩ_C + 1 − 2χ:
+    ///   |θ̈| ≤ A = (χW² + χ + sin α)/D_min,
+    ///   |∂θ̈/∂θ| ≤ A_θ = (χW² + χ)/D_min + 2χ A/D_min,   |∂θ̈/∂θ̇| ≤ A_ω = 2χW/D_min;
+    /// lift-off χθ̇²c − cos α: G_θ = χW², G_ω = 2χW;
+    /// F_y = cos α − χθ̇²c − χθ̈s: G_θ = χW² + χA + χA_θ, G_ω = 2χW + χA_ω;
+    /// F_x = −sin α − χθ̇²s + (1 + χc)θ̈: G_θ = χW² + χA + (1+χ)A_θ, G_ω = 2χW + (1+χ)A_ω;
+    /// slip μF_y − |F_x|: μ G(F_y) + G(F_x); θ − θ_max: G_θ = 1, G_ω = 0.
+    /// The rounding allowance δ = 2⁻⁴⁰ (M + G_θ Θ + G_ω W), with M the sum of the
+    /// magnitudes of g's terms and Θ ≥ |θ|, is hundreds of times the error of a few
+    /// roundings in g, of the 1-ulp sin_cos, and of the interpolant (including its
+    /// mismatch with the exact step end). A disabled event is a constant: bound 0.
+    /// A singular body (D_min ≤ 0) gives +∞ for the force events: never skipped.
+    pub fn change_bounds_all(&self, dense: &DenseStep<2>) -> [f64; 4] {
+        let bounds = dense.bounds();
+        let (theta_max, w) = (bounds.value[0], bounds.value[1]);
+        let (theta_rate, omega_rate) = (bounds.rate[0], bounds.rate[1]);
+        let h = dense.h.abs();
+        let chi = self.rolling.body.chi;
+        let (sa, ca) = (self.rolling.sin_a, self.rolling.cos_a);
+        // δ = 2⁻⁴⁰ (M + G_θ Θ + G_ω W); the bound is L |h| + 4δ.
+        let bound = |(m, g_theta, g_omega): (f64, f64, f64)| {
+            let delta = (m + g_theta * theta_max + g_omega * w) * (1.0 / (1u64 << 40) as f64);
+            (g_theta * theta_rate + g_omega * omega_rate) * h + 4.0 * delta
+        };
+        let chi_w2 = chi * w * w;
+        let liftoff = bound((chi_w2 + ca, chi_w2, 2.0 * chi * w));
+        let d_min = self.rolling.contact_inertia(-1.0);
+        let (fy, slip) = if d_min > 0.0 {
+            let a = (chi_w2 + chi + sa) / d_min;
+            let a_theta = (chi_w2 + chi) / d_min + 2.0 * chi * a / d_min;
+            let a_omega = 2.0 * chi * w / d_min;
+            // (M, G_θ, G_ω) of F_y and F_x.
+            let fy = (
+                ca + chi_w2 + chi * a,
+                chi_w2 + chi * a + chi * a_theta,
+                2.0 * chi * w + chi * a_omega,
+            );
+            let fx = (
+                sa + chi_w2 + (1.0 + chi) * a,
+                chi_w2 + chi * a + (1.0 + chi) * a_theta,
+                2.0 * chi * w + (1.0 + chi) * a_omega,
+            );
+            let slip = self.mu_s.map_or(0.0, |mu| {
+                bound((mu * fy.0 + fx.0, mu * fy.1 + fx.1, mu * fy.2 + fx.2))
+            });
+            (bound(fy), slip)
+        } else {
+            let slip = if self.mu_s.is_some() {
+                f64::INFINITY
+            } else {
+                0.0
+            };
+            (f64::INFINITY, slip)
+        };
+        let theta_limit = if self.theta_max.is_finite() {
+            bound((theta_max + self.theta_max.abs(), 1.0, 0.0))
+        } else {
+            0.0
+        };
+        [liftoff, fy, slip, theta_limit]
+    }
+}
+
+/// The rolling system and its events with a one-entry memo of (sin θ, cos θ), keyed on
+/// the bits of θ. Each accepted step ends with the FSAL evaluation of the right-hand
+/// side at the new state; the step scan then evaluates the events there and the
+/// observer records the forces there, and both find sin_cos of that θ in the memo.
+/// sin_cos is a pure function, so hits and misses give identical bits.
+struct Memo<'a> {
+    events: &'a RollEvents,
+    /// (θ, sin θ, cos θ) of the last evaluation; θ = NaN at first, whose sin_cos is NaN.
+    trig: Cell<(f64, f64, f64)>,
+}
+
+impl Memo<'_> {
+    #[inline]
+    fn sin_cos(&self, theta: f64) -> (f64, f64) {
+        let (th, s, c) = self.trig.get();
+        if th.to_bits() == theta.to_bits() {
+            return (s, c);
+        }
+        let (s, c) = theta.sin_cos();
+        self.trig.set((theta, s, c));
+        (s, c)
+    }
+
+    #[inline]
+    fn kinematics(&self, theta: f64, omega: f64) -> Kinematics {
+        let (s, c) = self.sin_cos(theta);
+        self.events.rolling.kinematics_sc(theta, omega, s, c)
+    }
+}
+
+impl OdeSystem<2> for Memo<'_> {
+    #[inline]
+    fn rhs(&self, _t: f64, y: &State<2>) -> State<2> {
+        let (s, c) = self.sin_cos(y[0]);
+        State::<2>::new(y[1], self.events.rolling.omega_dot_sc(s, c, y[1]))
+    }
+}
+
+impl EventFunctions<2> for Memo<'_> {
+    #[inline]
+    fn count(&self) -> usize {
+        self.events.count()
+    }
+    #[inline]
+    fn spec(&self, k: usize) -> EventSpec {
+        self.events.spec(k)
+    }
+    #[inline]
+    fn value(&self, k: usize, t: f64, y: &State<2>) -> f64 {
+        self.events.value(k, t, y)
+    }
+    #[inline]
+    fn values(&self, first: usize, _t: f64, y: &State<2>, out: &mut [f64]) {
+        self.events
+            .values_from(&self.kinematics(y[0], y[1]), first, y, out);
+    }
+    #[inline]
+    fn change_bounds(&self, first: usize, dense: &DenseStep<2>, out: &mut [f64]) {
+        self.events.change_bounds(first, dense, out);
     }
 }
 
@@ -244,10 +390,41 @@ pub struct RollRun {
     pub t: Vec<f64>,
     pub theta: Vec<f64>,
     pub omega: Vec<f64>,
+    /// θ̈, F_x and F_y at each recorded point ([`Rolling::kinematics`]).
+    pub omega_dot: Vec<f64>,
+    pub fx: Vec<f64>,
+    pub fy: Vec<f64>,
     pub events: Vec<EventHit>,
     pub status: RollStatus,
     pub nfev: usize,
     pub dense: Vec<DenseStep<2>>,
+}
+
+/// Points reserved per recorded array up front: a run to lift-off at the default
+/// tolerances takes about a hundred steps; longer runs grow the arrays by doubling.
+const RESERVE: usize = 256;
+
+impl RollRun {
+    /// Records one point with its kinematics.
+    #[inline]
+    fn push(&mut self, t: f64, k: &Kinematics) {
+        self.t.push(t);
+        self.theta.push(k.theta);
+        self.omega.push(k.omega);
+        self.omega_dot.push(k.omega_dot);
+        self.fx.push(k.fx);
+        self.fy.push(k.fy);
+    }
+
+    #[inline]
+    fn pop(&mut self) {
+        self.t.pop();
+        self.theta.pop();
+        self.omega.pop();
+        self.omega_dot.pop();
+        self.fx.pop();
+        self.fy.pop();
+    }
 }
 
 /// Integrates pure rolling from (θ0, θ̇0) until a terminal event, t_max or θ_max.
@@ -259,15 +436,24 @@ pub fn roll(rolling: &Rolling, opts: &RollOptions) -> Result<RollRun> {
         theta_max: opts.theta_max,
         rule: opts.rule,
     };
+    let memo = Memo {
+        events: &events,
+        trig: Cell::new((f64::NAN, f64::NAN, f64::NAN)),
+    };
+    let capacity = RESERVE.min(opts.solver.max_steps.saturating_add(2));
     let mut run = RollRun {
-        t: vec![0.0],
-        theta: vec![opts.theta0],
-        omega: vec![opts.omega0],
+        t: Vec::with_capacity(capacity),
+        theta: Vec::with_capacity(capacity),
+        omega: Vec::with_capacity(capacity),
+        omega_dot: Vec::with_capacity(capacity),
+        fx: Vec::with_capacity(capacity),
+        fy: Vec::with_capacity(capacity),
         events: Vec::new(),
         status: RollStatus::TimeLimit,
         nfev: 0,
-        dense: Vec::new(),
+        dense: Vec::with_capacity(if opts.dense_output { capacity } else { 0 }),
     };
+    run.push(0.0, &memo.kinematics(opts.theta0, opts.omega0));
     // A contact event that already holds at t = 0 ends the run there: the integrator
     // looks for crossings only, and a run that starts outside the contact conditions
     // must not roll on as if it were inside them.
@@ -283,17 +469,15 @@ pub fn roll(rolling: &Rolling, opts: &RollOptions) -> Result<RollRun> {
     }
     let y0 = State::<2>::new(opts.theta0, opts.omega0);
     let outcome = ode::solve(
-        rolling,
-        &events,
+        &memo,
+        &memo,
         0.0,
         y0,
         opts.t_max,
         &opts.solver,
         &mut |obs: Observation<'_, 2>| match obs {
             Observation::Step { dense, t, y } => {
-                run.t.push(t);
-                run.theta.push(y[0]);
-                run.omega.push(y[1]);
+                run.push(t, &memo.kinematics(y[0], y[1]));
                 if opts.dense_output {
                     run.dense.push(*dense);
                 }
@@ -314,15 +498,11 @@ pub fn roll(rolling: &Rolling, opts: &RollOptions) -> Result<RollRun> {
     };
     // The last accepted step ends past a terminal event: end the record at the event.
     if let Status::Event(_) = outcome.status {
-        while run.t.len() > 1 && *run.t.last().unwrap() > outcome.t {
-            run.t.pop();
-            run.theta.pop();
-            run.omega.pop();
+        while run.t.len() > 1 && run.t.last().is_some_and(|&t| t > outcome.t) {
+            run.pop();
         }
-        if *run.t.last().unwrap() < outcome.t {
-            run.t.push(outcome.t);
-            run.theta.push(outcome.y[0]);
-            run.omega.push(outcome.y[1]);
+        if run.t.last().is_some_and(|&t| t < outcome.t) {
+            run.push(outcome.t, &memo.kinematics(outcome.y[0], outcome.y[1]));
         }
     }
     Ok(run)
@@ -342,4 +522,105 @@ fn violated_at_start(events: &RollEvents, theta: f64, omega: f64) -> Option<Roll
         // θ_max is validated to lie above θ0, so it never fires here.
         events.is_terminal(e) && outside
     })
+}
+
+#[cfg(test)]
+mod skip_tests {
+    use super::*;
+    use crate::body::Cylinder;
+
+    /// The roll events without change bounds: the scan always walks the interior samples.
+    struct NoSkip(RollEvents);
+
+    impl EventFunctions<2> for NoSkip {
+        fn count(&self) -> usize {
+            self.0.count()
+        }
+        fn spec(&self, k: usize) -> EventSpec {
+            self.0.spec(k)
+        }
+        fn value(&self, k: usize, t: f64, y: &State<2>) -> f64 {
+            self.0.value(k, t, y)
+        }
+        fn values(&self, first: usize, t: f64, y: &State<2>, out: &mut [f64]) {
+            self.0.values(first, t, y, out)
+        }
+    }
+
+    fn cases() -> Vec<(Rolling, RollEvents)> {
+        let mut out = Vec::new();
+        for &(chi, km, alpha_deg, mu_s, rule, theta_max) in &[
+            (0.15, 0.02, 40.0, None, Rule::Paper, f64::INFINITY),
+            (0.5, 0.1, 20.0, Some(0.4), Rule::NormalForce, f64::INFINITY),
+            (0.9, 0.1, 60.0, None, Rule::NormalForce, 40.0),
+            (0.3, 0.3, 5.0, Some(2.0), Rule::Paper, 7.0),
+        ] {
+            let r =
+                Rolling::new(Cylinder::new(chi, km).unwrap(), f64::to_radians(alpha_deg)).unwrap();
+            let ev = RollEvents {
+                rolling: r,
+                mu_s,
+                theta_max,
+                rule,
+            };
+            out.push((r, ev));
+        }
+        out
+    }
+
+    #[test]
+    fn skipping_interior_samples_changes_nothing() {
+        let opts = SolverOptions::default();
+        for (r, ev) in cases() {
+            let mut with = Vec::new();
+            let a = ode::solve(&r, &ev, 0.0, State::<2>::zeros(), 50.0, &opts, &mut |o| {
+                if let Observation::Event { index, t, .. } = o {
+                    with.push((index, t));
+                }
+            });
+            let mut without = Vec::new();
+            let b = ode::solve(
+                &r,
+                &NoSkip(ev),
+                0.0,
+                State::<2>::zeros(),
+                50.0,
+                &opts,
+                &mut |o| {
+                    if let Observation::Event { index, t, .. } = o {
+                        without.push((index, t));
+                    }
+                },
+            );
+            assert_eq!(a, b);
+            assert_eq!(with, without);
+        }
+    }
+
+    #[test]
+    fn change_bounds_bound_the_change_along_each_step() {
+        let opts = SolverOptions::default();
+        for (r, ev) in cases() {
+            let mut steps = 0;
+            ode::solve(&r, &ev, 0.0, State::<2>::zeros(), 50.0, &opts, &mut |o| {
+                if let Observation::Step { dense, .. } = o {
+                    steps += 1;
+                    let bound = ev.change_bounds_all(dense);
+                    let g = |t: f64| {
+                        let mut v = [0.0; 4];
+                        ev.values(0, t, &dense.eval(t), &mut v);
+                        v
+                    };
+                    let g0 = g(dense.t_old);
+                    for i in 1..=64 {
+                        let gi = g(dense.t_old + dense.h * (i as f64 / 64.0));
+                        for k in 0..4 {
+                            assert!((gi[k] - g0[k]).abs() <= bound[k], "event {k}");
+                        }
+                    }
+                }
+            });
+            assert!(steps > 5);
+        }
+    }
 }

@@ -62,8 +62,9 @@ impl Rolling {
         self.omega_dot_sc(s, c, omega)
     }
 
+    /// θ̈ from the rolling equation, given s = sin θ and c = cos θ.
     #[inline]
-    fn omega_dot_sc(&self, s: f64, c: f64, omega: f64) -> f64 {
+    pub fn omega_dot_sc(&self, s: f64, c: f64, omega: f64) -> f64 {
         let chi = self.body.chi;
         // sin(α + θ) = sin α cos θ + cos α sin θ, reusing the one sin_cos of θ.
         let sin_at = self.sin_a * c + self.cos_a * s;
@@ -73,8 +74,14 @@ impl Rolling {
     /// θ̈ and the contact forces at (θ, θ̇).
     #[inline]
     pub fn kinematics(&self, theta: f64, omega: f64) -> Kinematics {
-        let chi = self.body.chi;
         let (s, c) = theta.sin_cos();
+        self.kinematics_sc(theta, omega, s, c)
+    }
+
+    /// [`Rolling::kinematics`] given s = sin θ and c = cos θ.
+    #[inline]
+    pub fn kinematics_sc(&self, theta: f64, omega: f64, s: f64, c: f64) -> Kinematics {
+        let chi = self.body.chi;
         let acc = self.omega_dot_sc(s, c, omega);
         let w2 = omega * omega;
         Kinematics {

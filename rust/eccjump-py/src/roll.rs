@@ -48,26 +48,11 @@ pub fn roll<'py>(
         dense_output,
     };
     let run = py.detach(|| core_roll(&rolling, &opts)).map_err(to_py)?;
-    to_dict(py, &rolling, run)
+    to_dict(py, run)
 }
 
-fn to_dict<'py>(py: Python<'py>, rolling: &Rolling, run: RollRun) -> PyResult<Bound<'py, PyDict>> {
+fn to_dict<'py>(py: Python<'py>, run: RollRun) -> PyResult<Bound<'py, PyDict>> {
     let d = PyDict::new(py);
-    let (fx, fy): (Vec<f64>, Vec<f64>) = run
-        .theta
-        .iter()
-        .zip(&run.omega)
-        .map(|(&th, &w)| {
-            let k = rolling.kinematics(th, w);
-            (k.fx, k.fy)
-        })
-        .unzip();
-    let omega_dot: Vec<f64> = run
-        .theta
-        .iter()
-        .zip(&run.omega)
-        .map(|(&th, &w)| rolling.omega_dot(th, w))
-        .collect();
     let events: Vec<(&str, f64, f64, f64)> = run
         .events
         .iter()
@@ -84,9 +69,9 @@ fn to_dict<'py>(py: Python<'py>, rolling: &Rolling, run: RollRun) -> PyResult<Bo
     )?;
     d.set_item("nfev", run.nfev)?;
     d.set_item("events", events)?;
-    d.set_item("fx", fx.into_pyarray(py))?;
-    d.set_item("fy", fy.into_pyarray(py))?;
-    d.set_item("omega_dot", omega_dot.into_pyarray(py))?;
+    d.set_item("fx", run.fx.into_pyarray(py))?;
+    d.set_item("fy", run.fy.into_pyarray(py))?;
+    d.set_item("omega_dot", run.omega_dot.into_pyarray(py))?;
     d.set_item("t", run.t.into_pyarray(py))?;
     d.set_item("theta", run.theta.into_pyarray(py))?;
     d.set_item("omega", run.omega.into_pyarray(py))?;

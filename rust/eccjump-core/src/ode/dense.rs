@@ -40,3 +40,35 @@ impl<const N: usize> DenseStep<N> {
         self.y_old + acc * (self.h * s)
     }
 }
+
+/// Componentwise bounds of a dense-output step over the whole step, from the triangle
+/// inequality on its coefficients: for σ ∈ [0, 1],
+/// |y(σ)| ≤ |y_old| + |h| Σ_j |Q_j| and |dy/dt| = |Σ_j (j+1) Q_j σ^j| ≤ Σ_j (j+1) |Q_j|.
+/// They hold for the exact polynomial; computed in floating point they may be low by a
+/// few ulps relative, which callers cover with a safety margin.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct DenseBounds<const N: usize> {
+    /// Upper bound of |y_i| over the step.
+    pub value: State<N>,
+    /// Upper bound of |dy_i/dt| over the step.
+    pub rate: State<N>,
+}
+
+impl<const N: usize> DenseStep<N> {
+    /// Bounds of the interpolant and its time derivative over the step (see
+    /// [`DenseBounds`]).
+    #[inline]
+    pub fn bounds(&self) -> DenseBounds<N> {
+        let mut spread = State::<N>::zeros();
+        let mut rate = State::<N>::zeros();
+        for (j, qj) in self.q.iter().enumerate() {
+            let a = qj.abs();
+            spread += a;
+            rate += a * (j + 1) as f64;
+        }
+        DenseBounds {
+            value: self.y_old.abs() + spread * self.h.abs(),
+            rate,
+        }
+    }
+}

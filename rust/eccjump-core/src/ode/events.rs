@@ -38,6 +38,22 @@ pub trait EventFunctions<const N: usize> {
             *o = self.value(first + i, t, y);
         }
     }
+    /// Bounds D_first, D_first+1, … on how much each event function can change within the
+    /// step `dense`, into `out`: any D_k ≥ L_k |h| + 4 δ_k, where L_k bounds
+    /// |d/dt g_k(t, y(t))| along the dense output y(t) over the whole step and δ_k bounds
+    /// the error of a computed g_k there (rounding of g_k and of y(t), and the difference
+    /// between the exact step end and the interpolant at σ = 1).
+    ///
+    /// The step scan uses them to skip the interior samples: if the computed values at
+    /// the step ends have one sign and |g_a| + |g_b| > D_k, then the exact g_k stays
+    /// above δ_k in magnitude throughout the step (it cannot fall faster than L_k from
+    /// either end), so every computed interior sample has that same sign and cannot show
+    /// a crossing. The default, +∞, never skips.
+    #[inline]
+    fn change_bounds(&self, first: usize, dense: &DenseStep<N>, out: &mut [f64]) {
+        let _ = (first, dense);
+        out.fill(f64::INFINITY);
+    }
 }
 
 /// Events evaluated together per sample in the step scan (a stack buffer; more events
@@ -99,6 +115,53 @@ pub struct EventHit<const N: usize> {
     pub index: usize,
     pub t: f64,
     pub y: State<N>,
+}
+
+/// The event values at the end of the last scanned step, which are the values at the
+/// start of the next step (the same t and y, bit for bit), so the scan reuses them
+/// instead of evaluating the events again. Kept only when all events fit in one chunk;
+/// reused only when t and y match exactly.
+#[derive(Debug, Clone, Copy)]
+pub struct EventCarry<const N: usize> {
+    t: f64,
+    y: State<N>,
+    g: [f64; EVENT_CHUNK],
+    valid: bool,
+}
+
+impl<const N: usize> Default for EventCarry<N> {
+    fn default() -> Self {
+        Self {
+            t: 0.0,
+            y: State::<N>::zeros(),
+            g: [0.0; EVENT_CHUNK],
+            valid: false,
+        }
+    }
+}
+
+impl<const N: usize> EventCarry<N> {
+    #[inline]
+    fn matches(&self, t: f64, y: &State<N>) -> bool {
+        self.valid
+            && self.t.to_bits() == t.to_bits()
+            && self
+                .y
+                .iter()
+                .zip(y.iter())
+                .all(|(a, b)| a.to_bits() == b.to_bits())
+    }
+}
+
+/// Can the interior samples of a step be skipped for an event, given its computed values
+/// at the step ends and its change bound (see [`EventFunctions::change_bounds`])? Both
+/// ends finite, of one strict sign, and further from zero together than g can travel.
+#[inline]
+fn no_zero_inside(ga: f64, gb: f64, bound: f64) -> bool {
+    let same_sign = (ga > 0.0 && gb > 0.0) || (ga < 0.0 && gb < 0.0);
+    // A NaN bound compares false: no skip. The relative slack covers the rounding of
+    // the bound itself and of the sum.
+    same_sign && ga.is_finite() && gb.is_finite() && ga.abs() + gb.abs() > bound * (1.0 + 1e-9)
 }
 
 /// The sample points of one accepted step: its two ends (exact states) and `samples`
@@ -194,13 +257,15 @@ fn locate<E: EventFunctions<N>, const N: usize>(
 
 /// Finds the events of one accepted step (dense output `dense`, ending at (t_new, y_new))
 /// and hands each to `report` in time order (ties by event index), stopping after the
-/// first terminal one, which is returned.
+/// first terminal one, which is returned. `carry` holds the end values of the previous
+/// scanned step (start with `EventCarry::default()`).
 pub fn scan_step<E: EventFunctions<N>, const N: usize>(
     events: &E,
     dense: &DenseStep<N>,
     t_new: f64,
     y_new: &State<N>,
     samples: usize,
+    carry: &mut EventCarry<N>,
     mut report: impl FnMut(EventHit<N>),
 ) -> Result<Option<EventHit<N>>, NonFiniteEvent> {
     let n_events = events.count();
@@ -217,19 +282,54 @@ pub fn scan_step<E: EventFunctions<N>, const N: usize>(
 
     // Pass 1: the earliest sub-interval (ending at sample j_first) with any crossing.
     // All events of a chunk are evaluated together at each sample, so the dense output
-    // and any shared work of the event functions are computed once per sample.
+    // and any shared work of the event functions are computed once per sample. The
+    // start values come from the previous step's end when possible; the end values are
+    // evaluated first (they are carried to the next step) and, when the events' change
+    // bounds prove that no sample inside the step can show a crossing, the interior
+    // samples are skipped. The end values are checked for finiteness only where they are
+    // used, as the plain walk would.
+    let carry_all = n_events <= EVENT_CHUNK;
     let mut j_first = usize::MAX;
     let mut g_a = [0.0; EVENT_CHUNK];
     let mut g_b = [0.0; EVENT_CHUNK];
+    let mut g_end = [0.0; EVENT_CHUNK];
+    let mut bound = [0.0; EVENT_CHUNK];
     for first in (0..n_events).step_by(EVENT_CHUNK) {
         let m = (n_events - first).min(EVENT_CHUNK);
         let (t, y) = pts.point(0);
-        events.values(first, t, &y, &mut g_a[..m]);
+        if carry_all && carry.matches(t, &y) {
+            g_a[..m].copy_from_slice(&carry.g[..m]);
+        } else {
+            events.values(first, t, &y, &mut g_a[..m]);
+        }
         check_all(&g_a[..m])?;
+        events.values(first, t_new, y_new, &mut g_end[..m]);
+        if carry_all {
+            *carry = EventCarry {
+                t: t_new,
+                y: *y_new,
+                g: g_end,
+                valid: true,
+            };
+        }
         // Only sub-intervals before the earliest crossing found so far can matter.
-        for j in 1..=last.min(j_first.saturating_sub(1)) {
-            let (t, y) = pts.point(j);
-            events.values(first, t, &y, &mut g_b[..m]);
+        let limit = last.min(j_first.saturating_sub(1));
+        if limit == 0 {
+            continue;
+        }
+        if samples > 0 {
+            events.change_bounds(first, dense, &mut bound[..m]);
+            if (0..m).all(|i| no_zero_inside(g_a[i], g_end[i], bound[i])) {
+                continue;
+            }
+        }
+        for j in 1..=limit {
+            if j == last {
+                g_b = g_end;
+            } else {
+                let (t, y) = pts.point(j);
+                events.values(first, t, &y, &mut g_b[..m]);
+            }
             check_all(&g_b[..m])?;
             let any = (0..m).any(|i| crosses(events.spec(first + i).direction, g_a[i], g_b[i]));
             if any {

@@ -15,8 +15,8 @@ pub mod solver;
 pub mod stepper;
 pub mod tableau;
 
-pub use dense::DenseStep;
-pub use events::{Direction, EventFunctions, EventSpec, NoEvents, EVENT_CHUNK};
+pub use dense::{DenseBounds, DenseStep};
+pub use events::{Direction, EventCarry, EventFunctions, EventSpec, NoEvents, EVENT_CHUNK};
 pub use solver::{solve, Observation, Outcome, SolverOptions, Status};
 
 /// A state vector of fixed size N.

@@ -5,7 +5,7 @@
 //! Everything lives on the stack; results go to the observer, so the loop never
 //! allocates.
 
-use super::events::{scan_step, NonFiniteEvent};
+use super::events::{scan_step, EventCarry, NonFiniteEvent};
 use super::stepper::{all_finite, select_initial_step, StepStatus, Stepper};
 use super::{DenseStep, EventFunctions, OdeSystem, State};
 
@@ -155,6 +155,7 @@ where
         opts.atol,
     );
 
+    let mut carry = EventCarry::default();
     loop {
         if st.t == t_end {
             out.status = Status::Finished;
@@ -176,13 +177,21 @@ where
             }
         }
         let dense: DenseStep<N> = st.dense();
-        let scan = scan_step(events, &dense, st.t, &st.y, opts.event_samples, |hit| {
-            observer(Observation::Event {
-                index: hit.index,
-                t: hit.t,
-                y: &hit.y,
-            })
-        });
+        let scan = scan_step(
+            events,
+            &dense,
+            st.t,
+            &st.y,
+            opts.event_samples,
+            &mut carry,
+            |hit| {
+                observer(Observation::Event {
+                    index: hit.index,
+                    t: hit.t,
+                    y: &hit.y,
+                })
+            },
+        );
         match scan {
             Err(NonFiniteEvent) => {
                 // The step's events are unknown: stop at its start, the last checked point.

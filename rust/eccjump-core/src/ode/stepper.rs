@@ -56,7 +56,7 @@ pub fn min_step(t: f64, direction: f64) -> f64 {
 /// accuracy; this one reproduces scipy's error norms to the last bit, and since the norm
 /// is a difference of nearly equal quantities, other orders shift scipy's step sizes by
 /// ~1e-12 relative.
-#[inline]
+#[inline(always)]
 pub fn weighted_sum<const N: usize>(k: &[State<N>], w: &[f64]) -> State<N> {
     let len = k.len().min(w.len());
     let blocked = len / 4 * 4;
@@ -86,14 +86,14 @@ pub fn rk_step<S: OdeSystem<N>, const N: usize>(
     nfev: &mut usize,
 ) -> Option<State<N>> {
     k[0] = *f;
-    for s in 1..N_STAGES {
-        // dy = (Σ_j K_j a_sj) h, then y + dy, in scipy's order of operations.
-        let ys = y + weighted_sum(&k[..s], &A[s][..s]) * h;
-        k[s] = sys.rhs(t + C[s] * h, &ys);
-        *nfev += 1;
-        if !all_finite(&k[s]) {
-            return None;
-        }
+    // The stages one by one with constant s, so that each weighted sum is unrolled.
+    if !stage(sys, t, y, h, k, 1, nfev)
+        || !stage(sys, t, y, h, k, 2, nfev)
+        || !stage(sys, t, y, h, k, 3, nfev)
+        || !stage(sys, t, y, h, k, 4, nfev)
+        || !stage(sys, t, y, h, k, 5, nfev)
+    {
+        return None;
     }
     let y_new = y + weighted_sum(&k[..N_STAGES], &B) * h;
     if !all_finite(&y_new) {
@@ -102,6 +102,24 @@ pub fn rk_step<S: OdeSystem<N>, const N: usize>(
     k[N_STAGES] = sys.rhs(t + h, &y_new);
     *nfev += 1;
     all_finite(&k[N_STAGES]).then_some(y_new)
+}
+
+/// Stage s of [`rk_step`]: k[s] = f(t + c_s h, y + (Σ_j K_j a_sj) h), in scipy's order
+/// of operations; false if it is not finite.
+#[inline(always)]
+fn stage<S: OdeSystem<N>, const N: usize>(
+    sys: &S,
+    t: f64,
+    y: &State<N>,
+    h: f64,
+    k: &mut [State<N>; N_STAGES + 1],
+    s: usize,
+    nfev: &mut usize,
+) -> bool {
+    let ys = y + weighted_sum(&k[..s], &A[s][..s]) * h;
+    k[s] = sys.rhs(t + C[s] * h, &ys);
+    *nfev += 1;
+    all_finite(&k[s])
 }
 
 /// The scaled RMS norm of the embedded error estimate h Σ E_i K_i, with the scale
