@@ -397,7 +397,7 @@ fn jarm_at(s: &PathScan) -> JarmResult {
 }
 
 /// First-jump semantics for a requested turn n.
-fn restrict_to_turn(mut res: JarmResult, n: u32) -> JarmResult {
+pub(crate) fn restrict_to_turn(mut res: JarmResult, n: u32) -> JarmResult {
     match res.reason {
         Reason::Jarm if res.n == n => res,
         Reason::Jarm if res.n < n => {

@@ -1,18 +1,1016 @@
 //! The second, independent route to the JARM classification: integrate the rolling equation
-//! with the Dormand–Prince core and let its events decide (to be written).
+//! in time with the Dormand–Prince core ([`crate::ode`]) and let its events decide.
+//!
+//! Same inputs, semantics and [`Reason`] codes as [`crate::jarm::classify`] (first-jump
+//! semantics, the two [`Rule`]s, the turn bound n*, explicit n), but no closed form of the
+//! path: pure rolling y = (θ, θ̇) is integrated from (θ0, θ̇0) with these terminal events,
+//! located by Brent on the dense output (ties in time go to the lower index):
+//!
+//! 0. lift-off, L = χθ̇² cos θ − cos α rising (`Paper` rule only);
+//! 1. normal force F_y falling through 0;
+//! 2. slip margin μ_s F_y − |F_x| falling through 0 (a margin, finite as F_y → 0);
+//! 3. θ̇ falling through 0: the body stops and rolls back (`RocksBack`);
+//! 4. θ reaching the search bound θ_end (the closed form's n*-based bound, capped by
+//!    `max_turns`, and by 2πn + π for an explicit n): `NoRoot` or `TurnLimit`.
+//!
+//! Conditions already violated at the start are tested first, in the closed form's order
+//! (lift-off, F_y ≤ 0, friction, θ̇0 = 0 with θ̈0 ≤ 0) and give its reasons.
+//!
+//! After the deciding event the result is filled as in `jarm.rs`: a `Paper` lift-off reached
+//! first already implies that the path conditions held, and is tested for the green window,
+//! F_y,J > 0 and μ(θ_J) ≤ μ_s ([`crate::jump_point`]); a slip under the `Paper` rule continues
+//! the integration without the friction and normal-force events to the paper's lift-off and
+//! tests it there (`SlipAtJump` vs `SlipBefore`); under the `NormalForce` rule the slip-onset
+//! consistency test (K, D, Ĩ_CM, L ≥ 0) decides between flight (a JARM) and `SlipBefore`.
+//!
+//! Near-ties: where the slip margin vanishes together with F_y (Ĩ_CM = 0, k_m = 0: the margin
+//! is F_y(μ_s − |tan(θ/2)|)), a slip root with F_y's own root within 1e-10(1 + θ) after it is
+//! taken as a loss of normal force, as the closed form's tie rule does.
+//!
+//! Path extrema (largest |F_x|/F_y, smallest F_y, and their θ) are tracked only at the
+//! accepted step ends and the event point, not refined inside steps: they are approximate
+//! (the closed form refines them), and never used for the classification.
+//!
+//! Integrator failures: the only singular point of the rolling equation is θ = π for
+//! χ = 1, k_m = 0 (Ĩ_P = 0, θ̇ → ∞). There the friction ratio is |tan(θ/2)| → ∞, so for any
+//! finite μ_s the slip (or normal-force) event comes first and the singularity is not reached;
+//! should the integrator still stop with `StepTooSmall` or `NonFinite`, the point is reported
+//! as `SlipBefore` at the last good θ (the rolling branch cannot continue: it would need
+//! unbounded friction). `MaxSteps` (a generous budget per turn) is reported as `TurnLimit`.
+//!
+//! Events are found by sign sampling on each step's dense output (`event_samples` interior
+//! points, more at small α), not by the closed form's derivative test: a violation window
+//! narrower than the sample spacing (~0.04 rad) is missed; only grazing (boundary) points
+//! are affected. θ is accurate to ~rtol·|θ| (relative error control), ×10 for shallow F_y
+//! roots.
+//!
+//! Cost (rtol = 1e-10): ~185 steps per point on a 20³ grid from rest, dominated by small-α
+//! points that roll many turns; ~40 % of the time is `sin_cos` (6 right-hand sides and 4–6
+//! event samples per step; the trigonometry of a step's end is shared through a one-entry
+//! cache), ~30 % the solver loop, ~5 % `powf` of the step control.
+//!
+//! No heap allocation, no shared state: deterministic, bit-identical for any thread count.
 
-use crate::jarm::{JarmOptions, JarmResult, Reason};
+use crate::body::Cylinder;
+use crate::jarm::{restrict_to_turn, JarmOptions, JarmResult, Reason};
+use crate::jump_point::{green_turn, jump_forces, mu};
+use crate::ode::{
+    self, Direction, EventFunctions, EventSpec, Observation, OdeSystem, SolverOptions, State,
+    Status,
+};
+use crate::rolling::{Kinematics, Rolling};
+pub use crate::rule::Rule;
+use std::cell::Cell;
+use std::f64::consts::{FRAC_PI_2, PI, TAU};
 
-/// Classifies one point by integration (same semantics and reasons as `jarm::classify`).
+/// Event indices.
+const EV_LIFTOFF: usize = 0;
+const EV_FY: usize = 1;
+const EV_SLIP: usize = 2;
+const EV_STOP: usize = 3;
+const EV_END: usize = 4;
+const N_EVENTS: usize = 5;
+
+/// Relative θ-tolerance of the F_y / slip tie rule.
+const TIE_TOL: f64 = 1e-10;
+
+/// Accepted steps allowed per turn of the search interval (plus a fixed allowance).
+const STEPS_PER_TURN: usize = 20_000;
+
+/// The rolling equation with a one-entry memory of sin θ, cos θ: the FSAL evaluation at a
+/// step's end is at the state where the event scan and the observer evaluate next, so they
+/// reuse its trigonometry (the `sin_cos` calls are about half of the cost).
+struct CachedRolling {
+    r: Rolling,
+    last: Cell<(f64, f64, f64)>,
+}
+
+impl CachedRolling {
+    fn new(r: Rolling) -> Self {
+        Self {
+            r,
+            last: Cell::new((f64::NAN, 0.0, 0.0)),
+        }
+    }
+
+    #[inline]
+    fn sin_cos(&self, theta: f64) -> (f64, f64) {
+        let (t, s, c) = self.last.get();
+        if t.to_bits() == theta.to_bits() {
+            return (s, c);
+        }
+        let (s, c) = theta.sin_cos();
+        self.last.set((theta, s, c));
+        (s, c)
+    }
+
+    /// θ̈ (roll-eq), written exactly as `Rolling::omega_dot`.
+    #[inline]
+    fn omega_dot(&self, s: f64, c: f64, omega: f64) -> f64 {
+        let r = &self.r;
+        let chi = r.body.chi;
+        let sin_at = r.sin_a * c + r.cos_a * s;
+        (chi * omega * omega * s + chi * sin_at + r.sin_a) / r.contact_inertia(c)
+    }
+
+    /// The contact forces, written exactly as `Rolling::kinematics`.
+    #[inline]
+    fn kinematics(&self, theta: f64, omega: f64) -> Kinematics {
+        let r = &self.r;
+        let chi = r.body.chi;
+        let (s, c) = self.sin_cos(theta);
+        let acc = self.omega_dot(s, c, omega);
+        let w2 = omega * omega;
+        Kinematics {
+            theta,
+            omega,
+            omega_dot: acc,
+            fx: -r.sin_a - chi * w2 * s + (1.0 + chi * c) * acc,
+            fy: r.cos_a - chi * w2 * c - chi * acc * s,
+            cos_theta: c,
+        }
+    }
+}
+
+impl OdeSystem<2> for CachedRolling {
+    #[inline]
+    fn rhs(&self, _t: f64, y: &State<2>) -> State<2> {
+        let (s, c) = self.sin_cos(y[0]);
+        State::<2>::new(y[1], self.omega_dot(s, c, y[1]))
+    }
+}
+
+/// The events of a classification run; disabled events are a constant that never crosses.
+/// Keeps the kinematics of the last evaluated state: a step's scan starts where the previous
+/// one ended, and the observer looks at the state the scan ended with.
+struct JarmEvents<'a> {
+    sys: &'a CachedRolling,
+    mu_s: f64,
+    liftoff: bool,
+    normal_force: bool,
+    slip: bool,
+    theta_end: f64,
+    last: Cell<Option<Kinematics>>,
+}
+
+impl JarmEvents<'_> {
+    #[inline]
+    fn kinematics(&self, theta: f64, omega: f64) -> Kinematics {
+        if let Some(q) = self.last.get() {
+            if q.theta.to_bits() == theta.to_bits() && q.omega.to_bits() == omega.to_bits() {
+                return q;
+            }
+        }
+        let q = self.sys.kinematics(theta, omega);
+        self.last.set(Some(q));
+        q
+    }
+
+    /// g_k at a state. An exact 0 is returned as the smallest normal number on the side the
+    /// crossing goes to (−tiny for falling, +tiny for rising events): the crossing test is
+    /// unchanged by this, but the root bracket stays proper. (`roots::brent` returns a stale
+    /// far end as the bracket when an iterate hits g = 0 exactly, and `ode::events::locate`
+    /// reports that end: the event came out up to a whole sample interval late, e.g. slip
+    /// margins F_y − |F_x| at μ_s = 1 vanish exactly at a secant iterate.)
+    #[inline]
+    fn value_of(&self, k: usize, q: &Kinematics) -> f64 {
+        let g = self.raw(k, q);
+        if g != 0.0 {
+            g
+        } else if k == EV_LIFTOFF || k == EV_END {
+            f64::MIN_POSITIVE
+        } else {
+            -f64::MIN_POSITIVE
+        }
+    }
+
+    #[inline]
+    fn raw(&self, k: usize, q: &Kinematics) -> f64 {
+        match k {
+            EV_LIFTOFF if self.liftoff => {
+                self.sys.r.body.chi * q.omega * q.omega * q.cos_theta - self.sys.r.cos_a
+            }
+            EV_FY if self.normal_force => q.fy,
+            EV_SLIP if self.slip => self.mu_s * q.fy - q.fx.abs(),
+            EV_STOP => q.omega,
+            EV_END => q.theta - self.theta_end,
+            _ => 1.0,
+        }
+    }
+}
+
+impl EventFunctions<2> for JarmEvents<'_> {
+    fn count(&self) -> usize {
+        N_EVENTS
+    }
+    fn spec(&self, k: usize) -> EventSpec {
+        let direction = match k {
+            EV_LIFTOFF | EV_END => Direction::Rising,
+            _ => Direction::Falling,
+        };
+        EventSpec {
+            direction,
+            terminal: true,
+        }
+    }
+    #[inline]
+    fn value(&self, k: usize, _t: f64, y: &State<2>) -> f64 {
+        self.value_of(k, &self.kinematics(y[0], y[1]))
+    }
+    /// All events from one evaluation of the kinematics (one `sin_cos` per sample).
+    #[inline]
+    fn values(&self, first: usize, _t: f64, y: &State<2>, out: &mut [f64]) {
+        let q = self.kinematics(y[0], y[1]);
+        for (i, o) in out.iter_mut().enumerate() {
+            *o = self.value_of(first + i, &q);
+        }
+    }
+}
+
+/// Running path extrema, sampled at step ends and event points.
+#[derive(Debug, Clone, Copy)]
+struct Extrema {
+    max_ratio: f64,
+    theta_max_ratio: f64,
+    min_fy: f64,
+    theta_min_fy: f64,
+}
+
+impl Extrema {
+    fn start(q: &Kinematics) -> Self {
+        Self {
+            max_ratio: ratio(q),
+            theta_max_ratio: q.theta,
+            min_fy: q.fy,
+            theta_min_fy: q.theta,
+        }
+    }
+
+    #[inline]
+    fn add(&mut self, q: &Kinematics) {
+        let r = ratio(q);
+        if r > self.max_ratio {
+            self.max_ratio = r;
+            self.theta_max_ratio = q.theta;
+        }
+        if q.fy < self.min_fy {
+            self.min_fy = q.fy;
+            self.theta_min_fy = q.theta;
+        }
+    }
+
+    fn result(&self, reason: Reason) -> JarmResult {
+        let mut x = JarmResult::new(reason);
+        x.max_ratio = self.max_ratio;
+        x.theta_max_ratio = self.theta_max_ratio;
+        x.min_fy = self.min_fy;
+        x.theta_min_fy = self.theta_min_fy;
+        x
+    }
+}
+
+/// |F_x|/F_y, +∞ where F_y ≤ 0 (or NaN).
+#[inline]
+fn ratio(q: &Kinematics) -> f64 {
+    if q.fy > 0.0 {
+        q.fx.abs() / q.fy
+    } else {
+        f64::INFINITY
+    }
+}
+
+/// round(θ/2π), clamped to u32 (the closed form's turn of an event).
+#[inline]
+fn turn_of(theta: f64) -> u32 {
+    let n = (theta / TAU).round();
+    if n <= 0.0 {
+        0
+    } else if n >= u32::MAX as f64 {
+        u32::MAX
+    } else {
+        n as u32
+    }
+}
+
+/// The closed form's parameter check (same ranges), returning the body.
+fn valid_body(alpha: f64, chi: f64, km: f64, mu_s: f64, o: &JarmOptions) -> Option<Cylinder> {
+    let ok = alpha.is_finite()
+        && (0.0..=FRAC_PI_2).contains(&alpha)
+        && chi.is_finite()
+        && (0.0..=1.0).contains(&chi)
+        && km.is_finite()
+        && km >= 0.0
+        && km <= 1.0 - chi + 4.0 * f64::EPSILON
+        && mu_s.is_finite()
+        && mu_s >= 0.0
+        && o.theta0.is_finite()
+        && o.omega0.is_finite()
+        && o.omega0 >= 0.0
+        && o.max_turns >= 1;
+    if ok {
+        Cylinder::new(chi, km).ok()
+    } else {
+        None
+    }
+}
+
+/// The turn bound n* of the closed form: the smallest n with 2πn > θ0 and L(2πn) > 0 along
+/// rolling from (θ0, θ̇0), i.e. by energy conservation (Ĩ_P(2πn) = Ĩ_C + 1 + 2χ)
+///   2πn sin α > cos α Ĩ_P(0)/(2χ) − ½Ĩ_P(θ0)θ̇0² + θ0 sin α − χ(cos(α + θ0) − cos α).
+/// None for α = 0 or χ = 0; capped at max_turns + 1. Written exactly as in `jarm.rs` so that
+/// both routes search the same interval.
+fn turn_bound(r: &Rolling, theta0: f64, omega0: f64, max_turns: u32) -> Option<u32> {
+    let chi = r.body.chi;
+    if chi == 0.0 || r.sin_a == 0.0 {
+        return None;
+    }
+    let cap = max_turns as u64 + 1;
+    let n_lo = ((theta0 / TAU).floor() + 1.0).max(1.0);
+    if n_lo > cap as f64 {
+        return Some(cap as u32);
+    }
+    let k0 = 0.5 * r.contact_inertia(theta0.cos()) * omega0 * omega0;
+    let ip0 = r.body.ic + 1.0 + 2.0 * chi;
+    let rhs = r.cos_a * ip0 / (2.0 * chi) - k0 + theta0 * r.sin_a
+        - chi * ((r.alpha + theta0).cos() - r.cos_a);
+    let per = TAU * r.sin_a;
+    let guess = (rhs / per).floor() + 1.0;
+    let mut n = guess.max(n_lo).min(cap as f64) as u64;
+    while n > n_lo as u64 && (n - 1) as f64 * per > rhs {
+        n -= 1;
+    }
+    while n < cap && n as f64 * per <= rhs {
+        n += 1;
+    }
+    Some(n as u32)
+}
+
+/// dF_y/dθ along rolling at (θ, θ̇) (w = θ̇², a = θ̈, a' = dθ̈/dθ; see `path.rs` for the
+/// derivation): a' = χ(4a sin θ + w cos θ + cos(α + θ))/Ĩ_P,
+/// F_y' = −3χ a cos θ + χ w sin θ − χ a' sin θ.
+fn dfy_dtheta(r: &Rolling, q: &Kinematics) -> f64 {
+    let chi = r.body.chi;
+    let (s, c) = q.theta.sin_cos();
+    let w = q.omega * q.omega;
+    let a = q.omega_dot;
+    let cos_at = r.cos_a * c - r.sin_a * s;
+    let da = chi * (4.0 * a * s + w * c + cos_at) / r.contact_inertia(c);
+    -3.0 * chi * a * c + chi * w * s - chi * da * s
+}
+
+/// Interior sign samples per step for the event scan. A step at rtol ~1e-10 spans up to
+/// ~0.2 rad of θ late in a long run; event windows can be as narrow as ~α in θ (physics
+/// notes), and a window between two samples is missed (sign sampling only, no derivative
+/// test). So the spacing is kept ≲ α/2: 4 samples (the solver's default) for α ≳ 5°, more
+/// below, at most 64. A heuristic, not a guarantee: with 2 samples the 15-point α grid of
+/// the tests already misses one slip window (α = 6°, χ = 0.05, turn 19), with 4 it does not.
+fn event_samples(alpha: f64) -> usize {
+    let n = (0.4 / alpha).ceil() - 1.0;
+    if n.is_nan() || n > 64.0 {
+        64
+    } else {
+        (n as usize).max(4)
+    }
+}
+
+/// How one integration ended.
+#[derive(Debug, Clone, Copy)]
+enum End {
+    /// Terminal event k at state (θ, θ̇) and time t.
+    Event { k: usize, t: f64, y: State<2> },
+    /// The integrator stopped (status) at its last good state.
+    Failed { status: Status, y: State<2> },
+}
+
+/// Integrates rolling from (t0, y0) until the first terminal event of `ev`, reporting the
+/// kinematics at every accepted step end (the event point for the last step) to `track`.
+fn integrate(
+    ev: &JarmEvents,
+    t0: f64,
+    y0: State<2>,
+    so: &SolverOptions,
+    mut track: Option<&mut Extrema>,
+) -> End {
+    let t_end = t0 + 1e300;
+    let out = ode::solve(ev.sys, ev, t0, y0, t_end, so, &mut |obs: Observation<
+        '_,
+        2,
+    >| {
+        if let (Observation::Step { y, .. }, Some(tr)) = (obs, track.as_deref_mut()) {
+            tr.add(&ev.kinematics(y[0], y[1]));
+        }
+    });
+    match out.status {
+        Status::Event(k) => End::Event {
+            k,
+            t: out.t,
+            y: out.y,
+        },
+        status => End::Failed { status, y: out.y },
+    }
+}
+
+/// The event whose condition already holds at the start, in the closed form's order
+/// (lift-off, normal force, friction, rolling back); NaN counts as a violation.
+fn violated_at_start(r: &Rolling, ev: &JarmEvents, q: &Kinematics) -> Option<usize> {
+    let chi = r.body.chi;
+    if ev.liftoff {
+        // L(θ0) ≥ 0 and not falling along the path (dL/dθ = 2χθ̈ cos θ − χθ̇² sin θ).
+        let l = chi * q.omega * q.omega * q.cos_theta - r.cos_a;
+        let dl = 2.0 * chi * q.omega_dot * q.cos_theta - chi * q.omega * q.omega * q.theta.sin();
+        if (l.is_nan() || l >= 0.0) && !(l == 0.0 && dl < 0.0) {
+            return Some(EV_LIFTOFF);
+        }
+    }
+    if ev.normal_force && (q.fy.is_nan() || q.fy <= 0.0) {
+        return Some(EV_FY);
+    }
+    let m = ev.mu_s * q.fy;
+    let (mp, mm) = (m - q.fx, m + q.fx);
+    if ev.slip && (mp.is_nan() || mm.is_nan() || mp < 0.0 || mm < 0.0) {
+        return Some(EV_SLIP);
+    }
+    // From rest the body must start forward: dE/dθ = sin α + χ sin(α + θ0) > 0.
+    if q.omega == 0.0 {
+        let de = r.sin_a + chi * (r.alpha + q.theta).sin();
+        if de.is_nan() || de <= 0.0 {
+            return Some(EV_STOP);
+        }
+    }
+    None
+}
+
+/// Classifies one point by integration: same semantics and reasons as
+/// [`crate::jarm::classify`]. `rtol`, `atol` are the integrator's tolerances (must be
+/// positive and finite, else `InvalidParams`). Never panics, never allocates.
 pub fn classify_ode(
     alpha: f64,
     chi: f64,
     km: f64,
     mu_s: f64,
-    opts: &JarmOptions,
+    o: &JarmOptions,
     rtol: f64,
     atol: f64,
 ) -> JarmResult {
-    let _ = (alpha, chi, km, mu_s, opts, rtol, atol);
-    JarmResult::new(Reason::InvalidParams)
+    let tol_ok = rtol.is_finite() && rtol > 0.0 && atol.is_finite() && atol > 0.0;
+    let Some(body) = valid_body(alpha, chi, km, mu_s, o).filter(|_| tol_ok) else {
+        return JarmResult::new(Reason::InvalidParams);
+    };
+    let Ok(r) = Rolling::new(body, alpha) else {
+        return JarmResult::new(Reason::InvalidParams);
+    };
+    let (theta0, omega0) = (o.theta0, o.omega0);
+    let q0 = r.kinematics(theta0, omega0);
+    // An equilibrium start (θ̇0 = 0, θ̈0 = 0 inside the contact conditions): nothing happens.
+    if omega0 == 0.0 && q0.omega_dot == 0.0 && q0.fy > 0.0 && mu_s * q0.fy >= q0.fx.abs() {
+        return JarmResult::new(Reason::NoRoot);
+    }
+    let (mut theta_end, end_reason) = match turn_bound(&r, theta0, omega0, o.max_turns) {
+        None => (theta0 + TAU, Reason::NoRoot),
+        Some(n) if n > o.max_turns => (TAU * o.max_turns as f64, Reason::TurnLimit),
+        Some(n) => (TAU * n as f64, Reason::NoRoot),
+    };
+    if o.n > 0 {
+        theta_end = theta_end.min(TAU * o.n as f64 + PI);
+    }
+    if theta_end <= theta0 {
+        return JarmResult::new(Reason::NoRoot);
+    }
+    let turns = ((theta_end - theta0) / TAU).ceil().min(1e9) as usize;
+    let so = SolverOptions {
+        rtol,
+        atol,
+        max_steps: STEPS_PER_TURN.saturating_mul(turns.saturating_add(1)),
+        event_samples: event_samples(alpha),
+        ..SolverOptions::default()
+    };
+    let paper = o.rule == Rule::Paper;
+    let sys = CachedRolling::new(r);
+    let ev = JarmEvents {
+        sys: &sys,
+        mu_s,
+        liftoff: paper,
+        normal_force: true,
+        slip: true,
+        theta_end,
+        last: Cell::new(None),
+    };
+    let mut ext = Extrema::start(&q0);
+    let y0 = State::<2>::new(theta0, omega0);
+    let (k, t, y, at_start) = match violated_at_start(&r, &ev, &q0) {
+        Some(k) => (k, 0.0, y0, true),
+        None => match integrate(&ev, 0.0, y0, &so, Some(&mut ext)) {
+            End::Event { k, t, y } => (k, t, y, false),
+            End::Failed { status, y } => {
+                let reason = if status == Status::MaxSteps {
+                    Reason::TurnLimit
+                } else {
+                    Reason::SlipBefore
+                };
+                let mut x = ext.result(reason);
+                if reason != Reason::TurnLimit {
+                    x.theta_event = y[0];
+                    x.n = turn_of(y[0]);
+                }
+                return finish(x, o);
+            }
+        },
+    };
+    let th = y[0];
+    let q = r.kinematics(th, y[1]);
+    // Tie rule: a slip root with F_y's own root right after it is a loss of normal force.
+    let k = if k == EV_SLIP && q.fy <= TIE_TOL * (1.0 + th.abs()) * (-dfy_dtheta(&r, &q)).max(0.0) {
+        EV_FY
+    } else {
+        k
+    };
+    let failure = |reason: Reason| {
+        let mut x = ext.result(reason);
+        x.theta_event = th;
+        x.n = turn_of(th);
+        x
+    };
+    let liftoff_earlier = || {
+        let mut x = failure(Reason::LiftoffEarlier);
+        x.theta_j = th;
+        x
+    };
+    let jarm_here = || {
+        let mut x = ext.result(Reason::Jarm);
+        x.theta_j = th;
+        x.n = turn_of(th);
+        x.fx_j = q.fx;
+        x.fy_j = q.fy;
+        x
+    };
+    let res = match (paper, k) {
+        (_, EV_END) => ext.result(end_reason),
+        (_, EV_STOP) => {
+            let mut x = ext.result(Reason::RocksBack);
+            x.theta_event = th;
+            x
+        }
+        (true, EV_LIFTOFF) => {
+            if at_start {
+                liftoff_earlier()
+            } else {
+                let jf = jump_forces(&body, alpha, th);
+                let green = green_turn(alpha, th);
+                if green.is_none() || jf.fy <= 0.0 {
+                    failure(Reason::NormalForceLost)
+                } else if mu(&body, th) > mu_s {
+                    let mut x = failure(Reason::SlipAtJump);
+                    x.theta_j = th;
+                    x
+                } else {
+                    let mut x = ext.result(Reason::Jarm);
+                    x.n = green.unwrap_or(0);
+                    x.theta_j = th;
+                    x.fx_j = jf.fx;
+                    x.fy_j = jf.fy;
+                    x
+                }
+            }
+        }
+        (true, EV_FY) => failure(Reason::NormalForceLost),
+        (true, _) => {
+            // Slip: continue along rolling (no friction, no normal-force event) to the
+            // paper's lift-off; in a green window with ineq2 failing there it is SlipAtJump.
+            let cont = JarmEvents {
+                normal_force: false,
+                slip: false,
+                theta_end: theta_end.max(th),
+                last: Cell::new(None),
+                ..ev
+            };
+            let tl = match integrate(&cont, t, y, &so, None) {
+                End::Event {
+                    k: EV_LIFTOFF, y, ..
+                } => Some(y[0]),
+                _ => None,
+            };
+            match tl {
+                Some(tl) if green_turn(alpha, tl).is_some() && mu(&body, tl) > mu_s => {
+                    let mut x = failure(Reason::SlipAtJump);
+                    x.theta_j = tl;
+                    x
+                }
+                _ => failure(Reason::SlipBefore),
+            }
+        }
+        (false, EV_FY) => {
+            if at_start {
+                liftoff_earlier()
+            } else {
+                jarm_here()
+            }
+        }
+        (false, _) => {
+            // Slip onset under the classical rule: is sliding consistent?
+            let sigma = if q.fx < 0.0 { -1.0 } else { 1.0 };
+            let (s, c) = th.sin_cos();
+            let kk = chi * s - sigma * mu_s * (1.0 + chi * c);
+            let d = body.icm + chi * kk * s;
+            let lift = chi * q.omega * q.omega * c - r.cos_a;
+            let flight = q.fx == 0.0 || body.icm == 0.0 || lift >= 0.0 || d <= 0.0;
+            if !flight {
+                failure(Reason::SlipBefore)
+            } else if at_start {
+                liftoff_earlier()
+            } else {
+                jarm_here()
+            }
+        }
+    };
+    finish(res, o)
+}
+
+fn finish(res: JarmResult, o: &JarmOptions) -> JarmResult {
+    if o.n > 0 {
+        restrict_to_turn(res, o.n)
+    } else {
+        res
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::jarm::classify;
+    use crate::region::{classify_grid, Method};
+
+    const RTOL: f64 = 1e-10;
+    const ATOL: f64 = 1e-12;
+
+    fn ode(a: f64, chi: f64, km: f64, mu_s: f64, o: &JarmOptions) -> JarmResult {
+        classify_ode(a, chi, km, mu_s, o, RTOL, ATOL)
+    }
+
+    /// The closed form's verdict is robust: a relative change of α by ±1e-6 keeps its reason.
+    fn robust(a: f64, chi: f64, km: f64, mu_s: f64, o: &JarmOptions, reason: Reason) -> bool {
+        [a * (1.0 - 1e-6), (a * (1.0 + 1e-6)).min(FRAC_PI_2)]
+            .iter()
+            .all(|&b| classify(b, chi, km, mu_s, o).reason == reason)
+    }
+
+    #[derive(Default, Debug)]
+    struct Stats {
+        compared: usize,
+        skipped: usize,
+        jarms: usize,
+        max_dtheta_j: f64,
+        max_dtheta_j_paper: f64,
+        max_dtheta_event: f64,
+        bad: Vec<String>,
+    }
+
+    fn compare(a: f64, chi: f64, km: f64, mu_s: f64, o: &JarmOptions, st: &mut Stats) {
+        let c = classify(a, chi, km, mu_s, o);
+        if !robust(a, chi, km, mu_s, o, c.reason) {
+            st.skipped += 1;
+            return;
+        }
+        st.compared += 1;
+        let e = ode(a, chi, km, mu_s, o);
+        let mut ok = e.reason == c.reason && e.n == c.n;
+        if ok && c.reason == Reason::Jarm {
+            st.jarms += 1;
+            let d = (e.theta_j - c.theta_j).abs();
+            st.max_dtheta_j = st.max_dtheta_j.max(d);
+            if o.rule == Rule::Paper {
+                st.max_dtheta_j_paper = st.max_dtheta_j_paper.max(d);
+            }
+            // The integrator controls the error of θ relative to |θ|, so long runs (many
+            // turns at small α) carry an absolute error ~rtol·θ. Lift-off roots (Paper) are
+            // steep; F_y roots (NormalForce) can be shallow (|F_y'| ~ 0.1 at k_m = 0), which
+            // multiplies that error by ~10 (it converges with rtol: `shallow_roots_converge`).
+            let tol = (1e-9 + 2.0 * RTOL * c.theta_j.abs())
+                * if o.rule == Rule::Paper { 1.0 } else { 20.0 };
+            ok = d < tol;
+        }
+        if ok && !c.theta_event.is_nan() {
+            let d = (e.theta_event - c.theta_event).abs();
+            st.max_dtheta_event = st.max_dtheta_event.max(d);
+            ok = d < 1e-7 + 5.0 * RTOL * c.theta_event.abs();
+        }
+        if !ok {
+            st.bad.push(format!(
+                "a={a:?} chi={chi:?} km={km:?} mu={mu_s} {:?} n={} th0={} w0={}: cf {:?} n{} thj {} the {} | ode {:?} n{} dthj {:.2e} dthe {:.2e}",
+                o.rule, o.n, o.theta0, o.omega0, c.reason, c.n, c.theta_j, c.theta_event,
+                e.reason, e.n, e.theta_j - c.theta_j, e.theta_event - c.theta_event
+            ));
+        }
+    }
+
+    #[test]
+    fn agreement_grid() {
+        let mut st = Stats::default();
+        // 15 angles 6°..90°, plus small ones (many turns, narrow windows: more samples).
+        let mut alphas: Vec<f64> = (1..=15).map(|i| FRAC_PI_2 * i as f64 / 15.0).collect();
+        alphas.extend([1.0f64, 2.5].map(f64::to_radians));
+        let chis = [0.0, 0.05, 0.15, 0.3, 0.5, 0.7, 0.9, 1.0];
+        let fracs = [0.0, 0.25, 0.5, 0.75, 1.0];
+        for &a in &alphas {
+            for &chi in &chis {
+                for &f in &fracs {
+                    let km = f * (1.0 - chi);
+                    for mu_s in [0.7, 1.0] {
+                        for rule in [Rule::Paper, Rule::NormalForce] {
+                            for n in [0, 1, 2] {
+                                let o = JarmOptions {
+                                    rule,
+                                    n,
+                                    ..JarmOptions::default()
+                                };
+                                compare(a, chi, km, mu_s, &o, &mut st);
+                            }
+                        }
+                    }
+                }
+            }
+        }
+        report("grid from rest", &st);
+    }
+
+    fn report(what: &str, st: &Stats) {
+        println!(
+            "{what}: compared {} skipped {} jarms {} max dθ_J {:.2e} (Paper rule {:.2e}) \
+             max dθ_event {:.2e} disagreements {}",
+            st.compared,
+            st.skipped,
+            st.jarms,
+            st.max_dtheta_j,
+            st.max_dtheta_j_paper,
+            st.max_dtheta_event,
+            st.bad.len()
+        );
+        for b in st.bad.iter().take(50) {
+            println!("{b}");
+        }
+        assert!(st.bad.is_empty(), "{what}");
+    }
+
+    #[test]
+    #[allow(clippy::excessive_precision)] // the reference digits, as published
+    fn reference_points() {
+        let o = JarmOptions::default();
+        let r = ode(40f64.to_radians(), 0.15, 0.02, 1.0, &o);
+        assert_eq!(r.reason, Reason::Jarm, "{r:?}");
+        assert_eq!(r.n, 1);
+        // 30-digit reference: θ_J = 334.34383789184907...°.
+        let want = 334.343_837_891_849_07f64.to_radians();
+        assert!((r.theta_j - want).abs() < 1e-9, "{}", r.theta_j - want);
+        assert!((r.fy_j - 0.01543).abs() < 1e-5 && (r.fx_j + 0.00516).abs() < 1e-5);
+        assert!(r.max_ratio <= 1.0);
+        let r = ode(30f64.to_radians(), 0.5, 0.4, 1.0, &o);
+        assert_eq!(r.reason, Reason::SlipBefore, "{r:?}");
+        let want = 316.471_677_233_046_156_45f64.to_radians();
+        assert!(
+            (r.theta_event - want).abs() < 1e-9,
+            "{}",
+            r.theta_event - want
+        );
+        // Explicit n and the classical rule, as the closed form.
+        let a = 40f64.to_radians();
+        for (n, reason) in [(1, Reason::Jarm), (2, Reason::LiftoffEarlier)] {
+            assert_eq!(
+                ode(a, 0.15, 0.02, 1.0, &JarmOptions { n, ..o }).reason,
+                reason
+            );
+        }
+        let k = JarmOptions {
+            rule: Rule::NormalForce,
+            ..o
+        };
+        let (p, q) = (
+            ode(a, 0.15, 0.02, 1.0, &k),
+            classify(a, 0.15, 0.02, 1.0, &k),
+        );
+        assert_eq!(p.reason, Reason::Jarm);
+        assert!((p.theta_j - q.theta_j).abs() < 1e-9);
+    }
+
+    #[test]
+    fn shallow_roots_converge() {
+        // A classical-rule jump at k_m = 0 where F_y' ≈ −0.096: the θ_J error follows rtol.
+        let (a, chi) = (0.20943951023931953, 0.3);
+        let k = JarmOptions {
+            rule: Rule::NormalForce,
+            ..JarmOptions::default()
+        };
+        let c = classify(a, chi, 0.0, 1.0, &k);
+        let mut last = f64::INFINITY;
+        for rtol in [1e-10, 1e-12] {
+            let e = classify_ode(a, chi, 0.0, 1.0, &k, rtol, 1e-2 * rtol);
+            assert_eq!(e.reason, c.reason);
+            let d = (e.theta_j - c.theta_j).abs();
+            assert!(d < last && d < 1e4 * rtol, "{rtol} {d}");
+            last = d;
+        }
+    }
+
+    #[test]
+    fn other_initial_conditions_agree() {
+        let mut st = Stats::default();
+        for &(th0, w0) in &[(0.0, 0.5), (0.3, 0.0), (-0.5, 0.2), (2.0, 1.0), (5.5, 0.3)] {
+            for i in 1..=8 {
+                let a = FRAC_PI_2 * i as f64 / 8.5;
+                for &chi in &[0.1, 0.3, 0.6, 0.9] {
+                    for &f in &[0.0, 0.3, 0.8] {
+                        for rule in [Rule::Paper, Rule::NormalForce] {
+                            let o = JarmOptions {
+                                rule,
+                                theta0: th0,
+                                omega0: w0,
+                                ..JarmOptions::default()
+                            };
+                            compare(a, chi, f * (1.0 - chi), 1.0, &o, &mut st);
+                        }
+                    }
+                }
+            }
+        }
+        // Starts that roll back (uphill start against gravity on a gentle ramp).
+        for &(a, chi, th0) in &[(0.05, 0.5, 3.5), (0.1, 0.8, 4.0), (0.02, 0.3, 3.3)] {
+            let o = JarmOptions {
+                theta0: th0,
+                omega0: 0.0,
+                ..JarmOptions::default()
+            };
+            compare(a, chi, 0.1, 1.0, &o, &mut st);
+            assert_eq!(ode(a, chi, 0.1, 1.0, &o).reason, Reason::RocksBack);
+        }
+        report("other starts", &st);
+    }
+
+    #[test]
+    fn special_cases() {
+        let o = JarmOptions::default();
+        let k = JarmOptions {
+            rule: Rule::NormalForce,
+            ..o
+        };
+        for opts in [o, k] {
+            // α = 0 from rest: equilibrium; with θ̇0 > 0 as the closed form.
+            for &(chi, km) in &[(0.3, 0.2), (0.0, 0.5), (1.0, 0.0), (0.5, 0.0)] {
+                assert_eq!(ode(0.0, chi, km, 1.0, &opts).reason, Reason::NoRoot);
+                for w0 in [0.3, 1.0, 3.0] {
+                    let m = JarmOptions { omega0: w0, ..opts };
+                    let (e, c) = (ode(0.0, chi, km, 1.0, &m), classify(0.0, chi, km, 1.0, &m));
+                    assert_eq!(e.reason, c.reason, "{chi} {km} {w0}: {e:?} {c:?}");
+                    // The green window is empty at α = 0; under the classical rule a fast
+                    // spin can still lose F_y and fly (both routes agree on it).
+                    assert!(!e.is_jarm || opts.rule == Rule::NormalForce);
+                }
+            }
+            // χ = 0: no lift-off, or slip at the start.
+            for &(a, km, mu_s) in &[(0.5, 0.3, 1.0), (1.5, 0.9, 0.1), (1.0, 1.0, 1.0)] {
+                let (e, c) = (
+                    ode(a, 0.0, km, mu_s, &opts),
+                    classify(a, 0.0, km, mu_s, &opts),
+                );
+                assert_eq!(e.reason, c.reason, "{a} {km}: {e:?} {c:?}");
+            }
+            // α = π/2 from rest: F_y = 0 at the start; χ = 1, k_m = 0 (singular at θ = π).
+            for &(a, chi, km, mu_s) in &[
+                (FRAC_PI_2, 0.3, 0.2, 1.0),
+                (FRAC_PI_2, 1.0, 0.0, 1.0),
+                (0.5, 1.0, 0.0, 1.0),
+                (0.5, 1.0, 0.0, 0.3),
+                (0.5, 1.0, 0.0, 1e6),
+                (0.05, 1.0, 0.0, 1e6),
+                (1e-3, 1.0, 0.0, 50.0),
+            ] {
+                let (e, c) = (
+                    ode(a, chi, km, mu_s, &opts),
+                    classify(a, chi, km, mu_s, &opts),
+                );
+                assert_eq!(e.reason, c.reason, "{a} {chi} {km} {mu_s}: {e:?} {c:?}");
+                assert!((e.theta_event - c.theta_event).abs() < 1e-7 || c.theta_event.is_nan());
+            }
+            // The turn cap.
+            let m = JarmOptions {
+                max_turns: 10,
+                ..opts
+            };
+            assert_eq!(ode(1e-4, 0.3, 0.2, 1.0, &m).reason, Reason::TurnLimit);
+        }
+        // Invalid input, including tolerances.
+        for &(a, chi, km, mu_s) in &[
+            (f64::NAN, 0.1, 0.1, 1.0),
+            (-0.1, 0.1, 0.1, 1.0),
+            (1.6, 0.1, 0.1, 1.0),
+            (0.5, 1.1, 0.0, 1.0),
+            (0.5, 0.5, 0.6, 1.0),
+            (0.5, 0.5, 0.1, -1.0),
+            (0.5, 0.5, -0.1, 1.0),
+        ] {
+            assert_eq!(ode(a, chi, km, mu_s, &o).reason, Reason::InvalidParams);
+        }
+        let bad = JarmOptions { omega0: -1.0, ..o };
+        assert_eq!(ode(0.5, 0.1, 0.1, 1.0, &bad).reason, Reason::InvalidParams);
+        for (rt, at) in [(0.0, 1e-12), (1e-10, f64::NAN), (f64::INFINITY, 1e-12)] {
+            let r = classify_ode(0.5, 0.1, 0.1, 1.0, &o, rt, at);
+            assert_eq!(r.reason, Reason::InvalidParams);
+        }
+    }
+
+    #[test]
+    fn deterministic() {
+        let bits = |r: &JarmResult| {
+            [
+                r.reason as u8 as u64,
+                r.n as u64,
+                r.theta_j.to_bits(),
+                r.theta_event.to_bits(),
+                r.fx_j.to_bits(),
+                r.fy_j.to_bits(),
+                r.max_ratio.to_bits(),
+                r.theta_max_ratio.to_bits(),
+                r.min_fy.to_bits(),
+                r.theta_min_fy.to_bits(),
+            ]
+        };
+        for &(a, chi, km) in &[(0.7, 0.15, 0.02), (0.52, 0.5, 0.4), (0.2, 0.3, 0.0)] {
+            for rule in [Rule::Paper, Rule::NormalForce] {
+                let o = JarmOptions {
+                    rule,
+                    ..JarmOptions::default()
+                };
+                let (p, q) = (ode(a, chi, km, 1.0, &o), ode(a, chi, km, 1.0, &o));
+                assert_eq!(bits(&p), bits(&q));
+            }
+        }
+        // Through the parallel map: any thread count gives the same bits.
+        let (al, ch, fr) = grid(6);
+        let m = Method::Ode {
+            rtol: RTOL,
+            atol: ATOL,
+        };
+        let o = JarmOptions::default();
+        let mut r1 = vec![JarmResult::new(Reason::NoRoot); 216];
+        let mut r2 = r1.clone();
+        classify_grid(&al, &ch, &fr, 1.0, m, &o, 1, &mut r1).unwrap();
+        classify_grid(&al, &ch, &fr, 1.0, m, &o, 2, &mut r2).unwrap();
+        assert!(r1.iter().zip(&r2).all(|(p, q)| bits(p) == bits(q)));
+    }
+
+    /// CPU time of the process (user + system) from /proc/self/stat, in seconds (assumes
+    /// 100 clock ticks per second; NaN where /proc is unavailable). On a shared machine this
+    /// is the fairer measure of cost per point than wall time.
+    fn cpu_seconds() -> f64 {
+        let Ok(stat) = std::fs::read_to_string("/proc/self/stat") else {
+            return f64::NAN;
+        };
+        // Fields after the parenthesised command name; utime and stime are fields 14 and 15.
+        let rest = stat.rsplit(')').next().unwrap_or("");
+        let f: Vec<f64> = rest
+            .split_whitespace()
+            .skip(11)
+            .take(2)
+            .map(|x| x.parse().unwrap_or(f64::NAN))
+            .collect();
+        if f.len() == 2 {
+            (f[0] + f[1]) / 100.0
+        } else {
+            f64::NAN
+        }
+    }
+
+    fn grid(n: usize) -> (Vec<f64>, Vec<f64>, Vec<f64>) {
+        let a = (1..=n).map(|i| FRAC_PI_2 * i as f64 / n as f64).collect();
+        let c = (0..n).map(|i| (i as f64 + 0.5) / n as f64).collect();
+        let f = (0..n).map(|i| i as f64 / n as f64).collect();
+        (a, c, f)
+    }
+
+    /// Time per point of the ODE route; run with
+    /// `cargo test --release -p eccjump-core jarm_ode::tests::timing -- --ignored --nocapture`.
+    #[test]
+    #[ignore]
+    fn timing() {
+        let (a, c, f) = grid(20);
+        let m = Method::Ode {
+            rtol: RTOL,
+            atol: ATOL,
+        };
+        let o = JarmOptions::default();
+        let mut out = vec![JarmResult::new(Reason::NoRoot); 8000];
+        for nt in [1, 2] {
+            let (t, cpu) = (std::time::Instant::now(), cpu_seconds());
+            classify_grid(&a, &c, &f, 1.0, m, &o, nt, &mut out).unwrap();
+            let (dt, dcpu) = (t.elapsed().as_secs_f64(), cpu_seconds() - cpu);
+            let jarm = out.iter().filter(|r| r.is_jarm).count();
+            println!(
+                "ODE route, {nt} thread(s): wall {:.1} us/point x threads, CPU {:.1} us/point \
+                 on 20^3 ({jarm} JARM)",
+                dt * nt as f64 / 8000.0 * 1e6,
+                dcpu / 8000.0 * 1e6
+            );
+        }
+        let t = std::time::Instant::now();
+        classify_grid(&a, &c, &f, 1.0, Method::ClosedForm, &o, 1, &mut out).unwrap();
+        let dt = t.elapsed().as_secs_f64();
+        println!("closed form, 1 thread: {:.1} us/point", dt / 8000.0 * 1e6);
+    }
 }
