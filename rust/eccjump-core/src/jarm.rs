@@ -180,7 +180,7 @@ impl JarmResult {
 
 /// round(θ/2π), clamped to u32.
 #[inline]
-fn turn_of(theta: f64) -> u32 {
+pub(crate) fn turn_of(theta: f64) -> u32 {
     let n = (theta / TAU).round();
     if n <= 0.0 {
         0
@@ -193,7 +193,13 @@ fn turn_of(theta: f64) -> u32 {
 
 /// Parameter check without allocation; returns the body on success.
 #[inline]
-fn valid_body(alpha: f64, chi: f64, km: f64, mu_s: f64, o: &JarmOptions) -> Option<Cylinder> {
+pub(crate) fn valid_body(
+    alpha: f64,
+    chi: f64,
+    km: f64,
+    mu_s: f64,
+    o: &JarmOptions,
+) -> Option<Cylinder> {
     let ok = alpha.is_finite()
         && (0.0..=FRAC_PI_2).contains(&alpha)
         && chi.is_finite()
@@ -216,7 +222,7 @@ fn valid_body(alpha: f64, chi: f64, km: f64, mu_s: f64, o: &JarmOptions) -> Opti
 
 /// The turn bound n*: the smallest n with 2πn > θ0 and L(2πn) > 0 along rolling from
 /// (θ0, θ̇0); None if it does not exist (α = 0 or χ = 0). Capped at max_turns + 1.
-fn turn_bound(r: &Rolling, theta0: f64, omega0: f64, max_turns: u32) -> Option<u32> {
+pub(crate) fn turn_bound(r: &Rolling, theta0: f64, omega0: f64, max_turns: u32) -> Option<u32> {
     let chi = r.body.chi;
     if chi == 0.0 || r.sin_a == 0.0 {
         return None;

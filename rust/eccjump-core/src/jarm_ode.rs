@@ -51,8 +51,9 @@
 //!
 //! No heap allocation, no shared state: deterministic, bit-identical for any thread count.
 
-use crate::body::Cylinder;
-use crate::jarm::{restrict_to_turn, JarmOptions, JarmResult, Reason};
+use crate::jarm::{
+    restrict_to_turn, turn_bound, turn_of, valid_body, JarmOptions, JarmResult, Reason,
+};
 use crate::jump_point::{green_turn, jump_forces, mu};
 use crate::ode::{
     self, Direction, EventFunctions, EventSpec, Observation, OdeSystem, SolverOptions, State,
@@ -61,7 +62,7 @@ use crate::ode::{
 use crate::rolling::{Kinematics, Rolling};
 pub use crate::rule::Rule;
 use std::cell::Cell;
-use std::f64::consts::{FRAC_PI_2, PI, TAU};
+use std::f64::consts::{PI, TAU};
 
 /// Event indices.
 const EV_LIFTOFF: usize = 0;
@@ -277,72 +278,6 @@ fn ratio(q: &Kinematics) -> f64 {
     } else {
         f64::INFINITY
     }
-}
-
-/// round(θ/2π), clamped to u32 (the closed form's turn of an event).
-#[inline]
-fn turn_of(theta: f64) -> u32 {
-    let n = (theta / TAU).round();
-    if n <= 0.0 {
-        0
-    } else if n >= u32::MAX as f64 {
-        u32::MAX
-    } else {
-        n as u32
-    }
-}
-
-/// The closed form's parameter check (same ranges), returning the body.
-fn valid_body(alpha: f64, chi: f64, km: f64, mu_s: f64, o: &JarmOptions) -> Option<Cylinder> {
-    let ok = alpha.is_finite()
-        && (0.0..=FRAC_PI_2).contains(&alpha)
-        && chi.is_finite()
-        && (0.0..=1.0).contains(&chi)
-        && km.is_finite()
-        && km >= 0.0
-        && km <= 1.0 - chi + 4.0 * f64::EPSILON
-        && mu_s.is_finite()
-        && mu_s >= 0.0
-        && o.theta0.is_finite()
-        && o.omega0.is_finite()
-        && o.omega0 >= 0.0
-        && o.max_turns >= 1;
-    if ok {
-        Cylinder::new(chi, km).ok()
-    } else {
-        None
-    }
-}
-
-/// The turn bound n* of the closed form: the smallest n with 2πn > θ0 and L(2πn) > 0 along
-/// rolling from (θ0, θ̇0), i.e. by energy conservation (Ĩ_P(2πn) = Ĩ_C + 1 + 2χ)
-///   2πn sin α > cos α Ĩ_P(0)/(2χ) − ½Ĩ_P(θ0)θ̇0² + θ0 sin α − χ(cos(α + θ0) − cos α).
-/// None for α = 0 or χ = 0; capped at max_turns + 1. Written exactly as in `jarm.rs` so that
-/// both routes search the same interval.
-fn turn_bound(r: &Rolling, theta0: f64, omega0: f64, max_turns: u32) -> Option<u32> {
-    let chi = r.body.chi;
-    if chi == 0.0 || r.sin_a == 0.0 {
-        return None;
-    }
-    let cap = max_turns as u64 + 1;
-    let n_lo = ((theta0 / TAU).floor() + 1.0).max(1.0);
-    if n_lo > cap as f64 {
-        return Some(cap as u32);
-    }
-    let k0 = 0.5 * r.contact_inertia(theta0.cos()) * omega0 * omega0;
-    let ip0 = r.body.ic + 1.0 + 2.0 * chi;
-    let rhs = r.cos_a * ip0 / (2.0 * chi) - k0 + theta0 * r.sin_a
-        - chi * ((r.alpha + theta0).cos() - r.cos_a);
-    let per = TAU * r.sin_a;
-    let guess = (rhs / per).floor() + 1.0;
-    let mut n = guess.max(n_lo).min(cap as f64) as u64;
-    while n > n_lo as u64 && (n - 1) as f64 * per > rhs {
-        n -= 1;
-    }
-    while n < cap && n as f64 * per <= rhs {
-        n += 1;
-    }
-    Some(n as u32)
 }
 
 /// dF_y/dθ along rolling at (θ, θ̇) (w = θ̇², a = θ̈, a' = dθ̈/dθ; see `path.rs` for the
@@ -636,6 +571,7 @@ fn finish(res: JarmResult, o: &JarmOptions) -> JarmResult {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use std::f64::consts::FRAC_PI_2;
     use crate::jarm::classify;
     use crate::region::{classify_grid, Method};
 

@@ -75,7 +75,16 @@ pub fn brent<F: FnMut(f64) -> f64>(
         }
         let delta = 0.5 * (xtol + rtol * xcur.abs());
         let sbis = 0.5 * (xblk - xcur);
-        if fcur == 0.0 || sbis.abs() < delta {
+        if fcur == 0.0 {
+            // An exact zero: the bracket collapses onto it (the other end may be stale).
+            return Ok(Root {
+                x: xcur,
+                lo: xcur,
+                hi: xcur,
+                evaluations: iter,
+            });
+        }
+        if sbis.abs() < delta {
             let (lo, hi) = if xcur < xblk {
                 (xcur, xblk)
             } else {
@@ -199,6 +208,14 @@ mod tests {
         let r = brent(f, 0.0, 2.0, f(0.0), f(2.0), 0.0, 4.0 * f64::EPSILON, 100).unwrap();
         assert!((r.x - 2f64.cbrt()).abs() < 1e-15);
         assert!(r.lo <= r.x && r.x <= r.hi);
+    }
+
+    #[test]
+    fn an_exact_zero_collapses_the_bracket() {
+        // The secant step from (0, -1), (4, 3) lands exactly on the root 1 of this piecewise f.
+        let f = |x: f64| if x <= 1.0 { x - 1.0 } else { 0.75 * (x - 1.0) };
+        let r = brent(f, 0.0, 4.0, f(0.0), f(4.0), 0.0, 4.0 * f64::EPSILON, 100).unwrap();
+        assert_eq!((r.x, r.lo, r.hi), (1.0, 1.0, 1.0));
     }
 
     #[test]
