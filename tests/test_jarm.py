@@ -255,3 +255,53 @@ def test_broadcasting_keeps_shapes():
     assert r.shape == (4, 3) and r.theta_J.shape == (4, 3)
     fx, fy = closed_form.jump_forces(0.7, 0.15, 0.02, np.linspace(5.6, 6.2, 5))
     assert fx.shape == fy.shape == (5,)
+
+
+# --- the second, independent route: integration with events --------------------------------
+
+
+@settings(max_examples=40, deadline=None)
+@given(
+    bodies(),
+    st.floats(3 * DEG, math.pi / 2),
+    st.sampled_from([0.7, 1.0, 1.5]),
+    st.sampled_from(["paper", "normal_force"]),
+    st.sampled_from([(0.0, 0.0), (0.0, 0.5), (0.3, 0.0), (2.0, 1.0)]),
+)
+def test_ode_route_agrees_with_the_closed_form(body, alpha, mu_s, rule, start):
+    chi, km = body
+    assume(km > 1e-3)  # k_m = 0: F_y and the friction margin vanish together (a tie)
+    theta0, omega0 = start
+    kw = {"rule": rule, "theta0": theta0, "omega0": omega0}
+    cf = jarm(alpha, chi, km, mu_s, **kw)
+    # away from boundaries: the verdict must not change under a tiny change of alpha
+    near = jarm(
+        np.array([alpha * (1 - 1e-6), alpha * (1 + 1e-6)]).clip(0, math.pi / 2), chi, km, mu_s, **kw
+    )
+    assume(np.all(near.reason == cf.reason))
+    ode = jarm(alpha, chi, km, mu_s, method="ode", **kw)
+    assert Reason(int(ode.reason)) == Reason(int(cf.reason))
+    assert int(ode.n) == int(cf.n)
+    if bool(cf.is_jarm):
+        tol = 1e-9 + 2e-10 * float(cf.theta_J)
+        tol *= 20 if rule == "normal_force" else 1
+        assert float(ode.theta_J) == pytest.approx(float(cf.theta_J), abs=tol)
+
+
+def test_ode_route_reference_points():
+    r = jarm(40 * DEG, 0.15, 0.02, 1.0, method="ode")
+    assert bool(r.is_jarm)
+    assert float(r.theta_J) == pytest.approx(334.34383789184907204 * DEG, abs=1e-9)
+    s = jarm(30 * DEG, 0.5, 0.4, 1.0, method="ode")
+    assert Reason(int(s.reason)) == Reason.SLIP_BEFORE
+    assert float(s.theta_event) == pytest.approx(316.47167723304615645 * DEG, abs=1e-9)
+
+
+def test_ode_region_is_bit_identical_for_any_thread_count():
+    a = np.linspace(5, 85, 7) * DEG
+    c = np.linspace(0.05, 0.6, 5)
+    f = np.linspace(0.0, 0.5, 3)
+    r1 = region(1.0, alpha=a, chi=c, km=f, method="ode", n_threads=1)
+    r2 = region(1.0, alpha=a, chi=c, km=f, method="ode", n_threads=2)
+    for name in eccjump.classification.FIELDS:
+        assert getattr(r1.result, name).tobytes() == getattr(r2.result, name).tobytes()
