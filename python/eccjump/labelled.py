@@ -99,23 +99,43 @@ def reason_table() -> str:
     return ", ".join(f"{code}: {name}" for code, name in _core.reason_codes())
 
 
-def region_attrs(region: Region) -> dict[str, Any]:
+def map_attrs(
+    mu_s: float,
+    n: int | None,
+    rule: str,
+    method: str,
+    theta0: float,
+    omega0: float,
+    **extra: Any,
+) -> dict[str, Any]:
     """Attributes of a map: how it was made (netCDF-safe scalars and strings only)."""
-    extra = {k: (int(v) if isinstance(v, bool) else v) for k, v in region.attrs.items()}
     return {
         "title": "JARM map of an eccentric cylinder on a ramp (eccjump)",
         "eccjump_version": _core.VERSION,
-        "mu_s": region.mu_s,
-        "n": 0 if region.n is None else int(region.n),
+        "mu_s": float(mu_s),
+        "n": 0 if n is None else int(n),
         "n_meaning": "requested turn of the jump; 0: the first jump whatever its turn",
-        "rule": region.rule,
-        "method": region.method,
-        "theta0": region.theta0,
-        "omega0": region.omega0,
-        **extra,
+        "rule": str(rule),
+        "method": str(method),
+        "theta0": float(theta0),
+        "omega0": float(omega0),
+        **{k: (int(v) if isinstance(v, bool) else v) for k, v in extra.items()},
         "reason_codes": reason_table(),
         "units": "g = R = M = 1: angles in rad, forces in M g, omega in sqrt(g/R) rad",
     }
+
+
+def region_attrs(region: Region) -> dict[str, Any]:
+    """:func:`map_attrs` of a :class:`Region`."""
+    return map_attrs(
+        region.mu_s,
+        region.n,
+        region.rule,
+        region.method,
+        region.theta0,
+        region.omega0,
+        **region.attrs,
+    )
 
 
 #: A layout: {"coords": {name: (dims, array, attrs)}, "data_vars": {...}, "attrs": {...}}.
@@ -215,7 +235,11 @@ def to_region(ds: xr.Dataset | Layout) -> Region:
         method=str(at["method"]),
         theta0=float(at["theta0"]),
         omega0=float(at["omega0"]),
-        attrs={k: v for k, v in at.items() if k not in known and k not in made},
+        attrs={
+            k: (v.item() if isinstance(v, np.generic) else v)
+            for k, v in at.items()
+            if k not in known and k not in made
+        },
     )
 
 

@@ -9,10 +9,10 @@ import argparse
 import sys
 from collections.abc import Sequence
 
-from eccjump.cli import roll
+from eccjump.cli import map, roll
 
 #: The subcommands, in the order of ``eccjump --help``.
-SUBCOMMANDS = (roll,)
+SUBCOMMANDS = (roll, map)
 
 
 def build_parser() -> argparse.ArgumentParser:
