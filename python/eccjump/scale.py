@@ -58,6 +58,8 @@ def normalize_chunks(chunks: Chunks, shape: tuple[int, int, int]) -> tuple[int, 
         seq = [chunks.get(k, chunks.get("km_frac") if k == "km" else None) for k in AXES]
     elif chunks is None or isinstance(chunks, int | np.integer):
         seq = [chunks] * 3
+    elif not isinstance(chunks, Sequence):
+        raise ValueError(f"chunks must be an int, a 3-sequence or a dict, got {chunks!r}")
     else:
         seq = list(chunks)
         if len(seq) != 3:
@@ -81,7 +83,8 @@ def grid_block(
     opts: tuple,
 ) -> NDArray[np.void]:
     """One block: the grid of the (broadcast-shaped) coordinate slices, as records."""
-    a, c, f = (np.ascontiguousarray(x.ravel(), dtype=np.float64) for x in (alpha, chi, frac))
+    # fresh copies: arrays unpickled on a worker may be misaligned, which the bridge refuses
+    a, c, f = (np.array(x, dtype=np.float64, order="C").ravel() for x in (alpha, chi, frac))
     out = np.empty((a.size, c.size, f.size), dtype=RECORD)
     if out.size == 0:
         return out
