@@ -9,7 +9,7 @@ from __future__ import annotations
 
 import enum
 from dataclasses import dataclass, field
-from typing import TYPE_CHECKING, Any, Literal
+from typing import TYPE_CHECKING, Any, Literal, overload
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
@@ -225,6 +225,7 @@ class Region:
         return to_xarray(self)
 
 
+@overload
 def region(
     mu_s: float,
     n: int | None = None,
@@ -242,8 +243,51 @@ def region(
     refine_extrema: bool = False,
     n_threads: int = 0,
     chunks: Any = None,
+    output: Literal["region"] = "region",
+) -> Region: ...
+
+
+@overload
+def region(
+    mu_s: float | ArrayLike,
+    n: int | None = None,
+    *,
+    alpha: ArrayLike,
+    chi: ArrayLike,
+    km: ArrayLike,
+    method: Method = "closed_form",
+    rule: Rule = "paper",
+    theta0: float | ArrayLike = 0.0,
+    omega0: float | ArrayLike = 0.0,
+    rtol: float = 1e-10,
+    atol: float = 1e-12,
+    max_turns: int = 10_000,
+    refine_extrema: bool = False,
+    n_threads: int = 0,
+    chunks: Any = None,
+    output: Literal["xarray"],
+) -> xr.Dataset: ...
+
+
+def region(
+    mu_s: float | ArrayLike,
+    n: int | None = None,
+    *,
+    alpha: ArrayLike,
+    chi: ArrayLike,
+    km: ArrayLike,
+    method: Method = "closed_form",
+    rule: Rule = "paper",
+    theta0: float | ArrayLike = 0.0,
+    omega0: float | ArrayLike = 0.0,
+    rtol: float = 1e-10,
+    atol: float = 1e-12,
+    max_turns: int = 10_000,
+    refine_extrema: bool = False,
+    n_threads: int = 0,
+    chunks: Any = None,
     output: Literal["region", "xarray"] = "region",
-) -> Any:
+) -> Region | xr.Dataset:
     """Map the JARM region on a rectangular grid, in parallel.
 
     ``alpha`` [rad], ``chi`` and ``km`` are 1-D coordinate arrays; ``km`` is given as the
