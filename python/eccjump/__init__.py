@@ -5,12 +5,13 @@ behind a typed Python API. Units: g = R = M = 1 unless converted with :class:`Un
 angles in radians.
 """
 
-from eccjump import closed_form
+from eccjump import closed_form, store
 from eccjump._core import VERSION as __version__
 from eccjump.body import Cylinder
 from eccjump.boundary import alpha_intervals, mu_s_min_path
 from eccjump.classification import JarmResult, Reason, Region, jarm, region
 from eccjump.dense import DenseSolution
+from eccjump.labelled import region_dataset
 from eccjump.rolling import EVENT_NAMES, Event, RollResult, roll
 from eccjump.units import Units
 
@@ -30,5 +31,7 @@ __all__ = [
     "jarm",
     "mu_s_min_path",
     "region",
+    "region_dataset",
     "roll",
+    "store",
 ]

@@ -24,12 +24,17 @@ def broadcast_flat(
         shapes = ", ".join(f"{k}{np.shape(v)}" for k, v in zip(arrays, converted, strict=True))
         raise ValueError(f"shapes do not broadcast: {shapes}") from err
     shape = b[0].shape if b else ()
-    return shape, [np.ascontiguousarray(x.ravel()) for x in b]
+    return shape, [_c_aligned(x.ravel()) for x in b]
+
+
+def _c_aligned(a: ArrayLike) -> NDArray[np.float64]:
+    """C-contiguous, aligned float64 (unpickled arrays can be misaligned; Rust needs both)."""
+    return np.require(a, dtype=np.float64, requirements=["C", "A"])
 
 
 def axis(name: str, values: ArrayLike) -> NDArray[np.float64]:
     """A 1-D coordinate axis as a contiguous float64 array."""
-    a = np.ascontiguousarray(np.asarray(values, dtype=np.float64))
+    a = _c_aligned(np.asarray(values, dtype=np.float64))
     if a.ndim == 0:
         a = a.reshape(1)
     if a.ndim != 1:

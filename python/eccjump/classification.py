@@ -9,13 +9,16 @@ from __future__ import annotations
 
 import enum
 from dataclasses import dataclass, field
-from typing import Literal
+from typing import TYPE_CHECKING, Any, Literal, overload
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from eccjump import _core
 from eccjump._arrays import axis, broadcast_flat, turn
+
+if TYPE_CHECKING:  # pragma: no cover
+    import xarray as xr
 
 Method = Literal["closed_form", "ode"]
 Rule = Literal["paper", "normal_force"]
@@ -200,7 +203,29 @@ class Region:
         """Fraction of grid points that are a JARM."""
         return float(np.mean(self.result.is_jarm)) if self.result.is_jarm.size else 0.0
 
+    @property
+    def lazy(self) -> bool:
+        """True for a map made with ``chunks=`` and not yet computed (dask-array fields)."""
+        return not isinstance(self.result.is_jarm, np.ndarray)
 
+    def compute(self, **kwargs: object) -> Region:
+        """A lazy map computed (all fields in one pass; ``kwargs`` go to ``dask.compute``);
+        an already computed map is returned as is."""
+        if not self.lazy:
+            return self
+        from eccjump.scale import compute_region
+
+        return compute_region(self, **kwargs)
+
+    def to_xarray(self) -> xr.Dataset:
+        """The map as an ``xarray.Dataset`` (dask-backed if lazy); see :mod:`eccjump.labelled`.
+        Needs ``pip install eccjump[xarray]``."""
+        from eccjump.labelled import to_xarray
+
+        return to_xarray(self)
+
+
+@overload
 def region(
     mu_s: float,
     n: int | None = None,
@@ -217,20 +242,106 @@ def region(
     max_turns: int = 10_000,
     refine_extrema: bool = False,
     n_threads: int = 0,
-) -> Region:
+    chunks: Any = None,
+    output: Literal["region"] = "region",
+) -> Region: ...
+
+
+@overload
+def region(
+    mu_s: float | ArrayLike,
+    n: int | None = None,
+    *,
+    alpha: ArrayLike,
+    chi: ArrayLike,
+    km: ArrayLike,
+    method: Method = "closed_form",
+    rule: Rule = "paper",
+    theta0: float | ArrayLike = 0.0,
+    omega0: float | ArrayLike = 0.0,
+    rtol: float = 1e-10,
+    atol: float = 1e-12,
+    max_turns: int = 10_000,
+    refine_extrema: bool = False,
+    n_threads: int = 0,
+    chunks: Any = None,
+    output: Literal["xarray"],
+) -> xr.Dataset: ...
+
+
+def region(
+    mu_s: float | ArrayLike,
+    n: int | None = None,
+    *,
+    alpha: ArrayLike,
+    chi: ArrayLike,
+    km: ArrayLike,
+    method: Method = "closed_form",
+    rule: Rule = "paper",
+    theta0: float | ArrayLike = 0.0,
+    omega0: float | ArrayLike = 0.0,
+    rtol: float = 1e-10,
+    atol: float = 1e-12,
+    max_turns: int = 10_000,
+    refine_extrema: bool = False,
+    n_threads: int = 0,
+    chunks: Any = None,
+    output: Literal["region", "xarray"] = "region",
+) -> Region | xr.Dataset:
     """Map the JARM region on a rectangular grid, in parallel.
 
     ``alpha`` [rad], ``chi`` and ``km`` are 1-D coordinate arrays; ``km`` is given as the
     fraction k_m/(1 - chi) in [0, 1], so that every (chi, km) pair of the grid is a valid
     body and the grid stays rectangular. Other arguments as :func:`jarm`; ``refine_extrema``
     defaults to False here (the classification does not depend on it; maps are faster).
+
+    chunks : None (default: compute now), or chunk sizes along (alpha, chi, km) -- one int
+        for all, a 3-sequence or a dict; -1/None for a whole axis. The map is then built
+        lazily with dask, one Rust grid call per block (see :mod:`eccjump.scale`); call
+        ``.compute()`` on the result. Bit-identical to the unchunked map. ``n_threads`` is
+        per block: on a cluster use threads per worker / concurrent tasks per worker.
+    output : ``"region"`` (default) a :class:`Region`; ``"xarray"`` an ``xarray.Dataset``
+        (:mod:`eccjump.labelled`), and then ``mu_s``, ``theta0`` and ``omega0`` may be 1-D
+        sequences, swept as extra leading dimensions (one Rust call per combination).
+
+    The tolerances, ``max_turns`` and ``refine_extrema`` are recorded in ``Region.attrs``.
     """
+    if output == "xarray":
+        from eccjump.labelled import region_dataset
+
+        return region_dataset(
+            mu_s,
+            n,
+            alpha=alpha,
+            chi=chi,
+            km=km,
+            method=method,
+            rule=rule,
+            theta0=theta0,
+            omega0=omega0,
+            rtol=rtol,
+            atol=atol,
+            max_turns=max_turns,
+            refine_extrema=refine_extrema,
+            n_threads=n_threads,
+            chunks=chunks,
+        )
+    if output != "region":
+        raise ValueError(f"output = {output!r}; use 'region' or 'xarray'")
+    for name, value in (("mu_s", mu_s), ("theta0", theta0), ("omega0", omega0)):
+        if np.ndim(value) != 0:
+            raise ValueError(f"{name} must be a number here; sweeps need output='xarray'")
     a, c, f = axis("alpha", alpha), axis("chi", chi), axis("km", km)
     opts = _common(
         n, rule, method, rtol, atol, theta0, omega0, max_turns, refine_extrema, n_threads
     )
-    raw = _core.jarm_grid(a, c, f, float(mu_s), *opts)
-    res = JarmResult._from_raw(raw, (a.size, c.size, f.size))
+    if chunks is None:
+        raw = _core.jarm_grid(a, c, f, float(mu_s), *opts)
+        res = JarmResult._from_raw(raw, (a.size, c.size, f.size))
+    else:
+        from eccjump.scale import lazy_records, lazy_result
+
+        res = lazy_result(lazy_records(a, c, f, float(mu_s), opts, chunks))
     return Region(
         alpha=a,
         chi=c,
@@ -242,4 +353,10 @@ def region(
         method=str(method),
         theta0=float(theta0),
         omega0=float(omega0),
+        attrs={
+            "rtol": float(rtol),
+            "atol": float(atol),
+            "max_turns": int(max_turns),
+            "refine_extrema": bool(refine_extrema),
+        },
     )

@@ -9,10 +9,10 @@ import argparse
 import sys
 from collections.abc import Sequence
 
-from eccjump.cli import figures, roll
+from eccjump.cli import figures, map, roll
 
 #: The subcommands, in the order of ``eccjump --help``.
-SUBCOMMANDS = (roll, figures)
+SUBCOMMANDS = (roll, map, figures)
 
 
 def build_parser() -> argparse.ArgumentParser:

@@ -1,0 +1,364 @@
+"""``eccjump map``: the JARM region over (alpha, chi, k_m), computed in chunks along alpha and
+written to ``.nc``, ``.zarr`` or ``.npz`` (by suffix).
+
+Ctrl-C stops after the chunk in progress (one Rust call; a second Ctrl-C aborts at once):
+a ``.zarr`` map already holds every finished chunk (``alpha_done`` records them) and
+``--resume`` computes only the missing ones; ``.nc``/``.npz`` are written with what is
+finished and the attribute ``complete = 0``. Exit status 0 when complete, 130 when
+interrupted, 2 on bad input.
+"""
+
+from __future__ import annotations
+
+import argparse
+import math
+import signal
+import sys
+import time
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+from numpy.typing import NDArray
+
+from eccjump.classification import FIELDS, region
+
+#: Default points per chunk when --chunk is not given (a few seconds on a laptop core).
+POINTS_PER_CHUNK = 100_000
+
+#: Options that must match the store for --resume (attribute names).
+MAP_OPTIONS = (
+    "mu_s",
+    "n",
+    "rule",
+    "method",
+    "theta0",
+    "omega0",
+    "rtol",
+    "atol",
+    "max_turns",
+    "refine_extrema",
+)
+
+
+def _range(lo: float, hi: float, name: str, lo_ok: float, hi_ok: float) -> None:
+    if not (lo_ok <= lo <= hi <= hi_ok):
+        raise ValueError(
+            f"{name} range [{lo:g}, {hi:g}] must satisfy {lo_ok:g} <= min <= max <= {hi_ok:g}"
+        )
+
+
+def _count(text: str) -> int:
+    value = int(text)
+    if value < 1:
+        raise argparse.ArgumentTypeError(f"{value} is outside the allowed range [1, inf)")
+    return value
+
+
+def add_parser(sub: argparse._SubParsersAction) -> None:
+    p = sub.add_parser(
+        "map",
+        help="map the JARM region over (alpha, chi, km) to .nc, .zarr or .npz",
+        description="Classify every point of the grid alpha x chi x km_frac (km = km_frac "
+        "(1 - chi)) as JARM or not, in chunks along alpha, and write all result fields. "
+        "Ctrl-C keeps the finished chunks; a .zarr map can be resumed with --resume.",
+    )
+    p.add_argument("--mu-s", type=float, required=True, help="static friction coefficient")
+    p.add_argument(
+        "--n", type=_count, default=None, help="turn of the jump (default: the first jump)"
+    )
+    p.add_argument("-o", "--output", required=True, help="output file: .nc, .zarr or .npz")
+    g = p.add_argument_group("grid (end points included)")
+    g.add_argument("--grid", type=_count, default=50, help="points per axis (default 50)")
+    g.add_argument("--n-alpha", type=_count, help="points along alpha (default --grid)")
+    g.add_argument("--n-chi", type=_count, help="points along chi (default --grid)")
+    g.add_argument("--n-km", type=_count, help="points along km_frac (default --grid)")
+    g.add_argument("--alpha-min", type=float, default=0.0, help="[deg] (default 0)")
+    g.add_argument("--alpha-max", type=float, default=90.0, help="[deg] (default 90)")
+    g.add_argument("--chi-min", type=float, default=0.0, help="(default 0)")
+    g.add_argument("--chi-max", type=float, default=1.0, help="(default 1)")
+    g.add_argument("--km-min", type=float, default=0.0, help="km fraction km/(1-chi) (default 0)")
+    g.add_argument("--km-max", type=float, default=1.0, help="km fraction (default 1)")
+    m = p.add_argument_group("model")
+    m.add_argument(
+        "--route",
+        choices=("closed-form", "ode"),
+        default="closed-form",
+        help="closed forms with a rigorous scan (default) or the integrator",
+    )
+    m.add_argument(
+        "--rule", choices=("paper", "normal_force"), default="paper", help="lift-off rule"
+    )
+    m.add_argument("--theta0", type=float, default=0.0, help="initial angle [deg]")
+    m.add_argument(
+        "--omega0", type=float, default=0.0, help="initial angular velocity [sqrt(g/R) rad]"
+    )
+    m.add_argument("--rtol", type=float, default=1e-10, help="integrator rtol (--route ode)")
+    m.add_argument("--atol", type=float, default=1e-12, help="integrator atol (--route ode)")
+    m.add_argument("--max-turns", type=_count, default=10_000, help="cap of the search")
+    r = p.add_argument_group("run")
+    r.add_argument("--threads", type=int, default=0, help="threads (0 = one per core)")
+    r.add_argument(
+        "--chunk",
+        type=_count,
+        default=None,
+        help=f"alpha slices per chunk (default: about {POINTS_PER_CHUNK} points)",
+    )
+    r.add_argument(
+        "--resume", action="store_true", help="continue an interrupted .zarr map (same options)"
+    )
+    r.add_argument("--overwrite", action="store_true", help="replace an existing output")
+    r.add_argument("-q", "--quiet", action="store_true", help="no progress bar")
+    # Testing aid: behave as if interrupted after K chunks.
+    r.add_argument("--stop-after", type=int, default=None, help=argparse.SUPPRESS)
+    p.set_defaults(func=_cmd_map)
+
+
+class _Interrupt:
+    """SIGINT sets a flag checked between chunks; a second SIGINT raises at once."""
+
+    def __init__(self) -> None:
+        self.requested = False
+        self._old: Any = None
+
+    def _handler(self, signum: int, frame: Any) -> None:
+        if self.requested:
+            raise KeyboardInterrupt
+        self.requested = True
+        print(
+            "\neccjump: interrupt: finishing the chunk in progress (Ctrl-C again to abort)",
+            file=sys.stderr,
+        )
+
+    def __enter__(self) -> _Interrupt:
+        try:
+            self._old = signal.signal(signal.SIGINT, self._handler)
+        except ValueError:  # not the main thread: no handler, KeyboardInterrupt as usual
+            self._old = None
+        return self
+
+    def __exit__(self, *exc: object) -> None:
+        if self._old is not None:
+            signal.signal(signal.SIGINT, self._old)
+
+
+def _axes(args: argparse.Namespace) -> tuple[NDArray, NDArray, NDArray]:
+    _range(args.alpha_min, args.alpha_max, "alpha [deg]", 0.0, 90.0)
+    _range(args.chi_min, args.chi_max, "chi", 0.0, 1.0)
+    _range(args.km_min, args.km_max, "km fraction", 0.0, 1.0)
+    na = args.n_alpha or args.grid
+    nc = args.n_chi or args.grid
+    nk = args.n_km or args.grid
+    alpha = np.radians(np.linspace(args.alpha_min, args.alpha_max, na))
+    chi = np.linspace(args.chi_min, args.chi_max, nc)
+    km = np.linspace(args.km_min, args.km_max, nk)
+    return alpha, chi, km
+
+
+def _options(args: argparse.Namespace) -> dict[str, Any]:
+    return {
+        "mu_s": float(args.mu_s),
+        "n": args.n,
+        "rule": args.rule,
+        "method": args.route.replace("-", "_"),
+        "theta0": math.radians(args.theta0),
+        "omega0": float(args.omega0),
+        "rtol": float(args.rtol),
+        "atol": float(args.atol),
+        "max_turns": int(args.max_turns),
+        "refine_extrema": False,
+    }
+
+
+def _mismatch(
+    store_attrs: dict[str, Any], attrs: dict[str, Any], old: tuple, new: tuple
+) -> list[str]:
+    diffs = [
+        f"{k}: store {store_attrs.get(k)!r}, now {attrs[k]!r}"
+        for k in MAP_OPTIONS
+        if store_attrs.get(k) != attrs[k]
+    ]
+    for name, a, b in zip(("alpha", "chi", "km_frac"), old, new, strict=True):
+        if a.shape != b.shape or a.tobytes() != b.tobytes():
+            lo, hi = (
+                f"[{x[0]:.6g}, {x[-1]:.6g}] x {x.size}" if x.size else "empty" for x in (a, b)
+            )
+            diffs.append(f"{name} grid: store {lo}, now {hi}")
+    return diffs
+
+
+class _Counts:
+    """JARM counts overall and per turn n over the finished points."""
+
+    def __init__(self) -> None:
+        self.points = 0
+        self.jarm = 0
+        self.per_n: dict[int, int] = {}
+
+    def add(self, is_jarm: NDArray[np.bool_], n: NDArray) -> None:
+        self.points += is_jarm.size
+        turns = np.asarray(n)[np.asarray(is_jarm, dtype=bool)]
+        self.jarm += turns.size
+        values, counts = np.unique(turns, return_counts=True)
+        for v, c in zip(values.tolist(), counts.tolist(), strict=True):
+            self.per_n[v] = self.per_n.get(v, 0) + c
+
+
+def _summary(
+    counts: _Counts,
+    total: int,
+    shape: tuple[int, int, int],
+    computed: int,
+    seconds: float,
+    path: Path,
+    fmt: str,
+    complete: bool,
+) -> str:
+    def frac(k: int) -> str:
+        return f"{k / counts.points:.6f}" if counts.points else "n/a"
+
+    rate = computed / seconds if seconds > 0 else math.inf
+    lines = [
+        f"grid          {shape[0]} x {shape[1]} x {shape[2]} = {total} points "
+        "(alpha x chi x km_frac)",
+        f"computed      {computed} points this run, {counts.points} of {total} finished",
+        f"time          {seconds:.2f} s, {rate:.0f} points/s",
+        f"JARM          {frac(counts.jarm)} of the finished points ({counts.jarm})",
+    ]
+    shown = sorted(counts.per_n)[:10]
+    for v in shown:
+        lines.append(f"  n = {v:<8}  {frac(counts.per_n[v])} ({counts.per_n[v]})")
+    rest = sum(c for v, c in counts.per_n.items() if v not in shown)
+    if rest:
+        lines.append(f"  n > {shown[-1]:<8}  {frac(rest)} ({rest})")
+    state = "complete" if complete else "INCOMPLETE (interrupted)"
+    lines.append(f"output        {path} ({fmt}, {state})")
+    return "\n".join(lines)
+
+
+def _cmd_map(args: argparse.Namespace) -> int:
+    try:
+        return _run(args)
+    except ImportError as err:  # an optional extra is missing: say which, no traceback
+        raise ValueError(str(err)) from err
+    except KeyboardInterrupt:  # a second Ctrl-C: .zarr keeps its finished chunks
+        print("eccjump: aborted", file=sys.stderr)
+        return 130
+
+
+def _run(args: argparse.Namespace) -> int:
+    from eccjump.labelled import DTYPES, FILL, make_layout, map_attrs
+    from eccjump.store import ZarrMap, format_of, save
+
+    path = Path(args.output)
+    fmt = format_of(path)
+    alpha, chi, km = _axes(args)
+    opts = _options(args)
+    attrs = map_attrs(**opts)
+    shape = (alpha.size, chi.size, km.size)
+    total = int(np.prod(shape))
+    if args.threads < 0:
+        raise ValueError(f"--threads {args.threads} is outside the allowed range [0, inf)")
+    chunk = args.chunk or max(1, round(POINTS_PER_CHUNK / max(1, chi.size * km.size)))
+    chunk = min(chunk, alpha.size)
+
+    counts = _Counts()
+    zmap: ZarrMap | None = None
+    fields: dict[str, NDArray] = {}
+    done = np.zeros(alpha.size, dtype=bool)
+    if args.resume:
+        if fmt != "zarr":
+            raise ValueError("--resume needs a .zarr map (.nc and .npz are written once)")
+        if not path.exists():
+            raise ValueError(f"--resume: {path} does not exist")
+        zmap = ZarrMap(path)
+        diffs = _mismatch(zmap.attrs, attrs, (zmap.alpha, zmap.chi, zmap.km_frac), (alpha, chi, km))
+        if diffs:
+            raise ValueError(
+                f"--resume: the options differ from those of {path}:\n  " + "\n  ".join(diffs)
+            )
+        if args.chunk and args.chunk != zmap.chunk:
+            print(f"eccjump: resuming with the store's chunk of {zmap.chunk}", file=sys.stderr)
+        todo = zmap.missing()
+        for i in sorted(set(range(zmap.n_chunks)) - set(todo)):
+            part = zmap.read(i, ("is_jarm", "n"))
+            counts.add(part["is_jarm"], part["n"])
+    else:
+        if path.exists() and not args.overwrite:
+            hint = " or --resume" if fmt == "zarr" else ""
+            raise ValueError(f"{path} exists; use --overwrite{hint}")
+        if fmt == "zarr":
+            zmap = ZarrMap.create(path, alpha, chi, km, attrs, chunk)
+            todo = list(range(zmap.n_chunks))
+        else:
+            fields = {k: np.full(shape, FILL.get(k, np.nan), dtype=DTYPES[k]) for k in FIELDS}
+            todo = list(range(-(-alpha.size // chunk)))
+    if zmap is not None:
+        chunk = zmap.chunk
+
+    from tqdm import tqdm
+
+    todo_points = sum(
+        (min((i + 1) * chunk, alpha.size) - i * chunk) * chi.size * km.size for i in todo
+    )
+    quiet = args.quiet or not sys.stderr.isatty()
+    computed = 0
+    interrupted = False
+    t0 = time.perf_counter()
+    with (
+        _Interrupt() as stop,
+        tqdm(total=todo_points, unit="pt", unit_scale=True, disable=quiet, file=sys.stderr) as bar,
+    ):
+        for k, i in enumerate(todo):
+            if stop.requested or (args.stop_after is not None and k >= args.stop_after):
+                interrupted = True
+                break
+            i0, i1 = i * chunk, min((i + 1) * chunk, alpha.size)
+            reg = region(
+                opts["mu_s"],
+                opts["n"],
+                alpha=alpha[i0:i1],
+                chi=chi,
+                km=km,
+                method=opts["method"],
+                rule=opts["rule"],
+                theta0=opts["theta0"],
+                omega0=opts["omega0"],
+                rtol=opts["rtol"],
+                atol=opts["atol"],
+                max_turns=opts["max_turns"],
+                refine_extrema=opts["refine_extrema"],
+                n_threads=args.threads,
+            )
+            part = {f: getattr(reg.result, f) for f in FIELDS}
+            if zmap is not None:
+                zmap.write(i, part)
+            else:
+                for f in FIELDS:
+                    fields[f][i0:i1] = part[f]
+                done[i0:i1] = True
+            counts.add(part["is_jarm"], part["n"])
+            computed += part["is_jarm"].size
+            bar.update(part["is_jarm"].size)
+        seconds = time.perf_counter() - t0
+        if zmap is not None:
+            zmap.finish()
+            complete = bool(zmap.attrs["complete"])
+        else:
+            complete = bool(done.all())
+            lay = make_layout(alpha, chi, km, fields, {**attrs, "complete": int(complete)}, done)
+            save(lay, path)
+    print(_summary(counts, total, shape, computed, seconds, path, fmt, complete))
+    if interrupted or not complete:
+        if fmt == "zarr":
+            how = f"resume with the same options and --resume -o {path}"
+        else:
+            how = "the unfinished points hold fill values; use .zarr for resumable maps"
+        n_done = int((done if zmap is None else zmap.alpha_done()).sum())
+        print(
+            f"eccjump: interrupted: {n_done} of {alpha.size} alpha slices written to {path} "
+            f"with complete = 0; {how}",
+            file=sys.stderr,
+        )
+        return 130
+    return 0
