@@ -131,3 +131,26 @@ def test_cli_writes_every_figure(tmp_path, capsys):
         assert path.stat().st_size > 1000
         assert path.read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
         assert str(path) in out
+
+
+def test_region_map_figure_and_map_cli_figure(tmp_path):
+    import numpy as np
+
+    from eccjump import plot, region
+    from eccjump.cli import main
+
+    reg = region(
+        1.0,
+        alpha=np.radians(np.linspace(5, 85, 12)),
+        chi=np.linspace(0.02, 0.6, 10),
+        km=np.linspace(0, 0.1, 4),
+    )
+    fig = plot.region_map(reg)
+    ax = fig.axes[0]
+    assert "alpha" in ax.get_ylabel() and "chi" in ax.get_xlabel()
+    assert fig.legends, "turn legend"
+    out, png = tmp_path / "m.npz", tmp_path / "m.png"
+    assert (
+        main(["map", "--mu-s", "1", "--grid", "8", "-q", "-o", str(out), "--figure", str(png)]) == 0
+    )
+    assert png.stat().st_size > 10_000

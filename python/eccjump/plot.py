@@ -21,7 +21,7 @@ from numpy.typing import NDArray
 
 from eccjump import closed_form
 from eccjump.boundary import alpha_intervals
-from eccjump.classification import jarm
+from eccjump.classification import Region, jarm
 
 if TYPE_CHECKING:
     from matplotlib.axes import Axes
@@ -660,5 +660,66 @@ def trajectory(
         rf"$\alpha = {math.degrees(result.alpha):g}°$, $\chi = {b.chi:g}$, $k_m = {b.km:g}$, "
         rf"$\mu_s = {mu}$ ({result.rule} rule) — {result.message}",
         fontsize=11,
+    )
+    return fig
+
+
+# --------------------------------------------------------------------------------------------
+# A computed region map (eccjump.region / eccjump map)
+# --------------------------------------------------------------------------------------------
+
+
+def region_map(region: Region, *, panels: int = 4) -> Figure:
+    """A computed :class:`~eccjump.Region` in the (chi, alpha) plane, JARM points coloured by
+    their turn n (turns past 5 share one colour). The first panel projects over k_m (the
+    smallest n of any k_m on the grid); the others are the ``panels - 1`` k_m slices with the
+    most JARM points."""
+    plt = _plt()
+    from matplotlib.colors import ListedColormap
+    from matplotlib.patches import Patch
+
+    last = len(TURN_COLORS) + 1  # category for n > len(TURN_COLORS)
+    colors = [*TURN_COLORS, "#7f7f7f"]
+    res = region.result
+    is_jarm = np.asarray(res.is_jarm)
+    cat = np.where(is_jarm, np.minimum(np.asarray(res.n, dtype=float), last), np.nan)
+    cmap = ListedColormap(colors)
+    counts = is_jarm.sum(axis=(0, 1))
+    best = np.argsort(-counts, kind="stable")[: max(panels - 1, 0)]
+    best = np.sort(best[counts[best] > 0])
+    with np.errstate(all="ignore"):
+        projected = np.nanmin(np.where(is_jarm, cat, np.inf), axis=2)
+    projected[~np.isfinite(projected)] = np.nan
+    views = [("any $k_m$ on the grid", projected)]
+    views += [(rf"$k_m = {region.km_frac[j]:.3g}\,(1-\chi)$", cat[:, :, j]) for j in best]
+    fig, axes = plt.subplots(
+        1,
+        len(views),
+        figsize=(3.3 * len(views) + 1.6, 3.7),
+        layout="constrained",
+        sharey=True,
+        squeeze=False,
+    )
+    a_deg = np.degrees(region.alpha)
+    for ax, (title, img) in zip(axes[0], views, strict=True):
+        ax.pcolormesh(
+            region.chi, a_deg, img, cmap=cmap, vmin=0.5, vmax=last + 0.5, shading="nearest"
+        )
+        ax.set_title(title, fontsize=10)
+        ax.set_xlabel(r"$\chi = d/R$")
+        ax.set_xlim(region.chi[0], region.chi[-1])
+        ax.set_ylim(a_deg[0], a_deg[-1])
+        ax.grid(alpha=0.3)
+    axes[0, 0].set_ylabel(r"ramp angle $\alpha$ [deg]")
+    present = {int(k) for k in np.unique(cat[np.isfinite(cat)])}
+    handles = [
+        Patch(color=colors[k - 1], label=f"$n = {k}$" if k < last else f"$n > {last - 1}$")
+        for k in sorted(present)
+    ]
+    if handles:
+        fig.legend(handles=handles, title="JARM on turn", loc="outside right upper", fontsize=9)
+    fig.suptitle(
+        f"JARM region, $\\mu_s = {region.mu_s:g}$, rule: {region.rule}, route: {region.method} "
+        f"({100.0 * region.fraction():.2f}% of {is_jarm.size} grid points)"
     )
     return fig

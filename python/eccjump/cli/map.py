@@ -68,6 +68,9 @@ def add_parser(sub: argparse._SubParsersAction) -> None:
         "--n", type=_count, default=None, help="turn of the jump (default: the first jump)"
     )
     p.add_argument("-o", "--output", required=True, help="output file: .nc, .zarr or .npz")
+    p.add_argument(
+        "--figure", default=None, help="also draw the map to this image (needs eccjump[plot])"
+    )
     g = p.add_argument_group("grid (end points included)")
     g.add_argument("--grid", type=_count, default=50, help="points per axis (default 50)")
     g.add_argument("--n-alpha", type=_count, help="points along alpha (default --grid)")
@@ -361,4 +364,15 @@ def _run(args: argparse.Namespace) -> int:
             file=sys.stderr,
         )
         return 130
+    if args.figure:
+        _draw(path, args.figure)
     return 0
+
+
+def _draw(path: str, figure: str) -> None:
+    """Draw the finished map file (read back, so the figure shows what was written)."""
+    from eccjump import plot, store
+
+    fig = plot.region_map(store.load(path))
+    fig.savefig(figure, dpi=110)
+    print(f"figure: {figure}")
