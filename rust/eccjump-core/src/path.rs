@@ -26,7 +26,7 @@
 
 use crate::rolling::Rolling;
 use crate::roots::brent;
-use std::f64::consts::TAU;
+use std::f64::consts::{FRAC_PI_2, TAU};
 
 /// Samples per turn of the scanning grid.
 pub const SAMPLES_PER_TURN: f64 = 24.0;
@@ -447,6 +447,84 @@ impl RollingPath {
         self.scan_from(self.theta0, theta_end, watch)
     }
 
+    /// The paper's lift-off after θ_start: as `scan_from(θ_start, θ_end, w)` with `w` watching
+    /// only lift-off and energy (no extrema refinement, grid coarseness `coarseness`), but the
+    /// scan visits only the parts of each turn where L = χθ̇² cos θ − cos α can reach 0.
+    /// Where E > 0 is guaranteed (E ≥ K0 + (θ − θ0) sin α + χ(cos(α + θ0) − 1) > 0 from θ_start
+    /// on) and cos α > 0, L < 0 wherever cos θ < c_min = cos α (Ĩ_C + 1)/(2χ E_ub), with
+    /// E_ub = K0 + (θ − θ0) sin α + χ(cos(α + θ0) + 1) at the window's end (Ĩ_P ≥ Ĩ_C + 1 where
+    /// cos θ ≥ 0): so only |θ − 2πm| ≤ acos c_min is scanned, whole turns are skipped while
+    /// c_min ≥ 1. Elsewhere (no such guarantee) it is the plain scan. The extrema reported
+    /// are those of the last window scanned.
+    pub fn scan_liftoff_from(&self, theta_start: f64, theta_end: f64, coarseness: u8) -> PathScan {
+        let watch = Watch {
+            normal_force: false,
+            friction: false,
+            liftoff: true,
+            energy: true,
+            refine_extrema: false,
+            coarseness,
+        };
+        let chi = self.chi;
+        let e_low = self.k0 + (theta_start - self.theta0) * self.sin_a + chi * (self.ca0 - 1.0);
+        let guaranteed = self.cos_a > 0.0 && self.sin_a > 0.0 && chi > 0.0 && e_low > 0.0;
+        if !guaranteed || theta_end <= theta_start || theta_end.is_nan() {
+            return self.scan_from(theta_start, theta_end, watch);
+        }
+        // L < 0 on window m while 2χ E_ub(2πm + π/2) ≤ cos α (Ĩ_C + 1) (with a margin).
+        let need = self.cos_a * (self.ic + 1.0) / (2.0 * chi) * (1.0 - 1e-9);
+        let e_ub =
+            |theta: f64| self.k0 + (theta - self.theta0) * self.sin_a + chi * (self.ca0 + 1.0);
+        // First window that can hold L ≥ 0: θ_hi = 2πm + π/2 with E_ub(θ_hi) > need.
+        let theta_need = self.theta0 + (need - e_ub(self.theta0)) / self.sin_a;
+        let m_start = ((theta_start + FRAC_PI_2) / TAU).floor();
+        let m_need = ((theta_need - FRAC_PI_2) / TAU).floor();
+        let mut m = m_start.max(m_need);
+        let mut last: Option<PathScan> = None;
+        loop {
+            let centre = TAU * m;
+            if centre - FRAC_PI_2 >= theta_end {
+                break;
+            }
+            let c_min = need / e_ub(centre + FRAC_PI_2);
+            if c_min < 1.0 {
+                let beta = c_min.acos();
+                let (lo, hi) = (
+                    (centre - beta).max(theta_start),
+                    (centre + beta).min(theta_end),
+                );
+                if lo < hi {
+                    let sc = self.scan_from(lo, hi, watch);
+                    if sc.event != PathEvent::End {
+                        if lo > theta_start && sc.at.theta <= lo {
+                            // An event at a window start contradicts the bound (rounding):
+                            // fall back to the plain scan.
+                            return self.scan_from(theta_start, theta_end, watch);
+                        }
+                        return sc;
+                    }
+                    last = Some(sc);
+                }
+            }
+            m += 1.0;
+        }
+        match last {
+            Some(sc) => sc,
+            None => {
+                let p = self.eval(theta_end);
+                PathScan {
+                    event: PathEvent::End,
+                    at: p,
+                    max_ratio: p.ratio(),
+                    theta_max_ratio: p.theta,
+                    min_fy: p.fy,
+                    theta_min_fy: p.theta,
+                    evaluations: 1,
+                }
+            }
+        }
+    }
+
     /// As [`Self::scan`], but starting at θ_start ≥ θ0 on the same path (e.g. to continue
     /// past an event); the extrema are then over [θ_start, θ_event].
     pub fn scan_from(&self, theta_start: f64, theta_end: f64, watch: Watch) -> PathScan {
@@ -775,6 +853,47 @@ mod tests {
             assert!(worst < 1e-15, "{worst}");
             println!("h = {h}: worst {worst:e}");
         }
+    }
+
+    #[test]
+    fn liftoff_scan_by_windows_agrees_with_plain_scan() {
+        let w = Watch {
+            normal_force: false,
+            friction: false,
+            liftoff: true,
+            energy: true,
+            refine_extrema: false,
+            coarseness: 1,
+        };
+        let mut found = 0;
+        for &(chi, km, a) in &[
+            (0.15, 0.02, 40.0),
+            (0.5, 0.4, 30.0),
+            (0.9, 0.05, 2.0),
+            (0.05, 0.3, 0.9),
+            (0.99, 0.0, 30.0),
+            (0.3, 0.1, 89.0),
+        ] {
+            let r = ramp(chi, km, a);
+            for &(th0, w0) in &[(0.0, 0.0), (1.0, 0.3), (-2.0, 1.5)] {
+                let p = RollingPath::new(&r, th0, w0, 1.0);
+                for i in 0..12 {
+                    let start = th0 + 0.7 * i as f64;
+                    let end = th0 + 400.0;
+                    let (a1, a2) = (
+                        p.scan_from(start, end, w),
+                        p.scan_liftoff_from(start, end, 1),
+                    );
+                    assert_eq!(a1.event, a2.event, "{chi} {km} {a} {th0} {start}");
+                    if a1.event == PathEvent::Liftoff {
+                        found += 1;
+                        let (t1, t2) = (a1.at.theta, a2.at.theta);
+                        assert!((t1 - t2).abs() <= 1e-13 * t1.abs().max(1.0), "{t1} {t2}");
+                    }
+                }
+            }
+        }
+        assert!(found > 100, "{found}");
     }
 
     /// The paper's FxL2 and FyL2, typed exactly as printed (g = M = 1).
