@@ -325,18 +325,8 @@ pub fn classify(alpha: f64, chi: f64, km: f64, mu_s: f64, o: &JarmOptions) -> Ja
         (Rule::Paper, PathEvent::Slip) => {
             // Continue along rolling to the paper's lift-off point: if it is in a green
             // window and ineq2 fails there, the jump-point test alone rejects the point.
-            let lift = path.scan_from(
-                th,
-                theta_end.max(th),
-                Watch {
-                    normal_force: false,
-                    friction: false,
-                    liftoff: true,
-                    energy: true,
-                    refine_extrema: false,
-                    coarseness: 3,
-                },
-            );
+            // Only the parts of each turn where L can reach 0 are scanned.
+            let lift = path.scan_liftoff_from(th, theta_end.max(th), 3);
             let tl = lift.at.theta;
             if lift.event == PathEvent::Liftoff
                 && green_turn(alpha, tl).is_some()

@@ -26,7 +26,7 @@
 
 use crate::rolling::Rolling;
 use crate::roots::brent;
-use std::f64::consts::TAU;
+use std::f64::consts::{FRAC_PI_2, TAU};
 
 /// Samples per turn of the scanning grid.
 pub const SAMPLES_PER_TURN: f64 = 24.0;
@@ -38,6 +38,10 @@ pub const G_MMINUS: usize = 2;
 pub const G_NOLIFT: usize = 3;
 pub const G_ENERGY: usize = 4;
 const NG: usize = 5;
+
+/// Uniform scan steps between direct `sin_cos` evaluations (the others rotate the previous
+/// half-angle sin/cos: a few ulp of error, re-anchored every ROTATIONS + 1 samples).
+const ROTATIONS: u32 = 3;
 
 /// Everything along the rolling path at one θ.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -178,6 +182,32 @@ fn violated(k: usize, g: f64) -> bool {
     }
 }
 
+/// (sin(h/2), 1 − cos(h/2)) for the rotation of half-angles by h/2 in the increment form
+/// s' = s + (c sin − s (1 − cos)), c' = c − (s sin + c (1 − cos)): ~½ ulp per step.
+#[inline]
+fn rotation(h: f64) -> (f64, f64) {
+    let (s4, c4) = (0.25 * h).sin_cos();
+    (2.0 * s4 * c4, 2.0 * s4 * s4)
+}
+
+/// True if g_k certainly stays unviolated on the cell [a, b] by the tests of
+/// `first_violation` (not violated at b, and no interior minimum, or one whose cubic-Hermite
+/// estimate is clearly positive: > 10 % of the smaller end value).
+#[inline(always)]
+fn clear(k: usize, a: &PathPoint, b: &PathPoint) -> bool {
+    let (ga, da, gb, db) = (a.g[k], a.dg[k], b.g[k], b.dg[k]);
+    if violated(k, gb) {
+        return false;
+    }
+    if da < 0.0 && db > 0.0 {
+        let h = b.theta - a.theta;
+        let (_, est) = hermite_min(ga, h * da, gb, h * db);
+        est > 0.1 * ga.min(gb)
+    } else {
+        true
+    }
+}
+
 /// The minimum on t ∈ [0, 1] of the cubic Hermite interpolant with values g0, g1 and scaled
 /// slopes m0 = h g0' < 0 < m1 = h g1'.
 #[inline]
@@ -256,9 +286,15 @@ impl RollingPath {
     /// All path quantities at θ: one `sin_cos`, no allocation.
     #[inline]
     pub fn eval(&self, theta: f64) -> PathPoint {
+        let (su, cu) = (0.5 * (theta - self.theta0)).sin_cos();
+        self.eval_half(theta, su, cu)
+    }
+
+    /// [`Self::eval`] given (su, cu) = sin_cos((θ − θ0)/2).
+    #[inline]
+    fn eval_half(&self, theta: f64, su: f64, cu: f64) -> PathPoint {
         let chi = self.chi;
         let d = theta - self.theta0;
-        let (su, cu) = (0.5 * d).sin_cos();
         let sd = 2.0 * su * cu;
         let cd = (cu - su) * (cu + su);
         let s = self.s0 * cd + self.c0 * sd;
@@ -411,6 +447,84 @@ impl RollingPath {
         self.scan_from(self.theta0, theta_end, watch)
     }
 
+    /// The paper's lift-off after θ_start: as `scan_from(θ_start, θ_end, w)` with `w` watching
+    /// only lift-off and energy (no extrema refinement, grid coarseness `coarseness`), but the
+    /// scan visits only the parts of each turn where L = χθ̇² cos θ − cos α can reach 0.
+    /// Where E > 0 is guaranteed (E ≥ K0 + (θ − θ0) sin α + χ(cos(α + θ0) − 1) > 0 from θ_start
+    /// on) and cos α > 0, L < 0 wherever cos θ < c_min = cos α (Ĩ_C + 1)/(2χ E_ub), with
+    /// E_ub = K0 + (θ − θ0) sin α + χ(cos(α + θ0) + 1) at the window's end (Ĩ_P ≥ Ĩ_C + 1 where
+    /// cos θ ≥ 0): so only |θ − 2πm| ≤ acos c_min is scanned, whole turns are skipped while
+    /// c_min ≥ 1. Elsewhere (no such guarantee) it is the plain scan. The extrema reported
+    /// are those of the last window scanned.
+    pub fn scan_liftoff_from(&self, theta_start: f64, theta_end: f64, coarseness: u8) -> PathScan {
+        let watch = Watch {
+            normal_force: false,
+            friction: false,
+            liftoff: true,
+            energy: true,
+            refine_extrema: false,
+            coarseness,
+        };
+        let chi = self.chi;
+        let e_low = self.k0 + (theta_start - self.theta0) * self.sin_a + chi * (self.ca0 - 1.0);
+        let guaranteed = self.cos_a > 0.0 && self.sin_a > 0.0 && chi > 0.0 && e_low > 0.0;
+        if !guaranteed || theta_end <= theta_start || theta_end.is_nan() {
+            return self.scan_from(theta_start, theta_end, watch);
+        }
+        // L < 0 on window m while 2χ E_ub(2πm + π/2) ≤ cos α (Ĩ_C + 1) (with a margin).
+        let need = self.cos_a * (self.ic + 1.0) / (2.0 * chi) * (1.0 - 1e-9);
+        let e_ub =
+            |theta: f64| self.k0 + (theta - self.theta0) * self.sin_a + chi * (self.ca0 + 1.0);
+        // First window that can hold L ≥ 0: θ_hi = 2πm + π/2 with E_ub(θ_hi) > need.
+        let theta_need = self.theta0 + (need - e_ub(self.theta0)) / self.sin_a;
+        let m_start = ((theta_start + FRAC_PI_2) / TAU).floor();
+        let m_need = ((theta_need - FRAC_PI_2) / TAU).floor();
+        let mut m = m_start.max(m_need);
+        let mut last: Option<PathScan> = None;
+        loop {
+            let centre = TAU * m;
+            if centre - FRAC_PI_2 >= theta_end {
+                break;
+            }
+            let c_min = need / e_ub(centre + FRAC_PI_2);
+            if c_min < 1.0 {
+                let beta = c_min.acos();
+                let (lo, hi) = (
+                    (centre - beta).max(theta_start),
+                    (centre + beta).min(theta_end),
+                );
+                if lo < hi {
+                    let sc = self.scan_from(lo, hi, watch);
+                    if sc.event != PathEvent::End {
+                        if lo > theta_start && sc.at.theta <= lo {
+                            // An event at a window start contradicts the bound (rounding):
+                            // fall back to the plain scan.
+                            return self.scan_from(theta_start, theta_end, watch);
+                        }
+                        return sc;
+                    }
+                    last = Some(sc);
+                }
+            }
+            m += 1.0;
+        }
+        match last {
+            Some(sc) => sc,
+            None => {
+                let p = self.eval(theta_end);
+                PathScan {
+                    event: PathEvent::End,
+                    at: p,
+                    max_ratio: p.ratio(),
+                    theta_max_ratio: p.theta,
+                    min_fy: p.fy,
+                    theta_min_fy: p.theta,
+                    evaluations: 1,
+                }
+            }
+        }
+    }
+
     /// As [`Self::scan`], but starting at θ_start ≥ θ0 on the same path (e.g. to continue
     /// past an event); the extrema are then over [θ_start, θ_event].
     pub fn scan_from(&self, theta_start: f64, theta_end: f64, watch: Watch) -> PathScan {
@@ -437,47 +551,111 @@ impl RollingPath {
                 return self.finish(event_of(k), p0, min_fy, max_r, evals, watch.refine_extrema);
             }
         }
-        let mut pa = p0;
+        let act = [
+            watch.active(0),
+            watch.active(1),
+            watch.active(2),
+            watch.active(3),
+            watch.active(4),
+        ];
+        // Two slots for the cell ends, used alternately (no copy of the points).
+        let mut pts = [p0, p0];
+        let mut ia = 0usize;
+        // Half-angle sin/cos of the current sample, advanced by rotation on uniform steps.
+        let (mut su, mut cu) = (0.5 * (theta_start - self.theta0)).sin_cos();
+        // Only on the rigorous grid (coarse auxiliary scans take direct sin_cos).
+        let h_uni = if watch.coarseness <= 1 {
+            TAU / SAMPLES_PER_TURN
+        } else {
+            f64::NAN
+        };
+        let (sh, vh) = rotation(h_uni);
+        let mut rotated = 0u32;
         // A generous cap on cells (the floor step keeps progress finite anyway).
         let max_cells = ((theta_end - theta_start) / (TAU / SAMPLES_PER_TURN) * 64.0 + 1e5) as u64;
         let mut cells = 0u64;
         loop {
             cells += 1;
-            let h = self.step(&pa) * watch.coarseness.max(1) as f64;
-            let tb = (pa.theta + h).min(theta_end);
-            let pb = self.eval(tb);
+            let ib = ia ^ 1;
+            let ta = pts[ia].theta;
+            let h = self.step(&pts[ia]) * watch.coarseness.max(1) as f64;
+            let tb = (ta + h).min(theta_end);
+            // Rotation by h/2 where the step is the uniform one, re-anchored on a direct
+            // sin_cos every ROTATIONS + 1 samples (error a few ulp).
+            if h == h_uni && tb == ta + h && rotated < ROTATIONS {
+                (su, cu) = (su + (cu * sh - su * vh), cu - (su * sh + cu * vh));
+                rotated += 1;
+            } else {
+                (su, cu) = (0.5 * (tb - self.theta0)).sin_cos();
+                rotated = 0;
+            }
+            pts[ib] = self.eval_half(tb, su, cu);
             evals += 1;
-            let mut best: Option<(f64, usize)> = None;
-            for &k in &order {
-                if !watch.active(k) {
-                    continue;
-                }
-                if let Some(x) = self.first_violation(k, &pa, &pb, &mut evals) {
-                    // Near-ties go to the earlier constraint in `order` (at Ĩ_CM = 0 the
-                    // margins vanish with F_y: that is a loss of normal force).
-                    if best.is_none_or(|(bx, _)| x < bx - 1e-12 * (1.0 + bx.abs())) {
-                        best = Some((x, k));
+            let (pa, pb) = (&pts[ia], &pts[ib]);
+            // Cheap filter: a constraint needs a closer look only if it is violated at the
+            // cell end or has an interior minimum (g' from − to +) whose cubic-Hermite
+            // estimate is not clearly positive (exactly the cases `first_violation` handles
+            // with more than this test).
+            let mut look = false;
+            for (k, &on) in act.iter().enumerate() {
+                look |= on && !clear(k, pa, pb);
+            }
+            if look {
+                let mut best: Option<(f64, usize)> = None;
+                for &k in &order {
+                    if !act[k] || clear(k, pa, pb) {
+                        continue;
+                    }
+                    let x = match best {
+                        None => self.first_violation(k, pa, pb, &mut evals),
+                        Some((bx, _)) => {
+                            // Only a violation before bx − tie tolerance can win: look on
+                            // [θa, t] (same one-sign-change assumption, usually 1 evaluation
+                            // instead of a root search).
+                            let t = bx - 1e-12 * (1.0 + bx.abs());
+                            if t <= pa.theta {
+                                None
+                            } else {
+                                let pt = self.eval(t);
+                                evals += 1;
+                                self.first_violation(k, pa, &pt, &mut evals)
+                            }
+                        }
+                    };
+                    if let Some(x) = x {
+                        // Near-ties go to the earlier constraint in `order` (at Ĩ_CM = 0 the
+                        // margins vanish with F_y: that is a loss of normal force).
+                        if best.is_none_or(|(bx, _)| x < bx - 1e-12 * (1.0 + bx.abs())) {
+                            best = Some((x, k));
+                        }
                     }
                 }
+                if let Some((x, k)) = best {
+                    let px = self.eval(x);
+                    evals += 1;
+                    track(pa, &px, &mut min_fy, &mut max_r);
+                    return self.finish(
+                        event_of(k),
+                        px,
+                        min_fy,
+                        max_r,
+                        evals,
+                        watch.refine_extrema,
+                    );
+                }
             }
-            if let Some((x, k)) = best {
-                let px = self.eval(x);
-                evals += 1;
-                track(&pa, &px, &mut min_fy, &mut max_r);
-                return self.finish(event_of(k), px, min_fy, max_r, evals, watch.refine_extrema);
-            }
-            track(&pa, &pb, &mut min_fy, &mut max_r);
+            track(pa, pb, &mut min_fy, &mut max_r);
             if tb >= theta_end || cells > max_cells {
                 return self.finish(
                     PathEvent::End,
-                    pb,
+                    *pb,
                     min_fy,
                     max_r,
                     evals,
                     watch.refine_extrema,
                 );
             }
-            pa = pb;
+            ia = ib;
         }
     }
 
@@ -650,6 +828,72 @@ mod tests {
                 }
             }
         }
+    }
+
+    #[test]
+    fn rotated_half_angles_stay_within_1e_15() {
+        // The scan advances sin/cos of (θ − θ0)/2 by ROTATIONS rotations between direct
+        // evaluations; check the worst error against sin_cos over many starts (in θ ∈ [−8, 8]
+        // so that the rounding of θ itself stays below 5e-16).
+        {
+            let h = TAU / SAMPLES_PER_TURN;
+            let (sh, vh) = rotation(h);
+            let mut worst = 0.0f64;
+            for i in 0..20_000 {
+                let t0 = 8e-4 * i as f64 - 8.0;
+                let (mut su, mut cu) = (0.5 * t0).sin_cos();
+                let mut t = t0;
+                for _ in 0..ROTATIONS {
+                    (su, cu) = (su + (cu * sh - su * vh), cu - (su * sh + cu * vh));
+                    t += h;
+                    let (s, c) = (0.5 * t).sin_cos();
+                    worst = worst.max((su - s).abs()).max((cu - c).abs());
+                }
+            }
+            assert!(worst < 1e-15, "{worst}");
+            println!("h = {h}: worst {worst:e}");
+        }
+    }
+
+    #[test]
+    fn liftoff_scan_by_windows_agrees_with_plain_scan() {
+        let w = Watch {
+            normal_force: false,
+            friction: false,
+            liftoff: true,
+            energy: true,
+            refine_extrema: false,
+            coarseness: 1,
+        };
+        let mut found = 0;
+        for &(chi, km, a) in &[
+            (0.15, 0.02, 40.0),
+            (0.5, 0.4, 30.0),
+            (0.9, 0.05, 2.0),
+            (0.05, 0.3, 0.9),
+            (0.99, 0.0, 30.0),
+            (0.3, 0.1, 89.0),
+        ] {
+            let r = ramp(chi, km, a);
+            for &(th0, w0) in &[(0.0, 0.0), (1.0, 0.3), (-2.0, 1.5)] {
+                let p = RollingPath::new(&r, th0, w0, 1.0);
+                for i in 0..12 {
+                    let start = th0 + 0.7 * i as f64;
+                    let end = th0 + 400.0;
+                    let (a1, a2) = (
+                        p.scan_from(start, end, w),
+                        p.scan_liftoff_from(start, end, 1),
+                    );
+                    assert_eq!(a1.event, a2.event, "{chi} {km} {a} {th0} {start}");
+                    if a1.event == PathEvent::Liftoff {
+                        found += 1;
+                        let (t1, t2) = (a1.at.theta, a2.at.theta);
+                        assert!((t1 - t2).abs() <= 1e-13 * t1.abs().max(1.0), "{t1} {t2}");
+                    }
+                }
+            }
+        }
+        assert!(found > 100, "{found}");
     }
 
     /// The paper's FxL2 and FyL2, typed exactly as printed (g = M = 1).

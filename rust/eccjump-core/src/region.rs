@@ -150,6 +150,100 @@ mod tests {
         assert!(classify_points(&pa, &pc, &pk[1..], &[1.0], m, &o, 1, &mut out).is_err());
     }
 
+    /// Every 5th point of each axis of the timing grid (8000 points) on one thread: a small,
+    /// representative workload for instruction counts (`perf stat`, `valgrind --tool=callgrind`).
+    #[test]
+    #[ignore]
+    fn timing_sample() {
+        let (a, c, f) = grid(100);
+        let pick = |v: Vec<f64>| v.into_iter().skip(2).step_by(5).collect::<Vec<_>>();
+        let (a, c, f) = (pick(a), pick(c), pick(f));
+        let o = JarmOptions {
+            refine_extrema: false,
+            ..Default::default()
+        };
+        let mut out = vec![JarmResult::new(Reason::NoRoot); a.len() * c.len() * f.len()];
+        let t = std::time::Instant::now();
+        for _ in 0..5 {
+            classify_grid(&a, &c, &f, 1.0, Method::ClosedForm, &o, 1, &mut out).unwrap();
+        }
+        let dt = t.elapsed().as_secs_f64() / 5.0;
+        let jarm = out.iter().filter(|r| r.is_jarm).count();
+        println!(
+            "{} points: {:.2} us/point (1 thread), {jarm} JARM",
+            out.len(),
+            dt * 1e6 / out.len() as f64
+        );
+    }
+
+    /// Snapshot of the 100³ timing grid (reason, n, θ_J, θ_event, max ratio, min F_y per
+    /// point), to check that an optimisation leaves every result unchanged. With
+    /// `ECCJUMP_SNAPSHOT=path` it writes the file if absent, else compares against it:
+    /// `cargo test --release -p eccjump-core region::tests::snapshot -- --ignored --nocapture`.
+    #[test]
+    #[ignore]
+    fn snapshot() {
+        let Ok(path) = std::env::var("ECCJUMP_SNAPSHOT") else {
+            return;
+        };
+        let (a, c, f) = grid(100);
+        let o = JarmOptions {
+            refine_extrema: false,
+            ..Default::default()
+        };
+        let mut out = vec![JarmResult::new(Reason::NoRoot); 1_000_000];
+        classify_grid(&a, &c, &f, 1.0, Method::ClosedForm, &o, 2, &mut out).unwrap();
+        let mut bytes = Vec::with_capacity(out.len() * 37);
+        for r in &out {
+            bytes.push(r.reason as u8);
+            bytes.extend_from_slice(&r.n.to_le_bytes());
+            for x in [r.theta_j, r.theta_event, r.max_ratio, r.min_fy] {
+                bytes.extend_from_slice(&x.to_le_bytes());
+            }
+        }
+        let Ok(old) = std::fs::read(&path) else {
+            std::fs::write(&path, &bytes).unwrap();
+            println!("wrote {path}");
+            return;
+        };
+        assert_eq!(old.len(), bytes.len());
+        // θ_J: relative difference; θ_event and the extrema (cell estimates, which may sit at
+        // F_y ≈ 0, where the ratio flips between finite and ∞): relative to max(1, |x|, |y|).
+        let diff = |i: usize, x: f64, y: f64| {
+            if x == y || (x.is_nan() && y.is_nan()) {
+                0.0
+            } else {
+                let floor = if i == 0 { 1e-300 } else { 1.0 };
+                (x - y).abs() / x.abs().max(y.abs()).max(floor)
+            }
+        };
+        let (mut worst, mut at, mut differ) = ([0.0f64; 4], [0usize; 4], [0usize; 4]);
+        for (k, (o, n)) in old.chunks(37).zip(bytes.chunks(37)).enumerate() {
+            assert_eq!(o[..5], n[..5], "point {k}: reason/n differ");
+            for i in 0..4 {
+                let g = |b: &[u8]| f64::from_le_bytes(b[5 + 8 * i..13 + 8 * i].try_into().unwrap());
+                let d = diff(i, g(o), g(n));
+                if d != 0.0 {
+                    differ[i] += 1;
+                }
+                // Finite against ∞ (or NaN) counts as a difference of 1.
+                let d = if d.is_nan() { 1.0 } else { d.min(1.0) };
+                if d > worst[i] {
+                    worst[i] = d;
+                    at[i] = k;
+                }
+            }
+        }
+        println!(
+            "same reason and n at all points; fields theta_j, theta_event, max_ratio, min_fy:"
+        );
+        println!("  points differing: {differ:?}");
+        println!(
+            "  worst difference (θ_J relative, others relative to max(1, |x|)): {worst:?} at {at:?}"
+        );
+        assert!(worst[0] < 1e-12 && worst[1] < 1e-12, "{worst:?}");
+    }
+
     /// The performance target: run with
     /// `cargo test --release -p eccjump-core region::tests::timing -- --ignored --nocapture`.
     #[test]
