@@ -7,15 +7,10 @@ import math
 import time
 from pathlib import Path
 
+from eccjump.cli._args import int_at_least
+
 #: Figure names, in the order they are written.
 FIGURES = ("fig3b", "fig4a", "fig4b", "fig4_slices", "trajectory")
-
-
-def _positive_int(text: str) -> int:
-    value = int(text)
-    if value < 2:
-        raise argparse.ArgumentTypeError(f"{value!r} is outside the allowed range [2, inf)")
-    return value
 
 
 def add_parser(sub: argparse._SubParsersAction) -> None:
@@ -30,19 +25,19 @@ def add_parser(sub: argparse._SubParsersAction) -> None:
     p.add_argument("--dpi", type=int, default=110, help="resolution of the PNG files")
     p.add_argument(
         "--resolution",
-        type=_positive_int,
+        type=int_at_least(2),
         default=36,
         help="(chi, k_m) mesh points per axis of the 3-D regions (default 36)",
     )
     p.add_argument(
         "--slice-resolution",
-        type=_positive_int,
+        type=int_at_least(2),
         default=120,
         help="points along each 2-D slice (default 120)",
     )
     p.add_argument(
         "--n-scan",
-        type=_positive_int,
+        type=int_at_least(2),
         default=90,
         help="ramp angles scanned per body before the exact bisection (default 90)",
     )

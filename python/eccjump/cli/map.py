@@ -22,6 +22,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 from eccjump.classification import FIELDS, region
+from eccjump.cli._args import int_at_least
 
 #: Default points per chunk when --chunk is not given (a few seconds on a laptop core).
 POINTS_PER_CHUNK = 100_000
@@ -48,13 +49,6 @@ def _range(lo: float, hi: float, name: str, lo_ok: float, hi_ok: float) -> None:
         )
 
 
-def _count(text: str) -> int:
-    value = int(text)
-    if value < 1:
-        raise argparse.ArgumentTypeError(f"{value} is outside the allowed range [1, inf)")
-    return value
-
-
 def add_parser(sub: argparse._SubParsersAction) -> None:
     p = sub.add_parser(
         "map",
@@ -65,17 +59,17 @@ def add_parser(sub: argparse._SubParsersAction) -> None:
     )
     p.add_argument("--mu-s", type=float, required=True, help="static friction coefficient")
     p.add_argument(
-        "--n", type=_count, default=None, help="turn of the jump (default: the first jump)"
+        "--n", type=int_at_least(1), default=None, help="turn of the jump (default: the first jump)"
     )
     p.add_argument("-o", "--output", required=True, help="output file: .nc, .zarr or .npz")
     p.add_argument(
         "--figure", default=None, help="also draw the map to this image (needs eccjump[plot])"
     )
     g = p.add_argument_group("grid (end points included)")
-    g.add_argument("--grid", type=_count, default=50, help="points per axis (default 50)")
-    g.add_argument("--n-alpha", type=_count, help="points along alpha (default --grid)")
-    g.add_argument("--n-chi", type=_count, help="points along chi (default --grid)")
-    g.add_argument("--n-km", type=_count, help="points along km_frac (default --grid)")
+    g.add_argument("--grid", type=int_at_least(1), default=50, help="points per axis (default 50)")
+    g.add_argument("--n-alpha", type=int_at_least(1), help="points along alpha (default --grid)")
+    g.add_argument("--n-chi", type=int_at_least(1), help="points along chi (default --grid)")
+    g.add_argument("--n-km", type=int_at_least(1), help="points along km_frac (default --grid)")
     g.add_argument("--alpha-min", type=float, default=0.0, help="[deg] (default 0)")
     g.add_argument("--alpha-max", type=float, default=90.0, help="[deg] (default 90)")
     g.add_argument("--chi-min", type=float, default=0.0, help="(default 0)")
@@ -98,12 +92,12 @@ def add_parser(sub: argparse._SubParsersAction) -> None:
     )
     m.add_argument("--rtol", type=float, default=1e-10, help="integrator rtol (--route ode)")
     m.add_argument("--atol", type=float, default=1e-12, help="integrator atol (--route ode)")
-    m.add_argument("--max-turns", type=_count, default=10_000, help="cap of the search")
+    m.add_argument("--max-turns", type=int_at_least(1), default=10_000, help="cap of the search")
     r = p.add_argument_group("run")
     r.add_argument("--threads", type=int, default=0, help="threads (0 = one per core)")
     r.add_argument(
         "--chunk",
-        type=_count,
+        type=int_at_least(1),
         default=None,
         help=f"alpha slices per chunk (default: about {POINTS_PER_CHUNK} points)",
     )

@@ -7,15 +7,8 @@ import json
 import math
 
 from eccjump.body import Cylinder
+from eccjump.cli._args import degrees_in
 from eccjump.rolling import RollResult, roll
-
-
-def _ramp_degrees(text: str) -> float:
-    """An --alpha value: degrees in [0, 90] (checked here, so the message speaks degrees)."""
-    value = float(text)
-    if not (0.0 <= value <= 90.0):
-        raise argparse.ArgumentTypeError(f"{value!r} is outside the allowed range [0, 90] deg")
-    return value
 
 
 def _add_body_args(p: argparse.ArgumentParser) -> None:
@@ -31,7 +24,7 @@ def add_parser(sub: argparse._SubParsersAction) -> None:
         "event ends it; print what happened.",
     )
     p.add_argument(
-        "--alpha", type=_ramp_degrees, required=True, help="ramp angle [deg], in [0, 90]"
+        "--alpha", type=degrees_in(0.0, 90.0), required=True, help="ramp angle [deg], in [0, 90]"
     )
     _add_body_args(p)
     p.add_argument("--mu-s", type=float, default=None, help="static friction coefficient")

@@ -1,0 +1,35 @@
+"""Argument types shared by the subcommands: each checks its range and says it in the units
+of the command line."""
+
+from __future__ import annotations
+
+import argparse
+from collections.abc import Callable
+
+
+def int_at_least(lo: int) -> Callable[[str], int]:
+    """An integer option >= lo."""
+
+    def parse(text: str) -> int:
+        value = int(text)
+        if value < lo:
+            raise argparse.ArgumentTypeError(f"{value!r} is outside the allowed range [{lo}, inf)")
+        return value
+
+    parse.__name__ = f"integer >= {lo}"
+    return parse
+
+
+def degrees_in(lo: float, hi: float) -> Callable[[str], float]:
+    """An angle option in degrees, within [lo, hi]."""
+
+    def parse(text: str) -> float:
+        value = float(text)
+        if not (lo <= value <= hi):
+            raise argparse.ArgumentTypeError(
+                f"{value!r} is outside the allowed range [{lo:g}, {hi:g}] deg"
+            )
+        return value
+
+    parse.__name__ = "degrees"
+    return parse
