@@ -168,13 +168,21 @@ impl JarmResult {
         }
     }
 
-    fn with_scan(reason: Reason, s: &PathScan) -> Self {
+    /// A result carrying the path extrema: the largest |F_x|/F_y and the smallest F_y, with
+    /// the angles where they occur (shared by both routes).
+    pub(crate) fn with_extrema(reason: Reason, max_ratio: (f64, f64), min_fy: (f64, f64)) -> Self {
         let mut r = Self::new(reason);
-        r.max_ratio = s.max_ratio;
-        r.theta_max_ratio = s.theta_max_ratio;
-        r.min_fy = s.min_fy;
-        r.theta_min_fy = s.theta_min_fy;
+        (r.max_ratio, r.theta_max_ratio) = max_ratio;
+        (r.min_fy, r.theta_min_fy) = min_fy;
         r
+    }
+
+    fn with_scan(reason: Reason, s: &PathScan) -> Self {
+        Self::with_extrema(
+            reason,
+            (s.max_ratio, s.theta_max_ratio),
+            (s.min_fy, s.theta_min_fy),
+        )
     }
 }
 

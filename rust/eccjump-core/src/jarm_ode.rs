@@ -236,12 +236,11 @@ impl Extrema {
     }
 
     fn result(&self, reason: Reason) -> JarmResult {
-        let mut x = JarmResult::new(reason);
-        x.max_ratio = self.max_ratio;
-        x.theta_max_ratio = self.theta_max_ratio;
-        x.min_fy = self.min_fy;
-        x.theta_min_fy = self.theta_min_fy;
-        x
+        JarmResult::with_extrema(
+            reason,
+            (self.max_ratio, self.theta_max_ratio),
+            (self.min_fy, self.theta_min_fy),
+        )
     }
 }
 
