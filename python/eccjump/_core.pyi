@@ -25,37 +25,23 @@ def roll(
     dense_output: bool,
     rule: str,
 ) -> dict[str, Any]: ...
+
+#: (n, rule, method, rtol, atol, theta0, omega0, max_turns, refine_extrema, n_threads)
+CallOptions = tuple[int | None, str, str, float, float, float, float, int, bool, int]
+
 def jarm_points(
     alpha: NDArray[np.float64],
     chi: NDArray[np.float64],
     km: NDArray[np.float64],
     mu_s: NDArray[np.float64],
-    n: int | None,
-    rule: str,
-    method: str,
-    rtol: float,
-    atol: float,
-    theta0: float,
-    omega0: float,
-    max_turns: int,
-    refine_extrema: bool,
-    n_threads: int,
+    options: CallOptions,
 ) -> dict[str, NDArray[Any]]: ...
 def jarm_grid(
     alpha: NDArray[np.float64],
     chi: NDArray[np.float64],
     frac: NDArray[np.float64],
     mu_s: float,
-    n: int | None,
-    rule: str,
-    method: str,
-    rtol: float,
-    atol: float,
-    theta0: float,
-    omega0: float,
-    max_turns: int,
-    refine_extrema: bool,
-    n_threads: int,
+    options: CallOptions,
 ) -> dict[str, NDArray[Any]]: ...
 def reason_codes() -> list[tuple[int, str]]: ...
 def pointwise(

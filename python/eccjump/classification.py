@@ -166,7 +166,7 @@ def jarm(
     opts = _common(
         n, rule, method, rtol, atol, theta0, omega0, max_turns, refine_extrema, n_threads
     )
-    raw = _core.jarm_points(a, c, k, m, *opts)
+    raw = _core.jarm_points(a, c, k, m, opts)
     return JarmResult._from_raw(raw, shape)
 
 
@@ -336,7 +336,7 @@ def region(
         n, rule, method, rtol, atol, theta0, omega0, max_turns, refine_extrema, n_threads
     )
     if chunks is None:
-        raw = _core.jarm_grid(a, c, f, float(mu_s), *opts)
+        raw = _core.jarm_grid(a, c, f, float(mu_s), opts)
         res = JarmResult._from_raw(raw, (a.size, c.size, f.size))
     else:
         from eccjump.scale import lazy_records, lazy_result

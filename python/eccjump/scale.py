@@ -88,7 +88,7 @@ def grid_block(
     out = np.empty((a.size, c.size, f.size), dtype=RECORD)
     if out.size == 0:
         return out
-    raw = _core.jarm_grid(a, c, f, mu_s, *opts)
+    raw = _core.jarm_grid(a, c, f, mu_s, opts)
     for k in FIELDS:
         out[k] = raw[k].reshape(out.shape)
     return out

@@ -1,7 +1,7 @@
 //! JARM classification of points and grids: arrays in, one array per result field out.
 
 use crate::errors::to_py;
-use crate::options::{jarm_options, parse_method};
+use crate::options::CallOptions;
 use eccjump_core::jarm::{JarmResult, Reason};
 use eccjump_core::region::{classify_grid, classify_points};
 use numpy::{IntoPyArray, PyReadonlyArray1};
@@ -39,28 +39,15 @@ fn empty(len: usize) -> Vec<JarmResult> {
 
 /// Classifies equal-length 1-D arrays of points (μ_s may have length 1).
 #[pyfunction]
-#[pyo3(signature = (alpha, chi, km, mu_s, n, rule, method, rtol, atol, theta0, omega0,
-                    max_turns, refine_extrema, n_threads))]
-#[allow(clippy::too_many_arguments)]
 pub fn jarm_points<'py>(
     py: Python<'py>,
     alpha: PyReadonlyArray1<'py, f64>,
     chi: PyReadonlyArray1<'py, f64>,
     km: PyReadonlyArray1<'py, f64>,
     mu_s: PyReadonlyArray1<'py, f64>,
-    n: Option<u32>,
-    rule: &str,
-    method: &str,
-    rtol: f64,
-    atol: f64,
-    theta0: f64,
-    omega0: f64,
-    max_turns: u32,
-    refine_extrema: bool,
-    n_threads: usize,
+    options: CallOptions,
 ) -> PyResult<Bound<'py, PyDict>> {
-    let opts = jarm_options(rule, n, max_turns, theta0, omega0, refine_extrema)?;
-    let method = parse_method(method, rtol, atol)?;
+    let (opts, method, n_threads) = options.parse()?;
     let (a, c, k, m) = (
         alpha.as_slice()?,
         chi.as_slice()?,
@@ -75,28 +62,15 @@ pub fn jarm_points<'py>(
 
 /// Classifies the grid alpha × chi × frac (k_m = frac·(1 − χ)), flat in C order.
 #[pyfunction]
-#[pyo3(signature = (alpha, chi, frac, mu_s, n, rule, method, rtol, atol, theta0, omega0,
-                    max_turns, refine_extrema, n_threads))]
-#[allow(clippy::too_many_arguments)]
 pub fn jarm_grid<'py>(
     py: Python<'py>,
     alpha: PyReadonlyArray1<'py, f64>,
     chi: PyReadonlyArray1<'py, f64>,
     frac: PyReadonlyArray1<'py, f64>,
     mu_s: f64,
-    n: Option<u32>,
-    rule: &str,
-    method: &str,
-    rtol: f64,
-    atol: f64,
-    theta0: f64,
-    omega0: f64,
-    max_turns: u32,
-    refine_extrema: bool,
-    n_threads: usize,
+    options: CallOptions,
 ) -> PyResult<Bound<'py, PyDict>> {
-    let opts = jarm_options(rule, n, max_turns, theta0, omega0, refine_extrema)?;
-    let method = parse_method(method, rtol, atol)?;
+    let (opts, method, n_threads) = options.parse()?;
     let (a, c, f) = (alpha.as_slice()?, chi.as_slice()?, frac.as_slice()?);
     let mut out = empty(a.len() * c.len() * f.len());
     py.detach(|| classify_grid(a, c, f, mu_s, method, &opts, n_threads, &mut out))

@@ -4,7 +4,34 @@ use crate::rule::parse_rule;
 use eccjump_core::jarm::JarmOptions;
 use eccjump_core::region::Method;
 use pyo3::exceptions::PyValueError;
-use pyo3::PyResult;
+use pyo3::{FromPyObject, PyResult};
+
+/// The options of a classification call, passed from Python as one tuple
+/// `(n, rule, method, rtol, atol, theta0, omega0, max_turns, refine_extrema, n_threads)`
+/// (built and documented by `eccjump.classification`).
+#[derive(FromPyObject)]
+pub struct CallOptions(
+    Option<u32>,
+    String,
+    String,
+    f64,
+    f64,
+    f64,
+    f64,
+    u32,
+    bool,
+    usize,
+);
+
+impl CallOptions {
+    /// The validated classification options, route and thread count.
+    pub fn parse(&self) -> PyResult<(JarmOptions, Method, usize)> {
+        let CallOptions(n, rule, method, rtol, atol, theta0, omega0, max_turns, refine, threads) =
+            self;
+        let opts = jarm_options(rule, *n, *max_turns, *theta0, *omega0, *refine)?;
+        Ok((opts, parse_method(method, *rtol, *atol)?, *threads))
+    }
+}
 
 /// The route: "closed_form" or "ode" (with its tolerances).
 pub fn parse_method(method: &str, rtol: f64, atol: f64) -> PyResult<Method> {
