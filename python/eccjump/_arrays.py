@@ -49,3 +49,30 @@ def turn(n: int | None) -> int | None:
     if isinstance(n, bool) or not isinstance(n, int | np.integer) or n < 1:
         raise ValueError(f"n = {n!r} is outside the allowed range [1, inf) (None: automatic)")
     return int(n)
+
+
+def turns_array(n: ArrayLike | None, shape: tuple[int, ...]) -> NDArray[np.uint32]:
+    """The turn n of :func:`eccjump.jarm` as the bridge takes it: a flat uint32 array of the
+    broadcast ``shape`` (or of length 1), 0 for None (the first jump). Every entry must be an
+    integer >= 1."""
+    if n is None:
+        return np.zeros(1, dtype=np.uint32)
+    if isinstance(n, bool):
+        raise TypeError(f"n = {n!r} must be an integer >= 1 or None")
+    try:
+        a = np.asarray(n)
+    except (TypeError, ValueError, OverflowError) as err:
+        raise TypeError(f"n must be an integer >= 1 (or an array of them) or None: {err}") from err
+    if a.dtype == object and a.ndim == 0 and isinstance(n, int):
+        raise ValueError(f"n = {n} is outside the allowed range [1, 4294967295]")
+    if not np.issubdtype(a.dtype, np.integer):
+        raise TypeError(f"n must be an integer >= 1 (or an array of them) or None, not {a.dtype}")
+    try:
+        flat = np.broadcast_to(a, shape).ravel()
+    except ValueError as err:
+        raise ValueError(f"n of shape {a.shape} does not broadcast to {shape}") from err
+    bad = np.flatnonzero((flat < 1) | (flat > 2**32 - 1))
+    if bad.size:
+        i = int(bad[0])
+        raise ValueError(f"n[{i}] = {flat[i]} is outside the allowed range [1, 4294967295]")
+    return np.ascontiguousarray(flat, dtype=np.uint32)

@@ -1,6 +1,6 @@
 """Type stubs of the compiled bridge ``eccjump._core`` (Rust, pyo3)."""
 
-from typing import Any
+from typing import Any, TypedDict
 
 import numpy as np
 from numpy.typing import NDArray
@@ -26,14 +26,35 @@ def roll(
     rule: str,
 ) -> dict[str, Any]: ...
 
-#: (n, rule, method, rtol, atol, theta0, omega0, max_turns, refine_extrema, n_threads)
-CallOptions = tuple[int | None, str, str, float, float, float, float, int, bool, int]
+class DenseSolution:
+    """The dense output of a run, evaluated by the core (ends at the run's end)."""
+
+    @property
+    def t_min(self) -> float: ...
+    @property
+    def t_max(self) -> float: ...
+    def states(self, t: NDArray[np.float64]) -> NDArray[np.float64]: ...
+    def kinematics(self, t: NDArray[np.float64]) -> dict[str, NDArray[np.float64]]: ...
+
+class CallOptions(TypedDict):
+    """The options of a classification call (extra keys are ignored)."""
+
+    rule: str
+    method: str
+    rtol: float
+    atol: float
+    theta0: float
+    omega0: float
+    max_turns: int
+    refine_extrema: bool
+    n_threads: int
 
 def jarm_points(
     alpha: NDArray[np.float64],
     chi: NDArray[np.float64],
     km: NDArray[np.float64],
     mu_s: NDArray[np.float64],
+    n: NDArray[np.uint32],
     options: CallOptions,
 ) -> dict[str, NDArray[Any]]: ...
 def jarm_grid(
@@ -41,6 +62,7 @@ def jarm_grid(
     chi: NDArray[np.float64],
     frac: NDArray[np.float64],
     mu_s: float,
+    n: int,
     options: CallOptions,
 ) -> dict[str, NDArray[Any]]: ...
 def reason_codes() -> list[tuple[int, str]]: ...
@@ -55,7 +77,7 @@ def alpha_intervals(
     chi: NDArray[np.float64],
     km: NDArray[np.float64],
     mu_s: float,
-    n: int | None,
+    n: int,
     rule: str,
     n_scan: int,
     n_threads: int,
@@ -64,7 +86,17 @@ def mu_s_min_path(
     alpha: NDArray[np.float64],
     chi: NDArray[np.float64],
     km: NDArray[np.float64],
-    n: int | None,
+    n: int,
     rule: str,
     n_threads: int,
 ) -> NDArray[np.float64]: ...
+def alpha_interval_around(
+    seed: NDArray[np.float64],
+    chi: NDArray[np.float64],
+    km: NDArray[np.float64],
+    mu_s: float,
+    n: int,
+    rule: str,
+    step: float,
+    n_threads: int,
+) -> tuple[NDArray[np.float64], NDArray[np.float64]]: ...

@@ -27,7 +27,7 @@ def alpha_intervals(
     if n_scan < 2:
         raise ValueError(f"n_scan = {n_scan!r} is outside the allowed range [2, inf)")
     _, (c, k) = broadcast_flat(chi=chi, km=km)
-    return _core.alpha_intervals(c, k, float(mu_s), turn(n), str(rule), int(n_scan), int(n_threads))
+    return _core.alpha_intervals(c, k, float(mu_s), turn(n) or 0, str(rule), int(n_scan), int(n_threads))
 
 
 def mu_s_min_path(
@@ -43,4 +43,26 @@ def mu_s_min_path(
     none up to 1e6). Under the paper's rule it equals the largest friction ratio |Fx|/Fy on
     the rolling path up to the jump, including mu(theta_J)."""
     shape, (a, c, k) = broadcast_flat(alpha=alpha, chi=chi, km=km)
-    return _core.mu_s_min_path(a, c, k, turn(n), str(rule), int(n_threads)).reshape(shape)
+    return _core.mu_s_min_path(a, c, k, turn(n) or 0, str(rule), int(n_threads)).reshape(shape)
+
+
+def alpha_interval_around(
+    seed: ArrayLike,
+    chi: ArrayLike,
+    km: ArrayLike,
+    mu_s: float,
+    n: int | None = None,
+    *,
+    rule: Rule = "paper",
+    step: float = 1e-3,
+    n_threads: int = 0,
+) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
+    """For each JARM angle ``seed`` [rad] of a body (chi, km) (broadcast): the ends (lo, hi)
+    of the JARM alpha-interval that holds it, stepping outwards from the seed by ``step``
+    (doubling) and bisecting each end to 1e-12; NaN where the seed is not a JARM. Finds thin
+    parts of a region that the scan of :func:`alpha_intervals` misses."""
+    shape, (s, c, k) = broadcast_flat(seed=seed, chi=chi, km=km)
+    lo, hi = _core.alpha_interval_around(
+        s, c, k, float(mu_s), turn(n) or 0, str(rule), float(step), int(n_threads)
+    )
+    return lo.reshape(shape), hi.reshape(shape)

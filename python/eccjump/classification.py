@@ -15,7 +15,7 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from eccjump import _core
-from eccjump._arrays import axis, broadcast_flat, turn
+from eccjump._arrays import axis, broadcast_flat, turn, turns_array
 
 if TYPE_CHECKING:  # pragma: no cover
     import xarray as xr
@@ -104,23 +104,26 @@ def _common(
     max_turns: int,
     refine_extrema: bool,
     n_threads: int,
-) -> tuple:
+) -> dict[str, Any]:
+    """The options dict the bridge takes (``CallOptions`` in rust/eccjump-py), with the turn
+    ``n`` (0 = the first jump) for grid calls. Only types are checked here; the core checks
+    every range."""
     if isinstance(n_threads, bool) or not isinstance(n_threads, int) or n_threads < 0:
         raise ValueError(f"n_threads = {n_threads!r} is outside the allowed range [0, inf)")
     if isinstance(max_turns, bool) or not isinstance(max_turns, int) or max_turns < 1:
         raise ValueError(f"max_turns = {max_turns!r} is outside the allowed range [1, inf)")
-    return (
-        turn(n),
-        str(rule),
-        str(method),
-        float(rtol),
-        float(atol),
-        float(theta0),
-        float(omega0),
-        int(max_turns),
-        bool(refine_extrema),
-        int(n_threads),
-    )
+    return {
+        "n": turn(n) or 0,
+        "rule": str(rule),
+        "method": str(method),
+        "rtol": float(rtol),
+        "atol": float(atol),
+        "theta0": float(theta0),
+        "omega0": float(omega0),
+        "max_turns": int(max_turns),
+        "refine_extrema": bool(refine_extrema),
+        "n_threads": int(n_threads),
+    }
 
 
 def jarm(
@@ -163,10 +166,11 @@ def jarm(
     arguments that apply to the whole call (shapes, rule, method, n, tolerances).
     """
     shape, (a, c, k, m) = broadcast_flat(alpha=alpha, chi=chi, km=km, mu_s=mu_s)
+    turns = turns_array(n, shape)
     opts = _common(
-        n, rule, method, rtol, atol, theta0, omega0, max_turns, refine_extrema, n_threads
+        None, rule, method, rtol, atol, theta0, omega0, max_turns, refine_extrema, n_threads
     )
-    raw = _core.jarm_points(a, c, k, m, opts)
+    raw = _core.jarm_points(a, c, k, m, turns, opts)
     return JarmResult._from_raw(raw, shape)
 
 
@@ -336,7 +340,7 @@ def region(
         n, rule, method, rtol, atol, theta0, omega0, max_turns, refine_extrema, n_threads
     )
     if chunks is None:
-        raw = _core.jarm_grid(a, c, f, float(mu_s), opts)
+        raw = _core.jarm_grid(a, c, f, float(mu_s), opts["n"], opts)
         res = JarmResult._from_raw(raw, (a.size, c.size, f.size))
     else:
         from eccjump.scale import lazy_records, lazy_result

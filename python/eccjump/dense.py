@@ -1,13 +1,13 @@
-"""Dense output of a run: the 4th-order Dormand–Prince interpolant of every accepted step.
-
-Each step k covers [t_old[k], t_old[k] + h[k]] and gives
-y(t_old + s h) = y_old + h * sum_j Q[:, j] s^(j+1), j = 0..3 (as scipy's ``RkDenseOutput``).
-"""
+"""Dense output of a run: ``sol(t)``, evaluated by the core on the 4th-order
+Dormand–Prince interpolant of every accepted step (as scipy's ``RkDenseOutput``). It covers
+the run exactly: from its start to its end (the terminal event), not beyond."""
 
 from __future__ import annotations
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
+
+from eccjump import _core
 
 
 class DenseSolution:
@@ -17,30 +17,25 @@ class DenseSolution:
     ``OdeSolution``. Times outside [t_min, t_max] raise ``ValueError``.
     """
 
-    def __init__(
-        self,
-        t_old: NDArray[np.float64],
-        h: NDArray[np.float64],
-        y_old: NDArray[np.float64],
-        q: NDArray[np.float64],
-    ) -> None:
-        self._t_old, self._h, self._y_old, self._q = t_old, h, y_old, q
-        self.t_min = float(t_old[0])
-        self.t_max = float(t_old[-1] + h[-1])
+    def __init__(self, core: _core.DenseSolution) -> None:
+        self._core = core
+        self.t_min = float(core.t_min)
+        self.t_max = float(core.t_max)
+
+    @staticmethod
+    def _times(t: ArrayLike) -> tuple[NDArray[np.float64], bool]:
+        tt = np.asarray(t, dtype=np.float64)
+        if tt.ndim > 1:
+            raise ValueError(f"t must be a number or a 1-D array of times, got shape {tt.shape}")
+        return np.ascontiguousarray(np.atleast_1d(tt)), tt.ndim == 0
 
     def __call__(self, t: ArrayLike) -> NDArray[np.float64]:
-        tt = np.asarray(t, dtype=np.float64)
-        flat = np.atleast_1d(tt)
-        if np.any(~np.isfinite(flat)) or np.any((flat < self.t_min) | (flat > self.t_max)):
-            raise ValueError(
-                f"t is outside the allowed range [{self.t_min}, {self.t_max}] of the dense output"
-            )
-        k = np.clip(np.searchsorted(self._t_old, flat, side="right") - 1, 0, len(self._h) - 1)
-        h = self._h[k]
-        s = (flat - self._t_old[k]) / h
-        q = self._q[k]  # (n, 2, 4)
-        acc = q[:, :, 3]
-        for j in (2, 1, 0):
-            acc = q[:, :, j] + acc * s[:, None]
-        y = self._y_old[k] + acc * (h * s)[:, None]
-        return y[0] if tt.ndim == 0 else y.T
+        flat, scalar = self._times(t)
+        y = self._core.states(flat)
+        return y[:, 0] if scalar else y
+
+    def kinematics(self, t: ArrayLike) -> dict[str, NDArray[np.float64]]:
+        """theta, omega, omega_dot, Fx, Fy at times ``t`` (1-D), from the core's equations of
+        the run's mode."""
+        flat, _ = self._times(t)
+        return self._core.kinematics(flat)

@@ -20,7 +20,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 from eccjump import closed_form
-from eccjump.boundary import alpha_intervals
+from eccjump.boundary import alpha_interval_around, alpha_intervals
 from eccjump.classification import Region, jarm
 
 if TYPE_CHECKING:
@@ -199,49 +199,6 @@ def _is_jarm(
     return jarm(a, c, k, mu_s, n, refine_extrema=False).is_jarm
 
 
-def _interval_around(
-    seed: NDArray[np.float64],
-    c: NDArray[np.float64],
-    k: NDArray[np.float64],
-    mu_s: float,
-    n: int,
-    step: NDArray[np.float64],
-) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
-    """The ends of the JARM alpha-interval that holds ``seed`` (a JARM angle) of each body:
-    step outwards (doubling ``step``) to a non-JARM angle, then bisect, both ends at once."""
-    m = seed.size
-    cc, kk = np.r_[c, c], np.r_[k, k]
-    sign = np.r_[-np.ones(m), np.ones(m)]
-    inner = np.r_[seed, seed]
-    d = np.r_[step, step]
-    outer = np.full(2 * m, np.nan)
-    edge = np.r_[np.zeros(m), np.full(m, 0.5 * math.pi)]
-    for _ in range(60):
-        todo = np.isnan(outer)
-        if not np.any(todo):
-            break
-        trial = np.clip(inner[todo] + sign[todo] * d[todo], 0.0, 0.5 * math.pi)
-        ok = _is_jarm(trial, cc[todo], kk[todo], mu_s, n)
-        at_edge = trial == edge[todo]
-        idx = np.flatnonzero(todo)
-        outer[idx[~ok]] = trial[~ok]
-        inner[idx[ok]] = trial[ok]
-        # a JARM at alpha = 90 deg: the interval ends there
-        outer[idx[ok & at_edge]] = np.inf
-        d[todo] *= 2.0
-    closed = np.isinf(outer)
-    ends = np.where(closed, edge, np.nan)
-    live = ~closed & np.isfinite(outer)
-    a_in, a_out = inner[live], outer[live]
-    for _ in range(48):
-        mid = 0.5 * (a_in + a_out)
-        ok = _is_jarm(mid, cc[live], kk[live], mu_s, n)
-        a_in = np.where(ok, mid, a_in)
-        a_out = np.where(ok, a_out, mid)
-    ends[live] = a_in
-    return ends[:m], ends[m:]
-
-
 def _grid_intervals(
     c: NDArray[np.float64], k: NDArray[np.float64], mu_s: float, n: int, n_scan: int
 ) -> list[list[tuple[float, float]]]:
@@ -297,9 +254,7 @@ def _grid_intervals(
         if not seeds:
             return out
         w = np.array(where)
-        lo, hi = _interval_around(
-            np.array(seeds), flat_c[w], flat_k[w], mu_s, n, np.full(len(w), 1e-3)
-        )
+        lo, hi = alpha_interval_around(np.array(seeds), flat_c[w], flat_k[w], mu_s, n)
         for i, lo_i, hi_i in zip(w, lo, hi, strict=True):
             out[i] = [(float(lo_i), float(hi_i))]
 
@@ -575,21 +530,13 @@ _EVENT_STYLE = {
 
 
 def _dense_run(result: RollResult, n_points: int) -> tuple[NDArray[np.float64], ...]:
-    """(t, theta, omega, Fx, Fy) on a fine time grid from the dense output (forces from the
-    rolling equation via :func:`closed_form.path_forces`), or the accepted steps."""
+    """(t, theta, omega, Fx, Fy) on a fine time grid from the dense output (state and forces
+    evaluated by the core), or the accepted steps."""
     if result.sol is None or result.units is not None or len(result.t) < 2:
         return result.t, result.theta, result.omega, result.Fx, result.Fy
     t = np.union1d(np.linspace(result.t[0], result.t[-1], n_points), result.t)
-    theta, omega = result.sol(t)
-    fx, fy = closed_form.path_forces(
-        theta,
-        result.alpha,
-        result.body.chi,
-        result.body.km,
-        theta0=float(result.theta[0]),
-        omega0=float(result.omega[0]),
-    )
-    return t, theta, omega, fx, fy
+    k = result.sol.kinematics(t)
+    return t, k["theta"], k["omega"], k["Fx"], k["Fy"]
 
 
 def trajectory(

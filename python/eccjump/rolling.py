@@ -52,7 +52,7 @@ class RollResult:
     omega_dot : angular acceleration theta'' from the rolling equation [g/R rad]
     Fx : friction force on the cylinder along the ramp, positive down the ramp [M g]
     Fy : normal force on the cylinder [M g]
-    l : distance rolled along the ramp, theta - theta0 [R]
+    l : distance rolled along the ramp since the start, l - l0 [R] (from the core)
     events : every event met, in time order (see :data:`EVENT_NAMES`)
     terminal_event : name of the event that ended the run, or None
     status : 0 reached t_max, 1 a terminal event, -1 the integrator failed
@@ -71,6 +71,7 @@ class RollResult:
     omega_dot: NDArray[np.float64]
     Fx: NDArray[np.float64]
     Fy: NDArray[np.float64]
+    l: NDArray[np.float64]  # noqa: E741 - the paper's name for the distance
     events: tuple[Event, ...]
     terminal_event: str | None
     status: int
@@ -83,12 +84,6 @@ class RollResult:
     def success(self) -> bool:
         """True unless the integrator failed."""
         return self.status >= 0
-
-    @property
-    def l(self) -> NDArray[np.float64]:  # noqa: E743 - the paper's name for the distance
-        """Distance rolled along the ramp (pure rolling: l - l0 = R (theta - theta0))."""
-        scale = 1.0 if self.units is None else self.units.length
-        return (self.theta - self.theta[0]) * scale
 
     def event(self, name: str) -> Event | None:
         """The first event called ``name``, or None."""
@@ -112,6 +107,7 @@ class RollResult:
             omega_dot=self.omega_dot * u.acceleration,
             Fx=self.Fx * u.force,
             Fy=self.Fy * u.force,
+            l=self.l * u.length,
             events=tuple(
                 Event(e.name, e.t * u.time, e.theta, e.omega * u.rate) for e in self.events
             ),
@@ -189,9 +185,7 @@ def roll(
         bool(dense_output),
         str(rule),
     )
-    sol = None
-    if dense_output and "dense_h" in raw:
-        sol = DenseSolution(raw["dense_t_old"], raw["dense_h"], raw["dense_y_old"], raw["dense_q"])
+    sol = DenseSolution(raw["sol"]) if "sol" in raw else None
     return _result(
         {
             "body": body,
@@ -204,6 +198,7 @@ def roll(
             "omega_dot": raw["omega_dot"],
             "Fx": raw["fx"],
             "Fy": raw["fy"],
+            "l": raw["l"],
             "events": tuple([Event(*e) for e in raw["events"]]),
             "terminal_event": raw["terminal_event"],
             "status": raw["status"],

@@ -80,7 +80,7 @@ def grid_block(
     chi: NDArray[np.float64],
     frac: NDArray[np.float64],
     mu_s: float,
-    opts: tuple,
+    opts: dict[str, Any],
 ) -> NDArray[np.void]:
     """One block: the grid of the (broadcast-shaped) coordinate slices, as records."""
     # fresh copies: arrays unpickled on a worker may be misaligned, which the bridge refuses
@@ -88,7 +88,7 @@ def grid_block(
     out = np.empty((a.size, c.size, f.size), dtype=RECORD)
     if out.size == 0:
         return out
-    raw = _core.jarm_grid(a, c, f, mu_s, opts)
+    raw = _core.jarm_grid(a, c, f, mu_s, opts["n"], opts)
     for k in FIELDS:
         out[k] = raw[k].reshape(out.shape)
     return out
@@ -104,7 +104,7 @@ def lazy_records(
     chi: NDArray[np.float64],
     frac: NDArray[np.float64],
     mu_s: float,
-    opts: tuple,
+    opts: dict[str, Any],
     chunks: Chunks,
 ) -> Any:
     """The map as a dask array of :data:`RECORD`, one Rust call per block."""
@@ -121,7 +121,7 @@ def lazy_records(
         C,
         F,
         mu_s=float(mu_s),
-        opts=tuple(opts),
+        opts=dict(opts),
         chunks=out_chunks,
         dtype=RECORD,
         meta=np.empty((0, 0, 0), dtype=RECORD),

@@ -1,8 +1,8 @@
-use eccjump_core::roll::{roll, RollOptions};
-use eccjump_core::{Cylinder, Rolling};
+use eccjump_core::modes::rolling::run::{roll, RollOptions};
+use eccjump_core::{Cylinder, Ramp};
 use std::time::Instant;
 fn main() {
-    let r = Rolling::new(Cylinder::new(0.15, 0.02).unwrap(), 40f64.to_radians()).unwrap();
+    let r = Ramp::new(Cylinder::new(0.15, 0.02).unwrap(), 40f64.to_radians()).unwrap();
     let o = RollOptions::default();
     let mut best = f64::INFINITY;
     let mut s = 0.0;

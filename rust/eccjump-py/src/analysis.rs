@@ -4,11 +4,11 @@
 
 use crate::errors::to_py;
 use eccjump_core::error::Result as CoreResult;
-use eccjump_core::{from_rest, jump_point, Cylinder, Rolling};
+use eccjump_core::jarm::{from_rest, jump_point};
+use eccjump_core::{Cylinder, Ramp};
 use numpy::{IntoPyArray, PyArray1, PyReadonlyArray1};
 use pyo3::exceptions::PyValueError;
 use pyo3::prelude::*;
-use std::f64::consts::TAU;
 
 /// Number of inputs, outputs and the per-point function of each kind.
 type PointFn = fn(&[f64], u32, (f64, f64)) -> CoreResult<[f64; 2]>;
@@ -17,8 +17,8 @@ fn body(chi: f64, km: f64) -> CoreResult<Cylinder> {
     Cylinder::new(chi, km)
 }
 
-fn ramp(alpha: f64, chi: f64, km: f64) -> CoreResult<Rolling> {
-    Rolling::new(body(chi, km)?, alpha)
+fn ramp(alpha: f64, chi: f64, km: f64) -> CoreResult<Ramp> {
+    Ramp::new(body(chi, km)?, alpha)
 }
 
 fn opt(v: Option<f64>) -> f64 {
@@ -50,9 +50,8 @@ fn kind(name: &str) -> Option<(usize, usize, PointFn)> {
         }),
         // (chi, km, mu_s) -> (theta_J_min, theta_J_max) on turn n (n = 0: relative to 2πn).
         "theta_j_range" => (3, 2, |x, n, _| {
-            let r = jump_point::theta_j_range(&body(x[0], x[1])?, x[2]);
-            let shift = TAU * n as f64;
-            Ok([opt(r.map(|v| v.0 + shift)), opt(r.map(|v| v.1 + shift))])
+            let r = jump_point::theta_j_range_abs(&body(x[0], x[1])?, x[2], n);
+            Ok([opt(r.map(|v| v.0)), opt(r.map(|v| v.1))])
         }),
         // (chi, km, mu_s) -> alpha_min = 2πn − theta_J_max.
         "alpha_min" => (3, 1, |x, n, _| {
@@ -80,8 +79,7 @@ fn kind(name: &str) -> Option<(usize, usize, PointFn)> {
         }),
         // (theta, alpha, chi, km) -> (Fx, Fy) along rolling from (θ0, θ̇0), by energy.
         "path_forces" => (4, 2, |x, _, (t0, w0)| {
-            let r = ramp(x[1], x[2], x[3])?;
-            let k = r.kinematics(x[0], r.omega_sq(t0, w0, x[0]).max(0.0).sqrt());
+            let k = ramp(x[1], x[2], x[3])?.kinematics_along(t0, w0, x[0]);
             Ok([k.fx, k.fy])
         }),
         _ => return None,

@@ -1,12 +1,14 @@
 //! JARM boundaries: α-intervals per body and μ_s,min along the path, in parallel.
 
 use crate::errors::to_py;
-use crate::options::jarm_options;
-use eccjump_core::boundary::{alpha_intervals_many, mu_s_min_path_many};
+use crate::options::parse_rule;
+use eccjump_core::maps::boundary::{
+    alpha_interval_around_many, alpha_intervals_many, boundary_options, mu_s_min_path_many,
+};
 use numpy::{IntoPyArray, PyArray1, PyReadonlyArray1};
 use pyo3::prelude::*;
 
-/// For each (χ_i, k_m,i): the list of (α_lo, α_hi) intervals of JARM.
+/// For each (χ_i, k_m,i): the list of (α_lo, α_hi) intervals of JARM (turn n, 0 = first).
 #[pyfunction]
 #[pyo3(signature = (chi, km, mu_s, n, rule, n_scan, n_threads))]
 #[allow(clippy::too_many_arguments)]
@@ -15,18 +17,18 @@ pub fn alpha_intervals<'py>(
     chi: PyReadonlyArray1<'py, f64>,
     km: PyReadonlyArray1<'py, f64>,
     mu_s: f64,
-    n: Option<u32>,
+    n: u32,
     rule: &str,
     n_scan: usize,
     n_threads: usize,
 ) -> PyResult<Vec<Vec<(f64, f64)>>> {
-    let opts = jarm_options(rule, n, 10_000, 0.0, 0.0, false)?;
+    let opts = boundary_options(parse_rule(rule)?, n);
     let (c, k) = (chi.as_slice()?, km.as_slice()?);
     py.detach(|| alpha_intervals_many(c, k, mu_s, &opts, n_scan, n_threads))
         .map_err(to_py)
 }
 
-/// For each (α_i, χ_i, k_m,i): the smallest μ_s that gives a JARM.
+/// For each (α_i, χ_i, k_m,i): the smallest μ_s that gives a JARM (turn n, 0 = first).
 #[pyfunction]
 #[pyo3(signature = (alpha, chi, km, n, rule, n_threads))]
 pub fn mu_s_min_path<'py>(
@@ -34,14 +36,39 @@ pub fn mu_s_min_path<'py>(
     alpha: PyReadonlyArray1<'py, f64>,
     chi: PyReadonlyArray1<'py, f64>,
     km: PyReadonlyArray1<'py, f64>,
-    n: Option<u32>,
+    n: u32,
     rule: &str,
     n_threads: usize,
 ) -> PyResult<Bound<'py, PyArray1<f64>>> {
-    let opts = jarm_options(rule, n, 10_000, 0.0, 0.0, false)?;
+    let opts = boundary_options(parse_rule(rule)?, n);
     let (a, c, k) = (alpha.as_slice()?, chi.as_slice()?, km.as_slice()?);
     let mut out = vec![0.0; a.len()];
     py.detach(|| mu_s_min_path_many(a, c, k, &opts, n_threads, &mut out))
         .map_err(to_py)?;
     Ok(out.into_pyarray(py))
+}
+
+/// For each (seed_i, χ_i, k_m,i): the ends (α_lo, α_hi) of the JARM α-interval holding the
+/// JARM angle seed_i (NaN if seed_i is not a JARM), as two arrays.
+#[pyfunction]
+#[pyo3(signature = (seed, chi, km, mu_s, n, rule, step, n_threads))]
+#[allow(clippy::too_many_arguments)]
+pub fn alpha_interval_around<'py>(
+    py: Python<'py>,
+    seed: PyReadonlyArray1<'py, f64>,
+    chi: PyReadonlyArray1<'py, f64>,
+    km: PyReadonlyArray1<'py, f64>,
+    mu_s: f64,
+    n: u32,
+    rule: &str,
+    step: f64,
+    n_threads: usize,
+) -> PyResult<(Bound<'py, PyArray1<f64>>, Bound<'py, PyArray1<f64>>)> {
+    let opts = boundary_options(parse_rule(rule)?, n);
+    let (s, c, k) = (seed.as_slice()?, chi.as_slice()?, km.as_slice()?);
+    let mut out = vec![(0.0, 0.0); s.len()];
+    py.detach(|| alpha_interval_around_many(s, c, k, mu_s, &opts, step, n_threads, &mut out))
+        .map_err(to_py)?;
+    let (lo, hi): (Vec<f64>, Vec<f64>) = out.into_iter().unzip();
+    Ok((lo.into_pyarray(py), hi.into_pyarray(py)))
 }

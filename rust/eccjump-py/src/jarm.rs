@@ -3,7 +3,7 @@
 use crate::errors::to_py;
 use crate::options::CallOptions;
 use eccjump_core::jarm::{JarmResult, Reason};
-use eccjump_core::region::{classify_grid, classify_points};
+use eccjump_core::maps::region::{classify_grid, classify_points};
 use numpy::{IntoPyArray, PyReadonlyArray1};
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
@@ -37,30 +37,35 @@ fn empty(len: usize) -> Vec<JarmResult> {
     vec![JarmResult::new(Reason::InvalidParams); len]
 }
 
-/// Classifies equal-length 1-D arrays of points (μ_s may have length 1).
+/// Classifies equal-length 1-D arrays of points (μ_s and the turn n, 0 = the first jump, may
+/// have length 1).
 #[pyfunction]
+#[allow(clippy::too_many_arguments)] // five coordinates and the options
 pub fn jarm_points<'py>(
     py: Python<'py>,
     alpha: PyReadonlyArray1<'py, f64>,
     chi: PyReadonlyArray1<'py, f64>,
     km: PyReadonlyArray1<'py, f64>,
     mu_s: PyReadonlyArray1<'py, f64>,
+    n: PyReadonlyArray1<'py, u32>,
     options: CallOptions,
 ) -> PyResult<Bound<'py, PyDict>> {
-    let (opts, method, n_threads) = options.parse()?;
-    let (a, c, k, m) = (
+    let (opts, method, n_threads) = options.parse(0)?;
+    let (a, c, k, m, n) = (
         alpha.as_slice()?,
         chi.as_slice()?,
         km.as_slice()?,
         mu_s.as_slice()?,
+        n.as_slice()?,
     );
     let mut out = empty(a.len());
-    py.detach(|| classify_points(a, c, k, m, method, &opts, n_threads, &mut out))
+    py.detach(|| classify_points(a, c, k, m, n, method, &opts, n_threads, &mut out))
         .map_err(to_py)?;
     to_dict(py, &out)
 }
 
-/// Classifies the grid alpha × chi × frac (k_m = frac·(1 − χ)), flat in C order.
+/// Classifies the grid alpha × chi × frac (k_m = frac·(1 − χ)), flat in C order, on turn n
+/// (0 = the first jump).
 #[pyfunction]
 pub fn jarm_grid<'py>(
     py: Python<'py>,
@@ -68,9 +73,10 @@ pub fn jarm_grid<'py>(
     chi: PyReadonlyArray1<'py, f64>,
     frac: PyReadonlyArray1<'py, f64>,
     mu_s: f64,
+    n: u32,
     options: CallOptions,
 ) -> PyResult<Bound<'py, PyDict>> {
-    let (opts, method, n_threads) = options.parse()?;
+    let (opts, method, n_threads) = options.parse(n)?;
     let (a, c, f) = (alpha.as_slice()?, chi.as_slice()?, frac.as_slice()?);
     let mut out = empty(a.len() * c.len() * f.len());
     py.detach(|| classify_grid(a, c, f, mu_s, method, &opts, n_threads, &mut out))

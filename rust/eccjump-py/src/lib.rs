@@ -9,7 +9,6 @@ mod errors;
 mod jarm;
 mod options;
 mod roll;
-mod rule;
 
 use pyo3::prelude::*;
 
@@ -23,9 +22,9 @@ mod _core {
     #[pymodule_export]
     use crate::body::{body_derived, body_from_inertia, body_from_shell_and_line};
     #[pymodule_export]
-    use crate::boundary::{alpha_intervals, mu_s_min_path};
+    use crate::boundary::{alpha_interval_around, alpha_intervals, mu_s_min_path};
     #[pymodule_export]
     use crate::jarm::{jarm_grid, jarm_points, reason_codes};
     #[pymodule_export]
-    use crate::roll::roll;
+    use crate::roll::{roll, DenseSolution};
 }

@@ -1,11 +1,13 @@
 //! `roll`: one pure-rolling run, computed with the GIL released, returned as numpy arrays.
 
 use crate::errors::to_py;
-use crate::rule::parse_rule;
+use crate::options::parse_rule;
+use eccjump_core::modes::rolling::run::{roll as core_roll, RollOptions, RollRun, RollStatus};
+use eccjump_core::modes::rolling::solution::RollSolution;
 use eccjump_core::ode::SolverOptions;
-use eccjump_core::roll::{roll as core_roll, RollOptions, RollRun};
-use eccjump_core::{Cylinder, Rolling};
-use numpy::{IntoPyArray, PyArray1, PyArray2, PyArrayMethods};
+use eccjump_core::{Cylinder, Ramp};
+use numpy::{IntoPyArray, PyArray1, PyArray2, PyArrayMethods, PyReadonlyArray1};
+use pyo3::exceptions::PyValueError;
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
 
@@ -31,7 +33,7 @@ pub fn roll<'py>(
     dense_output: bool,
     rule: &str,
 ) -> PyResult<Bound<'py, PyDict>> {
-    let rolling = Rolling::new(Cylinder::new(chi, km).map_err(to_py)?, alpha).map_err(to_py)?;
+    let ramp = Ramp::new(Cylinder::new(chi, km).map_err(to_py)?, alpha).map_err(to_py)?;
     let opts = RollOptions {
         theta0,
         omega0,
@@ -47,7 +49,7 @@ pub fn roll<'py>(
         },
         dense_output,
     };
-    let run = py.detach(|| core_roll(&rolling, &opts)).map_err(to_py)?;
+    let run = py.detach(|| core_roll(&ramp, &opts)).map_err(to_py)?;
     to_dict(py, run)
 }
 
@@ -63,7 +65,7 @@ fn to_dict<'py>(py: Python<'py>, run: RollRun) -> PyResult<Bound<'py, PyDict>> {
     d.set_item(
         "terminal_event",
         match run.status {
-            eccjump_core::roll::RollStatus::Event(e) => Some(e.name()),
+            RollStatus::Event(e) => Some(e.name()),
             _ => None,
         },
     )?;
@@ -74,28 +76,84 @@ fn to_dict<'py>(py: Python<'py>, run: RollRun) -> PyResult<Bound<'py, PyDict>> {
     d.set_item("omega_dot", run.omega_dot.into_pyarray(py))?;
     d.set_item("t", run.t.into_pyarray(py))?;
     d.set_item("theta", run.theta.into_pyarray(py))?;
+    // The distance rolled, l − l0 = θ − θ0 in pure rolling (from the core's record).
+    d.set_item("l", run.l.into_pyarray(py))?;
     d.set_item("omega", run.omega.into_pyarray(py))?;
-    if !run.dense.is_empty() {
-        // Per step: t_old, h, y_old (2), Q (2 × 4), converted by hand (no nalgebra feature).
-        let n = run.dense.len();
-        let mut t_old = Vec::with_capacity(n);
-        let mut h = Vec::with_capacity(n);
-        let mut y_old = Vec::with_capacity(2 * n);
-        let mut q = Vec::with_capacity(8 * n);
-        for s in &run.dense {
-            t_old.push(s.t_old);
-            h.push(s.h);
-            y_old.extend_from_slice(&[s.y_old[0], s.y_old[1]]);
-            for comp in 0..2 {
-                q.extend((0..4).map(|j| s.q[j][comp]));
-            }
-        }
-        d.set_item("dense_t_old", t_old.into_pyarray(py))?;
-        d.set_item("dense_h", h.into_pyarray(py))?;
-        let y_old: Bound<'py, PyArray2<f64>> = PyArray1::from_vec(py, y_old).reshape([n, 2])?;
-        d.set_item("dense_y_old", y_old)?;
-        let q: Bound<'py, PyArray1<f64>> = PyArray1::from_vec(py, q);
-        d.set_item("dense_q", q.reshape([n, 2, 4])?)?;
+    if let Some(sol) = run.dense {
+        d.set_item("sol", Bound::new(py, DenseSolution { sol })?)?;
     }
     Ok(d)
+}
+
+/// The dense output of a run (`RollResult.sol`): the state and the kinematics at any time
+/// of the run, evaluated by the core; it ends where the run ends.
+#[pyclass(frozen, module = "eccjump._core")]
+pub struct DenseSolution {
+    sol: RollSolution,
+}
+
+impl DenseSolution {
+    /// Applies `f` at every time of `t`, with a ValueError naming the first time outside
+    /// the run.
+    fn each<T>(&self, t: &[f64], f: impl Fn(&RollSolution, f64) -> Option<T>) -> PyResult<Vec<T>> {
+        t.iter()
+            .enumerate()
+            .map(|(i, &ti)| {
+                f(&self.sol, ti).ok_or_else(|| {
+                    PyValueError::new_err(format!(
+                        "t[{i}] = {ti} is outside the allowed range [{}, {}] of the dense output",
+                        self.sol.t_start(),
+                        self.sol.t_end
+                    ))
+                })
+            })
+            .collect()
+    }
+}
+
+#[pymethods]
+impl DenseSolution {
+    /// First time covered.
+    #[getter]
+    fn t_min(&self) -> f64 {
+        self.sol.t_start()
+    }
+
+    /// Last time covered: the end of the run (its terminal event).
+    #[getter]
+    fn t_max(&self) -> f64 {
+        self.sol.t_end
+    }
+
+    /// (θ, θ̇) at the times `t` (1-D), shape (2, len(t)).
+    fn states<'py>(
+        &self,
+        py: Python<'py>,
+        t: PyReadonlyArray1<'py, f64>,
+    ) -> PyResult<Bound<'py, PyArray2<f64>>> {
+        let t = t.as_slice()?;
+        let ys = self.each(t, |s, ti| s.state(ti))?;
+        let mut flat: Vec<f64> = ys.iter().map(|y| y[0]).collect();
+        flat.extend(ys.iter().map(|y| y[1]));
+        PyArray1::from_vec(py, flat).reshape([2, t.len()])
+    }
+
+    /// θ, θ̇, θ̈, F_x, F_y at the times `t` (1-D), as a dict of arrays.
+    fn kinematics<'py>(
+        &self,
+        py: Python<'py>,
+        t: PyReadonlyArray1<'py, f64>,
+    ) -> PyResult<Bound<'py, PyDict>> {
+        let ks = self.each(t.as_slice()?, |s, ti| s.kinematics(ti))?;
+        let d = PyDict::new(py);
+        let col = |f: fn(&eccjump_core::modes::rolling::Kinematics) -> f64| {
+            ks.iter().map(f).collect::<Vec<f64>>().into_pyarray(py)
+        };
+        d.set_item("theta", col(|k| k.theta))?;
+        d.set_item("omega", col(|k| k.omega))?;
+        d.set_item("omega_dot", col(|k| k.omega_dot))?;
+        d.set_item("Fx", col(|k| k.fx))?;
+        d.set_item("Fy", col(|k| k.fy))?;
+        Ok(d)
+    }
 }

@@ -1,7 +1,7 @@
 //! Event functions g_k(t, y): their specs, and location of their zeros on the dense output.
 
 use super::{DenseStep, State};
-use crate::roots;
+use crate::ode::roots;
 
 /// Which zero crossings of g count.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]

@@ -11,6 +11,7 @@
 
 pub mod dense;
 pub mod events;
+pub mod roots;
 pub mod solver;
 pub mod stepper;
 pub mod tableau;

@@ -5,12 +5,24 @@
 //! any thread count).
 
 use crate::error::Result;
-use crate::jarm::{classify, JarmOptions};
-use crate::parallel::{check_len, par_fill};
+use crate::jarm::{classify, JarmOptions, Rule};
+use crate::maps::parallel::{check_len, par_fill};
 use std::f64::consts::FRAC_PI_2;
 
 /// Bisection tolerance on α and (relative) on μ_s.
 pub const TOL: f64 = 1e-12;
+
+/// The classification options of the boundary searches: from rest, the given rule and turn
+/// (0: the first jump), the default turn cap, no refinement of the extrema (the verdict does
+/// not depend on it).
+pub fn boundary_options(rule: Rule, n: u32) -> JarmOptions {
+    JarmOptions {
+        rule,
+        n,
+        refine_extrema: false,
+        ..JarmOptions::default()
+    }
+}
 
 fn is_jarm(alpha: f64, chi: f64, km: f64, mu_s: f64, o: &JarmOptions) -> bool {
     classify(alpha, chi, km, mu_s, o).is_jarm
@@ -68,6 +80,42 @@ pub fn alpha_intervals(
     out
 }
 
+/// The ends of the JARM α-interval that holds `seed` (a JARM angle) for the body (χ, k_m):
+/// step outwards from `seed` by `step`, doubling it, to a non-JARM angle (an end of
+/// [0, π/2] that is still a JARM is the interval's end), then bisect each transition to
+/// [`TOL`]. (NaN, NaN) if `seed` is not a JARM, or an end is not found in 60 doublings.
+/// Finds the thin parts of a region that a coarse scan in α misses.
+pub fn alpha_interval_around(
+    chi: f64,
+    km: f64,
+    mu_s: f64,
+    o: &JarmOptions,
+    seed: f64,
+    step: f64,
+) -> (f64, f64) {
+    let f = |a: f64| is_jarm(a, chi, km, mu_s, o);
+    if !(seed.is_finite() && step > 0.0 && f(seed)) {
+        return (f64::NAN, f64::NAN);
+    }
+    let end = |dir: f64, edge: f64| {
+        let (mut inner, mut d) = (seed, step);
+        for _ in 0..60 {
+            let trial = (inner + dir * d).clamp(0.0, FRAC_PI_2);
+            if !f(trial) {
+                // The JARM side of the transition.
+                return bisect_bool(f, inner, trial, true).0;
+            }
+            if trial == edge {
+                return edge;
+            }
+            inner = trial;
+            d *= 2.0;
+        }
+        f64::NAN
+    };
+    (end(-1.0, 0.0), end(1.0, FRAC_PI_2))
+}
+
 /// The smallest μ_s that gives a JARM at (α, χ, k_m) (bisection on μ_s, relative 1e-12):
 /// +∞ if none up to 1e6. By monotonicity in μ_s (tested in `jarm`), every larger μ_s is one.
 pub fn mu_s_min_path(alpha: f64, chi: f64, km: f64, o: &JarmOptions) -> f64 {
@@ -115,6 +163,28 @@ pub fn alpha_intervals_many(
     Ok(out)
 }
 
+/// For many (seed_i, χ_i, k_m,i): [`alpha_interval_around`] into `out` (in parallel).
+#[allow(clippy::too_many_arguments)] // three coordinates, μ_s, options, step, threads, out
+pub fn alpha_interval_around_many(
+    seed: &[f64],
+    chi: &[f64],
+    km: &[f64],
+    mu_s: f64,
+    o: &JarmOptions,
+    step: f64,
+    n_threads: usize,
+    out: &mut [(f64, f64)],
+) -> Result<()> {
+    let n = out.len();
+    check_len("seed", seed.len(), n)?;
+    check_len("chi", chi.len(), n)?;
+    check_len("km", km.len(), n)?;
+    crate::error::check_positive("step", step)?;
+    par_fill(out, n_threads, |i| {
+        alpha_interval_around(chi[i], km[i], mu_s, o, seed[i], step)
+    })
+}
+
 /// For many (α_i, χ_i, k_m,i): μ_s,min along the path into `out`.
 pub fn mu_s_min_path_many(
     alpha: &[f64],
@@ -136,6 +206,23 @@ pub fn mu_s_min_path_many(
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn interval_around_a_seed_is_the_scanned_interval() {
+        let o = boundary_options(Rule::Paper, 0);
+        let (chi, km, mu_s) = (0.15, 0.02, 1.0);
+        let scanned = alpha_intervals(chi, km, mu_s, &o, 180);
+        assert!(!scanned.is_empty());
+        for &(lo, hi) in &scanned {
+            let (a, b) = alpha_interval_around(chi, km, mu_s, &o, 0.5 * (lo + hi), 1e-3);
+            assert!(
+                (a - lo).abs() < 1e-11 && (b - hi).abs() < 1e-11,
+                "{a} {lo} {b} {hi}"
+            );
+        }
+        let (a, b) = alpha_interval_around(chi, km, mu_s, &o, 0.01, 1e-3);
+        assert!(a.is_nan() && b.is_nan());
+    }
 
     #[test]
     fn alpha_interval_agrees_with_dense_scan() {

@@ -6,44 +6,19 @@
 //! order depends on scheduling), so results are bit-identical for any thread count.
 
 use crate::error::Result;
-use crate::jarm::{classify, JarmOptions, JarmResult};
-use crate::jarm_ode::classify_ode;
-use crate::parallel::{check_len, par_fill};
+use crate::jarm::{classify_with, JarmOptions, JarmResult, Method};
+use crate::maps::parallel::{check_len, par_fill};
 
-/// Which route classifies a point.
-#[derive(Debug, Clone, Copy, PartialEq, Default)]
-pub enum Method {
-    /// The paper's closed forms with a rigorous path scan (`jarm::classify`).
-    #[default]
-    ClosedForm,
-    /// Integration of the rolling equation with events (`jarm_ode::classify_ode`).
-    Ode { rtol: f64, atol: f64 },
-}
-
-/// Classifies one point by the chosen route.
-#[inline]
-pub fn classify_with(
-    method: Method,
-    alpha: f64,
-    chi: f64,
-    km: f64,
-    mu_s: f64,
-    opts: &JarmOptions,
-) -> JarmResult {
-    match method {
-        Method::ClosedForm => classify(alpha, chi, km, mu_s, opts),
-        Method::Ode { rtol, atol } => classify_ode(alpha, chi, km, mu_s, opts, rtol, atol),
-    }
-}
-
-/// Classifies a list of points (α_i, χ_i, k_m,i, μ_s,i); all inputs have the length of
-/// `out` (μ_s may also have length 1: one value for all).
-#[allow(clippy::too_many_arguments)] // the four coordinates, the route, options, threads, out
+/// Classifies a list of points (α_i, χ_i, k_m,i, μ_s,i, n_i); all inputs have the length of
+/// `out` (μ_s and n may also have length 1: one value for all; n = 0 is the first jump,
+/// whatever its turn, and overrides `opts.n`). Whole-call options are checked first.
+#[allow(clippy::too_many_arguments)] // the five coordinates, the route, options, threads, out
 pub fn classify_points(
     alpha: &[f64],
     chi: &[f64],
     km: &[f64],
     mu_s: &[f64],
+    n: &[u32],
     method: Method,
     opts: &JarmOptions,
     n_threads: usize,
@@ -56,9 +31,18 @@ pub fn classify_points(
     if mu_s.len() != 1 {
         check_len("mu_s", mu_s.len(), total)?;
     }
+    if n.len() != 1 {
+        check_len("n", n.len(), total)?;
+    }
+    opts.validate()?;
+    method.validate()?;
     par_fill(out, n_threads, |g| {
         let m = if mu_s.len() == 1 { mu_s[0] } else { mu_s[g] };
-        classify_with(method, alpha[g], chi[g], km[g], m, opts)
+        let o = JarmOptions {
+            n: if n.len() == 1 { n[0] } else { n[g] },
+            ..*opts
+        };
+        classify_with(method, alpha[g], chi[g], km[g], m, &o)
     })
 }
 
@@ -77,6 +61,8 @@ pub fn classify_grid(
 ) -> Result<()> {
     let (nc, nf) = (chi.len(), frac.len());
     check_len("out", out.len(), alpha.len() * nc * nf)?;
+    opts.validate()?;
+    method.validate()?;
     par_fill(out, n_threads, |g| {
         let (ia, rest) = (g / (nc * nf), g % (nc * nf));
         let (ic, jf) = (rest / nf, rest % nf);
@@ -88,6 +74,7 @@ pub fn classify_grid(
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::jarm::classify;
     use crate::jarm::Reason;
     use std::f64::consts::FRAC_PI_2;
 
@@ -141,13 +128,24 @@ mod tests {
             assert_eq!(classify(pa[k], pc[k], pk[k], 1.0, &o).reason, r.reason);
         }
         let mut out = vec![JarmResult::new(Reason::NoRoot); pa.len()];
-        classify_points(&pa, &pc, &pk, &[1.0], Method::ClosedForm, &o, 2, &mut out).unwrap();
+        classify_points(
+            &pa,
+            &pc,
+            &pk,
+            &[1.0],
+            &[0],
+            Method::ClosedForm,
+            &o,
+            2,
+            &mut out,
+        )
+        .unwrap();
         assert_eq!(bits(&out), bits(&r1));
         // Wrong lengths are errors.
         let mut short = vec![JarmResult::new(Reason::NoRoot); 3];
         let m = Method::ClosedForm;
         assert!(classify_grid(&a, &c, &f, 1.0, m, &o, 1, &mut short).is_err());
-        assert!(classify_points(&pa, &pc, &pk[1..], &[1.0], m, &o, 1, &mut out).is_err());
+        assert!(classify_points(&pa, &pc, &pk[1..], &[1.0], &[0], m, &o, 1, &mut out).is_err());
     }
 
     /// Every 5th point of each axis of the timing grid (8000 points) on one thread: a small,

@@ -10,13 +10,17 @@
 //! Which of them end the run is set by the lift-off [`Rule`].
 
 use crate::error::{check_positive, check_range, Error, Result};
+use crate::mechanics::friction::slip_margin;
+use crate::mechanics::Ramp;
+pub use crate::mechanics::Rule;
+use crate::modes::rolling::bounds::ContactBounds;
+use crate::modes::rolling::memo::RollingMemo;
+use crate::modes::rolling::solution::RollSolution;
+use crate::modes::rolling::Kinematics;
 use crate::ode::{
     self, DenseStep, Direction, EventFunctions, EventSpec, Observation, OdeSystem, SolverOptions,
     State, Status,
 };
-use crate::rolling::{Kinematics, Rolling};
-pub use crate::rule::Rule;
-use std::cell::Cell;
 
 /// The built-in events of a rolling run, in the order of their indices.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -47,18 +51,10 @@ impl RollEvent {
     }
 }
 
-/// The rolling equation as a first-order system in y = (θ, θ̇).
-impl OdeSystem<2> for Rolling {
-    #[inline]
-    fn rhs(&self, _t: f64, y: &State<2>) -> State<2> {
-        State::<2>::new(y[1], self.omega_dot(y[0], y[1]))
-    }
-}
-
 /// The event functions of a rolling run.
 #[derive(Debug, Clone, Copy)]
 pub struct RollEvents {
-    pub rolling: Rolling,
+    pub ramp: Ramp,
     /// μ_s; `None` disables the slip event.
     pub mu_s: Option<f64>,
     pub theta_max: f64,
@@ -69,12 +65,12 @@ impl RollEvents {
     /// g_k at a state, as a function of θ and θ̇ only.
     pub fn value_at(&self, event: RollEvent, theta: f64, omega: f64) -> f64 {
         match event {
-            RollEvent::Liftoff => self.rolling.liftoff_function(theta, omega),
-            RollEvent::NormalForceZero => self.rolling.kinematics(theta, omega).fy,
+            RollEvent::Liftoff => self.ramp.kinematics(theta, omega).lift,
+            RollEvent::NormalForceZero => self.ramp.kinematics(theta, omega).fy,
             RollEvent::Slip => {
-                let k = self.rolling.kinematics(theta, omega);
+                let k = self.ramp.kinematics(theta, omega);
                 // The margin, not the ratio: it stays finite as F_y → 0.
-                self.mu_s.map_or(1.0, |mu| mu * k.fy - k.fx.abs())
+                self.mu_s.map_or(1.0, |mu| slip_margin(mu, k.fx, k.fy))
             }
             // θ_max = ∞ disables the event (a constant, finite g never crosses).
             RollEvent::ThetaLimit if self.theta_max.is_finite() => theta - self.theta_max,
@@ -113,7 +109,7 @@ impl EventFunctions<2> for RollEvents {
     /// All events from one evaluation of the kinematics (one sin_cos per sample).
     #[inline]
     fn values(&self, first: usize, _t: f64, y: &State<2>, out: &mut [f64]) {
-        self.values_from(&self.rolling.kinematics(y[0], y[1]), first, y, out);
+        self.values_from(&self.ramp.kinematics(y[0], y[1]), first, y, out);
     }
     /// Change bounds from bounds on the partial derivatives of each g in θ and θ̇ over
     /// the step (|sin|, |cos| ≤ 1, |θ̇| ≤ W, contact inertia ≥ Ĩ_C + 1 − 2χ), times the
@@ -131,15 +127,11 @@ impl RollEvents {
     /// g_first, g_first+1, … at y from its kinematics `k`.
     #[inline]
     fn values_from(&self, k: &Kinematics, first: usize, y: &State<2>, out: &mut [f64]) {
-        let chi = self.rolling.body.chi;
         for (i, o) in out.iter_mut().enumerate() {
             *o = match RollEvent::ALL[first + i] {
-                RollEvent::Liftoff => {
-                    // χ θ̇² cos θ − cos α, from the kinematics' own cos θ.
-                    chi * k.omega * k.omega * k.cos_theta - self.rolling.cos_a
-                }
+                RollEvent::Liftoff => k.lift,
                 RollEvent::NormalForceZero => k.fy,
-                RollEvent::Slip => self.mu_s.map_or(1.0, |mu| mu * k.fy - k.fx.abs()),
+                RollEvent::Slip => self.mu_s.map_or(1.0, |mu| slip_margin(mu, k.fx, k.fy)),
                 RollEvent::ThetaLimit => self.value_at(RollEvent::ThetaLimit, y[0], y[1]),
             };
         }
@@ -157,197 +149,13 @@ impl RollEvents {
         dense: &DenseStep<2>,
         anchor: Option<(f64, f64, f64)>,
     ) -> [f64; 4] {
-        let b = ContactBounds::near(&self.rolling, self.mu_s, dense, anchor);
+        let b = ContactBounds::near(&self.ramp, self.mu_s, dense, anchor);
         let theta_limit = if self.theta_max.is_finite() {
             b.theta_above(self.theta_max)
         } else {
             0.0
         };
         [b.liftoff, b.fy, b.slip, theta_limit]
-    }
-}
-
-/// Bounds on how much the contact functions of pure rolling can change within one
-/// dense-output step, in the sense of [`EventFunctions::change_bounds`]: shared by the
-/// rolling run ([`RollEvents`]) and the ODE route of the classification
-/// (`jarm_ode`).
-///
-/// Along the interpolant (θ(t), θ̇(t)), |dg/dt| ≤ G_θ |dθ/dt| + G_ω |dθ̇/dt| with
-/// G_θ ≥ |∂g/∂θ|, G_ω ≥ |∂g/∂θ̇| over the step. With W ≥ |θ̇|, s = sin θ, c = cos θ,
-/// θ̈ = N/D, N = χθ̇²s + χ sin(α+θ) + sin α, D = Ĩ_C + 1 + 2χc ≥ D_min = Ĩ_C + 1 − 2χ:
-///   |θ̈| ≤ A = (χW² + χ + sin α)/D_min,
-///   |∂θ̈/∂θ| ≤ A_θ = (χW² + χ)/D_min + 2χ A/D_min,   |∂θ̈/∂θ̇| ≤ A_ω = 2χW/D_min;
-/// lift-off χθ̇²c − cos α: G_θ = χW², G_ω = 2χW;
-/// F_y = cos α − χθ̇²c − χθ̈s: G_θ = χW² + χA + χA_θ, G_ω = 2χW + χA_ω;
-/// F_x = −sin α − χθ̇²s + (1 + χc)θ̈: G_θ = χW² + χA + (1+χ)A_θ, G_ω = 2χW + (1+χ)A_ω;
-/// slip μF_y − |F_x|: μ G(F_y) + G(F_x); θ − θ_lim: G_θ = 1, G_ω = 0; θ̇: G_θ = 0,
-/// G_ω = 1.
-/// The rounding allowance δ = 2⁻⁴⁰ (M + G_θ Θ + G_ω W), with M the sum of the
-/// magnitudes of g's terms and Θ ≥ |θ|, is hundreds of times the error of a few
-/// roundings in g, of the 1-ulp sin_cos, and of the interpolant (including its
-/// mismatch with the exact step end). The bound is L |h| + 4δ.
-/// A singular body (D_min ≤ 0) gives +∞ for the force events: never skipped.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub(crate) struct ContactBounds {
-    /// Of the lift-off function χθ̇² cos θ − cos α.
-    pub liftoff: f64,
-    /// Of F_y.
-    pub fy: f64,
-    /// Of the slip margin μ_s F_y − |F_x|; 0 without μ_s (the event is then a constant).
-    pub slip: f64,
-    /// Of θ̇.
-    pub omega: f64,
-    /// Θ ≥ |θ|, |dθ/dt| and |h| over the step, for [`ContactBounds::theta_above`].
-    theta_max: f64,
-    theta_rate: f64,
-    h: f64,
-}
-
-impl ContactBounds {
-    /// The bounds over the step `dense`; without an anchor with |sin θ|, |cos θ| ≤ 1 and
-    /// D ≥ D_min, else tightened by the trigonometry at one angle
-    /// θ_c (any, typically the step end): `anchor` = (θ_c, sin θ_c, cos θ_c). Every θ
-    /// of the step is within Δ = |θ_old − θ_c| + |h| sup|dθ/dt| of θ_c, so (sin and cos
-    /// being 1-Lipschitz) |sin θ| ≤ S = min(1, |sin θ_c| + Δ'), |cos θ| ≤ C = min(1,
-    /// |cos θ_c| + Δ'), and D ≥ max(D_min, Ĩ_C + 1 + 2χ(cos θ_c − Δ')), where Δ' adds
-    /// to Δ a relative 2⁻⁴⁰ and an absolute 2⁻⁴⁰(1 + Θ), far above the rounding of θ
-    /// along the interpolant and of sin_cos. The bounds of [`ContactBounds`] then hold
-    /// with each |sin|, |cos| ≤ 1 replaced by S or C:
-    ///   A = (χW²S + χ + sin α)/D_lo, A_θ = (χW²C + χ)/D_lo + 2χSA/D_lo, A_ω = 2χWS/D_lo;
-    /// lift-off: G_θ = χW²S, G_ω = 2χWC; F_y: G_θ = χW²S + χAC + χSA_θ,
-    /// G_ω = 2χWC + χSA_ω; F_x: G_θ = χW²C + χSA + (1+χC)A_θ, G_ω = 2χWS + (1+χC)A_ω
-    /// (and M, the magnitudes of the terms, likewise). With S = C = 1, D_lo = D_min
-    /// these are exactly the plain bounds.
-    #[inline]
-    pub(crate) fn near(
-        rolling: &Rolling,
-        mu_s: Option<f64>,
-        dense: &DenseStep<2>,
-        anchor: Option<(f64, f64, f64)>,
-    ) -> Self {
-        let bounds = dense.bounds();
-        let (theta_max, w) = (bounds.value[0], bounds.value[1]);
-        let (theta_rate, omega_rate) = (bounds.rate[0], bounds.rate[1]);
-        let h = dense.h.abs();
-        let chi = rolling.body.chi;
-        let (sa, ca) = (rolling.sin_a, rolling.cos_a);
-        let eps40 = 1.0 / (1u64 << 40) as f64;
-        // δ = 2⁻⁴⁰ (M + G_θ Θ + G_ω W); the bound is L |h| + 4δ.
-        let bound = |(m, g_theta, g_omega): (f64, f64, f64)| {
-            let delta = (m + g_theta * theta_max + g_omega * w) * eps40;
-            (g_theta * theta_rate + g_omega * omega_rate) * h + 4.0 * delta
-        };
-        let d_min = rolling.contact_inertia(-1.0);
-        let (s_max, c_max, d_lo) = match anchor {
-            Some((theta_c, s_c, c_c)) => {
-                let reach = (dense.y_old[0] - theta_c).abs() + h * theta_rate;
-                let reach = reach * (1.0 + eps40) + (1.0 + theta_max) * eps40;
-                // NaN (never expected) falls back to the plain bounds through min/max.
-                let s_max = (s_c.abs() + reach).min(1.0);
-                let c_max = (c_c.abs() + reach).min(1.0);
-                let d_lo = rolling.contact_inertia(c_c - reach).max(d_min);
-                (s_max, c_max, d_lo)
-            }
-            None => (1.0, 1.0, d_min),
-        };
-        let chi_w2 = chi * w * w;
-        let liftoff = bound((chi_w2 * c_max + ca, chi_w2 * s_max, 2.0 * chi * w * c_max));
-        let (fy, slip) = if d_lo > 0.0 {
-            let a = (chi_w2 * s_max + chi + sa) / d_lo;
-            let a_theta = (chi_w2 * c_max + chi) / d_lo + 2.0 * chi * s_max * a / d_lo;
-            let a_omega = 2.0 * chi * w * s_max / d_lo;
-            let lever = 1.0 + chi * c_max;
-            // (M, G_θ, G_ω) of F_y and F_x.
-            let fy = (
-                ca + chi_w2 * c_max + chi * a * s_max,
-                chi_w2 * s_max + chi * a * c_max + chi * s_max * a_theta,
-                2.0 * chi * w * c_max + chi * s_max * a_omega,
-            );
-            let fx = (
-                sa + chi_w2 * s_max + lever * a,
-                chi_w2 * c_max + chi * s_max * a + lever * a_theta,
-                2.0 * chi * w * s_max + lever * a_omega,
-            );
-            let slip = mu_s.map_or(0.0, |mu| {
-                bound((mu * fy.0 + fx.0, mu * fy.1 + fx.1, mu * fy.2 + fx.2))
-            });
-            (bound(fy), slip)
-        } else {
-            let slip = if mu_s.is_some() { f64::INFINITY } else { 0.0 };
-            (f64::INFINITY, slip)
-        };
-        let omega = bound((w, 0.0, 1.0));
-        Self {
-            liftoff,
-            fy,
-            slip,
-            omega,
-            theta_max,
-            theta_rate,
-            h,
-        }
-    }
-
-    /// Of θ − θ_lim (θ_lim finite).
-    #[inline]
-    pub(crate) fn theta_above(&self, theta_lim: f64) -> f64 {
-        let delta =
-            (self.theta_max + theta_lim.abs() + self.theta_max) * (1.0 / (1u64 << 40) as f64);
-        self.theta_rate * self.h + 4.0 * delta
-    }
-}
-
-/// Pure rolling with a one-entry memo of (sin θ, cos θ), keyed on the bits of θ. Each
-/// accepted step ends with the FSAL evaluation of the right-hand side at the new state;
-/// the step scan then evaluates the events there and the caller's observer looks at the
-/// forces there, and both find sin_cos of that θ in the memo. sin_cos is a pure function,
-/// so hits and misses give identical bits. Shared by the rolling run and `jarm_ode`.
-#[derive(Debug, Clone)]
-pub(crate) struct RollingMemo {
-    pub rolling: Rolling,
-    /// (θ, sin θ, cos θ) of the last evaluation; θ = NaN at first, whose sin_cos is NaN.
-    trig: Cell<(f64, f64, f64)>,
-}
-
-impl RollingMemo {
-    pub(crate) fn new(rolling: Rolling) -> Self {
-        Self {
-            rolling,
-            trig: Cell::new((f64::NAN, f64::NAN, f64::NAN)),
-        }
-    }
-
-    #[inline]
-    pub(crate) fn sin_cos(&self, theta: f64) -> (f64, f64) {
-        let (th, s, c) = self.trig.get();
-        if th.to_bits() == theta.to_bits() {
-            return (s, c);
-        }
-        let (s, c) = theta.sin_cos();
-        self.trig.set((theta, s, c));
-        (s, c)
-    }
-
-    /// The memo's entry (θ, sin θ, cos θ): an anchor for [`ContactBounds::near`] (θ is
-    /// NaN before the first evaluation, which the bounds treat as no anchor).
-    #[inline]
-    pub(crate) fn anchor(&self) -> (f64, f64, f64) {
-        self.trig.get()
-    }
-
-    /// [`Rolling::kinematics`], bit for bit.
-    #[inline]
-    pub(crate) fn kinematics(&self, theta: f64, omega: f64) -> Kinematics {
-        let (s, c) = self.sin_cos(theta);
-        self.rolling.kinematics_sc(theta, omega, s, c)
-    }
-}
-
-impl OdeSystem<2> for RollingMemo {
-    #[inline]
-    fn rhs(&self, _t: f64, y: &State<2>) -> State<2> {
-        let (s, c) = self.sin_cos(y[0]);
-        State::<2>::new(y[1], self.rolling.omega_dot_sc(s, c, y[1]))
     }
 }
 
@@ -517,14 +325,17 @@ pub struct RollRun {
     pub t: Vec<f64>,
     pub theta: Vec<f64>,
     pub omega: Vec<f64>,
-    /// θ̈, F_x and F_y at each recorded point ([`Rolling::kinematics`]).
+    /// θ̈, F_x and F_y at each recorded point ([`Ramp::kinematics`]).
     pub omega_dot: Vec<f64>,
     pub fx: Vec<f64>,
     pub fy: Vec<f64>,
+    /// The distance rolled along the ramp, l − l0 = θ − θ0 (pure rolling, R = 1).
+    pub l: Vec<f64>,
     pub events: Vec<EventHit>,
     pub status: RollStatus,
     pub nfev: usize,
-    pub dense: Vec<DenseStep<2>>,
+    /// The dense output, when asked for: ends where the run ends.
+    pub dense: Option<RollSolution>,
 }
 
 /// Points reserved per recorded array up front: a run to lift-off at the default
@@ -541,6 +352,7 @@ impl RollRun {
         self.omega_dot.push(k.omega_dot);
         self.fx.push(k.fx);
         self.fy.push(k.fy);
+        self.l.push(k.theta - self.theta[0]);
     }
 
     #[inline]
@@ -551,21 +363,22 @@ impl RollRun {
         self.omega_dot.pop();
         self.fx.pop();
         self.fy.pop();
+        self.l.pop();
     }
 }
 
 /// Integrates pure rolling from (θ0, θ̇0) until a terminal event, t_max or θ_max.
-pub fn roll(rolling: &Rolling, opts: &RollOptions) -> Result<RollRun> {
+pub fn roll(ramp: &Ramp, opts: &RollOptions) -> Result<RollRun> {
     opts.validate()?;
     let events = RollEvents {
-        rolling: *rolling,
+        ramp: *ramp,
         mu_s: opts.mu_s,
         theta_max: opts.theta_max,
         rule: opts.rule,
     };
     let memo = Memo {
         events: &events,
-        sys: RollingMemo::new(*rolling),
+        sys: RollingMemo::new(*ramp),
     };
     let capacity = RESERVE.min(opts.solver.max_steps.saturating_add(2));
     let mut run = RollRun {
@@ -575,11 +388,13 @@ pub fn roll(rolling: &Rolling, opts: &RollOptions) -> Result<RollRun> {
         omega_dot: Vec::with_capacity(capacity),
         fx: Vec::with_capacity(capacity),
         fy: Vec::with_capacity(capacity),
+        l: Vec::with_capacity(capacity),
         events: Vec::new(),
         status: RollStatus::TimeLimit,
         nfev: 0,
-        dense: Vec::with_capacity(if opts.dense_output { capacity } else { 0 }),
+        dense: None,
     };
+    let mut steps = Vec::with_capacity(if opts.dense_output { capacity } else { 0 });
     run.push(0.0, &memo.kinematics(opts.theta0, opts.omega0));
     // A contact event that already holds at t = 0 ends the run there: the integrator
     // looks for crossings only, and a run that starts outside the contact conditions
@@ -606,7 +421,7 @@ pub fn roll(rolling: &Rolling, opts: &RollOptions) -> Result<RollRun> {
             Observation::Step { dense, t, y } => {
                 run.push(t, &memo.kinematics(y[0], y[1]));
                 if opts.dense_output {
-                    run.dense.push(*dense);
+                    steps.push(*dense);
                 }
             }
             Observation::Event { index, t, y } => run.events.push(EventHit {
@@ -632,6 +447,13 @@ pub fn roll(rolling: &Rolling, opts: &RollOptions) -> Result<RollRun> {
             run.push(outcome.t, &memo.kinematics(outcome.y[0], outcome.y[1]));
         }
     }
+    if opts.dense_output {
+        run.dense = Some(RollSolution {
+            ramp: *ramp,
+            steps,
+            t_end: run.t.last().copied().unwrap_or(0.0),
+        });
+    }
     Ok(run)
 }
 
@@ -654,7 +476,7 @@ fn violated_at_start(events: &RollEvents, theta: f64, omega: f64) -> Option<Roll
 #[cfg(test)]
 mod skip_tests {
     use super::*;
-    use crate::body::Cylinder;
+    use crate::mechanics::Cylinder;
 
     /// The roll events without change bounds: the scan always walks the interior samples.
     struct NoSkip(RollEvents);
@@ -674,7 +496,7 @@ mod skip_tests {
         }
     }
 
-    fn cases() -> Vec<(Rolling, RollEvents)> {
+    fn cases() -> Vec<(Ramp, RollEvents)> {
         let mut out = Vec::new();
         for &(chi, km, alpha_deg, mu_s, rule, theta_max) in &[
             (0.15, 0.02, 40.0, None, Rule::Paper, f64::INFINITY),
@@ -682,10 +504,9 @@ mod skip_tests {
             (0.9, 0.1, 60.0, None, Rule::NormalForce, 40.0),
             (0.3, 0.3, 5.0, Some(2.0), Rule::Paper, 7.0),
         ] {
-            let r =
-                Rolling::new(Cylinder::new(chi, km).unwrap(), f64::to_radians(alpha_deg)).unwrap();
+            let r = Ramp::new(Cylinder::new(chi, km).unwrap(), f64::to_radians(alpha_deg)).unwrap();
             let ev = RollEvents {
-                rolling: r,
+                ramp: r,
                 mu_s,
                 theta_max,
                 rule,

@@ -14,7 +14,7 @@
 //! smooth friction margins M± = μ_s F_y ∓ F_x (≥ 0; together ⇔ μ_s F_y − |F_x| ≥ 0, tested as a
 //! margin, never as a ratio), −L (< 0 until the paper's lift-off) and E (> 0, else the body
 //! stops and rocks back). "A thin violation between sample points must not be missed": the
-//! functions and their analytic derivatives are sampled on a grid of ≤ 2π/32 (finer where
+//! functions and their analytic derivatives are sampled on a grid of ≤ 2π/24 (`SAMPLES_PER_TURN`; finer where
 //! Ĩ_P is small: step ≤ ¼√(Ĩ_P/χ), the width of the near-singular peak at θ = π for χ → 1,
 //! k_m → 0); a violation inside a cell needs an interior minimum, i.e. a sign change − → + of
 //! g' on the cell; its value is estimated by the cubic Hermite interpolant, and unless that is
@@ -24,8 +24,14 @@
 //!
 //! The evaluation uses one `sin_cos` of (θ − θ0)/2 per point, no heap allocation.
 
-use crate::rolling::Rolling;
-use crate::roots::brent;
+use crate::mechanics::energy::rolling_kinetic;
+use crate::mechanics::friction::friction_ratio;
+use crate::mechanics::liftoff::{free_normal_acceleration, liftoff_slope};
+use crate::mechanics::Ramp;
+pub use crate::modes::rolling::events::ContactEvent;
+use crate::modes::rolling::events::{violated_at_start, StartValues, Watched};
+use crate::modes::rolling::{force_slopes, forces, torque, torque_slope};
+use crate::ode::roots::brent;
 use std::f64::consts::{FRAC_PI_2, TAU};
 
 /// Samples per turn of the scanning grid.
@@ -69,11 +75,7 @@ impl PathPoint {
     /// |F_x|/F_y, +∞ where F_y ≤ 0.
     #[inline]
     pub fn ratio(&self) -> f64 {
-        if self.fy > 0.0 {
-            self.fx.abs() / self.fy
-        } else {
-            f64::INFINITY
-        }
+        friction_ratio(self.fx, self.fy)
     }
 
     /// Sign test of d(|F_x|/F_y)/dθ > 0 without division (F_y > 0 assumed).
@@ -91,8 +93,8 @@ impl PathPoint {
 /// The precomputed rolling path from (θ0, θ̇0) with static friction μ_s.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct RollingPath {
+    ramp: Ramp,
     chi: f64,
-    ic: f64,
     sin_a: f64,
     cos_a: f64,
     theta0: f64,
@@ -104,25 +106,10 @@ pub struct RollingPath {
     mu_s: f64,
 }
 
-/// What ended a scan.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub enum PathEvent {
-    /// F_y ≤ 0.
-    NormalForce,
-    /// μ_s F_y − |F_x| < 0.
-    Slip,
-    /// The lift-off function reached 0 from below (the paper's jump condition).
-    Liftoff,
-    /// θ̇² returned to 0: the body stops and rolls back.
-    RocksBack,
-    /// Nothing happened before the end of the scan.
-    End,
-}
-
 /// The outcome of a scan along the rolling path.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct PathScan {
-    pub event: PathEvent,
+    pub event: ContactEvent,
     /// The state where the scan stopped (the event, or the end).
     pub at: PathPoint,
     /// The largest |F_x|/F_y on [θ0, θ_event] and where (∞ if F_y reached 0).
@@ -141,7 +128,6 @@ pub struct Watch {
     pub normal_force: bool,
     pub friction: bool,
     pub liftoff: bool,
-    pub energy: bool,
     /// Refine the reported extrema (max friction ratio, min F_y) to full precision by Brent on
     /// their derivative; otherwise they are the best sample or cubic-Hermite cell estimate
     /// (relative error ~1e-4). Costs ~2 × 10 evaluations per scan.
@@ -156,7 +142,6 @@ impl Watch {
         normal_force: true,
         friction: true,
         liftoff: true,
-        energy: true,
         refine_extrema: true,
         coarseness: 1,
     };
@@ -167,7 +152,7 @@ impl Watch {
             G_FY => self.normal_force,
             G_MPLUS | G_MMINUS => self.friction,
             G_NOLIFT => self.liftoff,
-            _ => self.energy,
+            _ => true, // the body stopping is always watched
         }
     }
 }
@@ -249,13 +234,13 @@ impl Extremum {
 
 impl RollingPath {
     /// A path on the ramp `r` from (θ0, θ̇0); μ_s is used by the friction margins.
-    pub fn new(r: &Rolling, theta0: f64, omega0: f64, mu_s: f64) -> Self {
+    pub fn new(r: &Ramp, theta0: f64, omega0: f64, mu_s: f64) -> Self {
         let (s0, c0) = theta0.sin_cos();
-        let (sa0, ca0) = (r.sin_a * c0 + r.cos_a * s0, r.cos_a * c0 - r.sin_a * s0);
+        let (sa0, ca0) = r.shifted(s0, c0);
         let k0 = 0.5 * r.contact_inertia(c0) * omega0 * omega0;
         Self {
+            ramp: *r,
             chi: r.body.chi,
-            ic: r.body.ic,
             sin_a: r.sin_a,
             cos_a: r.cos_a,
             theta0,
@@ -278,9 +263,15 @@ impl RollingPath {
     pub fn energy(&self, theta: f64) -> f64 {
         let u = 0.5 * (theta - self.theta0);
         let (su, cu) = u.sin_cos();
-        self.k0
-            + (theta - self.theta0) * self.sin_a
-            + 2.0 * self.chi * (self.sa0 * cu + self.ca0 * su) * su
+        let sin_mid = self.sa0 * cu + self.ca0 * su;
+        rolling_kinetic(
+            self.k0,
+            theta - self.theta0,
+            self.sin_a,
+            self.chi,
+            sin_mid,
+            su,
+        )
     }
 
     /// All path quantities at θ: one `sin_cos`, no allocation.
@@ -293,28 +284,25 @@ impl RollingPath {
     /// [`Self::eval`] given (su, cu) = sin_cos((θ − θ0)/2).
     #[inline]
     fn eval_half(&self, theta: f64, su: f64, cu: f64) -> PathPoint {
-        let chi = self.chi;
+        let (r, chi) = (&self.ramp, self.ramp.body.chi);
         let d = theta - self.theta0;
         let sd = 2.0 * su * cu;
         let cd = (cu - su) * (cu + su);
         let s = self.s0 * cd + self.c0 * sd;
         let c = self.c0 * cd - self.s0 * sd;
-        // E = K0 + (θ − θ0) sin α + χ[cos(α+θ0) − cos(α+θ)], the bracket as 2 sin(α+θ0+u) sin u.
-        let e = self.k0 + d * self.sin_a + 2.0 * chi * (self.sa0 * cu + self.ca0 * su) * su;
-        let sin_at = self.sin_a * c + self.cos_a * s;
-        let cos_at = self.cos_a * c - self.sin_a * s;
-        let de = self.sin_a + chi * sin_at;
-        let inv_ip = 1.0 / (self.ic + 1.0 + 2.0 * chi * c);
+        // E = K0 + ΔE(θ), sin(α + θ0 + u) by the addition theorem from (su, cu).
+        let e = rolling_kinetic(self.k0, d, r.sin_a, chi, self.sa0 * cu + self.ca0 * su, su);
+        let (sin_at, cos_at) = r.shifted(s, c);
+        let de = r.sin_a + chi * sin_at;
+        let inv_ip = 1.0 / r.contact_inertia(c);
         let w = 2.0 * e * inv_ip;
-        let acc = (chi * w * s + chi * sin_at + self.sin_a) * inv_ip;
-        let dacc = chi * (4.0 * acc * s + w * c + cos_at) * inv_ip;
-        let one_c = 1.0 + chi * c;
-        let fx = -self.sin_a - chi * w * s + one_c * acc;
-        let fy = self.cos_a - chi * w * c - chi * acc * s;
-        let dfx = -3.0 * chi * acc * s - chi * w * c + one_c * dacc;
-        let dfy = -3.0 * chi * acc * c + chi * w * s - chi * dacc * s;
-        let lift = chi * w * c - self.cos_a;
-        let dlift = 2.0 * chi * acc * c - chi * w * s;
+        let chi_w2 = chi * w;
+        let acc = torque(chi, chi_w2, s, sin_at, r.sin_a) * inv_ip;
+        let dacc = torque_slope(chi, w, acc, s, c, cos_at) * inv_ip;
+        let (fx, fy) = forces(r, chi_w2, s, c, acc);
+        let (dfx, dfy) = force_slopes(chi, chi_w2, s, c, acc, dacc);
+        let lift = free_normal_acceleration(chi_w2, c, r.cos_a);
+        let dlift = liftoff_slope(chi, chi_w2, acc, s, c);
         let mu = self.mu_s;
         PathPoint {
             theta,
@@ -332,11 +320,11 @@ impl RollingPath {
         }
     }
 
-    /// Grid step at a point: ≤ 2π/32, and ≤ ¼√(Ĩ_P/χ) near the singular peak.
+    /// Grid step at a point: ≤ 2π/24, and ≤ ¼√(Ĩ_P/χ) near the singular peak.
     #[inline]
     fn step(&self, p: &PathPoint) -> f64 {
         let hmax = TAU / SAMPLES_PER_TURN;
-        let ip = self.ic + 1.0 + 2.0 * self.chi * p.cos_t;
+        let ip = self.ramp.contact_inertia(p.cos_t);
         let h = 0.25 * (ip / self.chi).sqrt();
         let floor = 1e-9 * (1.0 + p.theta.abs());
         if h < hmax {
@@ -461,7 +449,6 @@ impl RollingPath {
             normal_force: false,
             friction: false,
             liftoff: true,
-            energy: true,
             refine_extrema: false,
             coarseness,
         };
@@ -472,7 +459,7 @@ impl RollingPath {
             return self.scan_from(theta_start, theta_end, watch);
         }
         // L < 0 on window m while 2χ E_ub(2πm + π/2) ≤ cos α (Ĩ_C + 1) (with a margin).
-        let need = self.cos_a * (self.ic + 1.0) / (2.0 * chi) * (1.0 - 1e-9);
+        let need = self.cos_a * (self.ramp.body.ic + 1.0) / (2.0 * chi) * (1.0 - 1e-9);
         let e_ub =
             |theta: f64| self.k0 + (theta - self.theta0) * self.sin_a + chi * (self.ca0 + 1.0);
         // First window that can hold L ≥ 0: θ_hi = 2πm + π/2 with E_ub(θ_hi) > need.
@@ -495,7 +482,7 @@ impl RollingPath {
                 );
                 if lo < hi {
                     let sc = self.scan_from(lo, hi, watch);
-                    if sc.event != PathEvent::End {
+                    if sc.event != ContactEvent::End {
                         if lo > theta_start && sc.at.theta <= lo {
                             // An event at a window start contradicts the bound (rounding):
                             // fall back to the plain scan.
@@ -513,7 +500,7 @@ impl RollingPath {
             None => {
                 let p = self.eval(theta_end);
                 PathScan {
-                    event: PathEvent::End,
+                    event: ContactEvent::End,
                     at: p,
                     max_ratio: p.ratio(),
                     theta_max_ratio: p.theta,
@@ -532,24 +519,24 @@ impl RollingPath {
         let p0 = self.eval(theta_start);
         let mut min_fy = Extremum::start(p0.fy, p0.theta, f64::INFINITY);
         let mut max_r = Extremum::start(p0.ratio(), p0.theta, f64::NEG_INFINITY);
-        // Violations at the start itself.
+        // Ties go to the earlier constraint in this order (the shared catalogue's).
         let order = [G_NOLIFT, G_FY, G_MPLUS, G_MMINUS, G_ENERGY];
-        for &k in &order {
-            if !watch.active(k) {
-                continue;
-            }
-            let bad = if k == G_ENERGY {
-                // From rest E(θ0) = 0: fine if the body accelerates forward.
-                p0.g[k] < 0.0 || (p0.g[k] == 0.0 && (p0.dg[k].is_nan() || p0.dg[k] <= 0.0))
-            } else if k == G_NOLIFT {
-                // Lift-off at the start: L(θ0) ≥ 0 and not falling.
-                violated(k, p0.g[k]) && !(p0.g[k] == 0.0 && p0.dg[k] > 0.0)
-            } else {
-                violated(k, p0.g[k])
-            };
-            if bad {
-                return self.finish(event_of(k), p0, min_fy, max_r, evals, watch.refine_extrema);
-            }
+        // Violations at the start itself (the check shared with the ODE route).
+        let start = StartValues {
+            lift: p0.lift,
+            lift_slope: -p0.dg[G_NOLIFT],
+            fx: p0.fx,
+            fy: p0.fy,
+            kinetic: p0.g[G_ENERGY],
+            kinetic_slope: p0.dg[G_ENERGY],
+        };
+        let watched = Watched {
+            liftoff: watch.liftoff,
+            normal_force: watch.normal_force,
+            friction: watch.friction,
+        };
+        if let Some(event) = violated_at_start(watched, self.mu_s, &start) {
+            return self.finish(event, p0, min_fy, max_r, evals, watch.refine_extrema);
         }
         let act = [
             watch.active(0),
@@ -647,7 +634,7 @@ impl RollingPath {
             track(pa, pb, &mut min_fy, &mut max_r);
             if tb >= theta_end || cells > max_cells {
                 return self.finish(
-                    PathEvent::End,
+                    ContactEvent::End,
                     *pb,
                     min_fy,
                     max_r,
@@ -661,7 +648,7 @@ impl RollingPath {
 
     fn finish(
         &self,
-        event: PathEvent,
+        event: ContactEvent,
         at: PathPoint,
         min_fy: Extremum,
         max_r: Extremum,
@@ -731,12 +718,12 @@ impl RollingPath {
     }
 }
 
-fn event_of(k: usize) -> PathEvent {
+fn event_of(k: usize) -> ContactEvent {
     match k {
-        G_FY => PathEvent::NormalForce,
-        G_MPLUS | G_MMINUS => PathEvent::Slip,
-        G_NOLIFT => PathEvent::Liftoff,
-        _ => PathEvent::RocksBack,
+        G_FY => ContactEvent::NormalForce,
+        G_MPLUS | G_MMINUS => ContactEvent::Slip,
+        G_NOLIFT => ContactEvent::Liftoff,
+        _ => ContactEvent::RocksBack,
     }
 }
 
@@ -784,10 +771,10 @@ fn track(a: &PathPoint, b: &PathPoint, min_fy: &mut Extremum, max_r: &mut Extrem
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::body::Cylinder;
+    use crate::mechanics::Cylinder;
 
-    fn ramp(chi: f64, km: f64, alpha_deg: f64) -> Rolling {
-        Rolling::new(Cylinder::new(chi, km).unwrap(), alpha_deg.to_radians()).unwrap()
+    fn ramp(chi: f64, km: f64, alpha_deg: f64) -> Ramp {
+        Ramp::new(Cylinder::new(chi, km).unwrap(), alpha_deg.to_radians()).unwrap()
     }
 
     #[test]
@@ -861,7 +848,6 @@ mod tests {
             normal_force: false,
             friction: false,
             liftoff: true,
-            energy: true,
             refine_extrema: false,
             coarseness: 1,
         };
@@ -885,7 +871,7 @@ mod tests {
                         p.scan_liftoff_from(start, end, 1),
                     );
                     assert_eq!(a1.event, a2.event, "{chi} {km} {a} {th0} {start}");
-                    if a1.event == PathEvent::Liftoff {
+                    if a1.event == ContactEvent::Liftoff {
                         found += 1;
                         let (t1, t2) = (a1.at.theta, a2.at.theta);
                         assert!((t1 - t2).abs() <= 1e-13 * t1.abs().max(1.0), "{t1} {t2}");
@@ -1008,7 +994,7 @@ mod tests {
             let s = p.scan(end, Watch::ALL);
             let b = brute(&p, end, Watch::ALL);
             match (s.event, b) {
-                (PathEvent::End, None) => {}
+                (ContactEvent::End, None) => {}
                 (ev, Some((th, k))) => {
                     assert_eq!(ev, event_of(k), "{chi} {km} {a}");
                     assert!(
@@ -1049,7 +1035,7 @@ mod tests {
         let r = ramp(0.5, 0.4, 30.0);
         let p = RollingPath::new(&r, 0.0, 0.0, 1.0);
         let s = p.scan(2.0 * TAU, Watch::ALL);
-        assert_eq!(s.event, PathEvent::Slip);
+        assert_eq!(s.event, ContactEvent::Slip);
         assert!(
             (s.at.theta.to_degrees() - 316.47).abs() < 0.01,
             "{}",
@@ -1085,7 +1071,7 @@ mod tests {
         let mu = best * (1.0 - 1e-9);
         let p = RollingPath::new(&r, 0.0, 0.0, mu);
         let sc = p.scan(4.0 * TAU, Watch::ALL);
-        assert_eq!(sc.event, PathEvent::Slip);
+        assert_eq!(sc.event, ContactEvent::Slip);
         assert!(
             (sc.at.theta - th_best).abs() < 1e-3,
             "{} {th_best}",

@@ -27,8 +27,8 @@
 //! μ = −χ sin φ/(1 + χ cos φ) → 0 as φ → 0⁻: μ_s,min = 0, reached only at the window's end,
 //! which is where the paper's α = 0 argument (μ diverges at θ_J = 2πn) fails.
 
-use crate::body::Cylinder;
-use crate::roots::bisect;
+use crate::mechanics::Cylinder;
+use crate::ode::roots::bisect;
 use std::f64::consts::{FRAC_PI_2, PI, TAU};
 
 /// Forces at a jump point of the paper's rule, per M g.
@@ -210,7 +210,7 @@ pub fn relative_angle(theta: f64) -> f64 {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::rolling::Rolling;
+    use crate::mechanics::Ramp;
 
     fn body(chi: f64, km: f64) -> Cylinder {
         Cylinder::new(chi, km).unwrap()
@@ -218,7 +218,7 @@ mod tests {
 
     #[test]
     fn jump_forces_follow_from_the_rolling_equations() {
-        // Put θ̇² = cos α/(χ cos θ) into Rolling::kinematics: an independent route.
+        // Put θ̇² = cos α/(χ cos θ) into Ramp::kinematics: an independent route.
         for &(chi, km, a_deg, th) in &[
             (0.15, 0.02, 40.0f64, 5.835f64),
             (0.5, 0.4, 30.0, -0.3),
@@ -227,7 +227,7 @@ mod tests {
         ] {
             let b = body(chi, km);
             let alpha: f64 = a_deg.to_radians();
-            let r = Rolling::new(b, alpha).unwrap();
+            let r = Ramp::new(b, alpha).unwrap();
             let w2 = alpha.cos() / (chi * th.cos());
             let k = r.kinematics(th, w2.sqrt());
             let j = jump_forces(&b, alpha, th);

@@ -33,10 +33,10 @@
 //!
 //! Integrator failures: the only singular point of the rolling equation is θ = π for
 //! χ = 1, k_m = 0 (Ĩ_P = 0, θ̇ → ∞). There the friction ratio is |tan(θ/2)| → ∞, so for any
-//! finite μ_s the slip (or normal-force) event comes first and the singularity is not reached;
-//! should the integrator still stop with `StepTooSmall` or `NonFinite`, the point is reported
-//! as `SlipBefore` at the last good θ (the rolling branch cannot continue: it would need
-//! unbounded friction). `MaxSteps` (a generous budget per turn) is reported as `TurnLimit`.
+//! finite μ_s the slip (or normal-force) event comes first and the singularity is not reached.
+//! Should the integrator still stop (`StepTooSmall`, `NonFinite`, or the generous step budget
+//! `MaxSteps`), the point is reported as `SolverFailed` at the last good θ: never a physical
+//! verdict.
 //!
 //! Events are found by sign sampling on each step's dense output (`event_samples` interior
 //! points, more at small α), not by the closed form's derivative test: a violation window
@@ -55,27 +55,34 @@
 //!
 //! No heap allocation, no shared state: deterministic, bit-identical for any thread count.
 
-use crate::jarm::{
-    restrict_to_turn, turn_bound, turn_of, valid_body, JarmOptions, JarmResult, Reason,
+use crate::jarm::decision::{
+    decide, point_ramp, restrict_to_turn, search_end, Case, EventPoint, Extrema, Found,
 };
-use crate::jump_point::{green_turn, jump_forces, mu};
+use crate::jarm::result::{JarmOptions, JarmResult, Reason};
+use crate::jarm::turns::turn_of;
+use crate::mechanics::friction::{friction_ratio, slip_margin};
+use crate::mechanics::liftoff::liftoff_slope;
+use crate::mechanics::Rule;
+use crate::modes::rolling::bounds::ContactBounds;
+use crate::modes::rolling::events::{
+    equilibrium_start, violated_at_start, ContactEvent, StartValues, Watched,
+};
+use crate::modes::rolling::memo::RollingMemo;
+use crate::modes::rolling::Kinematics;
 use crate::ode::{
     self, DenseStep, Direction, EventFunctions, EventSpec, Observation, SolverOptions, State,
     Status,
 };
-use crate::roll::{ContactBounds, RollingMemo};
-use crate::rolling::{Kinematics, Rolling};
-pub use crate::rule::Rule;
 use std::cell::Cell;
-use std::f64::consts::{PI, TAU};
+use std::f64::consts::TAU;
 
-/// Event indices.
-const EV_LIFTOFF: usize = 0;
-const EV_FY: usize = 1;
-const EV_SLIP: usize = 2;
-const EV_STOP: usize = 3;
-const EV_END: usize = 4;
-const N_EVENTS: usize = 5;
+/// Event indices: the shared catalogue's order.
+const EV_LIFTOFF: usize = ContactEvent::Liftoff as usize;
+const EV_FY: usize = ContactEvent::NormalForce as usize;
+const EV_SLIP: usize = ContactEvent::Slip as usize;
+const EV_STOP: usize = ContactEvent::RocksBack as usize;
+const EV_END: usize = ContactEvent::End as usize;
+const N_EVENTS: usize = ContactEvent::ALL.len();
 
 /// Relative θ-tolerance of the F_y / slip tie rule.
 const TIE_TOL: f64 = 1e-10;
@@ -130,11 +137,9 @@ impl JarmEvents<'_> {
     #[inline]
     fn raw(&self, k: usize, q: &Kinematics) -> f64 {
         match k {
-            EV_LIFTOFF if self.liftoff => {
-                self.sys.rolling.body.chi * q.omega * q.omega * q.cos_theta - self.sys.rolling.cos_a
-            }
+            EV_LIFTOFF if self.liftoff => q.lift,
             EV_FY if self.normal_force => q.fy,
-            EV_SLIP if self.slip => self.mu_s * q.fy - q.fx.abs(),
+            EV_SLIP if self.slip => slip_margin(self.mu_s, q.fx, q.fy),
             EV_STOP => q.omega,
             EV_END => q.theta - self.theta_end,
             _ => 1.0,
@@ -191,7 +196,7 @@ impl JarmEvents<'_> {
         anchor: Option<(f64, f64, f64)>,
     ) -> [f64; N_EVENTS] {
         let mu_s = self.slip.then_some(self.mu_s);
-        let b = ContactBounds::near(&self.sys.rolling, mu_s, dense, anchor);
+        let b = ContactBounds::near(&self.sys.ramp, mu_s, dense, anchor);
         let on = |enabled: bool, x: f64| if enabled { x } else { 0.0 };
         [
             on(self.liftoff, b.liftoff),
@@ -203,68 +208,27 @@ impl JarmEvents<'_> {
     }
 }
 
-/// Running path extrema, sampled at step ends and event points.
-#[derive(Debug, Clone, Copy)]
-struct Extrema {
-    max_ratio: f64,
-    theta_max_ratio: f64,
-    min_fy: f64,
-    theta_min_fy: f64,
-}
-
-impl Extrema {
-    fn start(q: &Kinematics) -> Self {
-        Self {
-            max_ratio: ratio(q),
-            theta_max_ratio: q.theta,
-            min_fy: q.fy,
-            theta_min_fy: q.theta,
-        }
-    }
-
-    #[inline]
-    fn add(&mut self, q: &Kinematics) {
-        let r = ratio(q);
-        if r > self.max_ratio {
-            self.max_ratio = r;
-            self.theta_max_ratio = q.theta;
-        }
-        if q.fy < self.min_fy {
-            self.min_fy = q.fy;
-            self.theta_min_fy = q.theta;
-        }
-    }
-
-    fn result(&self, reason: Reason) -> JarmResult {
-        JarmResult::with_extrema(
-            reason,
-            (self.max_ratio, self.theta_max_ratio),
-            (self.min_fy, self.theta_min_fy),
-        )
+/// Path extrema at the start (then sampled at step ends and the event point).
+fn extrema_start(q: &Kinematics) -> Extrema {
+    Extrema {
+        max_ratio: friction_ratio(q.fx, q.fy),
+        theta_max_ratio: q.theta,
+        min_fy: q.fy,
+        theta_min_fy: q.theta,
     }
 }
 
-/// |F_x|/F_y, +∞ where F_y ≤ 0 (or NaN).
 #[inline]
-fn ratio(q: &Kinematics) -> f64 {
-    if q.fy > 0.0 {
-        q.fx.abs() / q.fy
-    } else {
-        f64::INFINITY
+fn extrema_add(e: &mut Extrema, q: &Kinematics) {
+    let r = friction_ratio(q.fx, q.fy);
+    if r > e.max_ratio {
+        e.max_ratio = r;
+        e.theta_max_ratio = q.theta;
     }
-}
-
-/// dF_y/dθ along rolling at (θ, θ̇) (w = θ̇², a = θ̈, a' = dθ̈/dθ; see `path.rs` for the
-/// derivation): a' = χ(4a sin θ + w cos θ + cos(α + θ))/Ĩ_P,
-/// F_y' = −3χ a cos θ + χ w sin θ − χ a' sin θ.
-fn dfy_dtheta(r: &Rolling, q: &Kinematics) -> f64 {
-    let chi = r.body.chi;
-    let (s, c) = q.theta.sin_cos();
-    let w = q.omega * q.omega;
-    let a = q.omega_dot;
-    let cos_at = r.cos_a * c - r.sin_a * s;
-    let da = chi * (4.0 * a * s + w * c + cos_at) / r.contact_inertia(c);
-    -3.0 * chi * a * c + chi * w * s - chi * da * s
+    if q.fy < e.min_fy {
+        e.min_fy = q.fy;
+        e.theta_min_fy = q.theta;
+    }
 }
 
 /// Interior sign samples per step for the event scan. A step at rtol ~1e-10 spans up to
@@ -287,8 +251,9 @@ fn event_samples(alpha: f64) -> usize {
 enum End {
     /// Terminal event k at state (θ, θ̇) and time t.
     Event { k: usize, t: f64, y: State<2> },
-    /// The integrator stopped (status) at its last good state.
-    Failed { status: Status, y: State<2> },
+    /// The integrator stopped (step limit, step too small, non-finite values) at its last
+    /// good state.
+    Failed { y: State<2> },
 }
 
 /// Integrates rolling from (t0, y0) until the first terminal event of `ev`, reporting the
@@ -306,7 +271,7 @@ fn integrate(
         2,
     >| {
         if let (Observation::Step { y, .. }, Some(tr)) = (obs, track.as_deref_mut()) {
-            tr.add(&ev.kinematics(y[0], y[1]));
+            extrema_add(tr, &ev.kinematics(y[0], y[1]));
         }
     });
     match out.status {
@@ -315,38 +280,8 @@ fn integrate(
             t: out.t,
             y: out.y,
         },
-        status => End::Failed { status, y: out.y },
+        _ => End::Failed { y: out.y },
     }
-}
-
-/// The event whose condition already holds at the start, in the closed form's order
-/// (lift-off, normal force, friction, rolling back); NaN counts as a violation.
-fn violated_at_start(r: &Rolling, ev: &JarmEvents, q: &Kinematics) -> Option<usize> {
-    let chi = r.body.chi;
-    if ev.liftoff {
-        // L(θ0) ≥ 0 and not falling along the path (dL/dθ = 2χθ̈ cos θ − χθ̇² sin θ).
-        let l = chi * q.omega * q.omega * q.cos_theta - r.cos_a;
-        let dl = 2.0 * chi * q.omega_dot * q.cos_theta - chi * q.omega * q.omega * q.theta.sin();
-        if (l.is_nan() || l >= 0.0) && !(l == 0.0 && dl < 0.0) {
-            return Some(EV_LIFTOFF);
-        }
-    }
-    if ev.normal_force && (q.fy.is_nan() || q.fy <= 0.0) {
-        return Some(EV_FY);
-    }
-    let m = ev.mu_s * q.fy;
-    let (mp, mm) = (m - q.fx, m + q.fx);
-    if ev.slip && (mp.is_nan() || mm.is_nan() || mp < 0.0 || mm < 0.0) {
-        return Some(EV_SLIP);
-    }
-    // From rest the body must start forward: dE/dθ = sin α + χ sin(α + θ0) > 0.
-    if q.omega == 0.0 {
-        let de = r.sin_a + chi * (r.alpha + q.theta).sin();
-        if de.is_nan() || de <= 0.0 {
-            return Some(EV_STOP);
-        }
-    }
-    None
 }
 
 /// Classifies one point by integration: same semantics and reasons as
@@ -362,29 +297,17 @@ pub fn classify_ode(
     atol: f64,
 ) -> JarmResult {
     let tol_ok = rtol.is_finite() && rtol > 0.0 && atol.is_finite() && atol > 0.0;
-    let Some(body) = valid_body(alpha, chi, km, mu_s, o).filter(|_| tol_ok) else {
-        return JarmResult::new(Reason::InvalidParams);
-    };
-    let Ok(r) = Rolling::new(body, alpha) else {
+    let Some(r) = point_ramp(alpha, chi, km, mu_s, o).filter(|_| tol_ok) else {
         return JarmResult::new(Reason::InvalidParams);
     };
     let (theta0, omega0) = (o.theta0, o.omega0);
     let q0 = r.kinematics(theta0, omega0);
-    // An equilibrium start (θ̇0 = 0, θ̈0 = 0 inside the contact conditions): nothing happens.
-    if omega0 == 0.0 && q0.omega_dot == 0.0 && q0.fy > 0.0 && mu_s * q0.fy >= q0.fx.abs() {
+    if equilibrium_start(omega0, q0.omega_dot, q0.fx, q0.fy, mu_s) {
         return JarmResult::new(Reason::NoRoot);
     }
-    let (mut theta_end, end_reason) = match turn_bound(&r, theta0, omega0, o.max_turns) {
-        None => (theta0 + TAU, Reason::NoRoot),
-        Some(n) if n > o.max_turns => (TAU * o.max_turns as f64, Reason::TurnLimit),
-        Some(n) => (TAU * n as f64, Reason::NoRoot),
+    let Some((theta_end, end_reason)) = search_end(&r, o) else {
+        return JarmResult::new(Reason::NoRoot);
     };
-    if o.n > 0 {
-        theta_end = theta_end.min(TAU * o.n as f64 + PI);
-    }
-    if theta_end <= theta0 {
-        return JarmResult::new(Reason::NoRoot);
-    }
     let turns = ((theta_end - theta0) / TAU).ceil().min(1e9) as usize;
     let so = SolverOptions {
         rtol,
@@ -404,149 +327,95 @@ pub fn classify_ode(
         theta_end,
         last: Cell::new(None),
     };
-    let mut ext = Extrema::start(&q0);
+    let mut ext = extrema_start(&q0);
     let y0 = State::<2>::new(theta0, omega0);
-    let (k, t, y, at_start) = match violated_at_start(&r, &ev, &q0) {
-        Some(k) => (k, 0.0, y0, true),
+    let chi_w2 = chi * (omega0 * omega0);
+    let start = StartValues {
+        lift: q0.lift,
+        lift_slope: liftoff_slope(chi, chi_w2, q0.omega_dot, q0.sin_theta, q0.cos_theta),
+        fx: q0.fx,
+        fy: q0.fy,
+        kinetic: 0.5 * r.contact_inertia(q0.cos_theta) * omega0 * omega0,
+        kinetic_slope: r.sin_a + chi * r.shifted(q0.sin_theta, q0.cos_theta).0,
+    };
+    let watched = Watched {
+        liftoff: paper,
+        normal_force: true,
+        friction: true,
+    };
+    let (k, t, y, at_start) = match violated_at_start(watched, mu_s, &start) {
+        Some(e) => (e as usize, 0.0, y0, true),
         None => match integrate(&ev, 0.0, y0, &so, Some(&mut ext)) {
             End::Event { k, t, y } => (k, t, y, false),
-            End::Failed { status, y } => {
-                let reason = if status == Status::MaxSteps {
-                    Reason::TurnLimit
-                } else {
-                    Reason::SlipBefore
-                };
-                let mut x = ext.result(reason);
-                if reason != Reason::TurnLimit {
-                    x.theta_event = y[0];
-                    x.n = turn_of(y[0]);
-                }
-                return finish(x, o);
+            End::Failed { y, .. } => {
+                // No physical verdict: the integrator stopped at its last good state.
+                let mut x = JarmResult::with_extrema(
+                    Reason::SolverFailed,
+                    (ext.max_ratio, ext.theta_max_ratio),
+                    (ext.min_fy, ext.theta_min_fy),
+                );
+                x.theta_event = y[0];
+                x.n = turn_of(y[0]);
+                return restrict_to_turn(x, o.n);
             }
         },
     };
     let th = y[0];
     let q = r.kinematics(th, y[1]);
     // Tie rule: a slip root with F_y's own root right after it is a loss of normal force.
-    let k = if k == EV_SLIP && q.fy <= TIE_TOL * (1.0 + th.abs()) * (-dfy_dtheta(&r, &q)).max(0.0) {
+    let dfy = r.force_slopes(&q).1;
+    let k = if k == EV_SLIP && q.fy <= TIE_TOL * (1.0 + th.abs()) * (-dfy).max(0.0) {
         EV_FY
     } else {
         k
     };
-    let failure = |reason: Reason| {
-        let mut x = ext.result(reason);
-        x.theta_event = th;
-        x.n = turn_of(th);
-        x
+    let found = Found {
+        event: ContactEvent::ALL[k],
+        at_start,
+        at: EventPoint {
+            theta: th,
+            sin_t: q.sin_theta,
+            cos_t: q.cos_theta,
+            fx: q.fx,
+            fy: q.fy,
+            lift: q.lift,
+        },
+        extrema: ext,
     };
-    let liftoff_earlier = || {
-        let mut x = failure(Reason::LiftoffEarlier);
-        x.theta_j = th;
-        x
+    let case = Case {
+        body: &r.body,
+        alpha,
+        mu_s,
+        rule: o.rule,
+        end_reason,
     };
-    let jarm_here = || {
-        let mut x = ext.result(Reason::Jarm);
-        x.theta_j = th;
-        x.n = turn_of(th);
-        x.fx_j = q.fx;
-        x.fy_j = q.fy;
-        x
-    };
-    let res = match (paper, k) {
-        (_, EV_END) => ext.result(end_reason),
-        (_, EV_STOP) => {
-            let mut x = ext.result(Reason::RocksBack);
-            x.theta_event = th;
-            x
-        }
-        (true, EV_LIFTOFF) => {
-            if at_start {
-                liftoff_earlier()
-            } else {
-                let jf = jump_forces(&body, alpha, th);
-                let green = green_turn(alpha, th);
-                if green.is_none() || jf.fy <= 0.0 {
-                    failure(Reason::NormalForceLost)
-                } else if mu(&body, th) > mu_s {
-                    let mut x = failure(Reason::SlipAtJump);
-                    x.theta_j = th;
-                    x
-                } else {
-                    let mut x = ext.result(Reason::Jarm);
-                    x.n = green.unwrap_or(0);
-                    x.theta_j = th;
-                    x.fx_j = jf.fx;
-                    x.fy_j = jf.fy;
-                    x
-                }
-            }
-        }
-        (true, EV_FY) => failure(Reason::NormalForceLost),
-        (true, _) => {
-            // Slip: continue along rolling (no friction, no normal-force event) to the
-            // paper's lift-off; in a green window with ineq2 failing there it is SlipAtJump.
-            let cont = JarmEvents {
-                normal_force: false,
-                slip: false,
-                theta_end: theta_end.max(th),
-                last: Cell::new(None),
-                ..ev
-            };
-            let tl = match integrate(&cont, t, y, &so, None) {
-                End::Event {
-                    k: EV_LIFTOFF, y, ..
-                } => Some(y[0]),
-                _ => None,
-            };
-            match tl {
-                Some(tl) if green_turn(alpha, tl).is_some() && mu(&body, tl) > mu_s => {
-                    let mut x = failure(Reason::SlipAtJump);
-                    x.theta_j = tl;
-                    x
-                }
-                _ => failure(Reason::SlipBefore),
-            }
-        }
-        (false, EV_FY) => {
-            if at_start {
-                liftoff_earlier()
-            } else {
-                jarm_here()
-            }
-        }
-        (false, _) => {
-            // Slip onset under the classical rule: is sliding consistent?
-            let sigma = if q.fx < 0.0 { -1.0 } else { 1.0 };
-            let (s, c) = th.sin_cos();
-            let kk = chi * s - sigma * mu_s * (1.0 + chi * c);
-            let d = body.icm + chi * kk * s;
-            let lift = chi * q.omega * q.omega * c - r.cos_a;
-            let flight = q.fx == 0.0 || body.icm == 0.0 || lift >= 0.0 || d <= 0.0;
-            if !flight {
-                failure(Reason::SlipBefore)
-            } else if at_start {
-                liftoff_earlier()
-            } else {
-                jarm_here()
-            }
+    // After a slip (paper rule): continue along rolling (no friction, no normal-force event)
+    // to the paper's lift-off.
+    let liftoff_after_slip = || {
+        let cont = JarmEvents {
+            normal_force: false,
+            slip: false,
+            theta_end: theta_end.max(th),
+            last: Cell::new(None),
+            ..ev
+        };
+        match integrate(&cont, t, y, &so, None) {
+            End::Event {
+                k: EV_LIFTOFF, y, ..
+            } => Some(y[0]),
+            _ => None,
         }
     };
-    finish(res, o)
-}
-
-fn finish(res: JarmResult, o: &JarmOptions) -> JarmResult {
-    if o.n > 0 {
-        restrict_to_turn(res, o.n)
-    } else {
-        res
-    }
+    restrict_to_turn(decide(&case, &found, liftoff_after_slip), o.n)
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
     use crate::jarm::classify;
-    use crate::region::{classify_grid, Method};
+    use crate::jarm::Method;
+    use crate::maps::region::classify_grid;
+    use crate::mechanics::Ramp;
     use std::f64::consts::FRAC_PI_2;
 
     const RTOL: f64 = 1e-10;
@@ -671,7 +540,7 @@ mod tests {
         };
         let mut steps = 0;
         for (a, chi, km, mu_s, liftoff, forces) in bound_cases() {
-            let r = Rolling::new(crate::body::Cylinder::new(chi, km).unwrap(), a).unwrap();
+            let r = Ramp::new(crate::mechanics::Cylinder::new(chi, km).unwrap(), a).unwrap();
             let sys = RollingMemo::new(r);
             let ev = events_for(&sys, mu_s, liftoff, forces);
             // A second, independent evaluator, so that the checks do not disturb the memo.
@@ -734,7 +603,7 @@ mod tests {
                     event_samples: samples,
                     ..SolverOptions::default()
                 };
-                let r = Rolling::new(crate::body::Cylinder::new(chi, km).unwrap(), a).unwrap();
+                let r = Ramp::new(crate::mechanics::Cylinder::new(chi, km).unwrap(), a).unwrap();
                 let run = |skip: bool| {
                     let sys = RollingMemo::new(r);
                     let ev = events_for(&sys, mu_s, liftoff, forces);

@@ -1,6 +1,6 @@
 //! Sec. 3.2 of the paper: the jump point for the start from rest, θ0 = 0, θ̇0 = 0.
 //!
-//! Energy conservation (see [`Rolling::omega_sq`]) gives along pure rolling from rest
+//! Energy conservation (see [`Ramp::omega_sq`]) gives along pure rolling from rest
 //!
 //!   θ̇² = 2E(θ)/Ĩ_P(θ),  E(θ) = θ sin α + χ(cos α − cos(α + θ)),  Ĩ_P = Ĩ_C + 1 + 2χ cos θ.
 //!
@@ -19,12 +19,15 @@
 //! (later ones are higher by 2πk sin α). If E(θ_m) ≤ 0 the body stops (θ̇² = 0) before θ_m
 //! and rolls back: from rest it then oscillates between 0 and that turning point forever.
 
-use crate::rolling::Rolling;
-use crate::roots::bisect;
+use crate::jarm::turns::turn_bound;
+use crate::mechanics::energy::rolling_kinetic;
+use crate::mechanics::liftoff::free_normal_acceleration;
+use crate::mechanics::Ramp;
+use crate::ode::roots::bisect;
 use std::f64::consts::{PI, TAU};
 
 /// The paper's J(θ) (Eq. Jta) as printed, with γ from the body. Infinite/NaN at α = π/2.
-pub fn j_paper(r: &Rolling, theta: f64) -> f64 {
+pub fn j_paper(r: &Ramp, theta: f64) -> f64 {
     let chi = r.body.chi;
     let gamma = r.body.gamma();
     let a = r.alpha;
@@ -33,7 +36,7 @@ pub fn j_paper(r: &Rolling, theta: f64) -> f64 {
 }
 
 /// Eq. JtaC1 as printed: J(2πn − α).
-pub fn jtac1(r: &Rolling, n: u32) -> f64 {
+pub fn jtac1(r: &Ramp, n: u32) -> f64 {
     let chi = r.body.chi;
     let gamma = r.body.gamma();
     let a = r.alpha;
@@ -42,69 +45,45 @@ pub fn jtac1(r: &Rolling, n: u32) -> f64 {
 }
 
 /// Eq. JtaC2 as printed: J(2πn) = n tan α/γ − 1.
-pub fn jtac2(r: &Rolling, n: u32) -> f64 {
+pub fn jtac2(r: &Ramp, n: u32) -> f64 {
     n as f64 * r.alpha.tan() / r.body.gamma() - 1.0
 }
 
 /// E(θ) = θ sin α + χ(cos α − cos(α + θ)) from rest at θ0 = 0, written without cancellation.
 #[inline]
-pub fn energy_drop(r: &Rolling, theta: f64) -> f64 {
-    theta * r.sin_a + 2.0 * r.body.chi * (r.alpha + 0.5 * theta).sin() * (0.5 * theta).sin()
+pub fn energy_drop(r: &Ramp, theta: f64) -> f64 {
+    let (sin_mid, sin_half) = ((r.alpha + 0.5 * theta).sin(), (0.5 * theta).sin());
+    rolling_kinetic(0.0, theta, r.sin_a, r.body.chi, sin_mid, sin_half)
 }
 
 /// The lift-off function χθ̇² cos θ − cos α along pure rolling from (θ0, θ̇0).
-pub fn liftoff_from(r: &Rolling, theta0: f64, omega0: f64, theta: f64) -> f64 {
-    r.body.chi * r.omega_sq(theta0, omega0, theta) * theta.cos() - r.cos_a
+pub fn liftoff_from(r: &Ramp, theta0: f64, omega0: f64, theta: f64) -> f64 {
+    let chi_w2 = r.body.chi * r.omega_sq(theta0, omega0, theta);
+    free_normal_acceleration(chi_w2, theta.cos(), r.cos_a)
 }
 
 /// The lift-off function along pure rolling from rest at θ0 = 0 (= cos α · J(θ)).
-pub fn liftoff(r: &Rolling, theta: f64) -> f64 {
+pub fn liftoff(r: &Ramp, theta: f64) -> f64 {
     let ip = r.contact_inertia(theta.cos());
-    r.body.chi * 2.0 * energy_drop(r, theta) / ip * theta.cos() - r.cos_a
+    free_normal_acceleration(
+        r.body.chi * 2.0 * energy_drop(r, theta) / ip,
+        theta.cos(),
+        r.cos_a,
+    )
 }
 
 /// n* = the smallest n ≥ 1 with n tan α > γ: the turn by which the first lift-off (or an
 /// earlier failure) must happen from rest. None if it does not exist (α = 0 or χ = 0) or
-/// exceeds `max_turns`.
-pub fn first_turn_bound(r: &Rolling, max_turns: u32) -> Option<u32> {
-    let chi = r.body.chi;
-    if chi == 0.0 || r.sin_a == 0.0 {
-        return None;
-    }
-    if r.cos_a == 0.0 {
-        return Some(1);
-    }
-    // n tan α > γ ⇔ n · 4πχ sin α > (Ĩ_C + 1 + 2χ) cos α: no division by cos α.
-    let lhs1 = 4.0 * PI * chi * r.sin_a;
-    let rhs = (r.body.ic + 1.0 + 2.0 * chi) * r.cos_a;
-    let guess = (rhs / lhs1).floor();
-    if !(guess.is_finite()) || guess >= max_turns as f64 + 1.0 {
-        // Check exactly at max_turns.
-        return if max_turns as f64 * lhs1 > rhs {
-            Some(max_turns)
-        } else {
-            None
-        };
-    }
-    let mut n = (guess as u32).max(1);
-    while n > 1 && (n - 1) as f64 * lhs1 > rhs {
-        n -= 1;
-    }
-    while n as f64 * lhs1 <= rhs {
-        n += 1;
-    }
-    if n > max_turns {
-        None
-    } else {
-        Some(n)
-    }
+/// exceeds `max_turns`. The from-rest case of [`turn_bound`].
+pub fn first_turn_bound(r: &Ramp, max_turns: u32) -> Option<u32> {
+    turn_bound(r, 0.0, 0.0, max_turns).filter(|&n| n <= max_turns)
 }
 
 /// θ_{n,J}: the root of the lift-off function in [2πn − α, 2πn] (Eq. thetasoL2), by
 /// bisection to the last bit. None if JtaC1/JtaC2 fail (no sign change − → + there).
 /// This is the paper's root on turn n; whether the body gets there in pure rolling, or
 /// lifts off earlier, is decided by [`crate::jarm`].
-pub fn theta_nj(r: &Rolling, n: u32) -> Option<f64> {
+pub fn theta_nj(r: &Ramp, n: u32) -> Option<f64> {
     if n == 0 || r.body.chi == 0.0 {
         return None;
     }
@@ -127,7 +106,7 @@ pub fn theta_nj(r: &Rolling, n: u32) -> Option<f64> {
 /// α + arcsin(sin α/χ) ≤ π. (Rocking back is possible for other starts, e.g. θ0 < 0 or
 /// θ0 past the top; [`crate::path`] detects it for any start.) For α = 0 the start is an
 /// equilibrium and Some(0) is returned.
-pub fn rock_back_angle(r: &Rolling) -> Option<f64> {
+pub fn rock_back_angle(r: &Ramp) -> Option<f64> {
     let chi = r.body.chi;
     if r.sin_a == 0.0 {
         // α = 0 from rest at θ0 = 0 is an (unstable) equilibrium: it never moves.
@@ -156,10 +135,10 @@ pub fn rock_back_angle(r: &Rolling) -> Option<f64> {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::body::Cylinder;
+    use crate::mechanics::Cylinder;
 
-    fn ramp(chi: f64, km: f64, alpha_deg: f64) -> Rolling {
-        Rolling::new(Cylinder::new(chi, km).unwrap(), alpha_deg.to_radians()).unwrap()
+    fn ramp(chi: f64, km: f64, alpha_deg: f64) -> Ramp {
+        Ramp::new(Cylinder::new(chi, km).unwrap(), alpha_deg.to_radians()).unwrap()
     }
 
     #[test]
@@ -190,7 +169,7 @@ mod tests {
             th.to_degrees()
         );
         assert!(liftoff(&r, th).abs() < 1e-14);
-        let j = crate::jump_point::jump_forces(&r.body, r.alpha, th);
+        let j = crate::jarm::jump_point::jump_forces(&r.body, r.alpha, th);
         assert!((j.fy - 0.01543).abs() < 1e-5 && (j.fx + 0.00516).abs() < 1e-5);
     }
 

@@ -1,0 +1,213 @@
+//! The outcome of a JARM classification, shared by both routes: the reasons, the options
+//! and the per-point result.
+
+use crate::error::{check_range, Error, Result};
+use crate::mechanics::Rule;
+
+/// Why a point is or is not a JARM. `#[repr(u8)]` with stable values (the bridge exports them).
+#[repr(u8)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+pub enum Reason {
+    /// 0: jump after pure rolling.
+    Jarm = 0,
+    /// 1: no lift-off (on the requested turn n, or ever: α = 0, χ = 0, or the path passes turn
+    /// n without event).
+    NoRoot = 1,
+    /// 2: the lift-off rule held earlier: on an earlier turn than the requested n, or at the
+    /// start itself (e.g. α = π/2 from rest, where F_y = 0 at θ0).
+    LiftoffEarlier = 2,
+    /// 3: the normal force reached 0 before lift-off (or F_y,J ≤ 0 at it).
+    NormalForceLost = 3,
+    /// 4: the rolling branch needs more than μ_s of friction before lift-off (and the paper's
+    /// jump-point test ineq2 alone would not have caught it), or slip is consistent there under
+    /// the `NormalForce` rule.
+    SlipBefore = 4,
+    /// 5: friction fails on the final approach: the paper's lift-off point that follows is in
+    /// the green window but needs μ(θ_J) > μ_s (Eq. ineq2 fails). Paper rule only.
+    SlipAtJump = 5,
+    /// 6: θ̇² returns to 0 before any event: the body stops and rolls back (not possible from
+    /// rest at θ0 = 0 with α > 0; see `from_rest::rock_back_angle`).
+    RocksBack = 6,
+    /// 7: nothing happened within `max_turns` turns and n* > `max_turns`.
+    TurnLimit = 7,
+    /// 8: a parameter is NaN or out of range.
+    InvalidParams = 8,
+    /// 9: the integrator of the ODE route failed (step too small, non-finite values, step
+    /// budget): no physical verdict.
+    SolverFailed = 9,
+}
+
+impl Reason {
+    /// All reasons, indexed by code.
+    pub const ALL: [Reason; 10] = [
+        Reason::Jarm,
+        Reason::NoRoot,
+        Reason::LiftoffEarlier,
+        Reason::NormalForceLost,
+        Reason::SlipBefore,
+        Reason::SlipAtJump,
+        Reason::RocksBack,
+        Reason::TurnLimit,
+        Reason::InvalidParams,
+        Reason::SolverFailed,
+    ];
+
+    /// The numeric code.
+    pub fn code(self) -> u8 {
+        self as u8
+    }
+
+    /// The reason for a code, if valid.
+    pub fn from_code(code: u8) -> Option<Reason> {
+        Reason::ALL.get(code as usize).copied()
+    }
+
+    /// A short snake_case name.
+    pub fn name(self) -> &'static str {
+        match self {
+            Reason::Jarm => "jarm",
+            Reason::NoRoot => "no_root",
+            Reason::LiftoffEarlier => "liftoff_earlier",
+            Reason::NormalForceLost => "normal_force_lost",
+            Reason::SlipBefore => "slip_before",
+            Reason::SlipAtJump => "slip_at_jump",
+            Reason::RocksBack => "rocks_back",
+            Reason::TurnLimit => "turn_limit",
+            Reason::InvalidParams => "invalid_params",
+            Reason::SolverFailed => "solver_failed",
+        }
+    }
+}
+
+/// Options of a classification.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct JarmOptions {
+    /// The lift-off rule.
+    pub rule: Rule,
+    /// Required turn n ≥ 1, or 0 for automatic (the first jump, whatever its turn).
+    pub n: u32,
+    /// Turn cap of the search.
+    pub max_turns: u32,
+    /// Initial angle θ0 (default 0).
+    pub theta0: f64,
+    /// Initial angular velocity θ̇0 ≥ 0 (default: rest).
+    pub omega0: f64,
+    /// Refine the reported path extrema (max friction ratio, min F_y) to full precision
+    /// (default); if false they are cell estimates (relative error ~1e-4) and the map is
+    /// faster. The classification itself does not depend on it.
+    pub refine_extrema: bool,
+}
+
+impl Default for JarmOptions {
+    fn default() -> Self {
+        Self {
+            rule: Rule::Paper,
+            n: 0,
+            max_turns: 10_000,
+            theta0: 0.0,
+            omega0: 0.0,
+            refine_extrema: true,
+        }
+    }
+}
+
+/// The classification of one point. Angles in radians (absolute θ); NaN where not applicable.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct JarmResult {
+    pub is_jarm: bool,
+    pub reason: Reason,
+    /// Turn of the jump (JARM), of the earlier lift-off (LiftoffEarlier) or of the event
+    /// that decided (others); 0 if none.
+    pub n: u32,
+    /// Lift-off angle: the JARM's, the earlier one (LiftoffEarlier), or the paper's root
+    /// after a friction failure (SlipAtJump); NaN otherwise.
+    pub theta_j: f64,
+    /// Where the deciding failure happened (NaN for a JARM).
+    pub theta_event: f64,
+    /// Forces at the jump (JARM only; NaN otherwise).
+    pub fx_j: f64,
+    pub fy_j: f64,
+    /// The largest |F_x|/F_y and the smallest F_y on the rolling path [θ0, θ_event or θ_J].
+    pub max_ratio: f64,
+    pub theta_max_ratio: f64,
+    pub min_fy: f64,
+    pub theta_min_fy: f64,
+}
+
+impl JarmResult {
+    pub fn new(reason: Reason) -> Self {
+        Self {
+            is_jarm: reason == Reason::Jarm,
+            reason,
+            n: 0,
+            theta_j: f64::NAN,
+            theta_event: f64::NAN,
+            fx_j: f64::NAN,
+            fy_j: f64::NAN,
+            max_ratio: f64::NAN,
+            theta_max_ratio: f64::NAN,
+            min_fy: f64::NAN,
+            theta_min_fy: f64::NAN,
+        }
+    }
+
+    /// A result carrying the path extrema: the largest |F_x|/F_y and the smallest F_y, with
+    /// the angles where they occur (shared by both routes).
+    pub(crate) fn with_extrema(reason: Reason, max_ratio: (f64, f64), min_fy: (f64, f64)) -> Self {
+        let mut r = Self::new(reason);
+        (r.max_ratio, r.theta_max_ratio) = max_ratio;
+        (r.min_fy, r.theta_min_fy) = min_fy;
+        r
+    }
+}
+
+impl JarmOptions {
+    /// Checks the options that apply to a whole call, naming the first bad one.
+    pub fn validate(&self) -> Result<()> {
+        if self.max_turns == 0 {
+            return Err(Error::InvalidParameter {
+                name: "max_turns",
+                value: 0.0,
+                allowed: "[1, 4294967295]".to_string(),
+            });
+        }
+        check_range("theta0", self.theta0, -f64::MAX, f64::MAX)?;
+        check_range("omega0", self.omega0, 0.0, f64::MAX)?;
+        Ok(())
+    }
+}
+
+/// The route that classifies a point.
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub enum Method {
+    /// The paper's closed forms with a rigorous path scan ([`crate::jarm::classify`]).
+    #[default]
+    ClosedForm,
+    /// Integration of the rolling equation with events ([`crate::jarm::classify_ode`]).
+    Ode {
+        /// Relative tolerance, in [1e-15, 1].
+        rtol: f64,
+        /// Absolute tolerance, > 0.
+        atol: f64,
+    },
+}
+
+impl Method {
+    /// The route named `name` ("closed_form" or "ode", the latter with its tolerances).
+    pub fn from_name(name: &str, rtol: f64, atol: f64) -> Option<Method> {
+        match name {
+            "closed_form" => Some(Method::ClosedForm),
+            "ode" => Some(Method::Ode { rtol, atol }),
+            _ => None,
+        }
+    }
+
+    /// Checks the tolerances of the ODE route.
+    pub fn validate(&self) -> Result<()> {
+        if let Method::Ode { rtol, atol } = *self {
+            check_range("rtol", rtol, 1e-15, 1.0)?;
+            crate::error::check_positive("atol", atol)?;
+        }
+        Ok(())
+    }
+}

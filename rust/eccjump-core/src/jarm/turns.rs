@@ -1,0 +1,79 @@
+//! Turns along the rolling path: the turn of an angle and the search bound n*, shared by
+//! both routes and the from-rest closed forms.
+//!
+//! At θ = 2πn the normal force of pure rolling is −L(2πn) (sin θ = 0 there), and along
+//! rolling from (θ0, θ̇0) L(2πn) > 0 ⇔ 2πn sin α > R with
+//!   R = cos α Ĩ_P(0)/(2χ) − K0 + θ0 sin α − χ(cos(α + θ0) − cos α),  K0 = ½Ĩ_P(θ0)θ̇0²,
+//! (energy conservation, [`crate::mechanics::energy`]). So under either lift-off rule
+//! something happens by the first such turn n*; searches never go further. From rest at 0
+//! the condition reads n tan α > γ (the paper's Eq. JtaC2).
+
+use crate::mechanics::Ramp;
+use std::f64::consts::TAU;
+
+/// round(θ/2π), clamped to u32: the turn of an event (a lift-off needs cos θ > 0, so this is
+/// unambiguous there).
+#[inline]
+pub fn turn_of(theta: f64) -> u32 {
+    let n = (theta / TAU).round();
+    if n <= 0.0 {
+        0
+    } else if n >= u32::MAX as f64 {
+        u32::MAX
+    } else {
+        n as u32
+    }
+}
+
+/// The turn bound n*: the smallest n with 2πn > θ0 and L(2πn) > 0 along rolling from
+/// (θ0, θ̇0); None if it does not exist (α = 0 or χ = 0). Capped at max_turns + 1.
+pub fn turn_bound(r: &Ramp, theta0: f64, omega0: f64, max_turns: u32) -> Option<u32> {
+    let chi = r.body.chi;
+    if chi == 0.0 || r.sin_a == 0.0 {
+        return None;
+    }
+    let cap = max_turns as u64 + 1;
+    let n_lo = ((theta0 / TAU).floor() + 1.0).max(1.0);
+    if n_lo > cap as f64 {
+        return Some(cap as u32);
+    }
+    let k0 = 0.5 * r.contact_inertia(theta0.cos()) * omega0 * omega0;
+    let ip0 = r.contact_inertia(1.0);
+    let rhs = r.cos_a * ip0 / (2.0 * chi) - k0 + theta0 * r.sin_a
+        - chi * ((r.alpha + theta0).cos() - r.cos_a);
+    let per = TAU * r.sin_a;
+    let guess = (rhs / per).floor() + 1.0;
+    let mut n = guess.max(n_lo).min(cap as f64) as u64;
+    while n > n_lo as u64 && (n - 1) as f64 * per > rhs {
+        n -= 1;
+    }
+    while n < cap && n as f64 * per <= rhs {
+        n += 1;
+    }
+    Some(n as u32)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::mechanics::Cylinder;
+
+    #[test]
+    fn turn_bound_is_the_first_turn_with_negative_normal_force() {
+        // Independent route: F_y(2πn) = −L(2πn) from the rolling kinematics along the path.
+        for &(chi, km, a, th0, w0) in &[
+            (0.1, 0.3, 5.0f64, 0.0, 0.0),
+            (0.5, 0.2, 1.0, 0.0, 0.0),
+            (0.3, 0.1, 3.0, 0.4, 0.3),
+            (0.7, 0.05, 0.5, -1.0, 0.1),
+        ] {
+            let r = Ramp::new(Cylinder::new(chi, km).unwrap(), a.to_radians()).unwrap();
+            let n = turn_bound(&r, th0, w0, 1_000_000).unwrap();
+            let fy = |n: u32| r.kinematics_along(th0, w0, TAU * n as f64).fy;
+            assert!(fy(n) < 0.0, "{chi} {a}");
+            if n > 1 && TAU * (n - 1) as f64 > th0 {
+                assert!(fy(n - 1) >= -1e-12);
+            }
+        }
+    }
+}

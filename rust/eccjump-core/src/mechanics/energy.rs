@@ -1,0 +1,73 @@
+//! Mechanical energy, in units of M g R, and its one consequence used everywhere along pure
+//! rolling: θ̇² as a function of θ.
+//!
+//! With the centre of mass at (l + χ sin θ, b + χ cos θ) in ramp coordinates and gravity
+//! (sin α, −cos α), the energy of any state is
+//!
+//!   E = ½[(l̇ + χ cos θ θ̇)² + (ḃ − χ sin θ θ̇)²] + ½ Ĩ_CM θ̇² − (l + χ sin θ) sin α + (b + χ cos θ) cos α.
+//!
+//! In pure rolling (l̇ = θ̇, b = 1, ḃ = 0) the kinetic part is ½ Ĩ_P(θ) θ̇² with
+//! Ĩ_P = Ĩ_C + 1 + 2χ cos θ, and conservation of E from (θ0, θ̇0) gives
+//!
+//!   ½ Ĩ_P(θ) θ̇² = K0 + ΔE(θ),   K0 = ½ Ĩ_P(θ0) θ̇0²,
+//!   ΔE(θ) = (θ − θ0) sin α + χ[cos(α + θ0) − cos(α + θ)] = d sin α + 2χ sin(α + θ0 + u) sin u,
+//!
+//! with d = θ − θ0, u = d/2 (the product form avoids cancellation at small d).
+
+use crate::mechanics::ramp::Ramp;
+
+/// K0 + ΔE(θ): the kinetic energy ½ Ĩ_P θ̇² available at θ along pure rolling, given
+/// d = θ − θ0, sin(α + θ0 + d/2) and sin(d/2) (computed by the caller, each in the way its
+/// kernel can afford). θ̇² = 2 (K0 + ΔE)/Ĩ_P(θ).
+#[inline(always)]
+pub fn rolling_kinetic(k0: f64, d: f64, sin_a: f64, chi: f64, sin_mid: f64, sin_half: f64) -> f64 {
+    k0 + d * sin_a + 2.0 * chi * sin_mid * sin_half
+}
+
+impl Ramp {
+    /// The mechanical energy of a general state (θ, θ̇, l, l̇, b, ḃ), per M g R.
+    #[allow(clippy::too_many_arguments)] // the six coordinates of the state
+    pub fn energy(&self, theta: f64, omega: f64, l: f64, ldot: f64, b: f64, bdot: f64) -> f64 {
+        let chi = self.body.chi;
+        let (s, c) = theta.sin_cos();
+        let (vx, vy) = (ldot + chi * c * omega, bdot - chi * s * omega);
+        let height = -(l + chi * s) * self.sin_a + (b + chi * c) * self.cos_a;
+        0.5 * (vx * vx + vy * vy) + 0.5 * self.body.icm * omega * omega + height
+    }
+
+    /// The energy of the pure-rolling state (θ, θ̇) with l = θ, b = 1.
+    pub fn rolling_energy(&self, theta: f64, omega: f64) -> f64 {
+        self.energy(theta, omega, theta, omega, 1.0, 0.0)
+    }
+
+    /// θ̇² at θ along pure rolling from (θ0, θ̇0), by conservation of energy.
+    pub fn omega_sq(&self, theta0: f64, omega0: f64, theta: f64) -> f64 {
+        let d = theta - theta0;
+        let k0 = 0.5 * self.contact_inertia(theta0.cos()) * omega0 * omega0;
+        let sin_mid = (self.alpha + 0.5 * (theta + theta0)).sin();
+        let gain = rolling_kinetic(0.0, d, self.sin_a, self.body.chi, sin_mid, (0.5 * d).sin());
+        2.0 * (k0 + gain) / self.contact_inertia(theta.cos())
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::mechanics::Cylinder;
+
+    #[test]
+    fn rolling_kinetic_energy_is_half_the_contact_inertia() {
+        let r = Ramp::new(Cylinder::new(0.45, 0.3).unwrap(), 0.4).unwrap();
+        let (th, w) = (2.2f64, 1.3f64);
+        let kinetic = r.rolling_energy(th, w) - r.rolling_energy(th, 0.0);
+        assert!((kinetic - 0.5 * r.contact_inertia(th.cos()) * w * w).abs() < 1e-14);
+    }
+
+    #[test]
+    fn omega_sq_is_energy_conservation() {
+        let r = Ramp::new(Cylinder::new(0.5, 0.4).unwrap(), 30f64.to_radians()).unwrap();
+        let (th0, w0, th) = (0.4, 0.3, 3.7);
+        let w = r.omega_sq(th0, w0, th).sqrt();
+        assert!((r.rolling_energy(th, w) - r.rolling_energy(th0, w0)).abs() < 1e-14);
+    }
+}

@@ -1,0 +1,137 @@
+//! Rigorous bounds on how much the contact functions of pure rolling can change within one
+//! dense-output step: they let the event scan skip interior sign samples that provably
+//! cannot show a crossing. Shared by the rolling run and the ODE route of the JARM
+//! classification.
+
+use crate::mechanics::Ramp;
+use crate::ode::DenseStep;
+
+/// Bounds on how much the contact functions of pure rolling can change within one
+/// dense-output step, in the sense of [`EventFunctions::change_bounds`]: shared by the
+/// rolling run ([`RollEvents`]) and the ODE route of the classification
+/// (`jarm_ode`).
+///
+/// Along the interpolant (θ(t), θ̇(t)), |dg/dt| ≤ G_θ |dθ/dt| + G_ω |dθ̇/dt| with
+/// G_θ ≥ |∂g/∂θ|, G_ω ≥ |∂g/∂θ̇| over the step. With W ≥ |θ̇|, s = sin θ, c = cos θ,
+/// θ̈ = N/D, N = χθ̇²s + χ sin(α+θ) + sin α, D = Ĩ_C + 1 + 2χc ≥ D_min = Ĩ_C + 1 − 2χ:
+///   |θ̈| ≤ A = (χW² + χ + sin α)/D_min,
+///   |∂θ̈/∂θ| ≤ A_θ = (χW² + χ)/D_min + 2χ A/D_min,   |∂θ̈/∂θ̇| ≤ A_ω = 2χW/D_min;
+/// lift-off χθ̇²c − cos α: G_θ = χW², G_ω = 2χW;
+/// F_y = cos α − χθ̇²c − χθ̈s: G_θ = χW² + χA + χA_θ, G_ω = 2χW + χA_ω;
+/// F_x = −sin α − χθ̇²s + (1 + χc)θ̈: G_θ = χW² + χA + (1+χ)A_θ, G_ω = 2χW + (1+χ)A_ω;
+/// slip μF_y − |F_x|: μ G(F_y) + G(F_x); θ − θ_lim: G_θ = 1, G_ω = 0; θ̇: G_θ = 0,
+/// G_ω = 1.
+/// The rounding allowance δ = 2⁻⁴⁰ (M + G_θ Θ + G_ω W), with M the sum of the
+/// magnitudes of g's terms and Θ ≥ |θ|, is hundreds of times the error of a few
+/// roundings in g, of the 1-ulp sin_cos, and of the interpolant (including its
+/// mismatch with the exact step end). The bound is L |h| + 4δ.
+/// A singular body (D_min ≤ 0) gives +∞ for the force events: never skipped.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub(crate) struct ContactBounds {
+    /// Of the lift-off function χθ̇² cos θ − cos α.
+    pub liftoff: f64,
+    /// Of F_y.
+    pub fy: f64,
+    /// Of the slip margin μ_s F_y − |F_x|; 0 without μ_s (the event is then a constant).
+    pub slip: f64,
+    /// Of θ̇.
+    pub omega: f64,
+    /// Θ ≥ |θ|, |dθ/dt| and |h| over the step, for [`ContactBounds::theta_above`].
+    theta_max: f64,
+    theta_rate: f64,
+    h: f64,
+}
+
+impl ContactBounds {
+    /// The bounds over the step `dense`; without an anchor with |sin θ|, |cos θ| ≤ 1 and
+    /// D ≥ D_min, else tightened by the trigonometry at one angle
+    /// θ_c (any, typically the step end): `anchor` = (θ_c, sin θ_c, cos θ_c). Every θ
+    /// of the step is within Δ = |θ_old − θ_c| + |h| sup|dθ/dt| of θ_c, so (sin and cos
+    /// being 1-Lipschitz) |sin θ| ≤ S = min(1, |sin θ_c| + Δ'), |cos θ| ≤ C = min(1,
+    /// |cos θ_c| + Δ'), and D ≥ max(D_min, Ĩ_C + 1 + 2χ(cos θ_c − Δ')), where Δ' adds
+    /// to Δ a relative 2⁻⁴⁰ and an absolute 2⁻⁴⁰(1 + Θ), far above the rounding of θ
+    /// along the interpolant and of sin_cos. The bounds of [`ContactBounds`] then hold
+    /// with each |sin|, |cos| ≤ 1 replaced by S or C:
+    ///   A = (χW²S + χ + sin α)/D_lo, A_θ = (χW²C + χ)/D_lo + 2χSA/D_lo, A_ω = 2χWS/D_lo;
+    /// lift-off: G_θ = χW²S, G_ω = 2χWC; F_y: G_θ = χW²S + χAC + χSA_θ,
+    /// G_ω = 2χWC + χSA_ω; F_x: G_θ = χW²C + χSA + (1+χC)A_θ, G_ω = 2χWS + (1+χC)A_ω
+    /// (and M, the magnitudes of the terms, likewise). With S = C = 1, D_lo = D_min
+    /// these are exactly the plain bounds.
+    #[inline]
+    pub(crate) fn near(
+        ramp: &Ramp,
+        mu_s: Option<f64>,
+        dense: &DenseStep<2>,
+        anchor: Option<(f64, f64, f64)>,
+    ) -> Self {
+        let bounds = dense.bounds();
+        let (theta_max, w) = (bounds.value[0], bounds.value[1]);
+        let (theta_rate, omega_rate) = (bounds.rate[0], bounds.rate[1]);
+        let h = dense.h.abs();
+        let chi = ramp.body.chi;
+        let (sa, ca) = (ramp.sin_a, ramp.cos_a);
+        let eps40 = 1.0 / (1u64 << 40) as f64;
+        // δ = 2⁻⁴⁰ (M + G_θ Θ + G_ω W); the bound is L |h| + 4δ.
+        let bound = |(m, g_theta, g_omega): (f64, f64, f64)| {
+            let delta = (m + g_theta * theta_max + g_omega * w) * eps40;
+            (g_theta * theta_rate + g_omega * omega_rate) * h + 4.0 * delta
+        };
+        let d_min = ramp.contact_inertia(-1.0);
+        let (s_max, c_max, d_lo) = match anchor {
+            Some((theta_c, s_c, c_c)) => {
+                let reach = (dense.y_old[0] - theta_c).abs() + h * theta_rate;
+                let reach = reach * (1.0 + eps40) + (1.0 + theta_max) * eps40;
+                // NaN (never expected) falls back to the plain bounds through min/max.
+                let s_max = (s_c.abs() + reach).min(1.0);
+                let c_max = (c_c.abs() + reach).min(1.0);
+                let d_lo = ramp.contact_inertia(c_c - reach).max(d_min);
+                (s_max, c_max, d_lo)
+            }
+            None => (1.0, 1.0, d_min),
+        };
+        let chi_w2 = chi * w * w;
+        let liftoff = bound((chi_w2 * c_max + ca, chi_w2 * s_max, 2.0 * chi * w * c_max));
+        let (fy, slip) = if d_lo > 0.0 {
+            let a = (chi_w2 * s_max + chi + sa) / d_lo;
+            let a_theta = (chi_w2 * c_max + chi) / d_lo + 2.0 * chi * s_max * a / d_lo;
+            let a_omega = 2.0 * chi * w * s_max / d_lo;
+            let lever = 1.0 + chi * c_max;
+            // (M, G_θ, G_ω) of F_y and F_x.
+            let fy = (
+                ca + chi_w2 * c_max + chi * a * s_max,
+                chi_w2 * s_max + chi * a * c_max + chi * s_max * a_theta,
+                2.0 * chi * w * c_max + chi * s_max * a_omega,
+            );
+            let fx = (
+                sa + chi_w2 * s_max + lever * a,
+                chi_w2 * c_max + chi * s_max * a + lever * a_theta,
+                2.0 * chi * w * s_max + lever * a_omega,
+            );
+            let slip = mu_s.map_or(0.0, |mu| {
+                bound((mu * fy.0 + fx.0, mu * fy.1 + fx.1, mu * fy.2 + fx.2))
+            });
+            (bound(fy), slip)
+        } else {
+            let slip = if mu_s.is_some() { f64::INFINITY } else { 0.0 };
+            (f64::INFINITY, slip)
+        };
+        let omega = bound((w, 0.0, 1.0));
+        Self {
+            liftoff,
+            fy,
+            slip,
+            omega,
+            theta_max,
+            theta_rate,
+            h,
+        }
+    }
+
+    /// Of θ − θ_lim (θ_lim finite).
+    #[inline]
+    pub(crate) fn theta_above(&self, theta_lim: f64) -> f64 {
+        let delta =
+            (self.theta_max + theta_lim.abs() + self.theta_max) * (1.0 / (1u64 << 40) as f64);
+        self.theta_rate * self.h + 4.0 * delta
+    }
+}

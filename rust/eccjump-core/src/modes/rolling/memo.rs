@@ -1,0 +1,61 @@
+//! Pure rolling with a memo of the step end's trigonometry, shared by the right-hand side,
+//! the event scan and the observer of a run.
+
+use crate::mechanics::Ramp;
+use crate::modes::rolling::Kinematics;
+use crate::ode::{OdeSystem, State};
+use std::cell::Cell;
+
+/// Pure rolling with a one-entry memo of (sin θ, cos θ), keyed on the bits of θ. Each
+/// accepted step ends with the FSAL evaluation of the right-hand side at the new state;
+/// the step scan then evaluates the events there and the caller's observer looks at the
+/// forces there, and both find sin_cos of that θ in the memo. sin_cos is a pure function,
+/// so hits and misses give identical bits. Shared by the rolling run and `jarm_ode`.
+#[derive(Debug, Clone)]
+pub(crate) struct RollingMemo {
+    pub ramp: Ramp,
+    /// (θ, sin θ, cos θ) of the last evaluation; θ = NaN at first, whose sin_cos is NaN.
+    trig: Cell<(f64, f64, f64)>,
+}
+
+impl RollingMemo {
+    pub(crate) fn new(ramp: Ramp) -> Self {
+        Self {
+            ramp,
+            trig: Cell::new((f64::NAN, f64::NAN, f64::NAN)),
+        }
+    }
+
+    #[inline]
+    pub(crate) fn sin_cos(&self, theta: f64) -> (f64, f64) {
+        let (th, s, c) = self.trig.get();
+        if th.to_bits() == theta.to_bits() {
+            return (s, c);
+        }
+        let (s, c) = theta.sin_cos();
+        self.trig.set((theta, s, c));
+        (s, c)
+    }
+
+    /// The memo's entry (θ, sin θ, cos θ): an anchor for [`ContactBounds::near`] (θ is
+    /// NaN before the first evaluation, which the bounds treat as no anchor).
+    #[inline]
+    pub(crate) fn anchor(&self) -> (f64, f64, f64) {
+        self.trig.get()
+    }
+
+    /// [`Ramp::kinematics`], bit for bit.
+    #[inline]
+    pub(crate) fn kinematics(&self, theta: f64, omega: f64) -> Kinematics {
+        let (s, c) = self.sin_cos(theta);
+        self.ramp.kinematics_sc(theta, omega, s, c)
+    }
+}
+
+impl OdeSystem<2> for RollingMemo {
+    #[inline]
+    fn rhs(&self, _t: f64, y: &State<2>) -> State<2> {
+        let (s, c) = self.sin_cos(y[0]);
+        State::<2>::new(y[1], self.ramp.omega_dot_sc(s, c, y[1]))
+    }
+}
