@@ -1,9 +1,10 @@
 """The command line, run as a user would: through the installed console script."""
 
 import json
-import shutil
 import subprocess
 import sys
+import sysconfig
+from pathlib import Path
 
 import pytest
 
@@ -11,8 +12,12 @@ from eccjump.cli import main
 
 
 def run(*args: str) -> subprocess.CompletedProcess:
-    exe = shutil.which("eccjump")
-    cmd = [exe, *args] if exe else [sys.executable, "-m", "eccjump.cli", *args]
+    # The script installed with this interpreter's eccjump, not whichever `eccjump` is first on
+    # PATH (that may belong to another installation); without one, the module.
+    exe = Path(sysconfig.get_path("scripts")) / (
+        "eccjump.exe" if sys.platform == "win32" else "eccjump"
+    )
+    cmd = [str(exe), *args] if exe.is_file() else [sys.executable, "-m", "eccjump.cli", *args]
     return subprocess.run(cmd, capture_output=True, text=True, timeout=120, check=False)
 
 

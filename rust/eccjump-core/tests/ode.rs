@@ -544,6 +544,14 @@ impl OdeSystem<2> for VanDerPol {
     }
 }
 
+/// The same algorithm as scipy's RK45 (first step, controller, tableau, nfev accounting),
+/// against constants frozen from scipy by `tests/scipy_rk45_reference.py`.
+///
+/// The constants depend on the BLAS numpy used: scipy forms the stage sums and the error
+/// estimate with `np.dot`, whose summation order is the BLAS kernel's. The error estimate
+/// cancels ~8 digits (Σ E = 0), so regenerating them with OpenBLAS's SkylakeX kernel
+/// (`OPENBLAS_CORETYPE=SkylakeX`) instead of Haswell shifts the step times by up to 2.7e-9
+/// relative and y(10) by 1.3e-14. The tolerances below hold for constants from any BLAS.
 #[test]
 fn agrees_step_for_step_with_scipy_rk45() {
     let opts = SolverOptions {
@@ -555,16 +563,24 @@ fn agrees_step_for_step_with_scipy_rk45() {
     assert_eq!(out.status, Status::Finished);
     let mut times = vec![0.0];
     times.extend(steps.iter().map(|s| s.0));
+    // Counts exactly: they change only if an accept/reject test (err < 1) or the clip of the
+    // last step flips; all 118 attempted steps have error norms >= 3.9 % away from 1
+    // (measured with a recording RK45 subclass), summation order moves them by ~1e-8.
     assert_eq!(times.len(), SCIPY_VDP_T.len());
+    assert_eq!(out.nfev, SCIPY_VDP_NFEV);
+    // Step times to 1e-6: ~400x the BLAS-order shift; a change of the algorithm (safety,
+    // exponent, factor limits, first-step rule, tableau) moves steps by 1e-3 or more.
     for (i, (t, want)) in times.iter().zip(SCIPY_VDP_T).enumerate() {
         assert!(
-            (t - want).abs() <= 1e-12 * want.abs().max(1.0),
+            (t - want).abs() <= 1e-6 * want.abs().max(1.0),
             "step {i}: {t} vs {want}"
         );
     }
-    assert_eq!(out.nfev, SCIPY_VDP_NFEV);
+    // Step sizes changed by eps <= 1e-6 relative change each local error (~ rtol |y| + atol
+    // <= 3e-6, |y| <= 2.7) by ~5 eps of itself: over 89 steps y(10) moves by
+    // ~89 * 5e-6 * 3e-6 ~ 1.3e-9 (with bounded growth on the attracting limit cycle).
     for (y, want) in out.y.iter().zip(SCIPY_VDP_Y_END) {
-        assert!((y - want).abs() < 1e-12, "{y} vs {want}");
+        assert!((y - want).abs() < 1e-8, "{y} vs {want}");
     }
 }
 

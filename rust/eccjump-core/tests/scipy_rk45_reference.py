@@ -5,6 +5,10 @@ Problem: van der Pol oscillator, mu = 1, y0 = (2, 0), t in [0, 10],
 solve_ivp(method="RK45", rtol=1e-6, atol=1e-9), automatic first step.
 Prints Rust source to paste over the constants in the test.
 
+The step times depend on numpy's BLAS (np.dot's summation order in scipy's stage sums and
+error estimate): e.g. OPENBLAS_CORETYPE=SkylakeX instead of Haswell moves them by ~3e-9
+relative. The test's tolerances allow for that, so constants from any BLAS build will do.
+
     python3 rust/eccjump-core/tests/scipy_rk45_reference.py
 """
 
