@@ -49,3 +49,31 @@ def turn(n: int | None) -> int | None:
     if isinstance(n, bool) or not isinstance(n, int | np.integer) or n < 1:
         raise ValueError(f"n = {n!r} is outside the allowed range [1, inf) (None: automatic)")
     return int(n)
+
+
+def turns(n: object) -> int | NDArray[np.int64] | None:
+    """Validate a turn argument that may vary per point: None (automatic; only as a scalar),
+    an integer >= 1, or an array-like of integers >= 1 (returned as an int64 array)."""
+    if n is None or isinstance(n, int | np.integer):  # bool included: turn() rejects it
+        return turn(n)  # type: ignore[arg-type]
+    try:
+        a = np.asarray(n)
+    except (TypeError, ValueError) as err:  # ragged input
+        raise ValueError(
+            f"n must be None, an integer or an array of integers in the allowed range [1, inf): "
+            f"{err}"
+        ) from err
+    if a.ndim == 0:
+        return turn(a.item() if a.dtype.kind in "iu" else n)  # type: ignore[arg-type]
+    if a.dtype.kind not in "iu":
+        raise ValueError(
+            f"n holds {a.dtype} values; its entries must be integers in the allowed range "
+            "[1, inf) (None, the first jump, only as a scalar)"
+        )
+    if a.size and (a < 1).any():
+        bad = a[a < 1].flat[0]
+        raise ValueError(
+            f"n has an entry {bad} outside the allowed range [1, inf) "
+            "(None, the first jump, only as a scalar)"
+        )
+    return a.astype(np.int64)

@@ -8,7 +8,7 @@ from numpy.typing import ArrayLike, NDArray
 
 from eccjump import _core
 from eccjump._arrays import broadcast_flat, turn
-from eccjump.classification import Rule
+from eccjump._bridge import Rule
 
 
 def alpha_intervals(
