@@ -257,6 +257,77 @@ def test_broadcasting_keeps_shapes():
     assert fx.shape == fy.shape == (5,)
 
 
+# --- a turn n per point --------------------------------------------------------------------
+
+# A grid where the turn matters: first jumps on turns 1 and 2, LIFTOFF_EARLIER for n >= 2.
+N_ALPHA = np.radians(np.linspace(2.0, 60.0, 8))[:, None, None]
+N_CHI = np.linspace(0.3, 0.95, 8)[None, :, None]
+N_KM = np.array([0.0, 0.02, 0.05])[None, None, :] * (1 - N_CHI)
+
+
+def assert_same_bits(x, y):
+    for name in eccjump.fields.FIELDS:
+        a, b = getattr(x, name), getattr(y, name)
+        assert a.dtype == b.dtype and a.shape == b.shape, name
+        assert a.tobytes() == b.tobytes(), name  # NaNs compared by bytes
+
+
+def test_n_array_broadcasts_and_equals_per_n_calls():
+    turns = np.array([1, 2, 3])
+    both = jarm(N_ALPHA[None], N_CHI[None], N_KM[None], 2.0, n=turns[:, None, None, None])
+    assert both.shape == (3, 8, 8, 3)
+    for i, n in enumerate(turns):
+        one = jarm(N_ALPHA, N_CHI, N_KM, 2.0, n=int(n))
+        assert_same_bits(
+            eccjump.JarmResult(**{k: getattr(both, k)[i] for k in eccjump.fields.FIELDS}), one
+        )
+    assert len({int(both.is_jarm[i].sum()) for i in range(3)}) == 3  # n does matter here
+
+
+def test_n_per_point_is_scattered_back_in_place(monkeypatch):
+    rng = np.random.default_rng(7)
+    n = rng.integers(1, 4, size=(8, 8, 3))
+    calls = []
+    real = eccjump._core.jarm_points
+
+    def counting(*args):
+        calls.append(args[0].size)
+        return real(*args)
+
+    monkeypatch.setattr(eccjump._core, "jarm_points", counting)
+    mixed = jarm(N_ALPHA, N_CHI, N_KM, 2.0, n=n)
+    assert sorted(calls) == sorted(np.unique(n, return_counts=True)[1].tolist())  # one per n
+    for v in (1, 2, 3):
+        one = jarm(N_ALPHA, N_CHI, N_KM, 2.0, n=v)
+        mask = n == v
+        for name in eccjump.fields.FIELDS:
+            a, b = getattr(mixed, name)[mask], getattr(one, name)[mask]
+            assert a.tobytes() == b.tobytes(), (v, name)
+
+
+def test_n_scalar_forms_and_lists():
+    ref_ = jarm(N_ALPHA, N_CHI, N_KM, 2.0, n=2)
+    for n in (np.int64(2), np.uint8(2), np.array(2), np.full((8, 8, 3), 2), [[[2]]]):
+        assert_same_bits(jarm(N_ALPHA, N_CHI, N_KM, 2.0, n=n), ref_)
+    r = jarm(40 * DEG, 0.15, 0.02, 1.0, n=[1, 2])
+    assert r.shape == (2,) and bool(r.is_jarm[0]) and int(r.n[0]) == 1
+    assert jarm(np.zeros(0), 0.15, 0.02, 1.0, n=np.zeros(0, dtype=int)).shape == (0,)
+
+
+@pytest.mark.parametrize(
+    "n",
+    [0, -1, 1.0, True, [0, 1], [1, -2], [1.5, 2.0], [None, 1], [True, False], "2", [[1], [1, 2]]],
+)
+def test_bad_n_is_rejected_with_its_range(n):
+    with pytest.raises(ValueError, match=r"n\b.*\[1, inf\)"):
+        jarm([0.5, 0.6], 0.2, 0.1, 1.0, n=n)
+
+
+def test_n_shape_errors_name_n():
+    with pytest.raises(ValueError, match=r"broadcast.*n\(3,\)"):
+        jarm([0.5, 0.6], 0.2, 0.1, 1.0, n=[1, 2, 3])
+
+
 # --- the second, independent route: integration with events --------------------------------
 
 

@@ -349,5 +349,8 @@ def test_fast_result_construction_equals_the_dataclass_init():
     assert list(vars(r)) == names
     again = RollResult(**{n: getattr(r, n) for n in names})
     assert repr(again) == repr(r) and hash(again.events) == hash(r.events)
+    for n in names:  # the repr is a summary: compare every field itself
+        a, b = getattr(again, n), getattr(r, n)
+        assert a.tobytes() == b.tobytes() if isinstance(a, np.ndarray) else a == b, n
     with pytest.raises(dataclasses.FrozenInstanceError):
         r.status = 0

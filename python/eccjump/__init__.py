@@ -9,9 +9,8 @@ from eccjump import closed_form, store
 from eccjump._core import VERSION as __version__
 from eccjump.body import Cylinder
 from eccjump.boundary import alpha_intervals, mu_s_min_path
-from eccjump.classification import JarmResult, Reason, Region, jarm, region
+from eccjump.classification import JarmResult, Reason, Region, jarm, region, region_dataset
 from eccjump.dense import DenseSolution
-from eccjump.labelled import region_dataset
 from eccjump.rolling import EVENT_NAMES, Event, RollResult, roll
 from eccjump.units import Units
 

@@ -42,37 +42,45 @@ def axis(name: str, values: ArrayLike) -> NDArray[np.float64]:
     return a
 
 
+#: The largest turn number (the core counts turns in 32 bits).
+MAX_TURN = 2**32 - 1
+
+
 def turn(n: int | None) -> int | None:
     """Validate a turn number: None (automatic) or an integer >= 1."""
     if n is None:
         return None
-    if isinstance(n, bool) or not isinstance(n, int | np.integer) or n < 1:
-        raise ValueError(f"n = {n!r} is outside the allowed range [1, inf) (None: automatic)")
+    if isinstance(n, bool) or not isinstance(n, int | np.integer) or not 1 <= n <= MAX_TURN:
+        raise ValueError(
+            f"n = {n!r} is outside the allowed range [1, {MAX_TURN}] (None: automatic)"
+        )
     return int(n)
 
 
-def turns_array(n: ArrayLike | None, shape: tuple[int, ...]) -> NDArray[np.uint32]:
-    """The turn n of :func:`eccjump.jarm` as the bridge takes it: a flat uint32 array of the
-    broadcast ``shape`` (or of length 1), 0 for None (the first jump). Every entry must be an
-    integer >= 1."""
-    if n is None:
-        return np.zeros(1, dtype=np.uint32)
-    if isinstance(n, bool):
-        raise TypeError(f"n = {n!r} must be an integer >= 1 or None")
+def turns(n: object) -> int | NDArray[np.int64] | None:
+    """Validate a turn argument that may vary per point: None (automatic; only as a scalar),
+    an integer >= 1, or an array-like of integers >= 1 (returned as an int64 array)."""
+    if n is None or isinstance(n, int | np.integer):  # bool included: turn() rejects it
+        return turn(n)  # type: ignore[arg-type]
     try:
         a = np.asarray(n)
-    except (TypeError, ValueError, OverflowError) as err:
-        raise TypeError(f"n must be an integer >= 1 (or an array of them) or None: {err}") from err
-    if a.dtype == object and a.ndim == 0 and isinstance(n, int):
-        raise ValueError(f"n = {n} is outside the allowed range [1, 4294967295]")
-    if not np.issubdtype(a.dtype, np.integer):
-        raise TypeError(f"n must be an integer >= 1 (or an array of them) or None, not {a.dtype}")
-    try:
-        flat = np.broadcast_to(a, shape).ravel()
-    except ValueError as err:
-        raise ValueError(f"n of shape {a.shape} does not broadcast to {shape}") from err
-    bad = np.flatnonzero((flat < 1) | (flat > 2**32 - 1))
-    if bad.size:
-        i = int(bad[0])
-        raise ValueError(f"n[{i}] = {flat[i]} is outside the allowed range [1, 4294967295]")
-    return np.ascontiguousarray(flat, dtype=np.uint32)
+    except (TypeError, ValueError) as err:  # ragged input
+        raise ValueError(
+            f"n must be None, an integer or an array of integers in the allowed range "
+            f"[1, {MAX_TURN}]: {err}"
+        ) from err
+    if a.ndim == 0:
+        return turn(a.item() if a.dtype.kind in "iu" else n)  # type: ignore[arg-type]
+    if a.dtype.kind not in "iu":
+        raise ValueError(
+            f"n holds {a.dtype} values; its entries must be integers in the allowed range "
+            f"[1, {MAX_TURN}] (None, the first jump, only as a scalar)"
+        )
+    out = (a < 1) | (a > MAX_TURN)
+    if a.size and out.any():
+        i = int(np.flatnonzero(out.ravel())[0])
+        raise ValueError(
+            f"n[{i}] = {a.ravel()[i]} is outside the allowed range [1, {MAX_TURN}] "
+            "(None, the first jump, only as a scalar)"
+        )
+    return a.astype(np.int64)

@@ -8,7 +8,7 @@ from numpy.typing import ArrayLike, NDArray
 
 from eccjump import _core
 from eccjump._arrays import broadcast_flat, turn
-from eccjump.classification import Rule
+from eccjump._bridge import Rule
 
 
 def alpha_intervals(
@@ -27,7 +27,9 @@ def alpha_intervals(
     if n_scan < 2:
         raise ValueError(f"n_scan = {n_scan!r} is outside the allowed range [2, inf)")
     _, (c, k) = broadcast_flat(chi=chi, km=km)
-    return _core.alpha_intervals(c, k, float(mu_s), turn(n) or 0, str(rule), int(n_scan), int(n_threads))
+    return _core.alpha_intervals(
+        c, k, float(mu_s), turn(n) or 0, str(rule), int(n_scan), int(n_threads)
+    )
 
 
 def mu_s_min_path(

@@ -7,63 +7,49 @@ GIL released; results are bit-identical for any thread count.
 
 from __future__ import annotations
 
-import enum
-from dataclasses import dataclass, field
+import dataclasses
+import math
+from collections.abc import Mapping
+from dataclasses import dataclass, field, replace
 from typing import TYPE_CHECKING, Any, Literal, overload
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-from eccjump import _core
-from eccjump._arrays import axis, broadcast_flat, turn, turns_array
+from eccjump._arrays import axis, broadcast_flat, turns
+from eccjump._bridge import (
+    Method,
+    Rule,
+    call_options,
+    jarm_grid,
+    jarm_points,
+)
+from eccjump._layout import (
+    COORD_ATTRS,
+    SWEEPABLE,
+    Layout,
+    layout_to_xarray,
+    make_layout,
+    map_attrs,
+    require,
+)
+from eccjump.fields import FIELDS, Reason, docstring
+from eccjump.scale import lazy_fields, lazy_records
 
 if TYPE_CHECKING:  # pragma: no cover
     import xarray as xr
 
-Method = Literal["closed_form", "ode"]
-Rule = Literal["paper", "normal_force"]
 
-Reason = enum.IntEnum("Reason", {name.upper(): code for code, name in _core.reason_codes()})
-Reason.__doc__ = """Why a point is (JARM) or is not a jump after pure rolling.
-
-JARM: lift-off straight out of pure rolling. NO_ROOT: no lift-off (on the requested turn n,
-or ever). LIFTOFF_EARLIER: the lift-off rule held earlier than the requested turn n (or at the
-start). NORMAL_FORCE_LOST: F_y reached 0 before lift-off. SLIP_BEFORE: the rolling branch
-needs more than mu_s of friction before lift-off. SLIP_AT_JUMP: friction fails on the final
-approach, and the paper's jump-point test (Eq. ineq2) fails at theta_J. ROCKS_BACK: the body
-stops and rolls back. TURN_LIMIT: nothing happened within max_turns turns. INVALID_PARAMS: a
-parameter is NaN or out of range."""
-
-#: Result fields, in the order of the bridge.
-FIELDS = (
-    "is_jarm",
-    "reason",
-    "n",
-    "theta_J",
-    "theta_event",
-    "Fx_J",
-    "Fy_J",
-    "max_ratio",
-    "theta_max_ratio",
-    "min_Fy",
-    "theta_min_Fy",
-)
-
-
-@dataclass(frozen=True)
+@dataclass(frozen=True, repr=False)
 class JarmResult:
     """Per-point classification, every field an array of the broadcast shape.
 
     Attributes
     ----------
-    is_jarm : bool, a jump straight out of pure rolling.
-    reason : uint8 codes of :class:`Reason`.
-    n : turn of the jump (JARM), of the earlier lift-off, or of the deciding event; 0 if none.
-    theta_J : lift-off angle [rad] (JARM, LIFTOFF_EARLIER, SLIP_AT_JUMP), else NaN.
-    theta_event : angle [rad] of the deciding failure (NaN for a JARM).
-    Fx_J, Fy_J : friction and normal force at the jump [M g] (JARM only).
-    max_ratio, theta_max_ratio : largest |Fx|/Fy on the rolling path and where [rad].
-    min_Fy, theta_min_Fy : smallest normal force on the rolling path [M g] and where [rad].
+    {fields}
+
+    ``reason`` holds codes of :class:`Reason`; the fields are described once, in
+    :mod:`eccjump.fields`.
     """
 
     is_jarm: NDArray[np.bool_]
@@ -82,48 +68,63 @@ class JarmResult:
     def shape(self) -> tuple[int, ...]:
         return self.is_jarm.shape
 
+    @property
+    def lazy(self) -> bool:
+        """True when the fields are dask arrays not yet computed."""
+        return hasattr(self.is_jarm, "__dask_graph__")  # the dask collection protocol
+
     def reasons(self) -> NDArray[np.object_]:
         """The reasons as :class:`Reason` members (an object array; for display)."""
         out = np.empty(self.reason.shape, dtype=object)
         out.ravel()[:] = [Reason(int(c)) for c in self.reason.ravel()]
         return out
 
+    def fields(self) -> dict[str, NDArray]:
+        """Every field by name, in the order of :data:`eccjump.fields.FIELDS`."""
+        return {k: getattr(self, k) for k in FIELDS}
+
+    def counts(self) -> dict[Reason | int, int]:
+        """How many points have each reason (codes that are not a :class:`Reason`, such as
+        the fill value 255 of points not computed, are counted under their code)."""
+        codes = np.bincount(np.asarray(self.reason, dtype=np.intp).ravel(), minlength=1)
+        return {_reason(c): int(k) for c, k in enumerate(codes.tolist()) if k}
+
+    def __repr__(self) -> str:
+        if self.lazy:
+            return f"JarmResult(shape={self.shape}, lazy: not computed)"
+        if self.is_jarm.ndim == 0:
+            reason = _reason_name(_reason(int(self.reason)))
+            theta = float(self.theta_J)
+            at = (
+                ""
+                if math.isnan(theta)
+                else f", theta_J={theta:.6g} ({math.degrees(theta):.4g} deg)"
+            )
+            return f"JarmResult({reason}, n={int(self.n)}{at})"
+        lines = [f"JarmResult(shape={self.shape}, {self.is_jarm.size} points)"]
+        lines += [f"  {_reason_name(r):<18} {k}" for r, k in self.counts().items()]
+        return "\n".join(lines)
+
     @staticmethod
-    def _from_raw(raw: dict[str, NDArray], shape: tuple[int, ...]) -> JarmResult:
+    def _from_raw(raw: Mapping[str, NDArray], shape: tuple[int, ...]) -> JarmResult:
         return JarmResult(**{k: raw[k].reshape(shape) for k in FIELDS})
 
 
-def _common(
-    n: int | None,
-    rule: str,
-    method: str,
-    rtol: float,
-    atol: float,
-    theta0: float,
-    omega0: float,
-    max_turns: int,
-    refine_extrema: bool,
-    n_threads: int,
-) -> dict[str, Any]:
-    """The options dict the bridge takes (``CallOptions`` in rust/eccjump-py), with the turn
-    ``n`` (0 = the first jump) for grid calls. Only types are checked here; the core checks
-    every range."""
-    if isinstance(n_threads, bool) or not isinstance(n_threads, int) or n_threads < 0:
-        raise ValueError(f"n_threads = {n_threads!r} is outside the allowed range [0, inf)")
-    if isinstance(max_turns, bool) or not isinstance(max_turns, int) or max_turns < 1:
-        raise ValueError(f"max_turns = {max_turns!r} is outside the allowed range [1, inf)")
-    return {
-        "n": turn(n) or 0,
-        "rule": str(rule),
-        "method": str(method),
-        "rtol": float(rtol),
-        "atol": float(atol),
-        "theta0": float(theta0),
-        "omega0": float(omega0),
-        "max_turns": int(max_turns),
-        "refine_extrema": bool(refine_extrema),
-        "n_threads": int(n_threads),
-    }
+def _reason(code: int) -> Reason | int:
+    """The :class:`Reason` of ``code``, or the code itself if it is none (fill: 255)."""
+    try:
+        return Reason(code)
+    except ValueError:
+        return code
+
+
+def _reason_name(reason: Reason | int) -> str:
+    return reason.name if isinstance(reason, Reason) else f"code {reason}"
+
+
+JarmResult.__doc__ = (JarmResult.__doc__ or "").format(fields=docstring().replace("\n", "\n    "))
+if tuple(f.name for f in dataclasses.fields(JarmResult)) != FIELDS:  # pragma: no cover
+    raise ImportError("JarmResult and eccjump.fields.FIELDS list different fields")
 
 
 def jarm(
@@ -131,7 +132,7 @@ def jarm(
     chi: ArrayLike,
     km: ArrayLike,
     mu_s: ArrayLike,
-    n: int | None = None,
+    n: int | ArrayLike | None = None,
     *,
     method: Method = "closed_form",
     rule: Rule = "paper",
@@ -143,16 +144,17 @@ def jarm(
     refine_extrema: bool = True,
     n_threads: int = 0,
 ) -> JarmResult:
-    """Classify points (alpha, chi, km, mu_s) as JARM or not, broadcasting the four inputs.
+    """Classify points (alpha, chi, km, mu_s, n) as JARM or not, broadcasting the five inputs.
 
     Parameters
     ----------
     alpha : ramp angle [rad] in [0, pi/2].
     chi, km : the body (km is the shell mass fraction itself, in [0, 1 - chi]).
     mu_s : static friction coefficient, >= 0.
-    n : the turn on which the jump must happen (>= 1), or None for the first jump whatever
-        its turn. With first-jump semantics a point has at most one n, so the regions of
-        different n never overlap.
+    n : the turn on which the jump must happen: an integer >= 1 or an array of them
+        (broadcast with the other inputs), or None for the first jump whatever its turn
+        (None only as a scalar). With first-jump semantics a point has at most one n, so the
+        regions of different n never overlap.
     method : ``"closed_form"`` (the paper's formulas with a rigorous path scan) or ``"ode"``
         (integration with events; an independent route, ~10x slower).
     rule : lift-off rule, ``"paper"`` (default) or ``"normal_force"`` (classical).
@@ -163,18 +165,32 @@ def jarm(
     n_threads : threads (0 = one per core); results are identical for any value.
 
     Invalid points get ``Reason.INVALID_PARAMS``; a ``ValueError`` is raised only for
-    arguments that apply to the whole call (shapes, rule, method, n, tolerances).
+    arguments that apply to the whole call (shapes, rule, method, tolerances) and for an
+    ``n`` that is not None or integers >= 1.
     """
-    shape, (a, c, k, m) = broadcast_flat(alpha=alpha, chi=chi, km=km, mu_s=mu_s)
-    turns = turns_array(n, shape)
-    opts = _common(
-        None, rule, method, rtol, atol, theta0, omega0, max_turns, refine_extrema, n_threads
+    turn_arg = turns(n)
+    opts = call_options(
+        n=None if isinstance(turn_arg, np.ndarray) else turn_arg,
+        rule=rule,
+        method=method,
+        rtol=rtol,
+        atol=atol,
+        theta0=theta0,
+        omega0=omega0,
+        max_turns=max_turns,
+        refine_extrema=refine_extrema,
+        n_threads=n_threads,
     )
-    raw = _core.jarm_points(a, c, k, m, turns, opts)
+    if isinstance(turn_arg, np.ndarray):
+        shape, (a, c, k, m, nf) = broadcast_flat(alpha=alpha, chi=chi, km=km, mu_s=mu_s, n=turn_arg)
+        raw = jarm_points(a, c, k, m, opts, n=nf.astype(np.int64))
+    else:
+        shape, (a, c, k, m) = broadcast_flat(alpha=alpha, chi=chi, km=km, mu_s=mu_s)
+        raw = jarm_points(a, c, k, m, opts)
     return JarmResult._from_raw(raw, shape)
 
 
-@dataclass(frozen=True)
+@dataclass(frozen=True, repr=False)
 class Region:
     """A JARM map on the grid alpha x chi x km_frac, with k_m = km_frac (1 - chi).
 
@@ -210,23 +226,65 @@ class Region:
     @property
     def lazy(self) -> bool:
         """True for a map made with ``chunks=`` and not yet computed (dask-array fields)."""
-        return not isinstance(self.result.is_jarm, np.ndarray)
+        return self.result.lazy
 
     def compute(self, **kwargs: object) -> Region:
         """A lazy map computed (all fields in one pass; ``kwargs`` go to ``dask.compute``);
         an already computed map is returned as is."""
         if not self.lazy:
             return self
-        from eccjump.scale import compute_region
+        import dask  # a lazy map exists only if dask is installed
 
-        return compute_region(self, **kwargs)
+        values = dask.compute(*self.result.fields().values(), **kwargs)
+        res = JarmResult(**dict(zip(FIELDS, values, strict=True)))
+        return replace(self, result=res, attrs=dict(self.attrs))
 
     def to_xarray(self) -> xr.Dataset:
         """The map as an ``xarray.Dataset`` (dask-backed if lazy); see :mod:`eccjump.labelled`.
         Needs ``pip install eccjump[xarray]``."""
-        from eccjump.labelled import to_xarray
+        return layout_to_xarray(region_layout(self))
 
-        return to_xarray(self)
+    def __repr__(self) -> str:
+        def axis_line(name: str, values: NDArray[np.float64], unit: str = "") -> str:
+            if values.size == 0:
+                return f"  {name:<8} empty"
+            return f"  {name:<8} [{values[0]:.6g}, {values[-1]:.6g}]{unit} x {values.size}"
+
+        n = "first jump" if self.n is None else str(self.n)
+        made = f"mu_s={self.mu_s:g}, n={n}, rule={self.rule}, method={self.method}"
+        if self.theta0 or self.omega0:
+            made += f", theta0={self.theta0:g}, omega0={self.omega0:g}"
+        size = " x ".join(str(x.size) for x in (self.alpha, self.chi, self.km_frac))
+        jarm = "lazy: not computed" if self.lazy else f"{self.fraction():.6g}"
+        return "\n".join(
+            [
+                f"Region({size} grid; {made})",
+                axis_line("alpha", np.degrees(self.alpha), " deg"),
+                axis_line("chi", self.chi),
+                axis_line("km_frac", self.km_frac),
+                f"  JARM fraction {jarm}",
+            ]
+        )
+
+
+def region_attrs(region: Region) -> dict[str, Any]:
+    """The attributes of a :class:`Region` in a labelled map (see :mod:`eccjump.labelled`)."""
+    return map_attrs(
+        region.mu_s,
+        region.n,
+        region.rule,
+        region.method,
+        region.theta0,
+        region.omega0,
+        **region.attrs,
+    )
+
+
+def region_layout(region: Region) -> Layout:
+    """The labelled layout of a :class:`Region` (numpy only; dask arrays if lazy)."""
+    return make_layout(
+        region.alpha, region.chi, region.km_frac, region.result.fields(), region_attrs(region)
+    )
 
 
 @overload
@@ -311,8 +369,6 @@ def region(
     The tolerances, ``max_turns`` and ``refine_extrema`` are recorded in ``Region.attrs``.
     """
     if output == "xarray":
-        from eccjump.labelled import region_dataset
-
         return region_dataset(
             mu_s,
             n,
@@ -336,23 +392,30 @@ def region(
         if np.ndim(value) != 0:
             raise ValueError(f"{name} must be a number here; sweeps need output='xarray'")
     a, c, f = axis("alpha", alpha), axis("chi", chi), axis("km", km)
-    opts = _common(
-        n, rule, method, rtol, atol, theta0, omega0, max_turns, refine_extrema, n_threads
+    opts = call_options(
+        n=n,
+        rule=rule,
+        method=method,
+        rtol=rtol,
+        atol=atol,
+        theta0=theta0,
+        omega0=omega0,
+        max_turns=max_turns,
+        refine_extrema=refine_extrema,
+        n_threads=n_threads,
     )
     if chunks is None:
-        raw = _core.jarm_grid(a, c, f, float(mu_s), opts["n"], opts)
+        raw = jarm_grid(a, c, f, float(mu_s), opts)
         res = JarmResult._from_raw(raw, (a.size, c.size, f.size))
     else:
-        from eccjump.scale import lazy_records, lazy_result
-
-        res = lazy_result(lazy_records(a, c, f, float(mu_s), opts, chunks))
+        res = JarmResult(**lazy_fields(lazy_records(a, c, f, float(mu_s), opts, chunks)))
     return Region(
         alpha=a,
         chi=c,
         km_frac=f,
         result=res,
         mu_s=float(mu_s),
-        n=turn(n),
+        n=opts.n,
         rule=str(rule),
         method=str(method),
         theta0=float(theta0),
@@ -364,3 +427,88 @@ def region(
             "refine_extrema": bool(refine_extrema),
         },
     )
+
+
+def region_dataset(
+    mu_s: float | ArrayLike,
+    n: int | None = None,
+    *,
+    alpha: ArrayLike,
+    chi: ArrayLike,
+    km: ArrayLike,
+    theta0: float | ArrayLike = 0.0,
+    omega0: float | ArrayLike = 0.0,
+    **kwargs: Any,
+) -> xr.Dataset:
+    """Map the JARM region as an ``xarray.Dataset``, sweeping ``mu_s``, ``theta0`` and
+    ``omega0`` when they are 1-D sequences (one Rust grid call per combination; the swept
+    parameters become leading dimensions, in that order). Other arguments as
+    :func:`eccjump.region` (``chunks=`` gives a dask-backed, lazily computed dataset). The
+    layout is described in :mod:`eccjump.labelled`.
+    """
+    xr = require("xarray")
+    kwargs.pop("output", None)
+    given = {"mu_s": mu_s, "theta0": theta0, "omega0": omega0}
+    scalars: dict[str, float] = {}
+    swept: dict[str, NDArray[np.float64]] = {}
+    for name in SWEEPABLE:
+        arr = np.asarray(given[name], dtype=np.float64)
+        if arr.ndim == 0:
+            scalars[name] = float(arr)
+        elif arr.ndim == 1 and arr.size:
+            swept[name] = arr
+        else:
+            raise ValueError(f"{name} must be a number or a non-empty 1-D sequence")
+    grid = {"alpha": alpha, "chi": chi, "km": km}
+
+    def one(values: Mapping[str, float]) -> xr.Dataset:
+        reg = region(n=n, **grid, **scalars, **values, **kwargs)  # type: ignore[arg-type]
+        return reg.to_xarray()
+
+    if not swept:
+        return one({})
+    names = list(swept)
+
+    def build(level: int, fixed: dict[str, float]) -> xr.Dataset:
+        name = names[level]
+        parts = []
+        for v in swept[name]:
+            here = {**fixed, name: float(v)}
+            if level + 1 < len(names):
+                ds = build(level + 1, here)
+            else:
+                ds = one(here)
+                for k in names:  # swept values live in coordinates, not attributes
+                    ds.attrs.pop(k, None)
+                ds = ds.assign_coords({k: xr.Variable((), here[k]) for k in names})
+            parts.append(ds)
+        return xr.concat(
+            parts,
+            dim=name,
+            data_vars="all",
+            coords="minimal",
+            compat="override",
+            join="exact",
+            combine_attrs="override",
+        )
+
+    out = build(0, {})
+    for k in names:
+        out[k].attrs.update(COORD_ATTRS[k])
+    out.attrs["swept"] = " ".join(names)
+    return out
+
+
+__all__ = [
+    "FIELDS",
+    "JarmResult",
+    "Method",
+    "Reason",
+    "Region",
+    "Rule",
+    "jarm",
+    "region",
+    "region_attrs",
+    "region_dataset",
+    "region_layout",
+]

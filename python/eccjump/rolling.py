@@ -85,6 +85,31 @@ class RollResult:
         """True unless the integrator failed."""
         return self.status >= 0
 
+    def __repr__(self) -> str:
+        """A short summary: how the run ended, the end state, steps and evaluations (the
+        arrays themselves are not shown)."""
+        if self.terminal_event is not None:
+            outcome = self.terminal_event
+        elif self.status == 0:
+            outcome = "t_max reached"
+        else:
+            outcome = f"failed ({self.message})"
+        si = self.units is not None
+        mu = "enough friction" if self.mu_s is None else f"mu_s={self.mu_s:g}"
+        body = f"Cylinder(chi={self.body.chi!r}, km={self.body.km!r})"
+        alpha = f"alpha={math.degrees(self.alpha):.6g} deg"
+        head = f"RollResult({body}, {alpha}, {mu}, rule={self.rule}{', SI units' if si else ''})"
+        k = len(self.events)
+        counts = f"nfev={self.nfev}, {k} event{'' if k == 1 else 's'}"
+        if self.t.size == 0:
+            return f"{head}\n  {outcome}; no steps, {counts}"
+        t, theta, omega = float(self.t[-1]), float(self.theta[-1]), float(self.omega[-1])
+        return (
+            f"{head}\n  {outcome} at t={t:.6g}{' s' if si else ''}, "
+            f"theta={math.degrees(theta):.6g} deg, omega={omega:.6g}{' rad/s' if si else ''}; "
+            f"{self.t.size - 1} steps, {counts}"
+        )
+
     def event(self, name: str) -> Event | None:
         """The first event called ``name``, or None."""
         if name not in EVENT_NAMES:

@@ -2,10 +2,10 @@
 
 ``region(..., chunks=(ca, cc, ck))`` (or a dict ``{"alpha": ca, ...}``, or one int for every
 axis; -1 or None = the whole axis) builds the map with :func:`dask.array.map_blocks`. Each
-block is ONE call of ``_core.jarm_grid`` on that block's coordinate slices, which releases
-the GIL and runs on ``n_threads`` threads. Every point is computed exactly as in a
-single-process call, so the result is bit-identical whatever the chunks, the scheduler or
-the cluster.
+block is ONE call of the grid bridge (:func:`eccjump._bridge.jarm_grid`) on that block's
+coordinate slices, which releases the GIL and runs on ``n_threads`` threads. Every point is
+computed exactly as in a single-process call, so the result is bit-identical whatever the
+chunks, the scheduler or the cluster.
 
 Threads: on a ``dask.distributed`` cluster set ``n_threads`` = threads per worker divided
 by the tasks a worker runs at once -- in practice ``n_threads=1`` with
@@ -13,8 +13,11 @@ by the tasks a worker runs at once -- in practice ``n_threads=1`` with
 cores per worker. The default ``n_threads=0`` (one thread per core in every call)
 oversubscribes the cores when several blocks run at once on one machine.
 
-The block function and its arguments are plain module-level functions, numpy arrays and
-tuples, so the graph pickles to any cluster whose workers can import ``eccjump``.
+The block function and its arguments are plain module-level functions, numpy arrays and a
+frozen dataclass of options, so the graph pickles to any cluster whose workers can import
+``eccjump``. This module builds the dask arrays only (:func:`lazy_records`,
+:func:`lazy_fields`); :func:`eccjump.region` wraps them into a lazy :class:`~eccjump.Region`
+and :meth:`~eccjump.Region.compute` computes them.
 """
 
 from __future__ import annotations
@@ -25,14 +28,8 @@ from typing import Any
 import numpy as np
 from numpy.typing import NDArray
 
-from eccjump import _core
-from eccjump.classification import FIELDS, JarmResult, Region
-
-#: One record per point holding every field (the dtype of the raw blocks).
-RECORD = np.dtype(
-    [("is_jarm", np.bool_), ("reason", np.uint8), ("n", np.uint32)]
-    + [(k, np.float64) for k in FIELDS[3:]]
-)
+from eccjump._bridge import CallOptions, jarm_grid
+from eccjump.fields import FIELDS, RECORD
 
 AXES = ("alpha", "chi", "km")
 
@@ -80,7 +77,7 @@ def grid_block(
     chi: NDArray[np.float64],
     frac: NDArray[np.float64],
     mu_s: float,
-    opts: dict[str, Any],
+    opts: CallOptions,
 ) -> NDArray[np.void]:
     """One block: the grid of the (broadcast-shaped) coordinate slices, as records."""
     # fresh copies: arrays unpickled on a worker may be misaligned, which the bridge refuses
@@ -88,7 +85,7 @@ def grid_block(
     out = np.empty((a.size, c.size, f.size), dtype=RECORD)
     if out.size == 0:
         return out
-    raw = _core.jarm_grid(a, c, f, mu_s, opts["n"], opts)
+    raw = jarm_grid(a, c, f, mu_s, opts)
     for k in FIELDS:
         out[k] = raw[k].reshape(out.shape)
     return out
@@ -104,7 +101,7 @@ def lazy_records(
     chi: NDArray[np.float64],
     frac: NDArray[np.float64],
     mu_s: float,
-    opts: dict[str, Any],
+    opts: CallOptions,
     chunks: Chunks,
 ) -> Any:
     """The map as a dask array of :data:`RECORD`, one Rust call per block."""
@@ -121,7 +118,7 @@ def lazy_records(
         C,
         F,
         mu_s=float(mu_s),
-        opts=dict(opts),
+        opts=opts,
         chunks=out_chunks,
         dtype=RECORD,
         meta=np.empty((0, 0, 0), dtype=RECORD),
@@ -129,37 +126,12 @@ def lazy_records(
     )
 
 
-def lazy_result(records: Any) -> JarmResult:
-    """A :class:`JarmResult` of dask arrays, all views of the same blocks of records."""
-    fields = {
+def lazy_fields(records: Any) -> dict[str, Any]:
+    """Every field as a dask array, all views of the same blocks of records (computing them
+    together with ``dask.compute`` computes each block once)."""
+    return {
         k: records.map_blocks(
             field_of, k, dtype=RECORD[k], meta=np.empty((0, 0, 0), dtype=RECORD[k])
         )
         for k in FIELDS
     }
-    return JarmResult(**fields)
-
-
-def compute_region(region: Region, **compute_kwargs: Any) -> Region:
-    """Compute every field of a lazy region at once (each block computed once)."""
-    import dask
-
-    values = dask.compute(*(getattr(region.result, k) for k in FIELDS), **compute_kwargs)
-    res = JarmResult(**dict(zip(FIELDS, values, strict=True)))
-    return Region(
-        alpha=region.alpha,
-        chi=region.chi,
-        km_frac=region.km_frac,
-        result=res,
-        mu_s=region.mu_s,
-        n=region.n,
-        rule=region.rule,
-        method=region.method,
-        theta0=region.theta0,
-        omega0=region.omega0,
-        attrs=dict(region.attrs),
-    )
-
-
-def is_lazy(region: Region) -> bool:
-    return not isinstance(region.result.is_jarm, np.ndarray)

@@ -22,12 +22,11 @@ from typing import TYPE_CHECKING, Any
 import numpy as np
 from numpy.typing import NDArray
 
-from eccjump.classification import FIELDS, Region
+from eccjump.classification import Region
+from eccjump.fields import DTYPES, FIELDS, FILL
 from eccjump.labelled import (
     COORD_ATTRS,
     DIMS,
-    DTYPES,
-    FILL,
     Layout,
     attrs_json,
     field_var,
@@ -233,7 +232,7 @@ class ZarrMap:
                 shape=shape,
                 dtype=dtype,
                 chunks=chunks,
-                fill_value=FILL.get(name, np.nan),
+                fill_value=FILL[name],
                 dimension_names=DIMS,
                 attributes=_json_attrs({**field_var(name), "coordinates": "alpha_deg km"}),
             )

@@ -7,7 +7,10 @@ import math
 import time
 from pathlib import Path
 
+from eccjump import plot
+from eccjump.body import Cylinder
 from eccjump.cli._args import int_at_least
+from eccjump.rolling import roll
 
 #: Figure names, in the order they are written.
 FIGURES = ("fig3b", "fig4a", "fig4b", "fig4_slices", "trajectory")
@@ -52,10 +55,6 @@ def _cmd_figures(args: argparse.Namespace) -> int:
 
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
-
-    from eccjump import plot
-    from eccjump.body import Cylinder
-    from eccjump.rolling import roll
 
     args.outdir.mkdir(parents=True, exist_ok=True)
     res, n_scan = args.resolution, args.n_scan

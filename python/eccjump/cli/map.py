@@ -21,8 +21,12 @@ from typing import Any
 import numpy as np
 from numpy.typing import NDArray
 
-from eccjump.classification import FIELDS, region
+from eccjump import plot, store
+from eccjump.classification import region
 from eccjump.cli._args import int_at_least
+from eccjump.fields import DTYPES, FIELDS, FILL
+from eccjump.labelled import make_layout, map_attrs
+from eccjump.store import ZarrMap, format_of, save
 
 #: Default points per chunk when --chunk is not given (a few seconds on a laptop core).
 POINTS_PER_CHUNK = 100_000
@@ -244,9 +248,6 @@ def _cmd_map(args: argparse.Namespace) -> int:
 
 
 def _run(args: argparse.Namespace) -> int:
-    from eccjump.labelled import DTYPES, FILL, make_layout, map_attrs
-    from eccjump.store import ZarrMap, format_of, save
-
     path = Path(args.output)
     fmt = format_of(path)
     alpha, chi, km = _axes(args)
@@ -288,7 +289,7 @@ def _run(args: argparse.Namespace) -> int:
             zmap = ZarrMap.create(path, alpha, chi, km, attrs, chunk)
             todo = list(range(zmap.n_chunks))
         else:
-            fields = {k: np.full(shape, FILL.get(k, np.nan), dtype=DTYPES[k]) for k in FIELDS}
+            fields = {k: np.full(shape, FILL[k], dtype=DTYPES[k]) for k in FIELDS}
             todo = list(range(-(-alpha.size // chunk)))
     if zmap is not None:
         chunk = zmap.chunk
@@ -365,8 +366,6 @@ def _run(args: argparse.Namespace) -> int:
 
 def _draw(path: str, figure: str) -> None:
     """Draw the finished map file (read back, so the figure shows what was written)."""
-    from eccjump import plot, store
-
     fig = plot.region_map(store.load(path))
     fig.savefig(figure, dpi=110)
     print(f"figure: {figure}")

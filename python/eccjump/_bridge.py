@@ -1,0 +1,131 @@
+"""The only calls of the Rust classification bridge (``_core.jarm_points``, ``_core.jarm_grid``).
+
+:func:`call_options` converts the options that apply to a whole call into a
+:class:`CallOptions`; :func:`_bridge_options` alone knows how the bridge takes them (a dict,
+``CallOptions`` in ``rust/eccjump-py/src/options.rs``), so a change of that format touches
+this module only. The turn ``n`` travels separately: one per point for ``jarm_points``.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from typing import Literal
+
+import numpy as np
+from numpy.typing import NDArray
+
+from eccjump import _core
+from eccjump._arrays import turn
+
+Method = Literal["closed_form", "ode"]
+Rule = Literal["paper", "normal_force"]
+
+#: The raw result of a bridge call: one flat array per field.
+Raw = dict[str, NDArray]
+
+
+@dataclass(frozen=True)
+class CallOptions:
+    """Validated options of one classification call, the same for every point.
+
+    n : the turn of the jump (>= 1), or None for the first jump whatever its turn.
+    rule : lift-off rule, ``"paper"`` or ``"normal_force"`` (checked by the core).
+    method : ``"closed_form"`` or ``"ode"`` (checked by the core).
+    rtol, atol : integrator tolerances (``method="ode"``; checked by the core).
+    theta0, omega0 : initial angle [rad] and angular velocity [sqrt(g/R) rad].
+    max_turns : cap of the search, in turns (>= 1).
+    refine_extrema : refine max_ratio and min_Fy to full precision (closed form).
+    n_threads : threads per call (0 = one per core); results do not depend on it.
+
+    A plain module-level frozen dataclass: it pickles into dask graphs.
+    """
+
+    n: int | None
+    rule: str
+    method: str
+    rtol: float
+    atol: float
+    theta0: float
+    omega0: float
+    max_turns: int
+    refine_extrema: bool
+    n_threads: int
+
+
+def call_options(
+    *,
+    n: int | None,
+    rule: str,
+    method: str,
+    rtol: float,
+    atol: float,
+    theta0: float,
+    omega0: float,
+    max_turns: int,
+    refine_extrema: bool,
+    n_threads: int,
+) -> CallOptions:
+    """The options of a classification call, validated and converted to plain Python types.
+
+    Raises ValueError (naming the argument and its allowed range) for ``n``, ``max_turns``
+    and ``n_threads``; ``rule``, ``method`` and the tolerances are checked by the core.
+    """
+    if isinstance(n_threads, bool) or not isinstance(n_threads, int | np.integer) or n_threads < 0:
+        raise ValueError(f"n_threads = {n_threads!r} is outside the allowed range [0, inf)")
+    if isinstance(max_turns, bool) or not isinstance(max_turns, int | np.integer) or max_turns < 1:
+        raise ValueError(f"max_turns = {max_turns!r} is outside the allowed range [1, inf)")
+    return CallOptions(
+        n=turn(n),
+        rule=str(rule),
+        method=str(method),
+        rtol=float(rtol),
+        atol=float(atol),
+        theta0=float(theta0),
+        omega0=float(omega0),
+        max_turns=int(max_turns),
+        refine_extrema=bool(refine_extrema),
+        n_threads=int(n_threads),
+    )
+
+
+def _bridge_options(opts: CallOptions) -> _core.CallOptions:
+    """``opts`` in the form the bridge takes: a dict of the options without the turn."""
+    return {
+        "rule": opts.rule,
+        "method": opts.method,
+        "rtol": opts.rtol,
+        "atol": opts.atol,
+        "theta0": opts.theta0,
+        "omega0": opts.omega0,
+        "max_turns": opts.max_turns,
+        "refine_extrema": opts.refine_extrema,
+        "n_threads": opts.n_threads,
+    }
+
+
+def jarm_points(
+    alpha: NDArray[np.float64],
+    chi: NDArray[np.float64],
+    km: NDArray[np.float64],
+    mu_s: NDArray[np.float64],
+    opts: CallOptions,
+    n: NDArray[np.int64] | None = None,
+) -> Raw:
+    """Classify equal-length contiguous 1-D float64 arrays of points (``mu_s`` may have
+    length 1), with a turn per point ``n`` (validated, >= 1, same length) or ``opts.n`` for
+    all: one flat array per field."""
+    turns = np.array([opts.n or 0]) if n is None else n
+    turns = np.ascontiguousarray(turns, dtype=np.uint32)
+    return _core.jarm_points(alpha, chi, km, mu_s, turns, _bridge_options(opts))
+
+
+def jarm_grid(
+    alpha: NDArray[np.float64],
+    chi: NDArray[np.float64],
+    frac: NDArray[np.float64],
+    mu_s: float,
+    opts: CallOptions,
+) -> Raw:
+    """Classify the grid alpha x chi x frac (k_m = frac (1 - chi)) on the turn ``opts.n``:
+    one array per field, flat in C order."""
+    return _core.jarm_grid(alpha, chi, frac, float(mu_s), opts.n or 0, _bridge_options(opts))

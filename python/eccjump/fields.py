@@ -1,0 +1,129 @@
+"""The one description of the fields of a JARM classification result.
+
+Every result of :func:`eccjump.jarm` and :func:`eccjump.region` has the same fields, in the
+order of the Rust bridge. Each is described ONCE here -- name, numpy dtype, units, meaning
+and the fill value of a point not computed -- and everything else derives from this table:
+the :class:`~eccjump.JarmResult` dataclass and its documentation, the xarray/CF attributes of
+:mod:`eccjump.labelled`, the dask record dtype of :mod:`eccjump.scale`, the files of
+:mod:`eccjump.store` and the ``eccjump map`` command.
+
+This module depends on numpy and the compiled core only (for the :class:`Reason` codes).
+"""
+
+from __future__ import annotations
+
+import enum
+from typing import Any, NamedTuple
+
+import numpy as np
+
+from eccjump import _core
+
+
+class Field(NamedTuple):
+    """One result field."""
+
+    #: Attribute, variable and bridge key.
+    name: str
+    #: numpy dtype of its arrays.
+    dtype: np.dtype
+    #: CF-style units (``"1"``: dimensionless; g = R = M = 1).
+    units: str
+    #: What it means, in one line (the CF ``long_name``).
+    description: str
+    #: Value of a point not computed (an interrupted map).
+    fill: Any
+
+
+_BOOL, _U8, _U32, _F64 = (np.dtype(t) for t in (np.bool_, np.uint8, np.uint32, np.float64))
+_NAN = float("nan")
+
+#: Every field, in the order of the bridge.
+TABLE: tuple[Field, ...] = (
+    Field("is_jarm", _BOOL, "1", "jump straight out of pure rolling (JARM)", False),
+    Field("reason", _U8, "1", "why the point is or is not a JARM (Reason code)", 255),
+    Field(
+        "n",
+        _U32,
+        "1",
+        "turn of the jump (JARM), of the earlier lift-off or of the deciding event; 0 if none",
+        0,
+    ),
+    Field(
+        "theta_J",
+        _F64,
+        "rad",
+        "lift-off angle (JARM, LIFTOFF_EARLIER, SLIP_AT_JUMP), else NaN",
+        _NAN,
+    ),
+    Field("theta_event", _F64, "rad", "angle of the deciding failure (NaN for a JARM)", _NAN),
+    Field("Fx_J", _F64, "M g", "friction force at the jump (JARM only)", _NAN),
+    Field("Fy_J", _F64, "M g", "normal force at the jump (JARM only)", _NAN),
+    Field("max_ratio", _F64, "1", "largest |Fx|/Fy on the rolling path", _NAN),
+    Field("theta_max_ratio", _F64, "rad", "angle of the largest |Fx|/Fy", _NAN),
+    Field("min_Fy", _F64, "M g", "smallest normal force on the rolling path", _NAN),
+    Field("theta_min_Fy", _F64, "rad", "angle of the smallest normal force", _NAN),
+)
+
+#: Field names, in the order of the bridge.
+FIELDS: tuple[str, ...] = tuple(f.name for f in TABLE)
+#: Field by name.
+BY_NAME: dict[str, Field] = {f.name: f for f in TABLE}
+#: numpy dtype of each field.
+DTYPES: dict[str, np.dtype] = {f.name: f.dtype for f in TABLE}
+#: Value of each field where a point was not computed (``reason`` 255 is not a Reason).
+FILL: dict[str, Any] = {f.name: f.fill for f in TABLE}
+#: One record per point holding every field (the dtype of the dask blocks).
+RECORD = np.dtype([(f.name, f.dtype) for f in TABLE])
+
+
+Reason = enum.IntEnum("Reason", {name.upper(): code for code, name in _core.reason_codes()})
+Reason.__doc__ = """Why a point is (JARM) or is not a jump after pure rolling.
+
+JARM: lift-off straight out of pure rolling. NO_ROOT: no lift-off (on the requested turn n,
+or ever). LIFTOFF_EARLIER: the lift-off rule held earlier than the requested turn n (or at the
+start). NORMAL_FORCE_LOST: F_y reached 0 before lift-off. SLIP_BEFORE: the rolling branch
+needs more than mu_s of friction before lift-off. SLIP_AT_JUMP: friction fails on the final
+approach, and the paper's jump-point test (Eq. ineq2) fails at theta_J. ROCKS_BACK: the body
+stops and rolls back. TURN_LIMIT: nothing happened within max_turns turns. INVALID_PARAMS: a
+parameter is NaN or out of range. SOLVER_FAILED: the integrator of ``method="ode"`` failed
+(no physical verdict)."""
+
+
+def reason_table() -> str:
+    """The Reason codes as ``"0: jarm, 1: no_root, ..."``."""
+    return ", ".join(f"{r.value}: {r.name.lower()}" for r in Reason)
+
+
+def cf_attrs(name: str) -> dict[str, Any]:
+    """CF attributes of the variable of field ``name``: ``units`` and ``long_name``, and for
+    ``reason`` the ``flag_values``/``flag_meanings`` of :class:`Reason`."""
+    f = BY_NAME[name]
+    attrs: dict[str, Any] = {"units": f.units, "long_name": f.description}
+    if name == "reason":
+        attrs["flag_values"] = np.array([r.value for r in Reason], dtype=f.dtype)
+        attrs["flag_meanings"] = " ".join(r.name.lower() for r in Reason)
+    return attrs
+
+
+def docstring() -> str:
+    """The fields as the ``Attributes`` section of a numpy-style docstring."""
+    return "\n".join(
+        f"{f.name} : {f.dtype}, {f.description}" + ("" if f.units == "1" else f" [{f.units}]")
+        for f in TABLE
+    )
+
+
+__all__ = [
+    "BY_NAME",
+    "DTYPES",
+    "FIELDS",
+    "FILL",
+    "RECORD",
+    "TABLE",
+    "Field",
+    "Reason",
+    "cf_attrs",
+    "docstring",
+    "reason_table",
+]

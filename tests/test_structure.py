@@ -1,0 +1,154 @@
+"""The structure of the Python package: one description of the result fields, one place that
+calls the classification bridge, and one-directional imports (no circles, no imports hidden
+inside functions to dodge one)."""
+
+from __future__ import annotations
+
+import ast
+import dataclasses
+import subprocess
+import sys
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+import eccjump
+from eccjump import fields, labelled, scale
+from eccjump.classification import JarmResult
+
+PACKAGE = Path(eccjump.__file__).parent
+SOURCES = sorted(PACKAGE.rglob("*.py"))
+
+
+def module_name(path: Path) -> str:
+    parts = ("eccjump", *path.relative_to(PACKAGE).with_suffix("").parts)
+    return ".".join(parts[:-1] if parts[-1] == "__init__" else parts)
+
+
+MODULES = sorted(module_name(p) for p in SOURCES)
+IMPORTABLE = [m for m in MODULES if not m.endswith("__main__")]  # __main__ runs the CLI
+
+
+def is_module(name: str) -> bool:
+    rel = Path(*name.split(".")[1:])
+    return (
+        name == "eccjump._core"
+        or (PACKAGE / rel).with_suffix(".py").exists()
+        or (PACKAGE / rel / "__init__.py").exists()
+    )
+
+
+def eccjump_imports(path: Path) -> tuple[set[str], list[str]]:
+    """The eccjump modules ``path`` imports, and those imported inside functions."""
+    tree = ast.parse(path.read_text())
+    found: set[str] = set()
+    local: list[str] = []
+
+    def visit(node: ast.AST, in_function: bool) -> None:
+        for child in ast.iter_child_nodes(node):
+            names: list[str] = []
+            if isinstance(child, ast.Import):
+                names = [a.name for a in child.names]
+            elif isinstance(child, ast.ImportFrom) and child.module and child.level == 0:
+                for a in child.names:
+                    sub = f"{child.module}.{a.name}"
+                    names.append(sub if is_module(sub) else child.module)
+            for name in names:
+                if name == "eccjump" or name.startswith("eccjump."):
+                    found.add(name)
+                    if in_function:
+                        local.append(name)
+            fn = isinstance(child, ast.FunctionDef | ast.AsyncFunctionDef | ast.Lambda)
+            visit(child, in_function or fn)
+
+    visit(tree, False)
+    return found, local
+
+
+GRAPH = {module_name(p): eccjump_imports(p) for p in SOURCES}
+
+
+def test_no_eccjump_import_inside_functions():
+    hidden = {m: local for m, (_, local) in GRAPH.items() if local}
+    assert not hidden, f"imports inside functions: {hidden}"
+
+
+def test_imports_form_no_cycle():
+    edges = {m: {d for d in deps if d in GRAPH} - {m} for m, (deps, _) in GRAPH.items()}
+    state: dict[str, int] = {}
+
+    def walk(m: str, path: list[str]) -> None:
+        state[m] = 1
+        for d in sorted(edges[m]):
+            if state.get(d) == 1:
+                cycle = [*path[path.index(d) :], d] if d in path else [m, d]
+                pytest.fail("import cycle: " + " -> ".join(cycle))
+            if d not in state:
+                walk(d, [*path, d])
+        state[m] = 2
+
+    for m in sorted(edges):
+        if m not in state:
+            walk(m, [m])
+
+
+@pytest.mark.parametrize(
+    ("module", "below"),
+    [
+        ("eccjump.fields", {"eccjump._core"}),
+        ("eccjump._bridge", {"eccjump._core", "eccjump._arrays", "eccjump.fields"}),
+        ("eccjump._layout", {"eccjump._core", "eccjump.fields"}),
+        ("eccjump.scale", {"eccjump._bridge", "eccjump.fields"}),
+    ],
+)
+def test_layers(module, below):
+    """fields <- _bridge, _layout, scale <- classification <- labelled <- store <- cli."""
+    assert GRAPH[module][0] <= below
+
+
+def test_the_bridge_is_called_from_one_module():
+    callers = {
+        module_name(p)
+        for p in SOURCES
+        for call in ("_core.jarm_points", "_core.jarm_grid")
+        if call in p.read_text()
+    }
+    assert callers == {"eccjump._bridge"}
+
+
+@pytest.mark.parametrize("module", IMPORTABLE)
+def test_each_module_imports_alone_in_a_fresh_interpreter(module):
+    subprocess.run([sys.executable, "-c", f"import {module}"], check=True, timeout=120)
+
+
+def test_upper_modules_first_then_lower_in_one_interpreter():
+    order = ["labelled", "scale", "store", "classification", "fields", "cli.map", "_bridge"]
+    code = "; ".join(f"import eccjump.{m}" for m in order)
+    subprocess.run([sys.executable, "-c", code], check=True, timeout=120)
+
+
+# --- one description of the result fields --------------------------------------------------
+
+
+def test_result_fields_come_from_one_table():
+    names = tuple(f.name for f in fields.TABLE)
+    assert fields.FIELDS == names
+    assert tuple(f.name for f in dataclasses.fields(JarmResult)) == names
+    assert eccjump.classification.FIELDS is fields.FIELDS
+    assert scale.RECORD is fields.RECORD and fields.RECORD.names == names
+    assert labelled.DTYPES is fields.DTYPES and labelled.FILL is fields.FILL
+    for f in fields.TABLE:
+        assert labelled.FIELD_ATTRS[f.name] == {"units": f.units, "long_name": f.description}
+        assert f.name in (JarmResult.__doc__ or "") and f.description in JarmResult.__doc__
+        assert np.array(f.fill).astype(f.dtype).dtype == f.dtype
+
+
+def test_results_have_the_described_dtypes():
+    r = eccjump.jarm([0.5, 0.7], 0.15, 0.02, 1.0)
+    reg = eccjump.region(1.0, alpha=[0.5, 0.7], chi=[0.15], km=[0.1])
+    for name, dtype in fields.DTYPES.items():
+        assert getattr(r, name).dtype == dtype and getattr(reg.result, name).dtype == dtype
+    ds = pytest.importorskip("xarray") and reg.to_xarray()
+    assert ds.theta_J.attrs["units"] == fields.BY_NAME["theta_J"].units
+    assert list(ds.reason.attrs["flag_values"]) == [r.value for r in fields.Reason]
