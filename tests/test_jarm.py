@@ -350,6 +350,11 @@ def test_ode_route_agrees_with_the_closed_form(body, alpha, mu_s, rule, start):
         np.array([alpha * (1 - 1e-6), alpha * (1 + 1e-6)]).clip(0, math.pi / 2), chi, km, mu_s, **kw
     )
     assume(np.all(near.reason == cf.reason))
+    # The ODE route finds events by sign samples on each step: over hundreds of turns (small
+    # alpha, small chi) it can miss a slip window narrower than the sample spacing, which the
+    # closed form's derivative test cannot (ode_route.rs, "Events are found by sign sampling").
+    # Such a counterexample: chi = 0.01, km = 0.4613, alpha = 3 deg, slip on turn 211 vs 212.
+    assume(int(cf.n) <= 50)
     ode = jarm(alpha, chi, km, mu_s, method="ode", **kw)
     assert Reason(int(ode.reason)) == Reason(int(cf.reason))
     assert int(ode.n) == int(cf.n)
@@ -376,3 +381,10 @@ def test_ode_region_is_bit_identical_for_any_thread_count():
     r2 = region(1.0, alpha=a, chi=c, km=f, method="ode", n_threads=2)
     for name in eccjump.classification.FIELDS:
         assert getattr(r1.result, name).tobytes() == getattr(r2.result, name).tobytes()
+
+
+def test_reason_codes_include_solver_failed():
+    # An integrator failure of the ODE route has its own code, never a physical verdict
+    # (the failure itself is provoked in the Rust tests: jarm::ode_route, step budget).
+    assert Reason.SOLVER_FAILED == 9
+    assert [r.value for r in Reason] == list(range(10))

@@ -260,6 +260,30 @@ def test_dense_output_matches_the_steps():
         r.sol(r.t[-1] + 1.0)
 
 
+def test_dense_output_ends_at_the_terminal_event():
+    # The README case: lift-off at t = 4.18302 inside a step that ends later; sol must not
+    # return rolling states past the lift-off.
+    r = roll(Cylinder(0.15, 0.02), math.radians(40), mu_s=1.0, dense_output=True)
+    assert r.terminal_event == "liftoff"
+    t_end = r.event("liftoff").t
+    assert r.sol.t_max == t_end == r.t[-1]
+    assert r.sol(t_end)[0] == pytest.approx(r.theta[-1], abs=1e-12)
+    with pytest.raises(ValueError, match=r"t\[0\] = .* outside"):
+        r.sol(np.nextafter(t_end, math.inf))
+
+
+def test_dense_kinematics_are_the_recorded_ones_and_l_is_the_distance_rolled():
+    r = roll(Cylinder(0.3, 0.2), 0.5, mu_s=1.0, theta0=0.4, omega0=0.3, dense_output=True)
+    k = r.sol.kinematics(r.t)
+    for name, rec in (("theta", r.theta), ("omega", r.omega), ("Fx", r.Fx), ("Fy", r.Fy)):
+        np.testing.assert_allclose(k[name], rec, rtol=0, atol=1e-12, err_msg=name)
+    np.testing.assert_allclose(k["ratio"], np.abs(r.Fx) / r.Fy, rtol=1e-12)
+    np.testing.assert_allclose(r.friction_ratio, np.abs(r.Fx) / r.Fy, rtol=1e-15)
+    # pure rolling without slip: l - l0 = R (theta - theta0)
+    np.testing.assert_array_equal(r.l, r.theta - r.theta[0])
+    assert r.to_si(R=0.5).l == pytest.approx(0.5 * r.l)
+
+
 def test_si_conversion_keeps_angles_and_scales_the_rest():
     r = roll(Cylinder(0.3, 0.2), 0.5)
     si = r.to_si(g=9.81, R=0.5, M=2.0)

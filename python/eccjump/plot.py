@@ -530,13 +530,14 @@ _EVENT_STYLE = {
 
 
 def _dense_run(result: RollResult, n_points: int) -> tuple[NDArray[np.float64], ...]:
-    """(t, theta, omega, Fx, Fy) on a fine time grid from the dense output (state and forces
-    evaluated by the core), or the accepted steps."""
-    if result.sol is None or result.units is not None or len(result.t) < 2:
-        return result.t, result.theta, result.omega, result.Fx, result.Fy
-    t = np.union1d(np.linspace(result.t[0], result.t[-1], n_points), result.t)
-    k = result.sol.kinematics(t)
-    return t, k["theta"], k["omega"], k["Fx"], k["Fy"]
+    """(t, theta, omega, Fx, Fy, |Fx|/Fy) on a fine time grid from the dense output (state,
+    forces and friction ratio evaluated by the core), or the accepted steps."""
+    r = result
+    if r.sol is None or r.units is not None or len(r.t) < 2:
+        return r.t, r.theta, r.omega, r.Fx, r.Fy, r.friction_ratio
+    t = np.union1d(np.linspace(r.t[0], r.t[-1], n_points), r.t)
+    k = r.sol.kinematics(t)
+    return t, k["theta"], k["omega"], k["Fx"], k["Fy"], k["ratio"]
 
 
 def trajectory(
@@ -548,7 +549,7 @@ def trajectory(
     plt = _plt()
     si = result.units is not None
     u_t, u_w, u_f = ("s", "rad/s", "N") if si else (r"$\sqrt{R/g}$", r"$\sqrt{g/R}$", "$Mg$")
-    t, theta, omega, fx, fy = _dense_run(result, n_points)
+    t, theta, omega, fx, fy, ratio = _dense_run(result, n_points)
     th = np.degrees(theta)
     fig, axes = plt.subplots(2, 2, figsize=(10.5, 7.2), layout="constrained")
     (a_t, a_w), (a_f, a_r) = axes
@@ -568,8 +569,7 @@ def trajectory(
     a_f.set_ylabel(f"contact force [{u_f}]")
     a_f.set_title("contact forces on the cylinder")
 
-    with np.errstate(divide="ignore", invalid="ignore"):
-        ratio = np.where(fy > 0, np.abs(fx) / fy, np.nan)
+    ratio = np.where(np.isfinite(ratio), ratio, np.nan)  # +inf where F_y <= 0: not drawn
     a_r.plot(th, ratio, color="k", lw=1.5, label=r"$|F_x|/F_y$ ($F_y > 0$)")
     if result.mu_s is not None:
         a_r.axhline(

@@ -53,6 +53,7 @@ class RollResult:
     Fx : friction force on the cylinder along the ramp, positive down the ramp [M g]
     Fy : normal force on the cylinder [M g]
     l : distance rolled along the ramp since the start, l - l0 [R] (from the core)
+    friction_ratio : |Fx|/Fy, the friction the rolling branch needs (inf where Fy <= 0)
     events : every event met, in time order (see :data:`EVENT_NAMES`)
     terminal_event : name of the event that ended the run, or None
     status : 0 reached t_max, 1 a terminal event, -1 the integrator failed
@@ -72,6 +73,7 @@ class RollResult:
     Fx: NDArray[np.float64]
     Fy: NDArray[np.float64]
     l: NDArray[np.float64]  # noqa: E741 - the paper's name for the distance
+    friction_ratio: NDArray[np.float64]
     events: tuple[Event, ...]
     terminal_event: str | None
     status: int
@@ -224,6 +226,7 @@ def roll(
             "Fx": raw["fx"],
             "Fy": raw["fy"],
             "l": raw["l"],
+            "friction_ratio": raw["ratio"],
             "events": tuple([Event(*e) for e in raw["events"]]),
             "terminal_event": raw["terminal_event"],
             "status": raw["status"],

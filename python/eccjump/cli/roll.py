@@ -61,8 +61,8 @@ def _roll_summary(res: RollResult, alpha_deg: float) -> dict[str, object]:
         "omega": float(res.omega[end]),
         "Fx": float(res.Fx[end]),
         "Fy": float(res.Fy[end]),
-        "friction_ratio": (
-            abs(float(res.Fx[end])) / float(res.Fy[end]) if res.Fy[end] > 0 else None
+        "friction_ratio": (  # the core's |Fx|/Fy; +inf (F_y <= 0) is not JSON: None
+            float(res.friction_ratio[end]) if math.isfinite(res.friction_ratio[end]) else None
         ),
         "events": [
             {"name": e.name, "t": e.t, "theta_deg": math.degrees(e.theta), "omega": e.omega}

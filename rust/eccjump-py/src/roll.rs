@@ -2,6 +2,7 @@
 
 use crate::errors::to_py;
 use crate::options::parse_rule;
+use eccjump_core::mechanics::friction::friction_ratio;
 use eccjump_core::modes::rolling::run::{roll as core_roll, RollOptions, RollRun, RollStatus};
 use eccjump_core::modes::rolling::solution::RollSolution;
 use eccjump_core::ode::SolverOptions;
@@ -78,6 +79,7 @@ fn to_dict<'py>(py: Python<'py>, run: RollRun) -> PyResult<Bound<'py, PyDict>> {
     d.set_item("theta", run.theta.into_pyarray(py))?;
     // The distance rolled, l − l0 = θ − θ0 in pure rolling (from the core's record).
     d.set_item("l", run.l.into_pyarray(py))?;
+    d.set_item("ratio", run.ratio.into_pyarray(py))?;
     d.set_item("omega", run.omega.into_pyarray(py))?;
     if let Some(sol) = run.dense {
         d.set_item("sol", Bound::new(py, DenseSolution { sol })?)?;
@@ -138,7 +140,7 @@ impl DenseSolution {
         PyArray1::from_vec(py, flat).reshape([2, t.len()])
     }
 
-    /// θ, θ̇, θ̈, F_x, F_y at the times `t` (1-D), as a dict of arrays.
+    /// θ, θ̇, θ̈, F_x, F_y and the friction ratio at the times `t` (1-D), as a dict of arrays.
     fn kinematics<'py>(
         &self,
         py: Python<'py>,
@@ -154,6 +156,7 @@ impl DenseSolution {
         d.set_item("omega_dot", col(|k| k.omega_dot))?;
         d.set_item("Fx", col(|k| k.fx))?;
         d.set_item("Fy", col(|k| k.fy))?;
+        d.set_item("ratio", col(|k| friction_ratio(k.fx, k.fy)))?;
         Ok(d)
     }
 }

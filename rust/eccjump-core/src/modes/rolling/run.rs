@@ -10,7 +10,7 @@
 //! Which of them end the run is set by the lift-off [`Rule`].
 
 use crate::error::{check_positive, check_range, Error, Result};
-use crate::mechanics::friction::slip_margin;
+use crate::mechanics::friction::{friction_ratio, slip_margin};
 use crate::mechanics::Ramp;
 pub use crate::mechanics::Rule;
 use crate::modes::rolling::bounds::ContactBounds;
@@ -331,6 +331,8 @@ pub struct RollRun {
     pub fy: Vec<f64>,
     /// The distance rolled along the ramp, l − l0 = θ − θ0 (pure rolling, R = 1).
     pub l: Vec<f64>,
+    /// The friction ratio |F_x|/F_y (+∞ where F_y ≤ 0).
+    pub ratio: Vec<f64>,
     pub events: Vec<EventHit>,
     pub status: RollStatus,
     pub nfev: usize,
@@ -353,6 +355,7 @@ impl RollRun {
         self.fx.push(k.fx);
         self.fy.push(k.fy);
         self.l.push(k.theta - self.theta[0]);
+        self.ratio.push(friction_ratio(k.fx, k.fy));
     }
 
     #[inline]
@@ -364,6 +367,7 @@ impl RollRun {
         self.fx.pop();
         self.fy.pop();
         self.l.pop();
+        self.ratio.pop();
     }
 }
 
@@ -389,6 +393,7 @@ pub fn roll(ramp: &Ramp, opts: &RollOptions) -> Result<RollRun> {
         fx: Vec::with_capacity(capacity),
         fy: Vec::with_capacity(capacity),
         l: Vec::with_capacity(capacity),
+        ratio: Vec::with_capacity(capacity),
         events: Vec::new(),
         status: RollStatus::TimeLimit,
         nfev: 0,
