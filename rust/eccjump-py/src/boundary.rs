@@ -8,6 +8,9 @@ use eccjump_core::maps::boundary::{
 use numpy::{IntoPyArray, PyArray1, PyReadonlyArray1};
 use pyo3::prelude::*;
 
+/// Two NumPy float arrays of equal length (the lower and upper interval ends).
+type ArrayPair<'py> = (Bound<'py, PyArray1<f64>>, Bound<'py, PyArray1<f64>>);
+
 /// For each (χ_i, k_m,i): the list of (α_lo, α_hi) intervals of JARM (turn n, 0 = first).
 #[pyfunction]
 #[pyo3(signature = (chi, km, mu_s, n, rule, n_scan, n_threads))]
@@ -63,7 +66,7 @@ pub fn alpha_interval_around<'py>(
     rule: &str,
     step: f64,
     n_threads: usize,
-) -> PyResult<(Bound<'py, PyArray1<f64>>, Bound<'py, PyArray1<f64>>)> {
+) -> PyResult<ArrayPair<'py>> {
     let opts = boundary_options(parse_rule(rule)?, n);
     let (s, c, k) = (seed.as_slice()?, chi.as_slice()?, km.as_slice()?);
     let mut out = vec![(0.0, 0.0); s.len()];

@@ -923,7 +923,7 @@ mod tests {
     }
 
     /// Time per point of the ODE route; run with
-    /// `cargo test --release -p eccjump-core jarm_ode::tests::timing -- --ignored --nocapture`.
+    /// `cargo test --release -p eccjump-core jarm::ode_route::tests::timing -- --ignored --nocapture`.
     #[test]
     #[ignore]
     fn timing() {

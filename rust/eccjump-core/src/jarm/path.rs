@@ -37,11 +37,16 @@ use std::f64::consts::{FRAC_PI_2, TAU};
 /// Samples per turn of the scanning grid.
 pub const SAMPLES_PER_TURN: f64 = 24.0;
 
-/// Indices of the tracked constraint functions.
+// Indices of the tracked constraint functions.
+/// Index of g = F_y (normal force, must stay > 0).
 pub const G_FY: usize = 0;
+/// Index of g = M+ = μ_s F_y − F_x (friction margin, must stay ≥ 0).
 pub const G_MPLUS: usize = 1;
+/// Index of g = M− = μ_s F_y + F_x (friction margin, must stay ≥ 0).
 pub const G_MMINUS: usize = 2;
+/// Index of g = −L (no lift-off yet while > 0).
 pub const G_NOLIFT: usize = 3;
+/// Index of g = E, the kinetic energy ½Ĩ_P θ̇² (must stay > 0).
 pub const G_ENERGY: usize = 4;
 const NG: usize = 5;
 
@@ -52,22 +57,29 @@ const ROTATIONS: u32 = 3;
 /// Everything along the rolling path at one θ.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct PathPoint {
+    /// The angle θ (rad).
     pub theta: f64,
+    /// sin θ.
     pub sin_t: f64,
+    /// cos θ.
     pub cos_t: f64,
     /// θ̇² (2E/Ĩ_P).
     pub omega_sq: f64,
     /// θ̈.
     pub omega_dot: f64,
+    /// Contact force F_x (along the ramp).
     pub fx: f64,
+    /// Contact force F_y (normal to the ramp).
     pub fy: f64,
-    /// dF_x/dθ and dF_y/dθ along the path.
+    /// dF_x/dθ along the path.
     pub dfx: f64,
+    /// dF_y/dθ along the path.
     pub dfy: f64,
     /// The lift-off function χθ̇² cos θ − cos α.
     pub lift: f64,
-    /// g[k] and dg[k]/dθ for the constraint functions (see the `G_*` indices).
+    /// g[k] for the constraint functions (see the `G_*` indices).
     pub g: [f64; NG],
+    /// dg[k]/dθ for the constraint functions.
     pub dg: [f64; NG],
 }
 
@@ -109,14 +121,17 @@ pub struct RollingPath {
 /// The outcome of a scan along the rolling path.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct PathScan {
+    /// The event that stopped the scan (`End` if none).
     pub event: ContactEvent,
     /// The state where the scan stopped (the event, or the end).
     pub at: PathPoint,
-    /// The largest |F_x|/F_y on [θ0, θ_event] and where (∞ if F_y reached 0).
+    /// The largest |F_x|/F_y on [θ0, θ_event] (∞ if F_y reached 0).
     pub max_ratio: f64,
+    /// Where `max_ratio` is reached (rad).
     pub theta_max_ratio: f64,
-    /// The smallest F_y on [θ0, θ_event] and where.
+    /// The smallest F_y on [θ0, θ_event].
     pub min_fy: f64,
+    /// Where `min_fy` is reached (rad).
     pub theta_min_fy: f64,
     /// Function evaluations used (a cost measure).
     pub evaluations: u32,
@@ -125,8 +140,11 @@ pub struct PathScan {
 /// Which constraints a scan watches.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub struct Watch {
+    /// Watch F_y > 0.
     pub normal_force: bool,
+    /// Watch the two friction margins M± ≥ 0.
     pub friction: bool,
+    /// Watch the paper's lift-off (L reaching 0 from below).
     pub liftoff: bool,
     /// Refine the reported extrema (max friction ratio, min F_y) to full precision by Brent on
     /// their derivative; otherwise they are the best sample or cubic-Hermite cell estimate
@@ -138,6 +156,7 @@ pub struct Watch {
 }
 
 impl Watch {
+    /// Every constraint, refined extrema, the rigorous grid.
     pub const ALL: Watch = Watch {
         normal_force: true,
         friction: true,

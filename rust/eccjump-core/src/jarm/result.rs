@@ -114,7 +114,9 @@ impl Default for JarmOptions {
 /// The classification of one point. Angles in radians (absolute θ); NaN where not applicable.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct JarmResult {
+    /// Whether the point is a JARM (`reason == Reason::Jarm`).
     pub is_jarm: bool,
+    /// Why it is or is not a JARM.
     pub reason: Reason,
     /// Turn of the jump (JARM), of the earlier lift-off (LiftoffEarlier) or of the event
     /// that decided (others); 0 if none.
@@ -124,17 +126,22 @@ pub struct JarmResult {
     pub theta_j: f64,
     /// Where the deciding failure happened (NaN for a JARM).
     pub theta_event: f64,
-    /// Forces at the jump (JARM only; NaN otherwise).
+    /// F_x at the jump (JARM only; NaN otherwise).
     pub fx_j: f64,
+    /// F_y at the jump (JARM only; NaN otherwise).
     pub fy_j: f64,
-    /// The largest |F_x|/F_y and the smallest F_y on the rolling path [θ0, θ_event or θ_J].
+    /// The largest |F_x|/F_y on the rolling path [θ0, θ_event or θ_J].
     pub max_ratio: f64,
+    /// Where `max_ratio` is reached.
     pub theta_max_ratio: f64,
+    /// The smallest F_y on the rolling path [θ0, θ_event or θ_J].
     pub min_fy: f64,
+    /// Where `min_fy` is reached.
     pub theta_min_fy: f64,
 }
 
 impl JarmResult {
+    /// A result with `reason`, no turn (0) and every angle and force NaN.
     pub fn new(reason: Reason) -> Self {
         Self {
             is_jarm: reason == Reason::Jarm,

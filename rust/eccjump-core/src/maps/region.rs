@@ -177,7 +177,7 @@ mod tests {
     /// Snapshot of the 100³ timing grid (reason, n, θ_J, θ_event, max ratio, min F_y per
     /// point), to check that an optimisation leaves every result unchanged. With
     /// `ECCJUMP_SNAPSHOT=path` it writes the file if absent, else compares against it:
-    /// `cargo test --release -p eccjump-core region::tests::snapshot -- --ignored --nocapture`.
+    /// `cargo test --release -p eccjump-core maps::region::tests::snapshot -- --ignored --nocapture`.
     #[test]
     #[ignore]
     fn snapshot() {
@@ -243,7 +243,7 @@ mod tests {
     }
 
     /// The performance target: run with
-    /// `cargo test --release -p eccjump-core region::tests::timing -- --ignored --nocapture`.
+    /// `cargo test --release -p eccjump-core maps::region::tests::timing -- --ignored --nocapture`.
     #[test]
     #[ignore]
     fn timing() {

@@ -6,8 +6,11 @@ use super::State;
 /// Dense output on [t_old, t_old + h]: y(t_old + σh) = y_old + h Σ_j Q_j σ^(j+1), j = 0..3.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct DenseStep<const N: usize> {
+    /// Start time of the step.
     pub t_old: f64,
+    /// Signed step size (negative when integrating backwards).
     pub h: f64,
+    /// State at the start of the step.
     pub y_old: State<N>,
     /// Q = K^T P of scipy's RK45, one column per power of σ.
     pub q: [State<N>; 4],

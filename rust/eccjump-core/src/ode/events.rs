@@ -17,6 +17,7 @@ pub enum Direction {
 /// How an event behaves when it is met.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub struct EventSpec {
+    /// Which zero crossings count.
     pub direction: Direction,
     /// A terminal event stops the integration at its root.
     pub terminal: bool,
@@ -112,8 +113,11 @@ pub struct NonFiniteEvent;
 /// An event met within a step.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct EventHit<const N: usize> {
+    /// Index k of the event function.
     pub index: usize,
+    /// Time of the root.
     pub t: f64,
+    /// State at the root (from the dense output).
     pub y: State<N>,
 }
 

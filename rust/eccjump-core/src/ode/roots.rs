@@ -11,8 +11,9 @@ use crate::error::{Error, Result};
 pub struct Root {
     /// The root estimate.
     pub x: f64,
-    /// A bracket [lo, hi] that still contains the sign change, lo ≤ x ≤ hi.
+    /// Lower end of a bracket [lo, hi] that still contains the sign change, lo ≤ x ≤ hi.
     pub lo: f64,
+    /// Upper end of that bracket.
     pub hi: f64,
     /// Function evaluations used.
     pub evaluations: usize,

@@ -60,14 +60,20 @@ pub enum Status {
 pub enum Observation<'a, const N: usize> {
     /// An accepted step from dense.t_old to t, ending in y.
     Step {
+        /// Dense output of the whole step.
         dense: &'a DenseStep<N>,
+        /// End of the step (the event time if truncated at a terminal event).
         t: f64,
+        /// State at `t`.
         y: &'a State<N>,
     },
     /// Event k met at (t, y) (terminal or not); `y` is the dense output at t.
     Event {
+        /// Index k of the event function.
         index: usize,
+        /// Time of the event.
         t: f64,
+        /// State at the event.
         y: &'a State<N>,
     },
 }
@@ -75,13 +81,17 @@ pub enum Observation<'a, const N: usize> {
 /// The end of an integration.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Outcome<const N: usize> {
+    /// Why the integration stopped.
     pub status: Status,
-    /// Final time and state (the event point for a terminal event).
+    /// Final time (the event point for a terminal event).
     pub t: f64,
+    /// Final state (the event point for a terminal event).
     pub y: State<N>,
     /// Right-hand-side evaluations.
     pub nfev: usize,
+    /// Accepted steps.
     pub n_accepted: usize,
+    /// Rejected step attempts.
     pub n_rejected: usize,
 }
 

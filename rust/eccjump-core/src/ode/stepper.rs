@@ -190,6 +190,7 @@ pub fn select_initial_step<S: OdeSystem<N>, const N: usize>(
 /// Why a step attempt ended.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum StepStatus {
+    /// A step was accepted; the stepper now stands at its end.
     Accepted,
     /// The step fell below [`min_step`] (scipy's "step size too small").
     TooSmall,
@@ -200,7 +201,9 @@ pub enum StepStatus {
 /// The integrator's state between steps: scipy's `RungeKutta` attributes.
 #[derive(Debug, Clone, Copy)]
 pub struct Stepper<const N: usize> {
+    /// Current time.
     pub t: f64,
+    /// Current state.
     pub y: State<N>,
     /// f(t, y), reused as the first stage of the next step (FSAL).
     pub f: State<N>,
@@ -208,14 +211,19 @@ pub struct Stepper<const N: usize> {
     pub h_abs: f64,
     /// Start of the last accepted step.
     pub t_old: f64,
+    /// State at `t_old`.
     pub y_old: State<N>,
     /// Stages of the last attempted step; after acceptance they define its dense output.
     pub k: [State<N>; N_STAGES + 1],
     /// +1 or −1: the sign of t_bound − t0.
     pub direction: f64,
+    /// End of the integration interval; steps are clipped to land on it.
     pub t_bound: f64,
+    /// Largest allowed |h|.
     pub max_step: f64,
+    /// Relative tolerance of the error norm.
     pub rtol: f64,
+    /// Absolute tolerance of the error norm.
     pub atol: f64,
 }
 

@@ -9,7 +9,7 @@ use crate::ode::DenseStep;
 /// Bounds on how much the contact functions of pure rolling can change within one
 /// dense-output step, in the sense of [`EventFunctions::change_bounds`]: shared by the
 /// rolling run ([`RollEvents`]) and the ODE route of the classification
-/// (`jarm_ode`).
+/// (`jarm::ode_route`).
 ///
 /// Along the interpolant (θ(t), θ̇(t)), |dg/dt| ≤ G_θ |dθ/dt| + G_ω |dθ̇/dt| with
 /// G_θ ≥ |∂g/∂θ|, G_ω ≥ |∂g/∂θ̇| over the step. With W ≥ |θ̇|, s = sin θ, c = cos θ,

@@ -10,7 +10,7 @@ use std::cell::Cell;
 /// accepted step ends with the FSAL evaluation of the right-hand side at the new state;
 /// the step scan then evaluates the events there and the caller's observer looks at the
 /// forces there, and both find sin_cos of that θ in the memo. sin_cos is a pure function,
-/// so hits and misses give identical bits. Shared by the rolling run and `jarm_ode`.
+/// so hits and misses give identical bits. Shared by the rolling run and the ODE route of the classification.
 #[derive(Debug, Clone)]
 pub(crate) struct RollingMemo {
     pub ramp: Ramp,

@@ -26,13 +26,18 @@ use crate::ode::{
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 #[repr(u8)]
 pub enum RollEvent {
+    /// The paper's jump condition χ θ̇² cos θ − cos α = 0, rising.
     Liftoff = 0,
+    /// F_y = 0, falling.
     NormalForceZero = 1,
+    /// μ_s F_y − |F_x| = 0, falling.
     Slip = 2,
+    /// θ = θ_max, rising.
     ThetaLimit = 3,
 }
 
 impl RollEvent {
+    /// All events, indexed by their discriminant (the event-function index).
     pub const ALL: [RollEvent; 4] = [
         RollEvent::Liftoff,
         RollEvent::NormalForceZero,
@@ -54,10 +59,13 @@ impl RollEvent {
 /// The event functions of a rolling run.
 #[derive(Debug, Clone, Copy)]
 pub struct RollEvents {
+    /// The body on its ramp.
     pub ramp: Ramp,
     /// μ_s; `None` disables the slip event.
     pub mu_s: Option<f64>,
+    /// θ_max (rad) of the `ThetaLimit` event; ∞ disables it.
     pub theta_max: f64,
+    /// The lift-off rule, which decides which events are terminal.
     pub rule: Rule,
 }
 
@@ -212,12 +220,19 @@ impl EventFunctions<2> for Memo<'_> {
 /// The inputs of a rolling run besides the body and ramp.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct RollOptions {
+    /// Initial angle θ0 (rad) (default 0).
     pub theta0: f64,
+    /// Initial angular velocity θ̇0 (default 0, rest).
     pub omega0: f64,
+    /// Static friction coefficient μ_s ≥ 0; `None` (default) disables the slip event.
     pub mu_s: Option<f64>,
+    /// End time of the run, > 0 (units g = R = 1; default 1000).
     pub t_max: f64,
+    /// Angle (rad) that ends the run, > θ0; ∞ (default) disables it.
     pub theta_max: f64,
+    /// The lift-off rule (default: the paper's).
     pub rule: Rule,
+    /// Tolerances and limits of the integrator.
     pub solver: SolverOptions,
     /// Keep the dense output of every step (for `sol(t)` in Python).
     pub dense_output: bool,
@@ -271,9 +286,13 @@ impl RollOptions {
 /// One event met during the run.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct EventHit {
+    /// Which event.
     pub event: RollEvent,
+    /// Time of the event.
     pub t: f64,
+    /// θ (rad) at the event.
     pub theta: f64,
+    /// θ̇ at the event.
     pub omega: f64,
 }
 
@@ -298,6 +317,7 @@ impl RollStatus {
         }
     }
 
+    /// A human-readable description of how the run ended.
     pub fn message(self) -> String {
         match self {
             RollStatus::TimeLimit => "reached t_max".to_string(),
@@ -322,19 +342,27 @@ impl RollStatus {
 /// optionally the dense output of every step.
 #[derive(Debug, Clone, PartialEq)]
 pub struct RollRun {
+    /// Times of the recorded points.
     pub t: Vec<f64>,
+    /// θ (rad) at each recorded point.
     pub theta: Vec<f64>,
+    /// θ̇ at each recorded point.
     pub omega: Vec<f64>,
-    /// θ̈, F_x and F_y at each recorded point ([`Ramp::kinematics`]).
+    /// θ̈ at each recorded point ([`Ramp::kinematics`]).
     pub omega_dot: Vec<f64>,
+    /// Contact force F_x (along the ramp) at each recorded point.
     pub fx: Vec<f64>,
+    /// Contact force F_y (normal to the ramp) at each recorded point.
     pub fy: Vec<f64>,
     /// The distance rolled along the ramp, l − l0 = θ − θ0 (pure rolling, R = 1).
     pub l: Vec<f64>,
     /// The friction ratio |F_x|/F_y (+∞ where F_y ≤ 0).
     pub ratio: Vec<f64>,
+    /// Every event met, terminal or not, in order of time.
     pub events: Vec<EventHit>,
+    /// How the run ended.
     pub status: RollStatus,
+    /// Right-hand-side evaluations of the integrator.
     pub nfev: usize,
     /// The dense output, when asked for: ends where the run ends.
     pub dense: Option<RollSolution>,
