@@ -201,16 +201,18 @@ def roll(
         body.chi,
         body.km,
         float(alpha),
-        float(theta0),
-        float(omega0),
-        None if mu_s is None else float(mu_s),
-        float(t_max),
-        float(theta_max),
-        float(rtol),
-        float(atol),
-        int(max_steps),
-        bool(dense_output),
-        str(rule),
+        {
+            "theta0": float(theta0),
+            "omega0": float(omega0),
+            "mu_s": None if mu_s is None else float(mu_s),
+            "t_max": float(t_max),
+            "theta_max": float(theta_max),
+            "rtol": float(rtol),
+            "atol": float(atol),
+            "max_steps": int(max_steps),
+            "dense_output": bool(dense_output),
+            "rule": str(rule),
+        },
     )
     sol = DenseSolution(raw["sol"]) if "sol" in raw else None
     return _result(

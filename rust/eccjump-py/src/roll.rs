@@ -12,17 +12,10 @@ use pyo3::exceptions::PyValueError;
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
 
-/// Integrates pure rolling; returns a dict of arrays and scalars that the Python layer
-/// wraps in `RollResult`. Bad input raises ValueError before any work is done.
-#[pyfunction]
-#[pyo3(signature = (chi, km, alpha, theta0, omega0, mu_s, t_max, theta_max, rtol, atol,
-                    max_steps, dense_output, rule))]
-#[allow(clippy::too_many_arguments)]
-pub fn roll<'py>(
-    py: Python<'py>,
-    chi: f64,
-    km: f64,
-    alpha: f64,
+/// The options of a run, from the Python layer's dict (built by `eccjump.rolling.roll`).
+#[derive(FromPyObject)]
+#[pyo3(from_item_all)]
+pub struct RollCallOptions {
     theta0: f64,
     omega0: f64,
     mu_s: Option<f64>,
@@ -32,23 +25,36 @@ pub fn roll<'py>(
     atol: f64,
     max_steps: usize,
     dense_output: bool,
-    rule: &str,
+    rule: String,
+}
+
+/// Integrates pure rolling of the body (χ, k_m) on a ramp of angle α; returns a dict of
+/// arrays and scalars that the Python layer wraps in `RollResult`. Bad input raises
+/// ValueError (from the core's checks) before any work is done.
+#[pyfunction]
+pub fn roll<'py>(
+    py: Python<'py>,
+    chi: f64,
+    km: f64,
+    alpha: f64,
+    options: RollCallOptions,
 ) -> PyResult<Bound<'py, PyDict>> {
     let ramp = Ramp::new(Cylinder::new(chi, km).map_err(to_py)?, alpha).map_err(to_py)?;
+    let o = options;
     let opts = RollOptions {
-        theta0,
-        omega0,
-        mu_s,
-        t_max,
-        theta_max,
-        rule: parse_rule(rule)?,
+        theta0: o.theta0,
+        omega0: o.omega0,
+        mu_s: o.mu_s,
+        t_max: o.t_max,
+        theta_max: o.theta_max,
+        rule: parse_rule(&o.rule)?,
         solver: SolverOptions {
-            rtol,
-            atol,
-            max_steps,
+            rtol: o.rtol,
+            atol: o.atol,
+            max_steps: o.max_steps,
             ..SolverOptions::default()
         },
-        dense_output,
+        dense_output: o.dense_output,
     };
     let run = py.detach(|| core_roll(&ramp, &opts)).map_err(to_py)?;
     to_dict(py, run)

@@ -104,7 +104,7 @@ pub fn theta_nj(r: &Ramp, n: u32) -> Option<f64> {
 /// For α > 0 this never happens: E(θ_m) = (2π − α − arcsin(sin α/χ)) sin α + χ cos α
 /// − √(χ² − sin² α) > 0, because χ² cos² α − (χ² − sin² α) = sin² α (1 − χ²) ≥ 0 and
 /// α + arcsin(sin α/χ) ≤ π. (Rocking back is possible for other starts, e.g. θ0 < 0 or
-/// θ0 past the top; [`crate::path`] detects it for any start.) For α = 0 the start is an
+/// θ0 past the top; [`crate::jarm::path`] detects it for any start.) For α = 0 the start is an
 /// equilibrium and Some(0) is returned.
 pub fn rock_back_angle(r: &Ramp) -> Option<f64> {
     let chi = r.body.chi;

@@ -3,7 +3,7 @@
 //!
 //! At a jump point of the paper's rule the lift-off function vanishes,
 //! χ θ̇_J² cos θ_J = cos α, i.e. θ̇_J² = cos α/(χ cos θ_J) (needs cos θ_J > 0). Put into the
-//! rolling equation (see [`crate::rolling`]):
+//! rolling equation (see [`crate::modes::rolling`]):
 //!
 //!   θ̈_J Ĩ_P = cos α tan θ_J + χ sin(α + θ_J) + sin α = sin(α + θ_J)(1 + χ cos θ_J)/cos θ_J,
 //!

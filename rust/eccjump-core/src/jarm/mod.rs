@@ -5,7 +5,7 @@
 //! - [`jump_point`]: Sec. 3.1, forces and friction at a jump point (any start);
 //! - [`from_rest`]: Sec. 3.2, J(θ), its brackets and θ_{n,J} for the start from rest;
 //! - [`path`]: the rigorous scan of the contact conditions along rolling (closed form);
-//! - [`classify`]: the closed-form route (path scan + jump-point formulas);
+//! - [`mod@classify`]: the closed-form route (path scan + jump-point formulas);
 //! - [`ode_route`]: the route by integration of the rolling equation with events;
 //! - [`turns`]: the turn of an angle and the search bound n*;
 //! - [`result`]: reasons, options and the per-point result.

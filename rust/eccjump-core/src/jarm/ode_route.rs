@@ -1,7 +1,7 @@
 //! The second, independent route to the JARM classification: integrate the rolling equation
 //! in time with the Dormand–Prince core ([`crate::ode`]) and let its events decide.
 //!
-//! Same inputs, semantics and [`Reason`] codes as [`crate::jarm::classify`] (first-jump
+//! Same inputs, semantics and [`Reason`] codes as [`fn@crate::jarm::classify`] (first-jump
 //! semantics, the two [`Rule`]s, the turn bound n*, explicit n), but no closed form of the
 //! path: pure rolling y = (θ, θ̇) is integrated from (θ0, θ̇0) with these terminal events,
 //! located by Brent on the dense output (ties in time go to the lower index):
@@ -18,7 +18,7 @@
 //!
 //! After the deciding event the result is filled as in `jarm.rs`: a `Paper` lift-off reached
 //! first already implies that the path conditions held, and is tested for the green window,
-//! F_y,J > 0 and μ(θ_J) ≤ μ_s ([`crate::jump_point`]); a slip under the `Paper` rule continues
+//! F_y,J > 0 and μ(θ_J) ≤ μ_s ([`crate::jarm::jump_point`]); a slip under the `Paper` rule continues
 //! the integration without the friction and normal-force events to the paper's lift-off and
 //! tests it there (`SlipAtJump` vs `SlipBefore`); under the `NormalForce` rule the slip-onset
 //! consistency test (K, D, Ĩ_CM, L ≥ 0) decides between flight (a JARM) and `SlipBefore`.
@@ -270,7 +270,7 @@ fn integrate(
 }
 
 /// Classifies one point by integration: same semantics and reasons as
-/// [`crate::jarm::classify`]. `rtol`, `atol` are the integrator's tolerances (must be
+/// [`fn@crate::jarm::classify`]. `rtol`, `atol` are the integrator's tolerances (must be
 /// positive and finite, else `InvalidParams`). Never panics, never allocates.
 pub fn classify_ode(
     alpha: f64,

@@ -77,9 +77,9 @@ pub struct PathPoint {
     pub dfy: f64,
     /// The lift-off function χθ̇² cos θ − cos α.
     pub lift: f64,
-    /// g[k] for the constraint functions (see the `G_*` indices).
+    /// `g[k]` for the constraint functions (see the `G_*` indices).
     pub g: [f64; NG],
-    /// dg[k]/dθ for the constraint functions.
+    /// `dg[k]`/dθ for the constraint functions.
     pub dg: [f64; NG],
 }
 

@@ -187,7 +187,7 @@ impl JarmOptions {
 /// The route that classifies a point.
 #[derive(Debug, Clone, Copy, PartialEq, Default)]
 pub enum Method {
-    /// The paper's closed forms with a rigorous path scan ([`crate::jarm::classify`]).
+    /// The paper's closed forms with a rigorous path scan ([`fn@crate::jarm::classify`]).
     #[default]
     ClosedForm,
     /// Integration of the rolling equation with events ([`crate::jarm::classify_ode`]).

@@ -13,7 +13,7 @@
 /// When the body leaves the ramp (see `docs/jarm.md` and the physics notes).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default)]
 pub enum Rule {
-    /// The paper's rule (and its reference [gomes]): lift-off at the first rising zero of the
+    /// The paper's rule (and its reference \[gomes\]): lift-off at the first rising zero of the
     /// free-flight normal acceleration χ θ̇² cos θ − cos α. The default: it reproduces the paper.
     #[default]
     Paper,

@@ -15,7 +15,7 @@ use std::f64::consts::FRAC_PI_2;
 pub struct Ramp {
     /// The validated body.
     pub body: Cylinder,
-    /// The ramp angle α [rad].
+    /// The ramp angle α (rad).
     pub alpha: f64,
     /// sin α.
     pub sin_a: f64,

@@ -72,7 +72,7 @@ pub fn weighted_sum<const N: usize>(k: &[State<N>], w: &[f64]) -> State<N> {
 }
 
 /// One Runge–Kutta step of size h from (t, y) with f = f(t, y) (scipy `rk_step`). Fills
-/// `k` with the 6 stages and, FSAL, k[6] = f(t + h, y_new); returns y_new. Returns `None`
+/// `k` with the 6 stages and, FSAL, `k[6]` = f(t + h, y_new); returns y_new. Returns `None`
 /// as soon as any stage or y_new is not finite. Exactly 6 evaluations of f when it
 /// succeeds (fewer if it bails out; `nfev` counts the ones made).
 #[inline]

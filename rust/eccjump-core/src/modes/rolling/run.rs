@@ -145,7 +145,7 @@ impl RollEvents {
         }
     }
 
-    /// [`EventFunctions::change_bounds`] of all four events (see [`ContactBounds`]).
+    /// [`EventFunctions::change_bounds`] of all four events (see `ContactBounds`).
     pub fn change_bounds_all(&self, dense: &DenseStep<2>) -> [f64; 4] {
         self.change_bounds_near(dense, None)
     }
