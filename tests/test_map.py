@@ -10,6 +10,7 @@ import signal
 import subprocess
 import sys
 import time
+import warnings
 from pathlib import Path
 
 import numpy as np
@@ -250,3 +251,257 @@ def test_ctrl_c_in_a_subprocess_keeps_finished_chunks_and_resumes(tmp_path):
     p = subprocess.run([*cmd, "--resume"], env=env, capture_output=True, timeout=30, check=False)
     assert p.returncode == 0, p.stderr
     assert_same(region(MU_S, **grid(40)), store.load(path))
+
+
+# --- a map is never lost: crashes, full disks, bad paths, foreign files -------------------
+
+SMALL = ("--grid", "6", "--chunk", "2", "--threads", "1")  # 3 chunks of 2 alpha slices
+OLD_MU_S = 0.5  # the map that --overwrite replaces, told apart by mu_s
+
+
+@pytest.fixture(scope="module")
+def small():
+    return {mu: region(mu, **grid(6)) for mu in (MU_S, OLD_MU_S)}
+
+
+def map_cli(out: Path, *args: str, kill_at=None, fsize=None) -> subprocess.CompletedProcess:
+    """`eccjump map` in a subprocess on the small grid. ``kill_at``: the step at which it
+    SIGKILLs itself (store.KILL_AT_ENV, a test hook); ``fsize``: a file-size limit in bytes
+    (RLIMIT_FSIZE, SIGXFSZ ignored so that writes fail with EFBIG): a full disk."""
+    env = {**os.environ, "PYTHONPATH": str(Path(eccjump.__file__).parents[1])}
+    env.pop(store.KILL_AT_ENV, None)
+    if kill_at:
+        env[store.KILL_AT_ENV] = kill_at
+
+    def limit() -> None:
+        import resource
+
+        signal.signal(signal.SIGXFSZ, signal.SIG_IGN)
+        resource.setrlimit(resource.RLIMIT_FSIZE, (fsize, fsize))
+
+    cmd = [sys.executable, "-m", "eccjump.cli", "map", "--mu-s", str(MU_S), *SMALL, "-q"]
+    return subprocess.run(
+        [*cmd, "-o", str(out), *args],
+        env=env,
+        capture_output=True,
+        text=True,
+        timeout=60,
+        check=False,
+        preexec_fn=limit if fsize else None,
+    )
+
+
+def map_here(out: Path, *args: str) -> int:
+    return main(["map", "--mu-s", str(MU_S), *SMALL, "-q", "-o", str(out), *args])
+
+
+def one_error_line(err: str) -> str:
+    lines = err.strip().splitlines()
+    assert len(lines) == 1 and lines[0].startswith("eccjump: error: "), err
+    return lines[0]
+
+
+def test_the_steps_of_the_write_protocol_are_reached(tmp_path, monkeypatch):
+    """The kill tests below are only as good as their step names: each one is reached."""
+    seen = []
+    monkeypatch.setattr(store, "_step", seen.append)
+    assert map_here(tmp_path / "s.zarr") == 0
+    assert map_here(tmp_path / "s.zarr", "--overwrite") == 0
+    assert set(seen) == set(store.STEPS)
+
+
+NEW_ZARR_STEPS = [
+    ("create", False),  # skeleton half built under the temporary name
+    ("created", False),
+    ("chunk-data", False),  # the first chunk, still in the temporary store
+    ("chunk-done", False),
+    ("published", True),  # renamed into place after its first chunk
+    ("chunk-data:2", True),  # the second chunk's data written, alpha_done not yet
+    ("chunk-done:2", True),
+    ("finish", True),
+    ("finished", True),
+]
+
+
+@pytest.mark.parametrize(("step", "resumable"), NEW_ZARR_STEPS)
+def test_sigkill_of_a_new_zarr_map_leaves_nothing_or_a_resumable_map(
+    tmp_path, small, step, resumable, capsys
+):
+    path = tmp_path / "k.zarr"
+    p = map_cli(path, kill_at=step)
+    assert p.returncode == -signal.SIGKILL, p.stderr
+    assert path.exists() == resumable
+    code = map_here(path, "--resume")
+    if resumable:
+        assert code == 0
+    else:  # nothing to resume: a clear error, then a fresh run works
+        assert code == 2
+        assert "does not exist" in one_error_line(capsys.readouterr().err)
+        assert map_here(path) == 0
+    back = store.load(path)
+    assert back.attrs["complete"] == 1
+    assert_same(small[MU_S], back)
+    assert os.listdir(tmp_path) == ["k.zarr"]  # the killed run's temporary store is gone
+
+
+OVERWRITE_STEPS = [
+    *(s for s, _ in NEW_ZARR_STEPS if ":" not in s and s != "published"),
+    "written",  # the new map complete under its temporary name
+    "replaced",  # swapped into place, the old one not yet removed
+    "published",
+]
+
+
+@pytest.mark.parametrize("step", OVERWRITE_STEPS)
+def test_sigkill_during_overwrite_of_a_zarr_map_keeps_a_whole_map(tmp_path, small, step):
+    path = tmp_path / "o.zarr"
+    assert map_here(path, "--mu-s", str(OLD_MU_S)) == 0
+    p = map_cli(path, "--overwrite", kill_at=step)
+    assert p.returncode == -signal.SIGKILL, p.stderr
+    new = OVERWRITE_STEPS.index(step) >= OVERWRITE_STEPS.index("replaced")
+    back = store.load(path)
+    assert back.attrs["complete"] == 1
+    assert_same(small[MU_S if new else OLD_MU_S], back)  # old intact, or the new one whole
+    # the next run removes what the killed one left behind
+    assert map_here(path, *(("--resume",) if new else ("--overwrite",))) == 0
+    assert_same(small[MU_S], store.load(path))
+    assert os.listdir(tmp_path) == ["o.zarr"]
+
+
+@pytest.mark.parametrize("suffix", [".nc", ".npz"])
+def test_sigkill_before_the_rename_of_a_file_keeps_the_old_one(tmp_path, small, suffix):
+    path = tmp_path / f"o{suffix}"
+    assert map_here(path, "--mu-s", str(OLD_MU_S)) == 0
+    p = map_cli(path, "--overwrite", kill_at="written")
+    assert p.returncode == -signal.SIGKILL, p.stderr
+    assert_same(small[OLD_MU_S], store.load(path))
+    assert map_here(path, "--overwrite") == 0
+    assert_same(small[MU_S], store.load(path))
+    assert os.listdir(tmp_path) == [path.name]
+
+
+@pytest.mark.parametrize("suffix", [".zarr", ".nc", ".npz"])
+def test_overwrite_on_a_full_disk_keeps_the_old_map(tmp_path, small, suffix):
+    path = tmp_path / f"full{suffix}"
+    assert map_here(path, "--mu-s", str(OLD_MU_S)) == 0
+    before = sorted(p.relative_to(tmp_path) for p in tmp_path.rglob("*"))
+    p = map_cli(path, "--overwrite", fsize=300)  # smaller than any map file's metadata
+    assert p.returncode == 1, p.stderr
+    line = one_error_line(p.stderr)
+    assert f"cannot write {path}" in line
+    assert_same(small[OLD_MU_S], store.load(path))
+    assert sorted(p.relative_to(tmp_path) for p in tmp_path.rglob("*")) == before
+
+
+@pytest.mark.parametrize("suffix", [".zarr", ".nc", ".npz"])
+def test_a_new_map_on_a_full_disk_leaves_nothing(tmp_path, suffix):
+    p = map_cli(tmp_path / f"full{suffix}", fsize=300)
+    assert p.returncode == 1, p.stderr
+    one_error_line(p.stderr)
+    assert os.listdir(tmp_path) == []
+
+
+@pytest.mark.parametrize("suffix", [".zarr", ".nc", ".npz"])
+@pytest.mark.parametrize("parent", ["missing/dir", "a-file"])
+def test_a_missing_parent_directory_is_an_error_not_created(tmp_path, suffix, parent, capsys):
+    (tmp_path / "a-file").write_text("not a directory")
+    code = map_here(tmp_path / parent / f"m{suffix}")
+    assert code == 2
+    assert "cannot write" in one_error_line(capsys.readouterr().err)
+    assert os.listdir(tmp_path) == ["a-file"]
+
+
+@pytest.mark.skipif(
+    not hasattr(os, "geteuid") or os.geteuid() == 0,
+    reason="root writes to a chmod 0o555 directory anyway (full-disk tests cover failed writes)",
+)
+@pytest.mark.parametrize("suffix", [".zarr", ".nc", ".npz"])
+def test_a_read_only_directory_is_one_error_line(tmp_path, suffix, capsys):
+    ro = tmp_path / "ro"
+    ro.mkdir()
+    ro.chmod(0o555)
+    try:
+        assert map_here(ro / f"m{suffix}") == 1
+        assert "Permission denied" in one_error_line(capsys.readouterr().err)
+        assert os.listdir(ro) == []
+    finally:
+        ro.chmod(0o755)
+
+
+@pytest.mark.parametrize("suffix", [".zarr", ".npz"])
+@pytest.mark.parametrize("precheck", [True, False])
+def test_a_grid_too_big_for_memory_is_one_error_line(
+    tmp_path, suffix, precheck, monkeypatch, capsys
+):
+    from eccjump.cli import map as cli_map
+
+    if not precheck:  # numpy's own MemoryError (909 TiB: refused at once, nothing touched)
+        monkeypatch.setattr(cli_map, "_physical_memory", lambda: None)
+    code = map_here(tmp_path / f"big{suffix}", "--grid", "100000")
+    assert code == 1
+    assert "out of memory" in one_error_line(capsys.readouterr().err)
+    assert os.listdir(tmp_path) == []
+
+
+def test_ctrl_c_while_the_store_is_created_writes_nothing(tmp_path, monkeypatch, capsys):
+    """The SIGINT handler is in place before creation: a Ctrl-C then stops before the
+    first chunk, and nothing is left behind."""
+    create = store.ZarrMap.create
+
+    def interrupted_create(*a, **k):
+        os.kill(os.getpid(), signal.SIGINT)
+        return create(*a, **k)
+
+    monkeypatch.setattr(store.ZarrMap, "create", interrupted_create)
+    assert map_here(tmp_path / "c.zarr") == 130
+    assert "nothing written" in capsys.readouterr().err
+    assert os.listdir(tmp_path) == []
+
+
+def test_foreign_files_are_a_clear_value_error(tmp_path, capsys):
+    foreign = xr.Dataset({"foo": ("x", np.arange(3))})
+    np.savez(tmp_path / "empty.npz")
+    (tmp_path / "zero.npz").write_bytes(b"")
+    foreign.to_netcdf(tmp_path / "foreign.nc", engine=store.netcdf_engine())
+    (tmp_path / "zero.nc").write_bytes(b"")
+    (tmp_path / "random.zarr").mkdir()
+    (tmp_path / "random.zarr" / "x").write_text("hi")
+    with warnings.catch_warnings():  # zarr: consolidated metadata is not in the v3 spec
+        warnings.simplefilter("ignore", UserWarning)
+        foreign.to_zarr(tmp_path / "foreign.zarr")
+    expect = {
+        "empty.npz": "no __layout__",
+        "zero.npz": "not a readable npz map",
+        "foreign.nc": "missing coordinates alpha, chi, km_frac; variables is_jarm",
+        "zero.nc": "not a readable netcdf map",
+        "random.zarr": "not a readable zarr map",
+        "foreign.zarr": "missing coordinates alpha, chi, km_frac; variables is_jarm",
+    }
+    for name, what in expect.items():
+        with pytest.raises(ValueError, match=re.escape(what)) as info:
+            store.load(tmp_path / name)
+        assert name in str(info.value)
+    for name in ("random.zarr", "foreign.zarr"):
+        assert map_here(tmp_path / name, "--resume") == 2
+        line = one_error_line(capsys.readouterr().err)
+        assert name in line and "not" in line
+
+
+def test_replacing_a_store_without_renameat2_sets_the_old_one_aside(tmp_path, monkeypatch, small):
+    """Where directories cannot be swapped atomically the old map is renamed aside first;
+    a crash in between leaves it as .<name>.old-<pid>, which recover() puts back."""
+    monkeypatch.setattr(store, "_renameat2", lambda *a: False)
+    path = tmp_path / "s.zarr"
+    store.save(small[OLD_MU_S], path)
+    store.save(small[MU_S], path)
+    assert_same(small[MU_S], store.load(path))
+    assert os.listdir(tmp_path) == ["s.zarr"]
+    dead = subprocess.run([sys.executable, "-c", "import os; print(os.getpid())"], **_out)
+    aside = tmp_path / f".s.zarr.old-{int(dead.stdout)}"
+    path.rename(aside)
+    (tmp_path / f".s.zarr.tmp-{int(dead.stdout)}").mkdir()
+    assert store.recover(path) and sorted(os.listdir(tmp_path)) == ["s.zarr"]
+    assert_same(small[MU_S], store.load(path))
+
+
+_out = {"capture_output": True, "text": True, "check": True, "timeout": 30}

@@ -4,14 +4,25 @@ written to ``.nc``, ``.zarr`` or ``.npz`` (by suffix).
 Ctrl-C stops after the chunk in progress (one Rust call; a second Ctrl-C aborts at once):
 a ``.zarr`` map already holds every finished chunk (``alpha_done`` records them) and
 ``--resume`` computes only the missing ones; ``.nc``/``.npz`` are written with what is
-finished and the attribute ``complete = 0``. Exit status 0 when complete, 130 when
-interrupted, 2 on bad input.
+finished and the attribute ``complete = 0``; interrupted before any chunk is finished,
+nothing is written. Exit status 0 when complete, 130 when interrupted, 2 on bad input
+(including an output whose directory does not exist, or a --resume of a store that is not
+an eccjump map), 1 when the map cannot be written (I/O error, disk full, out of memory):
+one ``eccjump: error:`` line on stderr.
+
+A map is never lost (see :mod:`eccjump.store`): a new ``.zarr`` store is built under a
+temporary name next to the output and renamed into place after its first chunk (so that
+``--resume`` always finds a whole store); with ``--overwrite`` the new map replaces the old
+one only when it is finished (or stopped by Ctrl-C), so a failure or a crash keeps the old
+map. ``.nc``/``.npz`` are written to a temporary file and renamed. A failure leaves no
+temporary files behind; those of a killed run are removed by the next run on the same output.
 """
 
 from __future__ import annotations
 
 import argparse
 import math
+import os
 import signal
 import sys
 import time
@@ -237,6 +248,41 @@ def _summary(
     return "\n".join(lines)
 
 
+class _Failed(Exception):
+    """The map could not be written or read (I/O error, out of memory): exit status 1."""
+
+
+def _why(err: BaseException) -> str:
+    """An OSError or MemoryError as a short reason."""
+    if isinstance(err, MemoryError):
+        return f"out of memory ({err})" if str(err) else "out of memory"
+    if isinstance(err, OSError) and err.strerror:
+        name = err.filename2 or err.filename
+        return f"{err.strerror}: {name}" if name else err.strerror
+    return str(err) or type(err).__name__
+
+
+def _physical_memory() -> int | None:
+    try:
+        return os.sysconf("SC_PHYS_PAGES") * os.sysconf("SC_PAGE_SIZE")
+    except (AttributeError, ValueError, OSError):
+        return None
+
+
+def _check_memory(points: int, fmt: str, total: int) -> None:
+    """Fail early (exit 1) if the fields of ``points`` points cannot fit in this machine's
+    memory, rather than have numpy fill it and the system kill the process."""
+    need = points * sum(np.dtype(DTYPES[k]).itemsize for k in FIELDS)
+    have = _physical_memory()
+    if have is not None and need > have:
+        how = "a smaller --chunk or grid" if fmt == "zarr" else ".zarr (written chunk by chunk)"
+        held = "a chunk of" if fmt == "zarr" else "the whole map,"
+        raise _Failed(
+            f"out of memory: {held} {points} points needs {need / 2**30:,.1f} GiB, the machine "
+            f"has {have / 2**30:,.1f} GiB; use {how} (grid of {total} points)"
+        )
+
+
 def _cmd_map(args: argparse.Namespace) -> int:
     try:
         return _run(args)
@@ -245,6 +291,9 @@ def _cmd_map(args: argparse.Namespace) -> int:
     except KeyboardInterrupt:  # a second Ctrl-C: .zarr keeps its finished chunks
         print("eccjump: aborted", file=sys.stderr)
         return 130
+    except _Failed as err:
+        print(f"eccjump: error: {err}", file=sys.stderr)
+        return 1
 
 
 def _run(args: argparse.Namespace) -> int:
@@ -253,49 +302,183 @@ def _run(args: argparse.Namespace) -> int:
     alpha, chi, km = _axes(args)
     opts = _options(args)
     attrs = map_attrs(**opts)
-    shape = (alpha.size, chi.size, km.size)
-    total = int(np.prod(shape))
     if args.threads < 0:
         raise ValueError(f"--threads {args.threads} is outside the allowed range [0, inf)")
     chunk = args.chunk or max(1, round(POINTS_PER_CHUNK / max(1, chi.size * km.size)))
     chunk = min(chunk, alpha.size)
-
-    counts = _Counts()
-    zmap: ZarrMap | None = None
-    fields: dict[str, NDArray] = {}
-    done = np.zeros(alpha.size, dtype=bool)
+    held = shape_points = alpha.size * chi.size * km.size
+    if fmt == "zarr":  # one chunk in memory at a time
+        held = chunk * chi.size * km.size
+    _check_memory(held, fmt, shape_points)
+    try:
+        store.check_parent(path)
+    except OSError as err:
+        raise ValueError(f"cannot write {path}: {_why(err)}") from err
+    try:
+        for note in store.recover(path):
+            print(f"eccjump: {note}", file=sys.stderr)
+    except OSError as err:
+        raise _Failed(f"cannot clean up after an interrupted write of {path}: {_why(err)}") from err
     if args.resume:
         if fmt != "zarr":
             raise ValueError("--resume needs a .zarr map (.nc and .npz are written once)")
         if not path.exists():
-            raise ValueError(f"--resume: {path} does not exist")
-        zmap = ZarrMap(path)
-        diffs = _mismatch(zmap.attrs, attrs, (zmap.alpha, zmap.chi, zmap.km_frac), (alpha, chi, km))
-        if diffs:
             raise ValueError(
-                f"--resume: the options differ from those of {path}:\n  " + "\n  ".join(diffs)
+                f"--resume: {path} does not exist (a run stopped before its first chunk "
+                "leaves nothing to resume; run without --resume)"
             )
-        if args.chunk and args.chunk != zmap.chunk:
-            print(f"eccjump: resuming with the store's chunk of {zmap.chunk}", file=sys.stderr)
-        todo = zmap.missing()
-        for i in sorted(set(range(zmap.n_chunks)) - set(todo)):
-            part = zmap.read(i, ("is_jarm", "n"))
-            counts.add(part["is_jarm"], part["n"])
-    else:
-        if path.exists() and not args.overwrite:
-            hint = " or --resume" if fmt == "zarr" else ""
-            raise ValueError(f"{path} exists; use --overwrite{hint}")
-        if fmt == "zarr":
-            zmap = ZarrMap.create(path, alpha, chi, km, attrs, chunk)
-            todo = list(range(zmap.n_chunks))
+    elif path.exists() and not args.overwrite:
+        hint = " or --resume" if fmt == "zarr" else ""
+        raise ValueError(f"{path} exists; use --overwrite{hint}")
+    # The handler goes first: a Ctrl-C while the store is created stops before the first chunk.
+    with _Interrupt() as stop:
+        try:
+            return _write(args, path, fmt, (alpha, chi, km), opts, attrs, chunk, stop)
+        except (OSError, MemoryError) as err:
+            raise _Failed(f"cannot write {path}: {_why(err)}") from err
+
+
+class _Target:
+    """Where the map goes while it is computed, and how it gets to ``path``.
+
+    A new .zarr store is built under a temporary name; a new map is renamed into place once
+    its first chunk is done (from then on a crash leaves a resumable store), a map replacing
+    an existing one (--overwrite) only at the end, so that a failure keeps the old map.
+    .nc/.npz maps are held in memory and written at the end by :func:`store.save` (temporary
+    file, then rename). On any failure the temporary store is removed.
+    """
+
+    def __init__(self, path: Path, fmt: str, resume: bool) -> None:
+        self.path = path
+        self.fmt = fmt
+        self.tmp = store.temp_sibling(path)
+        self.replacing = path.exists() and not resume
+        self.zmap: ZarrMap | None = None
+        self.in_place = resume
+
+    def publish(self) -> None:
+        """Rename the temporary store to ``path`` (replacing the old map if any)."""
+        assert self.zmap is not None
+        if self.replacing:
+            store._step("written")
+        store.install(self.tmp, self.path)
+        self.in_place = True
+        self.zmap = ZarrMap(self.path)
+        store._step("published")
+
+    def discard(self) -> None:
+        if not self.in_place:
+            store.remove(self.tmp)
+
+
+def _write(
+    args: argparse.Namespace,
+    path: Path,
+    fmt: str,
+    axes: tuple[NDArray, NDArray, NDArray],
+    opts: dict[str, Any],
+    attrs: dict[str, Any],
+    chunk: int,
+    stop: _Interrupt,
+) -> int:
+    alpha, chi, km = axes
+    shape = (alpha.size, chi.size, km.size)
+    total = int(np.prod(shape))
+    target = _Target(path, fmt, args.resume)
+    counts = _Counts()
+    fields: dict[str, NDArray] = {}
+    done = np.zeros(alpha.size, dtype=bool)
+    try:
+        if args.resume:
+            try:
+                zmap = ZarrMap(path)
+            except ValueError as err:
+                raise ValueError(f"--resume: {err}") from err
+            target.zmap = zmap
+            diffs = _mismatch(
+                zmap.attrs, attrs, (zmap.alpha, zmap.chi, zmap.km_frac), (alpha, chi, km)
+            )
+            if diffs:
+                raise ValueError(
+                    f"--resume: the options differ from those of {path}:\n  " + "\n  ".join(diffs)
+                )
+            if args.chunk and args.chunk != zmap.chunk:
+                print(f"eccjump: resuming with the store's chunk of {zmap.chunk}", file=sys.stderr)
+            todo = zmap.missing()
+            for i in sorted(set(range(zmap.n_chunks)) - set(todo)):
+                part = zmap.read(i, ("is_jarm", "n"))
+                counts.add(part["is_jarm"], part["n"])
+        elif fmt == "zarr":
+            target.zmap = ZarrMap.create(target.tmp, alpha, chi, km, attrs, chunk)
+            todo = list(range(target.zmap.n_chunks))
         else:
             fields = {k: np.full(shape, FILL[k], dtype=DTYPES[k]) for k in FIELDS}
             todo = list(range(-(-alpha.size // chunk)))
-    if zmap is not None:
-        chunk = zmap.chunk
+        if target.zmap is not None:
+            chunk = target.zmap.chunk
+        result = _compute(args, target, fields, done, counts, axes, opts, chunk, todo, stop)
+        computed, seconds, interrupted = result
+        if computed == 0 and interrupted and not target.in_place:
+            target.discard()
+            print(
+                f"eccjump: interrupted before a chunk was finished: nothing written "
+                f"({path} {'unchanged' if target.replacing else 'not created'})",
+                file=sys.stderr,
+            )
+            return 130
+        if target.zmap is not None:
+            target.zmap.finish()
+            complete = bool(target.zmap.attrs["complete"])
+            n_done = int(target.zmap.alpha_done().sum())
+            if not target.in_place:
+                target.publish()
+        else:
+            complete = bool(done.all())
+            n_done = int(done.sum())
+            lay = make_layout(alpha, chi, km, fields, {**attrs, "complete": int(complete)}, done)
+            save(lay, path)
+    except (OSError, MemoryError) as err:
+        target.discard()
+        kept = ""
+        if target.in_place and fmt == "zarr":
+            kept = "; its finished chunks are kept, --resume continues it"
+        raise _Failed(f"cannot write {path}: {_why(err)}{kept}") from err
+    except BaseException:
+        target.discard()
+        raise
+    print(_summary(counts, total, shape, computed, seconds, path, fmt, complete))
+    if interrupted or not complete:
+        if fmt == "zarr":
+            how = f"resume with the same options and --resume -o {path}"
+        else:
+            how = "the unfinished points hold fill values; use .zarr for resumable maps"
+        print(
+            f"eccjump: interrupted: {n_done} of {alpha.size} alpha slices written to {path} "
+            f"with complete = 0; {how}",
+            file=sys.stderr,
+        )
+        return 130
+    if args.figure:
+        _draw(path, args.figure)
+    return 0
 
+
+def _compute(
+    args: argparse.Namespace,
+    target: _Target,
+    fields: dict[str, NDArray],
+    done: NDArray[np.bool_],
+    counts: _Counts,
+    axes: tuple[NDArray, NDArray, NDArray],
+    opts: dict[str, Any],
+    chunk: int,
+    todo: list[int],
+    stop: _Interrupt,
+) -> tuple[int, float, bool]:
+    """Compute the chunks ``todo`` into the target: (points computed, seconds, interrupted)."""
     from tqdm import tqdm
 
+    alpha, chi, km = axes
     todo_points = sum(
         (min((i + 1) * chunk, alpha.size) - i * chunk) * chi.size * km.size for i in todo
     )
@@ -303,10 +486,7 @@ def _run(args: argparse.Namespace) -> int:
     computed = 0
     interrupted = False
     t0 = time.perf_counter()
-    with (
-        _Interrupt() as stop,
-        tqdm(total=todo_points, unit="pt", unit_scale=True, disable=quiet, file=sys.stderr) as bar,
-    ):
+    with tqdm(total=todo_points, unit="pt", unit_scale=True, disable=quiet, file=sys.stderr) as bar:
         for k, i in enumerate(todo):
             if stop.requested or (args.stop_after is not None and k >= args.stop_after):
                 interrupted = True
@@ -329,8 +509,10 @@ def _run(args: argparse.Namespace) -> int:
                 n_threads=args.threads,
             )
             part = {f: getattr(reg.result, f) for f in FIELDS}
-            if zmap is not None:
-                zmap.write(i, part)
+            if target.zmap is not None:
+                target.zmap.write(i, part)
+                if not target.in_place and not target.replacing:
+                    target.publish()  # a new map: resumable from its first chunk on
             else:
                 for f in FIELDS:
                     fields[f][i0:i1] = part[f]
@@ -338,30 +520,7 @@ def _run(args: argparse.Namespace) -> int:
             counts.add(part["is_jarm"], part["n"])
             computed += part["is_jarm"].size
             bar.update(part["is_jarm"].size)
-        seconds = time.perf_counter() - t0
-        if zmap is not None:
-            zmap.finish()
-            complete = bool(zmap.attrs["complete"])
-        else:
-            complete = bool(done.all())
-            lay = make_layout(alpha, chi, km, fields, {**attrs, "complete": int(complete)}, done)
-            save(lay, path)
-    print(_summary(counts, total, shape, computed, seconds, path, fmt, complete))
-    if interrupted or not complete:
-        if fmt == "zarr":
-            how = f"resume with the same options and --resume -o {path}"
-        else:
-            how = "the unfinished points hold fill values; use .zarr for resumable maps"
-        n_done = int((done if zmap is None else zmap.alpha_done()).sum())
-        print(
-            f"eccjump: interrupted: {n_done} of {alpha.size} alpha slices written to {path} "
-            f"with complete = 0; {how}",
-            file=sys.stderr,
-        )
-        return 130
-    if args.figure:
-        _draw(path, args.figure)
-    return 0
+    return computed, time.perf_counter() - t0, interrupted
 
 
 def _draw(path: str, figure: str) -> None:
