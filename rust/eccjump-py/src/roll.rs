@@ -12,10 +12,19 @@ use pyo3::exceptions::PyValueError;
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
 
-/// The options of a run, from the Python layer's dict (built by `eccjump.rolling.roll`).
-#[derive(FromPyObject)]
-#[pyo3(from_item_all)]
-pub struct RollCallOptions {
+/// Integrates pure rolling of the body (χ, k_m) on a ramp of angle α; returns a dict of
+/// arrays and scalars that the Python layer wraps in `RollResult`. The options are
+/// keyword-only (named at every call, typed here). Bad input raises ValueError (from the
+/// core's checks) before any work is done.
+#[pyfunction]
+#[pyo3(signature = (chi, km, alpha, *, theta0, omega0, mu_s, t_max, theta_max, rtol, atol,
+                    max_steps, dense_output, rule))]
+#[allow(clippy::too_many_arguments)] // keyword-only options of one run
+pub fn roll<'py>(
+    py: Python<'py>,
+    chi: f64,
+    km: f64,
+    alpha: f64,
     theta0: f64,
     omega0: f64,
     mu_s: Option<f64>,
@@ -25,36 +34,23 @@ pub struct RollCallOptions {
     atol: f64,
     max_steps: usize,
     dense_output: bool,
-    rule: String,
-}
-
-/// Integrates pure rolling of the body (χ, k_m) on a ramp of angle α; returns a dict of
-/// arrays and scalars that the Python layer wraps in `RollResult`. Bad input raises
-/// ValueError (from the core's checks) before any work is done.
-#[pyfunction]
-pub fn roll<'py>(
-    py: Python<'py>,
-    chi: f64,
-    km: f64,
-    alpha: f64,
-    options: RollCallOptions,
+    rule: &str,
 ) -> PyResult<Bound<'py, PyDict>> {
     let ramp = Ramp::new(Cylinder::new(chi, km).map_err(to_py)?, alpha).map_err(to_py)?;
-    let o = options;
     let opts = RollOptions {
-        theta0: o.theta0,
-        omega0: o.omega0,
-        mu_s: o.mu_s,
-        t_max: o.t_max,
-        theta_max: o.theta_max,
-        rule: parse_rule(&o.rule)?,
+        theta0,
+        omega0,
+        mu_s,
+        t_max,
+        theta_max,
+        rule: parse_rule(rule)?,
         solver: SolverOptions {
-            rtol: o.rtol,
-            atol: o.atol,
-            max_steps: o.max_steps,
+            rtol,
+            atol,
+            max_steps,
             ..SolverOptions::default()
         },
-        dense_output: o.dense_output,
+        dense_output,
     };
     let run = py.detach(|| core_roll(&ramp, &opts)).map_err(to_py)?;
     to_dict(py, run)
@@ -78,15 +74,20 @@ fn to_dict<'py>(py: Python<'py>, run: RollRun) -> PyResult<Bound<'py, PyDict>> {
     )?;
     d.set_item("nfev", run.nfev)?;
     d.set_item("events", events)?;
-    d.set_item("fx", run.fx.into_pyarray(py))?;
-    d.set_item("fy", run.fy.into_pyarray(py))?;
-    d.set_item("omega_dot", run.omega_dot.into_pyarray(py))?;
-    d.set_item("t", run.t.into_pyarray(py))?;
-    d.set_item("theta", run.theta.into_pyarray(py))?;
-    // The distance rolled, l − l0 = θ − θ0 in pure rolling (from the core's record).
-    d.set_item("l", run.l.into_pyarray(py))?;
-    d.set_item("ratio", run.ratio.into_pyarray(py))?;
-    d.set_item("omega", run.omega.into_pyarray(py))?;
+    // Copied into numpy-owned arrays: for the ~100 points of a run a copy is cheaper than
+    // handing the Vec over (which needs a second Python object to own it).
+    for (name, v) in [
+        ("t", &run.t),
+        ("theta", &run.theta),
+        ("omega", &run.omega),
+        ("omega_dot", &run.omega_dot),
+        ("Fx", &run.fx),
+        ("Fy", &run.fy),
+        ("l", &run.l),
+        ("ratio", &run.ratio),
+    ] {
+        d.set_item(name, PyArray1::from_slice(py, v))?;
+    }
     if let Some(sol) = run.dense {
         d.set_item("sol", Bound::new(py, DenseSolution { sol })?)?;
     }
