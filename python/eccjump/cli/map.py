@@ -303,7 +303,18 @@ def _run(args: argparse.Namespace) -> int:
     opts = _options(args)
     attrs = map_attrs(**opts)
     if args.threads < 0:
-        raise ValueError(f"--threads {args.threads} is outside the allowed range [0, inf)")
+        raise ValueError(f"--threads {args.threads} is outside the allowed range [0, 256]")
+    # Let the core check every option on one point before anything is written (an invalid
+    # mu_s, theta0, tolerance or thread count is a one-line error, not a map of INVALID).
+    region(
+        opts["mu_s"],
+        opts["n"],
+        alpha=alpha[:1],
+        chi=chi[:1],
+        km=km[:1],
+        n_threads=args.threads,
+        **{k: v for k, v in opts.items() if k not in ("mu_s", "n")},
+    )
     chunk = args.chunk or max(1, round(POINTS_PER_CHUNK / max(1, chi.size * km.size)))
     chunk = min(chunk, alpha.size)
     held = shape_points = alpha.size * chi.size * km.size

@@ -28,6 +28,26 @@ pub enum Error {
         /// f(b).
         fb: f64,
     },
+    /// An output (or work buffer) would not fit in memory: `bytes` were asked for (saturated
+    /// at u64::MAX when the size itself overflows).
+    #[error("{what} needs {} of memory, more than can be allocated", bytes_text(*bytes))]
+    OutOfMemory {
+        /// What was to be allocated.
+        what: &'static str,
+        /// The size asked for, in bytes.
+        bytes: u64,
+    },
+    /// The caller asked to stop (e.g. Ctrl-C) between two chunks of work.
+    #[error("interrupted")]
+    Interrupted,
+    /// An error about the entry at `index` of an array argument.
+    #[error("{source} (at index {index})")]
+    AtIndex {
+        /// The index of the offending entry.
+        index: usize,
+        /// What is wrong with it.
+        source: Box<Error>,
+    },
     /// An iteration limit was reached before convergence.
     #[error("{what} did not converge within {iterations} iterations")]
     NoConvergence {
@@ -40,6 +60,63 @@ pub enum Error {
 
 /// Shorthand used throughout the core.
 pub type Result<T> = std::result::Result<T, Error>;
+
+fn bytes_text(bytes: u64) -> String {
+    if bytes == u64::MAX {
+        "more than 2^64 bytes".to_string()
+    } else {
+        format!("{:.3} GiB", bytes as f64 / (1u64 << 30) as f64)
+    }
+}
+
+/// The number of bytes of `count` items of `T`, or an `OutOfMemory` error if that overflows.
+pub fn bytes_of<T>(what: &'static str, count: usize) -> Result<usize> {
+    count
+        .checked_mul(std::mem::size_of::<T>())
+        .filter(|&b| b <= isize::MAX as usize)
+        .ok_or(Error::OutOfMemory {
+            what,
+            bytes: u64::MAX,
+        })
+}
+
+/// A vector of `count` copies of `value`, allocated fallibly: `OutOfMemory` naming `what`
+/// instead of an abort when the allocator refuses (or the size overflows).
+pub fn try_filled<T: Clone>(what: &'static str, count: usize, value: T) -> Result<Vec<T>> {
+    let bytes = bytes_of::<T>(what, count)?;
+    let mut v = Vec::new();
+    v.try_reserve_exact(count).map_err(|_| Error::OutOfMemory {
+        what,
+        bytes: bytes as u64,
+    })?;
+    v.resize(count, value);
+    Ok(v)
+}
+
+/// Reserves room for one more element, fallibly (amortised doubling, like `push`).
+pub fn try_grow<T>(what: &'static str, v: &mut Vec<T>) -> Result<()> {
+    if v.len() < v.capacity() {
+        return Ok(());
+    }
+    let extra = v.len().max(16);
+    v.try_reserve(extra).map_err(|_| Error::OutOfMemory {
+        what,
+        bytes: ((v.len() + extra) * std::mem::size_of::<T>()) as u64,
+    })
+}
+
+/// Checks that an integer work parameter lies in `[lo, hi]`.
+pub fn check_count(name: &'static str, value: usize, lo: usize, hi: usize) -> Result<usize> {
+    if (lo..=hi).contains(&value) {
+        Ok(value)
+    } else {
+        Err(Error::InvalidParameter {
+            name,
+            value: value as f64,
+            allowed: format!("[{lo}, {hi}]"),
+        })
+    }
+}
 
 /// A number as it appears in a message: short (at most 17 significant digits, exponent
 /// form for very large or small magnitudes), ±f64::MAX as ±inf (an open end).

@@ -3,12 +3,14 @@
 //! parameter and the index.
 
 use crate::errors::to_py;
-use eccjump_core::error::Result as CoreResult;
+use eccjump_core::error::{check_range, try_filled, Error, Result as CoreResult};
 use eccjump_core::jarm::{from_rest, jump_point};
+use eccjump_core::mechanics::{MAX_OMEGA0, MAX_THETA0};
 use eccjump_core::{Cylinder, Ramp};
 use numpy::{IntoPyArray, PyArray1, PyReadonlyArray1};
 use pyo3::exceptions::PyValueError;
 use pyo3::prelude::*;
+use std::f64::consts::FRAC_PI_2;
 
 /// Number of inputs, outputs and the per-point function of each kind.
 type PointFn = fn(&[f64], u32, (f64, f64)) -> CoreResult<[f64; 2]>;
@@ -21,6 +23,29 @@ fn ramp(alpha: f64, chi: f64, km: f64) -> CoreResult<Ramp> {
     Ramp::new(body(chi, km)?, alpha)
 }
 
+/// An angle θ of a closed form: finite, |θ| ≤ 2π·10⁶ (the core's bound of a start).
+fn angle(name: &'static str, theta: f64) -> CoreResult<f64> {
+    check_range(name, theta, -MAX_THETA0, MAX_THETA0)
+}
+
+/// The ramp angle alone (kinds without a body).
+fn alpha(a: f64) -> CoreResult<f64> {
+    check_range("alpha", a, 0.0, FRAC_PI_2)
+}
+
+/// μ_s ≥ 0, finite.
+fn mu_s(m: f64) -> CoreResult<f64> {
+    check_range("mu_s", m, 0.0, f64::MAX)
+}
+
+/// The start (θ0, θ̇0) of a path, as every classification checks it.
+fn start((t0, w0): (f64, f64)) -> CoreResult<(f64, f64)> {
+    Ok((
+        check_range("theta0", t0, -MAX_THETA0, MAX_THETA0)?,
+        check_range("omega0", w0, 0.0, MAX_OMEGA0)?,
+    ))
+}
+
 fn opt(v: Option<f64>) -> f64 {
     v.unwrap_or(f64::NAN)
 }
@@ -29,17 +54,22 @@ fn kind(name: &str) -> Option<(usize, usize, PointFn)> {
     Some(match name {
         // (alpha, chi, km, theta_J) -> (Fx_J, Fy_J): Eqs. jump6, Njumpfn.
         "jump_forces" => (4, 2, |x, _, _| {
-            let f = jump_point::jump_forces(&body(x[1], x[2])?, x[0], x[3]);
+            let r = ramp(x[0], x[1], x[2])?;
+            let f = jump_point::jump_forces(&r.body, r.alpha, angle("theta_J", x[3])?);
             Ok([f.fx, f.fy])
         }),
         // (chi, km, theta_J) -> mu: Eq. ineq2 (signed).
         "mu" => (3, 1, |x, _, _| {
-            Ok([jump_point::mu(&body(x[0], x[1])?, x[2]), 0.0])
+            Ok([
+                jump_point::mu(&body(x[0], x[1])?, angle("theta_J", x[2])?),
+                0.0,
+            ])
         }),
         // (alpha, theta_J) -> n of the green window 2πn − α < θ_J < 2πn, or 0.
         "green" => (2, 1, |x, _, _| {
             Ok([
-                jump_point::green_turn(x[0], x[1]).map_or(0.0, f64::from),
+                jump_point::green_turn(alpha(x[0])?, angle("theta_J", x[1])?)
+                    .map_or(0.0, f64::from),
                 0.0,
             ])
         }),
@@ -50,23 +80,33 @@ fn kind(name: &str) -> Option<(usize, usize, PointFn)> {
         }),
         // (chi, km, mu_s) -> (theta_J_min, theta_J_max) on turn n (n = 0: relative to 2πn).
         "theta_j_range" => (3, 2, |x, n, _| {
-            let r = jump_point::theta_j_range_abs(&body(x[0], x[1])?, x[2], n);
+            let r = jump_point::theta_j_range_abs(&body(x[0], x[1])?, mu_s(x[2])?, n);
             Ok([opt(r.map(|v| v.0)), opt(r.map(|v| v.1))])
         }),
         // (chi, km, mu_s) -> alpha_min = 2πn − theta_J_max.
         "alpha_min" => (3, 1, |x, n, _| {
-            Ok([opt(jump_point::alpha_min(&body(x[0], x[1])?, x[2], n)), 0.0])
+            Ok([
+                opt(jump_point::alpha_min(&body(x[0], x[1])?, mu_s(x[2])?, n)),
+                0.0,
+            ])
         }),
         // (chi, km) -> gamma: Eq. dega2.
         "gamma" => (2, 1, |x, _, _| Ok([body(x[0], x[1])?.gamma(), 0.0])),
         // (theta, alpha, chi, km) -> J(theta): Eq. Jta as printed.
         "J" => (4, 1, |x, _, _| {
-            Ok([from_rest::j_paper(&ramp(x[1], x[2], x[3])?, x[0]), 0.0])
+            Ok([
+                from_rest::j_paper(&ramp(x[1], x[2], x[3])?, angle("theta", x[0])?),
+                0.0,
+            ])
         }),
         // (theta, alpha, chi, km) -> chi θ̇² cos θ − cos α along rolling from (θ0, θ̇0).
-        "liftoff" => (4, 1, |x, _, (t0, w0)| {
+        "liftoff" => (4, 1, |x, _, s| {
             let r = ramp(x[1], x[2], x[3])?;
-            Ok([from_rest::liftoff_from(&r, t0, w0, x[0]), 0.0])
+            let (t0, w0) = start(s)?;
+            Ok([
+                from_rest::liftoff_from(&r, t0, w0, angle("theta", x[0])?),
+                0.0,
+            ])
         }),
         // (alpha, chi, km) -> J(2πn − α), J(2πn): Eqs. JtaC1, JtaC2.
         "jtac" => (3, 2, |x, n, _| {
@@ -78,8 +118,9 @@ fn kind(name: &str) -> Option<(usize, usize, PointFn)> {
             Ok([opt(from_rest::theta_nj(&ramp(x[0], x[1], x[2])?, n)), 0.0])
         }),
         // (theta, alpha, chi, km) -> (Fx, Fy) along rolling from (θ0, θ̇0), by energy.
-        "path_forces" => (4, 2, |x, _, (t0, w0)| {
-            let k = ramp(x[1], x[2], x[3])?.kinematics_along(t0, w0, x[0]);
+        "path_forces" => (4, 2, |x, _, s| {
+            let (t0, w0) = start(s)?;
+            let k = ramp(x[1], x[2], x[3])?.kinematics_along(t0, w0, angle("theta", x[0])?);
             Ok([k.fx, k.fy])
         }),
         _ => return None,
@@ -115,7 +156,12 @@ pub fn pointwise<'py>(
     }
     let outs = py
         .detach(|| {
-            let mut outs = vec![Vec::with_capacity(len); n_out];
+            let mut outs = Vec::with_capacity(n_out);
+            for _ in 0..n_out {
+                let mut v = try_filled("the result", len, 0.0).map_err(|e| (0, e))?;
+                v.clear();
+                outs.push(v);
+            }
             let mut x = vec![0.0; n_in];
             for i in 0..len {
                 for (xj, c) in x.iter_mut().zip(&cols) {
@@ -128,9 +174,12 @@ pub fn pointwise<'py>(
             }
             Ok(outs)
         })
-        .map_err(|(i, e)| {
-            let err = to_py(e);
-            PyValueError::new_err(format!("at index {i}: {}", err.value(py)))
+        .map_err(|(i, e)| match e {
+            Error::OutOfMemory { .. } => to_py(e),
+            e => to_py(Error::AtIndex {
+                index: i,
+                source: Box::new(e),
+            }),
         })?;
     Ok(outs.into_iter().map(|o| o.into_pyarray(py)).collect())
 }

@@ -1,7 +1,8 @@
 //! JARM boundaries: α-intervals per body and μ_s,min along the path, in parallel.
 
-use crate::errors::to_py;
+use crate::errors::detached;
 use crate::options::parse_rule;
+use eccjump_core::error::try_filled;
 use eccjump_core::maps::boundary::{
     alpha_interval_around_many, alpha_intervals_many, boundary_options, mu_s_min_path_many,
 };
@@ -27,8 +28,9 @@ pub fn alpha_intervals<'py>(
 ) -> PyResult<Vec<Vec<(f64, f64)>>> {
     let opts = boundary_options(parse_rule(rule)?, n);
     let (c, k) = (chi.as_slice()?, km.as_slice()?);
-    py.detach(|| alpha_intervals_many(c, k, mu_s, &opts, n_scan, n_threads))
-        .map_err(to_py)
+    detached(py, |stop| {
+        alpha_intervals_many(c, k, mu_s, &opts, n_scan, n_threads, stop)
+    })
 }
 
 /// For each (α_i, χ_i, k_m,i): the smallest μ_s that gives a JARM (turn n, 0 = first).
@@ -45,9 +47,11 @@ pub fn mu_s_min_path<'py>(
 ) -> PyResult<Bound<'py, PyArray1<f64>>> {
     let opts = boundary_options(parse_rule(rule)?, n);
     let (a, c, k) = (alpha.as_slice()?, chi.as_slice()?, km.as_slice()?);
-    let mut out = vec![0.0; a.len()];
-    py.detach(|| mu_s_min_path_many(a, c, k, &opts, n_threads, &mut out))
-        .map_err(to_py)?;
+    let out = detached(py, |stop| {
+        let mut out = try_filled("the result", a.len(), 0.0)?;
+        mu_s_min_path_many(a, c, k, &opts, n_threads, &mut out, stop)?;
+        Ok(out)
+    })?;
     Ok(out.into_pyarray(py))
 }
 
@@ -69,9 +73,11 @@ pub fn alpha_interval_around<'py>(
 ) -> PyResult<ArrayPair<'py>> {
     let opts = boundary_options(parse_rule(rule)?, n);
     let (s, c, k) = (seed.as_slice()?, chi.as_slice()?, km.as_slice()?);
-    let mut out = vec![(0.0, 0.0); s.len()];
-    py.detach(|| alpha_interval_around_many(s, c, k, mu_s, &opts, step, n_threads, &mut out))
-        .map_err(to_py)?;
+    let out = detached(py, |stop| {
+        let mut out = try_filled("the result", s.len(), (0.0, 0.0))?;
+        alpha_interval_around_many(s, c, k, mu_s, &opts, step, n_threads, &mut out, stop)?;
+        Ok(out)
+    })?;
     let (lo, hi): (Vec<f64>, Vec<f64>) = out.into_iter().unzip();
     Ok((lo.into_pyarray(py), hi.into_pyarray(py)))
 }

@@ -1,9 +1,10 @@
 //! JARM classification of points and grids: arrays in, one array per result field out.
 
-use crate::errors::to_py;
+use crate::errors::detached;
 use crate::options::CallOptions;
+use eccjump_core::error::{try_filled, Result as CoreResult};
 use eccjump_core::jarm::{JarmResult, Reason};
-use eccjump_core::maps::region::{classify_grid, classify_points};
+use eccjump_core::maps::region::{classify_grid, classify_points, grid_size};
 use numpy::{IntoPyArray, PyReadonlyArray1};
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
@@ -11,12 +12,19 @@ use pyo3::types::PyDict;
 /// Struct of arrays from the per-point results (the output is O(points), nothing more).
 fn to_dict<'py>(py: Python<'py>, res: &[JarmResult]) -> PyResult<Bound<'py, PyDict>> {
     let d = PyDict::new(py);
+    // Each field allocated fallibly: a MemoryError, not an abort, if it does not fit.
     macro_rules! field {
         ($name:literal, $f:expr) => {
-            d.set_item(
-                $name,
-                res.iter().map($f).collect::<Vec<_>>().into_pyarray(py),
-            )?;
+            let mut v = Vec::new();
+            v.try_reserve_exact(res.len()).map_err(|_| {
+                pyo3::exceptions::PyMemoryError::new_err(format!(
+                    "the field {} of {} points does not fit in memory",
+                    $name,
+                    res.len()
+                ))
+            })?;
+            v.extend(res.iter().map($f));
+            d.set_item($name, v.into_pyarray(py))?;
         };
     }
     field!("is_jarm", |r| r.is_jarm);
@@ -33,8 +41,9 @@ fn to_dict<'py>(py: Python<'py>, res: &[JarmResult]) -> PyResult<Bound<'py, PyDi
     Ok(d)
 }
 
-fn empty(len: usize) -> Vec<JarmResult> {
-    vec![JarmResult::new(Reason::InvalidParams); len]
+/// The output of `len` points, allocated fallibly (`MemoryError` naming its size).
+fn empty(len: usize) -> CoreResult<Vec<JarmResult>> {
+    try_filled("the result", len, JarmResult::new(Reason::InvalidParams))
 }
 
 /// Classifies equal-length 1-D arrays of points (μ_s and the turn n, 0 = the first jump, may
@@ -58,9 +67,11 @@ pub fn jarm_points<'py>(
         mu_s.as_slice()?,
         n.as_slice()?,
     );
-    let mut out = empty(a.len());
-    py.detach(|| classify_points(a, c, k, m, n, method, &opts, n_threads, &mut out))
-        .map_err(to_py)?;
+    let out = detached(py, |stop| {
+        let mut out = empty(a.len())?;
+        classify_points(a, c, k, m, n, method, &opts, n_threads, &mut out, stop)?;
+        Ok(out)
+    })?;
     to_dict(py, &out)
 }
 
@@ -78,9 +89,11 @@ pub fn jarm_grid<'py>(
 ) -> PyResult<Bound<'py, PyDict>> {
     let (opts, method, n_threads) = options.parse(n)?;
     let (a, c, f) = (alpha.as_slice()?, chi.as_slice()?, frac.as_slice()?);
-    let mut out = empty(a.len() * c.len() * f.len());
-    py.detach(|| classify_grid(a, c, f, mu_s, method, &opts, n_threads, &mut out))
-        .map_err(to_py)?;
+    let out = detached(py, |stop| {
+        let mut out = empty(grid_size(a.len(), c.len(), f.len())?)?;
+        classify_grid(a, c, f, mu_s, method, &opts, n_threads, &mut out, stop)?;
+        Ok(out)
+    })?;
     to_dict(py, &out)
 }
 

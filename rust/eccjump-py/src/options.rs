@@ -2,6 +2,7 @@
 //! Python layer's dict (built and documented by `eccjump.classification`). Only names are
 //! converted here; every range is checked by the core.
 
+use crate::errors::to_py;
 use eccjump_core::jarm::{JarmOptions, Method};
 use eccjump_core::Rule;
 use pyo3::exceptions::PyValueError;
@@ -26,6 +27,8 @@ pub struct CallOptions {
 impl CallOptions {
     /// The classification options (turn `n`, 0 = the first jump), route and thread count.
     pub fn parse(&self, n: u32) -> PyResult<(JarmOptions, Method, usize)> {
+        // Checked for every route: the closed form ignores them but they are recorded.
+        Method::check_tolerances(self.rtol, self.atol).map_err(to_py)?;
         let method = Method::from_name(&self.method, self.rtol, self.atol).ok_or_else(|| {
             PyValueError::new_err(format!(
                 "method = {:?} is not one of 'closed_form', 'ode'",

@@ -19,7 +19,7 @@
 
 use crate::jarm::jump_point::{green_turn, jump_forces, mu};
 use crate::jarm::result::{JarmOptions, JarmResult, Reason};
-use crate::jarm::turns::{turn_bound, turn_of};
+use crate::jarm::turns::{turn_bound, turn_of, turns_before};
 use crate::mechanics::friction::slip_onset_flies;
 use crate::mechanics::{Cylinder, Ramp, Rule};
 use crate::modes::rolling::events::ContactEvent;
@@ -105,12 +105,13 @@ pub fn point_ramp(alpha: f64, chi: f64, km: f64, mu_s: f64, o: &JarmOptions) -> 
 }
 
 /// Where a search along rolling from (θ0, θ̇0) stops, and the reason if nothing happens by
-/// then: the turn bound n* ([`turn_bound`]), capped by `max_turns` (`TurnLimit`) and by
-/// 2πn + π for an explicit turn n. None if the search is empty (→ `NoRoot`).
+/// then: the turn bound n* ([`turn_bound`]), capped `max_turns` turns after the start
+/// (`TurnLimit`), and by 2πn + π for an explicit turn n. None if the search is empty (→ `NoRoot`).
 pub fn search_end(r: &Ramp, o: &JarmOptions) -> Option<(f64, Reason)> {
+    let last = turns_before(o.theta0) + o.max_turns as u64; // the cap counts from the start
     let (mut theta_end, end_reason) = match turn_bound(r, o.theta0, o.omega0, o.max_turns) {
         None => (o.theta0 + TAU, Reason::NoRoot), // α = 0 or χ = 0: periodic, one turn suffices
-        Some(n) if n > o.max_turns => (TAU * o.max_turns as f64, Reason::TurnLimit),
+        Some(n) if n as u64 > last => (TAU * last as f64, Reason::TurnLimit),
         Some(n) => (TAU * n as f64, Reason::NoRoot),
     };
     if o.n > 0 {

@@ -412,6 +412,7 @@ mod tests {
     use super::*;
     use crate::jarm::classify;
     use crate::jarm::Method;
+    use crate::maps::parallel::never;
     use crate::maps::region::classify_grid;
     use crate::mechanics::Ramp;
     use std::f64::consts::FRAC_PI_2;
@@ -888,8 +889,8 @@ mod tests {
         let o = JarmOptions::default();
         let mut r1 = vec![JarmResult::new(Reason::NoRoot); 216];
         let mut r2 = r1.clone();
-        classify_grid(&al, &ch, &fr, 1.0, m, &o, 1, &mut r1).unwrap();
-        classify_grid(&al, &ch, &fr, 1.0, m, &o, 2, &mut r2).unwrap();
+        classify_grid(&al, &ch, &fr, 1.0, m, &o, 1, &mut r1, &never).unwrap();
+        classify_grid(&al, &ch, &fr, 1.0, m, &o, 2, &mut r2, &never).unwrap();
         assert!(r1.iter().zip(&r2).all(|(p, q)| bits(p) == bits(q)));
     }
 
@@ -936,7 +937,7 @@ mod tests {
         let mut out = vec![JarmResult::new(Reason::NoRoot); 8000];
         for nt in [1, 2] {
             let (t, cpu) = (std::time::Instant::now(), cpu_seconds());
-            classify_grid(&a, &c, &f, 1.0, m, &o, nt, &mut out).unwrap();
+            classify_grid(&a, &c, &f, 1.0, m, &o, nt, &mut out, &never).unwrap();
             let (dt, dcpu) = (t.elapsed().as_secs_f64(), cpu_seconds() - cpu);
             let jarm = out.iter().filter(|r| r.is_jarm).count();
             println!(
@@ -947,7 +948,7 @@ mod tests {
             );
         }
         let t = std::time::Instant::now();
-        classify_grid(&a, &c, &f, 1.0, Method::ClosedForm, &o, 1, &mut out).unwrap();
+        classify_grid(&a, &c, &f, 1.0, Method::ClosedForm, &o, 1, &mut out, &never).unwrap();
         let dt = t.elapsed().as_secs_f64();
         println!("closed form, 1 thread: {:.1} us/point", dt / 8000.0 * 1e6);
     }

@@ -1,7 +1,7 @@
 //! The outcome of a JARM classification, shared by both routes: the reasons, the options
 //! and the per-point result.
 
-use crate::error::{check_range, Error, Result};
+use crate::error::{check_range, Result};
 use crate::mechanics::Rule;
 
 /// Why a point is or is not a JARM. `#[repr(u8)]` with stable values (the bridge exports them).
@@ -168,18 +168,18 @@ impl JarmResult {
     }
 }
 
+/// The largest turn cap of a search: every point's work is bounded by it (about a second
+/// for the slowest point at this cap).
+pub const MAX_TURNS: u32 = 1_000_000;
+
+pub use crate::mechanics::{MAX_OMEGA0, MAX_THETA0};
+
 impl JarmOptions {
     /// Checks the options that apply to a whole call, naming the first bad one.
     pub fn validate(&self) -> Result<()> {
-        if self.max_turns == 0 {
-            return Err(Error::InvalidParameter {
-                name: "max_turns",
-                value: 0.0,
-                allowed: "[1, 4294967295]".to_string(),
-            });
-        }
-        check_range("theta0", self.theta0, -f64::MAX, f64::MAX)?;
-        check_range("omega0", self.omega0, 0.0, f64::MAX)?;
+        crate::error::check_count("max_turns", self.max_turns as usize, 1, MAX_TURNS as usize)?;
+        check_range("theta0", self.theta0, -MAX_THETA0, MAX_THETA0)?;
+        check_range("omega0", self.omega0, 0.0, MAX_OMEGA0)?;
         Ok(())
     }
 }
@@ -212,9 +212,17 @@ impl Method {
     /// Checks the tolerances of the ODE route.
     pub fn validate(&self) -> Result<()> {
         if let Method::Ode { rtol, atol } = *self {
-            check_range("rtol", rtol, 1e-15, 1.0)?;
-            crate::error::check_positive("atol", atol)?;
+            Self::check_tolerances(rtol, atol)?;
         }
+        Ok(())
+    }
+
+    /// The tolerances any route accepts (the closed form ignores them, but they are recorded
+    /// with its results): rtol ∈ [1e-15, 1e-3], atol ∈ [1e-300, 1e-3]; looser tolerances
+    /// make the ODE route's verdicts unreliable.
+    pub fn check_tolerances(rtol: f64, atol: f64) -> Result<()> {
+        check_range("rtol", rtol, 1e-15, 1e-3)?;
+        check_range("atol", atol, 1e-300, 1e-3)?;
         Ok(())
     }
 }

@@ -25,14 +25,27 @@ pub fn turn_of(theta: f64) -> u32 {
     }
 }
 
+/// The whole turns completed before θ0 (0 for θ0 < 2π): searches count `max_turns` from
+/// there.
+#[inline]
+pub fn turns_before(theta0: f64) -> u64 {
+    let k = (theta0 / TAU).floor();
+    if k.is_nan() || k <= 0.0 {
+        0
+    } else {
+        k.min(u32::MAX as f64) as u64
+    }
+}
+
 /// The turn bound n*: the smallest n with 2πn > θ0 and L(2πn) > 0 along rolling from
-/// (θ0, θ̇0); None if it does not exist (α = 0 or χ = 0). Capped at max_turns + 1.
+/// (θ0, θ̇0); None if it does not exist (α = 0 or χ = 0). Capped at
+/// [`turns_before`]`(θ0) + max_turns + 1`.
 pub fn turn_bound(r: &Ramp, theta0: f64, omega0: f64, max_turns: u32) -> Option<u32> {
     let chi = r.body.chi;
     if chi == 0.0 || r.sin_a == 0.0 {
         return None;
     }
-    let cap = max_turns as u64 + 1;
+    let cap = (turns_before(theta0) + max_turns as u64 + 1).min(u32::MAX as u64);
     let n_lo = ((theta0 / TAU).floor() + 1.0).max(1.0);
     if n_lo > cap as f64 {
         return Some(cap as u32);

@@ -4,13 +4,32 @@
 //! (χ, k_m) with a local rayon pool; each entry is computed independently (bit-identical for
 //! any thread count).
 
-use crate::error::Result;
+use crate::error::{check_count, check_range, try_filled, Error, Result};
+use crate::jarm::decision::point_ramp;
 use crate::jarm::{classify, JarmOptions, Rule};
-use crate::maps::parallel::{check_len, par_fill};
+use crate::maps::parallel::{check_len, par_fill_until};
 use std::f64::consts::FRAC_PI_2;
 
 /// Bisection tolerance on α and (relative) on μ_s.
 pub const TOL: f64 = 1e-12;
+
+/// The largest scan of [`alpha_intervals`] (each sample is a classification).
+pub const MAX_SCAN: usize = 100_000;
+
+/// The whole-call checks of the α-interval searches: each body valid (an error names the
+/// index), μ_s ≥ 0 finite, the options valid.
+fn check_bodies(chi: &[f64], km: &[f64], mu_s: f64, o: &JarmOptions) -> Result<()> {
+    check_len("km", km.len(), chi.len())?;
+    check_range("mu_s", mu_s, 0.0, f64::MAX)?;
+    o.validate()?;
+    for (i, (&c, &k)) in chi.iter().zip(km).enumerate() {
+        crate::mechanics::Cylinder::new(c, k).map_err(|e| Error::AtIndex {
+            index: i,
+            source: Box::new(e),
+        })?;
+    }
+    Ok(())
+}
 
 /// The classification options of the boundary searches: from rest, the given rule and turn
 /// (0: the first jump), the default turn cap, no refinement of the extrema (the verdict does
@@ -119,6 +138,10 @@ pub fn alpha_interval_around(
 /// The smallest μ_s that gives a JARM at (α, χ, k_m) (bisection on μ_s, relative 1e-12):
 /// +∞ if none up to 1e6. By monotonicity in μ_s (tested in `jarm`), every larger μ_s is one.
 pub fn mu_s_min_path(alpha: f64, chi: f64, km: f64, o: &JarmOptions) -> f64 {
+    // An invalid point has no μ_s,min: NaN, not "never a JARM" (+∞).
+    if point_ramp(alpha, chi, km, 0.0, o).is_none() {
+        return f64::NAN;
+    }
     let f = |m: f64| is_jarm(alpha, chi, km, m, o);
     if f(0.0) {
         return 0.0;
@@ -154,12 +177,17 @@ pub fn alpha_intervals_many(
     o: &JarmOptions,
     n_scan: usize,
     n_threads: usize,
+    stop: &dyn Fn() -> bool,
 ) -> Result<Vec<Vec<(f64, f64)>>> {
-    check_len("km", km.len(), chi.len())?;
-    let mut out = vec![Vec::new(); chi.len()];
-    par_fill(&mut out, n_threads, |i| {
-        alpha_intervals(chi[i], km[i], mu_s, o, n_scan)
-    })?;
+    check_bodies(chi, km, mu_s, o)?;
+    check_count("n_scan", n_scan, 2, MAX_SCAN)?;
+    let mut out = try_filled("the intervals", chi.len(), Vec::new())?;
+    par_fill_until(
+        &mut out,
+        n_threads,
+        |i| alpha_intervals(chi[i], km[i], mu_s, o, n_scan),
+        stop,
+    )?;
     Ok(out)
 }
 
@@ -174,18 +202,22 @@ pub fn alpha_interval_around_many(
     step: f64,
     n_threads: usize,
     out: &mut [(f64, f64)],
+    stop: &dyn Fn() -> bool,
 ) -> Result<()> {
     let n = out.len();
     check_len("seed", seed.len(), n)?;
     check_len("chi", chi.len(), n)?;
-    check_len("km", km.len(), n)?;
-    crate::error::check_positive("step", step)?;
-    par_fill(out, n_threads, |i| {
-        alpha_interval_around(chi[i], km[i], mu_s, o, seed[i], step)
-    })
+    check_bodies(chi, km, mu_s, o)?;
+    check_range("step", step, f64::MIN_POSITIVE, std::f64::consts::FRAC_PI_2)?;
+    par_fill_until(
+        out,
+        n_threads,
+        |i| alpha_interval_around(chi[i], km[i], mu_s, o, seed[i], step),
+        stop,
+    )
 }
 
-/// For many (α_i, χ_i, k_m,i): μ_s,min along the path into `out`.
+/// For many (α_i, χ_i, k_m,i): μ_s,min along the path into `out` (NaN for an invalid point).
 pub fn mu_s_min_path_many(
     alpha: &[f64],
     chi: &[f64],
@@ -193,19 +225,25 @@ pub fn mu_s_min_path_many(
     o: &JarmOptions,
     n_threads: usize,
     out: &mut [f64],
+    stop: &dyn Fn() -> bool,
 ) -> Result<()> {
     let n = out.len();
     check_len("alpha", alpha.len(), n)?;
     check_len("chi", chi.len(), n)?;
     check_len("km", km.len(), n)?;
-    par_fill(out, n_threads, |i| {
-        mu_s_min_path(alpha[i], chi[i], km[i], o)
-    })
+    o.validate()?;
+    par_fill_until(
+        out,
+        n_threads,
+        |i| mu_s_min_path(alpha[i], chi[i], km[i], o),
+        stop,
+    )
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::maps::parallel::never;
 
     #[test]
     fn interval_around_a_seed_is_the_scanned_interval() {
@@ -258,8 +296,8 @@ mod tests {
         // Parallel, bit-identical.
         let chis = [0.15, 0.1, 0.2, 0.05];
         let kms = [0.02, 0.1, 0.0, 0.3];
-        let v1 = alpha_intervals_many(&chis, &kms, mu, &o, 90, 1).unwrap();
-        let v2 = alpha_intervals_many(&chis, &kms, mu, &o, 90, 2).unwrap();
+        let v1 = alpha_intervals_many(&chis, &kms, mu, &o, 90, 1, &never).unwrap();
+        let v2 = alpha_intervals_many(&chis, &kms, mu, &o, 90, 2, &never).unwrap();
         let bits = |v: &Vec<Vec<(f64, f64)>>| -> Vec<(u64, u64)> {
             v.iter()
                 .flatten()
@@ -282,7 +320,30 @@ mod tests {
         let r = classify(a, chi, km, 10.0, &o);
         assert!((r.max_ratio - m).abs() < 1e-9 * m, "{} {m}", r.max_ratio);
         let mut out = [0.0];
-        mu_s_min_path_many(&[a], &[chi], &[km], &o, 2, &mut out).unwrap();
+        mu_s_min_path_many(&[a], &[chi], &[km], &o, 2, &mut out, &never).unwrap();
         assert_eq!(out[0].to_bits(), m.to_bits());
+    }
+}
+
+#[cfg(test)]
+mod validation_tests {
+    use super::*;
+    use crate::maps::parallel::never;
+
+    #[test]
+    fn invalid_input_is_an_error_or_nan_never_an_answer() {
+        let o = boundary_options(Rule::Paper, 0);
+        // A body out of range is an error naming it and its index (was: "never a JARM").
+        let e = alpha_intervals_many(&[0.1, 2.0], &[0.02, 0.02], 1.0, &o, 180, 1, &never);
+        let msg = e.unwrap_err().to_string();
+        assert!(
+            msg.starts_with("chi = 2 ") && msg.ends_with("(at index 1)"),
+            "{msg}"
+        );
+        assert!(alpha_intervals_many(&[0.1], &[0.02], f64::NAN, &o, 180, 1, &never).is_err());
+        assert!(alpha_intervals_many(&[0.1], &[0.02], 1.0, &o, MAX_SCAN + 1, 1, &never).is_err());
+        // μ_s,min of an invalid point is NaN (was +∞).
+        assert!(mu_s_min_path(f64::NAN, 0.15, 0.02, &o).is_nan());
+        assert!(mu_s_min_path(0.7, 0.15, 0.02, &o).is_finite());
     }
 }

@@ -7,7 +7,7 @@
 
 use crate::error::Result;
 use crate::jarm::{classify_with, JarmOptions, JarmResult, Method};
-use crate::maps::parallel::{check_len, par_fill};
+use crate::maps::parallel::{check_len, par_fill_until};
 
 /// Classifies a list of points (α_i, χ_i, k_m,i, μ_s,i, n_i); all inputs have the length of
 /// `out` (μ_s and n may also have length 1: one value for all; n = 0 is the first jump,
@@ -23,6 +23,7 @@ pub fn classify_points(
     opts: &JarmOptions,
     n_threads: usize,
     out: &mut [JarmResult],
+    stop: &dyn Fn() -> bool,
 ) -> Result<()> {
     let total = out.len();
     check_len("alpha", alpha.len(), total)?;
@@ -36,14 +37,19 @@ pub fn classify_points(
     }
     opts.validate()?;
     method.validate()?;
-    par_fill(out, n_threads, |g| {
-        let m = if mu_s.len() == 1 { mu_s[0] } else { mu_s[g] };
-        let o = JarmOptions {
-            n: if n.len() == 1 { n[0] } else { n[g] },
-            ..*opts
-        };
-        classify_with(method, alpha[g], chi[g], km[g], m, &o)
-    })
+    par_fill_until(
+        out,
+        n_threads,
+        |g| {
+            let m = if mu_s.len() == 1 { mu_s[0] } else { mu_s[g] };
+            let o = JarmOptions {
+                n: if n.len() == 1 { n[0] } else { n[g] },
+                ..*opts
+            };
+            classify_with(method, alpha[g], chi[g], km[g], m, &o)
+        },
+        stop,
+    )
 }
 
 /// Classifies the grid alpha × chi × frac (C order: α slowest, frac fastest), with
@@ -58,17 +64,36 @@ pub fn classify_grid(
     opts: &JarmOptions,
     n_threads: usize,
     out: &mut [JarmResult],
+    stop: &dyn Fn() -> bool,
 ) -> Result<()> {
     let (nc, nf) = (chi.len(), frac.len());
-    check_len("out", out.len(), alpha.len() * nc * nf)?;
+    check_len("out", out.len(), grid_size(alpha.len(), nc, nf)?)?;
+    // μ_s is one value for the whole grid: an invalid one is an error, not a map of
+    // INVALID_PARAMS points.
+    crate::error::check_range("mu_s", mu_s, 0.0, f64::MAX)?;
     opts.validate()?;
     method.validate()?;
-    par_fill(out, n_threads, |g| {
-        let (ia, rest) = (g / (nc * nf), g % (nc * nf));
-        let (ic, jf) = (rest / nf, rest % nf);
-        let x = chi[ic];
-        classify_with(method, alpha[ia], x, frac[jf] * (1.0 - x), mu_s, opts)
-    })
+    par_fill_until(
+        out,
+        n_threads,
+        |g| {
+            let (ia, rest) = (g / (nc * nf), g % (nc * nf));
+            let (ic, jf) = (rest / nf, rest % nf);
+            let x = chi[ic];
+            classify_with(method, alpha[ia], x, frac[jf] * (1.0 - x), mu_s, opts)
+        },
+        stop,
+    )
+}
+
+/// The number of points of an `na × nc × nf` grid, or `OutOfMemory` if it overflows.
+pub fn grid_size(na: usize, nc: usize, nf: usize) -> Result<usize> {
+    na.checked_mul(nc)
+        .and_then(|x| x.checked_mul(nf))
+        .ok_or(crate::error::Error::OutOfMemory {
+            what: "the grid",
+            bytes: u64::MAX,
+        })
 }
 
 #[cfg(test)]
@@ -76,6 +101,7 @@ mod tests {
     use super::*;
     use crate::jarm::classify;
     use crate::jarm::Reason;
+    use crate::maps::parallel::never;
     use std::f64::consts::FRAC_PI_2;
 
     fn grid(n: usize) -> (Vec<f64>, Vec<f64>, Vec<f64>) {
@@ -88,7 +114,18 @@ mod tests {
     fn run(n_threads: usize, a: &[f64], c: &[f64], f: &[f64]) -> Vec<JarmResult> {
         let mut out = vec![JarmResult::new(Reason::NoRoot); a.len() * c.len() * f.len()];
         let o = JarmOptions::default();
-        classify_grid(a, c, f, 1.0, Method::ClosedForm, &o, n_threads, &mut out).unwrap();
+        classify_grid(
+            a,
+            c,
+            f,
+            1.0,
+            Method::ClosedForm,
+            &o,
+            n_threads,
+            &mut out,
+            &never,
+        )
+        .unwrap();
         out
     }
 
@@ -138,14 +175,17 @@ mod tests {
             &o,
             2,
             &mut out,
+            &never,
         )
         .unwrap();
         assert_eq!(bits(&out), bits(&r1));
         // Wrong lengths are errors.
         let mut short = vec![JarmResult::new(Reason::NoRoot); 3];
         let m = Method::ClosedForm;
-        assert!(classify_grid(&a, &c, &f, 1.0, m, &o, 1, &mut short).is_err());
-        assert!(classify_points(&pa, &pc, &pk[1..], &[1.0], &[0], m, &o, 1, &mut out).is_err());
+        assert!(classify_grid(&a, &c, &f, 1.0, m, &o, 1, &mut short, &never).is_err());
+        assert!(
+            classify_points(&pa, &pc, &pk[1..], &[1.0], &[0], m, &o, 1, &mut out, &never).is_err()
+        );
     }
 
     /// Every 5th point of each axis of the timing grid (8000 points) on one thread: a small,
@@ -163,7 +203,7 @@ mod tests {
         let mut out = vec![JarmResult::new(Reason::NoRoot); a.len() * c.len() * f.len()];
         let t = std::time::Instant::now();
         for _ in 0..5 {
-            classify_grid(&a, &c, &f, 1.0, Method::ClosedForm, &o, 1, &mut out).unwrap();
+            classify_grid(&a, &c, &f, 1.0, Method::ClosedForm, &o, 1, &mut out, &never).unwrap();
         }
         let dt = t.elapsed().as_secs_f64() / 5.0;
         let jarm = out.iter().filter(|r| r.is_jarm).count();
@@ -190,7 +230,7 @@ mod tests {
             ..Default::default()
         };
         let mut out = vec![JarmResult::new(Reason::NoRoot); 1_000_000];
-        classify_grid(&a, &c, &f, 1.0, Method::ClosedForm, &o, 2, &mut out).unwrap();
+        classify_grid(&a, &c, &f, 1.0, Method::ClosedForm, &o, 2, &mut out, &never).unwrap();
         let mut bytes = Vec::with_capacity(out.len() * 37);
         for r in &out {
             bytes.push(r.reason as u8);
@@ -255,7 +295,18 @@ mod tests {
         let mut out = vec![JarmResult::new(Reason::NoRoot); 1_000_000];
         for nt in [1, 2] {
             let t = std::time::Instant::now();
-            classify_grid(&a, &c, &f, 1.0, Method::ClosedForm, &o, nt, &mut out).unwrap();
+            classify_grid(
+                &a,
+                &c,
+                &f,
+                1.0,
+                Method::ClosedForm,
+                &o,
+                nt,
+                &mut out,
+                &never,
+            )
+            .unwrap();
             let dt = t.elapsed().as_secs_f64();
             let jarm = out.iter().filter(|r| r.is_jarm).count();
             println!(

@@ -9,10 +9,11 @@
 //!
 //! Which of them end the run is set by the lift-off [`Rule`].
 
-use crate::error::{check_positive, check_range, Error, Result};
+use crate::error::{check_count, check_positive, check_range, try_grow, Error, Result};
 use crate::mechanics::friction::{friction_ratio, slip_margin};
 use crate::mechanics::Ramp;
 pub use crate::mechanics::Rule;
+use crate::mechanics::{MAX_OMEGA0, MAX_THETA0};
 use crate::modes::rolling::bounds::ContactBounds;
 use crate::modes::rolling::memo::RollingMemo;
 use crate::modes::rolling::solution::RollSolution;
@@ -257,8 +258,8 @@ impl RollOptions {
     /// Checks every option, naming the first bad one.
     pub fn validate(&self) -> Result<()> {
         let big = f64::MAX;
-        check_range("theta0", self.theta0, -big, big)?;
-        check_range("omega0", self.omega0, -big, big)?;
+        check_range("theta0", self.theta0, -MAX_THETA0, MAX_THETA0)?;
+        check_range("omega0", self.omega0, -MAX_OMEGA0, MAX_OMEGA0)?;
         if let Some(mu) = self.mu_s {
             check_range("mu_s", mu, 0.0, big)?;
         }
@@ -270,15 +271,9 @@ impl RollOptions {
                 allowed: format!("(theta0, inf] = ({}, inf]", self.theta0),
             });
         }
-        check_range("rtol", self.solver.rtol, 1e-15, 1.0)?;
-        check_positive("atol", self.solver.atol)?;
-        if self.solver.max_steps == 0 {
-            return Err(Error::InvalidParameter {
-                name: "max_steps",
-                value: 0.0,
-                allowed: "[1, inf)".to_string(),
-            });
-        }
+        check_range("rtol", self.solver.rtol, 1e-15, 1e-2)?;
+        check_range("atol", self.solver.atol, 1e-300, 1.0)?;
+        check_count("max_steps", self.solver.max_steps, 1, MAX_STEPS)?;
         Ok(())
     }
 }
@@ -368,14 +363,31 @@ pub struct RollRun {
     pub dense: Option<RollSolution>,
 }
 
+/// The largest step budget of a run: bounds its time (a few seconds) and memory (the
+/// record and the dense output, about 1.6 GB at most; beyond what can be allocated the run
+/// is a `MemoryError`, never an abort).
+pub const MAX_STEPS: usize = 10_000_000;
+
 /// Points reserved per recorded array up front: a run to lift-off at the default
 /// tolerances takes about a hundred steps; longer runs grow the arrays by doubling.
 const RESERVE: usize = 256;
 
 impl RollRun {
-    /// Records one point with its kinematics.
+    /// Records one point with its kinematics (fallibly: `OutOfMemory` instead of an abort).
     #[inline]
-    fn push(&mut self, t: f64, k: &Kinematics) {
+    fn push(&mut self, t: f64, k: &Kinematics) -> Result<()> {
+        for v in [
+            &mut self.t,
+            &mut self.theta,
+            &mut self.omega,
+            &mut self.omega_dot,
+            &mut self.fx,
+            &mut self.fy,
+            &mut self.l,
+            &mut self.ratio,
+        ] {
+            try_grow("the record of the run", v)?;
+        }
         self.t.push(t);
         self.theta.push(k.theta);
         self.omega.push(k.omega);
@@ -384,6 +396,7 @@ impl RollRun {
         self.fy.push(k.fy);
         self.l.push(k.theta - self.theta[0]);
         self.ratio.push(friction_ratio(k.fx, k.fy));
+        Ok(())
     }
 
     #[inline]
@@ -428,7 +441,7 @@ pub fn roll(ramp: &Ramp, opts: &RollOptions) -> Result<RollRun> {
         dense: None,
     };
     let mut steps = Vec::with_capacity(if opts.dense_output { capacity } else { 0 });
-    run.push(0.0, &memo.kinematics(opts.theta0, opts.omega0));
+    run.push(0.0, &memo.kinematics(opts.theta0, opts.omega0))?;
     // A contact event that already holds at t = 0 ends the run there: the integrator
     // looks for crossings only, and a run that starts outside the contact conditions
     // must not roll on as if it were inside them.
@@ -443,6 +456,7 @@ pub fn roll(ramp: &Ramp, opts: &RollOptions) -> Result<RollRun> {
         return Ok(run);
     }
     let y0 = State::<2>::new(opts.theta0, opts.omega0);
+    let mut memory: Result<()> = Ok(());
     let outcome = ode::solve(
         &memo,
         &memo,
@@ -452,9 +466,15 @@ pub fn roll(ramp: &Ramp, opts: &RollOptions) -> Result<RollRun> {
         &opts.solver,
         &mut |obs: Observation<'_, 2>| match obs {
             Observation::Step { dense, t, y } => {
-                run.push(t, &memo.kinematics(y[0], y[1]));
-                if opts.dense_output {
-                    steps.push(*dense);
+                // After a failed allocation the rest is not recorded; the run reports it.
+                if memory.is_ok() {
+                    memory = run.push(t, &memo.kinematics(y[0], y[1]));
+                }
+                if opts.dense_output && memory.is_ok() {
+                    memory = try_grow("the dense output", &mut steps);
+                    if memory.is_ok() {
+                        steps.push(*dense);
+                    }
                 }
             }
             Observation::Event { index, t, y } => run.events.push(EventHit {
@@ -465,6 +485,7 @@ pub fn roll(ramp: &Ramp, opts: &RollOptions) -> Result<RollRun> {
             }),
         },
     );
+    memory?;
     run.nfev = outcome.nfev;
     run.status = match outcome.status {
         Status::Finished => RollStatus::TimeLimit,
@@ -477,7 +498,7 @@ pub fn roll(ramp: &Ramp, opts: &RollOptions) -> Result<RollRun> {
             run.pop();
         }
         if run.t.last().is_some_and(|&t| t < outcome.t) {
-            run.push(outcome.t, &memo.kinematics(outcome.y[0], outcome.y[1]));
+            run.push(outcome.t, &memo.kinematics(outcome.y[0], outcome.y[1]))?;
         }
     }
     if opts.dense_output {

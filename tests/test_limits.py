@@ -1,0 +1,166 @@
+"""Regression tests of the hardening issue, core side: every work parameter bounded, output
+too large for memory a MemoryError (never an abort or a panic), invalid input an error or an
+INVALID/NaN marker (never a plausible number), Ctrl-C honoured within about a second."""
+
+from __future__ import annotations
+
+import math
+import os
+import signal
+import subprocess
+import sys
+import textwrap
+import time
+
+import numpy as np
+import pytest
+
+import eccjump
+from eccjump import Cylinder, Reason
+from eccjump import closed_form as cf
+
+B = Cylinder(0.15, 0.02)
+TAU = 2 * math.pi
+
+
+def short_error(exc_type, fn, *args, name: str, **kwargs) -> str:
+    with pytest.raises(exc_type) as info:
+        fn(*args, **kwargs)
+    msg = str(info.value)
+    assert name in msg and len(msg) <= 200, msg
+    return msg
+
+
+# --- the interpreter never dies ----------------------------------------------------------
+
+
+def test_output_too_large_is_a_memory_error():
+    # 10^10 points (about 1 TB of results) from 88 KB of input: refused before allocating.
+    short_error(
+        MemoryError,
+        eccjump.region,
+        1.0,
+        alpha=np.full(10000, 0.5),
+        chi=np.full(1000, 0.5),
+        km=np.full(1000, 0.5),
+        name="result",
+    )
+
+
+def test_grid_size_overflow_is_a_memory_error_not_a_panic():
+    # 2^60 points: the size overflows before any allocation (was PanicException: capacity
+    # overflow; 2^22 x 2^21 x 2^21 wrapped to 0 in release builds).
+    a, c = np.full(2**22, 0.5), np.full(2**21, 0.5)
+    short_error(MemoryError, eccjump.region, 1.0, alpha=a, chi=c, km=c, name="the grid")
+    a = np.full(2**20, 0.5)
+    short_error(MemoryError, eccjump.region, 1.0, alpha=a, chi=a, km=a, name="the result")
+
+
+def test_memory_error_under_an_address_space_limit():
+    # 10^8 points (8.8 GB of results) under a 6 GiB limit: MemoryError, the process lives on.
+    code = textwrap.dedent(
+        """
+        import resource, numpy as np, eccjump
+        resource.setrlimit(resource.RLIMIT_AS, (6 << 30, 6 << 30))
+        try:
+            eccjump.region(1.0, alpha=np.full(1000, .5), chi=np.full(1000, .5),
+                           km=np.full(100, .5))
+        except MemoryError as e:
+            print("MemoryError", e)
+        """
+    )
+    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, timeout=60)
+    assert out.returncode == 0, out.stderr[-2000:]
+    assert out.stdout.startswith("MemoryError"), out.stdout
+
+
+# --- every call ends ----------------------------------------------------------------------
+
+
+@pytest.mark.parametrize(
+    ("call", "name"),
+    [
+        (lambda: eccjump.jarm(0.7, 0.15, 0.02, 1.0, theta0=-1e16, omega0=2.0), "theta0"),
+        (lambda: eccjump.region(1.0, alpha=[0.7], chi=[0.2], km=[0.1], theta0=-1e300), "theta0"),
+        (lambda: eccjump.jarm(0.7, 0.15, 0.02, 1.0, n_threads=3000), "n_threads"),
+        (lambda: eccjump.jarm(0.7, 0.15, 0.02, 1.0, max_turns=10**7), "max_turns"),
+        (lambda: eccjump.jarm(1e-10, 0.15, 0.02, 1.0, max_turns=2**32 - 1), "max_turns"),
+        (lambda: eccjump.alpha_intervals(0.15, 0.02, 1.0, n_scan=2**31), "n_scan"),
+        (lambda: eccjump.roll(B, 1e-10, max_steps=10**12, dense_output=True), "max_steps"),
+        (lambda: eccjump.roll(B, 0.7, theta0=TAU * 1e12), "theta0"),
+        (lambda: eccjump.roll(B, 0.7, omega0=1e200), "omega0"),
+    ],
+)
+def test_work_parameters_are_bounded(call, name):
+    short_error(ValueError, call, name=name)
+
+
+def test_the_turn_cap_counts_from_the_start():
+    # The motion is 2 pi periodic in theta0: a start 10000 turns on is the same problem (was
+    # NO_ROOT at 10000 turns but JARM at 9999: the cap counted from 0).
+    a = eccjump.jarm(0.7, 0.15, 0.02, 1.0, theta0=TAU * 9999)
+    b = eccjump.jarm(0.7, 0.15, 0.02, 1.0, theta0=TAU * 10000)
+    assert Reason(int(a.reason)) == Reason(int(b.reason)) == Reason.JARM
+    assert float(b.theta_J) - float(a.theta_J) == pytest.approx(TAU, abs=1e-6)
+    assert int(b.n) == int(a.n) + 1
+
+
+# --- no number where an error is due --------------------------------------------------------
+
+
+def test_invalid_input_is_never_answered_with_a_number():
+    assert math.isnan(float(eccjump.mu_s_min_path(float("nan"), 0.15, 0.02)))
+    msg = short_error(ValueError, eccjump.alpha_intervals, 2.0, 0.02, 1.0, name="chi")
+    assert "index 0" in msg
+    short_error(ValueError, cf.jump_forces, 5.0, 0.15, 0.02, 5.8, name="alpha")
+    short_error(ValueError, cf.J, float("inf"), 0.7, 0.15, 0.02, name="theta")
+    short_error(ValueError, cf.mu, 0.15, 0.02, float("nan"), name="theta_J")
+    short_error(ValueError, cf.theta_J_range, 0.5, 0.4, -1.0, name="mu_s")
+    short_error(ValueError, cf.liftoff_function, 1.0, 0.7, 0.15, 0.02, omega0=-1.0, name="omega0")
+    for kw, name in (({"atol": 1e300}, "atol"), ({"rtol": 1.0}, "rtol")):
+        short_error(ValueError, eccjump.jarm, 0.7, 0.15, 0.02, 1.0, method="ode", name=name, **kw)
+    # the closed form checks the tolerances it records too
+    short_error(ValueError, eccjump.jarm, 0.7, 0.15, 0.02, 1.0, rtol=float("nan"), name="rtol")
+
+
+@pytest.mark.parametrize("mu_s", [float("nan"), -1.0, float("inf")])
+def test_a_grid_with_an_invalid_mu_s_is_an_error(mu_s):
+    # (was: a "complete" map of INVALID_PARAMS points, also from `eccjump map --mu-s nan`)
+    short_error(ValueError, eccjump.region, mu_s, alpha=[0.7], chi=[0.2], km=[0.1], name="mu_s")
+
+
+def test_messages_are_short():
+    msg = short_error(ValueError, eccjump.roll, B, 0.7, mu_s=-1, name="mu_s")
+    assert "inf" in msg  # the open end, not the f64 maximum in 309 digits
+
+
+# --- Ctrl-C ------------------------------------------------------------------------------------
+
+
+@pytest.mark.skipif(os.name != "posix", reason="needs POSIX signals")
+def test_a_long_map_honours_ctrl_c_within_a_second():
+    code = textwrap.dedent(
+        """
+        import sys, time, numpy as np, eccjump
+        a = np.linspace(0.01, 1.5, 60)
+        print("start", flush=True)
+        t = time.time()
+        try:
+            eccjump.region(1.0, alpha=a, chi=a / 1.6, km=np.linspace(0, .9, 60), method="ode")
+            print("finished", time.time() - t)
+        except KeyboardInterrupt:
+            print("interrupted", time.time() - t, flush=True)
+        """
+    )
+    p = subprocess.Popen(
+        [sys.executable, "-c", code], stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True
+    )
+    assert p.stdout is not None
+    assert p.stdout.readline().strip() == "start"
+    time.sleep(1.0)  # the map takes about 10 s
+    sent = time.time()
+    p.send_signal(signal.SIGINT)
+    out, err = p.communicate(timeout=30)
+    waited = time.time() - sent
+    assert out.startswith("interrupted"), (out, err[-2000:])
+    assert waited < 1.5, waited
