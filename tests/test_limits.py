@@ -137,6 +137,40 @@ def test_messages_are_short():
 # --- Ctrl-C ------------------------------------------------------------------------------------
 
 
+def interrupted_after(code: str, delay: float) -> float:
+    """Runs ``code`` (which prints "start", then works for seconds) in a child, sends it
+    SIGINT ``delay`` s after "start", and returns how long the child took to end; the child
+    must print "interrupted"."""
+    p = subprocess.Popen(
+        [sys.executable, "-c", code], stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True
+    )
+    assert p.stdout is not None
+    assert p.stdout.readline().strip() == "start"
+    time.sleep(delay)
+    sent = time.time()
+    p.send_signal(signal.SIGINT)
+    out, err = p.communicate(timeout=30)
+    assert out.startswith("interrupted"), (out, err[-2000:])
+    return time.time() - sent
+
+
+@pytest.mark.skipif(os.name != "posix", reason="needs POSIX signals")
+def test_a_long_run_honours_ctrl_c_within_a_second():
+    code = textwrap.dedent(
+        """
+        import eccjump
+        print("start", flush=True)
+        try:  # 10^7 steps rolling over and over on flat ground: about 6 s
+            eccjump.roll(eccjump.Cylinder(0.2, 0.2), 0.0, omega0=1.0, t_max=1e9,
+                         max_steps=10**7, dense_output=True)
+            print("finished")
+        except KeyboardInterrupt:
+            print("interrupted", flush=True)
+        """
+    )
+    assert interrupted_after(code, 0.5) < 1.5
+
+
 @pytest.mark.skipif(os.name != "posix", reason="needs POSIX signals")
 def test_a_long_map_honours_ctrl_c_within_a_second():
     code = textwrap.dedent(
@@ -152,15 +186,4 @@ def test_a_long_map_honours_ctrl_c_within_a_second():
             print("interrupted", time.time() - t, flush=True)
         """
     )
-    p = subprocess.Popen(
-        [sys.executable, "-c", code], stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True
-    )
-    assert p.stdout is not None
-    assert p.stdout.readline().strip() == "start"
-    time.sleep(1.0)  # the map takes about 10 s
-    sent = time.time()
-    p.send_signal(signal.SIGINT)
-    out, err = p.communicate(timeout=30)
-    waited = time.time() - sent
-    assert out.startswith("interrupted"), (out, err[-2000:])
-    assert waited < 1.5, waited
+    assert interrupted_after(code, 1.0) < 1.5  # the map takes about 10 s

@@ -2,7 +2,7 @@
 //! broadcasts). Each kind names a core function; invalid points raise ValueError naming the
 //! parameter and the index.
 
-use crate::errors::to_py;
+use crate::errors::detached;
 use eccjump_core::error::{check_range, try_filled, Error, Result as CoreResult};
 use eccjump_core::jarm::{from_rest, jump_point};
 use eccjump_core::mechanics::{MAX_OMEGA0, MAX_THETA0};
@@ -154,32 +154,31 @@ pub fn pointwise<'py>(
     if cols.iter().any(|c| c.len() != len) {
         return Err(PyValueError::new_err("inputs must have equal lengths"));
     }
-    let outs = py
-        .detach(|| {
-            let mut outs = Vec::with_capacity(n_out);
-            for _ in 0..n_out {
-                let mut v = try_filled("the result", len, 0.0).map_err(|e| (0, e))?;
-                v.clear();
-                outs.push(v);
+    let outs = detached(py, |stop| {
+        let mut outs = Vec::with_capacity(n_out);
+        for _ in 0..n_out {
+            let mut v = try_filled("the result", len, 0.0)?;
+            v.clear();
+            outs.push(v);
+        }
+        let mut x = vec![0.0; n_in];
+        for i in 0..len {
+            // Ctrl-C is looked at every 2^16 points (well under a second of work).
+            if i % (1 << 16) == (1 << 16) - 1 && stop() {
+                return Err(Error::Interrupted);
             }
-            let mut x = vec![0.0; n_in];
-            for i in 0..len {
-                for (xj, c) in x.iter_mut().zip(&cols) {
-                    *xj = c[i];
-                }
-                let y = f(&x, n, (theta0, omega0)).map_err(|e| (i, e))?;
-                for (o, v) in outs.iter_mut().zip(y) {
-                    o.push(v);
-                }
+            for (xj, c) in x.iter_mut().zip(&cols) {
+                *xj = c[i];
             }
-            Ok(outs)
-        })
-        .map_err(|(i, e)| match e {
-            Error::OutOfMemory { .. } => to_py(e),
-            e => to_py(Error::AtIndex {
+            let y = f(&x, n, (theta0, omega0)).map_err(|e| Error::AtIndex {
                 index: i,
                 source: Box::new(e),
-            }),
-        })?;
+            })?;
+            for (o, v) in outs.iter_mut().zip(y) {
+                o.push(v);
+            }
+        }
+        Ok(outs)
+    })?;
     Ok(outs.into_iter().map(|o| o.into_pyarray(py)).collect())
 }

@@ -1,9 +1,9 @@
 //! `roll`: one pure-rolling run, computed with the GIL released, returned as numpy arrays.
 
-use crate::errors::to_py;
+use crate::errors::{detached, to_py};
 use crate::options::parse_rule;
 use eccjump_core::mechanics::friction::friction_ratio;
-use eccjump_core::modes::rolling::run::{roll as core_roll, RollOptions, RollRun, RollStatus};
+use eccjump_core::modes::rolling::run::{roll_until, RollOptions, RollRun, RollStatus};
 use eccjump_core::modes::rolling::solution::RollSolution;
 use eccjump_core::ode::SolverOptions;
 use eccjump_core::{Cylinder, Ramp};
@@ -52,7 +52,7 @@ pub fn roll<'py>(
         },
         dense_output,
     };
-    let run = py.detach(|| core_roll(&ramp, &opts)).map_err(to_py)?;
+    let run = detached(py, |stop| roll_until(&ramp, &opts, stop))?;
     to_dict(py, run)
 }
 

@@ -18,7 +18,7 @@ pub mod tableau;
 
 pub use dense::{DenseBounds, DenseStep};
 pub use events::{Direction, EventCarry, EventFunctions, EventSpec, NoEvents, EVENT_CHUNK};
-pub use solver::{solve, Observation, Outcome, SolverOptions, Status};
+pub use solver::{solve, solve_until, Observation, Outcome, SolverOptions, Status};
 
 /// A state vector of fixed size N.
 pub type State<const N: usize> = nalgebra::SVector<f64, N>;

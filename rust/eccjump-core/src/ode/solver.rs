@@ -53,6 +53,8 @@ pub enum Status {
     StepTooSmall,
     /// The right-hand side or an event function returned NaN or inf.
     NonFinite,
+    /// The caller's `stop` asked to end the integration (see [`solve_until`]).
+    Stopped,
 }
 
 /// What the solver reports to the observer, in order of time.
@@ -119,6 +121,31 @@ where
     E: EventFunctions<N>,
     O: FnMut(Observation<'_, N>),
 {
+    solve_until(sys, events, t0, y0, t_end, opts, observer, &|| false)
+}
+
+/// Accepted steps between two calls of `stop` in [`solve_until`]: a few milliseconds.
+const STOP_EVERY: usize = 4096;
+
+/// [`solve`], asking `stop()` every few thousand accepted steps; a `true` ends the
+/// integration with [`Status::Stopped`] at the last accepted point (e.g. on Ctrl-C). The
+/// steps taken are the same as without `stop`.
+#[allow(clippy::too_many_arguments)] // solve's arguments and the stop
+pub fn solve_until<S, E, O, const N: usize>(
+    sys: &S,
+    events: &E,
+    t0: f64,
+    y0: State<N>,
+    t_end: f64,
+    opts: &SolverOptions,
+    observer: &mut O,
+    stop: &dyn Fn() -> bool,
+) -> Outcome<N>
+where
+    S: OdeSystem<N>,
+    E: EventFunctions<N>,
+    O: FnMut(Observation<'_, N>),
+{
     let mut out = Outcome {
         status: Status::NonFinite,
         t: t0,
@@ -173,6 +200,10 @@ where
         }
         if out.n_accepted >= opts.max_steps {
             out.status = Status::MaxSteps;
+            return out;
+        }
+        if out.n_accepted % STOP_EVERY == STOP_EVERY - 1 && stop() {
+            out.status = Status::Stopped;
             return out;
         }
         match st.step(sys, &mut out.nfev, &mut out.n_rejected) {

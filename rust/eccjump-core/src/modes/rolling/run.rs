@@ -414,6 +414,12 @@ impl RollRun {
 
 /// Integrates pure rolling from (θ0, θ̇0) until a terminal event, t_max or θ_max.
 pub fn roll(ramp: &Ramp, opts: &RollOptions) -> Result<RollRun> {
+    roll_until(ramp, opts, &|| false)
+}
+
+/// [`roll`], asking `stop()` every few thousand steps; a `true` ends it with
+/// `Error::Interrupted` (e.g. on Ctrl-C).
+pub fn roll_until(ramp: &Ramp, opts: &RollOptions, stop: &dyn Fn() -> bool) -> Result<RollRun> {
     opts.validate()?;
     let events = RollEvents {
         ramp: *ramp,
@@ -457,7 +463,7 @@ pub fn roll(ramp: &Ramp, opts: &RollOptions) -> Result<RollRun> {
     }
     let y0 = State::<2>::new(opts.theta0, opts.omega0);
     let mut memory: Result<()> = Ok(());
-    let outcome = ode::solve(
+    let outcome = ode::solve_until(
         &memo,
         &memo,
         0.0,
@@ -484,8 +490,12 @@ pub fn roll(ramp: &Ramp, opts: &RollOptions) -> Result<RollRun> {
                 omega: y[1],
             }),
         },
+        stop,
     );
     memory?;
+    if outcome.status == Status::Stopped {
+        return Err(Error::Interrupted);
+    }
     run.nfev = outcome.nfev;
     run.status = match outcome.status {
         Status::Finished => RollStatus::TimeLimit,
