@@ -105,6 +105,17 @@ def test_the_turn_cap_counts_from_the_start():
     assert int(b.n) == int(a.n) + 1
 
 
+def test_a_jump_in_the_first_half_turn_is_on_turn_one():
+    # Under the classical rule a steep ramp loses F_y within the first half turn: that JARM
+    # is on turn 1 (was n = 0, the "none" value).
+    a = np.radians(np.linspace(60, 89, 30))
+    r = eccjump.jarm(a[:, None], 0.5, np.linspace(0, 0.5, 6), 1.0, rule="normal_force")
+    early = r.is_jarm & (r.theta_J < math.pi)
+    assert early.any()
+    assert (r.n[r.is_jarm] >= 1).all() and (r.n[early] == 1).all()
+    assert (r.n[r.reason != int(Reason.NO_ROOT)] >= 1).all()
+
+
 # --- no number where an error is due --------------------------------------------------------
 
 

@@ -46,7 +46,8 @@ TABLE: tuple[Field, ...] = (
         "n",
         _U32,
         "1",
-        "turn of the jump (JARM), of the earlier lift-off or of the deciding event; 0 if none",
+        "turn of the jump (JARM), of the earlier lift-off or of the deciding event "
+        "(round(theta / 2 pi), at least 1); 0 if none",
         0,
     ),
     Field(

@@ -11,13 +11,16 @@
 use crate::mechanics::Ramp;
 use std::f64::consts::TAU;
 
-/// round(θ/2π), clamped to u32: the turn of an event (a lift-off needs cos θ > 0, so this is
-/// unambiguous there).
+/// The turn of an event at θ: round(θ/2π), at least 1 (an event in the first half turn is on
+/// turn 1, not 0, which means "none"), clamped to u32. A paper lift-off needs cos θ > 0, so
+/// its turn is unambiguous: 2πn − π/2 < θ_J < 2πn + π/2.
 #[inline]
 pub fn turn_of(theta: f64) -> u32 {
     let n = (theta / TAU).round();
-    if n <= 0.0 {
+    if n.is_nan() {
         0
+    } else if n <= 1.0 {
+        1
     } else if n >= u32::MAX as f64 {
         u32::MAX
     } else {
