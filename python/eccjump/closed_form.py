@@ -57,7 +57,7 @@ def in_green_interval(
 ) -> NDArray[np.bool_]:
     """The green-interval test 2 pi n - alpha < theta_J < 2 pi n (any n >= 1 if None)."""
     g = green_turn(alpha, theta_J)
-    return g > 0 if n is None else g == _n(n)
+    return np.asarray(g > 0 if n is None else g == _n(n))
 
 
 def mu_s_min(chi: ArrayLike, km: ArrayLike) -> tuple[F, F]:

@@ -64,7 +64,10 @@ def format_of(path: str | os.PathLike) -> str:
     """``"netcdf"``, ``"zarr"`` or ``"npz"`` from the suffix of ``path``."""
     suffix = Path(path).suffix.lower()
     if suffix not in FORMATS:
-        raise ValueError(f"unknown output format {suffix!r} of {path}; use .nc, .zarr or .npz")
+        raise ValueError(
+            f"path {str(path)[-80:]!r}: unknown output format {suffix[:20]!r}; "
+            "use .nc, .zarr or .npz"
+        )
     return FORMATS[suffix]
 
 
