@@ -96,8 +96,12 @@ def test_imports_form_no_cycle():
 @pytest.mark.parametrize(
     ("module", "below"),
     [
+        ("eccjump._checks", set()),
         ("eccjump.fields", {"eccjump._core"}),
-        ("eccjump._bridge", {"eccjump._core", "eccjump._arrays", "eccjump.fields"}),
+        (
+            "eccjump._bridge",
+            {"eccjump._core", "eccjump._arrays", "eccjump._checks", "eccjump.fields"},
+        ),
         ("eccjump._layout", {"eccjump._core", "eccjump.fields"}),
         ("eccjump.scale", {"eccjump._bridge", "eccjump.fields"}),
     ],

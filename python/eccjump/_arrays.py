@@ -5,24 +5,22 @@ from __future__ import annotations
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
+from eccjump._checks import U32_MAX, int_array, integer, real_array
+
 
 def broadcast_flat(
-    **arrays: ArrayLike,
+    **arrays: object,
 ) -> tuple[tuple[int, ...], list[NDArray[np.float64]]]:
     """Broadcast the named inputs together; return the common shape and contiguous 1-D float64
-    copies. Raises ValueError naming the inputs when the shapes do not broadcast, and TypeError
-    for non-numeric input."""
-    try:
-        converted = [np.asarray(v, dtype=np.float64) for v in arrays.values()]
-    except (TypeError, ValueError) as err:
-        raise TypeError(
-            f"inputs {', '.join(arrays)} must be real numbers or arrays: {err}"
-        ) from err
+    copies. Raises TypeError naming the input that is not real numbers (see
+    :func:`eccjump._checks.real_array`) and ValueError naming the inputs when the shapes do
+    not broadcast."""
+    converted = [real_array(k, v) for k, v in arrays.items()]
     try:
         b = np.broadcast_arrays(*converted)
     except ValueError as err:
         shapes = ", ".join(f"{k}{np.shape(v)}" for k, v in zip(arrays, converted, strict=True))
-        raise ValueError(f"shapes do not broadcast: {shapes}") from err
+        raise ValueError(f"shapes do not broadcast: {shapes}"[:200]) from err
     shape = b[0].shape if b else ()
     return shape, [_c_aligned(x.ravel()) for x in b]
 
@@ -32,9 +30,9 @@ def _c_aligned(a: ArrayLike) -> NDArray[np.float64]:
     return np.require(a, dtype=np.float64, requirements=["C", "A"])
 
 
-def axis(name: str, values: ArrayLike) -> NDArray[np.float64]:
+def axis(name: str, values: object) -> NDArray[np.float64]:
     """A 1-D coordinate axis as a contiguous float64 array."""
-    a = _c_aligned(np.asarray(values, dtype=np.float64))
+    a = real_array(name, values)
     if a.ndim == 0:
         a = a.reshape(1)
     if a.ndim != 1:
@@ -43,44 +41,52 @@ def axis(name: str, values: ArrayLike) -> NDArray[np.float64]:
 
 
 #: The largest turn number (the core counts turns in 32 bits).
-MAX_TURN = 2**32 - 1
+MAX_TURN = U32_MAX
 
 
-def turn(n: int | None) -> int | None:
-    """Validate a turn number: None (automatic) or an integer >= 1."""
+def turn(n: object, name: str = "n") -> int | None:
+    """Validate a turn number: None (automatic) or an integer >= 1 (TypeError for what is not
+    an integer, bools and floats included)."""
     if n is None:
         return None
-    if isinstance(n, bool) or not isinstance(n, int | np.integer) or not 1 <= n <= MAX_TURN:
-        raise ValueError(
-            f"n = {n!r} is outside the allowed range [1, {MAX_TURN}] (None: automatic)"
-        )
-    return int(n)
+    return integer(name, n, 1, MAX_TURN)
 
 
 def turns(n: object) -> int | NDArray[np.int64] | None:
     """Validate a turn argument that may vary per point: None (automatic; only as a scalar),
     an integer >= 1, or an array-like of integers >= 1 (returned as an int64 array)."""
-    if n is None or isinstance(n, int | np.integer):  # bool included: turn() rejects it
-        return turn(n)  # type: ignore[arg-type]
-    try:
-        a = np.asarray(n)
-    except (TypeError, ValueError) as err:  # ragged input
-        raise ValueError(
-            f"n must be None, an integer or an array of integers in the allowed range "
-            f"[1, {MAX_TURN}]: {err}"
-        ) from err
-    if a.ndim == 0:
-        return turn(a.item() if a.dtype.kind in "iu" else n)  # type: ignore[arg-type]
-    if a.dtype.kind not in "iu":
-        raise ValueError(
-            f"n holds {a.dtype} values; its entries must be integers in the allowed range "
-            f"[1, {MAX_TURN}] (None, the first jump, only as a scalar)"
+    if n is None or isinstance(n, int | np.integer):  # bool included: integer() rejects it
+        return turn(n)
+    if isinstance(n, np.ndarray) and n.ndim == 0 and not isinstance(n, np.ma.MaskedArray):
+        return turn(n)
+    return int_array("n", n, 1, MAX_TURN)
+
+
+def same_values(x: object, y: object) -> bool:
+    """Equality of result fields: arrays (numpy, or dask computed on the way) by shape, dtype
+    and values with NaN equal to NaN; tuples, lists and dicts item by item; anything else by
+    ``==`` (floats with NaN equal to NaN)."""
+    if hasattr(x, "__array__") and not isinstance(x, np.generic):
+        if not hasattr(y, "__array__") or isinstance(y, np.generic):
+            return False
+        a, b = np.asarray(x), np.asarray(y)
+        if a.shape != b.shape or a.dtype != b.dtype:
+            return False
+        if a.dtype.kind in "fc":
+            return bool(np.array_equal(a, b, equal_nan=True))
+        return bool(np.array_equal(a, b))
+    if isinstance(x, tuple | list) and not hasattr(x, "_fields"):
+        return (
+            type(x) is type(y)
+            and len(x) == len(y)  # type: ignore[arg-type]
+            and all(same_values(p, q) for p, q in zip(x, y, strict=True))  # type: ignore[call-overload]
         )
-    out = (a < 1) | (a > MAX_TURN)
-    if a.size and out.any():
-        i = int(np.flatnonzero(out.ravel())[0])
-        raise ValueError(
-            f"n[{i}] = {a.ravel()[i]} is outside the allowed range [1, {MAX_TURN}] "
-            "(None, the first jump, only as a scalar)"
+    if isinstance(x, tuple):  # named tuples (Event): same type, then item by item
+        return type(x) is type(y) and same_values(tuple(x), tuple(y))  # type: ignore[arg-type]
+    if isinstance(x, dict):
+        return (
+            isinstance(y, dict) and x.keys() == y.keys() and all(same_values(x[k], y[k]) for k in x)
         )
-    return a.astype(np.int64)
+    if isinstance(x, float) and isinstance(y, float) and x != x and y != y:
+        return True
+    return bool(x == y)

@@ -16,6 +16,7 @@ from numpy.typing import NDArray
 
 from eccjump import _core
 from eccjump._arrays import turn
+from eccjump._checks import U32_MAX, U64_MAX, flag, integer, real, text
 
 Method = Literal["closed_form", "ode"]
 Rule = Literal["paper", "normal_force"]
@@ -65,26 +66,24 @@ def call_options(
     refine_extrema: bool,
     n_threads: int,
 ) -> CallOptions:
-    """The options of a classification call, validated and converted to plain Python types.
+    """The options of a classification call, type-checked and converted to plain Python
+    types (TypeError naming the argument for a wrong type; see :mod:`eccjump._checks`).
 
-    Raises ValueError (naming the argument and its allowed range) for ``n``, ``max_turns``
-    and ``n_threads``; ``rule``, ``method`` and the tolerances are checked by the core.
+    ValueError for ``n`` < 1, ``max_turns`` < 1 and ``n_threads`` < 0 and for integers the
+    bridge cannot carry; ``rule``, ``method``, the tolerances, ``theta0``, ``omega0`` and the
+    upper bounds are checked by the core.
     """
-    if isinstance(n_threads, bool) or not isinstance(n_threads, int | np.integer) or n_threads < 0:
-        raise ValueError(f"n_threads = {n_threads!r} is outside the allowed range [0, inf)")
-    if isinstance(max_turns, bool) or not isinstance(max_turns, int | np.integer) or max_turns < 1:
-        raise ValueError(f"max_turns = {max_turns!r} is outside the allowed range [1, inf)")
     return CallOptions(
         n=turn(n),
-        rule=str(rule),
-        method=str(method),
-        rtol=float(rtol),
-        atol=float(atol),
-        theta0=float(theta0),
-        omega0=float(omega0),
-        max_turns=int(max_turns),
-        refine_extrema=bool(refine_extrema),
-        n_threads=int(n_threads),
+        rule=text("rule", rule),
+        method=text("method", method),
+        rtol=real("rtol", rtol),
+        atol=real("atol", atol),
+        theta0=real("theta0", theta0),
+        omega0=real("omega0", omega0),
+        max_turns=integer("max_turns", max_turns, 1, U32_MAX),
+        refine_extrema=flag("refine_extrema", refine_extrema),
+        n_threads=integer("n_threads", n_threads, 0, U64_MAX),
     )
 
 
@@ -128,4 +127,4 @@ def jarm_grid(
 ) -> Raw:
     """Classify the grid alpha x chi x frac (k_m = frac (1 - chi)) on the turn ``opts.n``:
     one array per field, flat in C order."""
-    return _core.jarm_grid(alpha, chi, frac, float(mu_s), opts.n or 0, _bridge_options(opts))
+    return _core.jarm_grid(alpha, chi, frac, real("mu_s", mu_s), opts.n or 0, _bridge_options(opts))

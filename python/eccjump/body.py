@@ -16,6 +16,7 @@ from __future__ import annotations
 from dataclasses import dataclass, field
 
 from eccjump import _core
+from eccjump._checks import real
 
 
 @dataclass(frozen=True, slots=True)
@@ -33,6 +34,8 @@ class Cylinder:
     ------
     ValueError
         If a parameter is NaN, infinite or out of its range (the message names it).
+    TypeError
+        If a parameter is not a real number (bools, strings, None, complex, arrays).
     """
 
     chi: float
@@ -42,7 +45,7 @@ class Cylinder:
     gamma: float = field(init=False, repr=False, compare=False)
 
     def __post_init__(self) -> None:
-        chi, km = float(self.chi), float(self.km)
+        chi, km = real("chi", self.chi), real("km", self.km)
         ic, icm, gamma = _core.body_derived(chi, km)
         for name, value in (("chi", chi), ("km", km), ("Ic", ic), ("Icm", icm), ("gamma", gamma)):
             object.__setattr__(self, name, value)
@@ -66,7 +69,9 @@ class Cylinder:
         """A body of mass ``M`` [kg], radius ``R`` [m], CM offset ``d`` [m] and moment of
         inertia ``I_C`` [kg m²] about the geometric axis; valid iff 0 <= d <= R and
         M d² <= I_C <= M R²."""
-        chi, km = _core.body_from_inertia(float(M), float(R), float(d), float(I_C))
+        chi, km = _core.body_from_inertia(
+            real("M", M), real("R", R), real("d", d), real("I_C", I_C)
+        )
         return cls(chi, km)
 
     @classmethod
@@ -74,5 +79,7 @@ class Cylinder:
         """The paper's model: a uniform thin shell of mass ``m_C`` and radius ``R`` plus a line
         mass ``m_P`` parallel to the axis, placed so that the CM is at distance ``d`` from the
         axis (the line then sits at d/(1 - km) <= R)."""
-        chi, km = _core.body_from_shell_and_line(float(m_C), float(m_P), float(R), float(d))
+        chi, km = _core.body_from_shell_and_line(
+            real("m_C", m_C), real("m_P", m_P), real("R", R), real("d", d)
+        )
         return cls(chi, km)

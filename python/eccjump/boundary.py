@@ -9,6 +9,11 @@ from numpy.typing import ArrayLike, NDArray
 from eccjump import _core
 from eccjump._arrays import broadcast_flat, turn
 from eccjump._bridge import Rule
+from eccjump._checks import U64_MAX, integer, real, text
+
+
+def _threads(n_threads: object) -> int:
+    return integer("n_threads", n_threads, 0, U64_MAX)
 
 
 def alpha_intervals(
@@ -24,11 +29,10 @@ def alpha_intervals(
     """For each body (chi, km) (broadcast, flattened): the intervals (alpha_lo, alpha_hi) [rad]
     of ramp angles that give a JARM, each end located to 1e-12 by bisection after a scan of
     ``n_scan`` angles over (0, pi/2] (an interval narrower than pi/(2 n_scan) can be missed)."""
-    if n_scan < 2:
-        raise ValueError(f"n_scan = {n_scan!r} is outside the allowed range [2, inf)")
+    scan = integer("n_scan", n_scan, 2, U64_MAX)
     _, (c, k) = broadcast_flat(chi=chi, km=km)
     return _core.alpha_intervals(
-        c, k, float(mu_s), turn(n) or 0, str(rule), int(n_scan), int(n_threads)
+        c, k, real("mu_s", mu_s), turn(n) or 0, text("rule", rule), scan, _threads(n_threads)
     )
 
 
@@ -45,7 +49,8 @@ def mu_s_min_path(
     none up to 1e6). Under the paper's rule it equals the largest friction ratio |Fx|/Fy on
     the rolling path up to the jump, including mu(theta_J)."""
     shape, (a, c, k) = broadcast_flat(alpha=alpha, chi=chi, km=km)
-    return _core.mu_s_min_path(a, c, k, turn(n) or 0, str(rule), int(n_threads)).reshape(shape)
+    out = _core.mu_s_min_path(a, c, k, turn(n) or 0, text("rule", rule), _threads(n_threads))
+    return out.reshape(shape)
 
 
 def alpha_interval_around(
@@ -65,6 +70,13 @@ def alpha_interval_around(
     parts of a region that the scan of :func:`alpha_intervals` misses."""
     shape, (s, c, k) = broadcast_flat(seed=seed, chi=chi, km=km)
     lo, hi = _core.alpha_interval_around(
-        s, c, k, float(mu_s), turn(n) or 0, str(rule), float(step), int(n_threads)
+        s,
+        c,
+        k,
+        real("mu_s", mu_s),
+        turn(n) or 0,
+        text("rule", rule),
+        real("step", step),
+        _threads(n_threads),
     )
     return lo.reshape(shape), hi.reshape(shape)

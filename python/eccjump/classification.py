@@ -16,7 +16,7 @@ from typing import TYPE_CHECKING, Any, Literal, overload
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-from eccjump._arrays import axis, broadcast_flat, turns
+from eccjump._arrays import axis, broadcast_flat, same_values, turns
 from eccjump._bridge import (
     Method,
     Rule,
@@ -24,6 +24,7 @@ from eccjump._bridge import (
     jarm_grid,
     jarm_points,
 )
+from eccjump._checks import real, real_array, short, text
 from eccjump._layout import (
     COORD_ATTRS,
     SWEEPABLE,
@@ -40,7 +41,7 @@ if TYPE_CHECKING:  # pragma: no cover
     import xarray as xr
 
 
-@dataclass(frozen=True, repr=False)
+@dataclass(frozen=True, repr=False, eq=False)
 class JarmResult:
     """Per-point classification, every field an array of the broadcast shape.
 
@@ -104,6 +105,18 @@ class JarmResult:
         lines = [f"JarmResult(shape={self.shape}, {self.is_jarm.size} points)"]
         lines += [f"  {_reason_name(r):<18} {k}" for r, k in self.counts().items()]
         return "\n".join(lines)
+
+    def __eq__(self, other: object) -> bool:
+        """Field by field, arrays by shape, dtype and values (NaN equal to NaN; a lazy result
+        is computed to compare)."""
+        if type(other) is not type(self):
+            return NotImplemented
+        return all(
+            same_values(getattr(self, f.name), getattr(other, f.name))
+            for f in dataclasses.fields(self)
+        )
+
+    __hash__ = None  # type: ignore[assignment]  # mutable numpy arrays inside
 
     @staticmethod
     def _from_raw(raw: Mapping[str, NDArray], shape: tuple[int, ...]) -> JarmResult:
@@ -190,7 +203,7 @@ def jarm(
     return JarmResult._from_raw(raw, shape)
 
 
-@dataclass(frozen=True, repr=False)
+@dataclass(frozen=True, repr=False, eq=False)
 class Region:
     """A JARM map on the grid alpha x chi x km_frac, with k_m = km_frac (1 - chi).
 
@@ -238,6 +251,18 @@ class Region:
         values = dask.compute(*self.result.fields().values(), **kwargs)
         res = JarmResult(**dict(zip(FIELDS, values, strict=True)))
         return replace(self, result=res, attrs=dict(self.attrs))
+
+    def __eq__(self, other: object) -> bool:
+        """Field by field, arrays by shape, dtype and values (NaN equal to NaN; a lazy result
+        is computed to compare)."""
+        if type(other) is not type(self):
+            return NotImplemented
+        return all(
+            same_values(getattr(self, f.name), getattr(other, f.name))
+            for f in dataclasses.fields(self)
+        )
+
+    __hash__ = None  # type: ignore[assignment]  # mutable numpy arrays inside
 
     def to_xarray(self) -> xr.Dataset:
         """The map as an ``xarray.Dataset`` (dask-backed if lazy); see :mod:`eccjump.labelled`.
@@ -386,11 +411,12 @@ def region(
             n_threads=n_threads,
             chunks=chunks,
         )
-    if output != "region":
-        raise ValueError(f"output = {output!r}; use 'region' or 'xarray'")
+    if text("output", output) != "region":
+        raise ValueError(f"output = {short(output)}; use 'region' or 'xarray'")
     for name, value in (("mu_s", mu_s), ("theta0", theta0), ("omega0", omega0)):
-        if np.ndim(value) != 0:
+        if isinstance(value, list | tuple) or (isinstance(value, np.ndarray) and value.ndim):
             raise ValueError(f"{name} must be a number here; sweeps need output='xarray'")
+    mu = real("mu_s", mu_s)
     a, c, f = axis("alpha", alpha), axis("chi", chi), axis("km", km)
     opts = call_options(
         n=n,
@@ -405,26 +431,26 @@ def region(
         n_threads=n_threads,
     )
     if chunks is None:
-        raw = jarm_grid(a, c, f, float(mu_s), opts)
+        raw = jarm_grid(a, c, f, mu, opts)
         res = JarmResult._from_raw(raw, (a.size, c.size, f.size))
     else:
-        res = JarmResult(**lazy_fields(lazy_records(a, c, f, float(mu_s), opts, chunks)))
+        res = JarmResult(**lazy_fields(lazy_records(a, c, f, mu, opts, chunks)))
     return Region(
         alpha=a,
         chi=c,
         km_frac=f,
         result=res,
-        mu_s=float(mu_s),
+        mu_s=mu,
         n=opts.n,
-        rule=str(rule),
-        method=str(method),
-        theta0=float(theta0),
-        omega0=float(omega0),
+        rule=opts.rule,
+        method=opts.method,
+        theta0=opts.theta0,
+        omega0=opts.omega0,
         attrs={
-            "rtol": float(rtol),
-            "atol": float(atol),
-            "max_turns": int(max_turns),
-            "refine_extrema": bool(refine_extrema),
+            "rtol": opts.rtol,
+            "atol": opts.atol,
+            "max_turns": opts.max_turns,
+            "refine_extrema": opts.refine_extrema,
         },
     )
 
@@ -452,7 +478,7 @@ def region_dataset(
     scalars: dict[str, float] = {}
     swept: dict[str, NDArray[np.float64]] = {}
     for name in SWEEPABLE:
-        arr = np.asarray(given[name], dtype=np.float64)
+        arr = real_array(name, given[name])
         if arr.ndim == 0:
             scalars[name] = float(arr)
         elif arr.ndim == 1 and arr.size:

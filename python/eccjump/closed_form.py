@@ -13,6 +13,7 @@ from numpy.typing import ArrayLike, NDArray
 
 from eccjump import _core
 from eccjump._arrays import broadcast_flat, turn
+from eccjump._checks import real
 
 F = NDArray[np.float64]
 
@@ -21,14 +22,15 @@ def _call(
     name: str, n: int, theta0: float = 0.0, omega0: float = 0.0, **inputs: ArrayLike
 ) -> list[F]:
     shape, flat = broadcast_flat(**inputs)
-    outs = _core.pointwise(name, flat, n, float(theta0), float(omega0))
+    outs = _core.pointwise(name, flat, n, real("theta0", theta0), real("omega0", omega0))
     return [o.reshape(shape) for o in outs]
 
 
-def _n(n: int) -> int:
-    checked = turn(n)
-    assert checked is not None
-    return checked
+def _n(n: object) -> int:
+    """A turn n >= 1 (None is not allowed here: these formulas are for one given turn)."""
+    if n is None:
+        raise TypeError("n must be an integer >= 1 here, not None")
+    return turn(n)  # type: ignore[return-value]
 
 
 def jump_forces(alpha: ArrayLike, chi: ArrayLike, km: ArrayLike, theta_J: ArrayLike) -> tuple[F, F]:
@@ -55,7 +57,7 @@ def in_green_interval(
 ) -> NDArray[np.bool_]:
     """The green-interval test 2 pi n - alpha < theta_J < 2 pi n (any n >= 1 if None)."""
     g = green_turn(alpha, theta_J)
-    return g > 0 if n is None else g == _n(n)
+    return np.asarray(g > 0 if n is None else g == _n(n))
 
 
 def mu_s_min(chi: ArrayLike, km: ArrayLike) -> tuple[F, F]:

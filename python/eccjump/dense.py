@@ -8,6 +8,7 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from eccjump import _core
+from eccjump._checks import real_array
 
 
 class DenseSolution:
@@ -24,10 +25,37 @@ class DenseSolution:
 
     @staticmethod
     def _times(t: ArrayLike) -> tuple[NDArray[np.float64], bool]:
-        tt = np.asarray(t, dtype=np.float64)
+        tt = real_array("t", t)
         if tt.ndim > 1:
             raise ValueError(f"t must be a number or a 1-D array of times, got shape {tt.shape}")
         return np.ascontiguousarray(np.atleast_1d(tt)), tt.ndim == 0
+
+    def __copy__(self) -> DenseSolution:
+        return self  # immutable: copies share the core's interpolant
+
+    def __deepcopy__(self, memo: dict[int, object]) -> DenseSolution:
+        return self
+
+    def same_as(self, other: object, t: ArrayLike | None = None) -> bool:
+        """Whether ``other`` is the same dense output: the same interpolant object, or the
+        same t_min and t_max and the same states at the times ``t`` (default: 33 times evenly
+        spaced over [t_min, t_max]; :class:`RollResult` uses its step times)."""
+        if not isinstance(other, DenseSolution):
+            return False
+        if other._core is self._core:
+            return True
+        if (self.t_min, self.t_max) != (other.t_min, other.t_max):
+            return False
+        times = np.linspace(self.t_min, self.t_max, 33) if t is None else t
+        return bool(np.array_equal(self(times), other(times), equal_nan=True))
+
+    def __eq__(self, other: object) -> bool:
+        """See :meth:`same_as` (states at 33 evenly spaced times)."""
+        if not isinstance(other, DenseSolution):
+            return NotImplemented
+        return self.same_as(other)
+
+    __hash__ = None  # type: ignore[assignment]
 
     def __call__(self, t: ArrayLike) -> NDArray[np.float64]:
         flat, scalar = self._times(t)

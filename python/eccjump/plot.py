@@ -20,14 +20,14 @@ import numpy as np
 from numpy.typing import NDArray
 
 from eccjump import closed_form
+from eccjump._checks import U32_MAX, integer, optional_real
 from eccjump.boundary import alpha_interval_around, alpha_intervals
 from eccjump.classification import Region, jarm
+from eccjump.rolling import RollResult
 
 if TYPE_CHECKING:
     from matplotlib.axes import Axes
     from matplotlib.figure import Figure
-
-    from eccjump.rolling import RollResult
 
 __all__ = [
     "TURN_COLORS",
@@ -41,6 +41,10 @@ __all__ = [
 
 #: Colours of the turns n = 1, 2, 3 (the paper's green, purple, orange); later turns cycle.
 TURN_COLORS = ("#2ca02c", "#8e44ad", "#ff7f0e", "#1f77b4", "#d62728")
+
+
+#: The most points a curve is sampled at (a bound on memory, not on accuracy).
+MAX_POINTS = 10**7
 
 
 def _plt() -> Any:
@@ -85,6 +89,8 @@ def fig3b(
 
     The curve's line has gid ``"mu"``, the minimum's marker gid ``"mu_s_min"``.
     """
+    n_points = integer("n_points", n_points, 2, MAX_POINTS)
+    n = integer("n", n, 1, U32_MAX)
     fig, ax = _new_axes(ax, (7.5, 4.8))
     base = 360.0 * (n - 1)
     theta_deg = np.linspace(base, base + 360.0, n_points)
@@ -546,6 +552,10 @@ def trajectory(
     """Four panels of a :func:`eccjump.roll` run: theta against t, and theta', F_x, F_y and
     the friction ratio |F_x|/F_y (only where F_y > 0, with the line mu_s) against theta in
     degrees; every event marked with a vertical line. Uses the dense output if present."""
+    if not isinstance(result, RollResult):
+        raise TypeError(f"result must be a RollResult, not {type(result).__name__}")
+    n_points = integer("n_points", n_points, 2, MAX_POINTS)
+    optional_real("ratio_max", ratio_max)
     plt = _plt()
     si = result.units is not None
     u_t, u_w, u_f = ("s", "rad/s", "N") if si else (r"$\sqrt{R/g}$", r"$\sqrt{g/R}$", "$Mg$")
@@ -621,6 +631,9 @@ def region_map(region: Region, *, panels: int = 4) -> Figure:
     their turn n (turns past 5 share one colour). The first panel projects over k_m (the
     smallest n of any k_m on the grid); the others are the ``panels - 1`` k_m slices with the
     most JARM points."""
+    if not isinstance(region, Region):
+        raise TypeError(f"region must be a Region, not {type(region).__name__}")
+    panels = integer("panels", panels, 1, 64)
     plt = _plt()
     from matplotlib.colors import ListedColormap
     from matplotlib.patches import Patch

@@ -13,13 +13,15 @@ Equations (units g = R = M = 1; ``docs/paper_formulas.md`` lists how each was ch
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass, replace
+from dataclasses import dataclass, fields, replace
 from typing import Literal, NamedTuple
 
 import numpy as np
 from numpy.typing import NDArray
 
 from eccjump import _core
+from eccjump._arrays import same_values
+from eccjump._checks import U64_MAX, flag, integer, optional_real, real, text
 from eccjump.body import Cylinder
 from eccjump.dense import DenseSolution
 from eccjump.units import Units
@@ -37,7 +39,7 @@ class Event(NamedTuple):
     omega: float
 
 
-@dataclass(frozen=True)
+@dataclass(frozen=True, eq=False)
 class RollResult:
     """The outcome of :func:`roll`, in the spirit of scipy's ``OdeResult``.
 
@@ -126,21 +128,48 @@ class RollResult:
         The dense output is dropped (it stays available on the dimensionless result)."""
         if self.units is not None:
             raise ValueError("units: this result is already in SI units")
+        if units is not None and not isinstance(units, Units):
+            raise TypeError(f"units must be a Units or None, not {type(units).__name__}")
         u = units if units is not None else Units(g=g, R=R, M=M)
-        return replace(
-            self,
-            t=self.t * u.time,
-            omega=self.omega * u.rate,
-            omega_dot=self.omega_dot * u.acceleration,
-            Fx=self.Fx * u.force,
-            Fy=self.Fy * u.force,
-            l=self.l * u.length,
-            events=tuple(
-                Event(e.name, e.t * u.time, e.theta, e.omega * u.rate) for e in self.events
-            ),
-            sol=None,
-            units=u,
-        )
+        with np.errstate(over="ignore"):
+            out = replace(
+                self,
+                t=self.t * u.time,
+                omega=self.omega * u.rate,
+                omega_dot=self.omega_dot * u.acceleration,
+                Fx=self.Fx * u.force,
+                Fy=self.Fy * u.force,
+                l=self.l * u.length,
+                events=tuple(
+                    Event(e.name, e.t * u.time, e.theta, e.omega * u.rate) for e in self.events
+                ),
+                sol=None,
+                units=u,
+            )
+        for name in ("t", "omega", "omega_dot", "Fx", "Fy", "l"):
+            before, after = getattr(self, name), getattr(out, name)
+            if not np.array_equal(np.isfinite(before), np.isfinite(after)):
+                raise ValueError(
+                    f"units: {name} in SI units overflows float64 (g = {u.g:g}, R = {u.R:g}, "
+                    f"M = {u.M:g})"
+                )
+        return out
+
+    def __eq__(self, other: object) -> bool:
+        """Field by field: arrays by shape, dtype and values (NaN equal to NaN); the dense
+        output ``sol`` by :meth:`DenseSolution.same_as` at the step times ``t``."""
+        if type(other) is not type(self):
+            return NotImplemented
+        for f in fields(self):
+            x, y = getattr(self, f.name), getattr(other, f.name)
+            if f.name == "sol":
+                if (x is None) != (y is None) or (x is not None and not x.same_as(y, self.t)):
+                    return False
+            elif not same_values(x, y):
+                return False
+        return True
+
+    __hash__ = None  # type: ignore[assignment]  # mutable numpy arrays inside
 
 
 def _result(values: dict[str, object]) -> RollResult:
@@ -195,30 +224,31 @@ def roll(
     """
     if not isinstance(body, Cylinder):
         raise TypeError(f"body must be a Cylinder, not {type(body).__name__}")
-    if isinstance(max_steps, bool) or not isinstance(max_steps, int | np.integer) or max_steps < 1:
-        raise ValueError(f"max_steps = {max_steps!r} is outside the allowed range [1, inf)")
+    a = real("alpha", alpha)
+    mu = optional_real("mu_s", mu_s)
+    rule = text("rule", rule)
     raw = _core.roll(
         body.chi,
         body.km,
-        float(alpha),
-        theta0=float(theta0),
-        omega0=float(omega0),
-        mu_s=None if mu_s is None else float(mu_s),
-        t_max=float(t_max),
-        theta_max=float(theta_max),
-        rtol=float(rtol),
-        atol=float(atol),
-        max_steps=int(max_steps),
-        dense_output=bool(dense_output),
-        rule=str(rule),
+        a,
+        theta0=real("theta0", theta0),
+        omega0=real("omega0", omega0),
+        mu_s=mu,
+        t_max=real("t_max", t_max),
+        theta_max=real("theta_max", theta_max),
+        rtol=real("rtol", rtol),
+        atol=real("atol", atol),
+        max_steps=integer("max_steps", max_steps, 1, U64_MAX),
+        dense_output=flag("dense_output", dense_output),
+        rule=rule,
     )
     sol = DenseSolution(raw["sol"]) if "sol" in raw else None
     return _result(
         {
             "body": body,
-            "alpha": float(alpha),
-            "mu_s": None if mu_s is None else float(mu_s),
-            "rule": str(rule),
+            "alpha": a,
+            "mu_s": mu,
+            "rule": rule,
             "t": raw["t"],
             "theta": raw["theta"],
             "omega": raw["omega"],

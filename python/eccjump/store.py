@@ -36,6 +36,8 @@ from typing import TYPE_CHECKING, Any
 import numpy as np
 from numpy.typing import NDArray
 
+from eccjump._checks import mapping
+from eccjump._checks import path as check_path
 from eccjump.classification import Region
 from eccjump.fields import DTYPES, FIELDS, FILL
 from eccjump.labelled import (
@@ -62,7 +64,10 @@ def format_of(path: str | os.PathLike) -> str:
     """``"netcdf"``, ``"zarr"`` or ``"npz"`` from the suffix of ``path``."""
     suffix = Path(path).suffix.lower()
     if suffix not in FORMATS:
-        raise ValueError(f"unknown output format {suffix!r} of {path}; use .nc, .zarr or .npz")
+        raise ValueError(
+            f"path {str(path)[-80:]!r}: unknown output format {suffix[:20]!r}; "
+            "use .nc, .zarr or .npz"
+        )
     return FORMATS[suffix]
 
 
@@ -257,7 +262,10 @@ def save(
     until then; on failure nothing is left behind. The directory of ``path`` must exist.
     ``.npz`` needs numpy only.
     """
-    path = Path(path)
+    path = Path(check_path("path", path))
+    mapping("attrs", attrs)
+    if not isinstance(obj, Region | dict) and not hasattr(obj, "data_vars"):
+        raise TypeError(f"obj must be a Region, an xarray.Dataset or a layout, not {type(obj)}")
     fmt = format_of(path)
     check_parent(path)
     lay = _as_layout(obj)
@@ -381,7 +389,7 @@ def load(path: str | os.PathLike) -> Region:
     """A map file (of one map, no swept dimensions) as a :class:`Region`. ``.npz`` needs
     numpy only. The file's ``complete`` and ``alpha_done`` go to ``Region.attrs``. A file
     that is not such a map raises ValueError naming it and what is missing."""
-    lay = load_layout(path)
+    lay = load_layout(check_path("path", path))
     _check_layout(lay, path)
     reg = to_region(lay)
     if "alpha_done" in lay["data_vars"]:

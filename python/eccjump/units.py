@@ -10,6 +10,8 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass
 
+from eccjump._checks import real
+
 
 @dataclass(frozen=True, slots=True)
 class Units:
@@ -21,9 +23,26 @@ class Units:
 
     def __post_init__(self) -> None:
         for name in ("g", "R", "M"):
-            value = getattr(self, name)
+            value = real(name, getattr(self, name))
             if not (math.isfinite(value) and value > 0):
-                raise ValueError(f"{name} = {value!r} is outside the allowed range (0, inf)")
+                raise ValueError(f"{name} = {value:g} is outside the allowed range (0, inf)")
+            object.__setattr__(self, name, value)
+        derived = (
+            ("time sqrt(R/g)", "g, R", lambda: math.sqrt(self.R / self.g)),
+            ("rate sqrt(g/R)", "g, R", lambda: 1.0 / math.sqrt(self.R / self.g)),
+            ("acceleration g/R", "g, R", lambda: self.g / self.R),
+            ("force M g", "M, g", lambda: self.M * self.g),
+        )
+        for what, names, scale in derived:
+            try:
+                value = scale()
+            except (ZeroDivisionError, OverflowError):
+                value = math.inf
+            if not (math.isfinite(value) and value > 0):
+                given = ", ".join(f"{n} = {getattr(self, n):g}" for n in names.split(", "))
+                raise ValueError(
+                    f"{given}: the {what} scale is {value:g}; it must be finite and non-zero"
+                )
 
     @property
     def time(self) -> float:

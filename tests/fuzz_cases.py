@@ -1,0 +1,1025 @@
+"""Generated calls of every public entry point, with their contracts: shared by
+``tests/test_fuzz.py`` (hypothesis, a small budget) and ``benches/fuzz_campaign.py`` (a long
+campaign, each call in a worker subprocess with a time and memory limit).
+
+A generator takes a :class:`Drawer` (``integer(lo, hi)``, ``choice(seq)``), backed by
+hypothesis (``HypothesisDrawer``) or by ``random.Random`` (``RandomDrawer``), and returns a
+:class:`Case`: the call and the check of its result. The contract of every call
+(:func:`outcome`): it returns a result that passes the case's check, or raises
+ValueError/TypeError/MemoryError whose message names a parameter of the function and is at
+most 200 characters (store: OSError too, for files). A call given an input of a wrong type
+(a bool, None, text, complex, a masked array) must raise.
+
+Inputs that the Rust core does not bound yet (it is being hardened in parallel) are never
+drawn here; they are listed in :data:`KNOWN_CORE_GAPS`, to be switched on when it does.
+"""
+
+from __future__ import annotations
+
+import atexit
+import math
+import random
+import re
+import shutil
+import tempfile
+from collections.abc import Callable, Sequence
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+
+import eccjump
+from eccjump import closed_form, store
+from eccjump.boundary import alpha_interval_around
+
+
+@dataclass(frozen=True)
+class Gap:
+    """A call the Rust core does not answer as it should yet: ``code`` (an expression over
+    ``eccjump``'s names) must raise ValueError naming ``param`` in <= 200 characters.
+    ``hangs``: it runs for minutes (or without bound) today, so it is not run in CI."""
+
+    code: str
+    param: str
+    what: str
+    hangs: bool = False
+
+
+#: Inputs left out of the generators until the core bounds them (each hangs, allocates
+#: without bound or returns an answer where an error is due today), as reproducers: switch
+#: them on here, and in the generators (see ``threads``, ``_classification_options``,
+#: ``case_roll``, ``case_alpha_intervals``), when the core does.
+KNOWN_CORE_GAPS: dict[str, Gap] = {
+    "n_threads-huge": Gap(
+        "jarm(0.3, 0.5, 0.2, 1.0, n_threads=100_000)", "n_threads",
+        "n_threads is not bounded: a pool of 100000 threads is built (hangs)", hangs=True,
+    ),
+    "n_threads-huge-intervals": Gap(
+        "alpha_intervals(0.3, 0.1, 1.0, n_threads=10**6)", "n_threads",
+        "n_threads is not bounded (hangs)", hangs=True,
+    ),
+    "n_scan-huge": Gap(
+        "alpha_intervals(0.3, 0.1, 1.0, n_scan=10**9)", "n_scan",
+        "n_scan is not bounded: 10**9 angles are scanned (hangs)", hangs=True,
+    ),
+    "theta0-huge-jarm": Gap(
+        "jarm(0.3, 0.5, 0.2, 1.0, theta0=1e15)", "theta0",
+        "|theta0| > 2 pi 1e6 gives an answer (NO_ROOT) computed without a digit of theta0",
+    ),
+    "theta0-huge-roll": Gap(
+        "roll(Cylinder(0.3, 0.2), 0.5, theta0=1e15)", "theta0",
+        "|theta0| > 2 pi 1e6: the run fails (status -1) instead of a ValueError",
+    ),
+    "omega0-huge": Gap(
+        "jarm(0.3, 0.5, 0.2, 1.0, omega0=1e300)", "omega0",
+        "omega0 > 1e6 is accepted (LIFTOFF_EARLIER at theta 0)",
+    ),
+    "max_turns-huge": Gap(
+        "jarm(0.05, 0.1, 0.0, 10.0, method='ode', max_turns=10**9)", "max_turns",
+        "max_turns > 1e6 is accepted (a search that can run for hours)",
+    ),
+    "max_steps-huge": Gap(
+        "roll(Cylinder(0.3, 0.2), 0.5, max_steps=10**12)", "max_steps",
+        "max_steps > 1e7 is accepted (the recorded steps can exhaust memory)",
+    ),
+    "range-bound-message": Gap(
+        "roll(Cylinder(0.3, 0.2), 0.5, theta0=5e-324, theta_max=float('nan'))", "theta_max",
+        "a range bound (theta0 = 5e-324) is printed with all its decimals (394 characters)",
+    ),
+    "inertia-bound-message": Gap(
+        "Cylinder.from_inertia(1e-300, 1.78, 0.468, 1.316)", "I_C",
+        "the bounds [M d^2, M R^2] are printed with all their decimals (over 300 characters)",
+    ),
+    "dense-t-message": Gap(
+        "roll(Cylinder(0.15, 0.02), 0.7, mu_s=1.0, dense_output=True).sol(-5e-324)", "t",
+        "a time outside the run is printed with all its decimals (406 characters)",
+    ),
+    "dense-t-message-kinematics": Gap(
+        "roll(Cylinder(0.15, 0.02), 0.7, mu_s=1.0, dense_output=True).sol.kinematics([-1e300])",
+        "t", "a time outside the run is printed with all its digits (381 characters)",
+    ),
+}  # fmt: skip
+
+HALF_PI = math.pi / 2
+MAX_MESSAGE = 200
+N_REASONS = len(eccjump.Reason)
+EVENT_NAMES = set(eccjump.EVENT_NAMES)
+
+
+class Drawer:
+    """Draws integers and choices (hypothesis or random). ``clean``: draw only good types and
+    values inside the ranges (ends included), for calls that must return a result."""
+
+    clean = False
+
+    def integer(self, lo: int, hi: int) -> int:
+        raise NotImplementedError
+
+    def choice(self, seq: Sequence[Any]) -> Any:
+        return seq[self.integer(0, len(seq) - 1)]
+
+
+class RandomDrawer(Drawer):
+    def __init__(self, seed: int) -> None:
+        self.rng = random.Random(seed)
+
+    def integer(self, lo: int, hi: int) -> int:
+        return self.rng.randint(lo, hi)
+
+
+class HypothesisDrawer(Drawer):
+    def __init__(self, data: Any) -> None:
+        from hypothesis import strategies as st
+
+        self.data, self.st = data, st
+
+    def integer(self, lo: int, hi: int) -> int:
+        return self.data.draw(self.st.integers(lo, hi))
+
+
+class Bad:
+    """Marks that a value of a wrong type was drawn (the call must raise)."""
+
+
+@dataclass
+class Case:
+    name: str
+    fn: Callable[..., Any]
+    args: tuple = ()
+    kwargs: dict[str, Any] = field(default_factory=dict)
+    params: tuple[str, ...] = ()
+    check: Callable[[Any, Case], None] | None = None
+    must_raise: bool = False
+    allow_oserror: bool = False
+    info: dict[str, Any] = field(default_factory=dict)
+
+    def describe(self) -> str:
+        def short(v: object) -> str:
+            r = repr(v).replace("\n", " ")
+            return r if len(r) <= 60 else r[:57] + "..."
+
+        parts = [short(a) for a in self.args] + [f"{k}={short(v)}" for k, v in self.kwargs.items()]
+        return f"{self.name}({', '.join(parts)})"
+
+
+# --- values -----------------------------------------------------------------------------
+
+SPECIAL = (
+    math.nan,
+    math.inf,
+    -math.inf,
+    0.0,
+    -0.0,
+    5e-324,
+    -5e-324,
+    2.2250738585072014e-308,
+    1e300,
+    -1e300,
+    1e-300,
+)
+HUGE_INTS = (10**400, -(10**400), 2**64, 2**63)
+WRONG = (
+    True,
+    False,
+    None,
+    "0.5",
+    b"1",
+    1 + 0j,
+    np.complex128(0.5),
+    np.bool_(True),
+    np.ma.masked_array([0.5], mask=[True]),
+    np.ma.masked_array(0.5),
+    object(),
+    [0.5, [0.5, 0.6]],  # ragged
+    np.array(["a"]),
+    np.array([None], dtype=object),
+    np.array([0.5 + 1j]),
+    np.array([True]),
+)
+
+
+def wrong(d: Drawer, case: Case) -> Any:
+    case.must_raise = True
+    return d.choice(WRONG)
+
+
+def real(d: Drawer, case: Case, lo: float, hi: float, *, bad: bool = True) -> Any:
+    """A scalar: mostly inside [lo, hi], its ends and one ulp past them, specials, numpy
+    scalars, ints, huge ints, and (if ``bad``) a wrong type."""
+    kind = d.integer(0, 11 if bad else 10)
+    x = lo + (hi - lo) * d.integer(0, 1000) / 1000
+    if d.clean and kind in (5, 6, 9, 11):
+        kind = 0
+    if kind <= 3:
+        return x
+    if kind == 4:
+        return d.choice((lo, hi))
+    if kind == 5:
+        return float(d.choice((np.nextafter(lo, -math.inf), np.nextafter(hi, math.inf))))
+    if kind == 6:
+        return d.choice(SPECIAL)
+    if kind == 7:
+        return d.choice((np.float64, np.float32, np.float16, np.longdouble))(x)
+    if kind == 8:
+        return d.choice(
+            (int(lo), int(hi), np.int64(round(x)), np.uint8(min(255, max(0, round(x)))))
+        )
+    if kind == 9:
+        return d.choice(HUGE_INTS)
+    if kind == 10:
+        return np.array(x) if d.integer(0, 1) else np.array(x, dtype=">f8")
+    return wrong(d, case)
+
+
+SHAPES = ((), (0,), (1,), (2,), (3,), (2, 2), (1, 3))
+
+
+def array(d: Drawer, case: Case, lo: float, hi: float, *, max_size: int = 4) -> Any:
+    """An array-like of values from :func:`real` (no wrong types inside) in some layout."""
+    shape = d.choice([s for s in SHAPES if math.prod(s) <= max_size])
+    size = math.prod(shape)
+    vals = []
+    for _ in range(size):
+        v = real(d, case, lo, hi, bad=False)
+        vals.append(math.nan if isinstance(v, int) and abs(v) > 2**1000 else float(v))
+    a = np.array(vals, dtype=np.float64).reshape(shape)
+    layout = d.integer(0, 10)
+    if d.clean and layout == 7:
+        layout = 8
+    if layout == 0:
+        return a.tolist()
+    if layout == 1:
+        return a.astype(">f8")
+    if layout == 2:  # strided
+        b = np.repeat(a.ravel(), 2)[::2].reshape(shape) if size else a
+        return b
+    if layout == 3:
+        a.setflags(write=False)
+        return a
+    if layout == 4:
+        return a.astype(np.float32)
+    if layout == 5 and size and np.isfinite(a).all():
+        return np.round(a).astype(np.int64)
+    if layout == 6:
+        return real(d, case, lo, hi)  # a scalar (may be a wrong type)
+    if layout == 7:
+        return wrong(d, case)
+    return a
+
+
+def integer_param(d: Drawer, case: Case, good: Sequence[int], bad_values: Sequence[Any]) -> Any:
+    k = d.integer(0, 5)
+    if k <= 2 or (d.clean and k > 3):
+        return d.choice(good)
+    if k == 3:
+        v = d.choice(good)
+        return d.choice((np.int64(v), np.uint32(v), np.array(v)))
+    v = d.choice(bad_values)
+    if isinstance(v, float) or isinstance(v, bool | np.bool_) or v is None or isinstance(v, str):
+        case.must_raise = True
+    return v
+
+
+INT_BAD = (-1, 0, 2.5, 0.5, 1.0, True, None, "2", 2**32, 2**64, 10**400, -(10**400))
+
+
+def turn(d: Drawer, case: Case, *, allow_none: bool = True, per_point: bool = False) -> Any:
+    if allow_none and d.integer(0, 2) == 0:
+        return None
+    if per_point and d.integer(0, 3) == 0 and not d.clean:
+        return d.choice(([1, 2], np.array([[1], [2]]), np.array([1, 0]), [1.0, 2.0], [True]))
+    return integer_param(d, case, (1, 2, 3), [v for v in INT_BAD if v is not None])
+
+
+def threads(d: Drawer, case: Case) -> Any:
+    # Huge thread counts are a core gap (KNOWN_CORE_GAPS): only what a pool can make.
+    return integer_param(d, case, (0, 1, 2), (-1, 2.5, True, None, 2**64, 10**400))
+
+
+def text_param(d: Drawer, case: Case, good: Sequence[str]) -> Any:
+    k = d.integer(0, 4)
+    if k <= 2 or d.clean:
+        return d.choice(good)
+    if k == 3:
+        return d.choice(("bogus", "", "PAPER"))
+    case.must_raise = True
+    return d.choice((None, 1, b"paper", True))
+
+
+def flag(d: Drawer, case: Case) -> Any:
+    k = d.integer(0, 3)
+    if k <= 2 or d.clean:
+        return d.choice((True, False, np.bool_(True)))
+    case.must_raise = True
+    return d.choice((1, 0.0, None, "yes"))
+
+
+# --- checks -------------------------------------------------------------------------------
+
+
+def expect(cond: bool, what: str) -> None:
+    if not cond:
+        raise ContractViolation(what)
+
+
+class ContractViolation(AssertionError):
+    """A result that breaks the documented contract (silent garbage)."""
+
+
+def _points(case: Case) -> tuple[np.ndarray, ...] | None:
+    """The broadcast float inputs of a point-wise call, or None if they do not convert."""
+    try:
+        vals = [np.asarray(case.info[k], dtype=np.float64) for k in case.info["points"]]
+        return tuple(np.broadcast_arrays(*vals))
+    except (TypeError, ValueError, OverflowError):
+        return None
+
+
+def check_jarm_result(res: Any, case: Case, shape: tuple[int, ...] | None = None) -> None:
+    expect(isinstance(res, eccjump.JarmResult), "not a JarmResult")
+    fields = res.fields()
+    if shape is None:
+        pts = _points(case)
+        shape = pts[0].shape if pts else res.shape
+        n = case.kwargs.get("n")
+        if pts and isinstance(n, list | np.ndarray):  # a turn per point broadcasts too
+            shape = np.broadcast_shapes(shape, np.shape(n))
+    for k, v in fields.items():
+        expect(v.shape == shape, f"{k} has shape {v.shape}, not {shape}")
+    reason = res.reason.astype(int)
+    expect(bool(((reason >= 0) & (reason < N_REASONS)).all()), "reason codes out of range")
+    expect(bool((res.is_jarm == (reason == 0)).all()), "is_jarm differs from reason == JARM")
+    jarm = reason == 0
+    expect(bool(np.isfinite(res.theta_J[jarm]).all()), "JARM point without a finite theta_J")
+    if case.kwargs.get("rule") == "paper":  # normal_force: JARMs outside any green turn, n 0
+        expect(bool((res.n[jarm] >= 1).all()), "JARM point with n < 1")
+    pts = _points(case) if case.name == "jarm" else None
+    if pts is not None and pts[0].shape != shape:
+        pts = tuple(np.broadcast_to(p, shape) for p in pts)
+    if pts is not None and pts[0].shape == shape:
+        alpha, chi, km, mu = pts[:4]
+        with np.errstate(invalid="ignore"):
+            bad = (
+                np.isnan(alpha + chi + km + mu)
+                | (alpha < 0)
+                | (alpha > HALF_PI + 1e-12)
+                | (chi < 0)
+                | (chi > 1)
+                | (km < 0)
+                | (km > 1 - chi + 1e-12)
+                | (mu < 0)
+            )
+            good = (
+                (alpha >= 0)
+                & (alpha <= HALF_PI)
+                & (chi >= 0)
+                & (chi <= 1)
+                & (km >= 0)
+                & (km <= 1 - chi - 1e-12)
+                & (mu >= 0)
+                & np.isfinite(mu)
+            )
+        invalid = reason == int(eccjump.Reason.INVALID_PARAMS)
+        expect(bool(invalid[bad].all()), "an invalid point is not INVALID_PARAMS")
+        expect(not bool(invalid[good].any()), "a valid point is INVALID_PARAMS")
+
+
+def check_region(res: Any, case: Case) -> None:
+    expect(isinstance(res, eccjump.Region), "not a Region")
+    shape = (res.alpha.size, res.chi.size, res.km_frac.size)
+    check_jarm_result(res.result, case, shape)
+
+
+def check_dataset(res: Any, case: Case) -> None:
+    expect(hasattr(res, "data_vars") and "reason" in res.data_vars, "not a map dataset")
+    r = np.asarray(res["reason"]).astype(int)
+    expect(bool(((r >= 0) & (r < N_REASONS)).all()), "reason codes out of range")
+
+
+def check_roll(res: Any, case: Case) -> None:
+    expect(isinstance(res, eccjump.RollResult), "not a RollResult")
+    n = res.t.size
+    expect(n >= 1, "no initial point")
+    for k in ("theta", "omega", "omega_dot", "Fx", "Fy", "l", "friction_ratio"):
+        expect(getattr(res, k).shape == (n,), f"{k} has another length than t")
+    expect(bool(np.isfinite(res.t).all()), "t not finite")
+    expect(bool((np.diff(res.t) >= 0).all()), "t decreases")
+    expect(bool(np.isfinite(res.theta).all() and np.isfinite(res.omega).all()), "state not finite")
+    expect(res.status in (-1, 0, 1), f"status {res.status}")
+    expect((res.status == 1) == (res.terminal_event is not None), "status vs terminal_event")
+    expect(res.terminal_event is None or res.terminal_event in EVENT_NAMES, "unknown event")
+    expect(all(e.name in EVENT_NAMES for e in res.events), "unknown event name")
+    expect(isinstance(res.message, str) and len(res.message) <= MAX_MESSAGE, "message")
+    expect(res == res, "a result is not equal to itself")
+
+
+def check_si(res: Any, case: Case) -> None:
+    check_roll(res, case)
+    expect(res.units is not None, "units not recorded")
+
+
+def check_states(res: Any, case: Case) -> None:
+    expect(isinstance(res, np.ndarray) and res.shape[0] == 2, "not a (2, ...) array")
+    expect(bool(np.isfinite(res).all()), "dense states not finite")
+
+
+def check_kinematics(res: Any, case: Case) -> None:
+    expect(isinstance(res, dict) and "theta" in res, "not a dict of arrays")
+    for k, v in res.items():
+        expect(bool(np.isfinite(v[np.isfinite(v)]).all()), k)
+        if k in ("theta", "omega", "omega_dot", "Fx", "Fy"):
+            expect(bool(np.isfinite(v).all()), f"{k} not finite")
+
+
+def check_intervals(res: Any, case: Case) -> None:
+    pts = _points(case)
+    expect(isinstance(res, list), "not a list")
+    if pts is not None:
+        expect(len(res) == pts[0].size, "one list per body")
+    for ivs in res:
+        for lo, hi in ivs:
+            expect(math.isfinite(lo) and math.isfinite(hi), "interval end not finite")
+            expect(0 <= lo <= hi <= HALF_PI + 1e-12, f"interval ({lo}, {hi}) outside [0, pi/2]")
+
+
+def check_mu_min(res: Any, case: Case) -> None:
+    pts = _points(case)
+    expect(isinstance(res, np.ndarray) and res.dtype == np.float64, "not a float64 array")
+    if pts is not None:
+        expect(res.shape == pts[0].shape, "shape")
+    with np.errstate(invalid="ignore"):
+        expect(bool((np.isnan(res) | (res >= 0)).all()), "negative mu_s,min")
+
+
+def check_around(res: Any, case: Case) -> None:
+    lo, hi = res
+    expect(lo.shape == hi.shape, "lo and hi shapes")
+    expect(bool((np.isnan(lo) == np.isnan(hi)).all()), "one end NaN, not the other")
+    ok = ~np.isnan(lo)
+    expect(bool((lo[ok] <= hi[ok]).all()), "lo > hi")
+
+
+def check_pointwise(res: Any, case: Case) -> None:
+    outs = res if isinstance(res, tuple) else (res,)
+    pts = _points(case)
+    for o in outs:
+        expect(isinstance(o, np.ndarray), "not an array")
+        if pts is not None:
+            expect(o.shape == pts[0].shape, f"shape {o.shape}, not {pts[0].shape}")
+
+
+def check_cylinder(res: Any, case: Case) -> None:
+    expect(isinstance(res, eccjump.Cylinder), "not a Cylinder")
+    expect(0 <= res.chi <= 1 and 0 <= res.km <= 1 - res.chi + 1e-12, "body out of range")
+    expect(math.isfinite(res.Ic) and res.Icm >= -1e-12, "inertia")
+    expect(res == eccjump.Cylinder(res.chi, res.km), "not equal to its copy")
+
+
+def check_units(res: Any, case: Case) -> None:
+    for k in ("time", "rate", "length", "acceleration", "force"):
+        v = getattr(res, k)
+        expect(math.isfinite(v) and v > 0, f"{k} scale {v}")
+
+
+def check_any(res: Any, case: Case) -> None:
+    pass
+
+
+# --- cases --------------------------------------------------------------------------------
+
+
+def _classification_options(d: Drawer, case: Case, ode_ok: bool) -> dict[str, Any]:
+    method = text_param(d, case, ("closed_form", "ode") if ode_ok else ("closed_form",))
+    return {
+        "method": method,
+        "rule": text_param(d, case, ("paper", "normal_force")),
+        # |theta0| beyond 1e6 and omega0 beyond 1e6: KNOWN_CORE_GAPS (not drawn).
+        "theta0": real(d, case, -7.0, 7.0),
+        "omega0": real(d, case, 0.0, 3.0),
+        "rtol": d.choice((1e-10, 1e-6, 1e-3, *(() if d.clean else (0.0, -1.0, math.nan, 1.0)))),
+        "atol": d.choice((1e-12, 1e-8, *(() if d.clean else (0.0, -1.0, math.nan, math.inf)))),
+        "max_turns": integer_param(d, case, (1, 3, 20), INT_BAD),
+        "refine_extrema": flag(d, case),
+        "n_threads": threads(d, case),
+    }
+
+
+def case_jarm(d: Drawer) -> Case:
+    c = Case("jarm", eccjump.jarm, params=JARM_PARAMS, check=check_jarm_result)
+    alpha = array(d, c, 0.0, HALF_PI)
+    chi = array(d, c, 0.0, 1.0)
+    km = array(d, c, 0.0, 0.5)
+    mu = array(d, c, 0.0, 3.0)
+    c.args = (alpha, chi, km, mu)
+    c.kwargs = {"n": turn(d, c, per_point=True), **_classification_options(d, c, True)}
+    c.info = {
+        "alpha": alpha,
+        "chi": chi,
+        "km": km,
+        "mu_s": mu,
+        "points": ("alpha", "chi", "km", "mu_s"),
+    }
+    return c
+
+
+JARM_PARAMS = (
+    "alpha", "chi", "km", "mu_s", "n", "method", "rule", "theta0", "omega0", "rtol", "atol",
+    "max_turns", "refine_extrema", "n_threads", "shapes",
+)  # fmt: skip
+
+
+def _axis(d: Drawer, c: Case, lo: float, hi: float) -> Any:
+    a = array(d, c, lo, hi, max_size=3)
+    return a
+
+
+def case_region(d: Drawer) -> Case:
+    c = Case(
+        "region", eccjump.region, params=(*JARM_PARAMS, "output", "chunks"), check=check_region
+    )
+    opts = _classification_options(d, c, False)
+    c.args = (real(d, c, 0.0, 3.0), turn(d, c))
+    c.kwargs = {
+        "alpha": _axis(d, c, 0.0, HALF_PI),
+        "chi": _axis(d, c, 0.0, 1.0),
+        "km": _axis(d, c, 0.0, 1.0),
+        **opts,
+    }
+    return c
+
+
+def case_region_dataset(d: Drawer) -> Case:
+    c = Case(
+        "region_dataset", eccjump.region_dataset, params=(*JARM_PARAMS, "output", "chunks"),
+        check=check_dataset,
+    )  # fmt: skip
+    mu = d.choice((1.0, [0.5, 2.0], [], [[1.0]], "1", None, [math.nan]))
+    if mu in ("1", None):
+        c.must_raise = True
+    c.args = (mu, turn(d, c))
+    c.kwargs = {
+        "alpha": _axis(d, c, 0.0, HALF_PI),
+        "chi": _axis(d, c, 0.0, 1.0),
+        "km": _axis(d, c, 0.0, 1.0),
+        "theta0": d.choice((0.0, [0.0, 0.1], True)),
+        "omega0": real(d, c, 0.0, 2.0),
+    }
+    if c.kwargs["theta0"] is True:
+        c.must_raise = True
+    return c
+
+
+ROLL_PARAMS = (
+    "body", "alpha", "theta0", "omega0", "mu_s", "t_max", "theta_max", "rtol", "atol",
+    "dense_output", "max_steps", "rule",
+)  # fmt: skip
+
+
+def _body(d: Drawer, c: Case) -> Any:
+    if d.integer(0, 7) == 0:
+        c.must_raise = True
+        return d.choice((None, (0.3, 0.1), 0.3, "body"))
+    chi = d.integer(0, 100) / 100
+    return eccjump.Cylinder(chi, (1 - chi) * d.integer(0, 100) / 100)
+
+
+def case_roll(d: Drawer) -> Case:
+    c = Case("roll", eccjump.roll, params=ROLL_PARAMS, check=check_roll)
+    c.args = (_body(d, c), real(d, c, 0.0, HALF_PI))
+    c.kwargs = {
+        "theta0": real(d, c, -7.0, 7.0),
+        "omega0": real(d, c, 0.0, 3.0),
+        "mu_s": None if d.integer(0, 2) == 0 else real(d, c, 0.0, 3.0),
+        "t_max": real(d, c, 0.0, 50.0),
+        "theta_max": d.choice((math.inf, 10.0, 1e300, *(() if d.clean else (-1.0, math.nan)))),
+        "rtol": d.choice((1e-10, 1e-6, *(() if d.clean else (0.0, math.nan, 1e-16)))),
+        "atol": d.choice((1e-12, 1e-8, *(() if d.clean else (0.0, -1.0)))),
+        "dense_output": flag(d, c),
+        # max_steps is bounded to 10**4 here: large t_max with 10**7 steps is slow, not wrong.
+        "max_steps": integer_param(d, c, (1, 10, 10_000), INT_BAD),
+        "rule": text_param(d, c, ("paper", "normal_force")),
+    }
+    return c
+
+
+_RUN: list[eccjump.RollResult] = []
+
+
+def dense_run() -> eccjump.RollResult:
+    if not _RUN:
+        _RUN.append(eccjump.roll(eccjump.Cylinder(0.15, 0.02), 0.7, mu_s=1.0, dense_output=True))
+    return _RUN[0]
+
+
+def case_to_si(d: Drawer) -> Case:
+    c = Case("to_si", dense_run().to_si, params=("units", "g", "R", "M"), check=check_si)
+    if d.integer(0, 4) == 0:
+        c.args = (d.choice((eccjump.Units(), None, "SI", 9.81)),)
+        c.must_raise = c.args[0] not in (None,) and not isinstance(c.args[0], eccjump.Units)
+    else:
+        c.kwargs = {k: real(d, c, 1e-3, 1e3) for k in ("g", "R", "M")}
+    return c
+
+
+def _times(d: Drawer, c: Case) -> Any:
+    r = dense_run()
+    return array(d, c, float(r.t[0]), float(r.t[-1]), max_size=4)
+
+
+def case_sol(d: Drawer) -> Case:
+    c = Case("sol", dense_run().sol, params=("t",), check=check_states)
+    c.args = (_times(d, c),)
+    return c
+
+
+def case_kinematics(d: Drawer) -> Case:
+    c = Case("sol.kinematics", dense_run().sol.kinematics, params=("t",), check=check_kinematics)
+    c.args = (_times(d, c),)
+    return c
+
+
+def case_alpha_intervals(d: Drawer) -> Case:
+    c = Case(
+        "alpha_intervals", eccjump.alpha_intervals,
+        params=("chi", "km", "mu_s", "n", "rule", "n_scan", "n_threads", "shapes"),
+        check=check_intervals,
+    )  # fmt: skip
+    chi, km = array(d, c, 0.0, 1.0, max_size=2), array(d, c, 0.0, 0.5, max_size=2)
+    c.args = (chi, km, real(d, c, 0.0, 3.0), turn(d, c))
+    c.kwargs = {
+        "rule": text_param(d, c, ("paper", "normal_force")),
+        "n_scan": integer_param(d, c, (2, 10, 40), (1, -1, 2.5, True, None, 10**400, 2**64)),
+        "n_threads": threads(d, c),
+    }
+    c.info = {"chi": chi, "km": km, "points": ("chi", "km")}
+    return c
+
+
+def case_mu_s_min_path(d: Drawer) -> Case:
+    c = Case(
+        "mu_s_min_path", eccjump.mu_s_min_path,
+        params=("alpha", "chi", "km", "n", "rule", "n_threads", "shapes"), check=check_mu_min,
+    )  # fmt: skip
+    alpha, chi = array(d, c, 0.0, HALF_PI, max_size=3), array(d, c, 0.0, 1.0, max_size=3)
+    km = array(d, c, 0.0, 0.5, max_size=3)
+    c.args = (alpha, chi, km, turn(d, c))
+    c.kwargs = {"rule": text_param(d, c, ("paper", "normal_force")), "n_threads": threads(d, c)}
+    c.info = {"alpha": alpha, "chi": chi, "km": km, "points": ("alpha", "chi", "km")}
+    return c
+
+
+def case_alpha_interval_around(d: Drawer) -> Case:
+    c = Case(
+        "alpha_interval_around", alpha_interval_around,
+        params=("seed", "chi", "km", "mu_s", "n", "rule", "step", "n_threads", "shapes"),
+        check=check_around,
+    )  # fmt: skip
+    c.args = (
+        array(d, c, 0.0, HALF_PI, max_size=3),
+        array(d, c, 0.0, 1.0, max_size=3),
+        array(d, c, 0.0, 0.5, max_size=3),
+        real(d, c, 0.0, 3.0),
+        turn(d, c),
+    )
+    c.kwargs = {
+        "rule": text_param(d, c, ("paper", "normal_force")),
+        "step": real(d, c, 1e-6, 0.1),
+        "n_threads": threads(d, c),
+    }
+    return c
+
+
+#: closed_form functions: name -> (array inputs with ranges, takes n, takes theta0/omega0).
+A = ("alpha", 0, HALF_PI)
+CHI, KM, MU = ("chi", 0, 1), ("km", 0, 0.5), ("mu_s", 0, 3)
+TH, TJ = ("theta", 0, 13), ("theta_J", 5, 6.3)
+CLOSED_FORMS: dict[str, tuple[tuple[tuple[str, float, float], ...], str, bool]] = {
+    "jump_forces": ((A, CHI, KM, TJ), "", False),
+    "mu": ((CHI, KM, TJ), "", False),
+    "green_turn": ((A, ("theta_J", 0, 13)), "", False),
+    "in_green_interval": ((A, ("theta_J", 0, 13)), "optional", False),
+    "mu_s_min": ((CHI, KM), "", False),
+    "theta_J_range": ((CHI, KM, MU), "required", False),
+    "alpha_min": ((CHI, KM, MU), "required", False),
+    "gamma": ((CHI, KM), "", False),
+    "J": ((TH, A, CHI, KM), "", False),
+    "liftoff_function": ((TH, A, CHI, KM), "", True),
+    "J_brackets": ((A, CHI, KM), "required", False),
+    "theta_nJ": ((A, CHI, KM), "required", False),
+    "path_forces": ((TH, A, CHI, KM), "", True),
+}  # fmt: skip
+
+
+def case_closed_form(d: Drawer) -> Case:
+    name = d.choice(sorted(CLOSED_FORMS))
+    inputs, n_kind, theta = CLOSED_FORMS[name]
+    params = (*(i[0] for i in inputs), "n", "theta0", "omega0", "shapes")
+    c = Case(
+        f"closed_form.{name}", getattr(closed_form, name), params=params, check=check_pointwise
+    )
+    c.args = tuple(array(d, c, lo, hi) for _, lo, hi in inputs)
+    if n_kind:
+        n = turn(d, c, allow_none=True)
+        if n is None and n_kind == "required":
+            c.must_raise = True
+        c.kwargs["n"] = n
+    if theta:
+        c.kwargs["theta0"] = real(d, c, -7.0, 7.0)
+        c.kwargs["omega0"] = real(d, c, 0.0, 3.0)
+    c.info = {
+        **dict(zip((i[0] for i in inputs), c.args, strict=True)),
+        "points": tuple(i[0] for i in inputs),
+    }
+    return c
+
+
+def case_cylinder(d: Drawer) -> Case:
+    k = d.integer(0, 2)
+    if k == 0:
+        c = Case("Cylinder", eccjump.Cylinder, params=("chi", "km"), check=check_cylinder)
+        c.args = (real(d, c, 0.0, 1.0), real(d, c, 0.0, 1.0))
+    elif k == 1:
+        c = Case(
+            "Cylinder.from_inertia", eccjump.Cylinder.from_inertia,
+            params=("M", "R", "d", "I_C"), check=check_cylinder,
+        )  # fmt: skip
+        c.args = tuple(real(d, c, 0.0, 2.0) for _ in range(4))
+    else:
+        c = Case(
+            "Cylinder.from_shell_and_line", eccjump.Cylinder.from_shell_and_line,
+            params=("m_C", "m_P", "R", "d"), check=check_cylinder,
+        )  # fmt: skip
+        c.args = tuple(real(d, c, 0.0, 2.0) for _ in range(4))
+    return c
+
+
+def case_units(d: Drawer) -> Case:
+    c = Case("Units", eccjump.Units, params=("g", "R", "M"), check=check_units)
+    c.kwargs = {k: real(d, c, 1e-3, 1e3) for k in ("g", "R", "M")}
+    return c
+
+
+_TMP: list[Path] = []
+
+
+def tmpdir() -> Path:
+    if not _TMP:
+        _TMP.append(Path(tempfile.mkdtemp(prefix="eccjump-fuzz-")))
+        atexit.register(shutil.rmtree, _TMP[0], ignore_errors=True)
+    return _TMP[0]
+
+
+def case_store(d: Drawer) -> Case:
+    where = tmpdir()
+    if d.integer(0, 1):
+        c = Case("store.save", store.save, params=("obj", "path", "attrs"), allow_oserror=True)
+        reg = eccjump.region(1.0, alpha=[0.5, 0.7], chi=[0.2], km=[0.1])
+        obj = d.choice((reg, reg, None, 3, "map"))
+        path = d.choice(
+            (
+                where / "m.npz",
+                str(where / "m.npz"),
+                where / "m.txt",
+                None,
+                5,
+                b"m.npz",
+                where / "no" / "m.npz",
+            )
+        )
+        attrs = d.choice((None, {"note": "x"}, 3))
+        c.must_raise = obj is not reg or not isinstance(path, str | Path) or attrs == 3
+        c.args, c.kwargs, c.check = (obj, path), {"attrs": attrs}, check_any
+    else:
+        c = Case("store.load", store.load, params=("path",), allow_oserror=True, check=check_region)
+        good = where / "load.npz"
+        if not good.exists():
+            store.save(eccjump.region(1.0, alpha=[0.5, 0.7], chi=[0.2], km=[0.1]), good)
+        path = d.choice(
+            (good, str(good), None, 7, b"x.npz", where / "missing.npz", where / "x.csv")
+        )
+        c.must_raise = path not in (good, str(good))
+        c.args = (path,)
+    return c
+
+
+def case_plot(d: Drawer) -> Case:
+    from eccjump import plot
+
+    k = d.integer(0, 1)
+    if k == 0:
+        c = Case(
+            "plot.trajectory",
+            plot.trajectory,
+            params=("result", "n_points", "ratio_max"),
+            check=check_any,
+        )
+        c.args = (d.choice((dense_run(), None, "run")),)
+        c.kwargs = {"n_points": integer_param(d, c, (2, 50), (1, 0.5, True, None, 10**400, 10**9))}
+        c.must_raise = c.must_raise or c.args[0] is not dense_run()
+    else:
+        c = Case("plot.region_map", plot.region_map, params=("region", "panels"), check=check_any)
+        reg = eccjump.region(1.0, alpha=[0.5, 0.7], chi=[0.2], km=[0.1])
+        c.args = (d.choice((reg, None, 3)),)
+        c.kwargs = {"panels": integer_param(d, c, (1, 2), (0, 2.5, True, None, 10**400))}
+        c.must_raise = c.must_raise or c.args[0] is not reg
+    return c
+
+
+# --- the command line ----------------------------------------------------------------------
+
+
+def cli_number(d: Drawer, lo: float, hi: float) -> str:
+    k = d.integer(0, 6)
+    if k <= 3:
+        return repr(lo + (hi - lo) * d.integer(0, 1000) / 1000)
+    if k == 4:
+        return d.choice(("nan", "inf", "-inf", "1e400", "-0", "5e-324", "1e300"))
+    if k == 5:
+        return d.choice(("abc", "", "0x10", "1,5", "True", "None", "1j"))
+    return repr(d.choice((lo, hi)))
+
+
+def cli_roll_argv(d: Drawer) -> list[str]:
+    argv = ["roll", "--alpha", cli_number(d, 0, 90), "--chi", cli_number(d, 0, 1)]
+    argv += ["--km", cli_number(d, 0, 0.5)]
+    for opt, lo, hi in (
+        ("--mu-s", 0, 3),
+        ("--theta0", -360, 360),
+        ("--omega0", 0, 3),
+        ("--t-max", 0, 50),
+        ("--rtol", 1e-12, 1e-3),
+    ):
+        if d.integer(0, 2) == 0:
+            argv += [opt, cli_number(d, lo, hi)]
+    if d.integer(0, 1):
+        argv.append("--json")
+    return argv
+
+
+def cli_map_argv(d: Drawer) -> list[str]:
+    out = tmpdir() / f"map{d.integer(0, 3)}{d.choice(('.npz', '.npz', '.txt'))}"
+    argv = ["map", "--mu-s", cli_number(d, 0, 3), "-o", str(out), "--overwrite", "-q"]
+    argv += ["--grid", d.choice(("2", "3", "0", "-1", "2.5", "x"))]
+    for opt, lo, hi in (
+        ("--alpha-min", 0, 45),
+        ("--alpha-max", 45, 90),
+        ("--chi-max", 0, 1),
+        ("--theta0", -360, 360),
+        ("--omega0", 0, 3),
+    ):
+        if d.integer(0, 2) == 0:
+            argv += [opt, cli_number(d, lo, hi)]
+    if d.integer(0, 2) == 0:
+        argv += ["--n", d.choice(("1", "2", "0", "1.5", "99999999999"))]
+    if d.integer(0, 2) == 0:
+        argv += ["--threads", d.choice(("0", "1", "-1", "2.5", "99999999999999999999999"))]
+    if d.integer(0, 2) == 0:
+        argv += ["--max-turns", d.choice(("1", "5", "0", "4294967296"))]
+    return argv
+
+
+#: The options each subcommand takes (what an error message must name).
+CLI_PARAMS = (
+    "alpha", "chi", "km", "mu", "mu_s", "mu-s", "theta0", "omega0", "t_max", "t-max", "rtol",
+    "atol", "theta_max", "grid", "n", "threads", "n_threads", "max_turns", "max-turns",
+    "output", "-o", "alpha-min", "alpha-max", "chi-max", "range", "rule", "shapes",
+)  # fmt: skip
+
+
+def check_cli(res: Any, case: Case) -> None:
+    code, out, err = res
+    expect("Traceback" not in err, "a traceback on stderr: " + err.strip()[-150:])
+    expect(code in (0, 1, 2), f"exit status {code}")
+    if code == 0:
+        expect(bool(out.strip()) or case.info["cmd"] == "map", "no output")
+        if "--json" in case.info["argv"]:
+            import json
+
+            s = json.loads(out)
+            expect(s["status"] in (-1, 0, 1), "status")
+    else:
+        last = err.strip().splitlines()[-1] if err.strip() else ""
+        expect(len(last) <= MAX_MESSAGE, f"error line of {len(last)} characters")
+        if code == 2:
+            expect(message_names(last, CLI_PARAMS), f"error names no option: {last[:150]}")
+
+
+def run_cli_inprocess(argv: list[str]) -> tuple[int, str, str]:
+    import contextlib
+    import io
+
+    from eccjump.cli import main
+
+    out, err = io.StringIO(), io.StringIO()
+    with contextlib.redirect_stdout(out), contextlib.redirect_stderr(err):
+        try:
+            code = main(argv)
+        except SystemExit as e:  # argparse
+            code = e.code if isinstance(e.code, int) else 2
+        except Exception:
+            import traceback
+
+            traceback.print_exc()
+            code = 1
+    return code, out.getvalue(), err.getvalue()
+
+
+def case_cli(d: Drawer) -> Case:
+    cmd = d.choice(("roll", "roll", "map"))
+    argv = cli_roll_argv(d) if cmd == "roll" else cli_map_argv(d)
+    return Case(
+        f"cli.{cmd}", run_cli_inprocess, args=(argv,), params=CLI_PARAMS, check=check_cli,
+        info={"cmd": cmd, "argv": argv},
+    )  # fmt: skip
+
+
+#: Every generator, by entry point family.
+GENERATORS: dict[str, Callable[[Drawer], Case]] = {
+    "jarm": case_jarm,
+    "region": case_region,
+    "region_dataset": case_region_dataset,
+    "roll": case_roll,
+    "to_si": case_to_si,
+    "sol": case_sol,
+    "kinematics": case_kinematics,
+    "alpha_intervals": case_alpha_intervals,
+    "mu_s_min_path": case_mu_s_min_path,
+    "alpha_interval_around": case_alpha_interval_around,
+    "closed_form": case_closed_form,
+    "cylinder": case_cylinder,
+    "units": case_units,
+    "store": case_store,
+    "plot": case_plot,
+    "cli": case_cli,
+}
+
+
+# --- the contract -------------------------------------------------------------------------
+
+
+def message_names(message: str, params: Sequence[str]) -> bool:
+    return any(
+        re.search(rf"(?<![A-Za-z0-9_]){re.escape(p)}(?![A-Za-z0-9_])", message) for p in params
+    )
+
+
+@dataclass
+class Outcome:
+    """How a call went: ``kind`` is ``ok``, ``error`` (an allowed exception), ``known-gap`` (a
+    failure listed in KNOWN_CORE_GAPS), or a violation:
+    ``wrong-exception``, ``bad-message``, ``garbage``, ``accepted-wrong-type``."""
+
+    kind: str
+    detail: str = ""
+
+    @property
+    def violation(self) -> bool:
+        return self.kind not in ("ok", "error", "known-gap")
+
+
+ALLOWED = (ValueError, TypeError, MemoryError)
+
+
+def make_case(family: str, d: Drawer) -> Case:
+    """A case of ``family``: half of them clean (good types, values in range)."""
+    d.clean = d.integer(0, 1) == 0
+    case = GENERATORS[family](d)
+    case.info["clean"] = d.clean
+    return case
+
+
+def outcome(case: Case) -> Outcome:
+    """Run ``case`` and judge it against the contract."""
+    allowed = (*ALLOWED, OSError) if case.allow_oserror else ALLOWED
+    try:
+        res = case.fn(*case.args, **case.kwargs)
+    except KeyboardInterrupt:
+        raise
+    except allowed as err:
+        msg = str(err)
+        if isinstance(err, MemoryError) or (
+            case.allow_oserror and type(err) is not ValueError and isinstance(err, OSError)
+        ):
+            return Outcome("error", type(err).__name__)
+        if len(msg) > MAX_MESSAGE and re.search(r"\d{40}", msg):
+            return Outcome("known-gap", "core-long-number")  # see KNOWN_CORE_GAPS
+        if len(msg) > MAX_MESSAGE:
+            return Outcome(
+                "bad-message", f"{type(err).__name__} of {len(msg)} characters: {msg[:120]}"
+            )
+        if not message_names(msg, case.params):
+            return Outcome("bad-message", f"{type(err).__name__} names no parameter: {msg[:150]}")
+        return Outcome("error", type(err).__name__)
+    except BaseException as err:  # the point of the fuzzing
+        return Outcome("wrong-exception", f"{type(err).__name__}: {str(err)[:150]}")
+    if case.must_raise:
+        return Outcome("accepted-wrong-type", "returned a result")
+    try:
+        if case.check is not None:
+            case.check(res, case)
+    except ContractViolation as err:
+        return Outcome("garbage", str(err)[:200])
+    except Exception as err:  # a check that cannot look at the result
+        return Outcome("garbage", f"unreadable result: {type(err).__name__}: {str(err)[:120]}")
+    return Outcome("ok")
