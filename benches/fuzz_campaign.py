@@ -9,8 +9,8 @@ time: the machine is shared) with an
 address-space limit (``RLIMIT_AS``); a worker that does not answer within the time limit is
 killed (a hang) and one that dies by a signal is a crash; either is replaced by a new worker.
 The worker regenerates its call from the seed, so arrays keep their layout (strides,
-byte order, read-only). The summary tallies, per family: results, allowed errors, known core
-gaps, crashes, hangs, other exceptions, messages without a parameter's name or longer than
+byte order, read-only). The summary tallies, per family: results, allowed errors,
+crashes, hangs, other exceptions, messages without a parameter's name or longer than
 200 characters, accepted wrong types and contract violations (silent garbage); the first
 examples of each problem are printed with their seed (rerun one with ``--replay SEED``).
 """
@@ -32,12 +32,12 @@ from pathlib import Path
 
 TESTS = Path(__file__).resolve().parent.parent / "tests"
 PROBLEMS = ("crash", "hang", "wrong-exception", "bad-message", "accepted-wrong-type", "garbage")
-COLUMNS = ("calls", "ok", "error", "known-gap", *PROBLEMS)
+COLUMNS = ("calls", "ok", "error", *PROBLEMS)
 #: Column headings of the summary (see LEGEND).
-HEADINGS = ("calls", "ok", "error", "gap", "crash", "hang", "exc", "msg", "type", "garbage")
+HEADINGS = ("calls", "ok", "error", "crash", "hang", "exc", "msg", "type", "garbage")
 LEGEND = (
     "ok: a result that keeps its contract; error: ValueError/TypeError/MemoryError naming a "
-    "parameter (store: OSError too); gap: a failure listed in KNOWN_CORE_GAPS; crash: worker "
+    "parameter (store: OSError too); crash: worker "
     "killed by a signal; hang: no answer within the time limit; exc: another exception type; "
     "msg: a message without a parameter's name or over 200 characters; type: a wrong type "
     "accepted; garbage: a result that breaks its contract"

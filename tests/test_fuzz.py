@@ -3,21 +3,20 @@ contract are in ``fuzz_cases.py``; ``benches/fuzz_campaign.py`` runs the long ca
 
 Each call returns a result that passes its contract or raises ValueError/TypeError/
 MemoryError naming a parameter in at most 200 characters. Budgets are small (the file runs in
-well under a minute; hypothesis is derandomized, see conftest.py). Inputs that the core does
-not bound yet are not drawn: they are the reproducers of ``KNOWN_CORE_GAPS``, expected to
-fail until the core is hardened (the ones that hang run only with ECCJUMP_FUZZ_GAPS=1).
+well under a minute; hypothesis is derandomized, see conftest.py). Work parameters past
+their bounds are drawn too; the reproducers found before the core bounded them are
+``CORE_REGRESSIONS``.
 """
 
 from __future__ import annotations
 
-import os
 import subprocess
 import sys
 import warnings
 
 import pytest
 from fuzz_cases import (
-    KNOWN_CORE_GAPS,
+    CORE_REGRESSIONS,
     MAX_MESSAGE,
     HypothesisDrawer,
     Outcome,
@@ -98,18 +97,10 @@ def test_cli_subprocess_keeps_its_contract(data):
     check_cli((proc.returncode, proc.stdout, proc.stderr), case)
 
 
-def _gap_params():
-    for key, gap in KNOWN_CORE_GAPS.items():
-        marks = [pytest.mark.xfail(strict=False, reason=f"core validation: {gap.what}")]
-        if gap.hangs and not os.environ.get("ECCJUMP_FUZZ_GAPS"):
-            marks.append(pytest.mark.skip(reason=f"hangs until the core bounds it: {gap.what}"))
-        yield pytest.param(gap, id=key, marks=marks)
-
-
-@pytest.mark.parametrize("gap", _gap_params())
-def test_known_core_gap(gap):
-    """Each reproducer must raise ValueError naming its parameter (fails until the core's
-    validation lands; then remove the xfail and draw those inputs in fuzz_cases)."""
+@pytest.mark.parametrize("gap", list(CORE_REGRESSIONS.values()), ids=list(CORE_REGRESSIONS))
+def test_core_regression(gap):
+    """Each reproducer raises ValueError naming its parameter, in a short message (each used
+    to hang, answer where an error was due, or print a 300-digit number)."""
     code = (
         "import eccjump\nfrom eccjump import *\n"
         f"try:\n    {gap.code}\nexcept ValueError as e:\n    print('ValueError:', e)\n"

@@ -2,6 +2,7 @@
 
 use crate::errors::{detached, to_py};
 use crate::options::parse_rule;
+use eccjump_core::error::short;
 use eccjump_core::mechanics::friction::friction_ratio;
 use eccjump_core::modes::rolling::run::{roll_until, RollOptions, RollRun, RollStatus};
 use eccjump_core::modes::rolling::solution::RollSolution;
@@ -110,9 +111,10 @@ impl DenseSolution {
             .map(|(i, &ti)| {
                 f(&self.sol, ti).ok_or_else(|| {
                     PyValueError::new_err(format!(
-                        "t[{i}] = {ti} is outside the allowed range [{}, {}] of the dense output",
-                        self.sol.t_start(),
-                        self.sol.t_end
+                        "t[{i}] = {} is outside the allowed range [{}, {}] of the dense output",
+                        short(ti),
+                        short(self.sol.t_start()),
+                        short(self.sol.t_end)
                     ))
                 })
             })

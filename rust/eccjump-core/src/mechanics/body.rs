@@ -6,7 +6,7 @@
 //!
 //! with 0 ≤ χ ≤ 1 and 0 ≤ k_m ≤ 1 − χ (the line mass must lie inside the shell).
 
-use crate::error::{check_positive, check_range, Error, Result};
+use crate::error::{check_positive, check_range, short, Error, Result};
 use std::f64::consts::PI;
 
 /// A validated body, in units where M = R = 1.
@@ -35,7 +35,7 @@ impl Cylinder {
             return Err(Error::InvalidParameter {
                 name: "km",
                 value: km,
-                allowed: format!("[0, 1 - chi] = [0, {}]", 1.0 - chi),
+                allowed: format!("[0, 1 - chi] = [0, {}]", short(1.0 - chi)),
             });
         }
         let (ic, icm) = if chi == 0.0 {
@@ -70,7 +70,11 @@ impl Cylinder {
             return Err(Error::InvalidParameter {
                 name: "I_C",
                 value: i_c,
-                allowed: format!("[M d^2, M R^2] = [{}, {}]", m * d * d, m * r * r),
+                allowed: format!(
+                    "[M d^2, M R^2] = [{}, {}]",
+                    short(m * d * d),
+                    short(m * r * r)
+                ),
             });
         }
         let ic = ic.clamp(lo, 1.0);

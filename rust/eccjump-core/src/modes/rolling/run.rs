@@ -9,7 +9,7 @@
 //!
 //! Which of them end the run is set by the lift-off [`Rule`].
 
-use crate::error::{check_count, check_positive, check_range, try_grow, Error, Result};
+use crate::error::{check_count, check_positive, check_range, short, try_grow, Error, Result};
 use crate::mechanics::friction::{friction_ratio, slip_margin};
 use crate::mechanics::Ramp;
 pub use crate::mechanics::Rule;
@@ -268,7 +268,7 @@ impl RollOptions {
             return Err(Error::InvalidParameter {
                 name: "theta_max",
                 value: self.theta_max,
-                allowed: format!("(theta0, inf] = ({}, inf]", self.theta0),
+                allowed: format!("(theta0, inf] = ({}, inf]", short(self.theta0)),
             });
         }
         check_range("rtol", self.solver.rtol, 1e-15, 1e-2)?;
