@@ -487,6 +487,16 @@ def check_any(res: Any, case: Case) -> None:
     pass
 
 
+def check_figure(res: Any, case: Case) -> None:
+    """A figure; closed at once (pyplot keeps every open figure: a long campaign would fill
+    its worker's memory limit with them)."""
+    import matplotlib.pyplot as plt
+    from matplotlib.figure import Figure
+
+    plt.close(res)
+    assert isinstance(res, Figure), type(res)
+
+
 # --- cases --------------------------------------------------------------------------------
 
 
@@ -814,13 +824,15 @@ def case_plot(d: Drawer) -> Case:
             "plot.trajectory",
             plot.trajectory,
             params=("result", "n_points", "ratio_max"),
-            check=check_any,
+            check=check_figure,
         )
         c.args = (d.choice((dense_run(), None, "run")),)
         c.kwargs = {"n_points": integer_param(d, c, (2, 50), (1, 0.5, True, None, 10**400, 10**9))}
         c.must_raise = c.must_raise or c.args[0] is not dense_run()
     else:
-        c = Case("plot.region_map", plot.region_map, params=("region", "panels"), check=check_any)
+        c = Case(
+            "plot.region_map", plot.region_map, params=("region", "panels"), check=check_figure
+        )
         reg = eccjump.region(1.0, alpha=[0.5, 0.7], chi=[0.2], km=[0.1])
         c.args = (d.choice((reg, None, 3)),)
         c.kwargs = {"panels": integer_param(d, c, (1, 2), (0, 2.5, True, None, 10**400))}

@@ -28,7 +28,8 @@ def alpha_intervals(
 ) -> list[list[tuple[float, float]]]:
     """For each body (chi, km) (broadcast, flattened): the intervals (alpha_lo, alpha_hi) [rad]
     of ramp angles that give a JARM, each end located to 1e-12 by bisection after a scan of
-    ``n_scan`` angles over (0, pi/2] (an interval narrower than pi/(2 n_scan) can be missed)."""
+    ``n_scan`` angles over (0, pi/2] (2 ... 10**5; an interval narrower than pi/(2 n_scan)
+    can be missed). An invalid body or mu_s is a ValueError naming it and its index."""
     scan = integer("n_scan", n_scan, 2, U64_MAX)
     _, (c, k) = broadcast_flat(chi=chi, km=km)
     return _core.alpha_intervals(

@@ -171,11 +171,14 @@ def jarm(
     method : ``"closed_form"`` (the paper's formulas with a rigorous path scan) or ``"ode"``
         (integration with events; an independent route, ~10x slower).
     rule : lift-off rule, ``"paper"`` (default) or ``"normal_force"`` (classical).
-    theta0, omega0 : initial angle [rad] and angular velocity (>= 0) [sqrt(g/R) rad].
+    theta0, omega0 : initial angle [rad], |theta0| <= 2 pi 1e6, and angular velocity,
+        0 <= omega0 <= 1e6 [sqrt(g/R) rad].
     rtol, atol : integrator tolerances (``method="ode"`` only).
-    max_turns : cap of the search, in turns.
+    max_turns : cap of the search, in turns counted from the start's turn (1 ... 10**6).
     refine_extrema : refine max_ratio and min_Fy to full precision (closed form).
-    n_threads : threads (0 = one per core); results are identical for any value.
+    n_threads : threads (0 = one per core, at most 256); results are identical for any value.
+
+    Every bound, the memory and Ctrl-C behaviour: ``docs/limits.md``.
 
     Invalid points get ``Reason.INVALID_PARAMS``; a ``ValueError`` is raised only for
     arguments that apply to the whole call (shapes, rule, method, tolerances) and for an

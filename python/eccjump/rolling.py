@@ -202,13 +202,15 @@ def roll(
     ----------
     body : Cylinder
     alpha : ramp angle [rad], in [0, pi/2].
-    theta0, omega0 : initial angle [rad] and angular velocity [sqrt(g/R) rad].
+    theta0, omega0 : initial angle [rad], |theta0| <= 2 pi 1e6, and angular velocity,
+        |omega0| <= 1e6 [sqrt(g/R) rad].
     mu_s : static friction coefficient, >= 0; None means enough friction (no slip event).
     t_max : largest time [sqrt(R/g)], > 0.
     theta_max : the run ends when theta reaches this angle [rad] (event ``theta_limit``).
     rtol, atol : tolerances of the Dormand–Prince 5(4) integrator (scipy's meaning).
     dense_output : keep the interpolant, returned as ``sol``.
-    max_steps : step limit; reaching it ends the run with status -1.
+    max_steps : step limit (1 ... 10**7); reaching it ends the run with status -1. A run
+        honours Ctrl-C (KeyboardInterrupt); bounds: ``docs/limits.md``.
     rule : ``"paper"`` ends the run at the paper's lift-off condition
         chi theta'^2 cos theta = cos alpha; ``"normal_force"`` keeps rolling until Fy = 0 or
         (with ``mu_s``) the friction cone is left, recording the paper's condition as an event.
