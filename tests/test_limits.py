@@ -198,3 +198,29 @@ def test_a_long_map_honours_ctrl_c_within_a_second():
         """
     )
     assert interrupted_after(code, 1.0) < 1.5  # the map takes about 10 s
+
+
+@pytest.mark.parametrize(
+    ("argv", "name"),
+    [
+        (["map", "--mu-s", "nan", "--grid", "4"], "mu_s"),
+        (["map", "--mu-s", "-1", "--grid", "4"], "mu_s"),
+        (["map", "--mu-s", "1", "--grid", "4", "--theta0", "1e300"], "theta0"),
+        (["map", "--mu-s", "1", "--grid", "4", "--threads", "3000"], "n_threads"),
+        (["roll", "--alpha", "40", "--chi", "0.15", "--km", "0.02", "--omega0", "1e200"], "omega0"),
+    ],
+)
+def test_the_command_line_refuses_bad_options_in_one_line(tmp_path, argv, name):
+    # (was: exit 0 with a "complete" map of INVALID points, or NaN printed as JSON)
+    out = tmp_path / "m.npz"
+    if argv[0] == "map":
+        argv = [*argv, "-o", str(out)]
+    else:
+        argv = [*argv, "--json"]
+    p = subprocess.run(
+        [sys.executable, "-m", "eccjump.cli", *argv], capture_output=True, text=True, timeout=60
+    )
+    lines = p.stderr.strip().splitlines()
+    assert p.returncode == 2 and len(lines) == 1, (p.returncode, p.stderr)
+    assert lines[0].startswith("eccjump: error:") and name in lines[0], lines[0]
+    assert p.stdout == "" and list(tmp_path.iterdir()) == []
