@@ -64,6 +64,8 @@ def _not_real(value: object) -> bool:
 def real(name: str, value: object) -> float:
     """A real scalar as a Python float (NaN and infinities pass: the core checks ranges).
     Accepts ints, floats, numpy integer/floating scalars and 0-d arrays of real dtype."""
+    if type(value) is float:  # the common case first: a few ns instead of the ABC checks
+        return value
     if isinstance(value, np.ndarray) and not isinstance(value, np.ma.MaskedArray):
         if value.ndim != 0:
             raise TypeError(f"{name} must be a real number, not an array of shape {value.shape}")
@@ -88,6 +90,8 @@ def optional_real(name: str, value: object) -> float | None:
 def integer(name: str, value: object, lo: int = 0, hi: int = U64_MAX) -> int:
     """An integer (int, numpy integer or 0-d integer array; not a bool, not a float) as a
     Python int within [lo, hi] (the range the bridge can carry; ValueError outside)."""
+    if type(value) is int and lo <= value <= hi:  # the common case first
+        return value
     if isinstance(value, np.ndarray) and not isinstance(value, np.ma.MaskedArray):
         if value.ndim == 0 and value.dtype.kind in "iu":
             value = value[()]

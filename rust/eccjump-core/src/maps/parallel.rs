@@ -1,12 +1,13 @@
-//! Parallel maps over independent points, on a local rayon pool, in chunks between which the
-//! caller may stop the work (Ctrl-C).
+//! Parallel maps over independent points, on a local rayon pool; the caller may stop the work
+//! (Ctrl-C) while it runs.
 //!
 //! Every output element is computed from its index alone and written in place, so results
-//! are bit-identical for any thread count and any chunking; the only allocation is the pool.
+//! are bit-identical for any thread count; the only allocation is the pool.
 
 use crate::error::{check_count, Error, Result};
 use rayon::prelude::*;
-use std::time::{Duration, Instant};
+use std::sync::atomic::{AtomicBool, Ordering};
+use std::time::Duration;
 
 /// Points handed to one task: small enough to balance uneven per-point costs, large enough
 /// to keep scheduling overhead negligible.
@@ -16,9 +17,9 @@ const TASK: usize = 256;
 /// enough that starting the pool stays cheap (3000 threads took 13 s for one point).
 pub const MAX_THREADS: usize = 256;
 
-/// Wall time aimed at between two looks at the stop flag: a Ctrl-C is honoured well within
-/// a second unless a single point takes longer.
-const SLICE: Duration = Duration::from_millis(100);
+/// How often the calling thread asks whether to stop: a Ctrl-C is honoured well within a
+/// second unless a single point takes longer.
+const POLL: Duration = Duration::from_millis(20);
 
 /// A pool of `n_threads` threads (0 = one per core), `n_threads` ≤ [`MAX_THREADS`].
 pub fn pool(n_threads: usize) -> Result<rayon::ThreadPool> {
@@ -39,13 +40,21 @@ where
     T: Send,
     F: Fn(usize) -> T + Sync,
 {
-    par_fill_until(out, n_threads, point, &|| false)
+    pool(n_threads)?.install(|| {
+        out.par_chunks_mut(TASK).enumerate().for_each(|(k, ch)| {
+            for (i, o) in ch.iter_mut().enumerate() {
+                *o = point(k * TASK + i);
+            }
+        })
+    });
+    Ok(())
 }
 
-/// [`par_fill`] in chunks of about [`SLICE`] of wall time each (the chunk size adapts to the
-/// cost per point); between chunks `stop()` is asked, on the calling thread, and a `true`
-/// ends the work with `Error::Interrupted` (the part of `out` not yet reached is left as it
-/// was).
+/// [`par_fill`] whose caller may stop it: while the pool works (driven from a scoped
+/// thread), the calling thread asks `stop()` every [`POLL`]; a `true` makes the workers skip
+/// the points not yet started and ends the work with `Error::Interrupted` (the part of `out`
+/// not reached is left as it was). No barrier between parts of the work: the threads stay
+/// busy to the end, whatever the spread of cost per point.
 pub fn par_fill_until<T, F>(
     out: &mut [T],
     n_threads: usize,
@@ -57,37 +66,43 @@ where
     F: Fn(usize) -> T + Sync,
 {
     let pool = pool(n_threads)?;
-    let mut start = 0;
-    let mut chunk = TASK;
-    while start < out.len() {
-        if stop() {
-            return Err(Error::Interrupted);
-        }
-        let end = out.len().min(start + chunk);
-        let t = Instant::now();
-        pool.install(|| {
-            out[start..end]
-                .par_chunks_mut(TASK)
-                .enumerate()
-                .for_each(|(k, ch)| {
-                    for (i, o) in ch.iter_mut().enumerate() {
-                        *o = point(start + k * TASK + i);
-                    }
-                })
-        });
-        start = end;
-        // Aim the next chunk at SLICE: double while far below it, halve above.
-        let took = t.elapsed();
-        if took < SLICE / 4 {
-            chunk = chunk.saturating_mul(2);
-        } else if took > SLICE && chunk > TASK {
-            chunk /= 2;
-        }
-    }
     if stop() {
         return Err(Error::Interrupted);
     }
-    Ok(())
+    let cancel = AtomicBool::new(false);
+    let work = || {
+        pool.install(|| {
+            out.par_chunks_mut(TASK).enumerate().for_each(|(k, ch)| {
+                for (i, o) in ch.iter_mut().enumerate() {
+                    if cancel.load(Ordering::Relaxed) {
+                        return;
+                    }
+                    *o = point(k * TASK + i);
+                }
+            })
+        })
+    };
+    let stopped = std::thread::scope(|s| {
+        let h = s.spawn(work);
+        let mut stopped = false;
+        while !h.is_finished() {
+            std::thread::sleep(POLL);
+            if !stopped && stop() {
+                stopped = true;
+                cancel.store(true, Ordering::Relaxed);
+            }
+        }
+        // A panic in a point is a bug: passed on as it is, not hidden.
+        if let Err(p) = h.join() {
+            std::panic::resume_unwind(p);
+        }
+        stopped
+    });
+    if stopped {
+        Err(Error::Interrupted)
+    } else {
+        Ok(())
+    }
 }
 
 /// Never stop: the `stop` of a map that is not to be interrupted.
@@ -114,24 +129,36 @@ mod tests {
     use std::cell::Cell;
 
     #[test]
-    fn chunked_fill_is_the_plain_fill_and_stops_when_asked() {
+    fn stoppable_fill_is_the_plain_fill_and_stops_when_asked() {
         let f = |i: usize| (i as f64).sqrt().sin();
         let mut a = vec![0.0; 100_000];
         let mut b = vec![0.0; 100_000];
         par_fill(&mut a, 1, f).unwrap();
-        par_fill_until(&mut b, 2, f, &|| false).unwrap();
+        par_fill_until(&mut b, 2, f, &never).unwrap();
         assert!(a.iter().zip(&b).all(|(x, y)| x.to_bits() == y.to_bits()));
+        // Slow points (1 ms each: 50 s in all) and a stop at the first poll after the start.
+        let slow = |i: usize| {
+            std::thread::sleep(Duration::from_millis(1));
+            f(i)
+        };
         let asked = Cell::new(0);
         let stop = || {
             asked.set(asked.get() + 1);
             asked.get() > 1
         };
         let mut c = vec![-1.0; 100_000];
-        assert_eq!(par_fill_until(&mut c, 2, f, &stop), Err(Error::Interrupted));
-        assert!(
-            c[..TASK] == a[..TASK] && c[99_999] == -1.0,
-            "the first chunk only"
+        let t = std::time::Instant::now();
+        assert_eq!(
+            par_fill_until(&mut c, 2, slow, &stop),
+            Err(Error::Interrupted)
         );
+        assert!(t.elapsed() < Duration::from_secs(2), "{:?}", t.elapsed());
+        let done = c.iter().filter(|&&x| x != -1.0).count();
+        assert!(done > 0 && done < 10_000, "{done}");
+        assert!(c
+            .iter()
+            .zip(&a)
+            .all(|(x, y)| *x == -1.0 || x.to_bits() == y.to_bits()));
     }
 
     #[test]

@@ -376,17 +376,21 @@ impl RollRun {
     /// Records one point with its kinematics (fallibly: `OutOfMemory` instead of an abort).
     #[inline]
     fn push(&mut self, t: f64, k: &Kinematics) -> Result<()> {
-        for v in [
-            &mut self.t,
-            &mut self.theta,
-            &mut self.omega,
-            &mut self.omega_dot,
-            &mut self.fx,
-            &mut self.fy,
-            &mut self.l,
-            &mut self.ratio,
-        ] {
-            try_grow("the record of the run", v)?;
+        // The series are created, pushed, popped and grown together, so they are full
+        // together: one test per point.
+        if self.t.len() == self.t.capacity() {
+            for v in [
+                &mut self.t,
+                &mut self.theta,
+                &mut self.omega,
+                &mut self.omega_dot,
+                &mut self.fx,
+                &mut self.fy,
+                &mut self.l,
+                &mut self.ratio,
+            ] {
+                try_grow("the record of the run", v)?;
+            }
         }
         self.t.push(t);
         self.theta.push(k.theta);
