@@ -2,6 +2,9 @@
 
 from __future__ import annotations
 
+import dataclasses
+from typing import Any
+
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
@@ -90,3 +93,14 @@ def same_values(x: object, y: object) -> bool:
     if isinstance(x, float) and isinstance(y, float) and x != x and y != y:
         return True
     return bool(x == y)
+
+
+def fields_equal(self: Any, other: object) -> bool:
+    """``__eq__`` of the result dataclasses: field by field, arrays by shape, dtype and values
+    (NaN equal to NaN; a lazy result is computed to compare)."""
+    if type(other) is not type(self):
+        return NotImplemented
+    return all(
+        same_values(getattr(self, f.name), getattr(other, f.name))
+        for f in dataclasses.fields(self)
+    )

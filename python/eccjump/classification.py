@@ -16,7 +16,7 @@ from typing import TYPE_CHECKING, Any, Literal, overload
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-from eccjump._arrays import axis, broadcast_flat, same_values, turns
+from eccjump._arrays import axis, broadcast_flat, fields_equal, turns
 from eccjump._bridge import (
     Method,
     Rule,
@@ -106,15 +106,7 @@ class JarmResult:
         lines += [f"  {_reason_name(r):<18} {k}" for r, k in self.counts().items()]
         return "\n".join(lines)
 
-    def __eq__(self, other: object) -> bool:
-        """Field by field, arrays by shape, dtype and values (NaN equal to NaN; a lazy result
-        is computed to compare)."""
-        if type(other) is not type(self):
-            return NotImplemented
-        return all(
-            same_values(getattr(self, f.name), getattr(other, f.name))
-            for f in dataclasses.fields(self)
-        )
+    __eq__ = fields_equal
 
     __hash__ = None  # type: ignore[assignment]  # mutable numpy arrays inside
 
@@ -255,15 +247,7 @@ class Region:
         res = JarmResult(**dict(zip(FIELDS, values, strict=True)))
         return replace(self, result=res, attrs=dict(self.attrs))
 
-    def __eq__(self, other: object) -> bool:
-        """Field by field, arrays by shape, dtype and values (NaN equal to NaN; a lazy result
-        is computed to compare)."""
-        if type(other) is not type(self):
-            return NotImplemented
-        return all(
-            same_values(getattr(self, f.name), getattr(other, f.name))
-            for f in dataclasses.fields(self)
-        )
+    __eq__ = fields_equal
 
     __hash__ = None  # type: ignore[assignment]  # mutable numpy arrays inside
 
