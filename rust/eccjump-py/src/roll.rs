@@ -75,19 +75,17 @@ fn to_dict<'py>(py: Python<'py>, run: RollRun) -> PyResult<Bound<'py, PyDict>> {
     )?;
     d.set_item("nfev", run.nfev)?;
     d.set_item("events", events)?;
-    // Copied into numpy-owned arrays: for the ~100 points of a run a copy is cheaper than
-    // handing the Vec over (which needs a second Python object to own it).
     for (name, v) in [
-        ("t", &run.t),
-        ("theta", &run.theta),
-        ("omega", &run.omega),
-        ("omega_dot", &run.omega_dot),
-        ("Fx", &run.fx),
-        ("Fy", &run.fy),
-        ("l", &run.l),
-        ("ratio", &run.ratio),
+        ("t", run.t),
+        ("theta", run.theta),
+        ("omega", run.omega),
+        ("omega_dot", run.omega_dot),
+        ("Fx", run.fx),
+        ("Fy", run.fy),
+        ("l", run.l),
+        ("ratio", run.ratio),
     ] {
-        d.set_item(name, PyArray1::from_slice(py, v))?;
+        d.set_item(name, v.into_pyarray(py))?;
     }
     if let Some(sol) = run.dense {
         d.set_item("sol", Bound::new(py, DenseSolution { sol })?)?;

@@ -373,24 +373,32 @@ pub const MAX_STEPS: usize = 10_000_000;
 const RESERVE: usize = 256;
 
 impl RollRun {
+    /// The series derived from the recorded ones, in one pass after the run (off the
+    /// integration's critical path): l − l0 = θ − θ0 and |F_x|/F_y.
+    fn derive(&mut self) -> Result<()> {
+        let n = self.t.len();
+        for v in [&mut self.l, &mut self.ratio] {
+            v.try_reserve_exact(n).map_err(|_| Error::OutOfMemory {
+                what: "the record of the run",
+                bytes: (n * std::mem::size_of::<f64>()) as u64,
+            })?;
+        }
+        let theta0 = self.theta.first().copied().unwrap_or(0.0);
+        self.l.extend(self.theta.iter().map(|&th| th - theta0));
+        let forces = self.fx.iter().zip(&self.fy);
+        self.ratio
+            .extend(forces.map(|(&fx, &fy)| friction_ratio(fx, fy)));
+        Ok(())
+    }
+
     /// Records one point with its kinematics (fallibly: `OutOfMemory` instead of an abort).
     #[inline]
     fn push(&mut self, t: f64, k: &Kinematics) -> Result<()> {
         // The series are created, pushed, popped and grown together, so they are full
-        // together: one test per point.
+        // together: one test per point (the growth is out of line: the common path is a
+        // comparison and six pushes).
         if self.t.len() == self.t.capacity() {
-            for v in [
-                &mut self.t,
-                &mut self.theta,
-                &mut self.omega,
-                &mut self.omega_dot,
-                &mut self.fx,
-                &mut self.fy,
-                &mut self.l,
-                &mut self.ratio,
-            ] {
-                try_grow("the record of the run", v)?;
-            }
+            self.grow()?;
         }
         self.t.push(t);
         self.theta.push(k.theta);
@@ -398,8 +406,22 @@ impl RollRun {
         self.omega_dot.push(k.omega_dot);
         self.fx.push(k.fx);
         self.fy.push(k.fy);
-        self.l.push(k.theta - self.theta[0]);
-        self.ratio.push(friction_ratio(k.fx, k.fy));
+        Ok(())
+    }
+
+    /// Room for more points in every recorded series (fallibly).
+    #[cold]
+    fn grow(&mut self) -> Result<()> {
+        for v in [
+            &mut self.t,
+            &mut self.theta,
+            &mut self.omega,
+            &mut self.omega_dot,
+            &mut self.fx,
+            &mut self.fy,
+        ] {
+            try_grow("the record of the run", v)?;
+        }
         Ok(())
     }
 
@@ -411,8 +433,6 @@ impl RollRun {
         self.omega_dot.pop();
         self.fx.pop();
         self.fy.pop();
-        self.l.pop();
-        self.ratio.pop();
     }
 }
 
@@ -443,8 +463,8 @@ pub fn roll_until(ramp: &Ramp, opts: &RollOptions, stop: &dyn Fn() -> bool) -> R
         omega_dot: Vec::with_capacity(capacity),
         fx: Vec::with_capacity(capacity),
         fy: Vec::with_capacity(capacity),
-        l: Vec::with_capacity(capacity),
-        ratio: Vec::with_capacity(capacity),
+        l: Vec::new(),
+        ratio: Vec::new(),
         events: Vec::new(),
         status: RollStatus::TimeLimit,
         nfev: 0,
@@ -463,10 +483,12 @@ pub fn roll_until(ramp: &Ramp, opts: &RollOptions, stop: &dyn Fn() -> bool) -> R
             omega: opts.omega0,
         });
         run.status = RollStatus::Event(event);
+        run.derive()?;
         return Ok(run);
     }
     let y0 = State::<2>::new(opts.theta0, opts.omega0);
-    let mut memory: Result<()> = Ok(());
+    // The first failed allocation, if any: after it nothing more is recorded.
+    let mut memory: Option<Error> = None;
     let outcome = ode::solve_until(
         &memo,
         &memo,
@@ -477,13 +499,14 @@ pub fn roll_until(ramp: &Ramp, opts: &RollOptions, stop: &dyn Fn() -> bool) -> R
         &mut |obs: Observation<'_, 2>| match obs {
             Observation::Step { dense, t, y } => {
                 // After a failed allocation the rest is not recorded; the run reports it.
-                if memory.is_ok() {
-                    memory = run.push(t, &memo.kinematics(y[0], y[1]));
-                }
-                if opts.dense_output && memory.is_ok() {
-                    memory = try_grow("the dense output", &mut steps);
-                    if memory.is_ok() {
-                        steps.push(*dense);
+                if memory.is_none() {
+                    if let Err(e) = run.push(t, &memo.kinematics(y[0], y[1])) {
+                        memory = Some(e);
+                    } else if opts.dense_output {
+                        match try_grow("the dense output", &mut steps) {
+                            Ok(()) => steps.push(*dense),
+                            Err(e) => memory = Some(e),
+                        }
                     }
                 }
             }
@@ -496,7 +519,9 @@ pub fn roll_until(ramp: &Ramp, opts: &RollOptions, stop: &dyn Fn() -> bool) -> R
         },
         stop,
     );
-    memory?;
+    if let Some(e) = memory {
+        return Err(e);
+    }
     if outcome.status == Status::Stopped {
         return Err(Error::Interrupted);
     }
@@ -522,6 +547,7 @@ pub fn roll_until(ramp: &Ramp, opts: &RollOptions, stop: &dyn Fn() -> bool) -> R
             t_end: run.t.last().copied().unwrap_or(0.0),
         });
     }
+    run.derive()?;
     Ok(run)
 }
 
