@@ -7,6 +7,7 @@
 use crate::error::{check_count, Error, Result};
 use rayon::prelude::*;
 use std::sync::atomic::{AtomicBool, Ordering};
+use std::sync::mpsc::{self, RecvTimeoutError};
 use std::time::Duration;
 
 /// Points handed to one task: small enough to balance uneven per-point costs, large enough
@@ -70,7 +71,7 @@ where
         return Err(Error::Interrupted);
     }
     let cancel = AtomicBool::new(false);
-    let work = || {
+    let mut work = || {
         pool.install(|| {
             out.par_chunks_mut(TASK).enumerate().for_each(|(k, ch)| {
                 for (i, o) in ch.iter_mut().enumerate() {
@@ -83,10 +84,14 @@ where
         })
     };
     let stopped = std::thread::scope(|s| {
-        let h = s.spawn(work);
+        // The driver says when it is done, so the caller wakes at once (not at the next poll).
+        let (done_tx, done_rx) = mpsc::channel::<()>();
+        let h = s.spawn(move || {
+            work();
+            let _ = done_tx.send(());
+        });
         let mut stopped = false;
-        while !h.is_finished() {
-            std::thread::sleep(POLL);
+        while let Err(RecvTimeoutError::Timeout) = done_rx.recv_timeout(POLL) {
             if !stopped && stop() {
                 stopped = true;
                 cancel.store(true, Ordering::Relaxed);
