@@ -9,6 +9,7 @@ pub mod friction;
 pub mod liftoff;
 pub mod newton_euler;
 pub mod ramp;
+pub mod state;
 
 /// |θ0| ≤ this (2π·10⁶ rad) for any start: far beyond any physical start; larger angles
 /// lose the resolution the searches need (an ulp of θ0 approaches their steps).
@@ -22,3 +23,4 @@ pub use body::Cylinder;
 pub use liftoff::Rule;
 pub use newton_euler::{Constraint, Response};
 pub use ramp::Ramp;
+pub use state::BodyState;

@@ -1,5 +1,9 @@
 //! The modes of motion, each a constraint on Newton–Euler ([`crate::mechanics`]) with its
-//! equations as an ODE system, its fast closed forms and its runs. Today: pure rolling.
-//! Slipping, flight and impact join here.
+//! equations, fast closed forms and events: pure rolling ([`rolling`]), slipping
+//! ([`slipping`]) and flight ([`flight`], exact, with the rigorous landing search), and the
+//! consistency test that picks the mode of a contact state ([`contact`]).
 
+pub mod contact;
+pub mod flight;
 pub mod rolling;
+pub mod slipping;

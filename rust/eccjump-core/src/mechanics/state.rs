@@ -1,0 +1,53 @@
+//! The full state of the body, (θ, θ̇, l, l̇, b, ḃ), shared by every mode of motion and by
+//! the impact law, with the velocity of the material point at the contact.
+//!
+//! The material point of the body at P = C − (0, 1) moves with (u_t, u_n) = (l̇ − θ̇, ḃ)
+//! (see [`crate::mechanics::newton_euler`]): u_t is the slip velocity, u_n the normal
+//! velocity of the contact point.
+
+use crate::mechanics::Ramp;
+
+/// The state of the body: angle, position of the centre C along the ramp, height of C, and
+/// their rates (units g = R = M = 1).
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct BodyState {
+    /// θ (rad), the angle of C → CM from the ramp normal.
+    pub theta: f64,
+    /// θ̇.
+    pub omega: f64,
+    /// l, the position of C along the ramp (down the ramp).
+    pub l: f64,
+    /// l̇.
+    pub ldot: f64,
+    /// b, the height of C above the ramp (1 in contact).
+    pub b: f64,
+    /// ḃ.
+    pub bdot: f64,
+}
+
+impl BodyState {
+    /// A contact state rolling without slip at (θ, θ̇) with C at l.
+    pub fn rolling(theta: f64, omega: f64, l: f64) -> Self {
+        Self {
+            theta,
+            omega,
+            l,
+            ldot: omega,
+            b: 1.0,
+            bdot: 0.0,
+        }
+    }
+
+    /// The slip velocity u_t = l̇ − θ̇ of the contact point.
+    #[inline]
+    pub fn slip_velocity(&self) -> f64 {
+        self.ldot - self.omega
+    }
+}
+
+impl Ramp {
+    /// The mechanical energy of a state, per M g R ([`Ramp::energy`]).
+    pub fn energy_of(&self, s: &BodyState) -> f64 {
+        self.energy(s.theta, s.omega, s.l, s.ldot, s.b, s.bdot)
+    }
+}

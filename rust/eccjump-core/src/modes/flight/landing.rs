@@ -1,0 +1,286 @@
+//! The landing: the first τ > 0 at which the gap g(τ) = b(τ) − 1 of a flight returns to 0.
+//!
+//! The gap is a parabola minus a sinusoid: it can dip to 0 and rise again between any two
+//! samples, so sampling alone may miss a touch. The search is rigorous instead, with
+//! |g''| ≤ M = cos α + χθ̇² ([`Flight::gap_curvature_bound`]):
+//! - an interval [a, b] holds no zero if the lower bounds g(a) + g'(a)s − ½Ms² (from the left)
+//!   and g(b) − g'(b)s − ½Ms² (from the right) are positive on pieces that cover it;
+//! - an interval with g(a) > 0 ≥ g(b) on which g' provably keeps its sign (g'(a) + Mh < 0 or
+//!   g'(b) + Mh < 0) holds exactly one zero, found by Brent's method;
+//! - anything else is halved, the left half searched first.
+//!
+//! Right after a lift-off the gap starts at 0 (and, under the paper's rule, so do its first
+//! two derivatives); the start is cleared with the gap's Taylor polynomial to third order and
+//! the bound χθ̇⁴ on its fourth derivative. Beyond [`Flight::fall_bound`] the gap is
+//! certainly negative, which bounds the search.
+
+use crate::modes::flight::Flight;
+use crate::ode::roots::brent;
+
+/// Evaluations of the gap a landing search may use: far beyond any flight met in practice
+/// (a few hundred), it only guards against a pathological near-graze.
+pub const MAX_EVALUATIONS: usize = 100_000;
+
+/// The result of a landing search.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum Landing {
+    /// The gap returns to 0 at τ.
+    At(f64),
+    /// The gap does not become positive after τ = 0: the body cannot fly from this state.
+    Immediate,
+    /// No touch before τ_end.
+    None,
+    /// The search used up [`MAX_EVALUATIONS`].
+    Undecided,
+}
+
+struct Search<'a> {
+    flight: &'a Flight,
+    m: f64,
+    evaluations: usize,
+}
+
+/// The length s > 0 up to which g(a) + g'(a)s − ½Ms² stays positive (g(a) > 0).
+fn clear_length(g: f64, d: f64, m: f64) -> f64 {
+    if m > 0.0 {
+        // The positive root of ½Ms² − d s − g, in the form without cancellation.
+        let disc = (d * d + 2.0 * m * g).sqrt();
+        if d >= 0.0 {
+            (d + disc) / m
+        } else {
+            2.0 * g / (disc - d)
+        }
+    } else if d >= 0.0 {
+        f64::INFINITY
+    } else {
+        g / -d
+    }
+}
+
+impl Search<'_> {
+    fn eval(&mut self, tau: f64) -> (f64, f64) {
+        self.evaluations += 1;
+        self.flight.gap(tau)
+    }
+
+    /// The first zero in (a, b], given g and g' at both ends and g(a) > 0.
+    fn first_zero(&mut self, a: (f64, f64, f64), b: (f64, f64, f64)) -> Result<Option<f64>, ()> {
+        let ((ta, ga, da), (tb, gb, db)) = (a, b);
+        let h = tb - ta;
+        if gb <= 0.0 {
+            let slope_up = (da + self.m * h).min(db + self.m * h);
+            if slope_up < 0.0 || h <= 4.0 * f64::EPSILON * tb.abs() {
+                return Ok(Some(self.locate(ta, ga, tb, gb)));
+            }
+        } else {
+            let left = clear_length(ga, da, self.m);
+            let right = clear_length(gb, -db, self.m);
+            // A relative margin covers the rounding of g, g' and the bound.
+            if left + right >= h * (1.0 + 1e-12) || h <= 4.0 * f64::EPSILON * tb.abs() {
+                return Ok(None);
+            }
+        }
+        if self.evaluations >= MAX_EVALUATIONS {
+            return Err(());
+        }
+        let tm = ta + 0.5 * h;
+        let (gm, dm) = self.eval(tm);
+        if gm <= 0.0 {
+            // A zero lies in (a, m]: the first one is there.
+            return self.first_zero(a, (tm, gm, dm));
+        }
+        match self.first_zero(a, (tm, gm, dm))? {
+            Some(t) => Ok(Some(t)),
+            None => self.first_zero((tm, gm, dm), b),
+        }
+    }
+
+    /// The zero of g in (a, b] with g(a) > 0 ≥ g(b), by Brent's method.
+    fn locate(&mut self, ta: f64, ga: f64, tb: f64, gb: f64) -> f64 {
+        let f = self.flight;
+        match brent(|t| f.gap(t).0, ta, tb, ga, gb, 0.0, 4.0 * f64::EPSILON, 200) {
+            Ok(root) => {
+                self.evaluations += root.evaluations;
+                root.x
+            }
+            Err(_) => tb,
+        }
+    }
+}
+
+impl Flight {
+    /// The first return of the gap to 0 in (0, τ_end] (see the module notes).
+    pub fn landing(&self, tau_end: f64) -> Landing {
+        let mut search = Search {
+            flight: self,
+            m: self.gap_curvature_bound(),
+            evaluations: 0,
+        };
+        let end = tau_end.min(self.fall_bound() * (1.0 + 1e-9) + 1e-12);
+        if !(end > 0.0) {
+            return Landing::None;
+        }
+        let g0 = self.start.b - 1.0;
+        let start = if g0 > 0.0 {
+            let (g, d) = search.eval(0.0);
+            (0.0, g, d)
+        } else {
+            match self.clear_start(end) {
+                Some(s) => {
+                    let (g, d) = search.eval(s);
+                    if g <= 0.0 {
+                        return Landing::Immediate;
+                    }
+                    (s, g, d)
+                }
+                None if self.gap_is_identically_zero() => return Landing::None,
+                None => return Landing::Immediate,
+            }
+        };
+        let (ge, de) = search.eval(end);
+        match search.first_zero(start, (end, ge, de)) {
+            Ok(Some(t)) => Landing::At(t),
+            Ok(None) => Landing::None,
+            Err(()) => Landing::Undecided,
+        }
+    }
+
+    /// On a vertical ramp, a flight without spin that starts touching with ḃ = 0 slides
+    /// down the wall with the gap exactly 0: it never lands.
+    fn gap_is_identically_zero(&self) -> bool {
+        let ([c1, c2, c3], m4) = self.taylor();
+        self.start.b == 1.0 && c1 == 0.0 && c2 == 0.0 && c3 == 0.0 && m4 == 0.0
+    }
+
+    /// A τ ∈ (0, end] up to which the gap, starting at 0, is provably positive, or None if
+    /// its leading Taylor coefficient is not positive. With the leading nonzero coefficient
+    /// c_k of the cubic, the gap is ≥ s^k (c_k − Σ_{j>k} |c_j| s^(j−k) − M4 s^(4−k)/24) > 0.
+    fn clear_start(&self, end: f64) -> Option<f64> {
+        let (c, m4) = self.taylor();
+        let k = c.iter().position(|&x| x != 0.0)?;
+        if !(c[k] > 0.0) {
+            return None;
+        }
+        let mut s = end.min(1.0);
+        for _ in 0..1100 {
+            let rest: f64 = (k + 1..3).map(|j| c[j].abs() * s.powi((j - k) as i32)).sum::<f64>()
+                + m4 * s.powi((3 - k) as i32) / 24.0;
+            if c[k] - rest > 0.0 && s > 0.0 {
+                return Some(s);
+            }
+            s *= 0.5;
+        }
+        None
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::mechanics::{BodyState, Cylinder, Ramp};
+
+    fn ramp(chi: f64, km: f64, alpha: f64) -> Ramp {
+        Ramp::new(Cylinder::new(chi, km).unwrap(), alpha).unwrap()
+    }
+
+    /// The first sign change of the gap on a fine grid (a brute-force reference).
+    fn brute(f: &Flight, end: f64, n: usize) -> Option<f64> {
+        let mut prev = f.gap(end / n as f64).0;
+        for i in 2..=n {
+            let t = end * i as f64 / n as f64;
+            let g = f.gap(t).0;
+            if prev > 0.0 && g <= 0.0 {
+                return Some(t);
+            }
+            prev = g;
+        }
+        None
+    }
+
+    #[test]
+    fn a_thrown_body_lands_where_brute_force_says() {
+        let mut lcg = 12345u64;
+        let mut next = || {
+            lcg = lcg.wrapping_mul(6364136223846793005).wrapping_add(1442695040888963407);
+            (lcg >> 11) as f64 / (1u64 << 53) as f64
+        };
+        let mut landed = 0;
+        for _ in 0..300 {
+            let r = ramp(0.05 + 0.9 * next(), 0.02 + 0.03 * next(), 1.4 * next());
+            let f = Flight::new(
+                r,
+                BodyState {
+                    theta: 6.28 * next(),
+                    omega: 6.0 * (next() - 0.5),
+                    l: 0.0,
+                    ldot: next(),
+                    b: 1.0,
+                    bdot: 0.5 * next() + 1e-3,
+                },
+            );
+            let end = 20.0;
+            let reference = brute(&f, end, 400_000);
+            match f.landing(end) {
+                Landing::At(t) => {
+                    landed += 1;
+                    let b = reference.expect("a landing brute force does not see");
+                    assert!(t <= b + 1e-12 && t > b - 2.0 * end / 400_000.0, "{t} {b}");
+                    assert!(f.gap(t).0.abs() < 1e-12);
+                }
+                other => assert!(reference.is_none(), "{other:?}"),
+            }
+        }
+        assert!(landed > 250);
+    }
+
+    #[test]
+    fn a_dip_between_samples_is_found() {
+        // A fast spin on a shallow arc: the gap dips below 0 for a moment long before the
+        // parabola comes down.
+        let r = ramp(0.5, 0.3, 0.1);
+        // The centre of mass starts below C (θ0 = π) and swings over it within π/40 while
+        // C's height dips by 2χ = 1, more than the throw lifts it.
+        let f = Flight::new(
+            r,
+            BodyState {
+                theta: std::f64::consts::PI,
+                omega: 40.0,
+                l: 0.0,
+                ldot: 0.0,
+                b: 1.0 + 1e-3,
+                bdot: 12.0,
+            },
+        );
+        match f.landing(100.0) {
+            Landing::At(t) => {
+                let b = brute(&f, 1.0, 2_000_000).unwrap();
+                assert!((t - b).abs() < 1e-6, "{t} {b}");
+                assert!(t < 0.1);
+            }
+            other => panic!("{other:?}"),
+        }
+    }
+
+    #[test]
+    fn after_the_papers_liftoff_the_start_is_cleared() {
+        // At the paper's lift-off the gap and its first two derivatives vanish.
+        let r = ramp(0.15, 0.02, 40f64.to_radians());
+        let theta = 5.8_f64;
+        let omega = (r.cos_a / (r.body.chi * theta.cos())).sqrt();
+        let f = Flight::new(r, BodyState::rolling(theta, omega, theta));
+        let ([c1, c2, c3], _) = f.taylor();
+        assert_eq!(c1, 0.0);
+        assert!(c2.abs() < 1e-16 && c3 > 0.0);
+        match f.landing(100.0) {
+            Landing::At(t) => assert!(t > 1e-3 && f.gap(0.5 * t).0 > 0.0),
+            other => panic!("{other:?}"),
+        }
+        // Rolling into the ramp is not a flight.
+        let g = Flight::new(r, BodyState::rolling(0.3, 0.1, 0.3));
+        assert_eq!(g.landing(100.0), Landing::Immediate);
+        // Sliding down a vertical wall without spin never lands.
+        let w = Ramp::new(Cylinder::new(0.2, 0.1).unwrap(), std::f64::consts::FRAC_PI_2).unwrap();
+        let h = Flight::new(w, BodyState::rolling(0.0, 0.0, 0.0));
+        assert_eq!(h.landing(10.0), Landing::None);
+    }
+}

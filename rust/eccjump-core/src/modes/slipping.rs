@@ -1,0 +1,205 @@
+//! Slipping (contact with sliding: b = 1, F_x = σ μ_k F_y, σ = −sign of the slip velocity
+//! v = l̇ − θ̇): the closed forms, the ODE in y = (θ, θ̇, l, l̇, q) and its events.
+//!
+//! Newton–Euler ([`crate::mechanics::newton_euler`]) with b̈ = 0 and F_x = σ μ_k F_y gives,
+//! with B = cos α − χθ̇² cos θ and K, D of [`Sliding`],
+//!
+//!   θ̈ = K B/D,   F_y = Ĩ_CM B/D,   l̈ = sin α + F_x − χ(cos θ θ̈ − sin θ θ̇²),
+//!
+//! and friction dissipates q̇ = −F_x v = μ_k F_y |v| ≥ 0, integrated as the fifth state so
+//! that the energy ledger of a run is an independent check of the equations.
+
+use crate::mechanics::friction::Sliding;
+use crate::mechanics::Ramp;
+use crate::ode::{Direction, EventFunctions, EventSpec, OdeSystem, State};
+
+/// During a slip, D = Ĩ_CM + χ K sin θ falling to this ends the run (Painlevé): the normal
+/// force Ĩ_CM B/D grows without bound as D → 0. The time and angle where D reaches it hardly
+/// depend on it (physics notes); the velocities there do, logarithmically.
+pub const D_MIN: f64 = 1e-6;
+
+/// Accelerations and contact force of the sliding mode at one state.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct SlipKinematics {
+    /// θ̈.
+    pub theta_dd: f64,
+    /// l̈.
+    pub l_dd: f64,
+    /// Friction force along the ramp, σ μ_k F_y [M g].
+    pub fx: f64,
+    /// Normal force [M g].
+    pub fy: f64,
+    /// K of [`Sliding`].
+    pub k: f64,
+    /// D of [`Sliding`]; ≤ 0 is the Painlevé case.
+    pub d: f64,
+    /// B = cos α − χθ̇² cos θ = −L (the normal force has its sign where D > 0).
+    pub load: f64,
+}
+
+impl SlipKinematics {
+    /// The acceleration of the slip velocity, v̇ = l̈ − θ̈.
+    #[inline]
+    pub fn slip_acceleration(&self) -> f64 {
+        self.l_dd - self.theta_dd
+    }
+}
+
+/// The sliding mode of a body on its ramp, friction in direction σ = ±1 with μ_k.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Slipping {
+    /// The body on its ramp.
+    pub ramp: Ramp,
+    /// Direction of the friction force along x (−sign of the slip velocity).
+    pub sigma: f64,
+    /// Kinetic friction coefficient.
+    pub mu_k: f64,
+}
+
+impl Slipping {
+    /// The sliding accelerations and force at (θ, θ̇). Computed for any D ≠ 0 (callers test
+    /// `d`: the mode is consistent only where D > 0 and B > 0).
+    #[inline]
+    pub fn kinematics(&self, theta: f64, omega: f64) -> SlipKinematics {
+        let r = &self.ramp;
+        let chi = r.body.chi;
+        let (s, c) = theta.sin_cos();
+        let chi_w2 = chi * omega * omega;
+        let load = r.cos_a - chi_w2 * c;
+        let sl = Sliding::new(&r.body, s, c, self.sigma, self.mu_k);
+        let theta_dd = sl.k * load / sl.d;
+        let fy = r.body.icm * load / sl.d;
+        let fx = self.sigma * self.mu_k * fy;
+        SlipKinematics {
+            theta_dd,
+            l_dd: r.sin_a + fx - chi * c * theta_dd + chi_w2 * s,
+            fx,
+            fy,
+            k: sl.k,
+            d: sl.d,
+            load,
+        }
+    }
+}
+
+/// The sliding equations in y = (θ, θ̇, l, l̇, q), q the energy dissipated by friction.
+impl OdeSystem<5> for Slipping {
+    #[inline]
+    fn rhs(&self, _t: f64, y: &State<5>) -> State<5> {
+        let k = self.kinematics(y[0], y[1]);
+        let v = y[3] - y[1];
+        State::<5>::new(y[1], k.theta_dd, y[3], k.l_dd, self.mu_k * k.fy * v.abs())
+    }
+}
+
+/// The events that end a slip, in tie order (the index is the discriminant).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum SlipEvent {
+    /// B falls to 0, so F_y does: the body leaves the ramp (both rules coincide here).
+    NormalForce = 0,
+    /// The slip velocity returns to 0: stick or reverse.
+    Stops = 1,
+    /// D falls to [`D_MIN`] (Painlevé).
+    Painleve = 2,
+    /// l reaches l_max.
+    LLimit = 3,
+}
+
+impl SlipEvent {
+    /// All events, indexed by discriminant.
+    pub const ALL: [SlipEvent; 4] = [
+        SlipEvent::NormalForce,
+        SlipEvent::Stops,
+        SlipEvent::Painleve,
+        SlipEvent::LLimit,
+    ];
+}
+
+/// The events of a slip, all terminal.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct SlipEvents {
+    /// The sliding mode.
+    pub slipping: Slipping,
+    /// The l that ends the run (∞: never).
+    pub l_max: f64,
+}
+
+impl EventFunctions<5> for SlipEvents {
+    fn count(&self) -> usize {
+        SlipEvent::ALL.len()
+    }
+    fn spec(&self, k: usize) -> EventSpec {
+        let direction = match SlipEvent::ALL[k] {
+            SlipEvent::NormalForce | SlipEvent::Painleve => Direction::Falling,
+            SlipEvent::Stops => Direction::Any,
+            SlipEvent::LLimit => Direction::Rising,
+        };
+        EventSpec {
+            direction,
+            terminal: true,
+        }
+    }
+    fn value(&self, k: usize, t: f64, y: &State<5>) -> f64 {
+        let mut out = [0.0];
+        self.values(k, t, y, &mut out);
+        out[0]
+    }
+    /// All events from one `sin_cos`.
+    #[inline]
+    fn values(&self, first: usize, _t: f64, y: &State<5>, out: &mut [f64]) {
+        let r = &self.slipping.ramp;
+        let (s, c) = y[0].sin_cos();
+        let sl = Sliding::new(
+            &r.body,
+            s,
+            c,
+            self.slipping.sigma,
+            self.slipping.mu_k,
+        );
+        for (i, o) in out.iter_mut().enumerate() {
+            *o = match SlipEvent::ALL[first + i] {
+                SlipEvent::NormalForce => r.cos_a - r.body.chi * y[1] * y[1] * c,
+                SlipEvent::Stops => y[3] - y[1],
+                SlipEvent::Painleve => sl.d - D_MIN,
+                // A constant, finite g never crosses: l_max = ∞ disables the event.
+                SlipEvent::LLimit if self.l_max.is_finite() => y[2] - self.l_max,
+                SlipEvent::LLimit => -1.0,
+            };
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::mechanics::{Constraint, Cylinder};
+
+    #[test]
+    fn closed_form_is_newton_euler() {
+        for &(chi, km, a, th, w, sigma, mu) in &[
+            (0.5, 0.4, 0.5, 5.5f64, 1.2f64, -1.0, 0.7),
+            (0.3, 0.1, 1.0, 2.0, 0.4, 1.0, 0.3),
+            (0.8, 0.05, 1.3, 4.6, 0.9, -1.0, 1.0),
+            (0.0, 0.5, 0.2, 1.0, 2.0, 1.0, 0.2),
+        ] {
+            let ramp = Ramp::new(Cylinder::new(chi, km).unwrap(), a).unwrap();
+            let sl = Slipping {
+                ramp,
+                sigma,
+                mu_k: mu,
+            };
+            let k = sl.kinematics(th, w);
+            let ne = ramp
+                .newton_euler(th, w, Constraint::Sliding { sigma, mu_k: mu })
+                .unwrap();
+            for (x, y) in [
+                (k.theta_dd, ne.theta_dd),
+                (k.l_dd, ne.l_dd),
+                (k.fx, ne.fx),
+                (k.fy, ne.fy),
+            ] {
+                assert!((x - y).abs() < 1e-12 * (1.0 + y.abs()), "{x} {y}");
+            }
+        }
+    }
+}
