@@ -11,6 +11,7 @@ from eccjump.body import Cylinder
 from eccjump.boundary import alpha_intervals, mu_s_min_path
 from eccjump.classification import JarmResult, Reason, Region, jarm, region, region_dataset
 from eccjump.dense import DenseSolution
+from eccjump.motion import MotionResult, simulate
 from eccjump.rolling import EVENT_NAMES, Event, RollResult, roll
 from eccjump.units import Units
 
@@ -20,6 +21,7 @@ __all__ = [
     "DenseSolution",
     "Event",
     "JarmResult",
+    "MotionResult",
     "Reason",
     "Region",
     "RollResult",
@@ -32,5 +34,6 @@ __all__ = [
     "region",
     "region_dataset",
     "roll",
+    "simulate",
     "store",
 ]

@@ -37,6 +37,34 @@ class DenseSolution:
     def states(self, t: NDArray[np.float64]) -> NDArray[np.float64]: ...
     def kinematics(self, t: NDArray[np.float64]) -> dict[str, NDArray[np.float64]]: ...
 
+def simulate(
+    chi: float,
+    km: float,
+    alpha: float,
+    *,
+    mu_s: float,
+    mu_k: float,
+    restitution: float,
+    rule: str,
+    theta0: float,
+    omega0: float,
+    slip0: float,
+    t_max: float,
+    l_max: float,
+    max_transitions: int,
+    rtol: float,
+    atol: float,
+    max_steps: int,
+    dense_output: bool,
+) -> dict[str, Any]: ...
+
+class MotionDense:
+    """The dense output of a full-motion run, evaluated by the core."""
+
+    @property
+    def t_max(self) -> float: ...
+    def states(self, t: NDArray[np.float64]) -> NDArray[np.float64]: ...
+
 class CallOptions(TypedDict):
     """The options of a classification call (extra keys are ignored)."""
 

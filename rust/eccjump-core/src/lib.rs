@@ -12,6 +12,7 @@
 //!   equations, events, bounds and runs);
 //! - [`jarm`]: the paper's Section 3 (jump-point formulas, from-rest closed forms, the path
 //!   scan, the ODE route and the decision tree they share);
+//! - [`motion`]: the full motion (rolling, slipping, flight, landing), segment by segment;
 //! - [`maps`]: bit-reproducible parallel maps over points and grids, and boundaries.
 
 #![warn(missing_docs)]
@@ -21,6 +22,7 @@ pub mod jarm;
 pub mod maps;
 pub mod mechanics;
 pub mod modes;
+pub mod motion;
 pub mod ode;
 
 pub use error::{Error, Result};

@@ -9,6 +9,7 @@ mod errors;
 mod jarm;
 mod options;
 mod roll;
+mod simulate;
 
 use pyo3::prelude::*;
 
@@ -27,4 +28,6 @@ mod _core {
     use crate::jarm::{jarm_grid, jarm_points, reason_codes};
     #[pymodule_export]
     use crate::roll::{roll, DenseSolution};
+    #[pymodule_export]
+    use crate::simulate::{simulate, MotionDense};
 }

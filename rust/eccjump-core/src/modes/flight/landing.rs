@@ -2,9 +2,11 @@
 //!
 //! The gap is a parabola minus a sinusoid: it can dip to 0 and rise again between any two
 //! samples, so sampling alone may miss a touch. The search is rigorous instead, with
-//! |g''| ≤ M = cos α + χθ̇² ([`Flight::gap_curvature_bound`]):
-//! - an interval [a, b] holds no zero if the lower bounds g(a) + g'(a)s − ½Ms² (from the left)
-//!   and g(b) − g'(b)s − ½Ms² (from the right) are positive on pieces that cover it;
+//! |g''| ≤ M = cos α + χθ̇² and |g'''| ≤ M3 = χ|θ̇|³ ([`Flight::gap_bounds`]):
+//! - an interval [a, b] holds no zero if lower bounds of g from its left end (g(a) + g'(a)s
+//!   − ½Ms², or g(a) + g'(a)s + ½g''(a)s² − M3 s³/6 where g, g', g'' ≥ 0, which clears
+//!   intervals growing with τ right after a lift-off, where g ~ τ³) and from its right end
+//!   (the same with s → −s) are positive on pieces that cover it;
 //! - an interval with g(a) > 0 ≥ g(b) on which g' provably keeps its sign (g'(a) + Mh < 0 or
 //!   g'(b) + Mh < 0) holds exactly one zero, found by Brent's method;
 //! - anything else is halved, the left half searched first.
@@ -37,11 +39,15 @@ pub enum Landing {
 struct Search<'a> {
     flight: &'a Flight,
     m: f64,
+    m3: f64,
     evaluations: usize,
 }
 
-/// The length s > 0 up to which g(a) + g'(a)s − ½Ms² stays positive (g(a) > 0).
-fn clear_length(g: f64, d: f64, m: f64) -> f64 {
+/// The gap, its rate and its curvature at one time.
+type Sample = (f64, f64, f64, f64);
+
+/// The length s > 0 up to which g + d s − ½Ms² stays positive (g > 0).
+fn clear_quadratic(g: f64, d: f64, m: f64) -> f64 {
     if m > 0.0 {
         // The positive root of ½Ms² − d s − g, in the form without cancellation.
         let disc = (d * d + 2.0 * m * g).sqrt();
@@ -57,15 +63,51 @@ fn clear_length(g: f64, d: f64, m: f64) -> f64 {
     }
 }
 
+/// The length s > 0 up to which g + d s + ½c s² − (M3/6) s³ stays positive, for g > 0 and
+/// d, c ≥ 0: then (that polynomial)/s³ falls monotonically, so its one positive root is
+/// found by bisection (to 1e-3 relative; the lower end is returned).
+fn clear_cubic(g: f64, d: f64, c: f64, m3: f64) -> f64 {
+    if !(d >= 0.0 && c >= 0.0) {
+        return 0.0;
+    }
+    if m3 <= 0.0 {
+        return f64::INFINITY;
+    }
+    let p = |s: f64| g + s * (d + s * (0.5 * c - s * m3 / 6.0));
+    let mut hi = (6.0 * g / m3).cbrt().max(3.0 * c / m3).max((6.0 * d / m3).sqrt()) * 2.0;
+    if !(hi.is_finite() && hi > 0.0) {
+        return 0.0;
+    }
+    while p(hi) > 0.0 {
+        hi *= 2.0;
+    }
+    let mut lo = 0.0;
+    while hi - lo > 1e-3 * hi {
+        let mid = 0.5 * (lo + hi);
+        if p(mid) > 0.0 {
+            lo = mid;
+        } else {
+            hi = mid;
+        }
+    }
+    lo
+}
+
 impl Search<'_> {
-    fn eval(&mut self, tau: f64) -> (f64, f64) {
+    fn eval(&mut self, tau: f64) -> Sample {
         self.evaluations += 1;
-        self.flight.gap(tau)
+        let (g, d, c) = self.flight.gap_derivatives(tau);
+        (tau, g, d, c)
     }
 
-    /// The first zero in (a, b], given g and g' at both ends and g(a) > 0.
-    fn first_zero(&mut self, a: (f64, f64, f64), b: (f64, f64, f64)) -> Result<Option<f64>, ()> {
-        let ((ta, ga, da), (tb, gb, db)) = (a, b);
+    /// How far from a point with g > 0 and rate d (along the search) g is provably positive.
+    fn clear(&self, g: f64, d: f64, c: f64) -> f64 {
+        clear_quadratic(g, d, self.m).max(clear_cubic(g, d, c, self.m3))
+    }
+
+    /// The first zero in (a, b], given g, g', g'' at both ends and g(a) > 0.
+    fn first_zero(&mut self, a: Sample, b: Sample) -> Result<Option<f64>, ()> {
+        let ((ta, ga, da, ca), (tb, gb, db, cb)) = (a, b);
         let h = tb - ta;
         if gb <= 0.0 {
             let slope_up = (da + self.m * h).min(db + self.m * h);
@@ -73,8 +115,8 @@ impl Search<'_> {
                 return Ok(Some(self.locate(ta, ga, tb, gb)));
             }
         } else {
-            let left = clear_length(ga, da, self.m);
-            let right = clear_length(gb, -db, self.m);
+            let left = self.clear(ga, da, ca);
+            let right = self.clear(gb, -db, cb);
             // A relative margin covers the rounding of g, g' and the bound.
             if left + right >= h * (1.0 + 1e-12) || h <= 4.0 * f64::EPSILON * tb.abs() {
                 return Ok(None);
@@ -83,15 +125,14 @@ impl Search<'_> {
         if self.evaluations >= MAX_EVALUATIONS {
             return Err(());
         }
-        let tm = ta + 0.5 * h;
-        let (gm, dm) = self.eval(tm);
-        if gm <= 0.0 {
+        let mid = self.eval(ta + 0.5 * h);
+        if mid.1 <= 0.0 {
             // A zero lies in (a, m]: the first one is there.
-            return self.first_zero(a, (tm, gm, dm));
+            return self.first_zero(a, mid);
         }
-        match self.first_zero(a, (tm, gm, dm))? {
+        match self.first_zero(a, mid)? {
             Some(t) => Ok(Some(t)),
-            None => self.first_zero((tm, gm, dm), b),
+            None => self.first_zero(mid, b),
         }
     }
 
@@ -111,9 +152,11 @@ impl Search<'_> {
 impl Flight {
     /// The first return of the gap to 0 in (0, τ_end] (see the module notes).
     pub fn landing(&self, tau_end: f64) -> Landing {
+        let (m, m3) = self.gap_bounds();
         let mut search = Search {
             flight: self,
-            m: self.gap_curvature_bound(),
+            m,
+            m3,
             evaluations: 0,
         };
         let end = tau_end.min(self.fall_bound() * (1.0 + 1e-9) + 1e-12);
@@ -122,23 +165,22 @@ impl Flight {
         }
         let g0 = self.start.b - 1.0;
         let start = if g0 > 0.0 {
-            let (g, d) = search.eval(0.0);
-            (0.0, g, d)
+            search.eval(0.0)
         } else {
             match self.clear_start(end) {
                 Some(s) => {
-                    let (g, d) = search.eval(s);
-                    if g <= 0.0 {
+                    let first = search.eval(s);
+                    if first.1 <= 0.0 {
                         return Landing::Immediate;
                     }
-                    (s, g, d)
+                    first
                 }
                 None if self.gap_is_identically_zero() => return Landing::None,
                 None => return Landing::Immediate,
             }
         };
-        let (ge, de) = search.eval(end);
-        match search.first_zero(start, (end, ge, de)) {
+        let last = search.eval(end);
+        match search.first_zero(start, last) {
             Ok(Some(t)) => Landing::At(t),
             Ok(None) => Landing::None,
             Err(()) => Landing::Undecided,

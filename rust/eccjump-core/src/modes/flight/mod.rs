@@ -77,22 +77,32 @@ impl Flight {
     /// The gap b − 1 and its rate ḃ at τ.
     #[inline]
     pub fn gap(&self, tau: f64) -> (f64, f64) {
+        let (g, d, _) = self.gap_derivatives(tau);
+        (g, d)
+    }
+
+    /// The gap b − 1, ḃ and b̈ = χθ̇² cos θ − cos α at τ.
+    #[inline]
+    pub fn gap_derivatives(&self, tau: f64) -> (f64, f64, f64) {
         let s = &self.start;
         let (r, chi) = (&self.ramp, self.ramp.body.chi);
         let x = s.omega * tau;
         let (sin_x, cos_x) = x.sin_cos();
         let half = (0.5 * x).sin();
         let (sq, xs) = (2.0 * half * half, x_minus_sin(x));
+        let cos_t = self.cos0 * cos_x - self.sin0 * sin_x;
         (
             (s.b - 1.0) + s.bdot * tau - 0.5 * r.cos_a * tau * tau
                 + chi * (self.cos0 * sq - self.sin0 * xs),
             s.bdot - r.cos_a * tau + chi * s.omega * (self.cos0 * sin_x - self.sin0 * (1.0 - cos_x)),
+            chi * s.omega * s.omega * cos_t - r.cos_a,
         )
     }
 
-    /// A bound on |b̈| = |χθ̇² cos θ − cos α| over the whole flight.
-    pub fn gap_curvature_bound(&self) -> f64 {
-        self.ramp.cos_a + self.ramp.body.chi * self.start.omega * self.start.omega
+    /// Bounds on |b̈| = |χθ̇² cos θ − cos α| and on |b⃛| = |χθ̇³ sin θ| over the whole flight.
+    pub fn gap_bounds(&self) -> (f64, f64) {
+        let (chi, w) = (self.ramp.body.chi, self.start.omega.abs());
+        (self.ramp.cos_a + chi * w * w, chi * w * w * w)
     }
 
     /// The time τ_p after which the gap is certainly negative: C is below the CM by at most

@@ -1,0 +1,18 @@
+//! The full motion of the body (the paper's "work in progress"): rolling, slipping, flight
+//! and landing, one segment after another, as `docs/motion.md` specifies.
+//!
+//! - [`options`]: the inputs and their checks, the Zeno rule's threshold;
+//! - [`simulate`](mod@simulate): the driver (one solver run per contact segment, exact flights, the impact
+//!   law at every landing, the consistency test after every event);
+//! - [`record`]: what a run records (points, transitions, flights, impacts, segments,
+//!   energy ledger);
+//! - [`solution`]: `sol(t)` across segments.
+
+pub mod options;
+pub mod record;
+pub mod simulate;
+pub mod solution;
+
+pub use options::SimOptions;
+pub use record::{MotionRun, MotionStatus};
+pub use simulate::{simulate, simulate_until};

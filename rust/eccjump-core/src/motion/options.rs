@@ -1,0 +1,101 @@
+//! The inputs of a full-motion run and their checks.
+
+use crate::error::{check_count, check_range, Error, Result};
+use crate::mechanics::{Rule, MAX_OMEGA0, MAX_THETA0};
+use crate::modes::contact::ContactLaw;
+use crate::modes::rolling::run::MAX_STEPS;
+use crate::ode::SolverOptions;
+
+/// t_max ≤ this (in √(R/g)): bounds the work of a run together with `max_steps`.
+pub const MAX_TIME: f64 = 1e6;
+
+/// max_transitions ≤ this.
+pub const MAX_TRANSITIONS: usize = 1_000_000;
+
+/// After an impact, a separation speed u_n (in √(gR)) at or below this is set to 0 and the
+/// body stays in contact: the Zeno rule that ends bounces accumulating in finite time
+/// (`docs/motion.md`). A numerical parameter, not physics.
+pub const SETTLE_SPEED: f64 = 1e-6;
+
+/// The inputs of [`crate::motion::simulate`] besides the body and the ramp.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct SimOptions {
+    /// Friction coefficients and the lift-off rule.
+    pub law: ContactLaw,
+    /// Stronge's energetic coefficient of restitution e ∈ [0, 1].
+    pub restitution: f64,
+    /// Initial angle θ0 (rad).
+    pub theta0: f64,
+    /// Initial θ̇0.
+    pub omega0: f64,
+    /// Initial slip velocity l̇0 − θ̇0.
+    pub slip0: f64,
+    /// End time, in (0, [`MAX_TIME`]].
+    pub t_max: f64,
+    /// Distance along the ramp (from the start) that ends the run; ∞ disables it.
+    pub l_max: f64,
+    /// Transitions after the start that the run may make.
+    pub max_transitions: usize,
+    /// Tolerances of the integrator; `max_steps` bounds the accepted steps of the whole run.
+    pub solver: SolverOptions,
+    /// Keep the dense output of every segment (for `sol(t)`).
+    pub dense_output: bool,
+}
+
+impl Default for SimOptions {
+    fn default() -> Self {
+        Self {
+            law: ContactLaw {
+                mu_s: 1.0,
+                mu_k: 1.0,
+                rule: Rule::Paper,
+            },
+            restitution: 0.0,
+            theta0: 0.0,
+            omega0: 0.0,
+            slip0: 0.0,
+            t_max: 100.0,
+            l_max: f64::INFINITY,
+            max_transitions: 100,
+            solver: SolverOptions::default(),
+            dense_output: false,
+        }
+    }
+}
+
+impl SimOptions {
+    /// Checks every option, naming the first bad one.
+    pub fn validate(&self) -> Result<()> {
+        check_range("mu_s", self.law.mu_s, 0.0, f64::MAX)?;
+        if !(self.law.mu_k >= 0.0 && self.law.mu_k <= self.law.mu_s) {
+            return Err(Error::InvalidParameter {
+                name: "mu_k",
+                value: self.law.mu_k,
+                allowed: "[0, mu_s]".to_string(),
+            });
+        }
+        check_range("restitution", self.restitution, 0.0, 1.0)?;
+        check_range("theta0", self.theta0, -MAX_THETA0, MAX_THETA0)?;
+        check_range("omega0", self.omega0, -MAX_OMEGA0, MAX_OMEGA0)?;
+        check_range("slip0", self.slip0, -MAX_OMEGA0, MAX_OMEGA0)?;
+        if !(self.t_max > 0.0 && self.t_max <= MAX_TIME) {
+            return Err(Error::InvalidParameter {
+                name: "t_max",
+                value: self.t_max,
+                allowed: "(0, 1e6]".to_string(),
+            });
+        }
+        if !(self.l_max > 0.0) {
+            return Err(Error::InvalidParameter {
+                name: "l_max",
+                value: self.l_max,
+                allowed: "(0, inf]".to_string(),
+            });
+        }
+        check_count("max_transitions", self.max_transitions, 1, MAX_TRANSITIONS)?;
+        check_range("rtol", self.solver.rtol, 1e-15, 1e-2)?;
+        check_range("atol", self.solver.atol, 1e-300, 1.0)?;
+        check_count("max_steps", self.solver.max_steps, 1, MAX_STEPS)?;
+        Ok(())
+    }
+}

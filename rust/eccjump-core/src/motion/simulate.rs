@@ -1,0 +1,537 @@
+//! The driver of a full-motion run: one segment at a time (rolling and slipping integrated
+//! by the RK45 core with their events, flight exact with its rigorous landing search), the
+//! impact law at every landing, and the consistency test after every event
+//! (`docs/motion.md` specifies the model).
+
+use crate::error::{Error, Result};
+use crate::mechanics::impact::{resolve, ImpactLaw, ImpactMatrix};
+use crate::mechanics::{BodyState, Ramp};
+use crate::modes::contact::{decide, Mode, Reason, Verdict};
+use crate::modes::flight::landing::Landing;
+use crate::modes::flight::Flight;
+use crate::modes::rolling::run::{roll_until, RollEvent, RollOptions, RollStatus};
+use crate::modes::slipping::{SlipEvent, SlipEvents, Slipping};
+use crate::motion::options::{SimOptions, SETTLE_SPEED};
+use crate::motion::record::{
+    FlightRecord, ImpactRecord, MotionRun, MotionStatus, Point, Segment, Transition,
+};
+use crate::motion::solution::{MotionSolution, Piece};
+use crate::ode::roots::brent;
+use crate::ode::{self, Observation, State, Status};
+
+/// What comes after a segment.
+enum Next {
+    /// Another mode, for a reason, from a state.
+    Mode(Mode, Reason, BodyState, f64),
+    /// The run ends.
+    End(MotionStatus, String),
+}
+
+/// The mode chosen by the consistency test as a [`Next`], for `reason` where it flies.
+fn after(verdict: Verdict, reason: Reason, s: BodyState) -> Next {
+    match verdict {
+        Verdict::Roll => Next::Mode(Mode::Roll, reason, s, 0.0),
+        Verdict::Slip { sigma } => Next::Mode(Mode::Slip, reason, s, sigma),
+        Verdict::Flight(r) => Next::Mode(Mode::Flight, r, s, 0.0),
+        Verdict::Jam => Next::End(
+            MotionStatus::Jam,
+            "no consistent contact mode and the ramp pushes the body back (L < 0): a dynamic \
+             jam the rigid model cannot continue"
+                .to_string(),
+        ),
+    }
+}
+
+struct Driver<'a> {
+    ramp: &'a Ramp,
+    opts: &'a SimOptions,
+    stop: &'a dyn Fn() -> bool,
+    run: MotionRun,
+    t: f64,
+    steps_left: usize,
+}
+
+/// Integrates the full motion from (θ0, θ̇0, slip0) until t_max, l_max, the transition
+/// budget or an outcome the rigid model cannot continue.
+pub fn simulate(ramp: &Ramp, opts: &SimOptions) -> Result<MotionRun> {
+    simulate_until(ramp, opts, &|| false)
+}
+
+/// [`simulate`], asking `stop()` every few thousand steps and at every segment; a `true`
+/// ends it with `Error::Interrupted`.
+pub fn simulate_until(
+    ramp: &Ramp,
+    opts: &SimOptions,
+    stop: &dyn Fn() -> bool,
+) -> Result<MotionRun> {
+    opts.validate()?;
+    if !(ramp.body.icm > 0.0) {
+        return Err(Error::InvalidParameter {
+            name: "km",
+            value: ramp.body.km,
+            allowed: "(0, 1 - chi] for simulate: with km = 0 all the mass is at the centre of \
+                      mass and the spin in flight is undetermined"
+                .to_string(),
+        });
+    }
+    let start = BodyState {
+        theta: opts.theta0,
+        omega: opts.omega0,
+        l: 0.0,
+        ldot: opts.omega0 + opts.slip0,
+        b: 1.0,
+        bdot: 0.0,
+    };
+    let mut d = Driver {
+        ramp,
+        opts,
+        stop,
+        run: MotionRun {
+            energy0: ramp.energy_of(&start),
+            dense: opts.dense_output.then(MotionSolution::default),
+            ..MotionRun::default()
+        },
+        t: 0.0,
+        steps_left: opts.solver.max_steps,
+    };
+    let first = decide(ramp, &opts.law, &start, false);
+    let mut next = after(first, Reason::Start, start);
+    let mut from = None;
+    loop {
+        let (mode, reason, state, sigma) = match next {
+            Next::End(status, message) => {
+                d.run.status = Some(status);
+                d.run.message = message;
+                break;
+            }
+            Next::Mode(mode, reason, state, sigma) => (mode, reason, state, sigma),
+        };
+        if d.run.transitions.len() > opts.max_transitions {
+            d.run.status = Some(MotionStatus::MaxTransitions);
+            d.run.message = format!("{} transitions made (max_transitions)", opts.max_transitions);
+            break;
+        }
+        if stop() {
+            return Err(Error::Interrupted);
+        }
+        // Mode reason: the reason for a slip that follows a slip is a reversal.
+        let reason = match (from, mode, reason) {
+            (Some(Mode::Slip), Mode::Slip, Reason::Slip) => Reason::Reverse,
+            (Some(Mode::Slip), Mode::Roll, Reason::Slip) => Reason::Stick,
+            _ => reason,
+        };
+        d.run.transitions.push(Transition {
+            t: d.t,
+            from,
+            to: mode,
+            reason,
+            state,
+        });
+        let t_start = d.t;
+        let nfev_before = d.run.nfev;
+        next = match mode {
+            Mode::Roll => d.roll(state)?,
+            Mode::Slip => d.slip(state, sigma)?,
+            Mode::Flight => d.fly(state)?,
+        };
+        d.run.segments.push(Segment {
+            mode,
+            reason,
+            t_start,
+            t_end: d.t,
+            nfev: d.run.nfev - nfev_before,
+        });
+        from = Some(mode);
+    }
+    if let Some(sol) = d.run.dense.as_mut() {
+        sol.t_end = d.t;
+    }
+    if d.run.message.is_empty() {
+        d.run.message = d.run.status.map_or("", |s| s.name()).to_string();
+    }
+    Ok(d.run)
+}
+
+impl Driver<'_> {
+    fn point(&self, t: f64, state: BodyState, fx: f64, fy: f64, mode: Mode) -> Point {
+        Point {
+            t,
+            state,
+            fx,
+            fy,
+            dissipated: self.run.dissipated(),
+            mode,
+        }
+    }
+
+    fn time_left(&self) -> f64 {
+        self.opts.t_max - self.t
+    }
+
+    fn end_of_time(&self) -> Next {
+        Next::End(MotionStatus::TimeLimit, "reached t_max".to_string())
+    }
+
+    fn end_of_ramp(&self) -> Next {
+        Next::End(MotionStatus::DistanceLimit, "reached l_max".to_string())
+    }
+
+    fn failed(&self, what: &str, status: Status) -> Next {
+        let why = match status {
+            Status::MaxSteps => "step limit reached (max_steps)",
+            Status::StepTooSmall => "step size became too small (a singular motion)",
+            Status::NonFinite => "non-finite value in the equations of motion",
+            _ => "integrator stopped",
+        };
+        Next::End(MotionStatus::Failed, format!("{what}: {why}"))
+    }
+
+    /// A rolling segment: the `roll` kernel with its events.
+    fn roll(&mut self, s: BodyState) -> Result<Next> {
+        if self.time_left() <= 0.0 {
+            return Ok(self.end_of_time());
+        }
+        let opts = RollOptions {
+            theta0: s.theta,
+            omega0: s.omega,
+            mu_s: Some(self.opts.law.mu_s),
+            t_max: self.time_left(),
+            theta_max: s.theta + (self.opts.l_max - s.l),
+            rule: self.opts.law.rule,
+            solver: ode::SolverOptions {
+                max_steps: self.steps_left.max(1),
+                ..self.opts.solver
+            },
+            dense_output: self.opts.dense_output,
+        };
+        let rr = match roll_until(self.ramp, &opts, self.stop) {
+            Ok(rr) => rr,
+            Err(Error::InvalidParameter { name, .. }) => {
+                return Ok(Next::End(
+                    MotionStatus::Failed,
+                    format!("the rolling segment left the supported range ({name})"),
+                ))
+            }
+            Err(e) => return Err(e),
+        };
+        self.steps_left = self.steps_left.saturating_sub(rr.t.len().saturating_sub(1));
+        self.run.nfev += rr.nfev;
+        let l_shift = s.l - s.theta;
+        let t0 = self.t;
+        for i in 0..rr.t.len() {
+            let state = BodyState::rolling(rr.theta[i], rr.omega[i], rr.theta[i] + l_shift);
+            let p = self.point(t0 + rr.t[i], state, rr.fx[i], rr.fy[i], Mode::Roll);
+            self.run.push(p)?;
+        }
+        let last = rr.t.len() - 1;
+        self.t = t0 + rr.t[last];
+        let end = BodyState::rolling(rr.theta[last], rr.omega[last], rr.theta[last] + l_shift);
+        if let (Some(sol), Some(dense)) = (self.run.dense.as_mut(), rr.dense) {
+            sol.pieces.push((
+                t0,
+                Piece::Roll {
+                    steps: dense.steps,
+                    l_shift,
+                },
+            ));
+        }
+        let law = &self.opts.law;
+        Ok(match rr.status {
+            RollStatus::TimeLimit => self.end_of_time(),
+            RollStatus::Event(RollEvent::ThetaLimit) => self.end_of_ramp(),
+            RollStatus::Event(RollEvent::Liftoff) => {
+                Next::Mode(Mode::Flight, Reason::Liftoff, end, 0.0)
+            }
+            RollStatus::Event(RollEvent::NormalForceZero) => after(
+                decide(self.ramp, law, &end, true),
+                Reason::NormalForce,
+                end,
+            ),
+            RollStatus::Event(RollEvent::Slip) => {
+                after(decide(self.ramp, law, &end, true), Reason::Slip, end)
+            }
+            RollStatus::Failed(status) => self.failed("rolling", status),
+        })
+    }
+
+    /// A slipping segment with friction direction σ.
+    fn slip(&mut self, s: BodyState, sigma: f64) -> Result<Next> {
+        if self.time_left() <= 0.0 {
+            return Ok(self.end_of_time());
+        }
+        let sys = Slipping {
+            ramp: *self.ramp,
+            sigma,
+            mu_k: self.opts.law.mu_k,
+        };
+        let events = SlipEvents {
+            slipping: sys,
+            l_max: self.opts.l_max,
+        };
+        let solver = ode::SolverOptions {
+            max_steps: self.steps_left.max(1),
+            ..self.opts.solver
+        };
+        let y0 = State::<5>::new(s.theta, s.omega, s.l, s.ldot, 0.0);
+        let (t0, q0) = (self.t, self.run.dissipated_slip);
+        let dense = self.opts.dense_output;
+        let mut steps = Vec::new();
+        let mut memory: Option<Error> = None;
+        let state_of = |y: &State<5>| BodyState {
+            theta: y[0],
+            omega: y[1],
+            l: y[2],
+            ldot: y[3],
+            b: 1.0,
+            bdot: 0.0,
+        };
+        let record = |run: &mut MotionRun, t: f64, y: &State<5>| -> Result<()> {
+            let k = sys.kinematics(y[0], y[1]);
+            run.push(Point {
+                t,
+                state: state_of(y),
+                fx: k.fx,
+                fy: k.fy,
+                dissipated: q0 + y[4] + run.dissipated_impacts,
+                mode: Mode::Slip,
+            })
+        };
+        record(&mut self.run, t0, &y0)?;
+        let run = &mut self.run;
+        let outcome = ode::solve_until(
+            &sys,
+            &events,
+            t0,
+            y0,
+            self.opts.t_max,
+            &solver,
+            &mut |obs: Observation<'_, 5>| {
+                if let Observation::Step { dense: step, t, y } = obs {
+                    if memory.is_none() {
+                        if let Err(e) = record(run, t, y) {
+                            memory = Some(e);
+                        } else if dense {
+                            match crate::error::try_grow("the dense output", &mut steps) {
+                                Ok(()) => steps.push(*step),
+                                Err(e) => memory = Some(e),
+                            }
+                        }
+                    }
+                }
+            },
+            self.stop,
+        );
+        if let Some(e) = memory {
+            return Err(e);
+        }
+        if outcome.status == Status::Stopped {
+            return Err(Error::Interrupted);
+        }
+        self.steps_left = self.steps_left.saturating_sub(outcome.n_accepted);
+        self.run.nfev += outcome.nfev;
+        self.run.dissipated_slip = q0 + outcome.y[4];
+        self.t = outcome.t;
+        if let Some(sol) = self.run.dense.as_mut() {
+            sol.pieces.push((t0, Piece::Slip { steps }));
+        }
+        let mut end = state_of(&outcome.y);
+        let law = &self.opts.law;
+        Ok(match outcome.status {
+            Status::Finished => self.end_of_time(),
+            Status::Event(k) => match SlipEvent::ALL[k] {
+                SlipEvent::NormalForce => Next::Mode(Mode::Flight, Reason::NormalForce, end, 0.0),
+                SlipEvent::Stops => {
+                    end.ldot = end.omega;
+                    after(decide(self.ramp, law, &end, false), Reason::Slip, end)
+                }
+                SlipEvent::Painleve => Next::End(
+                    MotionStatus::Painleve,
+                    format!(
+                        "Painlevé: D fell to its threshold during the slip at t = {:.6}, θ = \
+                         {:.4}° (the sliding normal force grows without bound)",
+                        outcome.t,
+                        end.theta.to_degrees()
+                    ),
+                ),
+                SlipEvent::LLimit => self.end_of_ramp(),
+            },
+            other => self.failed("slipping", other),
+        })
+    }
+
+    /// A flight: exact, until the landing, then the impact.
+    fn fly(&mut self, s: BodyState) -> Result<Next> {
+        let f = Flight::new(*self.ramp, s);
+        let t0 = self.t;
+        let horizon = self.time_left();
+        let landing = f.landing(horizon);
+        let (tau_end, landed) = match landing {
+            Landing::At(tau) => (tau, true),
+            Landing::None => (horizon, false),
+            Landing::Immediate => {
+                return Ok(Next::End(
+                    MotionStatus::Jam,
+                    "neither contact nor flight is consistent here (the gap cannot open)"
+                        .to_string(),
+                ))
+            }
+            Landing::Undecided => {
+                return Ok(Next::End(
+                    MotionStatus::Failed,
+                    "the landing search used up its evaluation budget".to_string(),
+                ))
+            }
+        };
+        // l_max inside the flight: the first sample past it, refined by Brent.
+        let samples = flight_samples(s.omega, tau_end);
+        let mut tau_stop = tau_end;
+        let mut hit_l_max = false;
+        if self.opts.l_max.is_finite() {
+            let g = |tau: f64| f.state(tau).l - self.opts.l_max;
+            let mut prev = (0.0, g(0.0));
+            for i in 1..=samples {
+                let tau = tau_end * i as f64 / samples as f64;
+                let gi = g(tau);
+                if prev.1 < 0.0 && gi >= 0.0 {
+                    tau_stop = brent(g, prev.0, tau, prev.1, gi, 0.0, 4.0 * f64::EPSILON, 200)
+                        .map_or(tau, |r| r.x);
+                    hit_l_max = true;
+                    break;
+                }
+                prev = (tau, gi);
+            }
+        }
+        for i in 0..=samples {
+            let tau = tau_stop * i as f64 / samples as f64;
+            let mut state = f.state(tau);
+            if i == 0 {
+                state = s;
+            }
+            let p = self.point(t0 + tau, state, 0.0, 0.0, Mode::Flight);
+            self.run.push(p)?;
+        }
+        if let Some(sol) = self.run.dense.as_mut() {
+            sol.pieces.push((t0, Piece::Flight(f)));
+        }
+        let end = f.state(tau_stop);
+        self.t = if tau_stop == horizon {
+            self.opts.t_max
+        } else {
+            t0 + tau_stop
+        };
+        self.run.flights.push(FlightRecord {
+            t_liftoff: t0,
+            t_landing: if landed && !hit_l_max { t0 + tau_stop } else { f64::NAN },
+            theta_liftoff: s.theta,
+            theta_landing: end.theta,
+            apex: apex(&f, tau_stop),
+            distance: end.l - s.l,
+        });
+        if hit_l_max {
+            return Ok(self.end_of_ramp());
+        }
+        if !landed {
+            return Ok(self.end_of_time());
+        }
+        Ok(self.impact(BodyState { b: 1.0, ..end }))
+    }
+
+    /// The impact at a landing, then the mode after it.
+    fn impact(&mut self, before: BodyState) -> Next {
+        let (r, law) = (self.ramp, &self.opts.law);
+        let (sin_t, cos_t) = before.theta.sin_cos();
+        // simulate refuses bodies with Ĩ_CM = 0, the one case without a matrix.
+        let Some(w) = ImpactMatrix::new(&r.body, sin_t, cos_t) else {
+            return Next::End(MotionStatus::Failed, "singular impact matrix".to_string());
+        };
+        let imp = resolve(
+            &w,
+            &ImpactLaw {
+                mu_s: law.mu_s,
+                mu_k: law.mu_k,
+                restitution: self.opts.restitution,
+            },
+            before.slip_velocity(),
+            before.bdot,
+        );
+        let (omega, ldot, bdot) = r.body.apply_impulse(
+            before.theta,
+            before.omega,
+            before.ldot,
+            before.bdot,
+            imp.pt,
+            imp.pn,
+        );
+        let mut after_state = BodyState {
+            omega,
+            ldot,
+            bdot,
+            ..before
+        };
+        let sticking = imp.ending == crate::mechanics::impact::Ending::Sticking;
+        if sticking {
+            after_state.ldot = after_state.omega;
+        }
+        let flies = imp.un > SETTLE_SPEED;
+        let reason = if !flies && self.opts.restitution > 0.0 && imp.un > 0.0 {
+            Reason::Settle
+        } else {
+            Reason::Impact
+        };
+        if !flies {
+            after_state.bdot = 0.0;
+        }
+        let lost = r.energy_of(&before) - r.energy_of(&after_state);
+        self.run.dissipated_impacts += lost;
+        let next = if flies {
+            Next::Mode(Mode::Flight, Reason::Impact, after_state, 0.0)
+        } else {
+            match after(decide(r, law, &after_state, false), reason, after_state) {
+                // After a landing the reason is the landing, whatever the mode.
+                Next::Mode(m, _, st, sg) => Next::Mode(m, reason, st, sg),
+                end => end,
+            }
+        };
+        self.run.impacts.push(ImpactRecord {
+            t: self.t,
+            normal_speed: -before.bdot,
+            slip_before: before.slip_velocity(),
+            pt: imp.pt,
+            pn: imp.pn,
+            energy_lost: lost,
+            sticking,
+            outcome: match &next {
+                Next::Mode(m, ..) => *m,
+                Next::End(..) => Mode::Flight,
+            },
+        });
+        next
+    }
+}
+
+/// Samples recorded per flight: 16 per half turn of spin, at least 32, at most 4096.
+fn flight_samples(omega: f64, tau: f64) -> usize {
+    let turns = (omega.abs() * tau / std::f64::consts::PI).min(1e6);
+    (32.0f64.max(16.0 * turns)).min(4096.0) as usize
+}
+
+/// The largest gap b − 1 over [0, τ_end]: the best of 64 samples, refined where ḃ changes
+/// sign next to it.
+fn apex(f: &Flight, tau_end: f64) -> f64 {
+    let n = 64;
+    let at = |i: usize| tau_end * i as f64 / n as f64;
+    let best = (0..=n)
+        .map(|i| (i, f.gap(at(i)).0))
+        .fold((0, f64::NEG_INFINITY), |a, b| if b.1 > a.1 { b } else { a });
+    let mut top = best.1;
+    for (lo, hi) in [(best.0.saturating_sub(1), best.0), (best.0, (best.0 + 1).min(n))] {
+        let (a, b) = (at(lo), at(hi));
+        let (da, db) = (f.gap(a).1, f.gap(b).1);
+        if da > 0.0 && db < 0.0 {
+            if let Ok(root) = brent(|t| f.gap(t).1, a, b, da, db, 0.0, 4.0 * f64::EPSILON, 200) {
+                top = top.max(f.gap(root.x).0);
+            }
+        }
+    }
+    top
+}

@@ -1,0 +1,199 @@
+//! `simulate`: one full-motion run (rolling, slipping, flight, landing), computed with the
+//! GIL released, returned as numpy arrays and tuples that the Python layer wraps in
+//! `MotionResult`.
+
+use crate::errors::{detached, to_py};
+use crate::options::parse_rule;
+use eccjump_core::error::short;
+use eccjump_core::mechanics::BodyState;
+use eccjump_core::modes::contact::{ContactLaw, Mode};
+use eccjump_core::motion::solution::MotionSolution;
+use eccjump_core::motion::{simulate_until, MotionRun, SimOptions};
+use eccjump_core::ode::SolverOptions;
+use eccjump_core::{Cylinder, Ramp};
+use numpy::{IntoPyArray, PyArray1, PyArray2, PyArrayMethods, PyReadonlyArray1};
+use pyo3::exceptions::PyValueError;
+use pyo3::prelude::*;
+use pyo3::types::PyDict;
+
+/// The full motion of the body (χ, k_m) on a ramp of angle α. Options are keyword-only and
+/// checked by the core (a ValueError naming the parameter).
+#[pyfunction]
+#[pyo3(signature = (chi, km, alpha, *, mu_s, mu_k, restitution, rule, theta0, omega0, slip0,
+                    t_max, l_max, max_transitions, rtol, atol, max_steps, dense_output))]
+#[allow(clippy::too_many_arguments)] // keyword-only options of one run
+pub fn simulate<'py>(
+    py: Python<'py>,
+    chi: f64,
+    km: f64,
+    alpha: f64,
+    mu_s: f64,
+    mu_k: f64,
+    restitution: f64,
+    rule: &str,
+    theta0: f64,
+    omega0: f64,
+    slip0: f64,
+    t_max: f64,
+    l_max: f64,
+    max_transitions: usize,
+    rtol: f64,
+    atol: f64,
+    max_steps: usize,
+    dense_output: bool,
+) -> PyResult<Bound<'py, PyDict>> {
+    let ramp = Ramp::new(Cylinder::new(chi, km).map_err(to_py)?, alpha).map_err(to_py)?;
+    let opts = SimOptions {
+        law: ContactLaw {
+            mu_s,
+            mu_k,
+            rule: parse_rule(rule)?,
+        },
+        restitution,
+        theta0,
+        omega0,
+        slip0,
+        t_max,
+        l_max,
+        max_transitions,
+        solver: SolverOptions {
+            rtol,
+            atol,
+            max_steps,
+            ..SolverOptions::default()
+        },
+        dense_output,
+    };
+    let run = detached(py, |stop| simulate_until(&ramp, &opts, stop))?;
+    to_dict(py, &ramp, run)
+}
+
+/// (θ, θ̇, l, l̇, b, ḃ) as a tuple.
+fn state_tuple(s: &BodyState) -> (f64, f64, f64, f64, f64, f64) {
+    (s.theta, s.omega, s.l, s.ldot, s.b, s.bdot)
+}
+
+fn to_dict<'py>(py: Python<'py>, ramp: &Ramp, run: MotionRun) -> PyResult<Bound<'py, PyDict>> {
+    let d = PyDict::new(py);
+    let p = &run.points;
+    let column = |f: &dyn Fn(&eccjump_core::motion::record::Point) -> f64| {
+        p.iter().map(f).collect::<Vec<f64>>().into_pyarray(py)
+    };
+    d.set_item("t", column(&|q| q.t))?;
+    d.set_item("theta", column(&|q| q.state.theta))?;
+    d.set_item("omega", column(&|q| q.state.omega))?;
+    d.set_item("l", column(&|q| q.state.l))?;
+    d.set_item("ldot", column(&|q| q.state.ldot))?;
+    d.set_item("b", column(&|q| q.state.b))?;
+    d.set_item("bdot", column(&|q| q.state.bdot))?;
+    d.set_item("Fx", column(&|q| q.fx))?;
+    d.set_item("Fy", column(&|q| q.fy))?;
+    d.set_item("energy", column(&|q| ramp.energy_of(&q.state)))?;
+    d.set_item("dissipated", column(&|q| q.dissipated))?;
+    let modes: Vec<i8> = p.iter().map(|q| q.mode as i8).collect();
+    d.set_item("mode", modes.into_pyarray(py))?;
+    let transitions: Vec<_> = run
+        .transitions
+        .iter()
+        .map(|t| {
+            (
+                t.t,
+                t.from.map(Mode::name),
+                t.to.name(),
+                t.reason.name(),
+                state_tuple(&t.state),
+            )
+        })
+        .collect();
+    d.set_item("transitions", transitions)?;
+    let flights: Vec<_> = run
+        .flights
+        .iter()
+        .map(|f| {
+            (
+                f.t_liftoff,
+                f.t_landing,
+                f.theta_liftoff,
+                f.theta_landing,
+                f.apex,
+                f.distance,
+            )
+        })
+        .collect();
+    d.set_item("flights", flights)?;
+    let impacts: Vec<_> = run
+        .impacts
+        .iter()
+        .map(|i| {
+            (
+                i.t,
+                i.normal_speed,
+                i.slip_before,
+                i.pt,
+                i.pn,
+                i.energy_lost,
+                i.sticking,
+                i.outcome.name(),
+            )
+        })
+        .collect();
+    d.set_item("impacts", impacts)?;
+    let segments: Vec<_> = run
+        .segments
+        .iter()
+        .map(|s| (s.mode.name(), s.reason.name(), s.t_start, s.t_end, s.nfev))
+        .collect();
+    d.set_item("segments", segments)?;
+    d.set_item("energy0", run.energy0)?;
+    d.set_item("dissipated_slip", run.dissipated_slip)?;
+    d.set_item("dissipated_impacts", run.dissipated_impacts)?;
+    d.set_item("status", run.status.map_or("failed", |s| s.name()))?;
+    d.set_item("message", run.message)?;
+    d.set_item("nfev", run.nfev)?;
+    if let Some(sol) = run.dense {
+        d.set_item("sol", Bound::new(py, MotionDense { sol })?)?;
+    }
+    Ok(d)
+}
+
+/// The dense output of a full-motion run (`MotionResult.sol`), evaluated by the core.
+#[pyclass(frozen, module = "eccjump._core")]
+pub struct MotionDense {
+    sol: MotionSolution,
+}
+
+#[pymethods]
+impl MotionDense {
+    /// Last time covered: the end of the run.
+    #[getter]
+    fn t_max(&self) -> f64 {
+        self.sol.t_end
+    }
+
+    /// (θ, θ̇, l, l̇, b, ḃ) at the times `t` (1-D), shape (6, len(t)); a ValueError names the
+    /// first time outside [0, t_max].
+    fn states<'py>(
+        &self,
+        py: Python<'py>,
+        t: PyReadonlyArray1<'py, f64>,
+    ) -> PyResult<Bound<'py, PyArray2<f64>>> {
+        let t = t.as_slice()?;
+        let n = t.len();
+        let mut flat = eccjump_core::error::try_filled("the dense states", n.saturating_mul(6), 0.0)
+            .map_err(to_py)?;
+        for (i, &ti) in t.iter().enumerate() {
+            let s = self.sol.state(ti).ok_or_else(|| {
+                PyValueError::new_err(format!(
+                    "t[{i}] = {} is outside the allowed range [0, {}] of the dense output",
+                    short(ti),
+                    short(self.sol.t_end)
+                ))
+            })?;
+            let (a, b, c, d, e, f) = state_tuple(&s);
+            for (k, v) in [a, b, c, d, e, f].into_iter().enumerate() {
+                flat[k * n + i] = v;
+            }
+        }
+        PyArray1::from_vec(py, flat).reshape([6, n])
+    }
+}
