@@ -270,10 +270,51 @@ def test_jam_and_painleve(monkeypatch):
     assert math.degrees(pl4["end"][2]) == pytest.approx(math.degrees(pl["end"][2]), abs=0.05)
 
 
-def test_flight_does_not_land_at_the_liftoff_itself():
-    res = rm.simulate_reference(**JARM, t_max=5.0)
-    (t1, *_), (t2, frm, *_) = res["transitions"][1:3]
-    assert frm == "FLIGHT" and t2 - t1 > 0.5
+def exact_gap(body, th0, om, bd0, tau):
+    """b − 1 in flight from a contact start (b = 1): C's height = the CM's parabola minus
+    χ cos θ, θ linear in τ (docs/motion.md)."""
+    chi = body.chi
+    yd0 = bd0 - chi * math.sin(th0) * om  # the CM's normal velocity
+    half = 0.5 * om * tau  # cos θ0 − cos(θ0 + ωτ) without cancellation
+    return yd0 * tau - 0.5 * body.ca * tau**2 + 2.0 * chi * np.sin(th0 + half) * np.sin(half)
+
+
+@pytest.mark.parametrize(
+    "kw",
+    [
+        {**JARM},
+        {**JARM, "rule": "normal_force"},
+        {**SLIPJ},
+        {**JARM, "restitution": 0.5},
+        {"chi": 0.5, "km": 0.2, "alpha": D(20.0), "mu_s": 1.0, "omega0": 2.0},
+    ],
+)
+def test_flight_lands_at_the_first_root_of_the_exact_gap(kw):
+    """The flight segment neither lands at the lift-off itself nor misses an earlier touch:
+    compare every landing with the first root of the closed-form gap (fine scan + brentq)."""
+    from scipy.optimize import brentq
+
+    body = rm.Body(kw["chi"], kw["km"], kw["alpha"])
+    res = rm.simulate_reference(**kw, t_max=12.0, max_transitions=12)
+    checked = 0
+    for a, b in zip(res["transitions"], res["transitions"][1:], strict=False):
+        if a[2] != "FLIGHT" or b[1] != "FLIGHT":
+            continue
+        t0, th0, om, bd0 = a[0], a[4], a[5], a[9]
+        dur = b[0] - t0
+        assert dur > 0.0
+        end = dur + 0.1
+        taus = np.union1d(np.linspace(0.0, end, 20001)[1:], np.geomspace(1e-7, end, 2001))
+        g = exact_gap(body, th0, om, bd0, taus)
+        first = int(np.argmax(g < -1e-15))  # below the rounding of the closed form
+        assert g[first] < 0.0
+        assert first > 0
+        lo = taus[first - 1]
+        args = (body, th0, om, bd0)
+        root = brentq(lambda s, args=args: exact_gap(*args, s), lo, taus[first], xtol=1e-15)
+        assert dur == pytest.approx(root, abs=1e-8 + 1e-8 * root)
+        checked += 1
+    assert checked >= 1
 
 
 def test_first_transitions_do_not_depend_on_the_settle_speed(monkeypatch):
