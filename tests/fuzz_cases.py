@@ -613,6 +613,49 @@ def case_roll(d: Drawer) -> Case:
     return c
 
 
+SIMULATE_PARAMS = (
+    "body", "alpha", "mu_s", "mu_k", "restitution", "rule", "theta0", "omega0", "slip0",
+    "t_max", "l_max", "max_transitions", "rtol", "atol", "max_steps", "dense_output", "km",
+)
+
+
+def check_simulate(res: Any, case: Case) -> None:
+    expect(isinstance(res, eccjump.MotionResult), "not a MotionResult")
+    n = res.t.size
+    expect(n >= 1, "no initial point")
+    for k in ("theta", "omega", "l", "ldot", "b", "bdot", "Fx", "Fy", "energy", "mode"):
+        expect(getattr(res, k).shape == (n,), f"{k} has another length than t")
+    expect(bool((np.diff(res.t) >= 0).all()), "t decreases")
+    expect(res.status in eccjump.motion.STATUSES, f"status {res.status}")
+    expect(all(tr.reason in eccjump.motion.REASONS for tr in res.transitions), "reason")
+    expect(isinstance(res.message, str) and len(res.message) <= 300, "message")
+    if res.status != "failed":
+        expect(bool(np.isfinite(res.theta).all() and np.isfinite(res.b).all()), "state")
+    expect(res == res, "a result is not equal to itself")
+
+
+def case_simulate(d: Drawer) -> Case:
+    c = Case("simulate", eccjump.simulate, params=SIMULATE_PARAMS, check=check_simulate)
+    c.args = (_body(d, c), real(d, c, 0.0, HALF_PI))
+    c.kwargs = {
+        "mu_s": real(d, c, 0.0, 3.0),
+        "restitution": real(d, c, 0.0, 1.0),
+        "theta0": real(d, c, -7.0, 7.0),
+        "omega0": real(d, c, -3.0, 3.0),
+        "slip0": real(d, c, -2.0, 2.0),
+        "t_max": real(d, c, 0.0, 20.0),
+        "l_max": d.choice((math.inf, 5.0, *(() if d.clean else (0.0, math.nan)))),
+        "max_transitions": integer_param(d, c, (1, 5, 50), (*INT_BAD, 10**6 + 1)),
+        "rtol": d.choice((1e-10, 1e-6, *(() if d.clean else (0.0, math.nan, 1e-16)))),
+        "max_steps": integer_param(d, c, (1, 100, 100_000), (*INT_BAD, 10**7 + 1)),
+        "dense_output": flag(d, c),
+        "rule": text_param(d, c, ("paper", "normal_force")),
+    }
+    if d.integer(0, 2) == 0:
+        c.kwargs["mu_k"] = real(d, c, 0.0, 3.0)
+    return c
+
+
 _RUN: list[eccjump.RollResult] = []
 
 
@@ -954,6 +997,7 @@ GENERATORS: dict[str, Callable[[Drawer], Case]] = {
     "region": case_region,
     "region_dataset": case_region_dataset,
     "roll": case_roll,
+    "simulate": case_simulate,
     "to_si": case_to_si,
     "sol": case_sol,
     "kinematics": case_kinematics,

@@ -36,6 +36,7 @@ BUDGET = {
     "region": 80,
     "region_dataset": 15,
     "roll": 150,
+    "simulate": 150,
     "to_si": 60,
     "sol": 60,
     "kinematics": 60,

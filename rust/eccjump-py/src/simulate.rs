@@ -179,8 +179,9 @@ impl MotionDense {
     ) -> PyResult<Bound<'py, PyArray2<f64>>> {
         let t = t.as_slice()?;
         let n = t.len();
-        let mut flat = eccjump_core::error::try_filled("the dense states", n.saturating_mul(6), 0.0)
-            .map_err(to_py)?;
+        let mut flat =
+            eccjump_core::error::try_filled("the dense states", n.saturating_mul(6), 0.0)
+                .map_err(to_py)?;
         for (i, &ti) in t.iter().enumerate() {
             let s = self.sol.state(ti).ok_or_else(|| {
                 PyValueError::new_err(format!(

@@ -208,6 +208,9 @@ mod tests {
         // A slip velocity down the ramp: friction up the ramp.
         let mut sliding = s;
         sliding.ldot = 0.5;
-        assert_eq!(decide(&r, &grip, &sliding, false), Verdict::Slip { sigma: -1.0 });
+        assert_eq!(
+            decide(&r, &grip, &sliding, false),
+            Verdict::Slip { sigma: -1.0 }
+        );
     }
 }

@@ -149,13 +149,7 @@ impl EventFunctions<5> for SlipEvents {
     fn values(&self, first: usize, _t: f64, y: &State<5>, out: &mut [f64]) {
         let r = &self.slipping.ramp;
         let (s, c) = y[0].sin_cos();
-        let sl = Sliding::new(
-            &r.body,
-            s,
-            c,
-            self.slipping.sigma,
-            self.slipping.mu_k,
-        );
+        let sl = Sliding::new(&r.body, s, c, self.slipping.sigma, self.slipping.mu_k);
         for (i, o) in out.iter_mut().enumerate() {
             *o = match SlipEvent::ALL[first + i] {
                 SlipEvent::NormalForce => r.cos_a - r.body.chi * y[1] * y[1] * c,

@@ -85,7 +85,7 @@ impl SimOptions {
                 allowed: "(0, 1e6]".to_string(),
             });
         }
-        if !(self.l_max > 0.0) {
+        if self.l_max.is_nan() || self.l_max <= 0.0 {
             return Err(Error::InvalidParameter {
                 name: "l_max",
                 value: self.l_max,

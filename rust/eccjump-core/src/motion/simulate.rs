@@ -65,7 +65,7 @@ pub fn simulate_until(
     stop: &dyn Fn() -> bool,
 ) -> Result<MotionRun> {
     opts.validate()?;
-    if !(ramp.body.icm > 0.0) {
+    if ramp.body.icm.is_nan() || ramp.body.icm <= 0.0 {
         return Err(Error::InvalidParameter {
             name: "km",
             value: ramp.body.km,
@@ -94,8 +94,10 @@ pub fn simulate_until(
         t: 0.0,
         steps_left: opts.solver.max_steps,
     };
-    let first = decide(ramp, &opts.law, &start, false);
-    let mut next = after(first, Reason::Start, start);
+    let mut next = match after(decide(ramp, &opts.law, &start, false), Reason::Start, start) {
+        Next::Mode(mode, _, state, sigma) => Next::Mode(mode, Reason::Start, state, sigma),
+        end => end,
+    };
     let mut from = None;
     loop {
         let (mode, reason, state, sigma) = match next {
@@ -108,7 +110,10 @@ pub fn simulate_until(
         };
         if d.run.transitions.len() > opts.max_transitions {
             d.run.status = Some(MotionStatus::MaxTransitions);
-            d.run.message = format!("{} transitions made (max_transitions)", opts.max_transitions);
+            d.run.message = format!(
+                "{} transitions made (max_transitions)",
+                opts.max_transitions
+            );
             break;
         }
         if stop() {
@@ -242,11 +247,9 @@ impl Driver<'_> {
             RollStatus::Event(RollEvent::Liftoff) => {
                 Next::Mode(Mode::Flight, Reason::Liftoff, end, 0.0)
             }
-            RollStatus::Event(RollEvent::NormalForceZero) => after(
-                decide(self.ramp, law, &end, true),
-                Reason::NormalForce,
-                end,
-            ),
+            RollStatus::Event(RollEvent::NormalForceZero) => {
+                after(decide(self.ramp, law, &end, true), Reason::NormalForce, end)
+            }
             RollStatus::Event(RollEvent::Slip) => {
                 after(decide(self.ramp, law, &end, true), Reason::Slip, end)
             }
@@ -421,7 +424,11 @@ impl Driver<'_> {
         };
         self.run.flights.push(FlightRecord {
             t_liftoff: t0,
-            t_landing: if landed && !hit_l_max { t0 + tau_stop } else { f64::NAN },
+            t_landing: if landed && !hit_l_max {
+                t0 + tau_stop
+            } else {
+                f64::NAN
+            },
             theta_liftoff: s.theta,
             theta_landing: end.theta,
             apex: apex(&f, tau_stop),
@@ -524,7 +531,10 @@ fn apex(f: &Flight, tau_end: f64) -> f64 {
         .map(|i| (i, f.gap(at(i)).0))
         .fold((0, f64::NEG_INFINITY), |a, b| if b.1 > a.1 { b } else { a });
     let mut top = best.1;
-    for (lo, hi) in [(best.0.saturating_sub(1), best.0), (best.0, (best.0 + 1).min(n))] {
+    for (lo, hi) in [
+        (best.0.saturating_sub(1), best.0),
+        (best.0, (best.0 + 1).min(n)),
+    ] {
         let (a, b) = (at(lo), at(hi));
         let (da, db) = (f.gap(a).1, f.gap(b).1);
         if da > 0.0 && db < 0.0 {
@@ -534,4 +544,47 @@ fn apex(f: &Flight, tau_end: f64) -> f64 {
         }
     }
     top
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::mechanics::{Cylinder, Rule};
+    use crate::modes::contact::ContactLaw;
+
+    fn run(chi: f64, km: f64, alpha_deg: f64, mu: f64, e: f64) -> (Ramp, MotionRun) {
+        let r = Ramp::new(Cylinder::new(chi, km).unwrap(), alpha_deg.to_radians()).unwrap();
+        let o = SimOptions {
+            law: ContactLaw {
+                mu_s: mu,
+                mu_k: mu,
+                rule: Rule::Paper,
+            },
+            restitution: e,
+            t_max: 15.0,
+            ..SimOptions::default()
+        };
+        (r, simulate(&r, &o).unwrap())
+    }
+
+    #[test]
+    fn slip_then_jump_and_the_ledger_closes() {
+        let (r, m) = run(0.5, 0.4, 30.0, 1.0, 0.0);
+        let seq: Vec<_> = m.sequence().take(4).collect();
+        assert_eq!(seq, [Mode::Roll, Mode::Slip, Mode::Flight, Mode::Slip]);
+        assert_eq!(m.transitions[2].reason, Reason::NormalForce);
+        for p in &m.points {
+            let total = r.energy_of(&p.state) + p.dissipated;
+            assert!((total - m.energy0).abs() < 1e-7, "{}", total - m.energy0);
+        }
+        assert!(m.impacts.iter().all(|i| i.energy_lost >= -1e-12));
+    }
+
+    #[test]
+    fn bounces_settle_by_the_zeno_rule() {
+        // e = 0.5: bounces shrink geometrically and end in `settle`, not at max_transitions.
+        let (_, m) = run(0.5, 0.4, 30.0, 1.0, 0.5);
+        assert!(m.transitions.iter().any(|t| t.reason == Reason::Settle));
+        assert_eq!(m.status, Some(MotionStatus::TimeLimit));
+    }
 }

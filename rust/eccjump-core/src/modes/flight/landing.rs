@@ -74,7 +74,11 @@ fn clear_cubic(g: f64, d: f64, c: f64, m3: f64) -> f64 {
         return f64::INFINITY;
     }
     let p = |s: f64| g + s * (d + s * (0.5 * c - s * m3 / 6.0));
-    let mut hi = (6.0 * g / m3).cbrt().max(3.0 * c / m3).max((6.0 * d / m3).sqrt()) * 2.0;
+    let mut hi = (6.0 * g / m3)
+        .cbrt()
+        .max(3.0 * c / m3)
+        .max((6.0 * d / m3).sqrt())
+        * 2.0;
     if !(hi.is_finite() && hi > 0.0) {
         return 0.0;
     }
@@ -115,10 +119,17 @@ impl Search<'_> {
                 return Ok(Some(self.locate(ta, ga, tb, gb)));
             }
         } else {
-            let left = self.clear(ga, da, ca);
-            let right = self.clear(gb, -db, cb);
-            // A relative margin covers the rounding of g, g' and the bound.
-            if left + right >= h * (1.0 + 1e-12) || h <= 4.0 * f64::EPSILON * tb.abs() {
+            // A relative margin covers the rounding of g, g' and the bounds. The quadratic
+            // bounds are tried first: they are cheap and usually enough.
+            let covers = |left: f64, right: f64| left + right >= h * (1.0 + 1e-12);
+            let (left, right) = (
+                clear_quadratic(ga, da, self.m),
+                clear_quadratic(gb, -db, self.m),
+            );
+            if covers(left, right)
+                || h <= 4.0 * f64::EPSILON * tb.abs()
+                || covers(self.clear(ga, da, ca), self.clear(gb, -db, cb))
+            {
                 return Ok(None);
             }
         }
@@ -160,7 +171,7 @@ impl Flight {
             evaluations: 0,
         };
         let end = tau_end.min(self.fall_bound() * (1.0 + 1e-9) + 1e-12);
-        if !(end > 0.0) {
+        if end.is_nan() || end <= 0.0 {
             return Landing::None;
         }
         let g0 = self.start.b - 1.0;
@@ -200,12 +211,14 @@ impl Flight {
     fn clear_start(&self, end: f64) -> Option<f64> {
         let (c, m4) = self.taylor();
         let k = c.iter().position(|&x| x != 0.0)?;
-        if !(c[k] > 0.0) {
+        if c[k].is_nan() || c[k] <= 0.0 {
             return None;
         }
         let mut s = end.min(1.0);
         for _ in 0..1100 {
-            let rest: f64 = (k + 1..3).map(|j| c[j].abs() * s.powi((j - k) as i32)).sum::<f64>()
+            let rest: f64 = (k + 1..3)
+                .map(|j| c[j].abs() * s.powi((j - k) as i32))
+                .sum::<f64>()
                 + m4 * s.powi((3 - k) as i32) / 24.0;
             if c[k] - rest > 0.0 && s > 0.0 {
                 return Some(s);
@@ -243,7 +256,9 @@ mod tests {
     fn a_thrown_body_lands_where_brute_force_says() {
         let mut lcg = 12345u64;
         let mut next = || {
-            lcg = lcg.wrapping_mul(6364136223846793005).wrapping_add(1442695040888963407);
+            lcg = lcg
+                .wrapping_mul(6364136223846793005)
+                .wrapping_add(1442695040888963407);
             (lcg >> 11) as f64 / (1u64 << 53) as f64
         };
         let mut landed = 0;
@@ -252,7 +267,7 @@ mod tests {
             let f = Flight::new(
                 r,
                 BodyState {
-                    theta: 6.28 * next(),
+                    theta: std::f64::consts::TAU * next(),
                     omega: 6.0 * (next() - 0.5),
                     l: 0.0,
                     ldot: next(),
@@ -321,7 +336,11 @@ mod tests {
         let g = Flight::new(r, BodyState::rolling(0.3, 0.1, 0.3));
         assert_eq!(g.landing(100.0), Landing::Immediate);
         // Sliding down a vertical wall without spin never lands.
-        let w = Ramp::new(Cylinder::new(0.2, 0.1).unwrap(), std::f64::consts::FRAC_PI_2).unwrap();
+        let w = Ramp::new(
+            Cylinder::new(0.2, 0.1).unwrap(),
+            std::f64::consts::FRAC_PI_2,
+        )
+        .unwrap();
         let h = Flight::new(w, BodyState::rolling(0.0, 0.0, 0.0));
         assert_eq!(h.landing(10.0), Landing::None);
     }

@@ -67,8 +67,13 @@ impl Flight {
         BodyState {
             theta: s.theta + x,
             omega: s.omega,
-            l: s.l + s.ldot * tau + 0.5 * r.sin_a * tau * tau + chi * (self.sin0 * sq + self.cos0 * xs),
-            ldot: s.ldot + r.sin_a * tau + chi * s.omega * (self.sin0 * sin_x + self.cos0 * (1.0 - cos_x)),
+            l: s.l
+                + s.ldot * tau
+                + 0.5 * r.sin_a * tau * tau
+                + chi * (self.sin0 * sq + self.cos0 * xs),
+            ldot: s.ldot
+                + r.sin_a * tau
+                + chi * s.omega * (self.sin0 * sin_x + self.cos0 * (1.0 - cos_x)),
             b: 1.0 + gap,
             bdot,
         }
@@ -94,7 +99,8 @@ impl Flight {
         (
             (s.b - 1.0) + s.bdot * tau - 0.5 * r.cos_a * tau * tau
                 + chi * (self.cos0 * sq - self.sin0 * xs),
-            s.bdot - r.cos_a * tau + chi * s.omega * (self.cos0 * sin_x - self.sin0 * (1.0 - cos_x)),
+            s.bdot - r.cos_a * tau
+                + chi * s.omega * (self.cos0 * sin_x - self.sin0 * (1.0 - cos_x)),
             chi * s.omega * s.omega * cos_t - r.cos_a,
         )
     }
@@ -130,7 +136,10 @@ impl Flight {
         if c2.abs() <= 4.0 * f64::EPSILON * (spin.abs() + weight) {
             c2 = 0.0;
         }
-        ([s.bdot, c2, -chi * w * w * w * self.sin0 / 6.0], chi * w * w * w * w)
+        (
+            [s.bdot, c2, -chi * w * w * w * self.sin0 / 6.0],
+            chi * w * w * w * w,
+        )
     }
 }
 
@@ -179,7 +188,10 @@ mod tests {
         let h = 1e-4;
         for &tau in &[0.0, 0.3, 1.1] {
             let (a, m, p) = (f.state(tau), f.state(tau - h), f.state(tau + h));
-            let ne = f.ramp.newton_euler(a.theta, a.omega, Constraint::Free).unwrap();
+            let ne = f
+                .ramp
+                .newton_euler(a.theta, a.omega, Constraint::Free)
+                .unwrap();
             assert!(((p.l - m.l) / (2.0 * h) - a.ldot).abs() < 1e-7);
             assert!(((p.b - m.b) / (2.0 * h) - a.bdot).abs() < 1e-7);
             assert!(((p.ldot - m.ldot) / (2.0 * h) - ne.l_dd).abs() < 1e-7);

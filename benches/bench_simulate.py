@@ -1,0 +1,77 @@
+"""eccjump.simulate against the straightforward scipy solve_ivp event-driven model
+(tests/reference_motion.py), side by side in one run, on the cases of
+benches/scipy_motion_cases.py cut to their first transitions (from rest to the first landing
+and beyond).
+
+    python benches/bench_simulate.py [--transitions 5] [--repeat 200]
+
+Per case: both transition sequences (they must agree), the largest difference of the
+transition angles, and the time per run of each (best of several repeats; eccjump's averaged
+over ``--repeat`` calls).
+"""
+
+from __future__ import annotations
+
+import argparse
+import math
+import sys
+import time
+from pathlib import Path
+
+sys.path.insert(0, str(Path(__file__).resolve().parent.parent / "tests"))
+sys.path.insert(0, str(Path(__file__).resolve().parent))
+
+from reference_motion import simulate_reference  # noqa: E402
+from scipy_motion_cases import CASES  # noqa: E402
+
+import eccjump  # noqa: E402
+
+
+def run_eccjump(kw: dict, transitions: int) -> eccjump.MotionResult:
+    body = eccjump.Cylinder(kw["chi"], kw["km"])
+    opts = {k: v for k, v in kw.items() if k not in ("chi", "km", "alpha")}
+    opts["max_transitions"] = transitions
+    return eccjump.simulate(body, kw["alpha"], **opts)
+
+
+def sequence_of(transitions) -> list[tuple[str, str]]:
+    return [(t[2], t[3]) for t in transitions]
+
+
+def main(argv: list[str] | None = None) -> int:
+    p = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    p.add_argument("--transitions", type=int, default=5)
+    p.add_argument("--repeat", type=int, default=200)
+    args = p.parse_args(argv)
+    n = args.transitions
+    print(f"{'case':28s} {'same':>4s} {'max dθ':>9s} {'scipy ms':>9s} {'eccjump µs':>11s} {'x':>7s}")
+    ratios = []
+    for name, kw in CASES:
+        t0 = time.perf_counter()
+        ref = simulate_reference(**{**kw, "max_transitions": n})
+        t_ref = time.perf_counter() - t0
+        res = run_eccjump(kw, n)
+        t0 = time.perf_counter()
+        for _ in range(args.repeat):
+            run_eccjump(kw, n)
+        t_ecc = (time.perf_counter() - t0) / args.repeat
+        ours = [(t.to_mode, t.reason) for t in res.transitions]
+        theirs = sequence_of(ref["transitions"])
+        k = min(len(ours), len(theirs))
+        same = ours[:k] == theirs[:k] and k >= min(n + 1, len(theirs), len(ours))
+        dtheta = max(
+            (abs(a.theta - b[4]) for a, b in zip(res.transitions, ref["transitions"], strict=False)),
+            default=math.nan,
+        )
+        ratios.append(t_ref / t_ecc)
+        print(
+            f"{name:28s} {'yes' if same else 'NO':>4s} {dtheta:9.1e} {t_ref * 1e3:9.2f} "
+            f"{t_ecc * 1e6:11.1f} {t_ref / t_ecc:7.0f}"
+        )
+    ratios.sort()
+    print(f"speed-up: median {ratios[len(ratios) // 2]:.0f}x, min {ratios[0]:.0f}x")
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())

@@ -1,0 +1,194 @@
+"""The full motion (`eccjump.simulate`, docs/motion.md): every physical statement checked
+against an independent route: `roll` and the JARM classification for the first segment, the
+independent scipy model (tests/reference_motion.py) for the sequence of modes, the energy
+integrated with the slip for the ledger, closed forms for the impact."""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
+
+import eccjump
+from eccjump import Cylinder
+from eccjump.motion import MODES, REASONS, STATUSES
+
+JARM = (Cylinder(0.15, 0.02), math.radians(40))
+SLIP_FIRST = (Cylinder(0.5, 0.4), math.radians(30))
+
+
+def bodies():
+    """(body, alpha) over the whole parameter space, k_m > 0."""
+    return st.tuples(
+        st.floats(0.0, 0.95), st.floats(0.02, 0.98), st.floats(0.02, math.pi / 2)
+    ).map(lambda x: (Cylinder(x[0], (1 - x[0]) * x[1]), x[2]))
+
+
+def test_first_segment_from_rest_is_roll_bit_for_bit():
+    for body, alpha in (JARM, SLIP_FIRST):
+        for rule in ("paper", "normal_force"):
+            m = eccjump.simulate(body, alpha, mu_s=1.0, rule=rule, max_transitions=1)
+            r = eccjump.roll(body, alpha, mu_s=1.0, rule=rule)
+            n = r.t.size
+            rolled = m.mode[:n] == 0
+            assert rolled.all()
+            for k in ("t", "theta", "omega", "Fx", "Fy"):
+                assert np.array_equal(getattr(m, k)[:n], getattr(r, k)), k
+            assert m.transitions[1].t == r.t[-1]
+
+
+def test_reference_points():
+    m = eccjump.simulate(*JARM, mu_s=1.0, max_transitions=3)
+    tr = m.transitions[1]
+    assert (tr.from_mode, tr.to_mode, tr.reason) == ("ROLL", "FLIGHT", "liftoff")
+    assert math.degrees(tr.theta) == pytest.approx(334.34383789184907, abs=1e-7)  # RK45 at rtol 1e-10
+    s = eccjump.simulate(*SLIP_FIRST, mu_s=1.0, max_transitions=3)
+    assert s.mode_names()[:3] == ["ROLL", "SLIP", "FLIGHT"]
+    assert math.degrees(s.transitions[1].theta) == pytest.approx(316.471677233, abs=1e-7)
+
+
+@settings(max_examples=40, deadline=None)
+@given(bodies(), st.sampled_from([0.5, 1.0]))
+def test_first_transition_is_the_jarm_classification(point, mu):
+    """JARM points fly straight from ROLL (at the closed form's θ_J); points that slip first
+    go to SLIP (or fly where sliding is inconsistent) at the classification's event angle."""
+    body, alpha = point
+    m = eccjump.simulate(body, alpha, mu_s=mu, max_transitions=1, t_max=1e4)
+    j = eccjump.jarm(alpha, body.chi, body.km, mu)
+    if len(m.transitions) < 2 or m.transitions[0].to_mode != "ROLL":
+        return
+    tr = m.transitions[1]
+    if tr.reason == "liftoff":
+        assert bool(j.is_jarm)
+        assert tr.theta == pytest.approx(float(j.theta_J), abs=1e-7)
+    elif tr.reason in ("slip", "slip_inconsistent"):
+        assert not bool(j.is_jarm)
+        assert tr.theta == pytest.approx(float(j.theta_event), abs=1e-7)
+
+
+@settings(max_examples=30, deadline=None)
+@given(bodies(), st.floats(0.1, 1.5), st.floats(0.0, 1.0), st.sampled_from(["paper", "normal_force"]))
+def test_energy_ledger_closes_and_impacts_never_gain(point, mu, e, rule):
+    body, alpha = point
+    m = eccjump.simulate(body, alpha, mu_s=mu, restitution=e, rule=rule, t_max=10.0)
+    assert np.abs(m.energy + m.dissipated - m.energy0).max() < 1e-6
+    assert all(i.energy_lost >= -1e-12 for i in m.impacts)
+    assert m.dissipated_slip >= -1e-12
+    # Energy is conserved in rolling (integrated) and in flight (exact).
+    for code, tol in ((0, 1e-7), (2, 1e-11)):
+        seg = np.flatnonzero(m.mode == code)
+        if seg.size:
+            # Split where rows stop being consecutive or time repeats (an impact).
+            cut = (np.diff(seg) > 1) | (np.diff(m.t[seg]) == 0)
+            runs = np.split(seg, np.flatnonzero(cut) + 1)
+            for r in runs:
+                assert np.ptp(m.energy[r]) < tol * (1 + abs(m.energy0))
+
+
+def test_liftoff_from_slip_meets_both_rules_together():
+    body, alpha = SLIP_FIRST
+    m = eccjump.simulate(body, alpha, mu_s=1.0, max_transitions=2)
+    tr = m.transitions[2]
+    assert (tr.from_mode, tr.to_mode, tr.reason) == ("SLIP", "FLIGHT", "normal_force")
+    i = np.flatnonzero(m.t == tr.t)[0]  # the slip's last point
+    assert m.mode[i] == 1 and abs(m.Fy[i]) < 1e-10
+    lift = body.chi * tr.omega**2 * math.cos(tr.theta) - math.cos(alpha)
+    assert abs(lift) < 1e-10
+    n = eccjump.simulate(body, alpha, mu_s=1.0, rule="normal_force", max_transitions=2)
+    assert n.mode_names() == m.mode_names() and n.transitions[2].t == tr.t
+
+
+def test_painleve_cases_under_the_normal_force_rule_fly_at_theta_slip():
+    body, alpha = JARM
+    m = eccjump.simulate(body, alpha, mu_s=1.0, rule="normal_force", max_transitions=1)
+    tr = m.transitions[1]
+    assert (tr.to_mode, tr.reason) == ("FLIGHT", "slip_inconsistent")
+    r = eccjump.roll(body, alpha, mu_s=1.0, rule="normal_force")
+    assert r.terminal_event == "slip" and tr.theta == r.theta[-1]
+    assert math.degrees(tr.theta) - 334.344 > 1.0  # later than the paper's lift-off
+
+
+def test_impacts_with_and_without_friction():
+    body, alpha = SLIP_FIRST
+    # mu = 0, e = 1: no energy lost at any impact.
+    m = eccjump.simulate(body, alpha, mu_s=0.0, restitution=1.0, omega0=2.0, t_max=15.0)
+    assert m.transitions[0].to_mode == "FLIGHT" and m.impacts and all(abs(i.energy_lost) < 1e-12 for i in m.impacts)
+    # e = 0: the contact point does not separate at once (ḃ = 0 after every landing).
+    z = eccjump.simulate(body, alpha, mu_s=1.0, t_max=15.0)
+    for tr in z.transitions:
+        if tr.reason == "impact":
+            assert tr.bdot == 0.0
+
+
+@settings(max_examples=25, deadline=None)
+@given(
+    st.floats(0.05, 0.9), st.floats(0.05, 0.9), st.floats(0.0, 3.0), st.floats(0.3, 2.0)
+)
+def test_flat_ground_never_jumps_from_rolling_once_rolled(chi, frac, omega0, mu):
+    """α = 0 (the paper's proof): no lift-off straight from pure rolling once it rolls; a
+    start with χθ̇0² > 1 (θ0 = 0) flies at once."""
+    body = Cylinder(chi, (1 - chi) * frac)
+    m = eccjump.simulate(body, 0.0, mu_s=mu, omega0=omega0, t_max=20.0)
+    if chi * omega0**2 > 1.0:
+        assert m.transitions[0].to_mode == "FLIGHT"
+        return
+    for tr in m.transitions[1:]:
+        assert not (tr.from_mode == "ROLL" and tr.to_mode == "FLIGHT" and tr.reason == "liftoff")
+
+
+def test_si_units_scale_every_quantity():
+    m = eccjump.simulate(*SLIP_FIRST, mu_s=1.0, max_transitions=5)
+    g, R, M = 9.81, 0.05, 0.2
+    s = m.to_si(g=g, R=R, M=M)
+    T, V = math.sqrt(R / g), math.sqrt(g * R)
+    assert np.allclose(s.t, m.t * T, rtol=1e-15)
+    assert np.allclose(s.ldot, m.ldot * V, rtol=1e-15)
+    assert np.allclose(s.energy, m.energy * M * g * R, rtol=1e-15)
+    assert s.flights[0].apex == pytest.approx(m.flights[0].apex * R, rel=1e-15)
+    assert np.array_equal(s.theta, m.theta) and s.units is not None
+
+
+def test_dense_output_across_segments():
+    m = eccjump.simulate(*SLIP_FIRST, mu_s=1.0, max_transitions=6, dense_output=True)
+    inner = [i for i in range(1, m.t.size - 1) if m.t[i - 1] < m.t[i] < m.t[i + 1]]
+    y = m.sol(m.t[inner])
+    for k, name in enumerate(("theta", "omega", "l", "ldot", "b", "bdot")):
+        assert np.allclose(y[k], getattr(m, name)[inner], atol=1e-9), name
+    with pytest.raises(ValueError, match="t"):
+        m.sol(m.t[-1] + 1.0)
+
+
+def test_reproducible_to_the_last_bit():
+    a = eccjump.simulate(*SLIP_FIRST, mu_s=0.8, restitution=0.3, max_transitions=20)
+    b = eccjump.simulate(*SLIP_FIRST, mu_s=0.8, restitution=0.3, max_transitions=20)
+    assert a == b
+    assert set(a.mode.tolist()) <= set(range(len(MODES)))
+    assert a.status in STATUSES and all(t.reason in REASONS for t in a.transitions)
+
+
+@pytest.mark.parametrize(
+    "kwargs, param",
+    [
+        ({"mu_s": 0.5, "mu_k": 0.6}, "mu_k"),
+        ({"mu_s": -1.0}, "mu_s"),
+        ({"mu_s": 1.0, "restitution": 1.5}, "restitution"),
+        ({"mu_s": 1.0, "t_max": 0.0}, "t_max"),
+        ({"mu_s": 1.0, "l_max": -1.0}, "l_max"),
+        ({"mu_s": 1.0, "max_transitions": 0}, "max_transitions"),
+        ({"mu_s": 1.0, "rule": "x"}, "rule"),
+        ({"mu_s": math.nan}, "mu_s"),
+    ],
+)
+def test_bad_input_is_a_value_error_naming_the_parameter(kwargs, param):
+    with pytest.raises(ValueError, match=param) as err:
+        eccjump.simulate(*SLIP_FIRST, **kwargs)
+    assert len(str(err.value)) <= 200
+
+
+def test_a_body_without_inertia_about_its_centre_of_mass_is_refused():
+    with pytest.raises(ValueError, match="km") as err:
+        eccjump.simulate(Cylinder(0.5, 0.0), 0.5, mu_s=1.0)
+    assert len(str(err.value)) <= 200
