@@ -21,10 +21,10 @@ from pathlib import Path
 sys.path.insert(0, str(Path(__file__).resolve().parent.parent / "tests"))
 sys.path.insert(0, str(Path(__file__).resolve().parent))
 
-from reference_motion import simulate_reference  # noqa: E402
-from scipy_motion_cases import CASES  # noqa: E402
+from reference_motion import simulate_reference
+from scipy_motion_cases import CASES
 
-import eccjump  # noqa: E402
+import eccjump
 
 
 def run_eccjump(kw: dict, transitions: int) -> eccjump.MotionResult:
@@ -44,7 +44,8 @@ def main(argv: list[str] | None = None) -> int:
     p.add_argument("--repeat", type=int, default=200)
     args = p.parse_args(argv)
     n = args.transitions
-    print(f"{'case':28s} {'same':>4s} {'max dθ':>9s} {'scipy ms':>9s} {'eccjump µs':>11s} {'x':>7s}")
+    head = ("case", "same", "max dθ", "scipy ms", "eccjump µs", "x")
+    print("{:28s} {:>4s} {:>9s} {:>9s} {:>11s} {:>7s}".format(*head))
     ratios = []
     for name, kw in CASES:
         t0 = time.perf_counter()
@@ -60,7 +61,10 @@ def main(argv: list[str] | None = None) -> int:
         k = min(len(ours), len(theirs))
         same = ours[:k] == theirs[:k] and k >= min(n + 1, len(theirs), len(ours))
         dtheta = max(
-            (abs(a.theta - b[4]) for a, b in zip(res.transitions, ref["transitions"], strict=False)),
+            (
+                abs(a.theta - b[4])
+                for a, b in zip(res.transitions, ref["transitions"], strict=False)
+            ),
             default=math.nan,
         )
         ratios.append(t_ref / t_ecc)

@@ -614,8 +614,23 @@ def case_roll(d: Drawer) -> Case:
 
 
 SIMULATE_PARAMS = (
-    "body", "alpha", "mu_s", "mu_k", "restitution", "rule", "theta0", "omega0", "slip0",
-    "t_max", "l_max", "max_transitions", "rtol", "atol", "max_steps", "dense_output", "km",
+    "body",
+    "alpha",
+    "mu_s",
+    "mu_k",
+    "restitution",
+    "rule",
+    "theta0",
+    "omega0",
+    "slip0",
+    "t_max",
+    "l_max",
+    "max_transitions",
+    "rtol",
+    "atol",
+    "max_steps",
+    "dense_output",
+    "km",
 )
 
 

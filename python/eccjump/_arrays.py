@@ -101,6 +101,5 @@ def fields_equal(self: Any, other: object) -> bool:
     if type(other) is not type(self):
         return NotImplemented
     return all(
-        same_values(getattr(self, f.name), getattr(other, f.name))
-        for f in dataclasses.fields(self)
+        same_values(getattr(self, f.name), getattr(other, f.name)) for f in dataclasses.fields(self)
     )
