@@ -10,6 +10,34 @@ VERSION: str
 def body_derived(chi: float, km: float) -> tuple[float, float, float]: ...
 def body_from_inertia(M: float, R: float, d: float, I_C: float) -> tuple[float, float]: ...
 def body_from_shell_and_line(m_C: float, m_P: float, R: float, d: float) -> tuple[float, float]: ...
+
+class ImpactResult(TypedDict):
+    wtt: float
+    wtn: float
+    wnn: float
+    pt: float
+    pn: float
+    ut: float
+    un: float
+    sticking: bool
+    omega: float
+    ldot: float
+    bdot: float
+    compression_work: float
+    normal_work: float
+    friction_work: float
+
+def impact(
+    chi: float,
+    km: float,
+    theta: float,
+    omega: float,
+    ldot: float,
+    bdot: float,
+    mu_s: float,
+    mu_k: float,
+    restitution: float,
+) -> ImpactResult: ...
 def roll(
     chi: float,
     km: float,

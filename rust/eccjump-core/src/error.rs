@@ -159,3 +159,16 @@ pub fn check_positive(name: &'static str, value: f64) -> Result<f64> {
         })
     }
 }
+
+/// Checks that `value` is finite (neither NaN nor infinite).
+pub fn check_finite(name: &'static str, value: f64) -> Result<f64> {
+    if value.is_finite() {
+        Ok(value)
+    } else {
+        Err(Error::InvalidParameter {
+            name,
+            value,
+            allowed: "(-inf, inf)".to_string(),
+        })
+    }
+}

@@ -6,6 +6,7 @@ mod analysis;
 mod body;
 mod boundary;
 mod errors;
+mod impact;
 mod jarm;
 mod options;
 mod roll;
@@ -24,6 +25,8 @@ mod _core {
     use crate::body::{body_derived, body_from_inertia, body_from_shell_and_line};
     #[pymodule_export]
     use crate::boundary::{alpha_interval_around, alpha_intervals, mu_s_min_path};
+    #[pymodule_export]
+    use crate::impact::impact;
     #[pymodule_export]
     use crate::jarm::{jarm_grid, jarm_points, reason_codes};
     #[pymodule_export]

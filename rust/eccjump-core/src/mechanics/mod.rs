@@ -1,11 +1,12 @@
 //! The mechanics of the body on the ramp, with no integrator and no analysis in it: the body
 //! and its inertias, the ramp, Newton–Euler in its general form, energy, the lift-off rules
 //! and Coulomb friction. Every mode of motion ([`crate::modes`]) is a constraint on these
-//! equations, and every formula is written here once.
+//! equations, and every formula is written here once. A landing is an impact ([`impact`]).
 
 pub mod body;
 pub mod energy;
 pub mod friction;
+pub mod impact;
 pub mod liftoff;
 pub mod newton_euler;
 pub mod ramp;
