@@ -56,7 +56,8 @@ class ImpactRecord:
     pt: float
     pn: float
     energy_lost: float
-    ending: str
+    sticking: bool
+    outcome: str
 
 
 @dataclass(frozen=True, eq=False)
@@ -230,7 +231,7 @@ def fake_result(
         ),
     )
     lost = float(e[i_imp - 1] - e[i_imp])
-    impacts = (ImpactRecord(3.6, float(-bd3), 0.1, 0.2, lost, "ROLL"),)
+    impacts = (ImpactRecord(3.6, float(-bd3), 0.1, 0.2, lost, True, "ROLL"),)
     d_slip = float(diss[i_fly])
     res = FakeMotionResult(
         **{k: cols[k] for k in ("t", "theta", "omega", "l", "ldot", "b", "bdot", "Fx", "Fy")},

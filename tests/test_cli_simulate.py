@@ -136,7 +136,7 @@ def test_json_has_the_transitions_flights_and_ledger(fake, capsys):
     assert led["dissipated_slip"] == res.dissipated_slip
     assert led["dissipated_impacts"] == res.dissipated_impacts
     assert led["balance"] == pytest.approx(0.0, abs=1e-12)
-    assert data["impacts"][0]["ending"] == "ROLL"
+    assert data["impacts"][0]["outcome"] == "ROLL"
     assert data["parameters"]["alpha_deg"] == 30.0 and data["parameters"]["mu_k"] == 1.0
 
 

@@ -194,3 +194,22 @@ def test_a_body_without_inertia_about_its_centre_of_mass_is_refused():
     with pytest.raises(ValueError, match="km") as err:
         eccjump.simulate(Cylinder(0.5, 0.0), 0.5, mu_s=1.0)
     assert len(str(err.value)) <= 200
+
+
+@pytest.mark.parametrize(
+    "name", ["jarm_paper", "slipjump_e05", "slip_at_start_mu01", "slip0_backspin", "flies_at_once"]
+)
+def test_same_sequence_and_angles_as_the_independent_scipy_model(name):
+    from reference_motion import simulate_reference
+    from scipy_motion_cases import CASES
+
+    kw = {**dict(CASES)[name], "max_transitions": 5}
+    ref = simulate_reference(**kw)
+    body = Cylinder(kw.pop("chi"), kw.pop("km"))
+    m = eccjump.simulate(body, kw.pop("alpha"), **kw)
+    assert [(t.to_mode, t.reason) for t in m.transitions] == [
+        (t[2], t[3]) for t in ref["transitions"]
+    ]
+    for ours, theirs in zip(m.transitions, ref["transitions"], strict=True):
+        assert ours.theta == pytest.approx(theirs[4], abs=1e-7)
+        assert ours.t == pytest.approx(theirs[0], abs=1e-7)

@@ -17,16 +17,7 @@ import numpy as np
 from eccjump import plot
 from eccjump.body import Cylinder
 from eccjump.cli._args import degrees_in, int_at_least
-
-try:
-    from eccjump.motion import simulate
-except ModuleNotFoundError as err:  # pragma: no cover - a checkout without the integrator
-    if err.name != "eccjump.motion":
-        raise
-    simulate = None
-
-#: Mode names by their code in ``MotionResult.mode``.
-MODES = ("ROLL", "SLIP", "FLIGHT")
+from eccjump.motion import MODES, simulate
 
 UNITS = (
     "g = R = M = 1: time in sqrt(R/g), lengths in R, omega in sqrt(g/R) rad, "
@@ -187,7 +178,8 @@ def summary(result: Any, body: Cylinder, alpha_deg: float, args: argparse.Namesp
             "pt": _num(i.pt),
             "pn": _num(i.pn),
             "energy_lost": _num(i.energy_lost),
-            "ending": str(i.ending),
+            "sticking": bool(i.sticking),
+            "outcome": i.outcome,
         }
         for i in result.impacts
     ]
@@ -305,8 +297,6 @@ def _cmd_simulate(args: argparse.Namespace) -> int:
     if args.animate is not None and Path(args.animate).suffix.lower() != ".gif":
         raise ValueError(f"--animate {args.animate}: the animation is written as a .gif file")
     body = Cylinder(args.chi, args.km)
-    if simulate is None:  # pragma: no cover
-        raise ImportError("eccjump simulate needs eccjump.motion, absent from this installation")
     alpha = math.radians(args.alpha)
     res = simulate(
         body,

@@ -148,7 +148,23 @@ pub fn simulate_until(
         });
         from = Some(mode);
     }
+    if d.run.points.is_empty() {
+        // The run ended before its first segment (a jam at the start): record the start.
+        let mode = d.run.transitions.first().map_or(
+            if start.slip_velocity() != 0.0 {
+                Mode::Slip
+            } else {
+                Mode::Roll
+            },
+            |t| t.to,
+        );
+        let p = d.point(0.0, start, 0.0, 0.0, mode);
+        d.run.push(p)?;
+    }
     if let Some(sol) = d.run.dense.as_mut() {
+        if sol.pieces.is_empty() {
+            sol.pieces.push((0.0, Piece::Still(start)));
+        }
         sol.t_end = d.t;
     }
     if d.run.message.is_empty() {

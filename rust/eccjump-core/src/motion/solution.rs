@@ -23,6 +23,8 @@ pub enum Piece {
     },
     /// Flight: exact.
     Flight(Flight),
+    /// A single state: a run that ended where it started (a jam at the start).
+    Still(BodyState),
 }
 
 /// `sol(t)` of a run over [0, t_end].
@@ -65,6 +67,7 @@ impl MotionSolution {
                 })
             }
             Piece::Flight(f) => Some(f.state(t - t0)),
+            Piece::Still(s) => Some(*s),
         }
     }
 }
