@@ -28,11 +28,16 @@ pub struct BodyState {
 impl BodyState {
     /// A contact state rolling without slip at (θ, θ̇) with C at l.
     pub fn rolling(theta: f64, omega: f64, l: f64) -> Self {
+        Self::in_contact(theta, omega, l, omega)
+    }
+
+    /// A contact state (b = 1, ḃ = 0) at (θ, θ̇) with C at l moving at l̇ (sliding if l̇ ≠ θ̇).
+    pub fn in_contact(theta: f64, omega: f64, l: f64, ldot: f64) -> Self {
         Self {
             theta,
             omega,
             l,
-            ldot: omega,
+            ldot,
             b: 1.0,
             bdot: 0.0,
         }

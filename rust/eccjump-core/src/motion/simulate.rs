@@ -74,14 +74,7 @@ pub fn simulate_until(
                 .to_string(),
         });
     }
-    let start = BodyState {
-        theta: opts.theta0,
-        omega: opts.omega0,
-        l: 0.0,
-        ldot: opts.omega0 + opts.slip0,
-        b: 1.0,
-        bdot: 0.0,
-    };
+    let start = BodyState::in_contact(opts.theta0, opts.omega0, 0.0, opts.omega0 + opts.slip0);
     let mut d = Driver {
         ramp,
         opts,
@@ -296,14 +289,7 @@ impl Driver<'_> {
         let dense = self.opts.dense_output;
         let mut steps = Vec::new();
         let mut memory: Option<Error> = None;
-        let state_of = |y: &State<5>| BodyState {
-            theta: y[0],
-            omega: y[1],
-            l: y[2],
-            ldot: y[3],
-            b: 1.0,
-            bdot: 0.0,
-        };
+        let state_of = |y: &State<5>| BodyState::in_contact(y[0], y[1], y[2], y[3]);
         let record = |run: &mut MotionRun, t: f64, y: &State<5>| -> Result<()> {
             let k = sys.kinematics(y[0], y[1]);
             run.push(Point {

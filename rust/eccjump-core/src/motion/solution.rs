@@ -57,14 +57,7 @@ impl MotionSolution {
             }
             Piece::Slip { steps } => {
                 let y = step_at(steps, t)?.eval(t);
-                Some(BodyState {
-                    theta: y[0],
-                    omega: y[1],
-                    l: y[2],
-                    ldot: y[3],
-                    b: 1.0,
-                    bdot: 0.0,
-                })
+                Some(BodyState::in_contact(y[0], y[1], y[2], y[3]))
             }
             Piece::Flight(f) => Some(f.state(t - t0)),
             Piece::Still(s) => Some(*s),
