@@ -62,11 +62,6 @@ def _judge(family: str, data: st.DataObject) -> None:
 
 @pytest.mark.parametrize("family", sorted(BUDGET))
 def test_entry_point_keeps_its_contract(family):
-    if family == "simulate":
-        pytest.xfail(
-            "known defect, issue 8 open: a generated simulate call with a tiny max_steps "
-            "records times out of order (not yet reproduced outside hypothesis)"
-        )
     if family == "plot":
         pytest.importorskip("matplotlib")
         import matplotlib

@@ -163,6 +163,28 @@ def test_dense_output_across_segments():
         m.sol(m.t[-1] + 1.0)
 
 
+@pytest.mark.parametrize(
+    "body, alpha, kwargs",
+    [  # found by the fuzz test: a flight's last sample rounded past the next segment's start
+        (
+            Cylinder(0.53, 0.0799),
+            1.2267919312268143,
+            {"mu_s": 1.146, "restitution": 0.011, "theta0": 7.0, "omega0": -2.628, "slip0": 2},
+        ),
+        (
+            Cylinder(0.23, 0.6776),
+            math.pi / 2,
+            {"mu_s": 2.0, "mu_k": 1.035, "restitution": 0.641, "theta0": 7.0, "omega0": 3.0},
+        ),
+    ],
+)
+def test_times_never_decrease_and_sol_covers_every_point(body, alpha, kwargs):
+    m = eccjump.simulate(body, alpha, t_max=9.76, max_transitions=50, dense_output=True, **kwargs)
+    assert (np.diff(m.t) >= 0).all()
+    y = m.sol(m.t)
+    assert np.isfinite(y).all()
+
+
 def test_reproducible_to_the_last_bit():
     a = eccjump.simulate(*SLIP_FIRST, mu_s=0.8, restitution=0.3, max_transitions=20)
     b = eccjump.simulate(*SLIP_FIRST, mu_s=0.8, restitution=0.3, max_transitions=20)

@@ -406,24 +406,29 @@ impl Driver<'_> {
                 prev = (tau, gi);
             }
         }
+        // The segment's last point carries the time the next segment starts from, exactly:
+        // (τ·N)/N and t0 + τ may round past it, and times must never decrease.
+        let t_end = if tau_stop == horizon {
+            self.opts.t_max
+        } else {
+            t0 + tau_stop
+        };
         for i in 0..=samples {
-            let tau = tau_stop * i as f64 / samples as f64;
-            let mut state = f.state(tau);
-            if i == 0 {
-                state = s;
-            }
-            let p = self.point(t0 + tau, state, 0.0, 0.0, Mode::Flight);
+            let (tau, t) = if i == samples {
+                (tau_stop, t_end)
+            } else {
+                let tau = tau_stop * i as f64 / samples as f64;
+                (tau, (t0 + tau).min(t_end))
+            };
+            let state = if i == 0 { s } else { f.state(tau) };
+            let p = self.point(t, state, 0.0, 0.0, Mode::Flight);
             self.run.push(p)?;
         }
         if let Some(sol) = self.run.dense.as_mut() {
             sol.pieces.push((t0, Piece::Flight(f)));
         }
         let end = f.state(tau_stop);
-        self.t = if tau_stop == horizon {
-            self.opts.t_max
-        } else {
-            t0 + tau_stop
-        };
+        self.t = t_end;
         self.run.flights.push(FlightRecord {
             t_liftoff: t0,
             t_landing: if landed && !hit_l_max {
