@@ -63,6 +63,7 @@ pub fn simulate<'py>(
             ..SolverOptions::default()
         },
         dense_output,
+        ..SimOptions::default()
     };
     let run = detached(py, |stop| simulate_until(&ramp, &opts, stop))?;
     to_dict(py, &ramp, run)

@@ -11,7 +11,7 @@ use crate::modes::flight::landing::Landing;
 use crate::modes::flight::Flight;
 use crate::modes::rolling::run::{roll_until, RollEvent, RollOptions, RollStatus};
 use crate::modes::slipping::{SlipEvent, SlipEvents, Slipping};
-use crate::motion::options::{SimOptions, SETTLE_SPEED};
+use crate::motion::options::SimOptions;
 use crate::motion::record::{
     FlightRecord, ImpactRecord, MotionRun, MotionStatus, Point, Segment, Transition,
 };
@@ -486,7 +486,7 @@ impl Driver<'_> {
         if sticking {
             after_state.ldot = after_state.omega;
         }
-        let flies = imp.un > SETTLE_SPEED;
+        let flies = imp.un > self.opts.settle_speed;
         let reason = if !flies && self.opts.restitution > 0.0 && imp.un > 0.0 {
             Reason::Settle
         } else {
@@ -560,8 +560,27 @@ mod tests {
     use crate::modes::contact::ContactLaw;
 
     fn run(chi: f64, km: f64, alpha_deg: f64, mu: f64, e: f64) -> (Ramp, MotionRun) {
+        run_settling(
+            chi,
+            km,
+            alpha_deg,
+            mu,
+            e,
+            crate::motion::options::SETTLE_SPEED,
+        )
+    }
+
+    fn run_settling(
+        chi: f64,
+        km: f64,
+        alpha_deg: f64,
+        mu: f64,
+        e: f64,
+        settle_speed: f64,
+    ) -> (Ramp, MotionRun) {
         let r = Ramp::new(Cylinder::new(chi, km).unwrap(), alpha_deg.to_radians()).unwrap();
         let o = SimOptions {
+            settle_speed,
             law: ContactLaw {
                 mu_s: mu,
                 mu_k: mu,
@@ -593,5 +612,47 @@ mod tests {
         let (_, m) = run(0.5, 0.4, 30.0, 1.0, 0.5);
         assert!(m.transitions.iter().any(|t| t.reason == Reason::Settle));
         assert_eq!(m.status, Some(MotionStatus::TimeLimit));
+    }
+
+    #[test]
+    fn transitions_before_a_settle_do_not_depend_on_the_settle_speed() {
+        // The Zeno threshold only decides when the shrinking bounces stop: every transition
+        // before the first settle of the largest threshold is the same to the last bit, and
+        // the settles happen at nearly the same time (the bounces left are a geometric tail).
+        for (chi, km, alpha, mu, e) in [(0.5, 0.4, 30.0, 1.0, 0.5), (0.5, 0.4, 15.0, 1.0, 0.6)] {
+            let runs: Vec<_> = [1e-4, 1e-6, 1e-9]
+                .map(|v| run_settling(chi, km, alpha, mu, e, v).1)
+                .into_iter()
+                .collect();
+            let coarse = &runs[0].transitions;
+            let k = coarse
+                .iter()
+                .position(|t| t.reason == Reason::Settle)
+                .expect("the coarse run settles");
+            assert!(k >= 3, "settled after {k} transitions");
+            for fine in &runs[1..] {
+                assert_eq!(&fine.transitions[..k], &coarse[..k]);
+                let t_fine = fine
+                    .transitions
+                    .iter()
+                    .find(|t| t.reason == Reason::Settle)
+                    .expect("the fine run settles")
+                    .t;
+                assert!(
+                    (t_fine - coarse[k].t).abs() < 1e-2,
+                    "{t_fine} vs {}",
+                    coarse[k].t
+                );
+            }
+        }
+    }
+
+    #[test]
+    fn a_bad_settle_speed_is_refused() {
+        let o = SimOptions {
+            settle_speed: 0.1,
+            ..SimOptions::default()
+        };
+        assert!(o.validate().is_err());
     }
 }
