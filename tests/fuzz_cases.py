@@ -671,6 +671,58 @@ def case_simulate(d: Drawer) -> Case:
     return c
 
 
+MOTION_MAP_PARAMS = (
+    *eccjump.motion_maps.AXES,
+    "rule",
+    "t_max",
+    "max_transitions",
+    "rtol",
+    "atol",
+    "max_steps",
+    "n_threads",
+    "chunks",
+    "output",
+)
+
+
+def check_motion_map(res: Any, case: Case) -> None:
+    mm = eccjump.motion_maps
+    expect(isinstance(res, eccjump.MotionMap), "not a MotionMap")
+    for name in mm.FIELDS:
+        expect(res.fields[name].shape == res.shape, f"{name} has another shape than the grid")
+    status = res.status.astype(int)
+    expect(all(int(s) in mm.STATUS_NAMES for s in np.unique(status)), "status code")
+    ran = status != mm.INVALID
+    expect(bool((res.landing < len(mm.LANDINGS)).all()), "landing code")
+    names = [mm.sequence_name(c) for c in np.unique(res.sequence[ran])]
+    expect(all(n for n in names), "a point that ran has no sequence")
+    expect(bool(np.isfinite(res.energy_lost[ran & (status != 5)]).all()), "energy_lost NaN")
+    expect(not bool((res.jarm & res.slipped_first).any()), "a JARM that slipped first")
+    expect(isinstance(repr(res), str), "repr")
+
+
+def case_motion_map(d: Drawer) -> Case:
+    c = Case("motion_map", eccjump.motion_map, params=MOTION_MAP_PARAMS, check=check_motion_map)
+    c.kwargs = {
+        "alpha": _axis(d, c, 0.0, HALF_PI),
+        "chi": _axis(d, c, 0.0, 1.0),
+        "km": _axis(d, c, 0.0, 1.0),
+        "mu_s": d.choice((real(d, c, 0.0, 3.0), _axis(d, c, 0.0, 3.0))),
+        "restitution": real(d, c, 0.0, 1.0),
+        "theta0": real(d, c, -7.0, 7.0),
+        "omega0": real(d, c, -3.0, 3.0),
+        "t_max": real(d, c, 0.0, 20.0),
+        "max_transitions": integer_param(d, c, (1, 5, 50), (*INT_BAD, 10**6 + 1)),
+        "rtol": d.choice((1e-10, 1e-6, *(() if d.clean else (0.0, math.nan, 1e-16)))),
+        "max_steps": integer_param(d, c, (1, 100, 100_000), (*INT_BAD, 10**7 + 1)),
+        "n_threads": integer_param(d, c, (0, 1, 2), (*INT_BAD, 257)),
+        "rule": text_param(d, c, ("paper", "normal_force")),
+    }
+    if d.integer(0, 2) == 0:
+        c.kwargs["mu_k"] = d.choice((real(d, c, 0.0, 3.0), _axis(d, c, 0.0, 3.0), None))
+    return c
+
+
 _RUN: list[eccjump.RollResult] = []
 
 
@@ -1013,6 +1065,7 @@ GENERATORS: dict[str, Callable[[Drawer], Case]] = {
     "region_dataset": case_region_dataset,
     "roll": case_roll,
     "simulate": case_simulate,
+    "motion_map": case_motion_map,
     "to_si": case_to_si,
     "sol": case_sol,
     "kinematics": case_kinematics,

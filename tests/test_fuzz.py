@@ -37,6 +37,7 @@ BUDGET = {
     "region_dataset": 15,
     "roll": 150,
     "simulate": 150,
+    "motion_map": 100,
     "to_si": 60,
     "sol": 60,
     "kinematics": 60,

@@ -12,6 +12,7 @@ from eccjump.boundary import alpha_intervals, mu_s_min_path
 from eccjump.classification import JarmResult, Reason, Region, jarm, region, region_dataset
 from eccjump.dense import DenseSolution
 from eccjump.motion import MotionResult, simulate
+from eccjump.motion_maps import MotionMap, motion_map
 from eccjump.rolling import EVENT_NAMES, Event, RollResult, roll
 from eccjump.units import Units
 
@@ -21,6 +22,7 @@ __all__ = [
     "DenseSolution",
     "Event",
     "JarmResult",
+    "MotionMap",
     "MotionResult",
     "Reason",
     "Region",
@@ -30,6 +32,7 @@ __all__ = [
     "alpha_intervals",
     "closed_form",
     "jarm",
+    "motion_map",
     "mu_s_min_path",
     "region",
     "region_dataset",

@@ -35,7 +35,7 @@ REASONS = (
     "settle",
 )
 #: How a run can end.
-STATUSES = ("t_max", "l_max", "max_transitions", "painleve", "jam", "failed")
+STATUSES = ("t_max", "l_max", "max_transitions", "painleve", "jam", "failed", "landed")
 
 
 class Transition(NamedTuple):

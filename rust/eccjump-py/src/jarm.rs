@@ -1,43 +1,29 @@
 //! JARM classification of points and grids: arrays in, one array per result field out.
 
+use crate::columns::set_column;
 use crate::errors::detached;
 use crate::options::CallOptions;
 use eccjump_core::error::{try_filled, Result as CoreResult};
 use eccjump_core::jarm::{JarmResult, Reason};
 use eccjump_core::maps::region::{classify_grid, classify_points, grid_size};
-use numpy::{IntoPyArray, PyReadonlyArray1};
+use numpy::PyReadonlyArray1;
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
 
 /// Struct of arrays from the per-point results (the output is O(points), nothing more).
 fn to_dict<'py>(py: Python<'py>, res: &[JarmResult]) -> PyResult<Bound<'py, PyDict>> {
     let d = PyDict::new(py);
-    // Each field allocated fallibly: a MemoryError, not an abort, if it does not fit.
-    macro_rules! field {
-        ($name:literal, $f:expr) => {
-            let mut v = Vec::new();
-            v.try_reserve_exact(res.len()).map_err(|_| {
-                pyo3::exceptions::PyMemoryError::new_err(format!(
-                    "the field {} of {} points does not fit in memory",
-                    $name,
-                    res.len()
-                ))
-            })?;
-            v.extend(res.iter().map($f));
-            d.set_item($name, v.into_pyarray(py))?;
-        };
-    }
-    field!("is_jarm", |r| r.is_jarm);
-    field!("reason", |r| r.reason as u8);
-    field!("n", |r| r.n);
-    field!("theta_J", |r| r.theta_j);
-    field!("theta_event", |r| r.theta_event);
-    field!("Fx_J", |r| r.fx_j);
-    field!("Fy_J", |r| r.fy_j);
-    field!("max_ratio", |r| r.max_ratio);
-    field!("theta_max_ratio", |r| r.theta_max_ratio);
-    field!("min_Fy", |r| r.min_fy);
-    field!("theta_min_Fy", |r| r.theta_min_fy);
+    set_column(&d, "is_jarm", res, |r| r.is_jarm)?;
+    set_column(&d, "reason", res, |r| r.reason as u8)?;
+    set_column(&d, "n", res, |r| r.n)?;
+    set_column(&d, "theta_J", res, |r| r.theta_j)?;
+    set_column(&d, "theta_event", res, |r| r.theta_event)?;
+    set_column(&d, "Fx_J", res, |r| r.fx_j)?;
+    set_column(&d, "Fy_J", res, |r| r.fy_j)?;
+    set_column(&d, "max_ratio", res, |r| r.max_ratio)?;
+    set_column(&d, "theta_max_ratio", res, |r| r.theta_max_ratio)?;
+    set_column(&d, "min_Fy", res, |r| r.min_fy)?;
+    set_column(&d, "theta_min_Fy", res, |r| r.theta_min_fy)?;
     Ok(d)
 }
 

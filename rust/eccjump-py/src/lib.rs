@@ -5,9 +5,11 @@
 mod analysis;
 mod body;
 mod boundary;
+mod columns;
 mod errors;
 mod impact;
 mod jarm;
+mod motion_map;
 mod options;
 mod roll;
 mod simulate;
@@ -29,6 +31,8 @@ mod _core {
     use crate::impact::impact;
     #[pymodule_export]
     use crate::jarm::{jarm_grid, jarm_points, reason_codes};
+    #[pymodule_export]
+    use crate::motion_map::{landing_codes, motion_grid};
     #[pymodule_export]
     use crate::roll::{roll, DenseSolution};
     #[pymodule_export]

@@ -1,6 +1,7 @@
 //! Maps over many independent points: the bit-reproducible parallel driver, JARM maps over
-//! point lists and grids, and the region's boundaries by bisection.
+//! point lists and grids, the region's boundaries by bisection, and maps of the full motion.
 
 pub mod boundary;
+pub mod motion;
 pub mod parallel;
 pub mod region;

@@ -47,6 +47,11 @@ pub struct SimOptions {
     /// Not offered in Python: it is here so the tests can show that the transitions before
     /// a settle do not depend on it.
     pub settle_speed: f64,
+    /// End the run at the first landing, once the mode after it is chosen (status
+    /// `landed`): all a motion map asks of a run.
+    pub stop_at_landing: bool,
+    /// Record the points of the run (a map keeps only transitions, flights and impacts).
+    pub record_points: bool,
 }
 
 impl Default for SimOptions {
@@ -67,6 +72,8 @@ impl Default for SimOptions {
             solver: SolverOptions::default(),
             dense_output: false,
             settle_speed: SETTLE_SPEED,
+            stop_at_landing: false,
+            record_points: true,
         }
     }
 }

@@ -107,6 +107,8 @@ pub enum MotionStatus {
     Jam = 4,
     /// The integrator or the landing search failed.
     Failed = 5,
+    /// Ended, as asked, at the first landing (once the mode after it was chosen).
+    Landed = 6,
 }
 
 impl MotionStatus {
@@ -119,6 +121,7 @@ impl MotionStatus {
             MotionStatus::Painleve => "painleve",
             MotionStatus::Jam => "jam",
             MotionStatus::Failed => "failed",
+            MotionStatus::Landed => "landed",
         }
     }
 }

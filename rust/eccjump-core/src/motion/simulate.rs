@@ -125,6 +125,10 @@ pub fn simulate_until(
             reason,
             state,
         });
+        if opts.stop_at_landing && !d.run.impacts.is_empty() {
+            d.run.status = Some(MotionStatus::Landed);
+            break;
+        }
         let t_start = d.t;
         let nfev_before = d.run.nfev;
         next = match mode {
@@ -141,7 +145,7 @@ pub fn simulate_until(
         });
         from = Some(mode);
     }
-    if d.run.points.is_empty() {
+    if d.run.points.is_empty() && opts.record_points {
         // The run ended before its first segment (a jam at the start): record the start.
         let mode = d.run.transitions.first().map_or(
             if start.slip_velocity() != 0.0 {
@@ -232,7 +236,7 @@ impl Driver<'_> {
         self.run.nfev += rr.nfev;
         let l_shift = s.l - s.theta;
         let t0 = self.t;
-        for i in 0..rr.t.len() {
+        for i in (0..rr.t.len()).filter(|_| self.opts.record_points) {
             let state = BodyState::rolling(rr.theta[i], rr.omega[i], rr.theta[i] + l_shift);
             let p = self.point(t0 + rr.t[i], state, rr.fx[i], rr.fy[i], Mode::Roll);
             self.run.push(p)?;
@@ -286,11 +290,14 @@ impl Driver<'_> {
         };
         let y0 = State::<5>::new(s.theta, s.omega, s.l, s.ldot, 0.0);
         let (t0, q0) = (self.t, self.run.dissipated_slip);
-        let dense = self.opts.dense_output;
+        let (dense, record_points) = (self.opts.dense_output, self.opts.record_points);
         let mut steps = Vec::new();
         let mut memory: Option<Error> = None;
         let state_of = |y: &State<5>| BodyState::in_contact(y[0], y[1], y[2], y[3]);
         let record = |run: &mut MotionRun, t: f64, y: &State<5>| -> Result<()> {
+            if !record_points {
+                return Ok(());
+            }
             let k = sys.kinematics(y[0], y[1]);
             run.push(Point {
                 t,
@@ -413,7 +420,7 @@ impl Driver<'_> {
         } else {
             t0 + tau_stop
         };
-        for i in 0..=samples {
+        for i in (0..=samples).filter(|_| self.opts.record_points) {
             let (tau, t) = if i == samples {
                 (tau_stop, t_end)
             } else {

@@ -1,0 +1,29 @@
+//! Profiling aid: the best time per `simulate` run of one slip-then-jump case, 5 transitions
+//! (`cargo run --release --example simulate_best`; with `perf record` for a profile).
+use eccjump_core::mechanics::Rule;
+use eccjump_core::modes::contact::ContactLaw;
+use eccjump_core::motion::{simulate, SimOptions};
+use eccjump_core::{Cylinder, Ramp};
+use std::time::Instant;
+fn main() {
+    let r = Ramp::new(Cylinder::new(0.5, 0.4).unwrap(), 30f64.to_radians()).unwrap();
+    let o = SimOptions {
+        law: ContactLaw {
+            mu_s: 1.0,
+            mu_k: 1.0,
+            rule: Rule::Paper,
+        },
+        max_transitions: 5,
+        ..SimOptions::default()
+    };
+    let mut best = f64::INFINITY;
+    let mut s = 0.0;
+    for _ in 0..30 {
+        let t0 = Instant::now();
+        for _ in 0..1000 {
+            s += simulate(&r, &o).unwrap().points.len() as f64;
+        }
+        best = best.min(t0.elapsed().as_secs_f64() / 1000.0 * 1e6);
+    }
+    println!("best {best:.2} us per run ({s})");
+}

@@ -1,0 +1,439 @@
+//! Maps of the full motion: what the body does at every point of a grid over
+//! (α, χ, k_m fraction, μ_s, μ_k, e, θ0, θ̇0), each point run by [`simulate`] to its first
+//! landing and kept as a fixed-size [`MotionSummary`].
+//!
+//! Each point is computed from its index alone and written in place (the parallel driver of
+//! [`crate::maps::parallel`]), so maps are bit-identical for any thread count, and a point's
+//! summary is exactly [`MotionSummary::of`] the run `simulate` gives at that point.
+
+use crate::error::{Error, Result};
+use crate::maps::parallel::par_fill_until;
+use crate::mechanics::{Cylinder, Ramp, Rule};
+use crate::modes::contact::{ContactLaw, Mode, Reason};
+use crate::motion::{simulate, MotionRun, MotionStatus, SimOptions};
+use crate::ode::SolverOptions;
+
+/// Modes of the sequence kept per point (the start's mode first): with 2 bits per mode the
+/// code fits a `u16`.
+pub const SEQUENCE_LEN: usize = 8;
+
+/// `status` of a point whose parameters are invalid (μ_k > μ_s, a value out of range).
+pub const INVALID: u8 = 255;
+
+/// `liftoff_reason` of a point that never flies.
+pub const NO_REASON: u8 = 255;
+
+/// How the first landing ended.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum LandingOutcome {
+    /// No landing (no flight, or the run ended in the air).
+    None = 0,
+    /// The body leaves the impact rolling.
+    Sticks = 1,
+    /// It leaves the impact sliding.
+    Slides = 2,
+    /// It bounces (flies again).
+    Bounces = 3,
+    /// No contact mode is consistent after the impact: the run ends there (a jam).
+    Ends = 4,
+}
+
+impl LandingOutcome {
+    /// Every outcome, by code.
+    pub const ALL: [LandingOutcome; 5] = [
+        LandingOutcome::None,
+        LandingOutcome::Sticks,
+        LandingOutcome::Slides,
+        LandingOutcome::Bounces,
+        LandingOutcome::Ends,
+    ];
+
+    /// The name the Python layer prints.
+    pub fn name(self) -> &'static str {
+        match self {
+            LandingOutcome::None => "none",
+            LandingOutcome::Sticks => "sticks",
+            LandingOutcome::Slides => "slides",
+            LandingOutcome::Bounces => "bounces",
+            LandingOutcome::Ends => "ends",
+        }
+    }
+}
+
+/// What one point of a motion map did, up to its first landing.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct MotionSummary {
+    /// [`MotionStatus`] code of the run, or [`INVALID`].
+    pub status: u8,
+    /// The first [`SEQUENCE_LEN`] modes, Σ (mode_i + 1)·4^i (0: no mode; see [`sequence_code`]).
+    pub sequence: u16,
+    /// Modes in the run (the start's included); more than [`SEQUENCE_LEN`] means the code is
+    /// cut.
+    pub n_modes: u16,
+    /// Lift-off straight out of pure rolling: the run starts rolling and its second mode is a
+    /// flight by the lift-off rule (a JARM).
+    pub jarm: bool,
+    /// A slip came before the first flight (or in a run that never flies).
+    pub slipped_first: bool,
+    /// Time and angle of the first slip onset (NaN if none).
+    pub slip_t: f64,
+    /// See `slip_t`.
+    pub slip_theta: f64,
+    /// [`Reason`] code of the first transition into flight, or [`NO_REASON`].
+    pub liftoff_reason: u8,
+    /// Time and angle of the first lift-off (NaN if none).
+    pub liftoff_t: f64,
+    /// See `liftoff_t`.
+    pub liftoff_theta: f64,
+    /// Duration of the first flight (NaN if it did not land).
+    pub flight_time: f64,
+    /// Largest height of the first flight above contact, b − 1 (NaN if no flight).
+    pub apex: f64,
+    /// Distance along the ramp covered by the first flight (NaN if no flight).
+    pub distance: f64,
+    /// [`LandingOutcome`] code of the first landing.
+    pub landing: u8,
+    /// Energy dissipated over the run (by sliding and by the impacts) [M g R].
+    pub energy_lost: f64,
+}
+
+impl MotionSummary {
+    /// The summary of a point that was not run (invalid parameters).
+    pub const fn invalid() -> Self {
+        Self {
+            status: INVALID,
+            sequence: 0,
+            n_modes: 0,
+            jarm: false,
+            slipped_first: false,
+            slip_t: f64::NAN,
+            slip_theta: f64::NAN,
+            liftoff_reason: NO_REASON,
+            liftoff_t: f64::NAN,
+            liftoff_theta: f64::NAN,
+            flight_time: f64::NAN,
+            apex: f64::NAN,
+            distance: f64::NAN,
+            landing: LandingOutcome::None as u8,
+            energy_lost: f64::NAN,
+        }
+    }
+
+    /// The summary of a run made under the lift-off `rule`.
+    pub fn of(run: &MotionRun, rule: Rule) -> Self {
+        let tr = &run.transitions;
+        let first_flight = tr.iter().position(|t| t.to == Mode::Flight);
+        let before_flight = &tr[..first_flight.unwrap_or(tr.len())];
+        let slip = before_flight.iter().find(|t| t.to == Mode::Slip);
+        let mut s = Self {
+            status: run.status.map_or(MotionStatus::Failed, |s| s) as u8,
+            sequence: sequence_code(tr.iter().map(|t| t.to)),
+            n_modes: tr.len().min(u16::MAX as usize) as u16,
+            jarm: first_flight == Some(1)
+                && tr[0].to == Mode::Roll
+                && leaves_by_the_rule(rule, tr[1].reason),
+            slipped_first: slip.is_some(),
+            slip_t: slip.map_or(f64::NAN, |t| t.t),
+            slip_theta: slip.map_or(f64::NAN, |t| t.state.theta),
+            energy_lost: run.dissipated(),
+            ..Self::invalid()
+        };
+        if let Some(k) = first_flight {
+            s.liftoff_reason = tr[k].reason as u8;
+            s.liftoff_t = tr[k].t;
+            s.liftoff_theta = tr[k].state.theta;
+        }
+        if let Some(f) = run.flights.first() {
+            s.flight_time = f.t_landing - f.t_liftoff;
+            s.apex = f.apex;
+            s.distance = f.distance;
+        }
+        if !run.impacts.is_empty() {
+            // The transition out of the first landing, if the run went on.
+            let after = first_flight.and_then(|k| tr[k + 1..].first());
+            s.landing = match after.map(|t| t.to) {
+                Some(Mode::Roll) => LandingOutcome::Sticks,
+                Some(Mode::Slip) => LandingOutcome::Slides,
+                Some(Mode::Flight) => LandingOutcome::Bounces,
+                None => LandingOutcome::Ends,
+            } as u8;
+        }
+        s
+    }
+}
+
+/// Whether a flight straight out of rolling for `reason` is the lift-off `rule` firing (a
+/// JARM): under "paper" its condition χθ̇² cos θ = cos α; under "normal_force" F_y reaching 0,
+/// which the friction ratio |F_x|/F_y → ∞ turns into a slip onset found inconsistent just
+/// before it (`docs/motion.md`), both as the JARM classification counts them.
+pub fn leaves_by_the_rule(rule: Rule, reason: Reason) -> bool {
+    match rule {
+        Rule::Paper => reason == Reason::Liftoff,
+        Rule::NormalForce => matches!(reason, Reason::NormalForce | Reason::SlipInconsistent),
+    }
+}
+
+/// Σ (mode_i + 1)·4^i over the first [`SEQUENCE_LEN`] modes: 0 digits mark the end, so
+/// every sequence has its own code (ROLL→FLIGHT = 1 + 3·4 = 13).
+pub fn sequence_code(modes: impl Iterator<Item = Mode>) -> u16 {
+    modes
+        .take(SEQUENCE_LEN)
+        .enumerate()
+        .map(|(i, m)| (m as u16 + 1) << (2 * i))
+        .sum()
+}
+
+/// The axes of a motion map (each non-empty; `mu_k` empty means μ_k = μ_s at every point).
+/// The grid is their product in C order (α slowest, θ̇0 fastest), with k_m = frac·(1 − χ).
+#[derive(Debug, Clone, Copy)]
+pub struct MotionAxes<'a> {
+    /// Ramp angles α (rad).
+    pub alpha: &'a [f64],
+    /// χ = d/R.
+    pub chi: &'a [f64],
+    /// k_m/(1 − χ) ∈ [0, 1].
+    pub frac: &'a [f64],
+    /// Static friction coefficients.
+    pub mu_s: &'a [f64],
+    /// Kinetic friction coefficients (empty: μ_k = μ_s).
+    pub mu_k: &'a [f64],
+    /// Stronge's coefficients of restitution.
+    pub restitution: &'a [f64],
+    /// Initial angles θ0.
+    pub theta0: &'a [f64],
+    /// Initial angular velocities θ̇0.
+    pub omega0: &'a [f64],
+}
+
+impl MotionAxes<'_> {
+    /// Lengths of the eight axes (μ_k counted as 1 when empty).
+    pub fn shape(&self) -> [usize; 8] {
+        [
+            self.alpha.len(),
+            self.chi.len(),
+            self.frac.len(),
+            self.mu_s.len(),
+            self.mu_k.len().max(1),
+            self.restitution.len(),
+            self.theta0.len(),
+            self.omega0.len(),
+        ]
+    }
+
+    /// The number of grid points (an error if it overflows, or an axis other than μ_k is
+    /// empty).
+    pub fn size(&self) -> Result<usize> {
+        let names = [
+            "alpha",
+            "chi",
+            "km",
+            "mu_s",
+            "mu_k",
+            "restitution",
+            "theta0",
+            "omega0",
+        ];
+        let shape = self.shape();
+        if let Some(k) = shape.iter().position(|&n| n == 0) {
+            return Err(Error::InvalidParameter {
+                name: names[k],
+                value: 0.0,
+                allowed: "an axis of at least one value".to_string(),
+            });
+        }
+        shape
+            .iter()
+            .try_fold(1usize, |a, &n| a.checked_mul(n))
+            .ok_or(Error::OutOfMemory {
+                what: "the grid",
+                bytes: u64::MAX,
+            })
+    }
+
+    /// The body, ramp and options of grid point `g`, or None where a parameter is invalid.
+    fn point(&self, g: usize, base: &SimOptions) -> Option<(Ramp, SimOptions)> {
+        let shape = self.shape();
+        let mut idx = [0usize; 8];
+        let mut rest = g;
+        for k in (0..8).rev() {
+            idx[k] = rest % shape[k];
+            rest /= shape[k];
+        }
+        let chi = self.chi[idx[1]];
+        let km = self.frac[idx[2]] * (1.0 - chi);
+        let body = Cylinder::new(chi, km).ok()?;
+        let ramp = Ramp::new(body, self.alpha[idx[0]]).ok()?;
+        let mu_s = self.mu_s[idx[3]];
+        let opts = SimOptions {
+            law: ContactLaw {
+                mu_s,
+                mu_k: if self.mu_k.is_empty() {
+                    mu_s
+                } else {
+                    self.mu_k[idx[4]]
+                },
+                rule: base.law.rule,
+            },
+            restitution: self.restitution[idx[5]],
+            theta0: self.theta0[idx[6]],
+            omega0: self.omega0[idx[7]],
+            ..*base
+        };
+        opts.validate().ok()?;
+        Some((ramp, opts))
+    }
+}
+
+/// The options every point of a map shares.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct MotionMapOptions {
+    /// The lift-off rule.
+    pub rule: Rule,
+    /// End time of each run (it ends earlier at its first landing).
+    pub t_max: f64,
+    /// Transitions a run may make before its first landing.
+    pub max_transitions: usize,
+    /// Tolerances and the step budget of each run.
+    pub solver: SolverOptions,
+}
+
+impl MotionMapOptions {
+    /// The simulator's options for a point, before the point's own values are filled in.
+    fn base(&self) -> SimOptions {
+        SimOptions {
+            law: ContactLaw {
+                mu_s: 1.0,
+                mu_k: 1.0,
+                rule: self.rule,
+            },
+            t_max: self.t_max,
+            max_transitions: self.max_transitions,
+            solver: self.solver,
+            stop_at_landing: true,
+            record_points: false,
+            dense_output: false,
+            ..SimOptions::default()
+        }
+    }
+
+    /// Checks the shared options, naming the first bad one.
+    pub fn validate(&self) -> Result<()> {
+        self.base().validate()
+    }
+}
+
+/// The summary of one point, as [`motion_grid`] computes it: invalid parameters (k_m = 0
+/// included) give [`MotionSummary::invalid`], a run that fails its status.
+pub fn motion_point(ramp: &Ramp, opts: &SimOptions) -> MotionSummary {
+    match simulate(ramp, opts) {
+        Ok(run) => MotionSummary::of(&run, opts.law.rule),
+        Err(Error::InvalidParameter { .. }) => MotionSummary::invalid(),
+        Err(_) => MotionSummary {
+            status: MotionStatus::Failed as u8,
+            ..MotionSummary::invalid()
+        },
+    }
+}
+
+/// Fills `out` (length [`MotionAxes::size`]) with the summary of every grid point, in
+/// parallel on `n_threads` threads; `stop()` may end the work (`Error::Interrupted`).
+pub fn motion_grid(
+    axes: &MotionAxes<'_>,
+    opts: &MotionMapOptions,
+    n_threads: usize,
+    out: &mut [MotionSummary],
+    stop: &dyn Fn() -> bool,
+) -> Result<()> {
+    crate::maps::parallel::check_len("out", out.len(), axes.size()?)?;
+    opts.validate()?;
+    let base = opts.base();
+    par_fill_until(
+        out,
+        n_threads,
+        |g| match axes.point(g, &base) {
+            Some((ramp, o)) => motion_point(&ramp, &o),
+            None => MotionSummary::invalid(),
+        },
+        stop,
+    )
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn opts() -> MotionMapOptions {
+        MotionMapOptions {
+            rule: Rule::Paper,
+            t_max: 100.0,
+            max_transitions: 50,
+            solver: SolverOptions::default(),
+        }
+    }
+
+    #[test]
+    fn sequence_codes_are_distinct_and_named_by_their_digits() {
+        use Mode::*;
+        assert_eq!(sequence_code([Roll, Flight].into_iter()), 1 + 3 * 4);
+        assert_eq!(
+            sequence_code([Roll, Slip, Flight, Roll].into_iter()),
+            1 + 2 * 4 + 3 * 16 + 32 * 2
+        );
+        assert_ne!(
+            sequence_code([Roll].into_iter()),
+            sequence_code([Roll, Roll].into_iter())
+        );
+    }
+
+    #[test]
+    fn a_grid_point_is_the_summary_of_simulate_there() {
+        let alpha = [0.4, 0.7];
+        let chi = [0.15, 0.5];
+        let frac = [0.02 / 0.85, 0.8];
+        let mu = [1.0];
+        let e = [0.0, 0.5];
+        let zero = [0.0];
+        let axes = MotionAxes {
+            alpha: &alpha,
+            chi: &chi,
+            frac: &frac,
+            mu_s: &mu,
+            mu_k: &[],
+            restitution: &e,
+            theta0: &zero,
+            omega0: &zero,
+        };
+        let n = axes.size().unwrap();
+        let mut out = vec![MotionSummary::invalid(); n];
+        motion_grid(&axes, &opts(), 1, &mut out, &|| false).unwrap();
+        let mut two = out.clone();
+        motion_grid(&axes, &opts(), 2, &mut two, &|| false).unwrap();
+        for (g, (a, b)) in out.iter().zip(&two).enumerate() {
+            // Bit-identical for any thread count (NaN fields compared by bits).
+            assert_eq!(format!("{a:?}"), format!("{b:?}"), "point {g}");
+            let (ramp, o) = axes.point(g, &opts().base()).unwrap();
+            let run = simulate(&ramp, &o).unwrap();
+            assert_eq!(format!("{a:?}"), format!("{:?}", MotionSummary::of(&run, o.law.rule)));
+            assert_eq!(a.status, MotionStatus::Landed as u8, "point {g}: {a:?}");
+        }
+        assert!(out.iter().any(|s| s.jarm) && out.iter().any(|s| s.slipped_first));
+    }
+
+    #[test]
+    fn invalid_points_are_marked_not_errors() {
+        let axes = MotionAxes {
+            alpha: &[0.5],
+            chi: &[0.5],
+            frac: &[0.5],
+            mu_s: &[0.5],
+            mu_k: &[0.4, 0.6],
+            restitution: &[0.0],
+            theta0: &[0.0],
+            omega0: &[0.0],
+        };
+        let mut out = vec![MotionSummary::invalid(); 2];
+        motion_grid(&axes, &opts(), 1, &mut out, &|| false).unwrap();
+        assert_eq!(out[0].status, MotionStatus::Landed as u8);
+        assert_eq!(out[1].status, INVALID);
+    }
+}

@@ -1,0 +1,92 @@
+//! `motion_grid`: the full motion at every point of a grid, each kept as a fixed-size
+//! summary (one numpy column per field, flat in C order), computed with the GIL released.
+
+use crate::columns::set_column;
+use crate::errors::detached;
+use crate::options::parse_rule;
+use eccjump_core::error::try_filled;
+use eccjump_core::maps::motion::{
+    motion_grid as grid, LandingOutcome, MotionAxes, MotionMapOptions, MotionSummary,
+};
+use eccjump_core::ode::SolverOptions;
+use numpy::PyReadonlyArray1;
+use pyo3::prelude::*;
+use pyo3::types::PyDict;
+
+/// Summaries of the grid alpha × chi × frac × mu_s × mu_k × restitution × theta0 × omega0
+/// (k_m = frac·(1 − χ); an empty mu_k: μ_k = μ_s), flat in C order.
+#[pyfunction]
+#[pyo3(signature = (alpha, chi, frac, mu_s, mu_k, restitution, theta0, omega0, *, rule,
+                    t_max, max_transitions, rtol, atol, max_steps, n_threads))]
+#[allow(clippy::too_many_arguments)] // the eight axes and the shared options
+pub fn motion_grid<'py>(
+    py: Python<'py>,
+    alpha: PyReadonlyArray1<'py, f64>,
+    chi: PyReadonlyArray1<'py, f64>,
+    frac: PyReadonlyArray1<'py, f64>,
+    mu_s: PyReadonlyArray1<'py, f64>,
+    mu_k: PyReadonlyArray1<'py, f64>,
+    restitution: PyReadonlyArray1<'py, f64>,
+    theta0: PyReadonlyArray1<'py, f64>,
+    omega0: PyReadonlyArray1<'py, f64>,
+    rule: &str,
+    t_max: f64,
+    max_transitions: usize,
+    rtol: f64,
+    atol: f64,
+    max_steps: usize,
+    n_threads: usize,
+) -> PyResult<Bound<'py, PyDict>> {
+    let axes = MotionAxes {
+        alpha: alpha.as_slice()?,
+        chi: chi.as_slice()?,
+        frac: frac.as_slice()?,
+        mu_s: mu_s.as_slice()?,
+        mu_k: mu_k.as_slice()?,
+        restitution: restitution.as_slice()?,
+        theta0: theta0.as_slice()?,
+        omega0: omega0.as_slice()?,
+    };
+    let opts = MotionMapOptions {
+        rule: parse_rule(rule)?,
+        t_max,
+        max_transitions,
+        solver: SolverOptions {
+            rtol,
+            atol,
+            max_steps,
+            ..SolverOptions::default()
+        },
+    };
+    let out = detached(py, |stop| {
+        let mut out = try_filled("the map", axes.size()?, MotionSummary::invalid())?;
+        grid(&axes, &opts, n_threads, &mut out, stop)?;
+        Ok(out)
+    })?;
+    let d = PyDict::new(py);
+    set_column(&d, "status", &out, |s| s.status)?;
+    set_column(&d, "sequence", &out, |s| s.sequence)?;
+    set_column(&d, "n_modes", &out, |s| s.n_modes)?;
+    set_column(&d, "jarm", &out, |s| s.jarm)?;
+    set_column(&d, "slipped_first", &out, |s| s.slipped_first)?;
+    set_column(&d, "slip_t", &out, |s| s.slip_t)?;
+    set_column(&d, "slip_theta", &out, |s| s.slip_theta)?;
+    set_column(&d, "liftoff_reason", &out, |s| s.liftoff_reason)?;
+    set_column(&d, "liftoff_t", &out, |s| s.liftoff_t)?;
+    set_column(&d, "liftoff_theta", &out, |s| s.liftoff_theta)?;
+    set_column(&d, "flight_time", &out, |s| s.flight_time)?;
+    set_column(&d, "apex", &out, |s| s.apex)?;
+    set_column(&d, "distance", &out, |s| s.distance)?;
+    set_column(&d, "landing", &out, |s| s.landing)?;
+    set_column(&d, "energy_lost", &out, |s| s.energy_lost)?;
+    Ok(d)
+}
+
+/// (code, name) of every landing outcome.
+#[pyfunction]
+pub fn landing_codes() -> Vec<(u8, &'static str)> {
+    LandingOutcome::ALL
+        .iter()
+        .map(|o| (*o as u8, o.name()))
+        .collect()
+}
