@@ -12,6 +12,11 @@ def body_from_inertia(M: float, R: float, d: float, I_C: float) -> tuple[float, 
 def body_from_shell_and_line(m_C: float, m_P: float, R: float, d: float) -> tuple[float, float]: ...
 
 class ImpactResult(TypedDict):
+    """One impact (``impact``): W = (wtt, wtn; wtn, wnn), the impulse (pt, pn) per M, the
+    contact velocity after it (ut = l' - theta', un = b'), whether the contact point ends
+    sticking, the velocities after it (omega, ldot, bdot) and the works (compression, normal,
+    friction; <= 0) in M g R."""
+
     wtt: float
     wtn: float
     wnn: float
@@ -37,7 +42,12 @@ def impact(
     mu_s: float,
     mu_k: float,
     restitution: float,
-) -> ImpactResult: ...
+) -> ImpactResult:
+    """One impact of the body (chi, km) at angle theta arriving with velocities (omega, ldot,
+    bdot): Routh's method with Coulomb friction (mu_s, mu_k) and Stronge's energetic
+    restitution (docs/impact_law.md). Private, for the tests. ValueError (validated by the
+    core) for a bad parameter, a non-finite state or km = 0."""
+
 def roll(
     chi: float,
     km: float,
@@ -84,14 +94,32 @@ def simulate(
     atol: float,
     max_steps: int,
     dense_output: bool,
-) -> dict[str, Any]: ...
+) -> dict[str, Any]:
+    """The full motion of the body (chi, km) on a ramp of angle alpha (docs/motion.md), with
+    the GIL released. Options are keyword-only, all required (``eccjump.simulate`` gives the
+    defaults), and checked by the core: a ValueError names the parameter.
+
+    Returns a dict: float64 arrays ``t``, ``theta``, ``omega``, ``l``, ``ldot``, ``b``,
+    ``bdot``, ``Fx``, ``Fy``, ``energy``, ``dissipated`` and the int8 array ``mode`` (one row
+    per recorded point); lists of tuples ``transitions`` (t, from mode or None, to mode,
+    reason, (theta, omega, l, ldot, b, bdot)), ``flights`` (t_liftoff, t_landing,
+    theta_liftoff, theta_landing, apex, distance), ``impacts`` (t, normal_speed, slip_before,
+    pt, pn, energy_lost, sticking, outcome) and ``segments`` (mode, reason, t_start, t_end,
+    nfev); floats ``energy0``, ``dissipated_slip``, ``dissipated_impacts``; ``status`` (t_max,
+    l_max, max_transitions, painleve, jam, failed), ``message``, ``nfev``; and ``sol``, a
+    :class:`MotionDense`, only when ``dense_output``."""
 
 class MotionDense:
-    """The dense output of a full-motion run, evaluated by the core."""
+    """The dense output of a full-motion run (``MotionResult.sol``), evaluated by the core."""
 
     @property
-    def t_max(self) -> float: ...
-    def states(self, t: NDArray[np.float64]) -> NDArray[np.float64]: ...
+    def t_max(self) -> float:
+        """Last time covered: the end of the run."""
+
+    def states(self, t: NDArray[np.float64]) -> NDArray[np.float64]:
+        """(theta, omega, l, ldot, b, bdot) at the times ``t`` (1-D float64), shape
+        (6, len(t)); at an impact, the state after it. ValueError names the first time
+        outside [0, t_max]."""
 
 class CallOptions(TypedDict):
     """The options of a classification call (extra keys are ignored)."""
