@@ -1000,6 +1000,13 @@ def cli_map_argv(d: Drawer) -> list[str]:
         argv += ["--threads", d.choice(("0", "1", "-1", "2.5", "99999999999999999999999"))]
     if d.integer(0, 2) == 0:
         argv += ["--max-turns", d.choice(("1", "5", "0", "4294967296"))]
+    if d.integer(0, 2) == 0:  # the full motion, with its own options
+        argv += ["--kind", d.choice(("motion", "motion", "x"))]
+        for opt, lo, hi in (("--mu-k", 0, 3), ("--restitution", 0, 1), ("--t-max", 0, 30)):
+            if d.integer(0, 2) == 0:
+                argv += [opt, cli_number(d, lo, hi)]
+        if d.integer(0, 2) == 0:
+            argv += ["--max-transitions", d.choice(("1", "5", "0", "99999999999"))]
     return argv
 
 
@@ -1007,7 +1014,8 @@ def cli_map_argv(d: Drawer) -> list[str]:
 CLI_PARAMS = (
     "alpha", "chi", "km", "mu", "mu_s", "mu-s", "theta0", "omega0", "t_max", "t-max", "rtol",
     "atol", "theta_max", "grid", "n", "threads", "n_threads", "max_turns", "max-turns",
-    "output", "-o", "alpha-min", "alpha-max", "chi-max", "range", "rule", "shapes",
+    "output", "-o", "alpha-min", "alpha-max", "chi-max", "range", "rule", "shapes", "kind",
+    "mu_k", "mu-k", "restitution", "max_transitions", "max-transitions", "route",
 )  # fmt: skip
 
 

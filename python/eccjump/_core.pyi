@@ -185,3 +185,28 @@ def alpha_interval_around(
     step: float,
     n_threads: int,
 ) -> tuple[NDArray[np.float64], NDArray[np.float64]]: ...
+def motion_grid(
+    alpha: NDArray[np.float64],
+    chi: NDArray[np.float64],
+    frac: NDArray[np.float64],
+    mu_s: NDArray[np.float64],
+    mu_k: NDArray[np.float64],
+    restitution: NDArray[np.float64],
+    theta0: NDArray[np.float64],
+    omega0: NDArray[np.float64],
+    *,
+    rule: str,
+    t_max: float,
+    max_transitions: int,
+    rtol: float,
+    atol: float,
+    max_steps: int,
+    n_threads: int,
+) -> dict[str, NDArray[Any]]:
+    """The full motion to the first landing at every point of the product of the eight 1-D
+    axes (k_m = frac (1 - chi); an empty ``mu_k``: mu_k = mu_s), flat in C order, with the
+    GIL released. One array per summary field (``eccjump.motion_maps.TABLE``); a point with
+    invalid values has status 255. A bad shared option is a ValueError naming it."""
+
+def landing_codes() -> list[tuple[int, str]]:
+    """(code, name) of every landing outcome of a motion map."""

@@ -112,9 +112,12 @@ def make_layout(
     fields: Mapping[str, Any],
     attrs: Mapping[str, Any],
     alpha_done: NDArray[np.bool_] | None = None,
+    kind: Any = None,
 ) -> Layout:
-    """The layout of a map on alpha x chi x km_frac (numpy only)."""
-    data_vars = {k: (DIMS, fields[k], field_var(k)) for k in FIELDS}
+    """The layout of a map of ``kind`` (an :class:`eccjump.map_kinds.MapKind`, above this
+    module; default: a JARM map) on alpha x chi x km_frac (numpy only)."""
+    names, var_attrs = (FIELDS, field_var) if kind is None else (kind.fields, kind.var_attrs)
+    data_vars = {k: (DIMS, fields[k], var_attrs(k)) for k in names}
     if alpha_done is not None:
         data_vars["alpha_done"] = (("alpha",), alpha_done, COORD_ATTRS["alpha_done"])
     return {

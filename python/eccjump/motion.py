@@ -15,7 +15,7 @@ from numpy.typing import ArrayLike, NDArray
 
 from eccjump import _core
 from eccjump._arrays import same_values
-from eccjump._checks import U64_MAX, flag, integer, optional_real, real, real_array, text
+from eccjump._checks import flag, integer, optional_real, real, real_array, text
 from eccjump.body import Cylinder
 from eccjump.units import Units
 
@@ -34,6 +34,10 @@ REASONS = (
     "impact",
     "settle",
 )
+#: The core's bounds on the work of a run (rust/eccjump-core/src/motion/options.rs and
+#: modes/rolling/run.rs), checked here first so that the error states the true range.
+MAX_TRANSITIONS = 10**6
+MAX_STEPS = 10**7
 #: How a run can end.
 STATUSES = ("t_max", "l_max", "max_transitions", "painleve", "jam", "failed", "landed")
 
@@ -349,10 +353,10 @@ def simulate(
         slip0=real("slip0", slip0),
         t_max=real("t_max", t_max),
         l_max=real("l_max", l_max),
-        max_transitions=integer("max_transitions", max_transitions, 1, U64_MAX),
+        max_transitions=integer("max_transitions", max_transitions, 1, MAX_TRANSITIONS),
         rtol=real("rtol", rtol),
         atol=real("atol", atol),
-        max_steps=integer("max_steps", max_steps, 1, U64_MAX),
+        max_steps=integer("max_steps", max_steps, 1, MAX_STEPS),
         dense_output=flag("dense_output", dense_output),
     )
     return MotionResult(

@@ -13,80 +13,36 @@ The sequence of modes is a compact code (2 bits per mode, the start's mode first
 
 from __future__ import annotations
 
-import math
 from collections.abc import Mapping
 from dataclasses import dataclass, field
-from typing import TYPE_CHECKING, Any, Literal, NamedTuple
+from typing import TYPE_CHECKING, Any, Literal
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-from eccjump import _core
+from eccjump import _core, store
 from eccjump._checks import U64_MAX, integer, real_array, text
-from eccjump.motion import MODES, REASONS, STATUSES, Rule
+from eccjump.motion import MAX_STEPS, MAX_TRANSITIONS, Rule
+from eccjump.motion_fields import (
+    FIELDS,
+    INVALID,
+    LANDINGS,
+    STATUS_NAMES,
+    TABLE,
+    cf_attrs,
+    sequence_code,
+    sequence_name,
+)
+from eccjump.scale import require_dask
 
 if TYPE_CHECKING:
     import xarray as xr
 
-#: The axes of a map, in the order of the grid (C order: alpha slowest).
+#: The axes of a map, in the order of the grid (C order: alpha slowest). ``km`` is the
+#: fraction k_m/(1 - chi); its dimension is called ``km_frac``, as in JARM maps.
 AXES = ("alpha", "chi", "km", "mu_s", "mu_k", "restitution", "theta0", "omega0")
-#: Modes kept in the sequence code.
-SEQUENCE_LEN = 8
-#: ``status`` of a point with invalid parameters (mu_k > mu_s, a value out of range).
-INVALID = 255
-#: How the first landing ended, by code.
-LANDINGS: tuple[str, ...] = tuple(name for _, name in sorted(_core.landing_codes()))
-#: ``status`` names by code (:data:`INVALID` is "invalid").
-STATUS_NAMES: dict[int, str] = {**dict(enumerate(STATUSES)), INVALID: "invalid"}
-
-
-class Field(NamedTuple):
-    """One summary field: name, numpy dtype, units, meaning, value where not computed."""
-
-    name: str
-    dtype: np.dtype
-    units: str
-    description: str
-    fill: Any
-
-
-_B, _U8, _U16, _F = (np.dtype(t) for t in (np.bool_, np.uint8, np.uint16, np.float64))
-_T = "sqrt(R/g)"
-#: Every summary field, in the order of the bridge.
-TABLE: tuple[Field, ...] = (
-    Field("status", _U8, "1", "how the run ended (STATUS_NAMES; landed: at its first landing)", 0),
-    Field("sequence", _U16, "1", "the first modes as a code (sequence_name)", 0),
-    Field("n_modes", _U16, "1", "modes in the run, the start's included", 0),
-    Field("jarm", _B, "1", "lift-off straight out of pure rolling from the start", False),
-    Field("slipped_first", _B, "1", "a slip came before the first flight", False),
-    Field("slip_t", _F, _T, "time of the first slip onset (NaN: none)", math.nan),
-    Field("slip_theta", _F, "rad", "angle of the first slip onset (NaN: none)", math.nan),
-    Field("liftoff_reason", _U8, "1", "why the first flight began (REASONS; 255: none)", 255),
-    Field("liftoff_t", _F, _T, "time of the first lift-off (NaN: none)", math.nan),
-    Field("liftoff_theta", _F, "rad", "angle of the first lift-off (NaN: none)", math.nan),
-    Field("flight_time", _F, _T, "duration of the first flight (NaN: did not land)", math.nan),
-    Field("apex", _F, "R", "largest height of the first flight above contact", math.nan),
-    Field("distance", _F, "R", "distance down the ramp covered by the first flight", math.nan),
-    Field("landing", _U8, "1", "how the first landing ended (LANDINGS)", 0),
-    Field("energy_lost", _F, "M g R", "energy dissipated by sliding and impacts", math.nan),
-)
-#: Field names, in the order of the bridge.
-FIELDS: tuple[str, ...] = tuple(f.name for f in TABLE)
-
-
-def sequence_name(code: int) -> str:
-    """The modes of a sequence code, e.g. ``"ROLL→SLIP→FLIGHT"`` ("" for 0)."""
-    names = []
-    code = int(code)
-    while code:
-        names.append(MODES[(code & 3) - 1])
-        code >>= 2
-    return "→".join(names)
-
-
-def sequence_code(modes: list[str] | tuple[str, ...]) -> int:
-    """The code of the first :data:`SEQUENCE_LEN` of ``modes`` (names from :data:`MODES`)."""
-    return sum((MODES.index(m) + 1) << (2 * i) for i, m in enumerate(modes[:SEQUENCE_LEN]))
+#: Dimension name of each axis.
+DIM_OF = {**{a: a for a in AXES}, "km": "km_frac"}
 
 
 @dataclass(frozen=True, eq=False)
@@ -120,46 +76,41 @@ class MotionMap:
         return {int(codes[i]): (sequence_name(codes[i]), int(counts[i])) for i in order}
 
     def to_xarray(self) -> xr.Dataset:
-        """The map as a labelled xarray Dataset (CF attributes, flag tables)."""
+        """The map as a labelled xarray Dataset (CF attributes and flag tables; a lazy
+        map's ``sequence`` codes are known once computed, :func:`sequence_name` names them)."""
         import xarray as xr
 
-        dims = tuple(self.coords)
-        data = {}
-        for f in TABLE:
-            attrs: dict[str, Any] = {"units": f.units, "long_name": f.description}
-            if f.name == "sequence" and isinstance(self.fields[f.name], np.ndarray):
-                # (a lazy map's codes are known once computed: sequence_name names them)
-                table = self.sequences()
-                attrs["flag_values"] = np.array(list(table), dtype=f.dtype)
-                attrs["flag_meanings"] = " ".join(
-                    name.replace("→", "_") or "none" for name, _ in table.values()
-                )
-            elif f.name == "status":
-                attrs["flag_values"] = np.array(list(STATUS_NAMES), dtype=f.dtype)
-                attrs["flag_meanings"] = " ".join(STATUS_NAMES.values())
-            elif f.name == "landing":
-                attrs["flag_values"] = np.arange(len(LANDINGS), dtype=f.dtype)
-                attrs["flag_meanings"] = " ".join(LANDINGS)
-            elif f.name == "liftoff_reason":
-                attrs["flag_values"] = np.arange(len(REASONS), dtype=f.dtype)
-                attrs["flag_meanings"] = " ".join(REASONS)
-            data[f.name] = (dims, self.fields[f.name], attrs)
-        coords = {k: (k, v) for k, v in self.coords.items()}
-        attrs = {
+        dims = tuple(DIM_OF[k] for k in self.coords)
+        seq = self.fields["sequence"]
+        codes = np.unique(seq) if isinstance(seq, np.ndarray) else None
+        data = {f: (dims, self.fields[f], cf_attrs(f, codes)) for f in FIELDS}
+        coords = {DIM_OF[k]: (DIM_OF[k], v) for k, v in self.coords.items()}
+        return xr.Dataset(data, coords=coords, attrs=self.attrs())
+
+    def attrs(self) -> dict[str, Any]:
+        """How the map was made, as netCDF-safe file attributes (``mu_k`` = mu_s where it
+        was not given)."""
+        given: dict[str, Any] = {k: float(v) for k, v in self.scalars.items() if v is not None}
+        if "mu_k" in self.scalars and self.scalars["mu_k"] is None:
+            given["mu_k"] = given.get("mu_s", "mu_s")  # mu_k = mu_s, swept or not
+        return {
             "title": "motion map of an eccentric cylinder on a ramp (eccjump)",
+            "kind": "motion",
             "eccjump_version": _core.VERSION,
-            "km_meaning": "km is the fraction k_m/(1 - chi)",
             "units": "g = R = M = 1: angles in rad, times in sqrt(R/g), lengths in R",
-            **{k: ("mu_s" if v is None else float(v)) for k, v in self.scalars.items()},
-            **{k: v for k, v in self.options.items()},
+            **given,
+            **self.options,
         }
-        return xr.Dataset(data, coords=coords, attrs=attrs)
 
     def __repr__(self) -> str:
         dims = ", ".join(f"{k}: {v.size}" for k, v in self.coords.items()) or "one point"
         top = list(self.sequences().values())[:3]
         seq = ", ".join(f"{n or '-'} ({c})" for n, c in top)
         return f"MotionMap({dims}; {int(np.prod(self.shape))} points; {seq})"
+
+
+#: The options shared by every point, recorded with a map.
+OPTIONS = ("rule", "t_max", "max_transitions", "rtol", "atol", "max_steps")
 
 
 def _axes(values: Mapping[str, object]) -> tuple[dict[str, NDArray], dict[str, float | None]]:
@@ -251,16 +202,16 @@ def motion_map(
     opts = {
         "rule": text("rule", rule),
         "t_max": float(real_array("t_max", t_max)),
-        "max_transitions": integer("max_transitions", max_transitions, 1, U64_MAX),
+        "max_transitions": integer("max_transitions", max_transitions, 1, MAX_TRANSITIONS),
         "rtol": float(real_array("rtol", rtol)),
         "atol": float(real_array("atol", atol)),
-        "max_steps": integer("max_steps", max_steps, 1, U64_MAX),
+        "max_steps": integer("max_steps", max_steps, 1, MAX_STEPS),
         "n_threads": integer("n_threads", n_threads, 0, 256),
     }
     axis = {name: _axis(coords, scalars, name) for name in AXES}
     rest = tuple(axis[name] for name in AXES[1:])
     shape = tuple(c.size for c in coords.values())
-    info = {k: v for k, v in opts.items() if k != "n_threads"}
+    info = {k: opts[k] for k in OPTIONS}
     # The shared options checked on one point first: a bad one is an error, not a map.
     _block(axis["alpha"][:1], tuple(a[:1] for a in rest), opts)
     if chunks is not None:
@@ -282,8 +233,6 @@ def _lazy(
     chunks: object,
 ) -> xr.Dataset:
     """A dask-backed Dataset: one core call per block of alpha values."""
-    from eccjump.scale import require_dask
-
     da = require_dask()
     import dask
 
@@ -307,19 +256,21 @@ def shape_of(axis: Mapping[str, NDArray]) -> tuple[int, ...]:
 
 
 def from_dataset(ds: xr.Dataset) -> MotionMap:
-    """A computed :class:`MotionMap` from a Dataset of :meth:`MotionMap.to_xarray` (or a
-    lazy one, computed here)."""
-    coords = {k: np.asarray(ds[k].values) for k in ds.dims}
-    scalars = {
-        k: (None if ds.attrs.get(k) == "mu_s" else ds.attrs.get(k)) for k in AXES if k not in coords
+    """A :class:`MotionMap` from its Dataset (:meth:`MotionMap.to_xarray`, or a file of
+    ``eccjump map --kind motion`` opened with :func:`eccjump.store.open_dataset`)."""
+    axis_of = {d: a for a, d in DIM_OF.items()}
+    coords = {axis_of[str(d)]: np.asarray(ds[d].values) for d in ds[FIELDS[0]].dims}
+    scalars: dict[str, float | None] = {
+        k: float(ds.attrs[k]) for k in AXES if k not in coords and k in ds.attrs
     }
     fields = {k: np.asarray(ds[k].values) for k in FIELDS}
-    opts = {
-        k: ds.attrs[k]
-        for k in ("rule", "t_max", "max_transitions", "rtol", "atol", "max_steps")
-        if k in ds.attrs
-    }
+    opts = {k: ds.attrs[k] for k in OPTIONS if k in ds.attrs}
     return MotionMap(coords, scalars, fields, opts)
+
+
+def load(path: str) -> MotionMap:
+    """A motion map file (.nc, .zarr, .npz) as a :class:`MotionMap`."""
+    return from_dataset(store.open_dataset(path))
 
 
 __all__ = [

@@ -26,6 +26,8 @@ from eccjump import closed_form
 from eccjump._checks import U32_MAX, integer, optional_real, real
 from eccjump.boundary import alpha_interval_around, alpha_intervals
 from eccjump.classification import Region, jarm
+from eccjump.motion_fields import sequence_name
+from eccjump.motion_maps import MotionMap
 from eccjump.rolling import RollResult
 
 if TYPE_CHECKING:
@@ -689,6 +691,82 @@ def region_map(region: Region, *, panels: int = 4) -> Figure:
     fig.suptitle(
         f"JARM region, $\\mu_s = {region.mu_s:g}$, rule: {region.rule}, route: {region.method} "
         f"({100.0 * region.fraction():.2f}% of {is_jarm.size} grid points)"
+    )
+    return fig
+
+
+#: Colours of the most frequent sequences of :func:`sequence_map` (the rest share grey).
+SEQUENCE_COLORS = (
+    "#1f77b4", "#ff7f0e", "#2ca02c", "#d62728", "#9467bd",
+    "#8c564b", "#e377c2", "#bcbd22", "#17becf", "#aec7e8",
+)  # fmt: skip
+
+
+def sequence_map(m: MotionMap, *, panels: int = 4) -> Figure:
+    """A motion map over (chi, alpha), one panel per k_m slice (``panels`` evenly spaced
+    slices), every point coloured by its sequence of modes (the 10 most frequent sequences
+    of the map; the others grey, points not run white). Like the paper's Fig. 4, but for
+    every outcome; the JARM points are the ROLL→FLIGHT→... sequences."""
+    if not isinstance(m, MotionMap):
+        raise TypeError(f"m must be a MotionMap, not {type(m).__name__}")
+    panels = integer("panels", panels, 1, 64)
+    if tuple(m.coords)[:2] != ("alpha", "chi") or len(m.coords) > 3:
+        raise ValueError("sequence_map needs a map over alpha, chi (and km) only")
+    plt = _plt()
+    from matplotlib.colors import ListedColormap
+    from matplotlib.patches import Patch
+
+    seq = np.asarray(m.fields["sequence"])
+    if seq.ndim == 2:
+        seq = seq[:, :, None]
+    km = m.coords.get("km", np.array([m.scalars.get("km") or 0.0]))
+    top = [c for c in m.sequences() if c != 0][: len(SEQUENCE_COLORS)]
+    cat = np.full(seq.shape, float(len(top)))  # "other"
+    for k, code in enumerate(top):
+        cat[seq == code] = k
+    cat[seq == 0] = np.nan
+    colors = [*SEQUENCE_COLORS[: len(top)], "#c7c7c7"]
+    ran = np.flatnonzero(np.isfinite(cat).any(axis=(0, 1)))  # slices with points that ran
+    ran = ran if ran.size else np.arange(seq.shape[2])
+    slices = ran[np.unique(np.linspace(0, ran.size - 1, min(panels, ran.size)).round().astype(int))]
+    fig, axes = plt.subplots(
+        1,
+        slices.size,
+        figsize=(3.3 * slices.size + 3.2, 3.8),
+        layout="constrained",
+        sharey=True,
+        squeeze=False,
+    )
+    a_deg = np.degrees(m.coords["alpha"])
+    chi = m.coords["chi"]
+    for ax, j in zip(axes[0], slices.astype(int), strict=True):
+        ax.pcolormesh(
+            chi,
+            a_deg,
+            cat[:, :, j],
+            cmap=ListedColormap(colors),
+            vmin=-0.5,
+            vmax=len(top) + 0.5,
+            shading="nearest",
+        )
+        ax.set_title(rf"$k_m = {km[j]:.3g}\,(1-\chi)$", fontsize=10)
+        ax.set_xlabel(r"$\chi = d/R$")
+        ax.grid(alpha=0.3)
+    axes[0, 0].set_ylabel(r"ramp angle $\alpha$ [deg]")
+    handles = [
+        Patch(color=colors[k], label=sequence_name(code).replace("→", " → "))
+        for k, code in enumerate(top)
+    ]
+    if (cat == len(top)).any():
+        handles.append(Patch(color=colors[-1], label="other sequences"))
+    fig.legend(handles=handles, title="modes, to the first landing", loc="outside right upper",
+               fontsize=8)  # fmt: skip
+    o, sc = m.options, m.scalars
+    mu_k = sc.get("mu_k")
+    fig.suptitle(
+        f"Full motion to the first landing: $\\mu_s = {sc.get('mu_s', float('nan')):g}$, "
+        f"$\\mu_k = {sc.get('mu_s') if mu_k is None else mu_k:g}$, "
+        f"$e = {sc.get('restitution', 0.0):g}$, rule: {o.get('rule', 'paper')}"
     )
     return fig
 

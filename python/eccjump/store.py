@@ -39,13 +39,11 @@ from numpy.typing import NDArray
 from eccjump._checks import mapping
 from eccjump._checks import path as check_path
 from eccjump.classification import Region
-from eccjump.fields import DTYPES, FIELDS, FILL
 from eccjump.labelled import (
     COORD_ATTRS,
     DIMS,
     Layout,
     attrs_json,
-    field_var,
     grid_coords,
     layout_from_xarray,
     layout_to_xarray,
@@ -53,6 +51,7 @@ from eccjump.labelled import (
     require,
     to_region,
 )
+from eccjump.map_kinds import MapKind, kind_of
 
 if TYPE_CHECKING:  # pragma: no cover
     import xarray as xr
@@ -340,11 +339,14 @@ def open_dataset(path: str | os.PathLike) -> xr.Dataset:
 
 
 #: What a map file holds (coordinates, data variables, attributes), checked by :func:`load`.
-REQUIRED = (
-    ("coordinates", ("alpha", "chi", "km_frac")),
-    ("variables", FIELDS),
-    ("attributes", ("mu_s", "n", "rule", "method", "theta0", "omega0")),
-)
+def required(kind: MapKind) -> tuple[tuple[str, tuple[str, ...]], ...]:
+    """What a map file of ``kind`` holds: coordinates, data variables, attributes."""
+    return (
+        ("coordinates", ("alpha", "chi", "km_frac")),
+        ("variables", kind.fields),
+        ("attributes", kind.required_attrs),
+    )
+
 
 #: OSError numbers that are about reaching the file, not about what is in it.
 _ACCESS_ERRNOS = (errno.EACCES, errno.EPERM)
@@ -370,7 +372,12 @@ def load_layout(path: str | os.PathLike) -> Layout:
         raise ValueError(f"{path} is not a readable {fmt} map: {err}") from err
 
 
-def _check_layout(lay: Layout, path: str | os.PathLike) -> None:
+def _check_layout(lay: Layout, path: str | os.PathLike) -> MapKind:
+    """The kind of the map in ``lay``; ValueError naming ``path`` if something is missing."""
+    try:
+        kind = kind_of(lay.get("attrs", {}))
+    except ValueError as err:
+        raise ValueError(f"{path} is not an eccjump map: {err}") from None
     have = {
         "coordinates": set(lay.get("coords", {})) | set(lay.get("data_vars", {})),
         "variables": set(lay.get("data_vars", {})),
@@ -378,11 +385,12 @@ def _check_layout(lay: Layout, path: str | os.PathLike) -> None:
     }
     missing = [
         f"{what} {', '.join(n for n in names if n not in have[what])}"
-        for what, names in REQUIRED
+        for what, names in required(kind)
         if not set(names) <= have[what]
     ]
     if missing:
-        raise ValueError(f"{path} is not an eccjump map: missing " + "; ".join(missing))
+        raise ValueError(f"{path} is not an eccjump {kind.name} map: missing " + "; ".join(missing))
+    return kind
 
 
 def load(path: str | os.PathLike) -> Region:
@@ -390,7 +398,8 @@ def load(path: str | os.PathLike) -> Region:
     numpy only. The file's ``complete`` and ``alpha_done`` go to ``Region.attrs``. A file
     that is not such a map raises ValueError naming it and what is missing."""
     lay = load_layout(check_path("path", path))
-    _check_layout(lay, path)
+    if _check_layout(lay, path).name != "jarm":
+        raise ValueError(f"{path} is a motion map: load it with eccjump.motion_maps.load")
     reg = to_region(lay)
     if "alpha_done" in lay["data_vars"]:
         reg.attrs["alpha_done"] = np.asarray(lay["data_vars"]["alpha_done"][1], dtype=bool)
@@ -431,10 +440,14 @@ class ZarrMap:
             if err.errno in _ACCESS_ERRNOS:
                 raise
             raise ValueError(f"{self.path} is not a zarr map: {err}") from err
-        arrays = ("alpha", "chi", "km_frac", *FIELDS, "alpha_done")
-        missing = [k for k in arrays if k not in self.group]
         self.attrs: dict[str, Any] = dict(self.group.attrs)
-        missing_attrs = [k for k in REQUIRED[2][1] if k not in self.attrs]
+        try:
+            self.kind = kind_of(self.attrs)
+        except ValueError as err:
+            raise ValueError(f"{self.path} is not an eccjump zarr map: {err}") from None
+        arrays = ("alpha", "chi", "km_frac", *self.kind.fields, "alpha_done")
+        missing = [k for k in arrays if k not in self.group]
+        missing_attrs = [k for k in self.kind.required_attrs if k not in self.attrs]
         if missing or missing_attrs:
             what = [f"arrays {', '.join(missing)}"] if missing else []
             what += [f"attributes {', '.join(missing_attrs)}"] if missing_attrs else []
@@ -442,7 +455,7 @@ class ZarrMap:
         self.alpha = np.asarray(self.group["alpha"][:], dtype=np.float64)
         self.chi = np.asarray(self.group["chi"][:], dtype=np.float64)
         self.km_frac = np.asarray(self.group["km_frac"][:], dtype=np.float64)
-        self.chunk = int(self.group["is_jarm"].chunks[0])
+        self.chunk = int(self.group["alpha_done"].chunks[0])
 
     @classmethod
     def create(
@@ -498,16 +511,16 @@ class ZarrMap:
             )
             arr[...] = values
         _step("create")
-        for name in FIELDS:
-            dtype = DTYPES[name]
+        kind = kind_of(attrs)
+        for name in kind.fields:
             group.create_array(
                 name,
                 shape=shape,
-                dtype=dtype,
+                dtype=kind.dtypes[name],
                 chunks=chunks,
-                fill_value=FILL[name],
+                fill_value=kind.fill[name],
                 dimension_names=DIMS,
-                attributes=_json_attrs({**field_var(name), "coordinates": "alpha_deg km"}),
+                attributes=_json_attrs({**kind.var_attrs(name), "coordinates": "alpha_deg km"}),
             )
         done = group.create_array(
             "alpha_done",
@@ -541,14 +554,16 @@ class ZarrMap:
     def write(self, i: int, fields: Mapping[str, NDArray]) -> None:
         """Write chunk ``i`` (every field, shape (i1 - i0, nchi, nkm)), then mark it done."""
         i0, i1 = self.bounds(i)
-        for name in FIELDS:
-            self.group[name][i0:i1] = np.asarray(fields[name], dtype=DTYPES[name])
+        for name in self.kind.fields:
+            self.group[name][i0:i1] = np.asarray(fields[name], dtype=self.kind.dtypes[name])
         _step("chunk-data")
         self.group["alpha_done"][i0:i1] = True
         _step("chunk-done")
 
-    def read(self, i: int, names: tuple[str, ...] = FIELDS) -> dict[str, NDArray]:
+    def read(self, i: int, names: tuple[str, ...] | None = None) -> dict[str, NDArray]:
+        """Fields ``names`` (default: all) of chunk ``i``."""
         i0, i1 = self.bounds(i)
+        names = self.kind.fields if names is None else names
         return {k: np.asarray(self.group[k][i0:i1]) for k in names}
 
     def finish(self, **attrs: Any) -> None:

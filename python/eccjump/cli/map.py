@@ -32,17 +32,18 @@ from typing import Any
 import numpy as np
 from numpy.typing import NDArray
 
-from eccjump import plot, store
+from eccjump import motion_maps, plot, store
 from eccjump.classification import region
 from eccjump.cli._args import int_at_least
-from eccjump.fields import DTYPES, FIELDS, FILL
 from eccjump.labelled import make_layout, map_attrs
+from eccjump.map_kinds import JARM, MOTION, MapKind
+from eccjump.motion_fields import sequence_name
 from eccjump.store import ZarrMap, format_of, save
 
 #: Default points per chunk when --chunk is not given (a few seconds on a laptop core).
 POINTS_PER_CHUNK = 100_000
 
-#: Options that must match the store for --resume (attribute names).
+#: Options of a JARM map that must match the store for --resume (attribute names).
 MAP_OPTIONS = (
     "mu_s",
     "n",
@@ -54,6 +55,19 @@ MAP_OPTIONS = (
     "atol",
     "max_turns",
     "refine_extrema",
+)
+#: The same for a motion map.
+MOTION_OPTIONS = (
+    "mu_s",
+    "mu_k",
+    "restitution",
+    "rule",
+    "theta0",
+    "omega0",
+    "t_max",
+    "max_transitions",
+    "rtol",
+    "atol",
 )
 
 
@@ -67,10 +81,18 @@ def _range(lo: float, hi: float, name: str, lo_ok: float, hi_ok: float) -> None:
 def add_parser(sub: argparse._SubParsersAction) -> None:
     p = sub.add_parser(
         "map",
-        help="map the JARM region over (alpha, chi, km) to .nc, .zarr or .npz",
+        help="map the JARM region (or the full motion) over (alpha, chi, km) to .nc, .zarr or .npz",
         description="Classify every point of the grid alpha x chi x km_frac (km = km_frac "
-        "(1 - chi)) as JARM or not, in chunks along alpha, and write all result fields. "
+        "(1 - chi)) as JARM or not (--kind jarm), or follow its full motion to the first "
+        "landing (--kind motion), in chunks along alpha, and write all result fields. "
         "Ctrl-C keeps the finished chunks; a .zarr map can be resumed with --resume.",
+    )
+    p.add_argument(
+        "--kind",
+        choices=("jarm", "motion"),
+        default="jarm",
+        help="jarm: the JARM classification (default); motion: the full motion to the first "
+        "landing (sequence of modes, lift-off, flight, landing)",
     )
     p.add_argument("--mu-s", type=float, required=True, help="static friction coefficient")
     p.add_argument(
@@ -108,6 +130,18 @@ def add_parser(sub: argparse._SubParsersAction) -> None:
     m.add_argument("--rtol", type=float, default=1e-10, help="integrator rtol (--route ode)")
     m.add_argument("--atol", type=float, default=1e-12, help="integrator atol (--route ode)")
     m.add_argument("--max-turns", type=int_at_least(1), default=10_000, help="cap of the search")
+    k = p.add_argument_group("full motion (--kind motion)")
+    k.add_argument("--mu-k", type=float, default=None, help="kinetic friction (default mu_s)")
+    k.add_argument(
+        "--restitution", type=float, default=0.0, help="Stronge's coefficient e (default 0)"
+    )
+    k.add_argument("--t-max", type=float, default=100.0, help="end time of each run (default 100)")
+    k.add_argument(
+        "--max-transitions",
+        type=int_at_least(1),
+        default=50,
+        help="transitions before the first landing (default 50)",
+    )
     r = p.add_argument_group("run")
     r.add_argument("--threads", type=int, default=0, help="threads (0 = one per core)")
     r.add_argument(
@@ -167,27 +201,16 @@ def _axes(args: argparse.Namespace) -> tuple[NDArray, NDArray, NDArray]:
     return alpha, chi, km
 
 
-def _options(args: argparse.Namespace) -> dict[str, Any]:
-    return {
-        "mu_s": float(args.mu_s),
-        "n": args.n,
-        "rule": args.rule,
-        "method": args.route.replace("-", "_"),
-        "theta0": math.radians(args.theta0),
-        "omega0": float(args.omega0),
-        "rtol": float(args.rtol),
-        "atol": float(args.atol),
-        "max_turns": int(args.max_turns),
-        "refine_extrema": False,
-    }
-
-
 def _mismatch(
-    store_attrs: dict[str, Any], attrs: dict[str, Any], old: tuple, new: tuple
+    store_attrs: dict[str, Any],
+    attrs: dict[str, Any],
+    matched: tuple[str, ...],
+    old: tuple,
+    new: tuple,
 ) -> list[str]:
     diffs = [
         f"{k}: store {store_attrs.get(k)!r}, now {attrs[k]!r}"
-        for k in MAP_OPTIONS
+        for k in matched
         if store_attrs.get(k) != attrs[k]
     ]
     for name, a, b in zip(("alpha", "chi", "km_frac"), old, new, strict=True):
@@ -199,25 +222,158 @@ def _mismatch(
     return diffs
 
 
-class _Counts:
-    """JARM counts overall and per turn n over the finished points."""
+class _JarmJob:
+    """``--kind jarm``: the JARM classification of each point (:func:`eccjump.region`)."""
 
-    def __init__(self) -> None:
-        self.points = 0
-        self.jarm = 0
+    kind: MapKind = JARM
+    matched = MAP_OPTIONS
+    counted = ("is_jarm", "n")
+
+    def __init__(self, args: argparse.Namespace) -> None:
+        self.opts = {
+            "mu_s": float(args.mu_s),
+            "n": args.n,
+            "rule": args.rule,
+            "method": args.route.replace("-", "_"),
+            "theta0": math.radians(args.theta0),
+            "omega0": float(args.omega0),
+            "rtol": float(args.rtol),
+            "atol": float(args.atol),
+            "max_turns": int(args.max_turns),
+            "refine_extrema": False,
+        }
+        self.attrs = map_attrs(**self.opts)
+        self.points = self.jarm = 0
         self.per_n: dict[int, int] = {}
 
-    def add(self, is_jarm: NDArray[np.bool_], n: NDArray) -> None:
+    def compute(
+        self, alpha: NDArray, chi: NDArray, km: NDArray, threads: int
+    ) -> dict[str, NDArray]:
+        o = self.opts
+        reg = region(
+            o["mu_s"],
+            o["n"],
+            alpha=alpha,
+            chi=chi,
+            km=km,
+            n_threads=threads,
+            **{k: v for k, v in o.items() if k not in ("mu_s", "n")},
+        )
+        return {f: getattr(reg.result, f) for f in self.kind.fields}
+
+    def count(self, part: dict[str, NDArray]) -> None:
+        is_jarm = np.asarray(part["is_jarm"], dtype=bool)
         self.points += is_jarm.size
-        turns = np.asarray(n)[np.asarray(is_jarm, dtype=bool)]
+        turns = np.asarray(part["n"])[is_jarm]
         self.jarm += turns.size
         values, counts = np.unique(turns, return_counts=True)
         for v, c in zip(values.tolist(), counts.tolist(), strict=True):
             self.per_n[v] = self.per_n.get(v, 0) + c
 
+    def lines(self) -> list[str]:
+        lines = [_jarm_line(self.jarm, self.points)]
+        shown = sorted(self.per_n)[:10]
+        for v in shown:
+            lines.append(f"  n = {v:<8}  {_share(self.per_n[v], self.points)}")
+        rest = sum(c for v, c in self.per_n.items() if v not in shown)
+        if rest:
+            lines.append(f"  n > {shown[-1]:<8}  {_share(rest, self.points)}")
+        return lines
+
+    def draw(self, path: str, figure: str) -> None:
+        fig = plot.region_map(store.load(path))
+        fig.savefig(figure, dpi=110)
+
+
+class _MotionJob:
+    """``--kind motion``: the full motion of each point to its first landing
+    (:func:`eccjump.motion_map`)."""
+
+    kind: MapKind = MOTION
+    matched = MOTION_OPTIONS
+    counted = ("sequence", "jarm", "slipped_first", "status")
+
+    def __init__(self, args: argparse.Namespace) -> None:
+        mu_s = float(args.mu_s)
+        self.opts = {
+            "mu_s": mu_s,
+            "mu_k": mu_s if args.mu_k is None else float(args.mu_k),
+            "restitution": float(args.restitution),
+            "rule": args.rule,
+            "theta0": math.radians(args.theta0),
+            "omega0": float(args.omega0),
+            "t_max": float(args.t_max),
+            "max_transitions": int(args.max_transitions),
+            "rtol": float(args.rtol),
+            "atol": float(args.atol),
+        }
+        self.attrs = {
+            "title": "motion map of an eccentric cylinder on a ramp (eccjump)",
+            "kind": "motion",
+            "eccjump_version": motion_maps._core.VERSION,
+            **self.opts,
+            "units": "g = R = M = 1: angles in rad, times in sqrt(R/g), lengths in R",
+        }
+        self.points = self.jarm = self.slipped = self.invalid = 0
+        self.per_sequence: dict[int, int] = {}
+
+    def compute(
+        self, alpha: NDArray, chi: NDArray, km: NDArray, threads: int
+    ) -> dict[str, NDArray]:
+        m = motion_maps.motion_map(alpha=alpha, chi=chi, km=km, n_threads=threads, **self.opts)
+        assert isinstance(m, motion_maps.MotionMap)
+        return {f: m.fields[f] for f in self.kind.fields}
+
+    def count(self, part: dict[str, NDArray]) -> None:
+        self.points += part["jarm"].size
+        self.jarm += int(np.count_nonzero(part["jarm"]))
+        self.slipped += int(np.count_nonzero(part["slipped_first"]))
+        self.invalid += int(np.count_nonzero(part["status"] == motion_maps.INVALID))
+        codes, counts = np.unique(part["sequence"], return_counts=True)
+        for c, k in zip(codes.tolist(), counts.tolist(), strict=True):
+            self.per_sequence[c] = self.per_sequence.get(c, 0) + k
+
+    def lines(self) -> list[str]:
+        p = self.points
+        lines = [
+            _jarm_line(self.jarm, p),
+            f"slips first   {_share(self.slipped, p)}",
+        ]
+        if self.invalid:
+            lines.append(f"invalid       {_share(self.invalid, p)} (km = 0 or mu_k > mu_s)")
+        lines.append("sequences (first modes, to the mode after the first landing):")
+        top = sorted(self.per_sequence.items(), key=lambda kv: (-kv[1], kv[0]))
+        for code, n in top[:10]:
+            lines.append(f"  {sequence_name(code) or '(not run)':<44} {_share(n, p)}")
+        rest = sum(n for _, n in top[10:])
+        if rest:
+            lines.append(f"  {f'{len(top) - 10} other sequences':<44} {_share(rest, p)}")
+        return lines
+
+    def draw(self, path: str, figure: str) -> None:
+        fig = plot.sequence_map(motion_maps.load(path))
+        fig.savefig(figure, dpi=110)
+
+
+def _job(args: argparse.Namespace) -> _JarmJob | _MotionJob:
+    if args.kind == "motion":
+        if args.n is not None or args.route != "closed-form":
+            raise ValueError("--n and --route are options of --kind jarm, not --kind motion")
+        return _MotionJob(args)
+    return _JarmJob(args)
+
+
+def _share(k: int, points: int) -> str:
+    return f"{k / points:.6f} ({k})" if points else "n/a"
+
+
+def _jarm_line(k: int, points: int) -> str:
+    share = f"{k / points:.6f}" if points else "n/a"
+    return f"JARM          {share} of the finished points ({k})"
+
 
 def _summary(
-    counts: _Counts,
+    job: _JarmJob | _MotionJob,
     total: int,
     shape: tuple[int, int, int],
     computed: int,
@@ -226,23 +382,14 @@ def _summary(
     fmt: str,
     complete: bool,
 ) -> str:
-    def frac(k: int) -> str:
-        return f"{k / counts.points:.6f}" if counts.points else "n/a"
-
     rate = computed / seconds if seconds > 0 else math.inf
     lines = [
         f"grid          {shape[0]} x {shape[1]} x {shape[2]} = {total} points "
         "(alpha x chi x km_frac)",
-        f"computed      {computed} points this run, {counts.points} of {total} finished",
+        f"computed      {computed} points this run, {job.points} of {total} finished",
         f"time          {seconds:.2f} s, {rate:.0f} points/s",
-        f"JARM          {frac(counts.jarm)} of the finished points ({counts.jarm})",
+        *job.lines(),
     ]
-    shown = sorted(counts.per_n)[:10]
-    for v in shown:
-        lines.append(f"  n = {v:<8}  {frac(counts.per_n[v])} ({counts.per_n[v]})")
-    rest = sum(c for v, c in counts.per_n.items() if v not in shown)
-    if rest:
-        lines.append(f"  n > {shown[-1]:<8}  {frac(rest)} ({rest})")
     state = "complete" if complete else "INCOMPLETE (interrupted)"
     lines.append(f"output        {path} ({fmt}, {state})")
     return "\n".join(lines)
@@ -269,10 +416,10 @@ def _physical_memory() -> int | None:
         return None
 
 
-def _check_memory(points: int, fmt: str, total: int) -> None:
+def _check_memory(points: int, fmt: str, total: int, kind: MapKind) -> None:
     """Fail early (exit 1) if the fields of ``points`` points cannot fit in this machine's
     memory, rather than have numpy fill it and the system kill the process."""
-    need = points * sum(np.dtype(DTYPES[k]).itemsize for k in FIELDS)
+    need = points * kind.bytes_per_point()
     have = _physical_memory()
     if have is not None and need > have:
         how = "a smaller --chunk or grid" if fmt == "zarr" else ".zarr (written chunk by chunk)"
@@ -300,27 +447,18 @@ def _run(args: argparse.Namespace) -> int:
     path = Path(args.output)
     fmt = format_of(path)
     alpha, chi, km = _axes(args)
-    opts = _options(args)
-    attrs = map_attrs(**opts)
+    job = _job(args)
     if args.threads < 0:
         raise ValueError(f"--threads {args.threads} is outside the allowed range [0, 256]")
     # Let the core check every option on one point before anything is written (an invalid
     # mu_s, theta0, tolerance or thread count is a one-line error, not a map of INVALID).
-    region(
-        opts["mu_s"],
-        opts["n"],
-        alpha=alpha[:1],
-        chi=chi[:1],
-        km=km[:1],
-        n_threads=args.threads,
-        **{k: v for k, v in opts.items() if k not in ("mu_s", "n")},
-    )
+    job.compute(alpha[:1], chi[:1], km[:1], args.threads)
     chunk = args.chunk or max(1, round(POINTS_PER_CHUNK / max(1, chi.size * km.size)))
     chunk = min(chunk, alpha.size)
     held = shape_points = alpha.size * chi.size * km.size
     if fmt == "zarr":  # one chunk in memory at a time
         held = chunk * chi.size * km.size
-    _check_memory(held, fmt, shape_points)
+    _check_memory(held, fmt, shape_points, job.kind)
     try:
         store.check_parent(path)
     except OSError as err:
@@ -344,7 +482,7 @@ def _run(args: argparse.Namespace) -> int:
     # The handler goes first: a Ctrl-C while the store is created stops before the first chunk.
     with _Interrupt() as stop:
         try:
-            return _write(args, path, fmt, (alpha, chi, km), opts, attrs, chunk, stop)
+            return _write(args, path, fmt, (alpha, chi, km), job, chunk, stop)
         except (OSError, MemoryError) as err:
             raise _Failed(f"cannot write {path}: {_why(err)}") from err
 
@@ -387,16 +525,15 @@ def _write(
     path: Path,
     fmt: str,
     axes: tuple[NDArray, NDArray, NDArray],
-    opts: dict[str, Any],
-    attrs: dict[str, Any],
+    job: _JarmJob | _MotionJob,
     chunk: int,
     stop: _Interrupt,
 ) -> int:
     alpha, chi, km = axes
+    kind, attrs = job.kind, job.attrs
     shape = (alpha.size, chi.size, km.size)
     total = int(np.prod(shape))
     target = _Target(path, fmt, args.resume)
-    counts = _Counts()
     fields: dict[str, NDArray] = {}
     done = np.zeros(alpha.size, dtype=bool)
     try:
@@ -406,8 +543,16 @@ def _write(
             except ValueError as err:
                 raise ValueError(f"--resume: {err}") from err
             target.zmap = zmap
+            if zmap.kind != kind:
+                raise ValueError(
+                    f"--resume: {path} holds a {zmap.kind.name} map, not a {kind.name} map (--kind)"
+                )
             diffs = _mismatch(
-                zmap.attrs, attrs, (zmap.alpha, zmap.chi, zmap.km_frac), (alpha, chi, km)
+                zmap.attrs,
+                attrs,
+                job.matched,
+                (zmap.alpha, zmap.chi, zmap.km_frac),
+                (alpha, chi, km),
             )
             if diffs:
                 raise ValueError(
@@ -417,17 +562,16 @@ def _write(
                 print(f"eccjump: resuming with the store's chunk of {zmap.chunk}", file=sys.stderr)
             todo = zmap.missing()
             for i in sorted(set(range(zmap.n_chunks)) - set(todo)):
-                part = zmap.read(i, ("is_jarm", "n"))
-                counts.add(part["is_jarm"], part["n"])
+                job.count(zmap.read(i, job.counted))
         elif fmt == "zarr":
             target.zmap = ZarrMap.create(target.tmp, alpha, chi, km, attrs, chunk)
             todo = list(range(target.zmap.n_chunks))
         else:
-            fields = {k: np.full(shape, FILL[k], dtype=DTYPES[k]) for k in FIELDS}
+            fields = {k: np.full(shape, kind.fill[k], dtype=kind.dtypes[k]) for k in kind.fields}
             todo = list(range(-(-alpha.size // chunk)))
         if target.zmap is not None:
             chunk = target.zmap.chunk
-        result = _compute(args, target, fields, done, counts, axes, opts, chunk, todo, stop)
+        result = _compute(args, target, fields, done, job, axes, chunk, todo, stop)
         computed, seconds, interrupted = result
         if computed == 0 and interrupted and not target.in_place:
             target.discard()
@@ -446,7 +590,9 @@ def _write(
         else:
             complete = bool(done.all())
             n_done = int(done.sum())
-            lay = make_layout(alpha, chi, km, fields, {**attrs, "complete": int(complete)}, done)
+            lay = make_layout(
+                alpha, chi, km, fields, {**attrs, "complete": int(complete)}, done, kind
+            )
             save(lay, path)
     except (OSError, MemoryError) as err:
         target.discard()
@@ -457,7 +603,7 @@ def _write(
     except BaseException:
         target.discard()
         raise
-    print(_summary(counts, total, shape, computed, seconds, path, fmt, complete))
+    print(_summary(job, total, shape, computed, seconds, path, fmt, complete))
     if interrupted or not complete:
         if fmt == "zarr":
             how = f"resume with the same options and --resume -o {path}"
@@ -470,7 +616,8 @@ def _write(
         )
         return 130
     if args.figure:
-        _draw(path, args.figure)
+        job.draw(str(path), args.figure)
+        print(f"figure: {args.figure}")
     return 0
 
 
@@ -479,9 +626,8 @@ def _compute(
     target: _Target,
     fields: dict[str, NDArray],
     done: NDArray[np.bool_],
-    counts: _Counts,
+    job: _JarmJob | _MotionJob,
     axes: tuple[NDArray, NDArray, NDArray],
-    opts: dict[str, Any],
     chunk: int,
     todo: list[int],
     stop: _Interrupt,
@@ -503,39 +649,17 @@ def _compute(
                 interrupted = True
                 break
             i0, i1 = i * chunk, min((i + 1) * chunk, alpha.size)
-            reg = region(
-                opts["mu_s"],
-                opts["n"],
-                alpha=alpha[i0:i1],
-                chi=chi,
-                km=km,
-                method=opts["method"],
-                rule=opts["rule"],
-                theta0=opts["theta0"],
-                omega0=opts["omega0"],
-                rtol=opts["rtol"],
-                atol=opts["atol"],
-                max_turns=opts["max_turns"],
-                refine_extrema=opts["refine_extrema"],
-                n_threads=args.threads,
-            )
-            part = {f: getattr(reg.result, f) for f in FIELDS}
+            part = job.compute(alpha[i0:i1], chi, km, args.threads)
             if target.zmap is not None:
                 target.zmap.write(i, part)
                 if not target.in_place and not target.replacing:
                     target.publish()  # a new map: resumable from its first chunk on
             else:
-                for f in FIELDS:
+                for f in job.kind.fields:
                     fields[f][i0:i1] = part[f]
                 done[i0:i1] = True
-            counts.add(part["is_jarm"], part["n"])
-            computed += part["is_jarm"].size
-            bar.update(part["is_jarm"].size)
+            job.count(part)
+            size = part[job.kind.fields[0]].size
+            computed += size
+            bar.update(size)
     return computed, time.perf_counter() - t0, interrupted
-
-
-def _draw(path: str, figure: str) -> None:
-    """Draw the finished map file (read back, so the figure shows what was written)."""
-    fig = plot.region_map(store.load(path))
-    fig.savefig(figure, dpi=110)
-    print(f"figure: {figure}")

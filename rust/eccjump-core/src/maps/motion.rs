@@ -413,7 +413,10 @@ mod tests {
             assert_eq!(format!("{a:?}"), format!("{b:?}"), "point {g}");
             let (ramp, o) = axes.point(g, &opts().base()).unwrap();
             let run = simulate(&ramp, &o).unwrap();
-            assert_eq!(format!("{a:?}"), format!("{:?}", MotionSummary::of(&run, o.law.rule)));
+            assert_eq!(
+                format!("{a:?}"),
+                format!("{:?}", MotionSummary::of(&run, o.law.rule))
+            );
             assert_eq!(a.status, MotionStatus::Landed as u8, "point {g}: {a:?}");
         }
         assert!(out.iter().any(|s| s.jarm) && out.iter().any(|s| s.slipped_first));

@@ -1,0 +1,121 @@
+"""The one description of the fields of a motion map (:func:`eccjump.motion_map`).
+
+Each field of a point's summary is described ONCE here -- name, numpy dtype, units, meaning,
+fill value of a point not computed -- and the :class:`~eccjump.MotionMap`, its xarray and CF
+attributes, the files of :mod:`eccjump.store` and ``eccjump map --kind motion`` derive from
+this table. Also the codes of the sequence of modes, the statuses and the landing outcomes.
+"""
+
+from __future__ import annotations
+
+import math
+from typing import Any, NamedTuple
+
+import numpy as np
+
+from eccjump import _core
+from eccjump.motion import MODES, REASONS, STATUSES
+
+#: Modes kept in the sequence code.
+SEQUENCE_LEN = 8
+#: ``status`` of a point with invalid parameters (mu_k > mu_s, a value out of range).
+INVALID = 255
+#: How the first landing ended, by code.
+LANDINGS: tuple[str, ...] = tuple(name for _, name in sorted(_core.landing_codes()))
+#: ``status`` names by code (:data:`INVALID` is "invalid").
+STATUS_NAMES: dict[int, str] = {**dict(enumerate(STATUSES)), INVALID: "invalid"}
+
+
+class Field(NamedTuple):
+    """One summary field: name, numpy dtype, units, meaning, value where not computed."""
+
+    name: str
+    dtype: np.dtype
+    units: str
+    description: str
+    fill: Any
+
+
+_B, _U8, _U16, _F = (np.dtype(t) for t in (np.bool_, np.uint8, np.uint16, np.float64))
+_T = "sqrt(R/g)"
+#: Every summary field, in the order of the bridge. A point not computed has status
+#: :data:`INVALID` and the fill values.
+TABLE: tuple[Field, ...] = (
+    Field("status", _U8, "1", "how the run ended (landed: at its first landing)", INVALID),
+    Field("sequence", _U16, "1", "the first modes as a code (sequence_name)", 0),
+    Field("n_modes", _U16, "1", "modes in the run, the start's included", 0),
+    Field("jarm", _B, "1", "lift-off straight out of pure rolling from the start", False),
+    Field("slipped_first", _B, "1", "a slip came before the first flight", False),
+    Field("slip_t", _F, _T, "time of the first slip onset (NaN: none)", math.nan),
+    Field("slip_theta", _F, "rad", "angle of the first slip onset (NaN: none)", math.nan),
+    Field("liftoff_reason", _U8, "1", "why the first flight began (255: none)", 255),
+    Field("liftoff_t", _F, _T, "time of the first lift-off (NaN: none)", math.nan),
+    Field("liftoff_theta", _F, "rad", "angle of the first lift-off (NaN: none)", math.nan),
+    Field("flight_time", _F, _T, "duration of the first flight (NaN: did not land)", math.nan),
+    Field("apex", _F, "R", "largest height of the first flight above contact", math.nan),
+    Field("distance", _F, "R", "distance down the ramp covered by the first flight", math.nan),
+    Field("landing", _U8, "1", "how the first landing ended", 0),
+    Field("energy_lost", _F, "M g R", "energy dissipated by sliding and impacts", math.nan),
+)
+#: Field names, in the order of the bridge.
+FIELDS: tuple[str, ...] = tuple(f.name for f in TABLE)
+#: Field by name.
+BY_NAME: dict[str, Field] = {f.name: f for f in TABLE}
+#: numpy dtype of each field.
+DTYPES: dict[str, np.dtype] = {f.name: f.dtype for f in TABLE}
+#: Value of each field where a point was not computed.
+FILL: dict[str, Any] = {f.name: f.fill for f in TABLE}
+
+
+def sequence_name(code: int) -> str:
+    """The modes of a sequence code, e.g. ``"ROLL→SLIP→FLIGHT"`` ("" for 0)."""
+    names = []
+    code = int(code)
+    while code:
+        names.append(MODES[(code & 3) - 1])
+        code >>= 2
+    return "→".join(names)
+
+
+def sequence_code(modes: list[str] | tuple[str, ...]) -> int:
+    """The code of the first :data:`SEQUENCE_LEN` of ``modes`` (names from :data:`MODES`):
+    Σ (mode_i + 1)·4^i, so ROLL→FLIGHT is 13."""
+    return sum((MODES.index(m) + 1) << (2 * i) for i, m in enumerate(modes[:SEQUENCE_LEN]))
+
+
+def _flags(values: Any, names: Any) -> dict[str, Any]:
+    return {"flag_values": np.asarray(values), "flag_meanings": " ".join(names)}
+
+
+def cf_attrs(name: str, sequences: Any = None) -> dict[str, Any]:
+    """CF attributes of field ``name``: units, long_name and the flag tables of the coded
+    fields (for ``sequence``, of the codes in ``sequences`` when given)."""
+    f = BY_NAME[name]
+    attrs: dict[str, Any] = {"units": f.units, "long_name": f.description}
+    if name == "status":
+        attrs |= _flags(np.array(list(STATUS_NAMES), dtype=f.dtype), STATUS_NAMES.values())
+    elif name == "landing":
+        attrs |= _flags(np.arange(len(LANDINGS), dtype=f.dtype), LANDINGS)
+    elif name == "liftoff_reason":
+        attrs |= _flags(np.arange(len(REASONS), dtype=f.dtype), REASONS)
+    elif name == "sequence" and sequences is not None:
+        codes = np.asarray(sorted(int(c) for c in sequences), dtype=f.dtype)
+        attrs |= _flags(codes, (sequence_name(c).replace("→", "_") or "none" for c in codes))
+    return attrs
+
+
+__all__ = [
+    "BY_NAME",
+    "DTYPES",
+    "FIELDS",
+    "FILL",
+    "INVALID",
+    "LANDINGS",
+    "SEQUENCE_LEN",
+    "STATUS_NAMES",
+    "TABLE",
+    "Field",
+    "cf_attrs",
+    "sequence_code",
+    "sequence_name",
+]
