@@ -24,6 +24,7 @@ pub mod mechanics;
 pub mod modes;
 pub mod motion;
 pub mod ode;
+pub mod trig;
 
 pub use error::{Error, Result};
 pub use mechanics::{Cylinder, Ramp, Rule};

@@ -48,8 +48,8 @@ pub struct JumpForces {
 /// needs χ > 0 and cos θ_J > 0 (otherwise the fields are non-finite or meaningless).
 pub fn jump_forces(body: &Cylinder, alpha: f64, theta_j: f64) -> JumpForces {
     let chi = body.chi;
-    let (s, c) = theta_j.sin_cos();
-    let (sa, ca) = alpha.sin_cos();
+    let (s, c) = crate::trig::sin_cos(theta_j);
+    let (sa, ca) = crate::trig::sin_cos(alpha);
     let sin_at = sa * c + ca * s;
     let ip = body.ic + 1.0 + 2.0 * chi * c;
     let omega_dot = sin_at * (1.0 + chi * c) / (c * ip);
@@ -65,7 +65,7 @@ pub fn jump_forces(body: &Cylinder, alpha: f64, theta_j: f64) -> JumpForces {
 /// ratio only where sin θ_J < 0 (the green window). Infinite for χ = 0 (if Ĩ_C > 0).
 pub fn mu(body: &Cylinder, theta_j: f64) -> f64 {
     let chi = body.chi;
-    let (s, c) = theta_j.sin_cos();
+    let (s, c) = crate::trig::sin_cos(theta_j);
     if chi == 0.0 {
         return if body.ic == 0.0 { 0.0 } else { f64::INFINITY };
     }
@@ -99,7 +99,7 @@ pub fn green_turn(alpha: f64, theta_j: f64) -> Option<u32> {
 /// Written with 1 − c² = sin² φ to keep precision near φ = 0.
 fn dmu_sign_fn(body: &Cylinder, phi: f64) -> f64 {
     let chi = body.chi;
-    let (s, c) = phi.sin_cos();
+    let (s, c) = crate::trig::sin_cos(phi);
     let den = body.icm + chi * chi * s * s; // Ĩ_C − χ²c², exact-ish form
     c / (s * s) - chi / (1.0 + chi * c) - 2.0 * chi * chi * c / den
 }
@@ -236,7 +236,7 @@ mod tests {
             assert!((k.omega_dot - j.omega_dot).abs() < 1e-12);
             // The paper's printed jump6 / Njumpfn / Njump3, typed as printed.
             let ic = km + chi * chi / (1.0 - km);
-            let (s, c) = th.sin_cos();
+            let (s, c) = crate::trig::sin_cos(th);
             let sec = 1.0 / c;
             let den = km + chi * chi / (1.0 - km) + 1.0 + 2.0 * chi * c;
             let fx_p =

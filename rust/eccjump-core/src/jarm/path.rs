@@ -190,7 +190,7 @@ fn violated(k: usize, g: f64) -> bool {
 /// s' = s + (c sin − s (1 − cos)), c' = c − (s sin + c (1 − cos)): ~½ ulp per step.
 #[inline]
 fn rotation(h: f64) -> (f64, f64) {
-    let (s4, c4) = (0.25 * h).sin_cos();
+    let (s4, c4) = crate::trig::sin_cos(0.25 * h);
     (2.0 * s4 * c4, 2.0 * s4 * s4)
 }
 
@@ -254,7 +254,7 @@ impl Extremum {
 impl RollingPath {
     /// A path on the ramp `r` from (θ0, θ̇0); μ_s is used by the friction margins.
     pub fn new(r: &Ramp, theta0: f64, omega0: f64, mu_s: f64) -> Self {
-        let (s0, c0) = theta0.sin_cos();
+        let (s0, c0) = crate::trig::sin_cos(theta0);
         let (sa0, ca0) = r.shifted(s0, c0);
         let k0 = 0.5 * r.contact_inertia(c0) * omega0 * omega0;
         Self {
@@ -281,7 +281,7 @@ impl RollingPath {
     #[inline]
     pub fn energy(&self, theta: f64) -> f64 {
         let u = 0.5 * (theta - self.theta0);
-        let (su, cu) = u.sin_cos();
+        let (su, cu) = crate::trig::sin_cos(u);
         let sin_mid = self.sa0 * cu + self.ca0 * su;
         rolling_kinetic(
             self.k0,
@@ -296,7 +296,7 @@ impl RollingPath {
     /// All path quantities at θ: one `sin_cos`, no allocation.
     #[inline]
     pub fn eval(&self, theta: f64) -> PathPoint {
-        let (su, cu) = (0.5 * (theta - self.theta0)).sin_cos();
+        let (su, cu) = crate::trig::sin_cos(0.5 * (theta - self.theta0));
         self.eval_half(theta, su, cu)
     }
 
@@ -568,7 +568,7 @@ impl RollingPath {
         let mut pts = [p0, p0];
         let mut ia = 0usize;
         // Half-angle sin/cos of the current sample, advanced by rotation on uniform steps.
-        let (mut su, mut cu) = (0.5 * (theta_start - self.theta0)).sin_cos();
+        let (mut su, mut cu) = crate::trig::sin_cos(0.5 * (theta_start - self.theta0));
         // Only on the rigorous grid (coarse auxiliary scans take direct sin_cos).
         let h_uni = if watch.coarseness <= 1 {
             TAU / SAMPLES_PER_TURN
@@ -592,7 +592,7 @@ impl RollingPath {
                 (su, cu) = (su + (cu * sh - su * vh), cu - (su * sh + cu * vh));
                 rotated += 1;
             } else {
-                (su, cu) = (0.5 * (tb - self.theta0)).sin_cos();
+                (su, cu) = crate::trig::sin_cos(0.5 * (tb - self.theta0));
                 rotated = 0;
             }
             pts[ib] = self.eval_half(tb, su, cu);
@@ -847,12 +847,12 @@ mod tests {
             let mut worst = 0.0f64;
             for i in 0..20_000 {
                 let t0 = 8e-4 * i as f64 - 8.0;
-                let (mut su, mut cu) = (0.5 * t0).sin_cos();
+                let (mut su, mut cu) = crate::trig::sin_cos(0.5 * t0);
                 let mut t = t0;
                 for _ in 0..ROTATIONS {
                     (su, cu) = (su + (cu * sh - su * vh), cu - (su * sh + cu * vh));
                     t += h;
-                    let (s, c) = (0.5 * t).sin_cos();
+                    let (s, c) = crate::trig::sin_cos(0.5 * t);
                     worst = worst.max((su - s).abs()).max((cu - c).abs());
                 }
             }
@@ -904,7 +904,7 @@ mod tests {
     /// The paper's FxL2 and FyL2, typed exactly as printed (g = M = 1).
     fn fx_l2(alpha: f64, chi: f64, gamma: f64, th: f64) -> f64 {
         use std::f64::consts::PI;
-        let (sa, ca) = alpha.sin_cos();
+        let (sa, ca) = crate::trig::sin_cos(alpha);
         let pg = PI * gamma;
         -1.0 / (4.0 * chi * (2.0 * pg + th.cos() - 1.0).powi(2))
             * (sa
@@ -928,7 +928,7 @@ mod tests {
 
     fn fy_l2(alpha: f64, chi: f64, gamma: f64, th: f64) -> f64 {
         use std::f64::consts::PI;
-        let (sa, ca) = alpha.sin_cos();
+        let (sa, ca) = crate::trig::sin_cos(alpha);
         let pg = PI * gamma;
         1.0 / (4.0 * (2.0 * pg + th.cos() - 1.0).powi(2))
             * (ca

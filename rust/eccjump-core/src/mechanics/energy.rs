@@ -29,7 +29,7 @@ impl Ramp {
     #[allow(clippy::too_many_arguments)] // the six coordinates of the state
     pub fn energy(&self, theta: f64, omega: f64, l: f64, ldot: f64, b: f64, bdot: f64) -> f64 {
         let chi = self.body.chi;
-        let (s, c) = theta.sin_cos();
+        let (s, c) = crate::trig::sin_cos(theta);
         let (vx, vy) = (ldot + chi * c * omega, bdot - chi * s * omega);
         let height = -(l + chi * s) * self.sin_a + (b + chi * c) * self.cos_a;
         0.5 * (vx * vx + vy * vy) + 0.5 * self.body.icm * omega * omega + height

@@ -91,7 +91,7 @@ mod tests {
             (0.8, 0.05, 1.3, 4.6, 0.9, -1.0, 1.0),
         ] {
             let r = Ramp::new(Cylinder::new(chi, km).unwrap(), a).unwrap();
-            let (s, c) = th.sin_cos();
+            let (s, c) = crate::trig::sin_cos(th);
             let sl = Sliding::new(&r.body, s, c, sigma, mu);
             let b = r.cos_a - chi * w * w * c;
             let ne = r.newton_euler(th, w, Constraint::Sliding { sigma, mu_k: mu });

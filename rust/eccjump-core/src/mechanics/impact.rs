@@ -294,7 +294,7 @@ impl Cylinder {
         pt: f64,
         pn: f64,
     ) -> (f64, f64, f64) {
-        let (s, c) = theta.sin_cos();
+        let (s, c) = crate::trig::sin_cos(theta);
         let (a, s) = (1.0 + self.chi * c, self.chi * s);
         let moment = s * pn - a * pt;
         let d_omega = if moment == 0.0 {
@@ -346,7 +346,7 @@ pub fn impact(
     ] {
         check_finite(name, x)?;
     }
-    let (s, c) = theta.sin_cos();
+    let (s, c) = crate::trig::sin_cos(theta);
     let w = ImpactMatrix::new(body, s, c).ok_or_else(|| Error::InvalidParameter {
         name: "km",
         value: body.km,
@@ -433,7 +433,7 @@ mod tests {
         ldot: f64,
         bdot: f64,
     ) -> f64 {
-        let (s, c) = theta.sin_cos();
+        let (s, c) = crate::trig::sin_cos(theta);
         let (rx, ry) = (body.chi * s, 1.0 + body.chi * c);
         let (vx, vy) = (ldot + body.chi * c * omega, bdot - body.chi * s * omega);
         rx * vy - ry * vx - body.icm * omega

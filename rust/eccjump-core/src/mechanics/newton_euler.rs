@@ -60,7 +60,7 @@ impl Ramp {
     /// or rolling/sliding of a body with Ĩ_CM = 0 at a singular angle.
     pub fn newton_euler(&self, theta: f64, omega: f64, constraint: Constraint) -> Option<Response> {
         let chi = self.body.chi;
-        let (s, c) = theta.sin_cos();
+        let (s, c) = crate::trig::sin_cos(theta);
         let w = omega * omega;
         // Unknowns x = (θ̈, l̈, b̈, F_x, F_y).
         let (row4, row5, rhs4, rhs5) = match constraint {

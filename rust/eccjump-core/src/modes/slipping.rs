@@ -63,7 +63,7 @@ impl Slipping {
     pub fn kinematics(&self, theta: f64, omega: f64) -> SlipKinematics {
         let r = &self.ramp;
         let chi = r.body.chi;
-        let (s, c) = theta.sin_cos();
+        let (s, c) = crate::trig::sin_cos(theta);
         let chi_w2 = chi * omega * omega;
         let load = r.cos_a - chi_w2 * c;
         let sl = Sliding::new(&r.body, s, c, self.sigma, self.mu_k);
@@ -148,7 +148,7 @@ impl EventFunctions<5> for SlipEvents {
     #[inline]
     fn values(&self, first: usize, _t: f64, y: &State<5>, out: &mut [f64]) {
         let r = &self.slipping.ramp;
-        let (s, c) = y[0].sin_cos();
+        let (s, c) = crate::trig::sin_cos(y[0]);
         let sl = Sliding::new(&r.body, s, c, self.slipping.sigma, self.slipping.mu_k);
         for (i, o) in out.iter_mut().enumerate() {
             *o = match SlipEvent::ALL[first + i] {

@@ -460,7 +460,7 @@ impl Driver<'_> {
     /// The impact at a landing, then the mode after it.
     fn impact(&mut self, before: BodyState) -> Next {
         let (r, law) = (self.ramp, &self.opts.law);
-        let (sin_t, cos_t) = before.theta.sin_cos();
+        let (sin_t, cos_t) = crate::trig::sin_cos(before.theta);
         // simulate refuses bodies with Ĩ_CM = 0, the one case without a matrix.
         let Some(w) = ImpactMatrix::new(&r.body, sin_t, cos_t) else {
             return Next::End(MotionStatus::Failed, "singular impact matrix".to_string());

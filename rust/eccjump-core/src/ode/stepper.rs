@@ -182,7 +182,7 @@ pub fn select_initial_step<S: OdeSystem<N>, const N: usize>(
     let h1 = if d1 <= 1e-15 && d2 <= 1e-15 {
         (h0 * 1e-3).max(1e-6)
     } else {
-        (0.01 / d1.max(d2)).powf(-ERROR_EXPONENT)
+        crate::trig::pow(0.01 / d1.max(d2), -ERROR_EXPONENT)
     };
     Some((100.0 * h0).min(h1).min(interval_length).min(max_step))
 }
@@ -300,7 +300,7 @@ impl<const N: usize> Stepper<N> {
                 let mut factor = if err == 0.0 {
                     MAX_FACTOR
                 } else {
-                    MAX_FACTOR.min(SAFETY * err.powf(ERROR_EXPONENT))
+                    MAX_FACTOR.min(SAFETY * crate::trig::pow(err, ERROR_EXPONENT))
                 };
                 if step_rejected {
                     factor = factor.min(1.0);
@@ -314,7 +314,7 @@ impl<const N: usize> Stepper<N> {
                 self.h_abs = h_abs;
                 return StepStatus::Accepted;
             }
-            h_abs *= MIN_FACTOR.max(SAFETY * err.powf(ERROR_EXPONENT));
+            h_abs *= MIN_FACTOR.max(SAFETY * crate::trig::pow(err, ERROR_EXPONENT));
             step_rejected = true;
             *n_rejected += 1;
         }

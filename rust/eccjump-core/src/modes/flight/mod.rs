@@ -46,7 +46,7 @@ pub struct Flight {
 impl Flight {
     /// The flight that starts in `start`.
     pub fn new(ramp: Ramp, start: BodyState) -> Self {
-        let (sin0, cos0) = start.theta.sin_cos();
+        let (sin0, cos0) = crate::trig::sin_cos(start.theta);
         Self {
             ramp,
             start,
@@ -60,7 +60,7 @@ impl Flight {
         let s = &self.start;
         let (r, chi) = (&self.ramp, self.ramp.body.chi);
         let x = s.omega * tau;
-        let (sin_x, cos_x) = x.sin_cos();
+        let (sin_x, cos_x) = crate::trig::sin_cos(x);
         let half = (0.5 * x).sin();
         let (sq, xs) = (2.0 * half * half, x_minus_sin(x));
         let (gap, bdot) = self.gap(tau);
@@ -92,7 +92,7 @@ impl Flight {
         let s = &self.start;
         let (r, chi) = (&self.ramp, self.ramp.body.chi);
         let x = s.omega * tau;
-        let (sin_x, cos_x) = x.sin_cos();
+        let (sin_x, cos_x) = crate::trig::sin_cos(x);
         let half = (0.5 * x).sin();
         let (sq, xs) = (2.0 * half * half, x_minus_sin(x));
         let cos_t = self.cos0 * cos_x - self.sin0 * sin_x;

@@ -32,7 +32,7 @@ impl RollingMemo {
         if th.to_bits() == theta.to_bits() {
             return (s, c);
         }
-        let (s, c) = theta.sin_cos();
+        let (s, c) = crate::trig::sin_cos(theta);
         self.trig.set((theta, s, c));
         (s, c)
     }

@@ -88,7 +88,7 @@ impl Ramp {
     /// θ̈ from the rolling equation (roll-eq).
     #[inline]
     pub fn omega_dot(&self, theta: f64, omega: f64) -> f64 {
-        let (s, c) = theta.sin_cos();
+        let (s, c) = crate::trig::sin_cos(theta);
         self.omega_dot_sc(s, c, omega)
     }
 
@@ -103,7 +103,7 @@ impl Ramp {
     /// θ̈, the contact forces and the lift-off function of pure rolling at (θ, θ̇).
     #[inline]
     pub fn kinematics(&self, theta: f64, omega: f64) -> Kinematics {
-        let (s, c) = theta.sin_cos();
+        let (s, c) = crate::trig::sin_cos(theta);
         self.kinematics_sc(theta, omega, s, c)
     }
 
