@@ -242,6 +242,11 @@ def impact_impulse(wtt, wtn, wnn, ut, un, mu_s, mu_k, e):
     return pt, p, ut, un, segments
 
 
+def chi_sin(body: Body, th) -> float:
+    """The lever arm χ sin θ of a normal impulse about the CM (contact at angle θ)."""
+    return body.chi * math.sin(th)
+
+
 def apply_impact(body: Body, th, om, ld, bd, mu_s, mu_k, e):
     """Velocities (θ̇, l̇, ḃ) after the impact at contact angle θ, and the impulse."""
     wtt, wtn, wnn = contact_w(body, th)
@@ -553,8 +558,21 @@ def simulate_reference(
                 if bd > SETTLE_SPEED:
                     mode, sigma = FLIGHT, 0.0
                 else:
-                    if restitution > 0.0 and bd > 0.0:
-                        reason = "settle"
+                    if bd > 0.0:
+                        # Zeno rule: one plastic impulse at the contact point ends the
+                        # remaining bounces (it dissipates 1/2 du W^-1 du >= 0). Stuck
+                        # (v = 0): P = -W^-1 (0, u_n) keeps it stuck; else normal only.
+                        if restitution > 0.0:
+                            reason = "settle"
+                        wtt, wtn, wnn = contact_w(body, th)
+                        if abs(ld - om) <= V_ZERO:
+                            det = wtt * wnn - wtn * wtn
+                            pt, pn = wtn * bd / det, -wtt * bd / det
+                        else:
+                            pt, pn = 0.0, -bd / wnn
+                        c = 1.0 + body.chi * math.cos(th)
+                        dom = (chi_sin(body, th) * pn - c * pt) / body.icm
+                        om, ld = om + dom, ld + pt - body.chi * math.cos(th) * dom
                     bd = 0.0
                     new, sigma, kind = decide(body, th, om, ld - om, rule, mu_s, mu_k)
                     if new in (ROLL, SLIP) and abs(ld - om) <= V_ZERO:

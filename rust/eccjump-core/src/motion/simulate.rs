@@ -475,13 +475,25 @@ impl Driver<'_> {
             before.slip_velocity(),
             before.bdot,
         );
+        let flies = imp.un > self.opts.settle_speed;
+        // The Zeno rule (docs/motion.md): a separation speed at or below the threshold is
+        // ended by one plastic normal impulse at the contact point, −u_n/W_nn, in place of
+        // the bounces that would follow. It dissipates u_n²/(2 W_nn) ≥ 0; setting ḃ = 0
+        // directly would be an impulse at the centre, not at the contact point, and change
+        // the energy at first order (χ sin θ θ̇ u_n), either way.
+        let settle = if !flies && imp.un > 0.0 {
+            -imp.un / w.nn()
+        } else {
+            0.0
+        };
+        let pn = imp.pn + settle;
         let (omega, ldot, bdot) = r.body.apply_impulse(
             before.theta,
             before.omega,
             before.ldot,
             before.bdot,
             imp.pt,
-            imp.pn,
+            pn,
         );
         let mut after_state = BodyState {
             omega,
@@ -493,13 +505,13 @@ impl Driver<'_> {
         if sticking {
             after_state.ldot = after_state.omega;
         }
-        let flies = imp.un > self.opts.settle_speed;
-        let reason = if !flies && self.opts.restitution > 0.0 && imp.un > 0.0 {
+        let reason = if settle != 0.0 && self.opts.restitution > 0.0 {
             Reason::Settle
         } else {
             Reason::Impact
         };
         if !flies {
+            // u_n is 0 up to rounding after the plastic impulse: the contact state.
             after_state.bdot = 0.0;
         }
         let lost = r.energy_of(&before) - r.energy_of(&after_state);
@@ -518,7 +530,7 @@ impl Driver<'_> {
             normal_speed: -before.bdot,
             slip_before: before.slip_velocity(),
             pt: imp.pt,
-            pn: imp.pn,
+            pn,
             energy_lost: lost,
             sticking,
             outcome: match &next {
