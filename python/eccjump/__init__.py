@@ -13,6 +13,14 @@ from eccjump.classification import JarmResult, Reason, Region, jarm, region, reg
 from eccjump.dense import DenseSolution
 from eccjump.motion import MotionResult, simulate
 from eccjump.rolling import EVENT_NAMES, Event, RollResult, roll
+from eccjump.starts import (
+    OptimalStart,
+    StartMap,
+    jarm_fraction,
+    optimal_start,
+    reason_shares,
+    start_map,
+)
 from eccjump.units import Units
 
 __all__ = [
@@ -22,18 +30,24 @@ __all__ = [
     "Event",
     "JarmResult",
     "MotionResult",
+    "OptimalStart",
     "Reason",
     "Region",
     "RollResult",
+    "StartMap",
     "Units",
     "__version__",
     "alpha_intervals",
     "closed_form",
     "jarm",
+    "jarm_fraction",
     "mu_s_min_path",
+    "optimal_start",
+    "reason_shares",
     "region",
     "region_dataset",
     "roll",
     "simulate",
+    "start_map",
     "store",
 ]
