@@ -283,3 +283,24 @@ def test_fraction_map_figure():
         plot.fraction_map(None)
     with pytest.raises(TypeError, match="optimum"):
         plot.fraction_map(m, optimum=3)
+
+
+def test_a_rim_point_mass_loses_the_normal_force_at_the_start_above_omega0_one():
+    """For chi = 1, k_m = 0 (derived by hand, docs/initial_conditions.md):
+    F_y = ((1 + cos theta)(cos alpha - omega^2) - sin theta sin alpha) / 2, so on a gentle ramp
+    a start with omega0 > 1 loses the normal force at once: the cliff of the fraction at
+    omega0 = 1."""
+    th = np.radians([200.0, 250.0, 270.0, 290.0, 330.0])
+    for a in np.radians([1.0, 30.0, 70.0]):
+        for om in (0.5, 1.0, 1.1):
+            for t in th:
+                _, fy = eccjump.closed_form.path_forces(t, a, 1.0, 0.0, theta0=t, omega0=om)
+                expected = (
+                    (1 + math.cos(t)) * (math.cos(a) - om**2) - math.sin(t) * math.sin(a)
+                ) / 2
+                assert fy == pytest.approx(expected, rel=1e-12, abs=1e-14)
+    for t in np.radians([200.0, 270.0]):
+        above = eccjump.jarm(0.01, 0.999, 0.0, 1.0, theta0=t, omega0=1.05)
+        below = eccjump.jarm(0.01, 0.999, 0.0, 1.0, theta0=t, omega0=0.95)
+        assert above.reason == Reason.NORMAL_FORCE_LOST and above.theta_event == t
+        assert not (below.reason == Reason.NORMAL_FORCE_LOST and below.theta_event == t)

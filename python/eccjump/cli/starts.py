@@ -15,7 +15,7 @@ from typing import Any
 import numpy as np
 
 from eccjump import plot
-from eccjump.classification import region
+from eccjump.classification import Region, region
 from eccjump.cli._args import int_at_least
 from eccjump.starts import optimal_start, start_map
 
@@ -124,22 +124,25 @@ def _cmd_starts(args: argparse.Namespace) -> int:
                 "best_on_lattice": list(smap.best()),
                 "seconds": time.perf_counter() - start,
             }
-        if args.outdir is not None:
-            written = []
-            if smap is not None:
-                fig = plot.fraction_map(smap, optimum=opt)
-                written.append(args.outdir / f"starts_mu{_tag(mu)}.png")
-                fig.savefig(written[-1], dpi=args.dpi)
-                plt.close(fig)
-            g = 2 * opt.grid
-            u = (np.arange(g) + 0.5) / g
-            for name, th, om in (("rest", 0.0, 0.0), ("optimum", opt.theta0, opt.omega0)):
-                reg = region(mu, alpha=u * math.pi / 2, chi=u, km=u, theta0=th, omega0=om,
-                             rule=args.rule, n_threads=args.threads)  # fmt: skip
+        written = []
+        if args.outdir is not None and smap is not None:
+            fig = plot.fraction_map(smap, optimum=opt)
+            written.append(args.outdir / f"starts_mu{_tag(mu)}.png")
+            fig.savefig(written[-1], dpi=args.dpi)
+            plt.close(fig)
+        g = 2 * opt.grid
+        u = (np.arange(g) + 0.5) / g
+        out["regions"] = {}
+        for name, th, om in (("rest", 0.0, 0.0), ("optimum", opt.theta0, opt.omega0)):
+            reg = region(mu, alpha=u * math.pi / 2, chi=u, km=u, theta0=th, omega0=om,
+                         rule=args.rule, n_threads=args.threads)  # fmt: skip
+            out["regions"][name] = _region_summary(reg)
+            if args.outdir is not None:
                 fig = plot.region_map(reg)
                 written.append(args.outdir / f"starts_region_{name}_mu{_tag(mu)}.png")
                 fig.savefig(written[-1], dpi=args.dpi)
                 plt.close(fig)
+        if written:
             out["figures"] = [str(p) for p in written]
         results.append(out)
         if not args.json:
@@ -147,6 +150,32 @@ def _cmd_starts(args: argparse.Namespace) -> int:
     if args.json:
         print(json.dumps(results, indent=2))
     return 0
+
+
+def _region_summary(reg: Region) -> dict[str, Any]:
+    """Where the JARM points of a map lie: their share per turn and their ranges."""
+    res = reg.result
+    jarm = np.asarray(res.is_jarm)
+    n = np.asarray(res.n)[jarm]
+    size = max(jarm.size, 1)
+    out: dict[str, Any] = {
+        "fraction": reg.fraction(),
+        "by_turn": {
+            "1": int((n == 1).sum()) / size,
+            "2": int((n == 2).sum()) / size,
+            "3": int((n == 3).sum()) / size,
+            ">3": int((n > 3).sum()) / size,
+        },
+    }
+    if jarm.any():
+        i, j, k = np.nonzero(jarm)
+        out["alpha_deg"] = [float(np.degrees(reg.alpha[i].min())),
+                            float(np.degrees(reg.alpha[i].max()))]  # fmt: skip
+        out["chi"] = [float(reg.chi[j].min()), float(reg.chi[j].max())]
+        out["km_frac"] = [float(reg.km_frac[k].min()), float(reg.km_frac[k].max())]
+        out["alpha_deg_median"] = float(np.degrees(np.median(reg.alpha[i])))
+        out["chi_median"] = float(np.median(reg.chi[j]))
+    return out
 
 
 def _print(r: dict[str, Any]) -> None:
@@ -176,5 +205,14 @@ def _print(r: dict[str, Any]) -> None:
             f"to {m['max_immediate_flight']:.3f}, rocking back up to {m['max_rocks_back']:.3f} "
             "of the cube"
         )
+    for name, g in r["regions"].items():
+        turns = ", ".join(f"n {k}: {v:.5f}" for k, v in g["by_turn"].items())
+        print(f"  JARMs {name:<8} {turns}")
+        if "alpha_deg" in g:
+            print(
+                f"                 alpha {g['alpha_deg'][0]:.1f}-{g['alpha_deg'][1]:.1f} deg "
+                f"(median {g['alpha_deg_median']:.1f}), chi {g['chi'][0]:.3f}-{g['chi'][1]:.3f} "
+                f"(median {g['chi_median']:.3f})"
+            )
     for p in r.get("figures", []):
         print(f"  figure         {p}")
