@@ -928,7 +928,20 @@ def case_store(d: Drawer) -> Case:
 def case_plot(d: Drawer) -> Case:
     from eccjump import plot
 
-    k = d.integer(0, 1)
+    k = d.integer(0, 2)
+    if k == 2:
+        c = Case(
+            "plot.fraction_map",
+            plot.fraction_map,
+            params=("smap", "optimum"),
+            check=check_figure,
+        )
+        smap = eccjump.start_map(1.0, [0.0, 4.7], [0.0, 1.0], grid=3)
+        opt = eccjump.optimal_start(1.0, grid=2, lattice=(3, 2), max_evaluations=400)
+        c.args = (d.choice((smap, smap, None, "map")),)
+        c.kwargs = {"optimum": d.choice((None, opt, opt, 3))}
+        c.must_raise = c.args[0] is not smap or c.kwargs["optimum"] == 3
+        return c
     if k == 0:
         c = Case(
             "plot.trajectory",
@@ -947,6 +960,115 @@ def case_plot(d: Drawer) -> Case:
         c.args = (d.choice((reg, None, 3)),)
         c.kwargs = {"panels": integer_param(d, c, (1, 2), (0, 2.5, True, None, 10**400))}
         c.must_raise = c.must_raise or c.args[0] is not reg
+    return c
+
+
+# --- initial conditions (eccjump.starts) -----------------------------------------------------
+
+START_PARAMS = (
+    "mu_s", "theta0", "omega0", "grid", "rule", "n_threads", "omega_max", "lattice", "n_starts",
+    "max_evaluations", "progress",
+)  # fmt: skip
+
+
+def _grid(d: Drawer, c: Case, good: Sequence[int] = (2, 3, 5)) -> Any:
+    return integer_param(d, c, good, (1, 0, -3, 129, 2.5, True, None, 10**400, 2**64))
+
+
+def check_fraction(res: Any, case: Case) -> None:
+    expect(isinstance(res, float), "not a float")
+    expect(0.0 <= res <= 1.0, f"fraction {res} outside [0, 1]")
+
+
+def check_shares(res: Any, case: Case) -> None:
+    expect(isinstance(res, dict) and set(res) == set(eccjump.Reason), "not a share per reason")
+    vals = np.array(list(res.values()))
+    expect(bool(((vals >= 0) & (vals <= 1)).all()), "a share outside [0, 1]")
+    expect(abs(vals.sum() - 1.0) <= 1e-12, f"shares sum to {vals.sum()}")
+
+
+def check_start_map(res: Any, case: Case) -> None:
+    expect(isinstance(res, eccjump.StartMap), "not a StartMap")
+    nt, no = res.theta0.size, res.omega0.size
+    expect(res.shares.shape == (nt, no, N_REASONS), f"shares of shape {res.shares.shape}")
+    expect(bool(((res.theta0 >= 0) & (res.theta0 < 2 * math.pi)).all()), "theta0 not in [0, 2pi)")
+    expect(bool(np.allclose(res.shares.sum(axis=2), 1.0, rtol=0, atol=1e-12)), "shares sum")
+    expect(bool((res.impossible == (res.fraction == 0)).all()), "impossible != fraction == 0")
+
+
+def check_optimum(res: Any, case: Case) -> None:
+    expect(isinstance(res, eccjump.OptimalStart), "not an OptimalStart")
+    expect(0.0 <= res.theta0 < 2 * math.pi, f"theta0 {res.theta0} not in [0, 2pi)")
+    expect(0.0 <= res.omega0 <= res.omega_max, f"omega0 {res.omega0} out of [0, omega_max]")
+    for k in ("fraction", "fraction_coarse", "fraction_at_rest"):
+        expect(0.0 <= getattr(res, k) <= 1.0, f"{k} outside [0, 1]")
+    for k in ("theta0_err", "omega0_err", "fraction_err", "step_theta0", "step_omega0"):
+        v = getattr(res, k)
+        expect(math.isfinite(v) and v >= 0, f"{k} = {v}")
+    expect(res.fraction_err == abs(res.fraction - res.fraction_coarse), "fraction_err")
+    expect(1 <= res.evaluations <= int(case.kwargs["max_evaluations"]), "evaluations")
+
+
+def case_jarm_fraction(d: Drawer) -> Case:
+    shares = d.integer(0, 1) == 1
+    fn = eccjump.reason_shares if shares else eccjump.jarm_fraction
+    c = Case(fn.__name__, fn, params=START_PARAMS,
+             check=check_shares if shares else check_fraction)  # fmt: skip
+    c.args = (
+        real(d, c, 0.0, 3.0),
+        d.choice((real(d, c, -7.0, 7.0), *(() if d.clean else (1e15, -1e300, 2 * math.pi)))),
+        d.choice((real(d, c, 0.0, 3.0), *(() if d.clean else (1e7, -1.0)))),
+    )
+    c.kwargs = {
+        "grid": _grid(d, c),
+        "rule": text_param(d, c, ("paper", "normal_force")),
+        "n_threads": threads(d, c),
+    }
+    return c
+
+
+def case_start_map(d: Drawer) -> Case:
+    c = Case("start_map", eccjump.start_map, params=(*START_PARAMS, "shapes"),
+             check=check_start_map)  # fmt: skip
+    c.args = (
+        real(d, c, 0.0, 3.0),
+        array(d, c, -7.0, 7.0, max_size=3),
+        array(d, c, 0.0, 3.0, max_size=3),
+    )
+    c.kwargs = {
+        "grid": _grid(d, c, (2, 3)),
+        "rule": text_param(d, c, ("paper", "normal_force")),
+        "n_threads": threads(d, c),
+    }
+    if d.integer(0, 3) == 0 and not d.clean:
+        c.kwargs["progress"] = d.choice((None, print, 3, "x"))
+        c.must_raise = c.must_raise or c.kwargs["progress"] in (3, "x")
+    if d.integer(0, 5) == 0 and not d.clean:
+        c.args = (c.args[0], np.zeros(101), np.zeros(100))  # past the bound of starts
+    return c
+
+
+def case_optimal_start(d: Drawer) -> Case:
+    c = Case("optimal_start", eccjump.optimal_start, params=START_PARAMS, check=check_optimum)
+    c.args = (real(d, c, 0.0, 3.0),)
+    lattice: Any = (
+        integer_param(d, c, (2, 3, 4), (1, 1001, 2.5, True, None, 10**400)),
+        integer_param(d, c, (2, 3), (1, 1001, 2.5, True, None)),
+    )
+    if d.integer(0, 6) == 0 and not d.clean:
+        lattice = d.choice(((3,), "ab", None, 3, (2, 2, 2)))
+        c.must_raise = True
+    c.kwargs = {
+        "grid": _grid(d, c, (2, 3)),
+        "omega_max": real(d, c, 1e-3, 4.0),
+        "lattice": lattice,
+        "n_starts": integer_param(d, c, (1, 2), (0, 51, 2.5, True, None, 10**400)),
+        "rule": text_param(d, c, ("paper", "normal_force")),
+        "n_threads": threads(d, c),
+        "max_evaluations": integer_param(
+            d, c, (1, 20, 400), (0, -1, 2.5, True, None, 10**5 + 1, 10**400)
+        ),
+    }
     return c
 
 
@@ -1010,12 +1132,26 @@ def cli_map_argv(d: Drawer) -> list[str]:
     return argv
 
 
+def cli_starts_argv(d: Drawer) -> list[str]:
+    argv = ["starts", "--mu-s", cli_number(d, 0, 3), "-q", "--lattice", "3", "2"]
+    argv += ["--grid", d.choice(("2", "3", "0", "65", "x"))]
+    argv += ["--map-grid", d.choice(("2", "3", "1")), "--map-size", "3", "2"]
+    if d.integer(0, 2) == 0:
+        argv += ["--omega-max", cli_number(d, 0, 3)]
+    if d.integer(0, 3) == 0:
+        argv.append("--no-map")
+    if d.integer(0, 1):
+        argv.append("--json")
+    return argv
+
+
 #: The options each subcommand takes (what an error message must name).
 CLI_PARAMS = (
     "alpha", "chi", "km", "mu", "mu_s", "mu-s", "theta0", "omega0", "t_max", "t-max", "rtol",
     "atol", "theta_max", "grid", "n", "threads", "n_threads", "max_turns", "max-turns",
     "output", "-o", "alpha-min", "alpha-max", "chi-max", "range", "rule", "shapes", "kind",
     "mu_k", "mu-k", "restitution", "max_transitions", "max-transitions", "route",
+    "omega-max", "omega_max", "lattice", "map-grid", "map-size",
 )  # fmt: skip
 
 
@@ -1029,7 +1165,10 @@ def check_cli(res: Any, case: Case) -> None:
             import json
 
             s = json.loads(out)
-            expect(s["status"] in (-1, 0, 1), "status")
+            if case.info["cmd"] == "starts":
+                expect(all(0 <= r["fraction"] <= 1 for r in s), "fraction outside [0, 1]")
+            else:
+                expect(s["status"] in (-1, 0, 1), "status")
     else:
         last = err.strip().splitlines()[-1] if err.strip() else ""
         expect(len(last) <= MAX_MESSAGE, f"error line of {len(last)} characters")
@@ -1058,8 +1197,9 @@ def run_cli_inprocess(argv: list[str]) -> tuple[int, str, str]:
 
 
 def case_cli(d: Drawer) -> Case:
-    cmd = d.choice(("roll", "roll", "map"))
-    argv = cli_roll_argv(d) if cmd == "roll" else cli_map_argv(d)
+    cmd = d.choice(("roll", "roll", "map", "starts"))
+    make = {"roll": cli_roll_argv, "map": cli_map_argv, "starts": cli_starts_argv}
+    argv = make[cmd](d)
     return Case(
         f"cli.{cmd}", run_cli_inprocess, args=(argv,), params=CLI_PARAMS, check=check_cli,
         info={"cmd": cmd, "argv": argv},
@@ -1085,6 +1225,9 @@ GENERATORS: dict[str, Callable[[Drawer], Case]] = {
     "units": case_units,
     "store": case_store,
     "plot": case_plot,
+    "jarm_fraction": case_jarm_fraction,
+    "start_map": case_start_map,
+    "optimal_start": case_optimal_start,
     "cli": case_cli,
 }
 

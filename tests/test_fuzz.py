@@ -50,6 +50,9 @@ BUDGET = {
     "store": 30,
     "plot": 10,
     "cli": 60,
+    "jarm_fraction": 60,
+    "start_map": 30,
+    "optimal_start": 25,
 }
 
 

@@ -14,6 +14,14 @@ from eccjump.dense import DenseSolution
 from eccjump.motion import MotionResult, simulate
 from eccjump.motion_maps import MotionMap, motion_map
 from eccjump.rolling import EVENT_NAMES, Event, RollResult, roll
+from eccjump.starts import (
+    OptimalStart,
+    StartMap,
+    jarm_fraction,
+    optimal_start,
+    reason_shares,
+    start_map,
+)
 from eccjump.units import Units
 
 __all__ = [
@@ -24,19 +32,25 @@ __all__ = [
     "JarmResult",
     "MotionMap",
     "MotionResult",
+    "OptimalStart",
     "Reason",
     "Region",
     "RollResult",
+    "StartMap",
     "Units",
     "__version__",
     "alpha_intervals",
     "closed_form",
     "jarm",
+    "jarm_fraction",
     "motion_map",
     "mu_s_min_path",
+    "optimal_start",
+    "reason_shares",
     "region",
     "region_dataset",
     "roll",
     "simulate",
+    "start_map",
     "store",
 ]

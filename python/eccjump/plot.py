@@ -29,6 +29,7 @@ from eccjump.classification import Region, jarm
 from eccjump.motion_fields import sequence_name
 from eccjump.motion_maps import MotionMap
 from eccjump.rolling import RollResult
+from eccjump.starts import OptimalStart, StartMap
 
 if TYPE_CHECKING:
     from matplotlib.axes import Axes
@@ -44,6 +45,7 @@ __all__ = [
     "fig3b",
     "fig4",
     "fig4_slices",
+    "fraction_map",
     "jarm_surfaces",
     "motion",
     "trajectory",
@@ -688,9 +690,78 @@ def region_map(region: Region, *, panels: int = 4) -> Figure:
     ]
     if handles:
         fig.legend(handles=handles, title="JARM on turn", loc="outside right upper", fontsize=9)
+    start = (
+        rf", start $\theta_0 = {math.degrees(region.theta0):.4g}°$, "
+        rf"$\dot\theta_0 = {region.omega0:.4g}$"
+        if region.theta0 or region.omega0
+        else ""
+    )
     fig.suptitle(
-        f"JARM region, $\\mu_s = {region.mu_s:g}$, rule: {region.rule}, route: {region.method} "
-        f"({100.0 * region.fraction():.2f}% of {is_jarm.size} grid points)"
+        f"JARM region, $\\mu_s = {region.mu_s:g}$, rule: {region.rule}, route: {region.method}"
+        f"{start} ({100.0 * region.fraction():.2f}% of {is_jarm.size} grid points)"
+    )
+    return fig
+
+
+# --------------------------------------------------------------------------------------------
+# Initial conditions (eccjump.start_map / eccjump starts)
+# --------------------------------------------------------------------------------------------
+
+
+def fraction_map(smap: StartMap, *, optimum: OptimalStart | None = None) -> Figure:
+    """The JARM fraction over the starts (theta0, omega0) of a :class:`~eccjump.StartMap`
+    (left), and the shares of the parameter cube blocked at the start: immediate flight and
+    rocking back (right). ``optimum`` is marked with its uncertainty; starts with no JARM on
+    the grid are hatched."""
+    if not isinstance(smap, StartMap):
+        raise TypeError(f"smap must be a StartMap, not {type(smap).__name__}")
+    if optimum is not None and not isinstance(optimum, OptimalStart):
+        raise TypeError(f"optimum must be an OptimalStart or None, not {type(optimum).__name__}")
+    plt = _plt()
+    from matplotlib.colors import PowerNorm
+
+    fig, axes = plt.subplots(1, 3, figsize=(13.5, 4.0), layout="constrained", sharey=True)
+    th = np.degrees(smap.theta0)
+    views = (
+        ("JARM fraction (colour scale: square root)", smap.fraction, "viridis"),
+        ("immediate flight (LIFTOFF_EARLIER)", smap.immediate_flight, "Blues"),
+        ("rocks back (ROCKS_BACK)", smap.rocks_back, "Oranges"),
+    )
+    for k, (ax, (title, img, cmap)) in enumerate(zip(axes, views, strict=True)):
+        norm = PowerNorm(0.5, vmin=0.0, vmax=max(float(img.max()), 1e-12)) if k == 0 else None
+        mesh = ax.pcolormesh(th, smap.omega0, img.T, cmap=cmap, shading="nearest", norm=norm,
+                             vmin=None if k == 0 else 0.0)  # fmt: skip
+        fig.colorbar(mesh, ax=ax, shrink=0.9)
+        ax.set_title(title, fontsize=10)
+        ax.set_xlabel(r"$\theta_0$ [deg]")
+        ax.set_xticks(np.arange(0.0, 361.0, 90.0))
+        if smap.impossible.any():
+            ax.contourf(th, smap.omega0, smap.impossible.T.astype(float), levels=[0.5, 1.5],
+                        colors="none", hatches=["//"])  # fmt: skip
+        if optimum is not None:
+            ax.errorbar(
+                math.degrees(optimum.theta0),
+                optimum.omega0,
+                xerr=max(math.degrees(optimum.theta0_err), 1e-9),
+                yerr=max(optimum.omega0_err, 1e-9),
+                fmt="*",
+                color="#d62728",
+                ms=11,
+                mec="white",
+                label="optimum",
+            )
+    axes[0].scatter([0.0], [0.0], marker="o", color="#d62728", s=30, clip_on=False,
+                    label="from rest", zorder=3)  # fmt: skip
+    axes[0].set_ylabel(r"$\dot\theta_0$ [$\sqrt{g/R}$]")
+    axes[0].legend(loc="upper left", fontsize=8)
+    best = "" if optimum is None else (
+        f"; optimum {100 * optimum.fraction:.2f}% at $\\theta_0 = "
+        f"{math.degrees(optimum.theta0):.1f}°$, $\\dot\\theta_0 = {optimum.omega0:.3f}$"
+    )  # fmt: skip
+    fig.suptitle(
+        f"Share of (α, χ, $k_m$) by start, $\\mu_s = {smap.mu_s:g}$, rule: {smap.rule}, "
+        f"{smap.grid}³ midpoint grid{best}",
+        fontsize=11,
     )
     return fig
 
