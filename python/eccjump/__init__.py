@@ -11,6 +11,7 @@ from eccjump.body import Cylinder
 from eccjump.boundary import alpha_intervals, mu_s_min_path
 from eccjump.classification import JarmResult, Reason, Region, jarm, region, region_dataset
 from eccjump.dense import DenseSolution
+from eccjump.design import Design, build, design
 from eccjump.motion import MotionResult, simulate
 from eccjump.rolling import EVENT_NAMES, Event, RollResult, roll
 from eccjump.units import Units
@@ -19,6 +20,7 @@ __all__ = [
     "EVENT_NAMES",
     "Cylinder",
     "DenseSolution",
+    "Design",
     "Event",
     "JarmResult",
     "MotionResult",
@@ -28,7 +30,9 @@ __all__ = [
     "Units",
     "__version__",
     "alpha_intervals",
+    "build",
     "closed_form",
+    "design",
     "jarm",
     "mu_s_min_path",
     "region",

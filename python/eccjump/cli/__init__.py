@@ -9,10 +9,10 @@ import argparse
 import sys
 from collections.abc import Sequence
 
-from eccjump.cli import figures, map, roll, simulate
+from eccjump.cli import design, figures, map, roll, simulate
 
 #: The subcommands, in the order of ``eccjump --help``.
-SUBCOMMANDS = (roll, simulate, map, figures)
+SUBCOMMANDS = (roll, simulate, map, design, figures)
 
 
 def build_parser() -> argparse.ArgumentParser:
