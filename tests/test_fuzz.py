@@ -49,6 +49,8 @@ BUDGET = {
     "store": 30,
     "plot": 10,
     "cli": 60,
+    "design": 12,
+    "build": 60,
 }
 
 

@@ -414,11 +414,20 @@ def _score(margins: tuple[Margin, ...] | None) -> float:
 
 
 def _range(name: str, value: object, lo: float, hi: float, unit: str = "") -> tuple[float, float]:
-    if isinstance(value, str | bytes) or not isinstance(value, Sequence | np.ndarray):
-        raise TypeError(f"{name} must be a pair (lo, hi) of real numbers")
-    if len(value) != 2:
-        raise ValueError(f"{name} must be a pair (lo, hi), not {len(value)} values")
-    a, b = real(name, value[0]), real(name, value[1])
+    pair = TypeError(f"{name} must be a pair (lo, hi) of real numbers")
+    if isinstance(value, str | bytes | np.ma.MaskedArray):
+        raise pair
+    if isinstance(value, np.ndarray):
+        if value.ndim != 1:
+            raise pair
+        items = list(value)
+    elif isinstance(value, Sequence):
+        items = list(value)
+    else:
+        raise pair
+    if len(items) != 2:
+        raise ValueError(f"{name} must be a pair (lo, hi), not {len(items)} values")
+    a, b = real(name, items[0]), real(name, items[1])
     if not (lo <= a <= b <= hi):
         raise ValueError(
             f"{name} = ({short(a)}, {short(b)}) must satisfy {lo:g} <= lo <= hi <= {hi:g}{unit}"
