@@ -299,3 +299,8 @@ def test_build_bad_input():
         build(Cylinder(0.1, 0.2), radius=0.0)
     with pytest.raises(ValueError, match="mass"):
         build(Cylinder(0.1, 0.2), mass=math.nan)
+
+
+def test_the_design_is_deterministic(jump):
+    again = design(RANGE, 0.6, 0.1, radius=0.05, mass=0.5, grid=12)
+    assert again.to_dict() == jump.to_dict()
