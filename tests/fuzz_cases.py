@@ -33,6 +33,7 @@ import numpy as np
 import eccjump
 from eccjump import closed_form, store
 from eccjump.boundary import alpha_interval_around
+from eccjump.design import Build
 
 
 @dataclass(frozen=True)
@@ -1069,6 +1070,91 @@ def case_optimal_start(d: Drawer) -> Case:
             d, c, (1, 20, 400), (0, -1, 2.5, True, None, 10**5 + 1, 10**400)
         ),
     }
+
+
+DESIGN_PARAMS = (
+    "alpha_range", "mu_s", "mu_s_err", "target", "body", "km_range", "rod_range", "radius",
+    "mass", "g", "max_turns", "error", "grid", "shapes",
+)  # fmt: skip
+
+
+def check_design(res: Any, case: Case) -> None:
+    import json
+
+    expect(isinstance(res, eccjump.Design), "not a Design")
+    lo, hi = (float(x) for x in case.info["alpha_range"])
+    expect(lo - 1e-12 <= res.alpha <= hi + 1e-12, "alpha outside alpha_range")
+    expect(res.score >= 0 and not math.isnan(res.score), f"score {res.score}")
+    expect(all((m.margin >= 0 and m.lo < m.value < m.hi) or m.margin == 0 for m in res.margins),
+           "a margin does not hold its value")  # fmt: skip
+    target_ok = {"jarm": {"JARM"}, "slip": {"SLIP_BEFORE", "SLIP_AT_JUMP"}}[res.target]
+    expect(set(res.reasons.values()) <= target_ok, f"verdict {res.reasons}")
+    expect(isinstance(res.sheet(), str) and bool(res.sheet()), "no sheet")
+    json.dumps(res.to_dict(), allow_nan=False)
+
+
+def _pair(d: Drawer, c: Case, lo: float, hi: float) -> Any:
+    k = d.integer(0, 6)
+    a, b = sorted((real(d, c, lo, hi, bad=False), real(d, c, lo, hi, bad=False)), key=_key)
+    if k <= 3 or d.clean:
+        x, y = sorted(lo + (hi - lo) * d.integer(0, 20) / 20 for _ in range(2))
+        return (x, y) if k != 3 else np.array([x, y])
+    if k == 4:
+        return (b, a)
+    if k == 5:
+        return d.choice(((lo,), (lo, hi, hi), "ab", (lo, None), [[lo, hi]]))
+    return wrong(d, c)
+
+
+def _key(v: Any) -> float:
+    try:
+        return float(v)
+    except (TypeError, ValueError, OverflowError):
+        return math.nan
+
+
+def case_design(d: Drawer) -> Case:
+    c = Case("design", eccjump.design, params=DESIGN_PARAMS, check=check_design)
+    alpha_range = _pair(d, c, 0.0, HALF_PI)
+    c.args = (alpha_range, real(d, c, 0.05, 2.0), real(d, c, 0.0, 0.2))
+    c.info["alpha_range"] = alpha_range if c.must_raise else (0.0, HALF_PI)
+    if not c.must_raise:
+        try:
+            c.info["alpha_range"] = tuple(float(x) for x in alpha_range)
+        except (TypeError, ValueError, OverflowError):
+            pass
+    c.kwargs = {
+        "target": text_param(d, c, ("jarm", "slip")),
+        "max_turns": integer_param(d, c, (1, 2, 3), (*INT_BAD, 1001)),
+        "grid": integer_param(d, c, (4, 5), (*INT_BAD, 3, 65, 10**6)),
+    }
+    if d.integer(0, 2) == 0:
+        c.kwargs["body"] = _body(d, c)
+    else:
+        c.kwargs["km_range"] = _pair(d, c, 0.0, 0.95)
+        c.kwargs["rod_range"] = _pair(d, c, 0.0, 1.0)
+    if d.integer(0, 2) == 0:
+        c.kwargs["radius"] = real(d, c, 1e-3, 1.0)
+        if d.integer(0, 4):
+            c.kwargs["mass"] = real(d, c, 1e-3, 10.0)
+    if d.integer(0, 3) == 0:
+        c.kwargs["error"] = real(d, c, 0.0, 0.5)
+    if d.integer(0, 4) == 0:
+        c.kwargs["g"] = real(d, c, 1.0, 20.0)
+    return c
+
+
+def check_build(res: Any, case: Case) -> None:
+    expect(isinstance(res, Build), "not a Build")
+    expect(all(math.isfinite(x) and x >= 0 for x in res), f"non-finite or negative: {res}")
+    body = case.args[0]
+    expect(abs(res.d - body.chi * res.radius) <= 1e-12 * res.radius, "d != chi R")
+
+
+def case_build(d: Drawer) -> Case:
+    c = Case("build", eccjump.build, params=("body", "radius", "mass"), check=check_build)
+    c.args = (_body(d, c),)
+    c.kwargs = {k: real(d, c, 1e-3, 1e3) for k in ("radius", "mass") if d.integer(0, 1)}
     return c
 
 
@@ -1145,6 +1231,23 @@ def cli_starts_argv(d: Drawer) -> list[str]:
     return argv
 
 
+def cli_design_argv(d: Drawer) -> list[str]:
+    """A cheap design (grid 4, two turns, often a fixed body)."""
+    argv = ["design", "--alpha-range", cli_number(d, 0, 45), cli_number(d, 45, 90)]
+    argv += ["--mu-s", cli_number(d, 0, 2), "--grid", d.choice(("4", "4", "3", "x"))]
+    argv += ["--max-turns", d.choice(("2", "2", "0"))]
+    if d.integer(0, 1):
+        argv += ["--chi", cli_number(d, 0, 1), "--km", cli_number(d, 0, 0.5)]
+    for opt, lo, hi in (("--mu-s-err", 0, 0.3), ("--radius", 0, 1), ("--mass", 0, 2)):
+        if d.integer(0, 3) == 0:
+            argv += [opt, cli_number(d, lo, hi)]
+    if d.integer(0, 2) == 0:
+        argv += ["--target", d.choice(("jarm", "slip", "fly"))]
+    if d.integer(0, 1):
+        argv.append("--json")
+    return argv
+
+
 #: The options each subcommand takes (what an error message must name).
 CLI_PARAMS = (
     "alpha", "chi", "km", "mu", "mu_s", "mu-s", "theta0", "omega0", "t_max", "t-max", "rtol",
@@ -1152,6 +1255,8 @@ CLI_PARAMS = (
     "output", "-o", "alpha-min", "alpha-max", "chi-max", "range", "rule", "shapes", "kind",
     "mu_k", "mu-k", "restitution", "max_transitions", "max-transitions", "route",
     "omega-max", "omega_max", "lattice", "map-grid", "map-size",
+    "alpha_range", "alpha-range", "mu_s_err", "mu-s-err", "radius", "mass", "target",
+    "body", "g", "error", "km_range", "rod_range",
 )  # fmt: skip
 
 
@@ -1161,7 +1266,7 @@ def check_cli(res: Any, case: Case) -> None:
     expect(code in (0, 1, 2), f"exit status {code}")
     if code == 0:
         expect(bool(out.strip()) or case.info["cmd"] == "map", "no output")
-        if "--json" in case.info["argv"]:
+        if "--json" in case.info["argv"] and case.info["cmd"] in ("roll", "starts"):
             import json
 
             s = json.loads(out)
@@ -1197,8 +1302,13 @@ def run_cli_inprocess(argv: list[str]) -> tuple[int, str, str]:
 
 
 def case_cli(d: Drawer) -> Case:
-    cmd = d.choice(("roll", "roll", "map", "starts"))
-    make = {"roll": cli_roll_argv, "map": cli_map_argv, "starts": cli_starts_argv}
+    cmd = d.choice(("roll", "roll", "map", "roll", "map", "starts", "design"))
+    make = {
+        "roll": cli_roll_argv,
+        "map": cli_map_argv,
+        "starts": cli_starts_argv,
+        "design": cli_design_argv,
+    }
     argv = make[cmd](d)
     return Case(
         f"cli.{cmd}", run_cli_inprocess, args=(argv,), params=CLI_PARAMS, check=check_cli,
@@ -1208,6 +1318,8 @@ def case_cli(d: Drawer) -> Case:
 
 #: Every generator, by entry point family.
 GENERATORS: dict[str, Callable[[Drawer], Case]] = {
+    "design": case_design,
+    "build": case_build,
     "jarm": case_jarm,
     "region": case_region,
     "region_dataset": case_region_dataset,

@@ -53,6 +53,8 @@ BUDGET = {
     "jarm_fraction": 60,
     "start_map": 30,
     "optimal_start": 25,
+    "design": 12,
+    "build": 60,
 }
 
 

@@ -11,6 +11,7 @@ from eccjump.body import Cylinder
 from eccjump.boundary import alpha_intervals, mu_s_min_path
 from eccjump.classification import JarmResult, Reason, Region, jarm, region, region_dataset
 from eccjump.dense import DenseSolution
+from eccjump.design import Design, build, design
 from eccjump.motion import MotionResult, simulate
 from eccjump.motion_maps import MotionMap, motion_map
 from eccjump.rolling import EVENT_NAMES, Event, RollResult, roll
@@ -28,6 +29,7 @@ __all__ = [
     "EVENT_NAMES",
     "Cylinder",
     "DenseSolution",
+    "Design",
     "Event",
     "JarmResult",
     "MotionMap",
@@ -40,7 +42,9 @@ __all__ = [
     "Units",
     "__version__",
     "alpha_intervals",
+    "build",
     "closed_form",
+    "design",
     "jarm",
     "jarm_fraction",
     "motion_map",

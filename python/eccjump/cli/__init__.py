@@ -9,10 +9,10 @@ import argparse
 import sys
 from collections.abc import Sequence
 
-from eccjump.cli import figures, map, roll, simulate, starts
+from eccjump.cli import design, figures, map, roll, simulate, starts
 
 #: The subcommands, in the order of ``eccjump --help``.
-SUBCOMMANDS = (roll, simulate, map, starts, figures)
+SUBCOMMANDS = (roll, simulate, map, starts, design, figures)
 
 
 def build_parser() -> argparse.ArgumentParser:

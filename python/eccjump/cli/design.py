@@ -1,0 +1,105 @@
+"""``eccjump design``: the body and ramp angle whose JARM (or, with ``--target slip``, whose
+slip before lift-off) is most robust, printed as a lab sheet (or JSON). See docs/design.md."""
+
+from __future__ import annotations
+
+import argparse
+import json
+import math
+
+from eccjump.body import Cylinder
+from eccjump.cli._args import degrees_in, int_at_least
+from eccjump.design import GRID_RANGE, design
+
+
+def add_parser(sub: argparse._SubParsersAction) -> None:
+    p = sub.add_parser(
+        "design",
+        help="design a lab experiment: the most robust JARM (or a sure slip, for a control)",
+        description="Find the body (shell plus rod) and ramp angle whose verdict holds with the "
+        "largest relative margins to the exact region boundaries in alpha, mu_s and the rod "
+        "position, under both lift-off rules and the whole mu_s uncertainty; print a lab sheet.",
+    )
+    p.add_argument(
+        "--alpha-range",
+        nargs=2,
+        type=degrees_in(0.0, 90.0),
+        required=True,
+        metavar=("LO", "HI"),
+        help="ramp angles the lab can set [deg], within [0, 90]",
+    )
+    p.add_argument("--mu-s", type=float, required=True, help="static friction coefficient")
+    p.add_argument("--mu-s-err", type=float, default=0.0, help="uncertainty of mu_s (default 0)")
+    p.add_argument(
+        "--target",
+        choices=("jarm", "slip"),
+        default="jarm",
+        help="jarm (default) or slip: a body that certainly slips first (control run)",
+    )
+    p.add_argument(
+        "--km-range",
+        nargs=2,
+        type=float,
+        default=(0.01, 0.9),
+        metavar=("LO", "HI"),
+        help="shell mass fractions to choose from, within [0, 1) (default 0.01 0.9)",
+    )
+    p.add_argument(
+        "--rod-range",
+        nargs=2,
+        type=float,
+        default=(0.05, 0.95),
+        metavar=("LO", "HI"),
+        help="rod positions r/R to choose from, within [0, 1] (default 0.05 0.95)",
+    )
+    p.add_argument("--chi", type=float, default=None, help="a fixed body: d/R (with --km)")
+    p.add_argument("--km", type=float, default=None, help="a fixed body: shell mass fraction")
+    p.add_argument("--radius", type=float, default=None, help="R [m] (with --mass: SI sheet)")
+    p.add_argument("--mass", type=float, default=None, help="M [kg] (with --radius)")
+    p.add_argument("--g", type=float, default=9.81, help="gravity [m/s^2] (default 9.81)")
+    p.add_argument(
+        "--max-turns",
+        type=int_at_least(1),
+        default=10,
+        help="turns the ramp allows before the event (default 10, at most 1000)",
+    )
+    p.add_argument(
+        "--error",
+        type=float,
+        default=0.05,
+        help="fractional input error of the sensitivity table, in (0, 0.5] (default 0.05)",
+    )
+    p.add_argument(
+        "--grid",
+        type=int_at_least(GRID_RANGE[0]),
+        default=24,
+        help=f"coarse grid points per axis, {GRID_RANGE[0]} ... {GRID_RANGE[1]} (default 24)",
+    )
+    p.add_argument("--json", action="store_true", help="print machine-readable JSON")
+    p.set_defaults(func=_cmd_design)
+
+
+def _cmd_design(args: argparse.Namespace) -> int:
+    if (args.chi is None) != (args.km is None):
+        raise ValueError("--chi and --km: give both (a fixed body) or neither")
+    body = None if args.chi is None else Cylinder(args.chi, args.km)
+    d = design(
+        tuple(math.radians(a) for a in args.alpha_range),
+        args.mu_s,
+        args.mu_s_err,
+        target=args.target,
+        body=body,
+        km_range=tuple(args.km_range),
+        rod_range=tuple(args.rod_range),
+        radius=args.radius,
+        mass=args.mass,
+        g=args.g,
+        max_turns=args.max_turns,
+        error=args.error,
+        grid=args.grid,
+    )
+    if args.json:
+        print(json.dumps(d.to_dict(), indent=2))
+    else:
+        print(d.sheet())
+    return 0
