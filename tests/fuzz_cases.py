@@ -1070,6 +1070,7 @@ def case_optimal_start(d: Drawer) -> Case:
             d, c, (1, 20, 400), (0, -1, 2.5, True, None, 10**5 + 1, 10**400)
         ),
     }
+    return c
 
 
 DESIGN_PARAMS = (

@@ -40,7 +40,13 @@ REL = 1e-12
 # Integers on these lines count accept/reject decisions of the step-size controller: one
 # error norm within rounding of 1 (at rtol 1e-10 rounding is ~1e-6 of the error estimate)
 # may go the other way, changing the accepted steps by 1 and the evaluations by 6.
-COUNT_SLACK = {"steps": (2, 12)}
+COUNT_SLACK = {
+    "steps": (2, 12),
+    # The energy ledger closes to ~1e-9 at rtol 1e-10 (docs/motion.md): a step taken
+    # differently on another platform moves the energies and the balance at that level.
+    "energy": (0, 1e-8, 1e-8),
+    "dissipated": (1e-8, 1e-8, 0, 1e-8),
+}
 # Grid points that may change sides of a region boundary on another platform. Nudging every
 # axis of the README's two grids by one ulp flips none of their points (measured), so 2 is a
 # margin over none seen, small against the 1733 and 3561 JARM points counted.

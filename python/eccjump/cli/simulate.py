@@ -270,15 +270,15 @@ def print_table(s: dict) -> None:
     rows.append(
         (
             "energy",
-            f"E(0) = {_g(led['energy0'], '.10g')}, E(end) = {_g(led['energy_end'], '.10g')} M g R",
+            f"E(0) = {_g(led['energy0'], '.8g')}, E(end) = {_g(led['energy_end'], '.8g')} M g R",
         )
     )
     rows.append(
         (
             "dissipated",
-            f"slip = {_g(led['dissipated_slip'], '.10g')}, "
-            f"impacts = {_g(led['dissipated_impacts'], '.10g')} M g R "
-            f"(E + dissipated - E(0) = {_g(led['balance'], '.3g')})",
+            f"slip = {_g(led['dissipated_slip'], '.8g')}, "
+            f"impacts = {_g(led['dissipated_impacts'], '.8g')} M g R "
+            f"(E + dissipated - E(0) = {_g(led['balance'], '.0e')})",
         )
     )
     rows.append(("steps", f"{s['points']} recorded points, {s['nfev']} evaluations"))
