@@ -8,7 +8,7 @@ eccjump maps the whole grid (alpha in [1, 89] deg, chi and the km fraction in [0
 mu_s = 1; --grid 100 is 10^6 points) with every core; the scipy model runs a random sample
 of the same points one after the other, each to the same transition as eccjump's run (the
 mode after the first landing), and its rate is extrapolated. Also checked on the sample: both
-give the same sequence of modes. Memory: the map holds 56 bytes per point.
+give the same sequence of modes. Memory: the map holds 73 bytes per point.
 """
 
 from __future__ import annotations

@@ -810,7 +810,10 @@ def sequence_map(m: MotionMap, *, panels: int = 4) -> Figure:
     )
     a_deg = np.degrees(m.coords["alpha"])
     chi = m.coords["chi"]
+    jarm = np.asarray(m.fields["jarm"]).reshape(seq.shape)
     for ax, j in zip(axes[0], slices.astype(int), strict=True):
+        ia, ic = np.nonzero(jarm[:, :, j])
+        ax.plot(chi[ic], a_deg[ia], "k.", ms=1.5, zorder=3)  # the paper's Fig. 4 region
         ax.pcolormesh(
             chi,
             a_deg,
@@ -830,6 +833,7 @@ def sequence_map(m: MotionMap, *, panels: int = 4) -> Figure:
     ]
     if (cat == len(top)).any():
         handles.append(Patch(color=colors[-1], label="other sequences"))
+    handles.append(Patch(color="k", label="JARM (ROLL → FLIGHT by the lift-off rule)"))
     fig.legend(handles=handles, title="modes, to the first landing", loc="outside right upper",
                fontsize=8)  # fmt: skip
     o, sc = m.options, m.scalars
