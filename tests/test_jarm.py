@@ -393,3 +393,17 @@ def test_reason_codes_include_solver_failed():
     # (the failure itself is provoked in the Rust tests: jarm::ode_route, step budget).
     assert Reason.SOLVER_FAILED == 9
     assert [r.value for r in Reason] == list(range(10))
+
+
+def test_the_classification_is_periodic_in_theta0():
+    """theta0 = -pi and +pi are the same start: the same verdicts, angles 2 pi apart (a
+    lift-off in (-alpha, 0), turn 0's window, used to be missed from theta0 < 0)."""
+    g = {"alpha": np.radians(np.linspace(2, 88, 12)), "chi": np.linspace(0.03, 0.97, 12)}
+    g["km"] = np.linspace(0.03, 0.97, 6)
+    neg = eccjump.region(1.0, **g, theta0=-math.pi, omega0=1.0)
+    pos = eccjump.region(1.0, **g, theta0=math.pi, omega0=1.0)
+    assert pos.result.is_jarm.sum() > 20
+    assert np.array_equal(neg.result.reason, pos.result.reason)
+    assert np.array_equal(neg.result.n, pos.result.n)
+    j = pos.result.is_jarm
+    assert np.allclose(neg.result.theta_J[j] + 2 * math.pi, pos.result.theta_J[j], atol=1e-9)

@@ -26,6 +26,12 @@ pub use result::{JarmOptions, JarmResult, Method, Reason};
 
 /// Classifies one point by the chosen route (never panics; invalid points give
 /// `InvalidParams`).
+///
+/// The motion is 2π-periodic in θ0, but both routes number the turn windows from turn 1
+/// (θ ≥ 0, with the lift-off windows 2πn − α < θ < 2πn): from θ0 < 0 the windows of turns
+/// ≤ 0 were never searched, and a lift-off in (−α, 0) went uncounted. So a start below 0 is
+/// classified from θ0 + 2πk ∈ [0, 2π) and its angles are shifted back by 2πk; its turns (the
+/// requested n and the reported one) count in that frame.
 #[inline]
 pub fn classify_with(
     method: Method,
@@ -35,8 +41,80 @@ pub fn classify_with(
     mu_s: f64,
     opts: &JarmOptions,
 ) -> JarmResult {
-    match method {
-        Method::ClosedForm => classify(alpha, chi, km, mu_s, opts),
-        Method::Ode { rtol, atol } => classify_ode(alpha, chi, km, mu_s, opts, rtol, atol),
+    let k = if opts.theta0 < 0.0 {
+        (-opts.theta0 / std::f64::consts::TAU).ceil()
+    } else {
+        0.0
+    };
+    let shift = k * std::f64::consts::TAU;
+    let o = JarmOptions {
+        theta0: opts.theta0 + shift,
+        ..*opts
+    };
+    let mut r = match method {
+        Method::ClosedForm => classify(alpha, chi, km, mu_s, &o),
+        Method::Ode { rtol, atol } => classify_ode(alpha, chi, km, mu_s, &o, rtol, atol),
+    };
+    if shift != 0.0 {
+        for theta in [
+            &mut r.theta_j,
+            &mut r.theta_event,
+            &mut r.theta_max_ratio,
+            &mut r.theta_min_fy,
+        ] {
+            *theta -= shift;
+        }
+    }
+    r
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use std::f64::consts::{PI, TAU};
+
+    #[test]
+    fn the_classification_is_periodic_in_theta0() {
+        // From θ0 = −π and +π (the same orientation) every verdict is the same and the angles
+        // differ by 2π; before the fix 1002 of 8000 such points lost their JARM (a lift-off in
+        // the green window (−α, 0) of turn 0).
+        let o = |theta0| JarmOptions {
+            theta0,
+            omega0: 1.0,
+            ..JarmOptions::default()
+        };
+        let mut jarms = 0;
+        for method in [
+            Method::ClosedForm,
+            Method::Ode {
+                rtol: 1e-10,
+                atol: 1e-12,
+            },
+        ] {
+            for i in 0..12 {
+                for j in 0..12 {
+                    let (a, chi) = (0.05 + 0.12 * i as f64, 0.05 + 0.075 * j as f64);
+                    let km = 0.3 * (1.0 - chi);
+                    let neg = classify_with(method, a, chi, km, 1.0, &o(-PI));
+                    let pos = classify_with(method, a, chi, km, 1.0, &o(PI));
+                    assert_eq!(neg.reason, pos.reason, "alpha {a} chi {chi}");
+                    assert_eq!(neg.n, pos.n);
+                    for (x, y) in [
+                        (neg.theta_j, pos.theta_j),
+                        (neg.theta_event, pos.theta_event),
+                    ] {
+                        assert!(
+                            x.is_nan() && y.is_nan() || (x + TAU - y).abs() < 1e-9,
+                            "{x} {y}"
+                        );
+                    }
+                    jarms += usize::from(pos.is_jarm);
+                }
+            }
+        }
+        assert!(
+            jarms > 10,
+            "{jarms} JARM points: the test would not see the defect"
+        );
     }
 }
