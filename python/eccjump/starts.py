@@ -9,9 +9,8 @@ k_m = km_frac (1 - chi) -- uniform in alpha, chi and the k_m fraction, the grid 
 (midpoint rule) as the grid is refined.
 
 The start. The motion depends on theta0 only modulo 2 pi (the ramp is a translation
-symmetry), so every function here takes theta0 modulo 2 pi, into [0, 2 pi). (The core's
-classification is not periodic for theta0 < 0: a lift-off in (-alpha, 0), the green window of
-turn 0, is not counted as a JARM there.) omega0 >= 0 rolls down the ramp.
+symmetry), so every function here takes theta0 modulo 2 pi, into [0, 2 pi) (the turns of the
+classification count from there). omega0 >= 0 rolls down the ramp.
 
 Everything runs in the Rust core (:func:`eccjump.region`); :func:`optimal_start` needs scipy
 (``pip install eccjump[analysis]``).
