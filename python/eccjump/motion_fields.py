@@ -9,11 +9,12 @@ this table. Also the codes of the sequence of modes, the statuses and the landin
 from __future__ import annotations
 
 import math
-from typing import Any, NamedTuple
+from typing import Any
 
 import numpy as np
 
 from eccjump import _core
+from eccjump.fields import Field
 from eccjump.motion import MODES, REASONS, STATUSES
 
 #: Modes kept in the sequence code.
@@ -24,16 +25,6 @@ INVALID = 255
 LANDINGS: tuple[str, ...] = tuple(name for _, name in sorted(_core.landing_codes()))
 #: ``status`` names by code (:data:`INVALID` is "invalid").
 STATUS_NAMES: dict[int, str] = {**dict(enumerate(STATUSES)), INVALID: "invalid"}
-
-
-class Field(NamedTuple):
-    """One summary field: name, numpy dtype, units, meaning, value where not computed."""
-
-    name: str
-    dtype: np.dtype
-    units: str
-    description: str
-    fill: Any
 
 
 _B, _U8, _U16, _F = (np.dtype(t) for t in (np.bool_, np.uint8, np.uint16, np.float64))
