@@ -1130,7 +1130,10 @@ def case_design(d: Drawer) -> Case:
         "grid": integer_param(d, c, (4, 5), (*INT_BAD, 3, 65, 10**6)),
     }
     if d.integer(0, 2) == 0:
+        was = c.must_raise
         c.kwargs["body"] = _body(d, c)
+        if c.kwargs["body"] is None:  # design's default (search the body): not a wrong type
+            c.must_raise = was
     else:
         c.kwargs["km_range"] = _pair(d, c, 0.0, 0.95)
         c.kwargs["rod_range"] = _pair(d, c, 0.0, 1.0)
