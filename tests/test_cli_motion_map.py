@@ -92,3 +92,10 @@ def test_figure_of_the_sequences(tmp_path):
     matplotlib.use("Agg")
     code, _ = run(tmp_path, "m.npz", "--figure", str(tmp_path / "m.png"))
     assert code == 0 and (tmp_path / "m.png").stat().st_size > 10_000
+
+
+def test_a_jarm_map_is_not_loaded_as_a_motion_map(tmp_path):
+    path = tmp_path / "j.npz"
+    assert main(["map", "--mu-s", "1", "--grid", "3", "-o", str(path), "-q"]) == 0
+    with pytest.raises(ValueError, match="JARM map"):
+        motion_maps.load(str(path))

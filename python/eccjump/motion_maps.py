@@ -258,19 +258,29 @@ def shape_of(axis: Mapping[str, NDArray]) -> tuple[int, ...]:
 def from_dataset(ds: xr.Dataset) -> MotionMap:
     """A :class:`MotionMap` from its Dataset (:meth:`MotionMap.to_xarray`, or a file of
     ``eccjump map --kind motion`` opened with :func:`eccjump.store.open_dataset`)."""
+    return _from_layout(store.layout_from_xarray(ds))
+
+
+def _from_layout(lay: dict[str, Any]) -> MotionMap:
+    """A :class:`MotionMap` from a file layout (numpy only)."""
     axis_of = {d: a for a, d in DIM_OF.items()}
-    coords = {axis_of[str(d)]: np.asarray(ds[d].values) for d in ds[FIELDS[0]].dims}
+    dims, attrs = lay["data_vars"][FIELDS[0]][0], lay["attrs"]
+    coords = {axis_of[str(d)]: np.asarray(lay["coords"][d][1]) for d in dims}
     scalars: dict[str, float | None] = {
-        k: float(ds.attrs[k]) for k in AXES if k not in coords and k in ds.attrs
+        k: float(attrs[k]) for k in AXES if k not in coords and k in attrs
     }
-    fields = {k: np.asarray(ds[k].values) for k in FIELDS}
-    opts = {k: ds.attrs[k] for k in OPTIONS if k in ds.attrs}
+    fields = {k: np.asarray(lay["data_vars"][k][1]) for k in FIELDS}
+    opts = {k: attrs[k] for k in OPTIONS if k in attrs}
     return MotionMap(coords, scalars, fields, opts)
 
 
 def load(path: str) -> MotionMap:
-    """A motion map file (.nc, .zarr, .npz) as a :class:`MotionMap`."""
-    return from_dataset(store.open_dataset(path))
+    """A motion map file (.nc, .zarr, .npz; .npz needs numpy only) as a :class:`MotionMap`;
+    ValueError naming the path for a file that is not one (a JARM map: :func:`store.load`)."""
+    lay = store.load_layout(path)
+    if store.check_layout(lay, path).name != "motion":
+        raise ValueError(f"{path} is a JARM map, not a motion map: load it with eccjump.store.load")
+    return _from_layout(lay)
 
 
 __all__ = [

@@ -372,7 +372,7 @@ def load_layout(path: str | os.PathLike) -> Layout:
         raise ValueError(f"{path} is not a readable {fmt} map: {err}") from err
 
 
-def _check_layout(lay: Layout, path: str | os.PathLike) -> MapKind:
+def check_layout(lay: Layout, path: str | os.PathLike) -> MapKind:
     """The kind of the map in ``lay``; ValueError naming ``path`` if something is missing."""
     try:
         kind = kind_of(lay.get("attrs", {}))
@@ -398,7 +398,7 @@ def load(path: str | os.PathLike) -> Region:
     numpy only. The file's ``complete`` and ``alpha_done`` go to ``Region.attrs``. A file
     that is not such a map raises ValueError naming it and what is missing."""
     lay = load_layout(check_path("path", path))
-    if _check_layout(lay, path).name != "jarm":
+    if check_layout(lay, path).name != "jarm":
         raise ValueError(f"{path} is a motion map: load it with eccjump.motion_maps.load")
     reg = to_region(lay)
     if "alpha_done" in lay["data_vars"]:
