@@ -117,11 +117,7 @@ pub enum Verdict {
 /// that acceleration is exactly 0 at onset (sliding and rolling coincide there), so a
 /// rounding-sized value counts as agreeing.
 fn slides(ramp: &Ramp, law: &ContactLaw, s: &BodyState, sigma: f64, onset: bool) -> bool {
-    let sl = Slipping {
-        ramp: *ramp,
-        sigma,
-        mu_k: law.mu_k,
-    };
+    let sl = Slipping::new(*ramp, sigma, law.mu_k);
     let k = sl.kinematics(s.theta, s.omega);
     if !(k.d > D_MIN && k.load > 0.0) {
         return false;

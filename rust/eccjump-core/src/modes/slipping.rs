@@ -12,6 +12,7 @@
 use crate::mechanics::friction::Sliding;
 use crate::mechanics::Ramp;
 use crate::ode::{Direction, EventFunctions, EventSpec, OdeSystem, State};
+use std::cell::Cell;
 
 /// During a slip, D = Ĩ_CM + χ K sin θ falling to this ends the run (Painlevé): the normal
 /// force Ĩ_CM B/D grows without bound as D → 0. The time and angle where D reaches it hardly
@@ -45,8 +46,12 @@ impl SlipKinematics {
     }
 }
 
-/// The sliding mode of a body on its ramp, friction in direction σ = ±1 with μ_k.
-#[derive(Debug, Clone, Copy, PartialEq)]
+/// The sliding mode of a body on its ramp, friction in direction σ = ±1 with μ_k, with a
+/// one-entry memo of (sin θ, cos θ) keyed on the bits of θ: each accepted step ends with the
+/// FSAL evaluation at the new state, where the event scan (and a recording observer) then
+/// look again; they find sin_cos in the memo. A pure function, so hits and misses give
+/// identical bits.
+#[derive(Debug, Clone, PartialEq)]
 pub struct Slipping {
     /// The body on its ramp.
     pub ramp: Ramp,
@@ -54,16 +59,39 @@ pub struct Slipping {
     pub sigma: f64,
     /// Kinetic friction coefficient.
     pub mu_k: f64,
+    trig: Cell<(f64, f64, f64)>,
 }
 
 impl Slipping {
+    /// The sliding mode with friction direction σ and kinetic coefficient μ_k.
+    pub fn new(ramp: Ramp, sigma: f64, mu_k: f64) -> Self {
+        Self {
+            ramp,
+            sigma,
+            mu_k,
+            trig: Cell::new((f64::NAN, f64::NAN, f64::NAN)),
+        }
+    }
+
+    /// (sin θ, cos θ), from the memo when θ is the last one asked for.
+    #[inline]
+    fn sin_cos(&self, theta: f64) -> (f64, f64) {
+        let (th, s, c) = self.trig.get();
+        if th.to_bits() == theta.to_bits() {
+            return (s, c);
+        }
+        let (s, c) = crate::trig::sin_cos(theta);
+        self.trig.set((theta, s, c));
+        (s, c)
+    }
+
     /// The sliding accelerations and force at (θ, θ̇). Computed for any D ≠ 0 (callers test
     /// `d`: the mode is consistent only where D > 0 and B > 0).
     #[inline]
     pub fn kinematics(&self, theta: f64, omega: f64) -> SlipKinematics {
         let r = &self.ramp;
         let chi = r.body.chi;
-        let (s, c) = crate::trig::sin_cos(theta);
+        let (s, c) = self.sin_cos(theta);
         let chi_w2 = chi * omega * omega;
         let load = r.cos_a - chi_w2 * c;
         let sl = Sliding::new(&r.body, s, c, self.sigma, self.mu_k);
@@ -117,14 +145,14 @@ impl SlipEvent {
 
 /// The events of a slip, all terminal.
 #[derive(Debug, Clone, Copy, PartialEq)]
-pub struct SlipEvents {
-    /// The sliding mode.
-    pub slipping: Slipping,
+pub struct SlipEvents<'a> {
+    /// The sliding mode (its memo shared with the right-hand side).
+    pub slipping: &'a Slipping,
     /// The l that ends the run (∞: never).
     pub l_max: f64,
 }
 
-impl EventFunctions<5> for SlipEvents {
+impl EventFunctions<5> for SlipEvents<'_> {
     fn count(&self) -> usize {
         SlipEvent::ALL.len()
     }
@@ -148,7 +176,7 @@ impl EventFunctions<5> for SlipEvents {
     #[inline]
     fn values(&self, first: usize, _t: f64, y: &State<5>, out: &mut [f64]) {
         let r = &self.slipping.ramp;
-        let (s, c) = crate::trig::sin_cos(y[0]);
+        let (s, c) = self.slipping.sin_cos(y[0]);
         let sl = Sliding::new(&r.body, s, c, self.slipping.sigma, self.slipping.mu_k);
         for (i, o) in out.iter_mut().enumerate() {
             *o = match SlipEvent::ALL[first + i] {
@@ -177,11 +205,7 @@ mod tests {
             (0.0, 0.5, 0.2, 1.0, 2.0, 1.0, 0.2),
         ] {
             let ramp = Ramp::new(Cylinder::new(chi, km).unwrap(), a).unwrap();
-            let sl = Slipping {
-                ramp,
-                sigma,
-                mu_k: mu,
-            };
+            let sl = Slipping::new(ramp, sigma, mu);
             let k = sl.kinematics(th, w);
             let ne = ramp
                 .newton_euler(th, w, Constraint::Sliding { sigma, mu_k: mu })

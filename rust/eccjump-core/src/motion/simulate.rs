@@ -275,13 +275,9 @@ impl Driver<'_> {
         if self.time_left() <= 0.0 {
             return Ok(self.end_of_time());
         }
-        let sys = Slipping {
-            ramp: *self.ramp,
-            sigma,
-            mu_k: self.opts.law.mu_k,
-        };
+        let sys = Slipping::new(*self.ramp, sigma, self.opts.law.mu_k);
         let events = SlipEvents {
-            slipping: sys,
+            slipping: &sys,
             l_max: self.opts.l_max,
         };
         let solver = ode::SolverOptions {
