@@ -106,7 +106,7 @@ def test_the_score_is_the_smallest_relative_margin(jump, control):
 
 def test_the_design_beats_the_grid_points_it_started_from(jump):
     """The refinement ends no worse than a few nearby points of the design space."""
-    from eccjump.design import _margins, _score, _Spec
+    from eccjump.design.margins import _margins, _score, _Spec
 
     spec = _Spec("jarm", jump.max_turns)
     km, rho = jump.body.km, jump.rod_position
