@@ -21,6 +21,7 @@ from motion_fake import MODES, energy, fake_result
 from eccjump import Cylinder, plot
 from eccjump.cli import main
 from eccjump.cli.simulate import state_energy, transition_energies
+from eccjump.plot import full_motion
 
 CLI = sys.modules["eccjump.cli.simulate"]
 
@@ -252,7 +253,7 @@ def test_motion_draws_into_given_axes_and_needs_six():
 def test_resampled_mode_is_that_of_the_last_transition():
     res = fake_result()
     ts = np.array([0.0, 1.99, 2.0, 2.7, 3.0, 3.3, 3.6, 4.5])
-    theta, _l, b, names = plot._resample(res, ts)
+    theta, _l, b, names = full_motion._resample(res, ts)
     assert names == ["ROLL", "ROLL", "SLIP", "SLIP", "FLIGHT", "FLIGHT", "ROLL", "ROLL"]
     np.testing.assert_allclose(theta, np.interp(ts, res.t, res.theta))
     assert b[5] > 1.0 and b[0] == 1.0
@@ -313,7 +314,7 @@ def _gallery_script():
 
 
 def test_gallery_script_writes_both_files(fake, tmp_path, monkeypatch, capsys):
-    monkeypatch.setattr(plot, "MAX_FRAMES", 8)
+    monkeypatch.setattr(full_motion, "MAX_FRAMES", 8)
     gallery = _gallery_script()
     png, gif = gallery.main(tmp_path)
     assert png.read_bytes()[:8] == b"\x89PNG\r\n\x1a\n" and gif.read_bytes()[:6] == b"GIF89a"

@@ -12,6 +12,7 @@ import matplotlib.pyplot as plt
 import eccjump
 from eccjump import closed_form, plot
 from eccjump.cli import main
+from eccjump.plot import paper
 
 
 @pytest.fixture(autouse=True)
@@ -71,7 +72,7 @@ def test_flood_fill_recovers_intervals_thinner_than_the_scan():
     chi = np.linspace(0.2, 0.45, 6)
     km = np.zeros_like(chi)
     coarse = eccjump.alpha_intervals(chi, km, 0.7, 3, n_scan=20)
-    filled = plot._grid_intervals(chi, km, 0.7, 3, 90)
+    filled = paper._grid_intervals(chi, km, 0.7, 3, 90)
     fine = eccjump.alpha_intervals(chi, km, 0.7, 3, n_scan=3000)
     assert sum(map(bool, filled)) >= sum(map(bool, coarse))
     for got, want in zip(filled, fine, strict=True):

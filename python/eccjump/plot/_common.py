@@ -1,0 +1,37 @@
+"""What every figure module shares: the turn colours, the point cap, matplotlib on demand."""
+
+from __future__ import annotations
+
+from typing import TYPE_CHECKING, Any
+
+if TYPE_CHECKING:
+    from matplotlib.axes import Axes
+    from matplotlib.figure import Figure
+
+
+#: Colours of the turns n = 1, 2, 3 (the paper's green, purple, orange); later turns cycle.
+TURN_COLORS = ("#2ca02c", "#8e44ad", "#ff7f0e", "#1f77b4", "#d62728")
+
+
+#: The most points a curve is sampled at (a bound on memory, not on accuracy).
+MAX_POINTS = 10**7
+
+
+def _plt() -> Any:
+    try:
+        import matplotlib.pyplot as plt
+    except ImportError as err:  # pragma: no cover - depends on the environment
+        raise ImportError("eccjump.plot needs matplotlib: pip install eccjump[plot]") from err
+    return plt
+
+
+def _color(n: int) -> str:
+    return TURN_COLORS[(n - 1) % len(TURN_COLORS)]
+
+
+def _new_axes(ax: Axes | None, figsize: tuple[float, float]) -> tuple[Figure, Axes]:
+    if ax is not None:
+        return ax.figure, ax
+    plt = _plt()
+    fig, ax = plt.subplots(figsize=figsize, layout="constrained")
+    return fig, ax

@@ -1,0 +1,300 @@
+"""The full motion (eccjump.simulate): its panels against time and an animated GIF."""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Sequence
+from pathlib import Path
+from typing import TYPE_CHECKING, Any
+
+import numpy as np
+from numpy.typing import NDArray
+
+from eccjump._checks import integer, real
+
+if TYPE_CHECKING:
+    from matplotlib.axes import Axes
+    from matplotlib.figure import Figure
+
+    from eccjump.body import Cylinder
+from eccjump.plot._common import _plt
+
+# --------------------------------------------------------------------------------------------
+# The full motion (eccjump.simulate / eccjump simulate)
+# --------------------------------------------------------------------------------------------
+
+#: The modes of :func:`eccjump.simulate`, by their code in ``MotionResult.mode``.
+MODE_NAMES = ("ROLL", "SLIP", "FLIGHT")
+
+#: Colours of the modes (background bands of :func:`motion`, the body in :func:`animate_motion`).
+MODE_COLORS = {"ROLL": "#2ca02c", "SLIP": "#ff7f0e", "FLIGHT": "#1f77b4"}
+
+#: The most frames :func:`animate_motion` writes (keeps the GIF small).
+MAX_FRAMES = 150
+
+
+def _mode_runs(t: NDArray[np.float64], mode: NDArray[Any]) -> list[tuple[float, float, str]]:
+    """(t_start, t_end, name) of each run of one mode in the recorded points."""
+    if t.size == 0:
+        return []
+    change = np.flatnonzero(np.diff(mode) != 0) + 1
+    starts, ends = np.r_[0, change], np.r_[change - 1, t.size - 1]
+    return [
+        (float(t[i]), float(t[j]), MODE_NAMES[int(mode[i])] if 0 <= mode[i] < 3 else "?")
+        for i, j in zip(starts, ends, strict=True)
+    ]
+
+
+def _body_alpha(
+    result: Any, body: Cylinder | None, alpha: float | None
+) -> tuple[Cylinder | None, float | None]:
+    """The body and ramp angle: the arguments, else the result's own (if it has them)."""
+    body = body if body is not None else getattr(result, "body", None)
+    alpha = alpha if alpha is not None else getattr(result, "alpha", None)
+    if alpha is not None:
+        alpha = real("alpha", alpha)
+    return body, alpha
+
+
+def _motion_title(result: Any, body: Cylinder | None, alpha: float | None) -> str:
+    parts = []
+    if alpha is not None:
+        parts.append(rf"$\alpha = {math.degrees(alpha):g}°$")
+    if body is not None:
+        parts.append(rf"$\chi = {body.chi:g}$, $k_m = {body.km:g}$")
+    head = "Full motion" + (": " + ", ".join(parts) if parts else "")
+    return f"{head} — {result.status}: {result.message}"
+
+
+def motion(
+    result: Any,
+    *,
+    axes: Sequence[Axes] | None = None,
+    body: Cylinder | None = None,
+    alpha: float | None = None,
+) -> Figure:
+    """Six stacked panels of an :func:`eccjump.simulate` run against time (shared axis):
+    theta', the slip velocity v = l' - theta', F_x, F_y, the height b - 1 of the centre, and
+    the mechanical energy E with E + dissipated (dashed: flat when the ledger closes). The
+    modes are coloured background bands (ROLL, SLIP, FLIGHT), impacts dotted vertical lines.
+
+    ``axes``: six axes to draw into (else a new figure). ``body`` and ``alpha`` [rad] only
+    label the title (taken from the result if it has them). The curves have gids
+    ``theta_dot``, ``slip_velocity``, ``Fx``, ``Fy``, ``height``, ``energy``,
+    ``energy_total``."""
+    plt = _plt()
+    from matplotlib.lines import Line2D
+    from matplotlib.patches import Patch
+
+    if axes is None:
+        fig, ax_arr = plt.subplots(6, 1, sharex=True, figsize=(9.0, 12.0), layout="constrained")
+        axs = list(ax_arr)
+    else:
+        axs = list(axes)
+        if len(axs) != 6:
+            raise ValueError(f"axes must be 6 axes, not {len(axs)}")
+        fig = axs[0].figure
+    body, alpha = _body_alpha(result, body, alpha)
+    si = getattr(result, "units", None) is not None
+    if si:
+        u_t, u_w, u_v, u_f, u_l, u_e = "s", "rad/s", "m/s", "N", "m", "J"
+    else:
+        u_t, u_w, u_v, u_f, u_l, u_e = (
+            r"$\sqrt{R/g}$",
+            r"$\sqrt{g/R}$",
+            r"$\sqrt{gR}$",
+            "$Mg$",
+            "$R$",
+            "$MgR$",
+        )
+    t = np.asarray(result.t, dtype=float)
+    mode = np.asarray(result.mode)
+    energy = np.asarray(result.energy, dtype=float)
+    total = energy + np.asarray(result.dissipated, dtype=float)
+    panels = (
+        ("theta_dot", result.omega, rf"$\dot\theta$ [{u_w}]"),
+        ("slip_velocity", result.slip_velocity, rf"slip $v = \dot l - \dot\theta$ [{u_v}]"),
+        ("Fx", result.Fx, rf"friction $F_x$ [{u_f}]"),
+        ("Fy", result.Fy, rf"normal $F_y$ [{u_f}]"),
+        ("height", result.height, rf"height $b - 1$ [{u_l}]"),
+    )
+    for ax, (gid, y, label) in zip(axs, panels, strict=False):
+        ax.axhline(0.0, color="0.6", lw=0.7)
+        (line,) = ax.plot(t, np.asarray(y, dtype=float), color="k", lw=1.3)
+        line.set_gid(gid)
+        ax.set_ylabel(label)
+    a_e = axs[5]
+    (line,) = a_e.plot(t, energy, color="k", lw=1.3, label="mechanical $E$")
+    line.set_gid("energy")
+    (line,) = a_e.plot(
+        t, total, color="#d62728", ls="--", lw=1.3, label="$E$ + dissipated (slip, impacts)"
+    )
+    line.set_gid("energy_total")
+    a_e.set_ylabel(f"energy [{u_e}]")
+    a_e.legend(fontsize=8, loc="best")
+    a_e.set_xlabel(f"time $t$ [{u_t}]")
+
+    runs = _mode_runs(t, mode)
+    for ax in axs:
+        for t0, t1, name in runs:
+            ax.axvspan(t0, t1, color=MODE_COLORS.get(name, "0.8"), alpha=0.14, lw=0, zorder=0)
+        for imp in result.impacts:
+            ax.axvline(imp.t, color="0.25", ls=":", lw=1.0)
+        ax.grid(alpha=0.3)
+    if t.size:
+        axs[0].set_xlim(t[0], t[-1] if t[-1] > t[0] else t[0] + 1.0)
+    present = [n for n in MODE_NAMES if any(name == n for _, _, name in runs)]
+    handles: list[Any] = [Patch(color=MODE_COLORS[n], alpha=0.35, label=n) for n in present]
+    if result.impacts:
+        handles.append(Line2D([], [], color="0.25", ls=":", lw=1.0, label="impact"))
+    axs[0].legend(handles=handles, loc="upper left", ncol=len(handles) or 1, fontsize=8)
+    fig.suptitle(_motion_title(result, body, alpha), fontsize=11)
+    return fig
+
+
+def _resample(
+    result: Any, ts: NDArray[np.float64]
+) -> tuple[NDArray[np.float64], NDArray[np.float64], NDArray[np.float64], list[str]]:
+    """(theta, l, b, mode name) at the times ts: from the dense output ``result.sol`` if
+    present, else linear interpolation of the recorded points; the mode is that of the last
+    transition at or before each time."""
+    t = np.asarray(result.t, dtype=float)
+    if getattr(result, "sol", None) is not None:
+        y = np.asarray(result.sol(ts), dtype=float).reshape(6, -1)
+        theta, l_, b = y[0], y[2], y[4]
+    else:
+        theta, l_, b = (
+            np.interp(ts, t, np.asarray(getattr(result, k), dtype=float))
+            for k in ("theta", "l", "b")
+        )
+    trs = result.transitions
+    if trs:
+        tt = np.array([tr.t for tr in trs], dtype=float)
+        k = np.clip(np.searchsorted(tt, ts, side="right") - 1, 0, len(trs) - 1)
+        names = [trs[i].to_mode for i in k]
+    else:
+        mode = np.asarray(result.mode)
+        k = np.clip(np.searchsorted(t, ts, side="right") - 1, 0, t.size - 1)
+        names = [MODE_NAMES[int(mode[i])] for i in k]
+    return theta, l_, b, names
+
+
+def animate_motion(
+    result: Any,
+    path: str | Path,
+    *,
+    fps: int = 30,
+    seconds: float | None = None,
+    body: Cylinder | None = None,
+    alpha: float | None = None,
+    dpi: int = 80,
+    view: float = 2.6,
+) -> Path:
+    """Write an animated GIF of an :func:`eccjump.simulate` run (pillow's GIF writer).
+
+    The ramp slopes down to the right at ``alpha``; the body is the unit circle centred at
+    C = (l, b) in the ramp frame, its centre of mass C + chi (sin theta, cos theta) a dot
+    with the spoke C -> CM; the body and the title take the colour of the mode. The camera
+    follows C (a window ``view`` R either side); ticks on the ramp every R show the travel,
+    a trail the path of the centre of mass. Frames are evenly spaced in simulated time, at
+    most :data:`MAX_FRAMES` of them, played at ``fps`` (or over ``seconds``); the state comes
+    from ``result.sol`` if present, else from the recorded points.
+
+    ``body`` (for chi) and ``alpha`` [rad] are required unless the result carries them.
+    Returns the path written."""
+    body, alpha = _body_alpha(result, body, alpha)
+    if body is None or alpha is None:
+        raise ValueError("animate_motion needs the body and alpha: pass body= and alpha=")
+    if getattr(result, "units", None) is not None:
+        raise ValueError("animate_motion draws results in units g = R = M = 1, not SI")
+    path = Path(path)
+    if path.suffix.lower() != ".gif":
+        raise ValueError(f"{path}: animate_motion writes a .gif file")
+    fps = integer("fps", fps, 1, 1000)
+    dpi = integer("dpi", dpi, 10, 1000)
+    view = real("view", view)
+    t = np.asarray(result.t, dtype=float)
+    if t.size == 0:
+        raise ValueError("the result has no recorded points")
+    if seconds is None:
+        n = MAX_FRAMES
+        play_fps = float(fps)
+    else:
+        seconds = real("seconds", seconds)
+        if not (math.isfinite(seconds) and seconds > 0.0):
+            raise ValueError(f"seconds = {seconds:g} is outside the allowed range (0, inf)")
+        n = int(min(MAX_FRAMES, max(1, round(fps * seconds))))
+        play_fps = n / seconds
+    if t[-1] <= t[0]:
+        n = 1
+    ts = np.linspace(t[0], t[-1], n)
+    theta, l_, b, names = _resample(result, ts)
+
+    plt = _plt()
+    from matplotlib.animation import FuncAnimation, PillowWriter
+    from matplotlib.patches import Circle
+
+    chi = body.chi
+    ca, sa = math.cos(alpha), math.sin(alpha)
+
+    def lab(x: Any, y: Any) -> tuple[Any, Any]:
+        """Ramp frame (x down the ramp, y normal) -> lab frame (ramp down to the right)."""
+        return x * ca + y * sa, -x * sa + y * ca
+
+    cx, cy = lab(l_, b)
+    mx, my = lab(l_ + chi * np.sin(theta), b + chi * np.cos(theta))
+
+    fig, ax = plt.subplots(figsize=(4.4, 3.6), dpi=dpi)
+    fig.subplots_adjust(left=0.02, right=0.98, bottom=0.02, top=0.92)  # no per-frame layout
+    ax.set_aspect("equal")
+    ax.set_xticks([])
+    ax.set_yticks([])
+    x_lo, x_hi = float(np.min(l_)) - 3.0 * view - 2.0, float(np.max(l_)) + 3.0 * view + 2.0
+    rx, ry = lab(np.array([x_lo, x_hi]), np.zeros(2))
+    ax.plot(rx, ry, color="0.2", lw=2.0, zorder=2)
+    depth = 4.0 * view
+    gx, gy = lab(np.array([x_lo, x_hi, x_hi, x_lo]), np.array([0.0, 0.0, -depth, -depth]))
+    ax.fill(gx, gy, color="0.93", lw=0, zorder=0)
+    (hatch,) = ax.plot([], [], color="0.45", lw=0.8, zorder=1)
+    (trail,) = ax.plot([], [], color="0.55", lw=0.9, alpha=0.7, zorder=3)
+    circle = Circle((cx[0], cy[0]), 1.0, lw=2.0, fill=True, zorder=4)
+    ax.add_patch(circle)
+    (spoke,) = ax.plot([], [], color="k", lw=1.6, zorder=5)
+    (cm,) = ax.plot([], [], "o", color="k", ms=6, zorder=6)
+    (centre,) = ax.plot([], [], "+", color="k", ms=6, zorder=6)
+    title = ax.set_title("", fontsize=10)
+
+    def draw(k: int) -> list[Any]:
+        color = MODE_COLORS.get(names[k], "0.5")
+        circle.center = (cx[k], cy[k])
+        circle.set_edgecolor(color)
+        circle.set_facecolor((*_rgb(color), 0.18))
+        spoke.set_data([cx[k], mx[k]], [cy[k], my[k]])
+        cm.set_data([mx[k]], [my[k]])
+        centre.set_data([cx[k]], [cy[k]])
+        trail.set_data(mx[: k + 1], my[: k + 1])
+        ticks = np.arange(math.floor(l_[k] - 2.0 * view - 2.0), l_[k] + 2.0 * view + 2.0)
+        hx0, hy0 = lab(ticks, 0.0 * ticks)
+        hx1, hy1 = lab(ticks - 0.3, 0.0 * ticks - 0.3)
+        nan = np.full_like(ticks, np.nan)
+        hatch.set_data(
+            np.column_stack([hx0, hx1, nan]).ravel(), np.column_stack([hy0, hy1, nan]).ravel()
+        )
+        ax.set_xlim(cx[k] - view, cx[k] + view)
+        ax.set_ylim(cy[k] - 0.75 * view, cy[k] + 0.9 * view)
+        title.set_text(f"t = {ts[k]:7.3f}   {names[k]}")
+        title.set_color(color)
+        return [circle, spoke, cm, centre, trail, hatch, title]
+
+    anim = FuncAnimation(fig, draw, frames=n, blit=False)
+    try:
+        anim.save(path, writer=PillowWriter(fps=play_fps), dpi=dpi)
+    finally:
+        plt.close(fig)
+    return path
+
+
+def _rgb(color: str) -> tuple[float, float, float]:
+    from matplotlib.colors import to_rgb
+
+    return to_rgb(color)
