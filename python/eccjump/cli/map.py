@@ -32,43 +32,16 @@ from typing import Any
 import numpy as np
 from numpy.typing import NDArray
 
-from eccjump import motion_maps, plot, store
-from eccjump.classification import region
+from eccjump import store
+from eccjump.cli import map_jobs
 from eccjump.cli._args import int_at_least
-from eccjump.labelled import make_layout, map_attrs
-from eccjump.map_kinds import JARM, MOTION, MapKind
-from eccjump.motion_fields import sequence_name
+from eccjump.cli.map_jobs import Job
+from eccjump.labelled import make_layout
+from eccjump.map_kinds import MapKind
 from eccjump.store import ZarrMap, format_of, save
 
 #: Default points per chunk when --chunk is not given (a few seconds on a laptop core).
 POINTS_PER_CHUNK = 100_000
-
-#: Options of a JARM map that must match the store for --resume (attribute names).
-MAP_OPTIONS = (
-    "mu_s",
-    "n",
-    "rule",
-    "method",
-    "theta0",
-    "omega0",
-    "rtol",
-    "atol",
-    "max_turns",
-    "refine_extrema",
-)
-#: The same for a motion map.
-MOTION_OPTIONS = (
-    "mu_s",
-    "mu_k",
-    "restitution",
-    "rule",
-    "theta0",
-    "omega0",
-    "t_max",
-    "max_transitions",
-    "rtol",
-    "atol",
-)
 
 
 def _range(lo: float, hi: float, name: str, lo_ok: float, hi_ok: float) -> None:
@@ -222,158 +195,8 @@ def _mismatch(
     return diffs
 
 
-class _JarmJob:
-    """``--kind jarm``: the JARM classification of each point (:func:`eccjump.region`)."""
-
-    kind: MapKind = JARM
-    matched = MAP_OPTIONS
-    counted = ("is_jarm", "n")
-
-    def __init__(self, args: argparse.Namespace) -> None:
-        self.opts = {
-            "mu_s": float(args.mu_s),
-            "n": args.n,
-            "rule": args.rule,
-            "method": args.route.replace("-", "_"),
-            "theta0": math.radians(args.theta0),
-            "omega0": float(args.omega0),
-            "rtol": float(args.rtol),
-            "atol": float(args.atol),
-            "max_turns": int(args.max_turns),
-            "refine_extrema": False,
-        }
-        self.attrs = map_attrs(**self.opts)
-        self.points = self.jarm = 0
-        self.per_n: dict[int, int] = {}
-
-    def compute(
-        self, alpha: NDArray, chi: NDArray, km: NDArray, threads: int
-    ) -> dict[str, NDArray]:
-        o = self.opts
-        reg = region(
-            o["mu_s"],
-            o["n"],
-            alpha=alpha,
-            chi=chi,
-            km=km,
-            n_threads=threads,
-            **{k: v for k, v in o.items() if k not in ("mu_s", "n")},
-        )
-        return {f: getattr(reg.result, f) for f in self.kind.fields}
-
-    def count(self, part: dict[str, NDArray]) -> None:
-        is_jarm = np.asarray(part["is_jarm"], dtype=bool)
-        self.points += is_jarm.size
-        turns = np.asarray(part["n"])[is_jarm]
-        self.jarm += turns.size
-        values, counts = np.unique(turns, return_counts=True)
-        for v, c in zip(values.tolist(), counts.tolist(), strict=True):
-            self.per_n[v] = self.per_n.get(v, 0) + c
-
-    def lines(self) -> list[str]:
-        lines = [_jarm_line(self.jarm, self.points)]
-        shown = sorted(self.per_n)[:10]
-        for v in shown:
-            lines.append(f"  n = {v:<8}  {_share(self.per_n[v], self.points)}")
-        rest = sum(c for v, c in self.per_n.items() if v not in shown)
-        if rest:
-            lines.append(f"  n > {shown[-1]:<8}  {_share(rest, self.points)}")
-        return lines
-
-    def draw(self, path: str, figure: str) -> None:
-        fig = plot.region_map(store.load(path))
-        fig.savefig(figure, dpi=110)
-
-
-class _MotionJob:
-    """``--kind motion``: the full motion of each point to its first landing
-    (:func:`eccjump.motion_map`)."""
-
-    kind: MapKind = MOTION
-    matched = MOTION_OPTIONS
-    counted = ("sequence", "jarm", "slipped_first", "status")
-
-    def __init__(self, args: argparse.Namespace) -> None:
-        mu_s = float(args.mu_s)
-        self.opts = {
-            "mu_s": mu_s,
-            "mu_k": mu_s if args.mu_k is None else float(args.mu_k),
-            "restitution": float(args.restitution),
-            "rule": args.rule,
-            "theta0": math.radians(args.theta0),
-            "omega0": float(args.omega0),
-            "t_max": float(args.t_max),
-            "max_transitions": int(args.max_transitions),
-            "rtol": float(args.rtol),
-            "atol": float(args.atol),
-        }
-        self.attrs = {
-            "title": "motion map of an eccentric cylinder on a ramp (eccjump)",
-            "kind": "motion",
-            "eccjump_version": motion_maps._core.VERSION,
-            **self.opts,
-            "units": "g = R = M = 1: angles in rad, times in sqrt(R/g), lengths in R",
-        }
-        self.points = self.jarm = self.slipped = self.invalid = 0
-        self.per_sequence: dict[int, int] = {}
-
-    def compute(
-        self, alpha: NDArray, chi: NDArray, km: NDArray, threads: int
-    ) -> dict[str, NDArray]:
-        m = motion_maps.motion_map(alpha=alpha, chi=chi, km=km, n_threads=threads, **self.opts)
-        assert isinstance(m, motion_maps.MotionMap)
-        return {f: m.fields[f] for f in self.kind.fields}
-
-    def count(self, part: dict[str, NDArray]) -> None:
-        self.points += part["jarm"].size
-        self.jarm += int(np.count_nonzero(part["jarm"]))
-        self.slipped += int(np.count_nonzero(part["slipped_first"]))
-        self.invalid += int(np.count_nonzero(part["status"] == motion_maps.INVALID))
-        codes, counts = np.unique(part["sequence"], return_counts=True)
-        for c, k in zip(codes.tolist(), counts.tolist(), strict=True):
-            self.per_sequence[c] = self.per_sequence.get(c, 0) + k
-
-    def lines(self) -> list[str]:
-        p = self.points
-        lines = [
-            _jarm_line(self.jarm, p),
-            f"slips first   {_share(self.slipped, p)}",
-        ]
-        if self.invalid:
-            lines.append(f"invalid       {_share(self.invalid, p)} (km = 0 or mu_k > mu_s)")
-        lines.append("sequences (first modes, to the mode after the first landing):")
-        top = sorted(self.per_sequence.items(), key=lambda kv: (-kv[1], kv[0]))
-        for code, n in top[:10]:
-            lines.append(f"  {sequence_name(code) or '(not run)':<44} {_share(n, p)}")
-        rest = sum(n for _, n in top[10:])
-        if rest:
-            lines.append(f"  {f'{len(top) - 10} other sequences':<44} {_share(rest, p)}")
-        return lines
-
-    def draw(self, path: str, figure: str) -> None:
-        fig = plot.sequence_map(motion_maps.load(path))
-        fig.savefig(figure, dpi=110)
-
-
-def _job(args: argparse.Namespace) -> _JarmJob | _MotionJob:
-    if args.kind == "motion":
-        if args.n is not None or args.route != "closed-form":
-            raise ValueError("--n and --route are options of --kind jarm, not --kind motion")
-        return _MotionJob(args)
-    return _JarmJob(args)
-
-
-def _share(k: int, points: int) -> str:
-    return f"{k / points:.6f} ({k})" if points else "n/a"
-
-
-def _jarm_line(k: int, points: int) -> str:
-    share = f"{k / points:.6f}" if points else "n/a"
-    return f"JARM          {share} of the finished points ({k})"
-
-
 def _summary(
-    job: _JarmJob | _MotionJob,
+    job: Job,
     total: int,
     shape: tuple[int, int, int],
     computed: int,
@@ -447,7 +270,7 @@ def _run(args: argparse.Namespace) -> int:
     path = Path(args.output)
     fmt = format_of(path)
     alpha, chi, km = _axes(args)
-    job = _job(args)
+    job = map_jobs.job(args)
     if args.threads < 0:
         raise ValueError(f"--threads {args.threads} is outside the allowed range [0, 256]")
     # Let the core check every option on one point before anything is written (an invalid
@@ -525,7 +348,7 @@ def _write(
     path: Path,
     fmt: str,
     axes: tuple[NDArray, NDArray, NDArray],
-    job: _JarmJob | _MotionJob,
+    job: Job,
     chunk: int,
     stop: _Interrupt,
 ) -> int:
@@ -626,7 +449,7 @@ def _compute(
     target: _Target,
     fields: dict[str, NDArray],
     done: NDArray[np.bool_],
-    job: _JarmJob | _MotionJob,
+    job: Job,
     axes: tuple[NDArray, NDArray, NDArray],
     chunk: int,
     todo: list[int],
