@@ -8,7 +8,7 @@ angles in radians.
 from eccjump import closed_form, store
 from eccjump._core import VERSION as __version__
 from eccjump.body import Cylinder
-from eccjump.boundary import alpha_intervals, mu_s_min_path
+from eccjump.boundary import alpha_interval_around, alpha_intervals, mu_s_min_path
 from eccjump.classification import JarmResult, Reason, Region, jarm, region, region_dataset
 from eccjump.dense import DenseSolution
 from eccjump.design import Design, build, design
@@ -41,6 +41,7 @@ __all__ = [
     "StartMap",
     "Units",
     "__version__",
+    "alpha_interval_around",
     "alpha_intervals",
     "build",
     "closed_form",
