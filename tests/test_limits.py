@@ -200,6 +200,30 @@ def test_a_long_map_honours_ctrl_c_within_a_second():
     assert interrupted_after(code, 1.0) < 1.5  # the map takes about 10 s
 
 
+@pytest.mark.skipif(os.name != "posix", reason="needs POSIX signals")
+def test_a_long_motion_map_and_simulate_honour_ctrl_c_within_a_second():
+    for call in (
+        # a motion map of about 2.5 * 10^5 points: tens of seconds
+        "eccjump.motion_map(alpha=np.linspace(0.02, 1.5, 64), chi=np.linspace(0.05, 0.9, 64), "
+        "km=np.linspace(0.05, 0.9, 64), mu_s=1.0)",
+        # one run hopping down a shallow ramp for 10^6 time units with 10^6 transitions
+        "eccjump.simulate(eccjump.Cylinder(0.5, 0.4), 0.05, mu_s=1.0, restitution=0.5, "
+        "t_max=1e6, max_transitions=10**6, max_steps=10**7)",
+    ):
+        code = textwrap.dedent(
+            f"""
+            import numpy as np, eccjump
+            print("start", flush=True)
+            try:
+                {call}
+                print("finished")
+            except KeyboardInterrupt:
+                print("interrupted", flush=True)
+            """
+        )
+        assert interrupted_after(code, 1.0) < 1.5
+
+
 @pytest.mark.parametrize(
     ("argv", "name"),
     [
