@@ -9,6 +9,40 @@ pub fn sin_cos(x: f64) -> (f64, f64) {
     libm::sincos(x)
 }
 
+/// A one-entry memo of (sin θ, cos θ), keyed on the bits of θ. Each accepted step of the
+/// integrator ends with the FSAL evaluation at the new state, where the event scan (and an
+/// observer) then look again: they find sin_cos in the memo. A pure function, so hits and
+/// misses give identical bits.
+#[derive(Debug, Clone, PartialEq)]
+pub struct SinCosMemo(std::cell::Cell<(f64, f64, f64)>);
+
+impl Default for SinCosMemo {
+    fn default() -> Self {
+        // θ = NaN never matches: the first lookup computes.
+        Self(std::cell::Cell::new((f64::NAN, f64::NAN, f64::NAN)))
+    }
+}
+
+impl SinCosMemo {
+    /// (sin θ, cos θ), from the memo when θ is the last one asked for.
+    #[inline]
+    pub fn get(&self, theta: f64) -> (f64, f64) {
+        let (th, s, c) = self.0.get();
+        if th.to_bits() == theta.to_bits() {
+            return (s, c);
+        }
+        let (s, c) = sin_cos(theta);
+        self.0.set((theta, s, c));
+        (s, c)
+    }
+
+    /// The entry (θ, sin θ, cos θ); θ is NaN before the first lookup.
+    #[inline]
+    pub fn entry(&self) -> (f64, f64, f64) {
+        self.0.get()
+    }
+}
+
 /// x^y.
 #[inline]
 pub fn pow(x: f64, y: f64) -> f64 {

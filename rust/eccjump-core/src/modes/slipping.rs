@@ -12,7 +12,7 @@
 use crate::mechanics::friction::Sliding;
 use crate::mechanics::Ramp;
 use crate::ode::{Direction, EventFunctions, EventSpec, OdeSystem, State};
-use std::cell::Cell;
+use crate::trig::SinCosMemo;
 
 /// During a slip, D = Ĩ_CM + χ K sin θ falling to this ends the run (Painlevé): the normal
 /// force Ĩ_CM B/D grows without bound as D → 0. The time and angle where D reaches it hardly
@@ -46,11 +46,8 @@ impl SlipKinematics {
     }
 }
 
-/// The sliding mode of a body on its ramp, friction in direction σ = ±1 with μ_k, with a
-/// one-entry memo of (sin θ, cos θ) keyed on the bits of θ: each accepted step ends with the
-/// FSAL evaluation at the new state, where the event scan (and a recording observer) then
-/// look again; they find sin_cos in the memo. A pure function, so hits and misses give
-/// identical bits.
+/// The sliding mode of a body on its ramp, friction in direction σ = ±1 with μ_k, with the
+/// memo of sin_cos its right-hand side and its events share ([`SinCosMemo`]).
 #[derive(Debug, Clone, PartialEq)]
 pub struct Slipping {
     /// The body on its ramp.
@@ -59,7 +56,7 @@ pub struct Slipping {
     pub sigma: f64,
     /// Kinetic friction coefficient.
     pub mu_k: f64,
-    trig: Cell<(f64, f64, f64)>,
+    trig: SinCosMemo,
 }
 
 impl Slipping {
@@ -69,20 +66,13 @@ impl Slipping {
             ramp,
             sigma,
             mu_k,
-            trig: Cell::new((f64::NAN, f64::NAN, f64::NAN)),
+            trig: SinCosMemo::default(),
         }
     }
 
-    /// (sin θ, cos θ), from the memo when θ is the last one asked for.
     #[inline]
     fn sin_cos(&self, theta: f64) -> (f64, f64) {
-        let (th, s, c) = self.trig.get();
-        if th.to_bits() == theta.to_bits() {
-            return (s, c);
-        }
-        let (s, c) = crate::trig::sin_cos(theta);
-        self.trig.set((theta, s, c));
-        (s, c)
+        self.trig.get(theta)
     }
 
     /// The sliding accelerations and force at (θ, θ̇). Computed for any D ≠ 0 (callers test

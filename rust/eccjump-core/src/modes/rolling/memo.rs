@@ -4,7 +4,7 @@
 use crate::mechanics::Ramp;
 use crate::modes::rolling::Kinematics;
 use crate::ode::{OdeSystem, State};
-use std::cell::Cell;
+use crate::trig::SinCosMemo;
 
 /// Pure rolling with a one-entry memo of (sin θ, cos θ), keyed on the bits of θ. Each
 /// accepted step ends with the FSAL evaluation of the right-hand side at the new state;
@@ -14,34 +14,27 @@ use std::cell::Cell;
 #[derive(Debug, Clone)]
 pub(crate) struct RollingMemo {
     pub ramp: Ramp,
-    /// (θ, sin θ, cos θ) of the last evaluation; θ = NaN at first, whose sin_cos is NaN.
-    trig: Cell<(f64, f64, f64)>,
+    trig: SinCosMemo,
 }
 
 impl RollingMemo {
     pub(crate) fn new(ramp: Ramp) -> Self {
         Self {
             ramp,
-            trig: Cell::new((f64::NAN, f64::NAN, f64::NAN)),
+            trig: SinCosMemo::default(),
         }
     }
 
     #[inline]
     pub(crate) fn sin_cos(&self, theta: f64) -> (f64, f64) {
-        let (th, s, c) = self.trig.get();
-        if th.to_bits() == theta.to_bits() {
-            return (s, c);
-        }
-        let (s, c) = crate::trig::sin_cos(theta);
-        self.trig.set((theta, s, c));
-        (s, c)
+        self.trig.get(theta)
     }
 
     /// The memo's entry (θ, sin θ, cos θ): an anchor for [`ContactBounds::near`] (θ is
     /// NaN before the first evaluation, which the bounds treat as no anchor).
     #[inline]
     pub(crate) fn anchor(&self) -> (f64, f64, f64) {
-        self.trig.get()
+        self.trig.entry()
     }
 
     /// [`Ramp::kinematics`], bit for bit.
