@@ -94,28 +94,14 @@ def params(alpha: float, chi: float, km: float) -> np.ndarray:
 # ------------------------------------------------------------------------------------------
 def scipy_peer(method: str):
     try:
-        from scipy.integrate import solve_ivp
+        from bench_roll import scipy_roll  # the user's scipy script of bench_roll.py
     except ImportError as e:  # pragma: no cover - scipy is in the test extra
         note(f"scipy not installed ({e}); skipped")
         return None
 
     def run(p: np.ndarray, rtol: float, atol: float) -> float:
         chi, sa, ca, ic = (float(v) for v in p)
-
-        def rhs(_t, y):
-            th, w = y
-            s, c = math.sin(th), math.cos(th)
-            return [w, (chi * w * w * s + chi * (sa * c + ca * s) + sa) / (ic + 1 + 2 * chi * c)]
-
-        def liftoff(_t, y):
-            return chi * y[1] * y[1] * math.cos(y[0]) - ca
-
-        liftoff.terminal = True
-        liftoff.direction = 1
-        sol = solve_ivp(
-            rhs, (0, 1e3), [0.0, 0.0], method=method, rtol=rtol, atol=atol, events=liftoff
-        )
-        return float(sol.y_events[0][0][0])
+        return scipy_roll(math.atan2(sa, ca), chi, ic, rtol, atol, method)
 
     return run
 

@@ -18,7 +18,9 @@ from scipy.integrate import solve_ivp
 import eccjump
 
 
-def scipy_roll(alpha: float, chi: float, ic: float, rtol: float, atol: float) -> float:
+def scipy_roll(
+    alpha: float, chi: float, ic: float, rtol: float, atol: float, method: str = "RK45"
+) -> float:
     sa, ca = math.sin(alpha), math.cos(alpha)
 
     def rhs(_t, y):
@@ -31,7 +33,7 @@ def scipy_roll(alpha: float, chi: float, ic: float, rtol: float, atol: float) ->
 
     liftoff.terminal = True
     liftoff.direction = 1
-    sol = solve_ivp(rhs, (0, 1e3), [0.0, 0.0], method="RK45", rtol=rtol, atol=atol, events=liftoff)
+    sol = solve_ivp(rhs, (0, 1e3), [0.0, 0.0], method=method, rtol=rtol, atol=atol, events=liftoff)
     return float(sol.y_events[0][0][0])
 
 
