@@ -7,8 +7,8 @@ use std::cell::Cell;
 use std::f64::consts::PI;
 
 use eccjump_core::ode::{
-    solve, DenseStep, Direction, EventFunctions, EventSpec, NoEvents, Observation, OdeSystem,
-    Outcome, SolverOptions, State, Status,
+    solve, DenseStep, Direction, EventFunctions, EventSpec, Method, NoEvents, Observation,
+    OdeSystem, Outcome, SolverOptions, State, Status,
 };
 
 // ----- Allocation counting (per thread, so parallel tests do not interfere) -----
@@ -206,23 +206,22 @@ fn kepler_orbit_conserves_energy_and_angular_momentum() {
     assert!((out.y - y0).norm() < 1e-6, "{:?}", out.y - y0);
 }
 
-#[test]
-fn global_error_converges_at_fifth_order() {
-    // Fixed steps: tolerances so loose every step is accepted, max_step = first_step = h
-    // (h a power of two, so the steps land exactly on t_end). y = exp(sin t).
+/// The least-squares slope of log |global error| against log h at fixed steps (loose
+/// tolerances so every step is accepted, max_step = first_step = h, h a power of two so
+/// the steps land exactly on t_end), for y' = y cos t, y = exp(sin t).
+fn observed_order(method: Method, powers: std::ops::RangeInclusive<i32>) -> f64 {
     let sys = Rhs(|t: f64, y: &State<1>| y * t.cos());
     let t_end: f64 = 4.0;
     let exact = t_end.sin().exp();
     let mut points = Vec::new();
-    // h = 1/8 .. 1/64: past the pre-asymptotic regime, errors ~3e-9 .. 1e-13, well above
-    // rounding.
-    for k in 3..=6 {
+    for k in powers {
         let h = 0.5f64.powi(k);
         let opts = SolverOptions {
             rtol: 1e6,
             atol: 1e6,
             first_step: Some(h),
             max_step: h,
+            method,
             ..Default::default()
         };
         let (out, _, _) = run(&sys, &NoEvents, 0.0, v1(1.0), t_end, &opts);
@@ -231,7 +230,6 @@ fn global_error_converges_at_fifth_order() {
         assert_eq!(out.n_rejected, 0);
         points.push((h.ln(), (out.y[0] - exact).abs().ln()));
     }
-    // Least-squares slope of log error against log h.
     let n = points.len() as f64;
     let (mx, my) = points
         .iter()
@@ -239,10 +237,70 @@ fn global_error_converges_at_fifth_order() {
     let sxy: f64 = points.iter().map(|p| (p.0 - mx) * (p.1 - my)).sum();
     let sxx: f64 = points.iter().map(|p| (p.0 - mx) * (p.0 - mx)).sum();
     let slope = sxy / sxx;
-    assert!(
-        (4.5..=5.6).contains(&slope),
-        "order {slope}, points {points:?}"
+    eprintln!("{method:?}: order {slope}, points {points:?}");
+    slope
+}
+
+#[test]
+fn global_error_converges_at_fifth_order() {
+    // h = 1/8 .. 1/64: past the pre-asymptotic regime, errors ~3e-9 .. 1e-13, well above
+    // rounding.
+    let slope = observed_order(Method::Rk45, 3..=6);
+    assert!((4.5..=5.6).contains(&slope), "order {slope}");
+}
+
+#[test]
+fn dop853_global_error_converges_at_eighth_order() {
+    // h = 1/2 .. 1/8: errors well above rounding (an 8th-order method reaches 1e-14
+    // quickly).
+    let slope = observed_order(Method::Dop853, 1..=3);
+    assert!((7.3..=8.9).contains(&slope), "order {slope}");
+}
+
+#[test]
+fn dop853_oscillator_dense_output_and_event_are_accurate() {
+    let opts = SolverOptions {
+        rtol: 1e-10,
+        atol: 1e-12,
+        method: Method::Dop853,
+        ..Default::default()
+    };
+    let evs = [(spec(Direction::Falling, true), cos_falling as EventFn<2>)];
+    let (out, steps, hits) = run(&oscillator(), &Events(&evs), 0.0, v2(1.0, 0.0), 10.0, &opts);
+    assert_eq!(out.status, Status::Event(0));
+    assert_eq!(hits.len(), 1);
+    assert!((out.t - PI / 2.0).abs() <= 1e-10, "t = {}", out.t);
+    let (_, rk45_steps, _) = run(
+        &oscillator(),
+        &Events(&evs),
+        0.0,
+        v2(1.0, 0.0),
+        10.0,
+        &SolverOptions {
+            method: Method::Rk45,
+            ..opts
+        },
     );
+    // The point of the higher order: far fewer steps at tight tolerances.
+    assert!(
+        3 * steps.len() <= rk45_steps.len(),
+        "{} vs {}",
+        steps.len(),
+        rk45_steps.len()
+    );
+    let mut worst = 0.0f64;
+    for (_, d) in &steps {
+        assert_eq!(d.degree, 7);
+        for frac in [0.1, 0.25, 0.5, 0.75, 0.9] {
+            let t = d.t_old + frac * d.h;
+            let y = d.eval(t);
+            worst = worst
+                .max((y[0] - t.cos()).abs())
+                .max((y[1] + t.sin()).abs());
+        }
+        assert_eq!(d.eval(d.t_old), d.y_old);
+    }
+    assert!(worst < 1e-9, "dense output error {worst}");
 }
 
 // ----- Events -----
@@ -515,13 +573,22 @@ fn empty_interval_finishes_at_once() {
 
 #[test]
 fn solve_does_not_allocate() {
+    for method in [Method::Rk45, Method::Dop853] {
+        solve_does_not_allocate_with(method);
+    }
+}
+
+fn solve_does_not_allocate_with(method: Method) {
     let evs = [
         (spec(Direction::Any, false), sin_t as EventFn<2>),
         (spec(Direction::Rising, true), cos_falling),
     ];
     let events = Events(&evs);
     let sys = oscillator();
-    let opts = SolverOptions::default();
+    let opts = SolverOptions {
+        method,
+        ..Default::default()
+    };
     let mut seen = 0usize;
     let before = allocations();
     let out = solve(&sys, &events, 0.0, v2(1.0, 0.0), 10.0, &opts, &mut |_| {
@@ -529,7 +596,7 @@ fn solve_does_not_allocate() {
     });
     assert_eq!(allocations(), before);
     assert_eq!(out.status, Status::Event(1));
-    assert!(seen > 10);
+    assert!(seen > 5);
 }
 
 // ----- Agreement with scipy -----
@@ -545,7 +612,7 @@ impl OdeSystem<2> for VanDerPol {
 }
 
 /// The same algorithm as scipy's RK45 (first step, controller, tableau, nfev accounting),
-/// against constants frozen from scipy by `tests/scipy_rk45_reference.py`.
+/// against constants frozen from scipy by `tests/scipy_reference.py`.
 ///
 /// The constants depend on the BLAS numpy used: scipy forms the stage sums and the error
 /// estimate with `np.dot`, whose summation order is the BLAS kernel's. The error estimate
@@ -584,7 +651,7 @@ fn agrees_step_for_step_with_scipy_rk45() {
     }
 }
 
-// Generated by tests/scipy_rk45_reference.py with scipy 1.17.1.
+// Generated by tests/scipy_reference.py RK45 with scipy 1.17.1.
 const SCIPY_VDP_NFEV: usize = 710;
 const SCIPY_VDP_Y_END: [f64; 2] = [-2.008340492057528, 0.0329105875168946];
 const SCIPY_VDP_T: [f64; 90] = [
@@ -677,5 +744,77 @@ const SCIPY_VDP_T: [f64; 90] = [
     9.81049592869804,
     9.892027875644837,
     9.958493420986551,
+    10.0,
+];
+
+/// The same algorithm as scipy's DOP853 (first step, controller, tableau, the combined
+/// error norm, dense-output stages in nfev), against constants frozen from scipy by
+/// `tests/scipy_reference.py DOP853` (dense_output=True: eccjump builds every step's dense
+/// output for its events, three more evaluations each). Tolerances as for RK45 above.
+#[test]
+fn agrees_step_for_step_with_scipy_dop853() {
+    let opts = SolverOptions {
+        rtol: 1e-6,
+        atol: 1e-9,
+        method: Method::Dop853,
+        ..Default::default()
+    };
+    let (out, steps, _) = run(&VanDerPol, &NoEvents, 0.0, v2(2.0, 0.0), 10.0, &opts);
+    assert_eq!(out.status, Status::Finished);
+    let mut times = vec![0.0];
+    times.extend(steps.iter().map(|s| s.0));
+    assert_eq!(times.len(), SCIPY_DOP853_VDP_T.len());
+    assert_eq!(out.nfev, SCIPY_DOP853_VDP_NFEV);
+    for (i, (t, want)) in times.iter().zip(SCIPY_DOP853_VDP_T).enumerate() {
+        assert!(
+            (t - want).abs() <= 1e-6 * want.abs().max(1.0),
+            "step {i}: {t} vs {want}"
+        );
+    }
+    for (y, want) in out.y.iter().zip(SCIPY_DOP853_VDP_Y_END) {
+        assert!((y - want).abs() < 1e-8, "{y} vs {want}");
+    }
+}
+
+// Generated by tests/scipy_reference.py DOP853 with scipy 1.17.1.
+const SCIPY_DOP853_VDP_NFEV: usize = 650;
+const SCIPY_DOP853_VDP_Y_END: [f64; 2] = [-2.0083414716747794, 0.03290352750053471];
+const SCIPY_DOP853_VDP_T: [f64; 37] = [
+    0.0,
+    0.0004997501249375313,
+    0.0054972513743128445,
+    0.05547226386806598,
+    0.21359573165629142,
+    0.46870872494933735,
+    0.8829627746148512,
+    1.2571283912800475,
+    1.766862755876823,
+    2.2610460324723736,
+    2.515128442573899,
+    2.7692108526754247,
+    2.9980409965991615,
+    3.218850140557777,
+    3.378918178991672,
+    3.5389862174255664,
+    3.7988240279577563,
+    4.196626113191415,
+    4.5690702475703535,
+    5.065192077061537,
+    5.5814173883361295,
+    5.863549465518371,
+    6.088247609539416,
+    6.312945753560461,
+    6.538672206488614,
+    6.711818884322736,
+    6.884965562156858,
+    7.149831814532053,
+    7.534020861028063,
+    7.909826327506283,
+    8.414055745696775,
+    8.919272079802383,
+    9.173737999529656,
+    9.42820391925693,
+    9.65817993751233,
+    9.880023297941335,
     10.0,
 ];

@@ -1,9 +1,14 @@
-//! The 4th-order dense output of one Dormand–Prince step (scipy's `RkDenseOutput`).
+//! The dense output of one accepted step: a polynomial in σ = (t − t_old)/h, whatever pair
+//! produced it (degree 4 for Dormand–Prince 5(4), as scipy's `RkDenseOutput`; degree 7 for
+//! DOP853, converted from scipy's `Dop853DenseOutput` form into powers of σ).
 
-use super::tableau::P;
 use super::State;
 
-/// Dense output on [t_old, t_old + h]: y(t_old + σh) = y_old + h Σ_j Q_j σ^(j+1), j = 0..3.
+/// Highest degree of a dense-output polynomial (DOP853's).
+pub const MAX_DEGREE: usize = 7;
+
+/// Dense output on [t_old, t_old + h]: y(t_old + σh) = y_old + h Σ_j Q_j σ^(j+1),
+/// j = 0..degree − 1.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct DenseStep<const N: usize> {
     /// Start time of the step.
@@ -12,32 +17,35 @@ pub struct DenseStep<const N: usize> {
     pub h: f64,
     /// State at the start of the step.
     pub y_old: State<N>,
-    /// Q = K^T P of scipy's RK45, one column per power of σ.
-    pub q: [State<N>; 4],
+    /// The coefficients Q_j of σ^(j+1); those at j ≥ `degree` are zero and unused.
+    pub q: [State<N>; MAX_DEGREE],
+    /// Degree of the polynomial (1..=MAX_DEGREE).
+    pub degree: usize,
 }
 
 impl<const N: usize> DenseStep<N> {
-    /// The interpolant of the step of size h from (t_old, y_old) with the 7 stages K
-    /// (the last being the FSAL derivative at the step end): Q_j = Σ_i K_i P_ij, as
-    /// scipy's `K.T.dot(P)`.
+    /// The polynomial y_old + h Σ_j q_j σ^(j+1) of the given degree.
     #[inline]
-    pub fn from_stages(t_old: f64, h: f64, y_old: State<N>, k: &[State<N>; 7]) -> Self {
-        let mut q = [State::<N>::zeros(); 4];
-        for (j, qj) in q.iter_mut().enumerate() {
-            for (ki, pi) in k.iter().zip(P.iter()) {
-                *qj += ki * pi[j];
-            }
+    pub fn from_powers(t_old: f64, h: f64, y_old: State<N>, q: &[State<N>]) -> Self {
+        let degree = q.len().clamp(1, MAX_DEGREE);
+        let mut all = [State::<N>::zeros(); MAX_DEGREE];
+        all[..degree].copy_from_slice(&q[..degree]);
+        Self {
+            t_old,
+            h,
+            y_old,
+            q: all,
+            degree,
         }
-        Self { t_old, h, y_old, q }
     }
 
     /// The interpolated state at t (meaningful for t in [t_old, t_old + h]).
     #[inline]
     pub fn eval(&self, t: f64) -> State<N> {
         let s = (t - self.t_old) / self.h;
-        // Horner in σ: y_old + h σ (Q0 + σ (Q1 + σ (Q2 + σ Q3))).
-        let mut acc = self.q[3];
-        for j in (0..3).rev() {
+        // Horner in σ: y_old + h σ (Q0 + σ (Q1 + σ (Q2 + …))).
+        let mut acc = self.q[self.degree - 1];
+        for j in (0..self.degree - 1).rev() {
             acc = self.q[j] + acc * s;
         }
         self.y_old + acc * (self.h * s)
@@ -64,7 +72,7 @@ impl<const N: usize> DenseStep<N> {
     pub fn bounds(&self) -> DenseBounds<N> {
         let mut spread = State::<N>::zeros();
         let mut rate = State::<N>::zeros();
-        for (j, qj) in self.q.iter().enumerate() {
+        for (j, qj) in self.q[..self.degree].iter().enumerate() {
             let a = qj.abs();
             spread += a;
             rate += a * (j + 1) as f64;

@@ -1,16 +1,19 @@
-//! A generic Dormand–Prince 5(4) integrator ("RK45", as scipy's `RK45`) for small
-//! fixed-size states, with dense output and exactly located events.
+//! Embedded Runge–Kutta integrators for small fixed-size states (Dormand–Prince 5(4) as
+//! scipy's `RK45`, the default, and DOP853 as scipy's `DOP853`), with dense output and
+//! exactly located events.
 //!
-//! Kept apart, as in scipy's `_ivp`: the Butcher tableau ([`tableau`]), one adaptive step
-//! with its error norm and step-size control ([`stepper`]), the 4th-order dense-output
-//! interpolant ([`dense`]), event detection and root location ([`events`]), and the driver
-//! loop that ties them together with step limits and statuses ([`solver`]).
+//! Kept apart, as in scipy's `_ivp`: the Butcher tableaux ([`tableau`]), each pair's
+//! stages, error norm and dense-output construction ([`pair`]), the step-size control that
+//! every pair shares ([`stepper`]), the dense-output polynomial ([`dense`]), event
+//! detection and root location ([`events`]), and the driver loop that ties them together
+//! with step limits and statuses ([`solver`]).
 //!
 //! The driver never allocates: accepted steps and events are reported to an observer
 //! callback, so a caller that needs only the end state pays nothing for a trajectory.
 
 pub mod dense;
 pub mod events;
+pub mod pair;
 pub mod roots;
 pub mod solver;
 pub mod stepper;
@@ -18,6 +21,7 @@ pub mod tableau;
 
 pub use dense::{DenseBounds, DenseStep};
 pub use events::{Direction, EventCarry, EventFunctions, EventSpec, NoEvents, EVENT_CHUNK};
+pub use pair::Method;
 pub use solver::{solve, solve_until, Observation, Outcome, SolverOptions, Status};
 
 /// A state vector of fixed size N.

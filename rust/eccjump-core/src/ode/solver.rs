@@ -1,12 +1,14 @@
 //! The driver loop: initial step, adaptive steps, events, limits and statuses.
 //!
-//! Mirrors scipy's `solve_ivp(method="RK45")` loop (f0, `select_initial_step`, then
-//! `RK45.step` until t_bound), with events found on each accepted step's dense output.
+//! Mirrors scipy's `solve_ivp` loop (f0, `select_initial_step`, then `step` until
+//! t_bound) for either pair ([`Method`]), with events found on each accepted step's dense
+//! output.
 //! Everything lives on the stack; results go to the observer, so the loop never
 //! allocates.
 
 use super::events::{scan_step, EventCarry, NonFiniteEvent};
-use super::stepper::{all_finite, select_initial_step, StepStatus, Stepper};
+use super::pair::{all_finite, Dop853, Dp5, Method, RkPair};
+use super::stepper::{select_initial_step, StepStatus, Stepper};
 use super::{DenseStep, EventFunctions, OdeSystem, State};
 
 /// Integration options, with scipy's meanings.
@@ -25,6 +27,8 @@ pub struct SolverOptions {
     /// Interior points per step at which event signs are sampled in addition to the step
     /// ends, so that a double crossing inside one step is not missed.
     pub event_samples: usize,
+    /// The Runge–Kutta pair.
+    pub method: Method,
 }
 
 impl Default for SolverOptions {
@@ -36,6 +40,7 @@ impl Default for SolverOptions {
             first_step: None,
             max_step: f64::INFINITY,
             event_samples: 4,
+            method: Method::Rk45,
         }
     }
 }
@@ -146,6 +151,34 @@ where
     E: EventFunctions<N>,
     O: FnMut(Observation<'_, N>),
 {
+    match opts.method {
+        Method::Rk45 => {
+            drive::<Dp5<N>, _, _, _, N>(sys, events, t0, y0, t_end, opts, observer, stop)
+        }
+        Method::Dop853 => {
+            drive::<Dop853<N>, _, _, _, N>(sys, events, t0, y0, t_end, opts, observer, stop)
+        }
+    }
+}
+
+/// [`solve_until`] with the pair P.
+#[allow(clippy::too_many_arguments)]
+fn drive<P, S, E, O, const N: usize>(
+    sys: &S,
+    events: &E,
+    t0: f64,
+    y0: State<N>,
+    t_end: f64,
+    opts: &SolverOptions,
+    observer: &mut O,
+    stop: &dyn Fn() -> bool,
+) -> Outcome<N>
+where
+    P: RkPair<N>,
+    S: OdeSystem<N>,
+    E: EventFunctions<N>,
+    O: FnMut(Observation<'_, N>),
+{
     let mut out = Outcome {
         status: Status::NonFinite,
         t: t0,
@@ -166,6 +199,7 @@ where
     let h_abs = match opts.first_step {
         Some(h) => h,
         None => match select_initial_step(
+            P::ERROR_EXPONENT,
             sys,
             t0,
             &y0,
@@ -181,7 +215,7 @@ where
             None => return out,
         },
     };
-    let mut st = Stepper::new(
+    let mut st = Stepper::<P, N>::new(
         t0,
         y0,
         f0,
@@ -217,7 +251,11 @@ where
                 return out;
             }
         }
-        let dense: DenseStep<N> = st.dense();
+        let Some(dense): Option<DenseStep<N>> = st.dense(sys, &mut out.nfev) else {
+            // The step's dense output is unknown: stop at its start, as for its events.
+            out.status = Status::NonFinite;
+            return out;
+        };
         let scan = scan_step(
             events,
             &dense,

@@ -1,11 +1,12 @@
-//! One adaptive Dormand–Prince step: stages, error norm and step-size control, as scipy's
-//! `rk_step` and `RungeKutta._step_impl`, plus scipy's `select_initial_step`.
+//! One adaptive step of any embedded pair: step-size control as scipy's
+//! `RungeKutta._step_impl`, plus scipy's `select_initial_step`. The pair itself (stages,
+//! error norm, dense output) is a [`RkPair`].
 //!
-//! The arithmetic follows scipy operation by operation (same coefficients, same order of
-//! the scalar factors) so that accepted step sizes agree with scipy's to rounding.
+//! The arithmetic follows scipy operation by operation (same order of the scalar factors)
+//! so that accepted step sizes agree with scipy's to rounding.
 
 use super::dense::DenseStep;
-use super::tableau::{A, B, C, E, ERROR_EXPONENT, N_STAGES};
+use super::pair::{all_finite, rms_norm, RkPair};
 use super::{OdeSystem, State};
 
 /// Multiplies the asymptotically optimal step factor, for a margin (scipy `SAFETY`).
@@ -14,18 +15,6 @@ pub const SAFETY: f64 = 0.9;
 pub const MIN_FACTOR: f64 = 0.2;
 /// Largest factor by which an accepted step grows (scipy `MAX_FACTOR`).
 pub const MAX_FACTOR: f64 = 10.0;
-
-/// All components finite? Every new vector is checked, so NaN/inf never propagates.
-#[inline]
-pub fn all_finite<const N: usize>(v: &State<N>) -> bool {
-    v.iter().all(|x| x.is_finite())
-}
-
-/// The RMS norm of scipy's `common.norm`: ‖v‖₂ / √N.
-#[inline]
-pub fn rms_norm<const N: usize>(v: &State<N>) -> f64 {
-    v.dot(v).sqrt() / (N as f64).sqrt()
-}
 
 /// The next representable number after t in the direction of `direction` (C `nextafter`;
 /// `f64::next_up` needs a newer Rust than our minimum).
@@ -50,100 +39,13 @@ pub fn min_step(t: f64, direction: f64) -> f64 {
     10.0 * (next_after(t, direction) - t).abs()
 }
 
-/// Σ_j w_j K_j, summed in the order numpy's `np.dot(K.T, w)` uses here (OpenBLAS
-/// `dgemv_t`: four running sums over whole blocks of four terms, combined pairwise, then
-/// the remaining terms in sequence; no fused multiply-add). Any order would do for
-/// accuracy; this one reproduces scipy's error norms to the last bit, and since the norm
-/// is a difference of nearly equal quantities, other orders shift scipy's step sizes by
-/// ~1e-12 relative.
-#[inline(always)]
-pub fn weighted_sum<const N: usize>(k: &[State<N>], w: &[f64]) -> State<N> {
-    let len = k.len().min(w.len());
-    let blocked = len / 4 * 4;
-    let mut acc = [State::<N>::zeros(); 4];
-    for j in 0..blocked {
-        acc[j % 4] += k[j] * w[j];
-    }
-    let mut sum = (acc[0] + acc[1]) + (acc[2] + acc[3]);
-    for j in blocked..len {
-        sum += k[j] * w[j];
-    }
-    sum
-}
-
-/// One Runge–Kutta step of size h from (t, y) with f = f(t, y) (scipy `rk_step`). Fills
-/// `k` with the 6 stages and, FSAL, `k[6]` = f(t + h, y_new); returns y_new. Returns `None`
-/// as soon as any stage or y_new is not finite. Exactly 6 evaluations of f when it
-/// succeeds (fewer if it bails out; `nfev` counts the ones made).
-#[inline]
-pub fn rk_step<S: OdeSystem<N>, const N: usize>(
-    sys: &S,
-    t: f64,
-    y: &State<N>,
-    f: &State<N>,
-    h: f64,
-    k: &mut [State<N>; N_STAGES + 1],
-    nfev: &mut usize,
-) -> Option<State<N>> {
-    k[0] = *f;
-    // The stages one by one with constant s, so that each weighted sum is unrolled.
-    if !stage(sys, t, y, h, k, 1, nfev)
-        || !stage(sys, t, y, h, k, 2, nfev)
-        || !stage(sys, t, y, h, k, 3, nfev)
-        || !stage(sys, t, y, h, k, 4, nfev)
-        || !stage(sys, t, y, h, k, 5, nfev)
-    {
-        return None;
-    }
-    let y_new = y + weighted_sum(&k[..N_STAGES], &B) * h;
-    if !all_finite(&y_new) {
-        return None;
-    }
-    k[N_STAGES] = sys.rhs(t + h, &y_new);
-    *nfev += 1;
-    all_finite(&k[N_STAGES]).then_some(y_new)
-}
-
-/// Stage s of [`rk_step`]: k[s] = f(t + c_s h, y + (Σ_j K_j a_sj) h), in scipy's order
-/// of operations; false if it is not finite.
-#[inline(always)]
-fn stage<S: OdeSystem<N>, const N: usize>(
-    sys: &S,
-    t: f64,
-    y: &State<N>,
-    h: f64,
-    k: &mut [State<N>; N_STAGES + 1],
-    s: usize,
-    nfev: &mut usize,
-) -> bool {
-    let ys = y + weighted_sum(&k[..s], &A[s][..s]) * h;
-    k[s] = sys.rhs(t + C[s] * h, &ys);
-    *nfev += 1;
-    all_finite(&k[s])
-}
-
-/// The scaled RMS norm of the embedded error estimate h Σ E_i K_i, with the scale
-/// atol + rtol max(|y|, |y_new|) per component (scipy `_estimate_error_norm`).
-#[inline]
-pub fn error_norm<const N: usize>(
-    k: &[State<N>; N_STAGES + 1],
-    h: f64,
-    y: &State<N>,
-    y_new: &State<N>,
-    rtol: f64,
-    atol: f64,
-) -> f64 {
-    let err = weighted_sum(k, &E) * h;
-    let scaled =
-        State::<N>::from_fn(|i, _| err[i] / (atol + y[i].abs().max(y_new[i].abs()) * rtol));
-    rms_norm(&scaled)
-}
-
 /// scipy 1.17 `select_initial_step` (Hairer–Nørsett–Wanner II.4 with scipy's bounds by
 /// the interval length and max_step). Makes one evaluation of f; `None` if it is not
 /// finite.
+/// `error_exponent` is the pair's −1/(q + 1).
 #[allow(clippy::too_many_arguments)]
 pub fn select_initial_step<S: OdeSystem<N>, const N: usize>(
+    error_exponent: f64,
     sys: &S,
     t0: f64,
     y0: &State<N>,
@@ -182,7 +84,7 @@ pub fn select_initial_step<S: OdeSystem<N>, const N: usize>(
     let h1 = if d1 <= 1e-15 && d2 <= 1e-15 {
         (h0 * 1e-3).max(1e-6)
     } else {
-        crate::trig::pow(0.01 / d1.max(d2), -ERROR_EXPONENT)
+        crate::trig::pow(0.01 / d1.max(d2), -error_exponent)
     };
     Some((100.0 * h0).min(h1).min(interval_length).min(max_step))
 }
@@ -200,7 +102,7 @@ pub enum StepStatus {
 
 /// The integrator's state between steps: scipy's `RungeKutta` attributes.
 #[derive(Debug, Clone, Copy)]
-pub struct Stepper<const N: usize> {
+pub struct Stepper<P, const N: usize> {
     /// Current time.
     pub t: f64,
     /// Current state.
@@ -213,8 +115,9 @@ pub struct Stepper<const N: usize> {
     pub t_old: f64,
     /// State at `t_old`.
     pub y_old: State<N>,
-    /// Stages of the last attempted step; after acceptance they define its dense output.
-    pub k: [State<N>; N_STAGES + 1],
+    /// The pair with the stages of the last attempted step; after acceptance they define
+    /// its dense output.
+    pub pair: P,
     /// +1 or −1: the sign of t_bound − t0.
     pub direction: f64,
     /// End of the integration interval; steps are clipped to land on it.
@@ -227,7 +130,7 @@ pub struct Stepper<const N: usize> {
     pub atol: f64,
 }
 
-impl<const N: usize> Stepper<N> {
+impl<P: RkPair<N>, const N: usize> Stepper<P, N> {
     /// A stepper at (t0, y0) with f0 = f(t0, y0), first trial step `h_abs`.
     #[allow(clippy::too_many_arguments)]
     pub fn new(
@@ -247,7 +150,7 @@ impl<const N: usize> Stepper<N> {
             h_abs,
             t_old: t0,
             y_old: y0,
-            k: [State::<N>::zeros(); N_STAGES + 1],
+            pair: P::empty(),
             direction: if t_bound >= t0 { 1.0 } else { -1.0 },
             t_bound,
             max_step,
@@ -257,8 +160,9 @@ impl<const N: usize> Stepper<N> {
     }
 
     /// Attempts steps until one is accepted (scipy `_step_impl`): clips to t_bound,
-    /// shrinks by max(0.2, 0.9 err^(−1/5)) on rejection, grows by min(10, 0.9 err^(−1/5))
-    /// on acceptance but never grows right after a rejection in the same call.
+    /// shrinks by max(0.2, 0.9 err^e) on rejection, grows by min(10, 0.9 err^e)
+    /// on acceptance (e = −1/(q + 1) of the pair) but never grows right after a rejection
+    /// in the same call.
     #[inline]
     pub fn step<S: OdeSystem<N>>(
         &mut self,
@@ -289,10 +193,12 @@ impl<const N: usize> Stepper<N> {
             let h = t_new - t;
             h_abs = h.abs();
 
-            let Some(y_new) = rk_step(sys, t, &self.y, &self.f, h, &mut self.k, nfev) else {
+            let Some(y_new) = self.pair.attempt(sys, t, &self.y, &self.f, h, nfev) else {
                 return StepStatus::NonFinite;
             };
-            let err = error_norm(&self.k, h, &self.y, &y_new, self.rtol, self.atol);
+            let err = self
+                .pair
+                .error_norm(h, &self.y, &y_new, self.rtol, self.atol);
             if err.is_nan() {
                 return StepStatus::NonFinite;
             }
@@ -300,7 +206,7 @@ impl<const N: usize> Stepper<N> {
                 let mut factor = if err == 0.0 {
                     MAX_FACTOR
                 } else {
-                    MAX_FACTOR.min(SAFETY * crate::trig::pow(err, ERROR_EXPONENT))
+                    MAX_FACTOR.min(SAFETY * crate::trig::pow(err, P::ERROR_EXPONENT))
                 };
                 if step_rejected {
                     factor = factor.min(1.0);
@@ -310,20 +216,22 @@ impl<const N: usize> Stepper<N> {
                 self.y_old = self.y;
                 self.t = t_new;
                 self.y = y_new;
-                self.f = self.k[N_STAGES];
+                self.f = self.pair.f_new();
                 self.h_abs = h_abs;
                 return StepStatus::Accepted;
             }
-            h_abs *= MIN_FACTOR.max(SAFETY * crate::trig::pow(err, ERROR_EXPONENT));
+            h_abs *= MIN_FACTOR.max(SAFETY * crate::trig::pow(err, P::ERROR_EXPONENT));
             step_rejected = true;
             *n_rejected += 1;
         }
     }
 
-    /// The dense output of the last accepted step.
+    /// The dense output of the last accepted step (`None` if a stage it needs is not
+    /// finite).
     #[inline]
-    pub fn dense(&self) -> DenseStep<N> {
-        DenseStep::from_stages(self.t_old, self.t - self.t_old, self.y_old, &self.k)
+    pub fn dense<S: OdeSystem<N>>(&mut self, sys: &S, nfev: &mut usize) -> Option<DenseStep<N>> {
+        let (t_old, h, y_old, y) = (self.t_old, self.t - self.t_old, self.y_old, self.y);
+        self.pair.dense(sys, t_old, h, &y_old, &y, nfev)
     }
 }
 
@@ -339,25 +247,5 @@ mod tests {
         assert_eq!(next_after(0.0, 1.0), f64::from_bits(1));
         assert_eq!(next_after(0.0, -1.0), -f64::from_bits(1));
         assert_eq!(min_step(1.0, 1.0), 10.0 * f64::EPSILON);
-    }
-
-    #[test]
-    fn one_step_of_linear_growth_is_exact() {
-        // y' = 1 is integrated exactly by any consistent method (up to the rounding of
-        // Σ b_i), with an error estimate at rounding level.
-        struct One;
-        impl OdeSystem<1> for One {
-            fn rhs(&self, _t: f64, _y: &State<1>) -> State<1> {
-                State::<1>::new(1.0)
-            }
-        }
-        let mut nfev = 0;
-        let mut k = [State::<1>::zeros(); 7];
-        let y = State::<1>::new(2.0);
-        let y_new = rk_step(&One, 0.0, &y, &State::<1>::new(1.0), 0.5, &mut k, &mut nfev);
-        let y_new = y_new.unwrap();
-        assert!((y_new[0] - 2.5).abs() < 1e-15);
-        assert_eq!(nfev, 6);
-        assert!(error_norm(&k, 0.5, &y, &y_new, 1e-6, 1e-9) < 1e-8);
     }
 }

@@ -1,0 +1,194 @@
+//! Dormand–Prince 8(5,3) (scipy's `DOP853`): 12 stages, the combined 5th/3rd-order error
+//! norm of Hairer's code, and the 7th-degree dense output from three extra stages.
+
+use super::{all_finite, stage, weighted_sum, RkPair};
+use crate::ode::dense::MAX_DEGREE;
+use crate::ode::tableau::dop853::{
+    A, A_EXTRA, B, C, C_EXTRA, D, E3, E5, ERROR_EXPONENT, N_STAGES, N_STAGES_EXTENDED,
+};
+use crate::ode::{DenseStep, OdeSystem, State};
+
+/// The stages of one DOP853 step: 12 stages, the FSAL derivative at the step end
+/// (`k[12]`) and, once the dense output is built, its three extra stages.
+#[derive(Debug, Clone, Copy)]
+pub struct Dop853<const N: usize> {
+    /// Stages 0..=15.
+    pub k: [State<N>; N_STAGES_EXTENDED],
+}
+
+impl<const N: usize> RkPair<N> for Dop853<N> {
+    const ERROR_EXPONENT: f64 = ERROR_EXPONENT;
+
+    #[inline]
+    fn empty() -> Self {
+        Self {
+            k: [State::<N>::zeros(); N_STAGES_EXTENDED],
+        }
+    }
+
+    /// scipy's `rk_step` with DOP853's tableau: 12 evaluations of f when it succeeds.
+    #[inline]
+    fn attempt<S: OdeSystem<N>>(
+        &mut self,
+        sys: &S,
+        t: f64,
+        y: &State<N>,
+        f: &State<N>,
+        h: f64,
+        nfev: &mut usize,
+    ) -> Option<State<N>> {
+        let k = &mut self.k;
+        k[0] = *f;
+        let at = (t, y, h);
+        for s in 1..N_STAGES {
+            if !stage(sys, at, k, s, (&A[s], C[s]), nfev) {
+                return None;
+            }
+        }
+        let y_new = y + weighted_sum(&k[..N_STAGES], &B) * h;
+        if !all_finite(&y_new) {
+            return None;
+        }
+        k[N_STAGES] = sys.rhs(t + h, &y_new);
+        *nfev += 1;
+        all_finite(&k[N_STAGES]).then_some(y_new)
+    }
+
+    /// scipy's `DOP853._estimate_error_norm`: the 5th-order estimate, damped by the
+    /// 3rd-order one, |h| ‖e5‖² / √((‖e5‖² + 0.01 ‖e3‖²) N) (Hairer's `err`).
+    #[inline]
+    fn error_norm(&self, h: f64, y: &State<N>, y_new: &State<N>, rtol: f64, atol: f64) -> f64 {
+        let k = &self.k[..=N_STAGES];
+        let scale = State::<N>::from_fn(|i, _| atol + y[i].abs().max(y_new[i].abs()) * rtol);
+        let err5 = weighted_sum(k, &E5).component_div(&scale);
+        let err3 = weighted_sum(k, &E3).component_div(&scale);
+        let e5 = err5.dot(&err5);
+        let e3 = err3.dot(&err3);
+        if e5 == 0.0 && e3 == 0.0 {
+            return 0.0;
+        }
+        let denom = e5 + 0.01 * e3;
+        h.abs() * e5 / (denom * N as f64).sqrt()
+    }
+
+    #[inline]
+    fn f_new(&self) -> State<N> {
+        self.k[N_STAGES]
+    }
+
+    /// scipy's `_dense_output_impl` and `Dop853DenseOutput`: three more stages, then
+    /// y(σ) = y_old + σ(F0 + (1−σ)(F1 + σ(F2 + (1−σ)(F3 + σ(F4 + (1−σ)(F5 + σF6)))))),
+    /// expanded here into powers of σ (the form every dense step shares).
+    fn dense<S: OdeSystem<N>>(
+        &mut self,
+        sys: &S,
+        t_old: f64,
+        h: f64,
+        y_old: &State<N>,
+        y_new: &State<N>,
+        nfev: &mut usize,
+    ) -> Option<DenseStep<N>> {
+        let at = (t_old, y_old, h);
+        for (i, (a, c)) in A_EXTRA.iter().zip(C_EXTRA).enumerate() {
+            if !stage(sys, at, &mut self.k, N_STAGES + 1 + i, (a, c), nfev) {
+                return None;
+            }
+        }
+        let k = &self.k;
+        let f_old = k[0];
+        let delta = y_new - y_old;
+        let mut f = [State::<N>::zeros(); MAX_DEGREE];
+        f[0] = delta;
+        f[1] = f_old * h - delta;
+        f[2] = delta * 2.0 - (k[N_STAGES] + f_old) * h;
+        for (fi, d) in f[3..].iter_mut().zip(D.iter()) {
+            *fi = weighted_sum(k, d) * h;
+        }
+        // Expand the nested form from the inside out, as scipy evaluates it: add F_i,
+        // then multiply by σ (i even, counting from F6) or by 1 − σ.
+        let mut p = [State::<N>::zeros(); MAX_DEGREE + 1];
+        for (i, fi) in f.iter().rev().enumerate() {
+            p[0] += fi;
+            if i % 2 == 0 {
+                for j in (1..=MAX_DEGREE).rev() {
+                    p[j] = p[j - 1];
+                }
+                p[0] = State::<N>::zeros();
+            } else {
+                for j in (1..=MAX_DEGREE).rev() {
+                    p[j] -= p[j - 1];
+                }
+            }
+        }
+        // p[0] is zero; y_old + Σ_j p_j σ^j = y_old + h Σ_j (p_{j+1}/h) σ^(j+1).
+        let q: [State<N>; MAX_DEGREE] = std::array::from_fn(|j| p[j + 1] / h);
+        let dense = DenseStep::from_powers(t_old, h, *y_old, &q);
+        dense.q.iter().all(all_finite).then_some(dense)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// y' = cos t: every stage is known exactly, so one step checks the 8th order and
+    /// the dense output's 7th degree against sin.
+    struct Cos;
+    impl OdeSystem<1> for Cos {
+        fn rhs(&self, t: f64, _y: &State<1>) -> State<1> {
+            State::<1>::new(t.cos())
+        }
+    }
+
+    #[test]
+    fn one_step_of_a_quadrature_is_8th_order_and_dense_7th() {
+        let mut errs = Vec::new();
+        let mut dense_errs = Vec::new();
+        for h in [0.4, 0.2] {
+            let mut nfev = 0;
+            let mut pair = Dop853::<1>::empty();
+            let y = State::<1>::new(0.0);
+            let y_new = pair
+                .attempt(&Cos, 0.0, &y, &State::<1>::new(1.0), h, &mut nfev)
+                .unwrap();
+            assert_eq!(nfev, 12);
+            errs.push((y_new[0] - h.sin()).abs());
+            let d = pair.dense(&Cos, 0.0, h, &y, &y_new, &mut nfev).unwrap();
+            assert_eq!(nfev, 15);
+            assert_eq!(d.degree, 7);
+            let worst = (0..=20)
+                .map(|i| {
+                    let t = h * i as f64 / 20.0;
+                    (d.eval(t)[0] - t.sin()).abs()
+                })
+                .fold(0.0, f64::max);
+            dense_errs.push(worst);
+        }
+        // Local error O(h^9) for the step, O(h^8) for the interpolant: halving h divides
+        // them by 2^9 = 512 and 2^8 = 256 (loosely: by more than 200 and 100).
+        assert!(
+            errs[0] < 1e-11 && errs[0] / errs[1].max(1e-300) > 200.0,
+            "{errs:?}"
+        );
+        assert!(dense_errs[0] < 1e-9, "{dense_errs:?}");
+        assert!(dense_errs[0] / dense_errs[1] > 100.0, "{dense_errs:?}");
+    }
+
+    #[test]
+    fn error_norm_is_zero_for_a_constant_and_small_for_a_line() {
+        struct Line;
+        impl OdeSystem<1> for Line {
+            fn rhs(&self, _t: f64, _y: &State<1>) -> State<1> {
+                State::<1>::new(2.0)
+            }
+        }
+        let mut nfev = 0;
+        let mut pair = Dop853::<1>::empty();
+        let y = State::<1>::new(1.0);
+        let y_new = pair
+            .attempt(&Line, 0.0, &y, &State::<1>::new(2.0), 0.5, &mut nfev)
+            .unwrap();
+        assert!((y_new[0] - 2.0).abs() < 1e-15);
+        assert!(pair.error_norm(0.5, &y, &y_new, 1e-6, 1e-9) < 1e-6);
+    }
+}
