@@ -20,6 +20,8 @@ from eccjump._checks import U32_MAX, U64_MAX, flag, integer, real, text
 
 Method = Literal["closed_form", "ode"]
 Rule = Literal["paper", "normal_force"]
+#: The Runge–Kutta pair of an integration, by scipy's names.
+Integrator = Literal["RK45", "DOP853"]
 
 #: The raw result of a bridge call: one flat array per field.
 Raw = dict[str, NDArray]
@@ -37,6 +39,7 @@ class CallOptions:
     max_turns : cap of the search, in turns (>= 1).
     refine_extrema : refine max_ratio and min_Fy to full precision (closed form).
     n_threads : threads per call (0 = one per core); results do not depend on it.
+    integrator : the Runge–Kutta pair of ``method="ode"``, ``"RK45"`` or ``"DOP853"``.
 
     A plain module-level frozen dataclass: it pickles into dask graphs.
     """
@@ -51,6 +54,7 @@ class CallOptions:
     max_turns: int
     refine_extrema: bool
     n_threads: int
+    integrator: str = "RK45"
 
 
 def call_options(
@@ -65,6 +69,7 @@ def call_options(
     max_turns: int,
     refine_extrema: bool,
     n_threads: int,
+    integrator: str = "RK45",
 ) -> CallOptions:
     """The options of a classification call, type-checked and converted to plain Python
     types (TypeError naming the argument for a wrong type; see :mod:`eccjump._checks`).
@@ -84,6 +89,7 @@ def call_options(
         max_turns=integer("max_turns", max_turns, 1, U32_MAX),
         refine_extrema=flag("refine_extrema", refine_extrema),
         n_threads=integer("n_threads", n_threads, 0, U64_MAX),
+        integrator=text("integrator", integrator),
     )
 
 
@@ -99,6 +105,7 @@ def _bridge_options(opts: CallOptions) -> _core.CallOptions:
         "max_turns": opts.max_turns,
         "refine_extrema": opts.refine_extrema,
         "n_threads": opts.n_threads,
+        "integrator": opts.integrator,
     }
 
 

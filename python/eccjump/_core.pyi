@@ -63,6 +63,7 @@ def roll(
     max_steps: int,
     dense_output: bool,
     rule: str,
+    integrator: str,
 ) -> dict[str, Any]: ...
 
 class DenseSolution:
@@ -94,6 +95,7 @@ def simulate(
     atol: float,
     max_steps: int,
     dense_output: bool,
+    integrator: str,
 ) -> dict[str, Any]:
     """The full motion of the body (chi, km) on a ramp of angle alpha (docs/motion.md), with
     the GIL released. Options are keyword-only, all required (``eccjump.simulate`` gives the
@@ -133,6 +135,7 @@ class CallOptions(TypedDict):
     max_turns: int
     refine_extrema: bool
     n_threads: int
+    integrator: str
 
 def jarm_points(
     alpha: NDArray[np.float64],

@@ -8,18 +8,18 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass, fields, replace
-from typing import Literal, NamedTuple
+from typing import NamedTuple
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from eccjump import _core
 from eccjump._arrays import same_values
+from eccjump._bridge import Integrator, Rule
 from eccjump._checks import flag, integer, optional_real, real, real_array, text
 from eccjump.body import Cylinder
 from eccjump.units import Units
 
-Rule = Literal["paper", "normal_force"]
 #: Mode codes of :attr:`MotionResult.mode`, by index.
 MODES = ("ROLL", "SLIP", "FLIGHT")
 #: Why a mode began (``docs/motion.md``).
@@ -304,6 +304,7 @@ def simulate(
     atol: float = 1e-12,
     max_steps: int = 1_000_000,
     dense_output: bool = False,
+    integrator: Integrator = "RK45",
 ) -> MotionResult:
     """Follow ``body`` on a ramp of angle ``alpha`` through rolling, slipping, flight and
     landing, from (theta0, omega0) with slip velocity ``slip0`` (``docs/motion.md``).
@@ -322,8 +323,10 @@ def simulate(
         ldot - omega of the contact point.
     t_max : end time, in (0, 1e6]; l_max : distance along the ramp that ends the run.
     max_transitions : transitions after the start, 1 ... 10**6.
-    rtol, atol : tolerances of the Dormand–Prince 5(4) integrator; max_steps : accepted
-        steps of the whole run, 1 ... 10**7.
+    rtol, atol : tolerances of the integrator; max_steps : accepted steps of the whole run,
+        1 ... 10**7.
+    integrator : ``"RK45"`` (Dormand–Prince 5(4), as scipy's ``RK45``) or ``"DOP853"``
+        (Dormand–Prince 8(5,3), as scipy's ``DOP853``: fewer steps at tight tolerances).
     dense_output : keep ``sol(t)`` across segments.
 
     Raises
@@ -358,6 +361,7 @@ def simulate(
         atol=real("atol", atol),
         max_steps=integer("max_steps", max_steps, 1, MAX_STEPS),
         dense_output=flag("dense_output", dense_output),
+        integrator=text("integrator", integrator),
     )
     return MotionResult(
         body=body,

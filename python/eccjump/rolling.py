@@ -14,19 +14,19 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass, fields, replace
-from typing import Literal, NamedTuple
+from typing import NamedTuple
 
 import numpy as np
 from numpy.typing import NDArray
 
 from eccjump import _core
 from eccjump._arrays import same_values
+from eccjump._bridge import Integrator, Rule
 from eccjump._checks import U64_MAX, flag, integer, optional_real, real, text
 from eccjump.body import Cylinder
 from eccjump.dense import DenseSolution
 from eccjump.units import Units
 
-Rule = Literal["paper", "normal_force"]
 EVENT_NAMES = ("liftoff", "normal_force_zero", "slip", "theta_limit")
 
 
@@ -195,6 +195,7 @@ def roll(
     dense_output: bool = False,
     max_steps: int = 1_000_000,
     rule: Rule = "paper",
+    integrator: Integrator = "RK45",
 ) -> RollResult:
     """Integrate pure rolling of ``body`` on a ramp of angle ``alpha`` until an event ends it.
 
@@ -207,13 +208,16 @@ def roll(
     mu_s : static friction coefficient, >= 0; None means enough friction (no slip event).
     t_max : largest time [sqrt(R/g)], > 0.
     theta_max : the run ends when theta reaches this angle [rad] (event ``theta_limit``).
-    rtol, atol : tolerances of the Dormand–Prince 5(4) integrator (scipy's meaning).
+    rtol, atol : tolerances of the integrator (scipy's meaning).
     dense_output : keep the interpolant, returned as ``sol``.
     max_steps : step limit (1 ... 10**7); reaching it ends the run with status -1. A run
         honours Ctrl-C (KeyboardInterrupt); bounds: ``docs/limits.md``.
     rule : ``"paper"`` ends the run at the paper's lift-off condition
         chi theta'^2 cos theta = cos alpha; ``"normal_force"`` keeps rolling until Fy = 0 or
         (with ``mu_s``) the friction cone is left, recording the paper's condition as an event.
+    integrator : ``"RK45"`` (Dormand–Prince 5(4), step for step as scipy's ``RK45``) or
+        ``"DOP853"`` (Dormand–Prince 8(5,3) as scipy's ``DOP853``: about 3x fewer steps at
+        the default tolerances, and faster).
 
     Events (located on the dense output to near machine precision): ``liftoff`` (paper's
     condition, rising), ``normal_force_zero`` (Fy = 0), ``slip`` (mu_s Fy = |Fx|),
@@ -243,6 +247,7 @@ def roll(
         max_steps=integer("max_steps", max_steps, 1, U64_MAX),
         dense_output=flag("dense_output", dense_output),
         rule=rule,
+        integrator=text("integrator", integrator),
     )
     sol = DenseSolution(raw["sol"]) if "sol" in raw else None
     return _result(

@@ -1,13 +1,22 @@
 //! Profiling aid: the best time per `simulate` run of one slip-then-jump case, 5 transitions
-//! (`cargo run --release --example simulate_best`; with `perf record` for a profile).
+//! (`cargo run --release --example simulate_best [rk45|dop853]`; with `perf record` for a profile).
 use eccjump_core::mechanics::Rule;
 use eccjump_core::modes::contact::ContactLaw;
 use eccjump_core::motion::{simulate, SimOptions};
+use eccjump_core::ode::{Method, SolverOptions};
 use eccjump_core::{Cylinder, Ramp};
 use std::time::Instant;
 fn main() {
+    let method = match std::env::args().nth(1).as_deref() {
+        Some("dop853") => Method::Dop853,
+        _ => Method::Rk45,
+    };
     let r = Ramp::new(Cylinder::new(0.5, 0.4).unwrap(), 30f64.to_radians()).unwrap();
     let o = SimOptions {
+        solver: SolverOptions {
+            method,
+            ..SimOptions::default().solver
+        },
         law: ContactLaw {
             mu_s: 1.0,
             mu_k: 1.0,
@@ -25,5 +34,5 @@ fn main() {
         }
         best = best.min(t0.elapsed().as_secs_f64() / 1000.0 * 1e6);
     }
-    println!("best {best:.2} us per run ({s})");
+    println!("{method:?}: best {best:.2} us per run ({s})");
 }

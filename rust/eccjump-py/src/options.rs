@@ -9,7 +9,7 @@ use pyo3::exceptions::PyValueError;
 use pyo3::{FromPyObject, PyResult};
 
 /// `{"rule", "method", "rtol", "atol", "theta0", "omega0", "max_turns", "refine_extrema",
-/// "n_threads"}`.
+/// "n_threads", "integrator"}`.
 #[derive(FromPyObject)]
 #[pyo3(from_item_all)]
 pub struct CallOptions {
@@ -22,6 +22,7 @@ pub struct CallOptions {
     max_turns: u32,
     refine_extrema: bool,
     n_threads: usize,
+    integrator: String,
 }
 
 impl CallOptions {
@@ -29,12 +30,14 @@ impl CallOptions {
     pub fn parse(&self, n: u32) -> PyResult<(JarmOptions, Method, usize)> {
         // Checked for every route: the closed form ignores them but they are recorded.
         Method::check_tolerances(self.rtol, self.atol).map_err(to_py)?;
-        let method = Method::from_name(&self.method, self.rtol, self.atol).ok_or_else(|| {
-            PyValueError::new_err(format!(
-                "method = {:?} is not one of 'closed_form', 'ode'",
-                self.method
-            ))
-        })?;
+        let pair = parse_integrator(&self.integrator)?;
+        let method =
+            Method::from_name(&self.method, self.rtol, self.atol, pair).ok_or_else(|| {
+                PyValueError::new_err(format!(
+                    "method = {:?} is not one of 'closed_form', 'ode'",
+                    self.method
+                ))
+            })?;
         let opts = JarmOptions {
             rule: parse_rule(&self.rule)?,
             n,
@@ -45,6 +48,15 @@ impl CallOptions {
         };
         Ok((opts, method, self.n_threads))
     }
+}
+
+/// The Runge–Kutta pair named `integrator` (scipy's names).
+pub fn parse_integrator(integrator: &str) -> PyResult<eccjump_core::ode::Method> {
+    eccjump_core::ode::Method::from_name(integrator).ok_or_else(|| {
+        PyValueError::new_err(format!(
+            "integrator = {integrator:?} is not one of 'RK45', 'DOP853'"
+        ))
+    })
 }
 
 /// The lift-off rule named `rule`.

@@ -1,7 +1,7 @@
 //! `roll`: one pure-rolling run, computed with the GIL released, returned as numpy arrays.
 
 use crate::errors::{detached, to_py};
-use crate::options::parse_rule;
+use crate::options::{parse_integrator, parse_rule};
 use eccjump_core::error::short;
 use eccjump_core::mechanics::friction::friction_ratio;
 use eccjump_core::modes::rolling::run::{roll_until, RollOptions, RollRun, RollStatus};
@@ -19,7 +19,7 @@ use pyo3::types::PyDict;
 /// core's checks) before any work is done.
 #[pyfunction]
 #[pyo3(signature = (chi, km, alpha, *, theta0, omega0, mu_s, t_max, theta_max, rtol, atol,
-                    max_steps, dense_output, rule))]
+                    max_steps, dense_output, rule, integrator))]
 #[allow(clippy::too_many_arguments)] // keyword-only options of one run
 pub fn roll<'py>(
     py: Python<'py>,
@@ -36,6 +36,7 @@ pub fn roll<'py>(
     max_steps: usize,
     dense_output: bool,
     rule: &str,
+    integrator: &str,
 ) -> PyResult<Bound<'py, PyDict>> {
     let ramp = Ramp::new(Cylinder::new(chi, km).map_err(to_py)?, alpha).map_err(to_py)?;
     let opts = RollOptions {
@@ -49,6 +50,7 @@ pub fn roll<'py>(
             rtol,
             atol,
             max_steps,
+            method: parse_integrator(integrator)?,
             ..SolverOptions::default()
         },
         dense_output,

@@ -3,7 +3,7 @@
 //! `MotionResult`.
 
 use crate::errors::{detached, to_py};
-use crate::options::parse_rule;
+use crate::options::{parse_integrator, parse_rule};
 use eccjump_core::error::short;
 use eccjump_core::mechanics::BodyState;
 use eccjump_core::modes::contact::{ContactLaw, Mode};
@@ -20,7 +20,8 @@ use pyo3::types::PyDict;
 /// checked by the core (a ValueError naming the parameter).
 #[pyfunction]
 #[pyo3(signature = (chi, km, alpha, *, mu_s, mu_k, restitution, rule, theta0, omega0, slip0,
-                    t_max, l_max, max_transitions, rtol, atol, max_steps, dense_output))]
+                    t_max, l_max, max_transitions, rtol, atol, max_steps, dense_output,
+                    integrator))]
 #[allow(clippy::too_many_arguments)] // keyword-only options of one run
 pub fn simulate<'py>(
     py: Python<'py>,
@@ -41,6 +42,7 @@ pub fn simulate<'py>(
     atol: f64,
     max_steps: usize,
     dense_output: bool,
+    integrator: &str,
 ) -> PyResult<Bound<'py, PyDict>> {
     let ramp = Ramp::new(Cylinder::new(chi, km).map_err(to_py)?, alpha).map_err(to_py)?;
     let opts = SimOptions {
@@ -60,6 +62,7 @@ pub fn simulate<'py>(
             rtol,
             atol,
             max_steps,
+            method: parse_integrator(integrator)?,
             ..SolverOptions::default()
         },
         dense_output,

@@ -53,7 +53,9 @@ pub fn classify_with(
     };
     let mut r = match method {
         Method::ClosedForm => classify(alpha, chi, km, mu_s, &o),
-        Method::Ode { rtol, atol } => classify_ode(alpha, chi, km, mu_s, &o, rtol, atol),
+        Method::Ode { rtol, atol, pair } => {
+            classify_ode(alpha, chi, km, mu_s, &o, (rtol, atol), pair)
+        }
     };
     if shift != 0.0 {
         for theta in [
@@ -89,6 +91,7 @@ mod tests {
             Method::Ode {
                 rtol: 1e-10,
                 atol: 1e-12,
+                pair: crate::ode::Method::Rk45,
             },
         ] {
             for i in 0..12 {

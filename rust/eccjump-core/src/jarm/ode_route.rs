@@ -270,21 +270,23 @@ fn integrate(
 }
 
 /// Classifies one point by integration: same semantics and reasons as
-/// [`fn@crate::jarm::classify`]. `rtol`, `atol` are the integrator's tolerances (must be
-/// positive and finite, else `InvalidParams`). Never panics, never allocates.
+/// [`fn@crate::jarm::classify`]. `(rtol, atol)` are the integrator's tolerances (must be
+/// positive and finite, else `InvalidParams`), `pair` its Runge–Kutta pair. Never panics,
+/// never allocates.
 pub fn classify_ode(
     alpha: f64,
     chi: f64,
     km: f64,
     mu_s: f64,
     o: &JarmOptions,
-    rtol: f64,
-    atol: f64,
+    tol: (f64, f64),
+    pair: ode::Method,
 ) -> JarmResult {
-    classify_ode_budget(alpha, chi, km, mu_s, o, (rtol, atol), STEPS_PER_TURN)
+    classify_ode_budget(alpha, chi, km, mu_s, o, tol, pair, STEPS_PER_TURN)
 }
 
 /// [`classify_ode`] with a step budget of `steps_per_turn` per turn of the search.
+#[allow(clippy::too_many_arguments)] // classify_ode's and the budget
 fn classify_ode_budget(
     alpha: f64,
     chi: f64,
@@ -292,6 +294,7 @@ fn classify_ode_budget(
     mu_s: f64,
     o: &JarmOptions,
     (rtol, atol): (f64, f64),
+    pair: ode::Method,
     steps_per_turn: usize,
 ) -> JarmResult {
     let tol_ok = rtol.is_finite() && rtol > 0.0 && atol.is_finite() && atol > 0.0;
@@ -312,6 +315,7 @@ fn classify_ode_budget(
         atol,
         max_steps: steps_per_turn.saturating_mul(turns.saturating_add(1)),
         event_samples: event_samples(alpha),
+        method: pair,
         ..SolverOptions::default()
     };
     let paper = o.rule == Rule::Paper;
@@ -421,7 +425,7 @@ mod tests {
     const ATOL: f64 = 1e-12;
 
     fn ode(a: f64, chi: f64, km: f64, mu_s: f64, o: &JarmOptions) -> JarmResult {
-        classify_ode(a, chi, km, mu_s, o, RTOL, ATOL)
+        classify_ode(a, chi, km, mu_s, o, (RTOL, ATOL), ode::Method::Rk45)
     }
 
     /// The closed form's verdict is robust: a relative change of α by ±1e-6 keeps its reason.
@@ -726,7 +730,7 @@ mod tests {
         let c = classify(a, chi, 0.0, 1.0, &k);
         let mut last = f64::INFINITY;
         for rtol in [1e-10, 1e-12] {
-            let e = classify_ode(a, chi, 0.0, 1.0, &k, rtol, 1e-2 * rtol);
+            let e = classify_ode(a, chi, 0.0, 1.0, &k, (rtol, 1e-2 * rtol), ode::Method::Rk45);
             assert_eq!(e.reason, c.reason);
             let d = (e.theta_j - c.theta_j).abs();
             assert!(d < last && d < 1e4 * rtol, "{rtol} {d}");
@@ -835,7 +839,7 @@ mod tests {
         let bad = JarmOptions { omega0: -1.0, ..o };
         assert_eq!(ode(0.5, 0.1, 0.1, 1.0, &bad).reason, Reason::InvalidParams);
         for (rt, at) in [(0.0, 1e-12), (1e-10, f64::NAN), (f64::INFINITY, 1e-12)] {
-            let r = classify_ode(0.5, 0.1, 0.1, 1.0, &o, rt, at);
+            let r = classify_ode(0.5, 0.1, 0.1, 1.0, &o, (rt, at), ode::Method::Rk45);
             assert_eq!(r.reason, Reason::InvalidParams);
         }
     }
@@ -846,9 +850,9 @@ mod tests {
         // MaxSteps, reported as SolverFailed at the last good θ, never as a slip or turn limit.
         let o = JarmOptions::default();
         let a = 1f64.to_radians();
-        let ok = classify_ode(a, 0.3, 0.2, 1.0, &o, RTOL, ATOL);
+        let ok = classify_ode(a, 0.3, 0.2, 1.0, &o, (RTOL, ATOL), ode::Method::Rk45);
         assert_ne!(ok.reason, Reason::SolverFailed);
-        let r = classify_ode_budget(a, 0.3, 0.2, 1.0, &o, (RTOL, ATOL), 1);
+        let r = classify_ode_budget(a, 0.3, 0.2, 1.0, &o, (RTOL, ATOL), ode::Method::Rk45, 1);
         assert_eq!(r.reason, Reason::SolverFailed, "{r:?}");
         assert!(!r.is_jarm && r.theta_event.is_finite() && r.theta_j.is_nan());
         assert!(r.theta_event < ok.theta_event.max(ok.theta_j));
@@ -885,6 +889,7 @@ mod tests {
         let m = Method::Ode {
             rtol: RTOL,
             atol: ATOL,
+            pair: ode::Method::Rk45,
         };
         let o = JarmOptions::default();
         let mut r1 = vec![JarmResult::new(Reason::NoRoot); 216];
@@ -932,6 +937,7 @@ mod tests {
         let m = Method::Ode {
             rtol: RTOL,
             atol: ATOL,
+            pair: ode::Method::Rk45,
         };
         let o = JarmOptions::default();
         let mut out = vec![JarmResult::new(Reason::NoRoot); 8000];

@@ -196,22 +196,25 @@ pub enum Method {
         rtol: f64,
         /// Absolute tolerance, > 0.
         atol: f64,
+        /// The Runge–Kutta pair.
+        pair: crate::ode::Method,
     },
 }
 
 impl Method {
-    /// The route named `name` ("closed_form" or "ode", the latter with its tolerances).
-    pub fn from_name(name: &str, rtol: f64, atol: f64) -> Option<Method> {
+    /// The route named `name` ("closed_form" or "ode", the latter with its tolerances and
+    /// pair).
+    pub fn from_name(name: &str, rtol: f64, atol: f64, pair: crate::ode::Method) -> Option<Method> {
         match name {
             "closed_form" => Some(Method::ClosedForm),
-            "ode" => Some(Method::Ode { rtol, atol }),
+            "ode" => Some(Method::Ode { rtol, atol, pair }),
             _ => None,
         }
     }
 
     /// Checks the tolerances of the ODE route.
     pub fn validate(&self) -> Result<()> {
-        if let Method::Ode { rtol, atol } = *self {
+        if let Method::Ode { rtol, atol, .. } = *self {
             Self::check_tolerances(rtol, atol)?;
         }
         Ok(())

@@ -206,7 +206,7 @@ impl<P: RkPair<N>, const N: usize> Stepper<P, N> {
                 let mut factor = if err == 0.0 {
                     MAX_FACTOR
                 } else {
-                    MAX_FACTOR.min(SAFETY * crate::trig::pow(err, P::ERROR_EXPONENT))
+                    MAX_FACTOR.min(SAFETY * P::error_power(err))
                 };
                 if step_rejected {
                     factor = factor.min(1.0);
@@ -220,7 +220,7 @@ impl<P: RkPair<N>, const N: usize> Stepper<P, N> {
                 self.h_abs = h_abs;
                 return StepStatus::Accepted;
             }
-            h_abs *= MIN_FACTOR.max(SAFETY * crate::trig::pow(err, P::ERROR_EXPONENT));
+            h_abs *= MIN_FACTOR.max(SAFETY * P::error_power(err));
             step_rejected = true;
             *n_rejected += 1;
         }

@@ -19,6 +19,13 @@ pub struct Dop853<const N: usize> {
 impl<const N: usize> RkPair<N> for Dop853<N> {
     const ERROR_EXPONENT: f64 = ERROR_EXPONENT;
 
+    /// err^(−1/8) by three square roots (each correctly rounded, so portable to the last
+    /// bit) instead of `pow`, which costs as much as a few stages.
+    #[inline]
+    fn error_power(err: f64) -> f64 {
+        1.0 / err.sqrt().sqrt().sqrt()
+    }
+
     #[inline]
     fn empty() -> Self {
         Self {
@@ -40,11 +47,16 @@ impl<const N: usize> RkPair<N> for Dop853<N> {
         let k = &mut self.k;
         k[0] = *f;
         let at = (t, y, h);
-        for s in 1..N_STAGES {
-            if !stage(sys, at, k, s, (&A[s], C[s]), nfev) {
-                return None;
-            }
+        // Stage by stage with constant s, so that each weighted sum is unrolled and its
+        // zero coefficients drop out.
+        macro_rules! stages {
+            ($($s:literal)*) => {
+                $(if !stage(sys, at, k, $s, (&A[$s], C[$s]), nfev) {
+                    return None;
+                })*
+            };
         }
+        stages!(1 2 3 4 5 6 7 8 9 10 11);
         let y_new = y + weighted_sum(&k[..N_STAGES], &B) * h;
         if !all_finite(&y_new) {
             return None;
@@ -89,11 +101,15 @@ impl<const N: usize> RkPair<N> for Dop853<N> {
         nfev: &mut usize,
     ) -> Option<DenseStep<N>> {
         let at = (t_old, y_old, h);
-        for (i, (a, c)) in A_EXTRA.iter().zip(C_EXTRA).enumerate() {
-            if !stage(sys, at, &mut self.k, N_STAGES + 1 + i, (a, c), nfev) {
-                return None;
-            }
+        let k = &mut self.k;
+        macro_rules! extra {
+            ($($i:literal)*) => {
+                $(if !stage(sys, at, k, N_STAGES + 1 + $i, (&A_EXTRA[$i], C_EXTRA[$i]), nfev) {
+                    return None;
+                })*
+            };
         }
+        extra!(0 1 2);
         let k = &self.k;
         let f_old = k[0];
         let delta = y_new - y_old;
@@ -101,9 +117,10 @@ impl<const N: usize> RkPair<N> for Dop853<N> {
         f[0] = delta;
         f[1] = f_old * h - delta;
         f[2] = delta * 2.0 - (k[N_STAGES] + f_old) * h;
-        for (fi, d) in f[3..].iter_mut().zip(D.iter()) {
-            *fi = weighted_sum(k, d) * h;
-        }
+        f[3] = weighted_sum(k, &D[0]) * h;
+        f[4] = weighted_sum(k, &D[1]) * h;
+        f[5] = weighted_sum(k, &D[2]) * h;
+        f[6] = weighted_sum(k, &D[3]) * h;
         // Expand the nested form from the inside out, as scipy evaluates it: add F_i,
         // then multiply by σ (i even, counting from F6) or by 1 − σ.
         let mut p = [State::<N>::zeros(); MAX_DEGREE + 1];

@@ -22,11 +22,35 @@ pub enum Method {
     Dop853,
 }
 
+impl Method {
+    /// Every pair, by name.
+    pub const ALL: [Method; 2] = [Method::Rk45, Method::Dop853];
+
+    /// scipy's name of the pair: "RK45" or "DOP853".
+    pub fn name(self) -> &'static str {
+        match self {
+            Method::Rk45 => "RK45",
+            Method::Dop853 => "DOP853",
+        }
+    }
+
+    /// The pair with scipy's name `name`.
+    pub fn from_name(name: &str) -> Option<Method> {
+        Method::ALL.into_iter().find(|m| m.name() == name)
+    }
+}
+
 /// One embedded pair with room for its stages (kept between the attempt of a step, its
 /// error norm and its dense output, so nothing is recomputed or allocated).
 pub trait RkPair<const N: usize>: Copy {
     /// The step-size exponent −1/(q + 1), q the order of the error estimator.
     const ERROR_EXPONENT: f64;
+
+    /// err^ERROR_EXPONENT, the heart of the step-size factor.
+    #[inline]
+    fn error_power(err: f64) -> f64 {
+        crate::trig::pow(err, Self::ERROR_EXPONENT)
+    }
 
     /// A pair with zeroed stages.
     fn empty() -> Self;
@@ -87,12 +111,19 @@ pub fn weighted_sum<const N: usize>(k: &[State<N>], w: &[f64]) -> State<N> {
     let len = k.len().min(w.len());
     let blocked = len / 4 * 4;
     let mut acc = [State::<N>::zeros(); 4];
+    // A zero weight adds an exact zero: skipping it changes no bit (the weights are
+    // constants, so in an unrolled loop the test costs nothing; DOP853's tableau is
+    // one-third zeros).
     for j in 0..blocked {
-        acc[j % 4] += k[j] * w[j];
+        if w[j] != 0.0 {
+            acc[j % 4] += k[j] * w[j];
+        }
     }
     let mut sum = (acc[0] + acc[1]) + (acc[2] + acc[3]);
     for j in blocked..len {
-        sum += k[j] * w[j];
+        if w[j] != 0.0 {
+            sum += k[j] * w[j];
+        }
     }
     sum
 }

@@ -1,0 +1,81 @@
+//! CPU cost of the ODE route per point, per Runge–Kutta pair, on the random
+//! points (α ~ U(0, π/2), χ ~ U(1e-3, 1), k_m = u(1 − χ), μ_s = 1), one thread, and how
+//! often the two pairs agree on the reason. `cargo run --release -p eccjump-core --example
+//! ode_route_cost [points]`.
+use eccjump_core::jarm::{classify_ode, JarmOptions};
+use eccjump_core::ode::Method;
+use std::time::Instant;
+
+/// A small deterministic generator (SplitMix64), so the points are the same every run.
+fn uniform(state: &mut u64) -> f64 {
+    *state = state.wrapping_add(0x9E37_79B9_7F4A_7C15);
+    let mut z = *state;
+    z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
+    z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
+    ((z ^ (z >> 31)) >> 11) as f64 / (1u64 << 53) as f64
+}
+
+fn main() {
+    let n: usize = std::env::args()
+        .nth(1)
+        .and_then(|a| a.parse().ok())
+        .unwrap_or(4000);
+    let mut s = 20261123u64;
+    let points: Vec<(f64, f64, f64)> = (0..n)
+        .map(|_| {
+            let a = uniform(&mut s) * std::f64::consts::FRAC_PI_2;
+            let chi = 1e-3 + uniform(&mut s) * (1.0 - 1e-3);
+            (a, chi, uniform(&mut s) * (1.0 - chi))
+        })
+        .filter(|p| p.0 > 0.0)
+        .collect();
+    let o = JarmOptions::default();
+    let mut reasons = Vec::new();
+    let pairs: Vec<Method> = match std::env::args().nth(2).as_deref() {
+        Some("rk45") => vec![Method::Rk45],
+        Some("dop853") => vec![Method::Dop853],
+        _ => vec![Method::Rk45, Method::Dop853],
+    };
+    for pair in pairs {
+        let t0 = Instant::now();
+        let r: Vec<_> = points
+            .iter()
+            .map(|&(a, chi, km)| classify_ode(a, chi, km, 1.0, &o, (1e-10, 1e-12), pair))
+            .collect();
+        let us = t0.elapsed().as_secs_f64() / points.len() as f64 * 1e6;
+        println!("{pair:?}: {us:.1} us per point");
+        use eccjump_core::jarm::ode_route::*;
+        use std::sync::atomic::Ordering::Relaxed;
+        println!(
+            "nfev {} acc {} rej {} values {}",
+            NFEV.swap(0, Relaxed) / points.len(),
+            NACC.swap(0, Relaxed) / points.len(),
+            NREJ.swap(0, Relaxed) / points.len(),
+            NVAL.swap(0, Relaxed) / points.len()
+        );
+        reasons.push(r);
+    }
+    if reasons.len() < 2 {
+        return;
+    }
+    let same = reasons[0]
+        .iter()
+        .zip(&reasons[1])
+        .filter(|(a, b)| a.reason == b.reason)
+        .count();
+    let jarm = reasons[0]
+        .iter()
+        .zip(&reasons[1])
+        .filter(|(a, b)| a.is_jarm == b.is_jarm)
+        .count();
+    let dtheta = reasons[0]
+        .iter()
+        .zip(&reasons[1])
+        .filter(|(a, b)| a.reason == b.reason && a.theta_event.is_finite())
+        .map(|(a, b)| ((a.theta_event - b.theta_event) / a.theta_event.abs().max(1.0)).abs())
+        .fold(0.0, f64::max);
+    println!(
+        "same reason {same}/{}, same is_jarm {jarm}, largest relative theta_event difference {dtheta:.1e}",
+        points.len()
+    );
+}
