@@ -299,6 +299,10 @@ def threads(d: Drawer, case: Case) -> Any:
     return integer_param(d, case, (0, 1, 2), (-1, 2.5, True, None, 257, 10**6, 2**64, 10**400))
 
 
+#: The Runge–Kutta pairs the integrating entry points take.
+INTEGRATORS = ("RK45", "DOP853")
+
+
 def text_param(d: Drawer, case: Case, good: Sequence[str]) -> Any:
     k = d.integer(0, 4)
     if k <= 2 or d.clean:
@@ -523,7 +527,11 @@ def case_jarm(d: Drawer) -> Case:
     km = array(d, c, 0.0, 0.5)
     mu = array(d, c, 0.0, 3.0)
     c.args = (alpha, chi, km, mu)
-    c.kwargs = {"n": turn(d, c, per_point=True), **_classification_options(d, c, True)}
+    c.kwargs = {
+        "n": turn(d, c, per_point=True),
+        **_classification_options(d, c, True),
+        "integrator": text_param(d, c, INTEGRATORS),
+    }
     c.info = {
         "alpha": alpha,
         "chi": chi,
@@ -536,7 +544,7 @@ def case_jarm(d: Drawer) -> Case:
 
 JARM_PARAMS = (
     "alpha", "chi", "km", "mu_s", "n", "method", "rule", "theta0", "omega0", "rtol", "atol",
-    "max_turns", "refine_extrema", "n_threads", "shapes",
+    "max_turns", "refine_extrema", "n_threads", "shapes", "integrator",
 )  # fmt: skip
 
 
@@ -583,7 +591,7 @@ def case_region_dataset(d: Drawer) -> Case:
 
 ROLL_PARAMS = (
     "body", "alpha", "theta0", "omega0", "mu_s", "t_max", "theta_max", "rtol", "atol",
-    "dense_output", "max_steps", "rule",
+    "dense_output", "max_steps", "rule", "integrator",
 )  # fmt: skip
 
 
@@ -610,6 +618,7 @@ def case_roll(d: Drawer) -> Case:
         # good max_steps up to 10**4 (10**7 steps are slow, not wrong); past 10**7: refused.
         "max_steps": integer_param(d, c, (1, 10, 10_000), (*INT_BAD, 10**7 + 1, 10**12)),
         "rule": text_param(d, c, ("paper", "normal_force")),
+        "integrator": text_param(d, c, INTEGRATORS),
     }
     return c
 
@@ -632,6 +641,7 @@ SIMULATE_PARAMS = (
     "max_steps",
     "dense_output",
     "km",
+    "integrator",
 )
 
 
@@ -666,6 +676,7 @@ def case_simulate(d: Drawer) -> Case:
         "max_steps": integer_param(d, c, (1, 100, 100_000), (*INT_BAD, 10**7 + 1)),
         "dense_output": flag(d, c),
         "rule": text_param(d, c, ("paper", "normal_force")),
+        "integrator": text_param(d, c, INTEGRATORS),
     }
     if d.integer(0, 2) == 0:
         c.kwargs["mu_k"] = real(d, c, 0.0, 3.0)

@@ -378,3 +378,68 @@ def test_fast_result_construction_equals_the_dataclass_init():
         assert a.tobytes() == b.tobytes() if isinstance(a, np.ndarray) else a == b, n
     with pytest.raises(dataclasses.FrozenInstanceError):
         r.status = 0
+
+
+def test_dop853_takes_scipys_dop853_steps():
+    """integrator="DOP853" is scipy's DOP853 (first step, controller, the combined 5th/3rd
+    order error norm, tableau): the same step count and evaluations (scipy's with
+    dense_output=True, whose three extra stages per step eccjump always computes for its
+    events), step times to 1e-4. Looser than the RK45 test above: DOP853's error estimate is
+    ~1e-10 of the stages it sums, so a one-ulp difference of sin/cos (the core's portable
+    libm against the platform's) moves an error norm by ~1e-5 and, through err^(-1/8), a step
+    by ~3e-6 (measured); a change of the algorithm (exponent, safety, factor limits,
+    tableau, first step) moves steps by 1e-2 or more."""
+    body, alpha = Cylinder(0.3, 0.2), math.radians(35)
+    rtol, atol = 1e-6, 1e-9
+    r = roll(body, alpha, t_max=3.0, rtol=rtol, atol=atol, theta_max=1e9, integrator="DOP853")
+    ref = solve_ivp(
+        rolling_rhs_as_in_the_core(alpha, body.chi, body.Ic),
+        (0, 3.0),
+        [0.0, 0.0],
+        method="DOP853",
+        rtol=rtol,
+        atol=atol,
+        dense_output=True,
+    )
+    ref.sol(ref.t[-1])  # scipy builds each step's interpolant once it is asked for
+    assert r.status == 0
+    assert len(r.t) == len(ref.t)
+    np.testing.assert_allclose(r.t, ref.t, rtol=1e-4, atol=0)
+    th, w = ref.sol(r.t)
+    np.testing.assert_allclose(r.theta, th, rtol=0, atol=1e-9)
+    np.testing.assert_allclose(r.omega, w, rtol=0, atol=1e-9)
+
+
+@settings(max_examples=40, deadline=None)
+@given(setups())
+def test_both_integrators_agree_and_dop853_takes_fewer_steps(s):
+    body, alpha, theta0, omega0 = s
+    # theta_max and t_max not reached together by uniform rotation (theta = theta0 + 2 t).
+    kw = dict(theta0=theta0, omega0=omega0, t_max=10.0, theta_max=theta0 + 19.7, dense_output=True)
+    a = roll(body, alpha, **kw)
+    b = roll(body, alpha, integrator="DOP853", **kw)
+    assert (a.status, a.terminal_event) == (b.status, b.terminal_event)
+    if a.sol is None or b.sol is None:  # ended at the start: no step
+        assert len(a.t) == len(b.t) == 1
+        return
+    t_end = min(a.t[-1], b.t[-1])
+    t = np.linspace(0.0, t_end, 50)
+    # Both carry global errors ~1e-10 per unit of |theta|; near chi = 1, km = 0 the contact
+    # inertia almost vanishes at theta = pi and amplifies them (as in the scipy test above).
+    scale = (1 + np.max(np.abs(a.theta))) / (body.Ic + 1 - 2 * body.chi)
+    assert np.max(np.abs(a.sol(t) - b.sol(t))) < 1e-8 * scale
+    if len(a.t) > 30:
+        assert len(b.t) < len(a.t)
+    e = energy(alpha, body.chi, body.Ic, b.theta, b.omega)
+    assert np.max(np.abs(e - e[0])) < 1e-7 * max(1.0, np.max(np.abs(b.omega)) ** 2)
+
+
+def test_liftoff_by_dop853_matches_the_closed_form_root():
+    from eccjump import jarm
+
+    for alpha_deg, chi, km in [(40, 0.15, 0.02), (70, 0.1, 0.27), (30, 0.1, 0.09)]:
+        alpha = math.radians(alpha_deg)
+        r = roll(Cylinder(chi, km), alpha, integrator="DOP853")
+        exact = jarm(alpha, chi, km, 1e9, rule="paper").theta_J
+        assert r.terminal_event == "liftoff"
+        assert r.theta[-1] == pytest.approx(float(exact), abs=1e-8)
