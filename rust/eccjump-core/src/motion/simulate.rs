@@ -490,14 +490,9 @@ impl Driver<'_> {
             (0.0, 0.0)
         };
         let (pt, pn) = (imp.pt + settle_t, imp.pn + settle_n);
-        let (omega, ldot, bdot) = r.body.apply_impulse(
-            before.theta,
-            before.omega,
-            before.ldot,
-            before.bdot,
-            pt,
-            pn,
-        );
+        let (omega, ldot, bdot) =
+            r.body
+                .apply_impulse(before.theta, before.omega, before.ldot, before.bdot, pt, pn);
         let mut after_state = BodyState {
             omega,
             ldot,

@@ -4,7 +4,7 @@
 //! GENERATED from scipy's file by `scripts/gen_dop853.py`: every entry is the correctly
 //! rounded f64 of scipy's decimal literal, written in its shortest round-trip form, so the
 //! numbers are bit-identical to scipy's (a hand-copied coefficient is the typo this
-//! project fears most; the tests below check the order conditions as well).
+//! project fears most; `ode::pair::dop853`'s tests check the orders as well).
 
 #![allow(clippy::excessive_precision, clippy::unreadable_literal)]
 
@@ -309,7 +309,7 @@ pub const A_EXTRA: [[f64; N_STAGES_EXTENDED]; 3] = [
     ],
 ];
 
-/// The dense output's coefficients F_3..F_6 = h D K (F_0..F_2 come from y, f at the ends).
+/// The dense output's F_3..F_6 = h D K (F_0..F_2 come from y and f at the step ends).
 pub const D: [[f64; N_STAGES_EXTENDED]; 4] = [
     [
         -8.428938276109013,
