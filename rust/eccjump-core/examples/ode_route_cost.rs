@@ -44,15 +44,6 @@ fn main() {
             .collect();
         let us = t0.elapsed().as_secs_f64() / points.len() as f64 * 1e6;
         println!("{pair:?}: {us:.1} us per point");
-        use eccjump_core::jarm::ode_route::*;
-        use std::sync::atomic::Ordering::Relaxed;
-        println!(
-            "nfev {} acc {} rej {} values {}",
-            NFEV.swap(0, Relaxed) / points.len(),
-            NACC.swap(0, Relaxed) / points.len(),
-            NREJ.swap(0, Relaxed) / points.len(),
-            NVAL.swap(0, Relaxed) / points.len()
-        );
         reasons.push(r);
     }
     if reasons.len() < 2 {
