@@ -401,14 +401,15 @@ def part_roll(args) -> None:
     for a_deg, chi, km in CASES:
         alpha = math.radians(a_deg)
         body = eccjump.Cylinder(chi, km)
-        res = eccjump.roll(body, alpha, rtol=rtol, atol=atol)
+        kw = {"rtol": rtol, "atol": atol, "integrator": args.integrator}
+        res = eccjump.roll(body, alpha, **kw)
         if res.terminal_event != "liftoff":
             raise SystemExit(f"case {a_deg, chi, km} ends at {res.terminal_event}, not liftoff")
         ref = float(res.theta[-1])
-        tw, tc = per_call(lambda: eccjump.roll(body, alpha, rtol=rtol, atol=atol), 5, args.number)  # noqa: B023
+        tw, tc = per_call(lambda: eccjump.roll(body, alpha, **kw), 5, args.number)  # noqa: B023
         case = f"({a_deg:g}, {chi:g}, {km:g})"
         print(
-            f"{case:<26}{'eccjump.roll':<28}{math.degrees(ref):>20.12f}{'':>13}"
+            f"{case:<26}{'eccjump.roll ' + args.integrator:<28}{math.degrees(ref):>20.12f}{'':>13}"
             f"{tw * 1e6:>14.2f}{tc * 1e6:>13.2f}{1.0:>13.2f}"
         )
         p = params(alpha, chi, km)
@@ -474,12 +475,20 @@ def part_batch(args) -> None:
     print(f"\n== b. {args.batch} random points to the first event (mu_s = 1), ODE route ==")
     kern = numba_kernels()
     a, c, k = random_points(args.batch, args.seed)
-    eccjump.jarm(a[:10], c[:10], k[:10], MU_S, method="ode")
+    eccjump.jarm(a[:10], c[:10], k[:10], MU_S, method="ode", integrator=args.integrator)
     rows = []
     for thr in (1, 0):
         w, cpu, res = timed(
             lambda thr=thr: eccjump.jarm(
-                a, c, k, MU_S, method="ode", rtol=args.rtol, atol=args.atol, n_threads=thr
+                a,
+                c,
+                k,
+                MU_S,
+                method="ode",
+                rtol=args.rtol,
+                atol=args.atol,
+                n_threads=thr,
+                integrator=args.integrator,
             )
         )
         rows.append((f"eccjump.jarm ode, {thr or os.cpu_count()} thr", w, cpu))
@@ -684,6 +693,12 @@ def main() -> None:
         help="comma-separated: roll, batch, closed, ode (default: all four)",
     )
     p.add_argument("--rtol", type=float, default=1e-10)
+    p.add_argument(
+        "--integrator",
+        default="RK45",
+        choices=("RK45", "DOP853"),
+        help="eccjump's Runge-Kutta pair in parts a and b (RK45)",
+    )
     p.add_argument("--atol", type=float, default=1e-12)
     p.add_argument("--number", type=int, default=200, help="calls per timing round (roll)")
     p.add_argument("--batch", type=int, default=10_000, help="points of part b (10000)")

@@ -27,11 +27,11 @@ from scipy_motion_cases import CASES
 import eccjump
 
 
-def run_eccjump(kw: dict, transitions: int) -> eccjump.MotionResult:
+def run_eccjump(kw: dict, transitions: int, integrator: str = "RK45") -> eccjump.MotionResult:
     body = eccjump.Cylinder(kw["chi"], kw["km"])
     opts = {k: v for k, v in kw.items() if k not in ("chi", "km", "alpha")}
     opts["max_transitions"] = transitions
-    return eccjump.simulate(body, kw["alpha"], **opts)
+    return eccjump.simulate(body, kw["alpha"], integrator=integrator, **opts)
 
 
 def sequence_of(transitions) -> list[tuple[str, str]]:
@@ -42,6 +42,7 @@ def main(argv: list[str] | None = None) -> int:
     p = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     p.add_argument("--transitions", type=int, default=5)
     p.add_argument("--repeat", type=int, default=200)
+    p.add_argument("--integrator", default="RK45", choices=("RK45", "DOP853"))
     args = p.parse_args(argv)
     n = args.transitions
     head = ("case", "same", "max dθ", "scipy ms", "eccjump µs", "x")
@@ -51,10 +52,10 @@ def main(argv: list[str] | None = None) -> int:
         t0 = time.perf_counter()
         ref = simulate_reference(**{**kw, "max_transitions": n})
         t_ref = time.perf_counter() - t0
-        res = run_eccjump(kw, n)
+        res = run_eccjump(kw, n, args.integrator)
         t0 = time.perf_counter()
         for _ in range(args.repeat):
-            run_eccjump(kw, n)
+            run_eccjump(kw, n, args.integrator)
         t_ecc = (time.perf_counter() - t0) / args.repeat
         ours = [(t.to_mode, t.reason) for t in res.transitions]
         theirs = sequence_of(ref["transitions"])
