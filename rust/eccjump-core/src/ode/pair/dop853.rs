@@ -1,7 +1,7 @@
 //! Dormand–Prince 8(5,3) (scipy's `DOP853`): 12 stages, the combined 5th/3rd-order error
 //! norm of Hairer's code, and the 7th-degree dense output from three extra stages.
 
-use super::{all_finite, stage, weighted_sum, RkPair};
+use super::{all_finite, solution, stage, weighted_sum, RkPair};
 use crate::ode::dense::MAX_DEGREE;
 use crate::ode::tableau::dop853::{
     A, A_EXTRA, B, C, C_EXTRA, D, E3, E5, ERROR_EXPONENT, N_STAGES, N_STAGES_EXTENDED,
@@ -57,13 +57,7 @@ impl<const N: usize> RkPair<N> for Dop853<N> {
             };
         }
         stages!(1 2 3 4 5 6 7 8 9 10 11);
-        let y_new = y + weighted_sum(&k[..N_STAGES], &B) * h;
-        if !all_finite(&y_new) {
-            return None;
-        }
-        k[N_STAGES] = sys.rhs(t + h, &y_new);
-        *nfev += 1;
-        all_finite(&k[N_STAGES]).then_some(y_new)
+        solution(sys, at, k, &B, nfev)
     }
 
     /// scipy's `DOP853._estimate_error_norm`: the 5th-order estimate, damped by the

@@ -1,7 +1,7 @@
 //! Dormand–Prince 5(4) (scipy's `RK45`): `rk_step`, the error norm and `RkDenseOutput`,
 //! operation by operation as scipy, so that accepted steps agree with scipy's to rounding.
 
-use super::{all_finite, rms_norm, stage, weighted_sum, RkPair};
+use super::{rms_norm, solution, stage, weighted_sum, RkPair};
 use crate::ode::tableau::dp5::{A, B, C, E, ERROR_EXPONENT, N_STAGES, P};
 use crate::ode::{DenseStep, OdeSystem, State};
 
@@ -45,13 +45,7 @@ impl<const N: usize> RkPair<N> for Dp5<N> {
         {
             return None;
         }
-        let y_new = y + weighted_sum(&k[..N_STAGES], &B) * h;
-        if !all_finite(&y_new) {
-            return None;
-        }
-        k[N_STAGES] = sys.rhs(t + h, &y_new);
-        *nfev += 1;
-        all_finite(&k[N_STAGES]).then_some(y_new)
+        solution(sys, at, k, &B, nfev)
     }
 
     #[inline]

@@ -128,6 +128,26 @@ pub fn weighted_sum<const N: usize>(k: &[State<N>], w: &[f64]) -> State<N> {
     sum
 }
 
+/// The end of an explicit step after its stages k[..b.len()]: y_new = y + (Σ_j b_j K_j) h
+/// and, FSAL, k[b.len()] = f(t + h, y_new); `None` if either is not finite.
+#[inline(always)]
+pub(crate) fn solution<S: OdeSystem<N>, const N: usize>(
+    sys: &S,
+    (t, y, h): (f64, &State<N>, f64),
+    k: &mut [State<N>],
+    b: &[f64],
+    nfev: &mut usize,
+) -> Option<State<N>> {
+    let s = b.len();
+    let y_new = y + weighted_sum(&k[..s], b) * h;
+    if !all_finite(&y_new) {
+        return None;
+    }
+    k[s] = sys.rhs(t + h, &y_new);
+    *nfev += 1;
+    all_finite(&k[s]).then_some(y_new)
+}
+
 /// Stage s of an explicit pair: k[s] = f(t + c h, y + (Σ_{j<s} K_j a_j) h), in scipy's
 /// order of operations; false if it is not finite.
 #[inline(always)]
