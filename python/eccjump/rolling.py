@@ -1,4 +1,4 @@
-"""Pure rolling: :func:`roll` integrates the rolling equation with the Rust integrators (RK45 or DOP853).
+"""Pure rolling: :func:`roll` integrates the rolling equation in the Rust core (RK45 or DOP853).
 
 Equations (units g = R = M = 1; ``docs/paper_formulas.md`` lists how each was checked):
 

@@ -5,8 +5,7 @@
 //! The layers, each using only those above it (see `docs/architecture.md`):
 //! - [`error`]: the one error enum and the parameter checks, written once;
 //! - [`ode`]: generic Dormand–Prince integrators (5(4) as scipy's RK45, 8(5,3) as DOP853)
-//!   with dense output and events, and
-//!   bracketing root finders (no physics);
+//!   with dense output and events, and bracketing root finders (no physics);
 //! - [`mechanics`]: the body, the ramp, Newton–Euler in its general form, energy, the
 //!   lift-off rules, friction and the Painlevé test: every formula once;
 //! - [`modes`]: the modes of motion as constraints on Newton–Euler (pure rolling: its
