@@ -1,5 +1,5 @@
-//! Profiling aid: the best time per `roll` run from rest to the paper's lift-off (α = 40°,
-//! χ = 0.15, k_m = 0.02), per Runge–Kutta pair
+//! Profiling aid: the best time per `roll` run from rest to the paper's lift-off, for the
+//! four cases of `benches/bench_peers.py` (α = 40°, 70°, 30°, 10°), per Runge–Kutta pair
 //! (`cargo run --release -p eccjump-core --example roll_best [rk45|dop853]`).
 use eccjump_core::modes::rolling::run::{roll, RollOptions};
 use eccjump_core::ode::{Method, SolverOptions};
@@ -11,8 +11,12 @@ fn main() {
         Some("dop853") => vec![Method::Dop853],
         _ => vec![Method::Rk45, Method::Dop853],
     };
-    let r = Ramp::new(Cylinder::new(0.15, 0.02).unwrap(), 40f64.to_radians()).unwrap();
-    for method in pairs {
+    let cases = [(40.0, 0.15, 0.02), (70.0, 0.1, 0.27), (30.0, 0.1, 0.09), (10.0, 0.1, 0.54)];
+    for (method, &(alpha, chi, km)) in pairs
+        .into_iter()
+        .flat_map(|m| cases.iter().map(move |c| (m, c)))
+    {
+        let r = Ramp::new(Cylinder::new(chi, km).unwrap(), f64::to_radians(alpha)).unwrap();
         let o = RollOptions {
             solver: SolverOptions {
                 method,
@@ -30,7 +34,7 @@ fn main() {
             best = best.min(t0.elapsed().as_secs_f64() / 1000.0 * 1e6);
         }
         println!(
-            "{method:?}: best {best:.2} us per run, theta_J {:.15} ({} steps, {} evaluations)",
+            "{method:?} alpha {alpha}: best {best:.2} us per run, theta_J {:.15} ({} steps, {} evaluations)",
             run.theta.last().unwrap(),
             run.t.len() - 1,
             run.nfev
