@@ -11,7 +11,12 @@ fn main() {
         Some("dop853") => vec![Method::Dop853],
         _ => vec![Method::Rk45, Method::Dop853],
     };
-    let cases = [(40.0, 0.15, 0.02), (70.0, 0.1, 0.27), (30.0, 0.1, 0.09), (10.0, 0.1, 0.54)];
+    let cases = [
+        (40.0, 0.15, 0.02),
+        (70.0, 0.1, 0.27),
+        (30.0, 0.1, 0.09),
+        (10.0, 0.1, 0.54),
+    ];
     for (method, &(alpha, chi, km)) in pairs
         .into_iter()
         .flat_map(|m| cases.iter().map(move |c| (m, c)))
