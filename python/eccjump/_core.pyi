@@ -205,6 +205,7 @@ def motion_grid(
     atol: float,
     max_steps: int,
     n_threads: int,
+    integrator: str,
 ) -> dict[str, NDArray[Any]]:
     """The full motion to the first landing at every point of the product of the eight 1-D
     axes (k_m = frac (1 - chi); an empty ``mu_k``: mu_k = mu_s), flat in C order, with the

@@ -321,6 +321,7 @@ def region(
     max_turns: int = 10_000,
     refine_extrema: bool = False,
     n_threads: int = 0,
+    integrator: Integrator = "RK45",
     chunks: Any = None,
     output: Literal["region"] = "region",
 ) -> Region: ...
@@ -343,6 +344,7 @@ def region(
     max_turns: int = 10_000,
     refine_extrema: bool = False,
     n_threads: int = 0,
+    integrator: Integrator = "RK45",
     chunks: Any = None,
     output: Literal["xarray"],
 ) -> xr.Dataset: ...
@@ -364,6 +366,7 @@ def region(
     max_turns: int = 10_000,
     refine_extrema: bool = False,
     n_threads: int = 0,
+    integrator: Integrator = "RK45",
     chunks: Any = None,
     output: Literal["region", "xarray"] = "region",
 ) -> Region | xr.Dataset:
@@ -383,7 +386,9 @@ def region(
         (:mod:`eccjump.labelled`), and then ``mu_s``, ``theta0`` and ``omega0`` may be 1-D
         sequences, swept as extra leading dimensions (one Rust call per combination).
 
-    The tolerances, ``max_turns`` and ``refine_extrema`` are recorded in ``Region.attrs``.
+    The tolerances, the ``integrator``, ``max_turns`` and ``refine_extrema`` are recorded in
+    ``Region.attrs`` (and in the attributes of its dataset and files) whatever the method, as
+    given: the closed form ignores the tolerances and the integrator.
     """
     if output == "xarray":
         return region_dataset(
@@ -401,6 +406,7 @@ def region(
             max_turns=max_turns,
             refine_extrema=refine_extrema,
             n_threads=n_threads,
+            integrator=integrator,
             chunks=chunks,
         )
     if text("output", output) != "region":
@@ -421,6 +427,7 @@ def region(
         max_turns=max_turns,
         refine_extrema=refine_extrema,
         n_threads=n_threads,
+        integrator=integrator,
     )
     if chunks is None:
         raw = jarm_grid(a, c, f, mu, opts)
@@ -441,6 +448,7 @@ def region(
         attrs={
             "rtol": opts.rtol,
             "atol": opts.atol,
+            "integrator": opts.integrator,
             "max_turns": opts.max_turns,
             "refine_extrema": opts.refine_extrema,
         },

@@ -15,8 +15,8 @@ dims ``alpha`` [rad], ``chi``, ``km_frac`` (= k_m/(1 - chi)), preceded by ``mu_s
 2-D ``km`` (on ``chi`` x ``km_frac``); one data variable per field of
 :class:`~eccjump.JarmResult`. ``reason`` carries the CF ``flag_values``/``flag_meanings``;
 the dataset attributes record how the map was made (``mu_s``, ``n`` with 0 meaning "the
-first jump whatever its turn", ``rule``, ``method``, ``theta0``, ``omega0``, tolerances,
-``eccjump_version``) and the Reason code table.
+first jump whatever its turn", ``rule``, ``method``, ``theta0``, ``omega0``, tolerances, the
+``integrator``, ``eccjump_version``) and the Reason code table.
 """
 
 from __future__ import annotations

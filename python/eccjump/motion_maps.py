@@ -21,6 +21,7 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from eccjump import _core, store
+from eccjump._bridge import Integrator
 from eccjump._checks import U64_MAX, integer, real_array, text
 from eccjump.motion import MAX_STEPS, MAX_TRANSITIONS, Rule
 from eccjump.motion_fields import (
@@ -110,7 +111,7 @@ class MotionMap:
 
 
 #: The options shared by every point, recorded with a map.
-OPTIONS = ("rule", "t_max", "max_transitions", "rtol", "atol", "max_steps")
+OPTIONS = ("rule", "t_max", "max_transitions", "rtol", "atol", "max_steps", "integrator")
 
 
 def _axes(values: Mapping[str, object]) -> tuple[dict[str, NDArray], dict[str, float | None]]:
@@ -166,6 +167,7 @@ def motion_map(
     atol: float = 1e-12,
     max_steps: int = 1_000_000,
     n_threads: int = 0,
+    integrator: Integrator = "RK45",
     chunks: int | None = None,
     output: Literal["map", "xarray"] = "map",
 ) -> MotionMap | xr.Dataset:
@@ -174,7 +176,8 @@ def motion_map(
     Each of ``alpha`` [rad], ``chi``, ``km`` (the fraction k_m/(1 - chi) in [0, 1], so every
     grid point is a valid body), ``mu_s``, ``mu_k`` (None: mu_k = mu_s), ``restitution``,
     ``theta0`` and ``omega0`` is one number or a 1-D array (an axis of the map). The other
-    options are those of :func:`eccjump.simulate`; a run ends at its first landing (status
+    options are those of :func:`eccjump.simulate` (``integrator``: ``"RK45"`` or ``"DOP853"``,
+    recorded with the map as are ``rtol`` and ``atol``); a run ends at its first landing (status
     "landed") once the mode after it is chosen, or at ``t_max``/``max_transitions``. A
     point with invalid values (mu_k > mu_s, km fraction 0, ...) has status "invalid".
 
@@ -207,6 +210,7 @@ def motion_map(
         "atol": float(real_array("atol", atol)),
         "max_steps": integer("max_steps", max_steps, 1, MAX_STEPS),
         "n_threads": integer("n_threads", n_threads, 0, 256),
+        "integrator": text("integrator", integrator),
     }
     axis = {name: _axis(coords, scalars, name) for name in AXES}
     rest = tuple(axis[name] for name in AXES[1:])

@@ -3,7 +3,7 @@
 
 use crate::columns::set_column;
 use crate::errors::detached;
-use crate::options::parse_rule;
+use crate::options::{parse_integrator, parse_rule};
 use eccjump_core::error::try_filled;
 use eccjump_core::maps::motion::{
     motion_grid as grid, LandingOutcome, MotionAxes, MotionMapOptions, MotionSummary,
@@ -17,7 +17,7 @@ use pyo3::types::PyDict;
 /// (k_m = frac·(1 − χ); an empty mu_k: μ_k = μ_s), flat in C order.
 #[pyfunction]
 #[pyo3(signature = (alpha, chi, frac, mu_s, mu_k, restitution, theta0, omega0, *, rule,
-                    t_max, max_transitions, rtol, atol, max_steps, n_threads))]
+                    t_max, max_transitions, rtol, atol, max_steps, n_threads, integrator))]
 #[allow(clippy::too_many_arguments)] // the eight axes and the shared options
 pub fn motion_grid<'py>(
     py: Python<'py>,
@@ -36,6 +36,7 @@ pub fn motion_grid<'py>(
     atol: f64,
     max_steps: usize,
     n_threads: usize,
+    integrator: &str,
 ) -> PyResult<Bound<'py, PyDict>> {
     let axes = MotionAxes {
         alpha: alpha.as_slice()?,
@@ -55,6 +56,7 @@ pub fn motion_grid<'py>(
             rtol,
             atol,
             max_steps,
+            method: parse_integrator(integrator)?,
             ..SolverOptions::default()
         },
     };
