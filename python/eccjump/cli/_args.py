@@ -5,6 +5,22 @@ from __future__ import annotations
 
 import argparse
 from collections.abc import Callable
+from typing import get_args
+
+from eccjump._bridge import Integrator
+
+#: The choices of ``--integrator`` (the Runge-Kutta pairs, by scipy's names).
+INTEGRATORS: tuple[str, ...] = get_args(Integrator)
+
+
+def add_integrator(p: argparse._ActionsContainer, when: str = "") -> None:
+    """``--integrator {RK45,DOP853}`` (default RK45); ``when`` says where it applies."""
+    p.add_argument(
+        "--integrator",
+        choices=INTEGRATORS,
+        default="RK45",
+        help=f"Runge-Kutta pair{when}: RK45 (Dormand-Prince 5(4), default) or DOP853 (8(5,3))",
+    )
 
 
 def int_at_least(lo: int) -> Callable[[str], int]:

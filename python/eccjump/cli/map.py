@@ -34,7 +34,7 @@ from numpy.typing import NDArray
 
 from eccjump import store
 from eccjump.cli import map_jobs
-from eccjump.cli._args import int_at_least
+from eccjump.cli._args import add_integrator, int_at_least
 from eccjump.cli.map_jobs import Job
 from eccjump.labelled import make_layout
 from eccjump.map_kinds import MapKind
@@ -102,6 +102,7 @@ def add_parser(sub: argparse._SubParsersAction) -> None:
     )
     m.add_argument("--rtol", type=float, default=1e-10, help="integrator rtol (--route ode)")
     m.add_argument("--atol", type=float, default=1e-12, help="integrator atol (--route ode)")
+    add_integrator(m, " (--route ode, --kind motion)")
     m.add_argument("--max-turns", type=int_at_least(1), default=10_000, help="cap of the search")
     k = p.add_argument_group("full motion (--kind motion)")
     k.add_argument("--mu-k", type=float, default=None, help="kinetic friction (default mu_s)")
@@ -181,10 +182,9 @@ def _mismatch(
     old: tuple,
     new: tuple,
 ) -> list[str]:
+    stored = {k: store_attrs.get(k, map_jobs.UNRECORDED.get(k)) for k in matched}
     diffs = [
-        f"{k}: store {store_attrs.get(k)!r}, now {attrs[k]!r}"
-        for k in matched
-        if store_attrs.get(k) != attrs[k]
+        f"{k}: store {stored[k]!r}, now {attrs[k]!r}" for k in matched if stored[k] != attrs[k]
     ]
     for name, a, b in zip(("alpha", "chi", "km_frac"), old, new, strict=True):
         if a.shape != b.shape or a.tobytes() != b.tobytes():

@@ -28,6 +28,7 @@ MAP_OPTIONS = (
     "omega0",
     "rtol",
     "atol",
+    "integrator",
     "max_turns",
     "refine_extrema",
 )
@@ -43,7 +44,10 @@ MOTION_OPTIONS = (
     "max_transitions",
     "rtol",
     "atol",
+    "integrator",
 )
+#: The value of an option a store written before the option was recorded was made with.
+UNRECORDED = {"integrator": "RK45"}
 
 
 class JarmJob:
@@ -63,6 +67,7 @@ class JarmJob:
             "omega0": float(args.omega0),
             "rtol": float(args.rtol),
             "atol": float(args.atol),
+            "integrator": args.integrator,
             "max_turns": int(args.max_turns),
             "refine_extrema": False,
         }
@@ -130,6 +135,7 @@ class MotionJob:
             "max_transitions": int(args.max_transitions),
             "rtol": float(args.rtol),
             "atol": float(args.atol),
+            "integrator": args.integrator,
         }
         self.attrs = {
             "title": "motion map of an eccentric cylinder on a ramp (eccjump)",

@@ -7,7 +7,7 @@ import json
 import math
 
 from eccjump.body import Cylinder
-from eccjump.cli._args import degrees_in
+from eccjump.cli._args import add_integrator, degrees_in
 from eccjump.rolling import RollResult, roll
 
 
@@ -42,17 +42,19 @@ def add_parser(sub: argparse._SubParsersAction) -> None:
     )
     p.add_argument("--rtol", type=float, default=1e-10)
     p.add_argument("--atol", type=float, default=1e-12)
+    add_integrator(p)
     p.add_argument("--json", action="store_true", help="print machine-readable JSON")
     p.set_defaults(func=_cmd_roll)
 
 
-def _roll_summary(res: RollResult, alpha_deg: float) -> dict[str, object]:
+def _roll_summary(res: RollResult, alpha_deg: float, integrator: str) -> dict[str, object]:
     end = len(res.t) - 1
     return {
         "body": {"chi": res.body.chi, "km": res.body.km, "Ic": res.body.Ic, "Icm": res.body.Icm},
         "alpha_deg": alpha_deg,
         "mu_s": res.mu_s,
         "rule": res.rule,
+        "integrator": integrator,
         "status": res.status,
         "message": res.message,
         "terminal_event": res.terminal_event,
@@ -87,8 +89,9 @@ def _cmd_roll(args: argparse.Namespace) -> int:
         rtol=args.rtol,
         atol=args.atol,
         rule=args.rule,
+        integrator=args.integrator,
     )
-    s = _roll_summary(res, args.alpha)
+    s = _roll_summary(res, args.alpha, args.integrator)
     if args.json:
         print(json.dumps(s, indent=2))
         return 0
@@ -106,6 +109,7 @@ def _cmd_roll(args: argparse.Namespace) -> int:
         ("friction Fx", f"{s['Fx']:+.6e} M g"),
         ("normal Fy", f"{s['Fy']:+.6e} M g"),
         ("|Fx|/Fy", "n/a (Fy <= 0)" if ratio is None else f"{ratio:.6g}"),
+        ("integrator", args.integrator),
         ("steps", f"{s['steps']} accepted, {res.nfev} evaluations"),
     ]
     width = max(len(k) for k, _ in rows)

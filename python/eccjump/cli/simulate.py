@@ -16,7 +16,7 @@ import numpy as np
 
 from eccjump import plot
 from eccjump.body import Cylinder
-from eccjump.cli._args import degrees_in, int_at_least
+from eccjump.cli._args import add_integrator, degrees_in, int_at_least
 from eccjump.motion import MODES, simulate
 
 UNITS = (
@@ -77,6 +77,7 @@ def add_parser(sub: argparse._SubParsersAction) -> None:
     )
     p.add_argument("--rtol", type=float, default=1e-10)
     p.add_argument("--atol", type=float, default=1e-12)
+    add_integrator(p)
     p.add_argument("--json", action="store_true", help="print machine-readable JSON")
     p.add_argument(
         "--figure", default=None, help="draw the motion to this image (needs eccjump[plot])"
@@ -205,6 +206,7 @@ def summary(result: Any, body: Cylinder, alpha_deg: float, args: argparse.Namesp
             "theta0_deg": args.theta0,
             "omega0": args.omega0,
             "slip0": args.slip0,
+            "integrator": args.integrator,
         },
         "status": result.status,
         "message": result.message,
@@ -281,6 +283,7 @@ def print_table(s: dict) -> None:
             f"(E + dissipated - E(0) = {_g(led['balance'], '.0e')})",
         )
     )
+    rows.append(("integrator", p["integrator"]))
     rows.append(("steps", f"{s['points']} recorded points, {s['nfev']} evaluations"))
     width = max(len(k) for k, _ in rows)
     print()
@@ -313,6 +316,7 @@ def _cmd_simulate(args: argparse.Namespace) -> int:
         max_transitions=args.max_transitions,
         rtol=args.rtol,
         atol=args.atol,
+        integrator=args.integrator,
         dense_output=args.animate is not None,
     )
     s = summary(res, body, args.alpha, args)
