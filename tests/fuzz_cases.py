@@ -564,6 +564,7 @@ def case_region(d: Drawer) -> Case:
         "chi": _axis(d, c, 0.0, 1.0),
         "km": _axis(d, c, 0.0, 1.0),
         **opts,
+        "integrator": text_param(d, c, INTEGRATORS),
     }
     return c
 
@@ -694,6 +695,7 @@ MOTION_MAP_PARAMS = (
     "n_threads",
     "chunks",
     "output",
+    "integrator",
 )
 
 
@@ -729,6 +731,7 @@ def case_motion_map(d: Drawer) -> Case:
         "max_steps": integer_param(d, c, (1, 100, 100_000), (*INT_BAD, 10**7 + 1)),
         "n_threads": integer_param(d, c, (0, 1, 2), (*INT_BAD, 257)),
         "rule": text_param(d, c, ("paper", "normal_force")),
+        "integrator": text_param(d, c, INTEGRATORS),
     }
     if d.integer(0, 2) == 0:
         c.kwargs["mu_k"] = d.choice((real(d, c, 0.0, 3.0), _axis(d, c, 0.0, 3.0), None))
@@ -1199,9 +1202,16 @@ def cli_roll_argv(d: Drawer) -> list[str]:
     ):
         if d.integer(0, 2) == 0:
             argv += [opt, cli_number(d, lo, hi)]
+    cli_integrator(d, argv)
     if d.integer(0, 1):
         argv.append("--json")
     return argv
+
+
+def cli_integrator(d: Drawer, argv: list[str]) -> None:
+    """Sometimes ``--integrator``, a good or a bad pair."""
+    if d.integer(0, 2) == 0:
+        argv += ["--integrator", d.choice((*INTEGRATORS, *INTEGRATORS, "rk45", "", "RK4"))]
 
 
 def cli_map_argv(d: Drawer) -> list[str]:
@@ -1223,6 +1233,9 @@ def cli_map_argv(d: Drawer) -> list[str]:
         argv += ["--threads", d.choice(("0", "1", "-1", "2.5", "99999999999999999999999"))]
     if d.integer(0, 2) == 0:
         argv += ["--max-turns", d.choice(("1", "5", "0", "4294967296"))]
+    if d.integer(0, 2) == 0:
+        argv += ["--route", d.choice(("ode", "closed-form", "x"))]
+    cli_integrator(d, argv)
     if d.integer(0, 2) == 0:  # the full motion, with its own options
         argv += ["--kind", d.choice(("motion", "motion", "x"))]
         for opt, lo, hi in (("--mu-k", 0, 3), ("--restitution", 0, 1), ("--t-max", 0, 30)):
@@ -1271,7 +1284,7 @@ CLI_PARAMS = (
     "mu_k", "mu-k", "restitution", "max_transitions", "max-transitions", "route",
     "omega-max", "omega_max", "lattice", "map-grid", "map-size",
     "alpha_range", "alpha-range", "mu_s_err", "mu-s-err", "radius", "mass", "target",
-    "body", "g", "error", "km_range", "rod_range",
+    "body", "g", "error", "km_range", "rod_range", "integrator",
 )  # fmt: skip
 
 

@@ -1,6 +1,7 @@
 """The command line, run as a user would: through the installed console script."""
 
 import json
+import math
 import subprocess
 import sys
 import sysconfig
@@ -8,6 +9,7 @@ from pathlib import Path
 
 import pytest
 
+from eccjump import Cylinder, roll
 from eccjump.cli import main
 
 
@@ -34,6 +36,21 @@ def test_roll_json_is_machine_readable():
     assert data["terminal_event"] == "slip"
     assert data["theta_deg"] == pytest.approx(316.4716772, abs=1e-6)
     assert data["events"][0]["name"] == "slip"
+
+
+def test_roll_takes_the_integrator_and_records_it(capsys):
+    args = ["roll", "--alpha", "40", "--chi", "0.15", "--km", "0.02", "--mu-s", "1", "--json"]
+    assert main([*args, "--integrator", "DOP853"]) == 0
+    data = json.loads(capsys.readouterr().out)
+    ref = roll(Cylinder(0.15, 0.02), math.radians(40), mu_s=1.0, integrator="DOP853")
+    assert data["integrator"] == "DOP853" and data["nfev"] == ref.nfev
+    assert data["theta_deg"] == math.degrees(ref.theta[-1])
+    assert main(args) == 0
+    data = json.loads(capsys.readouterr().out)
+    assert data["integrator"] == "RK45" and data["nfev"] != ref.nfev
+    with pytest.raises(SystemExit):
+        main([*args, "--integrator", "RK4"])
+    assert "--integrator" in capsys.readouterr().err
 
 
 @pytest.mark.parametrize(

@@ -78,6 +78,27 @@ def test_kinds_and_options_are_never_mixed_on_resume(tmp_path, capsys):
     code = main([*MOTION, "--restitution", "0.5", "-o", str(path), "-q", "--resume"])
     assert code == 2
     assert "restitution: store 0.3, now 0.5" in capsys.readouterr().err
+    code = main([*MOTION, "--integrator", "DOP853", "-o", str(path), "-q", "--resume"])
+    assert code == 2
+    assert "integrator: store 'RK45', now 'DOP853'" in capsys.readouterr().err
+
+
+def test_the_integrator_reaches_the_map_and_is_recorded(tmp_path):
+    code, path = run(tmp_path, "d.npz", "--integrator", "DOP853")
+    assert code == 0
+    m = motion_maps.load(str(path))
+    assert m.options["integrator"] == "DOP853"
+    g = np.linspace(0.0, 1.0, 8)
+    ref = motion_maps.motion_map(
+        alpha=np.radians(np.linspace(0.0, 90.0, 8)),
+        chi=g,
+        km=g,
+        mu_s=0.8,
+        restitution=0.3,
+        integrator="DOP853",
+    )
+    assert isinstance(ref, motion_maps.MotionMap)
+    assert_same(m, ref)
 
 
 def test_jarm_options_are_refused_for_motion(tmp_path, capsys):

@@ -6,6 +6,7 @@ integrator. The last tests run the real ``eccjump.simulate`` when it exists."""
 
 import json
 import math
+import re
 import sys
 import types
 from dataclasses import replace
@@ -117,6 +118,18 @@ def test_defaults_are_the_apis(fake):
     assert kw["mu_k"] is None and kw["restitution"] == 0.0 and kw["rule"] == "paper"
     assert kw["theta0"] == 0.0 and kw["omega0"] == 0.0 and kw["slip0"] == 0.0
     assert kw["t_max"] == 100.0 and kw["l_max"] == math.inf and kw["max_transitions"] == 100
+    assert kw["integrator"] == "RK45"
+
+
+def test_the_integrator_is_passed_and_recorded(fake, capsys):
+    assert main([*BASE, "--integrator", "DOP853", "--json"]) == 0
+    assert fake.calls[0][2]["integrator"] == "DOP853"
+    assert json.loads(capsys.readouterr().out)["parameters"]["integrator"] == "DOP853"
+    assert main([*BASE, "--integrator", "DOP853"]) == 0
+    assert re.search(r"^integrator\s+DOP853$", capsys.readouterr().out, re.M)
+    with pytest.raises(SystemExit):
+        main([*BASE, "--integrator", "dop853"])
+    assert "--integrator" in capsys.readouterr().err
 
 
 def test_json_has_the_transitions_flights_and_ledger(fake, capsys):

@@ -198,6 +198,83 @@ def test_resume_checks_the_options(tmp_path, capsys):
     assert code == 2 and "needs a .zarr" in capsys.readouterr().err
 
 
+@pytest.mark.parametrize("suffix", [".nc", ".zarr", ".npz"])
+def test_the_integrator_is_recorded_in_every_form_of_a_map(tmp_path, suffix):
+    g = grid(4)
+    rk = region(MU_S, **g, method="ode")
+    dop = region(MU_S, **g, method="ode", integrator="DOP853")
+    assert rk.attrs["integrator"] == "RK45" and dop.attrs["integrator"] == "DOP853"
+    # the option reaches the core: another pair, other bits (the same verdicts here)
+    assert rk.result.theta_J.tobytes() != dop.result.theta_J.tobytes()
+    assert (rk.result.reason == dop.result.reason).all()
+    assert dop.to_xarray().attrs["integrator"] == "DOP853"
+    back = store.load(store.save(dop, tmp_path / f"d{suffix}"))
+    assert_same(dop, back)
+    assert back.attrs["integrator"] == "DOP853" and back.method == "ode"
+    assert store.open_dataset(tmp_path / f"d{suffix}").attrs["integrator"] == "DOP853"
+    # as rtol and atol, recorded (and checked) for the closed form too, which ignores it
+    closed = region(MU_S, **g, integrator="DOP853")
+    assert closed.attrs["integrator"] == "DOP853"
+    assert_same(closed, region(MU_S, **g))
+    sweep = region([0.5, 0.9], **g, method="ode", integrator="DOP853", output="xarray")
+    assert sweep.attrs["integrator"] == "DOP853"
+    assert (
+        sweep.reason.sel(mu_s=0.9).values.tobytes()
+        == region(0.9, **g, method="ode", integrator="DOP853").result.reason.tobytes()
+    )
+
+
+@pytest.mark.parametrize("bad", ["rk45", "", "DOP54", None, 45, b"RK45"])
+def test_a_bad_integrator_is_refused_naming_it(bad):
+    with pytest.raises((ValueError, TypeError), match="integrator") as err:
+        region(MU_S, **grid(2), method="ode", integrator=bad)
+    assert len(str(err.value)) < 200
+    with pytest.raises((ValueError, TypeError), match="integrator"):
+        region(MU_S, **grid(2), integrator=bad)  # the closed form checks it too, as rtol
+
+
+def test_cli_ode_route_takes_the_integrator_and_records_it(tmp_path):
+    args = ["--n-alpha", "5", "--n-chi", "4", "--n-km", "3", "--alpha-min", "10"]
+    args += ["--route", "ode", "--integrator", "DOP853", "--threads", "1"]
+    code, path = run_map(tmp_path, "d.npz", *args)
+    assert code == 0
+    ref = region(
+        MU_S,
+        alpha=np.radians(np.linspace(10, 90, 5)),
+        chi=np.linspace(0.0, 1.0, 4),
+        km=np.linspace(0.0, 1.0, 3),
+        method="ode",
+        integrator="DOP853",
+    )
+    back = store.load(path)
+    assert_same(ref, back)
+    assert (back.method, back.attrs["integrator"]) == ("ode", "DOP853")
+    code, path = run_map(tmp_path, "r.npz", *args[:-4], "--route", "ode")
+    assert store.load(path).attrs["integrator"] == "RK45"  # the default
+
+
+def test_resume_refuses_another_integrator(tmp_path, capsys):
+    pytest.importorskip("zarr")
+    code, path = run_map(tmp_path, "r.zarr", "--chunk", "5", "--stop-after", "1")
+    assert code == 130
+    assert store.load(path).attrs["integrator"] == "RK45"
+    code, _ = run_map(tmp_path, "r.zarr", "--resume", "--integrator", "DOP853")
+    assert code == 2
+    err = capsys.readouterr().err
+    assert "options differ" in err and "integrator: store 'RK45', now 'DOP853'" in err
+    # a store written before the integrator was recorded was made with RK45
+    zarr = pytest.importorskip("zarr")
+    group = zarr.open_group(path, mode="r+")
+    del group.attrs["integrator"]
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")  # consolidated metadata is not in the zarr v3 spec
+        zarr.consolidate_metadata(str(path))
+    code, _ = run_map(tmp_path, "r.zarr", "--resume", "--integrator", "DOP853", "--stop-after", "1")
+    assert code == 2 and "integrator: store 'RK45', now 'DOP853'" in capsys.readouterr().err
+    code, _ = run_map(tmp_path, "r.zarr", "--resume")
+    assert code == 0
+
+
 @pytest.mark.parametrize("suffix", [".nc", ".npz"])
 def test_interrupted_file_keeps_finished_slices_with_a_flag(tmp_path, reference, suffix, capsys):
     code, path = run_map(tmp_path, f"i{suffix}", "--chunk", "4", "--stop-after", "2")

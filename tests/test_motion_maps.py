@@ -46,6 +46,7 @@ def summary_from_simulate(point: dict, t_max: float, max_transitions: int) -> di
         rule=point.get("rule", "paper"),
         t_max=t_max,
         max_transitions=max_transitions,
+        integrator=point.get("integrator", "RK45"),
     )
     tr = list(m.transitions)
     status = m.status
@@ -101,10 +102,12 @@ def test_sequence_codes_round_trip():
     st.sampled_from([0.0, 0.5]),
     st.sampled_from([0.0, -0.5, 1.0]),
     st.sampled_from(["paper", "normal_force"]),
+    st.sampled_from(["RK45", "DOP853"]),
 )
-def test_every_point_is_what_simulate_gives_there(alpha, chi, frac, mu, e, omega0, rule):
+def test_every_point_is_what_simulate_gives_there(alpha, chi, frac, mu, e, omega0, rule, pair):
     point = {
         "rule": rule,
+        "integrator": pair,
         "alpha": alpha,
         "chi": chi,
         "km": frac,
@@ -174,6 +177,7 @@ def test_invalid_points_are_marked_and_bad_options_refused():
         ({"rule": "x"}, "rule"),
         ({"max_transitions": 0}, "max_transitions"),
         ({"rtol": math.nan}, "rtol"),
+        ({"integrator": "rk45"}, "integrator"),
         ({"n_threads": 10**6}, "n_threads"),
         ({"alpha": [[0.5]]}, "alpha"),
         ({"chi": []}, "chi"),
@@ -182,6 +186,27 @@ def test_invalid_points_are_marked_and_bad_options_refused():
         with pytest.raises(ValueError, match=name) as err:
             motion_map(**args)
         assert len(str(err.value)) < 200
+
+
+def test_the_integrator_reaches_the_core_and_is_recorded():
+    kw = {"alpha": ALPHA, "chi": CHI, "km": FRAC, "mu_s": 0.7, "restitution": 0.3}
+    rk = motion_map(**kw)
+    assert motion_map(**kw, integrator="RK45").fields["liftoff_theta"].tobytes() == (
+        rk.fields["liftoff_theta"].tobytes()
+    )
+    dop = motion_map(**kw, integrator="DOP853")
+    assert rk.options["integrator"] == "RK45" and dop.options["integrator"] == "DOP853"
+    assert "integrator" in eccjump.motion_maps.OPTIONS
+    assert rk.fields["liftoff_theta"].tobytes() != dop.fields["liftoff_theta"].tobytes()
+    ran = dop.status != INVALID
+    assert np.allclose(
+        rk.liftoff_theta[ran], dop.liftoff_theta[ran], rtol=1e-7, atol=1e-9, equal_nan=True
+    )
+    assert dop.attrs()["integrator"] == "DOP853"
+    pytest.importorskip("xarray")
+    ds = motion_map(**kw, integrator="DOP853", output="xarray")
+    assert ds.attrs["integrator"] == "DOP853"
+    assert eccjump.motion_maps.from_dataset(ds).options["integrator"] == "DOP853"
 
 
 def test_labelled_output_names_every_code():
