@@ -13,6 +13,10 @@ a. ``roll``: one pure-rolling run from rest at theta = 0 to the paper's lift-off
    a t_eval grid (dense output, samples every ~2 pi/``--samples-per-turn`` of theta), find
    the first sample where an event function has changed sign, then locate the root by
    Illinois (regula falsi) on re-integrations from the sample before it.
+a'. ``--parts accuracy``: the same runs at equal accuracy instead of equal tolerances: each
+   route (eccjump RK45 and DOP853, numbalsoda, pydiffsol) on an rtol ladder 1e-6 ... 1e-12,
+   its error against the exact theta_J of the closed form, and its CPU time at the loosest
+   rtol from which on it stays within 1e-8, 1e-9, 1e-10 rad (a work-precision comparison).
 b. a batch of random points (alpha in (0, pi/2), chi in (1e-3, 1), k_m = u (1 - chi),
    mu_s = 1) to the FIRST event (lift-off L >= 0, F_y <= 0, mu_s F_y - |F_x| < 0, or
    theta = 2 pi n*): ``eccjump.jarm(method="ode")`` against a numba loop over numbalsoda's
@@ -27,7 +31,7 @@ d. ``--write-snapshot`` / ``--check-snapshot``: SHA-256 digests and per-reason c
 
 Peers that are not installed are skipped with a note (``pip install -e '.[bench]'``).
 
-Run:  python benches/bench_peers.py [--parts roll,batch,closed,ode] [--batch 10000]
+Run:  python benches/bench_peers.py [--parts roll,accuracy,batch,closed,ode] [--batch 10000]
 """
 
 from __future__ import annotations
@@ -452,6 +456,99 @@ def part_roll(args) -> None:
 
 
 # ------------------------------------------------------------------------------------------
+# a'. roll at equal accuracy (work-precision)
+# ------------------------------------------------------------------------------------------
+#: rtol ladder of the work-precision part: 1e-6 ... 1e-12 in half decades (atol = rtol / 100)
+LADDER = [10.0 ** (-k / 2) for k in range(12, 25)]
+#: accuracy levels |theta_J - exact| [rad] at which the routes are compared
+ACCURACY = [1e-8, 1e-9, 1e-10]
+
+
+def exact_theta_J(alpha: float, chi: float, km: float) -> float:
+    """The paper's lift-off angle from rest by the closed form (no slip: mu_s huge), an
+    independent route to the integrations' theta_J."""
+    return float(eccjump.jarm(alpha, chi, km, 1e9).theta_J)
+
+
+def reached(errors: list[float], level: float) -> int | None:
+    """Index of the loosest rung of LADDER from which on every tighter rung has an error
+    <= level (None if not even the tightest has): where a route reliably reaches it."""
+    i = None
+    for k in range(len(errors) - 1, -1, -1):
+        if not errors[k] <= level:
+            break
+        i = k
+    return i
+
+
+def part_accuracy(args) -> None:
+    """Each route's CPU time per call at the loosest tolerance that reaches an accuracy
+    level, against the exact theta_J of the closed form: the comparison at equal accuracy
+    (equal tolerances give each route a different error)."""
+    peers = [
+        ("numbalsoda dop853 (numba)", numbalsoda_peer(args.samples_per_turn)),
+        ("pydiffsol tsit45", pydiffsol_peer()),
+    ]
+    print("\n== a'. roll at equal accuracy: CPU us per call at the loosest rtol (atol = rtol/100)")
+    print("   of 1e-6 ... 1e-12 (half decades) from which on |theta_J - exact| <= the level ==")
+    summary: dict[tuple[str, float], list[float]] = {}
+    for a_deg, chi, km in CASES:
+        alpha = math.radians(a_deg)
+        body = eccjump.Cylinder(chi, km)
+        p = params(alpha, chi, km)
+        # every route as f(rtol, atol) -> theta_J of this case
+        routes: list[tuple[str, Callable]] = [
+            (
+                f"eccjump.roll {integ}",
+                lambda r, a, i=integ: float(
+                    eccjump.roll(body, alpha, rtol=r, atol=a, integrator=i).theta[-1]  # noqa: B023
+                ),
+            )
+            for integ in ("RK45", "DOP853")
+        ]
+        routes += [(n, lambda r, a, f=f: f(p, r, a)) for n, f in peers if f is not None]  # noqa: B023
+        exact = exact_theta_J(alpha, chi, km)
+        case = f"({a_deg:g}, {chi:g}, {km:g})"
+        print(f"\ncase {case}: exact theta_J {exact!r} rad")
+        table: dict[str, list[tuple[float, float]]] = {}
+        for name, fn in routes:
+            rows = []
+            for rtol in LADDER:
+                atol = rtol / 100.0
+                try:
+                    th = fn(rtol, atol)
+                except Exception:  # a peer failing at a rung: that rung is not reached
+                    rows.append((math.inf, math.nan))
+                    continue
+                _w, c = per_call(lambda: fn(rtol, atol), max(1, args.number // 4), 3)  # noqa: B023
+                rows.append((abs(th - exact), c))
+            table[name] = rows
+        head = f"{'route':<28}" + "".join(f"{'<= ' + format(lv, 'g'):>22}" for lv in ACCURACY)
+        print(head)
+        base: dict[float, float] = {}
+        for name, rows in table.items():
+            cells = []
+            for lv in ACCURACY:
+                i = reached([e for e, _ in rows], lv)
+                if i is None:
+                    cells.append(f"{'not reached':>22}")
+                    continue
+                c = rows[i][1]
+                if name.startswith("eccjump"):
+                    base[lv] = min(base.get(lv, math.inf), c)
+                summary.setdefault((name, lv), []).append(c / base[lv] if lv in base else math.nan)
+                cells.append(f"{c * 1e6:>10.2f} us @{LADDER[i]:<8.0e}".rjust(22))
+            print(f"{name:<28}" + "".join(cells))
+    print(
+        "\npeer CPU / eccjump CPU (the faster of its two integrators) at equal accuracy, "
+        "min-max over the cases:"
+    )
+    for (name, lv), v in sorted(summary.items()):
+        if not name.startswith("eccjump"):
+            print(f"  {name:<28} <= {lv:g} rad: {min(v):.2f}-{max(v):.2f}")
+
+
+# ------------------------------------------------------------------------------------------
 # b. batch to the first event
 # ------------------------------------------------------------------------------------------
 def random_points(n: int, seed: int) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
@@ -689,8 +786,8 @@ def main() -> None:
     p = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawTextHelpFormatter)
     p.add_argument(
         "--parts",
-        default="roll,batch,closed,ode",
-        help="comma-separated: roll, batch, closed, ode (default: all four)",
+        default="roll,accuracy,batch,closed,ode",
+        help="comma-separated: roll, accuracy, batch, closed, ode (default: all five)",
     )
     p.add_argument("--rtol", type=float, default=1e-10)
     p.add_argument(
@@ -738,6 +835,8 @@ def main() -> None:
         parts = set() if args.parts == p.get_default("parts") else parts
     if "roll" in parts:
         part_roll(args)
+    if "accuracy" in parts:
+        part_accuracy(args)
     if "batch" in parts:
         part_batch(args)
     if "closed" in parts:
