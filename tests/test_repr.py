@@ -47,6 +47,14 @@ def test_region_repr():
     assert f"JARM fraction {reg.fraction():.6g}" in text
 
 
+def test_region_repr_names_the_integrator_of_the_ode_route():
+    grid = {"alpha": np.radians([20.0, 40.0]), "chi": [0.1, 0.3], "km": [0.0, 0.5]}
+    assert "integrator" not in repr(region(0.7, **grid))
+    for integrator in ("RK45", "DOP853"):
+        text = repr(region(0.7, **grid, method="ode", integrator=integrator))
+        assert f"method=ode, integrator={integrator}" in text
+
+
 def test_lazy_region_repr_does_not_compute(monkeypatch):
     pytest.importorskip("dask.array")
     calls = []

@@ -269,6 +269,8 @@ class Region:
 
         n = "first jump" if self.n is None else str(self.n)
         made = f"mu_s={self.mu_s:g}, n={n}, rule={self.rule}, method={self.method}"
+        if self.method == "ode":
+            made += f", integrator={self.attrs.get('integrator', 'RK45')}"
         if self.theta0 or self.omega0:
             made += f", theta0={self.theta0:g}, omega0={self.omega0:g}"
         size = " x ".join(str(x.size) for x in (self.alpha, self.chi, self.km_frac))
