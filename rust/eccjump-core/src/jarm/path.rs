@@ -116,6 +116,8 @@ pub struct RollingPath {
     ca0: f64,
     k0: f64,
     mu_s: f64,
+    /// Ĩ_P at or above which the grid step is certainly the uniform 2π/24 ([`Self::step`]).
+    ip_uniform: f64,
 }
 
 /// The outcome of a scan along the rolling path.
@@ -257,6 +259,10 @@ impl RollingPath {
         let (s0, c0) = crate::trig::sin_cos(theta0);
         let (sa0, ca0) = r.shifted(s0, c0);
         let k0 = 0.5 * r.contact_inertia(c0) * omega0 * omega0;
+        // ¼√(Ĩ_P/χ) ≥ h_max ⇔ Ĩ_P ≥ 16 h_max² χ; the factor 1 + 1e-12 absorbs the rounding of
+        // both sides, so Ĩ_P ≥ ip_uniform gives the step the square root would give, bit for bit.
+        let hmax = TAU / SAMPLES_PER_TURN;
+        let ip_uniform = 16.0 * hmax * hmax * r.body.chi * (1.0 + 1e-12);
         Self {
             ramp: *r,
             chi: r.body.chi,
@@ -269,6 +275,7 @@ impl RollingPath {
             ca0,
             k0,
             mu_s,
+            ip_uniform,
         }
     }
 
@@ -344,6 +351,9 @@ impl RollingPath {
     fn step(&self, p: &PathPoint) -> f64 {
         let hmax = TAU / SAMPLES_PER_TURN;
         let ip = self.ramp.contact_inertia(p.cos_t);
+        if ip >= self.ip_uniform {
+            return hmax; // what the test below gives, without its square root and division
+        }
         let h = 0.25 * (ip / self.chi).sqrt();
         let floor = 1e-9 * (1.0 + p.theta.abs());
         if h < hmax {
@@ -834,6 +844,41 @@ mod tests {
                 }
             }
         }
+    }
+
+    #[test]
+    fn uniform_step_shortcut_gives_the_square_root_rule_bit_for_bit() {
+        // The step rule as it was: ¼√(Ĩ_P/χ) when below 2π/24 (with a floor), else 2π/24.
+        let reference = |p: &RollingPath, q: &PathPoint| {
+            let hmax = TAU / SAMPLES_PER_TURN;
+            let h = 0.25 * (p.ramp.contact_inertia(q.cos_t) / p.chi).sqrt();
+            let floor = 1e-9 * (1.0 + q.theta.abs());
+            if h < hmax {
+                h.max(floor)
+            } else {
+                hmax
+            }
+        };
+        let mut near = 0;
+        for &(chi, km) in &[(0.9, 0.02), (0.7, 0.1), (0.5, 0.2), (0.99, 0.0), (0.3, 0.0)] {
+            let r = ramp(chi, km, 20.0);
+            let p = RollingPath::new(&r, 0.0, 0.0, 1.0);
+            for i in 0..20_000 {
+                let q = p.eval(TAU * i as f64 / 20_000.0);
+                assert_eq!(p.step(&q).to_bits(), reference(&p, &q).to_bits());
+            }
+            // Where Ĩ_P crosses the threshold: cos θ on a fine grid of ulps around it.
+            let c_star = (p.ip_uniform - r.body.ic - 1.0) / (2.0 * chi);
+            if c_star.abs() < 1.0 {
+                near += 1;
+                let mut q = p.eval(1.0);
+                for k in -2000i64..=2000 {
+                    q.cos_t = f64::from_bits((c_star.to_bits() as i64 + k) as u64);
+                    assert_eq!(p.step(&q).to_bits(), reference(&p, &q).to_bits(), "{k}");
+                }
+            }
+        }
+        assert!(near >= 3, "{near}: the threshold was not crossed");
     }
 
     #[test]
