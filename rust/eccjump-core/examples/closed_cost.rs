@@ -3,27 +3,34 @@
 //! distribution of `benches/bench_peers.py`: α ~ U(0, π/2), χ ~ U(10⁻³, 1), k_m = u(1 − χ),
 //! μ_s = 1, refined extrema) and on every 5th point of the 100³ grid of `bench_region.py`
 //! (extrema not refined), with a digest of every field of every result: an optimisation that
-//! changes any bit of any result changes the digest.
+//! changes any bit of any result changes the digest. With `CLOSED_COST_DUMP=prefix`, every
+//! field of every result is also written to `prefix.random.f64` and `prefix.grid.f64` (11
+//! little-endian f64 per point, in the order of `fields`), to compare two builds point by
+//! point.
 use eccjump_core::jarm::{classify, JarmOptions, JarmResult};
 use std::f64::consts::FRAC_PI_2;
 use std::time::Instant;
 
+/// Every field of a result as f64.
+fn fields(r: &JarmResult) -> [f64; 11] {
+    [
+        r.reason as u8 as f64,
+        r.n as f64,
+        r.is_jarm as u8 as f64,
+        r.theta_j,
+        r.theta_event,
+        r.fx_j,
+        r.fy_j,
+        r.max_ratio,
+        r.theta_max_ratio,
+        r.min_fy,
+        r.theta_min_fy,
+    ]
+}
+
 /// FNV-1a over the bits of every field of a result.
 fn mix(h: &mut u64, r: &JarmResult) {
-    let words = [
-        r.reason as u64,
-        r.n as u64,
-        r.is_jarm as u64,
-        r.theta_j.to_bits(),
-        r.theta_event.to_bits(),
-        r.fx_j.to_bits(),
-        r.fy_j.to_bits(),
-        r.max_ratio.to_bits(),
-        r.theta_max_ratio.to_bits(),
-        r.min_fy.to_bits(),
-        r.theta_min_fy.to_bits(),
-    ];
-    for w in words {
+    for w in fields(r).map(f64::to_bits) {
         for b in w.to_le_bytes() {
             *h = (*h ^ b as u64).wrapping_mul(0x100_0000_01b3);
         }
@@ -41,6 +48,7 @@ fn uniform(s: &mut u64) -> f64 {
 fn report(what: &str, pts: &[(f64, f64, f64)], o: &JarmOptions) {
     let mut by_reason = [(0usize, 0f64); 10];
     let mut h = 0xcbf2_9ce4_8422_2325u64;
+    let mut dump = vec![];
     let t_all = Instant::now();
     for &(a, c, k) in pts {
         let t0 = Instant::now();
@@ -49,8 +57,17 @@ fn report(what: &str, pts: &[(f64, f64, f64)], o: &JarmOptions) {
         by_reason[r.reason as usize].0 += 1;
         by_reason[r.reason as usize].1 += dt;
         mix(&mut h, &r);
+        dump.push(r);
     }
     let total = t_all.elapsed().as_secs_f64();
+    if let Ok(prefix) = std::env::var("CLOSED_COST_DUMP") {
+        let bytes: Vec<u8> = dump
+            .iter()
+            .flat_map(fields)
+            .flat_map(f64::to_le_bytes)
+            .collect();
+        std::fs::write(format!("{prefix}.{what}.f64"), bytes).unwrap();
+    }
     println!(
         "{what}: {} points, {:.3} us/point (1 thread), digest {h:016x}",
         pts.len(),

@@ -231,7 +231,8 @@ fn hermite_min(g0: f64, m0: f64, g1: f64, m1: f64) -> (f64, f64) {
 }
 
 /// The running extremum of a tracked quantity (for reporting): the best sample, and the cell
-/// whose interior extremum (Hermite estimate) is best, refined at the end.
+/// whose interior extremum (Hermite estimate) is best, refined at the end, with the runner-up
+/// cell, refined too when the two estimates are a near tie.
 #[derive(Clone, Copy)]
 struct Extremum {
     value: f64,
@@ -239,7 +240,14 @@ struct Extremum {
     cell_est: f64,
     cell_theta: f64,
     cell: Option<(f64, f64)>,
+    runner_est: f64,
+    runner: Option<(f64, f64)>,
 }
+
+/// Cell estimates closer than this (relative) are a near tie: the Hermite estimate's error
+/// (~1e-3 relative on the 2π/24 grid) could order them wrongly, e.g. the minima of F_y on
+/// successive turns, which differ by little at small α.
+const NEAR_TIE: f64 = 0.05;
 
 impl Extremum {
     fn start(value: f64, theta: f64, worst: f64) -> Self {
@@ -249,8 +257,147 @@ impl Extremum {
             cell_est: worst,
             cell_theta: f64::NAN,
             cell: None,
+            runner_est: worst,
+            runner: None,
         }
     }
+
+    /// A cell [lo, hi] whose interior extremum is estimated at `est` (at θ = `at`); `better`
+    /// orders estimates (the earlier cell wins ties). The runner-up kept is the latest cell
+    /// in a near tie with the best: a cell cut short by the event has a more accurate
+    /// estimate than the full cells before it, whose errors share a sign.
+    #[inline]
+    fn offer(&mut self, est: f64, at: f64, cell: (f64, f64), better: fn(f64, f64) -> bool) {
+        if better(est, self.cell_est) {
+            if self.cell.is_some() {
+                (self.runner, self.runner_est) = (self.cell, self.cell_est);
+            }
+            (self.cell, self.cell_est, self.cell_theta) = (Some(cell), est, at);
+        } else {
+            (self.runner, self.runner_est) = (Some(cell), est);
+        }
+    }
+
+    /// The cells to refine, in θ order: the best, and the runner-up if it is a near tie.
+    fn cells_to_refine(&self) -> [Option<(f64, f64)>; 2] {
+        match (self.cell, self.runner) {
+            (Some(c), Some(r))
+                if (self.runner_est - self.cell_est).abs() <= NEAR_TIE * self.cell_est.abs() =>
+            {
+                if r.0 < c.0 {
+                    [Some(r), Some(c)]
+                } else {
+                    [Some(c), Some(r)]
+                }
+            }
+            (c, _) => [c, None],
+        }
+    }
+}
+
+impl Extremum {
+    /// A sample value for a running minimum (the earlier sample wins ties).
+    #[inline]
+    fn sample(&mut self, value: f64, theta: f64) {
+        if value < self.value {
+            (self.value, self.theta) = (value, theta);
+        }
+    }
+
+    /// A sample value for a running maximum (the earlier sample wins ties).
+    #[inline]
+    fn sample_max(&mut self, value: f64, theta: f64) {
+        if value > self.value {
+            (self.value, self.theta) = (value, theta);
+        }
+    }
+}
+
+/// Scans spanning at least this many turns try to skip turns ([`RollingPath::skip_turns`]).
+const SKIP_MIN_TURNS: f64 = 6.0;
+/// The turn whose samples estimate how many turns stay clean (turn 1 is the start's).
+const SKIP_RECORD_TURN: f64 = 2.0;
+/// The scan restarts this many turns, plus this share of the estimated clean turns, before
+/// the first turn estimated to violate (samples miss the minima between them).
+const SKIP_MARGIN_TURNS: f64 = 1.0;
+const SKIP_MARGIN_SHARE: f64 = 0.1;
+
+/// What a scan watches and how it steps, fixed for one scan.
+struct Grid {
+    act: [bool; NG],
+    theta_end: f64,
+    coarseness: f64,
+    /// The uniform step (NaN on coarse grids, which take a direct `sin_cos` at every sample).
+    h_uni: f64,
+    /// [`rotation`] of `h_uni`.
+    sh: f64,
+    vh: f64,
+    /// A generous cap on cells (the floor step keeps progress finite anyway).
+    max_cells: u64,
+}
+
+impl Grid {
+    fn new(theta_start: f64, theta_end: f64, watch: Watch) -> Self {
+        let h_uni = if watch.coarseness <= 1 {
+            TAU / SAMPLES_PER_TURN
+        } else {
+            f64::NAN
+        };
+        let (sh, vh) = rotation(h_uni);
+        Self {
+            act: [0, 1, 2, 3, 4].map(|k| watch.active(k)),
+            theta_end,
+            coarseness: watch.coarseness.max(1) as f64,
+            h_uni,
+            sh,
+            vh,
+            max_cells: ((theta_end - theta_start) / (TAU / SAMPLES_PER_TURN) * 64.0 + 1e5) as u64,
+        }
+    }
+}
+
+/// A scan's state between cells: the cell start, the half-angle sin/cos of its sample
+/// (advanced by rotation on uniform steps), the running extrema and the cost so far.
+#[derive(Clone, Copy)]
+struct Cursor {
+    /// Two slots for the cell ends, used alternately (no copy of the points); `ia` is the
+    /// cell start.
+    pts: [PathPoint; 2],
+    ia: usize,
+    su: f64,
+    cu: f64,
+    rotated: u32,
+    cells: u64,
+    evals: u32,
+    min_fy: Extremum,
+    max_r: Extremum,
+}
+
+impl Cursor {
+    fn start(path: &RollingPath, p0: PathPoint, min_fy: Extremum, max_r: Extremum) -> Self {
+        let (su, cu) = crate::trig::sin_cos(0.5 * (p0.theta - path.theta0));
+        Self {
+            pts: [p0, p0],
+            ia: 0,
+            su,
+            cu,
+            rotated: 0,
+            cells: 0,
+            evals: 1,
+            min_fy,
+            max_r,
+        }
+    }
+}
+
+/// Why [`RollingPath::advance`] returned.
+enum Stop {
+    /// A watched constraint is violated at this point (the first one on the path).
+    Event(ContactEvent, PathPoint),
+    /// The scan reached its end (or its cell cap) with no event.
+    End,
+    /// A cell ended at or after the requested angle, with no event.
+    Reached,
 }
 
 impl RollingPath {
@@ -543,13 +690,18 @@ impl RollingPath {
 
     /// As [`Self::scan`], but starting at θ_start ≥ θ0 on the same path (e.g. to continue
     /// past an event); the extrema are then over [θ_start, θ_event].
+    ///
+    /// Long scans on the rigorous grid skip turns that provably hold no event (see
+    /// [`Self::skip_turns`]); every other scan visits every cell.
     pub fn scan_from(&self, theta_start: f64, theta_end: f64, watch: Watch) -> PathScan {
-        let mut evals = 1u32;
+        self.scan_cells(theta_start, theta_end, watch, true)
+    }
+
+    /// [`Self::scan_from`], with or without skipping turns.
+    fn scan_cells(&self, theta_start: f64, theta_end: f64, watch: Watch, skip: bool) -> PathScan {
         let p0 = self.eval(theta_start);
-        let mut min_fy = Extremum::start(p0.fy, p0.theta, f64::INFINITY);
-        let mut max_r = Extremum::start(p0.ratio(), p0.theta, f64::NEG_INFINITY);
-        // Ties go to the earlier constraint in this order (the shared catalogue's).
-        let order = [G_NOLIFT, G_FY, G_MPLUS, G_MMINUS, G_ENERGY];
+        let min_fy = Extremum::start(p0.fy, p0.theta, f64::INFINITY);
+        let max_r = Extremum::start(p0.ratio(), p0.theta, f64::NEG_INFINITY);
         // Violations at the start itself (the check shared with the ODE route).
         let start = StartValues {
             lift: p0.lift,
@@ -565,49 +717,171 @@ impl RollingPath {
             friction: watch.friction,
         };
         if let Some(event) = violated_at_start(watched, self.mu_s, &start) {
-            return self.finish(event, p0, min_fy, max_r, evals, watch.refine_extrema);
+            return self.finish(event, p0, min_fy, max_r, 1, watch.refine_extrema);
         }
-        let act = [
-            watch.active(0),
-            watch.active(1),
-            watch.active(2),
-            watch.active(3),
-            watch.active(4),
-        ];
-        // Two slots for the cell ends, used alternately (no copy of the points).
-        let mut pts = [p0, p0];
-        let mut ia = 0usize;
-        // Half-angle sin/cos of the current sample, advanced by rotation on uniform steps.
-        let (mut su, mut cu) = crate::trig::sin_cos(0.5 * (theta_start - self.theta0));
-        // Only on the rigorous grid (coarse auxiliary scans take direct sin_cos).
-        let h_uni = if watch.coarseness <= 1 {
-            TAU / SAMPLES_PER_TURN
+        let grid = Grid::new(theta_start, theta_end, watch);
+        let mut cur = Cursor::start(self, p0, min_fy, max_r);
+        let long = theta_end - theta_start >= SKIP_MIN_TURNS * TAU;
+        let stop = if !skip || grid.h_uni.is_nan() || !long {
+            self.advance(&mut cur, &grid, f64::INFINITY, |_, _, _| {})
         } else {
-            f64::NAN
+            self.skip_turns(&mut cur, &grid, theta_start)
         };
-        let (sh, vh) = rotation(h_uni);
-        let mut rotated = 0u32;
-        // A generous cap on cells (the floor step keeps progress finite anyway).
-        let max_cells = ((theta_end - theta_start) / (TAU / SAMPLES_PER_TURN) * 64.0 + 1e5) as u64;
-        let mut cells = 0u64;
+        let (event, at) = match stop {
+            Stop::Event(event, at) => (event, at),
+            Stop::End | Stop::Reached => (ContactEvent::End, cur.pts[cur.ia]),
+        };
+        let Cursor {
+            min_fy,
+            max_r,
+            evals,
+            ..
+        } = cur;
+        self.finish(event, at, min_fy, max_r, evals, watch.refine_extrema)
+    }
+
+    /// Runs the scan from `theta_start` to the end, skipping whole turns that provably hold
+    /// no event.
+    ///
+    /// At a fixed phase, one turn later only E changes, by 2π sin α (E(θ + 2π) = E(θ) +
+    /// 2π sin α), and every tracked g_k (F_y, M±, −L, E) is affine in E there: so g_k at a
+    /// fixed phase is affine in the turn index m, and min over a turn of g_k is a minimum of
+    /// affine functions of m, i.e. concave in m. A concave function positive at turns R and
+    /// T is positive on every turn in between: if the rigorous scan finds turns R and T clean,
+    /// so is every turn between them, with no need to visit them. The same holds for the
+    /// reported extrema: F_y is affine and |F_x|/F_y monotone in m at each phase (F_y > 0
+    /// throughout), so their extreme values over turns R…T lie on turn R or turn T.
+    ///
+    /// Turn R = `SKIP_RECORD_TURN` is scanned as usual while each sample estimates, by the
+    /// affine law, how many more turns its g_k stay positive. The scan then restarts at turn
+    /// T, a margin before the earliest estimate. If turn T is clean, the event (or the end)
+    /// found from there is the true first one; if not, the cursor is put back and the scan
+    /// continues cell by cell from the end of turn R, exactly as without the skip.
+    fn skip_turns(&self, cur: &mut Cursor, grid: &Grid, theta_start: f64) -> Stop {
+        let turn_start = |m: f64| theta_start + TAU * (m - 1.0);
+        let r = SKIP_RECORD_TURN;
+        match self.advance(cur, grid, turn_start(r), |_, _, _| {}) {
+            Stop::Reached => {}
+            stop => return stop,
+        }
+        let mut more = f64::INFINITY;
+        let record = |p: &PathPoint, su: f64, cu: f64| {
+            more = more.min(self.turns_left(p, su, cu, &grid.act));
+        };
+        match self.advance(cur, grid, turn_start(r + 1.0), record) {
+            Stop::Reached => {}
+            stop => return stop,
+        }
+        // The last turn that ends before θ_end (with a margin for the rounding of turn_start).
+        let whole = ((grid.theta_end - theta_start) / TAU * (1.0 - 1e-12)).floor();
+        let estimate = r + more.floor() + 1.0; // the first turn estimated to violate
+        let target = (estimate - SKIP_MARGIN_TURNS - SKIP_MARGIN_SHARE * more)
+            .floor()
+            .min(whole);
+        if target.is_nan() || target < r + 3.0 {
+            return self.advance(cur, grid, f64::INFINITY, |_, _, _| {});
+        }
+        let saved = *cur;
+        let t_skip = turn_start(target);
+        if self.restart(cur, grid, t_skip) {
+            let proven = match self.advance(cur, grid, t_skip + TAU, |_, _, _| {}) {
+                Stop::Reached => None,
+                Stop::End => Some(Stop::End),
+                Stop::Event(e, p) if p.theta >= t_skip + TAU => Some(Stop::Event(e, p)),
+                Stop::Event(..) => Some(Stop::Reached), // not proven: fall back below
+            };
+            match proven {
+                None => return self.advance(cur, grid, f64::INFINITY, |_, _, _| {}),
+                Some(Stop::Reached) => {}
+                Some(stop) => return stop,
+            }
+        }
+        // Turn T (or its first sample) is not clean: the event lies before it. Continue from
+        // turn R + 1 cell by cell (the work of the attempt still counts).
+        let evals = cur.evals;
+        *cur = saved;
+        cur.evals = evals;
+        self.advance(cur, grid, f64::INFINITY, |_, _, _| {})
+    }
+
+    /// Estimated whole turns after the one of `p` before a watched g_k at the phase of `p`
+    /// becomes violated (∞ if none decreases): one turn later g_k changes by
+    /// d_k = g_k(θ + 2π) − g_k(θ), evaluated at the same phase (half-angle u + π: no
+    /// `sin_cos`), and g_k + j d_k ≤ 0 from j = g_k/(−d_k) on.
+    #[inline]
+    fn turns_left(&self, p: &PathPoint, su: f64, cu: f64, act: &[bool; NG]) -> f64 {
+        let q = self.eval_half(p.theta + TAU, -su, -cu);
+        let mut j = f64::INFINITY;
+        for (k, &on) in act.iter().enumerate() {
+            let d = q.g[k] - p.g[k];
+            if on && d < 0.0 {
+                j = j.min(p.g[k] / -d);
+            }
+        }
+        // NaN (a NaN sample) must not hide a decrease elsewhere, and makes no skip.
+        if j.is_nan() {
+            0.0
+        } else {
+            j
+        }
+    }
+
+    /// Moves the cursor to a fresh grid starting at θ (after skipped turns): the sample there
+    /// counts for the extrema. False if a watched constraint is violated (or NaN) there.
+    fn restart(&self, cur: &mut Cursor, grid: &Grid, theta: f64) -> bool {
+        let (su, cu) = crate::trig::sin_cos(0.5 * (theta - self.theta0));
+        let p = self.eval_half(theta, su, cu);
+        cur.evals += 1;
+        if (0..NG).any(|k| grid.act[k] && violated(k, p.g[k])) {
+            return false;
+        }
+        cur.min_fy.sample(p.fy, p.theta);
+        cur.max_r.sample_max(p.ratio(), p.theta);
+        cur.ia = 0;
+        cur.pts[0] = p;
+        (cur.su, cur.cu, cur.rotated) = (su, cu, 0);
+        true
+    }
+
+    /// Advances the cursor cell by cell until an event, the end of the scan, or a cell ending
+    /// at or after `until` (`Stop::Reached`; the cursor then starts the next cell). `observe`
+    /// sees every new sample with its half-angle (sin, cos) of (θ − θ0)/2.
+    #[inline(always)]
+    fn advance(
+        &self,
+        cur: &mut Cursor,
+        grid: &Grid,
+        until: f64,
+        mut observe: impl FnMut(&PathPoint, f64, f64),
+    ) -> Stop {
+        // Ties go to the earlier constraint in this order (the shared catalogue's).
+        let order = [G_NOLIFT, G_FY, G_MPLUS, G_MMINUS, G_ENERGY];
+        let (act, theta_end, h_uni) = (&grid.act, grid.theta_end, grid.h_uni);
         loop {
-            cells += 1;
+            cur.cells += 1;
+            let ia = cur.ia;
             let ib = ia ^ 1;
-            let ta = pts[ia].theta;
-            let h = self.step(&pts[ia]) * watch.coarseness.max(1) as f64;
+            let ta = cur.pts[ia].theta;
+            let h = self.step(&cur.pts[ia]) * grid.coarseness;
             let tb = (ta + h).min(theta_end);
             // Rotation by h/2 where the step is the uniform one, re-anchored on a direct
             // sin_cos every ROTATIONS + 1 samples (error a few ulp).
-            if h == h_uni && tb == ta + h && rotated < ROTATIONS {
-                (su, cu) = (su + (cu * sh - su * vh), cu - (su * sh + cu * vh));
-                rotated += 1;
+            let (mut su, mut cu) = (cur.su, cur.cu);
+            if h == h_uni && tb == ta + h && cur.rotated < ROTATIONS {
+                (su, cu) = (
+                    su + (cu * grid.sh - su * grid.vh),
+                    cu - (su * grid.sh + cu * grid.vh),
+                );
+                cur.rotated += 1;
             } else {
                 (su, cu) = crate::trig::sin_cos(0.5 * (tb - self.theta0));
-                rotated = 0;
+                cur.rotated = 0;
             }
-            pts[ib] = self.eval_half(tb, su, cu);
-            evals += 1;
-            let (pa, pb) = (&pts[ia], &pts[ib]);
+            (cur.su, cur.cu) = (su, cu);
+            cur.pts[ib] = self.eval_half(tb, su, cu);
+            cur.evals += 1;
+            let (pa, pb) = (&cur.pts[ia], &cur.pts[ib]);
+            observe(pb, su, cu);
             // Cheap filter: a constraint needs a closer look only if it is violated at the
             // cell end or has an interior minimum (g' from − to +) whose cubic-Hermite
             // estimate is not clearly positive (exactly the cases `first_violation` handles
@@ -623,7 +897,7 @@ impl RollingPath {
                         continue;
                     }
                     let x = match best {
-                        None => self.first_violation(k, pa, pb, &mut evals),
+                        None => self.first_violation(k, pa, pb, &mut cur.evals),
                         Some((bx, _)) => {
                             // Only a violation before bx − tie tolerance can win: look on
                             // [θa, t] (same one-sign-change assumption, usually 1 evaluation
@@ -633,8 +907,8 @@ impl RollingPath {
                                 None
                             } else {
                                 let pt = self.eval(t);
-                                evals += 1;
-                                self.first_violation(k, pa, &pt, &mut evals)
+                                cur.evals += 1;
+                                self.first_violation(k, pa, &pt, &mut cur.evals)
                             }
                         }
                     };
@@ -648,30 +922,19 @@ impl RollingPath {
                 }
                 if let Some((x, k)) = best {
                     let px = self.eval(x);
-                    evals += 1;
-                    track(pa, &px, &mut min_fy, &mut max_r);
-                    return self.finish(
-                        event_of(k),
-                        px,
-                        min_fy,
-                        max_r,
-                        evals,
-                        watch.refine_extrema,
-                    );
+                    cur.evals += 1;
+                    track(pa, &px, &mut cur.min_fy, &mut cur.max_r);
+                    return Stop::Event(event_of(k), px);
                 }
             }
-            track(pa, pb, &mut min_fy, &mut max_r);
-            if tb >= theta_end || cells > max_cells {
-                return self.finish(
-                    ContactEvent::End,
-                    *pb,
-                    min_fy,
-                    max_r,
-                    evals,
-                    watch.refine_extrema,
-                );
+            track(pa, pb, &mut cur.min_fy, &mut cur.max_r);
+            cur.ia = ib;
+            if tb >= theta_end || cur.cells > grid.max_cells {
+                return Stop::End;
             }
-            ia = ib;
+            if tb >= until {
+                return Stop::Reached;
+            }
         }
     }
 
@@ -700,7 +963,7 @@ impl RollingPath {
             min_fy.cell = None;
             max_r.cell = None;
         }
-        if let Some((lo, hi)) = min_fy.cell {
+        for (lo, hi) in min_fy.cells_to_refine().into_iter().flatten() {
             let (pl, ph) = (self.eval(lo), self.eval(hi));
             let m = self.min_location(G_FY, &pl, &ph, &mut evals);
             if m.fy < min_fy.value {
@@ -708,7 +971,7 @@ impl RollingPath {
                 min_fy.theta = m.theta;
             }
         }
-        if let Some((lo, hi)) = max_r.cell {
+        for (lo, hi) in max_r.cells_to_refine().into_iter().flatten() {
             let (pl, ph) = (self.eval(lo), self.eval(hi));
             let (dl, dh) = (pl.ratio_derivative(), ph.ratio_derivative());
             if dl > 0.0 && dh < 0.0 {
@@ -768,11 +1031,7 @@ fn track(a: &PathPoint, b: &PathPoint, min_fy: &mut Extremum, max_r: &mut Extrem
     let (da, db) = (a.dg[G_FY], b.dg[G_FY]);
     if da < 0.0 && db > 0.0 {
         let (t, est) = hermite_min(a.fy, h * da, b.fy, h * db);
-        if est < min_fy.cell_est {
-            min_fy.cell_est = est;
-            min_fy.cell_theta = a.theta + t * h;
-            min_fy.cell = Some((a.theta, b.theta));
-        }
+        min_fy.offer(est, a.theta + t * h, (a.theta, b.theta), |x, y| x < y);
     }
     let rb = b.ratio();
     if rb > max_r.value {
@@ -788,11 +1047,7 @@ fn track(a: &PathPoint, b: &PathPoint, min_fy: &mut Extremum, max_r: &mut Extrem
         let (ra, rda, rdb) = (a.ratio(), a.ratio_derivative(), b.ratio_derivative());
         if rda > 0.0 && rdb < 0.0 {
             let (t, est) = hermite_min(-ra, -h * rda, -rb, -h * rdb);
-            if -est > max_r.cell_est {
-                max_r.cell_est = -est;
-                max_r.cell_theta = a.theta + t * h;
-                max_r.cell = Some((a.theta, b.theta));
-            }
+            max_r.offer(-est, a.theta + t * h, (a.theta, b.theta), |x, y| x > y);
         }
     }
 }
@@ -904,6 +1159,148 @@ mod tests {
             assert!(worst < 1e-15, "{worst}");
             println!("h = {h}: worst {worst:e}");
         }
+    }
+
+    /// xorshift64*: a uniform in [0, 1) (reproducible test points).
+    fn uniform(s: &mut u64) -> f64 {
+        *s ^= *s >> 12;
+        *s ^= *s << 25;
+        *s ^= *s >> 27;
+        (s.wrapping_mul(0x2545_f491_4f6c_dd1d) >> 11) as f64 / (1u64 << 53) as f64
+    }
+
+    #[test]
+    fn every_constraint_is_affine_in_the_turn_index_at_a_fixed_phase() {
+        // The law the turn skip rests on, checked against direct evaluations m turns later
+        // (an independent route: E(θ + 2πm) through `sin_cos` of the full angle).
+        let mut s = 7u64;
+        for _ in 0..300 {
+            let (chi, km) = (0.01 + 0.98 * uniform(&mut s), 0.5 * uniform(&mut s));
+            let r = ramp(chi, km * (1.0 - chi), 0.01 + 20.0 * uniform(&mut s));
+            let (th0, w0) = (6.0 * uniform(&mut s) - 3.0, 2.0 * uniform(&mut s));
+            let p = RollingPath::new(&r, th0, w0, 0.3 + uniform(&mut s));
+            let th = th0 + 0.1 + 6.0 * uniform(&mut s);
+            let (su, cu) = crate::trig::sin_cos(0.5 * (th - th0));
+            let (a, b) = (p.eval_half(th, su, cu), p.eval_half(th + TAU, -su, -cu));
+            for m in [1.0, 2.0, 7.0, 40.0] {
+                let q = p.eval(th + TAU * m);
+                for k in 0..NG {
+                    let lin = a.g[k] + m * (b.g[k] - a.g[k]);
+                    let scale = 1.0 + a.g[k].abs() + m * (b.g[k] - a.g[k]).abs();
+                    assert!(
+                        (q.g[k] - lin).abs() < 1e-11 * scale,
+                        "{k} {m} {} {lin}",
+                        q.g[k]
+                    );
+                }
+            }
+        }
+    }
+
+    /// The extrema of F_y (min) and |F_x|/F_y (max) on [a, b] by brute force: 48 samples a
+    /// turn, then a 2000-point grid around every sample that is a local extremum.
+    fn brute_extrema(p: &RollingPath, a: f64, b: f64) -> (f64, f64) {
+        let n = ((b - a) / TAU * 48.0).ceil().max(2.0) as usize;
+        let h = (b - a) / n as f64;
+        let pts: Vec<PathPoint> = (0..=n).map(|i| p.eval(a + h * i as f64)).collect();
+        let best = |f: &dyn Fn(&PathPoint) -> f64| {
+            let v: Vec<f64> = pts.iter().map(f).collect();
+            let mut m = v.iter().copied().fold(f64::NEG_INFINITY, f64::max);
+            for i in 0..=n {
+                let left = i == 0 || v[i] >= v[i - 1];
+                let right = i == n || v[i] >= v[i + 1];
+                if left && right {
+                    let c = a + h * i as f64;
+                    for j in 0..=2000 {
+                        let t = (c + h * (j as f64 / 1000.0 - 1.0)).clamp(a, b);
+                        m = m.max(f(&p.eval(t)));
+                    }
+                }
+            }
+            m
+        };
+        (-best(&|q| -q.fy), best(&|q| q.ratio()))
+    }
+
+    #[test]
+    fn turn_skip_finds_the_event_and_extrema_of_the_full_scan() {
+        // Long paths (small α, from rest or not, each watch of the routes): the scan that
+        // skips turns must find the event of the cell-by-cell scan, and the extrema over the
+        // whole path (brute force), while doing much less work.
+        let mut s = 20_261_124u64;
+        let (mut far, mut evals_skip, mut evals_full) = (0, 0u64, 0u64);
+        let watches = [
+            Watch::ALL,
+            Watch {
+                liftoff: false,
+                ..Watch::ALL
+            },
+            Watch {
+                normal_force: false,
+                friction: false,
+                refine_extrema: false,
+                ..Watch::ALL
+            },
+        ];
+        for i in 0..300 {
+            let chi = 0.001 + 0.998 * uniform(&mut s);
+            let km = uniform(&mut s) * (1.0 - chi);
+            let alpha = 0.2 * uniform(&mut s).powi(3) + 1e-6;
+            let r = Ramp::new(Cylinder::new(chi, km).unwrap(), alpha).unwrap();
+            let (th0, w0) = if i % 2 == 0 {
+                (0.0, 0.0)
+            } else {
+                (4.0 * uniform(&mut s) - 2.0, uniform(&mut s))
+            };
+            let p = RollingPath::new(&r, th0, w0, 0.5 + 2.0 * uniform(&mut s));
+            let end = th0 + TAU * (6.0 + 150.0 * uniform(&mut s));
+            let w = watches[i % 3];
+            let (a, b) = (
+                p.scan_cells(th0, end, w, true),
+                p.scan_cells(th0, end, w, false),
+            );
+            let at = format!(
+                "chi {chi} km {km} alpha {alpha} th0 {th0} w0 {w0} watch {}",
+                i % 3
+            );
+            assert_eq!(a.event, b.event, "{at}");
+            let (ta, tb) = (a.at.theta, b.at.theta);
+            assert!(
+                (ta - tb).abs() <= 1e-13 * tb.abs().max(1.0),
+                "{ta} {tb} {at}"
+            );
+            if w.normal_force && a.min_fy > 0.0 {
+                let (min_fy, max_ratio) = brute_extrema(&p, th0, ta);
+                let (m, r) = (a.min_fy, a.max_ratio);
+                // Reported: values on the path, at least as good as every brute-force sample.
+                let tol = 1e-11 * (1.0 + m.abs() + r.abs());
+                assert!(
+                    m <= min_fy + tol,
+                    "{m} {min_fy} (full scan {}) {at}",
+                    b.min_fy
+                );
+                assert!(
+                    r >= max_ratio - tol,
+                    "{r} {max_ratio} (full {}) {at}",
+                    b.max_ratio
+                );
+                for (x, f) in [(a.theta_min_fy, m), (a.theta_max_ratio, r)] {
+                    assert!(x >= th0 && x <= ta, "{x} {at}");
+                    let q = p.eval(x);
+                    assert!(f == q.fy || f == q.ratio(), "{f} {x} {at}");
+                }
+            }
+            if tb > th0 + 10.0 * TAU {
+                far += 1;
+            }
+            evals_skip += a.evaluations as u64;
+            evals_full += b.evaluations as u64;
+        }
+        assert!(far > 100, "{far} paths ran past 10 turns");
+        assert!(
+            (evals_skip as f64) < 0.3 * evals_full as f64,
+            "{evals_skip} {evals_full}"
+        );
     }
 
     #[test]
