@@ -1,15 +1,14 @@
 //! `roll`: one pure-rolling run, computed with the GIL released, returned as numpy arrays.
 
+use crate::columns::dense_rows;
 use crate::errors::{detached, to_py};
 use crate::options::{parse_integrator, parse_rule};
-use eccjump_core::error::short;
 use eccjump_core::mechanics::friction::friction_ratio;
 use eccjump_core::modes::rolling::run::{roll_until, RollOptions, RollRun, RollStatus};
 use eccjump_core::modes::rolling::solution::RollSolution;
 use eccjump_core::ode::SolverOptions;
 use eccjump_core::{Cylinder, Ramp};
-use numpy::{IntoPyArray, PyArray1, PyArray2, PyArrayMethods, PyReadonlyArray1};
-use pyo3::exceptions::PyValueError;
+use numpy::{IntoPyArray, PyArray2, PyReadonlyArray1};
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
 
@@ -103,22 +102,9 @@ pub struct DenseSolution {
 }
 
 impl DenseSolution {
-    /// Applies `f` at every time of `t`, with a ValueError naming the first time outside
-    /// the run.
-    fn each<T>(&self, t: &[f64], f: impl Fn(&RollSolution, f64) -> Option<T>) -> PyResult<Vec<T>> {
-        t.iter()
-            .enumerate()
-            .map(|(i, &ti)| {
-                f(&self.sol, ti).ok_or_else(|| {
-                    PyValueError::new_err(format!(
-                        "t[{i}] = {} is outside the allowed range [{}, {}] of the dense output",
-                        short(ti),
-                        short(self.sol.t_start()),
-                        short(self.sol.t_end)
-                    ))
-                })
-            })
-            .collect()
+    /// The times covered, [start, end], for the messages about times outside them.
+    fn range(&self) -> (f64, f64) {
+        (self.sol.t_start(), self.sol.t_end)
     }
 }
 
@@ -136,36 +122,38 @@ impl DenseSolution {
         self.sol.t_end
     }
 
-    /// (θ, θ̇) at the times `t` (1-D), shape (2, len(t)).
+    /// (θ, θ̇) at the times `t` (1-D), shape (2, len(t)); a ValueError names the first time
+    /// outside [t_min, t_max], a MemoryError a request too large for memory.
     fn states<'py>(
         &self,
         py: Python<'py>,
         t: PyReadonlyArray1<'py, f64>,
     ) -> PyResult<Bound<'py, PyArray2<f64>>> {
-        let t = t.as_slice()?;
-        let ys = self.each(t, |s, ti| s.state(ti))?;
-        let mut flat: Vec<f64> = ys.iter().map(|y| y[0]).collect();
-        flat.extend(ys.iter().map(|y| y[1]));
-        PyArray1::from_vec(py, flat).reshape([2, t.len()])
+        dense_rows(py, "the dense states", t.as_slice()?, self.range(), |ti| {
+            self.sol.state(ti).map(|y| [y[0], y[1]])
+        })
     }
 
-    /// θ, θ̇, θ̈, F_x, F_y and the friction ratio at the times `t` (1-D), as a dict of arrays.
+    /// θ, θ̇, θ̈, F_x, F_y and the friction ratio at the times `t` (1-D), as a dict of arrays
+    /// (the rows of one (6, len(t)) array; errors as for `states`).
     fn kinematics<'py>(
         &self,
         py: Python<'py>,
         t: PyReadonlyArray1<'py, f64>,
     ) -> PyResult<Bound<'py, PyDict>> {
-        let ks = self.each(t.as_slice()?, |s, ti| s.kinematics(ti))?;
-        let d = PyDict::new(py);
-        let col = |f: fn(&eccjump_core::modes::rolling::Kinematics) -> f64| {
-            ks.iter().map(f).collect::<Vec<f64>>().into_pyarray(py)
+        let at = |ti| {
+            let k = self.sol.kinematics(ti)?;
+            let ratio = friction_ratio(k.fx, k.fy);
+            Some([k.theta, k.omega, k.omega_dot, k.fx, k.fy, ratio])
         };
-        d.set_item("theta", col(|k| k.theta))?;
-        d.set_item("omega", col(|k| k.omega))?;
-        d.set_item("omega_dot", col(|k| k.omega_dot))?;
-        d.set_item("Fx", col(|k| k.fx))?;
-        d.set_item("Fy", col(|k| k.fy))?;
-        d.set_item("ratio", col(|k| friction_ratio(k.fx, k.fy)))?;
+        let rows = dense_rows(py, "the dense kinematics", t.as_slice()?, self.range(), at)?;
+        let d = PyDict::new(py);
+        for (k, name) in ["theta", "omega", "omega_dot", "Fx", "Fy", "ratio"]
+            .into_iter()
+            .enumerate()
+        {
+            d.set_item(name, rows.get_item(k)?)?;
+        }
         Ok(d)
     }
 }
