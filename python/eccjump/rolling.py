@@ -233,7 +233,7 @@ def roll(
     a = real("alpha", alpha)
     mu = optional_real("mu_s", mu_s)
     rule = text("rule", rule)
-    raw = _core.roll(
+    series, events, terminal_event, status, message, nfev, sol = _core.roll(
         body.chi,
         body.km,
         a,
@@ -249,27 +249,27 @@ def roll(
         rule=rule,
         integrator=text("integrator", integrator),
     )
-    sol = DenseSolution(raw["sol"]) if "sol" in raw else None
+    t, theta, omega, omega_dot, Fx, Fy, l, ratio = series  # noqa: E741 - the fields' names
     return _result(
         {
             "body": body,
             "alpha": a,
             "mu_s": mu,
             "rule": rule,
-            "t": raw["t"],
-            "theta": raw["theta"],
-            "omega": raw["omega"],
-            "omega_dot": raw["omega_dot"],
-            "Fx": raw["Fx"],
-            "Fy": raw["Fy"],
-            "l": raw["l"],
-            "friction_ratio": raw["ratio"],
-            "events": tuple([Event(*e) for e in raw["events"]]),
-            "terminal_event": raw["terminal_event"],
-            "status": raw["status"],
-            "message": raw["message"],
-            "nfev": raw["nfev"],
-            "sol": sol,
+            "t": t,
+            "theta": theta,
+            "omega": omega,
+            "omega_dot": omega_dot,
+            "Fx": Fx,
+            "Fy": Fy,
+            "l": l,
+            "friction_ratio": ratio,
+            "events": tuple([Event(*e) for e in events]),
+            "terminal_event": terminal_event,
+            "status": status,
+            "message": message,
+            "nfev": nfev,
+            "sol": None if sol is None else DenseSolution(sol),
             "units": None,
         }
     )

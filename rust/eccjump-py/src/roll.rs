@@ -8,12 +8,43 @@ use eccjump_core::modes::rolling::run::{roll_until, RollOptions, RollRun, RollSt
 use eccjump_core::modes::rolling::solution::RollSolution;
 use eccjump_core::ode::SolverOptions;
 use eccjump_core::{Cylinder, Ramp};
-use numpy::{IntoPyArray, PyArray2, PyReadonlyArray1};
+use numpy::{IntoPyArray, PyArray1, PyArray2, PyReadonlyArray1};
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
 
-/// Integrates pure rolling of the body (χ, k_m) on a ramp of angle α; returns a dict of
-/// arrays and scalars that the Python layer wraps in `RollResult`. The options are
+/// The eight recorded series of a run as numpy arrays: t, θ, θ̇, θ̈, F_x, F_y, l − l0 and
+/// |F_x|/F_y at each recorded point.
+type Series<'py> = (
+    Bound<'py, PyArray1<f64>>,
+    Bound<'py, PyArray1<f64>>,
+    Bound<'py, PyArray1<f64>>,
+    Bound<'py, PyArray1<f64>>,
+    Bound<'py, PyArray1<f64>>,
+    Bound<'py, PyArray1<f64>>,
+    Bound<'py, PyArray1<f64>>,
+    Bound<'py, PyArray1<f64>>,
+);
+
+/// One event met: (name, t, θ, θ̇).
+type EventTuple = (&'static str, f64, f64, f64);
+
+/// A run as `roll` returns it, in the order of `RollResult`'s fields: the series, the
+/// events met, the terminal event's name (None if none ended the run), the status code, the
+/// message, the right-hand-side evaluations and the dense output (None unless asked for).
+/// A tuple, not a dict: a short run costs about 10 µs, and making, hashing and looking up
+/// thirteen key strings took 0.5 µs of it.
+type RollTuple<'py> = (
+    Series<'py>,
+    Vec<EventTuple>,
+    Option<&'static str>,
+    i32,
+    String,
+    usize,
+    Option<Bound<'py, DenseSolution>>,
+);
+
+/// Integrates pure rolling of the body (χ, k_m) on a ramp of angle α; returns the run as a
+/// tuple (`RollTuple`) that the Python layer unpacks into `RollResult`. The options are
 /// keyword-only (named at every call, typed here). Bad input raises ValueError (from the
 /// core's checks) before any work is done.
 #[pyfunction]
@@ -36,7 +67,7 @@ pub fn roll<'py>(
     dense_output: bool,
     rule: &str,
     integrator: &str,
-) -> PyResult<Bound<'py, PyDict>> {
+) -> PyResult<RollTuple<'py>> {
     let ramp = Ramp::new(Cylinder::new(chi, km).map_err(to_py)?, alpha).map_err(to_py)?;
     let opts = RollOptions {
         theta0,
@@ -55,43 +86,45 @@ pub fn roll<'py>(
         dense_output,
     };
     let run = detached(py, |stop| roll_until(&ramp, &opts, stop))?;
-    to_dict(py, run)
+    to_tuple(py, run)
 }
 
-fn to_dict<'py>(py: Python<'py>, run: RollRun) -> PyResult<Bound<'py, PyDict>> {
-    let d = PyDict::new(py);
-    let events: Vec<(&str, f64, f64, f64)> = run
+fn to_tuple<'py>(py: Python<'py>, run: RollRun) -> PyResult<RollTuple<'py>> {
+    // The record's vectors move into numpy (no copy). One (8, n) array with row views was
+    // measured too: 0.05 µs faster, but it copies the record, doubling the peak memory of
+    // a long run.
+    let series = (
+        run.t.into_pyarray(py),
+        run.theta.into_pyarray(py),
+        run.omega.into_pyarray(py),
+        run.omega_dot.into_pyarray(py),
+        run.fx.into_pyarray(py),
+        run.fy.into_pyarray(py),
+        run.l.into_pyarray(py),
+        run.ratio.into_pyarray(py),
+    );
+    let events = run
         .events
         .iter()
         .map(|e| (e.event.name(), e.t, e.theta, e.omega))
         .collect();
-    d.set_item("status", run.status.code())?;
-    d.set_item("message", run.status.message())?;
-    d.set_item(
-        "terminal_event",
-        match run.status {
-            RollStatus::Event(e) => Some(e.name()),
-            _ => None,
-        },
-    )?;
-    d.set_item("nfev", run.nfev)?;
-    d.set_item("events", events)?;
-    for (name, v) in [
-        ("t", run.t),
-        ("theta", run.theta),
-        ("omega", run.omega),
-        ("omega_dot", run.omega_dot),
-        ("Fx", run.fx),
-        ("Fy", run.fy),
-        ("l", run.l),
-        ("ratio", run.ratio),
-    ] {
-        d.set_item(name, v.into_pyarray(py))?;
-    }
-    if let Some(sol) = run.dense {
-        d.set_item("sol", Bound::new(py, DenseSolution { sol })?)?;
-    }
-    Ok(d)
+    let terminal_event = match run.status {
+        RollStatus::Event(e) => Some(e.name()),
+        _ => None,
+    };
+    let sol = run
+        .dense
+        .map(|sol| Bound::new(py, DenseSolution { sol }))
+        .transpose()?;
+    Ok((
+        series,
+        events,
+        terminal_event,
+        run.status.code(),
+        run.status.message(),
+        run.nfev,
+        sol,
+    ))
 }
 
 /// The dense output of a run (`RollResult.sol`): the state and the kinematics at any time
