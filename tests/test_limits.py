@@ -74,6 +74,40 @@ def test_memory_error_under_an_address_space_limit():
     assert out.stdout.startswith("MemoryError"), out.stdout
 
 
+def test_dense_output_too_large_is_a_memory_error():
+    # A dense output evaluated at more times than its result fits in: MemoryError naming
+    # what did not fit, the process lives on (roll's states and kinematics were collected
+    # infallibly: an abort). The 2e7 times fit (160 MB, never touched); the address-space
+    # limit leaves 64 MiB above them, less than the (2 or 6) x 160 MB of the result.
+    code = textwrap.dedent(
+        """
+        import math, resource, numpy as np, eccjump
+        b = eccjump.Cylinder(0.5, 0.4)
+        rolled = eccjump.roll(b, math.radians(30), dense_output=True)
+        moved = eccjump.simulate(b, math.radians(30), mu_s=1.0, t_max=9.0, dense_output=True)
+        calls = {"roll": rolled.sol, "kinematics": rolled.sol.kinematics, "simulate": moved.sol}
+        t = np.zeros(20_000_000)
+        for f in calls.values():
+            f(t[:3])
+        used = int(open("/proc/self/statm").read().split()[0]) * resource.getpagesize()
+        resource.setrlimit(resource.RLIMIT_AS, (used + (64 << 20), used + (64 << 20)))
+        for name, f in calls.items():
+            try:
+                f(t)
+                print(name, "returned")
+            except MemoryError as e:
+                print(name, "MemoryError", e)
+        """
+    )
+    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, timeout=60)
+    assert out.returncode == 0, out.stderr[-2000:]
+    lines = out.stdout.splitlines()
+    assert [line.split()[:2] for line in lines] == [
+        [name, "MemoryError"] for name in ("roll", "kinematics", "simulate")
+    ], out.stdout
+    assert all("the dense" in line and len(line) <= 200 for line in lines), out.stdout
+
+
 # --- every call ends ----------------------------------------------------------------------
 
 

@@ -1,6 +1,7 @@
 """Pure rolling through the Rust RK45 core, checked against independent routes."""
 
 import math
+from fractions import Fraction
 
 import numpy as np
 import pytest
@@ -378,6 +379,39 @@ def test_fast_result_construction_equals_the_dataclass_init():
         assert a.tobytes() == b.tobytes() if isinstance(a, np.ndarray) else a == b, n
     with pytest.raises(dataclasses.FrozenInstanceError):
         r.status = 0
+
+
+def test_arguments_of_any_accepted_type_give_the_run_of_plain_ones():
+    # roll skips its type checks when every argument has its exact plain type (float, int,
+    # bool, str, None): any other accepted type goes through them and gives the same run.
+    class Name(str):
+        pass
+
+    body = Cylinder(0.15, 0.02)
+    kw = dict(theta0=0.1, omega0=0.2, t_max=50.0, rtol=1e-9, atol=1e-11, dense_output=True)
+    plain = roll(body, 0.7, mu_s=1.0, max_steps=10_000, rule="normal_force", **kw)
+    other = roll(
+        body,
+        np.float64(0.7),
+        theta0=np.array(0.1),
+        omega0=Fraction(1, 5),
+        mu_s=1,
+        t_max=np.int64(50),
+        rtol=np.float64(1e-9),
+        atol=1e-11,
+        max_steps=np.int32(10_000),
+        dense_output=np.True_,
+        rule=Name("normal_force"),
+    )
+    assert other == plain and other.sol is not None
+    assert type(other.alpha) is float and type(other.mu_s) is float
+    # With several bad arguments the first checked is reported: alpha, mu_s, rule, the rest.
+    with pytest.raises(TypeError, match="alpha"):
+        roll(body, "0.7", mu_s="1", rule=3)
+    with pytest.raises(TypeError, match="rule"):
+        roll(body, 0.7, theta0="0", rule=3)
+    with pytest.raises(TypeError, match="dense_output"):
+        roll(body, 0.7, dense_output=1, integrator=None)
 
 
 def test_dop853_takes_scipys_dop853_steps():

@@ -64,7 +64,35 @@ def roll(
     dense_output: bool,
     rule: str,
     integrator: str,
-) -> dict[str, Any]: ...
+) -> RollTuple:
+    """One pure-rolling run of the body (chi, km) on a ramp of angle alpha, with the GIL
+    released. Options are keyword-only, all required (``eccjump.roll`` gives the defaults),
+    and checked by the core: a ValueError names the parameter. Returns a :data:`RollTuple`."""
+
+_Series = tuple[
+    NDArray[np.float64],
+    NDArray[np.float64],
+    NDArray[np.float64],
+    NDArray[np.float64],
+    NDArray[np.float64],
+    NDArray[np.float64],
+    NDArray[np.float64],
+    NDArray[np.float64],
+]
+
+#: A run of ``roll``, in the order of ``RollResult``'s fields: the float64 series (t, theta,
+#: omega, omega_dot, Fx, Fy, l, friction_ratio), the events met as (name, t, theta, omega),
+#: the terminal event's name or None, the status code (0, 1, -1), the message, nfev, and the
+#: dense output (None unless ``dense_output``).
+RollTuple = tuple[
+    _Series,
+    list[tuple[str, float, float, float]],
+    str | None,
+    int,
+    str,
+    int,
+    DenseSolution | None,
+]
 
 class DenseSolution:
     """The dense output of a run, evaluated by the core (ends at the run's end)."""
@@ -73,8 +101,13 @@ class DenseSolution:
     def t_min(self) -> float: ...
     @property
     def t_max(self) -> float: ...
-    def states(self, t: NDArray[np.float64]) -> NDArray[np.float64]: ...
-    def kinematics(self, t: NDArray[np.float64]) -> dict[str, NDArray[np.float64]]: ...
+    def states(self, t: NDArray[np.float64]) -> NDArray[np.float64]:
+        """(theta, omega) at the times ``t`` (1-D float64), shape (2, len(t)). ValueError
+        names the first time outside [t_min, t_max]; MemoryError for too many times."""
+
+    def kinematics(self, t: NDArray[np.float64]) -> dict[str, NDArray[np.float64]]:
+        """theta, omega, omega_dot, Fx, Fy and ratio at the times ``t`` (1-D float64), each
+        of shape (len(t),); errors as :meth:`states`."""
 
 def simulate(
     chi: float,
@@ -121,7 +154,7 @@ class MotionDense:
     def states(self, t: NDArray[np.float64]) -> NDArray[np.float64]:
         """(theta, omega, l, ldot, b, bdot) at the times ``t`` (1-D float64), shape
         (6, len(t)); at an impact, the state after it. ValueError names the first time
-        outside [0, t_max]."""
+        outside [0, t_max]; MemoryError for too many times."""
 
 class CallOptions(TypedDict):
     """The options of a classification call (extra keys are ignored)."""

@@ -1,7 +1,11 @@
-//! Struct-of-arrays output: one numpy column per field of a slice of per-point results.
+//! Struct-of-arrays output: one numpy column per field of a slice of per-point results, and
+//! the rows of a dense output evaluated at many times. Every buffer whose size the caller
+//! chooses is allocated fallibly: too large a request is a `MemoryError`, never an abort.
 
-use numpy::{Element, IntoPyArray};
-use pyo3::exceptions::PyMemoryError;
+use crate::errors::to_py;
+use eccjump_core::error::{short, try_filled};
+use numpy::{Element, IntoPyArray, PyArray1, PyArray2, PyArrayMethods};
+use pyo3::exceptions::{PyMemoryError, PyValueError};
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
 
@@ -22,4 +26,35 @@ pub fn set_column<'py, R, T: Element>(
     })?;
     v.extend(rows.iter().map(f));
     d.set_item(name, v.into_pyarray(d.py()))
+}
+
+/// A dense output evaluated at the times `t`: the (K, len(t)) array whose row k holds
+/// component k of `at(t[i])`. The times come from the caller (a numpy array of any length),
+/// so the K·len(t) values are allocated fallibly and before any evaluation: a `MemoryError`
+/// naming `what` if they do not fit. `at` is None outside the output; the first such time
+/// is a ValueError naming its index and the output's `range` [start, end].
+pub fn dense_rows<'py, const K: usize>(
+    py: Python<'py>,
+    what: &'static str,
+    t: &[f64],
+    range: (f64, f64),
+    at: impl Fn(f64) -> Option<[f64; K]>,
+) -> PyResult<Bound<'py, PyArray2<f64>>> {
+    let n = t.len();
+    // A product that overflows saturates, which `try_filled` refuses as too large.
+    let mut flat = try_filled(what, n.saturating_mul(K), 0.0).map_err(to_py)?;
+    for (i, &ti) in t.iter().enumerate() {
+        let y = at(ti).ok_or_else(|| {
+            PyValueError::new_err(format!(
+                "t[{i}] = {} is outside the allowed range [{}, {}] of the dense output",
+                short(ti),
+                short(range.0),
+                short(range.1)
+            ))
+        })?;
+        for (k, v) in y.into_iter().enumerate() {
+            flat[k * n + i] = v;
+        }
+    }
+    PyArray1::from_vec(py, flat).reshape([K, n])
 }

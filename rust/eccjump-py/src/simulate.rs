@@ -2,17 +2,16 @@
 //! GIL released, returned as numpy arrays and tuples that the Python layer wraps in
 //! `MotionResult`.
 
+use crate::columns::dense_rows;
 use crate::errors::{detached, to_py};
 use crate::options::{parse_integrator, parse_rule};
-use eccjump_core::error::short;
 use eccjump_core::mechanics::BodyState;
 use eccjump_core::modes::contact::{ContactLaw, Mode};
 use eccjump_core::motion::solution::MotionSolution;
 use eccjump_core::motion::{simulate_until, MotionRun, SimOptions};
 use eccjump_core::ode::SolverOptions;
 use eccjump_core::{Cylinder, Ramp};
-use numpy::{IntoPyArray, PyArray1, PyArray2, PyArrayMethods, PyReadonlyArray1};
-use pyo3::exceptions::PyValueError;
+use numpy::{IntoPyArray, PyArray2, PyReadonlyArray1};
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
 
@@ -72,9 +71,15 @@ pub fn simulate<'py>(
     to_dict(py, &ramp, run)
 }
 
+/// (θ, θ̇, l, l̇, b, ḃ): the order of every full state handed to Python.
+fn state_values(s: &BodyState) -> [f64; 6] {
+    [s.theta, s.omega, s.l, s.ldot, s.b, s.bdot]
+}
+
 /// (θ, θ̇, l, l̇, b, ḃ) as a tuple.
 fn state_tuple(s: &BodyState) -> (f64, f64, f64, f64, f64, f64) {
-    (s.theta, s.omega, s.l, s.ldot, s.b, s.bdot)
+    let [theta, omega, l, ldot, b, bdot] = state_values(s);
+    (theta, omega, l, ldot, b, bdot)
 }
 
 fn to_dict<'py>(py: Python<'py>, ramp: &Ramp, run: MotionRun) -> PyResult<Bound<'py, PyDict>> {
@@ -175,30 +180,15 @@ impl MotionDense {
     }
 
     /// (θ, θ̇, l, l̇, b, ḃ) at the times `t` (1-D), shape (6, len(t)); a ValueError names the
-    /// first time outside [0, t_max].
+    /// first time outside [0, t_max], a MemoryError a request too large for memory.
     fn states<'py>(
         &self,
         py: Python<'py>,
         t: PyReadonlyArray1<'py, f64>,
     ) -> PyResult<Bound<'py, PyArray2<f64>>> {
-        let t = t.as_slice()?;
-        let n = t.len();
-        let mut flat =
-            eccjump_core::error::try_filled("the dense states", n.saturating_mul(6), 0.0)
-                .map_err(to_py)?;
-        for (i, &ti) in t.iter().enumerate() {
-            let s = self.sol.state(ti).ok_or_else(|| {
-                PyValueError::new_err(format!(
-                    "t[{i}] = {} is outside the allowed range [0, {}] of the dense output",
-                    short(ti),
-                    short(self.sol.t_end)
-                ))
-            })?;
-            let (a, b, c, d, e, f) = state_tuple(&s);
-            for (k, v) in [a, b, c, d, e, f].into_iter().enumerate() {
-                flat[k * n + i] = v;
-            }
-        }
-        PyArray1::from_vec(py, flat).reshape([6, n])
+        let range = (0.0, self.sol.t_end);
+        dense_rows(py, "the dense states", t.as_slice()?, range, |ti| {
+            self.sol.state(ti).map(|s| state_values(&s))
+        })
     }
 }
