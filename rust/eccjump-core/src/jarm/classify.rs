@@ -58,7 +58,7 @@ pub fn classify(alpha: f64, chi: f64, km: f64, mu_s: f64, o: &JarmOptions) -> Ja
         return JarmResult::new(Reason::InvalidParams);
     };
     let path = RollingPath::new(&r, o.theta0, o.omega0, mu_s);
-    let p0 = path.eval(o.theta0);
+    let p0 = path.start();
     if equilibrium_start(o.omega0, p0.omega_dot, p0.fx, p0.fy, mu_s) {
         return JarmResult::new(Reason::NoRoot);
     }
