@@ -25,7 +25,7 @@ use crate::jarm::decision::{decide, point_ramp, search_end, Case, EventPoint, Ex
 use crate::jarm::path::{PathScan, RollingPath, Watch};
 use crate::jarm::result::{JarmOptions, JarmResult, Reason};
 use crate::mechanics::Rule;
-use crate::modes::rolling::events::{equilibrium_start, ContactEvent};
+use crate::modes::rolling::events::equilibrium_start;
 
 impl PathScan {
     /// The scan's outcome for the shared decision tree.
@@ -82,10 +82,7 @@ pub fn classify(alpha: f64, chi: f64, km: f64, mu_s: f64, o: &JarmOptions) -> Ja
     };
     // After a slip (paper rule): only the parts of each turn where L can reach 0 are scanned.
     let th = s.at.theta;
-    let liftoff_after_slip = || {
-        let lift = path.scan_liftoff_from(th, theta_end.max(th), 3);
-        (lift.event == ContactEvent::Liftoff).then_some(lift.at.theta)
-    };
+    let liftoff_after_slip = || path.liftoff_after(th, theta_end.max(th), 3);
     let res = decide(&case, &s.found(o.theta0), liftoff_after_slip);
     crate::jarm::decision::restrict_to_turn(res, o.n)
 }

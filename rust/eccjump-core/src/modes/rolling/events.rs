@@ -65,7 +65,7 @@ pub struct StartValues {
 /// as a violation. Lift-off: L ≥ 0 and not falling; normal force: F_y ≤ 0; friction:
 /// μ_s F_y ∓ F_x < 0; stop: no kinetic energy and no forward acceleration.
 pub fn violated_at_start(w: Watched, mu_s: f64, v: &StartValues) -> Option<ContactEvent> {
-    if w.liftoff && (v.lift.is_nan() || v.lift >= 0.0) && !(v.lift == 0.0 && v.lift_slope < 0.0) {
+    if w.liftoff && liftoff_at_start(v.lift, v.lift_slope) {
         return Some(ContactEvent::Liftoff);
     }
     if w.normal_force && (v.fy.is_nan() || v.fy <= 0.0) {
@@ -81,6 +81,12 @@ pub fn violated_at_start(w: Watched, mu_s: f64, v: &StartValues) -> Option<Conta
         return Some(ContactEvent::RocksBack);
     }
     None
+}
+
+/// The paper's lift-off already at the start: L ≥ 0 (or NaN) and not falling from L = 0.
+#[inline]
+pub fn liftoff_at_start(lift: f64, lift_slope: f64) -> bool {
+    (lift.is_nan() || lift >= 0.0) && !(lift == 0.0 && lift_slope < 0.0)
 }
 
 /// A start from rest in equilibrium (θ̈0 = 0 inside the contact conditions): nothing ever
