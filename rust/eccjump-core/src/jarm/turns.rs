@@ -53,10 +53,20 @@ pub fn turn_bound(r: &Ramp, theta0: f64, omega0: f64, max_turns: u32) -> Option<
     if n_lo > cap as f64 {
         return Some(cap as u32);
     }
-    let k0 = 0.5 * r.contact_inertia(theta0.cos()) * omega0 * omega0;
+    // From rest at θ0 = 0 (every map's default) both terms below are exactly 0: no `cos`.
+    let k0 = if omega0 == 0.0 {
+        0.0
+    } else {
+        let (_, c0) = crate::trig::sin_cos(theta0);
+        0.5 * r.contact_inertia(c0) * omega0 * omega0
+    };
+    let shift = if theta0 == 0.0 {
+        0.0
+    } else {
+        crate::trig::sin_cos(r.alpha + theta0).1 - r.cos_a
+    };
     let ip0 = r.contact_inertia(1.0);
-    let rhs = r.cos_a * ip0 / (2.0 * chi) - k0 + theta0 * r.sin_a
-        - chi * ((r.alpha + theta0).cos() - r.cos_a);
+    let rhs = r.cos_a * ip0 / (2.0 * chi) - k0 + theta0 * r.sin_a - chi * shift;
     let per = TAU * r.sin_a;
     let guess = (rhs / per).floor() + 1.0;
     let mut n = guess.max(n_lo).min(cap as f64) as u64;

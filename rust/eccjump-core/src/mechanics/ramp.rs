@@ -27,12 +27,14 @@ impl Ramp {
     /// Validates α ∈ [0, π/2] and precomputes its sine and cosine.
     pub fn new(body: Cylinder, alpha: f64) -> Result<Self> {
         check_range("alpha", alpha, 0.0, FRAC_PI_2)?;
+        // One `sin_cos` of the kernels' own library (the same bits with every C library).
+        let (sin_a, cos_a) = crate::trig::sin_cos(alpha);
         // cos(π/2) in floating point is 6e-17, not 0: keep it exact at the end point.
-        let cos_a = if alpha == FRAC_PI_2 { 0.0 } else { alpha.cos() };
+        let cos_a = if alpha == FRAC_PI_2 { 0.0 } else { cos_a };
         Ok(Self {
             body,
             alpha,
-            sin_a: alpha.sin(),
+            sin_a,
             cos_a,
         })
     }
