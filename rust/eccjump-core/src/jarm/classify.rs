@@ -22,6 +22,7 @@
 //! Turn of an event: n = round(θ/2π) (a lift-off needs cos θ > 0, so this is unambiguous).
 
 use crate::jarm::decision::{decide, point_ramp, search_end, Case, EventPoint, Extrema, Found};
+use crate::jarm::jump_point::may_be_green;
 use crate::jarm::path::{PathScan, RollingPath, Watch};
 use crate::jarm::result::{JarmOptions, JarmResult, Reason};
 use crate::mechanics::Rule;
@@ -82,7 +83,11 @@ pub fn classify(alpha: f64, chi: f64, km: f64, mu_s: f64, o: &JarmOptions) -> Ja
     };
     // After a slip (paper rule): only the parts of each turn where L can reach 0 are scanned.
     let th = s.at.theta;
-    let liftoff_after_slip = || path.liftoff_after(th, theta_end.max(th), 3);
+    // Only a lift-off in a green window can make the slip `SlipAtJump`.
+    let liftoff_after_slip = || {
+        let green = |lo, hi| may_be_green(alpha, lo, hi);
+        path.liftoff_after(th, theta_end.max(th), 3, green)
+    };
     let res = decide(&case, &s.found(o.theta0), liftoff_after_slip);
     crate::jarm::decision::restrict_to_turn(res, o.n)
 }

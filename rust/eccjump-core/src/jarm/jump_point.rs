@@ -94,6 +94,19 @@ pub fn green_turn(alpha: f64, theta_j: f64) -> Option<u32> {
     }
 }
 
+/// False only if no θ in [lo, hi] is in a green window 2πn − α < θ < 2πn (n ≥ 1), i.e. if
+/// [`green_turn`] is None on the whole interval; the test keeps a margin of 1e-9 (1 + |θ|)
+/// rad for the rounding of 2πn, so it may say true near a window's edge.
+pub fn may_be_green(alpha: f64, lo: f64, hi: f64) -> bool {
+    if !(lo.is_finite() && hi.is_finite() && alpha > 0.0) {
+        return true;
+    }
+    let tol = 1e-9 * (1.0 + lo.abs().max(hi.abs()));
+    // The first window ending after lo: its end 2πn > lo (n ≥ 1); the earlier ones end by lo.
+    let n = ((lo - tol) / TAU).floor() + 1.0;
+    TAU * n.max(1.0) - alpha < hi + tol
+}
+
 /// Sign of dμ/dφ on (−π/2, 0): with c = cos φ it is the sign of
 ///   f(c) = c/(1 − c²) − χ/(1 + χc) − 2χ²c/(Ĩ_C − χ²c²)      (d ln μ/dc; dc/dφ > 0 there).
 /// Written with 1 − c² = sin² φ to keep precision near φ = 0.
@@ -273,6 +286,40 @@ mod tests {
         assert_eq!(green_turn(alpha, th), None);
         assert_eq!(green_turn(alpha, 2.0 * TAU - 0.1), Some(2));
         assert_eq!(green_turn(alpha, TAU), None);
+    }
+
+    #[test]
+    fn may_be_green_is_true_wherever_a_point_is_green() {
+        let mut s = 7u64;
+        let mut u = || {
+            s ^= s << 13;
+            s ^= s >> 7;
+            s ^= s << 17;
+            (s >> 11) as f64 / (1u64 << 53) as f64
+        };
+        let (mut no, mut yes) = (0, 0);
+        for _ in 0..20_000 {
+            let alpha = FRAC_PI_2 * u();
+            let lo = 40.0 * u() - 5.0;
+            let hi = lo + 1.2 * u() * u();
+            let green =
+                (0..=64).any(|i| green_turn(alpha, lo + (hi - lo) * i as f64 / 64.0).is_some());
+            let may = may_be_green(alpha, lo, hi);
+            assert!(may || !green, "{alpha} {lo} {hi}");
+            if !may {
+                no += 1;
+            } else {
+                yes += 1;
+            }
+        }
+        assert!(no > 5_000 && yes > 2_000, "{no} {yes}");
+        // The window edges themselves.
+        assert!(may_be_green(0.5, TAU - 0.5 - 1e-3, TAU - 0.5 + 1e-3));
+        assert!(!may_be_green(0.5, TAU - 0.5 - 0.2, TAU - 0.5 - 0.1));
+        assert!(!may_be_green(0.5, TAU + 0.1, TAU + 0.2));
+        assert!(may_be_green(0.5, TAU - 0.1, TAU + 0.1));
+        assert!(may_be_green(0.5, 0.0, 100.0));
+        assert!(may_be_green(f64::NAN, 1.0, 2.0));
     }
 
     #[test]

@@ -465,6 +465,27 @@ struct State {
     acc: f64,
 }
 
+/// What the lift-off scan of one window found ([`RollingPath::window_liftoff`]).
+#[derive(Debug, Clone, Copy, PartialEq)]
+enum WindowLift {
+    /// No lift-off in the window.
+    Clean,
+    /// The first lift-off, located.
+    At(f64),
+    /// A lift-off in a cell whose exact angle does not matter to the caller.
+    Within,
+}
+
+/// The order in which simultaneous events are resolved (the shared catalogue's): lift-off,
+/// normal force, friction, energy.
+const TIE_ORDER: [usize; NG] = [G_NOLIFT, G_FY, G_MPLUS, G_MMINUS, G_ENERGY];
+
+/// The position of constraint k in [`TIE_ORDER`].
+#[inline]
+fn tie_rank(k: usize) -> usize {
+    TIE_ORDER.iter().position(|&o| o == k).unwrap_or(NG)
+}
+
 /// Why [`RollingPath::advance`] returned.
 enum Stop {
     /// A watched constraint is violated at this point (the first one on the path).
@@ -754,7 +775,17 @@ impl RollingPath {
     /// cos θ ≥ 0): so only |θ − 2πm| ≤ acos c_min is scanned, whole turns are skipped while
     /// c_min ≥ 1, and within a window only L is evaluated ([`Self::window_liftoff`]).
     /// Elsewhere (no such guarantee) it is the plain scan.
-    pub fn liftoff_after(&self, theta_start: f64, theta_end: f64, coarseness: u8) -> Option<f64> {
+    ///
+    /// `matters(lo, hi)` says whether the caller needs the angle when the lift-off is known to
+    /// lie in the grid cell [lo, hi]; if not, the root is not located and the result is None,
+    /// as when there is none (after a slip only a lift-off in a green window counts).
+    pub fn liftoff_after(
+        &self,
+        theta_start: f64,
+        theta_end: f64,
+        coarseness: u8,
+        matters: impl Fn(f64, f64) -> bool,
+    ) -> Option<f64> {
         let watch = Watch {
             normal_force: false,
             friction: false,
@@ -801,14 +832,13 @@ impl RollingPath {
             }
             if let Some((lo, hi, whole)) = window(m) {
                 if lo < hi {
-                    if let Some(x) = self.window_liftoff(lo, hi, &grid) {
+                    match self.window_liftoff(lo, hi, &grid, &matters) {
+                        WindowLift::Clean => {}
+                        WindowLift::Within => return None,
                         // An event at a window start contradicts the bound (rounding): fall
                         // back to the plain scan.
-                        return if lo > theta_start && x <= lo {
-                            plain()
-                        } else {
-                            Some(x)
-                        };
+                        WindowLift::At(x) if lo > theta_start && x <= lo => return plain(),
+                        WindowLift::At(x) => return Some(x),
                     }
                     if whole && !tried_skip {
                         tried_skip = true;
@@ -826,8 +856,14 @@ impl RollingPath {
     /// [`violated_at_start`]), by the grid and the cell tests of [`Self::advance`] with only
     /// −L evaluated: the angle `scan_from(lo, hi, w)` finds where E > 0 is guaranteed, so that
     /// E, watched there too, cannot end the scan. Only a cell that is not clear is evaluated in
-    /// full, to locate the root as the scan does.
-    fn window_liftoff(&self, lo: f64, hi: f64, grid: &Grid) -> Option<f64> {
+    /// full, to locate the root as the scan does, and only if `matters` for its cell.
+    fn window_liftoff(
+        &self,
+        lo: f64,
+        hi: f64,
+        grid: &Grid,
+        matters: &impl Fn(f64, f64) -> bool,
+    ) -> WindowLift {
         let (mut su, mut cu) = if lo == self.theta0 {
             (0.0, 1.0)
         } else {
@@ -835,7 +871,7 @@ impl RollingPath {
         };
         let (mut ga, mut da, mut ca) = self.no_lift_half(lo, su, cu);
         if liftoff_at_start(-ga, -da) {
-            return Some(lo);
+            return WindowLift::At(lo);
         }
         let (mut ta, mut rotated, mut cells) = (lo, 0u32, 0u64);
         let mut evals = 0u32;
@@ -856,14 +892,18 @@ impl RollingPath {
             }
             let (gb, db, cb) = self.no_lift_half(tb, su, cu);
             if !clear_values(G_NOLIFT, ga, da, gb, db, tb - ta) {
+                // Violated at tb (and not at ta): the lift-off is in this cell.
+                if violated(G_NOLIFT, gb) && !matters(ta, tb) {
+                    return WindowLift::Within;
+                }
                 let pa = self.eval_half(ta, sa, ca_half);
                 let pb = self.eval_half(tb, su, cu);
                 if let Some(x) = self.first_violation(G_NOLIFT, &pa, &pb, &mut evals) {
-                    return Some(x);
+                    return WindowLift::At(x);
                 }
             }
             if tb >= hi || cells > grid.max_cells {
-                return None;
+                return WindowLift::Clean;
             }
             (ta, ga, da, ca) = (tb, gb, db, cb);
         }
@@ -901,7 +941,8 @@ impl RollingPath {
         grid: &Grid,
     ) -> Option<f64> {
         let (lo, hi, whole) = window(target)?;
-        (whole && self.window_liftoff(lo, hi, grid).is_none()).then_some(target)
+        let clean = whole && self.window_liftoff(lo, hi, grid, &|_, _| false) == WindowLift::Clean;
+        clean.then_some(target)
     }
 
     /// As [`Self::scan`], but starting at θ_start ≥ θ0 on the same path (e.g. to continue
@@ -1076,8 +1117,6 @@ impl RollingPath {
         until: f64,
         mut observe: impl FnMut(&PathPoint, f64, f64),
     ) -> Stop {
-        // Ties go to the earlier constraint in this order (the shared catalogue's).
-        let order = [G_NOLIFT, G_FY, G_MPLUS, G_MMINUS, G_ENERGY];
         let (act, theta_end, h_uni) = (&grid.act, grid.theta_end, grid.h_uni);
         loop {
             cur.cells += 1;
@@ -1113,30 +1152,7 @@ impl RollingPath {
                 look |= on && !clear(k, pa, pb);
             }
             if look {
-                // The earliest violation so far, with its constraint and the point there.
-                let mut best: Option<(f64, usize, PathPoint)> = None;
-                for &k in &order {
-                    if !act[k] || clear(k, pa, pb) {
-                        continue;
-                    }
-                    // After a first violation at bx, only one before bx − tie tolerance can
-                    // win: look on [θa, bx] (same one-sign-change assumption, usually no
-                    // root search), the point at bx being known.
-                    let end = best.as_ref().map_or(pb, |(_, _, px)| px);
-                    let Some(x) = self.first_violation(k, pa, end, &mut cur.evals) else {
-                        continue;
-                    };
-                    // Near-ties go to the earlier constraint in `order` (at Ĩ_CM = 0 the
-                    // margins vanish with F_y: that is a loss of normal force).
-                    if best
-                        .as_ref()
-                        .is_none_or(|&(bx, _, _)| x < bx - 1e-12 * (1.0 + bx.abs()))
-                    {
-                        cur.evals += 1;
-                        best = Some((x, k, self.eval(x)));
-                    }
-                }
-                if let Some((_, k, px)) = best {
+                if let Some((k, px)) = self.first_event(act, pa, pb, &mut cur.evals) {
                     track(pa, &px, &mut cur.min_fy, &mut cur.max_r);
                     return Stop::Event(event_of(k), px);
                 }
@@ -1150,6 +1166,73 @@ impl RollingPath {
                 return Stop::Reached;
             }
         }
+    }
+
+    /// The first violation on the cell [a, b] of a watched constraint that is not clear there:
+    /// the constraint and the point, None if there is none after all.
+    ///
+    /// Constraints are examined in tie order ([`TIE_ORDER`]); after a first violation at bx
+    /// only an earlier one can win, so the next ones are examined on [θa, bx] (usually no root
+    /// search: the point at bx is known). Where the cubic-Hermite roots say clearly which
+    /// constraint crosses first ([`Self::leader`]), that one is located first, so the others
+    /// need no root search of their own; the tie rule keeps the result of the plain order.
+    fn first_event(
+        &self,
+        act: &[bool; NG],
+        pa: &PathPoint,
+        pb: &PathPoint,
+        evals: &mut u32,
+    ) -> Option<(usize, PathPoint)> {
+        let lead = self.leader(act, pa, pb);
+        let rest = TIE_ORDER.into_iter().filter(|&k| Some(k) != lead);
+        // The earliest violation so far, with its constraint and the point there.
+        let mut best: Option<(f64, usize, PathPoint)> = None;
+        for k in lead.into_iter().chain(rest) {
+            if !act[k] || clear(k, pa, pb) {
+                continue;
+            }
+            let end = best.as_ref().map_or(pb, |(_, _, px)| px);
+            let Some(x) = self.first_violation(k, pa, end, evals) else {
+                continue;
+            };
+            // Near-ties go to the earlier constraint in the tie order (at Ĩ_CM = 0 the
+            // margins vanish with F_y: that is a loss of normal force).
+            let wins = best.as_ref().is_none_or(|&(bx, bk, _)| {
+                x < bx - 1e-12 * (1.0 + bx.abs()) || (x <= bx && tie_rank(k) < tie_rank(bk))
+            });
+            if wins {
+                *evals += 1;
+                best = Some((x, k, self.eval(x)));
+            }
+        }
+        best.map(|(_, k, px)| (k, px))
+    }
+
+    /// The constraint to locate first on an event cell, when that is not simply the first
+    /// in tie order: every constraint that is not clear is violated at b (a plain sign change),
+    /// and one's cubic-Hermite root is earlier than every other's by 1 % of the cell (the
+    /// estimates err by ≲ 1e-4 of it). A wrong guess costs root searches, never the result.
+    fn leader(&self, act: &[bool; NG], pa: &PathPoint, pb: &PathPoint) -> Option<usize> {
+        let h = pb.theta - pa.theta;
+        let (mut first, mut t_first, mut t_second, mut count) =
+            (None, f64::INFINITY, f64::INFINITY, 0);
+        for k in TIE_ORDER {
+            if !act[k] || clear(k, pa, pb) {
+                continue;
+            }
+            if !violated(k, pb.g[k]) || violated(k, pa.g[k]) {
+                return None; // an interior minimum, or NaN: the plain order
+            }
+            let t = hermite_root(pa.g[k], h * pa.dg[k], pb.g[k], h * pb.dg[k]);
+            count += 1;
+            if t < t_first {
+                (t_second, t_first, first) = (t_first, t, Some(k));
+            } else if t < t_second {
+                t_second = t;
+            }
+        }
+        let in_order = TIE_ORDER.into_iter().find(|&k| act[k] && !clear(k, pa, pb));
+        (count > 1 && t_first + 0.01 < t_second && first != in_order).then_some(first?)
     }
 
     fn finish(
@@ -1633,17 +1716,18 @@ mod tests {
                 continue;
             }
             let full = p.scan_cells(lo, hi, w, false);
-            let fast = p.window_liftoff(lo, hi, &Grid::new(lo, hi, w));
+            let fast = p.window_liftoff(lo, hi, &Grid::new(lo, hi, w), &|_, _| true);
             match fast {
-                Some(x) => {
+                WindowLift::At(x) => {
                     assert_eq!(full.event, ContactEvent::Liftoff, "{alpha} {chi} {km} {m}");
                     assert_eq!(x.to_bits(), full.at.theta.to_bits());
                     found += 1;
                 }
-                None => {
+                WindowLift::Clean => {
                     assert_eq!(full.event, ContactEvent::End, "{alpha} {chi} {km} {m}");
                     clean += 1;
                 }
+                WindowLift::Within => panic!("every cell matters here"),
             }
         }
         assert!(found > 300 && clean > 300, "{found} {clean}");
@@ -1677,7 +1761,7 @@ mod tests {
                     let start = th0 + 0.7 * i as f64;
                     let end = th0 + if a < 0.1 { 4000.0 } else { 400.0 };
                     let a1 = p.scan_cells(start, end, w, false);
-                    let a2 = p.liftoff_after(start, end, 1);
+                    let a2 = p.liftoff_after(start, end, 1, |_, _| true);
                     let lifts = a1.event == ContactEvent::Liftoff;
                     assert_eq!(lifts, a2.is_some(), "{chi} {km} {a} {th0} {start}");
                     if let Some(t2) = a2 {
