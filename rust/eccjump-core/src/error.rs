@@ -83,13 +83,20 @@ pub fn bytes_of<T>(what: &'static str, count: usize) -> Result<usize> {
 /// A vector of `count` copies of `value`, allocated fallibly: `OutOfMemory` naming `what`
 /// instead of an abort when the allocator refuses (or the size overflows).
 pub fn try_filled<T: Clone>(what: &'static str, count: usize, value: T) -> Result<Vec<T>> {
+    let mut v = try_empty(what, count)?;
+    v.resize(count, value);
+    Ok(v)
+}
+
+/// An empty vector with room for exactly `count` items, allocated fallibly: `OutOfMemory`
+/// naming `what` instead of an abort when the allocator refuses (or the size overflows).
+pub fn try_empty<T>(what: &'static str, count: usize) -> Result<Vec<T>> {
     let bytes = bytes_of::<T>(what, count)?;
     let mut v = Vec::new();
     v.try_reserve_exact(count).map_err(|_| Error::OutOfMemory {
         what,
         bytes: bytes as u64,
     })?;
-    v.resize(count, value);
     Ok(v)
 }
 

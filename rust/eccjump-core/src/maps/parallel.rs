@@ -4,8 +4,9 @@
 //! Every output element is computed from its index alone and written in place, so results
 //! are bit-identical for any thread count; the only allocation is the pool.
 
-use crate::error::{check_count, Error, Result};
+use crate::error::{check_count, try_empty, Error, Result};
 use rayon::prelude::*;
+pub use rayon::ThreadPool;
 use std::sync::atomic::{AtomicBool, Ordering};
 use std::sync::mpsc::{self, RecvTimeoutError};
 use std::time::Duration;
@@ -23,7 +24,7 @@ pub const MAX_THREADS: usize = 256;
 const POLL: Duration = Duration::from_millis(20);
 
 /// A pool of `n_threads` threads (0 = one per core), `n_threads` ≤ [`MAX_THREADS`].
-pub fn pool(n_threads: usize) -> Result<rayon::ThreadPool> {
+pub fn pool(n_threads: usize) -> Result<ThreadPool> {
     check_count("n_threads", n_threads, 0, MAX_THREADS)?;
     rayon::ThreadPoolBuilder::new()
         .num_threads(n_threads)
@@ -110,6 +111,38 @@ where
     }
 }
 
+/// `count` copies of `value`, allocated fallibly (`OutOfMemory` naming `what`) and written
+/// on `pool`: a large output's pages are first touched by the threads, not by one.
+pub fn filled_on<T: Clone + Send + Sync>(
+    pool: &ThreadPool,
+    what: &'static str,
+    count: usize,
+    value: T,
+) -> Result<Vec<T>> {
+    let mut v = try_empty(what, count)?;
+    pool.install(|| {
+        (0..count)
+            .into_par_iter()
+            .map(|_| value.clone())
+            .collect_into_vec(&mut v)
+    });
+    Ok(v)
+}
+
+/// The column `f(row)` of every row, computed on `pool` into a vector allocated fallibly
+/// (`OutOfMemory` naming `what`): struct-of-arrays output from per-point results without a
+/// serial pass over them.
+pub fn column_on<R: Sync, T: Send>(
+    pool: &ThreadPool,
+    what: &'static str,
+    rows: &[R],
+    f: impl Fn(&R) -> T + Sync + Send,
+) -> Result<Vec<T>> {
+    let mut v = try_empty(what, rows.len())?;
+    pool.install(|| rows.par_iter().map(f).collect_into_vec(&mut v));
+    Ok(v)
+}
+
 /// Never stop: the `stop` of a map that is not to be interrupted.
 pub fn never() -> bool {
     false
@@ -164,6 +197,38 @@ mod tests {
             .iter()
             .zip(&a)
             .all(|(x, y)| *x == -1.0 || x.to_bits() == y.to_bits()));
+    }
+
+    #[test]
+    fn parallel_fill_and_columns_are_the_serial_ones() {
+        let rows: Vec<(u32, f64)> = (0..100_003).map(|i| (i, (i as f64).sqrt())).collect();
+        for threads in [1, 2, 3] {
+            let p = pool(threads).unwrap();
+            assert_eq!(filled_on(&p, "x", 1001, 7u8).unwrap(), vec![7u8; 1001]);
+            assert!(filled_on(&p, "x", 0, 1.0).unwrap().is_empty());
+            let c = column_on(&p, "c", &rows, |r| r.1).unwrap();
+            assert!(c
+                .iter()
+                .zip(&rows)
+                .all(|(a, r)| a.to_bits() == r.1.to_bits()));
+            assert_eq!(
+                column_on(&p, "n", &rows, |r| r.0).unwrap()[100_002],
+                100_002
+            );
+        }
+        // Too large a request is an error naming it, not an abort.
+        let p = pool(1).unwrap();
+        let e = filled_on(&p, "the result", usize::MAX / 2, 0u64).unwrap_err();
+        assert!(
+            matches!(
+                e,
+                Error::OutOfMemory {
+                    what: "the result",
+                    ..
+                }
+            ),
+            "{e:?}"
+        );
     }
 
     #[test]
