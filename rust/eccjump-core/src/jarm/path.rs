@@ -51,8 +51,10 @@ pub const G_ENERGY: usize = 4;
 const NG: usize = 5;
 
 /// Uniform scan steps between direct `sin_cos` evaluations (the others rotate the previous
-/// half-angle sin/cos: a few ulp of error, re-anchored every ROTATIONS + 1 samples).
-const ROTATIONS: u32 = 3;
+/// half-angle sin/cos, re-anchored every ROTATIONS + 1 samples): ≤ 1.2e-15 absolute error,
+/// about the rounding of θ itself beyond one turn (ulp(2π) = 8.9e-16). Seven rotations
+/// halve the direct calls of three (2–3 % of a map) for 0.6e-15 more.
+const ROTATIONS: u32 = 7;
 
 /// Everything along the rolling path at one θ.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -1436,10 +1438,11 @@ mod tests {
     }
 
     #[test]
-    fn rotated_half_angles_stay_within_1e_15() {
+    fn rotated_half_angles_stay_within_1_5e_15() {
         // The scan advances sin/cos of (θ − θ0)/2 by ROTATIONS rotations between direct
         // evaluations; check the worst error against sin_cos over many starts (in θ ∈ [−8, 8]
-        // so that the rounding of θ itself stays below 5e-16).
+        // so that the rounding of θ itself stays below 5e-16). Measured: 1.17e-15 for seven
+        // rotations (7.2e-16 for three).
         {
             let h = TAU / SAMPLES_PER_TURN;
             let (sh, vh) = rotation(h);
@@ -1455,7 +1458,7 @@ mod tests {
                     worst = worst.max((su - s).abs()).max((cu - c).abs());
                 }
             }
-            assert!(worst < 1e-15, "{worst}");
+            assert!(worst < 1.5e-15, "{worst}");
             println!("h = {h}: worst {worst:e}");
         }
     }
