@@ -230,6 +230,45 @@ mod tests {
     }
 
     #[test]
+    fn at_k_m_zero_a_tie_of_slip_and_normal_force_is_a_loss_of_normal_force() {
+        // Ĩ_CM = 0: F_x ∝ F_y, so the friction margins vanish with F_y, at the same angle. The
+        // tie goes to the loss of normal force, whichever constraint the scan locates first
+        // (34 points of the 100³ map once came out as slips here). A slip must be a slip
+        // with F_y clearly positive.
+        let o = JarmOptions {
+            refine_extrema: false,
+            ..JarmOptions::default()
+        };
+        let alpha = 0.015707963267948967;
+        for chi in [0.565, 0.685] {
+            assert_eq!(
+                classify(alpha, chi, 0.0, 1.0, &o).reason,
+                Reason::NormalForceLost
+            );
+        }
+        let (mut lost, mut slips) = (0, 0);
+        for i in 0..60 {
+            let alpha = 0.0157 + 1.55 * i as f64 / 59.0;
+            for j in 0..50 {
+                let chi = (j as f64 + 0.5) / 50.0;
+                let mu_s = if j % 2 == 0 { 1.0 } else { 0.3 };
+                let r = classify(alpha, chi, 0.0, mu_s, &o);
+                match r.reason {
+                    Reason::NormalForceLost => lost += 1,
+                    Reason::SlipBefore | Reason::SlipAtJump => {
+                        slips += 1;
+                        let ramp = Ramp::new(Cylinder::new(chi, 0.0).unwrap(), alpha).unwrap();
+                        let p = RollingPath::new(&ramp, 0.0, 0.0, mu_s).eval(r.theta_event);
+                        assert!(p.fy > 1e-9, "{alpha} {chi}: a slip at F_y = {}", p.fy);
+                    }
+                    _ => {}
+                }
+            }
+        }
+        assert!(lost > 100 && slips > 100, "{lost} {slips}");
+    }
+
+    #[test]
     fn monotone_in_mu_s_and_alpha_zero() {
         let o = JarmOptions::default();
         let mus = [0.3, 0.5, 0.7, 1.0, 1.5, 2.5, 5.0];

@@ -1185,7 +1185,36 @@ impl RollingPath {
         pb: &PathPoint,
         evals: &mut u32,
     ) -> Option<(usize, PathPoint)> {
-        let lead = self.leader(act, pa, pb);
+        let Some(lead) = self.leader(act, pa, pb) else {
+            return self.first_event_from(None, act, pa, pb, evals);
+        };
+        let found = self.first_event_from(Some(lead), act, pa, pb, evals);
+        // A constraint earlier in tie order that is not violated at the event could still
+        // cross within the tie tolerance after it (which the plain order would give to it):
+        // then the plain order decides. Where g_k > 2 tol |g_k'| it cannot (g smooth).
+        let near_tie = |(k, px): &(usize, PathPoint)| {
+            let tol = 1e-12 * (1.0 + px.theta.abs());
+            TIE_ORDER[..tie_rank(*k)].iter().any(|&j| {
+                // False for NaN: then it is a near tie too.
+                let away = px.g[j] > 2.0 * tol * px.dg[j].abs();
+                act[j] && !clear(j, pa, pb) && !away
+            })
+        };
+        match found {
+            Some(f) if near_tie(&f) => self.first_event_from(None, act, pa, pb, evals),
+            found => found,
+        }
+    }
+
+    /// [`Self::first_event`] with `lead` examined first, then the others in tie order.
+    fn first_event_from(
+        &self,
+        lead: Option<usize>,
+        act: &[bool; NG],
+        pa: &PathPoint,
+        pb: &PathPoint,
+        evals: &mut u32,
+    ) -> Option<(usize, PathPoint)> {
         let rest = TIE_ORDER.into_iter().filter(|&k| Some(k) != lead);
         // The earliest violation so far, with its constraint and the point there.
         let mut best: Option<(f64, usize, PathPoint)> = None;
