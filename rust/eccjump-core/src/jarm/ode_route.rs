@@ -38,10 +38,15 @@
 //! `MaxSteps`), the point is reported as `SolverFailed` at the last good θ: never a physical
 //! verdict.
 //!
-//! Events are found by sign sampling on each step's dense output (`event_samples` interior
-//! points, more at small α), not by the closed form's derivative test: a violation window
-//! narrower than the sample spacing (~0.04 rad) is missed; only grazing (boundary) points
-//! are affected. θ is accurate to ~rtol·|θ| (relative error control), ×10 for shallow F_y
+//! Events are found on each step's dense output at 4 interior samples (the solver's
+//! default): by a sign change between two samples, or by a dip between them, where an event
+//! function keeps its sign at both samples but its slope (θ̇ times the derivative along
+//! rolling, the closed form's formulas) turns: the extremum is located by Brent on the slope
+//! and counts if it reaches zero ([`ode::events`]). So a violation window narrower than the
+//! sample spacing (a grazing slip, ~930 turns down a shallow ramp) is found, as the closed
+//! form's derivative test finds it; what could still hide is two extrema of one event
+//! function within one sample cell (≲ 0.1 rad of θ). θ is accurate to ~rtol·|θ| (relative
+//! error control), ×10 for shallow F_y
 //! roots. The interior samples of a step are skipped for the events whose rigorous change
 //! bounds (shared with the rolling run: `roll::ContactBounds`, tightened by the
 //! trigonometry of the step end) prove that no sample can show a crossing: the outcome is
@@ -60,7 +65,7 @@ use crate::jarm::decision::{
 };
 use crate::jarm::result::{JarmOptions, JarmResult, Reason};
 use crate::jarm::turns::turn_of;
-use crate::mechanics::friction::{friction_ratio, slip_margin};
+use crate::mechanics::friction::{friction_ratio, slip_margin, slip_margin_rate};
 use crate::mechanics::liftoff::liftoff_slope;
 use crate::mechanics::Rule;
 use crate::modes::rolling::bounds::ContactBounds;
@@ -68,7 +73,7 @@ use crate::modes::rolling::events::{
     equilibrium_start, violated_at_start, ContactEvent, StartValues, Watched,
 };
 use crate::modes::rolling::memo::RollingMemo;
-use crate::modes::rolling::Kinematics;
+use crate::modes::rolling::{ContactRates, Kinematics};
 use crate::ode::{
     self, DenseStep, Direction, EventFunctions, EventSpec, Observation, SolverOptions, State,
     Status,
@@ -131,6 +136,19 @@ impl JarmEvents<'_> {
             _ => 1.0,
         }
     }
+
+    /// dg_k/dt at a state, from the rates of the contact functions there.
+    #[inline]
+    fn slope_of(&self, k: usize, q: &Kinematics, r: &ContactRates) -> f64 {
+        match k {
+            EV_LIFTOFF if self.liftoff => r.lift,
+            EV_FY if self.normal_force => r.fy,
+            EV_SLIP if self.slip => slip_margin_rate(self.mu_s, q.fx, r.fx, r.fy),
+            EV_STOP => q.omega_dot,
+            EV_END => q.omega,
+            _ => 0.0,
+        }
+    }
 }
 
 impl EventFunctions<2> for JarmEvents<'_> {
@@ -158,6 +176,24 @@ impl EventFunctions<2> for JarmEvents<'_> {
         for (i, o) in out.iter_mut().enumerate() {
             *o = self.value_of(first + i, &q);
         }
+    }
+    /// Slopes for the dip test (grazing events between two samples).
+    #[inline]
+    fn slope(&self, k: usize, _t: f64, y: &State<2>) -> f64 {
+        let q = self.kinematics(y[0], y[1]);
+        self.slope_of(k, &q, &self.sys.ramp.contact_rates(&q))
+    }
+    #[inline]
+    fn slopes(&self, first: usize, _t: f64, y: &State<2>, out: &mut [f64]) {
+        let q = self.kinematics(y[0], y[1]);
+        let r = self.sys.ramp.contact_rates(&q);
+        for (i, o) in out.iter_mut().enumerate() {
+            *o = self.slope_of(first + i, &q, &r);
+        }
+    }
+    #[inline]
+    fn has_slopes(&self) -> bool {
+        true
     }
     /// The rolling run's bounds ([`ContactBounds::near`], anchored at the trigonometry in
     /// the memo, usually the step end's); a disabled event is a constant
@@ -213,21 +249,6 @@ fn extrema_add(e: &mut Extrema, q: &Kinematics) {
     if q.fy < e.min_fy {
         e.min_fy = q.fy;
         e.theta_min_fy = q.theta;
-    }
-}
-
-/// Interior sign samples per step for the event scan. A step at rtol ~1e-10 spans up to
-/// ~0.2 rad of θ late in a long run; event windows can be as narrow as ~α in θ (physics
-/// notes), and a window between two samples is missed (sign sampling only, no derivative
-/// test). So the spacing is kept ≲ α/2: 4 samples (the solver's default) for α ≳ 5°, more
-/// below, at most 64. A heuristic, not a guarantee: with 2 samples the 15-point α grid of
-/// the tests already misses one slip window (α = 6°, χ = 0.05, turn 19), with 4 it does not.
-fn event_samples(alpha: f64) -> usize {
-    let n = (0.4 / alpha).ceil() - 1.0;
-    if n.is_nan() || n > 64.0 {
-        64
-    } else {
-        (n as usize).max(4)
     }
 }
 
@@ -314,7 +335,6 @@ fn classify_ode_budget(
         rtol,
         atol,
         max_steps: steps_per_turn.saturating_mul(turns.saturating_add(1)),
-        event_samples: event_samples(alpha),
         method: pair,
         ..SolverOptions::default()
     };
@@ -484,7 +504,8 @@ mod tests {
         }
     }
 
-    /// The events without change bounds: the scan always walks the interior samples.
+    /// The events without change bounds: the scan always walks the interior samples (and makes
+    /// the dip test in every cell).
     struct NoSkip<'a, 'b>(&'a JarmEvents<'b>);
 
     impl EventFunctions<2> for NoSkip<'_, '_> {
@@ -499,6 +520,15 @@ mod tests {
         }
         fn values(&self, first: usize, t: f64, y: &State<2>, out: &mut [f64]) {
             self.0.values(first, t, y, out)
+        }
+        fn slope(&self, k: usize, t: f64, y: &State<2>) -> f64 {
+            self.0.slope(k, t, y)
+        }
+        fn slopes(&self, first: usize, t: f64, y: &State<2>, out: &mut [f64]) {
+            self.0.slopes(first, t, y, out)
+        }
+        fn has_slopes(&self) -> bool {
+            self.0.has_slopes()
         }
     }
 
@@ -601,7 +631,7 @@ mod tests {
     #[test]
     fn skipping_interior_samples_changes_nothing() {
         for (a, chi, km, mu_s, liftoff, forces) in bound_cases() {
-            for samples in [4, event_samples(a)] {
+            for samples in [4, 16] {
                 let so = SolverOptions {
                     event_samples: samples,
                     ..SolverOptions::default()
@@ -628,6 +658,28 @@ mod tests {
                 assert_eq!(p.0, q.0, "{a} {chi} {km}");
                 assert_eq!(p.1, q.1);
             }
+        }
+    }
+
+    #[test]
+    fn a_grazing_slip_after_930_turns_is_found_by_both_pairs() {
+        // The friction margin dips below 0 on turn 934 for a window narrower than the sample
+        // spacing; sign sampling alone slipped one turn later (SLIP_BEFORE at 5875.087).
+        let (a, chi, km) = (
+            0.11715890776808541,
+            0.001036140639499864,
+            0.5957722237251039,
+        );
+        let o = JarmOptions::default();
+        let c = classify(a, chi, km, 1.0, &o);
+        assert_eq!((c.reason, c.n), (Reason::SlipAtJump, 934));
+        for pair in [ode::Method::Rk45, ode::Method::Dop853] {
+            let e = classify_ode(a, chi, km, 1.0, &o, (RTOL, ATOL), pair);
+            assert_eq!((e.reason, e.n), (c.reason, c.n), "{pair:?}");
+            assert!(
+                (e.theta_event - c.theta_event).abs() < 1e-6,
+                "{pair:?} {e:?}"
+            );
         }
     }
 

@@ -31,6 +31,7 @@ use crate::mechanics::Ramp;
 pub use crate::modes::rolling::events::ContactEvent;
 use crate::modes::rolling::events::{liftoff_at_start, violated_at_start, StartValues, Watched};
 use crate::modes::rolling::{force_slopes, forces, torque, torque_slope};
+use crate::ode::hermite::{hermite_min, hermite_root};
 use crate::ode::roots::{brent, newton_bracketed};
 use std::f64::consts::{FRAC_PI_2, TAU};
 
@@ -217,43 +218,6 @@ fn clear_values(k: usize, ga: f64, da: f64, gb: f64, db: f64, h: f64) -> bool {
         est > 0.1 * ga.min(gb)
     } else {
         true
-    }
-}
-
-/// The minimum on t ∈ [0, 1] of the cubic Hermite interpolant with values g0, g1 and scaled
-/// slopes m0 = h g0' < 0 < m1 = h g1'.
-#[inline]
-fn hermite_min(g0: f64, m0: f64, g1: f64, m1: f64) -> (f64, f64) {
-    let b = 3.0 * (g1 - g0) - 2.0 * m0 - m1;
-    let c = 2.0 * (g0 - g1) + m0 + m1;
-    let disc = (b * b - 3.0 * c * m0).max(0.0);
-    let den = b + disc.sqrt();
-    let t = if den > 0.0 {
-        (-m0 / den).clamp(0.0, 1.0)
-    } else {
-        0.5
-    };
-    (t, g0 + t * (m0 + t * (b + t * c)))
-}
-
-/// A root in (0, 1) of the cubic Hermite interpolant with values g0, g1 of opposite signs and
-/// scaled slopes m0, m1: two Newton steps on the cubic from the secant root, kept in [0, 1]
-/// (the secant root if they fail). Only a first guess for the root finder, which checks it.
-#[inline]
-fn hermite_root(g0: f64, m0: f64, g1: f64, m1: f64) -> f64 {
-    let b = 3.0 * (g1 - g0) - 2.0 * m0 - m1;
-    let c = 2.0 * (g0 - g1) + m0 + m1;
-    let secant = g0 / (g0 - g1);
-    let mut t = secant;
-    for _ in 0..2 {
-        let p = g0 + t * (m0 + t * (b + t * c));
-        let dp = m0 + t * (2.0 * b + 3.0 * t * c);
-        t = (t - p / dp).clamp(0.0, 1.0);
-    }
-    if t.is_finite() {
-        t
-    } else {
-        secant
     }
 }
 

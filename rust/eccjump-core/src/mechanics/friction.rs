@@ -30,6 +30,13 @@ pub fn slip_margin(mu: f64, fx: f64, fy: f64) -> f64 {
     mu * fy - fx.abs()
 }
 
+/// The rate of the slip margin, d(μ F_y − |F_x|) = μ dF_y − sign(F_x) dF_x, given the rates
+/// (or derivatives) of the two forces.
+#[inline(always)]
+pub fn slip_margin_rate(mu: f64, fx: f64, dfx: f64, dfy: f64) -> f64 {
+    mu * dfy - fx.signum() * dfx
+}
+
 /// Sliding contact at one angle: the coefficients K and D of the module notes.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Sliding {

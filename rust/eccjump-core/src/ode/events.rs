@@ -1,6 +1,7 @@
 //! Event functions g_k(t, y): their specs, and location of their zeros on the dense output.
 
 use super::{DenseStep, State};
+use crate::ode::hermite::hermite_min;
 use crate::ode::roots;
 
 /// Which zero crossings of g count.
@@ -38,6 +39,28 @@ pub trait EventFunctions<const N: usize> {
         for (i, o) in out.iter_mut().enumerate() {
             *o = self.value(first + i, t, y);
         }
+    }
+    /// dg_k/dt along the solution at a point, for the dip test of the step scan: where g_k
+    /// has one sign at two neighbouring samples but its slope turns between them (towards
+    /// zero, then away), the extremum between them is located and, if it reaches the other
+    /// side, counts as a crossing. Without it a dip narrower than the sample spacing (a
+    /// grazing event) is missed. NaN, the default: no dip test for k.
+    #[inline]
+    fn slope(&self, k: usize, t: f64, y: &State<N>) -> f64 {
+        let _ = (k, t, y);
+        f64::NAN
+    }
+    /// dg_first/dt, dg_first+1/dt, … at one point, into `out` (as [`Self::values`]).
+    #[inline]
+    fn slopes(&self, first: usize, t: f64, y: &State<N>, out: &mut [f64]) {
+        for (i, o) in out.iter_mut().enumerate() {
+            *o = self.slope(first + i, t, y);
+        }
+    }
+    /// Whether any event has a slope: the scan makes the dip test only then.
+    #[inline]
+    fn has_slopes(&self) -> bool {
+        false
     }
     /// Bounds D_first, D_first+1, … on how much each event function can change within the
     /// step `dense`, into `out`: any D_k ≥ L_k |h| + 4 δ_k, where L_k bounds
@@ -259,6 +282,65 @@ fn locate<E: EventFunctions<N>, const N: usize>(
     Ok(if tb >= ta { root.hi } else { root.lo })
 }
 
+/// A dip is located only where the cubic-Hermite extremum of its cell comes within this
+/// share of the cell's spread |g_b − g_a| + |h|(|g_a'| + |g_b'|) of zero. The interpolant errs
+/// by ~(θ-width of the cell)⁴/384 of the spread: ≲ 1e-6 for the ≲ 0.2 rad of a sample cell.
+const DIP_SCREEN: f64 = 0.01;
+
+/// A dip of g_k inside the sub-interval [ta, tb] (in integration order), where g_k has one
+/// sign at both ends (no crossing there) and slopes sa, sb: None unless the slope turns
+/// towards zero then away (an extremum inside) and the extremum, located by Brent on the
+/// slope along the dense output, reaches the other side. Then g_k crosses twice, into the
+/// other side and back; the result is the bracket ((t, g), (t, g)) of the crossing that
+/// counts for the event's direction, the first one if both do. A cheap screen first
+/// ([`DIP_SCREEN`]).
+#[allow(clippy::type_complexity)] // two (t, g) ends
+fn dip<E: EventFunctions<N>, const N: usize>(
+    events: &E,
+    k: usize,
+    dense: &DenseStep<N>,
+    (ta, ga, sa): (f64, f64, f64),
+    (tb, gb, sb): (f64, f64, f64),
+) -> Result<Option<((f64, f64), (f64, f64))>, NonFiniteEvent> {
+    // σ = +1 looks for a minimum (g positive at both ends), σ = −1 for a maximum; the slopes
+    // are per unit of time, h < 0 when integrating backwards.
+    let h = tb - ta;
+    let (ma, mb) = (h * sa, h * sb);
+    let sigma = if ga > 0.0 && gb > 0.0 && ma < 0.0 && mb > 0.0 {
+        1.0
+    } else if ga < 0.0 && gb < 0.0 && ma > 0.0 && mb < 0.0 {
+        -1.0
+    } else {
+        return Ok(None);
+    };
+    let (_, est) = hermite_min(sigma * ga, sigma * ma, sigma * gb, sigma * mb);
+    let spread = (gb - ga).abs() + ma.abs() + mb.abs();
+    if est > DIP_SCREEN * spread {
+        return Ok(None);
+    }
+    let mut bad = false;
+    let slope = |t: f64| {
+        let v = events.slope(k, t, &dense.eval(t));
+        bad |= !v.is_finite();
+        v
+    };
+    let xtol = 4.0 * f64::EPSILON * ta.abs().max(tb.abs());
+    let at = match roots::brent(slope, ta, tb, sa, sb, xtol, 4.0 * f64::EPSILON, 200) {
+        Ok(r) => r.x,
+        Err(_) if bad => return Err(NonFiniteEvent),
+        Err(_) => return Ok(None),
+    };
+    let g = checked(events.value(k, at, &dense.eval(at)))?;
+    let direction = events.spec(k).direction;
+    Ok(if crosses(direction, ga, g) {
+        Some(((ta, ga), (at, g)))
+    } else if crosses(direction, g, gb) {
+        Some(((at, g), (tb, gb)))
+    } else {
+        None
+    })
+}
+
 /// Finds the events of one accepted step (dense output `dense`, ending at (t_new, y_new))
 /// and hands each to `report` in time order (ties by event index), stopping after the
 /// first terminal one, which is returned. `carry` holds the end values of the previous
@@ -293,6 +375,7 @@ pub fn scan_step<E: EventFunctions<N>, const N: usize>(
     // samples are skipped. The end values are checked for finiteness only where they are
     // used, as the plain walk would.
     let carry_all = n_events <= EVENT_CHUNK;
+    let dips = events.has_slopes();
     let mut j_first = usize::MAX;
     let mut g_a = [0.0; EVENT_CHUNK];
     let mut g_b = [0.0; EVENT_CHUNK];
@@ -327,11 +410,19 @@ pub fn scan_step<E: EventFunctions<N>, const N: usize>(
                 continue;
             }
         }
+        // The dip test needs slopes, computed only at the ends of cells where g_k could
+        // reach zero at all: |g_a| + |g_b| ≤ D_k (a zero inside needs |g_a| + |g_b| ≤ L_k h_cell,
+        // and D_k ≥ L_k |h| bounds that for every cell of the step).
+        let may_dip =
+            |i: usize, ga: f64, gb: f64| samples == 0 || !no_zero_inside(ga, gb, bound[i]);
+        let mut s_a = [f64::NAN; EVENT_CHUNK];
+        let mut s_b = [f64::NAN; EVENT_CHUNK];
+        let mut s_a_at = usize::MAX; // the sample whose slopes s_a holds
         for j in 1..=limit {
+            let (t, y) = pts.point(j);
             if j == last {
                 g_b = g_end;
             } else {
-                let (t, y) = pts.point(j);
                 events.values(first, t, &y, &mut g_b[..m]);
             }
             check_all(&g_b[..m])?;
@@ -339,6 +430,23 @@ pub fn scan_step<E: EventFunctions<N>, const N: usize>(
             if any {
                 j_first = j;
                 break;
+            }
+            if dips && (0..m).any(|i| may_dip(i, g_a[i], g_b[i])) {
+                let (ta, ya) = pts.point(j - 1);
+                if s_a_at != j - 1 {
+                    events.slopes(first, ta, &ya, &mut s_a[..m]);
+                }
+                events.slopes(first, t, &y, &mut s_b[..m]);
+                let mut found = false;
+                for i in (0..m).filter(|&i| may_dip(i, g_a[i], g_b[i])) {
+                    let a = (ta, g_a[i], s_a[i]);
+                    found |= dip(events, first + i, dense, a, (t, g_b[i], s_b[i]))?.is_some();
+                }
+                if found {
+                    j_first = j;
+                    break;
+                }
+                (s_a, s_a_at) = (s_b, j);
             }
             g_a = g_b;
         }
@@ -370,10 +478,21 @@ pub fn scan_step<E: EventFunctions<N>, const N: usize>(
                 let dir = events.spec(k).direction;
                 let ga = checked(events.value(k, ta, &ya))?;
                 let gb = checked(events.value(k, tb, &yb))?;
-                if !crosses(dir, ga, gb) {
+                // The part of [ta, tb] where g_k changes sign: all of it, or one side of a
+                // dip's extremum.
+                let (lo, hi) = if crosses(dir, ga, gb) {
+                    ((ta, ga), (tb, gb))
+                } else if dips {
+                    let a = (ta, ga, events.slope(k, ta, &ya));
+                    let b = (tb, gb, events.slope(k, tb, &yb));
+                    match dip(events, k, dense, a, b)? {
+                        Some(bracket) => bracket,
+                        None => continue,
+                    }
+                } else {
                     continue;
-                }
-                let t = locate(events, k, dense, (ta, ga), (tb, gb))?;
+                };
+                let t = locate(events, k, dense, lo, hi)?;
                 let cand = (t, k);
                 if prev.is_none_or(|p| later(cand, p)) && best.is_none_or(|b| later(b, cand)) {
                     best = Some(cand);
@@ -398,6 +517,132 @@ pub fn scan_step<E: EventFunctions<N>, const N: usize>(
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::ode::{solve, OdeSystem, SolverOptions, Status};
+
+    /// y' = 1 (so y = t): the steps are long and the dense output exact.
+    struct Clock;
+    impl OdeSystem<1> for Clock {
+        fn rhs(&self, _t: f64, _y: &State<1>) -> State<1> {
+            State::<1>::new(1.0)
+        }
+    }
+
+    /// g(y) = (y − c)² − depth, a dip of width 2√depth around c when depth > 0; with or
+    /// without its slope, falling or rising (then −g).
+    struct Dip {
+        c: f64,
+        depth: f64,
+        slopes: bool,
+        direction: Direction,
+    }
+    impl EventFunctions<1> for Dip {
+        fn count(&self) -> usize {
+            1
+        }
+        fn spec(&self, _k: usize) -> EventSpec {
+            EventSpec {
+                direction: self.direction,
+                terminal: true,
+            }
+        }
+        fn value(&self, _k: usize, _t: f64, y: &State<1>) -> f64 {
+            let g = (y[0] - self.c) * (y[0] - self.c) - self.depth;
+            if self.direction == Direction::Rising {
+                -g
+            } else {
+                g
+            }
+        }
+        fn slope(&self, _k: usize, _t: f64, y: &State<1>) -> f64 {
+            let s = 2.0 * (y[0] - self.c);
+            if !self.slopes {
+                f64::NAN
+            } else if self.direction == Direction::Rising {
+                -s
+            } else {
+                s
+            }
+        }
+        fn has_slopes(&self) -> bool {
+            self.slopes
+        }
+    }
+
+    fn first_event(dip: &Dip) -> Option<f64> {
+        let so = SolverOptions::default();
+        let out = solve(
+            &Clock,
+            dip,
+            0.0,
+            State::<1>::zeros(),
+            10.0,
+            &so,
+            &mut |_| {},
+        );
+        (out.status == Status::Event(0)).then_some(out.t)
+    }
+
+    #[test]
+    fn a_dip_between_two_samples_is_a_crossing() {
+        for direction in [Direction::Falling, Direction::Rising, Direction::Any] {
+            // A window 2e-3 wide at 3.3, between the samples of a step of ~10.
+            let dip = |slopes| Dip {
+                c: 3.3,
+                depth: 1e-6,
+                slopes,
+                direction,
+            };
+            assert_eq!(first_event(&dip(false)), None, "sign sampling misses it");
+            let t = first_event(&dip(true)).expect("the dip test finds it");
+            assert!((t - (3.3 - 1e-3)).abs() < 1e-12, "{t}");
+            // A dip that stays on its side is no event, grazing or not.
+            for depth in [-1e-6, -1e-14, -1.0] {
+                let d = Dip { depth, ..dip(true) };
+                assert_eq!(first_event(&d), None, "{depth}");
+            }
+        }
+        // A falling event whose function rises above 0 and back between two samples: its
+        // crossing is the fall back, after the extremum.
+        let bump = Dip {
+            c: 3.3,
+            depth: 1e-6,
+            slopes: true,
+            direction: Direction::Rising,
+        };
+        struct Flip(Dip);
+        impl EventFunctions<1> for Flip {
+            fn count(&self) -> usize {
+                1
+            }
+            fn spec(&self, _k: usize) -> EventSpec {
+                EventSpec {
+                    direction: Direction::Falling,
+                    terminal: true,
+                }
+            }
+            fn value(&self, k: usize, t: f64, y: &State<1>) -> f64 {
+                self.0.value(k, t, y)
+            }
+            fn slope(&self, k: usize, t: f64, y: &State<1>) -> f64 {
+                self.0.slope(k, t, y)
+            }
+            fn has_slopes(&self) -> bool {
+                true
+            }
+        }
+        let so = SolverOptions::default();
+        let out = solve(
+            &Clock,
+            &Flip(bump),
+            0.0,
+            State::<1>::zeros(),
+            10.0,
+            &so,
+            &mut |_| {},
+        );
+        assert_eq!(out.status, Status::Event(0));
+        assert!((out.t - (3.3 + 1e-3)).abs() < 1e-12, "{}", out.t);
+    }
 
     #[test]
     fn crossings_need_a_nonzero_left_value() {

@@ -13,6 +13,7 @@
 
 pub mod dense;
 pub mod events;
+pub mod hermite;
 pub mod pair;
 pub mod roots;
 pub mod solver;

@@ -20,7 +20,7 @@ pub mod memo;
 pub mod run;
 pub mod solution;
 
-use crate::mechanics::liftoff::free_normal_acceleration;
+use crate::mechanics::liftoff::{free_normal_acceleration, liftoff_slope};
 use crate::mechanics::Ramp;
 use crate::ode::{OdeSystem, State};
 
@@ -144,6 +144,33 @@ impl Ramp {
         let dacc = torque_slope(chi, w, q.omega_dot, s, c, cos_at) / self.contact_inertia(c);
         force_slopes(chi, chi * w, s, c, q.omega_dot, dacc)
     }
+
+    /// The rates d/dt of the contact functions at the state `q` of a rolling solution: θ̇
+    /// times their derivatives along rolling (the chain rule, with θ̈ from roll-eq, which the
+    /// solution obeys). What the event scans of the rolling run and of the ODE route need to
+    /// find a dip between two samples.
+    pub fn contact_rates(&self, q: &Kinematics) -> ContactRates {
+        let chi = self.body.chi;
+        let (dfx, dfy) = self.force_slopes(q);
+        let w = q.omega;
+        let dlift = liftoff_slope(chi, chi * (w * w), q.omega_dot, q.sin_theta, q.cos_theta);
+        ContactRates {
+            fx: w * dfx,
+            fy: w * dfy,
+            lift: w * dlift,
+        }
+    }
+}
+
+/// dF_x/dt, dF_y/dt and dL/dt along a rolling solution ([`Ramp::contact_rates`]).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct ContactRates {
+    /// dF_x/dt.
+    pub fx: f64,
+    /// dF_y/dt.
+    pub fy: f64,
+    /// dL/dt of the lift-off function L = χθ̇² cos θ − cos α.
+    pub lift: f64,
 }
 
 /// The rolling equation as a first-order system in y = (θ, θ̇).

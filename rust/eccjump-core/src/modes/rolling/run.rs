@@ -10,7 +10,7 @@
 //! Which of them end the run is set by the lift-off [`Rule`].
 
 use crate::error::{check_count, check_positive, check_range, short, try_grow, Error, Result};
-use crate::mechanics::friction::{friction_ratio, slip_margin};
+use crate::mechanics::friction::{friction_ratio, slip_margin, slip_margin_rate};
 use crate::mechanics::Ramp;
 pub use crate::mechanics::Rule;
 use crate::mechanics::{MAX_OMEGA0, MAX_THETA0};
@@ -120,6 +120,20 @@ impl EventFunctions<2> for RollEvents {
     fn values(&self, first: usize, _t: f64, y: &State<2>, out: &mut [f64]) {
         self.values_from(&self.ramp.kinematics(y[0], y[1]), first, y, out);
     }
+    #[inline]
+    fn slope(&self, k: usize, t: f64, y: &State<2>) -> f64 {
+        let mut out = [0.0];
+        self.slopes(k, t, y, &mut out);
+        out[0]
+    }
+    #[inline]
+    fn slopes(&self, first: usize, _t: f64, y: &State<2>, out: &mut [f64]) {
+        self.rates_from(&self.ramp.kinematics(y[0], y[1]), first, out);
+    }
+    #[inline]
+    fn has_slopes(&self) -> bool {
+        true
+    }
     /// Change bounds from bounds on the partial derivatives of each g in θ and θ̇ over
     /// the step (|sin|, |cos| ≤ 1, |θ̇| ≤ W, contact inertia ≥ Ĩ_C + 1 − 2χ), times the
     /// bounds on |dθ/dt|, |dθ̇/dt| of the interpolant.
@@ -142,6 +156,24 @@ impl RollEvents {
                 RollEvent::NormalForceZero => k.fy,
                 RollEvent::Slip => self.mu_s.map_or(1.0, |mu| slip_margin(mu, k.fx, k.fy)),
                 RollEvent::ThetaLimit => self.value_at(RollEvent::ThetaLimit, y[0], y[1]),
+            };
+        }
+    }
+
+    /// dg_first/dt, dg_first+1/dt, … at y from its kinematics `k` (the dip test of the step
+    /// scan, which finds a grazing event between two samples).
+    #[inline]
+    fn rates_from(&self, k: &Kinematics, first: usize, out: &mut [f64]) {
+        let r = self.ramp.contact_rates(k);
+        for (i, o) in out.iter_mut().enumerate() {
+            *o = match RollEvent::ALL[first + i] {
+                RollEvent::Liftoff => r.lift,
+                RollEvent::NormalForceZero => r.fy,
+                RollEvent::Slip => self
+                    .mu_s
+                    .map_or(0.0, |mu| slip_margin_rate(mu, k.fx, r.fx, r.fy)),
+                RollEvent::ThetaLimit if self.theta_max.is_finite() => k.omega,
+                RollEvent::ThetaLimit => 0.0,
             };
         }
     }
@@ -205,6 +237,21 @@ impl EventFunctions<2> for Memo<'_> {
     fn values(&self, first: usize, _t: f64, y: &State<2>, out: &mut [f64]) {
         self.events
             .values_from(&self.kinematics(y[0], y[1]), first, y, out);
+    }
+    #[inline]
+    fn slope(&self, k: usize, t: f64, y: &State<2>) -> f64 {
+        let mut out = [0.0];
+        self.slopes(k, t, y, &mut out);
+        out[0]
+    }
+    #[inline]
+    fn slopes(&self, first: usize, _t: f64, y: &State<2>, out: &mut [f64]) {
+        self.events
+            .rates_from(&self.kinematics(y[0], y[1]), first, out);
+    }
+    #[inline]
+    fn has_slopes(&self) -> bool {
+        true
     }
     /// [`RollEvents::change_bounds_all`] tightened by the memo's trigonometry.
     #[inline]
@@ -572,7 +619,8 @@ mod skip_tests {
     use super::*;
     use crate::mechanics::Cylinder;
 
-    /// The roll events without change bounds: the scan always walks the interior samples.
+    /// The roll events without change bounds: the scan always walks the interior samples (and
+    /// makes the dip test in every cell).
     struct NoSkip(RollEvents);
 
     impl EventFunctions<2> for NoSkip {
@@ -587,6 +635,15 @@ mod skip_tests {
         }
         fn values(&self, first: usize, t: f64, y: &State<2>, out: &mut [f64]) {
             self.0.values(first, t, y, out)
+        }
+        fn slope(&self, k: usize, t: f64, y: &State<2>) -> f64 {
+            self.0.slope(k, t, y)
+        }
+        fn slopes(&self, first: usize, t: f64, y: &State<2>, out: &mut [f64]) {
+            self.0.slopes(first, t, y, out)
+        }
+        fn has_slopes(&self) -> bool {
+            self.0.has_slopes()
         }
     }
 
@@ -608,6 +665,30 @@ mod skip_tests {
             out.push((r, ev));
         }
         out
+    }
+
+    #[test]
+    fn a_grazing_slip_is_found_between_two_samples() {
+        // The friction margin dips below 0 on turn 934 for a window narrower than the sample
+        // spacing (the closed form's slip: θ = 5868.836162570985); sign sampling alone
+        // slipped one turn later.
+        let r = Ramp::new(
+            Cylinder::new(0.001036140639499864, 0.5957722237251039).unwrap(),
+            0.11715890776808541,
+        )
+        .unwrap();
+        let opts = RollOptions {
+            mu_s: Some(1.0),
+            t_max: 1e5,
+            ..RollOptions::default()
+        };
+        let run = roll(&r, &opts).unwrap();
+        let slip = run
+            .events
+            .iter()
+            .find(|e| e.event == RollEvent::Slip)
+            .unwrap();
+        assert!((slip.theta - 5868.836162570985).abs() < 1e-6, "{slip:?}");
     }
 
     #[test]
