@@ -179,11 +179,6 @@ impl EventFunctions<2> for JarmEvents<'_> {
     }
     /// Slopes for the dip test (grazing events between two samples).
     #[inline]
-    fn slope(&self, k: usize, _t: f64, y: &State<2>) -> f64 {
-        let q = self.kinematics(y[0], y[1]);
-        self.slope_of(k, &q, &self.sys.ramp.contact_rates(&q))
-    }
-    #[inline]
     fn slopes(&self, first: usize, _t: f64, y: &State<2>, out: &mut [f64]) {
         let q = self.kinematics(y[0], y[1]);
         let r = self.sys.ramp.contact_rates(&q);
@@ -439,6 +434,7 @@ mod tests {
     use crate::maps::parallel::never;
     use crate::maps::region::classify_grid;
     use crate::mechanics::Ramp;
+    use crate::ode::events::WalkAll;
     use std::f64::consts::FRAC_PI_2;
 
     const RTOL: f64 = 1e-10;
@@ -501,34 +497,6 @@ mod tests {
                 o.rule, o.n, o.theta0, o.omega0, c.reason, c.n, c.theta_j, c.theta_event,
                 e.reason, e.n, e.theta_j - c.theta_j, e.theta_event - c.theta_event
             ));
-        }
-    }
-
-    /// The events without change bounds: the scan always walks the interior samples (and makes
-    /// the dip test in every cell).
-    struct NoSkip<'a, 'b>(&'a JarmEvents<'b>);
-
-    impl EventFunctions<2> for NoSkip<'_, '_> {
-        fn count(&self) -> usize {
-            self.0.count()
-        }
-        fn spec(&self, k: usize) -> EventSpec {
-            self.0.spec(k)
-        }
-        fn value(&self, k: usize, t: f64, y: &State<2>) -> f64 {
-            self.0.value(k, t, y)
-        }
-        fn values(&self, first: usize, t: f64, y: &State<2>, out: &mut [f64]) {
-            self.0.values(first, t, y, out)
-        }
-        fn slope(&self, k: usize, t: f64, y: &State<2>) -> f64 {
-            self.0.slope(k, t, y)
-        }
-        fn slopes(&self, first: usize, t: f64, y: &State<2>, out: &mut [f64]) {
-            self.0.slopes(first, t, y, out)
-        }
-        fn has_slopes(&self) -> bool {
-            self.0.has_slopes()
         }
     }
 
@@ -650,7 +618,7 @@ mod tests {
                     let out = if skip {
                         ode::solve(&sys, &ev, 0.0, y0, 1e300, &so, &mut obs)
                     } else {
-                        ode::solve(&sys, &NoSkip(&ev), 0.0, y0, 1e300, &so, &mut obs)
+                        ode::solve(&sys, &WalkAll(&ev), 0.0, y0, 1e300, &so, &mut obs)
                     };
                     (out, seen)
                 };

@@ -47,15 +47,16 @@ pub trait EventFunctions<const N: usize> {
     /// grazing event) is missed. NaN, the default: no dip test for k.
     #[inline]
     fn slope(&self, k: usize, t: f64, y: &State<N>) -> f64 {
-        let _ = (k, t, y);
-        f64::NAN
+        let mut out = [f64::NAN];
+        self.slopes(k, t, y, &mut out);
+        out[0]
     }
-    /// dg_first/dt, dg_first+1/dt, … at one point, into `out` (as [`Self::values`]).
+    /// dg_first/dt, dg_first+1/dt, … at one point, into `out` (as [`Self::values`]); the
+    /// one to implement (NaN, the default: no dip test).
     #[inline]
     fn slopes(&self, first: usize, t: f64, y: &State<N>, out: &mut [f64]) {
-        for (i, o) in out.iter_mut().enumerate() {
-            *o = self.slope(first + i, t, y);
-        }
+        let _ = (first, t, y);
+        out.fill(f64::NAN);
     }
     /// Whether any event has a slope: the scan makes the dip test only then.
     #[inline]
@@ -514,6 +515,33 @@ pub fn scan_step<E: EventFunctions<N>, const N: usize>(
     Ok(None)
 }
 
+/// Events without change bounds, for tests: the scan walks every interior sample of every
+/// step (and makes the dip test in every cell), the reference the skipping must match.
+#[cfg(test)]
+pub struct WalkAll<'a, E>(pub &'a E);
+
+#[cfg(test)]
+impl<E: EventFunctions<N>, const N: usize> EventFunctions<N> for WalkAll<'_, E> {
+    fn count(&self) -> usize {
+        self.0.count()
+    }
+    fn spec(&self, k: usize) -> EventSpec {
+        self.0.spec(k)
+    }
+    fn value(&self, k: usize, t: f64, y: &State<N>) -> f64 {
+        self.0.value(k, t, y)
+    }
+    fn values(&self, first: usize, t: f64, y: &State<N>, out: &mut [f64]) {
+        self.0.values(first, t, y, out)
+    }
+    fn slopes(&self, first: usize, t: f64, y: &State<N>, out: &mut [f64]) {
+        self.0.slopes(first, t, y, out)
+    }
+    fn has_slopes(&self) -> bool {
+        self.0.has_slopes()
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -553,15 +581,15 @@ mod tests {
                 g
             }
         }
-        fn slope(&self, _k: usize, _t: f64, y: &State<1>) -> f64 {
+        fn slopes(&self, _first: usize, _t: f64, y: &State<1>, out: &mut [f64]) {
             let s = 2.0 * (y[0] - self.c);
-            if !self.slopes {
+            out[0] = if !self.slopes {
                 f64::NAN
             } else if self.direction == Direction::Rising {
                 -s
             } else {
                 s
-            }
+            };
         }
         fn has_slopes(&self) -> bool {
             self.slopes
@@ -623,8 +651,8 @@ mod tests {
             fn value(&self, k: usize, t: f64, y: &State<1>) -> f64 {
                 self.0.value(k, t, y)
             }
-            fn slope(&self, k: usize, t: f64, y: &State<1>) -> f64 {
-                self.0.slope(k, t, y)
+            fn slopes(&self, first: usize, t: f64, y: &State<1>, out: &mut [f64]) {
+                self.0.slopes(first, t, y, out)
             }
             fn has_slopes(&self) -> bool {
                 true

@@ -121,12 +121,6 @@ impl EventFunctions<2> for RollEvents {
         self.values_from(&self.ramp.kinematics(y[0], y[1]), first, y, out);
     }
     #[inline]
-    fn slope(&self, k: usize, t: f64, y: &State<2>) -> f64 {
-        let mut out = [0.0];
-        self.slopes(k, t, y, &mut out);
-        out[0]
-    }
-    #[inline]
     fn slopes(&self, first: usize, _t: f64, y: &State<2>, out: &mut [f64]) {
         self.rates_from(&self.ramp.kinematics(y[0], y[1]), first, out);
     }
@@ -237,12 +231,6 @@ impl EventFunctions<2> for Memo<'_> {
     fn values(&self, first: usize, _t: f64, y: &State<2>, out: &mut [f64]) {
         self.events
             .values_from(&self.kinematics(y[0], y[1]), first, y, out);
-    }
-    #[inline]
-    fn slope(&self, k: usize, t: f64, y: &State<2>) -> f64 {
-        let mut out = [0.0];
-        self.slopes(k, t, y, &mut out);
-        out[0]
     }
     #[inline]
     fn slopes(&self, first: usize, _t: f64, y: &State<2>, out: &mut [f64]) {
@@ -618,34 +606,7 @@ fn violated_at_start(events: &RollEvents, theta: f64, omega: f64) -> Option<Roll
 mod skip_tests {
     use super::*;
     use crate::mechanics::Cylinder;
-
-    /// The roll events without change bounds: the scan always walks the interior samples (and
-    /// makes the dip test in every cell).
-    struct NoSkip(RollEvents);
-
-    impl EventFunctions<2> for NoSkip {
-        fn count(&self) -> usize {
-            self.0.count()
-        }
-        fn spec(&self, k: usize) -> EventSpec {
-            self.0.spec(k)
-        }
-        fn value(&self, k: usize, t: f64, y: &State<2>) -> f64 {
-            self.0.value(k, t, y)
-        }
-        fn values(&self, first: usize, t: f64, y: &State<2>, out: &mut [f64]) {
-            self.0.values(first, t, y, out)
-        }
-        fn slope(&self, k: usize, t: f64, y: &State<2>) -> f64 {
-            self.0.slope(k, t, y)
-        }
-        fn slopes(&self, first: usize, t: f64, y: &State<2>, out: &mut [f64]) {
-            self.0.slopes(first, t, y, out)
-        }
-        fn has_slopes(&self) -> bool {
-            self.0.has_slopes()
-        }
-    }
+    use crate::ode::events::WalkAll;
 
     fn cases() -> Vec<(Ramp, RollEvents)> {
         let mut out = Vec::new();
@@ -704,7 +665,7 @@ mod skip_tests {
             let mut without = Vec::new();
             let b = ode::solve(
                 &r,
-                &NoSkip(ev),
+                &WalkAll(&ev),
                 0.0,
                 State::<2>::zeros(),
                 50.0,
