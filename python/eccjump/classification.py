@@ -172,7 +172,8 @@ def jarm(
     refine_extrema : refine max_ratio and min_Fy to full precision (closed form).
     n_threads : threads (0 = one per core, at most 256); results are identical for any value.
     integrator : the Runge–Kutta pair of ``method="ode"``: ``"RK45"`` (Dormand–Prince 5(4))
-        or ``"DOP853"`` (Dormand–Prince 8(5,3), ~1.3x faster at the default tolerances).
+        or ``"DOP853"`` (Dormand–Prince 8(5,3), ~1.4x faster at the default tolerances, same
+        verdicts: both find an event that only grazes zero between two samples).
 
     Every bound, the memory and Ctrl-C behaviour: ``docs/limits.md``.
 
