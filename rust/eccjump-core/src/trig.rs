@@ -49,6 +49,42 @@ pub fn pow(x: f64, y: f64) -> f64 {
     libm::pow(x, y)
 }
 
+/// sin x.
+#[inline]
+pub fn sin(x: f64) -> f64 {
+    libm::sin(x)
+}
+
+/// cos x.
+#[inline]
+pub fn cos(x: f64) -> f64 {
+    libm::cos(x)
+}
+
+/// tan x.
+#[inline]
+pub fn tan(x: f64) -> f64 {
+    libm::tan(x)
+}
+
+/// arcsin x.
+#[inline]
+pub fn asin(x: f64) -> f64 {
+    libm::asin(x)
+}
+
+/// arccos x.
+#[inline]
+pub fn acos(x: f64) -> f64 {
+    libm::acos(x)
+}
+
+/// ∛x.
+#[inline]
+pub fn cbrt(x: f64) -> f64 {
+    libm::cbrt(x)
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -63,6 +99,64 @@ mod tests {
             assert!((c - c0).abs() <= 2.0 * f64::EPSILON * c0.abs().max(1e-300) + 1e-300);
             let p = pow(1.0 + i as f64 * 1e-4, -0.2);
             assert!((p - (1.0 + i as f64 * 1e-4).powf(-0.2)).abs() <= 2.0 * f64::EPSILON * p);
+            let close = |a: f64, b: f64| (a - b).abs() <= 2.0 * f64::EPSILON * b.abs() + 1e-300;
+            assert!(close(sin(x), x.sin()) && close(cos(x), x.cos()));
+            assert!(close(tan(0.03 * x), (0.03 * x).tan()) && close(cbrt(x), x.cbrt()));
+            let u = x / 50.0;
+            assert!(close(asin(u), u.asin()) && close(acos(u), u.acos()));
         }
+    }
+
+    /// Every elementary function of the library's code comes from this module (one pure-Rust
+    /// implementation), never from the platform's `f64` methods, whose last bits differ
+    /// between C libraries: the code before each file's tests is searched for them.
+    #[test]
+    fn no_platform_elementary_functions_outside_this_module() {
+        let forbidden = [
+            ".sin()",
+            ".cos()",
+            ".tan()",
+            ".asin()",
+            ".acos()",
+            ".atan()",
+            ".atan2(",
+            ".exp()",
+            ".exp_m1()",
+            ".ln()",
+            ".ln_1p()",
+            ".log10()",
+            ".log2()",
+            ".powf(",
+            ".cbrt()",
+            ".hypot(",
+            ".sinh()",
+            ".cosh()",
+            ".tanh()",
+            ".sin_cos()",
+        ];
+        let mut dirs = vec![std::path::PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("src")];
+        let mut files = 0;
+        while let Some(dir) = dirs.pop() {
+            for entry in std::fs::read_dir(dir).unwrap() {
+                let path = entry.unwrap().path();
+                if path.is_dir() {
+                    dirs.push(path);
+                    continue;
+                }
+                if path.extension().is_none_or(|e| e != "rs") || path.ends_with("trig.rs") {
+                    continue;
+                }
+                files += 1;
+                let text = std::fs::read_to_string(&path).unwrap();
+                let code = text.split("#[cfg(test)]").next().unwrap_or("");
+                for (i, line) in code.lines().enumerate() {
+                    let line = line.split("//").next().unwrap_or("");
+                    for f in forbidden {
+                        assert!(!line.contains(f), "{}:{}: {f}", path.display(), i + 1);
+                    }
+                }
+            }
+        }
+        assert!(files > 40, "{files}");
     }
 }

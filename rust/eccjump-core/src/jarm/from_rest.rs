@@ -24,6 +24,7 @@ use crate::mechanics::energy::rolling_kinetic;
 use crate::mechanics::liftoff::free_normal_acceleration;
 use crate::mechanics::Ramp;
 use crate::ode::roots::bisect;
+use crate::trig::{asin, cos, sin, tan};
 use std::f64::consts::{PI, TAU};
 
 /// The paper's J(θ) (Eq. Jta) as printed, with γ from the body. Infinite/NaN at α = π/2.
@@ -31,8 +32,9 @@ pub fn j_paper(r: &Ramp, theta: f64) -> f64 {
     let chi = r.body.chi;
     let gamma = r.body.gamma();
     let a = r.alpha;
-    -1.0 + (chi * a.cos() - chi * (a + theta).cos() + theta * a.sin()) * theta.cos()
-        / ((2.0 * PI * gamma + theta.cos() - 1.0) * a.cos())
+    let (ca, ct) = (cos(a), cos(theta));
+    -1.0 + (chi * ca - chi * cos(a + theta) + theta * sin(a)) * ct
+        / ((2.0 * PI * gamma + ct - 1.0) * ca)
 }
 
 /// Eq. JtaC1 as printed: J(2πn − α).
@@ -40,34 +42,33 @@ pub fn jtac1(r: &Ramp, n: u32) -> f64 {
     let chi = r.body.chi;
     let gamma = r.body.gamma();
     let a = r.alpha;
-    (chi * a.cos() + (TAU * n as f64 - a) * a.sin() - chi) / (a.cos() + 2.0 * PI * gamma - 1.0)
-        - 1.0
+    (chi * cos(a) + (TAU * n as f64 - a) * sin(a) - chi) / (cos(a) + 2.0 * PI * gamma - 1.0) - 1.0
 }
 
 /// Eq. JtaC2 as printed: J(2πn) = n tan α/γ − 1.
 pub fn jtac2(r: &Ramp, n: u32) -> f64 {
-    n as f64 * r.alpha.tan() / r.body.gamma() - 1.0
+    n as f64 * tan(r.alpha) / r.body.gamma() - 1.0
 }
 
 /// E(θ) = θ sin α + χ(cos α − cos(α + θ)) from rest at θ0 = 0, written without cancellation.
 #[inline]
 pub fn energy_drop(r: &Ramp, theta: f64) -> f64 {
-    let (sin_mid, sin_half) = ((r.alpha + 0.5 * theta).sin(), (0.5 * theta).sin());
+    let (sin_mid, sin_half) = (sin(r.alpha + 0.5 * theta), sin(0.5 * theta));
     rolling_kinetic(0.0, theta, r.sin_a, r.body.chi, sin_mid, sin_half)
 }
 
 /// The lift-off function χθ̇² cos θ − cos α along pure rolling from (θ0, θ̇0).
 pub fn liftoff_from(r: &Ramp, theta0: f64, omega0: f64, theta: f64) -> f64 {
     let chi_w2 = r.body.chi * r.omega_sq(theta0, omega0, theta);
-    free_normal_acceleration(chi_w2, theta.cos(), r.cos_a)
+    free_normal_acceleration(chi_w2, cos(theta), r.cos_a)
 }
 
 /// The lift-off function along pure rolling from rest at θ0 = 0 (= cos α · J(θ)).
 pub fn liftoff(r: &Ramp, theta: f64) -> f64 {
-    let ip = r.contact_inertia(theta.cos());
+    let ip = r.contact_inertia(cos(theta));
     free_normal_acceleration(
         r.body.chi * 2.0 * energy_drop(r, theta) / ip,
-        theta.cos(),
+        cos(theta),
         r.cos_a,
     )
 }
@@ -115,7 +116,7 @@ pub fn rock_back_angle(r: &Ramp) -> Option<f64> {
     if chi <= r.sin_a {
         return None;
     }
-    let asn = (r.sin_a / chi).asin();
+    let asn = asin(r.sin_a / chi);
     let theta_m = TAU - r.alpha - asn;
     let e_m = energy_drop(r, theta_m);
     if e_m > 0.0 {

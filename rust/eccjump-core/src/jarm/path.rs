@@ -783,7 +783,7 @@ impl RollingPath {
             let centre = TAU * m;
             let c_min = need / e_ub(centre + FRAC_PI_2);
             (c_min < 1.0).then(|| {
-                let beta = c_min.acos();
+                let beta = crate::trig::acos(c_min);
                 let (lo, hi) = (centre - beta, centre + beta);
                 let whole = lo > theta_start && hi < theta_end;
                 (lo.max(theta_start), hi.min(theta_end), whole)

@@ -15,6 +15,7 @@
 //! with d = θ − θ0, u = d/2 (the product form avoids cancellation at small d).
 
 use crate::mechanics::ramp::Ramp;
+use crate::trig::{cos, sin};
 
 /// K0 + ΔE(θ): the kinetic energy ½ Ĩ_P θ̇² available at θ along pure rolling, given
 /// d = θ − θ0, sin(α + θ0 + d/2) and sin(d/2) (computed by the caller, each in the way its
@@ -43,10 +44,10 @@ impl Ramp {
     /// θ̇² at θ along pure rolling from (θ0, θ̇0), by conservation of energy.
     pub fn omega_sq(&self, theta0: f64, omega0: f64, theta: f64) -> f64 {
         let d = theta - theta0;
-        let k0 = 0.5 * self.contact_inertia(theta0.cos()) * omega0 * omega0;
-        let sin_mid = (self.alpha + 0.5 * (theta + theta0)).sin();
-        let gain = rolling_kinetic(0.0, d, self.sin_a, self.body.chi, sin_mid, (0.5 * d).sin());
-        2.0 * (k0 + gain) / self.contact_inertia(theta.cos())
+        let k0 = 0.5 * self.contact_inertia(cos(theta0)) * omega0 * omega0;
+        let sin_mid = sin(self.alpha + 0.5 * (theta + theta0));
+        let gain = rolling_kinetic(0.0, d, self.sin_a, self.body.chi, sin_mid, sin(0.5 * d));
+        2.0 * (k0 + gain) / self.contact_inertia(cos(theta))
     }
 }
 

@@ -74,8 +74,7 @@ fn clear_cubic(g: f64, d: f64, c: f64, m3: f64) -> f64 {
         return f64::INFINITY;
     }
     let p = |s: f64| g + s * (d + s * (0.5 * c - s * m3 / 6.0));
-    let mut hi = (6.0 * g / m3)
-        .cbrt()
+    let mut hi = crate::trig::cbrt(6.0 * g / m3)
         .max(3.0 * c / m3)
         .max((6.0 * d / m3).sqrt())
         * 2.0;

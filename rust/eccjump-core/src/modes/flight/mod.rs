@@ -18,7 +18,7 @@ use crate::mechanics::{BodyState, Ramp};
 #[inline]
 pub fn x_minus_sin(x: f64) -> f64 {
     if x.abs() >= 1.0 {
-        return x - x.sin();
+        return x - crate::trig::sin(x);
     }
     // x³/3! − x⁵/5! + … by Horner in x²: term ratio −x²/((2k+2)(2k+3)).
     let x2 = x * x;
@@ -61,7 +61,7 @@ impl Flight {
         let (r, chi) = (&self.ramp, self.ramp.body.chi);
         let x = s.omega * tau;
         let (sin_x, cos_x) = crate::trig::sin_cos(x);
-        let half = (0.5 * x).sin();
+        let half = crate::trig::sin(0.5 * x);
         let (sq, xs) = (2.0 * half * half, x_minus_sin(x));
         let (gap, bdot) = self.gap(tau);
         BodyState {
@@ -93,7 +93,7 @@ impl Flight {
         let (r, chi) = (&self.ramp, self.ramp.body.chi);
         let x = s.omega * tau;
         let (sin_x, cos_x) = crate::trig::sin_cos(x);
-        let half = (0.5 * x).sin();
+        let half = crate::trig::sin(0.5 * x);
         let (sq, xs) = (2.0 * half * half, x_minus_sin(x));
         let cos_t = self.cos0 * cos_x - self.sin0 * sin_x;
         (
