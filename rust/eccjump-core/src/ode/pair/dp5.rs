@@ -15,6 +15,12 @@ pub struct Dp5<const N: usize> {
 impl<const N: usize> RkPair<N> for Dp5<N> {
     const ERROR_EXPONENT: f64 = ERROR_EXPONENT;
 
+    /// err^(−1/5) without `pow` ([`crate::trig::inv_fifth_root`], within 4 ulp of it).
+    #[inline]
+    fn error_power(err: f64) -> f64 {
+        crate::trig::inv_fifth_root(err)
+    }
+
     #[inline]
     fn empty() -> Self {
         Self {
