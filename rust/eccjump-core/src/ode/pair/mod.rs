@@ -46,11 +46,9 @@ pub trait RkPair<const N: usize>: Copy {
     /// The step-size exponent −1/(q + 1), q the order of the error estimator.
     const ERROR_EXPONENT: f64;
 
-    /// err^ERROR_EXPONENT, the heart of the step-size factor.
-    #[inline]
-    fn error_power(err: f64) -> f64 {
-        crate::trig::pow(err, Self::ERROR_EXPONENT)
-    }
+    /// err^ERROR_EXPONENT, the heart of the step-size factor (each pair computes it without
+    /// `pow`, whose latency is that of several stages).
+    fn error_power(err: f64) -> f64;
 
     /// A pair with zeroed stages.
     fn empty() -> Self;
