@@ -651,6 +651,96 @@ def part_batch(args) -> None:
         )
 
 
+def first_theta(reason: np.ndarray, theta_j: np.ndarray, theta_event: np.ndarray) -> np.ndarray:
+    """theta of the first event of a classification: theta_J for a JARM, else theta_event."""
+    return np.where(reason == 0, theta_j, theta_event)
+
+
+def part_batch_accuracy(args) -> None:
+    """Part b at equal accuracy: the ODE route (both pairs) and the numba loop on an rtol
+    ladder over the same random points, each rung's CPU time (one thread) and error of the
+    first event's angle against the closed form (exact), at the points where the route's
+    first-event verdict is the closed form's. A route reaches an accuracy level at the
+    loosest rung from which on the 99th percentile of the relative error stays within it."""
+    kern = numba_kernels()
+    n = args.batch
+    print(f"\n== b'. {n} random points to the first event at equal accuracy (mu_s = 1) ==")
+    a, c, k = random_points(n, args.seed)
+    cf = eccjump.jarm(a, c, k, MU_S)
+    ref_class = first_class(cf.reason)
+    ref = first_theta(cf.reason, cf.theta_J, cf.theta_event)
+    ladder = [10.0 ** (-q / 2) for q in range(12, 23)]  # 1e-6 ... 1e-11
+    routes: list[tuple[str, Callable]] = []
+    for integ in ("RK45", "DOP853"):
+
+        def ecc(rtol, integ=integ):
+            r = eccjump.jarm(
+                a,
+                c,
+                k,
+                MU_S,
+                method="ode",
+                rtol=rtol,
+                atol=rtol / 100,
+                n_threads=1,
+                integrator=integ,
+            )
+            return first_class(r.reason), first_theta(r.reason, r.theta_J, r.theta_event)
+
+        routes.append((f"eccjump.jarm ode {integ}", ecc))
+    if kern is not None:
+        fp, classify = kern["fp"], kern["classify"]
+        reason = np.empty(n, np.uint8)
+        theta = np.empty(n)
+        spt = args.samples_per_turn
+        classify(
+            fp, a[:10], c[:10], k[:10], MU_S, 1e-8, 1e-10, spt, 10_000, reason[:10], theta[:10]
+        )
+
+        def numba_loop(rtol):
+            classify(fp, a, c, k, MU_S, rtol, rtol / 100, spt, 10_000, reason, theta)
+            return first_class(reason), theta.copy()
+
+        routes.append(("numba loop, numbalsoda dop853", numba_loop))
+    print(
+        f"{'route':<32}{'rtol':>8}{'CPU s':>8}{'verdict differs':>17}{'p99 rel err':>13}"
+        f"{'max rel err':>13}"
+    )
+    table: dict[str, list[tuple[float, float]]] = {}
+    for name, fn in routes:
+        rows = []
+        for rtol in ladder:
+            t0 = time.process_time()
+            cls, th = fn(rtol)
+            cpu = time.process_time() - t0
+            same = (cls == ref_class) & np.isfinite(th) & np.isfinite(ref)
+            rel = np.abs(th[same] - ref[same]) / np.maximum(1.0, np.abs(ref[same]))
+            p99 = float(np.quantile(rel, 0.99)) if rel.size else math.inf
+            print(
+                f"{name:<32}{rtol:>8.0e}{cpu:>8.2f}{int(np.sum(cls != ref_class)):>17}"
+                f"{p99:>13.1e}{float(rel.max()) if rel.size else math.inf:>13.1e}"
+            )
+            rows.append((p99, cpu))
+        table[name] = rows
+    print("\nCPU s for the batch at the loosest rtol from which on the p99 relative error stays")
+    print("within the level (one thread):")
+    print(f"{'route':<32}" + "".join(f"{'<= ' + format(lv, 'g'):>26}" for lv in ACCURACY))
+    best: dict[float, float] = {}
+    for name, rows in table.items():
+        cells = []
+        for lv in ACCURACY:
+            i = reached([e for e, _ in rows], lv)
+            if i is None:
+                cells.append(f"{'not reached':>26}")
+                continue
+            cpu = rows[i][1]
+            if name.startswith("eccjump"):
+                best[lv] = min(best.get(lv, math.inf), cpu)
+            ratio = f" ({cpu / best[lv]:.2f}x)" if lv in best and not name.startswith("ecc") else ""
+            cells.append(f"{cpu:.3f} s @{ladder[i]:.0e}{ratio}".rjust(26))
+        print(f"{name:<32}" + "".join(cells))
+
+
 # ------------------------------------------------------------------------------------------
 # c. closed form and ODE maps; d. snapshot
 # ------------------------------------------------------------------------------------------
@@ -787,7 +877,8 @@ def main() -> None:
     p.add_argument(
         "--parts",
         default="roll,accuracy,batch,closed,ode",
-        help="comma-separated: roll, accuracy, batch, closed, ode (default: all five)",
+        help="comma-separated: roll, accuracy, batch, batch-accuracy, closed, ode (default: "
+        "all but batch-accuracy)",
     )
     p.add_argument("--rtol", type=float, default=1e-10)
     p.add_argument(
@@ -839,6 +930,8 @@ def main() -> None:
         part_accuracy(args)
     if "batch" in parts:
         part_batch(args)
+    if "batch-accuracy" in parts:
+        part_batch_accuracy(args)
     if "closed" in parts:
         part_closed(args)
     if "ode" in parts:
