@@ -481,6 +481,43 @@ def reached(errors: list[float], level: float) -> int | None:
     return i
 
 
+def equal_accuracy_table(
+    table: dict[str, list[tuple[float, float]]],
+    ladder: list[float],
+    name_width: int,
+    width: int,
+    cell: Callable[[float, float, float | None], str],
+) -> dict[tuple[str, float], float]:
+    """Prints, for each route of `table` (rows of (error, cost) along `ladder`) and each
+    level of ACCURACY, the cost at the loosest rung that reaches the level (`reached`), as
+    cell(cost, rtol, ratio); eccjump's routes come first and set the best cost per level,
+    and a peer's ratio is its cost over that best (None for eccjump). Returns the peers'
+    ratios by (route, level)."""
+    print(
+        f"{'route':<{name_width}}"
+        + "".join(f"{'<= ' + format(lv, 'g'):>{width}}" for lv in ACCURACY)
+    )
+    best: dict[float, float] = {}
+    ratios: dict[tuple[str, float], float] = {}
+    for name, rows in table.items():
+        cells = []
+        for lv in ACCURACY:
+            i = reached([e for e, _ in rows], lv)
+            if i is None:
+                cells.append(f"{'not reached':>{width}}")
+                continue
+            cost = rows[i][1]
+            ratio = None
+            if name.startswith("eccjump"):
+                best[lv] = min(best.get(lv, math.inf), cost)
+            else:
+                ratio = cost / best[lv] if lv in best else math.nan
+                ratios[(name, lv)] = ratio
+            cells.append(cell(cost, ladder[i], ratio).rjust(width))
+        print(f"{name:<{name_width}}" + "".join(cells))
+    return ratios
+
+
 def part_accuracy(args) -> None:
     """Each route's CPU time per call at the loosest tolerance that reaches an accuracy
     level, against the exact theta_J of the closed form: the comparison at equal accuracy
@@ -523,22 +560,11 @@ def part_accuracy(args) -> None:
                 _w, c = per_call(lambda: fn(rtol, atol), max(1, args.number // 4), 3)  # noqa: B023
                 rows.append((abs(th - exact), c))
             table[name] = rows
-        head = f"{'route':<28}" + "".join(f"{'<= ' + format(lv, 'g'):>22}" for lv in ACCURACY)
-        print(head)
-        base: dict[float, float] = {}
-        for name, rows in table.items():
-            cells = []
-            for lv in ACCURACY:
-                i = reached([e for e, _ in rows], lv)
-                if i is None:
-                    cells.append(f"{'not reached':>22}")
-                    continue
-                c = rows[i][1]
-                if name.startswith("eccjump"):
-                    base[lv] = min(base.get(lv, math.inf), c)
-                summary.setdefault((name, lv), []).append(c / base[lv] if lv in base else math.nan)
-                cells.append(f"{c * 1e6:>10.2f} us @{LADDER[i]:<8.0e}".rjust(22))
-            print(f"{name:<28}" + "".join(cells))
+        ratios = equal_accuracy_table(
+            table, LADDER, 28, 22, lambda c, rtol, _r: f"{c * 1e6:>10.2f} us @{rtol:<8.0e}"
+        )
+        for key, ratio in ratios.items():
+            summary.setdefault(key, []).append(ratio)
     print(
         "\npeer CPU / eccjump CPU (the faster of its two integrators) at equal accuracy, "
         "min-max over the cases:"
@@ -724,21 +750,13 @@ def part_batch_accuracy(args) -> None:
         table[name] = rows
     print("\nCPU s for the batch at the loosest rtol from which on the p99 relative error stays")
     print("within the level (one thread):")
-    print(f"{'route':<32}" + "".join(f"{'<= ' + format(lv, 'g'):>26}" for lv in ACCURACY))
-    best: dict[float, float] = {}
-    for name, rows in table.items():
-        cells = []
-        for lv in ACCURACY:
-            i = reached([e for e, _ in rows], lv)
-            if i is None:
-                cells.append(f"{'not reached':>26}")
-                continue
-            cpu = rows[i][1]
-            if name.startswith("eccjump"):
-                best[lv] = min(best.get(lv, math.inf), cpu)
-            ratio = f" ({cpu / best[lv]:.2f}x)" if lv in best and not name.startswith("ecc") else ""
-            cells.append(f"{cpu:.3f} s @{ladder[i]:.0e}{ratio}".rjust(26))
-        print(f"{name:<32}" + "".join(cells))
+    equal_accuracy_table(
+        table,
+        ladder,
+        32,
+        26,
+        lambda c, rtol, r: f"{c:.3f} s @{rtol:.0e}" + (f" ({r:.2f}x)" if r is not None else ""),
+    )
 
 
 # ------------------------------------------------------------------------------------------
