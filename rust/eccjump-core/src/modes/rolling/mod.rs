@@ -232,6 +232,34 @@ mod tests {
     }
 
     #[test]
+    fn contact_rates_are_time_derivatives_along_the_rolling_equation() {
+        // An independent route: d/dt g(θ, θ̇) = ∂g/∂θ θ̇ + ∂g/∂θ̇ θ̈ by finite differences of
+        // the kinematics in θ and θ̇ separately, at states off any one path.
+        let h = 1e-6;
+        for &(chi, km, a) in &[(0.5, 0.2, 30.0), (0.9, 0.05, 70.0), (0.1, 0.6, 5.0)] {
+            let r = ramp(chi, km, a);
+            for &(th, w) in &[(0.5, 0.3), (2.0, 1.7), (3.5, -0.8), (5.0, 2.5)] {
+                let q = r.kinematics(th, w);
+                let rates = r.contact_rates(&q);
+                let d = |f: &dyn Fn(&Kinematics) -> f64| {
+                    let dth =
+                        (f(&r.kinematics(th + h, w)) - f(&r.kinematics(th - h, w))) / (2.0 * h);
+                    let dw =
+                        (f(&r.kinematics(th, w + h)) - f(&r.kinematics(th, w - h))) / (2.0 * h);
+                    dth * w + dw * q.omega_dot
+                };
+                let (fx, fy, lift) = (d(&|k| k.fx), d(&|k| k.fy), d(&|k| k.lift));
+                assert!((rates.fx - fx).abs() < 1e-6 * (1.0 + fx.abs()), "{th} {w}");
+                assert!((rates.fy - fy).abs() < 1e-6 * (1.0 + fy.abs()), "{th} {w}");
+                assert!(
+                    (rates.lift - lift).abs() < 1e-6 * (1.0 + lift.abs()),
+                    "{th} {w}"
+                );
+            }
+        }
+    }
+
+    #[test]
     fn force_slopes_are_derivatives_along_the_path() {
         let r = ramp(0.5, 0.2, 30.0);
         let (th0, w0) = (0.2, 0.4);
