@@ -587,10 +587,11 @@ def random_points(n: int, seed: int) -> tuple[np.ndarray, np.ndarray, np.ndarray
 
 
 def first_class(reason: np.ndarray) -> np.ndarray:
-    """The first event's verdict: SLIP_AT_JUMP (5) and SLIP_BEFORE (4) both mean "slipped
-    first" (telling them apart needs the continuation the peer loop does not do)."""
+    """The first event's verdict: SLIP_AT_JUMP (5), SLIP_BEFORE (4) and SLIP (10, from
+    ``stop_at_slip``) all mean "slipped first" (telling the first two apart needs the
+    continuation the peer loop does not do)."""
     r = reason.astype(np.int64)
-    r[r == 5] = 4
+    r[(r == 5) | (r == 10)] = 4
     return r
 
 
@@ -612,6 +613,7 @@ def part_batch(args) -> None:
                 atol=args.atol,
                 n_threads=thr,
                 integrator=args.integrator,
+                stop_at_slip=args.stop_at_slip,
             )
         )
         rows.append((f"eccjump.jarm ode, {thr or os.cpu_count()} thr", w, cpu))
@@ -710,6 +712,7 @@ def part_batch_accuracy(args) -> None:
                 atol=rtol / 100,
                 n_threads=1,
                 integrator=integ,
+                stop_at_slip=args.stop_at_slip,
             )
             return first_class(r.reason), first_theta(r.reason, r.theta_J, r.theta_event)
 
@@ -790,13 +793,16 @@ def part_closed(args) -> None:
     print("\n== c. closed form (mu_s = 1, automatic n, paper rule, all threads) ==")
     a, c, k = random_points(args.points, args.seed)
     eccjump.jarm(a[:100], c[:100], k[:100], MU_S)
-    w, cpu, res = best_of(lambda: eccjump.jarm(a, c, k, MU_S), args.repeat)
+    stop = args.stop_at_slip
+    w, cpu, res = best_of(lambda: eccjump.jarm(a, c, k, MU_S, stop_at_slip=stop), args.repeat)
     print(
         f"jarm, {args.points} random points: wall {w:.3f} s, CPU {cpu:.3f} s; "
         f"{verdict(w, 1.0) if args.points == 10**6 else ''}  JARMs {int(res.is_jarm.sum())}"
     )
     ga, gc, gf = grid(args.grid)
-    w, cpu, reg = best_of(lambda: eccjump.region(MU_S, alpha=ga, chi=gc, km=gf), args.repeat)
+    w, cpu, reg = best_of(
+        lambda: eccjump.region(MU_S, alpha=ga, chi=gc, km=gf, stop_at_slip=stop), args.repeat
+    )
     print(
         f"region, {args.grid}^3 grid: wall {w:.3f} s, CPU {cpu:.3f} s; "
         f"{verdict(w, 0.7) if args.grid == 100 else ''}  JARMs {int(reg.is_jarm.sum())}"
@@ -804,13 +810,26 @@ def part_closed(args) -> None:
 
 
 def part_ode(args) -> None:
-    print("\n== c. ODE route map (method='ode', rtol 1e-10, atol 1e-12, all threads) ==")
+    print(
+        f"\n== c. ODE route map (method='ode', {args.integrator}, rtol 1e-10, atol 1e-12, "
+        f"stop_at_slip={args.stop_at_slip}, all threads) =="
+    )
     ga, gc, gf = grid(100)
     m = args.ode_grid
     idx = np.unique(np.round(np.linspace(0, 99, m)).astype(int))
     sa, sc, sf = ga[idx], gc[idx], gf[idx]
     eccjump.region(MU_S, alpha=sa[:3], chi=sc[:3], km=sf[:3], method="ode")
-    w, cpu, reg = timed(lambda: eccjump.region(MU_S, alpha=sa, chi=sc, km=sf, method="ode"))
+    w, cpu, reg = timed(
+        lambda: eccjump.region(
+            MU_S,
+            alpha=sa,
+            chi=sc,
+            km=sf,
+            method="ode",
+            integrator=args.integrator,
+            stop_at_slip=args.stop_at_slip,
+        )
+    )
     n = reg.is_jarm.size
     if m >= 100:
         print(f"region ode, 100^3: wall {w:.2f} s, CPU {cpu:.2f} s; {verdict(w, 10.0)}")
@@ -903,9 +922,16 @@ def main() -> None:
         "--integrator",
         default="RK45",
         choices=("RK45", "DOP853"),
-        help="eccjump's Runge-Kutta pair in parts a and b (RK45)",
+        help="eccjump's Runge-Kutta pair in parts a, b and the ODE map of c (RK45)",
     )
     p.add_argument("--atol", type=float, default=1e-12)
+    p.add_argument(
+        "--stop-at-slip",
+        action="store_true",
+        help="eccjump stops at the first slip (reason SLIP, stop_at_slip=True) in parts b, b' "
+        "and c, as the numba loop does; default: it continues to tell SLIP_BEFORE from "
+        "SLIP_AT_JUMP",
+    )
     p.add_argument("--number", type=int, default=200, help="calls per timing round (roll)")
     p.add_argument("--batch", type=int, default=10_000, help="points of part b (10000)")
     p.add_argument(

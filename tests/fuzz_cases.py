@@ -516,6 +516,7 @@ def _classification_options(d: Drawer, case: Case, ode_ok: bool) -> dict[str, An
         "atol": d.choice((1e-12, 1e-8, *(() if d.clean else (0.0, -1.0, math.nan, math.inf)))),
         "max_turns": integer_param(d, case, (1, 3, 20), (*INT_BAD, 10**6 + 1, 10**9)),
         "refine_extrema": flag(d, case),
+        "stop_at_slip": flag(d, case),
         "n_threads": threads(d, case),
     }
 
@@ -544,7 +545,7 @@ def case_jarm(d: Drawer) -> Case:
 
 JARM_PARAMS = (
     "alpha", "chi", "km", "mu_s", "n", "method", "rule", "theta0", "omega0", "rtol", "atol",
-    "max_turns", "refine_extrema", "n_threads", "shapes", "integrator",
+    "max_turns", "refine_extrema", "stop_at_slip", "n_threads", "shapes", "integrator",
 )  # fmt: skip
 
 

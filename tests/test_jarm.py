@@ -184,6 +184,45 @@ def test_region_is_bit_identical_for_any_thread_count():
         )
 
 
+@settings(max_examples=25, deadline=None)
+@given(
+    st.floats(0.02, math.pi / 2),
+    st.sampled_from([0.3, 1.0, 2.0]),
+    st.sampled_from(["closed_form", "ode"]),
+    st.sampled_from(["paper", "normal_force"]),
+)
+def test_stop_at_slip_only_relabels_the_slips(alpha, mu_s, method, rule):
+    """stop_at_slip=True: every SLIP_BEFORE/SLIP_AT_JUMP of the paper rule becomes SLIP with
+    theta_J NaN; every other point and field is the same to the bit, and is_jarm everywhere."""
+    c = np.linspace(0.02, 0.98, 9)[:, None]
+    km = np.linspace(0.0, 0.95, 7)[None, :] * (1 - c)
+    kw = {"method": method, "rule": rule, "integrator": "DOP853"}
+    full = jarm(alpha, c, km, mu_s, **kw)
+    stop = jarm(alpha, c, km, mu_s, stop_at_slip=True, **kw)
+    slip = np.isin(full.reason, [Reason.SLIP_BEFORE, Reason.SLIP_AT_JUMP]) & (rule == "paper")
+    assert (stop.reason[slip] == Reason.SLIP).all()
+    assert np.isnan(stop.theta_J[slip]).all()
+    np.testing.assert_array_equal(stop.is_jarm, full.is_jarm)
+    for name in eccjump.classification.FIELDS:
+        a, b = getattr(full, name), getattr(stop, name)
+        keep = ~slip if name in ("reason", "theta_J") else np.ones_like(slip)
+        assert a[keep].tobytes() == b[keep].tobytes(), name
+    assert Reason.SLIP not in set(full.reason.ravel().tolist())
+
+
+def test_stop_at_slip_is_recorded_and_makes_slip_maps_of_the_same_region():
+    a = np.linspace(5, 85, 9) * DEG
+    c = np.linspace(0.05, 0.9, 6)
+    f = np.linspace(0.0, 0.9, 4)
+    full = region(1.0, alpha=a, chi=c, km=f)
+    stop = region(1.0, alpha=a, chi=c, km=f, stop_at_slip=True)
+    assert stop.attrs["stop_at_slip"] is True and full.attrs["stop_at_slip"] is False
+    np.testing.assert_array_equal(stop.is_jarm, full.is_jarm)
+    slips = np.isin(full.result.reason, [Reason.SLIP_BEFORE, Reason.SLIP_AT_JUMP])
+    assert slips.any()
+    np.testing.assert_array_equal(stop.result.reason == Reason.SLIP, slips)
+
+
 def test_region_grid_matches_pointwise_jarm():
     a = np.array([30, 40, 60]) * DEG
     c = np.array([0.1, 0.15, 0.5])
@@ -418,11 +457,12 @@ def test_ode_region_is_bit_identical_for_any_thread_count():
         assert getattr(r1.result, name).tobytes() == getattr(r2.result, name).tobytes()
 
 
-def test_reason_codes_include_solver_failed():
+def test_reason_codes_include_solver_failed_and_slip():
     # An integrator failure of the ODE route has its own code, never a physical verdict
-    # (the failure itself is provoked in the Rust tests: jarm::ode_route, step budget).
-    assert Reason.SOLVER_FAILED == 9
-    assert [r.value for r in Reason] == list(range(10))
+    # (the failure itself is provoked in the Rust tests: jarm::ode_route, step budget);
+    # SLIP is only given with stop_at_slip=True (test_stop_at_slip_only_relabels_the_slips).
+    assert Reason.SOLVER_FAILED == 9 and Reason.SLIP == 10
+    assert [r.value for r in Reason] == list(range(11))
 
 
 def test_the_classification_is_periodic_in_theta0():

@@ -275,6 +275,22 @@ def test_resume_refuses_another_integrator(tmp_path, capsys):
     assert code == 0
 
 
+def test_stop_at_slip_reaches_the_map_is_recorded_and_checked_on_resume(tmp_path, capsys):
+    code, path = run_map(tmp_path, "s.npz", "--stop-at-slip")
+    assert code == 0
+    back = store.load(path)
+    ref = region(MU_S, **grid(), stop_at_slip=True)
+    assert_same(ref, back)
+    assert back.attrs["stop_at_slip"] and (back.result.reason == Reason.SLIP).any()
+    np.testing.assert_array_equal(back.is_jarm, region(MU_S, **grid()).is_jarm)
+    pytest.importorskip("zarr")
+    code, path = run_map(tmp_path, "s.zarr", "--chunk", "5", "--stop-after", "1")
+    assert code == 130
+    code, _ = run_map(tmp_path, "s.zarr", "--resume", "--stop-at-slip")
+    assert code == 2
+    assert "stop_at_slip: store 0, now 1" in capsys.readouterr().err
+
+
 @pytest.mark.parametrize("suffix", [".nc", ".npz"])
 def test_interrupted_file_keeps_finished_slices_with_a_flag(tmp_path, reference, suffix, capsys):
     code, path = run_map(tmp_path, f"i{suffix}", "--chunk", "4", "--stop-after", "2")

@@ -38,6 +38,7 @@ class CallOptions:
     theta0, omega0 : initial angle [rad] and angular velocity [sqrt(g/R) rad].
     max_turns : cap of the search, in turns (>= 1).
     refine_extrema : refine max_ratio and min_Fy to full precision (closed form).
+    stop_at_slip : stop at the first slip with reason SLIP (paper rule; see :func:`jarm`).
     n_threads : threads per call (0 = one per core); results do not depend on it.
     integrator : the Runge–Kutta pair of ``method="ode"``, ``"RK45"`` or ``"DOP853"``.
 
@@ -55,6 +56,7 @@ class CallOptions:
     refine_extrema: bool
     n_threads: int
     integrator: str = "RK45"
+    stop_at_slip: bool = False
 
 
 def call_options(
@@ -70,6 +72,7 @@ def call_options(
     refine_extrema: bool,
     n_threads: int,
     integrator: str = "RK45",
+    stop_at_slip: bool = False,
 ) -> CallOptions:
     """The options of a classification call, type-checked and converted to plain Python
     types (TypeError naming the argument for a wrong type; see :mod:`eccjump._checks`).
@@ -90,6 +93,7 @@ def call_options(
         refine_extrema=flag("refine_extrema", refine_extrema),
         n_threads=integer("n_threads", n_threads, 0, U64_MAX),
         integrator=text("integrator", integrator),
+        stop_at_slip=flag("stop_at_slip", stop_at_slip),
     )
 
 
@@ -104,6 +108,7 @@ def _bridge_options(opts: CallOptions) -> _core.CallOptions:
         "omega0": opts.omega0,
         "max_turns": opts.max_turns,
         "refine_extrema": opts.refine_extrema,
+        "stop_at_slip": opts.stop_at_slip,
         "n_threads": opts.n_threads,
         "integrator": opts.integrator,
     }

@@ -167,6 +167,7 @@ class CallOptions(TypedDict):
     omega0: float
     max_turns: int
     refine_extrema: bool
+    stop_at_slip: bool
     n_threads: int
     integrator: str
 

@@ -148,6 +148,7 @@ def jarm(
     atol: float = 1e-12,
     max_turns: int = 10_000,
     refine_extrema: bool = True,
+    stop_at_slip: bool = False,
     n_threads: int = 0,
     integrator: Integrator = "RK45",
 ) -> JarmResult:
@@ -170,6 +171,11 @@ def jarm(
     rtol, atol : integrator tolerances (``method="ode"`` only).
     max_turns : cap of the search, in turns counted from the start's turn (1 ... 10**6).
     refine_extrema : refine max_ratio and min_Fy to full precision (closed form).
+    stop_at_slip : under the paper's rule, stop at the first slip and report ``Reason.SLIP``
+        instead of following rolling on to the lift-off to tell SLIP_BEFORE from
+        SLIP_AT_JUMP. ``is_jarm`` and every other reason are unchanged; maps where most
+        points slip are faster (about 2x with ``method="ode"``). No effect under
+        ``rule="normal_force"``.
     n_threads : threads (0 = one per core, at most 256); results are identical for any value.
     integrator : the Runge–Kutta pair of ``method="ode"``: ``"RK45"`` (Dormand–Prince 5(4))
         or ``"DOP853"`` (Dormand–Prince 8(5,3), ~1.4x faster at the default tolerances, same
@@ -192,6 +198,7 @@ def jarm(
         omega0=omega0,
         max_turns=max_turns,
         refine_extrema=refine_extrema,
+        stop_at_slip=stop_at_slip,
         n_threads=n_threads,
         integrator=integrator,
     )
@@ -323,6 +330,7 @@ def region(
     atol: float = 1e-12,
     max_turns: int = 10_000,
     refine_extrema: bool = False,
+    stop_at_slip: bool = False,
     n_threads: int = 0,
     integrator: Integrator = "RK45",
     chunks: Any = None,
@@ -346,6 +354,7 @@ def region(
     atol: float = 1e-12,
     max_turns: int = 10_000,
     refine_extrema: bool = False,
+    stop_at_slip: bool = False,
     n_threads: int = 0,
     integrator: Integrator = "RK45",
     chunks: Any = None,
@@ -368,6 +377,7 @@ def region(
     atol: float = 1e-12,
     max_turns: int = 10_000,
     refine_extrema: bool = False,
+    stop_at_slip: bool = False,
     n_threads: int = 0,
     integrator: Integrator = "RK45",
     chunks: Any = None,
@@ -389,7 +399,8 @@ def region(
         (:mod:`eccjump.labelled`), and then ``mu_s``, ``theta0`` and ``omega0`` may be 1-D
         sequences, swept as extra leading dimensions (one Rust call per combination).
 
-    The tolerances, the ``integrator``, ``max_turns`` and ``refine_extrema`` are recorded in
+    The tolerances, the ``integrator``, ``max_turns``, ``refine_extrema`` and ``stop_at_slip``
+    are recorded in
     ``Region.attrs`` (and in the attributes of its dataset and files) whatever the method, as
     given: the closed form ignores the tolerances and the integrator.
     """
@@ -408,6 +419,7 @@ def region(
             atol=atol,
             max_turns=max_turns,
             refine_extrema=refine_extrema,
+            stop_at_slip=stop_at_slip,
             n_threads=n_threads,
             integrator=integrator,
             chunks=chunks,
@@ -429,6 +441,7 @@ def region(
         omega0=omega0,
         max_turns=max_turns,
         refine_extrema=refine_extrema,
+        stop_at_slip=stop_at_slip,
         n_threads=n_threads,
         integrator=integrator,
     )
@@ -454,6 +467,7 @@ def region(
             "integrator": opts.integrator,
             "max_turns": opts.max_turns,
             "refine_extrema": opts.refine_extrema,
+            "stop_at_slip": opts.stop_at_slip,
         },
     )
 

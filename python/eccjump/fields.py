@@ -88,7 +88,8 @@ needs more than mu_s of friction before lift-off. SLIP_AT_JUMP: friction fails o
 approach, and the paper's jump-point test (Eq. ineq2) fails at theta_J. ROCKS_BACK: the body
 stops and rolls back. TURN_LIMIT: nothing happened within max_turns turns. INVALID_PARAMS: a
 parameter is NaN or out of range. SOLVER_FAILED: the integrator of ``method="ode"`` failed
-(no physical verdict)."""
+(no physical verdict). SLIP: friction fails before the paper's lift-off, and the search
+stopped there (``stop_at_slip=True``): SLIP_BEFORE or SLIP_AT_JUMP, not told apart."""
 
 
 def reason_table() -> str:

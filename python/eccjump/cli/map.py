@@ -104,6 +104,12 @@ def add_parser(sub: argparse._SubParsersAction) -> None:
     m.add_argument("--atol", type=float, default=1e-12, help="integrator atol (--route ode)")
     add_integrator(m, " (--route ode, --kind motion)")
     m.add_argument("--max-turns", type=int_at_least(1), default=10_000, help="cap of the search")
+    m.add_argument(
+        "--stop-at-slip",
+        action="store_true",
+        help="paper rule: stop at the first slip (reason slip), not telling slip_before from "
+        "slip_at_jump; same is_jarm, faster (--kind jarm)",
+    )
     k = p.add_argument_group("full motion (--kind motion)")
     k.add_argument("--mu-k", type=float, default=None, help="kinetic friction (default mu_s)")
     k.add_argument(

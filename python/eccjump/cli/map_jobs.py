@@ -31,6 +31,7 @@ MAP_OPTIONS = (
     "integrator",
     "max_turns",
     "refine_extrema",
+    "stop_at_slip",
 )
 #: The same for a motion map.
 MOTION_OPTIONS = (
@@ -47,7 +48,7 @@ MOTION_OPTIONS = (
     "integrator",
 )
 #: The value of an option a store written before the option was recorded was made with.
-UNRECORDED = {"integrator": "RK45"}
+UNRECORDED = {"integrator": "RK45", "stop_at_slip": False}
 
 
 class JarmJob:
@@ -70,6 +71,7 @@ class JarmJob:
             "integrator": args.integrator,
             "max_turns": int(args.max_turns),
             "refine_extrema": False,
+            "stop_at_slip": bool(args.stop_at_slip),
         }
         self.attrs = map_attrs(**self.opts)
         self.points = self.jarm = 0

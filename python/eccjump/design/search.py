@@ -324,6 +324,7 @@ _SHORT = {
     "NORMAL_FORCE_LOST": "Fy lost",
     "SLIP_BEFORE": "slips",
     "SLIP_AT_JUMP": "slips at jump",
+    "SLIP": "slips",
     "ROCKS_BACK": "rocks back",
     "TURN_LIMIT": "turn limit",
     "INVALID_PARAMS": "invalid",

@@ -5,32 +5,15 @@
 //! (extrema not refined), with a digest of every field of every result: an optimisation that
 //! changes any bit of any result changes the digest. With `CLOSED_COST_DUMP=prefix`, every
 //! field of every result is also written to `prefix.random.f64` and `prefix.grid.f64` (11
-//! little-endian f64 per point, in the order of `fields`), to compare two builds point by
+//! little-endian f64 per point, in the order of `JarmResult::as_f64s`), to compare two builds point by
 //! point.
 use eccjump_core::jarm::{classify, JarmOptions, JarmResult};
 use std::f64::consts::FRAC_PI_2;
 use std::time::Instant;
 
-/// Every field of a result as f64.
-fn fields(r: &JarmResult) -> [f64; 11] {
-    [
-        r.reason as u8 as f64,
-        r.n as f64,
-        r.is_jarm as u8 as f64,
-        r.theta_j,
-        r.theta_event,
-        r.fx_j,
-        r.fy_j,
-        r.max_ratio,
-        r.theta_max_ratio,
-        r.min_fy,
-        r.theta_min_fy,
-    ]
-}
-
 /// FNV-1a over the bits of every field of a result.
 fn mix(h: &mut u64, r: &JarmResult) {
-    for w in fields(r).map(f64::to_bits) {
+    for w in r.as_f64s().map(f64::to_bits) {
         for b in w.to_le_bytes() {
             *h = (*h ^ b as u64).wrapping_mul(0x100_0000_01b3);
         }
@@ -63,7 +46,7 @@ fn report(what: &str, pts: &[(f64, f64, f64)], o: &JarmOptions) {
     if let Ok(prefix) = std::env::var("CLOSED_COST_DUMP") {
         let bytes: Vec<u8> = dump
             .iter()
-            .flat_map(fields)
+            .flat_map(JarmResult::as_f64s)
             .flat_map(f64::to_le_bytes)
             .collect();
         std::fs::write(format!("{prefix}.{what}.f64"), bytes).unwrap();

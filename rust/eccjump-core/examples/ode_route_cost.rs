@@ -1,7 +1,7 @@
 //! CPU cost of the ODE route per point, per Runge–Kutta pair, on the random
 //! points (α ~ U(0, π/2), χ ~ U(1e-3, 1), k_m = u(1 − χ), μ_s = 1), one thread, and how
 //! often the two pairs agree on the reason. `cargo run --release -p eccjump-core --example
-//! ode_route_cost [points]`.
+//! ode_route_cost [points] [rk45|dop853|both] [stop]` (`stop`: `stop_at_slip`).
 use eccjump_core::jarm::{classify_ode, JarmOptions};
 use eccjump_core::ode::Method;
 use std::time::Instant;
@@ -29,7 +29,10 @@ fn main() {
         })
         .filter(|p| p.0 > 0.0)
         .collect();
-    let o = JarmOptions::default();
+    let o = JarmOptions {
+        stop_at_slip: std::env::args().nth(3).as_deref() == Some("stop"),
+        ..JarmOptions::default()
+    };
     let mut reasons = Vec::new();
     let pairs: Vec<Method> = match std::env::args().nth(2).as_deref() {
         Some("rk45") => vec![Method::Rk45],

@@ -9,7 +9,7 @@ use pyo3::exceptions::PyValueError;
 use pyo3::{FromPyObject, PyResult};
 
 /// `{"rule", "method", "rtol", "atol", "theta0", "omega0", "max_turns", "refine_extrema",
-/// "n_threads", "integrator"}`.
+/// "stop_at_slip", "n_threads", "integrator"}`.
 #[derive(FromPyObject)]
 #[pyo3(from_item_all)]
 pub struct CallOptions {
@@ -21,6 +21,7 @@ pub struct CallOptions {
     omega0: f64,
     max_turns: u32,
     refine_extrema: bool,
+    stop_at_slip: bool,
     n_threads: usize,
     integrator: String,
 }
@@ -45,6 +46,7 @@ impl CallOptions {
             theta0: self.theta0,
             omega0: self.omega0,
             refine_extrema: self.refine_extrema,
+            stop_at_slip: self.stop_at_slip,
         };
         Ok((opts, method, self.n_threads))
     }

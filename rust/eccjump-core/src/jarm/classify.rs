@@ -80,6 +80,7 @@ pub fn classify(alpha: f64, chi: f64, km: f64, mu_s: f64, o: &JarmOptions) -> Ja
         mu_s,
         rule: o.rule,
         end_reason,
+        stop_at_slip: o.stop_at_slip,
     };
     // After a slip (paper rule): only the parts of each turn where L can reach 0 are scanned.
     let th = s.at.theta;
@@ -108,7 +109,7 @@ mod tests {
             assert_eq!(r.code() as usize, i);
             assert_eq!(Reason::from_code(i as u8), Some(*r));
         }
-        assert_eq!(Reason::from_code(10), None);
+        assert_eq!(Reason::from_code(11), None);
     }
 
     #[test]

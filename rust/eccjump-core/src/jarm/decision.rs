@@ -10,7 +10,7 @@
 //!   `SlipAtJump`; else a JARM with the jump-point forces of Sec. 3.1.
 //! - Paper rule, loss of normal force → `NormalForceLost`; slip → the route continues along
 //!   rolling to the paper's lift-off: in a green window with ineq2 failing there it is
-//!   `SlipAtJump`, else `SlipBefore`.
+//!   `SlipAtJump`, else `SlipBefore` (with `stop_at_slip`: `Slip`, no continuation).
 //! - Classical rule, loss of normal force → a JARM there (`LiftoffEarlier` at the start);
 //!   slip → a JARM if sliding is inconsistent ([`slip_onset_flies`]), else `SlipBefore`.
 //!
@@ -82,6 +82,8 @@ pub struct Case<'a> {
     pub rule: Rule,
     /// The reason of a search that ends without an event.
     pub end_reason: Reason,
+    /// Stop at a slip (paper rule): `Slip`, without the continuation to the lift-off.
+    pub stop_at_slip: bool,
 }
 
 impl JarmResult {
@@ -179,6 +181,7 @@ pub fn decide(
             }
         }
         (Rule::Paper, ContactEvent::NormalForce) => failure(Reason::NormalForceLost),
+        (Rule::Paper, ContactEvent::Slip) if case.stop_at_slip => failure(Reason::Slip),
         (Rule::Paper, ContactEvent::Slip) => match liftoff_after_slip() {
             Some(tl) if green_turn(case.alpha, tl).is_some() && mu(case.body, tl) > case.mu_s => {
                 let mut x = failure(Reason::SlipAtJump);
@@ -220,7 +223,11 @@ pub fn restrict_to_turn(mut res: JarmResult, n: u32) -> JarmResult {
             res.is_jarm = false;
             res
         }
-        Reason::NormalForceLost | Reason::SlipBefore | Reason::SlipAtJump | Reason::RocksBack
+        Reason::NormalForceLost
+        | Reason::SlipBefore
+        | Reason::SlipAtJump
+        | Reason::Slip
+        | Reason::RocksBack
             if res.n > n =>
         {
             res.reason = Reason::NoRoot;

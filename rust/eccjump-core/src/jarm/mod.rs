@@ -120,4 +120,62 @@ mod tests {
             "{jarms} JARM points: the test would not see the defect"
         );
     }
+
+    /// `stop_at_slip` changes exactly the paper rule's slips, to `Slip`, and nothing else: the
+    /// same bits in every other field and at every other point, for both routes, both
+    /// rules, the first jump and an explicit turn, from rest and from a moving start.
+    #[test]
+    fn stopping_at_a_slip_changes_only_the_label_of_a_slip() {
+        let ode = Method::Ode {
+            rtol: 1e-10,
+            atol: 1e-12,
+            pair: crate::ode::Method::Dop853,
+        };
+        let mut slips = [0usize; 2];
+        for (m, method) in [Method::ClosedForm, ode].into_iter().enumerate() {
+            for rule in [Rule::Paper, Rule::NormalForce] {
+                for (n, theta0, omega0) in [(0, 0.0, 0.0), (2, 0.0, 0.0), (0, -1.0, 0.7)] {
+                    let full = JarmOptions {
+                        rule,
+                        n,
+                        theta0,
+                        omega0,
+                        ..JarmOptions::default()
+                    };
+                    let stop = JarmOptions {
+                        stop_at_slip: true,
+                        ..full
+                    };
+                    for i in 0..10 {
+                        for j in 0..8 {
+                            let (a, chi) = (0.1 + 0.145 * i as f64, 0.06 + 0.11 * j as f64);
+                            let km = (1.0 - chi) * ((i + j) % 5) as f64 / 5.0;
+                            let mu_s = [0.3, 1.0, 2.0][(i + 2 * j) % 3];
+                            let f = classify_with(method, a, chi, km, mu_s, &full);
+                            let s = classify_with(method, a, chi, km, mu_s, &stop);
+                            let slip = matches!(f.reason, Reason::SlipBefore | Reason::SlipAtJump);
+                            if rule == Rule::Paper && slip {
+                                slips[m] += 1;
+                                assert_eq!(s.reason, Reason::Slip, "{a} {chi} {km} {mu_s}");
+                                let relabelled = JarmResult {
+                                    reason: f.reason,
+                                    theta_j: f.theta_j,
+                                    ..s
+                                };
+                                assert!(bits_eq(&relabelled, &f), "{f:?} {s:?}");
+                                assert!(s.theta_j.is_nan());
+                            } else {
+                                assert!(bits_eq(&s, &f), "{rule:?} {a} {chi}: {f:?} {s:?}");
+                            }
+                        }
+                    }
+                }
+            }
+        }
+        assert!(slips.iter().all(|&s| s > 100), "{slips:?}");
+    }
+
+    fn bits_eq(x: &JarmResult, y: &JarmResult) -> bool {
+        x.as_f64s().map(f64::to_bits) == y.as_f64s().map(f64::to_bits)
+    }
 }

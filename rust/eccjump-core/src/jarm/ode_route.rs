@@ -405,6 +405,7 @@ fn classify_ode_budget(
         mu_s,
         rule: o.rule,
         end_reason,
+        stop_at_slip: o.stop_at_slip,
     };
     // After a slip (paper rule): continue along rolling (no friction, no normal-force event)
     // to the paper's lift-off.

@@ -35,11 +35,15 @@ pub enum Reason {
     /// 9: the integrator of the ODE route failed (step too small, non-finite values, step
     /// budget): no physical verdict.
     SolverFailed = 9,
+    /// 10: friction fails before the paper's lift-off, and the search stopped there
+    /// (`JarmOptions::stop_at_slip`): `SlipBefore` or `SlipAtJump`, not told apart.
+    /// Paper rule only.
+    Slip = 10,
 }
 
 impl Reason {
     /// All reasons, indexed by code.
-    pub const ALL: [Reason; 10] = [
+    pub const ALL: [Reason; 11] = [
         Reason::Jarm,
         Reason::NoRoot,
         Reason::LiftoffEarlier,
@@ -50,6 +54,7 @@ impl Reason {
         Reason::TurnLimit,
         Reason::InvalidParams,
         Reason::SolverFailed,
+        Reason::Slip,
     ];
 
     /// The numeric code.
@@ -75,6 +80,7 @@ impl Reason {
             Reason::TurnLimit => "turn_limit",
             Reason::InvalidParams => "invalid_params",
             Reason::SolverFailed => "solver_failed",
+            Reason::Slip => "slip",
         }
     }
 }
@@ -96,6 +102,11 @@ pub struct JarmOptions {
     /// (default); if false they are cell estimates (relative error ~1e-4) and the map is
     /// faster. The classification itself does not depend on it.
     pub refine_extrema: bool,
+    /// Paper rule: stop at the first slip and report `Slip`, instead of following rolling
+    /// on to the paper's lift-off to tell `SlipAtJump` from `SlipBefore` (default false).
+    /// `is_jarm` and every other reason are the same; maps where most points slip are
+    /// faster. No effect under the `NormalForce` rule, which decides at the slip itself.
+    pub stop_at_slip: bool,
 }
 
 impl Default for JarmOptions {
@@ -107,6 +118,7 @@ impl Default for JarmOptions {
             theta0: 0.0,
             omega0: 0.0,
             refine_extrema: true,
+            stop_at_slip: false,
         }
     }
 }
@@ -141,6 +153,24 @@ pub struct JarmResult {
 }
 
 impl JarmResult {
+    /// Every field as f64 (reason, n and is_jarm as numbers), to compare or digest results
+    /// bit for bit.
+    pub fn as_f64s(&self) -> [f64; 11] {
+        [
+            self.reason as u8 as f64,
+            self.n as f64,
+            self.is_jarm as u8 as f64,
+            self.theta_j,
+            self.theta_event,
+            self.fx_j,
+            self.fy_j,
+            self.max_ratio,
+            self.theta_max_ratio,
+            self.min_fy,
+            self.theta_min_fy,
+        ]
+    }
+
     /// A result with `reason`, no turn (0) and every angle and force NaN.
     pub fn new(reason: Reason) -> Self {
         Self {

@@ -32,13 +32,14 @@ fn check_bodies(chi: &[f64], km: &[f64], mu_s: f64, o: &JarmOptions) -> Result<(
 }
 
 /// The classification options of the boundary searches: from rest, the given rule and turn
-/// (0: the first jump), the default turn cap, no refinement of the extrema (the verdict does
-/// not depend on it).
+/// (0: the first jump), the default turn cap, no refinement of the extrema and no
+/// continuation past a slip (`is_jarm`, all a boundary needs, depends on neither).
 pub fn boundary_options(rule: Rule, n: u32) -> JarmOptions {
     JarmOptions {
         rule,
         n,
         refine_extrema: false,
+        stop_at_slip: true,
         ..JarmOptions::default()
     }
 }
