@@ -174,7 +174,7 @@ def jarm(
     stop_at_slip : under the paper's rule, stop at the first slip and report ``Reason.SLIP``
         instead of following rolling on to the lift-off to tell SLIP_BEFORE from
         SLIP_AT_JUMP. ``is_jarm`` and every other reason are unchanged; maps where most
-        points slip are faster (about 2x with ``method="ode"``). No effect under
+        points slip are faster (1.7x with ``method="ode"``). No effect under
         ``rule="normal_force"``.
     n_threads : threads (0 = one per core, at most 256); results are identical for any value.
     integrator : the Runge–Kutta pair of ``method="ode"``: ``"RK45"`` (Dormand–Prince 5(4))
