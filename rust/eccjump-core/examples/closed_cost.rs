@@ -5,8 +5,8 @@
 //! (extrema not refined), with a digest of every field of every result: an optimisation that
 //! changes any bit of any result changes the digest. With `CLOSED_COST_DUMP=prefix`, every
 //! field of every result is also written to `prefix.random.f64` and `prefix.grid.f64` (11
-//! little-endian f64 per point, in the order of `JarmResult::as_f64s`), to compare two builds point by
-//! point.
+//! little-endian f64 per point, in the order of `JarmResult::as_f64s`), to compare two
+//! builds point by point.
 use eccjump_core::jarm::{classify, JarmOptions, JarmResult};
 use std::f64::consts::FRAC_PI_2;
 use std::time::Instant;
