@@ -267,3 +267,36 @@ def test_a_settle_that_ends_stuck_never_creates_energy(integrator):
     assert stuck, "the case no longer has a stuck micro-impact"
     assert min(i.energy_lost for i in m.impacts) >= 0.0
     assert np.abs(m.energy + m.dissipated - m.energy0).max() < 1e-7
+
+
+def test_fast_result_construction_equals_the_dataclass_init():
+    # simulate builds its MotionResult and records without the dataclass __init__ and the
+    # NamedTuples' __new__ (eccjump._records): the same objects as the ordinary way.
+    import dataclasses
+
+    from eccjump.motion import FlightRecord, ImpactRecord, MotionResult, Segment, Transition
+
+    r = eccjump.simulate(
+        Cylinder(0.5, 0.4), math.radians(30), mu_s=1.0, max_transitions=6, dense_output=True
+    )
+    assert r.flights and r.impacts
+    names = [f.name for f in dataclasses.fields(MotionResult)]
+    assert list(vars(r)) == names
+    again = MotionResult(**{n: getattr(r, n) for n in names})
+    assert repr(again) == repr(r)
+    for n in names:
+        a, b = getattr(again, n), getattr(r, n)
+        assert a.tobytes() == b.tobytes() if isinstance(a, np.ndarray) else a is b, n
+    kinds = [
+        (r.transitions, Transition),
+        (r.flights, FlightRecord),
+        (r.impacts, ImpactRecord),
+        (r.segments, Segment),
+    ]
+    for recs, cls in kinds:
+        for rec in recs:
+            assert type(rec) is cls and rec == cls(*rec) and rec._fields == cls._fields
+    assert r.transitions[0].from_mode is None and r.transitions[1].from_mode == "ROLL"
+    assert type(r.mode) is np.ndarray and r.mode.dtype == np.int8
+    with pytest.raises(dataclasses.FrozenInstanceError):
+        r.status = "t_max"  # type: ignore[misc]

@@ -129,20 +129,44 @@ def simulate(
     max_steps: int,
     dense_output: bool,
     integrator: str,
-) -> dict[str, Any]:
+) -> MotionTuple:
     """The full motion of the body (chi, km) on a ramp of angle alpha (docs/motion.md), with
     the GIL released. Options are keyword-only, all required (``eccjump.simulate`` gives the
-    defaults), and checked by the core: a ValueError names the parameter.
+    defaults), and checked by the core: a ValueError names the parameter. Returns a
+    :data:`MotionTuple`: the float64 arrays t, theta, omega, l, ldot, b, bdot, Fx, Fy, energy,
+    dissipated and the int8 array mode (one row per recorded point); the fields of each
+    ``Transition``, ``FlightRecord``, ``ImpactRecord`` and ``Segment``; energy0,
+    dissipated_slip, dissipated_impacts; status (t_max, l_max, max_transitions, painleve, jam,
+    failed), message, nfev; and a :class:`MotionDense` only when ``dense_output``."""
 
-    Returns a dict: float64 arrays ``t``, ``theta``, ``omega``, ``l``, ``ldot``, ``b``,
-    ``bdot``, ``Fx``, ``Fy``, ``energy``, ``dissipated`` and the int8 array ``mode`` (one row
-    per recorded point); lists of tuples ``transitions`` (t, from mode or None, to mode,
-    reason, (theta, omega, l, ldot, b, bdot)), ``flights`` (t_liftoff, t_landing,
-    theta_liftoff, theta_landing, apex, distance), ``impacts`` (t, normal_speed, slip_before,
-    pt, pn, energy_lost, sticking, outcome) and ``segments`` (mode, reason, t_start, t_end,
-    nfev); floats ``energy0``, ``dissipated_slip``, ``dissipated_impacts``; ``status`` (t_max,
-    l_max, max_transitions, painleve, jam, failed), ``message``, ``nfev``; and ``sol``, a
-    :class:`MotionDense`, only when ``dense_output``."""
+_MotionSeries = tuple[
+    NDArray[np.float64],
+    NDArray[np.float64],
+    NDArray[np.float64],
+    NDArray[np.float64],
+    NDArray[np.float64],
+    NDArray[np.float64],
+    NDArray[np.float64],
+    NDArray[np.float64],
+    NDArray[np.float64],
+    NDArray[np.float64],
+    NDArray[np.float64],
+    NDArray[np.int8],
+]
+MotionTuple = tuple[
+    _MotionSeries,
+    list[tuple[float, str | None, str, str, float, float, float, float, float, float]],
+    list[tuple[float, float, float, float, float, float]],
+    list[tuple[float, float, float, float, float, float, bool, str]],
+    list[tuple[str, str, float, float, int]],
+    float,
+    float,
+    float,
+    str,
+    str,
+    int,
+    MotionDense | None,
+]
 
 class MotionDense:
     """The dense output of a full-motion run (``MotionResult.sol``), evaluated by the core."""

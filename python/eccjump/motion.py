@@ -17,6 +17,7 @@ from eccjump import _core
 from eccjump._arrays import same_values
 from eccjump._bridge import Integrator, Rule
 from eccjump._checks import flag, integer, optional_real, real, real_array, text
+from eccjump._records import frozen, records
 from eccjump.body import Cylinder
 from eccjump.units import Units
 
@@ -112,7 +113,11 @@ class MotionSolution:
         return y[:, 0] if tt.ndim == 0 else y
 
 
-_SERIES = ("t", "theta", "omega", "l", "ldot", "b", "bdot", "Fx", "Fy", "energy", "dissipated")
+#: The records from the bridge's tuples of their fields.
+_transition = records(Transition)
+_flight = records(FlightRecord)
+_impact = records(ImpactRecord)
+_segment = records(Segment)
 
 
 @dataclass(frozen=True, eq=False)
@@ -343,7 +348,20 @@ def simulate(
     muk = mus if muk is None else muk
     e = real("restitution", restitution)
     rule = text("rule", rule)
-    raw = _core.simulate(
+    (
+        (t, theta, omega, l, ldot, b, bdot, Fx, Fy, energy, dissipated, mode),  # noqa: E741
+        transitions,
+        flights,
+        impacts,
+        segments,
+        energy0,
+        dissipated_slip,
+        dissipated_impacts,
+        status,
+        message,
+        nfev,
+        sol,
+    ) = _core.simulate(
         body.chi,
         body.km,
         a,
@@ -363,26 +381,38 @@ def simulate(
         dense_output=flag("dense_output", dense_output),
         integrator=text("integrator", integrator),
     )
-    return MotionResult(
-        body=body,
-        alpha=a,
-        mu_s=mus,
-        mu_k=muk,
-        restitution=e,
-        rule=rule,
-        **{k: raw[k] for k in _SERIES},
-        mode=raw["mode"],
-        transitions=tuple(
-            Transition(t, f, to, r, *state) for (t, f, to, r, state) in raw["transitions"]
-        ),
-        flights=tuple(FlightRecord(*f) for f in raw["flights"]),
-        impacts=tuple(ImpactRecord(*i) for i in raw["impacts"]),
-        segments=tuple(Segment(*s) for s in raw["segments"]),
-        energy0=raw["energy0"],
-        dissipated_slip=raw["dissipated_slip"],
-        dissipated_impacts=raw["dissipated_impacts"],
-        status=raw["status"],
-        message=raw["message"],
-        nfev=raw["nfev"],
-        sol=MotionSolution(raw["sol"]) if "sol" in raw else None,
+    return frozen(
+        MotionResult,
+        {
+            "body": body,
+            "alpha": a,
+            "mu_s": mus,
+            "mu_k": muk,
+            "restitution": e,
+            "rule": rule,
+            "t": t,
+            "theta": theta,
+            "omega": omega,
+            "l": l,
+            "ldot": ldot,
+            "b": b,
+            "bdot": bdot,
+            "Fx": Fx,
+            "Fy": Fy,
+            "energy": energy,
+            "dissipated": dissipated,
+            "mode": mode,
+            "transitions": tuple(map(_transition, transitions)),
+            "flights": tuple(map(_flight, flights)),
+            "impacts": tuple(map(_impact, impacts)),
+            "segments": tuple(map(_segment, segments)),
+            "energy0": energy0,
+            "dissipated_slip": dissipated_slip,
+            "dissipated_impacts": dissipated_impacts,
+            "status": status,
+            "message": message,
+            "nfev": nfev,
+            "sol": None if sol is None else MotionSolution(sol),
+            "units": None,
+        },
     )

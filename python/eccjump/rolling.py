@@ -14,7 +14,6 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass, fields, replace
-from functools import partial
 from typing import NamedTuple
 
 import numpy as np
@@ -24,6 +23,7 @@ from eccjump import _core
 from eccjump._arrays import same_values
 from eccjump._bridge import Integrator, Rule
 from eccjump._checks import U64_MAX, flag, integer, optional_real, real, text
+from eccjump._records import frozen, records
 from eccjump.body import Cylinder
 from eccjump.dense import DenseSolution
 from eccjump.units import Units
@@ -173,18 +173,8 @@ class RollResult:
     __hash__ = None  # type: ignore[assignment]  # mutable numpy arrays inside
 
 
-def _result(values: dict[str, object]) -> RollResult:
-    """A RollResult from the values of all its fields, without the per-field
-    ``object.__setattr__`` calls of the frozen dataclass ``__init__`` (a large share of
-    the cost of a short run). The field set is checked by the tests."""
-    result = object.__new__(RollResult)
-    object.__setattr__(result, "__dict__", values)
-    return result
-
-
-#: An :class:`Event` from the bridge's (name, t, theta, omega): ``tuple.__new__`` itself, at
-#: half the cost of ``Event(*e)`` (a NamedTuple's ``__new__`` is a Python function).
-_event = partial(tuple.__new__, Event)
+#: An :class:`Event` from the bridge's (name, t, theta, omega).
+_event = records(Event)
 
 
 #: :func:`roll`'s arguments after :func:`_checked`, in the order of its signature.
@@ -341,7 +331,8 @@ def roll(
         integrator=integrator,
     )
     t, theta, omega, omega_dot, Fx, Fy, l, ratio = series  # noqa: E741 - the fields' names
-    return _result(
+    return frozen(
+        RollResult,
         {
             "body": body,
             "alpha": alpha,
@@ -362,5 +353,5 @@ def roll(
             "nfev": nfev,
             "sol": None if sol is None else DenseSolution(sol),
             "units": None,
-        }
+        },
     )

@@ -11,9 +11,66 @@ use eccjump_core::motion::solution::MotionSolution;
 use eccjump_core::motion::{simulate_until, MotionRun, SimOptions};
 use eccjump_core::ode::SolverOptions;
 use eccjump_core::{Cylinder, Ramp};
-use numpy::{IntoPyArray, PyArray2, PyReadonlyArray1};
+use numpy::{IntoPyArray, PyArray1, PyArray2, PyReadonlyArray1};
 use pyo3::prelude::*;
-use pyo3::types::PyDict;
+
+type Column<'py> = Bound<'py, PyArray1<f64>>;
+
+/// t, θ, θ̇, l, l̇, b, ḃ, F_x, F_y, energy, dissipated and the mode codes, per point.
+type Series<'py> = (
+    Column<'py>,
+    Column<'py>,
+    Column<'py>,
+    Column<'py>,
+    Column<'py>,
+    Column<'py>,
+    Column<'py>,
+    Column<'py>,
+    Column<'py>,
+    Column<'py>,
+    Column<'py>,
+    Bound<'py, PyArray1<i8>>,
+);
+
+/// t, from mode, to mode, reason, θ, θ̇, l, l̇, b, ḃ: `Transition`'s fields.
+type TransitionTuple = (
+    f64,
+    Option<&'static str>,
+    &'static str,
+    &'static str,
+    f64,
+    f64,
+    f64,
+    f64,
+    f64,
+    f64,
+);
+
+/// `FlightRecord`'s fields.
+type FlightTuple = (f64, f64, f64, f64, f64, f64);
+
+/// `ImpactRecord`'s fields.
+type ImpactTuple = (f64, f64, f64, f64, f64, f64, bool, &'static str);
+
+/// `Segment`'s fields.
+type SegmentTuple = (&'static str, &'static str, f64, f64, usize);
+
+/// A run in the order `eccjump.simulate` unpacks it: a tuple, not a dict (whose keys cost
+/// more to make and look up than the short run of a flight takes).
+type MotionTuple<'py> = (
+    Series<'py>,
+    Vec<TransitionTuple>,
+    Vec<FlightTuple>,
+    Vec<ImpactTuple>,
+    Vec<SegmentTuple>,
+    f64,
+    f64,
+    f64,
+    &'static str,
+    String,
+    usize,
+    Option<Bound<'py, MotionDense>>,
+);
 
 /// The full motion of the body (χ, k_m) on a ramp of angle α. Options are keyword-only and
 /// checked by the core (a ValueError naming the parameter).
@@ -42,7 +99,7 @@ pub fn simulate<'py>(
     max_steps: usize,
     dense_output: bool,
     integrator: &str,
-) -> PyResult<Bound<'py, PyDict>> {
+) -> PyResult<MotionTuple<'py>> {
     let ramp = Ramp::new(Cylinder::new(chi, km).map_err(to_py)?, alpha).map_err(to_py)?;
     let opts = SimOptions {
         law: ContactLaw {
@@ -68,7 +125,7 @@ pub fn simulate<'py>(
         ..SimOptions::default()
     };
     let run = detached(py, |stop| simulate_until(&ramp, &opts, stop))?;
-    to_dict(py, &ramp, run)
+    to_tuple(py, &ramp, run)
 }
 
 /// (θ, θ̇, l, l̇, b, ḃ): the order of every full state handed to Python.
@@ -76,46 +133,38 @@ fn state_values(s: &BodyState) -> [f64; 6] {
     [s.theta, s.omega, s.l, s.ldot, s.b, s.bdot]
 }
 
-/// (θ, θ̇, l, l̇, b, ḃ) as a tuple.
-fn state_tuple(s: &BodyState) -> (f64, f64, f64, f64, f64, f64) {
-    let [theta, omega, l, ldot, b, bdot] = state_values(s);
-    (theta, omega, l, ldot, b, bdot)
-}
-
-fn to_dict<'py>(py: Python<'py>, ramp: &Ramp, run: MotionRun) -> PyResult<Bound<'py, PyDict>> {
-    let d = PyDict::new(py);
+fn to_tuple<'py>(py: Python<'py>, ramp: &Ramp, run: MotionRun) -> PyResult<MotionTuple<'py>> {
     let p = &run.points;
     let column = |f: &dyn Fn(&eccjump_core::motion::record::Point) -> f64| {
         p.iter().map(f).collect::<Vec<f64>>().into_pyarray(py)
     };
-    d.set_item("t", column(&|q| q.t))?;
-    d.set_item("theta", column(&|q| q.state.theta))?;
-    d.set_item("omega", column(&|q| q.state.omega))?;
-    d.set_item("l", column(&|q| q.state.l))?;
-    d.set_item("ldot", column(&|q| q.state.ldot))?;
-    d.set_item("b", column(&|q| q.state.b))?;
-    d.set_item("bdot", column(&|q| q.state.bdot))?;
-    d.set_item("Fx", column(&|q| q.fx))?;
-    d.set_item("Fy", column(&|q| q.fy))?;
-    d.set_item("energy", column(&|q| ramp.energy_of(&q.state)))?;
-    d.set_item("dissipated", column(&|q| q.dissipated))?;
-    let modes: Vec<i8> = p.iter().map(|q| q.mode as i8).collect();
-    d.set_item("mode", modes.into_pyarray(py))?;
-    let transitions: Vec<_> = run
+    let series = (
+        column(&|q| q.t),
+        column(&|q| q.state.theta),
+        column(&|q| q.state.omega),
+        column(&|q| q.state.l),
+        column(&|q| q.state.ldot),
+        column(&|q| q.state.b),
+        column(&|q| q.state.bdot),
+        column(&|q| q.fx),
+        column(&|q| q.fy),
+        column(&|q| ramp.energy_of(&q.state)),
+        column(&|q| q.dissipated),
+        p.iter()
+            .map(|q| q.mode as i8)
+            .collect::<Vec<i8>>()
+            .into_pyarray(py),
+    );
+    let transitions = run
         .transitions
         .iter()
         .map(|t| {
-            (
-                t.t,
-                t.from.map(Mode::name),
-                t.to.name(),
-                t.reason.name(),
-                state_tuple(&t.state),
-            )
+            let [theta, omega, l, ldot, b, bdot] = state_values(&t.state);
+            let (from, to, why) = (t.from.map(Mode::name), t.to.name(), t.reason.name());
+            (t.t, from, to, why, theta, omega, l, ldot, b, bdot)
         })
         .collect();
-    d.set_item("transitions", transitions)?;
-    let flights: Vec<_> = run
+    let flights = run
         .flights
         .iter()
         .map(|f| {
@@ -129,8 +178,7 @@ fn to_dict<'py>(py: Python<'py>, ramp: &Ramp, run: MotionRun) -> PyResult<Bound<
             )
         })
         .collect();
-    d.set_item("flights", flights)?;
-    let impacts: Vec<_> = run
+    let impacts = run
         .impacts
         .iter()
         .map(|i| {
@@ -146,23 +194,29 @@ fn to_dict<'py>(py: Python<'py>, ramp: &Ramp, run: MotionRun) -> PyResult<Bound<
             )
         })
         .collect();
-    d.set_item("impacts", impacts)?;
-    let segments: Vec<_> = run
+    let segments = run
         .segments
         .iter()
         .map(|s| (s.mode.name(), s.reason.name(), s.t_start, s.t_end, s.nfev))
         .collect();
-    d.set_item("segments", segments)?;
-    d.set_item("energy0", run.energy0)?;
-    d.set_item("dissipated_slip", run.dissipated_slip)?;
-    d.set_item("dissipated_impacts", run.dissipated_impacts)?;
-    d.set_item("status", run.status.map_or("failed", |s| s.name()))?;
-    d.set_item("message", run.message)?;
-    d.set_item("nfev", run.nfev)?;
-    if let Some(sol) = run.dense {
-        d.set_item("sol", Bound::new(py, MotionDense { sol })?)?;
-    }
-    Ok(d)
+    let sol = run
+        .dense
+        .map(|sol| Bound::new(py, MotionDense { sol }))
+        .transpose()?;
+    Ok((
+        series,
+        transitions,
+        flights,
+        impacts,
+        segments,
+        run.energy0,
+        run.dissipated_slip,
+        run.dissipated_impacts,
+        run.status.map_or("failed", |s| s.name()),
+        run.message,
+        run.nfev,
+        sol,
+    ))
 }
 
 /// The dense output of a full-motion run (`MotionResult.sol`), evaluated by the core.
