@@ -226,21 +226,56 @@ impl Flight {
     }
 
     /// A τ ∈ (0, end] up to which the gap, starting at 0, is provably positive, or None if
-    /// its leading Taylor coefficient is not positive. With the leading nonzero coefficient
-    /// c_k of the cubic, the gap is ≥ s^k (c_k − Σ_{j>k} |c_j| s^(j−k) − M4 s^(4−k)/24) > 0.
+    /// its leading Taylor coefficient is not positive. With the cubic's coefficients c_j (of
+    /// τ^(j+1)), c_k the first nonzero one, and M4 ≥ |g⁗|, the gap is at least
+    /// τ^(k+1) P(τ), P(τ) = c_k + … + c_2 τ^(2−k) − (M4/24) τ^(3−k), so it is positive up
+    /// to any s with P > 0 on (0, s]. Each coefficient of P is first moved towards −∞ by a
+    /// relative 1e-12 (for the rounding of the gap and of the coefficients); then the
+    /// minimum of that polynomial over [0, s] (at 0, s or a stationary point) is checked,
+    /// for s = end (at most 1) halved until it holds.
+    ///
+    /// A lift-off from slipping starts with g, g' and g'' all (nearly) 0 and g⁗ bounded:
+    /// the whole polynomial, not only its leading term, clears the start at once. (The
+    /// leading term alone, a rounding-sized ḃ0, cleared only ~1e-14 and left the search to
+    /// double its way out: ~50 evaluations of the gap.)
     fn clear_start(&self, end: f64) -> Option<f64> {
         let (c, m4) = self.taylor();
         let k = c.iter().position(|&x| x != 0.0)?;
         if c[k].is_nan() || c[k] <= 0.0 {
             return None;
         }
+        let mut p = [0.0; 4];
+        for (j, &cj) in c.iter().enumerate().skip(k) {
+            p[j - k] = cj;
+        }
+        p[3 - k] = -m4 / 24.0;
+        let p = p.map(|x| x - 1e-12 * x.abs());
+        let value = |s: f64| p[0] + s * (p[1] + s * (p[2] + s * p[3]));
+        // The stationary points of P: the roots of p1 + 2 p2 σ + 3 p3 σ² (NaN: none).
+        let (qa, qb, qc) = (3.0 * p[3], 2.0 * p[2], p[1]);
+        let stationary = if qa != 0.0 {
+            let disc = qb * qb - 4.0 * qa * qc;
+            if disc >= 0.0 {
+                // Without cancellation: q = −(b + sign(b)√disc)/2, roots q/a and c/q.
+                let q = -0.5 * (qb + qb.signum() * disc.sqrt());
+                [q / qa, if q != 0.0 { qc / q } else { f64::NAN }]
+            } else {
+                [f64::NAN; 2]
+            }
+        } else if qb != 0.0 {
+            [-qc / qb, f64::NAN]
+        } else {
+            [f64::NAN; 2]
+        };
+        let positive_up_to = |s: f64| {
+            value(s) > 0.0
+                && stationary
+                    .iter()
+                    .all(|&r| !(r > 0.0 && r < s) || value(r) > 0.0)
+        };
         let mut s = end.min(1.0);
         for _ in 0..1100 {
-            let rest: f64 = (k + 1..3)
-                .map(|j| c[j].abs() * s.powi((j - k) as i32))
-                .sum::<f64>()
-                + m4 * s.powi((3 - k) as i32) / 24.0;
-            if c[k] - rest > 0.0 && s > 0.0 {
+            if s > 0.0 && positive_up_to(s) {
                 return Some(s);
             }
             s *= 0.5;
@@ -374,6 +409,34 @@ mod tests {
                 let b = brute(&f, 1.0, 2_000_000).unwrap();
                 assert!((t - b).abs() < 1e-6, "{t} {b}");
                 assert!(t < 0.1);
+            }
+            other => panic!("{other:?}"),
+        }
+    }
+
+    #[test]
+    fn a_liftoff_from_slipping_is_cleared_by_the_whole_taylor_polynomial() {
+        // Leaving a slip at F_y = 0: b̈ = 0 at the start, and ḃ0 is a rounding-sized
+        // number. The start is cleared far beyond the ~1e-14 its leading term alone gives,
+        // and the landing is where brute force finds it.
+        let r = ramp(0.5, 0.4, 30f64.to_radians());
+        let theta = 5.8_f64;
+        let omega = (r.cos_a / (r.body.chi * theta.cos())).sqrt();
+        let mut start = BodyState::rolling(theta, omega, theta);
+        start.ldot = 1.7;
+        start.bdot = 2.5e-29;
+        let f = Flight::new(r, start);
+        let ([c1, c2, c3], _) = f.taylor();
+        assert!(c1 == 2.5e-29 && c2 == 0.0 && c3 > 0.0);
+        let s = f.clear_start(100.0).unwrap();
+        assert!(s > 1e-2, "{s}");
+        // The gap is positive up there (checked on a fine grid) ...
+        assert!((1..=1000).all(|i| f.gap(s * i as f64 / 1000.0).0 > 0.0));
+        // ... and the landing is the brute-force one.
+        match f.landing(100.0) {
+            Landing::At(t) => {
+                let b = brute(&f, 4.0, 400_000).unwrap();
+                assert!(t <= b + 1e-12 && t > b - 2.0 * 4.0 / 400_000.0, "{t} {b}");
             }
             other => panic!("{other:?}"),
         }
