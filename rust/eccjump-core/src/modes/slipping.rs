@@ -11,7 +11,7 @@
 
 use crate::mechanics::friction::Sliding;
 use crate::mechanics::Ramp;
-use crate::ode::{Direction, EventFunctions, EventSpec, OdeSystem, State};
+use crate::ode::{DenseStep, Direction, EventFunctions, EventSpec, OdeSystem, State};
 use crate::trig::SinCosMemo;
 
 /// During a slip, D = Ĩ_CM + χ K sin θ falling to this ends the run (Painlevé): the normal
@@ -179,12 +179,62 @@ impl EventFunctions<5> for SlipEvents<'_> {
             };
         }
     }
+
+    /// Bounds on how much each event can change within the step `dense` (in the sense of
+    /// [`EventFunctions::change_bounds`]), so that the scan skips the interior samples (a
+    /// `sin_cos` each) wherever they provably cannot show a crossing. With Θ, W, Λ, V the
+    /// interpolant's bounds on |θ|, |θ̇|, |l|, |l̇| over the step and R_θ, R_ω, R_l, R_v on
+    /// their rates, each g changes by at most L|h|, L = Σ G_i R_i with G_i ≥ |∂g/∂y_i|:
+    /// - B = cos α − χθ̇² cos θ: G_θ = χW², G_ω = 2χW;
+    /// - the slip velocity l̇ − θ̇: G_v = G_ω = 1;
+    /// - D − D_min, D = Ĩ_CM + χ² sin²θ − σμ_kχ sin θ(1 + χ cos θ), dD/dθ = χ² sin 2θ −
+    ///   σμ_kχ(cos θ + χ cos 2θ): G_θ = χ² + μ_kχ(1 + χ);
+    /// - l − l_max: G_l = 1 (a disabled l_max is a constant: 0).
+    ///
+    /// Plus 4δ, δ = 2⁻⁴⁰(M + Σ G_i |y_i|max) with M the sum of the magnitudes of g's terms:
+    /// as in the rolling bounds, hundreds of times the rounding of g, of sin_cos and of the
+    /// interpolant (`modes::rolling::bounds`).
+    #[inline]
+    fn change_bounds(&self, first: usize, dense: &DenseStep<5>, out: &mut [f64]) {
+        let b = dense.bounds();
+        let (value, rate) = (b.value, b.rate);
+        let h = dense.h.abs();
+        let r = &self.slipping.ramp;
+        let (chi, mu) = (r.body.chi, self.slipping.mu_k);
+        let w = value[1];
+        // L|h| + 4δ from M and the (G_i, component i) pairs.
+        let bound = |m: f64, terms: &[(f64, usize)]| {
+            let (mut slope, mut size) = (0.0, m);
+            for &(g, i) in terms {
+                slope += g * rate[i];
+                size += g * value[i];
+            }
+            slope * h + 4.0 * size / (1u64 << 40) as f64
+        };
+        for (i, o) in out.iter_mut().enumerate() {
+            *o = match SlipEvent::ALL[first + i] {
+                SlipEvent::NormalForce => {
+                    let chi_w2 = chi * w * w;
+                    bound(r.cos_a + chi_w2, &[(chi_w2, 0), (2.0 * chi * w, 1)])
+                }
+                SlipEvent::Stops => bound(0.0, &[(1.0, 3), (1.0, 1)]),
+                SlipEvent::Painleve => {
+                    let g = chi * chi + mu * chi * (1.0 + chi);
+                    bound(r.body.icm + g + D_MIN, &[(g, 0)])
+                }
+                SlipEvent::LLimit if self.l_max.is_finite() => bound(self.l_max.abs(), &[(1.0, 2)]),
+                SlipEvent::LLimit => 0.0,
+            };
+        }
+    }
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
     use crate::mechanics::{Constraint, Cylinder};
+    use crate::ode::events::WalkAll;
+    use crate::ode::{solve, Observation, SolverOptions};
 
     #[test]
     fn closed_form_is_newton_euler() {
@@ -209,5 +259,95 @@ mod tests {
                 assert!((x - y).abs() < 1e-12 * (1.0 + y.abs()), "{x} {y}");
             }
         }
+    }
+
+    /// Random slips (both friction directions, some with l_max) integrated to their first
+    /// event, `steps` observing every accepted step.
+    fn random_slips(mut each: impl FnMut(&Slipping, &SlipEvents, State<5>)) {
+        let mut lcg = 7u64;
+        let mut next = || {
+            lcg = lcg
+                .wrapping_mul(6364136223846793005)
+                .wrapping_add(1442695040888963407);
+            (lcg >> 11) as f64 / (1u64 << 53) as f64
+        };
+        let mut made = 0;
+        while made < 200 {
+            let chi = 0.05 + 0.9 * next();
+            let km = (0.02 + 0.9 * next()) * (1.0 - chi);
+            let ramp = Ramp::new(Cylinder::new(chi, km).unwrap(), 1.5 * next()).unwrap();
+            let (theta, omega) = (12.0 * (next() - 0.5), 3.0 * (next() - 0.5));
+            let v = 2.0 * (next() - 0.5);
+            let sl = Slipping::new(ramp, -v.signum(), 0.05 + 0.6 * next());
+            let k = sl.kinematics(theta, omega);
+            if !(k.d > D_MIN && k.load > 0.0) {
+                continue;
+            }
+            made += 1;
+            let l_max = if made % 3 == 0 { 0.5 } else { f64::INFINITY };
+            let events = SlipEvents {
+                slipping: &sl,
+                l_max,
+            };
+            each(
+                &sl,
+                &events,
+                State::<5>::new(theta, omega, 0.0, omega + v, 0.0),
+            );
+        }
+    }
+
+    #[test]
+    fn change_bounds_bound_the_change_along_each_step() {
+        let mut steps = 0;
+        random_slips(|sl, events, y0| {
+            let so = SolverOptions::default();
+            solve(sl, events, 0.0, y0, 20.0, &so, &mut |obs: Observation<
+                '_,
+                5,
+            >| {
+                let Observation::Step { dense, .. } = obs else {
+                    return;
+                };
+                steps += 1;
+                let mut bound = [0.0; 4];
+                events.change_bounds(0, dense, &mut bound);
+                let mut g0 = [0.0; 4];
+                events.values(0, dense.t_old, &dense.y_old, &mut g0);
+                for i in 1..=64 {
+                    let t = dense.t_old + dense.h * (i as f64 / 64.0);
+                    let mut g = [0.0; 4];
+                    events.values(0, t, &dense.eval(t), &mut g);
+                    for k in 0..4 {
+                        assert!((g[k] - g0[k]).abs() <= bound[k], "{k}: {bound:?}");
+                    }
+                }
+            });
+        });
+        assert!(steps > 2000, "{steps}");
+    }
+
+    #[test]
+    fn skipping_interior_samples_changes_nothing() {
+        random_slips(|sl, events, y0| {
+            let so = SolverOptions::default();
+            let (mut a, mut b) = (Vec::new(), Vec::new());
+            fn log(out: &mut Vec<(f64, [f64; 5])>) -> impl FnMut(Observation<'_, 5>) + '_ {
+                move |obs| match obs {
+                    Observation::Step { t, y, .. } | Observation::Event { t, y, .. } => {
+                        out.push((t, [y[0], y[1], y[2], y[3], y[4]]))
+                    }
+                }
+            }
+            let skip = solve(sl, events, 0.0, y0, 20.0, &so, &mut log(&mut a));
+            let walk = solve(sl, &WalkAll(events), 0.0, y0, 20.0, &so, &mut log(&mut b));
+            assert_eq!(skip, walk);
+            assert!(a.iter().zip(&b).all(|(x, y)| x.0.to_bits() == y.0.to_bits()
+                && x.1
+                    .iter()
+                    .zip(&y.1)
+                    .all(|(p, q)| p.to_bits() == q.to_bits())));
+            assert_eq!(a.len(), b.len());
+        });
     }
 }
