@@ -115,27 +115,29 @@ impl<const N: usize> RkPair<N> for Dop853<N> {
         f[4] = weighted_sum(k, &D[1]) * h;
         f[5] = weighted_sum(k, &D[2]) * h;
         f[6] = weighted_sum(k, &D[3]) * h;
-        // Expand the nested form from the inside out, as scipy evaluates it: add F_i,
-        // then multiply by σ (i even, counting from F6) or by 1 − σ.
-        let mut p = [State::<N>::zeros(); MAX_DEGREE + 1];
-        for (i, fi) in f.iter().rev().enumerate() {
-            p[0] += fi;
-            if i % 2 == 0 {
-                for j in (1..=MAX_DEGREE).rev() {
-                    p[j] = p[j - 1];
-                }
-                p[0] = State::<N>::zeros();
-            } else {
-                for j in (1..=MAX_DEGREE).rev() {
-                    p[j] -= p[j - 1];
-                }
-            }
-        }
-        // p[0] is zero; y_old + Σ_j p_j σ^j = y_old + h Σ_j (p_{j+1}/h) σ^(j+1).
-        let q: [State<N>; MAX_DEGREE] = std::array::from_fn(|j| p[j + 1] / h);
+        let q: [State<N>; MAX_DEGREE] = powers(&f).map(|pj| pj / h);
         let dense = DenseStep::from_powers(t_old, h, *y_old, &q);
         dense.q.iter().all(all_finite).then_some(dense)
     }
+}
+
+/// scipy's nested form σ(F0 + (1−σ)(F1 + σ(F2 + (1−σ)(F3 + σ(F4 + (1−σ)(F5 + σF6))))))
+/// as the coefficients p_1 … p_7 of σ^1 … σ^7:
+/// p1 = F0 + F1, p2 = −F1 + F2 + F3, p3 = −F2 − 2F3 + F4 + F5, p4 = F3 − 2F4 − 3F5 + F6,
+/// p5 = F4 + 3F5 − 3F6, p6 = −F5 + 3F6, p7 = −F6 (expanded once per step, so the scan's
+/// samples cost a Horner sum each).
+#[inline]
+fn powers<const N: usize>(f: &[State<N>; MAX_DEGREE]) -> [State<N>; MAX_DEGREE] {
+    let [f0, f1, f2, f3, f4, f5, f6] = *f;
+    [
+        f0 + f1,
+        f2 - f1 + f3,
+        (f4 - f2) + (f5 - f3 * 2.0),
+        (f3 + f6) - (f4 * 2.0 + f5 * 3.0),
+        f4 + (f5 - f6) * 3.0,
+        f6 * 3.0 - f5,
+        -f6,
+    ]
 }
 
 #[cfg(test)]
@@ -183,6 +185,32 @@ mod tests {
         );
         assert!(dense_errs[0] < 1e-9, "{dense_errs:?}");
         assert!(dense_errs[0] / dense_errs[1] > 100.0, "{dense_errs:?}");
+    }
+
+    #[test]
+    fn powers_are_the_nested_form() {
+        let mut x = 0.3f64;
+        let mut next = || {
+            x = (x * 7.31 + 0.17).fract();
+            2.0 * x - 1.0
+        };
+        for _ in 0..200 {
+            let f: [State<1>; MAX_DEGREE] = std::array::from_fn(|_| State::<1>::new(next()));
+            let p = powers(&f);
+            for i in 0..=10 {
+                let s = i as f64 / 10.0;
+                let v = 1.0 - s;
+                let g = |i: usize| f[i][0];
+                let nested = s
+                    * (g(0)
+                        + v * (g(1)
+                            + s * (g(2) + v * (g(3) + s * (g(4) + v * (g(5) + s * g(6)))))));
+                let sum: f64 = (0..MAX_DEGREE)
+                    .map(|j| p[j][0] * s.powi(j as i32 + 1))
+                    .sum();
+                assert!((nested - sum).abs() < 1e-14, "{nested} {sum}");
+            }
+        }
     }
 
     #[test]
