@@ -125,7 +125,7 @@ pub fn simulate<'py>(
         ..SimOptions::default()
     };
     let run = detached(py, |stop| simulate_until(&ramp, &opts, stop))?;
-    to_tuple(py, &ramp, run)
+    to_tuple(py, run)
 }
 
 /// (θ, θ̇, l, l̇, b, ḃ): the order of every full state handed to Python.
@@ -133,7 +133,7 @@ fn state_values(s: &BodyState) -> [f64; 6] {
     [s.theta, s.omega, s.l, s.ldot, s.b, s.bdot]
 }
 
-fn to_tuple<'py>(py: Python<'py>, ramp: &Ramp, run: MotionRun) -> PyResult<MotionTuple<'py>> {
+fn to_tuple<'py>(py: Python<'py>, run: MotionRun) -> PyResult<MotionTuple<'py>> {
     let p = &run.points;
     let column = |f: &dyn Fn(&eccjump_core::motion::record::Point) -> f64| {
         p.iter().map(f).collect::<Vec<f64>>().into_pyarray(py)
@@ -148,7 +148,7 @@ fn to_tuple<'py>(py: Python<'py>, ramp: &Ramp, run: MotionRun) -> PyResult<Motio
         column(&|q| q.state.bdot),
         column(&|q| q.fx),
         column(&|q| q.fy),
-        column(&|q| ramp.energy_of(&q.state)),
+        column(&|q| q.energy),
         column(&|q| q.dissipated),
         p.iter()
             .map(|q| q.mode as i8)

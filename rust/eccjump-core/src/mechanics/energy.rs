@@ -29,8 +29,24 @@ impl Ramp {
     /// The mechanical energy of a general state (θ, θ̇, l, l̇, b, ḃ), per M g R.
     #[allow(clippy::too_many_arguments)] // the six coordinates of the state
     pub fn energy(&self, theta: f64, omega: f64, l: f64, ldot: f64, b: f64, bdot: f64) -> f64 {
-        let chi = self.body.chi;
         let (s, c) = crate::trig::sin_cos(theta);
+        self.energy_trig((s, c), omega, l, ldot, b, bdot)
+    }
+
+    /// [`Ramp::energy`] with (sin θ, cos θ) already known (a recorded point whose
+    /// trigonometry the integrator has just computed).
+    #[allow(clippy::too_many_arguments)] // the state, θ given by its sine and cosine
+    #[inline]
+    pub fn energy_trig(
+        &self,
+        (s, c): (f64, f64),
+        omega: f64,
+        l: f64,
+        ldot: f64,
+        b: f64,
+        bdot: f64,
+    ) -> f64 {
+        let chi = self.body.chi;
         let (vx, vy) = (ldot + chi * c * omega, bdot - chi * s * omega);
         let height = -(l + chi * s) * self.sin_a + (b + chi * c) * self.cos_a;
         0.5 * (vx * vx + vy * vy) + 0.5 * self.body.icm * omega * omega + height

@@ -55,4 +55,10 @@ impl Ramp {
     pub fn energy_of(&self, s: &BodyState) -> f64 {
         self.energy(s.theta, s.omega, s.l, s.ldot, s.b, s.bdot)
     }
+
+    /// [`Ramp::energy_of`] with (sin θ, cos θ) of the state already known.
+    #[inline]
+    pub fn energy_of_trig(&self, s: &BodyState, trig: (f64, f64)) -> f64 {
+        self.energy_trig(trig, s.omega, s.l, s.ldot, s.b, s.bdot)
+    }
 }

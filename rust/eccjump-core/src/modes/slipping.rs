@@ -70,8 +70,9 @@ impl Slipping {
         }
     }
 
+    /// (sin θ, cos θ), from the memo when θ is the last angle evaluated.
     #[inline]
-    fn sin_cos(&self, theta: f64) -> (f64, f64) {
+    pub fn sin_cos(&self, theta: f64) -> (f64, f64) {
         self.trig.get(theta)
     }
 

@@ -18,6 +18,8 @@ pub struct Point {
     pub fx: f64,
     /// Normal contact force [M g] (0 in flight).
     pub fy: f64,
+    /// Mechanical energy (kinetic + potential) [M g R].
+    pub energy: f64,
     /// Energy dissipated so far (slip and impacts) [M g R].
     pub dissipated: f64,
     /// The mode.

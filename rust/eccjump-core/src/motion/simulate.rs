@@ -155,7 +155,8 @@ pub fn simulate_until(
             },
             |t| t.to,
         );
-        let p = d.point(0.0, start, 0.0, 0.0, mode);
+        let trig = crate::trig::sin_cos(start.theta);
+        let p = d.point(0.0, start, trig, (0.0, 0.0), mode);
         d.run.push(p)?;
     }
     if let Some(sol) = d.run.dense.as_mut() {
@@ -171,12 +172,21 @@ pub fn simulate_until(
 }
 
 impl Driver<'_> {
-    fn point(&self, t: f64, state: BodyState, fx: f64, fy: f64, mode: Mode) -> Point {
+    /// A recorded point; `trig` = (sin θ, cos θ) of the state.
+    fn point(
+        &self,
+        t: f64,
+        state: BodyState,
+        trig: (f64, f64),
+        (fx, fy): (f64, f64),
+        mode: Mode,
+    ) -> Point {
         Point {
             t,
             state,
             fx,
             fy,
+            energy: self.ramp.energy_of_trig(&state, trig),
             dissipated: self.run.dissipated(),
             mode,
         }
@@ -238,7 +248,8 @@ impl Driver<'_> {
         let t0 = self.t;
         for i in (0..rr.t.len()).filter(|_| self.opts.record_points) {
             let state = BodyState::rolling(rr.theta[i], rr.omega[i], rr.theta[i] + l_shift);
-            let p = self.point(t0 + rr.t[i], state, rr.fx[i], rr.fy[i], Mode::Roll);
+            let forces = (rr.fx[i], rr.fy[i]);
+            let p = self.point(t0 + rr.t[i], state, rr.trig[i], forces, Mode::Roll);
             self.run.push(p)?;
         }
         let last = rr.t.len() - 1;
@@ -290,16 +301,20 @@ impl Driver<'_> {
         let mut steps = Vec::new();
         let mut memory: Option<Error> = None;
         let state_of = |y: &State<5>| BodyState::in_contact(y[0], y[1], y[2], y[3]);
+        let ramp = self.ramp;
         let record = |run: &mut MotionRun, t: f64, y: &State<5>| -> Result<()> {
             if !record_points {
                 return Ok(());
             }
             let k = sys.kinematics(y[0], y[1]);
+            let state = state_of(y);
             run.push(Point {
                 t,
-                state: state_of(y),
+                state,
                 fx: k.fx,
                 fy: k.fy,
+                // The trigonometry `kinematics` has just used (the memo's).
+                energy: ramp.energy_of_trig(&state, sys.sin_cos(y[0])),
                 dissipated: q0 + y[4] + run.dissipated_impacts,
                 mode: Mode::Slip,
             })
@@ -424,7 +439,8 @@ impl Driver<'_> {
                 (tau, (t0 + tau).min(t_end))
             };
             let state = if i == 0 { s } else { f.state(tau) };
-            let p = self.point(t, state, 0.0, 0.0, Mode::Flight);
+            let trig = crate::trig::sin_cos(state.theta);
+            let p = self.point(t, state, trig, (0.0, 0.0), Mode::Flight);
             self.run.push(p)?;
         }
         if let Some(sol) = self.run.dense.as_mut() {
@@ -617,6 +633,8 @@ mod tests {
         assert_eq!(seq, [Mode::Roll, Mode::Slip, Mode::Flight, Mode::Slip]);
         assert_eq!(m.transitions[2].reason, Reason::NormalForce);
         for p in &m.points {
+            // Recorded with the integrator's trigonometry: the same bits as anew.
+            assert_eq!(p.energy.to_bits(), r.energy_of(&p.state).to_bits());
             let total = r.energy_of(&p.state) + p.dissipated;
             assert!((total - m.energy0).abs() < 1e-7, "{}", total - m.energy0);
         }

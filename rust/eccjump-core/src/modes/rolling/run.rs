@@ -384,6 +384,9 @@ pub struct RollRun {
     pub fx: Vec<f64>,
     /// Contact force F_y (normal to the ramp) at each recorded point.
     pub fy: Vec<f64>,
+    /// (sin θ, cos θ) at each recorded point, as the integrator computed them (for the
+    /// energy of a full-motion run's points, without evaluating them again).
+    pub trig: Vec<(f64, f64)>,
     /// The distance rolled along the ramp, l − l0 = θ − θ0 (pure rolling, R = 1).
     pub l: Vec<f64>,
     /// The friction ratio |F_x|/F_y (+∞ where F_y ≤ 0).
@@ -441,6 +444,7 @@ impl RollRun {
         self.omega_dot.push(k.omega_dot);
         self.fx.push(k.fx);
         self.fy.push(k.fy);
+        self.trig.push((k.sin_theta, k.cos_theta));
         Ok(())
     }
 
@@ -457,6 +461,7 @@ impl RollRun {
         ] {
             try_grow("the record of the run", v)?;
         }
+        try_grow("the record of the run", &mut self.trig)?;
         Ok(())
     }
 
@@ -468,6 +473,7 @@ impl RollRun {
         self.omega_dot.pop();
         self.fx.pop();
         self.fy.pop();
+        self.trig.pop();
     }
 }
 
@@ -498,6 +504,7 @@ pub fn roll_until(ramp: &Ramp, opts: &RollOptions, stop: &dyn Fn() -> bool) -> R
         omega_dot: Vec::with_capacity(capacity),
         fx: Vec::with_capacity(capacity),
         fy: Vec::with_capacity(capacity),
+        trig: Vec::with_capacity(capacity),
         l: Vec::new(),
         ratio: Vec::new(),
         events: Vec::new(),
