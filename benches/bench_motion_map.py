@@ -34,18 +34,29 @@ def main(argv: list[str] | None = None) -> int:
     p.add_argument("--grid", type=int, default=100, help="points per axis (100: 10^6 points)")
     p.add_argument("--sample", type=int, default=40, help="points run by the scipy model")
     p.add_argument("--threads", type=int, default=0, help="eccjump threads (0: every core)")
+    p.add_argument("--integrator", default="RK45", choices=("RK45", "DOP853"))
     args = p.parse_args(argv)
     n = args.grid
     alpha = np.radians(np.linspace(1.0, 89.0, n))
     chi = np.linspace(0.02, 0.98, n)
     frac = np.linspace(0.02, 0.98, n)
     t0 = time.perf_counter()
-    m = eccjump.motion_map(alpha=alpha, chi=chi, km=frac, mu_s=1.0, n_threads=args.threads)
+    m = eccjump.motion_map(
+        alpha=alpha,
+        chi=chi,
+        km=frac,
+        mu_s=1.0,
+        n_threads=args.threads,
+        integrator=args.integrator,
+    )
     t_map = time.perf_counter() - t0
     assert isinstance(m, eccjump.MotionMap)
     points = m.jarm.size
     rate = points / t_map
-    print(f"cores: {os.cpu_count()}, grid {n}^3 = {points} points, mu_s = 1, e = 0")
+    print(
+        f"cores: {os.cpu_count()}, grid {n}^3 = {points} points, mu_s = 1, e = 0, "
+        f"{args.integrator}"
+    )
     print(f"eccjump  {t_map:8.2f} s   {rate:12.0f} points/s")
 
     rng = np.random.default_rng(7)

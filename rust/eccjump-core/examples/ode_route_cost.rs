@@ -1,8 +1,10 @@
 //! CPU cost of the ODE route per point, per Runge–Kutta pair, on the random
 //! points (α ~ U(0, π/2), χ ~ U(1e-3, 1), k_m = u(1 − χ), μ_s = 1), one thread, and how
 //! often the two pairs agree on the reason. `cargo run --release -p eccjump-core --example
-//! ode_route_cost [points] [rk45|dop853|both] [stop]` (`stop`: `stop_at_slip`).
-use eccjump_core::jarm::{classify_ode, JarmOptions};
+//! ode_route_cost [points] [rk45|dop853|both] [stop]` (`stop`: `stop_at_slip`); each pair
+//! point by point, then all points side by side (`classify_ode_batch`, the maps' way).
+use eccjump_core::jarm::ode_route::classify_ode_batch;
+use eccjump_core::jarm::{classify_ode, JarmOptions, JarmResult, Reason};
 use eccjump_core::ode::Method;
 use std::time::Instant;
 
@@ -46,7 +48,19 @@ fn main() {
             .map(|&(a, chi, km)| classify_ode(a, chi, km, 1.0, &o, (1e-10, 1e-12), pair))
             .collect();
         let us = t0.elapsed().as_secs_f64() / points.len() as f64 * 1e6;
-        println!("{pair:?}: {us:.1} us per point");
+        let t0 = Instant::now();
+        let mut batch = vec![JarmResult::new(Reason::NoRoot); points.len()];
+        let point = |i: usize| {
+            let (a, chi, km) = points[i];
+            (a, chi, km, 1.0, o)
+        };
+        classify_ode_batch(point, (1e-10, 1e-12), pair, &mut batch, &|| false);
+        let lanes = t0.elapsed().as_secs_f64() / points.len() as f64 * 1e6;
+        let same = batch
+            .iter()
+            .zip(&r)
+            .all(|(x, y)| x.as_f64s().map(f64::to_bits) == y.as_f64s().map(f64::to_bits));
+        println!("{pair:?}: {us:.1} us per point, side by side {lanes:.1} (same bits: {same})");
         reasons.push(r);
     }
     if reasons.len() < 2 {

@@ -41,6 +41,50 @@ pub fn classify_with(
     mu_s: f64,
     opts: &JarmOptions,
 ) -> JarmResult {
+    let (o, shift) = in_first_turn(opts);
+    let r = match method {
+        Method::ClosedForm => classify(alpha, chi, km, mu_s, &o),
+        Method::Ode { rtol, atol, pair } => {
+            classify_ode(alpha, chi, km, mu_s, &o, (rtol, atol), pair)
+        }
+    };
+    shifted_back(r, shift)
+}
+
+/// [`classify_with`] of many points, `point(i)` = (α, χ, k_m, μ_s, options) for each
+/// `out[i]`: the same results bit for bit, the ODE route integrating its points side by side
+/// ([`ode_route::classify_ode_batch`]). `stop` as there (the closed form does not ask it:
+/// its points take microseconds).
+pub fn classify_many(
+    method: Method,
+    point: impl Fn(usize) -> (f64, f64, f64, f64, JarmOptions),
+    out: &mut [JarmResult],
+    stop: &dyn Fn() -> bool,
+) {
+    match method {
+        Method::ClosedForm => {
+            for (i, o) in out.iter_mut().enumerate() {
+                let (alpha, chi, km, mu_s, opts) = point(i);
+                *o = classify_with(method, alpha, chi, km, mu_s, &opts);
+            }
+        }
+        Method::Ode { rtol, atol, pair } => {
+            let shifted = |i: usize| {
+                let (alpha, chi, km, mu_s, opts) = point(i);
+                (alpha, chi, km, mu_s, in_first_turn(&opts).0)
+            };
+            ode_route::classify_ode_batch(shifted, (rtol, atol), pair, out, stop);
+            for (i, o) in out.iter_mut().enumerate() {
+                *o = shifted_back(*o, in_first_turn(&point(i).4).1);
+            }
+        }
+    }
+}
+
+/// The options with θ0 moved into [0, 2π) by 2πk, and the shift 2πk (see
+/// [`classify_with`]).
+#[inline]
+fn in_first_turn(opts: &JarmOptions) -> (JarmOptions, f64) {
     let k = if opts.theta0 < 0.0 {
         (-opts.theta0 / std::f64::consts::TAU).ceil()
     } else {
@@ -51,12 +95,12 @@ pub fn classify_with(
         theta0: opts.theta0 + shift,
         ..*opts
     };
-    let mut r = match method {
-        Method::ClosedForm => classify(alpha, chi, km, mu_s, &o),
-        Method::Ode { rtol, atol, pair } => {
-            classify_ode(alpha, chi, km, mu_s, &o, (rtol, atol), pair)
-        }
-    };
+    (o, shift)
+}
+
+/// A result's angles moved back by `shift` into the frame of the original θ0.
+#[inline]
+fn shifted_back(mut r: JarmResult, shift: f64) -> JarmResult {
     if shift != 0.0 {
         for theta in [
             &mut r.theta_j,

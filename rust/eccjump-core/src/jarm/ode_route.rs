@@ -74,9 +74,11 @@ use crate::modes::rolling::events::{
 };
 use crate::modes::rolling::memo::RollingMemo;
 use crate::modes::rolling::{ContactRates, Kinematics};
+use crate::ode::lanes::{solve_lanes, Start, Track};
+use crate::ode::pair::{Dop853, Dp5};
 use crate::ode::{
-    self, DenseStep, Direction, EventFunctions, EventSpec, Observation, SolverOptions, State,
-    Status,
+    self, DenseStep, Direction, EventFunctions, EventSpec, Observation, Outcome, SolverOptions,
+    State, Status,
 };
 use std::cell::Cell;
 use std::f64::consts::TAU;
@@ -98,8 +100,8 @@ const STEPS_PER_TURN: usize = 20_000;
 /// The events of a classification run; disabled events are a constant that never crosses.
 /// Keeps the kinematics of the last evaluated state: a step's scan starts where the previous
 /// one ended, and the observer looks at the state the scan ended with.
-struct JarmEvents<'a> {
-    sys: &'a RollingMemo,
+struct JarmEvents {
+    sys: RollingMemo,
     mu_s: f64,
     liftoff: bool,
     normal_force: bool,
@@ -108,7 +110,7 @@ struct JarmEvents<'a> {
     last: Cell<Option<Kinematics>>,
 }
 
-impl JarmEvents<'_> {
+impl JarmEvents {
     #[inline]
     fn kinematics(&self, theta: f64, omega: f64) -> Kinematics {
         if let Some(q) = self.last.get() {
@@ -151,7 +153,7 @@ impl JarmEvents<'_> {
     }
 }
 
-impl EventFunctions<2> for JarmEvents<'_> {
+impl EventFunctions<2> for JarmEvents {
     fn count(&self) -> usize {
         N_EVENTS
     }
@@ -202,7 +204,7 @@ impl EventFunctions<2> for JarmEvents<'_> {
     }
 }
 
-impl JarmEvents<'_> {
+impl JarmEvents {
     /// [`EventFunctions::change_bounds`] of all events, anchored at `anchor` (see
     /// [`ContactBounds::near`]).
     #[inline]
@@ -257,24 +259,8 @@ enum End {
     Failed { y: State<2> },
 }
 
-/// Integrates rolling from (t0, y0) until the first terminal event of `ev`, reporting the
-/// kinematics at every accepted step end (the event point for the last step) to `track`.
-fn integrate(
-    ev: &JarmEvents,
-    t0: f64,
-    y0: State<2>,
-    so: &SolverOptions,
-    mut track: Option<&mut Extrema>,
-) -> End {
-    let t_end = t0 + 1e300;
-    let out = ode::solve(ev.sys, ev, t0, y0, t_end, so, &mut |obs: Observation<
-        '_,
-        2,
-    >| {
-        if let (Observation::Step { y, .. }, Some(tr)) = (obs, track.as_deref_mut()) {
-            extrema_add(tr, &ev.kinematics(y[0], y[1]));
-        }
-    });
+/// The end of an integration from its outcome.
+fn end_of(out: &Outcome<2>) -> End {
     match out.status {
         Status::Event(k) => End::Event {
             k,
@@ -282,6 +268,34 @@ fn integrate(
             y: out.y,
         },
         _ => End::Failed { y: out.y },
+    }
+}
+
+/// Integrates rolling from (t0, y0) until the first terminal event of `ev`, reporting the
+/// kinematics at every accepted step end (the event point for the last step) to `track`.
+fn integrate(
+    ev: &JarmEvents,
+    t0: f64,
+    y0: State<2>,
+    so: &SolverOptions,
+    track: Option<&Cell<Extrema>>,
+) -> End {
+    let t_end = t0 + 1e300;
+    let out = ode::solve(&ev.sys, ev, t0, y0, t_end, so, &mut |obs| {
+        if let Some(tr) = track {
+            observe_extrema(ev, tr, obs);
+        }
+    });
+    end_of(&out)
+}
+
+/// The path extrema at an accepted step's end.
+#[inline]
+fn observe_extrema(ev: &JarmEvents, track: &Cell<Extrema>, obs: Observation<'_, 2>) {
+    if let Observation::Step { y, .. } = obs {
+        let mut e = track.get();
+        extrema_add(&mut e, &ev.kinematics(y[0], y[1]));
+        track.set(e);
     }
 }
 
@@ -309,21 +323,61 @@ fn classify_ode_budget(
     km: f64,
     mu_s: f64,
     o: &JarmOptions,
-    (rtol, atol): (f64, f64),
+    tol: (f64, f64),
     pair: ode::Method,
     steps_per_turn: usize,
 ) -> JarmResult {
+    match prepare(alpha, chi, km, mu_s, o, tol, pair, steps_per_turn) {
+        Err(done) => done,
+        Ok(p) => {
+            let end = match p.at_start {
+                Some(k) => End::Event { k, t: 0.0, y: p.y0 },
+                None => integrate(&p.ev, 0.0, p.y0, &p.so, Some(&p.ext)),
+            };
+            finish(p, end)
+        }
+    }
+}
+
+/// A point ready for its integration, with what [`finish`] needs afterwards.
+struct Prepared {
+    ev: JarmEvents,
+    y0: State<2>,
+    so: SolverOptions,
+    /// The path extrema, updated at each accepted step.
+    ext: Cell<Extrema>,
+    /// The event whose condition already holds at the start (no integration then).
+    at_start: Option<usize>,
+    alpha: f64,
+    mu_s: f64,
+    end_reason: Reason,
+    o: JarmOptions,
+}
+
+/// Everything before the integration of [`classify_ode`]: the point's result if it needs
+/// none (invalid input, an equilibrium start, no search interval), else the prepared run.
+#[allow(clippy::too_many_arguments)] // classify_ode's and the budget
+fn prepare(
+    alpha: f64,
+    chi: f64,
+    km: f64,
+    mu_s: f64,
+    o: &JarmOptions,
+    (rtol, atol): (f64, f64),
+    pair: ode::Method,
+    steps_per_turn: usize,
+) -> Result<Prepared, JarmResult> {
     let tol_ok = rtol.is_finite() && rtol > 0.0 && atol.is_finite() && atol > 0.0;
     let Some(r) = point_ramp(alpha, chi, km, mu_s, o).filter(|_| tol_ok) else {
-        return JarmResult::new(Reason::InvalidParams);
+        return Err(JarmResult::new(Reason::InvalidParams));
     };
     let (theta0, omega0) = (o.theta0, o.omega0);
     let q0 = r.kinematics(theta0, omega0);
     if equilibrium_start(omega0, q0.omega_dot, q0.fx, q0.fy, mu_s) {
-        return JarmResult::new(Reason::NoRoot);
+        return Err(JarmResult::new(Reason::NoRoot));
     }
     let Some((theta_end, end_reason)) = search_end(&r, o) else {
-        return JarmResult::new(Reason::NoRoot);
+        return Err(JarmResult::new(Reason::NoRoot));
     };
     let turns = ((theta_end - theta0) / TAU).ceil().min(1e9) as usize;
     let so = SolverOptions {
@@ -334,9 +388,8 @@ fn classify_ode_budget(
         ..SolverOptions::default()
     };
     let paper = o.rule == Rule::Paper;
-    let sys = RollingMemo::new(r);
     let ev = JarmEvents {
-        sys: &sys,
+        sys: RollingMemo::new(r),
         mu_s,
         liftoff: paper,
         normal_force: true,
@@ -344,8 +397,6 @@ fn classify_ode_budget(
         theta_end,
         last: Cell::new(None),
     };
-    let mut ext = extrema_start(&q0);
-    let y0 = State::<2>::new(theta0, omega0);
     let chi_w2 = chi * (omega0 * omega0);
     let start = StartValues {
         lift: q0.lift,
@@ -360,22 +411,47 @@ fn classify_ode_budget(
         normal_force: true,
         friction: true,
     };
-    let (k, t, y, at_start) = match violated_at_start(watched, mu_s, &start) {
-        Some(e) => (e as usize, 0.0, y0, true),
-        None => match integrate(&ev, 0.0, y0, &so, Some(&mut ext)) {
-            End::Event { k, t, y } => (k, t, y, false),
-            End::Failed { y, .. } => {
-                // No physical verdict: the integrator stopped at its last good state.
-                let mut x = JarmResult::with_extrema(
-                    Reason::SolverFailed,
-                    (ext.max_ratio, ext.theta_max_ratio),
-                    (ext.min_fy, ext.theta_min_fy),
-                );
-                x.theta_event = y[0];
-                x.n = turn_of(y[0]);
-                return restrict_to_turn(x, o.n);
-            }
-        },
+    Ok(Prepared {
+        ev,
+        y0: State::<2>::new(theta0, omega0),
+        so,
+        ext: Cell::new(extrema_start(&q0)),
+        at_start: violated_at_start(watched, mu_s, &start).map(|e| e as usize),
+        alpha,
+        mu_s,
+        end_reason,
+        o: *o,
+    })
+}
+
+/// Everything after the integration of [`classify_ode`]: the verdict from how it ended.
+fn finish(p: Prepared, end: End) -> JarmResult {
+    let Prepared {
+        ev,
+        so,
+        ext,
+        at_start,
+        alpha,
+        mu_s,
+        end_reason,
+        o,
+        ..
+    } = p;
+    let ext = ext.get();
+    let r = ev.sys.ramp;
+    let (k, t, y) = match end {
+        End::Event { k, t, y } => (k, t, y),
+        End::Failed { y } => {
+            // No physical verdict: the integrator stopped at its last good state.
+            let mut x = JarmResult::with_extrema(
+                Reason::SolverFailed,
+                (ext.max_ratio, ext.theta_max_ratio),
+                (ext.min_fy, ext.theta_min_fy),
+            );
+            x.theta_event = y[0];
+            x.n = turn_of(y[0]);
+            return restrict_to_turn(x, o.n);
+        }
     };
     let th = y[0];
     let q = r.kinematics(th, y[1]);
@@ -388,7 +464,7 @@ fn classify_ode_budget(
     };
     let found = Found {
         event: ContactEvent::ALL[k],
-        at_start,
+        at_start: at_start.is_some(),
         at: EventPoint {
             theta: th,
             sin_t: q.sin_theta,
@@ -411,9 +487,10 @@ fn classify_ode_budget(
     // to the paper's lift-off.
     let liftoff_after_slip = || {
         let cont = JarmEvents {
+            sys: ev.sys.clone(),
             normal_force: false,
             slip: false,
-            theta_end: theta_end.max(th),
+            theta_end: ev.theta_end.max(th),
             last: Cell::new(None),
             ..ev
         };
@@ -425,6 +502,80 @@ fn classify_ode_budget(
         }
     };
     restrict_to_turn(decide(&case, &found, liftoff_after_slip), o.n)
+}
+
+/// One point of a lane batch: its prepared run and where its result goes.
+struct RouteTrack {
+    index: usize,
+    p: Prepared,
+}
+
+impl Track<2> for RouteTrack {
+    type Sys = RollingMemo;
+    type Events = JarmEvents;
+    #[inline]
+    fn sys(&self) -> &RollingMemo {
+        &self.p.ev.sys
+    }
+    #[inline]
+    fn events(&self) -> &JarmEvents {
+        &self.p.ev
+    }
+    #[inline]
+    fn observe(&self, obs: Observation<'_, 2>) {
+        observe_extrema(&self.p.ev, &self.p.ext, obs);
+    }
+}
+
+/// [`classify_ode`] of many points, `point(i)` = (α, χ, k_m, μ_s, options) for each
+/// `out[i]`, integrated side by side ([`ode::lanes`]): every result is bit for bit that of
+/// `classify_ode` at its point. `stop` is asked as the integrator asks it (every few
+/// thousand steps of a point); a `true` ends the points under way as integrator failures
+/// and leaves the others, which the caller then discards.
+pub fn classify_ode_batch(
+    point: impl Fn(usize) -> (f64, f64, f64, f64, JarmOptions),
+    tol: (f64, f64),
+    pair: ode::Method,
+    out: &mut [JarmResult],
+    stop: &dyn Fn() -> bool,
+) {
+    let out = Cell::from_mut(out).as_slice_of_cells();
+    let mut i = 0;
+    let next = || {
+        while i < out.len() {
+            let index = i;
+            i += 1;
+            let (alpha, chi, km, mu_s, o) = point(index);
+            match prepare(alpha, chi, km, mu_s, &o, tol, pair, STEPS_PER_TURN) {
+                Err(done) => out[index].set(done),
+                Ok(p) if p.at_start.is_some() => {
+                    let k = p.at_start.unwrap_or_default();
+                    let y = p.y0;
+                    out[index].set(finish(p, End::Event { k, t: 0.0, y }));
+                }
+                Ok(p) => {
+                    let (y0, opts) = (p.y0, p.so);
+                    let track = RouteTrack { index, p };
+                    let t_end = 1e300;
+                    return Some(Start {
+                        track,
+                        t0: 0.0,
+                        y0,
+                        t_end,
+                        opts,
+                    });
+                }
+            }
+        }
+        None
+    };
+    let done = |t: RouteTrack, outcome: Outcome<2>| {
+        out[t.index].set(finish(t.p, end_of(&outcome)));
+    };
+    match pair {
+        ode::Method::Rk45 => solve_lanes::<Dp5<2>, _, 2>(next, done, stop),
+        ode::Method::Dop853 => solve_lanes::<Dop853<2>, _, 2>(next, done, stop),
+    }
 }
 
 #[cfg(test)]
@@ -522,9 +673,9 @@ mod tests {
         v
     }
 
-    fn events_for(sys: &RollingMemo, mu_s: f64, liftoff: bool, forces: bool) -> JarmEvents<'_> {
+    fn events_for(sys: &RollingMemo, mu_s: f64, liftoff: bool, forces: bool) -> JarmEvents {
         JarmEvents {
-            sys,
+            sys: sys.clone(),
             mu_s,
             liftoff,
             normal_force: forces,
@@ -877,6 +1028,53 @@ mod tests {
         assert_eq!(r.reason, Reason::SolverFailed, "{r:?}");
         assert!(!r.is_jarm && r.theta_event.is_finite() && r.theta_j.is_nan());
         assert!(r.theta_event < ok.theta_event.max(ok.theta_j));
+    }
+
+    #[test]
+    fn a_lane_batch_is_each_point_bit_for_bit() {
+        // Random points (a few invalid, some at rest in equilibrium, some already past a
+        // contact condition at the start), both pairs, both rules, explicit turns, moving
+        // starts, with and without the continuation after a slip.
+        let mut seed = 11u64;
+        let mut u = || {
+            seed = seed
+                .wrapping_mul(6364136223846793005)
+                .wrapping_add(1442695040888963407);
+            (seed >> 11) as f64 / (1u64 << 53) as f64
+        };
+        let points: Vec<(f64, f64, f64, f64, JarmOptions)> = (0..600)
+            .map(|i| {
+                let chi = 1e-3 + 0.999 * u();
+                let km = (1.0 - chi) * u();
+                let alpha = if i % 50 == 7 { -0.1 } else { 1.5 * u() + 0.02 };
+                let o = JarmOptions {
+                    rule: if i % 2 == 0 {
+                        Rule::Paper
+                    } else {
+                        Rule::NormalForce
+                    },
+                    n: if i % 7 == 3 { 1 + (i % 3) as u32 } else { 0 },
+                    theta0: if i % 5 == 1 { 6.0 * u() } else { 0.0 },
+                    omega0: if i % 5 == 2 { 2.0 * u() } else { 0.0 },
+                    stop_at_slip: i % 3 == 0,
+                    ..JarmOptions::default()
+                };
+                (alpha, chi, km, 0.2 + 1.5 * u(), o)
+            })
+            .collect();
+        let bits = |r: &JarmResult| r.as_f64s().map(f64::to_bits);
+        for pair in ode::Method::ALL {
+            let mut out = vec![JarmResult::new(Reason::NoRoot); points.len()];
+            classify_ode_batch(|i| points[i], (RTOL, ATOL), pair, &mut out, &never);
+            let mut reasons = std::collections::BTreeSet::new();
+            for (x, &(a, c, k, m, o)) in out.iter().zip(&points) {
+                let want = classify_ode(a, c, k, m, &o, (RTOL, ATOL), pair);
+                assert_eq!(bits(x), bits(&want), "{pair:?} {a} {c} {k} {m} {o:?}");
+                reasons.insert(x.reason as u8);
+            }
+            // The batch met many kinds of ends.
+            assert!(reasons.len() >= 6, "{reasons:?}");
+        }
     }
 
     #[test]

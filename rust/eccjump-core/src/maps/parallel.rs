@@ -19,6 +19,10 @@ use std::time::Duration;
 /// threads. Pieces of at most 64 points (≈ 0.1 ms of closed form, ms of ODE) balance both.
 const MAX_PIECE: usize = 64;
 
+/// Points per piece of [`par_fill_pieces_until`]: enough that the lanes of a piece stay
+/// full most of the time (they empty at its end), few enough to balance the threads.
+const PIECE: usize = 256;
+
 /// The largest thread count a map accepts: far above any machine this runs on, and small
 /// enough that starting the pool stays cheap (3000 threads took 13 s for one point).
 pub const MAX_THREADS: usize = 256;
@@ -70,28 +74,65 @@ where
     T: Send,
     F: Fn(usize) -> T + Sync,
 {
+    run_until(n_threads, stop, |cancel| {
+        out.par_iter_mut()
+            .enumerate()
+            .with_max_len(MAX_PIECE)
+            .for_each(|(i, o)| {
+                if !cancel.load(Ordering::Relaxed) {
+                    *o = point(i);
+                }
+            })
+    })
+}
+
+/// [`par_fill_until`] by pieces: `piece(start, out[start..start + len], cancelled)` fills
+/// pieces of at most [`MAX_PIECE`] points at once (the ODE route integrates a piece's points
+/// side by side), asking `cancelled()` (the caller's stop, seen by the workers) as often as
+/// it likes; a piece not started when the caller stops is skipped.
+pub fn par_fill_pieces_until<T, F>(
+    out: &mut [T],
+    n_threads: usize,
+    piece: F,
+    stop: &dyn Fn() -> bool,
+) -> Result<()>
+where
+    T: Send,
+    F: Fn(usize, &mut [T], &dyn Fn() -> bool) + Sync,
+{
+    run_until(n_threads, stop, |cancel| {
+        let cancelled = || cancel.load(Ordering::Relaxed);
+        // One piece per job (see MAX_PIECE: rayon would otherwise split only a few times).
+        out.par_chunks_mut(PIECE)
+            .enumerate()
+            .with_max_len(1)
+            .for_each(|(c, part)| {
+                if !cancelled() {
+                    piece(c * PIECE, part, &cancelled);
+                }
+            })
+    })
+}
+
+/// Runs `work(cancel)` on a pool of `n_threads` (driven from a scoped thread) while the
+/// calling thread asks `stop()` every [`POLL`] and, on a `true`, sets `cancel` for the
+/// workers; `Error::Interrupted` if it did.
+fn run_until<W>(n_threads: usize, stop: &dyn Fn() -> bool, work: W) -> Result<()>
+where
+    W: FnOnce(&AtomicBool) + Send,
+{
     let pool = pool(n_threads)?;
     if stop() {
         return Err(Error::Interrupted);
     }
     let cancel = AtomicBool::new(false);
-    let mut work = || {
-        pool.install(|| {
-            out.par_iter_mut()
-                .enumerate()
-                .with_max_len(MAX_PIECE)
-                .for_each(|(i, o)| {
-                    if !cancel.load(Ordering::Relaxed) {
-                        *o = point(i);
-                    }
-                })
-        })
-    };
     let stopped = std::thread::scope(|s| {
         // The driver says when it is done, so the caller wakes at once (not at the next poll).
         let (done_tx, done_rx) = mpsc::channel::<()>();
+        let cancel = &cancel;
+        let pool = &pool;
         let h = s.spawn(move || {
-            work();
+            pool.install(|| work(cancel));
             let _ = done_tx.send(());
         });
         let mut stopped = false;

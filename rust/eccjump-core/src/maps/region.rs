@@ -6,8 +6,8 @@
 //! order depends on scheduling), so results are bit-identical for any thread count.
 
 use crate::error::Result;
-use crate::jarm::{classify_with, JarmOptions, JarmResult, Method};
-use crate::maps::parallel::{check_len, par_fill_until};
+use crate::jarm::{classify_many, classify_with, JarmOptions, JarmResult, Method};
+use crate::maps::parallel::{check_len, par_fill_pieces_until, par_fill_until};
 
 /// Classifies a list of points (α_i, χ_i, k_m,i, μ_s,i, n_i); all inputs have the length of
 /// `out` (μ_s and n may also have length 1: one value for all; n = 0 is the first jump,
@@ -37,19 +37,15 @@ pub fn classify_points(
     }
     opts.validate()?;
     method.validate()?;
-    par_fill_until(
-        out,
-        n_threads,
-        |g| {
-            let m = if mu_s.len() == 1 { mu_s[0] } else { mu_s[g] };
-            let o = JarmOptions {
-                n: if n.len() == 1 { n[0] } else { n[g] },
-                ..*opts
-            };
-            classify_with(method, alpha[g], chi[g], km[g], m, &o)
-        },
-        stop,
-    )
+    let point = |g: usize| {
+        let m = if mu_s.len() == 1 { mu_s[0] } else { mu_s[g] };
+        let o = JarmOptions {
+            n: if n.len() == 1 { n[0] } else { n[g] },
+            ..*opts
+        };
+        (alpha[g], chi[g], km[g], m, o)
+    };
+    fill(method, out, n_threads, point, stop)
 }
 
 /// Classifies the grid alpha × chi × frac (C order: α slowest, frac fastest), with
@@ -73,17 +69,42 @@ pub fn classify_grid(
     crate::error::check_range("mu_s", mu_s, 0.0, f64::MAX)?;
     opts.validate()?;
     method.validate()?;
-    par_fill_until(
-        out,
-        n_threads,
-        |g| {
-            let (ia, rest) = (g / (nc * nf), g % (nc * nf));
-            let (ic, jf) = (rest / nf, rest % nf);
-            let x = chi[ic];
-            classify_with(method, alpha[ia], x, frac[jf] * (1.0 - x), mu_s, opts)
-        },
-        stop,
-    )
+    let point = |g: usize| {
+        let (ia, rest) = (g / (nc * nf), g % (nc * nf));
+        let (ic, jf) = (rest / nf, rest % nf);
+        let x = chi[ic];
+        (alpha[ia], x, frac[jf] * (1.0 - x), mu_s, *opts)
+    };
+    fill(method, out, n_threads, point, stop)
+}
+
+/// `out[g]` = the classification of `point(g)`, in parallel: point by point for the closed
+/// form, by pieces integrated side by side for the ODE route ([`classify_many`]); the same
+/// bits either way.
+fn fill(
+    method: Method,
+    out: &mut [JarmResult],
+    n_threads: usize,
+    point: impl Fn(usize) -> (f64, f64, f64, f64, JarmOptions) + Sync,
+    stop: &dyn Fn() -> bool,
+) -> Result<()> {
+    match method {
+        Method::ClosedForm => par_fill_until(
+            out,
+            n_threads,
+            |g| {
+                let (alpha, chi, km, mu_s, o) = point(g);
+                classify_with(method, alpha, chi, km, mu_s, &o)
+            },
+            stop,
+        ),
+        Method::Ode { .. } => par_fill_pieces_until(
+            out,
+            n_threads,
+            |start, piece, cancelled| classify_many(method, |i| point(start + i), piece, cancelled),
+            stop,
+        ),
+    }
 }
 
 /// The number of points of an `na × nc × nf` grid, or `OutOfMemory` if it overflows.

@@ -14,6 +14,7 @@
 pub mod dense;
 pub mod events;
 pub mod hermite;
+pub mod lanes;
 pub mod pair;
 pub mod roots;
 pub mod solver;

@@ -130,7 +130,7 @@ where
 }
 
 /// Accepted steps between two calls of `stop` in [`solve_until`]: a few milliseconds.
-const STOP_EVERY: usize = 4096;
+pub(crate) const STOP_EVERY: usize = 4096;
 
 /// [`solve`], asking `stop()` every few thousand accepted steps; a `true` ends the
 /// integration with [`Status::Stopped`] at the last accepted point (e.g. on Ctrl-C). The
@@ -179,90 +179,140 @@ where
     E: EventFunctions<N>,
     O: FnMut(Observation<'_, N>),
 {
-    let mut out = Outcome {
-        status: Status::NonFinite,
-        t: t0,
-        y: y0,
-        nfev: 0,
-        n_accepted: 0,
-        n_rejected: 0,
-    };
-    if !t0.is_finite() || !t_end.is_finite() || !all_finite(&y0) {
-        return out;
+    match Run::<P, N>::begin(sys, t0, y0, t_end, opts) {
+        Err(out) => out,
+        Ok(run) => run.to_end(sys, events, observer, stop),
     }
-    let f0 = sys.rhs(t0, &y0);
-    out.nfev = 1;
-    if !all_finite(&f0) {
-        return out;
-    }
-    let direction = if t_end >= t0 { 1.0 } else { -1.0 };
-    let h_abs = match opts.first_step {
-        Some(h) => h,
-        None => match select_initial_step(
-            P::ERROR_EXPONENT,
-            sys,
+}
+
+/// One integration between its steps: what [`solve_until`]'s loop carries from step to
+/// step. The integrator of many trajectories side by side ([`crate::ode::lanes`]) runs
+/// the same integration through the same parts, the steps' stages excepted.
+#[derive(Debug, Clone, Copy)]
+pub(crate) struct Run<P, const N: usize> {
+    /// The stepper (state, step size, the last attempt's stages).
+    pub st: Stepper<P, N>,
+    /// The outcome so far (counts, last accepted point).
+    pub out: Outcome<N>,
+    carry: EventCarry<N>,
+    /// The options.
+    pub opts: SolverOptions,
+    t_end: f64,
+}
+
+impl<P: RkPair<N>, const N: usize> Run<P, N> {
+    /// The start of the integration: f0 and the first step size, or the outcome if it ends
+    /// there (non-finite input or f0).
+    pub(crate) fn begin<S: OdeSystem<N>>(
+        sys: &S,
+        t0: f64,
+        y0: State<N>,
+        t_end: f64,
+        opts: &SolverOptions,
+    ) -> Result<Self, Outcome<N>> {
+        let mut out = Outcome {
+            status: Status::NonFinite,
+            t: t0,
+            y: y0,
+            nfev: 0,
+            n_accepted: 0,
+            n_rejected: 0,
+        };
+        if !t0.is_finite() || !t_end.is_finite() || !all_finite(&y0) {
+            return Err(out);
+        }
+        let f0 = sys.rhs(t0, &y0);
+        out.nfev = 1;
+        if !all_finite(&f0) {
+            return Err(out);
+        }
+        let direction = if t_end >= t0 { 1.0 } else { -1.0 };
+        let h_abs = match opts.first_step {
+            Some(h) => h,
+            None => match select_initial_step(
+                P::ERROR_EXPONENT,
+                sys,
+                t0,
+                &y0,
+                t_end,
+                opts.max_step,
+                &f0,
+                direction,
+                opts.rtol,
+                opts.atol,
+                &mut out.nfev,
+            ) {
+                Some(h) => h,
+                None => return Err(out),
+            },
+        };
+        let st = Stepper::<P, N>::new(
             t0,
-            &y0,
+            y0,
+            f0,
+            h_abs,
             t_end,
             opts.max_step,
-            &f0,
-            direction,
             opts.rtol,
             opts.atol,
-            &mut out.nfev,
-        ) {
-            Some(h) => h,
-            None => return out,
-        },
-    };
-    let mut st = Stepper::<P, N>::new(
-        t0,
-        y0,
-        f0,
-        h_abs,
-        t_end,
-        opts.max_step,
-        opts.rtol,
-        opts.atol,
-    );
+        );
+        Ok(Self {
+            st,
+            out,
+            carry: EventCarry::default(),
+            opts: *opts,
+            t_end,
+        })
+    }
 
-    let mut carry = EventCarry::default();
-    loop {
-        if st.t == t_end {
+    /// The checks before each step: true (with the status set) if the integration ends
+    /// here (t_end reached, the step limit, or `stop`).
+    #[inline]
+    pub(crate) fn ends_here(&mut self, stop: &dyn Fn() -> bool) -> bool {
+        let out = &mut self.out;
+        if self.st.t == self.t_end {
             out.status = Status::Finished;
-            return out;
+            return true;
         }
-        if out.n_accepted >= opts.max_steps {
+        if out.n_accepted >= self.opts.max_steps {
             out.status = Status::MaxSteps;
-            return out;
+            return true;
         }
         if out.n_accepted % STOP_EVERY == STOP_EVERY - 1 && stop() {
             out.status = Status::Stopped;
-            return out;
+            return true;
         }
-        match st.step(sys, &mut out.nfev, &mut out.n_rejected) {
-            StepStatus::Accepted => {}
-            StepStatus::TooSmall => {
-                out.status = Status::StepTooSmall;
-                return out;
-            }
-            StepStatus::NonFinite => {
-                out.status = Status::NonFinite;
-                return out;
-            }
-        }
-        let Some(dense): Option<DenseStep<N>> = st.dense(sys, &mut out.nfev) else {
+        false
+    }
+
+    /// After an accepted step with its dense output (`None` if a stage it needs is not
+    /// finite): the event scan and the observations. True (with the status set) if the
+    /// integration ends in this step.
+    #[inline]
+    pub(crate) fn after_step<E, O>(
+        &mut self,
+        events: &E,
+        dense: Option<DenseStep<N>>,
+        observer: &mut O,
+    ) -> bool
+    where
+        E: EventFunctions<N>,
+        O: FnMut(Observation<'_, N>),
+    {
+        let out = &mut self.out;
+        let Some(dense) = dense else {
             // The step's dense output is unknown: stop at its start, as for its events.
             out.status = Status::NonFinite;
-            return out;
+            return true;
         };
+        let st = &self.st;
         let scan = scan_step(
             events,
             &dense,
             st.t,
             &st.y,
-            opts.event_samples,
-            &mut carry,
+            self.opts.event_samples,
+            &mut self.carry,
             |hit| {
                 observer(Observation::Event {
                     index: hit.index,
@@ -275,7 +325,7 @@ where
             Err(NonFiniteEvent) => {
                 // The step's events are unknown: stop at its start, the last checked point.
                 out.status = Status::NonFinite;
-                return out;
+                true
             }
             Ok(Some(hit)) => {
                 out.n_accepted += 1;
@@ -287,7 +337,7 @@ where
                 out.status = Status::Event(hit.index);
                 out.t = hit.t;
                 out.y = hit.y;
-                return out;
+                true
             }
             Ok(None) => {
                 out.n_accepted += 1;
@@ -298,6 +348,43 @@ where
                 });
                 out.t = st.t;
                 out.y = st.y;
+                false
+            }
+        }
+    }
+
+    /// The integration from here to its end, one step at a time.
+    pub(crate) fn to_end<S, E, O>(
+        mut self,
+        sys: &S,
+        events: &E,
+        observer: &mut O,
+        stop: &dyn Fn() -> bool,
+    ) -> Outcome<N>
+    where
+        S: OdeSystem<N>,
+        E: EventFunctions<N>,
+        O: FnMut(Observation<'_, N>),
+    {
+        loop {
+            if self.ends_here(stop) {
+                return self.out;
+            }
+            let out = &mut self.out;
+            match self.st.step(sys, &mut out.nfev, &mut out.n_rejected) {
+                StepStatus::Accepted => {}
+                StepStatus::TooSmall => {
+                    out.status = Status::StepTooSmall;
+                    return self.out;
+                }
+                StepStatus::NonFinite => {
+                    out.status = Status::NonFinite;
+                    return self.out;
+                }
+            }
+            let dense = self.st.dense(sys, &mut self.out.nfev);
+            if self.after_step(events, dense, observer) {
+                return self.out;
             }
         }
     }

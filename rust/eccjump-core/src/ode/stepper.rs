@@ -100,6 +100,26 @@ pub enum StepStatus {
     NonFinite,
 }
 
+/// A step being tried: its size and whether an attempt was already rejected.
+#[derive(Debug, Clone, Copy)]
+pub struct Trial {
+    /// |h| of the next attempt.
+    pub h_abs: f64,
+    /// An attempt of this step was rejected: the step size may not grow.
+    pub rejected: bool,
+}
+
+/// The verdict on one attempt.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Judgement {
+    /// Accepted: the stepper stands at the attempt's end.
+    Accepted,
+    /// Rejected: try again with the smaller trial size.
+    Retry,
+    /// The error norm is not finite.
+    NonFinite,
+}
+
 /// The integrator's state between steps: scipy's `RungeKutta` attributes.
 #[derive(Debug, Clone, Copy)]
 pub struct Stepper<P, const N: usize> {
@@ -162,7 +182,9 @@ impl<P: RkPair<N>, const N: usize> Stepper<P, N> {
     /// Attempts steps until one is accepted (scipy `_step_impl`): clips to t_bound,
     /// shrinks by max(0.2, 0.9 err^e) on rejection, grows by min(10, 0.9 err^e)
     /// on acceptance (e = −1/(q + 1) of the pair) but never grows right after a rejection
-    /// in the same call.
+    /// in the same call. The integrator of many trajectories side by side
+    /// ([`crate::ode::lanes`]) takes the same steps through the same three parts:
+    /// [`Self::first_trial`], [`Self::trial`] and [`Self::judge`].
     #[inline]
     pub fn step<S: OdeSystem<N>>(
         &mut self,
@@ -170,60 +192,108 @@ impl<P: RkPair<N>, const N: usize> Stepper<P, N> {
         nfev: &mut usize,
         n_rejected: &mut usize,
     ) -> StepStatus {
-        let t = self.t;
-        let min_step = min_step(t, self.direction);
-        let mut h_abs = if self.h_abs > self.max_step {
-            self.max_step
-        } else if self.h_abs < min_step {
-            min_step
-        } else {
-            self.h_abs
-        };
-        let mut step_rejected = false;
-        loop {
-            // A NaN step (from a NaN first_step or max_step) ends here too, not in a loop.
-            if h_abs.is_nan() || h_abs < min_step {
-                return StepStatus::TooSmall;
-            }
-            let mut t_new = t + h_abs * self.direction;
-            // Land exactly on t_bound rather than overshoot it.
-            if self.direction * (t_new - self.t_bound) > 0.0 {
-                t_new = self.t_bound;
-            }
-            let h = t_new - t;
-            h_abs = h.abs();
+        self.step_from(self.first_trial(), sys, nfev, n_rejected)
+    }
 
+    /// [`Self::step`] from the trial `trial` of the current step (one that the integrator
+    /// of many trajectories began).
+    #[inline]
+    pub fn step_from<S: OdeSystem<N>>(
+        &mut self,
+        mut trial: Trial,
+        sys: &S,
+        nfev: &mut usize,
+        n_rejected: &mut usize,
+    ) -> StepStatus {
+        loop {
+            let Some((t_new, h)) = self.trial(trial.h_abs) else {
+                return StepStatus::TooSmall;
+            };
+            let t = self.t;
             let Some(y_new) = self.pair.attempt(sys, t, &self.y, &self.f, h, nfev) else {
                 return StepStatus::NonFinite;
             };
             let err = self
                 .pair
                 .error_norm(h, &self.y, &y_new, self.rtol, self.atol);
-            if err.is_nan() {
-                return StepStatus::NonFinite;
+            let f_new = self.pair.f_new();
+            match self.judge(&mut trial, t_new, h, err, &y_new, &f_new) {
+                Judgement::Accepted => return StepStatus::Accepted,
+                Judgement::NonFinite => return StepStatus::NonFinite,
+                Judgement::Retry => *n_rejected += 1,
             }
-            if err < 1.0 {
-                let mut factor = if err == 0.0 {
-                    MAX_FACTOR
-                } else {
-                    MAX_FACTOR.min(SAFETY * P::error_power(err))
-                };
-                if step_rejected {
-                    factor = factor.min(1.0);
-                }
-                h_abs *= factor;
-                self.t_old = t;
-                self.y_old = self.y;
-                self.t = t_new;
-                self.y = y_new;
-                self.f = self.pair.f_new();
-                self.h_abs = h_abs;
-                return StepStatus::Accepted;
-            }
-            h_abs *= MIN_FACTOR.max(SAFETY * P::error_power(err));
-            step_rejected = true;
-            *n_rejected += 1;
         }
+    }
+
+    /// The first trial of a step: the next step size, clipped to [min_step, max_step].
+    #[inline]
+    pub fn first_trial(&self) -> Trial {
+        let min_step = min_step(self.t, self.direction);
+        let h_abs = if self.h_abs > self.max_step {
+            self.max_step
+        } else if self.h_abs < min_step {
+            min_step
+        } else {
+            self.h_abs
+        };
+        Trial {
+            h_abs,
+            rejected: false,
+        }
+    }
+
+    /// (t_new, h) of a trial of size `h_abs`, landing exactly on t_bound rather than past
+    /// it; `None` if the step is too small (a NaN step, from a NaN first_step or max_step,
+    /// ends here too, not in a loop).
+    #[inline]
+    pub fn trial(&self, h_abs: f64) -> Option<(f64, f64)> {
+        let t = self.t;
+        if h_abs.is_nan() || h_abs < min_step(t, self.direction) {
+            return None;
+        }
+        let mut t_new = t + h_abs * self.direction;
+        if self.direction * (t_new - self.t_bound) > 0.0 {
+            t_new = self.t_bound;
+        }
+        Some((t_new, t_new - t))
+    }
+
+    /// Accepts the attempt of size h (its error norm `err`, end state `y_new` and
+    /// f there) and sets the next step size, or shrinks `trial` for another attempt.
+    #[inline]
+    pub fn judge(
+        &mut self,
+        trial: &mut Trial,
+        t_new: f64,
+        h: f64,
+        err: f64,
+        y_new: &State<N>,
+        f_new: &State<N>,
+    ) -> Judgement {
+        let h_abs = h.abs();
+        if err.is_nan() {
+            return Judgement::NonFinite;
+        }
+        if err < 1.0 {
+            let mut factor = if err == 0.0 {
+                MAX_FACTOR
+            } else {
+                MAX_FACTOR.min(SAFETY * P::error_power(err))
+            };
+            if trial.rejected {
+                factor = factor.min(1.0);
+            }
+            self.t_old = self.t;
+            self.y_old = self.y;
+            self.t = t_new;
+            self.y = *y_new;
+            self.f = *f_new;
+            self.h_abs = h_abs * factor;
+            return Judgement::Accepted;
+        }
+        trial.h_abs = h_abs * MIN_FACTOR.max(SAFETY * P::error_power(err));
+        trial.rejected = true;
+        Judgement::Retry
     }
 
     /// The dense output of the last accepted step (`None` if a stage it needs is not

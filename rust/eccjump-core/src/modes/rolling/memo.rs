@@ -3,7 +3,9 @@
 
 use crate::mechanics::Ramp;
 use crate::modes::rolling::Kinematics;
+use crate::ode::lanes::{LaneRhs, Lanes, LANES};
 use crate::ode::{OdeSystem, State};
+use crate::trig::lanes::sin_cos_lanes;
 use crate::trig::SinCosMemo;
 
 /// Pure rolling with a one-entry memo of (sin θ, cos θ), keyed on the bits of θ. Each
@@ -50,5 +52,24 @@ impl OdeSystem<2> for RollingMemo {
     fn rhs(&self, _t: f64, y: &State<2>) -> State<2> {
         let (s, c) = self.sin_cos(y[0]);
         State::<2>::new(y[1], self.ramp.omega_dot_sc(s, c, y[1]))
+    }
+}
+
+impl LaneRhs<2> for RollingMemo {
+    /// [`OdeSystem::rhs`] of each lane's system, bit for bit (the same `sin_cos` by
+    /// [`sin_cos_lanes`], the same θ̈ by [`Ramp::omega_dot_sc`]); each memo remembers its
+    /// lane's angle, as the scalar evaluation would.
+    #[inline(always)]
+    fn rhs_lanes(systems: &[&Self; LANES], y: &Lanes<2>) -> Lanes<2> {
+        let [theta, omega] = &y.0;
+        let (s, c) = sin_cos_lanes(theta);
+        let mut acc = [0.0; LANES];
+        for l in 0..LANES {
+            acc[l] = systems[l].ramp.omega_dot_sc(s[l], c[l], omega[l]);
+        }
+        for l in 0..LANES {
+            systems[l].trig.set(theta[l], s[l], c[l]);
+        }
+        Lanes([*omega, acc])
     }
 }

@@ -83,8 +83,7 @@ impl<const N: usize> RkPair<N> for Dop853<N> {
     }
 
     /// scipy's `_dense_output_impl` and `Dop853DenseOutput`: three more stages, then
-    /// y(σ) = y_old + σ(F0 + (1−σ)(F1 + σ(F2 + (1−σ)(F3 + σ(F4 + (1−σ)(F5 + σF6)))))),
-    /// expanded here into powers of σ (the form every dense step shares).
+    /// [`Self::dense_from_stages`].
     fn dense<S: OdeSystem<N>>(
         &mut self,
         sys: &S,
@@ -104,6 +103,41 @@ impl<const N: usize> RkPair<N> for Dop853<N> {
             };
         }
         extra!(0 1 2);
+        self.dense_from_stages(t_old, h, y_old, y_new)
+    }
+
+    const STAGES: usize = N_STAGES;
+    const EXTRA: usize = N_STAGES_EXTENDED - N_STAGES - 1;
+
+    #[inline(always)]
+    fn a(s: usize) -> &'static [f64] {
+        &A[s]
+    }
+
+    #[inline(always)]
+    fn b() -> &'static [f64] {
+        &B
+    }
+
+    #[inline(always)]
+    fn a_extra(i: usize) -> &'static [f64] {
+        &A_EXTRA[i]
+    }
+
+    #[inline(always)]
+    fn stages_mut(&mut self) -> &mut [State<N>] {
+        &mut self.k
+    }
+
+    /// y(σ) = y_old + σ(F0 + (1−σ)(F1 + σ(F2 + (1−σ)(F3 + σ(F4 + (1−σ)(F5 + σF6)))))),
+    /// expanded into powers of σ (the form every dense step shares).
+    fn dense_from_stages(
+        &self,
+        t_old: f64,
+        h: f64,
+        y_old: &State<N>,
+        y_new: &State<N>,
+    ) -> Option<DenseStep<N>> {
         let k = &self.k;
         let f_old = k[0];
         let delta = y_new - y_old;

@@ -75,8 +75,41 @@ impl<const N: usize> RkPair<N> for Dp5<N> {
         t_old: f64,
         h: f64,
         y_old: &State<N>,
-        _y_new: &State<N>,
+        y_new: &State<N>,
         _nfev: &mut usize,
+    ) -> Option<DenseStep<N>> {
+        self.dense_from_stages(t_old, h, y_old, y_new)
+    }
+
+    const STAGES: usize = N_STAGES;
+    const EXTRA: usize = 0;
+
+    #[inline(always)]
+    fn a(s: usize) -> &'static [f64] {
+        &A[s]
+    }
+
+    #[inline(always)]
+    fn b() -> &'static [f64] {
+        &B
+    }
+
+    fn a_extra(_i: usize) -> &'static [f64] {
+        &[]
+    }
+
+    #[inline(always)]
+    fn stages_mut(&mut self) -> &mut [State<N>] {
+        &mut self.k
+    }
+
+    #[inline]
+    fn dense_from_stages(
+        &self,
+        t_old: f64,
+        h: f64,
+        y_old: &State<N>,
+        _y_new: &State<N>,
     ) -> Option<DenseStep<N>> {
         let mut q = [State::<N>::zeros(); 4];
         for (j, qj) in q.iter_mut().enumerate() {

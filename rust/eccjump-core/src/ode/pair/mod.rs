@@ -84,6 +84,32 @@ pub trait RkPair<const N: usize>: Copy {
         y_new: &State<N>,
         nfev: &mut usize,
     ) -> Option<DenseStep<N>>;
+
+    // The tableau as the integrator of many trajectories side by side
+    // ([`crate::ode::lanes`]) applies it: it computes the stages of all its lanes at once,
+    // then hands each lane's stages to the pair for the error norm and the dense output.
+
+    /// The stages s of a step before its FSAL evaluation (stage s is f at y_new).
+    const STAGES: usize;
+    /// The extra stages of the dense output (they follow the FSAL stage).
+    const EXTRA: usize;
+    /// Row s of the tableau's A, s = 1 … STAGES − 1 (its first s entries are used).
+    fn a(s: usize) -> &'static [f64];
+    /// The weights b of y_new.
+    fn b() -> &'static [f64];
+    /// Row i of A for extra stage i (its first STAGES + 1 + i entries are used).
+    fn a_extra(i: usize) -> &'static [f64];
+    /// The stages: STAGES, the FSAL one, then the extra ones.
+    fn stages_mut(&mut self) -> &mut [State<N>];
+    /// The dense output from the stages held, the extra ones included (what [`Self::dense`]
+    /// does after evaluating them).
+    fn dense_from_stages(
+        &self,
+        t_old: f64,
+        h: f64,
+        y_old: &State<N>,
+        y_new: &State<N>,
+    ) -> Option<DenseStep<N>>;
 }
 
 /// All components finite? Every new vector is checked, so NaN/inf never propagates.
@@ -105,25 +131,38 @@ pub fn rms_norm<const N: usize>(v: &State<N>) -> f64 {
 /// is a difference of nearly equal quantities, other orders shift scipy's step sizes by
 /// ~1e-12 relative.
 #[inline(always)]
-pub fn weighted_sum<const N: usize>(k: &[State<N>], w: &[f64]) -> State<N> {
+pub fn weighted_sum<V: Summand>(k: &[V], w: &[f64]) -> V {
     let len = k.len().min(w.len());
     let blocked = len / 4 * 4;
-    let mut acc = [State::<N>::zeros(); 4];
+    let mut acc = [V::zero(); 4];
     // A zero weight adds an exact zero: skipping it changes no bit (the weights are
     // constants, so in an unrolled loop the test costs nothing; DOP853's tableau is
     // one-third zeros).
     for j in 0..blocked {
         if w[j] != 0.0 {
-            acc[j % 4] += k[j] * w[j];
+            acc[j % 4] = acc[j % 4] + k[j] * w[j];
         }
     }
     let mut sum = (acc[0] + acc[1]) + (acc[2] + acc[3]);
     for j in blocked..len {
         if w[j] != 0.0 {
-            sum += k[j] * w[j];
+            sum = sum + k[j] * w[j];
         }
     }
     sum
+}
+
+/// What [`weighted_sum`] adds up: a state, or the states of many lanes.
+pub trait Summand: Copy + std::ops::Add<Output = Self> + std::ops::Mul<f64, Output = Self> {
+    /// All components 0.
+    fn zero() -> Self;
+}
+
+impl<const N: usize> Summand for State<N> {
+    #[inline(always)]
+    fn zero() -> Self {
+        State::<N>::zeros()
+    }
 }
 
 /// The end of an explicit step after its stages k[..b.len()]: y_new = y + (Σ_j b_j K_j) h
