@@ -424,21 +424,36 @@ fn prepare(
     })
 }
 
-/// Everything after the integration of [`classify_ode`]: the verdict from how it ended.
+/// Everything after the integration of [`classify_ode`]: the verdict from how it ended
+/// (with the continuation to the lift-off after a slip, integrated here).
 fn finish(p: Prepared, end: End) -> JarmResult {
-    let Prepared {
-        ev,
-        so,
-        ext,
-        at_start,
-        alpha,
-        mu_s,
-        end_reason,
-        o,
-        ..
-    } = p;
-    let ext = ext.get();
-    let r = ev.sys.ramp;
+    match found(p, end) {
+        Err(done) => done,
+        Ok(f) => {
+            let liftoff = match f.continuation() {
+                Some((cont, t, y)) => liftoff_of(integrate(&cont, t, y, &f.p.so, None)),
+                None => None,
+            };
+            f.verdict(liftoff)
+        }
+    }
+}
+
+/// What the first integration found, before the verdict.
+struct Finding {
+    p: Prepared,
+    found: Found,
+    /// The time of the event.
+    t: f64,
+    /// The state at the event.
+    y: State<2>,
+}
+
+/// The first stage of [`finish`]: what the integration found, or the point's result if
+/// the integrator failed.
+fn found(p: Prepared, end: End) -> Result<Finding, JarmResult> {
+    let ext = p.ext.get();
+    let r = p.ev.sys.ramp;
     let (k, t, y) = match end {
         End::Event { k, t, y } => (k, t, y),
         End::Failed { y } => {
@@ -450,7 +465,7 @@ fn finish(p: Prepared, end: End) -> JarmResult {
             );
             x.theta_event = y[0];
             x.n = turn_of(y[0]);
-            return restrict_to_turn(x, o.n);
+            return Err(restrict_to_turn(x, p.o.n));
         }
     };
     let th = y[0];
@@ -464,7 +479,7 @@ fn finish(p: Prepared, end: End) -> JarmResult {
     };
     let found = Found {
         event: ContactEvent::ALL[k],
-        at_start: at_start.is_some(),
+        at_start: p.at_start.is_some(),
         at: EventPoint {
             theta: th,
             sin_t: q.sin_theta,
@@ -475,39 +490,73 @@ fn finish(p: Prepared, end: End) -> JarmResult {
         },
         extrema: ext,
     };
-    let case = Case {
-        body: &r.body,
-        alpha,
-        mu_s,
-        rule: o.rule,
-        end_reason,
-        stop_at_slip: o.stop_at_slip,
-    };
-    // After a slip (paper rule): continue along rolling (no friction, no normal-force event)
-    // to the paper's lift-off.
-    let liftoff_after_slip = || {
-        let cont = JarmEvents {
-            sys: ev.sys.clone(),
-            normal_force: false,
-            slip: false,
-            theta_end: ev.theta_end.max(th),
-            last: Cell::new(None),
-            ..ev
-        };
-        match integrate(&cont, t, y, &so, None) {
-            End::Event {
-                k: EV_LIFTOFF, y, ..
-            } => Some(y[0]),
-            _ => None,
-        }
-    };
-    restrict_to_turn(decide(&case, &found, liftoff_after_slip), o.n)
+    Ok(Finding { p, found, t, y })
 }
 
-/// One point of a lane batch: its prepared run and where its result goes.
-struct RouteTrack {
-    index: usize,
-    p: Prepared,
+impl Finding {
+    /// The classification's fixed inputs.
+    fn case(&self) -> Case<'_> {
+        let p = &self.p;
+        Case {
+            body: &p.ev.sys.ramp.body,
+            alpha: p.alpha,
+            mu_s: p.mu_s,
+            rule: p.o.rule,
+            end_reason: p.end_reason,
+            stop_at_slip: p.o.stop_at_slip,
+        }
+    }
+
+    /// After a slip under the paper's rule (unless `stop_at_slip`), the verdict needs the
+    /// paper's lift-off further along rolling: the events of that continuation (no friction,
+    /// no normal-force event) and where it starts.
+    fn continuation(&self) -> Option<(JarmEvents, f64, State<2>)> {
+        let o = &self.p.o;
+        let needed =
+            o.rule == Rule::Paper && self.found.event == ContactEvent::Slip && !o.stop_at_slip;
+        let ev = &self.p.ev;
+        needed.then(|| {
+            let cont = JarmEvents {
+                sys: ev.sys.clone(),
+                mu_s: ev.mu_s,
+                liftoff: ev.liftoff,
+                normal_force: false,
+                slip: false,
+                theta_end: ev.theta_end.max(self.y[0]),
+                last: Cell::new(None),
+            };
+            (cont, self.t, self.y)
+        })
+    }
+
+    /// The verdict, given the continuation's lift-off angle (if it was needed and found).
+    fn verdict(&self, liftoff: Option<f64>) -> JarmResult {
+        let x = decide(&self.case(), &self.found, || liftoff);
+        restrict_to_turn(x, self.p.o.n)
+    }
+}
+
+/// The paper's lift-off angle where a continuation ended at it.
+fn liftoff_of(end: End) -> Option<f64> {
+    match end {
+        End::Event {
+            k: EV_LIFTOFF, y, ..
+        } => Some(y[0]),
+        _ => None,
+    }
+}
+
+/// A point of a lane batch at one of its two integrations; its result goes to
+/// `out[index]`.
+enum RouteTrack {
+    /// The search along rolling from the start.
+    First { index: usize, p: Prepared },
+    /// The continuation after a slip, to the paper's lift-off.
+    Continued {
+        index: usize,
+        f: Box<Finding>,
+        ev: JarmEvents,
+    },
 }
 
 impl Track<2> for RouteTrack {
@@ -515,15 +564,20 @@ impl Track<2> for RouteTrack {
     type Events = JarmEvents;
     #[inline]
     fn sys(&self) -> &RollingMemo {
-        &self.p.ev.sys
+        &self.events().sys
     }
     #[inline]
     fn events(&self) -> &JarmEvents {
-        &self.p.ev
+        match self {
+            RouteTrack::First { p, .. } => &p.ev,
+            RouteTrack::Continued { ev, .. } => ev,
+        }
     }
     #[inline]
     fn observe(&self, obs: Observation<'_, 2>) {
-        observe_extrema(&self.p.ev, &self.p.ext, obs);
+        if let RouteTrack::First { p, .. } = self {
+            observe_extrema(&p.ev, &p.ext, obs);
+        }
     }
 }
 
@@ -540,8 +594,13 @@ pub fn classify_ode_batch(
     stop: &dyn Fn() -> bool,
 ) {
     let out = Cell::from_mut(out).as_slice_of_cells();
+    // Continuations waiting for a lane (a few at a time: each is taken at the next fill).
+    let waiting = std::cell::RefCell::new(Vec::new());
     let mut i = 0;
     let next = || {
+        if let Some(start) = waiting.borrow_mut().pop() {
+            return Some(start);
+        }
         while i < out.len() {
             let index = i;
             i += 1;
@@ -555,13 +614,11 @@ pub fn classify_ode_batch(
                 }
                 Ok(p) => {
                     let (y0, opts) = (p.y0, p.so);
-                    let track = RouteTrack { index, p };
-                    let t_end = 1e300;
                     return Some(Start {
-                        track,
+                        track: RouteTrack::First { index, p },
                         t0: 0.0,
                         y0,
-                        t_end,
+                        t_end: 1e300,
                         opts,
                     });
                 }
@@ -569,8 +626,32 @@ pub fn classify_ode_batch(
         }
         None
     };
-    let done = |t: RouteTrack, outcome: Outcome<2>| {
-        out[t.index].set(finish(t.p, end_of(&outcome)));
+    let done = |track: RouteTrack, outcome: Outcome<2>| match track {
+        RouteTrack::First { index, p } => match found(p, end_of(&outcome)) {
+            Err(done) => out[index].set(done),
+            Ok(f) => match f.continuation() {
+                None => out[index].set(f.verdict(None)),
+                Some((ev, t0, y0)) => {
+                    let opts = f.p.so;
+                    let track = RouteTrack::Continued {
+                        index,
+                        f: Box::new(f),
+                        ev,
+                    };
+                    let start = Start {
+                        track,
+                        t0,
+                        y0,
+                        t_end: t0 + 1e300,
+                        opts,
+                    };
+                    waiting.borrow_mut().push(start);
+                }
+            },
+        },
+        RouteTrack::Continued { index, f, .. } => {
+            out[index].set(f.verdict(liftoff_of(end_of(&outcome))));
+        }
     };
     match pair {
         ode::Method::Rk45 => solve_lanes::<Dp5<2>, _, 2>(next, done, stop),

@@ -94,6 +94,14 @@ pub trait LaneRhs<const N: usize>: OdeSystem<N> {
     /// f at lane l's state by `systems[l]`, for every lane; bit for bit
     /// [`OdeSystem::rhs`] (at any t: the system is autonomous).
     fn rhs_lanes(systems: &[&Self; LANES], y: &Lanes<N>) -> Lanes<N>;
+
+    /// Called once the stages of a round are done: lane l's system may prepare what the
+    /// event scan of its step will ask at the step's end `y_new` (a memo of its
+    /// trigonometry, say). Nothing by default.
+    #[inline(always)]
+    fn step_end_lanes(systems: &[&Self; LANES], y_new: &Lanes<N>) {
+        let _ = (systems, y_new);
+    }
 }
 
 /// One trajectory of a batch: its system, its events and what it does with what the
@@ -307,57 +315,76 @@ fn lanes<P, T, const N: usize>(
             let d = weighted_sum(&k[..j], &P::a_extra(i)[..j]);
             k[j] = T::Sys::rhs_lanes(&systems, &y.plus_times(&d, &h));
         }
-        // Each lane's verdict and, for an accepted step, its dense output and events: the
-        // scalar code, from the lane's stages.
+        T::Sys::step_end_lanes(&systems, &y_new);
+        // Each lane's verdict by the scalar step control, from its error sums.
+        let err_sums = P::error_sums(&k[..n_k]);
+        let finite = finite_lanes(&k[1..=P::STAGES], &y_new);
+        let mut err = [0.0; LANES];
+        for l in 0..LANES {
+            if let Some(s) = slots[l].as_ref().filter(|_| finite[l]) {
+                let (st, sums) = (&s.run.st, err_sums.map(|e| e.lane(l)));
+                err[l] = P::error_from_sums(&sums, h[l], &st.y, &y_new.lane(l), st.rtol, st.atol);
+            }
+        }
+        // err^e of every lane at once (its square roots in vector registers).
+        let mut power = [0.0; LANES];
+        for l in 0..LANES {
+            power[l] = P::error_power(err[l]);
+        }
+        let mut accepted = [false; LANES];
         for l in 0..LANES {
             let Some(s) = slots[l].as_mut() else { continue };
-            let ended = match judge_lane(s, &k[..n_k], l, (t_new[l], h[l]), &y_new) {
-                Judgement::Retry => {
-                    s.run.out.n_rejected += 1;
-                    false
-                }
+            let step = (t_new[l], h[l]);
+            let error = (err[l], power[l]);
+            match judge_lane(s, &k[..n_k], (l, finite[l]), error, step, &y_new) {
+                Judgement::Accepted => accepted[l] = true,
+                Judgement::Retry => s.run.out.n_rejected += 1,
                 Judgement::NonFinite => {
+                    let mut s = slots[l].take().expect("a lane in use");
                     s.run.out.status = Status::NonFinite;
-                    true
+                    done(s.track, s.run.out);
                 }
-                Judgement::Accepted => {
-                    let dense = dense_of_lane(s, &k[..n_k], l);
-                    let track = &s.track;
-                    let observer = &mut |obs: Observation<'_, N>| track.observe(obs);
-                    if s.run.after_step(track.events(), dense, observer) || s.run.ends_here(stop) {
-                        true
-                    } else {
-                        s.trial = s.run.st.first_trial();
-                        false
-                    }
-                }
-            };
-            if ended {
+            }
+        }
+        if !accepted.contains(&true) {
+            continue;
+        }
+        // The accepted steps' dense output, events and observations: the scalar code.
+        let dense_sums = P::dense_sums(&k[..n_k]);
+        for l in (0..LANES).filter(|&l| accepted[l]) {
+            let s = slots[l].as_mut().expect("an accepted lane");
+            let dense = dense_of_lane(s, &k[..n_k], &dense_sums, l);
+            let track = &s.track;
+            let observer = &mut |obs: Observation<'_, N>| track.observe(obs);
+            if s.run.after_step(track.events(), dense, observer) || s.run.ends_here(stop) {
                 let s = slots[l].take().expect("a lane in use");
                 done(s.track, s.run.out);
+            } else {
+                s.trial = s.run.st.first_trial();
             }
         }
     }
 }
 
-/// Lane l's attempt judged by the scalar step control, from its stages `k` (and counted
-/// as the scalar attempt counts its evaluations, up to a non-finite one).
+/// Lane l's attempt judged by the scalar step control, from its error norm and err^e
+/// (and counted as the scalar attempt counts its evaluations, up to a non-finite one).
 #[inline(always)]
 fn judge_lane<P: RkPair<N>, T, const N: usize>(
     s: &mut Slot<P, T, N>,
     k: &[Lanes<N>],
-    l: usize,
+    (l, finite): (usize, bool),
+    error: (f64, f64),
     (t_new, h): (f64, f64),
     y_new: &Lanes<N>,
 ) -> Judgement {
     let run = &mut s.run;
-    let stages = run.st.pair.stages_mut();
-    for (j, kj) in k[..=P::STAGES].iter().enumerate() {
-        stages[j] = kj.lane(l);
-    }
     let yl = y_new.lane(l);
-    let bad =
-        (1..=P::STAGES).find(|&j| !all_finite(&stages[j]) || (j == P::STAGES && !all_finite(&yl)));
+    let bad = (!finite)
+        .then(|| {
+            (1..=P::STAGES)
+                .find(|&j| !all_finite(&k[j].lane(l)) || (j == P::STAGES && !all_finite(&yl)))
+        })
+        .flatten();
     if let Some(j) = bad {
         // The scalar attempt stops at the first non-finite stage (before f(y_new) if y_new
         // itself is not finite).
@@ -369,236 +396,44 @@ fn judge_lane<P: RkPair<N>, T, const N: usize>(
         return Judgement::NonFinite;
     }
     run.out.nfev += P::STAGES;
-    let st = &mut run.st;
-    let err = st.pair.error_norm(h, &st.y, &yl, st.rtol, st.atol);
     let fl = k[P::STAGES].lane(l);
-    st.judge(&mut s.trial, t_new, h, err, &yl, &fl)
+    run.st
+        .judge_powered(&mut s.trial, t_new, h, error, &yl, &fl)
 }
 
-/// The dense output of lane l's accepted step from its extra stages, as
-/// [`Stepper::dense`] makes it (`None` if one of them is not finite).
+/// Whether all of each lane's stages `k` and its y_new are finite (the common case, tested
+/// for all lanes at once; a lane that fails is then searched stage by stage).
+#[inline(always)]
+fn finite_lanes<const N: usize>(k: &[Lanes<N>], y_new: &Lanes<N>) -> [bool; LANES] {
+    let mut finite = [true; LANES];
+    for v in k.iter().chain(std::iter::once(y_new)) {
+        for row in &v.0 {
+            for l in 0..LANES {
+                finite[l] &= row[l].is_finite();
+            }
+        }
+    }
+    finite
+}
+
+/// The dense output of lane l's accepted step, as [`Stepper::dense`] makes it, from the
+/// lanes' dense sums (`None` if an extra stage or the output is not finite).
 #[inline(always)]
 fn dense_of_lane<P: RkPair<N>, T, const N: usize>(
     s: &mut Slot<P, T, N>,
     k: &[Lanes<N>],
+    sums: &[Lanes<N>; 4],
     l: usize,
 ) -> Option<DenseStep<N>> {
     let run = &mut s.run;
-    let stages = run.st.pair.stages_mut();
-    for j in P::STAGES + 1..P::STAGES + 1 + P::EXTRA {
-        stages[j] = k[j].lane(l);
+    for kj in &k[P::STAGES + 1..P::STAGES + 1 + P::EXTRA] {
         run.out.nfev += 1;
-        if !all_finite(&stages[j]) {
+        if !all_finite(&kj.lane(l)) {
             return None;
         }
     }
     let st = &run.st;
-    st.pair
-        .dense_from_stages(st.t_old, st.t - st.t_old, &st.y_old, &st.y)
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-    use crate::ode::events::{Direction, EventSpec};
-    use crate::ode::pair::{Dop853, Dp5};
-    use crate::ode::{solve_until, Method};
-    use crate::trig::lanes::sin_cos_lanes;
-    use std::cell::RefCell;
-
-    /// A damped pendulum θ'' = −g sin θ − c θ' (autonomous), per lane (g, c).
-    struct Pendulum {
-        g: f64,
-        c: f64,
-    }
-
-    impl OdeSystem<2> for Pendulum {
-        fn rhs(&self, _t: f64, y: &State<2>) -> State<2> {
-            let (s, _) = crate::trig::sin_cos(y[0]);
-            State::<2>::new(y[1], -self.g * s - self.c * y[1])
-        }
-    }
-
-    impl LaneRhs<2> for Pendulum {
-        fn rhs_lanes(systems: &[&Self; LANES], y: &Lanes<2>) -> Lanes<2> {
-            let (s, _) = sin_cos_lanes(&y.0[0]);
-            let mut acc = [0.0; LANES];
-            for l in 0..LANES {
-                acc[l] = -systems[l].g * s[l] - systems[l].c * y.0[1][l];
-            }
-            Lanes([y.0[1], acc])
-        }
-    }
-
-    /// Events: θ' falling through 0 (terminal), θ rising through 1 (not terminal); the
-    /// observations in a log.
-    struct Swings {
-        sys: Pendulum,
-        log: RefCell<Vec<(u8, u64, u64, u64)>>,
-    }
-
-    impl EventFunctions<2> for Swings {
-        fn count(&self) -> usize {
-            2
-        }
-        fn spec(&self, k: usize) -> EventSpec {
-            EventSpec {
-                direction: if k == 0 {
-                    Direction::Falling
-                } else {
-                    Direction::Rising
-                },
-                terminal: k == 0,
-            }
-        }
-        fn value(&self, k: usize, _t: f64, y: &State<2>) -> f64 {
-            if k == 0 {
-                y[1]
-            } else {
-                y[0] - 1.0
-            }
-        }
-    }
-
-    impl Track<2> for Swings {
-        type Sys = Pendulum;
-        type Events = Self;
-        fn sys(&self) -> &Pendulum {
-            &self.sys
-        }
-        fn events(&self) -> &Self {
-            self
-        }
-        fn observe(&self, obs: Observation<'_, 2>) {
-            let entry = match obs {
-                Observation::Step { t, y, .. } => (0, t.to_bits(), y[0].to_bits(), y[1].to_bits()),
-                Observation::Event { index, t, y } => {
-                    (1 + index as u8, t.to_bits(), y[0].to_bits(), y[1].to_bits())
-                }
-            };
-            self.log.borrow_mut().push(entry);
-        }
-    }
-
-    fn outcome_bits(o: &Outcome<2>) -> (Status, u64, u64, u64, usize, usize, usize) {
-        let y = (o.y[0].to_bits(), o.y[1].to_bits());
-        (
-            o.status,
-            o.t.to_bits(),
-            y.0,
-            y.1,
-            o.nfev,
-            o.n_accepted,
-            o.n_rejected,
-        )
-    }
-
-    /// Every trajectory of a batch (some ending at their event, some at t_end, some at the
-    /// step limit, some not starting at all) as `solve_until` integrates it alone, for both
-    /// pairs, by the plain and (where the CPU has it) the AVX2 build of the rounds.
-    #[test]
-    fn a_batch_is_each_trajectory_bit_for_bit() {
-        let starts = |i: usize| {
-            let x = i as f64;
-            let sys = Pendulum {
-                g: 1.0 + (x * 0.37).fract() * 9.0,
-                c: (x * 0.61).fract() * 0.3,
-            };
-            let y0 = State::<2>::new(0.2 + (x * 0.13).fract() * 2.5, (x * 0.71).fract() - 0.5);
-            let y0 = if i % 41 == 40 {
-                State::<2>::new(f64::NAN, 0.0)
-            } else {
-                y0
-            };
-            let opts = SolverOptions {
-                rtol: [1e-6, 1e-9, 1e-11][i % 3],
-                atol: 1e-12,
-                max_steps: if i % 17 == 5 { 7 } else { 100_000 },
-                ..SolverOptions::default()
-            };
-            let t_end = if i % 13 == 2 { 0.3 } else { 50.0 };
-            (sys, y0, t_end, opts)
-        };
-        let n = 150;
-        for method in Method::ALL {
-            let alone: Vec<_> = (0..n)
-                .map(|i| {
-                    let (sys, y0, t_end, opts) = starts(i);
-                    let opts = SolverOptions { method, ..opts };
-                    let ev = Swings {
-                        sys,
-                        log: RefCell::new(Vec::new()),
-                    };
-                    let mut obs = |o: Observation<'_, 2>| ev.observe(o);
-                    let out = solve_until(&ev.sys, &ev, 0.0, y0, t_end, &opts, &mut obs, &|| false);
-                    (outcome_bits(&out), ev.log.into_inner())
-                })
-                .collect();
-            for avx2 in [false, true] {
-                let mut i = 0;
-                let got = RefCell::new(vec![None; n]);
-                let next = || {
-                    (i < n).then(|| {
-                        let (sys, y0, t_end, opts) = starts(i);
-                        i += 1;
-                        let track = Swings {
-                            sys,
-                            log: RefCell::new(Vec::new()),
-                        };
-                        Start {
-                            track: (i - 1, track),
-                            t0: 0.0,
-                            y0,
-                            t_end,
-                            opts: SolverOptions { method, ..opts },
-                        }
-                    })
-                };
-                let done = |(j, t): (usize, Swings), out: Outcome<2>| {
-                    got.borrow_mut()[j] = Some((outcome_bits(&out), t.log.into_inner()));
-                };
-                run_batch(method, avx2, next, done);
-                for (j, g) in got.into_inner().into_iter().enumerate() {
-                    assert_eq!(
-                        g.as_ref(),
-                        Some(&alone[j]),
-                        "{method:?} avx2 {avx2} trajectory {j}"
-                    );
-                }
-            }
-            // The batch met every kind of end.
-            let ends: std::collections::BTreeSet<_> =
-                alone.iter().map(|a| format!("{:?}", a.0 .0)).collect();
-            assert!(ends.len() >= 4, "{ends:?}");
-        }
-    }
-
-    impl Track<2> for (usize, Swings) {
-        type Sys = Pendulum;
-        type Events = Swings;
-        fn sys(&self) -> &Pendulum {
-            &self.1.sys
-        }
-        fn events(&self) -> &Swings {
-            &self.1
-        }
-        fn observe(&self, obs: Observation<'_, 2>) {
-            self.1.observe(obs)
-        }
-    }
-
-    fn run_batch(
-        method: Method,
-        avx2: bool,
-        next: impl FnMut() -> Option<Start<(usize, Swings), 2>>,
-        done: impl FnMut((usize, Swings), Outcome<2>),
-    ) {
-        let never = || false;
-        match (method, avx2) {
-            (Method::Rk45, false) => lanes::<Dp5<2>, _, 2>(next, done, &never),
-            (Method::Dop853, false) => lanes::<Dop853<2>, _, 2>(next, done, &never),
-            (Method::Rk45, true) => solve_lanes::<Dp5<2>, _, 2>(next, done, &never),
-            (Method::Dop853, true) => solve_lanes::<Dop853<2>, _, 2>(next, done, &never),
-        }
-    }
+    let ends = (&k[0].lane(l), &k[P::STAGES].lane(l));
+    let (t_old, h) = (st.t_old, st.t - st.t_old);
+    P::dense_from_sums(&sums.map(|q| q.lane(l)), ends, t_old, h, &st.y_old, &st.y)
 }

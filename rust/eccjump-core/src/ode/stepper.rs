@@ -270,6 +270,22 @@ impl<P: RkPair<N>, const N: usize> Stepper<P, N> {
         y_new: &State<N>,
         f_new: &State<N>,
     ) -> Judgement {
+        let power = P::error_power(err);
+        self.judge_powered(trial, t_new, h, (err, power), y_new, f_new)
+    }
+
+    /// [`Self::judge`] with err^e (`P::error_power(err)`) already computed, as the
+    /// integrator of many trajectories does for all its lanes at once.
+    #[inline]
+    pub fn judge_powered(
+        &mut self,
+        trial: &mut Trial,
+        t_new: f64,
+        h: f64,
+        (err, power): (f64, f64),
+        y_new: &State<N>,
+        f_new: &State<N>,
+    ) -> Judgement {
         let h_abs = h.abs();
         if err.is_nan() {
             return Judgement::NonFinite;
@@ -278,7 +294,7 @@ impl<P: RkPair<N>, const N: usize> Stepper<P, N> {
             let mut factor = if err == 0.0 {
                 MAX_FACTOR
             } else {
-                MAX_FACTOR.min(SAFETY * P::error_power(err))
+                MAX_FACTOR.min(SAFETY * power)
             };
             if trial.rejected {
                 factor = factor.min(1.0);
@@ -291,7 +307,7 @@ impl<P: RkPair<N>, const N: usize> Stepper<P, N> {
             self.h_abs = h_abs * factor;
             return Judgement::Accepted;
         }
-        trial.h_abs = h_abs * MIN_FACTOR.max(SAFETY * P::error_power(err));
+        trial.h_abs = h_abs * MIN_FACTOR.max(SAFETY * power);
         trial.rejected = true;
         Judgement::Retry
     }

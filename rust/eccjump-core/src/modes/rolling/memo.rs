@@ -57,8 +57,7 @@ impl OdeSystem<2> for RollingMemo {
 
 impl LaneRhs<2> for RollingMemo {
     /// [`OdeSystem::rhs`] of each lane's system, bit for bit (the same `sin_cos` by
-    /// [`sin_cos_lanes`], the same θ̈ by [`Ramp::omega_dot_sc`]); each memo remembers its
-    /// lane's angle, as the scalar evaluation would.
+    /// [`sin_cos_lanes`], the same θ̈ by [`Ramp::omega_dot_sc`]).
     #[inline(always)]
     fn rhs_lanes(systems: &[&Self; LANES], y: &Lanes<2>) -> Lanes<2> {
         let [theta, omega] = &y.0;
@@ -67,9 +66,18 @@ impl LaneRhs<2> for RollingMemo {
         for l in 0..LANES {
             acc[l] = systems[l].ramp.omega_dot_sc(s[l], c[l], omega[l]);
         }
+        Lanes([*omega, acc])
+    }
+
+    /// Each memo gets the trigonometry of its lane's step end, where the event scan
+    /// starts (after the extra stages of DOP853's dense output, which the scalar route
+    /// leaves in the memo instead).
+    #[inline(always)]
+    fn step_end_lanes(systems: &[&Self; LANES], y_new: &Lanes<2>) {
+        let theta = &y_new.0[0];
+        let (s, c) = sin_cos_lanes(theta);
         for l in 0..LANES {
             systems[l].trig.set(theta[l], s[l], c[l]);
         }
-        Lanes([*omega, acc])
     }
 }

@@ -1,7 +1,7 @@
 //! Dormand–Prince 8(5,3) (scipy's `DOP853`): 12 stages, the combined 5th/3rd-order error
 //! norm of Hairer's code, and the 7th-degree dense output from three extra stages.
 
-use super::{all_finite, solution, stage, weighted_sum, RkPair};
+use super::{all_finite, solution, stage, weighted_sum, RkPair, Summand};
 use crate::ode::dense::MAX_DEGREE;
 use crate::ode::tableau::dop853::{
     A, A_EXTRA, B, C, C_EXTRA, D, E3, E5, ERROR_EXPONENT, N_STAGES, N_STAGES_EXTENDED,
@@ -60,14 +60,27 @@ impl<const N: usize> RkPair<N> for Dop853<N> {
         solution(sys, at, k, &B, nfev)
     }
 
+    /// The 5th- and 3rd-order error estimates Σ E5_j K_j and Σ E3_j K_j.
+    #[inline(always)]
+    fn error_sums<V: Summand>(k: &[V]) -> [V; 2] {
+        let k = &k[..=N_STAGES];
+        [weighted_sum(k, &E5), weighted_sum(k, &E3)]
+    }
+
     /// scipy's `DOP853._estimate_error_norm`: the 5th-order estimate, damped by the
     /// 3rd-order one, |h| ‖e5‖² / √((‖e5‖² + 0.01 ‖e3‖²) N) (Hairer's `err`).
     #[inline]
-    fn error_norm(&self, h: f64, y: &State<N>, y_new: &State<N>, rtol: f64, atol: f64) -> f64 {
-        let k = &self.k[..=N_STAGES];
+    fn error_from_sums(
+        [e5, e3]: &[State<N>; 2],
+        h: f64,
+        y: &State<N>,
+        y_new: &State<N>,
+        rtol: f64,
+        atol: f64,
+    ) -> f64 {
         let scale = State::<N>::from_fn(|i, _| atol + y[i].abs().max(y_new[i].abs()) * rtol);
-        let err5 = weighted_sum(k, &E5).component_div(&scale);
-        let err3 = weighted_sum(k, &E3).component_div(&scale);
+        let err5 = e5.component_div(&scale);
+        let err3 = e3.component_div(&scale);
         let e5 = err5.dot(&err5);
         let e3 = err3.dot(&err3);
         if e5 == 0.0 && e3 == 0.0 {
@@ -125,30 +138,39 @@ impl<const N: usize> RkPair<N> for Dop853<N> {
     }
 
     #[inline(always)]
-    fn stages_mut(&mut self) -> &mut [State<N>] {
-        &mut self.k
+    fn stages(&self) -> &[State<N>] {
+        &self.k
+    }
+
+    /// The sums Σ D_ij K_j of the dense output's F3 … F6 (before the factor h).
+    #[inline(always)]
+    fn dense_sums<V: Summand>(k: &[V]) -> [V; 4] {
+        [
+            weighted_sum(k, &D[0]),
+            weighted_sum(k, &D[1]),
+            weighted_sum(k, &D[2]),
+            weighted_sum(k, &D[3]),
+        ]
     }
 
     /// y(σ) = y_old + σ(F0 + (1−σ)(F1 + σ(F2 + (1−σ)(F3 + σ(F4 + (1−σ)(F5 + σF6)))))),
     /// expanded into powers of σ (the form every dense step shares).
-    fn dense_from_stages(
-        &self,
+    fn dense_from_sums(
+        sums: &[State<N>; 4],
+        (f_old, f_new): (&State<N>, &State<N>),
         t_old: f64,
         h: f64,
         y_old: &State<N>,
         y_new: &State<N>,
     ) -> Option<DenseStep<N>> {
-        let k = &self.k;
-        let f_old = k[0];
         let delta = y_new - y_old;
         let mut f = [State::<N>::zeros(); MAX_DEGREE];
         f[0] = delta;
         f[1] = f_old * h - delta;
-        f[2] = delta * 2.0 - (k[N_STAGES] + f_old) * h;
-        f[3] = weighted_sum(k, &D[0]) * h;
-        f[4] = weighted_sum(k, &D[1]) * h;
-        f[5] = weighted_sum(k, &D[2]) * h;
-        f[6] = weighted_sum(k, &D[3]) * h;
+        f[2] = delta * 2.0 - (f_new + f_old) * h;
+        for (fi, si) in f[3..].iter_mut().zip(sums) {
+            *fi = si * h;
+        }
         let q: [State<N>; MAX_DEGREE] = powers(&f).map(|pj| pj / h);
         let dense = DenseStep::from_powers(t_old, h, *y_old, &q);
         dense.q.iter().all(all_finite).then_some(dense)

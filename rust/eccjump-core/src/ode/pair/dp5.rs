@@ -1,7 +1,7 @@
 //! Dormand–Prince 5(4) (scipy's `RK45`): `rk_step`, the error norm and `RkDenseOutput`,
 //! operation by operation as scipy, so that accepted steps agree with scipy's to rounding.
 
-use super::{rms_norm, solution, stage, weighted_sum, RkPair};
+use super::{rms_norm, solution, stage, weighted_sum, RkPair, Summand};
 use crate::ode::tableau::dp5::{A, B, C, E, ERROR_EXPONENT, N_STAGES, P};
 use crate::ode::{DenseStep, OdeSystem, State};
 
@@ -54,9 +54,22 @@ impl<const N: usize> RkPair<N> for Dp5<N> {
         solution(sys, at, k, &B, nfev)
     }
 
+    /// The error estimate Σ E_j K_j (the second sum is not used).
+    #[inline(always)]
+    fn error_sums<V: Summand>(k: &[V]) -> [V; 2] {
+        [weighted_sum(&k[..=N_STAGES], &E), V::zero()]
+    }
+
     #[inline]
-    fn error_norm(&self, h: f64, y: &State<N>, y_new: &State<N>, rtol: f64, atol: f64) -> f64 {
-        let err = weighted_sum(&self.k, &E) * h;
+    fn error_from_sums(
+        [sum, _]: &[State<N>; 2],
+        h: f64,
+        y: &State<N>,
+        y_new: &State<N>,
+        rtol: f64,
+        atol: f64,
+    ) -> f64 {
+        let err = sum * h;
         let scaled =
             State::<N>::from_fn(|i, _| err[i] / (atol + y[i].abs().max(y_new[i].abs()) * rtol));
         rms_norm(&scaled)
@@ -99,25 +112,32 @@ impl<const N: usize> RkPair<N> for Dp5<N> {
     }
 
     #[inline(always)]
-    fn stages_mut(&mut self) -> &mut [State<N>] {
-        &mut self.k
+    fn stages(&self) -> &[State<N>] {
+        &self.k
+    }
+
+    /// scipy's `RkDenseOutput`: Q = Kᵀ P, summed stage after stage.
+    #[inline(always)]
+    fn dense_sums<V: Summand>(k: &[V]) -> [V; 4] {
+        std::array::from_fn(|j| {
+            let mut q = V::zero();
+            for (ki, pi) in k[..=N_STAGES].iter().zip(P.iter()) {
+                q = q + *ki * pi[j];
+            }
+            q
+        })
     }
 
     #[inline]
-    fn dense_from_stages(
-        &self,
+    fn dense_from_sums(
+        q: &[State<N>; 4],
+        _ends: (&State<N>, &State<N>),
         t_old: f64,
         h: f64,
         y_old: &State<N>,
         _y_new: &State<N>,
     ) -> Option<DenseStep<N>> {
-        let mut q = [State::<N>::zeros(); 4];
-        for (j, qj) in q.iter_mut().enumerate() {
-            for (ki, pi) in self.k.iter().zip(P.iter()) {
-                *qj += ki * pi[j];
-            }
-        }
-        Some(DenseStep::from_powers(t_old, h, *y_old, &q))
+        Some(DenseStep::from_powers(t_old, h, *y_old, q))
     }
 }
 

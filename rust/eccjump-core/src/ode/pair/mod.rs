@@ -68,7 +68,25 @@ pub trait RkPair<const N: usize>: Copy {
 
     /// The scaled error norm of the last attempt (scipy's `_estimate_error_norm`, with
     /// the scale atol + rtol max(|y|, |y_new|) per component).
-    fn error_norm(&self, h: f64, y: &State<N>, y_new: &State<N>, rtol: f64, atol: f64) -> f64;
+    #[inline]
+    fn error_norm(&self, h: f64, y: &State<N>, y_new: &State<N>, rtol: f64, atol: f64) -> f64 {
+        let sums = Self::error_sums(self.stages());
+        Self::error_from_sums(&sums, h, y, y_new, rtol, atol)
+    }
+
+    /// The weighted sums of the stages K_0 … K_STAGES that the error norm is made of (for
+    /// one state, or for lanes).
+    fn error_sums<V: Summand>(k: &[V]) -> [V; 2];
+
+    /// The error norm from [`Self::error_sums`].
+    fn error_from_sums(
+        sums: &[State<N>; 2],
+        h: f64,
+        y: &State<N>,
+        y_new: &State<N>,
+        rtol: f64,
+        atol: f64,
+    ) -> f64;
 
     /// f(t + h, y_new) of the last attempt.
     fn f_new(&self) -> State<N>;
@@ -100,11 +118,31 @@ pub trait RkPair<const N: usize>: Copy {
     /// Row i of A for extra stage i (its first STAGES + 1 + i entries are used).
     fn a_extra(i: usize) -> &'static [f64];
     /// The stages: STAGES, the FSAL one, then the extra ones.
-    fn stages_mut(&mut self) -> &mut [State<N>];
+    fn stages(&self) -> &[State<N>];
     /// The dense output from the stages held, the extra ones included (what [`Self::dense`]
     /// does after evaluating them).
+    #[inline]
     fn dense_from_stages(
         &self,
+        t_old: f64,
+        h: f64,
+        y_old: &State<N>,
+        y_new: &State<N>,
+    ) -> Option<DenseStep<N>> {
+        let k = self.stages();
+        let ends = (&k[0], &k[Self::STAGES]);
+        Self::dense_from_sums(&Self::dense_sums(k), ends, t_old, h, y_old, y_new)
+    }
+
+    /// The weighted sums of all stages (extra ones included) that the dense output is made
+    /// of (for one state, or for lanes).
+    fn dense_sums<V: Summand>(k: &[V]) -> [V; 4];
+
+    /// The dense output from [`Self::dense_sums`] and the derivatives (f_old, f_new) at
+    /// the step's ends; `None` if not finite.
+    fn dense_from_sums(
+        sums: &[State<N>; 4],
+        ends: (&State<N>, &State<N>),
         t_old: f64,
         h: f64,
         y_old: &State<N>,
