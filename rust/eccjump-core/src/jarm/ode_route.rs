@@ -1143,6 +1143,12 @@ mod tests {
                 (alpha, chi, km, 0.2 + 1.5 * u(), o)
             })
             .collect();
+        // Then slips under the paper's rule without stop_at_slip to the very end: their
+        // continuations to the lift-off are integrated after the last point has started.
+        let paper = JarmOptions::default();
+        let points: Vec<_> = (points.into_iter())
+            .chain((0..80).map(|_| (0.3 + 0.9 * u(), 0.5, 0.1, 0.05 + 0.2 * u(), paper)))
+            .collect();
         let bits = |r: &JarmResult| r.as_f64s().map(f64::to_bits);
         for pair in ode::Method::ALL {
             let mut out = vec![JarmResult::new(Reason::NoRoot); points.len()];
@@ -1153,8 +1159,11 @@ mod tests {
                 assert_eq!(bits(x), bits(&want), "{pair:?} {a} {c} {k} {m} {o:?}");
                 reasons.insert(x.reason as u8);
             }
-            // The batch met many kinds of ends.
+            // The batch met many kinds of ends, and the last points slipped.
             assert!(reasons.len() >= 6, "{reasons:?}");
+            let slipped =
+                |r: &JarmResult| matches!(r.reason, Reason::SlipBefore | Reason::SlipAtJump);
+            assert!(out[out.len() - 10..].iter().all(slipped));
         }
     }
 
