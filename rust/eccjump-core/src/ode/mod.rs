@@ -6,7 +6,8 @@
 //! stages, error norm and dense-output construction ([`pair`]), the step-size control that
 //! every pair shares ([`stepper`]), the dense-output polynomial ([`dense`]), event
 //! detection and root location ([`events`]), and the driver loop that ties them together
-//! with step limits and statuses ([`solver`]).
+//! with step limits and statuses ([`solver`]). [`lanes`] runs that same loop for many
+//! independent trajectories side by side.
 //!
 //! The driver never allocates: accepted steps and events are reported to an observer
 //! callback, so a caller that needs only the end state pays nothing for a trajectory.
