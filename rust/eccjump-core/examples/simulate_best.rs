@@ -1,5 +1,6 @@
 //! Profiling aid: the best time per `simulate` run of one slip-then-jump case, 5 transitions
-//! (`cargo run --release --example simulate_best [rk45|dop853] [flight]`; with `perf record` for a profile).
+//! (`cargo run --release --example simulate_best [rk45|dop853] [flight]`; with `perf record`
+//! for a profile). `flight`: a bouncing case instead (flights and impacts only).
 use eccjump_core::mechanics::Rule;
 use eccjump_core::modes::contact::ContactLaw;
 use eccjump_core::motion::{simulate, SimOptions};
@@ -11,8 +12,7 @@ fn main() {
         Some("dop853") => Method::Dop853,
         _ => Method::Rk45,
     };
-    // `flight` as the second argument: the bouncing case of benches/scipy_motion_cases.py
-    // (flies at once, e = 0.5: flights and impacts only).
+    // The bouncing case of benches/scipy_motion_cases.py (flies at once, e = 0.5).
     let flight = std::env::args().nth(2).as_deref() == Some("flight");
     let (km, alpha, omega0, e) = if flight {
         (0.2, 20.0, 2.0, 0.5)

@@ -153,8 +153,8 @@ const MIN_BUSY: usize = 4;
 /// bit for bit), and hands each to `done` with its outcome as soon as it ends. `next` is
 /// asked whenever a lane is free, so a `None` need not be its last word: `done` may give it
 /// more (the continuation of a trajectory); the work ends when no lane is busy and `next`
-/// has nothing. `stop` is asked as `solve_until` asks it, per trajectory. Uses AVX2 where the CPU has it (the
-/// same operations, so the same bits; no fused multiply-add).
+/// has nothing. `stop` is asked as `solve_until` asks it, per trajectory. Uses AVX2 where
+/// the CPU has it (the same operations, so the same bits; no fused multiply-add).
 pub fn solve_lanes<P, T, const N: usize>(
     next: impl FnMut() -> Option<Start<T, N>>,
     done: impl FnMut(T, Outcome<N>),
