@@ -234,6 +234,29 @@ def test_region_grid_matches_pointwise_jarm():
     assert g.km.shape == (3, 2)
 
 
+@settings(max_examples=12, deadline=None)
+@given(
+    st.floats(0.01, math.pi / 2),
+    st.sampled_from([0.3, 1.0]),
+    st.sampled_from(["RK45", "DOP853"]),
+    st.sampled_from(["paper", "normal_force"]),
+    st.booleans(),
+)
+def test_ode_route_on_arrays_is_each_point_alone(alpha, mu_s, integrator, rule, stop):
+    """On arrays the ODE route integrates 8 points side by side (vector instructions): every
+    field of every point is, to the bit, what the point alone gives."""
+    c = np.linspace(0.02, 0.98, 6)[:, None]
+    km = np.linspace(0.0, 0.95, 6)[None, :] * (1 - c)
+    kw = {"method": "ode", "integrator": integrator, "rule": rule, "stop_at_slip": stop}
+    grid = jarm(alpha, c, km, mu_s, **kw)
+    for i in range(6):
+        for j in range(6):
+            one = jarm(alpha, float(c[i, 0]), float(km[i, j]), mu_s, **kw)
+            for name in eccjump.classification.FIELDS:
+                a, b = np.asarray(getattr(grid, name))[i, j], np.asarray(getattr(one, name))
+                assert a.tobytes() == b.tobytes(), (name, i, j)
+
+
 def test_boundaries_bracket_the_region_exactly():
     (intervals,) = eccjump.alpha_intervals(0.15, 0.02, 1.0, n=1)
     assert intervals
