@@ -87,7 +87,7 @@ where
 }
 
 /// [`par_fill_until`] by pieces: `piece(start, out[start..start + len], cancelled)` fills
-/// pieces of at most [`MAX_PIECE`] points at once (the ODE route integrates a piece's points
+/// pieces of at most 256 points at once (the ODE route integrates a piece's points
 /// side by side), asking `cancelled()` (the caller's stop, seen by the workers) as often as
 /// it likes; a piece not started when the caller stops is skipped.
 pub fn par_fill_pieces_until<T, F>(
@@ -102,7 +102,7 @@ where
 {
     run_until(n_threads, stop, |cancel| {
         let cancelled = || cancel.load(Ordering::Relaxed);
-        // One piece per job (see MAX_PIECE: rayon would otherwise split only a few times).
+        // One piece per job (rayon would otherwise split only a few times: see MAX_PIECE).
         out.par_chunks_mut(PIECE)
             .enumerate()
             .with_max_len(1)

@@ -4,13 +4,15 @@
 //! One trajectory's step is a chain of dependent operations (stage after stage, each with a
 //! `sin_cos`), so one trajectory keeps only a sliver of a core busy. Here the stages of
 //! [`LANES`] trajectories are computed together, component by component across the lanes
-//! ([`Lanes`]), which the compiler turns into vector instructions, and the right-hand sides
-//! of all lanes are evaluated at once ([`LaneRhs`], with [`crate::trig::lanes`]).
-//! Everything that decides, per trajectory, stays the scalar code of [`crate::ode`], so
-//! it exists once: the step-size control ([`Stepper::first_trial`], [`Stepper::trial`],
-//! [`Stepper::judge`]), each pair's error norm and dense output (from the lane's stages,
-//! [`RkPair::dense_from_stages`]) and the event scan ([`scan_step`]). A lane whose
-//! trajectory ends takes the next one at once.
+//! ([`Lanes`]), which the compiler turns into vector instructions: the right-hand sides of
+//! all lanes at once ([`LaneRhs`], with [`crate::trig::lanes`]), and each pair's weighted
+//! sums of the stages for its error norm and dense output ([`RkPair::error_sums`],
+//! [`RkPair::dense_sums`], generic over a state or lanes: one formula). Everything that
+//! decides, per trajectory, stays the scalar code of [`crate::ode`], so it exists once: the
+//! step-size control (`Stepper::first_trial`, `trial`, `judge_powered`), the error norm
+//! and dense output from the sums ([`RkPair::error_from_sums`],
+//! [`RkPair::dense_from_sums`]), the event scan and the observations (`solver::Run`). A
+//! lane whose trajectory ends takes the next one at once; the last few finish alone.
 //!
 //! The right-hand side of a lane batch is autonomous (t does not enter it): the systems
 //! integrated this way (rolling) are.
