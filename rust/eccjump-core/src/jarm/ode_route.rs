@@ -583,9 +583,10 @@ impl Track<2> for RouteTrack {
 
 /// [`classify_ode`] of many points, `point(i)` = (α, χ, k_m, μ_s, options) for each
 /// `out[i]`, integrated side by side ([`ode::lanes`]): every result is bit for bit that of
-/// `classify_ode` at its point. `stop` is asked as the integrator asks it (every few
-/// thousand steps of a point); a `true` ends the points under way as integrator failures
-/// and leaves the others, which the caller then discards.
+/// `classify_ode` at its point. `stop` is asked before each point starts and as the
+/// integrator asks it (every few thousand steps of a point); a `true` ends the points under
+/// way as integrator failures and leaves the others as they were: the caller discards
+/// them.
 pub fn classify_ode_batch(
     point: impl Fn(usize) -> (f64, f64, f64, f64, JarmOptions),
     tol: (f64, f64),
@@ -598,6 +599,11 @@ pub fn classify_ode_batch(
     let waiting = std::cell::RefCell::new(Vec::new());
     let mut i = 0;
     let next = || {
+        // Once stopped, no point or continuation starts (the caller discards the results),
+        // so a Ctrl-C waits only for the trajectories under way.
+        if stop() {
+            return None;
+        }
         if let Some(start) = waiting.borrow_mut().pop() {
             return Some(start);
         }
