@@ -26,5 +26,8 @@ pub mod motion;
 pub mod ode;
 pub mod trig;
 
+#[cfg(test)]
+mod testing;
+
 pub use error::{Error, Result};
 pub use mechanics::{Cylinder, Ramp, Rule};

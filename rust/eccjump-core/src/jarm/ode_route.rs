@@ -1122,13 +1122,8 @@ mod tests {
         // Random points (a few invalid, some at rest in equilibrium, some already past a
         // contact condition at the start), both pairs, both rules, explicit turns, moving
         // starts, with and without the continuation after a slip.
-        let mut seed = 11u64;
-        let mut u = || {
-            seed = seed
-                .wrapping_mul(6364136223846793005)
-                .wrapping_add(1442695040888963407);
-            (seed >> 11) as f64 / (1u64 << 53) as f64
-        };
+        let mut rng = crate::testing::Lcg(11);
+        let mut u = || rng.next();
         let points: Vec<(f64, f64, f64, f64, JarmOptions)> = (0..600)
             .map(|i| {
                 let chi = 1e-3 + 0.999 * u();

@@ -369,20 +369,8 @@ pub fn impact(
 mod tests {
     use super::*;
     use crate::mechanics::Ramp;
+    use crate::testing::Lcg;
     use std::f64::consts::TAU;
-
-    /// A small deterministic generator (Knuth's MMIX LCG), uniform in [0, 1).
-    struct Lcg(u64);
-
-    impl Lcg {
-        fn next(&mut self) -> f64 {
-            self.0 = self
-                .0
-                .wrapping_mul(6364136223846793005)
-                .wrapping_add(1442695040888963407);
-            (self.0 >> 11) as f64 / (1u64 << 53) as f64
-        }
-    }
 
     /// A random impact: body, angle, velocities (θ̇, l̇, ḃ) with ḃ < 0.
     struct Case {

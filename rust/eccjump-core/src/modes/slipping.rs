@@ -265,13 +265,8 @@ mod tests {
     /// Random slips (both friction directions, some with l_max) integrated to their first
     /// event, `steps` observing every accepted step.
     fn random_slips(mut each: impl FnMut(&Slipping, &SlipEvents, State<5>)) {
-        let mut lcg = 7u64;
-        let mut next = || {
-            lcg = lcg
-                .wrapping_mul(6364136223846793005)
-                .wrapping_add(1442695040888963407);
-            (lcg >> 11) as f64 / (1u64 << 53) as f64
-        };
+        let mut rng = crate::testing::Lcg(7);
+        let mut next = || rng.next();
         let mut made = 0;
         while made < 200 {
             let chi = 0.05 + 0.9 * next();

@@ -130,13 +130,8 @@ mod tests {
 
     #[test]
     fn every_lane_is_libm_sincos_bit_for_bit() {
-        let mut seed = 5u64;
-        let mut u = || {
-            seed = seed
-                .wrapping_mul(6364136223846793005)
-                .wrapping_add(1442695040888963407);
-            (seed >> 11) as f64 / (1u64 << 53) as f64
-        };
+        let mut rng = crate::testing::Lcg(5);
+        let mut u = || rng.next();
         // Uniform over many scales, both signs.
         for round in 0..250_000 {
             let scale = [1e-9, 0.8, 3.0, 8.0, 50.0, 1e3, 1e5, 1.7e6][round % 8];

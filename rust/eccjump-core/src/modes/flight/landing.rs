@@ -309,13 +309,8 @@ mod tests {
 
     #[test]
     fn clear_cubic_is_just_below_the_positive_root() {
-        let mut lcg = 99u64;
-        let mut next = || {
-            lcg = lcg
-                .wrapping_mul(6364136223846793005)
-                .wrapping_add(1442695040888963407);
-            (lcg >> 11) as f64 / (1u64 << 53) as f64
-        };
+        let mut rng = crate::testing::Lcg(99);
+        let mut next = || rng.next();
         let mut scale = || 10f64.powf(12.0 * next() - 6.0);
         for i in 0..20_000 {
             let (g, m3) = (scale(), scale());
@@ -350,13 +345,8 @@ mod tests {
 
     #[test]
     fn a_thrown_body_lands_where_brute_force_says() {
-        let mut lcg = 12345u64;
-        let mut next = || {
-            lcg = lcg
-                .wrapping_mul(6364136223846793005)
-                .wrapping_add(1442695040888963407);
-            (lcg >> 11) as f64 / (1u64 << 53) as f64
-        };
+        let mut rng = crate::testing::Lcg(12345);
+        let mut next = || rng.next();
         let mut landed = 0;
         for _ in 0..300 {
             let r = ramp(0.05 + 0.9 * next(), 0.02 + 0.03 * next(), 1.4 * next());
