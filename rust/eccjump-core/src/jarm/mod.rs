@@ -120,6 +120,47 @@ mod tests {
     use std::f64::consts::{PI, TAU};
 
     #[test]
+    fn many_points_are_each_point_by_itself() {
+        // Both routes, starts below 0 (shifted into the first turn and back) and above.
+        let point = |i: usize| {
+            let x = i as f64;
+            let o = JarmOptions {
+                theta0: [0.0, -2.5, 7.0, -13.0][i % 4],
+                omega0: [0.0, 0.4][i % 2],
+                ..JarmOptions::default()
+            };
+            let chi = 0.05 + (x * 0.37).fract() * 0.9;
+            (
+                0.2 + (x * 0.61).fract() * 1.2,
+                chi,
+                (x * 0.13).fract() * (1.0 - chi),
+                0.8,
+                o,
+            )
+        };
+        let methods = [
+            Method::ClosedForm,
+            Method::Ode {
+                rtol: 1e-10,
+                atol: 1e-12,
+                pair: crate::ode::Method::Dop853,
+            },
+        ];
+        for method in methods {
+            let mut out = vec![JarmResult::new(Reason::NoRoot); 40];
+            classify_many(method, point, &mut out, &|| false);
+            for (i, r) in out.iter().enumerate() {
+                let (a, c, k, m, o) = point(i);
+                let one = classify_with(method, a, c, k, m, &o);
+                assert_eq!(
+                    r.as_f64s().map(f64::to_bits),
+                    one.as_f64s().map(f64::to_bits)
+                );
+            }
+        }
+    }
+
+    #[test]
     fn the_classification_is_periodic_in_theta0() {
         // From θ0 = −π and +π (the same orientation) every verdict is the same and the angles
         // differ by 2π; before the fix 1002 of 8000 such points lost their JARM (a lift-off in
