@@ -155,6 +155,7 @@ impl<const N: usize> RkPair<N> for Dop853<N> {
 
     /// y(σ) = y_old + σ(F0 + (1−σ)(F1 + σ(F2 + (1−σ)(F3 + σ(F4 + (1−σ)(F5 + σF6)))))),
     /// expanded into powers of σ (the form every dense step shares).
+    #[inline]
     fn dense_from_sums(
         sums: &[State<N>; 4],
         (f_old, f_new): (&State<N>, &State<N>),

@@ -121,7 +121,7 @@ pub trait RkPair<const N: usize>: Copy {
     fn stages(&self) -> &[State<N>];
     /// The dense output from the stages held, the extra ones included (what [`Self::dense`]
     /// does after evaluating them).
-    #[inline]
+    #[inline(always)]
     fn dense_from_stages(
         &self,
         t_old: f64,
