@@ -22,7 +22,7 @@
 
 use super::pair::{all_finite, weighted_sum, RkPair, Summand};
 use super::solver::{Observation, Outcome, Run, SolverOptions, Status};
-use super::stepper::{Judgement, StepStatus, Trial};
+use super::stepper::{Judgement, Trial};
 use super::{DenseStep, EventFunctions, OdeSystem, State};
 pub use crate::trig::lanes::{Lane, LANES};
 
@@ -250,35 +250,10 @@ fn lanes<P, T, const N: usize>(
         // then `next` is asked again.
         if exhausted && busy < MIN_BUSY {
             for slot in slots.iter_mut() {
-                if let Some(Slot {
-                    track,
-                    mut run,
-                    trial,
-                }) = slot.take()
-                {
-                    let (sys, out) = (track.sys(), &mut run.out);
-                    let status = run
-                        .st
-                        .step_from(trial, sys, &mut out.nfev, &mut out.n_rejected);
-                    let out = match status {
-                        StepStatus::TooSmall | StepStatus::NonFinite => {
-                            run.out.status = if status == StepStatus::TooSmall {
-                                Status::StepTooSmall
-                            } else {
-                                Status::NonFinite
-                            };
-                            run.out
-                        }
-                        StepStatus::Accepted => {
-                            let dense = run.st.dense(sys, &mut run.out.nfev);
-                            let observer = &mut |obs: Observation<'_, N>| track.observe(obs);
-                            if run.after_step(track.events(), dense, observer) {
-                                run.out
-                            } else {
-                                run.to_end(sys, track.events(), observer, stop)
-                            }
-                        }
-                    };
+                if let Some(Slot { track, run, trial }) = slot.take() {
+                    let observer = &mut |obs: Observation<'_, N>| track.observe(obs);
+                    let (sys, events) = (track.sys(), track.events());
+                    let out = run.to_end(Some(trial), sys, events, observer, stop);
                     done(track, out);
                 }
             }

@@ -8,7 +8,7 @@
 
 use super::events::{scan_step, EventCarry, NonFiniteEvent};
 use super::pair::{all_finite, Dop853, Dp5, Method, RkPair};
-use super::stepper::{select_initial_step, StepStatus, Stepper};
+use super::stepper::{select_initial_step, StepStatus, Stepper, Trial};
 use super::{DenseStep, EventFunctions, OdeSystem, State};
 
 /// Integration options, with scipy's meanings.
@@ -181,7 +181,7 @@ where
 {
     match Run::<P, N>::begin(sys, t0, y0, t_end, opts) {
         Err(out) => out,
-        Ok(run) => run.to_end(sys, events, observer, stop),
+        Ok(run) => run.to_end(None, sys, events, observer, stop),
     }
 }
 
@@ -353,9 +353,12 @@ impl<P: RkPair<N>, const N: usize> Run<P, N> {
         }
     }
 
-    /// The integration from here to its end, one step at a time.
+    /// The integration from here to its end, one step at a time, the current step from
+    /// `trial` (one begun elsewhere: the integrator of many trajectories hands over a
+    /// trajectory in the middle of a step) or, if `None`, from its first trial.
     pub(crate) fn to_end<S, E, O>(
         mut self,
+        mut trial: Option<Trial>,
         sys: &S,
         events: &E,
         observer: &mut O,
@@ -367,11 +370,15 @@ impl<P: RkPair<N>, const N: usize> Run<P, N> {
         O: FnMut(Observation<'_, N>),
     {
         loop {
-            if self.ends_here(stop) {
+            if trial.is_none() && self.ends_here(stop) {
                 return self.out;
             }
+            let first = trial.take().unwrap_or_else(|| self.st.first_trial());
             let out = &mut self.out;
-            match self.st.step(sys, &mut out.nfev, &mut out.n_rejected) {
+            match self
+                .st
+                .step_from(first, sys, &mut out.nfev, &mut out.n_rejected)
+            {
                 StepStatus::Accepted => {}
                 StepStatus::TooSmall => {
                     out.status = Status::StepTooSmall;
