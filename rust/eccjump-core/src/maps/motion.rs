@@ -7,9 +7,11 @@
 //! summary is exactly [`MotionSummary::of`] the run `simulate` gives at that point.
 
 use crate::error::{Error, Result};
-use crate::maps::parallel::par_fill_until;
+use crate::maps::parallel::par_fill_pieces_until;
 use crate::mechanics::{Cylinder, Ramp, Rule};
 use crate::modes::contact::{ContactLaw, Mode, Reason};
+use crate::modes::rolling::track::roll_batch;
+use crate::motion::simulate::{first_roll, simulate_with};
 use crate::motion::{simulate, MotionRun, MotionStatus, SimOptions};
 use crate::ode::SolverOptions;
 
@@ -325,8 +327,13 @@ impl MotionMapOptions {
 /// The summary of one point, as [`motion_grid`] computes it: invalid parameters (k_m = 0
 /// included) give [`MotionSummary::invalid`], a run that fails its status.
 pub fn motion_point(ramp: &Ramp, opts: &SimOptions) -> MotionSummary {
-    match simulate(ramp, opts) {
-        Ok(run) => MotionSummary::of(&run, opts.law.rule),
+    summary(simulate(ramp, opts), opts.law.rule)
+}
+
+/// The summary of a run's result.
+fn summary(result: Result<MotionRun>, rule: Rule) -> MotionSummary {
+    match result {
+        Ok(run) => MotionSummary::of(&run, rule),
         Err(Error::InvalidParameter { .. }) => MotionSummary::invalid(),
         Err(_) => MotionSummary {
             status: MotionStatus::Failed as u8,
@@ -347,15 +354,46 @@ pub fn motion_grid(
     crate::maps::parallel::check_len("out", out.len(), axes.size()?)?;
     opts.validate()?;
     let base = opts.base();
-    par_fill_until(
+    par_fill_pieces_until(
         out,
         n_threads,
-        |g| match axes.point(g, &base) {
-            Some((ramp, o)) => motion_point(&ramp, &o),
-            None => MotionSummary::invalid(),
-        },
+        |start, piece, cancelled| motion_piece(axes, &base, start, piece, cancelled),
         stop,
     )
+}
+
+/// The summaries of the grid points start, start + 1, … into `out`, each exactly
+/// [`motion_point`] there. The first rolling segments of the points (most of a map's work:
+/// the points start at rest, and roll until they slip or jump) are integrated side by side
+/// ([`roll_batch`]); each point's run goes on alone as soon as its first segment ends.
+fn motion_piece(
+    axes: &MotionAxes<'_>,
+    base: &SimOptions,
+    start: usize,
+    out: &mut [MotionSummary],
+    cancelled: &dyn Fn() -> bool,
+) {
+    let mut i = 0;
+    let out = std::cell::Cell::from_mut(out).as_slice_of_cells();
+    let next = || {
+        while i < out.len() {
+            let k = i;
+            i += 1;
+            match axes.point(start + k, base) {
+                None => out[k].set(MotionSummary::invalid()),
+                Some((ramp, o)) => match first_roll(&ramp, &o) {
+                    Some(first) => return Some(((k, ramp, o), ramp, first)),
+                    None => out[k].set(motion_point(&ramp, &o)),
+                },
+            }
+        }
+        None
+    };
+    let done = |(k, ramp, o): (usize, Ramp, SimOptions), first| {
+        let run = simulate_with(&ramp, &o, &|| false, Some(first));
+        out[k].set(summary(run, o.law.rule));
+    };
+    roll_batch(base.solver.method, next, done, cancelled);
 }
 
 #[cfg(test)]
@@ -420,6 +458,53 @@ mod tests {
             assert_eq!(a.status, MotionStatus::Landed as u8, "point {g}: {a:?}");
         }
         assert!(out.iter().any(|s| s.jarm) && out.iter().any(|s| s.slipped_first));
+    }
+
+    #[test]
+    fn points_of_every_start_are_the_summary_of_simulate_there() {
+        // The first rolling segments of a map run side by side: starts from rest and moving,
+        // slipping or flying at once, invalid points (μ_k > μ_s), both pairs.
+        let (alpha, chi, frac) = ([0.3, 1.2], [0.15, 0.6], [0.1, 0.9]);
+        let (mu_s, mu_k) = ([0.2, 1.0], [0.15, 0.5]);
+        let (theta0, omega0) = ([0.0, 2.0], [0.0, 1.5]);
+        let axes = MotionAxes {
+            alpha: &alpha,
+            chi: &chi,
+            frac: &frac,
+            mu_s: &mu_s,
+            mu_k: &mu_k,
+            restitution: &[0.5],
+            theta0: &theta0,
+            omega0: &omega0,
+        };
+        for method in crate::ode::Method::ALL {
+            let o = MotionMapOptions {
+                t_max: 20.0,
+                max_transitions: 20,
+                solver: SolverOptions {
+                    method,
+                    ..SolverOptions::default()
+                },
+                ..opts()
+            };
+            let mut out = vec![MotionSummary::invalid(); axes.size().unwrap()];
+            motion_grid(&axes, &o, 2, &mut out, &|| false).unwrap();
+            let mut first = [0; 3];
+            for (g, got) in out.iter().enumerate() {
+                let alone = match axes.point(g, &o.base()) {
+                    Some((ramp, p)) => {
+                        first[first_roll(&ramp, &p).is_some() as usize] += 1;
+                        motion_point(&ramp, &p)
+                    }
+                    None => {
+                        first[2] += 1;
+                        MotionSummary::invalid()
+                    }
+                };
+                assert_eq!(format!("{got:?}"), format!("{alone:?}"), "point {g}");
+            }
+            assert!(first.iter().all(|&n| n > 10), "{first:?}");
+        }
     }
 
     #[test]

@@ -9,7 +9,7 @@ use crate::mechanics::{BodyState, Ramp};
 use crate::modes::contact::{decide, Mode, Reason, Verdict};
 use crate::modes::flight::landing::Landing;
 use crate::modes::flight::Flight;
-use crate::modes::rolling::run::{roll_until, RollEvent, RollOptions, RollStatus};
+use crate::modes::rolling::run::{roll_until, RollEvent, RollOptions, RollRun, RollStatus};
 use crate::modes::slipping::{SlipEvent, SlipEvents, Slipping};
 use crate::motion::options::SimOptions;
 use crate::motion::record::{
@@ -49,6 +49,8 @@ struct Driver<'a> {
     run: MotionRun,
     t: f64,
     steps_left: usize,
+    /// The first rolling segment, integrated already (see [`simulate_with`]).
+    first_roll: Option<Result<RollRun>>,
 }
 
 /// Integrates the full motion from (θ0, θ̇0, slip0) until t_max, l_max, the transition
@@ -64,17 +66,30 @@ pub fn simulate_until(
     opts: &SimOptions,
     stop: &dyn Fn() -> bool,
 ) -> Result<MotionRun> {
-    opts.validate()?;
-    if ramp.body.icm.is_nan() || ramp.body.icm <= 0.0 {
-        return Err(Error::InvalidParameter {
-            name: "km",
-            value: ramp.body.km,
-            allowed: "(0, 1 - chi] for simulate: with km = 0 all the mass is at the centre of \
-                      mass and the spin in flight is undetermined"
-                .to_string(),
-        });
+    simulate_with(ramp, opts, stop, None)
+}
+
+/// The options of the run's first segment if it is a rolling one (the run starts rolling),
+/// as [`simulate`] integrates it: `roll_until(ramp, options)` is that segment.
+pub(crate) fn first_roll(ramp: &Ramp, opts: &SimOptions) -> Option<RollOptions> {
+    match opening(ramp, opts).ok()?.1 {
+        Next::Mode(Mode::Roll, _, state, _) => {
+            Some(roll_options(opts, state, opts.t_max, opts.solver.max_steps))
+        }
+        _ => None,
     }
-    let start = BodyState::in_contact(opts.theta0, opts.omega0, 0.0, opts.omega0 + opts.slip0);
+}
+
+/// [`simulate_until`], its first segment already integrated when `first` is given: the
+/// result of `roll_until` with the options of [`first_roll`] (by the integrator of many
+/// runs side by side, say). The run is the same, bit for bit.
+pub(crate) fn simulate_with(
+    ramp: &Ramp,
+    opts: &SimOptions,
+    stop: &dyn Fn() -> bool,
+    first: Option<Result<RollRun>>,
+) -> Result<MotionRun> {
+    let (start, mut next) = opening(ramp, opts)?;
     let mut d = Driver {
         ramp,
         opts,
@@ -86,10 +101,7 @@ pub fn simulate_until(
         },
         t: 0.0,
         steps_left: opts.solver.max_steps,
-    };
-    let mut next = match after(decide(ramp, &opts.law, &start, false), Reason::Start, start) {
-        Next::Mode(mode, _, state, sigma) => Next::Mode(mode, Reason::Start, state, sigma),
-        end => end,
+        first_roll: first,
     };
     let mut from = None;
     loop {
@@ -171,6 +183,43 @@ pub fn simulate_until(
     Ok(d.run)
 }
 
+/// The checks of a run's options and its start: the state and what comes first.
+fn opening(ramp: &Ramp, opts: &SimOptions) -> Result<(BodyState, Next)> {
+    opts.validate()?;
+    if ramp.body.icm.is_nan() || ramp.body.icm <= 0.0 {
+        return Err(Error::InvalidParameter {
+            name: "km",
+            value: ramp.body.km,
+            allowed: "(0, 1 - chi] for simulate: with km = 0 all the mass is at the centre of \
+                      mass and the spin in flight is undetermined"
+                .to_string(),
+        });
+    }
+    let start = BodyState::in_contact(opts.theta0, opts.omega0, 0.0, opts.omega0 + opts.slip0);
+    let next = match after(decide(ramp, &opts.law, &start, false), Reason::Start, start) {
+        Next::Mode(mode, _, state, sigma) => Next::Mode(mode, Reason::Start, state, sigma),
+        end => end,
+    };
+    Ok((start, next))
+}
+
+/// The options of a rolling segment from `s` with `time_left` and `steps_left`.
+fn roll_options(opts: &SimOptions, s: BodyState, time_left: f64, steps_left: usize) -> RollOptions {
+    RollOptions {
+        theta0: s.theta,
+        omega0: s.omega,
+        mu_s: Some(opts.law.mu_s),
+        t_max: time_left,
+        theta_max: s.theta + (opts.l_max - s.l),
+        rule: opts.law.rule,
+        solver: ode::SolverOptions {
+            max_steps: steps_left.max(1),
+            ..opts.solver
+        },
+        dense_output: opts.dense_output,
+    }
+}
+
 impl Driver<'_> {
     /// A recorded point; `trig` = (sin θ, cos θ) of the state.
     fn point(
@@ -219,20 +268,14 @@ impl Driver<'_> {
         if self.time_left() <= 0.0 {
             return Ok(self.end_of_time());
         }
-        let opts = RollOptions {
-            theta0: s.theta,
-            omega0: s.omega,
-            mu_s: Some(self.opts.law.mu_s),
-            t_max: self.time_left(),
-            theta_max: s.theta + (self.opts.l_max - s.l),
-            rule: self.opts.law.rule,
-            solver: ode::SolverOptions {
-                max_steps: self.steps_left.max(1),
-                ..self.opts.solver
-            },
-            dense_output: self.opts.dense_output,
+        let opts = roll_options(self.opts, s, self.time_left(), self.steps_left);
+        // The first segment may have been integrated already (by `simulate_with`'s caller).
+        let given = if self.run.segments.is_empty() {
+            self.first_roll.take()
+        } else {
+            None
         };
-        let rr = match roll_until(self.ramp, &opts, self.stop) {
+        let rr = match given.unwrap_or_else(|| roll_until(self.ramp, &opts, self.stop)) {
             Ok(rr) => rr,
             Err(Error::InvalidParameter { name, .. }) => {
                 return Ok(Next::End(

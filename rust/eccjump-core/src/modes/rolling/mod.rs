@@ -19,6 +19,7 @@ pub mod events;
 pub mod memo;
 pub mod run;
 pub mod solution;
+pub(crate) mod track;
 
 use crate::mechanics::liftoff::{free_normal_acceleration, liftoff_slope};
 use crate::mechanics::Ramp;

@@ -15,12 +15,12 @@ use crate::mechanics::Ramp;
 pub use crate::mechanics::Rule;
 use crate::mechanics::{MAX_OMEGA0, MAX_THETA0};
 use crate::modes::rolling::bounds::ContactBounds;
-use crate::modes::rolling::memo::RollingMemo;
 use crate::modes::rolling::solution::RollSolution;
+use crate::modes::rolling::track::{Begun, RollTrack};
 use crate::modes::rolling::Kinematics;
+use crate::ode::lanes::Track;
 use crate::ode::{
-    self, DenseStep, Direction, EventFunctions, EventSpec, Observation, OdeSystem, SolverOptions,
-    State, Status,
+    self, DenseStep, Direction, EventFunctions, EventSpec, SolverOptions, State, Status,
 };
 
 /// The built-in events of a rolling run, in the order of their indices.
@@ -143,7 +143,7 @@ impl EventFunctions<2> for RollEvents {
 impl RollEvents {
     /// g_first, g_first+1, … at y from its kinematics `k`.
     #[inline]
-    fn values_from(&self, k: &Kinematics, first: usize, y: &State<2>, out: &mut [f64]) {
+    pub(super) fn values_from(&self, k: &Kinematics, first: usize, y: &State<2>, out: &mut [f64]) {
         for (i, o) in out.iter_mut().enumerate() {
             *o = match RollEvent::ALL[first + i] {
                 RollEvent::Liftoff => k.lift,
@@ -157,7 +157,7 @@ impl RollEvents {
     /// dg_first/dt, dg_first+1/dt, … at y from its kinematics `k` (the dip test of the step
     /// scan, which finds a grazing event between two samples).
     #[inline]
-    fn rates_from(&self, k: &Kinematics, first: usize, out: &mut [f64]) {
+    pub(super) fn rates_from(&self, k: &Kinematics, first: usize, out: &mut [f64]) {
         let r = self.ramp.contact_rates(k);
         for (i, o) in out.iter_mut().enumerate() {
             *o = match RollEvent::ALL[first + i] {
@@ -191,65 +191,6 @@ impl RollEvents {
             0.0
         };
         [b.liftoff, b.fy, b.slip, theta_limit]
-    }
-}
-
-/// The rolling system and its events sharing one [`RollingMemo`].
-struct Memo<'a> {
-    events: &'a RollEvents,
-    sys: RollingMemo,
-}
-
-impl Memo<'_> {
-    #[inline]
-    fn kinematics(&self, theta: f64, omega: f64) -> Kinematics {
-        self.sys.kinematics(theta, omega)
-    }
-}
-
-impl OdeSystem<2> for Memo<'_> {
-    #[inline]
-    fn rhs(&self, t: f64, y: &State<2>) -> State<2> {
-        self.sys.rhs(t, y)
-    }
-}
-
-impl EventFunctions<2> for Memo<'_> {
-    #[inline]
-    fn count(&self) -> usize {
-        self.events.count()
-    }
-    #[inline]
-    fn spec(&self, k: usize) -> EventSpec {
-        self.events.spec(k)
-    }
-    #[inline]
-    fn value(&self, k: usize, t: f64, y: &State<2>) -> f64 {
-        self.events.value(k, t, y)
-    }
-    #[inline]
-    fn values(&self, first: usize, _t: f64, y: &State<2>, out: &mut [f64]) {
-        self.events
-            .values_from(&self.kinematics(y[0], y[1]), first, y, out);
-    }
-    #[inline]
-    fn slopes(&self, first: usize, _t: f64, y: &State<2>, out: &mut [f64]) {
-        self.events
-            .rates_from(&self.kinematics(y[0], y[1]), first, out);
-    }
-    #[inline]
-    fn has_slopes(&self) -> bool {
-        true
-    }
-    /// [`RollEvents::change_bounds_all`] tightened by the memo's trigonometry.
-    #[inline]
-    fn change_bounds(&self, first: usize, dense: &DenseStep<2>, out: &mut [f64]) {
-        let b = self
-            .events
-            .change_bounds_near(dense, Some(self.sys.anchor()));
-        for (i, o) in out.iter_mut().enumerate() {
-            *o = b[first + i];
-        }
     }
 }
 
@@ -408,12 +349,12 @@ pub const MAX_STEPS: usize = 10_000_000;
 
 /// Points reserved per recorded array up front: a run to lift-off at the default
 /// tolerances takes about a hundred steps; longer runs grow the arrays by doubling.
-const RESERVE: usize = 256;
+pub(super) const RESERVE: usize = 256;
 
 impl RollRun {
     /// The series derived from the recorded ones, in one pass after the run (off the
     /// integration's critical path): l − l0 = θ − θ0 and |F_x|/F_y.
-    fn derive(&mut self) -> Result<()> {
+    pub(super) fn derive(&mut self) -> Result<()> {
         let n = self.t.len();
         for v in [&mut self.l, &mut self.ratio] {
             v.try_reserve_exact(n).map_err(|_| Error::OutOfMemory {
@@ -431,7 +372,7 @@ impl RollRun {
 
     /// Records one point with its kinematics (fallibly: `OutOfMemory` instead of an abort).
     #[inline]
-    fn push(&mut self, t: f64, k: &Kinematics) -> Result<()> {
+    pub(super) fn push(&mut self, t: f64, k: &Kinematics) -> Result<()> {
         // The series are created, pushed, popped and grown together, so they are full
         // together: one test per point (the growth is out of line: the common path is a
         // comparison and six pushes).
@@ -466,7 +407,7 @@ impl RollRun {
     }
 
     #[inline]
-    fn pop(&mut self) {
+    pub(super) fn pop(&mut self) {
         self.t.pop();
         self.theta.pop();
         self.omega.pop();
@@ -485,116 +426,25 @@ pub fn roll(ramp: &Ramp, opts: &RollOptions) -> Result<RollRun> {
 /// [`roll`], asking `stop()` every few thousand steps; a `true` ends it with
 /// `Error::Interrupted` (e.g. on Ctrl-C).
 pub fn roll_until(ramp: &Ramp, opts: &RollOptions, stop: &dyn Fn() -> bool) -> Result<RollRun> {
-    opts.validate()?;
-    let events = RollEvents {
-        ramp: *ramp,
-        mu_s: opts.mu_s,
-        theta_max: opts.theta_max,
-        rule: opts.rule,
+    let (track, y0) = match RollTrack::begin(ramp, opts)? {
+        Begun::Ended(run) => return Ok(run),
+        Begun::Track(track, y0) => (track, y0),
     };
-    let memo = Memo {
-        events: &events,
-        sys: RollingMemo::new(*ramp),
-    };
-    let capacity = RESERVE.min(opts.solver.max_steps.saturating_add(2));
-    let mut run = RollRun {
-        t: Vec::with_capacity(capacity),
-        theta: Vec::with_capacity(capacity),
-        omega: Vec::with_capacity(capacity),
-        omega_dot: Vec::with_capacity(capacity),
-        fx: Vec::with_capacity(capacity),
-        fy: Vec::with_capacity(capacity),
-        trig: Vec::with_capacity(capacity),
-        l: Vec::new(),
-        ratio: Vec::new(),
-        events: Vec::new(),
-        status: RollStatus::TimeLimit,
-        nfev: 0,
-        dense: None,
-    };
-    let mut steps = Vec::with_capacity(if opts.dense_output { capacity } else { 0 });
-    run.push(0.0, &memo.kinematics(opts.theta0, opts.omega0))?;
-    // A contact event that already holds at t = 0 ends the run there: the integrator
-    // looks for crossings only, and a run that starts outside the contact conditions
-    // must not roll on as if it were inside them.
-    if let Some(event) = violated_at_start(&events, opts.theta0, opts.omega0) {
-        run.events.push(EventHit {
-            event,
-            t: 0.0,
-            theta: opts.theta0,
-            omega: opts.omega0,
-        });
-        run.status = RollStatus::Event(event);
-        run.derive()?;
-        return Ok(run);
-    }
-    let y0 = State::<2>::new(opts.theta0, opts.omega0);
-    // The first failed allocation, if any: after it nothing more is recorded.
-    let mut memory: Option<Error> = None;
     let outcome = ode::solve_until(
-        &memo,
-        &memo,
+        track.sys(),
+        track.events(),
         0.0,
         y0,
         opts.t_max,
         &opts.solver,
-        &mut |obs: Observation<'_, 2>| match obs {
-            Observation::Step { dense, t, y } => {
-                // After a failed allocation the rest is not recorded; the run reports it.
-                if memory.is_none() {
-                    if let Err(e) = run.push(t, &memo.kinematics(y[0], y[1])) {
-                        memory = Some(e);
-                    } else if opts.dense_output {
-                        match try_grow("the dense output", &mut steps) {
-                            Ok(()) => steps.push(*dense),
-                            Err(e) => memory = Some(e),
-                        }
-                    }
-                }
-            }
-            Observation::Event { index, t, y } => run.events.push(EventHit {
-                event: RollEvent::ALL[index],
-                t,
-                theta: y[0],
-                omega: y[1],
-            }),
-        },
+        &mut |obs| track.observe(obs),
         stop,
     );
-    if let Some(e) = memory {
-        return Err(e);
-    }
-    if outcome.status == Status::Stopped {
-        return Err(Error::Interrupted);
-    }
-    run.nfev = outcome.nfev;
-    run.status = match outcome.status {
-        Status::Finished => RollStatus::TimeLimit,
-        Status::Event(k) => RollStatus::Event(RollEvent::ALL[k]),
-        other => RollStatus::Failed(other),
-    };
-    // The last accepted step ends past a terminal event: end the record at the event.
-    if let Status::Event(_) = outcome.status {
-        while run.t.len() > 1 && run.t.last().is_some_and(|&t| t > outcome.t) {
-            run.pop();
-        }
-        if run.t.last().is_some_and(|&t| t < outcome.t) {
-            run.push(outcome.t, &memo.kinematics(outcome.y[0], outcome.y[1]))?;
-        }
-    }
-    if opts.dense_output {
-        run.dense = Some(RollSolution {
-            ramp: *ramp,
-            steps,
-            t_end: run.t.last().copied().unwrap_or(0.0),
-        });
-    }
-    run.derive()?;
-    Ok(run)
+    track.finish(&outcome)
 }
 
 /// The terminal event whose condition is already met at the start, if any.
-fn violated_at_start(events: &RollEvents, theta: f64, omega: f64) -> Option<RollEvent> {
+pub(super) fn violated_at_start(events: &RollEvents, theta: f64, omega: f64) -> Option<RollEvent> {
     RollEvent::ALL.into_iter().find(|&e| {
         let g = events.value_at(e, theta, omega);
         let outside = match e {
@@ -614,6 +464,7 @@ mod skip_tests {
     use super::*;
     use crate::mechanics::Cylinder;
     use crate::ode::events::WalkAll;
+    use crate::ode::Observation;
 
     fn cases() -> Vec<(Ramp, RollEvents)> {
         let mut out = Vec::new();
