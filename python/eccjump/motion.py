@@ -8,7 +8,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass, fields, replace
-from typing import NamedTuple
+from typing import Any, NamedTuple
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
@@ -291,6 +291,32 @@ class MotionResult:
     __hash__ = None  # type: ignore[assignment]
 
 
+def _checked(*args: object) -> tuple[Any, ...]:
+    """:func:`simulate`'s arguments (alpha, mu_s, mu_k, restitution, rule, theta0, omega0,
+    slip0, t_max, l_max, max_transitions, rtol, atol, max_steps, dense_output, integrator)
+    type-checked and converted in that order, so that a call with several bad arguments
+    reports the first (ranges are the core's, but for the two counts)."""
+    (alpha, mu_s, mu_k, e, rule, th0, w0, s0, t_max, l_max, n, rtol, atol, steps, dense, how) = args
+    return (
+        real("alpha", alpha),
+        real("mu_s", mu_s),
+        optional_real("mu_k", mu_k),
+        real("restitution", e),
+        text("rule", rule),
+        real("theta0", th0),
+        real("omega0", w0),
+        real("slip0", s0),
+        real("t_max", t_max),
+        real("l_max", l_max),
+        integer("max_transitions", n, 1, MAX_TRANSITIONS),
+        real("rtol", rtol),
+        real("atol", atol),
+        integer("max_steps", steps, 1, MAX_STEPS),
+        flag("dense_output", dense),
+        text("integrator", how),
+    )
+
+
 def simulate(
     body: Cylinder,
     alpha: float,
@@ -342,12 +368,66 @@ def simulate(
     """
     if not isinstance(body, Cylinder):
         raise TypeError(f"body must be a Cylinder, not {type(body).__name__}")
-    a = real("alpha", alpha)
-    mus = real("mu_s", mu_s)
-    muk = optional_real("mu_k", mu_k)
-    muk = mus if muk is None else muk
-    e = real("restitution", restitution)
-    rule = text("rule", rule)
+    # Plain floats, ints, a bool and strings, which the checks would return unchanged, skip
+    # them after one test of their exact types (as in `roll`); anything else goes through
+    # the checks, which alone define what is accepted.
+    if not (
+        type(alpha) is float
+        and type(mu_s) is float
+        and (mu_k is None or type(mu_k) is float)
+        and type(restitution) is float
+        and type(rule) is str
+        and type(theta0) is float
+        and type(omega0) is float
+        and type(slip0) is float
+        and type(t_max) is float
+        and type(l_max) is float
+        and type(max_transitions) is int
+        and 1 <= max_transitions <= MAX_TRANSITIONS
+        and type(rtol) is float
+        and type(atol) is float
+        and type(max_steps) is int
+        and 1 <= max_steps <= MAX_STEPS
+        and type(dense_output) is bool
+        and type(integrator) is str
+    ):
+        (
+            alpha,
+            mu_s,
+            mu_k,
+            restitution,
+            rule,
+            theta0,
+            omega0,
+            slip0,
+            t_max,
+            l_max,
+            max_transitions,
+            rtol,
+            atol,
+            max_steps,
+            dense_output,
+            integrator,
+        ) = _checked(
+            alpha,
+            mu_s,
+            mu_k,
+            restitution,
+            rule,
+            theta0,
+            omega0,
+            slip0,
+            t_max,
+            l_max,
+            max_transitions,
+            rtol,
+            atol,
+            max_steps,
+            dense_output,
+            integrator,
+        )
+    a, mus, e = alpha, mu_s, restitution
+    muk = mus if mu_k is None else mu_k
     (
         (t, theta, omega, l, ldot, b, bdot, Fx, Fy, energy, dissipated, mode),  # noqa: E741
         transitions,
@@ -369,17 +449,17 @@ def simulate(
         mu_k=muk,
         restitution=e,
         rule=rule,
-        theta0=real("theta0", theta0),
-        omega0=real("omega0", omega0),
-        slip0=real("slip0", slip0),
-        t_max=real("t_max", t_max),
-        l_max=real("l_max", l_max),
-        max_transitions=integer("max_transitions", max_transitions, 1, MAX_TRANSITIONS),
-        rtol=real("rtol", rtol),
-        atol=real("atol", atol),
-        max_steps=integer("max_steps", max_steps, 1, MAX_STEPS),
-        dense_output=flag("dense_output", dense_output),
-        integrator=text("integrator", integrator),
+        theta0=theta0,
+        omega0=omega0,
+        slip0=slip0,
+        t_max=t_max,
+        l_max=l_max,
+        max_transitions=max_transitions,
+        rtol=rtol,
+        atol=atol,
+        max_steps=max_steps,
+        dense_output=dense_output,
+        integrator=integrator,
     )
     return frozen(
         MotionResult,
