@@ -8,7 +8,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass, fields, replace
-from typing import Any, NamedTuple
+from typing import NamedTuple
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
@@ -291,32 +291,6 @@ class MotionResult:
     __hash__ = None  # type: ignore[assignment]
 
 
-def _checked(*args: object) -> tuple[Any, ...]:
-    """:func:`simulate`'s arguments (alpha, mu_s, mu_k, restitution, rule, theta0, omega0,
-    slip0, t_max, l_max, max_transitions, rtol, atol, max_steps, dense_output, integrator)
-    type-checked and converted in that order, so that a call with several bad arguments
-    reports the first (ranges are the core's, but for the two counts)."""
-    (alpha, mu_s, mu_k, e, rule, th0, w0, s0, t_max, l_max, n, rtol, atol, steps, dense, how) = args
-    return (
-        real("alpha", alpha),
-        real("mu_s", mu_s),
-        optional_real("mu_k", mu_k),
-        real("restitution", e),
-        text("rule", rule),
-        real("theta0", th0),
-        real("omega0", w0),
-        real("slip0", s0),
-        real("t_max", t_max),
-        real("l_max", l_max),
-        integer("max_transitions", n, 1, MAX_TRANSITIONS),
-        real("rtol", rtol),
-        real("atol", atol),
-        integer("max_steps", steps, 1, MAX_STEPS),
-        flag("dense_output", dense),
-        text("integrator", how),
-    )
-
-
 def simulate(
     body: Cylinder,
     alpha: float,
@@ -370,13 +344,13 @@ def simulate(
         raise TypeError(f"body must be a Cylinder, not {type(body).__name__}")
     # Plain floats, ints, a bool and strings, which the checks would return unchanged, skip
     # them after one test of their exact types (as in `roll`); anything else goes through
-    # the checks, which alone define what is accepted.
+    # the checks, which alone define what is accepted, and comes back here plain.
     if not (
         type(alpha) is float
         and type(mu_s) is float
         and (mu_k is None or type(mu_k) is float)
         and type(restitution) is float
-        and type(rule) is str
+        and isinstance(rule, str)
         and type(theta0) is float
         and type(omega0) is float
         and type(slip0) is float
@@ -389,42 +363,27 @@ def simulate(
         and type(max_steps) is int
         and 1 <= max_steps <= MAX_STEPS
         and type(dense_output) is bool
-        and type(integrator) is str
+        and isinstance(integrator, str)
     ):
-        (
-            alpha,
-            mu_s,
-            mu_k,
-            restitution,
-            rule,
-            theta0,
-            omega0,
-            slip0,
-            t_max,
-            l_max,
-            max_transitions,
-            rtol,
-            atol,
-            max_steps,
-            dense_output,
-            integrator,
-        ) = _checked(
-            alpha,
-            mu_s,
-            mu_k,
-            restitution,
-            rule,
-            theta0,
-            omega0,
-            slip0,
-            t_max,
-            l_max,
-            max_transitions,
-            rtol,
-            atol,
-            max_steps,
-            dense_output,
-            integrator,
+        # Checked in the signature's order: of several bad arguments the first is named.
+        return simulate(
+            body,
+            real("alpha", alpha),
+            mu_s=real("mu_s", mu_s),
+            mu_k=optional_real("mu_k", mu_k),
+            restitution=real("restitution", restitution),
+            rule=text("rule", rule),  # type: ignore[arg-type]  # its values: the core's
+            theta0=real("theta0", theta0),
+            omega0=real("omega0", omega0),
+            slip0=real("slip0", slip0),
+            t_max=real("t_max", t_max),
+            l_max=real("l_max", l_max),
+            max_transitions=integer("max_transitions", max_transitions, 1, MAX_TRANSITIONS),
+            rtol=real("rtol", rtol),
+            atol=real("atol", atol),
+            max_steps=integer("max_steps", max_steps, 1, MAX_STEPS),
+            dense_output=flag("dense_output", dense_output),
+            integrator=text("integrator", integrator),  # type: ignore[arg-type]
         )
     a, mus, e = alpha, mu_s, restitution
     muk = mus if mu_k is None else mu_k

@@ -177,48 +177,6 @@ class RollResult:
 _event = records(Event)
 
 
-#: :func:`roll`'s arguments after :func:`_checked`, in the order of its signature.
-_Arguments = tuple[
-    float, float, float, float | None, float, float, float, float, int, bool, str, str
-]
-
-
-def _checked(
-    alpha: object,
-    theta0: object,
-    omega0: object,
-    mu_s: object,
-    t_max: object,
-    theta_max: object,
-    rtol: object,
-    atol: object,
-    max_steps: object,
-    dense_output: object,
-    rule: object,
-    integrator: object,
-) -> _Arguments:
-    """:func:`roll`'s arguments type-checked and converted (ranges are the core's). The
-    checks run in their historical order (alpha, mu_s, rule, then the signature's), so that
-    a call with several bad arguments reports the same one."""
-    a = real("alpha", alpha)
-    mu = optional_real("mu_s", mu_s)
-    rule = text("rule", rule)
-    return (
-        a,
-        real("theta0", theta0),
-        real("omega0", omega0),
-        mu,
-        real("t_max", t_max),
-        real("theta_max", theta_max),
-        real("rtol", rtol),
-        real("atol", atol),
-        integer("max_steps", max_steps, 1, U64_MAX),
-        flag("dense_output", dense_output),
-        rule,
-        text("integrator", integrator),
-    )
-
-
 def roll(
     body: Cylinder,
     alpha: float,
@@ -271,7 +229,7 @@ def roll(
     # Most calls pass plain floats, an int, a bool and strings, which the checks would return
     # unchanged: one test of their exact types (~0.1 us) stands in for the thirteen calls of
     # the checks (~0.5 us of a run of about 10 us). Anything else goes through the checks,
-    # which alone define what is accepted.
+    # which alone define what is accepted, and comes back here plain.
     if not (
         type(alpha) is float
         and type(theta0) is float
@@ -284,35 +242,25 @@ def roll(
         and type(max_steps) is int
         and 1 <= max_steps <= U64_MAX
         and type(dense_output) is bool
-        and type(rule) is str
-        and type(integrator) is str
+        and isinstance(rule, str)
+        and isinstance(integrator, str)
     ):
-        (
-            alpha,
-            theta0,
-            omega0,
-            mu_s,
-            t_max,
-            theta_max,
-            rtol,
-            atol,
-            max_steps,
-            dense_output,
-            rule,
-            integrator,
-        ) = _checked(
-            alpha,
-            theta0,
-            omega0,
-            mu_s,
-            t_max,
-            theta_max,
-            rtol,
-            atol,
-            max_steps,
-            dense_output,
-            rule,
-            integrator,
+        # The checks' historical order (alpha, mu_s, rule, then the signature's): of several
+        # bad arguments the same one is named.
+        return roll(
+            body,
+            real("alpha", alpha),
+            mu_s=optional_real("mu_s", mu_s),
+            rule=text("rule", rule),  # type: ignore[arg-type]  # its values: the core's
+            theta0=real("theta0", theta0),
+            omega0=real("omega0", omega0),
+            t_max=real("t_max", t_max),
+            theta_max=real("theta_max", theta_max),
+            rtol=real("rtol", rtol),
+            atol=real("atol", atol),
+            max_steps=integer("max_steps", max_steps, 1, U64_MAX),
+            dense_output=flag("dense_output", dense_output),
+            integrator=text("integrator", integrator),  # type: ignore[arg-type]
         )
     series, events, terminal_event, status, message, nfev, sol = _core.roll(
         body.chi,
