@@ -23,7 +23,7 @@ pub mod stepper;
 pub mod tableau;
 
 pub use dense::{DenseBounds, DenseStep};
-pub use events::{Direction, EventCarry, EventFunctions, EventSpec, NoEvents, EVENT_CHUNK};
+pub use events::{Change, Direction, EventCarry, EventFunctions, EventSpec, NoEvents, EVENT_CHUNK};
 pub use pair::Method;
 pub use solver::{solve, solve_until, Observation, Outcome, SolverOptions, Status};
 

@@ -4,7 +4,7 @@
 //! classification.
 
 use crate::mechanics::Ramp;
-use crate::ode::DenseStep;
+use crate::ode::{Change, DenseStep};
 
 /// Bounds on how much the contact functions of pure rolling can change within one
 /// dense-output step, in the sense of [`EventFunctions::change_bounds`]: shared by the
@@ -24,18 +24,18 @@ use crate::ode::DenseStep;
 /// The rounding allowance δ = 2⁻⁴⁰ (M + G_θ Θ + G_ω W), with M the sum of the
 /// magnitudes of g's terms and Θ ≥ |θ|, is hundreds of times the error of a few
 /// roundings in g, of the 1-ulp sin_cos, and of the interpolant (including its
-/// mismatch with the exact step end). The bound is L |h| + 4δ.
+/// mismatch with the exact step end). The bound is L |h| + 4δ ([`Change`]).
 /// A singular body (D_min ≤ 0) gives +∞ for the force events: never skipped.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub(crate) struct ContactBounds {
     /// Of the lift-off function χθ̇² cos θ − cos α.
-    pub liftoff: f64,
+    pub liftoff: Change,
     /// Of F_y.
-    pub fy: f64,
-    /// Of the slip margin μ_s F_y − |F_x|; 0 without μ_s (the event is then a constant).
-    pub slip: f64,
+    pub fy: Change,
+    /// Of the slip margin μ_s F_y − |F_x|; none without μ_s (the event is then a constant).
+    pub slip: Change,
     /// Of θ̇.
-    pub omega: f64,
+    pub omega: Change,
     /// Θ ≥ |θ|, |dθ/dt| and |h| over the step, for [`ContactBounds::theta_above`].
     theta_max: f64,
     theta_rate: f64,
@@ -74,7 +74,10 @@ impl ContactBounds {
         // δ = 2⁻⁴⁰ (M + G_θ Θ + G_ω W); the bound is L |h| + 4δ.
         let bound = |(m, g_theta, g_omega): (f64, f64, f64)| {
             let delta = (m + g_theta * theta_max + g_omega * w) * eps40;
-            (g_theta * theta_rate + g_omega * omega_rate) * h + 4.0 * delta
+            Change {
+                rate: (g_theta * theta_rate + g_omega * omega_rate) * h,
+                slack: 4.0 * delta,
+            }
         };
         let d_min = ramp.contact_inertia(-1.0);
         let (s_max, c_max, d_lo) = match anchor {
@@ -107,13 +110,17 @@ impl ContactBounds {
                 chi_w2 * c_max + chi * s_max * a + lever * a_theta,
                 2.0 * chi * w * s_max + lever * a_omega,
             );
-            let slip = mu_s.map_or(0.0, |mu| {
+            let slip = mu_s.map_or(Change::NONE, |mu| {
                 bound((mu * fy.0 + fx.0, mu * fy.1 + fx.1, mu * fy.2 + fx.2))
             });
             (bound(fy), slip)
         } else {
-            let slip = if mu_s.is_some() { f64::INFINITY } else { 0.0 };
-            (f64::INFINITY, slip)
+            let slip = if mu_s.is_some() {
+                Change::ANY
+            } else {
+                Change::NONE
+            };
+            (Change::ANY, slip)
         };
         let omega = bound((w, 0.0, 1.0));
         Self {
@@ -129,9 +136,12 @@ impl ContactBounds {
 
     /// Of θ − θ_lim (θ_lim finite).
     #[inline]
-    pub(crate) fn theta_above(&self, theta_lim: f64) -> f64 {
+    pub(crate) fn theta_above(&self, theta_lim: f64) -> Change {
         let delta =
             (self.theta_max + theta_lim.abs() + self.theta_max) * (1.0 / (1u64 << 40) as f64);
-        self.theta_rate * self.h + 4.0 * delta
+        Change {
+            rate: self.theta_rate * self.h,
+            slack: 4.0 * delta,
+        }
     }
 }

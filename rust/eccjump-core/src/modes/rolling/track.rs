@@ -18,7 +18,7 @@ use crate::modes::rolling::Kinematics;
 use crate::ode::lanes::{solve_lanes, Start, Track};
 use crate::ode::pair::{Dop853, Dp5};
 use crate::ode::{
-    DenseStep, EventFunctions, EventSpec, Method, Observation, Outcome, State, Status,
+    Change, DenseStep, EventFunctions, EventSpec, Method, Observation, Outcome, State, Status,
 };
 
 /// The rolling system and its events sharing one [`RollingMemo`].
@@ -63,7 +63,7 @@ impl EventFunctions<2> for Memo {
     }
     /// [`RollEvents::change_bounds_all`] tightened by the memo's trigonometry.
     #[inline]
-    fn change_bounds(&self, first: usize, dense: &DenseStep<2>, out: &mut [f64]) {
+    fn change_bounds(&self, first: usize, dense: &DenseStep<2>, out: &mut [Change]) {
         let b = self
             .events
             .change_bounds_near(dense, Some(self.sys.anchor()));
