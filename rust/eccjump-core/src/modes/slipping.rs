@@ -195,38 +195,54 @@ impl EventFunctions<5> for SlipEvents<'_> {
     /// Plus 4δ, δ = 2⁻⁴⁰(M + Σ G_i |y_i|max) with M the sum of the magnitudes of g's terms:
     /// as in the rolling bounds, hundreds of times the rounding of g, of sin_cos and of the
     /// interpolant (`modes::rolling::bounds`).
+    ///
+    /// Each g is smooth, and bends by at most M|h|²/8 from its chord, M = Σ P_ij R_i R_j +
+    /// Σ G_i Q_i with P_ij ≥ |∂²g/∂y_i∂y_j| and Q_i the interpolant's acceleration bounds:
+    /// - B: P_θθ = χW², P_θω = 2χW, P_ωω = 2χ;
+    /// - the slip velocity and l − l_max: linear, no P;
+    /// - D − D_min: d²D/dθ² = 2χ² cos 2θ + σμ_kχ(sin θ + 2χ sin 2θ): P_θθ = 2χ² + μ_kχ(1 + 2χ).
     #[inline]
     fn change_bounds(&self, first: usize, dense: &DenseStep<5>, out: &mut [Change]) {
         let b = dense.bounds();
-        let (value, rate) = (b.value, b.rate);
+        let (value, rate, accel) = (b.value, b.rate, b.accel);
         let h = dense.h.abs();
         let r = &self.slipping.ramp;
         let (chi, mu) = (r.body.chi, self.slipping.mu_k);
         let w = value[1];
-        // L|h| + 4δ from M and the (G_i, component i) pairs.
-        let bound = |m: f64, terms: &[(f64, usize)]| {
-            let (mut slope, mut size) = (0.0, m);
+        let (r_theta, r_omega) = (rate[0], rate[1]);
+        // L|h| + 4δ and the bend from M, the (G_i, component i) pairs and Σ P_ij R_i R_j.
+        let bound = |m: f64, terms: &[(f64, usize)], second: f64| {
+            let (mut slope, mut size, mut curvature) = (0.0, m, second);
             for &(g, i) in terms {
                 slope += g * rate[i];
                 size += g * value[i];
+                curvature += g * accel[i];
             }
             Change {
                 rate: slope * h,
                 slack: 4.0 * size / (1u64 << 40) as f64,
+                bend: curvature * (h * h) / 8.0,
+                smooth: true,
             }
         };
         for (i, o) in out.iter_mut().enumerate() {
             *o = match SlipEvent::ALL[first + i] {
                 SlipEvent::NormalForce => {
                     let chi_w2 = chi * w * w;
-                    bound(r.cos_a + chi_w2, &[(chi_w2, 0), (2.0 * chi * w, 1)])
+                    let second = chi_w2 * r_theta * r_theta
+                        + 4.0 * chi * w * r_theta * r_omega
+                        + 2.0 * chi * r_omega * r_omega;
+                    bound(r.cos_a + chi_w2, &[(chi_w2, 0), (2.0 * chi * w, 1)], second)
                 }
-                SlipEvent::Stops => bound(0.0, &[(1.0, 3), (1.0, 1)]),
+                SlipEvent::Stops => bound(0.0, &[(1.0, 3), (1.0, 1)], 0.0),
                 SlipEvent::Painleve => {
                     let g = chi * chi + mu * chi * (1.0 + chi);
-                    bound(r.body.icm + g + D_MIN, &[(g, 0)])
+                    let p = 2.0 * chi * chi + mu * chi * (1.0 + 2.0 * chi);
+                    bound(r.body.icm + g + D_MIN, &[(g, 0)], p * r_theta * r_theta)
                 }
-                SlipEvent::LLimit if self.l_max.is_finite() => bound(self.l_max.abs(), &[(1.0, 2)]),
+                SlipEvent::LLimit if self.l_max.is_finite() => {
+                    bound(self.l_max.abs(), &[(1.0, 2)], 0.0)
+                }
                 SlipEvent::LLimit => Change::NONE,
             };
         }

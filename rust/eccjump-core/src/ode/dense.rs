@@ -54,7 +54,8 @@ impl<const N: usize> DenseStep<N> {
 
 /// Componentwise bounds of a dense-output step over the whole step, from the triangle
 /// inequality on its coefficients: for σ ∈ [0, 1],
-/// |y(σ)| ≤ |y_old| + |h| Σ_j |Q_j| and |dy/dt| = |Σ_j (j+1) Q_j σ^j| ≤ Σ_j (j+1) |Q_j|.
+/// |y(σ)| ≤ |y_old| + |h| Σ_j |Q_j|, |dy/dt| = |Σ_j (j+1) Q_j σ^j| ≤ Σ_j (j+1) |Q_j| and
+/// |d²y/dt²| = |Σ_j (j+1) j Q_j σ^(j−1)| / |h| ≤ Σ_j (j+1) j |Q_j| / |h|.
 /// They hold for the exact polynomial; computed in floating point they may be low by a
 /// few ulps relative, which callers cover with a safety margin.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -63,6 +64,8 @@ pub struct DenseBounds<const N: usize> {
     pub value: State<N>,
     /// Upper bound of |dy_i/dt| over the step.
     pub rate: State<N>,
+    /// Upper bound of |d²y_i/dt²| over the step.
+    pub accel: State<N>,
 }
 
 impl<const N: usize> DenseStep<N> {
@@ -72,14 +75,17 @@ impl<const N: usize> DenseStep<N> {
     pub fn bounds(&self) -> DenseBounds<N> {
         let mut spread = State::<N>::zeros();
         let mut rate = State::<N>::zeros();
+        let mut bend = State::<N>::zeros();
         for (j, qj) in self.q[..self.degree].iter().enumerate() {
             let a = qj.abs();
             spread += a;
             rate += a * (j + 1) as f64;
+            bend += a * ((j + 1) * j) as f64;
         }
         DenseBounds {
             value: self.y_old.abs() + spread * self.h.abs(),
             rate,
+            accel: bend / self.h.abs(),
         }
     }
 }

@@ -72,23 +72,35 @@ pub trait EventFunctions<const N: usize> {
     }
 }
 
-/// How much an event function g can change within one step: `rate` ≥ L |h|, where L bounds
-/// |d/dt g(t, y(t))| along the dense output y(t) over the whole step, and `slack` ≥ 4δ,
-/// where δ bounds the error of a computed g there (rounding of g and of y(t), and the
-/// difference between the exact step end and the interpolant at σ = 1).
+/// How much an event function g can change within one step, along the dense output y(t):
+/// - `rate` ≥ L |h|, where L bounds |d/dt g(t, y(t))| over the whole step;
+/// - `bend` ≥ M |h|²/8, where M bounds |d²/dt² φ(t, y(t))| over the step for g = φ
+///   (`smooth`), or for each φ_i of g = min_i φ_i (a kink where two meet: the slip margin
+///   μF_y − |F_x| = min(μF_y − F_x, μF_y + F_x)); +∞ if unknown;
+/// - `slack` ≥ 4δ, where δ bounds the error of a computed g there (rounding of g and of
+///   y(t), and the difference between the exact step end and the interpolant at σ = 1).
 ///
 /// The step scan uses them to skip work: if the computed values of g at the ends of a part
-/// of the step (the whole step, or one cell between two samples) have one sign and
-/// |g_a| + |g_b| > (the part's share of `rate`) + `slack`, then the exact g stays above δ
-/// in magnitude throughout the part (it cannot fall faster than L from either end), so
-/// every computed value inside has that same sign: no sample inside the step can show a
-/// crossing, or no dip inside the cell can reach the other side.
+/// of the step (the whole step, or one cell between two samples) have one sign and either
+/// - |g_a| + |g_b| > (the part's share of `rate`) + `slack` (g cannot fall faster than L
+///   from either end), or
+/// - min(g_a, g_b) > (the part's share of `bend`, squared) + `slack` (g positive: each φ_i
+///   stays above its chord, which is above min(g_a, g_b), by at most M λ²|h|²/8 for a part
+///   λ of the step), or max(g_a, g_b) < −(the same) (g negative and smooth),
+///
+/// then the exact g stays above δ in magnitude throughout the part, so every computed value
+/// inside has that same sign: no sample inside the step can show a crossing, or no dip
+/// inside the cell can reach the other side.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Change {
     /// ≥ L |h|.
     pub rate: f64,
     /// ≥ 4δ.
     pub slack: f64,
+    /// ≥ M |h|²/8.
+    pub bend: f64,
+    /// g itself is smooth: `bend` holds above its chord too, not only below.
+    pub smooth: bool,
 }
 
 impl Change {
@@ -96,23 +108,38 @@ impl Change {
     pub const NONE: Change = Change {
         rate: 0.0,
         slack: 0.0,
+        bend: 0.0,
+        smooth: true,
     };
     /// Unknown: anything may happen (never skips).
     pub const ANY: Change = Change {
         rate: 0.0,
         slack: f64::INFINITY,
+        bend: f64::INFINITY,
+        smooth: false,
     };
 
-    /// The bound over the whole step.
+    /// A bound by the rate alone (no bend known).
     #[inline]
-    pub fn total(self) -> f64 {
-        self.rate + self.slack
+    pub fn by_rate(rate: f64, slack: f64) -> Change {
+        Change {
+            rate,
+            slack,
+            bend: f64::INFINITY,
+            smooth: false,
+        }
     }
 
-    /// The bound over a part `share` (≥ 0) of the step.
+    /// The bound by the rate over a part `share` (≥ 0) of the step.
     #[inline]
     pub fn over(self, share: f64) -> f64 {
         self.rate * share + self.slack
+    }
+
+    /// The bound by the bend over a part `share` (≥ 0) of the step.
+    #[inline]
+    pub fn bend_over(self, share: f64) -> f64 {
+        self.bend * (share * share) + self.slack
     }
 }
 
@@ -224,15 +251,25 @@ pub(crate) fn time_slack(t_old: f64, h: f64) -> f64 {
     (t_old.abs() + h.abs()) / h.abs() * f64::EPSILON * 16.0
 }
 
-/// Can the inside of a step (or of a cell) be skipped for an event, given its computed
-/// values at the ends and its change bound there (see [`Change`])? Both ends finite, of one
-/// strict sign, and further from zero together than g can travel.
+/// Can the inside of a step (or of a part `share` of it, a cell) be skipped for an event,
+/// given its computed values at the ends and its change bound (see [`Change`])? Both ends
+/// finite, of one strict sign, and further from zero than g can travel or bend.
 #[inline]
-fn no_zero_inside(ga: f64, gb: f64, bound: f64) -> bool {
+fn no_zero_inside(ga: f64, gb: f64, change: &Change, share: f64) -> bool {
     let same_sign = (ga > 0.0 && gb > 0.0) || (ga < 0.0 && gb < 0.0);
+    if !(same_sign && ga.is_finite() && gb.is_finite()) {
+        return false;
+    }
     // A NaN bound compares false: no skip. The relative slack covers the rounding of
-    // the bound itself and of the sum.
-    same_sign && ga.is_finite() && gb.is_finite() && ga.abs() + gb.abs() > bound * (1.0 + 1e-9)
+    // the bounds themselves and of the sum.
+    let margin = 1.0 + 1e-9;
+    let bend = change.bend_over(share) * margin;
+    ga.abs() + gb.abs() > change.over(share) * margin
+        || if ga > 0.0 {
+            ga.min(gb) > bend
+        } else {
+            change.smooth && -ga.max(gb) > bend
+        }
 }
 
 /// The sample points of one accepted step: its two ends (exact states) and `samples`
@@ -425,7 +462,6 @@ pub fn scan_step<E: EventFunctions<N>, const N: usize>(
     let mut g_b = [0.0; EVENT_CHUNK];
     let mut g_end = [0.0; EVENT_CHUNK];
     let mut bound = [Change::NONE; EVENT_CHUNK];
-    let mut cell_bound = [0.0; EVENT_CHUNK];
     for first in (0..n_events).step_by(EVENT_CHUNK) {
         let m = (n_events - first).min(EVENT_CHUNK);
         let (t, y) = pts.point(0);
@@ -451,18 +487,15 @@ pub fn scan_step<E: EventFunctions<N>, const N: usize>(
         }
         if samples > 0 {
             events.change_bounds(first, dense, &mut bound[..m]);
-            if (0..m).all(|i| no_zero_inside(g_a[i], g_end[i], bound[i].total())) {
+            if (0..m).all(|i| no_zero_inside(g_a[i], g_end[i], &bound[i], 1.0)) {
                 continue;
             }
-            let share = 1.0 / (samples + 1) as f64 + time_slack(dense.t_old, dense.h);
-            for i in 0..m {
-                cell_bound[i] = bound[i].over(share);
-            }
         }
+        let cell = 1.0 / (samples + 1) as f64 + time_slack(dense.t_old, dense.h);
         // The dip test needs slopes, computed only at the ends of cells where g_k could
         // reach zero at all (see `Change`).
         let may_dip =
-            |i: usize, ga: f64, gb: f64| samples == 0 || !no_zero_inside(ga, gb, cell_bound[i]);
+            |i: usize, ga: f64, gb: f64| samples == 0 || !no_zero_inside(ga, gb, &bound[i], cell);
         let mut s_a = [f64::NAN; EVENT_CHUNK];
         let mut s_b = [f64::NAN; EVENT_CHUNK];
         let mut s_a_at = usize::MAX; // the sample whose slopes s_a holds
@@ -563,8 +596,11 @@ pub fn scan_step<E: EventFunctions<N>, const N: usize>(
 }
 
 /// For tests: the change bounds `b` of a step from `t_old` over `h` hold between every two
-/// of 33 equally spaced points of it a power of two of cells apart (`g(t)`: the events' values there), each pair by its
-/// share of the step ([`Change::over`], with the times' rounding: [`time_slack`]); the
+/// of 33 equally spaced points of it a power of two of cells apart (`g(t)`: the events'
+/// values there), each pair by its share of the step (with the times' rounding:
+/// [`time_slack`]): by the rate ([`Change::over`]) between the two, and by the bend
+/// ([`Change::bend_over`]) at every point between them, which stays above the lower of
+/// the two values less the bend (and, for a smooth g, below the higher plus the bend); the
 /// failures described.
 #[cfg(test)]
 pub(crate) fn check_change_bounds<const K: usize>(
@@ -573,7 +609,7 @@ pub(crate) fn check_change_bounds<const K: usize>(
     g: impl Fn(f64) -> [f64; K],
     b: &[Change; K],
 ) -> Result<(), String> {
-    let values: Vec<[f64; K]> = (0..=64).map(|i| g(t_old + h * (i as f64 / 64.0))).collect();
+    let values: Vec<[f64; K]> = (0..=32).map(|i| g(t_old + h * (i as f64 / 32.0))).collect();
     for (i, gi) in values.iter().enumerate() {
         for (j, gj) in values.iter().enumerate().skip(i + 1) {
             if !(j - i).is_power_of_two() {
@@ -581,9 +617,20 @@ pub(crate) fn check_change_bounds<const K: usize>(
             }
             let share = (j - i) as f64 / 32.0 + time_slack(t_old, h);
             for k in 0..K {
-                if (gj[k] - gi[k]).abs() > b[k].over(share) {
-                    let (ga, gb, bound) = (gi[k], gj[k], b[k]);
+                let (ga, gb, bound) = (gi[k], gj[k], b[k]);
+                if (gb - ga).abs() > bound.over(share) {
                     return Err(format!("event {k}, points {i}, {j}: {ga}, {gb}, {bound:?}"));
+                }
+                let bend = bound.bend_over(share);
+                for (l, gl) in values.iter().enumerate().take(j).skip(i + 1) {
+                    let below = gl[k] < ga.min(gb) - bend;
+                    let above = bound.smooth && gl[k] > ga.max(gb) + bend;
+                    if below || above {
+                        let g = gl[k];
+                        return Err(format!(
+                            "event {k}, points {i}, {l}, {j}: {ga}, {g}, {gb}, {bound:?}"
+                        ));
+                    }
                 }
             }
         }

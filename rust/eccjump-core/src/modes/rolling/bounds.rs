@@ -36,9 +36,11 @@ pub(crate) struct ContactBounds {
     pub slip: Change,
     /// Of θ̇.
     pub omega: Change,
-    /// Θ ≥ |θ|, |dθ/dt| and |h| over the step, for [`ContactBounds::theta_above`].
+    /// Θ ≥ |θ|, |dθ/dt|, |d²θ/dt²| and |h| over the step, for
+    /// [`ContactBounds::theta_above`].
     theta_max: f64,
     theta_rate: f64,
+    theta_accel: f64,
     h: f64,
 }
 
@@ -67,16 +69,29 @@ impl ContactBounds {
         let bounds = dense.bounds();
         let (theta_max, w) = (bounds.value[0], bounds.value[1]);
         let (theta_rate, omega_rate) = (bounds.rate[0], bounds.rate[1]);
+        let (theta_accel, omega_accel) = (bounds.accel[0], bounds.accel[1]);
         let h = dense.h.abs();
         let chi = ramp.body.chi;
         let (sa, ca) = (ramp.sin_a, ramp.cos_a);
         let eps40 = 1.0 / (1u64 << 40) as f64;
-        // δ = 2⁻⁴⁰ (M + G_θ Θ + G_ω W); the bound is L |h| + 4δ.
-        let bound = |(m, g_theta, g_omega): (f64, f64, f64)| {
+        // δ = 2⁻⁴⁰ (M + G_θ Θ + G_ω W); the bound is L |h| + 4δ. Along the interpolant
+        // g'' = g_θθ θ'² + 2 g_θω θ'θ̇' + g_ωω θ̇'² + g_θ θ'' + g_ω θ̇'', so with P_.. ≥ the
+        // second partials' magnitudes the bend is (P_θθ R_θ² + 2P_θω R_θ R_ω + P_ωω R_ω²
+        // + G_θ Q_θ + G_ω Q_ω) |h|²/8 (R, Q: the interpolant's rate and acceleration bounds).
+        let bound = |(m, g_theta, g_omega): (f64, f64, f64),
+                     (p_tt, p_tw, p_ww): (f64, f64, f64),
+                     smooth: bool| {
             let delta = (m + g_theta * theta_max + g_omega * w) * eps40;
+            let curvature = p_tt * theta_rate * theta_rate
+                + 2.0 * p_tw * theta_rate * omega_rate
+                + p_ww * omega_rate * omega_rate
+                + g_theta * theta_accel
+                + g_omega * omega_accel;
             Change {
                 rate: (g_theta * theta_rate + g_omega * omega_rate) * h,
                 slack: 4.0 * delta,
+                bend: curvature * (h * h) / 8.0,
+                smooth,
             }
         };
         let d_min = ramp.contact_inertia(-1.0);
@@ -93,27 +108,51 @@ impl ContactBounds {
             None => (1.0, 1.0, d_min),
         };
         let chi_w2 = chi * w * w;
-        let liftoff = bound((chi_w2 * c_max + ca, chi_w2 * s_max, 2.0 * chi * w * c_max));
+        let (chi_w, chi_s, chi_c) = (chi * w, chi * s_max, chi * c_max);
+        let liftoff = bound(
+            (chi_w2 * c_max + ca, chi_w2 * s_max, 2.0 * chi_w * c_max),
+            (chi_w2 * c_max, 2.0 * chi_w * s_max, 2.0 * chi_c),
+            true,
+        );
         let (fy, slip) = if d_lo > 0.0 {
+            // θ̈ = a = N/D and its partials (aD = N differentiated; D_ω = 0).
             let a = (chi_w2 * s_max + chi + sa) / d_lo;
             let a_theta = (chi_w2 * c_max + chi) / d_lo + 2.0 * chi * s_max * a / d_lo;
             let a_omega = 2.0 * chi * w * s_max / d_lo;
+            let a_tt = (chi_w2 * s_max + chi + 4.0 * chi_s * a_theta + 2.0 * chi_c * a) / d_lo;
+            let a_tw = (2.0 * chi_w * c_max + 2.0 * chi_s * a_omega) / d_lo;
+            let a_ww = 2.0 * chi_s / d_lo;
             let lever = 1.0 + chi * c_max;
-            // (M, G_θ, G_ω) of F_y and F_x.
+            // (M, G_θ, G_ω) and (P_θθ, P_θω, P_ωω) of F_y and F_x.
             let fy = (
                 ca + chi_w2 * c_max + chi * a * s_max,
                 chi_w2 * s_max + chi * a * c_max + chi * s_max * a_theta,
                 2.0 * chi * w * c_max + chi * s_max * a_omega,
+            );
+            let fy2 = (
+                chi_w2 * c_max + chi * (a_tt * s_max + 2.0 * a_theta * c_max + a * s_max),
+                2.0 * chi_w * s_max + chi * (a_tw * s_max + a_omega * c_max),
+                2.0 * chi_c + chi * a_ww * s_max,
             );
             let fx = (
                 sa + chi_w2 * s_max + lever * a,
                 chi_w2 * c_max + chi * s_max * a + lever * a_theta,
                 2.0 * chi * w * s_max + lever * a_omega,
             );
+            let fx2 = (
+                chi_w2 * s_max + chi_c * a + 2.0 * chi_s * a_theta + lever * a_tt,
+                2.0 * chi_w * c_max + chi_s * a_omega + lever * a_tw,
+                2.0 * chi_s + lever * a_ww,
+            );
+            // μF_y − |F_x| = min(μF_y − F_x, μF_y + F_x): each branch has these bounds.
             let slip = mu_s.map_or(Change::NONE, |mu| {
-                bound((mu * fy.0 + fx.0, mu * fy.1 + fx.1, mu * fy.2 + fx.2))
+                bound(
+                    (mu * fy.0 + fx.0, mu * fy.1 + fx.1, mu * fy.2 + fx.2),
+                    (mu * fy2.0 + fx2.0, mu * fy2.1 + fx2.1, mu * fy2.2 + fx2.2),
+                    false,
+                )
             });
-            (bound(fy), slip)
+            (bound(fy, fy2, true), slip)
         } else {
             let slip = if mu_s.is_some() {
                 Change::ANY
@@ -122,7 +161,7 @@ impl ContactBounds {
             };
             (Change::ANY, slip)
         };
-        let omega = bound((w, 0.0, 1.0));
+        let omega = bound((w, 0.0, 1.0), (0.0, 0.0, 0.0), true);
         Self {
             liftoff,
             fy,
@@ -130,6 +169,7 @@ impl ContactBounds {
             omega,
             theta_max,
             theta_rate,
+            theta_accel,
             h,
         }
     }
@@ -142,6 +182,8 @@ impl ContactBounds {
         Change {
             rate: self.theta_rate * self.h,
             slack: 4.0 * delta,
+            bend: self.theta_accel * (self.h * self.h) / 8.0,
+            smooth: true,
         }
     }
 }
