@@ -10,10 +10,14 @@ use crate::error::{Error, Result};
 use crate::maps::parallel::par_fill_pieces_until;
 use crate::mechanics::{Cylinder, Ramp, Rule};
 use crate::modes::contact::{ContactLaw, Mode, Reason};
+use crate::modes::rolling::run::RollOptions;
 use crate::modes::rolling::track::roll_batch;
-use crate::motion::simulate::{first_roll, simulate_with};
+use crate::motion::simulate::{Need, Sim};
+use crate::motion::sliding::SlipTrack;
 use crate::motion::{simulate, MotionRun, MotionStatus, SimOptions};
+use crate::ode::lanes::{solve_lanes_with, Keyed, Start};
 use crate::ode::SolverOptions;
+use std::cell::{Cell, RefCell};
 
 /// Modes of the sequence kept per point (the start's mode first): with 2 bits per mode the
 /// code fits a `u16`.
@@ -363,9 +367,10 @@ pub fn motion_grid(
 }
 
 /// The summaries of the grid points start, start + 1, … into `out`, each exactly
-/// [`motion_point`] there. The first rolling segments of the points (most of a map's work:
-/// the points start at rest, and roll until they slip or jump) are integrated side by side
-/// ([`roll_batch`]); each point's run goes on alone as soon as its first segment ends.
+/// [`motion_point`] there. The points' runs go on together, in waves: every rolling segment
+/// that some run needs is integrated side by side with the others ([`roll_batch`]), then
+/// every sliding segment ([`solve_lanes_with`]), each run going on (flights, impacts,
+/// decisions) as soon as its segment ends, until every run is over.
 fn motion_piece(
     axes: &MotionAxes<'_>,
     base: &SimOptions,
@@ -373,27 +378,110 @@ fn motion_piece(
     out: &mut [MotionSummary],
     cancelled: &dyn Fn() -> bool,
 ) {
-    let mut i = 0;
-    let out = std::cell::Cell::from_mut(out).as_slice_of_cells();
-    let next = || {
-        while i < out.len() {
-            let k = i;
-            i += 1;
-            match axes.point(start + k, base) {
-                None => out[k].set(MotionSummary::invalid()),
-                Some((ramp, o)) => match first_roll(&ramp, &o) {
-                    Some(first) => return Some(((k, ramp, o), ramp, first)),
-                    None => out[k].set(motion_point(&ramp, &o)),
-                },
+    let method = base.solver.method;
+    // The points' parameters first: the runs borrow them.
+    let params: Vec<Option<(Ramp, SimOptions)>> = (0..out.len())
+        .map(|k| axes.point(start + k, base))
+        .collect();
+    // As `motion_point`: a run is not stopped between its segments (a map stops between
+    // the segments' steps, and discards what it has).
+    let never = || false;
+    let waves = Waves {
+        runs: RefCell::new((0..out.len()).map(|_| None).collect()),
+        rolls: RefCell::new(Vec::new()),
+        slips: RefCell::new(Vec::new()),
+        out: Cell::from_mut(out).as_slice_of_cells(),
+        rule: base.law.rule,
+    };
+    for (k, p) in params.iter().enumerate() {
+        match p {
+            None => waves.out[k].set(MotionSummary::invalid()),
+            Some((ramp, o)) => match Sim::begin(ramp, o, &never) {
+                Err(e) => waves.out[k].set(summary(Err(e), waves.rule)),
+                Ok(mut run) => {
+                    let need = run.advance();
+                    waves.route(k, run, need);
+                }
+            },
+        }
+    }
+    while !cancelled() && !waves.idle() {
+        roll_batch(
+            method,
+            || {
+                let (k, o) = waves.rolls.borrow_mut().pop()?;
+                params[k].as_ref().map(|(ramp, _)| (k, *ramp, o))
+            },
+            |k, rr| waves.resume(k, |run| run.rolled(rr)),
+            cancelled,
+        );
+        solve_lanes_with(
+            method,
+            || {
+                if cancelled() {
+                    return None;
+                }
+                let (key, track) = waves.slips.borrow_mut().pop()?;
+                let track: SlipTrack = *track;
+                let (t0, y0, t_end, opts) = (track.t0, track.y0, track.t_end, track.solver);
+                Some(Start {
+                    track: Keyed { key, track },
+                    t0,
+                    y0,
+                    t_end,
+                    opts,
+                })
+            },
+            |k: Keyed<usize, SlipTrack>, outcome| {
+                waves.resume(k.key, |run| run.slid(k.track, &outcome))
+            },
+            cancelled,
+        );
+    }
+}
+
+/// The runs of a piece of a motion map between their segments ([`motion_piece`]).
+struct Waves<'p> {
+    /// Each point's run while it waits for a segment.
+    runs: RefCell<Vec<Option<Sim<'p>>>>,
+    /// The rolling segments waiting: (point, options).
+    rolls: RefCell<Vec<(usize, RollOptions)>>,
+    /// The sliding segments waiting: (point, track).
+    slips: RefCell<Vec<(usize, Box<SlipTrack>)>>,
+    out: &'p [Cell<MotionSummary>],
+    rule: Rule,
+}
+
+impl<'p> Waves<'p> {
+    /// No segment waits.
+    fn idle(&self) -> bool {
+        self.rolls.borrow().is_empty() && self.slips.borrow().is_empty()
+    }
+
+    /// Point k's run after `advance`: its summary, or the segment it waits for.
+    fn route(&self, k: usize, run: Sim<'p>, need: Result<Need>) {
+        match need {
+            Err(e) => self.out[k].set(summary(Err(e), self.rule)),
+            Ok(Need::Done) => self.out[k].set(summary(run.finish(), self.rule)),
+            Ok(Need::Roll(o)) => {
+                self.runs.borrow_mut()[k] = Some(run);
+                self.rolls.borrow_mut().push((k, o));
+            }
+            Ok(Need::Slip(track)) => {
+                self.runs.borrow_mut()[k] = Some(run);
+                self.slips.borrow_mut().push((k, track));
             }
         }
-        None
-    };
-    let done = |(k, ramp, o): (usize, Ramp, SimOptions), first| {
-        let run = simulate_with(&ramp, &o, &|| false, Some(first));
-        out[k].set(summary(run, o.law.rule));
-    };
-    roll_batch(base.solver.method, next, done, cancelled);
+    }
+
+    /// Point k's run, its segment integrated (`go_on` hands it over), on to what it needs
+    /// next.
+    fn resume(&self, k: usize, go_on: impl FnOnce(&mut Sim<'p>) -> Result<()>) {
+        let taken = self.runs.borrow_mut()[k].take();
+        let mut run = taken.expect("a run waits for its segment");
+        let need = go_on(&mut run).and_then(|()| run.advance());
+        self.route(k, run, need);
+    }
 }
 
 #[cfg(test)]
@@ -489,18 +577,14 @@ mod tests {
             };
             let mut out = vec![MotionSummary::invalid(); axes.size().unwrap()];
             motion_grid(&axes, &o, 2, &mut out, &|| false).unwrap();
-            let mut first = [0; 3];
+            // Points by their first mode (none: invalid).
+            let mut first = [0; 4];
             for (g, got) in out.iter().enumerate() {
                 let alone = match axes.point(g, &o.base()) {
-                    Some((ramp, p)) => {
-                        first[first_roll(&ramp, &p).is_some() as usize] += 1;
-                        motion_point(&ramp, &p)
-                    }
-                    None => {
-                        first[2] += 1;
-                        MotionSummary::invalid()
-                    }
+                    Some((ramp, p)) => motion_point(&ramp, &p),
+                    None => MotionSummary::invalid(),
                 };
+                first[(alone.sequence & 3) as usize] += 1;
                 assert_eq!(format!("{got:?}"), format!("{alone:?}"), "point {g}");
             }
             assert!(first.iter().all(|&n| n > 10), "{first:?}");

@@ -11,7 +11,9 @@
 
 use crate::mechanics::friction::Sliding;
 use crate::mechanics::Ramp;
+use crate::ode::lanes::{LaneRhs, Lanes, LANES};
 use crate::ode::{Change, DenseStep, Direction, EventFunctions, EventSpec, OdeSystem, State};
+use crate::trig::lanes::sin_cos_lanes;
 use crate::trig::SinCosMemo;
 
 /// During a slip, D = Ĩ_CM + χ K sin θ falling to this ends the run (Painlevé): the normal
@@ -80,9 +82,15 @@ impl Slipping {
     /// `d`: the mode is consistent only where D > 0 and B > 0).
     #[inline]
     pub fn kinematics(&self, theta: f64, omega: f64) -> SlipKinematics {
+        let (s, c) = self.sin_cos(theta);
+        self.kinematics_sc(omega, s, c)
+    }
+
+    /// [`Self::kinematics`] given s = sin θ and c = cos θ.
+    #[inline(always)]
+    fn kinematics_sc(&self, omega: f64, s: f64, c: f64) -> SlipKinematics {
         let r = &self.ramp;
         let chi = r.body.chi;
-        let (s, c) = self.sin_cos(theta);
         let chi_w2 = chi * omega * omega;
         let load = r.cos_a - chi_w2 * c;
         let sl = Sliding::new(&r.body, s, c, self.sigma, self.mu_k);
@@ -105,9 +113,44 @@ impl Slipping {
 impl OdeSystem<5> for Slipping {
     #[inline]
     fn rhs(&self, _t: f64, y: &State<5>) -> State<5> {
-        let k = self.kinematics(y[0], y[1]);
-        let v = y[3] - y[1];
-        State::<5>::new(y[1], k.theta_dd, y[3], k.l_dd, self.mu_k * k.fy * v.abs())
+        let (s, c) = self.sin_cos(y[0]);
+        self.derivative(y[1], y[3], s, c)
+    }
+}
+
+impl Slipping {
+    /// The derivative of (θ, θ̇, l, l̇, q) at θ̇ = `omega`, l̇ = `ldot`, given s = sin θ and
+    /// c = cos θ (θ, l and q do not enter it).
+    #[inline(always)]
+    fn derivative(&self, omega: f64, ldot: f64, s: f64, c: f64) -> State<5> {
+        let k = self.kinematics_sc(omega, s, c);
+        let v = ldot - omega;
+        State::<5>::new(omega, k.theta_dd, ldot, k.l_dd, self.mu_k * k.fy * v.abs())
+    }
+}
+
+impl LaneRhs<5> for Slipping {
+    /// [`OdeSystem::rhs`] of each lane's system, bit for bit (the same `sin_cos` by
+    /// [`sin_cos_lanes`], the same arithmetic per lane).
+    #[inline(always)]
+    fn rhs_lanes(systems: &[&Self; LANES], y: &Lanes<5>) -> Lanes<5> {
+        let (s, c) = sin_cos_lanes(&y.0[0]);
+        let mut out = Lanes([[0.0; LANES]; 5]);
+        for l in 0..LANES {
+            let d = systems[l].derivative(y.0[1][l], y.0[3][l], s[l], c[l]);
+            out.set_lane(l, &d);
+        }
+        out
+    }
+
+    /// Each memo gets the trigonometry of its lane's step end, where the event scan starts.
+    #[inline(always)]
+    fn step_end_lanes(systems: &[&Self; LANES], y_new: &Lanes<5>) {
+        let theta = &y_new.0[0];
+        let (s, c) = sin_cos_lanes(theta);
+        for l in 0..LANES {
+            systems[l].trig.set(theta[l], s[l], c[l]);
+        }
     }
 }
 
@@ -135,15 +178,15 @@ impl SlipEvent {
 }
 
 /// The events of a slip, all terminal.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct SlipEvents<'a> {
-    /// The sliding mode (its memo shared with the right-hand side).
-    pub slipping: &'a Slipping,
+#[derive(Debug, Clone, PartialEq)]
+pub struct SlipEvents {
+    /// The sliding mode (its memo shared with the right-hand side: integrate this one).
+    pub slipping: Slipping,
     /// The l that ends the run (∞: never).
     pub l_max: f64,
 }
 
-impl EventFunctions<5> for SlipEvents<'_> {
+impl EventFunctions<5> for SlipEvents {
     fn count(&self) -> usize {
         SlipEvent::ALL.len()
     }
@@ -301,11 +344,11 @@ mod tests {
             made += 1;
             let l_max = if made % 3 == 0 { 0.5 } else { f64::INFINITY };
             let events = SlipEvents {
-                slipping: &sl,
+                slipping: sl,
                 l_max,
             };
             each(
-                &sl,
+                &events.slipping,
                 &events,
                 State::<5>::new(theta, omega, 0.0, omega + v, 0.0),
             );

@@ -11,6 +11,7 @@
 pub mod options;
 pub mod record;
 pub mod simulate;
+pub(crate) mod sliding;
 pub mod solution;
 
 pub use options::SimOptions;

@@ -10,14 +10,16 @@ use crate::modes::contact::{decide, Mode, Reason, Verdict};
 use crate::modes::flight::landing::Landing;
 use crate::modes::flight::Flight;
 use crate::modes::rolling::run::{roll_until, RollEvent, RollOptions, RollRun, RollStatus};
-use crate::modes::slipping::{SlipEvent, SlipEvents, Slipping};
+use crate::modes::slipping::SlipEvent;
 use crate::motion::options::SimOptions;
 use crate::motion::record::{
     FlightRecord, ImpactRecord, MotionRun, MotionStatus, Point, Segment, Transition,
 };
+use crate::motion::sliding::{slip_state, SlipTrack};
 use crate::motion::solution::{MotionSolution, Piece};
+use crate::ode::lanes::Track;
 use crate::ode::roots::brent;
-use crate::ode::{self, Observation, State, Status};
+use crate::ode::{self, Outcome, Status};
 
 /// What comes after a segment.
 enum Next {
@@ -49,8 +51,8 @@ struct Driver<'a> {
     run: MotionRun,
     t: f64,
     steps_left: usize,
-    /// The first rolling segment, integrated already (see [`simulate_with`]).
-    first_roll: Option<Result<RollRun>>,
+    /// The state the segment under way began from.
+    segment_start: BodyState,
 }
 
 /// Segments between two asks of `stop` (from Python each ask takes the GIL: 0.25 µs, a few
@@ -72,121 +74,199 @@ pub fn simulate_until(
     opts: &SimOptions,
     stop: &dyn Fn() -> bool,
 ) -> Result<MotionRun> {
-    simulate_with(ramp, opts, stop, None)
-}
-
-/// The options of the run's first segment if it is a rolling one (the run starts rolling),
-/// as [`simulate`] integrates it: `roll_until(ramp, options)` is that segment.
-pub(crate) fn first_roll(ramp: &Ramp, opts: &SimOptions) -> Option<RollOptions> {
-    match opening(ramp, opts).ok()?.1 {
-        Next::Mode(Mode::Roll, _, state, _) => {
-            Some(roll_options(opts, state, opts.t_max, opts.solver.max_steps))
+    let mut sim = Sim::begin(ramp, opts, stop)?;
+    loop {
+        match sim.advance()? {
+            Need::Roll(o) => sim.rolled(roll_until(ramp, &o, stop))?,
+            Need::Slip(track) => {
+                let out = ode::solve_until(
+                    track.sys(),
+                    track.events(),
+                    track.t0,
+                    track.y0,
+                    track.t_end,
+                    &track.solver,
+                    &mut |obs| track.observe(obs),
+                    stop,
+                );
+                sim.slid(*track, &out)?;
+            }
+            Need::Done => return sim.finish(),
         }
-        _ => None,
     }
 }
 
-/// [`simulate_until`], its first segment already integrated when `first` is given: the
-/// result of `roll_until` with the options of [`first_roll`] (by the integrator of many
-/// runs side by side, say). The run is the same, bit for bit.
-pub(crate) fn simulate_with(
-    ramp: &Ramp,
-    opts: &SimOptions,
-    stop: &dyn Fn() -> bool,
-    first: Option<Result<RollRun>>,
-) -> Result<MotionRun> {
-    let (start, mut next) = opening(ramp, opts)?;
-    let mut d = Driver {
-        ramp,
-        opts,
-        stop,
-        run: MotionRun {
-            energy0: ramp.energy_of(&start),
-            dense: opts.dense_output.then(MotionSolution::default),
-            ..MotionRun::default()
-        },
-        t: 0.0,
-        steps_left: opts.solver.max_steps,
-        first_roll: first,
-    };
-    let mut from = None;
-    loop {
-        let (mode, reason, state, sigma) = match next {
-            Next::End(status, message) => {
-                d.run.status = Some(status);
-                d.run.message = message;
-                break;
+/// What a run needs before it can go on.
+pub(crate) enum Need {
+    /// A rolling segment: `roll_until` with these options, then [`Sim::rolled`].
+    Roll(RollOptions),
+    /// A sliding segment: this track integrated from (t0, y0) to t_end with its solver
+    /// options, then [`Sim::slid`].
+    Slip(Box<SlipTrack>),
+    /// Nothing: the run is over ([`Sim::finish`]).
+    Done,
+}
+
+/// A run between its segments: the loop of [`simulate`] turned inside out, so that a
+/// caller can integrate the rolling and sliding segments of many runs side by side
+/// (motion maps), each run the same as alone, bit for bit. Flights and impacts are computed
+/// within [`Sim::advance`].
+pub(crate) struct Sim<'a> {
+    d: Driver<'a>,
+    start: BodyState,
+    /// What comes next (`None` while a segment is under way).
+    next: Option<Next>,
+    from: Option<Mode>,
+    /// The segment under way: its mode, reason, start time and evaluations before it.
+    current: (Mode, Reason, f64, usize),
+}
+
+impl<'a> Sim<'a> {
+    /// The run's start (its options checked).
+    pub(crate) fn begin(
+        ramp: &'a Ramp,
+        opts: &'a SimOptions,
+        stop: &'a dyn Fn() -> bool,
+    ) -> Result<Self> {
+        let (start, next) = opening(ramp, opts)?;
+        let d = Driver {
+            ramp,
+            opts,
+            stop,
+            run: MotionRun {
+                energy0: ramp.energy_of(&start),
+                dense: opts.dense_output.then(MotionSolution::default),
+                ..MotionRun::default()
+            },
+            t: 0.0,
+            steps_left: opts.solver.max_steps,
+            segment_start: start,
+        };
+        Ok(Self {
+            d,
+            start,
+            next: Some(next),
+            from: None,
+            current: (Mode::Roll, Reason::Start, 0.0, 0),
+        })
+    }
+
+    /// Goes on until the run needs a segment integrated, or ends.
+    pub(crate) fn advance(&mut self) -> Result<Need> {
+        let opts = self.d.opts;
+        loop {
+            let d = &mut self.d;
+            let (mode, reason, state, sigma) = match self.next.take() {
+                None => unreachable!("advance while a segment is under way"),
+                Some(Next::End(status, message)) => {
+                    d.run.status = Some(status);
+                    d.run.message = message;
+                    return Ok(Need::Done);
+                }
+                Some(Next::Mode(mode, reason, state, sigma)) => (mode, reason, state, sigma),
+            };
+            if d.run.transitions.len() > opts.max_transitions {
+                d.run.status = Some(MotionStatus::MaxTransitions);
+                d.run.message = format!(
+                    "{} transitions made (max_transitions)",
+                    opts.max_transitions
+                );
+                return Ok(Need::Done);
             }
-            Next::Mode(mode, reason, state, sigma) => (mode, reason, state, sigma),
-        };
-        if d.run.transitions.len() > opts.max_transitions {
-            d.run.status = Some(MotionStatus::MaxTransitions);
-            d.run.message = format!(
-                "{} transitions made (max_transitions)",
-                opts.max_transitions
-            );
-            break;
+            if d.run.transitions.len() % STOP_EVERY == STOP_EVERY - 1 && (d.stop)() {
+                return Err(Error::Interrupted);
+            }
+            // Mode reason: the reason for a slip that follows a slip is a reversal.
+            let reason = match (self.from, mode, reason) {
+                (Some(Mode::Slip), Mode::Slip, Reason::Slip) => Reason::Reverse,
+                (Some(Mode::Slip), Mode::Roll, Reason::Slip) => Reason::Stick,
+                _ => reason,
+            };
+            d.run.transitions.push(Transition {
+                t: d.t,
+                from: self.from,
+                to: mode,
+                reason,
+                state,
+            });
+            if opts.stop_at_landing && !d.run.impacts.is_empty() {
+                d.run.status = Some(MotionStatus::Landed);
+                return Ok(Need::Done);
+            }
+            self.current = (mode, reason, d.t, d.run.nfev);
+            let next = match mode {
+                Mode::Roll => match d.roll_start(state) {
+                    Ok(o) => return Ok(Need::Roll(o)),
+                    Err(next) => next,
+                },
+                Mode::Slip => match d.slip_start(state, sigma)? {
+                    Ok(track) => return Ok(Need::Slip(Box::new(track))),
+                    Err(next) => next,
+                },
+                Mode::Flight => d.fly(state)?,
+            };
+            self.segment_done(next);
         }
-        if d.run.transitions.len() % STOP_EVERY == STOP_EVERY - 1 && stop() {
-            return Err(Error::Interrupted);
-        }
-        // Mode reason: the reason for a slip that follows a slip is a reversal.
-        let reason = match (from, mode, reason) {
-            (Some(Mode::Slip), Mode::Slip, Reason::Slip) => Reason::Reverse,
-            (Some(Mode::Slip), Mode::Roll, Reason::Slip) => Reason::Stick,
-            _ => reason,
-        };
-        d.run.transitions.push(Transition {
-            t: d.t,
-            from,
-            to: mode,
-            reason,
-            state,
-        });
-        if opts.stop_at_landing && !d.run.impacts.is_empty() {
-            d.run.status = Some(MotionStatus::Landed);
-            break;
-        }
-        let t_start = d.t;
-        let nfev_before = d.run.nfev;
-        next = match mode {
-            Mode::Roll => d.roll(state)?,
-            Mode::Slip => d.slip(state, sigma)?,
-            Mode::Flight => d.fly(state)?,
-        };
-        d.run.segments.push(Segment {
+    }
+
+    /// The rolling segment [`Need::Roll`] asked for, integrated.
+    pub(crate) fn rolled(&mut self, rr: Result<RollRun>) -> Result<()> {
+        let next = self.d.roll_end(rr)?;
+        self.segment_done(next);
+        Ok(())
+    }
+
+    /// The sliding segment [`Need::Slip`] asked for, integrated: its track and outcome.
+    pub(crate) fn slid(&mut self, track: SlipTrack, out: &Outcome<5>) -> Result<()> {
+        let next = self.d.slip_end(track, out)?;
+        self.segment_done(next);
+        Ok(())
+    }
+
+    /// The segment under way has ended: `next` comes after it.
+    fn segment_done(&mut self, next: Next) {
+        let (mode, reason, t_start, nfev_before) = self.current;
+        let run = &mut self.d.run;
+        run.segments.push(Segment {
             mode,
             reason,
             t_start,
-            t_end: d.t,
-            nfev: d.run.nfev - nfev_before,
+            t_end: self.d.t,
+            nfev: run.nfev - nfev_before,
         });
-        from = Some(mode);
+        self.from = Some(mode);
+        self.next = Some(next);
     }
-    if d.run.points.is_empty() && opts.record_points {
-        // The run ended before its first segment (a jam at the start): record the start.
-        let mode = d.run.transitions.first().map_or(
-            if start.slip_velocity() != 0.0 {
-                Mode::Slip
-            } else {
-                Mode::Roll
-            },
-            |t| t.to,
-        );
-        let trig = crate::trig::sin_cos(start.theta);
-        let p = d.point(0.0, start, trig, (0.0, 0.0), mode);
-        d.run.push(p)?;
-    }
-    if let Some(sol) = d.run.dense.as_mut() {
-        if sol.pieces.is_empty() {
-            sol.pieces.push((0.0, Piece::Still(start)));
+
+    /// The run, once [`Sim::advance`] said [`Need::Done`].
+    pub(crate) fn finish(self) -> Result<MotionRun> {
+        let (opts, start) = (self.d.opts, self.start);
+        let mut d = self.d;
+        if d.run.points.is_empty() && opts.record_points {
+            // The run ended before its first segment (a jam at the start): record the start.
+            let mode = d.run.transitions.first().map_or(
+                if start.slip_velocity() != 0.0 {
+                    Mode::Slip
+                } else {
+                    Mode::Roll
+                },
+                |t| t.to,
+            );
+            let trig = crate::trig::sin_cos(start.theta);
+            let p = d.point(0.0, start, trig, (0.0, 0.0), mode);
+            d.run.push(p)?;
         }
-        sol.t_end = d.t;
+        if let Some(sol) = d.run.dense.as_mut() {
+            if sol.pieces.is_empty() {
+                sol.pieces.push((0.0, Piece::Still(start)));
+            }
+            sol.t_end = d.t;
+        }
+        if d.run.message.is_empty() {
+            d.run.message = d.run.status.map_or("", |s| s.name()).to_string();
+        }
+        Ok(d.run)
     }
-    if d.run.message.is_empty() {
-        d.run.message = d.run.status.map_or("", |s| s.name()).to_string();
-    }
-    Ok(d.run)
 }
 
 /// The checks of a run's options and its start: the state and what comes first.
@@ -269,19 +349,23 @@ impl Driver<'_> {
         Next::End(MotionStatus::Failed, format!("{what}: {why}"))
     }
 
-    /// A rolling segment: the `roll` kernel with its events.
-    fn roll(&mut self, s: BodyState) -> Result<Next> {
+    /// A rolling segment from `s`: the options of its `roll_until`, or what comes instead.
+    fn roll_start(&mut self, s: BodyState) -> std::result::Result<RollOptions, Next> {
         if self.time_left() <= 0.0 {
-            return Ok(self.end_of_time());
+            return Err(self.end_of_time());
         }
-        let opts = roll_options(self.opts, s, self.time_left(), self.steps_left);
-        // The first segment may have been integrated already (by `simulate_with`'s caller).
-        let given = if self.run.segments.is_empty() {
-            self.first_roll.take()
-        } else {
-            None
-        };
-        let rr = match given.unwrap_or_else(|| roll_until(self.ramp, &opts, self.stop)) {
+        self.segment_start = s;
+        Ok(roll_options(
+            self.opts,
+            s,
+            self.time_left(),
+            self.steps_left,
+        ))
+    }
+
+    /// The rolling segment begun by [`Self::roll_start`], integrated: what comes next.
+    fn roll_end(&mut self, rr: Result<RollRun>) -> Result<Next> {
+        let rr = match rr {
             Ok(rr) => rr,
             Err(Error::InvalidParameter { name, .. }) => {
                 return Ok(Next::End(
@@ -291,6 +375,7 @@ impl Driver<'_> {
             }
             Err(e) => return Err(e),
         };
+        let s = self.segment_start;
         self.steps_left = self.steps_left.saturating_sub(rr.t.len().saturating_sub(1));
         self.run.nfev += rr.nfev;
         let l_shift = s.l - s.theta;
@@ -330,71 +415,36 @@ impl Driver<'_> {
         })
     }
 
-    /// A slipping segment with friction direction σ.
-    fn slip(&mut self, s: BodyState, sigma: f64) -> Result<Next> {
+    /// A sliding segment from `s` with friction direction σ: its track (its start point
+    /// recorded), or what comes instead.
+    fn slip_start(
+        &mut self,
+        s: BodyState,
+        sigma: f64,
+    ) -> Result<std::result::Result<SlipTrack, Next>> {
         if self.time_left() <= 0.0 {
-            return Ok(self.end_of_time());
+            return Ok(Err(self.end_of_time()));
         }
-        let sys = Slipping::new(*self.ramp, sigma, self.opts.law.mu_k);
-        let events = SlipEvents {
-            slipping: &sys,
-            l_max: self.opts.l_max,
-        };
         let solver = ode::SolverOptions {
             max_steps: self.steps_left.max(1),
             ..self.opts.solver
         };
-        let y0 = State::<5>::new(s.theta, s.omega, s.l, s.ldot, 0.0);
-        let (t0, q0) = (self.t, self.run.dissipated_slip);
-        let (dense, record_points) = (self.opts.dense_output, self.opts.record_points);
-        let mut steps = Vec::new();
-        let mut memory: Option<Error> = None;
-        let state_of = |y: &State<5>| BodyState::in_contact(y[0], y[1], y[2], y[3]);
-        let ramp = self.ramp;
-        let record = |run: &mut MotionRun, t: f64, y: &State<5>| -> Result<()> {
-            if !record_points {
-                return Ok(());
-            }
-            let k = sys.kinematics(y[0], y[1]);
-            let state = state_of(y);
-            run.push(Point {
-                t,
-                state,
-                fx: k.fx,
-                fy: k.fy,
-                // The trigonometry `kinematics` has just used (the memo's).
-                energy: ramp.energy_of_trig(&state, sys.sin_cos(y[0])),
-                dissipated: q0 + y[4] + run.dissipated_impacts,
-                mode: Mode::Slip,
-            })
-        };
-        record(&mut self.run, t0, &y0)?;
-        let run = &mut self.run;
-        let outcome = ode::solve_until(
-            &sys,
-            &events,
-            t0,
-            y0,
-            self.opts.t_max,
-            &solver,
-            &mut |obs: Observation<'_, 5>| {
-                if let Observation::Step { dense: step, t, y } = obs {
-                    if memory.is_none() {
-                        if let Err(e) = record(run, t, y) {
-                            memory = Some(e);
-                        } else if dense {
-                            match crate::error::try_grow("the dense output", &mut steps) {
-                                Ok(()) => steps.push(*step),
-                                Err(e) => memory = Some(e),
-                            }
-                        }
-                    }
-                }
-            },
-            self.stop,
-        );
-        if let Some(e) = memory {
-            return Err(e);
+        let track = SlipTrack::begin(
+            self.ramp,
+            self.opts,
+            (s, sigma),
+            (self.t, solver),
+            (self.run.dissipated_slip, self.run.dissipated_impacts),
+        )?;
+        Ok(Ok(track))
+    }
+
+    /// The sliding segment begun by [`Self::slip_start`], integrated: what comes next.
+    fn slip_end(&mut self, track: SlipTrack, outcome: &Outcome<5>) -> Result<Next> {
+        let (t0, q0) = (track.t0, self.run.dissipated_slip);
+        let (points, steps) = track.finish()?;
+        for p in points {
+            self.run.push(p)?;
         }
         if outcome.status == Status::Stopped {
             return Err(Error::Interrupted);
@@ -406,7 +456,7 @@ impl Driver<'_> {
         if let Some(sol) = self.run.dense.as_mut() {
             sol.pieces.push((t0, Piece::Slip { steps }));
         }
-        let mut end = state_of(&outcome.y);
+        let mut end = slip_state(&outcome.y);
         let law = &self.opts.law;
         Ok(match outcome.status {
             Status::Finished => self.end_of_time(),

@@ -20,7 +20,7 @@
 // Lane loops index several arrays in step: the form that the compiler vectorizes.
 #![allow(clippy::needless_range_loop)]
 
-use super::pair::{all_finite, weighted_sum, RkPair, Summand};
+use super::pair::{all_finite, weighted_sum, Dop853, Dp5, Method, RkPair, Summand};
 use super::solver::{Observation, Outcome, Run, SolverOptions, Status};
 use super::stepper::{Judgement, Trial};
 use super::{DenseStep, EventFunctions, OdeSystem, State};
@@ -426,6 +426,44 @@ fn dense_of_lane<P: RkPair<N>, T, const N: usize>(
     let ends = (&k[0].lane(l), &k[P::STAGES].lane(l));
     let (t_old, h) = (st.t_old, st.t - st.t_old);
     P::dense_from_sums(&sums.map(|q| q.lane(l)), ends, t_old, h, &st.y_old, &st.y)
+}
+
+/// A track with its caller's key, so that `done` knows whose outcome it gets.
+pub struct Keyed<K, T> {
+    /// The caller's key.
+    pub key: K,
+    /// The track.
+    pub track: T,
+}
+
+impl<K, T: Track<N>, const N: usize> Track<N> for Keyed<K, T> {
+    type Sys = T::Sys;
+    type Events = T::Events;
+    #[inline]
+    fn sys(&self) -> &T::Sys {
+        self.track.sys()
+    }
+    #[inline]
+    fn events(&self) -> &T::Events {
+        self.track.events()
+    }
+    #[inline]
+    fn observe(&self, obs: Observation<'_, N>) {
+        self.track.observe(obs)
+    }
+}
+
+/// [`solve_lanes`] with the pair `method`.
+pub fn solve_lanes_with<T: Track<N>, const N: usize>(
+    method: Method,
+    next: impl FnMut() -> Option<Start<T, N>>,
+    done: impl FnMut(T, Outcome<N>),
+    stop: &dyn Fn() -> bool,
+) {
+    match method {
+        Method::Rk45 => solve_lanes::<Dp5<N>, T, N>(next, done, stop),
+        Method::Dop853 => solve_lanes::<Dop853<N>, T, N>(next, done, stop),
+    }
 }
 
 #[cfg(test)]

@@ -15,8 +15,7 @@ use crate::modes::rolling::run::{
 };
 use crate::modes::rolling::solution::RollSolution;
 use crate::modes::rolling::Kinematics;
-use crate::ode::lanes::{solve_lanes, Start, Track};
-use crate::ode::pair::{Dop853, Dp5};
+use crate::ode::lanes::{solve_lanes_with, Keyed, Start, Track};
 use crate::ode::{
     Change, DenseStep, EventFunctions, EventSpec, Method, Observation, Outcome, State, Status,
 };
@@ -239,29 +238,6 @@ impl Track<2> for RollTrack {
     }
 }
 
-/// A track with the caller's key.
-struct Keyed<K> {
-    key: K,
-    track: RollTrack,
-}
-
-impl<K> Track<2> for Keyed<K> {
-    type Sys = RollingMemo;
-    type Events = Memo;
-    #[inline]
-    fn sys(&self) -> &RollingMemo {
-        self.track.sys()
-    }
-    #[inline]
-    fn events(&self) -> &Memo {
-        self.track.events()
-    }
-    #[inline]
-    fn observe(&self, obs: Observation<'_, 2>) {
-        self.track.observe(obs)
-    }
-}
-
 /// [`roll_until`] of every run that `next` gives (a key, the ramp and the options, whose
 /// pair must be `method`), integrated side by side: `done(key, result)` gets each run as
 /// soon as it ends, bit for bit what `roll_until` gives. `stop` is asked before each run
@@ -297,14 +273,11 @@ pub(crate) fn roll_batch<K>(
         }
         None
     };
-    let ended = |k: Keyed<K>, outcome: Outcome<2>| {
+    let ended = |k: Keyed<K, RollTrack>, outcome: Outcome<2>| {
         let result = k.track.finish(&outcome);
         (done.borrow_mut())(k.key, result)
     };
-    match method {
-        Method::Rk45 => solve_lanes::<Dp5<2>, _, 2>(starts, ended, stop),
-        Method::Dop853 => solve_lanes::<Dop853<2>, _, 2>(starts, ended, stop),
-    }
+    solve_lanes_with(method, starts, ended, stop);
 }
 
 #[cfg(test)]

@@ -1,0 +1,161 @@
+//! A sliding segment under way: its system and events (sharing one memo of the
+//! trigonometry), its start and what it records. `simulate` integrates it alone; a motion
+//! map integrates the sliding segments of many runs side by side ([`crate::ode::lanes`]),
+//! each the same as alone, bit for bit.
+
+use std::cell::RefCell;
+
+use crate::error::{try_grow, Error, Result};
+use crate::mechanics::{BodyState, Ramp};
+use crate::modes::contact::Mode;
+use crate::modes::slipping::{SlipEvents, Slipping};
+use crate::motion::options::SimOptions;
+use crate::motion::record::Point;
+use crate::ode::lanes::Track;
+use crate::ode::{DenseStep, Observation, SolverOptions, State};
+
+/// The contact state of a sliding segment's y = (θ, θ̇, l, l̇, q).
+#[inline]
+pub(crate) fn slip_state(y: &State<5>) -> BodyState {
+    BodyState::in_contact(y[0], y[1], y[2], y[3])
+}
+
+/// What a sliding segment has recorded so far.
+struct Record {
+    points: Vec<Point>,
+    /// The dense output of every step, when asked for.
+    steps: Vec<DenseStep<5>>,
+    /// The first failed allocation, if any: after it nothing more is recorded.
+    memory: Option<Error>,
+}
+
+/// A sliding segment between its start and its end.
+pub(crate) struct SlipTrack {
+    events: SlipEvents,
+    ramp: Ramp,
+    /// Start time.
+    pub t0: f64,
+    /// Start state (θ, θ̇, l, l̇, q = 0).
+    pub y0: State<5>,
+    /// The end of the integration (the run's t_max).
+    pub t_end: f64,
+    /// The integrator's options (the run's, with the step budget left).
+    pub solver: SolverOptions,
+    /// Energy dissipated before the segment by sliding, and by impacts (which stays so
+    /// during it): a point's `dissipated` is (slid + q) + impacts.
+    slid: f64,
+    impacts: f64,
+    record_points: bool,
+    dense_output: bool,
+    record: RefCell<Record>,
+}
+
+impl SlipTrack {
+    /// The segment from `s` with friction direction `sigma`, at t0 with `solver`, after
+    /// (by sliding, by impacts) dissipated so far; its start point recorded.
+    pub(crate) fn begin(
+        ramp: &Ramp,
+        opts: &SimOptions,
+        (s, sigma): (BodyState, f64),
+        (t0, solver): (f64, SolverOptions),
+        (slid, impacts): (f64, f64),
+    ) -> Result<Self> {
+        let track = Self {
+            events: SlipEvents {
+                slipping: Slipping::new(*ramp, sigma, opts.law.mu_k),
+                l_max: opts.l_max,
+            },
+            ramp: *ramp,
+            t0,
+            y0: State::<5>::new(s.theta, s.omega, s.l, s.ldot, 0.0),
+            t_end: opts.t_max,
+            solver,
+            slid,
+            impacts,
+            record_points: opts.record_points,
+            dense_output: opts.dense_output,
+            record: RefCell::new(Record {
+                points: Vec::new(),
+                steps: Vec::new(),
+                memory: None,
+            }),
+        };
+        track.record_point(&mut track.record.borrow_mut().points, t0, &track.y0)?;
+        Ok(track)
+    }
+
+    /// The points and dense-output steps recorded (an error if recording ran out of
+    /// memory).
+    pub(crate) fn finish(self) -> Result<(Vec<Point>, Vec<DenseStep<5>>)> {
+        let Record {
+            points,
+            steps,
+            memory,
+        } = self.record.into_inner();
+        match memory {
+            Some(e) => Err(e),
+            None => Ok((points, steps)),
+        }
+    }
+
+    /// Records the point (t, y), if points are recorded.
+    fn record_point(&self, points: &mut Vec<Point>, t: f64, y: &State<5>) -> Result<()> {
+        if !self.record_points {
+            return Ok(());
+        }
+        let sys = &self.events.slipping;
+        let k = sys.kinematics(y[0], y[1]);
+        let state = slip_state(y);
+        if points.len() == points.capacity() {
+            try_grow("the record of the run", points)?;
+        }
+        points.push(Point {
+            t,
+            state,
+            fx: k.fx,
+            fy: k.fy,
+            // The trigonometry `kinematics` has just used (the memo's).
+            energy: self.ramp.energy_of_trig(&state, sys.sin_cos(y[0])),
+            dissipated: self.slid + y[4] + self.impacts,
+            mode: Mode::Slip,
+        });
+        Ok(())
+    }
+}
+
+impl Track<5> for SlipTrack {
+    type Sys = Slipping;
+    type Events = SlipEvents;
+    #[inline]
+    fn sys(&self) -> &Slipping {
+        &self.events.slipping
+    }
+    #[inline]
+    fn events(&self) -> &SlipEvents {
+        &self.events
+    }
+    #[inline]
+    fn observe(&self, obs: Observation<'_, 5>) {
+        let Observation::Step { dense, t, y } = obs else {
+            return;
+        };
+        let mut rec = self.record.borrow_mut();
+        let Record {
+            points,
+            steps,
+            memory,
+        } = &mut *rec;
+        // After a failed allocation the rest is not recorded; the run reports it.
+        if memory.is_some() {
+            return;
+        }
+        if let Err(e) = self.record_point(points, t, y) {
+            *memory = Some(e);
+        } else if self.dense_output {
+            match try_grow("the dense output", steps) {
+                Ok(()) => steps.push(*dense),
+                Err(e) => *memory = Some(e),
+            }
+        }
+    }
+}
