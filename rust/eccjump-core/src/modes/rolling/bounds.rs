@@ -115,13 +115,16 @@ impl ContactBounds {
             true,
         );
         let (fy, slip) = if d_lo > 0.0 {
-            // θ̈ = a = N/D and its partials (aD = N differentiated; D_ω = 0).
-            let a = (chi_w2 * s_max + chi + sa) / d_lo;
-            let a_theta = (chi_w2 * c_max + chi) / d_lo + 2.0 * chi * s_max * a / d_lo;
-            let a_omega = 2.0 * chi * w * s_max / d_lo;
-            let a_tt = (chi_w2 * s_max + chi + 4.0 * chi_s * a_theta + 2.0 * chi_c * a) / d_lo;
-            let a_tw = (2.0 * chi_w * c_max + 2.0 * chi_s * a_omega) / d_lo;
-            let a_ww = 2.0 * chi_s / d_lo;
+            // θ̈ = a = N/D and its partials (aD = N differentiated; D_ω = 0). One division:
+            // the products with 1/D_lo err by an ulp or two, which the scan's relative margin
+            // on every bound covers.
+            let inv_d = 1.0 / d_lo;
+            let a = (chi_w2 * s_max + chi + sa) * inv_d;
+            let a_theta = ((chi_w2 * c_max + chi) + 2.0 * chi * s_max * a) * inv_d;
+            let a_omega = 2.0 * chi * w * s_max * inv_d;
+            let a_tt = (chi_w2 * s_max + chi + 4.0 * chi_s * a_theta + 2.0 * chi_c * a) * inv_d;
+            let a_tw = (2.0 * chi_w * c_max + 2.0 * chi_s * a_omega) * inv_d;
+            let a_ww = 2.0 * chi_s * inv_d;
             let lever = 1.0 + chi * c_max;
             // (M, G_θ, G_ω) and (P_θθ, P_θω, P_ωω) of F_y and F_x.
             let fy = (
