@@ -346,7 +346,7 @@ fn lanes<P, T, const N: usize>(
             let dense = dense_of_lane(s, &k[..n_k], &dense_sums, l);
             let track = &s.track;
             let observer = &mut |obs: Observation<'_, N>| track.observe(obs);
-            if s.run.after_step(track.events(), dense, observer) || s.run.ends_here(stop) {
+            if s.run.after_step(track.events(), dense.as_ref(), observer) || s.run.ends_here(stop) {
                 let s = slots[l].take().expect("a lane in use");
                 done(s.track, s.run.out);
             } else {

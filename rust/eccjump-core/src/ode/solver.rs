@@ -292,7 +292,7 @@ impl<P: RkPair<N>, const N: usize> Run<P, N> {
     pub(crate) fn after_step<E, O>(
         &mut self,
         events: &E,
-        dense: Option<DenseStep<N>>,
+        dense: Option<&DenseStep<N>>,
         observer: &mut O,
     ) -> bool
     where
@@ -308,7 +308,7 @@ impl<P: RkPair<N>, const N: usize> Run<P, N> {
         let st = &self.st;
         let scan = scan_step(
             events,
-            &dense,
+            dense,
             st.t,
             &st.y,
             self.opts.event_samples,
@@ -330,7 +330,7 @@ impl<P: RkPair<N>, const N: usize> Run<P, N> {
             Ok(Some(hit)) => {
                 out.n_accepted += 1;
                 observer(Observation::Step {
-                    dense: &dense,
+                    dense,
                     t: hit.t,
                     y: &hit.y,
                 });
@@ -342,7 +342,7 @@ impl<P: RkPair<N>, const N: usize> Run<P, N> {
             Ok(None) => {
                 out.n_accepted += 1;
                 observer(Observation::Step {
-                    dense: &dense,
+                    dense,
                     t: st.t,
                     y: &st.y,
                 });
@@ -390,7 +390,7 @@ impl<P: RkPair<N>, const N: usize> Run<P, N> {
                 }
             }
             let dense = self.st.dense(sys, &mut self.out.nfev);
-            if self.after_step(events, dense, observer) {
+            if self.after_step(events, dense.as_ref(), observer) {
                 return self.out;
             }
         }
