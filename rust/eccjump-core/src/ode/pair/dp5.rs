@@ -119,13 +119,15 @@ impl<const N: usize> RkPair<N> for Dp5<N> {
     /// scipy's `RkDenseOutput`: Q = Kᵀ P, summed stage after stage.
     #[inline(always)]
     fn dense_sums<V: Summand>(k: &[V]) -> [V; 4] {
-        std::array::from_fn(|j| {
-            let mut q = V::zero();
-            for (ki, pi) in k[..=N_STAGES].iter().zip(P.iter()) {
-                q = q + *ki * pi[j];
+        // Each sum in the same order as one at a time, all four in one pass over the
+        // stages (a closure per sum was not inlined for lanes of five components).
+        let mut q = [V::zero(); 4];
+        for (ki, pi) in k[..=N_STAGES].iter().zip(P.iter()) {
+            for (qj, pij) in q.iter_mut().zip(pi) {
+                *qj = *qj + *ki * *pij;
             }
-            q
-        })
+        }
+        q
     }
 
     #[inline]
