@@ -588,6 +588,48 @@ mod tests {
                 assert_eq!(format!("{got:?}"), format!("{alone:?}"), "point {g}");
             }
             assert!(first.iter().all(|&n| n > 10), "{first:?}");
+            assert!(out.iter().any(|s| s.status == MotionStatus::Landed as u8));
+            assert!(out
+                .iter()
+                .any(|s| s.status == MotionStatus::TimeLimit as u8));
+        }
+    }
+
+    #[test]
+    fn long_stick_slip_chatter_in_a_map_is_simulate_too() {
+        // On a ramp of 1° these bodies alternate between rolling and slipping before they
+        // ever fly: dozens of segments, waves of both kinds until max_transitions.
+        let axes = MotionAxes {
+            alpha: &[1f64.to_radians()],
+            chi: &[0.7713, 0.813],
+            frac: &[0.5209, 0.6043, 0.7296],
+            mu_s: &[1.0],
+            mu_k: &[],
+            restitution: &[0.0],
+            theta0: &[0.0],
+            omega0: &[0.0],
+        };
+        for method in crate::ode::Method::ALL {
+            let o = MotionMapOptions {
+                max_transitions: 50,
+                solver: SolverOptions {
+                    method,
+                    ..SolverOptions::default()
+                },
+                ..opts()
+            };
+            let mut out = vec![MotionSummary::invalid(); axes.size().unwrap()];
+            motion_grid(&axes, &o, 1, &mut out, &|| false).unwrap();
+            for (g, got) in out.iter().enumerate() {
+                let (ramp, p) = axes.point(g, &o.base()).unwrap();
+                let alone = motion_point(&ramp, &p);
+                assert_eq!(format!("{got:?}"), format!("{alone:?}"), "point {g}");
+            }
+            let chattering = out
+                .iter()
+                .filter(|s| s.status == MotionStatus::MaxTransitions as u8)
+                .count();
+            assert!(chattering >= 3, "{chattering}");
         }
     }
 
