@@ -146,11 +146,7 @@ impl LaneRhs<5> for Slipping {
     /// Each memo gets the trigonometry of its lane's step end, where the event scan starts.
     #[inline(always)]
     fn step_end_lanes(systems: &[&Self; LANES], y_new: &Lanes<5>) {
-        let theta = &y_new.0[0];
-        let (s, c) = sin_cos_lanes(theta);
-        for l in 0..LANES {
-            systems[l].trig.set(theta[l], s[l], c[l]);
-        }
+        SinCosMemo::set_lanes(&y_new.0[0], |l| &systems[l].trig);
     }
 }
 

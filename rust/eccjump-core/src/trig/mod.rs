@@ -46,6 +46,16 @@ impl SinCosMemo {
         self.0.set((theta, s, c));
     }
 
+    /// Sets the memo of each lane l, `memo(l)`, to (θ_l, sin θ_l, cos θ_l), the trigonometry
+    /// of all lanes computed at once ([`lanes::sin_cos_lanes`]).
+    #[inline(always)]
+    pub fn set_lanes<'a>(theta: &lanes::Lane, memo: impl Fn(usize) -> &'a SinCosMemo) {
+        let (s, c) = lanes::sin_cos_lanes(theta);
+        for l in 0..lanes::LANES {
+            memo(l).set(theta[l], s[l], c[l]);
+        }
+    }
+
     /// The entry (θ, sin θ, cos θ); θ is NaN before the first lookup.
     #[inline]
     pub fn entry(&self) -> (f64, f64, f64) {

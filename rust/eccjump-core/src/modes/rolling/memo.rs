@@ -74,10 +74,6 @@ impl LaneRhs<2> for RollingMemo {
     /// leaves in the memo instead).
     #[inline(always)]
     fn step_end_lanes(systems: &[&Self; LANES], y_new: &Lanes<2>) {
-        let theta = &y_new.0[0];
-        let (s, c) = sin_cos_lanes(theta);
-        for l in 0..LANES {
-            systems[l].trig.set(theta[l], s[l], c[l]);
-        }
+        SinCosMemo::set_lanes(&y_new.0[0], |l| &systems[l].trig);
     }
 }
