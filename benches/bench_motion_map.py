@@ -54,8 +54,7 @@ def main(argv: list[str] | None = None) -> int:
     points = m.jarm.size
     rate = points / t_map
     print(
-        f"cores: {os.cpu_count()}, grid {n}^3 = {points} points, mu_s = 1, e = 0, "
-        f"{args.integrator}"
+        f"cores: {os.cpu_count()}, grid {n}^3 = {points} points, mu_s = 1, e = 0, {args.integrator}"
     )
     print(f"eccjump  {t_map:8.2f} s   {rate:12.0f} points/s")
 
