@@ -119,17 +119,6 @@ impl Change {
         smooth: false,
     };
 
-    /// A bound by the rate alone (no bend known).
-    #[inline]
-    pub fn by_rate(rate: f64, slack: f64) -> Change {
-        Change {
-            rate,
-            slack,
-            bend: f64::INFINITY,
-            smooth: false,
-        }
-    }
-
     /// The bound by the rate over a part `share` (≥ 0) of the step.
     #[inline]
     pub fn over(self, share: f64) -> f64 {
