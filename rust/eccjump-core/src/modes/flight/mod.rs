@@ -26,13 +26,13 @@ const X_MINUS_SIN_SERIES: [f64; 10] = {
     c
 };
 
-/// 2u − sin 2u for x = 2u, accurate in relative terms for small x (its Taylor series up to
-/// x²¹/21!, by Horner in x² with constant coefficients, below |x| = 1; direct above, where
-/// cancellation costs at most a few ulps).
+/// 2u − sin 2u for x = 2u, given sin x: accurate in relative terms for small x (its Taylor
+/// series up to x²¹/21!, by Horner in x² with constant coefficients, below |x| = 1; x − sin x
+/// above, where cancellation costs at most a few ulps).
 #[inline]
-pub fn x_minus_sin(x: f64) -> f64 {
+pub fn x_minus_sin(x: f64, sin_x: f64) -> f64 {
     if x.abs() >= 1.0 {
-        return x - crate::trig::sin(x);
+        return x - sin_x;
     }
     let x2 = x * x;
     let c = &X_MINUS_SIN_SERIES;
@@ -41,6 +41,18 @@ pub fn x_minus_sin(x: f64) -> f64 {
         acc = acc * x2 + ck;
     }
     x * x2 * acc
+}
+
+/// 1 − cos x given sin x and cos x, without cancellation: sin²x / (1 + cos x) where cos x >
+/// 0 (small x), 1 − cos x where it is ≥ 1. One `sin_cos` serves both this and the flight's
+/// other terms (2 sin²(x/2) would cost a second one).
+#[inline]
+pub fn one_minus_cos(sin_x: f64, cos_x: f64) -> f64 {
+    if cos_x > 0.0 {
+        sin_x * sin_x / (1.0 + cos_x)
+    } else {
+        1.0 - cos_x
+    }
 }
 
 /// The rotation x = θ̇τ since lift-off and what the flight's formulas need of it.
@@ -59,13 +71,12 @@ impl Turn {
     fn new(omega: f64, tau: f64) -> Self {
         let x = omega * tau;
         let (sin_x, cos_x) = crate::trig::sin_cos(x);
-        let half = crate::trig::sin(0.5 * x);
         Self {
             x,
             sin_x,
             cos_x,
-            one_minus_cos: 2.0 * half * half,
-            x_minus_sin: x_minus_sin(x),
+            one_minus_cos: one_minus_cos(sin_x, cos_x),
+            x_minus_sin: x_minus_sin(x, sin_x),
         }
     }
 }
@@ -205,7 +216,7 @@ mod tests {
     fn x_minus_sin_is_accurate() {
         for &x in &[1e-8, 1e-3, 0.3, 0.99, 1.0, 2.5, -0.7] {
             let series_free = x - f64::sin(x);
-            let v = x_minus_sin(x);
+            let v = x_minus_sin(x, f64::sin(x));
             if x.abs() > 0.1 {
                 assert!((v - series_free).abs() < 1e-15, "{x}");
             }
@@ -230,10 +241,28 @@ mod tests {
                 t *= -x * x / (((2 * k + 4) * (2 * k + 5)) as f64);
             }
             let reference: f64 = terms.iter().rev().sum();
-            let v = x_minus_sin(x);
+            let v = x_minus_sin(x, f64::sin(x));
             assert!(
                 (v - reference).abs() <= 4.0 * f64::EPSILON * reference.abs(),
                 "{x}"
+            );
+        }
+    }
+
+    #[test]
+    fn one_minus_cos_is_accurate() {
+        // Against 2 sin²(x/2), which has no cancellation anywhere, in relative terms.
+        let mut rng = crate::testing::Lcg(11);
+        for i in 0..20_000 {
+            let scale = [1e-9, 1e-4, 0.5, 3.0, 40.0][i % 5];
+            let x = (2.0 * rng.next() - 1.0) * scale;
+            let (s, c) = crate::trig::sin_cos(x);
+            let half = f64::sin(0.5 * x);
+            let reference = 2.0 * half * half;
+            let v = one_minus_cos(s, c);
+            assert!(
+                (v - reference).abs() <= 4.0 * f64::EPSILON * reference,
+                "{x}: {v} against {reference}"
             );
         }
     }
