@@ -5,6 +5,9 @@ from typing import Any, TypedDict
 import numpy as np
 from numpy.typing import NDArray
 
+from eccjump.motion import FlightRecord, ImpactRecord, Segment, Transition
+from eccjump.rolling import Event
+
 VERSION: str
 
 def body_derived(chi: float, km: float) -> tuple[float, float, float]: ...
@@ -81,12 +84,12 @@ _Series = tuple[
 ]
 
 #: A run of ``roll``, in the order of ``RollResult``'s fields: the float64 series (t, theta,
-#: omega, omega_dot, Fx, Fy, l, friction_ratio), the events met as (name, t, theta, omega),
+#: omega, omega_dot, Fx, Fy, l, friction_ratio), the events met (``Event`` records),
 #: the terminal event's name or None, the status code (0, 1, -1), the message, nfev, and the
 #: dense output (None unless ``dense_output``).
 RollTuple = tuple[
     _Series,
-    list[tuple[str, float, float, float]],
+    tuple[Event, ...],
     str | None,
     int,
     str,
@@ -134,10 +137,10 @@ def simulate(
     the GIL released. Options are keyword-only, all required (``eccjump.simulate`` gives the
     defaults), and checked by the core: a ValueError names the parameter. Returns a
     :data:`MotionTuple`: the float64 arrays t, theta, omega, l, ldot, b, bdot, Fx, Fy, energy,
-    dissipated and the int8 array mode (one row per recorded point); the fields of each
-    ``Transition``, ``FlightRecord``, ``ImpactRecord`` and ``Segment``; energy0,
+    dissipated and the int8 array mode (one row per recorded point); the ``Transition``,
+    ``FlightRecord``, ``ImpactRecord`` and ``Segment`` records; energy0,
     dissipated_slip, dissipated_impacts; status (t_max, l_max, max_transitions, painleve, jam,
-    failed), message, nfev; and a :class:`MotionDense` only when ``dense_output``."""
+    failed, landed), message, nfev; and a :class:`MotionDense` only when ``dense_output``."""
 
 _MotionSeries = tuple[
     NDArray[np.float64],
@@ -155,10 +158,10 @@ _MotionSeries = tuple[
 ]
 MotionTuple = tuple[
     _MotionSeries,
-    list[tuple[float, str | None, str, str, float, float, float, float, float, float]],
-    list[tuple[float, float, float, float, float, float]],
-    list[tuple[float, float, float, float, float, float, bool, str]],
-    list[tuple[str, str, float, float, int]],
+    tuple[Transition, ...],
+    tuple[FlightRecord, ...],
+    tuple[ImpactRecord, ...],
+    tuple[Segment, ...],
     float,
     float,
     float,

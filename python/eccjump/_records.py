@@ -1,15 +1,14 @@
-"""Building result records fast: a run of a few microseconds should not spend as long again
+"""Building result objects fast: a run of a few microseconds should not spend as long again
 in Python making the objects that hold it.
 
-A frozen dataclass's ``__init__`` calls ``object.__setattr__`` once per field, and a
-NamedTuple's ``__new__`` is a Python function; both cost more than the short runs of
-:func:`eccjump.roll` and :func:`eccjump.simulate` themselves. The results are the same
-objects, only made without those calls.
+A frozen dataclass's ``__init__`` calls ``object.__setattr__`` once per field, which costs
+more than the short runs of :func:`eccjump.roll` and :func:`eccjump.simulate` themselves.
+The results are the same objects, only made without those calls. (Their records, the
+NamedTuples, come from the bridge ready made: ``rust/eccjump-py/src/records.rs``.)
 """
 
 from __future__ import annotations
 
-from functools import partial
 from typing import Any, TypeVar
 
 T = TypeVar("T")
@@ -22,9 +21,3 @@ def frozen(cls: type[T], values: dict[str, Any]) -> T:
     result = object.__new__(cls)
     object.__setattr__(result, "__dict__", values)
     return result
-
-
-def records(cls: type[T]) -> partial[T]:
-    """A function making the NamedTuple ``cls`` from one tuple of its fields:
-    ``tuple.__new__`` itself, at half the cost of ``cls(*fields)``."""
-    return partial(tuple.__new__, cls)

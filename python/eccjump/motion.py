@@ -17,7 +17,7 @@ from eccjump import _core
 from eccjump._arrays import same_values
 from eccjump._bridge import Integrator, Rule
 from eccjump._checks import flag, integer, optional_real, real, real_array, text
-from eccjump._records import frozen, records
+from eccjump._records import frozen
 from eccjump.body import Cylinder
 from eccjump.units import Units
 
@@ -111,13 +111,6 @@ class MotionSolution:
             raise ValueError(f"t must be a number or a 1-D array of times, got shape {tt.shape}")
         y = self._core.states(np.ascontiguousarray(np.atleast_1d(tt)))
         return y[:, 0] if tt.ndim == 0 else y
-
-
-#: The records from the bridge's tuples of their fields.
-_transition = records(Transition)
-_flight = records(FlightRecord)
-_impact = records(ImpactRecord)
-_segment = records(Segment)
 
 
 @dataclass(frozen=True, eq=False)
@@ -441,10 +434,10 @@ def simulate(
             "energy": energy,
             "dissipated": dissipated,
             "mode": mode,
-            "transitions": tuple(map(_transition, transitions)),
-            "flights": tuple(map(_flight, flights)),
-            "impacts": tuple(map(_impact, impacts)),
-            "segments": tuple(map(_segment, segments)),
+            "transitions": transitions,
+            "flights": flights,
+            "impacts": impacts,
+            "segments": segments,
             "energy0": energy0,
             "dissipated_slip": dissipated_slip,
             "dissipated_impacts": dissipated_impacts,

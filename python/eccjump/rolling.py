@@ -23,7 +23,7 @@ from eccjump import _core
 from eccjump._arrays import same_values
 from eccjump._bridge import Integrator, Rule
 from eccjump._checks import U64_MAX, flag, integer, optional_real, real, text
-from eccjump._records import frozen, records
+from eccjump._records import frozen
 from eccjump.body import Cylinder
 from eccjump.dense import DenseSolution
 from eccjump.units import Units
@@ -173,10 +173,6 @@ class RollResult:
     __hash__ = None  # type: ignore[assignment]  # mutable numpy arrays inside
 
 
-#: An :class:`Event` from the bridge's (name, t, theta, omega).
-_event = records(Event)
-
-
 def roll(
     body: Cylinder,
     alpha: float,
@@ -294,7 +290,7 @@ def roll(
             "Fy": Fy,
             "l": l,
             "friction_ratio": ratio,
-            "events": tuple(map(_event, events)),
+            "events": events,
             "terminal_event": terminal_event,
             "status": status,
             "message": message,

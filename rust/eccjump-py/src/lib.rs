@@ -10,7 +10,9 @@ mod errors;
 mod impact;
 mod jarm;
 mod motion_map;
+mod names;
 mod options;
+mod records;
 mod roll;
 mod simulate;
 

@@ -2,7 +2,9 @@
 
 use crate::columns::dense_rows;
 use crate::errors::{detached, to_py};
+use crate::names::ROLL_EVENTS;
 use crate::options::{parse_integrator, parse_rule};
+use crate::records::RecordType;
 use eccjump_core::mechanics::friction::friction_ratio;
 use eccjump_core::modes::rolling::run::{roll_until, RollOptions, RollRun, RollStatus};
 use eccjump_core::modes::rolling::solution::RollSolution;
@@ -10,7 +12,7 @@ use eccjump_core::ode::SolverOptions;
 use eccjump_core::{Cylinder, Ramp};
 use numpy::{IntoPyArray, PyArray1, PyArray2, PyReadonlyArray1};
 use pyo3::prelude::*;
-use pyo3::types::PyDict;
+use pyo3::types::{PyDict, PyString, PyTuple};
 
 /// The eight recorded series of a run as numpy arrays: t, θ, θ̇, θ̈, F_x, F_y, l − l0 and
 /// |F_x|/F_y at each recorded point.
@@ -25,8 +27,11 @@ type Series<'py> = (
     Bound<'py, PyArray1<f64>>,
 );
 
-/// One event met: (name, t, θ, θ̇).
-type EventTuple = (&'static str, f64, f64, f64);
+/// One event met: (name, t, θ, θ̇), `Event`'s fields.
+type EventTuple<'py> = (Bound<'py, PyString>, f64, f64, f64);
+
+/// `eccjump.rolling.Event`.
+static EVENT: RecordType = RecordType::new("eccjump.rolling", "Event");
 
 /// A run as `roll` returns it, in the order of `RollResult`'s fields: the series, the
 /// events met, the terminal event's name (None if none ended the run), the status code, the
@@ -35,8 +40,8 @@ type EventTuple = (&'static str, f64, f64, f64);
 /// thirteen key strings took 0.5 µs of it.
 type RollTuple<'py> = (
     Series<'py>,
-    Vec<EventTuple>,
-    Option<&'static str>,
+    Bound<'py, PyTuple>,
+    Option<Bound<'py, PyString>>,
     i32,
     String,
     usize,
@@ -103,13 +108,14 @@ fn to_tuple<'py>(py: Python<'py>, run: RollRun) -> PyResult<RollTuple<'py>> {
         run.l.into_pyarray(py),
         run.ratio.into_pyarray(py),
     );
-    let events = run
-        .events
-        .iter()
-        .map(|e| (e.event.name(), e.t, e.theta, e.omega))
-        .collect();
+    let events = EVENT.tuple_of(
+        py,
+        run.events
+            .iter()
+            .map(|e| -> EventTuple<'py> { (ROLL_EVENTS.of(py, e.event), e.t, e.theta, e.omega) }),
+    )?;
     let terminal_event = match run.status {
-        RollStatus::Event(e) => Some(e.name()),
+        RollStatus::Event(e) => Some(ROLL_EVENTS.of(py, e)),
         _ => None,
     };
     let sol = run

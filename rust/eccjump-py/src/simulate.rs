@@ -4,15 +4,19 @@
 
 use crate::columns::dense_rows;
 use crate::errors::{detached, to_py};
+use crate::names::{MODES, REASONS, STATUSES};
 use crate::options::{parse_integrator, parse_rule};
+use crate::records::RecordType;
 use eccjump_core::mechanics::BodyState;
-use eccjump_core::modes::contact::{ContactLaw, Mode};
+use eccjump_core::modes::contact::ContactLaw;
+use eccjump_core::motion::record::MotionStatus;
 use eccjump_core::motion::solution::MotionSolution;
 use eccjump_core::motion::{simulate_until, MotionRun, SimOptions};
 use eccjump_core::ode::SolverOptions;
 use eccjump_core::{Cylinder, Ramp};
 use numpy::{IntoPyArray, PyArray1, PyArray2, PyReadonlyArray1};
 use pyo3::prelude::*;
+use pyo3::types::{PyString, PyTuple};
 
 type Column<'py> = Bound<'py, PyArray1<f64>>;
 
@@ -32,12 +36,15 @@ type Series<'py> = (
     Bound<'py, PyArray1<i8>>,
 );
 
+/// A name from [`crate::names`].
+type Name<'py> = Bound<'py, PyString>;
+
 /// t, from mode, to mode, reason, θ, θ̇, l, l̇, b, ḃ: `Transition`'s fields.
-type TransitionTuple = (
+type TransitionTuple<'py> = (
     f64,
-    Option<&'static str>,
-    &'static str,
-    &'static str,
+    Option<Name<'py>>,
+    Name<'py>,
+    Name<'py>,
     f64,
     f64,
     f64,
@@ -50,23 +57,29 @@ type TransitionTuple = (
 type FlightTuple = (f64, f64, f64, f64, f64, f64);
 
 /// `ImpactRecord`'s fields.
-type ImpactTuple = (f64, f64, f64, f64, f64, f64, bool, &'static str);
+type ImpactTuple<'py> = (f64, f64, f64, f64, f64, f64, bool, Name<'py>);
 
 /// `Segment`'s fields.
-type SegmentTuple = (&'static str, &'static str, f64, f64, usize);
+type SegmentTuple<'py> = (Name<'py>, Name<'py>, f64, f64, usize);
+
+/// `eccjump.motion`'s records of a run.
+static TRANSITION: RecordType = RecordType::new("eccjump.motion", "Transition");
+static FLIGHT: RecordType = RecordType::new("eccjump.motion", "FlightRecord");
+static IMPACT: RecordType = RecordType::new("eccjump.motion", "ImpactRecord");
+static SEGMENT: RecordType = RecordType::new("eccjump.motion", "Segment");
 
 /// A run in the order `eccjump.simulate` unpacks it: a tuple, not a dict (whose keys cost
 /// more to make and look up than the short run of a flight takes).
 type MotionTuple<'py> = (
     Series<'py>,
-    Vec<TransitionTuple>,
-    Vec<FlightTuple>,
-    Vec<ImpactTuple>,
-    Vec<SegmentTuple>,
+    Bound<'py, PyTuple>,
+    Bound<'py, PyTuple>,
+    Bound<'py, PyTuple>,
+    Bound<'py, PyTuple>,
     f64,
     f64,
     f64,
-    &'static str,
+    Name<'py>,
     String,
     usize,
     Option<Bound<'py, MotionDense>>,
@@ -155,19 +168,18 @@ fn to_tuple<'py>(py: Python<'py>, run: MotionRun) -> PyResult<MotionTuple<'py>> 
             .collect::<Vec<i8>>()
             .into_pyarray(py),
     );
-    let transitions = run
-        .transitions
-        .iter()
-        .map(|t| {
+    let transitions = TRANSITION.tuple_of(
+        py,
+        run.transitions.iter().map(|t| -> TransitionTuple<'py> {
             let [theta, omega, l, ldot, b, bdot] = state_values(&t.state);
-            let (from, to, why) = (t.from.map(Mode::name), t.to.name(), t.reason.name());
+            let from = t.from.map(|m| MODES.of(py, m));
+            let (to, why) = (MODES.of(py, t.to), REASONS.of(py, t.reason));
             (t.t, from, to, why, theta, omega, l, ldot, b, bdot)
-        })
-        .collect();
-    let flights = run
-        .flights
-        .iter()
-        .map(|f| {
+        }),
+    )?;
+    let flights = FLIGHT.tuple_of(
+        py,
+        run.flights.iter().map(|f| -> FlightTuple {
             (
                 f.t_liftoff,
                 f.t_landing,
@@ -176,12 +188,11 @@ fn to_tuple<'py>(py: Python<'py>, run: MotionRun) -> PyResult<MotionTuple<'py>> 
                 f.apex,
                 f.distance,
             )
-        })
-        .collect();
-    let impacts = run
-        .impacts
-        .iter()
-        .map(|i| {
+        }),
+    )?;
+    let impacts = IMPACT.tuple_of(
+        py,
+        run.impacts.iter().map(|i| -> ImpactTuple<'py> {
             (
                 i.t,
                 i.normal_speed,
@@ -190,15 +201,17 @@ fn to_tuple<'py>(py: Python<'py>, run: MotionRun) -> PyResult<MotionTuple<'py>> 
                 i.pn,
                 i.energy_lost,
                 i.sticking,
-                i.outcome.name(),
+                MODES.of(py, i.outcome),
             )
-        })
-        .collect();
-    let segments = run
-        .segments
-        .iter()
-        .map(|s| (s.mode.name(), s.reason.name(), s.t_start, s.t_end, s.nfev))
-        .collect();
+        }),
+    )?;
+    let segments = SEGMENT.tuple_of(
+        py,
+        run.segments.iter().map(|s| -> SegmentTuple<'py> {
+            let (mode, why) = (MODES.of(py, s.mode), REASONS.of(py, s.reason));
+            (mode, why, s.t_start, s.t_end, s.nfev)
+        }),
+    )?;
     let sol = run
         .dense
         .map(|sol| Bound::new(py, MotionDense { sol }))
@@ -212,7 +225,7 @@ fn to_tuple<'py>(py: Python<'py>, run: MotionRun) -> PyResult<MotionTuple<'py>> 
         run.energy0,
         run.dissipated_slip,
         run.dissipated_impacts,
-        run.status.map_or("failed", |s| s.name()),
+        STATUSES.of(py, run.status.unwrap_or(MotionStatus::Failed)),
         run.message,
         run.nfev,
         sol,

@@ -21,6 +21,9 @@ pub enum Mode {
 }
 
 impl Mode {
+    /// Every mode.
+    pub const ALL: [Mode; 3] = [Mode::Roll, Mode::Slip, Mode::Flight];
+
     /// The mode's name as the Python layer prints it.
     pub fn name(self) -> &'static str {
         match self {

@@ -114,6 +114,17 @@ pub enum MotionStatus {
 }
 
 impl MotionStatus {
+    /// Every status.
+    pub const ALL: [MotionStatus; 7] = [
+        MotionStatus::TimeLimit,
+        MotionStatus::DistanceLimit,
+        MotionStatus::MaxTransitions,
+        MotionStatus::Painleve,
+        MotionStatus::Jam,
+        MotionStatus::Failed,
+        MotionStatus::Landed,
+    ];
+
     /// The status's name as the Python layer prints it.
     pub fn name(self) -> &'static str {
         match self {

@@ -1,0 +1,47 @@
+//! The core's names (modes, reasons, statuses, events) as Python strings made once. A run's
+//! records repeat a handful of names dozens of times, and a new string for each costs as
+//! much as the float beside it.
+
+use eccjump_core::modes::contact::{Mode, Reason};
+use eccjump_core::modes::rolling::run::RollEvent;
+use eccjump_core::motion::record::MotionStatus;
+use pyo3::prelude::*;
+use pyo3::sync::PyOnceLock;
+use pyo3::types::PyString;
+
+/// The Python strings of the `K` values of one of the core's enums, made at first use.
+pub struct Names<T: 'static, const K: usize> {
+    all: [T; K],
+    name: fn(T) -> &'static str,
+    strings: PyOnceLock<[Py<PyString>; K]>,
+}
+
+impl<T: Copy + PartialEq, const K: usize> Names<T, K> {
+    const fn new(all: [T; K], name: fn(T) -> &'static str) -> Self {
+        Self {
+            all,
+            name,
+            strings: PyOnceLock::new(),
+        }
+    }
+
+    /// The name of `value`, the same string object at every call.
+    pub fn of<'py>(&self, py: Python<'py>, value: T) -> Bound<'py, PyString> {
+        let strings = self.strings.get_or_init(py, || {
+            self.all
+                .map(|v| PyString::intern(py, (self.name)(v)).unbind())
+        });
+        // `all` holds every value of the enum, so the search always finds it.
+        let i = self.all.iter().position(|&v| v == value).unwrap_or(0);
+        strings[i].bind(py).clone()
+    }
+}
+
+/// `Mode::name`.
+pub static MODES: Names<Mode, 3> = Names::new(Mode::ALL, Mode::name);
+/// `Reason::name` (why a mode began).
+pub static REASONS: Names<Reason, 9> = Names::new(Reason::ALL, Reason::name);
+/// `MotionStatus::name`.
+pub static STATUSES: Names<MotionStatus, 7> = Names::new(MotionStatus::ALL, MotionStatus::name);
+/// `RollEvent::name`.
+pub static ROLL_EVENTS: Names<RollEvent, 4> = Names::new(RollEvent::ALL, RollEvent::name);
