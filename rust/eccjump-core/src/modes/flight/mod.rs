@@ -8,6 +8,7 @@
 //! keeps its full relative accuracy as τ → 0, where it starts at 0 after a lift-off. The
 //! landing (the first return of the gap to 0) is found in [`landing`].
 
+pub mod apex;
 pub mod landing;
 
 use crate::mechanics::{BodyState, Ramp};
