@@ -9,7 +9,7 @@ use crate::options::{parse_integrator, parse_rule};
 use crate::records::RecordType;
 use eccjump_core::mechanics::BodyState;
 use eccjump_core::modes::contact::ContactLaw;
-use eccjump_core::motion::record::MotionStatus;
+use eccjump_core::motion::record::{MotionStatus, Point};
 use eccjump_core::motion::solution::MotionSolution;
 use eccjump_core::motion::{simulate_until, MotionRun, SimOptions};
 use eccjump_core::ode::SolverOptions;
@@ -146,23 +146,29 @@ fn state_values(s: &BodyState) -> [f64; 6] {
     [s.theta, s.omega, s.l, s.ldot, s.b, s.bdot]
 }
 
+/// One field of every recorded point, as a numpy array.
+fn column<'py>(py: Python<'py>, points: &[Point], field: impl Fn(&Point) -> f64) -> Column<'py> {
+    points
+        .iter()
+        .map(field)
+        .collect::<Vec<f64>>()
+        .into_pyarray(py)
+}
+
 fn to_tuple<'py>(py: Python<'py>, run: MotionRun) -> PyResult<MotionTuple<'py>> {
     let p = &run.points;
-    let column = |f: &dyn Fn(&eccjump_core::motion::record::Point) -> f64| {
-        p.iter().map(f).collect::<Vec<f64>>().into_pyarray(py)
-    };
     let series = (
-        column(&|q| q.t),
-        column(&|q| q.state.theta),
-        column(&|q| q.state.omega),
-        column(&|q| q.state.l),
-        column(&|q| q.state.ldot),
-        column(&|q| q.state.b),
-        column(&|q| q.state.bdot),
-        column(&|q| q.fx),
-        column(&|q| q.fy),
-        column(&|q| q.energy),
-        column(&|q| q.dissipated),
+        column(py, p, |q| q.t),
+        column(py, p, |q| q.state.theta),
+        column(py, p, |q| q.state.omega),
+        column(py, p, |q| q.state.l),
+        column(py, p, |q| q.state.ldot),
+        column(py, p, |q| q.state.b),
+        column(py, p, |q| q.state.bdot),
+        column(py, p, |q| q.fx),
+        column(py, p, |q| q.fy),
+        column(py, p, |q| q.energy),
+        column(py, p, |q| q.dissipated),
         p.iter()
             .map(|q| q.mode as i8)
             .collect::<Vec<i8>>()
