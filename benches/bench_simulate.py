@@ -18,12 +18,12 @@ from __future__ import annotations
 import argparse
 import math
 import sys
-import time
 from pathlib import Path
 
 sys.path.insert(0, str(Path(__file__).resolve().parent.parent / "tests"))
 sys.path.insert(0, str(Path(__file__).resolve().parent))
 
+from bench_roll import best_time
 from reference_motion import simulate_reference
 from scipy_motion_cases import CASES
 
@@ -38,17 +38,6 @@ def eccjump_call(kw: dict, transitions: int, integrator: str = "RK45"):
     opts["integrator"] = integrator
     alpha = kw["alpha"]
     return lambda: eccjump.simulate(body, alpha, **opts)
-
-
-def best_time(f, runs: int, calls: int = 1) -> float:
-    """The best of ``runs`` batches of ``calls`` calls of ``f``, per call [s]."""
-    best = math.inf
-    for _ in range(runs):
-        t0 = time.perf_counter()
-        for _ in range(calls):
-            f()
-        best = min(best, (time.perf_counter() - t0) / calls)
-    return best
 
 
 def sequence_of(transitions) -> list[tuple[str, str]]:
@@ -67,7 +56,7 @@ def main(argv: list[str] | None = None) -> int:
     ratios = []
     for name, kw in CASES:
         ref = simulate_reference(**{**kw, "max_transitions": n})
-        t_ref = best_time(lambda kw=kw: simulate_reference(**{**kw, "max_transitions": n}), 3)
+        t_ref = best_time(lambda kw=kw: simulate_reference(**{**kw, "max_transitions": n}), 3, 1)
         call = eccjump_call(kw, n, args.integrator)
         res = call()
         t_ecc = best_time(call, 5, args.repeat)
