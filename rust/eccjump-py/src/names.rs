@@ -31,9 +31,12 @@ impl<T: Copy + PartialEq, const K: usize> Names<T, K> {
             self.all
                 .map(|v| PyString::intern(py, (self.name)(v)).unbind())
         });
-        // `all` holds every value of the enum, so the search always finds it.
-        let i = self.all.iter().position(|&v| v == value).unwrap_or(0);
-        strings[i].bind(py).clone()
+        // `all` holds every value of the enum; a value missing from it (an enum grown
+        // without its `ALL`) still gets its own name, as a new string.
+        match self.all.iter().position(|&v| v == value) {
+            Some(i) => strings[i].bind(py).clone(),
+            None => PyString::new(py, (self.name)(value)),
+        }
     }
 }
 

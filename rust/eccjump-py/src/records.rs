@@ -1,5 +1,5 @@
-//! Python's record types (the `NamedTuple`s of `eccjump.motion`), made here from their
-//! fields. A short run returns a dozen records, and making each in Python from a plain
+//! Python's record types (the `NamedTuple`s of `eccjump.motion` and `eccjump.rolling`),
+//! made here from their fields. A short run returns a dozen records, and making each in Python from a plain
 //! tuple (`tuple.__new__(cls, fields)` through `map`) cost 2 µs of a 45 µs `simulate`.
 
 use pyo3::exceptions::PyTypeError;
