@@ -1,7 +1,7 @@
 //! Dormand–Prince 8(5,3) (scipy's `DOP853`): 12 stages, the combined 5th/3rd-order error
 //! norm of Hairer's code, and the 7th-degree dense output from three extra stages.
 
-use super::{all_finite, solution, stage, weighted_sum, RkPair, Summand};
+use super::{all_finite, error_scale, solution, stage, weighted_sum, RkPair, Summand};
 use crate::ode::dense::MAX_DEGREE;
 use crate::ode::tableau::dop853::{
     A, A_EXTRA, B, C, C_EXTRA, D, E3, E5, ERROR_EXPONENT, N_STAGES, N_STAGES_EXTENDED,
@@ -78,7 +78,7 @@ impl<const N: usize> RkPair<N> for Dop853<N> {
         rtol: f64,
         atol: f64,
     ) -> f64 {
-        let scale = State::<N>::from_fn(|i, _| atol + y[i].abs().max(y_new[i].abs()) * rtol);
+        let scale = error_scale(y, y_new, rtol, atol);
         let err5 = e5.component_div(&scale);
         let err3 = e3.component_div(&scale);
         let e5 = err5.dot(&err5);

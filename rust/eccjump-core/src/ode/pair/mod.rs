@@ -156,6 +156,18 @@ pub fn all_finite<const N: usize>(v: &State<N>) -> bool {
     v.iter().all(|x| x.is_finite())
 }
 
+/// scipy's error scale atol + max(|y|, |y_new|) rtol, component by component: what each
+/// pair divides its error estimate by.
+#[inline]
+pub fn error_scale<const N: usize>(
+    y: &State<N>,
+    y_new: &State<N>,
+    rtol: f64,
+    atol: f64,
+) -> State<N> {
+    State::<N>::from_fn(|i, _| atol + y[i].abs().max(y_new[i].abs()) * rtol)
+}
+
 /// The RMS norm of scipy's `common.norm`: ‖v‖₂ / √N.
 #[inline]
 pub fn rms_norm<const N: usize>(v: &State<N>) -> f64 {
