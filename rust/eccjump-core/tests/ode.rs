@@ -84,7 +84,7 @@ fn v1(a: f64) -> State<1> {
     State::<1>::new(a)
 }
 
-/// Runs `solve` recording every observation.
+/// Runs `solve` recording every observation (every step's dense output made).
 #[allow(clippy::type_complexity)]
 fn run<S: OdeSystem<N>, E: EventFunctions<N>, const N: usize>(
     sys: &S,
@@ -102,11 +102,15 @@ fn run<S: OdeSystem<N>, E: EventFunctions<N>, const N: usize>(
     let mut hits = Vec::new();
     let mut last_t = t0;
     let dir = if t_end >= t0 { 1.0 } else { -1.0 };
+    let opts = &SolverOptions {
+        dense_every_step: true,
+        ..*opts
+    };
     let out = solve(sys, events, t0, y0, t_end, opts, &mut |obs| match obs {
         Observation::Step { dense, t, .. } => {
             assert!(dir * (t - last_t) >= 0.0, "observations out of time order");
             last_t = t;
-            steps.push((t, *dense));
+            steps.push((t, *dense.expect("every step's dense output")));
         }
         Observation::Event { index, t, y } => {
             assert!(dir * (t - last_t) >= 0.0, "observations out of time order");

@@ -78,7 +78,7 @@ use crate::ode::lanes::{solve_lanes, Start, Track};
 use crate::ode::pair::{Dop853, Dp5};
 use crate::ode::{
     self, Change, DenseStep, Direction, EventFunctions, EventSpec, Observation, Outcome,
-    SolverOptions, State, Status,
+    SolverOptions, State, Status, StepEnds,
 };
 use std::cell::Cell;
 use std::f64::consts::TAU;
@@ -202,6 +202,16 @@ impl EventFunctions<2> for JarmEvents {
             *o = b[first + i];
         }
     }
+    /// The same from the step's ends ([`ContactBounds::from_ends`]).
+    #[inline]
+    fn change_bounds_ends(&self, first: usize, ends: &StepEnds<2>, out: &mut [Change]) {
+        let mu_s = self.slip.then_some(self.mu_s);
+        let b = ContactBounds::from_ends(&self.sys.ramp, mu_s, ends, Some(self.sys.anchor()));
+        let b = self.of_all(b);
+        for (i, o) in out.iter_mut().enumerate() {
+            *o = b[first + i];
+        }
+    }
 }
 
 impl JarmEvents {
@@ -214,7 +224,12 @@ impl JarmEvents {
         anchor: Option<(f64, f64, f64)>,
     ) -> [Change; N_EVENTS] {
         let mu_s = self.slip.then_some(self.mu_s);
-        let b = ContactBounds::near(&self.sys.ramp, mu_s, dense, anchor);
+        self.of_all(ContactBounds::near(&self.sys.ramp, mu_s, dense, anchor))
+    }
+
+    /// The bounds of all events, in their order, from the contact functions'.
+    #[inline]
+    fn of_all(&self, b: ContactBounds) -> [Change; N_EVENTS] {
         let on = |enabled: bool, x: Change| if enabled { x } else { Change::NONE };
         [
             on(self.liftoff, b.liftoff),
@@ -673,7 +688,10 @@ mod tests {
     use crate::maps::parallel::never;
     use crate::maps::region::classify_grid;
     use crate::mechanics::Ramp;
+    use crate::modes::rolling::bounds::ContactBounds;
     use crate::ode::events::{check_change_bounds, WalkAll};
+    use crate::ode::pair::error_scale;
+    use crate::ode::{OdeSystem, Outcome, StepEnds};
     use std::f64::consts::FRAC_PI_2;
 
     const RTOL: f64 = 1e-10;
@@ -772,14 +790,24 @@ mod tests {
         }
     }
 
+    /// Both kinds of bounds hold along every step's dense output, of both pairs: those
+    /// from the dense output itself, with any anchor, and those from the step's ends alone
+    /// (which decide whether the dense output is made at all).
     #[test]
     fn change_bounds_bound_the_change_along_each_step() {
-        let so = SolverOptions {
-            event_samples: 8,
-            ..SolverOptions::default()
-        };
         let mut steps = 0;
-        for (a, chi, km, mu_s, liftoff, forces) in bound_cases() {
+        let mut quiet = 0;
+        let cases = bound_cases().into_iter();
+        for (pair, (a, chi, km, mu_s, liftoff, forces)) in [ode::Method::Rk45, ode::Method::Dop853]
+            .into_iter()
+            .flat_map(|p| cases.clone().map(move |c| (p, c)))
+        {
+            let so = SolverOptions {
+                event_samples: 8,
+                dense_every_step: true,
+                method: pair,
+                ..SolverOptions::default()
+            };
             let r = Ramp::new(crate::mechanics::Cylinder::new(chi, km).unwrap(), a).unwrap();
             let sys = RollingMemo::new(r);
             let ev = events_for(&sys, mu_s, liftoff, forces);
@@ -797,6 +825,7 @@ mod tests {
                     let Observation::Step { dense, t, y } = obs else {
                         return;
                     };
+                    let dense = dense.expect("every step's dense output");
                     steps += 1;
                     let g = |t: f64, y: &State<2>| {
                         let mut v = [0.0; N_EVENTS];
@@ -823,19 +852,51 @@ mod tests {
                         if let Err(e) = check_change_bounds(dense.t_old, dense.h, at, &b) {
                             panic!("{a} {chi} {km} {e} anchor {anchor:?} at {t} {y:?}");
                         }
+                        // From the ends of a whole step (not one cut at an event).
+                        if (t - t_new).abs() > 1e-12 * t.abs().max(1.0) {
+                            continue;
+                        }
+                        let ends = StepEnds {
+                            t_old: dense.t_old,
+                            t_new: t,
+                            h: dense.h,
+                            y_old: dense.y_old,
+                            f_old: sys2.rhs(dense.t_old, &dense.y_old),
+                            y_new: *y,
+                            f_new: sys2.rhs(t, y),
+                            scale: error_scale(&dense.y_old, y, so.rtol, so.atol),
+                        };
+                        let b = check.of_all(ContactBounds::from_ends(
+                            &sys.ramp,
+                            check.slip.then_some(mu_s),
+                            &ends,
+                            anchor,
+                        ));
+                        if let Err(e) = check_change_bounds(dense.t_old, dense.h, at, &b) {
+                            panic!("{pair:?} {a} {chi} {km} {e} ends, anchor {anchor:?} at {t}");
+                        }
+                        quiet +=
+                            usize::from(ode::quiet_step(&check, &ends, &mut Default::default()));
                     }
                 },
             );
         }
-        assert!(steps > 2000, "{steps}");
+        assert!(steps > 4000, "{steps}");
+        // The ends prove most steps quiet (5 anchors each).
+        assert!(quiet > steps, "{quiet} of {steps}");
     }
 
     #[test]
     fn skipping_interior_samples_changes_nothing() {
+        let mut nfev = [[0; 2]; 2];
         for (a, chi, km, mu_s, liftoff, forces) in bound_cases() {
-            for samples in [4, 16] {
+            for (samples, pair) in [4, 16]
+                .into_iter()
+                .flat_map(|s| [ode::Method::Rk45, ode::Method::Dop853].map(|p| (s, p)))
+            {
                 let so = SolverOptions {
                     event_samples: samples,
+                    method: pair,
                     ..SolverOptions::default()
                 };
                 let r = Ramp::new(crate::mechanics::Cylinder::new(chi, km).unwrap(), a).unwrap();
@@ -856,11 +917,22 @@ mod tests {
                     };
                     (out, seen)
                 };
+                // The same steps, events and end; fewer evaluations where the dense output of
+                // a step proven quiet from its ends is not made (DOP853's extra stages).
                 let (p, q) = (run(true), run(false));
-                assert_eq!(p.0, q.0, "{a} {chi} {km}");
+                let same = |o: &Outcome<2>| (o.status, o.t, o.y, o.n_accepted, o.n_rejected);
+                assert_eq!(same(&p.0), same(&q.0), "{a} {chi} {km} {pair:?}");
                 assert_eq!(p.1, q.1);
+                let i = usize::from(pair == ode::Method::Dop853);
+                nfev[i][0] += p.0.nfev;
+                nfev[i][1] += q.0.nfev;
             }
         }
+        assert_eq!(
+            nfev[0][0], nfev[0][1],
+            "RK45 always makes its (free) dense output"
+        );
+        assert!(10 * nfev[1][0] < 9 * nfev[1][1], "DOP853: {:?}", nfev[1]);
     }
 
     #[test]

@@ -355,7 +355,10 @@ mod tests {
     fn change_bounds_bound_the_change_along_each_step() {
         let mut steps = 0;
         random_slips(|sl, events, y0| {
-            let so = SolverOptions::default();
+            let so = SolverOptions {
+                dense_every_step: true,
+                ..SolverOptions::default()
+            };
             solve(sl, events, 0.0, y0, 20.0, &so, &mut |obs: Observation<
                 '_,
                 5,
@@ -363,6 +366,7 @@ mod tests {
                 let Observation::Step { dense, .. } = obs else {
                     return;
                 };
+                let dense = dense.expect("every step's dense output");
                 steps += 1;
                 let mut bound = [Change::NONE; 4];
                 events.change_bounds(0, dense, &mut bound);

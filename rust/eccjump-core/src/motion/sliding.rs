@@ -69,7 +69,10 @@ impl SlipTrack {
             t0,
             y0: State::<5>::new(s.theta, s.omega, s.l, s.ldot, 0.0),
             t_end: opts.t_max,
-            solver,
+            solver: SolverOptions {
+                dense_every_step: solver.dense_every_step || opts.dense_output,
+                ..solver
+            },
             slid,
             impacts,
             record_points: opts.record_points,
@@ -151,7 +154,8 @@ impl Track<5> for SlipTrack {
         }
         if let Err(e) = self.record_point(points, t, y) {
             *memory = Some(e);
-        } else if self.dense_output {
+        } else if let (true, Some(dense)) = (self.dense_output, dense) {
+            // (always there: the solver makes every step's when it is recorded)
             match try_grow("the dense output", steps) {
                 Ok(()) => steps.push(*dense),
                 Err(e) => *memory = Some(e),

@@ -1,6 +1,6 @@
 //! Event functions g_k(t, y): their specs, and location of their zeros on the dense output.
 
-use super::{DenseStep, State};
+use super::{DenseStep, State, StepEnds};
 use crate::ode::hermite::hermite_min;
 use crate::ode::roots;
 
@@ -70,6 +70,57 @@ pub trait EventFunctions<const N: usize> {
         let _ = (first, dense);
         out.fill(Change::ANY);
     }
+    /// Bounds as [`Self::change_bounds`], from the step's ends alone (before its dense
+    /// output is built), that hold along the dense output whatever it turns out to be: a
+    /// step they prove free of events needs no dense output ([`quiet_step`]). The
+    /// default, [`Change::ANY`], never skips.
+    #[inline]
+    fn change_bounds_ends(&self, first: usize, ends: &StepEnds<N>, out: &mut [Change]) {
+        let _ = (first, ends);
+        out.fill(Change::ANY);
+    }
+}
+
+/// Is an accepted step provably free of events from its ends alone
+/// ([`EventFunctions::change_bounds_ends`]: every event's values at both ends of one strict
+/// sign, further from zero than it can travel or bend within the step)? Then its dense
+/// output is not needed for the scan, and the step end's values go to `carry` for the
+/// next step, as [`scan_step`] leaves them. False (and `carry` untouched) whenever in
+/// doubt: more events than one chunk, a non-finite value, or a bound that does not hold;
+/// [`scan_step`] then scans the step on its dense output, as always.
+pub fn quiet_step<E: EventFunctions<N>, const N: usize>(
+    events: &E,
+    ends: &StepEnds<N>,
+    carry: &mut EventCarry<N>,
+) -> bool {
+    let m = events.count();
+    if m == 0 || m > EVENT_CHUNK {
+        return m == 0;
+    }
+    let mut g_a = [0.0; EVENT_CHUNK];
+    let mut g_b = [0.0; EVENT_CHUNK];
+    let mut bound = [Change::ANY; EVENT_CHUNK];
+    events.change_bounds_ends(0, ends, &mut bound[..m]);
+    if bound[..m].iter().any(|b| b.slack == f64::INFINITY) {
+        return false;
+    }
+    if carry.matches(ends.t_old, &ends.y_old) {
+        g_a[..m].copy_from_slice(&carry.g[..m]);
+    } else {
+        events.values(0, ends.t_old, &ends.y_old, &mut g_a[..m]);
+    }
+    let t_new = ends.t_new;
+    events.values(0, t_new, &ends.y_new, &mut g_b[..m]);
+    if !(0..m).all(|i| no_zero_inside(g_a[i], g_b[i], &bound[i], 1.0)) {
+        return false;
+    }
+    *carry = EventCarry {
+        t: t_new,
+        y: ends.y_new,
+        g: g_b,
+        valid: true,
+    };
+    true
 }
 
 /// How much an event function g can change within one step, along the dense output y(t):

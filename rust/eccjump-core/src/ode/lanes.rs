@@ -298,16 +298,9 @@ fn lanes<P, T, const N: usize>(
         }
         let y_new = y.plus_times(&weighted_sum(&k[..P::STAGES], P::b()), &h);
         k[P::STAGES] = T::Sys::rhs_lanes(&systems, &y_new);
-        // The extra stages of the dense output, from the step's start (y, h): needed by the
-        // lanes whose step is accepted (almost all of them), computed for all.
-        for i in 0..P::EXTRA {
-            let j = P::STAGES + 1 + i;
-            let d = weighted_sum(&k[..j], &P::a_extra(i)[..j]);
-            k[j] = T::Sys::rhs_lanes(&systems, &y.plus_times(&d, &h));
-        }
         T::Sys::step_end_lanes(&systems, &y_new);
         // Each lane's verdict by the scalar step control, from its error sums.
-        let err_sums = P::error_sums(&k[..n_k]);
+        let err_sums = P::error_sums(&k[..=P::STAGES]);
         let finite = finite_lanes(&k[1..=P::STAGES], &y_new);
         let mut err = [0.0; LANES];
         for l in 0..LANES {
@@ -326,7 +319,7 @@ fn lanes<P, T, const N: usize>(
             let Some(s) = slots[l].as_mut() else { continue };
             let step = (t_new[l], h[l]);
             let error = (err[l], power[l]);
-            match judge_lane(s, &k[..n_k], (l, finite[l]), error, step, &y_new) {
+            match judge_lane(s, &k[..=P::STAGES], (l, finite[l]), error, step, &y_new) {
                 Judgement::Accepted => accepted[l] = true,
                 Judgement::Retry => s.run.out.n_rejected += 1,
                 Judgement::NonFinite => {
@@ -336,20 +329,50 @@ fn lanes<P, T, const N: usize>(
                 }
             }
         }
-        if !accepted.contains(&true) {
-            continue;
-        }
-        // The accepted steps' dense output, events and observations: the scalar code.
-        let dense_sums = P::dense_sums(&k[..n_k]);
+        // The accepted steps that their events prove quiet from the ends alone: observed
+        // without dense output (the scalar code).
+        let mut ended = [false; LANES];
+        let mut dense_for = [false; LANES];
         for l in (0..LANES).filter(|&l| accepted[l]) {
             let s = slots[l].as_mut().expect("an accepted lane");
-            let dense = dense_of_lane(s, &k[..n_k], &dense_sums, l);
             let track = &s.track;
             let observer = &mut |obs: Observation<'_, N>| track.observe(obs);
-            if s.run.after_step(track.events(), dense.as_ref(), observer) || s.run.ends_here(stop) {
+            if s.run.after_quiet_step(track.events(), &f.lane(l), observer) {
+                ended[l] = s.run.ends_here(stop);
+            } else {
+                dense_for[l] = true;
+            }
+        }
+        if dense_for.contains(&true) {
+            // The extra stages of the dense output, from the step's start (y, h), computed
+            // for all lanes, used by those that need them.
+            // (A lane whose trajectory ended meanwhile repeats one in use, as free lanes do.)
+            let any = slots.iter().flatten().next().expect("a lane in use");
+            let systems: [&T::Sys; LANES] =
+                std::array::from_fn(|l| slots[l].as_ref().unwrap_or(any).track.sys());
+            for i in 0..P::EXTRA {
+                let j = P::STAGES + 1 + i;
+                let d = weighted_sum(&k[..j], &P::a_extra(i)[..j]);
+                k[j] = T::Sys::rhs_lanes(&systems, &y.plus_times(&d, &h));
+            }
+            // The other accepted steps' dense output, events and observations: the scalar
+            // code.
+            let dense_sums = P::dense_sums(&k[..n_k]);
+            for l in (0..LANES).filter(|&l| dense_for[l]) {
+                let s = slots[l].as_mut().expect("an accepted lane");
+                let dense = dense_of_lane(s, &k[..n_k], &dense_sums, l);
+                let track = &s.track;
+                let observer = &mut |obs: Observation<'_, N>| track.observe(obs);
+                ended[l] = s.run.after_step(track.events(), dense.as_ref(), observer)
+                    || s.run.ends_here(stop);
+            }
+        }
+        for l in (0..LANES).filter(|&l| accepted[l]) {
+            if ended[l] {
                 let s = slots[l].take().expect("a lane in use");
                 done(s.track, s.run.out);
             } else {
+                let s = slots[l].as_mut().expect("an accepted lane");
                 s.trial = s.run.st.first_trial();
             }
         }

@@ -4,7 +4,8 @@
 //!
 //! Kept apart, as in scipy's `_ivp`: the Butcher tableaux ([`tableau`]), each pair's
 //! stages, error norm and dense-output construction ([`pair`]), the step-size control that
-//! every pair shares ([`stepper`]), the dense-output polynomial ([`dense`]), event
+//! every pair shares ([`stepper`]), the dense-output polynomial ([`dense`]), a step seen
+//! from its ends before its dense output is made ([`ends`]), event
 //! detection and root location ([`events`]), and the driver loop that ties them together
 //! with step limits and statuses ([`solver`]). [`lanes`] runs that same loop for many
 //! independent trajectories side by side.
@@ -13,6 +14,7 @@
 //! callback, so a caller that needs only the end state pays nothing for a trajectory.
 
 pub mod dense;
+pub mod ends;
 pub mod events;
 pub mod hermite;
 pub mod lanes;
@@ -23,7 +25,10 @@ pub mod stepper;
 pub mod tableau;
 
 pub use dense::{DenseBounds, DenseStep};
-pub use events::{Change, Direction, EventCarry, EventFunctions, EventSpec, NoEvents, EVENT_CHUNK};
+pub use ends::StepEnds;
+pub use events::{
+    quiet_step, Change, Direction, EventCarry, EventFunctions, EventSpec, NoEvents, EVENT_CHUNK,
+};
 pub use pair::Method;
 pub use solver::{solve, solve_until, Observation, Outcome, SolverOptions, Status};
 

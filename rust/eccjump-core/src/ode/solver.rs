@@ -6,10 +6,10 @@
 //! Everything lives on the stack; results go to the observer, so the loop never
 //! allocates.
 
-use super::events::{scan_step, EventCarry, NonFiniteEvent};
-use super::pair::{all_finite, Dop853, Dp5, Method, RkPair};
+use super::events::{quiet_step, scan_step, EventCarry, NonFiniteEvent};
+use super::pair::{all_finite, error_scale, Dop853, Dp5, Method, RkPair};
 use super::stepper::{select_initial_step, StepStatus, Stepper, Trial};
-use super::{DenseStep, EventFunctions, OdeSystem, State};
+use super::{DenseStep, EventFunctions, OdeSystem, State, StepEnds};
 
 /// Integration options, with scipy's meanings.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -29,6 +29,12 @@ pub struct SolverOptions {
     pub event_samples: usize,
     /// The Runge–Kutta pair.
     pub method: Method,
+    /// Make every accepted step's dense output, for an observer that keeps it. When false,
+    /// a step of DOP853 that the events prove free of events from its ends alone
+    /// ([`EventFunctions::change_bounds_ends`]) is observed without one, which saves the
+    /// three extra evaluations of f it costs. The steps, events and states are the same
+    /// either way; only `nfev` differs.
+    pub dense_every_step: bool,
 }
 
 impl Default for SolverOptions {
@@ -41,6 +47,7 @@ impl Default for SolverOptions {
             max_step: f64::INFINITY,
             event_samples: 4,
             method: Method::Rk45,
+            dense_every_step: false,
         }
     }
 }
@@ -65,10 +72,11 @@ pub enum Status {
 /// What the solver reports to the observer, in order of time.
 #[derive(Debug, Clone, Copy)]
 pub enum Observation<'a, const N: usize> {
-    /// An accepted step from dense.t_old to t, ending in y.
+    /// An accepted step ending at t in y.
     Step {
-        /// Dense output of the whole step.
-        dense: &'a DenseStep<N>,
+        /// Dense output of the whole step: always there under
+        /// [`SolverOptions::dense_every_step`], else only where the event scan needed it.
+        dense: Option<&'a DenseStep<N>>,
         /// End of the step (the event time if truncated at a terminal event).
         t: f64,
         /// State at `t`.
@@ -330,7 +338,7 @@ impl<P: RkPair<N>, const N: usize> Run<P, N> {
             Ok(Some(hit)) => {
                 out.n_accepted += 1;
                 observer(Observation::Step {
-                    dense,
+                    dense: Some(dense),
                     t: hit.t,
                     y: &hit.y,
                 });
@@ -342,7 +350,7 @@ impl<P: RkPair<N>, const N: usize> Run<P, N> {
             Ok(None) => {
                 out.n_accepted += 1;
                 observer(Observation::Step {
-                    dense,
+                    dense: Some(dense),
                     t: st.t,
                     y: &st.y,
                 });
@@ -351,6 +359,52 @@ impl<P: RkPair<N>, const N: usize> Run<P, N> {
                 false
             }
         }
+    }
+
+    /// After an accepted step that began with f = `f_old`, unless every step's dense
+    /// output is wanted: true if its events are proven absent from the step's ends alone
+    /// ([`quiet_step`]); the step is then observed without dense output (whose extra
+    /// stages are never evaluated).
+    #[inline]
+    pub(crate) fn after_quiet_step<E, O>(
+        &mut self,
+        events: &E,
+        f_old: &State<N>,
+        observer: &mut O,
+    ) -> bool
+    where
+        E: EventFunctions<N>,
+        O: FnMut(Observation<'_, N>),
+    {
+        // A pair whose dense output costs no evaluations (RK45) gains nothing: its dense
+        // output and the scan on it are as cheap as the proof from the ends (measured).
+        if self.opts.dense_every_step || P::EXTRA == 0 {
+            return false;
+        }
+        let st = &self.st;
+        let ends = StepEnds {
+            t_old: st.t_old,
+            t_new: st.t,
+            h: st.t - st.t_old,
+            y_old: st.y_old,
+            f_old: *f_old,
+            y_new: st.y,
+            f_new: st.f,
+            scale: error_scale(&st.y_old, &st.y, st.rtol, st.atol),
+        };
+        if !quiet_step(events, &ends, &mut self.carry) {
+            return false;
+        }
+        let out = &mut self.out;
+        out.n_accepted += 1;
+        observer(Observation::Step {
+            dense: None,
+            t: st.t,
+            y: &st.y,
+        });
+        out.t = st.t;
+        out.y = st.y;
+        true
     }
 
     /// The integration from here to its end, one step at a time, the current step from
@@ -374,6 +428,7 @@ impl<P: RkPair<N>, const N: usize> Run<P, N> {
                 return self.out;
             }
             let first = trial.take().unwrap_or_else(|| self.st.first_trial());
+            let f_old = self.st.f;
             let out = &mut self.out;
             match self
                 .st
@@ -388,6 +443,9 @@ impl<P: RkPair<N>, const N: usize> Run<P, N> {
                     out.status = Status::NonFinite;
                     return self.out;
                 }
+            }
+            if self.after_quiet_step(events, &f_old, observer) {
+                continue;
             }
             let dense = self.st.dense(sys, &mut self.out.nfev);
             if self.after_step(events, dense.as_ref(), observer) {

@@ -4,7 +4,7 @@
 //! classification.
 
 use crate::mechanics::Ramp;
-use crate::ode::{Change, DenseStep};
+use crate::ode::{Change, DenseStep, StepEnds};
 
 /// Bounds on how much the contact functions of pure rolling can change within one
 /// dense-output step, in the sense of [`EventFunctions::change_bounds`]: shared by the
@@ -42,6 +42,9 @@ pub(crate) struct ContactBounds {
     theta_rate: f64,
     theta_accel: f64,
     h: f64,
+    /// How far the curve the bounds are for may stray from the one they were computed
+    /// along, in θ (see [`ContactBounds::from_ends`]).
+    stray_theta: f64,
 }
 
 impl ContactBounds {
@@ -66,8 +69,44 @@ impl ContactBounds {
         dense: &DenseStep<2>,
         anchor: Option<(f64, f64, f64)>,
     ) -> Self {
+        Self::straying(ramp, mu_s, dense, anchor, [0.0; 2])
+    }
+
+    /// Bounds from a step's ends alone, before its dense output is made
+    /// ([`crate::ode::EventFunctions::change_bounds_ends`]): those of [`Self::near`] along
+    /// the quintic Hermite interpolant of the ends ([`StepEnds::second_order_hermite`]),
+    /// widened for the dense output the pair would make, which strays from it by at most
+    /// the interpolant's own error (its estimate, doubled) plus the pair's (ten times the
+    /// step's error scale): along a curve within (Δθ, Δθ̇) of the interpolant, a contact
+    /// function differs from its value there by at most G_θ Δθ + G_ω Δθ̇, with G_θ, G_ω
+    /// its partials' bounds, taken with Θ and W raised by the same (Δθ, Δθ̇).
+    #[inline]
+    pub(crate) fn from_ends(
+        ramp: &Ramp,
+        mu_s: Option<f64>,
+        ends: &StepEnds<2>,
+        anchor: Option<(f64, f64, f64)>,
+    ) -> Self {
+        let (hermite, err) = ends.second_order_hermite();
+        let stray = [
+            2.0 * err[0] + 10.0 * ends.scale[0],
+            2.0 * err[1] + 10.0 * ends.scale[1],
+        ];
+        Self::straying(ramp, mu_s, &hermite, anchor, stray)
+    }
+
+    /// [`Self::near`] for every curve within `stray` = (Δθ, Δθ̇) of `dense` (zero: `dense`
+    /// itself, the bounds of [`Self::near`] bit for bit).
+    #[inline]
+    fn straying(
+        ramp: &Ramp,
+        mu_s: Option<f64>,
+        dense: &DenseStep<2>,
+        anchor: Option<(f64, f64, f64)>,
+        stray: [f64; 2],
+    ) -> Self {
         let bounds = dense.bounds();
-        let (theta_max, w) = (bounds.value[0], bounds.value[1]);
+        let (theta_max, w) = (bounds.value[0] + stray[0], bounds.value[1] + stray[1]);
         let (theta_rate, omega_rate) = (bounds.rate[0], bounds.rate[1]);
         let (theta_accel, omega_accel) = (bounds.accel[0], bounds.accel[1]);
         let h = dense.h.abs();
@@ -81,7 +120,10 @@ impl ContactBounds {
         let bound = |(m, g_theta, g_omega): (f64, f64, f64),
                      (p_tt, p_tw, p_ww): (f64, f64, f64),
                      smooth: bool| {
-            let delta = (m + g_theta * theta_max + g_omega * w) * eps40;
+            let mut delta = (m + g_theta * theta_max + g_omega * w) * eps40;
+            if stray != [0.0; 2] {
+                delta += g_theta * stray[0] + g_omega * stray[1];
+            }
             let curvature = p_tt * theta_rate * theta_rate
                 + 2.0 * p_tw * theta_rate * omega_rate
                 + p_ww * omega_rate * omega_rate
@@ -97,7 +139,7 @@ impl ContactBounds {
         let d_min = ramp.contact_inertia(-1.0);
         let (s_max, c_max, d_lo) = match anchor {
             Some((theta_c, s_c, c_c)) => {
-                let reach = (dense.y_old[0] - theta_c).abs() + h * theta_rate;
+                let reach = (dense.y_old[0] - theta_c).abs() + h * theta_rate + stray[0];
                 let reach = reach * (1.0 + eps40) + (1.0 + theta_max) * eps40;
                 // NaN (never expected) falls back to the plain bounds through min/max.
                 let s_max = (s_c.abs() + reach).min(1.0);
@@ -174,14 +216,18 @@ impl ContactBounds {
             theta_rate,
             theta_accel,
             h,
+            stray_theta: stray[0],
         }
     }
 
     /// Of θ − θ_lim (θ_lim finite).
     #[inline]
     pub(crate) fn theta_above(&self, theta_lim: f64) -> Change {
-        let delta =
+        let mut delta =
             (self.theta_max + theta_lim.abs() + self.theta_max) * (1.0 / (1u64 << 40) as f64);
+        if self.stray_theta != 0.0 {
+            delta += self.stray_theta;
+        }
         Change {
             rate: self.theta_rate * self.h,
             slack: 4.0 * delta,

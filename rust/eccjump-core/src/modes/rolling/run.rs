@@ -21,6 +21,7 @@ use crate::modes::rolling::Kinematics;
 use crate::ode::lanes::Track;
 use crate::ode::{
     self, Change, DenseStep, Direction, EventFunctions, EventSpec, SolverOptions, State, Status,
+    StepEnds,
 };
 
 /// The built-in events of a rolling run, in the order of their indices.
@@ -184,7 +185,24 @@ impl RollEvents {
         dense: &DenseStep<2>,
         anchor: Option<(f64, f64, f64)>,
     ) -> [Change; 4] {
-        let b = ContactBounds::near(&self.ramp, self.mu_s, dense, anchor);
+        self.of_all(ContactBounds::near(&self.ramp, self.mu_s, dense, anchor))
+    }
+
+    /// [`EventFunctions::change_bounds_ends`] of all four events, anchored at `anchor`
+    /// (see [`ContactBounds::from_ends`]).
+    pub(crate) fn change_bounds_ends(
+        &self,
+        ends: &StepEnds<2>,
+        anchor: Option<(f64, f64, f64)>,
+    ) -> [Change; 4] {
+        self.of_all(ContactBounds::from_ends(
+            &self.ramp, self.mu_s, ends, anchor,
+        ))
+    }
+
+    /// The bounds of the four events, in their order, from the contact functions'.
+    #[inline]
+    fn of_all(&self, b: ContactBounds) -> [Change; 4] {
         let theta_limit = if self.theta_max.is_finite() {
             b.theta_above(self.theta_max)
         } else {
@@ -436,7 +454,7 @@ pub fn roll_until(ramp: &Ramp, opts: &RollOptions, stop: &dyn Fn() -> bool) -> R
         0.0,
         y0,
         opts.t_max,
-        &opts.solver,
+        &track.solver,
         &mut |obs| track.observe(obs),
         stop,
     );
@@ -512,7 +530,10 @@ mod skip_tests {
 
     #[test]
     fn skipping_interior_samples_changes_nothing() {
-        let opts = SolverOptions::default();
+        let opts = SolverOptions {
+            dense_every_step: true,
+            ..SolverOptions::default()
+        };
         for (r, ev) in cases() {
             let mut with = Vec::new();
             let a = ode::solve(&r, &ev, 0.0, State::<2>::zeros(), 50.0, &opts, &mut |o| {
@@ -541,11 +562,15 @@ mod skip_tests {
 
     #[test]
     fn change_bounds_bound_the_change_along_each_step() {
-        let opts = SolverOptions::default();
+        let opts = SolverOptions {
+            dense_every_step: true,
+            ..SolverOptions::default()
+        };
         for (r, ev) in cases() {
             let mut steps = 0;
             ode::solve(&r, &ev, 0.0, State::<2>::zeros(), 50.0, &opts, &mut |o| {
                 if let Observation::Step { dense, .. } = o {
+                    let dense = dense.expect("every step's dense output");
                     steps += 1;
                     let g = |t: f64| {
                         let mut v = [0.0; 4];

@@ -17,7 +17,8 @@ use crate::modes::rolling::solution::RollSolution;
 use crate::modes::rolling::Kinematics;
 use crate::ode::lanes::{solve_lanes_with, Keyed, Start, Track};
 use crate::ode::{
-    Change, DenseStep, EventFunctions, EventSpec, Method, Observation, Outcome, State, Status,
+    Change, DenseStep, EventFunctions, EventSpec, Method, Observation, Outcome, SolverOptions,
+    State, Status, StepEnds,
 };
 
 /// The rolling system and its events sharing one [`RollingMemo`].
@@ -70,6 +71,16 @@ impl EventFunctions<2> for Memo {
             *o = b[first + i];
         }
     }
+    /// [`RollEvents::change_bounds_ends`], anchored as [`Self::change_bounds`].
+    #[inline]
+    fn change_bounds_ends(&self, first: usize, ends: &StepEnds<2>, out: &mut [Change]) {
+        let b = self
+            .events
+            .change_bounds_ends(ends, Some(self.sys.anchor()));
+        for (i, o) in out.iter_mut().enumerate() {
+            *o = b[first + i];
+        }
+    }
 }
 
 /// What a run has recorded so far.
@@ -85,6 +96,9 @@ struct Record {
 pub(crate) struct RollTrack {
     memo: Memo,
     dense_output: bool,
+    /// The integrator's options: the run's, with every step's dense output made when it
+    /// is recorded.
+    pub(crate) solver: SolverOptions,
     record: RefCell<Record>,
 }
 
@@ -146,6 +160,10 @@ impl RollTrack {
         let track = RollTrack {
             memo,
             dense_output: opts.dense_output,
+            solver: SolverOptions {
+                dense_every_step: opts.solver.dense_every_step || opts.dense_output,
+                ..opts.solver
+            },
             record: RefCell::new(Record {
                 run,
                 steps,
@@ -220,7 +238,8 @@ impl Track<2> for RollTrack {
                 if memory.is_none() {
                     if let Err(e) = run.push(t, &self.memo.kinematics(y[0], y[1])) {
                         *memory = Some(e);
-                    } else if self.dense_output {
+                    } else if let (true, Some(dense)) = (self.dense_output, dense) {
+                        // (always there: the solver makes every step's when it is recorded)
                         match try_grow("the dense output", steps) {
                             Ok(()) => steps.push(*dense),
                             Err(e) => *memory = Some(e),
@@ -262,11 +281,11 @@ pub(crate) fn roll_batch<K>(
                 Ok(Begun::Ended(run)) => (done.borrow_mut())(key, Ok(run)),
                 Ok(Begun::Track(track, y0)) => {
                     return Some(Start {
+                        opts: track.solver,
                         track: Keyed { key, track },
                         t0: 0.0,
                         y0,
                         t_end: opts.t_max,
-                        opts: opts.solver,
                     })
                 }
             }
