@@ -1,6 +1,7 @@
 //! Profiling aid: the best time per `roll` run from rest to the paper's lift-off, for the
 //! four cases of `benches/bench_peers.py` (α = 40°, 70°, 30°, 10°), per Runge–Kutta pair
-//! (`cargo run --release -p eccjump-core --example roll_best [rk45|dop853]`).
+//! (`cargo run --release -p eccjump-core --example roll_best [rk45|dop853] [rtol]`, atol =
+//! rtol/100; default the core's tolerances).
 use eccjump_core::modes::rolling::run::{roll, RollOptions};
 use eccjump_core::ode::{Method, SolverOptions};
 use eccjump_core::{Cylinder, Ramp};
@@ -11,6 +12,7 @@ fn main() {
         Some("dop853") => vec![Method::Dop853],
         _ => vec![Method::Rk45, Method::Dop853],
     };
+    let rtol: Option<f64> = std::env::args().nth(2).map(|r| r.parse().expect("rtol"));
     let cases = [
         (40.0, 0.15, 0.02),
         (70.0, 0.1, 0.27),
@@ -25,6 +27,8 @@ fn main() {
         let o = RollOptions {
             solver: SolverOptions {
                 method,
+                rtol: rtol.unwrap_or(SolverOptions::default().rtol),
+                atol: rtol.map_or(SolverOptions::default().atol, |r| r / 100.0),
                 ..SolverOptions::default()
             },
             ..RollOptions::default()
