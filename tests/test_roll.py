@@ -307,7 +307,7 @@ def test_rule_normal_force_rolls_past_the_papers_liftoff():
 @given(setups(), st.sampled_from([None, 0.3, 1.0]), st.sampled_from(["paper", "normal_force"]))
 def test_dop853_skips_dense_output_only_where_it_changes_nothing(s, mu_s, rule):
     """Without dense_output, DOP853 makes a step's dense output (3 more evaluations of f)
-    only where the step's ends cannot prove it free of events: the same steps, states,
+    only where the step's ends cannot clear it of events: the same steps, states,
     forces and events, bit for bit, as when every step's dense output is made."""
     body, alpha, theta0, omega0 = s
     kw = dict(theta0=theta0, omega0=omega0, mu_s=mu_s, rule=rule, t_max=20.0)
@@ -317,13 +317,13 @@ def test_dop853_skips_dense_output_only_where_it_changes_nothing(s, mu_s, rule):
         assert getattr(lean, name).tobytes() == getattr(full, name).tobytes(), name
     assert (lean.events, lean.status, lean.message) == (full.events, full.status, full.message)
     assert lean.nfev <= full.nfev
-    # Each step proven quiet from its ends saves 3 evaluations: a long run has such steps.
+    # Each step cleared from its ends saves 3 evaluations: a long run has such steps.
     if len(lean.t) > 20:
         assert lean.nfev < full.nfev
 
 
 def test_dop853_rolling_from_rest_makes_few_dense_outputs():
-    # From rest to the lift-off at alpha = 40 deg: 27 of the 28 steps are proven quiet.
+    # From rest to the lift-off at alpha = 40 deg: 27 of the 28 steps are cleared.
     kw = dict(integrator="DOP853")
     lean = roll(Cylinder(0.15, 0.02), math.radians(40), **kw)
     full = roll(Cylinder(0.15, 0.02), math.radians(40), dense_output=True, **kw)

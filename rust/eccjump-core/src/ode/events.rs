@@ -71,9 +71,10 @@ pub trait EventFunctions<const N: usize> {
         out.fill(Change::ANY);
     }
     /// Bounds as [`Self::change_bounds`], from the step's ends alone (before its dense
-    /// output is built), that hold along the dense output whatever it turns out to be: a
-    /// step they prove free of events needs no dense output ([`quiet_step`]). The
-    /// default, [`Change::ANY`], never skips.
+    /// output is built), meant to hold along the dense output whatever it turns out to be
+    /// (computed along an interpolant of the ends, widened by an estimate of how far the
+    /// dense output can stray from it): a step they clear of events needs no dense output
+    /// ([`quiet_step`]). The default, [`Change::ANY`], never skips.
     #[inline]
     fn change_bounds_ends(&self, first: usize, ends: &StepEnds<N>, out: &mut [Change]) {
         let _ = (first, ends);
@@ -81,7 +82,7 @@ pub trait EventFunctions<const N: usize> {
     }
 }
 
-/// Is an accepted step provably free of events from its ends alone
+/// Is an accepted step free of events by its ends alone
 /// ([`EventFunctions::change_bounds_ends`]: every event's values at both ends of one strict
 /// sign, further from zero than it can travel or bend within the step)? Then its dense
 /// output is not needed for the scan, and the step end's values go to `carry` for the

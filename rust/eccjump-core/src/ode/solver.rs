@@ -30,7 +30,7 @@ pub struct SolverOptions {
     /// The Runge–Kutta pair.
     pub method: Method,
     /// Make every accepted step's dense output, for an observer that keeps it. When false,
-    /// a step of DOP853 that the events prove free of events from its ends alone
+    /// a step of DOP853 whose ends alone clear it of events
     /// ([`EventFunctions::change_bounds_ends`]) is observed without one, which saves the
     /// three extra evaluations of f it costs. The steps, events and states are the same
     /// either way; only `nfev` differs.
@@ -362,7 +362,7 @@ impl<P: RkPair<N>, const N: usize> Run<P, N> {
     }
 
     /// After an accepted step that began with f = `f_old`, unless every step's dense
-    /// output is wanted: true if its events are proven absent from the step's ends alone
+    /// output is wanted: true if the step's ends alone clear it of events
     /// ([`quiet_step`]); the step is then observed without dense output (whose extra
     /// stages are never evaluated).
     #[inline]

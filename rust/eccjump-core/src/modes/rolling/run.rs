@@ -465,8 +465,10 @@ pub fn roll_until(ramp: &Ramp, opts: &RollOptions, stop: &dyn Fn() -> bool) -> R
 
 /// The terminal event whose condition is already met at the start, if any.
 pub(super) fn violated_at_start(events: &RollEvents, theta: f64, omega: f64) -> Option<RollEvent> {
-    RollEvent::ALL.into_iter().find(|&e| {
-        let g = events.value_at(e, theta, omega);
+    // Every event's value from one evaluation of the kinematics.
+    let mut values = [0.0; RollEvent::ALL.len()];
+    events.values(0, 0.0, &State::<2>::new(theta, omega), &mut values);
+    RollEvent::ALL.into_iter().zip(values).find_map(|(e, g)| {
         let outside = match e {
             RollEvent::Liftoff | RollEvent::ThetaLimit => g > 0.0,
             // Contact needs a strictly positive normal force (on a vertical ramp at rest
@@ -475,7 +477,7 @@ pub(super) fn violated_at_start(events: &RollEvents, theta: f64, omega: f64) -> 
             RollEvent::Slip => g < 0.0,
         };
         // θ_max is validated to lie above θ0, so it never fires here.
-        events.is_terminal(e) && outside
+        (events.is_terminal(e) && outside).then_some(e)
     })
 }
 
