@@ -198,9 +198,7 @@ impl EventFunctions<2> for JarmEvents {
     #[inline]
     fn change_bounds(&self, first: usize, dense: &DenseStep<2>, out: &mut [Change]) {
         let b = self.change_bounds_near(dense, Some(self.sys.anchor()));
-        for (i, o) in out.iter_mut().enumerate() {
-            *o = b[first + i];
-        }
+        out.copy_from_slice(&b[first..first + out.len()]);
     }
     /// The same from the step's ends ([`ContactBounds::from_ends`]).
     #[inline]
@@ -208,9 +206,7 @@ impl EventFunctions<2> for JarmEvents {
         let mu_s = self.slip.then_some(self.mu_s);
         let b = ContactBounds::from_ends(&self.sys.ramp, mu_s, ends, Some(self.sys.anchor()));
         let b = self.of_all(b);
-        for (i, o) in out.iter_mut().enumerate() {
-            *o = b[first + i];
-        }
+        out.copy_from_slice(&b[first..first + out.len()]);
     }
 }
 

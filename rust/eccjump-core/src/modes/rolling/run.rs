@@ -135,9 +135,7 @@ impl EventFunctions<2> for RollEvents {
     #[inline]
     fn change_bounds(&self, first: usize, dense: &DenseStep<2>, out: &mut [Change]) {
         let b = self.change_bounds_all(dense);
-        for (i, o) in out.iter_mut().enumerate() {
-            *o = b[first + i];
-        }
+        out.copy_from_slice(&b[first..first + out.len()]);
     }
 }
 

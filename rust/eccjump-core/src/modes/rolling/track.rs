@@ -67,9 +67,7 @@ impl EventFunctions<2> for Memo {
         let b = self
             .events
             .change_bounds_near(dense, Some(self.sys.anchor()));
-        for (i, o) in out.iter_mut().enumerate() {
-            *o = b[first + i];
-        }
+        out.copy_from_slice(&b[first..first + out.len()]);
     }
     /// [`RollEvents::change_bounds_ends`], anchored as [`Self::change_bounds`].
     #[inline]
@@ -77,9 +75,7 @@ impl EventFunctions<2> for Memo {
         let b = self
             .events
             .change_bounds_ends(ends, Some(self.sys.anchor()));
-        for (i, o) in out.iter_mut().enumerate() {
-            *o = b[first + i];
-        }
+        out.copy_from_slice(&b[first..first + out.len()]);
     }
 }
 
