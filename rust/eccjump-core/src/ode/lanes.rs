@@ -329,7 +329,7 @@ fn lanes<P, T, const N: usize>(
                 }
             }
         }
-        // The accepted steps that their events prove quiet from the ends alone: observed
+        // The accepted steps that their ends alone clear of events: observed
         // without dense output (the scalar code).
         let mut ended = [false; LANES];
         let mut dense_for = [false; LANES];
