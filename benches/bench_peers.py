@@ -529,6 +529,7 @@ def part_accuracy(args) -> None:
     print("\n== a'. roll at equal accuracy: CPU us per call at the loosest rtol (atol = rtol/100)")
     print("   of 1e-6 ... 1e-12 (half decades) from which on |theta_J - exact| <= the level ==")
     summary: dict[tuple[str, float], list[float]] = {}
+    cells: dict[str, dict[tuple[str, float], float]] = {}  # case -> (peer, level) -> ratio
     for a_deg, chi, km in CASES:
         alpha = math.radians(a_deg)
         body = eccjump.Cylinder(chi, km)
@@ -557,7 +558,11 @@ def part_accuracy(args) -> None:
                 except Exception:  # a peer failing at a rung: that rung is not reached
                     rows.append((math.inf, math.nan))
                     continue
-                _w, c = per_call(lambda: fn(rtol, atol), max(1, args.number // 4), 3)  # noqa: B023
+                _w, c = per_call(
+                    lambda: fn(rtol, atol),  # noqa: B023
+                    max(1, args.number // 4),
+                    args.rung_repeat,
+                )
                 rows.append((abs(th - exact), c))
             table[name] = rows
         ratios = equal_accuracy_table(
@@ -565,6 +570,7 @@ def part_accuracy(args) -> None:
         )
         for key, ratio in ratios.items():
             summary.setdefault(key, []).append(ratio)
+        cells[case] = ratios
     print(
         "\npeer CPU / eccjump CPU (the faster of its two integrators) at equal accuracy, "
         "min-max over the cases:"
@@ -572,6 +578,30 @@ def part_accuracy(args) -> None:
     for (name, lv), v in sorted(summary.items()):
         if not name.startswith("eccjump"):
             print(f"  {name:<28} <= {lv:g} rad: {min(v):.2f}-{max(v):.2f}")
+    cell_table(cells, [n for n, f in peers if f is not None])
+
+
+def cell_table(cells: dict[str, dict[tuple[str, float], float]], peers: list[str]) -> None:
+    """Prints every cell (case x peer x accuracy level) of the equal-accuracy comparison,
+    peer CPU / eccjump CPU, and how many reach issue 10's target of 3x (a cell a peer did
+    not reach counts as reached by eccjump; one eccjump did not reach, as missed)."""
+    if not peers:
+        return
+    head = "".join(
+        f"{p.split()[0] + ' <= ' + format(lv, 'g'):>22}" for p in peers for lv in ACCURACY
+    )
+    print(f"\nevery cell, peer CPU / eccjump CPU:\n{'case':<20}{head}")
+    met = total = 0
+    for case, ratios in cells.items():
+        row = []
+        for p in peers:
+            for lv in ACCURACY:
+                r = ratios.get((p, lv), math.inf)
+                total += 1
+                met += r >= 3.0  # NaN: eccjump did not reach the level
+                row.append(f"{r:>22.2f}")
+        print(f"{case:<20}" + "".join(row))
+    print(f"cells at >= 3x: {met} of {total}")
 
 
 # ------------------------------------------------------------------------------------------
@@ -933,6 +963,12 @@ def main() -> None:
         "SLIP_AT_JUMP",
     )
     p.add_argument("--number", type=int, default=200, help="calls per timing round (roll)")
+    p.add_argument(
+        "--rung-repeat",
+        type=int,
+        default=5,
+        help="part a': timing rounds of number/4 calls per route and rtol, best (5)",
+    )
     p.add_argument("--batch", type=int, default=10_000, help="points of part b (10000)")
     p.add_argument(
         "--samples-per-turn",
@@ -960,7 +996,7 @@ def main() -> None:
     args = p.parse_args()
     load = os.getloadavg()
     print(
-        f"machine: {platform.machine()}, {os.cpu_count()} logical CPUs, python "
+        f"machine: {platform.machine()} ({cpu_model()}), {os.cpu_count()} logical CPUs, python "
         f"{platform.python_version()}, numpy {np.__version__}, eccjump {eccjump.__version__}; "
         f"load average {load[0]:.2f}"
     )
@@ -984,6 +1020,19 @@ def main() -> None:
     print(f"\nload average (1 min) at the end {os.getloadavg()[0]:.2f}")
     for n in NOTES:
         print("note:", n)
+
+
+def cpu_model() -> str:
+    """The processor's model name (the ratios to the peers depend on it, not only on the
+    code: benches/README.md), or the platform's description where /proc/cpuinfo has none."""
+    try:
+        with open("/proc/cpuinfo") as f:
+            for line in f:
+                if line.startswith("model name"):
+                    return line.split(":", 1)[1].strip()
+    except OSError:
+        pass
+    return platform.processor() or "unknown CPU"
 
 
 def versions() -> list[str]:
