@@ -528,7 +528,6 @@ def part_accuracy(args) -> None:
     ]
     print("\n== a'. roll at equal accuracy: CPU us per call at the loosest rtol (atol = rtol/100)")
     print("   of 1e-6 ... 1e-12 (half decades) from which on |theta_J - exact| <= the level ==")
-    summary: dict[tuple[str, float], list[float]] = {}
     cells: dict[str, dict[tuple[str, float], float]] = {}  # case -> (peer, level) -> ratio
     for a_deg, chi, km in CASES:
         alpha = math.radians(a_deg)
@@ -568,9 +567,11 @@ def part_accuracy(args) -> None:
         ratios = equal_accuracy_table(
             table, LADDER, 28, 22, lambda c, rtol, _r: f"{c * 1e6:>10.2f} us @{rtol:<8.0e}"
         )
+        cells[case] = ratios
+    summary: dict[tuple[str, float], list[float]] = {}
+    for ratios in cells.values():
         for key, ratio in ratios.items():
             summary.setdefault(key, []).append(ratio)
-        cells[case] = ratios
     print(
         "\npeer CPU / eccjump CPU (the faster of its two integrators) at equal accuracy, "
         "min-max over the cases:"
