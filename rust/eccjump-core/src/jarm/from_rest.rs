@@ -24,7 +24,7 @@ use crate::mechanics::energy::rolling_kinetic;
 use crate::mechanics::liftoff::free_normal_acceleration;
 use crate::mechanics::Ramp;
 use crate::ode::roots::bisect;
-use crate::trig::{asin, cos, sin, tan};
+use crate::trig::{cos, sin, tan};
 use std::f64::consts::{PI, TAU};
 
 /// The paper's J(θ) (Eq. Jta) as printed, with γ from the body. Infinite/NaN at α = π/2.
@@ -108,16 +108,13 @@ pub fn theta_nj(r: &Ramp, n: u32) -> Option<f64> {
 /// θ0 past the top; [`crate::jarm::path`] detects it for any start.) For α = 0 the start is an
 /// equilibrium and Some(0) is returned.
 pub fn rock_back_angle(r: &Ramp) -> Option<f64> {
-    let chi = r.body.chi;
     if r.sin_a == 0.0 {
         // α = 0 from rest at θ0 = 0 is an (unstable) equilibrium: it never moves.
         return Some(0.0);
     }
-    if chi <= r.sin_a {
-        return None;
-    }
-    let asn = asin(r.sin_a / chi);
-    let theta_m = TAU - r.alpha - asn;
+    // The lowest minimum of E after the start (none if E never decreases).
+    let asn = r.energy_turn_offset()?;
+    let theta_m = r.energy_minimum_after(0.0)?;
     let e_m = energy_drop(r, theta_m);
     if e_m > 0.0 {
         return None;

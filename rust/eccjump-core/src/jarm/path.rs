@@ -735,8 +735,8 @@ impl RollingPath {
     /// with `w` watching only lift-off and energy (no extrema, grid coarseness `coarseness`)
     /// stops at a lift-off, None if it stops otherwise or not at all. Only the parts of each
     /// turn where L = χθ̇² cos θ − cos α can reach 0 are visited.
-    /// Where E > 0 is guaranteed (E ≥ K0 + (θ − θ0) sin α + χ(cos(α + θ0) − 1) > 0 from θ_start
-    /// on) and cos α > 0, L < 0 wherever cos θ < c_min = cos α (Ĩ_C + 1)/(2χ E_ub), with
+    /// Where E > 0 is guaranteed from θ_start on ([`Self::energy_stays_positive`]) and
+    /// cos α > 0, L < 0 wherever cos θ < c_min = cos α (Ĩ_C + 1)/(2χ E_ub), with
     /// E_ub = K0 + (θ − θ0) sin α + χ(cos(α + θ0) + 1) at the window's end (Ĩ_P ≥ Ĩ_C + 1 where
     /// cos θ ≥ 0): so only |θ − 2πm| ≤ acos c_min is scanned, whole turns are skipped while
     /// c_min ≥ 1, and within a window only L is evaluated ([`Self::window_liftoff`]).
@@ -764,8 +764,10 @@ impl RollingPath {
             (sc.event == ContactEvent::Liftoff).then_some(sc.at.theta)
         };
         let chi = self.chi;
-        let e_low = self.k0 + (theta_start - self.theta0) * self.sin_a + chi * (self.ca0 - 1.0);
-        let guaranteed = self.cos_a > 0.0 && self.sin_a > 0.0 && chi > 0.0 && e_low > 0.0;
+        let guaranteed = self.cos_a > 0.0
+            && self.sin_a > 0.0
+            && chi > 0.0
+            && self.energy_stays_positive(theta_start);
         if !guaranteed || theta_end <= theta_start || theta_end.is_nan() {
             return plain();
         }
@@ -816,6 +818,31 @@ impl RollingPath {
             }
             m += 1.0;
         }
+    }
+
+    /// True if E > 0 on (θ_start, ∞) is certain (sin α > 0 assumed). First the bound without
+    /// trigonometry, E ≥ K0 + (θ − θ0) sin α + χ(cos(α + θ0) − 1), which rises with θ; where
+    /// it is not yet positive (a slip soon after the start), the exact lowest value: E at
+    /// θ_start (or E = 0 there and rising, as at a slip at the start from rest) and at the
+    /// first minimum of E after it ([`Ramp::energy_minimum_after`]), with a margin far above
+    /// the rounding of E. One turn later E is larger by 2π sin α at every phase, so no later
+    /// minimum is lower.
+    fn energy_stays_positive(&self, theta_start: f64) -> bool {
+        let chi = self.chi;
+        let e_low = self.k0 + (theta_start - self.theta0) * self.sin_a + chi * (self.ca0 - 1.0);
+        if e_low > 0.0 {
+            return true;
+        }
+        let margin =
+            |theta: f64| 1e-12 * (self.k0 + (theta - self.theta0).abs() * self.sin_a + 2.0 * chi);
+        let p = self.eval(theta_start);
+        let (e, de) = (p.g[G_ENERGY], p.dg[G_ENERGY]);
+        let start = e > margin(theta_start) || (e >= 0.0 && de > 1e-12 * (self.sin_a + chi));
+        start
+            && self
+                .ramp
+                .energy_minimum_after(theta_start)
+                .is_none_or(|t| self.energy(t) > margin(t))
     }
 
     /// The first lift-off on [lo, hi] (−L violated; at lo itself by the start test of
@@ -1770,6 +1797,69 @@ mod tests {
             }
         }
         assert!(found > 100 && far >= 20, "{found} {far}");
+    }
+
+    /// The exact energy test that lets a lift-off search after an early slip go by windows:
+    /// it holds exactly where E stays positive (checked on a fine sampling of three turns),
+    /// and the windowed search then agrees with the plain scan, including where the body
+    /// rocks back first (E reaching 0 ends the plain scan: no lift-off).
+    #[test]
+    fn early_slip_lift_off_search_is_exact_where_energy_stays_positive() {
+        let w = Watch {
+            normal_force: false,
+            friction: false,
+            liftoff: true,
+            refine_extrema: false,
+            coarseness: 3,
+        };
+        let mut s = 7u64;
+        let (mut exact, mut rocks, mut windowed) = (0, 0, 0);
+        for _ in 0..4000 {
+            let alpha = 1e-3 + (FRAC_PI_2 - 2e-3) * uniform(&mut s);
+            let chi = 0.02 + 0.97 * uniform(&mut s);
+            let r = ramp(chi, uniform(&mut s) * (1.0 - chi), alpha.to_degrees());
+            let th0 = TAU * (uniform(&mut s) - 0.5);
+            let w0 = if uniform(&mut s) < 0.3 {
+                0.0
+            } else {
+                0.6 * uniform(&mut s)
+            };
+            let p = RollingPath::new(&r, th0, w0, 1.0);
+            let start = th0 + 0.8 * uniform(&mut s);
+            let e_low = p.k0 + (start - th0) * r.sin_a + chi * (p.ca0 - 1.0);
+            if e_low > 0.0 || p.energy(start) < 0.0 {
+                continue; // the cheap bound decides, or the path never gets here
+            }
+            // The lowest E on (start, start + 3 turns], sampled.
+            let lowest = (1..=30_000)
+                .map(|i| p.energy(start + 3.0 * TAU * i as f64 / 30_000.0))
+                .fold(f64::INFINITY, f64::min);
+            let positive = p.energy_stays_positive(start);
+            if positive {
+                assert!(lowest > 0.0, "{alpha} {chi} {th0} {w0} {start}: {lowest}");
+                exact += 1;
+            } else if lowest > 1e-6 {
+                panic!("E stays positive but the test failed: {alpha} {chi} {th0} {w0} {start}");
+            }
+            let end = start + 60.0;
+            let plain = p.scan_cells(start, end, w, false);
+            rocks += (plain.event == ContactEvent::RocksBack) as u32;
+            let fast = p.liftoff_after(start, end, 3, |_, _| true);
+            assert_eq!(
+                fast.is_some(),
+                plain.event == ContactEvent::Liftoff,
+                "{alpha} {chi} {th0} {w0} {start}"
+            );
+            if let Some(x) = fast {
+                let t = plain.at.theta;
+                assert!((x - t).abs() <= 1e-13 * t.abs().max(1.0), "{x} {t}");
+                windowed += positive as u32;
+            }
+        }
+        assert!(
+            exact > 300 && rocks > 100 && windowed > 200,
+            "{exact} {rocks} {windowed}"
+        );
     }
 
     /// The paper's FxL2 and FyL2, typed exactly as printed (g = M = 1).

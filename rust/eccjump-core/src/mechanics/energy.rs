@@ -15,7 +15,8 @@
 //! with d = θ − θ0, u = d/2 (the product form avoids cancellation at small d).
 
 use crate::mechanics::ramp::Ramp;
-use crate::trig::{cos, sin};
+use crate::trig::{asin, cos, sin};
+use std::f64::consts::TAU;
 
 /// K0 + ΔE(θ): the kinetic energy ½ Ĩ_P θ̇² available at θ along pure rolling, given
 /// d = θ − θ0, sin(α + θ0 + d/2) and sin(d/2) (computed by the caller, each in the way its
@@ -57,6 +58,32 @@ impl Ramp {
         self.energy(theta, omega, theta, omega, 1.0, 0.0)
     }
 
+    /// Where the rolling energy turns, as arcsin(sin α/χ): along pure rolling
+    /// dE/dθ = sin α + χ sin(α + θ) vanishes where sin(α + θ) = −sin α/χ, a minimum at
+    /// α + θ ≡ −arcsin(sin α/χ) and a maximum at α + θ ≡ π + arcsin(sin α/χ) (mod 2π).
+    /// None where χ ≤ sin α: then dE/dθ ≥ 0 and E never decreases.
+    pub fn energy_turn_offset(&self) -> Option<f64> {
+        let chi = self.body.chi;
+        (chi > self.sin_a).then(|| asin(self.sin_a / chi))
+    }
+
+    /// The first angle after θ where the rolling energy has a minimum,
+    /// 2πm − α − arcsin(sin α/χ) (see [`Ramp::energy_turn_offset`]); one turn later E is
+    /// larger by 2π sin α at every phase, so this is the lowest minimum after θ. None where
+    /// E never decreases (χ ≤ sin α) or θ is not finite.
+    pub fn energy_minimum_after(&self, theta: f64) -> Option<f64> {
+        let asn = self.energy_turn_offset()?;
+        let at = |m: f64| TAU * m - self.alpha - asn;
+        let mut m = ((theta + self.alpha + asn) / TAU).floor() + 1.0;
+        // The quotient's rounding can put m one off near a minimum: the first one after θ.
+        if at(m - 1.0) > theta {
+            m -= 1.0;
+        } else if at(m) <= theta {
+            m += 1.0;
+        }
+        theta.is_finite().then(|| at(m))
+    }
+
     /// θ̇² at θ along pure rolling from (θ0, θ̇0), by conservation of energy.
     pub fn omega_sq(&self, theta0: f64, omega0: f64, theta: f64) -> f64 {
         let d = theta - theta0;
@@ -78,6 +105,34 @@ mod tests {
         let (th, w) = (2.2f64, 1.3f64);
         let kinetic = r.rolling_energy(th, w) - r.rolling_energy(th, 0.0);
         assert!((kinetic - 0.5 * r.contact_inertia(th.cos()) * w * w).abs() < 1e-14);
+    }
+
+    #[test]
+    fn energy_minimum_after_is_the_next_minimum_of_the_rolling_energy() {
+        use std::f64::consts::PI;
+        for &(chi, alpha) in &[(0.9, 0.2), (0.5, 0.45), (0.999, 1.5), (0.3, 0.01)] {
+            let r = Ramp::new(Cylinder::new(chi, 0.5 * (1.0 - chi)).unwrap(), alpha).unwrap();
+            // E(θ) from rest up to a constant: θ sin α − χ cos(α + θ), sampled finely.
+            let e = |t: f64| t * r.sin_a - chi * (alpha + t).cos();
+            for &theta in &[-7.0, -0.3, 0.0, 0.4, 3.0, 40.0] {
+                let m = r.energy_minimum_after(theta).unwrap();
+                assert!(m > theta && m <= theta + TAU, "{chi} {alpha} {theta}: {m}");
+                // A minimum: E' = 0 and E'' > 0 there.
+                assert!((r.sin_a + chi * (alpha + m).sin()).abs() < 1e-12);
+                assert!((alpha + m).cos() > 0.0);
+                // The lowest value of E on (θ, θ + 4π] that is not at θ itself.
+                let lowest = (1..=40_000)
+                    .map(|i| theta + 4.0 * PI * i as f64 / 40_000.0)
+                    .map(e)
+                    .fold(f64::INFINITY, f64::min);
+                assert!(e(m) <= lowest + 1e-9 || e(theta + 1e-9) <= e(m));
+            }
+        }
+        // χ ≤ sin α: E never decreases, no minimum.
+        let r = Ramp::new(Cylinder::new(0.2, 0.1).unwrap(), 0.5).unwrap();
+        assert_eq!(r.energy_minimum_after(0.0), None);
+        let r = Ramp::new(Cylinder::new(0.9, 0.1).unwrap(), 0.5).unwrap();
+        assert_eq!(r.energy_minimum_after(f64::NAN), None);
     }
 
     #[test]
