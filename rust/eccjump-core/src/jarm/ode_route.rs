@@ -681,7 +681,8 @@ mod tests {
     use super::*;
     use crate::jarm::classify;
     use crate::jarm::Method;
-    use crate::maps::parallel::never;
+    use crate::maps::columns::JarmColumns;
+    use crate::maps::parallel::{never, pool};
     use crate::maps::region::classify_grid;
     use crate::mechanics::Ramp;
     use crate::modes::rolling::bounds::ContactBounds;
@@ -1265,10 +1266,11 @@ mod tests {
             pair: ode::Method::Rk45,
         };
         let o = JarmOptions::default();
-        let mut r1 = vec![JarmResult::new(Reason::NoRoot); 216];
+        let mut r1 = JarmColumns::new(&pool(1).unwrap(), 216).unwrap();
         let mut r2 = r1.clone();
         classify_grid(&al, &ch, &fr, 1.0, m, &o, 1, &mut r1, &never).unwrap();
         classify_grid(&al, &ch, &fr, 1.0, m, &o, 2, &mut r2, &never).unwrap();
+        let (r1, r2) = (r1.rows(), r2.rows());
         assert!(r1.iter().zip(&r2).all(|(p, q)| bits(p) == bits(q)));
     }
 
@@ -1313,12 +1315,12 @@ mod tests {
             pair: ode::Method::Rk45,
         };
         let o = JarmOptions::default();
-        let mut out = vec![JarmResult::new(Reason::NoRoot); 8000];
+        let mut out = JarmColumns::new(&pool(1).unwrap(), 8000).unwrap();
         for nt in [1, 2] {
             let (t, cpu) = (std::time::Instant::now(), cpu_seconds());
             classify_grid(&a, &c, &f, 1.0, m, &o, nt, &mut out, &never).unwrap();
             let (dt, dcpu) = (t.elapsed().as_secs_f64(), cpu_seconds() - cpu);
-            let jarm = out.iter().filter(|r| r.is_jarm).count();
+            let jarm = out.is_jarm.iter().filter(|&&j| j).count();
             println!(
                 "ODE route, {nt} thread(s): wall {:.1} us/point x threads, CPU {:.1} us/point \
                  on 20^3 ({jarm} JARM)",

@@ -1,7 +1,9 @@
 //! Maps over many independent points: the bit-reproducible parallel driver, JARM maps over
-//! point lists and grids, the region's boundaries by bisection, and maps of the full motion.
+//! point lists and grids written as columns, the region's boundaries by bisection, and maps
+//! of the full motion.
 
 pub mod boundary;
+pub mod columns;
 pub mod motion;
 pub mod parallel;
 pub mod region;

@@ -17,11 +17,11 @@ use std::time::Duration;
 /// an expensive one alone. With chunks of 256 points the ODE maps, whose points at small α
 /// cost milliseconds and sit together at the start of a grid, ran only 1.25× faster on two
 /// threads. Pieces of at most 64 points (≈ 0.1 ms of closed form, ms of ODE) balance both.
-const MAX_PIECE: usize = 64;
+pub const MAX_PIECE: usize = 64;
 
 /// Points per piece of [`par_fill_pieces_until`]: enough that the lanes of a piece stay
 /// full most of the time (they empty at its end), few enough to balance the threads.
-const PIECE: usize = 256;
+pub const PIECE: usize = 256;
 
 /// The largest thread count a map accepts: far above any machine this runs on, and small
 /// enough that starting the pool stays cheap (3000 threads took 13 s for one point).
@@ -100,17 +100,35 @@ where
     T: Send,
     F: Fn(usize, &mut [T], &dyn Fn() -> bool) + Sync,
 {
+    par_pieces_until(
+        out.par_chunks_mut(PIECE),
+        n_threads,
+        |c, part, cancelled| piece(c * PIECE, part, cancelled),
+        stop,
+    )
+}
+
+/// `work(c, piece, cancelled)` for every piece of an output already cut into pieces (the
+/// c-th of `pieces`, e.g. the columns of a struct of arrays), in parallel, one piece per
+/// job, with the caller's stop as in [`par_fill_pieces_until`].
+pub fn par_pieces_until<I, F>(
+    pieces: I,
+    n_threads: usize,
+    work: F,
+    stop: &dyn Fn() -> bool,
+) -> Result<()>
+where
+    I: IndexedParallelIterator + Send,
+    F: Fn(usize, I::Item, &dyn Fn() -> bool) + Sync,
+{
     run_until(n_threads, stop, |cancel| {
         let cancelled = || cancel.load(Ordering::Relaxed);
         // One piece per job (rayon would otherwise split only a few times: see MAX_PIECE).
-        out.par_chunks_mut(PIECE)
-            .enumerate()
-            .with_max_len(1)
-            .for_each(|(c, part)| {
-                if !cancelled() {
-                    piece(c * PIECE, part, &cancelled);
-                }
-            })
+        pieces.enumerate().with_max_len(1).for_each(|(c, piece)| {
+            if !cancelled() {
+                work(c, piece, &cancelled);
+            }
+        })
     })
 }
 
@@ -173,20 +191,6 @@ pub fn filled_on<T: Clone + Send + Sync>(
     Ok(v)
 }
 
-/// The column `f(row)` of every row, computed on `pool` into a vector allocated fallibly
-/// (`OutOfMemory` naming `what`): struct-of-arrays output from per-point results without a
-/// serial pass over them.
-pub fn column_on<R: Sync, T: Send>(
-    pool: &ThreadPool,
-    what: &'static str,
-    rows: &[R],
-    f: impl Fn(&R) -> T + Sync + Send,
-) -> Result<Vec<T>> {
-    let mut v = try_empty(what, rows.len())?;
-    pool.install(|| rows.par_iter().map(f).collect_into_vec(&mut v));
-    Ok(v)
-}
-
 /// Never stop: the `stop` of a map that is not to be interrupted.
 pub fn never() -> bool {
     false
@@ -244,21 +248,11 @@ mod tests {
     }
 
     #[test]
-    fn parallel_fill_and_columns_are_the_serial_ones() {
-        let rows: Vec<(u32, f64)> = (0..100_003).map(|i| (i, (i as f64).sqrt())).collect();
+    fn parallel_fill_is_the_serial_one() {
         for threads in [1, 2, 3] {
             let p = pool(threads).unwrap();
             assert_eq!(filled_on(&p, "x", 1001, 7u8).unwrap(), vec![7u8; 1001]);
             assert!(filled_on(&p, "x", 0, 1.0).unwrap().is_empty());
-            let c = column_on(&p, "c", &rows, |r| r.1).unwrap();
-            assert!(c
-                .iter()
-                .zip(&rows)
-                .all(|(a, r)| a.to_bits() == r.1.to_bits()));
-            assert_eq!(
-                column_on(&p, "n", &rows, |r| r.0).unwrap()[100_002],
-                100_002
-            );
         }
         // Too large a request is an error naming it, not an abort.
         let p = pool(1).unwrap();

@@ -1,17 +1,19 @@
 //! Vectorised, parallel JARM maps: a list of points or a rectangular grid
 //! (α, χ, k_m-fraction with k_m = frac·(1 − χ), so the grid is rectangular), written in place
-//! into a caller-provided slice of results.
+//! into caller-provided result columns ([`JarmColumns`]).
 //!
 //! Each point is computed independently (no per-point heap allocation, no reduction whose
 //! order depends on scheduling), so results are bit-identical for any thread count.
 
 use crate::error::Result;
-use crate::jarm::{classify_many, classify_with, JarmOptions, JarmResult, Method};
-use crate::maps::parallel::{check_len, par_fill_pieces_until, par_fill_until};
+use crate::jarm::{classify_many, JarmOptions, JarmResult, Method, Reason};
+use crate::maps::columns::JarmColumns;
+use crate::maps::parallel::{check_len, par_pieces_until, MAX_PIECE, PIECE};
 
 /// Classifies a list of points (α_i, χ_i, k_m,i, μ_s,i, n_i); all inputs have the length of
 /// `out` (μ_s and n may also have length 1: one value for all; n = 0 is the first jump,
 /// whatever its turn, and overrides `opts.n`). Whole-call options are checked first.
+/// Interrupted (`stop`), the points not reached keep what `out` held.
 #[allow(clippy::too_many_arguments)] // the five coordinates, the route, options, threads, out
 pub fn classify_points(
     alpha: &[f64],
@@ -22,7 +24,7 @@ pub fn classify_points(
     method: Method,
     opts: &JarmOptions,
     n_threads: usize,
-    out: &mut [JarmResult],
+    out: &mut JarmColumns,
     stop: &dyn Fn() -> bool,
 ) -> Result<()> {
     let total = out.len();
@@ -59,7 +61,7 @@ pub fn classify_grid(
     method: Method,
     opts: &JarmOptions,
     n_threads: usize,
-    out: &mut [JarmResult],
+    out: &mut JarmColumns,
     stop: &dyn Fn() -> bool,
 ) -> Result<()> {
     let (nc, nf) = (chi.len(), frac.len());
@@ -78,33 +80,33 @@ pub fn classify_grid(
     fill(method, out, n_threads, point, stop)
 }
 
-/// `out[g]` = the classification of `point(g)`, in parallel: point by point for the closed
-/// form, by pieces integrated side by side for the ODE route ([`classify_many`]); the same
-/// bits either way.
+/// Point g of `out` = the classification of `point(g)`, in parallel by pieces: small ones
+/// for the closed form (its points take microseconds; small pieces keep the threads
+/// balanced), pieces integrated side by side for the ODE route ([`classify_many`]); the same
+/// bits either way. Each piece is classified into a buffer on the thread's stack and then
+/// written into the columns.
 fn fill(
     method: Method,
-    out: &mut [JarmResult],
+    out: &mut JarmColumns,
     n_threads: usize,
     point: impl Fn(usize) -> (f64, f64, f64, f64, JarmOptions) + Sync,
     stop: &dyn Fn() -> bool,
 ) -> Result<()> {
-    match method {
-        Method::ClosedForm => par_fill_until(
-            out,
-            n_threads,
-            |g| {
-                let (alpha, chi, km, mu_s, o) = point(g);
-                classify_with(method, alpha, chi, km, mu_s, &o)
-            },
-            stop,
-        ),
-        Method::Ode { .. } => par_fill_pieces_until(
-            out,
-            n_threads,
-            |start, piece, cancelled| classify_many(method, |i| point(start + i), piece, cancelled),
-            stop,
-        ),
-    }
+    let size = match method {
+        Method::ClosedForm => MAX_PIECE,
+        Method::Ode { .. } => PIECE,
+    };
+    par_pieces_until(
+        out.pieces_mut(size),
+        n_threads,
+        |c, mut piece, cancelled| {
+            let mut rows = [JarmResult::new(Reason::InvalidParams); PIECE];
+            let rows = &mut rows[..piece.len()];
+            classify_many(method, |i| point(c * size + i), rows, cancelled);
+            piece.put(rows);
+        },
+        stop,
+    )
 }
 
 /// The number of points of an `na × nc × nf` grid, or `OutOfMemory` if it overflows.
@@ -121,9 +123,13 @@ pub fn grid_size(na: usize, nc: usize, nf: usize) -> Result<usize> {
 mod tests {
     use super::*;
     use crate::jarm::classify;
-    use crate::jarm::Reason;
-    use crate::maps::parallel::never;
+    use crate::maps::parallel::{never, pool};
     use std::f64::consts::FRAC_PI_2;
+
+    /// Result columns for `len` points.
+    fn blank(len: usize) -> JarmColumns {
+        JarmColumns::new(&pool(1).unwrap(), len).unwrap()
+    }
 
     fn grid(n: usize) -> (Vec<f64>, Vec<f64>, Vec<f64>) {
         let a = (1..=n).map(|i| FRAC_PI_2 * i as f64 / n as f64).collect();
@@ -133,7 +139,7 @@ mod tests {
     }
 
     fn run(n_threads: usize, a: &[f64], c: &[f64], f: &[f64]) -> Vec<JarmResult> {
-        let mut out = vec![JarmResult::new(Reason::NoRoot); a.len() * c.len() * f.len()];
+        let mut out = blank(a.len() * c.len() * f.len());
         let o = JarmOptions::default();
         classify_grid(
             a,
@@ -147,7 +153,7 @@ mod tests {
             &never,
         )
         .unwrap();
-        out
+        out.rows()
     }
 
     fn bits(v: &[JarmResult]) -> Vec<(u8, u64, u64, u64)> {
@@ -185,7 +191,7 @@ mod tests {
         for (k, r) in r1.iter().enumerate() {
             assert_eq!(classify(pa[k], pc[k], pk[k], 1.0, &o).reason, r.reason);
         }
-        let mut out = vec![JarmResult::new(Reason::NoRoot); pa.len()];
+        let mut out = blank(pa.len());
         classify_points(
             &pa,
             &pc,
@@ -199,9 +205,9 @@ mod tests {
             &never,
         )
         .unwrap();
-        assert_eq!(bits(&out), bits(&r1));
+        assert_eq!(bits(&out.rows()), bits(&r1));
         // Wrong lengths are errors.
-        let mut short = vec![JarmResult::new(Reason::NoRoot); 3];
+        let mut short = blank(3);
         let m = Method::ClosedForm;
         assert!(classify_grid(&a, &c, &f, 1.0, m, &o, 1, &mut short, &never).is_err());
         assert!(
@@ -221,13 +227,13 @@ mod tests {
             refine_extrema: false,
             ..Default::default()
         };
-        let mut out = vec![JarmResult::new(Reason::NoRoot); a.len() * c.len() * f.len()];
+        let mut out = blank(a.len() * c.len() * f.len());
         let t = std::time::Instant::now();
         for _ in 0..5 {
             classify_grid(&a, &c, &f, 1.0, Method::ClosedForm, &o, 1, &mut out, &never).unwrap();
         }
         let dt = t.elapsed().as_secs_f64() / 5.0;
-        let jarm = out.iter().filter(|r| r.is_jarm).count();
+        let jarm = out.is_jarm.iter().filter(|&&j| j).count();
         println!(
             "{} points: {:.2} us/point (1 thread), {jarm} JARM",
             out.len(),
@@ -250,8 +256,9 @@ mod tests {
             refine_extrema: false,
             ..Default::default()
         };
-        let mut out = vec![JarmResult::new(Reason::NoRoot); 1_000_000];
+        let mut out = blank(1_000_000);
         classify_grid(&a, &c, &f, 1.0, Method::ClosedForm, &o, 2, &mut out, &never).unwrap();
+        let out = out.rows();
         let mut bytes = Vec::with_capacity(out.len() * 37);
         for r in &out {
             bytes.push(r.reason as u8);
@@ -313,7 +320,7 @@ mod tests {
             refine_extrema: false,
             ..Default::default()
         };
-        let mut out = vec![JarmResult::new(Reason::NoRoot); 1_000_000];
+        let mut out = blank(1_000_000);
         for nt in [1, 2] {
             let t = std::time::Instant::now();
             classify_grid(
@@ -329,7 +336,7 @@ mod tests {
             )
             .unwrap();
             let dt = t.elapsed().as_secs_f64();
-            let jarm = out.iter().filter(|r| r.is_jarm).count();
+            let jarm = out.is_jarm.iter().filter(|&&j| j).count();
             println!(
                 "{nt} thread(s): {dt:.3} s for 1e6 points ({:.2} us/point/core), {jarm} JARM",
                 dt * nt as f64
