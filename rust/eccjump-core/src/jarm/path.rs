@@ -170,6 +170,18 @@ impl Watch {
         coarseness: 1,
     };
 
+    /// The paper's lift-off alone (and the body stopping, always watched), no extrema, on a
+    /// grid `coarseness` times the rigorous one: what the lift-off search after a slip watches.
+    pub const fn liftoff_only(coarseness: u8) -> Watch {
+        Watch {
+            normal_force: false,
+            friction: false,
+            liftoff: true,
+            refine_extrema: false,
+            coarseness,
+        }
+    }
+
     #[inline]
     fn active(&self, k: usize) -> bool {
         match k {
@@ -752,13 +764,7 @@ impl RollingPath {
         coarseness: u8,
         matters: impl Fn(f64, f64) -> bool,
     ) -> Option<f64> {
-        let watch = Watch {
-            normal_force: false,
-            friction: false,
-            liftoff: true,
-            refine_extrema: false,
-            coarseness,
-        };
+        let watch = Watch::liftoff_only(coarseness);
         let plain = || {
             let sc = self.scan_from(theta_start, theta_end, watch);
             (sc.event == ContactEvent::Liftoff).then_some(sc.at.theta)
@@ -1685,13 +1691,7 @@ mod tests {
 
     #[test]
     fn a_window_skip_is_refused_when_the_target_window_holds_the_liftoff() {
-        let w = Watch {
-            normal_force: false,
-            friction: false,
-            liftoff: true,
-            refine_extrema: false,
-            coarseness: 3,
-        };
+        let w = Watch::liftoff_only(3);
         let r = ramp(0.7, 0.1, 0.05);
         let p = RollingPath::new(&r, 0.0, 0.0, 1.0);
         let lift = p.scan_cells(0.0, 4000.0, w, false);
@@ -1726,13 +1726,7 @@ mod tests {
             let half = 1.5 * uniform(&mut s).powi(3) + 0.01;
             let (lo, hi) = ((TAU * m - half).max(th0), TAU * m + half);
             let coarseness = if uniform(&mut s) < 0.5 { 1 } else { 3 };
-            let w = Watch {
-                normal_force: false,
-                friction: false,
-                liftoff: true,
-                refine_extrema: false,
-                coarseness,
-            };
+            let w = Watch::liftoff_only(coarseness);
             // Skip windows where the energy could vanish (the loop assumes it cannot).
             let e_low = p.k0 + (lo - th0) * p.sin_a + chi * (p.ca0 - 1.0);
             if e_low <= 0.0 {
@@ -1758,13 +1752,7 @@ mod tests {
 
     #[test]
     fn liftoff_scan_by_windows_agrees_with_plain_scan() {
-        let w = Watch {
-            normal_force: false,
-            friction: false,
-            liftoff: true,
-            refine_extrema: false,
-            coarseness: 1,
-        };
+        let w = Watch::liftoff_only(1);
         let (mut found, mut far) = (0, 0);
         for &(chi, km, a) in &[
             (0.15, 0.02, 40.0),
@@ -1805,13 +1793,7 @@ mod tests {
     /// rocks back first (E reaching 0 ends the plain scan: no lift-off).
     #[test]
     fn early_slip_lift_off_search_is_exact_where_energy_stays_positive() {
-        let w = Watch {
-            normal_force: false,
-            friction: false,
-            liftoff: true,
-            refine_extrema: false,
-            coarseness: 3,
-        };
+        let w = Watch::liftoff_only(3);
         let mut s = 7u64;
         let (mut exact, mut rocks, mut windowed) = (0, 0, 0);
         for _ in 0..4000 {
