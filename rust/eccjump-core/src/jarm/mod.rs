@@ -53,8 +53,8 @@ pub fn classify_with(
 
 /// [`classify_with`] of many points, `point(i)` = (α, χ, k_m, μ_s, options) for each
 /// `out[i]`: the same results bit for bit, the ODE route integrating its points side by side
-/// ([`ode_route::classify_ode_batch`]). `stop` as there (the closed form does not ask it:
-/// its points take microseconds).
+/// ([`ode_route::classify_ode_batch`]). `stop` as there; the closed form asks it before each
+/// point (points take microseconds, but a few take milliseconds).
 pub fn classify_many(
     method: Method,
     point: impl Fn(usize) -> (f64, f64, f64, f64, JarmOptions),
@@ -64,6 +64,9 @@ pub fn classify_many(
     match method {
         Method::ClosedForm => {
             for (i, o) in out.iter_mut().enumerate() {
+                if stop() {
+                    return;
+                }
                 let (alpha, chi, km, mu_s, opts) = point(i);
                 *o = classify_with(method, alpha, chi, km, mu_s, &opts);
             }
@@ -118,6 +121,26 @@ fn shifted_back(mut r: JarmResult, shift: f64) -> JarmResult {
 mod tests {
     use super::*;
     use std::f64::consts::{PI, TAU};
+
+    #[test]
+    fn many_closed_form_points_stop_between_points_when_asked() {
+        let point = |i: usize| (0.3 + 0.01 * i as f64, 0.4, 0.2, 1.0, JarmOptions::default());
+        let asked = std::cell::Cell::new(0);
+        let stop = || {
+            asked.set(asked.get() + 1);
+            asked.get() > 3
+        };
+        let blank = JarmResult::new(Reason::SolverFailed);
+        let mut out = vec![blank; 10];
+        classify_many(Method::ClosedForm, point, &mut out, &stop);
+        let bits = |r: &JarmResult| r.as_f64s().map(f64::to_bits);
+        let (a, c, k, m, o) = point(2);
+        assert_eq!(
+            bits(&out[2]),
+            bits(&classify_with(Method::ClosedForm, a, c, k, m, &o))
+        );
+        assert!(out[3..].iter().all(|r| bits(r) == bits(&blank)));
+    }
 
     #[test]
     fn many_points_are_each_point_by_itself() {

@@ -816,8 +816,10 @@ impl RollingPath {
                     }
                     if whole && !tried_skip {
                         tried_skip = true;
-                        if let Some(t) = self.skip_windows(m, &window, &grid) {
+                        if let Some(t) = self.skip_windows(m, &window, &grid, theta_end) {
+                            // Nearer the lift-off, a new estimate is better: skip again.
                             m = t;
+                            tried_skip = false;
                         }
                     }
                 }
@@ -913,22 +915,55 @@ impl RollingPath {
     /// the windows only widen with m. Turn m is clean on the window of a later turn T (inside
     /// its own window by the scan, outside by the bound on L), so if the window of T is
     /// clean, −L > 0 on it at every turn in between, and every window in between lies inside
-    /// it. T is a margin before the lift-off turn estimated from L at 2πm one turn apart.
-    /// Returns T when the skip is proven, None to go on window by window.
+    /// it. T is a margin before the lift-off turn estimated from L at 2πm one turn apart, and
+    /// not after the last window that ends before θ_end. If window T holds a lift-off, the
+    /// clean windows from m on are still consecutive, so the last clean one before T is found
+    /// by bisection (a few window scans where window by window took up to 10⁶).
+    /// Returns the window skipped to, None to go on window by window.
     fn skip_windows(
         &self,
         m: f64,
         window: &impl Fn(f64) -> Option<(f64, f64, bool)>,
         grid: &Grid,
+        theta_end: f64,
     ) -> Option<f64> {
         let centre = TAU * m;
         let (l0, l1) = (self.eval(centre).lift, self.eval(centre + TAU).lift);
         let more = -l0 / (l1 - l0); // turns until L(2πm') ≥ 0 (L is maximal near 2πm')
-        let target = (m + more - SKIP_MARGIN_TURNS - SKIP_MARGIN_SHARE * more).floor();
+                                    // A window ends by 2πm' + π/2; one more turn of margin for the rounding.
+        let last = ((theta_end - FRAC_PI_2) / TAU).floor() - 1.0;
+        let target = (m + more - SKIP_MARGIN_TURNS - SKIP_MARGIN_SHARE * more)
+            .floor()
+            .min(last);
         if !(l0 < 0.0 && l1 > l0 && target >= m + 3.0) {
             return None;
         }
-        self.clean_window(target, window, grid)
+        if let Some(t) = self.clean_window(target, window, grid) {
+            return Some(t);
+        }
+        let last = self.last_clean_window((m, target), window, grid);
+        (last > m).then_some(last)
+    }
+
+    /// The last clean whole window before `dirty`, given that window `clean` is clean and
+    /// window `dirty` is not (or not whole), by bisection: the clean windows from `clean` on
+    /// are consecutive (see [`Self::skip_windows`]).
+    fn last_clean_window(
+        &self,
+        (clean, dirty): (f64, f64),
+        window: &impl Fn(f64) -> Option<(f64, f64, bool)>,
+        grid: &Grid,
+    ) -> f64 {
+        let (mut lo, mut hi) = (clean, dirty);
+        while hi - lo > 1.0 {
+            let mid = (0.5 * (lo + hi)).floor();
+            if self.clean_window(mid, window, grid).is_some() {
+                lo = mid;
+            } else {
+                hi = mid;
+            }
+        }
+        lo
     }
 
     /// `target` if its window is whole and clean (the proof that the windows before it hold
@@ -1021,49 +1056,86 @@ impl RollingPath {
     /// continues cell by cell from the end of turn R, exactly as without the skip.
     fn skip_turns(&self, cur: &mut Cursor, grid: &Grid, theta_start: f64) -> Stop {
         let turn_start = |m: f64| theta_start + TAU * (m - 1.0);
-        let r = SKIP_RECORD_TURN;
-        match self.advance(cur, grid, turn_start(r), |_, _, _| {}) {
-            Stop::Reached => {}
-            stop => return stop,
-        }
-        let mut more = f64::INFINITY;
-        let record = |p: &PathPoint, su: f64, cu: f64| {
-            more = more.min(self.turns_left(p, su, cu, &grid.act));
-        };
-        match self.advance(cur, grid, turn_start(r + 1.0), record) {
+        let noop = |_: &PathPoint, _: f64, _: f64| {};
+        let mut r = SKIP_RECORD_TURN;
+        match self.advance(cur, grid, turn_start(r), noop) {
             Stop::Reached => {}
             stop => return stop,
         }
         // The last turn that ends before θ_end (with a margin for the rounding of turn_start).
         let whole = ((grid.theta_end - theta_start) / TAU * (1.0 - 1e-12)).floor();
-        let estimate = r + more.floor() + 1.0; // the first turn estimated to violate
-        let target = (estimate - SKIP_MARGIN_TURNS - SKIP_MARGIN_SHARE * more)
-            .floor()
-            .min(whole);
-        if target.is_nan() || target < r + 3.0 {
-            return self.advance(cur, grid, f64::INFINITY, |_, _, _| {});
-        }
-        let saved = *cur;
-        let t_skip = turn_start(target);
-        if self.restart(cur, grid, t_skip) {
-            let proven = match self.advance(cur, grid, t_skip + TAU, |_, _, _| {}) {
-                Stop::Reached => None,
-                Stop::End => Some(Stop::End),
-                Stop::Event(e, p) if p.theta >= t_skip + TAU => Some(Stop::Event(e, p)),
-                Stop::Event(..) => Some(Stop::Reached), // not proven: fall back below
+        loop {
+            let mut more = f64::INFINITY;
+            let record = |p: &PathPoint, su: f64, cu: f64| {
+                more = more.min(self.turns_left(p, su, cu, &grid.act));
             };
-            match proven {
-                None => return self.advance(cur, grid, f64::INFINITY, |_, _, _| {}),
-                Some(Stop::Reached) => {}
-                Some(stop) => return stop,
+            match self.advance(cur, grid, turn_start(r + 1.0), record) {
+                Stop::Reached => {}
+                stop => return stop,
+            }
+            let estimate = r + more.floor() + 1.0; // the first turn estimated to violate
+            let target = (estimate - SKIP_MARGIN_TURNS - SKIP_MARGIN_SHARE * more)
+                .floor()
+                .min(whole);
+            if target.is_nan() || target < r + 3.0 {
+                return self.advance(cur, grid, f64::INFINITY, noop);
+            }
+            let saved = *cur;
+            let t_skip = turn_start(target);
+            if self.restart(cur, grid, t_skip) {
+                match self.advance(cur, grid, t_skip + TAU, noop) {
+                    // Turn T is clean: nearer the event, record the next turn and skip again
+                    // (each estimate leaves a margin of a tenth of its turns).
+                    Stop::Reached => {
+                        r = target + 1.0;
+                        continue;
+                    }
+                    Stop::End => return Stop::End,
+                    Stop::Event(e, p) if p.theta >= t_skip + TAU => return Stop::Event(e, p),
+                    Stop::Event(..) => {} // not proven: below
+                }
+            }
+            return self.bisect_turns(cur, grid, &saved, (r, target), turn_start);
+        }
+    }
+
+    /// The scan when turn `clean` is clean (the cursor `saved` at its end) and turn `dirty`
+    /// is not (or its first sample is violated): the first event lies in the turns between.
+    /// The clean turns from `clean` on are consecutive (each constraint's minimum over a turn
+    /// is concave in the turn index), so the last clean one is found by bisection, each probe
+    /// a rigorous scan of one turn (a failed probe's state is dropped, its work counts); the
+    /// scan then goes on cell by cell from its end. Without it, an estimate off by a few per
+    /// cent of 10⁵ turns cost milliseconds of cells.
+    fn bisect_turns(
+        &self,
+        cur: &mut Cursor,
+        grid: &Grid,
+        saved: &Cursor,
+        (clean, dirty): (f64, f64),
+        turn_start: impl Fn(f64) -> f64,
+    ) -> Stop {
+        let restore = |cur: &mut Cursor, to: &Cursor| {
+            let evals = cur.evals;
+            *cur = *to;
+            cur.evals = evals;
+        };
+        restore(cur, saved);
+        let noop = |_: &PathPoint, _: f64, _: f64| {};
+        let (mut lo, mut hi) = (clean, dirty);
+        while hi - lo > 1.0 {
+            let mid = (0.5 * (lo + hi)).floor();
+            let before = *cur;
+            let t = turn_start(mid);
+            let probe_clean = self.restart(cur, grid, t)
+                && matches!(self.advance(cur, grid, t + TAU, noop), Stop::Reached);
+            if probe_clean {
+                lo = mid;
+            } else {
+                restore(cur, &before);
+                hi = mid;
             }
         }
-        // Turn T (or its first sample) is not clean: the event lies before it. Continue from
-        // turn R + 1 cell by cell (the work of the attempt still counts).
-        let evals = cur.evals;
-        *cur = saved;
-        cur.evals = evals;
-        self.advance(cur, grid, f64::INFINITY, |_, _, _| {})
+        self.advance(cur, grid, f64::INFINITY, noop)
     }
 
     /// Estimated whole turns after the one of `p` before a watched g_k at the phase of `p`
@@ -1703,6 +1775,96 @@ mod tests {
         assert_eq!(p.clean_window(n - 1.0, &window, &grid), Some(n - 1.0));
         let cut = |m: f64| Some((TAU * m - 0.5, TAU * m + 0.5, false));
         assert!(p.clean_window(n - 1.0, &cut, &grid).is_none());
+    }
+
+    /// The bisections behind the skips: from a clean turn (window) and a later one that is not
+    /// clean, the last clean one is found, and the scan from there finds the cell-by-cell
+    /// scan's event; the lift-off windows likewise.
+    #[test]
+    fn bisection_finds_the_last_clean_turn_and_window() {
+        let noop = |_: &PathPoint, _: f64, _: f64| {};
+        let mut probes = 0;
+        for &(chi, km, a) in &[(0.05, 0.5, 0.06), (0.5, 0.2, 0.02), (0.3, 0.35, 0.1)] {
+            let r = ramp(chi, km, a);
+            let p = RollingPath::new(&r, 0.0, 0.0, 1.0);
+            let end = 3000.0 * TAU;
+            let full = p.scan_cells(0.0, end, Watch::ALL, false);
+            assert_ne!(full.event, ContactEvent::End, "{chi} {km} {a}");
+            let event_turn = (full.at.theta / TAU).floor() + 1.0; // turns counted from 1
+            assert!(event_turn > 20.0, "{chi} {km} {a}: {event_turn}");
+            // The cursor at the end of turn 2, as `skip_turns` leaves it before a skip.
+            let grid = Grid::new(0.0, end, Watch::ALL);
+            let p0 = p.start();
+            let min_fy = Extremum::start(p0.fy, p0.theta, f64::INFINITY);
+            let max_r = Extremum::start(p0.ratio(), p0.theta, f64::NEG_INFINITY);
+            let mut cur = Cursor::start(p0, (0.0, 1.0), min_fy, max_r);
+            let turn_start = |m: f64| TAU * (m - 1.0);
+            assert!(matches!(
+                p.advance(&mut cur, &grid, turn_start(3.0), noop),
+                Stop::Reached
+            ));
+            for dirty in [event_turn, event_turn + 1.0, event_turn + 700.0] {
+                let saved = cur;
+                let mut c = cur;
+                let Stop::Event(e, at) =
+                    p.bisect_turns(&mut c, &grid, &saved, (2.0, dirty), turn_start)
+                else {
+                    panic!("{chi} {km} {a}: no event");
+                };
+                assert_eq!(e, full.event);
+                let t = full.at.theta;
+                assert!((at.theta - t).abs() <= 1e-12 * t, "{} {t}", at.theta);
+                // The probes cost a few turns, not the turns before the event.
+                assert!(
+                    c.cells < 24 * 40 + cur.cells,
+                    "{} cells",
+                    c.cells - cur.cells
+                );
+                probes += 1;
+            }
+            // Lift-off windows: the first window of the lift-off, by the plain scan.
+            let w = Watch::liftoff_only(3);
+            let lift = p.scan_cells(0.0, end, w, false);
+            assert_eq!(lift.event, ContactEvent::Liftoff);
+            let n = (lift.at.theta / TAU).round();
+            let window = |m: f64| Some((TAU * m - 0.5, TAU * m + 0.5, true));
+            let grid = Grid::new(0.0, end, w);
+            assert!(n > 10.0);
+            for dirty in [n, n + 1.0, n + 300.0] {
+                assert_eq!(p.last_clean_window((1.0, dirty), &window, &grid), n - 1.0);
+            }
+        }
+        assert_eq!(probes, 9);
+    }
+
+    /// Points that once took up to 1.5 s (a slip or lift-off search over 10⁴–10⁶ turns at tiny
+    /// α): the scan to the first event takes a few turns' evaluations, and the lift-off
+    /// search after it finds the plain scan's lift-off (where that scan is affordable here).
+    #[test]
+    fn tiny_angles_take_few_evaluations() {
+        use crate::jarm::decision::{point_ramp, search_end};
+        use crate::jarm::JarmOptions;
+        let o = JarmOptions {
+            max_turns: 1_000_000,
+            ..JarmOptions::default()
+        };
+        for &(a, chi, km) in &[(1e-9, 0.99, 0.0), (3.2e-8, 0.81, 0.15), (1e-3, 0.05, 0.5)] {
+            let r = point_ramp(a, chi, km, 1.0, &o).unwrap();
+            let (end, _) = search_end(&r, &o).unwrap();
+            let p = RollingPath::new(&r, 0.0, 0.0, 1.0);
+            let s = p.scan(end, Watch::ALL);
+            assert_eq!(s.event, ContactEvent::Slip, "{a}");
+            assert!(s.evaluations < 3000, "{a}: {} evaluations", s.evaluations);
+            let th = s.at.theta;
+            if end - th < 1e5 {
+                let plain = p.scan_cells(th, end, Watch::liftoff_only(3), false);
+                let fast = p.liftoff_after(th, end, 3, |_, _| true);
+                assert_eq!(fast.is_some(), plain.event == ContactEvent::Liftoff, "{a}");
+                if let Some(x) = fast {
+                    assert!((x - plain.at.theta).abs() <= 1e-12 * x.abs(), "{a}");
+                }
+            }
+        }
     }
 
     #[test]
