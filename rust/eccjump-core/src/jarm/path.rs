@@ -954,16 +954,9 @@ impl RollingPath {
         window: &impl Fn(f64) -> Option<(f64, f64, bool)>,
         grid: &Grid,
     ) -> f64 {
-        let (mut lo, mut hi) = (clean, dirty);
-        while hi - lo > 1.0 {
-            let mid = (0.5 * (lo + hi)).floor();
-            if self.clean_window(mid, window, grid).is_some() {
-                lo = mid;
-            } else {
-                hi = mid;
-            }
-        }
-        lo
+        last_clean((clean, dirty), |m| {
+            self.clean_window(m, window, grid).is_some()
+        })
     }
 
     /// `target` if its window is whole and clean (the proof that the windows before it hold
@@ -1121,20 +1114,15 @@ impl RollingPath {
         };
         restore(cur, saved);
         let noop = |_: &PathPoint, _: f64, _: f64| {};
-        let (mut lo, mut hi) = (clean, dirty);
-        while hi - lo > 1.0 {
-            let mid = (0.5 * (lo + hi)).floor();
-            let before = *cur;
-            let t = turn_start(mid);
+        last_clean((clean, dirty), |m| {
+            let (before, t) = (*cur, turn_start(m));
             let probe_clean = self.restart(cur, grid, t)
                 && matches!(self.advance(cur, grid, t + TAU, noop), Stop::Reached);
-            if probe_clean {
-                lo = mid;
-            } else {
+            if !probe_clean {
                 restore(cur, &before);
-                hi = mid;
             }
-        }
+            probe_clean
+        });
         self.advance(cur, grid, f64::INFINITY, noop)
     }
 
@@ -1405,6 +1393,23 @@ impl RollingPath {
             evaluations: evals,
         }
     }
+}
+
+/// The last turn (or window) m in [clean, dirty) with `is_clean(m)`, given that `clean` is
+/// clean and `dirty` is not, and that the clean ones from `clean` on are consecutive: by
+/// bisection on the integers, `is_clean` asked about log₂(dirty − clean) times, in
+/// increasing order of the clean answers (a skip may keep the state of the last clean probe).
+fn last_clean((clean, dirty): (f64, f64), mut is_clean: impl FnMut(f64) -> bool) -> f64 {
+    let (mut lo, mut hi) = (clean, dirty);
+    while hi - lo > 1.0 {
+        let mid = (0.5 * (lo + hi)).floor();
+        if is_clean(mid) {
+            lo = mid;
+        } else {
+            hi = mid;
+        }
+    }
+    lo
 }
 
 fn event_of(k: usize) -> ContactEvent {

@@ -83,8 +83,7 @@ pub fn classify_grid(
 /// Point g of `out` = the classification of `point(g)`, in parallel by pieces: small ones
 /// for the closed form (its points take microseconds; small pieces keep the threads
 /// balanced), pieces integrated side by side for the ODE route ([`classify_many`]); the same
-/// bits either way. Each piece is classified into a buffer on the thread's stack and then
-/// written into the columns.
+/// bits either way.
 fn fill(
     method: Method,
     out: &mut JarmColumns,
@@ -92,17 +91,28 @@ fn fill(
     point: impl Fn(usize) -> (f64, f64, f64, f64, JarmOptions) + Sync,
     stop: &dyn Fn() -> bool,
 ) -> Result<()> {
-    let size = match method {
-        Method::ClosedForm => MAX_PIECE,
-        Method::Ode { .. } => PIECE,
-    };
+    match method {
+        Method::ClosedForm => fill_by::<MAX_PIECE>(method, out, n_threads, point, stop),
+        Method::Ode { .. } => fill_by::<PIECE>(method, out, n_threads, point, stop),
+    }
+}
+
+/// [`fill`] by pieces of N points, each classified into a buffer of N rows on the thread's
+/// stack and then written into the columns.
+fn fill_by<const N: usize>(
+    method: Method,
+    out: &mut JarmColumns,
+    n_threads: usize,
+    point: impl Fn(usize) -> (f64, f64, f64, f64, JarmOptions) + Sync,
+    stop: &dyn Fn() -> bool,
+) -> Result<()> {
     par_pieces_until(
-        out.pieces_mut(size),
+        out.pieces_mut(N),
         n_threads,
         |c, mut piece, cancelled| {
-            let mut rows = [JarmResult::new(Reason::InvalidParams); PIECE];
+            let mut rows = [JarmResult::new(Reason::InvalidParams); N];
             let rows = &mut rows[..piece.len()];
-            classify_many(method, |i| point(c * size + i), rows, cancelled);
+            classify_many(method, |i| point(c * N + i), rows, cancelled);
             piece.put(rows);
         },
         stop,
