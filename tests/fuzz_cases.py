@@ -120,6 +120,13 @@ class Drawer:
     def choice(self, seq: Sequence[Any]) -> Any:
         return seq[self.integer(0, len(seq) - 1)]
 
+    def pick(self, *options: Any) -> Any:
+        """One of ``options``; a callable one is called, and only once chosen: a draw that
+        is made and then not used must not mark the case (a wrong type it drew would make
+        ``must_raise`` stale)."""
+        x = self.choice(options)
+        return x() if callable(x) else x
+
 
 class RandomDrawer(Drawer):
     def __init__(self, seed: int) -> None:
@@ -510,8 +517,8 @@ def _classification_options(d: Drawer, case: Case, ode_ok: bool) -> dict[str, An
     return {
         "method": method,
         "rule": text_param(d, case, ("paper", "normal_force")),
-        "theta0": d.choice((real(d, case, -7.0, 7.0), *(() if d.clean else (1e15, -1e300)))),
-        "omega0": d.choice((real(d, case, 0.0, 3.0), *(() if d.clean else (1e7, 1e300)))),
+        "theta0": d.pick(lambda: real(d, case, -7.0, 7.0), *(() if d.clean else (1e15, -1e300))),
+        "omega0": d.pick(lambda: real(d, case, 0.0, 3.0), *(() if d.clean else (1e7, 1e300))),
         "rtol": d.choice((1e-10, 1e-6, 1e-3, *(() if d.clean else (0.0, -1.0, math.nan, 1.0)))),
         "atol": d.choice((1e-12, 1e-8, *(() if d.clean else (0.0, -1.0, math.nan, math.inf)))),
         "max_turns": integer_param(d, case, (1, 3, 20), (*INT_BAD, 10**6 + 1, 10**9)),
@@ -722,7 +729,7 @@ def case_motion_map(d: Drawer) -> Case:
         "alpha": _axis(d, c, 0.0, HALF_PI),
         "chi": _axis(d, c, 0.0, 1.0),
         "km": _axis(d, c, 0.0, 1.0),
-        "mu_s": d.choice((real(d, c, 0.0, 3.0), _axis(d, c, 0.0, 3.0))),
+        "mu_s": d.pick(lambda: real(d, c, 0.0, 3.0), lambda: _axis(d, c, 0.0, 3.0)),
         "restitution": real(d, c, 0.0, 1.0),
         "theta0": real(d, c, -7.0, 7.0),
         "omega0": real(d, c, -3.0, 3.0),
@@ -735,7 +742,7 @@ def case_motion_map(d: Drawer) -> Case:
         "integrator": text_param(d, c, INTEGRATORS),
     }
     if d.integer(0, 2) == 0:
-        c.kwargs["mu_k"] = d.choice((real(d, c, 0.0, 3.0), _axis(d, c, 0.0, 3.0), None))
+        c.kwargs["mu_k"] = d.pick(lambda: real(d, c, 0.0, 3.0), lambda: _axis(d, c, 0.0, 3.0), None)
     return c
 
 
@@ -1032,8 +1039,8 @@ def case_jarm_fraction(d: Drawer) -> Case:
              check=check_shares if shares else check_fraction)  # fmt: skip
     c.args = (
         real(d, c, 0.0, 3.0),
-        d.choice((real(d, c, -7.0, 7.0), *(() if d.clean else (1e15, -1e300, 2 * math.pi)))),
-        d.choice((real(d, c, 0.0, 3.0), *(() if d.clean else (1e7, -1.0)))),
+        d.pick(lambda: real(d, c, -7.0, 7.0), *(() if d.clean else (1e15, -1e300, 2 * math.pi))),
+        d.pick(lambda: real(d, c, 0.0, 3.0), *(() if d.clean else (1e7, -1.0))),
     )
     c.kwargs = {
         "grid": _grid(d, c),

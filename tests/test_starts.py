@@ -16,7 +16,7 @@ from hypothesis import strategies as st
 import eccjump
 from eccjump import Reason
 from eccjump.cli import main
-from eccjump.starts import _DIRECTIONS, _MULTIPLES
+from eccjump.starts import _DIRECTIONS, _MULTIPLES, _Objective
 
 TWO_PI = 2 * math.pi
 
@@ -124,6 +124,20 @@ def test_the_optimum_beats_rest_and_its_uncertainty_is_the_grid_difference(optim
     assert o.omega0_err == abs(o.omega0 - o.omega0_coarse)
     assert 0 <= o.theta0 < TWO_PI and 0 <= o.omega0 <= o.omega_max
     assert o.as_dict()["theta0_deg"] == math.degrees(o.theta0)
+
+
+def test_the_starts_searched_stay_inside_the_bounds_after_rounding():
+    # The search rounds each start to 12 decimals (its cache key); found by the fuzz
+    # campaign (seed 9281): omega_max = 1.1127219999999998 came back as omega0 = 1.112722.
+    opt = eccjump.optimal_start(
+        2.787, grid=2, omega_max=1.1127219999999998, lattice=(4, 2), n_starts=1,
+        rule="normal_force", max_evaluations=400,
+    )  # fmt: skip
+    assert 0.0 <= opt.omega0 <= opt.omega_max and 0.0 <= opt.omega0_coarse <= opt.omega_max
+    f = _Objective(1.0, 2, "paper", 1, 1.0207449999999998, [10])
+    assert f.key(1.0, 5.0) == (1.0, 1.0207449999999998)
+    assert f.key(TWO_PI - 1e-14, -1.0) == (0.0, 0.0)
+    assert f.key(-1e-14, 0.5) == (0.0, 0.5)
 
 
 def test_a_small_budget_is_a_clear_error():

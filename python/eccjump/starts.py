@@ -287,7 +287,13 @@ class _Objective:
         self.cache: dict[tuple[float, float], float] = {}
 
     def key(self, th: float, om: float) -> tuple[float, float]:
-        return (round(_theta0(th), 12), round(min(max(om, 0.0), self.omega_max), 12))
+        """The start evaluated for (th, om), and its cache key: rounded to 12 decimals, so
+        that the search's float paths to one start share its map, then put back inside
+        [0, 2 pi) x [0, omega_max], which the rounding can step out of (omega_max =
+        1.0207449999999998 rounds to 1.020745; 2 pi - 1e-14 to 6.28318530718)."""
+        th = round(_theta0(th), 12)
+        om = round(min(max(om, 0.0), self.omega_max), 12)
+        return (0.0 if th >= TWO_PI else th, min(om, self.omega_max))
 
     def __call__(self, th: float, om: float) -> float:
         k = self.key(th, om)
