@@ -238,7 +238,7 @@ def test_region_grid_matches_pointwise_jarm():
 @given(
     st.floats(0.01, math.pi / 2),
     st.sampled_from([0.3, 1.0]),
-    st.sampled_from(["RK45", "DOP853"]),
+    st.sampled_from(["RK45", "DOP853", "Vern7"]),
     st.sampled_from(["paper", "normal_force"]),
     st.booleans(),
 )
@@ -405,7 +405,7 @@ def test_n_shape_errors_name_n():
     st.sampled_from([0.7, 1.0, 1.5]),
     st.sampled_from(["paper", "normal_force"]),
     st.sampled_from([(0.0, 0.0), (0.0, 0.5), (0.3, 0.0), (2.0, 1.0)]),
-    st.sampled_from(["RK45", "DOP853"]),
+    st.sampled_from(["RK45", "DOP853", "Vern7"]),
 )
 def test_ode_route_agrees_with_the_closed_form(body, alpha, mu_s, rule, start, integrator):
     chi, km = body

@@ -2,6 +2,7 @@
 
 import math
 from fractions import Fraction
+from pathlib import Path
 
 import numpy as np
 import pytest
@@ -304,20 +305,25 @@ def test_rule_normal_force_rolls_past_the_papers_liftoff():
 
 
 @settings(max_examples=40, deadline=None)
-@given(setups(), st.sampled_from([None, 0.3, 1.0]), st.sampled_from(["paper", "normal_force"]))
-def test_dop853_skips_dense_output_only_where_it_changes_nothing(s, mu_s, rule):
-    """Without dense_output, DOP853 makes a step's dense output (3 more evaluations of f)
-    only where the step's ends cannot clear it of events: the same steps, states,
-    forces and events, bit for bit, as when every step's dense output is made."""
+@given(
+    setups(),
+    st.sampled_from([None, 0.3, 1.0]),
+    st.sampled_from(["paper", "normal_force"]),
+    st.sampled_from(["DOP853", "Vern7"]),
+)
+def test_dense_output_is_skipped_only_where_it_changes_nothing(s, mu_s, rule, integrator):
+    """Without dense_output, DOP853 and Vern7 make a step's dense output (3 and 5 more
+    evaluations of f) only where the step's ends cannot clear it of events: the same steps,
+    states, forces and events, bit for bit, as when every step's dense output is made."""
     body, alpha, theta0, omega0 = s
     kw = dict(theta0=theta0, omega0=omega0, mu_s=mu_s, rule=rule, t_max=20.0)
-    kw.update(theta_max=theta0 + 30, integrator="DOP853")
+    kw.update(theta_max=theta0 + 30, integrator=integrator)
     lean, full = roll(body, alpha, **kw), roll(body, alpha, dense_output=True, **kw)
     for name in ("t", "theta", "omega", "omega_dot", "Fx", "Fy", "l", "friction_ratio"):
         assert getattr(lean, name).tobytes() == getattr(full, name).tobytes(), name
     assert (lean.events, lean.status, lean.message) == (full.events, full.status, full.message)
     assert lean.nfev <= full.nfev
-    # Each step cleared from its ends saves 3 evaluations: a long run has such steps.
+    # Each step cleared from its ends saves 3 or 5 evaluations: a long run has such steps.
     if len(lean.t) > 20:
         assert lean.nfev < full.nfev
 
@@ -472,14 +478,73 @@ def test_dop853_takes_scipys_dop853_steps():
     np.testing.assert_allclose(r.omega, w, rtol=0, atol=1e-9)
 
 
+def verner_7_for_scipy():
+    """scipy's explicit Runge–Kutta machinery (first step, controller, error norm) with
+    Verner's 7(6) tableau, read from the 40-digit data the core's tableau is generated from
+    (scripts/vern7_coefficients.txt), in float64 by numpy: an implementation of
+    integrator="Vern7" that shares none of the core's code."""
+    from scipy.integrate._ivp.rk import RungeKutta
+
+    a, c = np.zeros((10, 10)), np.zeros(10)
+    b, bh = [Fraction(0)] * 10, [Fraction(0)] * 10
+    data = Path(__file__).parents[1] / "scripts" / "vern7_coefficients.txt"
+    for line in data.read_text().splitlines():
+        if not line.split() or line.startswith("#"):
+            continue
+        kind, *idx, value = line.split()
+        i = [int(x) for x in idx]
+        if kind == "c" and i[0] < 10:
+            c[i[0]] = float(value)
+        elif kind == "a" and i[0] < 10:
+            a[i[0], i[1]] = float(value)
+        elif kind in ("b", "bh"):
+            (b if kind == "b" else bh)[i[0]] = Fraction(value)
+    # b − b̂ exactly, then rounded once (as the core's tableau): the error estimate is a
+    # small difference of stages, which a float64 difference would move by ~1e-3.
+    e = [float(x - y) for x, y in zip(b, bh, strict=True)]
+
+    class Vern7(RungeKutta):
+        order, error_estimator_order, n_stages = 7, 6, 10
+        C, A, B, E = c, a, np.array([float(x) for x in b]), np.array([*e, 0.0])
+        P = np.zeros((11, 1))  # no dense output
+
+    return Vern7
+
+
+def test_vern7_takes_the_steps_of_scipys_runge_kutta_with_verners_tableau():
+    """integrator="Vern7" against scipy's RungeKutta class given Verner's tableau: the same
+    steps, step times to 1e-4, end states to 1e-10. Its error estimate is a small difference
+    of stages: where the step control lets it fall to the stages' rounding (tight rtol, the
+    first steps from rest), the order of a sum moves step sizes by percents, so the cases
+    are at rtol 1e-6, where the two agree to 1e-5 (measured); exponent −1/8 instead of
+    −1/7 moves them by 7-24 %."""
+    for (chi, km, deg, t_max), t_agree in [
+        ((0.15, 0.02, 40, 4.0), 1e-4),
+        ((0.05, 0.5, 20, 10.0), 1e-7),
+    ]:
+        body, alpha = Cylinder(chi, km), math.radians(deg)
+        kw = dict(rtol=1e-6, atol=1e-9)
+        r = roll(
+            body, alpha, t_max=t_max, theta_max=1e9, rule="normal_force", integrator="Vern7", **kw
+        )
+        rhs = rolling_rhs_as_in_the_core(alpha, body.chi, body.Ic)
+        ref = solve_ivp(rhs, (0, t_max), [0.0, 0.0], method=verner_7_for_scipy(), **kw)
+        assert (r.status, len(r.t)) == (0, len(ref.t))
+        np.testing.assert_allclose(r.t, ref.t, rtol=t_agree, atol=0)
+        # nfev: scipy's 10 per attempt, and the interpolant's 5 where events needed it.
+        assert 0 <= r.nfev - ref.nfev <= 5 * len(r.t) and (r.nfev - ref.nfev) % 5 == 0
+        np.testing.assert_allclose(r.theta[-1], ref.y[0, -1], rtol=0, atol=1e-10)
+        np.testing.assert_allclose(r.omega[-1], ref.y[1, -1], rtol=0, atol=1e-10)
+
+
 @settings(max_examples=40, deadline=None)
-@given(setups())
-def test_both_integrators_agree_and_dop853_takes_fewer_steps(s):
+@given(setups(), st.sampled_from(["DOP853", "Vern7"]))
+def test_the_integrators_agree_and_the_high_order_ones_take_fewer_steps(s, integrator):
     body, alpha, theta0, omega0 = s
     # theta_max and t_max not reached together by uniform rotation (theta = theta0 + 2 t).
     kw = dict(theta0=theta0, omega0=omega0, t_max=10.0, theta_max=theta0 + 19.7, dense_output=True)
     a = roll(body, alpha, **kw)
-    b = roll(body, alpha, integrator="DOP853", **kw)
+    b = roll(body, alpha, integrator=integrator, **kw)
     assert (a.status, a.terminal_event) == (b.status, b.terminal_event)
     if a.sol is None or b.sol is None:  # ended at the start: no step
         assert len(a.t) == len(b.t) == 1
@@ -496,12 +561,13 @@ def test_both_integrators_agree_and_dop853_takes_fewer_steps(s):
     assert np.max(np.abs(e - e[0])) < 1e-7 * max(1.0, np.max(np.abs(b.omega)) ** 2)
 
 
-def test_liftoff_by_dop853_matches_the_closed_form_root():
+@pytest.mark.parametrize("integrator", ["DOP853", "Vern7"])
+def test_liftoff_by_a_high_order_pair_matches_the_closed_form_root(integrator):
     from eccjump import jarm
 
     for alpha_deg, chi, km in [(40, 0.15, 0.02), (70, 0.1, 0.27), (30, 0.1, 0.09)]:
         alpha = math.radians(alpha_deg)
-        r = roll(Cylinder(chi, km), alpha, integrator="DOP853")
+        r = roll(Cylinder(chi, km), alpha, integrator=integrator)
         exact = jarm(alpha, chi, km, 1e9, rule="paper").theta_J
         assert r.terminal_event == "liftoff"
         assert r.theta[-1] == pytest.approx(float(exact), abs=1e-8)

@@ -177,9 +177,10 @@ def jarm(
         points slip are faster (1.7x with ``method="ode"``). No effect under
         ``rule="normal_force"``.
     n_threads : threads (0 = one per core, at most 256); results are identical for any value.
-    integrator : the Runge–Kutta pair of ``method="ode"``: ``"RK45"`` (Dormand–Prince 5(4))
-        or ``"DOP853"`` (Dormand–Prince 8(5,3), ~1.4x faster at the default tolerances, same
-        verdicts: both find an event that only grazes zero between two samples).
+    integrator : the Runge–Kutta pair of ``method="ode"``: ``"RK45"`` (Dormand–Prince 5(4)),
+        ``"DOP853"`` (Dormand–Prince 8(5,3), ~1.4x faster at the default tolerances) or
+        ``"Vern7"`` (Verner 7(6)); the same verdicts: each finds an event that only grazes
+        zero between two samples.
 
     Every bound, the memory and Ctrl-C behaviour: ``docs/limits.md``.
 

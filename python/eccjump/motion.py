@@ -323,8 +323,10 @@ def simulate(
     max_transitions : transitions after the start, 1 ... 10**6.
     rtol, atol : tolerances of the integrator; max_steps : accepted steps of the whole run,
         1 ... 10**7.
-    integrator : ``"RK45"`` (Dormand–Prince 5(4), as scipy's ``RK45``) or ``"DOP853"``
-        (Dormand–Prince 8(5,3), as scipy's ``DOP853``: fewer steps at tight tolerances).
+    integrator : ``"RK45"`` (Dormand–Prince 5(4), as scipy's ``RK45``), ``"DOP853"``
+        (Dormand–Prince 8(5,3), as scipy's ``DOP853``: fewer steps at tight tolerances) or
+        ``"Vern7"`` (Verner's 7(6) pair: fewest evaluations for a given accuracy at rtol
+        1e-8 ... 1e-10).
     dense_output : keep ``sol(t)`` across segments.
 
     Raises

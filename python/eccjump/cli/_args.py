@@ -9,17 +9,18 @@ from typing import get_args
 
 from eccjump._bridge import Integrator
 
-#: The choices of ``--integrator`` (the Runge-Kutta pairs, by scipy's names).
+#: The choices of ``--integrator`` (the Runge-Kutta pairs).
 INTEGRATORS: tuple[str, ...] = get_args(Integrator)
 
 
 def add_integrator(p: argparse._ActionsContainer, when: str = "") -> None:
-    """``--integrator {RK45,DOP853}`` (default RK45); ``when`` says where it applies."""
+    """``--integrator {RK45,DOP853,Vern7}`` (default RK45); ``when`` says where it applies."""
     p.add_argument(
         "--integrator",
         choices=INTEGRATORS,
         default="RK45",
-        help=f"Runge-Kutta pair{when}: RK45 (Dormand-Prince 5(4), default) or DOP853 (8(5,3))",
+        help=f"Runge-Kutta pair{when}: RK45 (Dormand-Prince 5(4), default), DOP853 (8(5,3)) "
+        "or Vern7 (Verner 7(6))",
     )
 
 

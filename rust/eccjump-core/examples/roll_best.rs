@@ -10,6 +10,7 @@ fn main() {
     let pairs = match std::env::args().nth(1).as_deref() {
         Some("rk45") => vec![Method::Rk45],
         Some("dop853") => vec![Method::Dop853],
+        Some("vern7") => vec![Method::Vern7],
         _ => vec![Method::Rk45, Method::Dop853],
     };
     let rtol: Option<f64> = std::env::args().nth(2).map(|r| r.parse().expect("rtol"));

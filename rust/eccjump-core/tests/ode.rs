@@ -577,7 +577,7 @@ fn empty_interval_finishes_at_once() {
 
 #[test]
 fn solve_does_not_allocate() {
-    for method in [Method::Rk45, Method::Dop853] {
+    for method in Method::ALL {
         solve_does_not_allocate_with(method);
     }
 }

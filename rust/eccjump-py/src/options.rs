@@ -4,6 +4,7 @@
 
 use crate::errors::to_py;
 use eccjump_core::jarm::{JarmOptions, Method};
+use eccjump_core::ode::Method as Integrator;
 use eccjump_core::Rule;
 use pyo3::exceptions::PyValueError;
 use pyo3::{FromPyObject, PyResult};
@@ -52,11 +53,13 @@ impl CallOptions {
     }
 }
 
-/// The Runge–Kutta pair named `integrator` (scipy's names).
-pub fn parse_integrator(integrator: &str) -> PyResult<eccjump_core::ode::Method> {
-    eccjump_core::ode::Method::from_name(integrator).ok_or_else(|| {
+/// The Runge–Kutta pair named `integrator` ([`Integrator::name`]).
+pub fn parse_integrator(integrator: &str) -> PyResult<Integrator> {
+    Integrator::from_name(integrator).ok_or_else(|| {
+        let names: Vec<String> = Integrator::ALL.map(|m| format!("'{}'", m.name())).into();
         PyValueError::new_err(format!(
-            "integrator = {integrator:?} is not one of 'RK45', 'DOP853'"
+            "integrator = {integrator:?} is not one of {}",
+            names.join(", ")
         ))
     })
 }

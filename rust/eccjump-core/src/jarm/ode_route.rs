@@ -74,8 +74,7 @@ use crate::modes::rolling::events::{
 };
 use crate::modes::rolling::memo::RollingMemo;
 use crate::modes::rolling::{ContactRates, Kinematics};
-use crate::ode::lanes::{solve_lanes, Start, Track};
-use crate::ode::pair::{Dop853, Dp5};
+use crate::ode::lanes::{solve_lanes_with, Start, Track};
 use crate::ode::{
     self, Change, DenseStep, Direction, EventFunctions, EventSpec, Observation, Outcome,
     SolverOptions, State, Status, StepEnds,
@@ -670,10 +669,7 @@ pub fn classify_ode_batch(
             out[index].set(f.verdict(liftoff_of(end_of(&outcome))));
         }
     };
-    match pair {
-        ode::Method::Rk45 => solve_lanes::<Dp5<2>, _, 2>(next, done, stop),
-        ode::Method::Dop853 => solve_lanes::<Dop853<2>, _, 2>(next, done, stop),
-    }
+    solve_lanes_with(pair, next, done, stop);
 }
 
 #[cfg(test)]
@@ -787,7 +783,7 @@ mod tests {
         }
     }
 
-    /// Both kinds of bounds hold along every step's dense output, of both pairs: those
+    /// Both kinds of bounds hold along every step's dense output, of every pair: those
     /// from the dense output itself, with any anchor, and those from the step's ends alone
     /// (which decide whether the dense output is made at all).
     #[test]
@@ -795,7 +791,7 @@ mod tests {
         let mut steps = 0;
         let mut quiet = 0;
         let cases = bound_cases().into_iter();
-        for (pair, (a, chi, km, mu_s, liftoff, forces)) in [ode::Method::Rk45, ode::Method::Dop853]
+        for (pair, (a, chi, km, mu_s, liftoff, forces)) in ode::Method::ALL
             .into_iter()
             .flat_map(|p| cases.clone().map(move |c| (p, c)))
         {
@@ -885,11 +881,11 @@ mod tests {
 
     #[test]
     fn skipping_interior_samples_changes_nothing() {
-        let mut nfev = [[0; 2]; 2];
+        let mut nfev = [[0; 2]; 3];
         for (a, chi, km, mu_s, liftoff, forces) in bound_cases() {
             for (samples, pair) in [4, 16]
                 .into_iter()
-                .flat_map(|s| [ode::Method::Rk45, ode::Method::Dop853].map(|p| (s, p)))
+                .flat_map(|s| ode::Method::ALL.map(|p| (s, p)))
             {
                 let so = SolverOptions {
                     event_samples: samples,
@@ -915,12 +911,13 @@ mod tests {
                     (out, seen)
                 };
                 // The same steps, events and end; fewer evaluations where the dense output of
-                // a step proven quiet from its ends is not made (DOP853's extra stages).
+                // a step proven quiet from its ends is not made (the extra stages of DOP853
+                // and Vern7).
                 let (p, q) = (run(true), run(false));
                 let same = |o: &Outcome<2>| (o.status, o.t, o.y, o.n_accepted, o.n_rejected);
                 assert_eq!(same(&p.0), same(&q.0), "{a} {chi} {km} {pair:?}");
                 assert_eq!(p.1, q.1);
-                let i = usize::from(pair == ode::Method::Dop853);
+                let i = pair as usize;
                 nfev[i][0] += p.0.nfev;
                 nfev[i][1] += q.0.nfev;
             }
@@ -929,11 +926,13 @@ mod tests {
             nfev[0][0], nfev[0][1],
             "RK45 always makes its (free) dense output"
         );
-        assert!(10 * nfev[1][0] < 9 * nfev[1][1], "DOP853: {:?}", nfev[1]);
+        for (i, pair) in ode::Method::ALL.into_iter().enumerate().skip(1) {
+            assert!(10 * nfev[i][0] < 9 * nfev[i][1], "{pair:?}: {:?}", nfev[i]);
+        }
     }
 
     #[test]
-    fn a_grazing_slip_after_930_turns_is_found_by_both_pairs() {
+    fn a_grazing_slip_after_930_turns_is_found_by_every_pair() {
         // The friction margin dips below 0 on turn 934 for a window narrower than the sample
         // spacing; sign sampling alone slipped one turn later (SLIP_BEFORE at 5875.087).
         let (a, chi, km) = (
@@ -944,7 +943,7 @@ mod tests {
         let o = JarmOptions::default();
         let c = classify(a, chi, km, 1.0, &o);
         assert_eq!((c.reason, c.n), (Reason::SlipAtJump, 934));
-        for pair in [ode::Method::Rk45, ode::Method::Dop853] {
+        for pair in ode::Method::ALL {
             let e = classify_ode(a, chi, km, 1.0, &o, (RTOL, ATOL), pair);
             assert_eq!((e.reason, e.n), (c.reason, c.n), "{pair:?}");
             assert!(
@@ -1184,7 +1183,7 @@ mod tests {
     #[test]
     fn a_lane_batch_is_each_point_bit_for_bit() {
         // Random points (a few invalid, some at rest in equilibrium, some already past a
-        // contact condition at the start), both pairs, both rules, explicit turns, moving
+        // contact condition at the start), every pair, both rules, explicit turns, moving
         // starts, with and without the continuation after a slip.
         let mut rng = crate::testing::Lcg(11);
         let mut u = || rng.next();

@@ -551,7 +551,7 @@ mod tests {
     #[test]
     fn points_of_every_start_are_the_summary_of_simulate_there() {
         // The first rolling segments of a map run side by side: starts from rest and moving,
-        // slipping or flying at once, invalid points (μ_k > μ_s), both pairs.
+        // slipping or flying at once, invalid points (μ_k > μ_s), every pair.
         let (alpha, chi, frac) = ([0.3, 1.2], [0.15, 0.6], [0.1, 0.9]);
         let (mu_s, mu_k) = ([0.2, 1.0], [0.15, 0.5]);
         let (theta0, omega0) = ([0.0, 2.0], [0.0, 1.5]);

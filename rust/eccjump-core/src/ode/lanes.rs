@@ -20,7 +20,8 @@
 // Lane loops index several arrays in step: the form that the compiler vectorizes.
 #![allow(clippy::needless_range_loop)]
 
-use super::pair::{all_finite, weighted_sum, Dop853, Dp5, Method, RkPair, Summand};
+use super::dense::MAX_DEGREE;
+use super::pair::{all_finite, weighted_sum, Dop853, Dp5, Method, RkPair, Summand, Vern7};
 use super::solver::{Observation, Outcome, Run, SolverOptions, Status};
 use super::stepper::{Judgement, Trial};
 use super::{DenseStep, EventFunctions, OdeSystem, State};
@@ -435,7 +436,7 @@ fn finite_lanes<const N: usize>(k: &[Lanes<N>], y_new: &Lanes<N>) -> [bool; LANE
 fn dense_of_lane<P: RkPair<N>, T, const N: usize>(
     s: &mut Slot<P, T, N>,
     k: &[Lanes<N>],
-    sums: &[Lanes<N>; 4],
+    sums: &[Lanes<N>; MAX_DEGREE],
     l: usize,
 ) -> Option<DenseStep<N>> {
     let run = &mut s.run;
@@ -486,6 +487,7 @@ pub fn solve_lanes_with<T: Track<N>, const N: usize>(
     match method {
         Method::Rk45 => solve_lanes::<Dp5<N>, T, N>(next, done, stop),
         Method::Dop853 => solve_lanes::<Dop853<N>, T, N>(next, done, stop),
+        Method::Vern7 => solve_lanes::<Vern7<N>, T, N>(next, done, stop),
     }
 }
 
@@ -642,7 +644,7 @@ mod tests {
         runs
     }
 
-    /// Every trajectory of a batch as `solve_until` integrates it alone, for both pairs, by
+    /// Every trajectory of a batch as `solve_until` integrates it alone, for every pair, by
     /// the plain and (where the CPU has it) the AVX2 build of the rounds; some trajectories
     /// are continued by `done` after the last one has started.
     #[test]
@@ -692,6 +694,8 @@ mod tests {
                     (Method::Dop853, false) => lanes::<Dop853<2>, _, 2>(next, done, &never),
                     (Method::Rk45, true) => solve_lanes::<Dp5<2>, _, 2>(next, done, &never),
                     (Method::Dop853, true) => solve_lanes::<Dop853<2>, _, 2>(next, done, &never),
+                    (Method::Vern7, false) => lanes::<Vern7<2>, _, 2>(next, done, &never),
+                    (Method::Vern7, true) => solve_lanes::<Vern7<2>, _, 2>(next, done, &never),
                 }
                 for (j, g) in got.into_inner().iter().enumerate() {
                     assert_eq!(g, &want[j], "{method:?} avx2 {avx2} trajectory {j}");

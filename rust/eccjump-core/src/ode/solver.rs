@@ -1,13 +1,13 @@
 //! The driver loop: initial step, adaptive steps, events, limits and statuses.
 //!
 //! Mirrors scipy's `solve_ivp` loop (f0, `select_initial_step`, then `step` until
-//! t_bound) for either pair ([`Method`]), with events found on each accepted step's dense
+//! t_bound) for any pair ([`Method`]), with events found on each accepted step's dense
 //! output.
 //! Everything lives on the stack; results go to the observer, so the loop never
 //! allocates.
 
 use super::events::{quiet_step, scan_step, EventCarry, NonFiniteEvent};
-use super::pair::{all_finite, error_scale, Dop853, Dp5, Method, RkPair};
+use super::pair::{all_finite, error_scale, Dop853, Dp5, Method, RkPair, Vern7};
 use super::stepper::{select_initial_step, StepStatus, Stepper, Trial};
 use super::{DenseStep, EventFunctions, OdeSystem, State, StepEnds};
 
@@ -165,6 +165,9 @@ where
         }
         Method::Dop853 => {
             drive::<Dop853<N>, _, _, _, N>(sys, events, t0, y0, t_end, opts, observer, stop)
+        }
+        Method::Vern7 => {
+            drive::<Vern7<N>, _, _, _, N>(sys, events, t0, y0, t_end, opts, observer, stop)
         }
     }
 }

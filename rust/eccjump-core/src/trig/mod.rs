@@ -89,10 +89,7 @@ pub fn inv_fifth_root(x: f64) -> f64 {
         0.659_753_955_386_447_1,
         0.574_349_177_498_517_5,
     ];
-    let bits = x.to_bits();
-    let e = ((bits >> 52) & 0x7ff) as i64 - 1023;
-    let m = f64::from_bits((bits & 0x000f_ffff_ffff_ffff) | 0x3ff0_0000_0000_0000);
-    let (q, r) = (e.div_euclid(5), e.rem_euclid(5) as usize);
+    let (m, q, r) = split_exponent(x, 5);
     let t = m - 1.0;
     let mut y = 0.999_980_730_183_848_9
         + t * (-0.198_959_359_686_662_98
@@ -102,8 +99,55 @@ pub fn inv_fifth_root(x: f64) -> f64 {
         let y2 = y * y;
         y = y * (6.0 - m * (y2 * y2 * y)) * 0.2;
     }
-    // |q| ≤ 205: 2^(−q) is a normal number.
-    y * ROOT2[r] * f64::from_bits(((1023 - q) as u64) << 52)
+    y * ROOT2[r] * two_to_minus(q)
+}
+
+/// x^(−1/7), the step-size factor err^(−1/7) of Verner's 7(6) pair, as
+/// [`inv_fifth_root`]: x = m·2^e, e = 7q + r, m^(−1/7) by two Newton steps
+/// y ← y(8 − m y⁷)/7 from a quartic fit (relative error 2.6e-5, then ~3e-9, then
+/// rounding). Within 4 ulp of x^(−1/7); 0, subnormal, ∞ and NaN go to `pow`.
+#[inline]
+pub fn inv_seventh_root(x: f64) -> f64 {
+    if !(x.is_normal() && x > 0.0) {
+        return pow(x, -1.0 / 7.0);
+    }
+    // 2^(−r/7), r = 0 … 6.
+    const ROOT2: [f64; 7] = [
+        1.0,
+        0.905_723_664_263_906_7,
+        0.820_335_356_007_638,
+        0.742_997_144_568_474_2,
+        0.672_950_096_316_178_1,
+        0.609_506_827_102_237_7,
+        0.552_044_756_836_906_2,
+    ];
+    let (m, q, r) = split_exponent(x, 7);
+    let t = m - 1.0;
+    let mut y = 0.999_974_336_802_711_7
+        + t * (-0.142_025_928_758_660_38
+            + t * (0.075_077_321_380_836_28
+                + t * (-0.036_837_931_476_801_7 + t * 0.009_554_433_893_881_583)));
+    for _ in 0..2 {
+        let y2 = y * y;
+        let y3 = y2 * y;
+        y = y * (8.0 - m * (y3 * y3 * y)) * (1.0 / 7.0);
+    }
+    y * ROOT2[r] * two_to_minus(q)
+}
+
+/// A positive normal x as m·2^e with m ∈ [1, 2), and e = k q + r with 0 ≤ r < k: (m, q, r).
+#[inline(always)]
+fn split_exponent(x: f64, k: i64) -> (f64, i64, usize) {
+    let bits = x.to_bits();
+    let e = ((bits >> 52) & 0x7ff) as i64 - 1023;
+    let m = f64::from_bits((bits & 0x000f_ffff_ffff_ffff) | 0x3ff0_0000_0000_0000);
+    (m, e.div_euclid(k), e.rem_euclid(k) as usize)
+}
+
+/// 2^(−q) for |q| ≤ 205 (x^(−1/5) and x^(−1/7) of a normal x need no more): a normal number.
+#[inline(always)]
+fn two_to_minus(q: i64) -> f64 {
+    f64::from_bits(((1023 - q) as u64) << 52)
 }
 
 /// sin x.
@@ -164,17 +208,17 @@ mod tests {
         }
     }
 
-    #[test]
-    fn inv_fifth_root_is_pow_within_4_ulp() {
-        // pow(x, −0.2) raises to the double nearest −1/5, which is 1.11e-17 too negative:
-        // its result is smaller than x^(−1/5) by the factor x^(−1.11e-17), up to 7.6e-15
-        // at 1e±300 (scipy's err ** -0.2 does the same), so the tolerance carries that term.
+    /// `root(x)` against pow(x, `power`) over 1e-300 … 1e300 and at the special values.
+    /// pow raises to the double nearest the power, e.g. 1.11e-17 below −1/5: its result
+    /// is smaller than the exact root by up to 7.6e-15 at 1e±300 (scipy's err ** -0.2 does
+    /// the same), so the tolerance carries that term.
+    fn check_inverse_root(root: fn(f64) -> f64, power: f64) {
         let mut worst = 0.0f64;
         for i in 0..400_000 {
             // 10^-300 … 10^300, and the powers of two among them.
             let x = pow(10.0, -300.0 + 600.0 * i as f64 / 400_000.0);
             for y in [x, f64::from_bits(x.to_bits() & !0x000f_ffff_ffff_ffff)] {
-                let (a, b) = (inv_fifth_root(y), pow(y, -0.2));
+                let (a, b) = (root(y), pow(y, power));
                 let tol = 4.0 * f64::EPSILON + 1.2e-17 * libm::log(y).abs();
                 worst = worst.max(((a - b) / b).abs() / tol);
             }
@@ -189,10 +233,20 @@ mod tests {
             1e-310,
             f64::MIN_POSITIVE,
         ] {
-            let (a, b) = (inv_fifth_root(x), pow(x, -0.2));
+            let (a, b) = (root(x), pow(x, power));
             let same = a.to_bits() == b.to_bits();
             assert!(same || (a - b).abs() <= 1e-14 * b, "{x}");
         }
+    }
+
+    #[test]
+    fn inv_fifth_root_is_pow_within_4_ulp() {
+        check_inverse_root(inv_fifth_root, -0.2);
+    }
+
+    #[test]
+    fn inv_seventh_root_is_pow_within_4_ulp() {
+        check_inverse_root(inv_seventh_root, -1.0 / 7.0);
     }
 
     /// Every elementary function of the library's code comes from this module (one pure-Rust

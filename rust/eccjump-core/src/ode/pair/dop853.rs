@@ -144,20 +144,19 @@ impl<const N: usize> RkPair<N> for Dop853<N> {
 
     /// The sums Σ D_ij K_j of the dense output's F3 … F6 (before the factor h).
     #[inline(always)]
-    fn dense_sums<V: Summand>(k: &[V]) -> [V; 4] {
-        [
-            weighted_sum(k, &D[0]),
-            weighted_sum(k, &D[1]),
-            weighted_sum(k, &D[2]),
-            weighted_sum(k, &D[3]),
-        ]
+    fn dense_sums<V: Summand>(k: &[V]) -> [V; MAX_DEGREE] {
+        let mut sums = [V::zero(); MAX_DEGREE];
+        for (s, d) in sums.iter_mut().zip(&D) {
+            *s = weighted_sum(k, d);
+        }
+        sums
     }
 
     /// y(σ) = y_old + σ(F0 + (1−σ)(F1 + σ(F2 + (1−σ)(F3 + σ(F4 + (1−σ)(F5 + σF6)))))),
     /// expanded into powers of σ (the form every dense step shares).
     #[inline]
     fn dense_from_sums(
-        sums: &[State<N>; 4],
+        sums: &[State<N>; MAX_DEGREE],
         (f_old, f_new): (&State<N>, &State<N>),
         t_old: f64,
         h: f64,

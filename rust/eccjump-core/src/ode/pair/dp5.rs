@@ -2,6 +2,7 @@
 //! operation by operation as scipy, so that accepted steps agree with scipy's to rounding.
 
 use super::{error_scale, rms_norm, solution, stage, weighted_sum, RkPair, Summand};
+use crate::ode::dense::MAX_DEGREE;
 use crate::ode::tableau::dp5::{A, B, C, E, ERROR_EXPONENT, N_STAGES, P};
 use crate::ode::{DenseStep, OdeSystem, State};
 
@@ -116,10 +117,10 @@ impl<const N: usize> RkPair<N> for Dp5<N> {
 
     /// scipy's `RkDenseOutput`: Q = Kᵀ P, summed stage after stage.
     #[inline(always)]
-    fn dense_sums<V: Summand>(k: &[V]) -> [V; 4] {
+    fn dense_sums<V: Summand>(k: &[V]) -> [V; MAX_DEGREE] {
         // Each sum in the same order as one at a time, all four in one pass over the
         // stages (a closure per sum was not inlined for lanes of five components).
-        let mut q = [V::zero(); 4];
+        let mut q = [V::zero(); MAX_DEGREE];
         for (ki, pi) in k[..=N_STAGES].iter().zip(P.iter()) {
             for (qj, pij) in q.iter_mut().zip(pi) {
                 *qj = *qj + *ki * *pij;
@@ -130,14 +131,14 @@ impl<const N: usize> RkPair<N> for Dp5<N> {
 
     #[inline]
     fn dense_from_sums(
-        q: &[State<N>; 4],
+        q: &[State<N>; MAX_DEGREE],
         _ends: (&State<N>, &State<N>),
         t_old: f64,
         h: f64,
         y_old: &State<N>,
         _y_new: &State<N>,
     ) -> Option<DenseStep<N>> {
-        Some(DenseStep::from_powers(t_old, h, *y_old, q))
+        Some(DenseStep::from_powers(t_old, h, *y_old, &q[..P[0].len()]))
     }
 }
 

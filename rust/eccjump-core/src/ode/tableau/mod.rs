@@ -3,3 +3,7 @@
 
 pub mod dop853;
 pub mod dp5;
+pub mod vern7;
+
+#[cfg(test)]
+mod order_conditions;
