@@ -511,28 +511,35 @@ def verner_7_for_scipy():
     return Vern7
 
 
-def test_vern7_takes_the_steps_of_scipys_runge_kutta_with_verners_tableau():
-    """integrator="Vern7" against scipy's RungeKutta class given Verner's tableau: the same
-    steps, step times to 1e-4, end states to 1e-10. Its error estimate is a small difference
-    of stages: where the step control lets it fall to the stages' rounding (tight rtol, the
-    first steps from rest), the order of a sum moves step sizes by percents, so the cases
-    are at rtol 1e-6, where the two agree to 1e-5 (measured); exponent −1/8 instead of
-    −1/7 moves them by 7-24 %."""
-    for (chi, km, deg, t_max), t_agree in [
-        ((0.15, 0.02, 40, 4.0), 1e-4),
-        ((0.05, 0.5, 20, 10.0), 1e-7),
-    ]:
+def test_vern7_takes_the_steps_of_scipys_runge_kutta_with_verners_tableau(monkeypatch):
+    """integrator="Vern7" against scipy's RungeKutta class given Verner's tableau, with
+    Vern7's own safety factor 0.75 (scipy's module constant, patched) and its first step
+    (scipy's estimate probed again from rest: tested in the core): the same steps, step
+    times to 1e-4, end states to 1e-10. Its error estimate is a small difference of stages:
+    where the step control lets it fall to the stages' rounding (tight rtol), the order of a
+    sum moves step sizes by percents, so the cases are at rtol 1e-6, where the two agree to
+    1e-5 (measured); exponent −1/8 instead of −1/7 moves them by 7-24 %, scipy's safety 0.9
+    by 13-21 %."""
+    import scipy.integrate._ivp.rk as rk
+
+    monkeypatch.setattr(rk, "SAFETY", 0.75)
+    for chi, km, deg, t_max in [(0.15, 0.02, 40, 4.0), (0.05, 0.5, 20, 10.0)]:
         body, alpha = Cylinder(chi, km), math.radians(deg)
         kw = dict(rtol=1e-6, atol=1e-9)
         r = roll(
             body, alpha, t_max=t_max, theta_max=1e9, rule="normal_force", integrator="Vern7", **kw
         )
         rhs = rolling_rhs_as_in_the_core(alpha, body.chi, body.Ic)
-        ref = solve_ivp(rhs, (0, t_max), [0.0, 0.0], method=verner_7_for_scipy(), **kw)
+        first = float(r.t[1])
+        ref = solve_ivp(
+            rhs, (0, t_max), [0.0, 0.0], method=verner_7_for_scipy(), first_step=first, **kw
+        )
         assert (r.status, len(r.t)) == (0, len(ref.t))
-        np.testing.assert_allclose(r.t, ref.t, rtol=t_agree, atol=0)
-        # nfev: scipy's 10 per attempt, and the interpolant's 5 where events needed it.
-        assert 0 <= r.nfev - ref.nfev <= 5 * len(r.t) and (r.nfev - ref.nfev) % 5 == 0
+        np.testing.assert_allclose(r.t, ref.t, rtol=1e-4, atol=0)
+        # nfev: scipy's 10 per attempt (its first step given), 1-3 probes of the first step,
+        # and the interpolant's 5 where events needed it.
+        extra = r.nfev - ref.nfev
+        assert any(0 <= extra - p <= 5 * len(r.t) and (extra - p) % 5 == 0 for p in (1, 2, 3))
         np.testing.assert_allclose(r.theta[-1], ref.y[0, -1], rtol=0, atol=1e-10)
         np.testing.assert_allclose(r.omega[-1], ref.y[1, -1], rtol=0, atol=1e-10)
 

@@ -211,10 +211,10 @@ def roll(
         ``"DOP853"`` (Dormand–Prince 8(5,3) as scipy's ``DOP853``: about 3x fewer steps at
         the default tolerances, and faster; the same steps as scipy's, but ``nfev`` is lower:
         a step whose ends clear it of events is not given the dense output's 3 extra
-        evaluations unless ``dense_output`` is asked for) or ``"Vern7"`` (Verner's 7(6) pair
-        with scipy's step control; 10 evaluations per step and 5 more for an interpolant,
-        which events need only rarely: at equal accuracy the fastest at 1e-8 ... 1e-10 rad,
-        ``benches/README.md``).
+        evaluations unless ``dense_output`` is asked for) or ``"Vern7"`` (Verner's 7(6) pair,
+        10 evaluations per step and 5 more for an interpolant, which events need only
+        rarely; scipy's step control with a safety factor of 0.75 and a first step probed
+        up to three times: at equal accuracy mostly the fastest, ``benches/README.md``).
 
     Events (located on the dense output to near machine precision): ``liftoff`` (paper's
     condition, rising), ``normal_force_zero`` (Fy = 0), ``slip`` (mu_s Fy = |Fx|),

@@ -1,7 +1,7 @@
 //! CPU cost of the ODE route per point, per Runge–Kutta pair, on the issue's random
 //! points (α ~ U(0, π/2), χ ~ U(1e-3, 1), k_m = u(1 − χ), μ_s = 1), one thread, and how
-//! often the two pairs agree on the reason. `cargo run --release -p eccjump-core --example
-//! ode_route_cost [points] [rk45|dop853|both] [stop]` (`stop`: `stop_at_slip`); each pair
+//! often the pairs agree on the reason. `cargo run --release -p eccjump-core --example
+//! ode_route_cost [points] [rk45|dop853|vern7|all] [stop]` (`stop`: `stop_at_slip`); each pair
 //! point by point, then all points side by side (`classify_ode_batch`, the maps' way).
 use eccjump_core::jarm::ode_route::classify_ode_batch;
 use eccjump_core::jarm::{classify_ode, JarmOptions, JarmResult, Reason};
@@ -39,7 +39,8 @@ fn main() {
     let pairs: Vec<Method> = match std::env::args().nth(2).as_deref() {
         Some("rk45") => vec![Method::Rk45],
         Some("dop853") => vec![Method::Dop853],
-        _ => vec![Method::Rk45, Method::Dop853],
+        Some("vern7") => vec![Method::Vern7],
+        _ => Method::ALL.to_vec(),
     };
     for pair in pairs {
         let t0 = Instant::now();
@@ -63,27 +64,19 @@ fn main() {
         println!("{pair:?}: {us:.1} us per point, side by side {lanes:.1} (same bits: {same})");
         reasons.push(r);
     }
-    if reasons.len() < 2 {
-        return;
+    // Each pair against the first.
+    for (k, other) in reasons.iter().enumerate().skip(1) {
+        let pairs = || reasons[0].iter().zip(other);
+        let same = pairs().filter(|(a, b)| a.reason == b.reason).count();
+        let jarm = pairs().filter(|(a, b)| a.is_jarm == b.is_jarm).count();
+        let dtheta = pairs()
+            .filter(|(a, b)| a.reason == b.reason && a.theta_event.is_finite())
+            .map(|(a, b)| ((a.theta_event - b.theta_event) / a.theta_event.abs().max(1.0)).abs())
+            .fold(0.0, f64::max);
+        println!(
+            "pair {k} against pair 0: same reason {same}/{}, same is_jarm {jarm}, largest relative \
+             theta_event difference {dtheta:.1e}",
+            points.len()
+        );
     }
-    let same = reasons[0]
-        .iter()
-        .zip(&reasons[1])
-        .filter(|(a, b)| a.reason == b.reason)
-        .count();
-    let jarm = reasons[0]
-        .iter()
-        .zip(&reasons[1])
-        .filter(|(a, b)| a.is_jarm == b.is_jarm)
-        .count();
-    let dtheta = reasons[0]
-        .iter()
-        .zip(&reasons[1])
-        .filter(|(a, b)| a.reason == b.reason && a.theta_event.is_finite())
-        .map(|(a, b)| ((a.theta_event - b.theta_event) / a.theta_event.abs().max(1.0)).abs())
-        .fold(0.0, f64::max);
-    println!(
-        "same reason {same}/{}, same is_jarm {jarm}, largest relative theta_event difference {dtheta:.1e}",
-        points.len()
-    );
 }

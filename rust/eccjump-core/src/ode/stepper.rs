@@ -43,9 +43,14 @@ pub fn min_step(t: f64, direction: f64) -> f64 {
 /// the interval length and max_step). Makes one evaluation of f; `None` if it is not
 /// finite.
 /// `error_exponent` is the pair's −1/(q + 1).
+///
+/// With `probes` > 1, where scipy's answer is its cap of 100 times the probe step (always
+/// from y0 = 0, whose probe step is 1e-6), the estimate is made again from a probe of the
+/// step found, up to `probes` evaluations in all: one evaluation instead of the whole steps
+/// that would grow the step tenfold at a time (three or four of them from rest).
 #[allow(clippy::too_many_arguments)]
 pub fn select_initial_step<S: OdeSystem<N>, const N: usize>(
-    error_exponent: f64,
+    (error_exponent, probes): (f64, usize),
     sys: &S,
     t0: f64,
     y0: &State<N>,
@@ -73,20 +78,29 @@ pub fn select_initial_step<S: OdeSystem<N>, const N: usize>(
         0.01 * d0 / d1
     };
     // Do not probe beyond t_bound.
-    let h0 = h0.min(interval_length);
-    let y1 = y0 + f0 * (h0 * direction);
-    let f1 = sys.rhs(t0 + h0 * direction, &y1);
-    *nfev += 1;
-    if !all_finite(&f1) {
-        return None;
+    let mut h0 = h0.min(interval_length);
+    let mut h = 0.0;
+    for probe in 0..probes.max(1) {
+        let y1 = y0 + f0 * (h0 * direction);
+        let f1 = sys.rhs(t0 + h0 * direction, &y1);
+        *nfev += 1;
+        if !all_finite(&f1) {
+            return None;
+        }
+        let d2 = rms_norm(&(f1 - f0).component_div(&scale)) / h0;
+        let h1 = if d1 <= 1e-15 && d2 <= 1e-15 {
+            (h0 * 1e-3).max(1e-6)
+        } else {
+            crate::trig::pow(0.01 / d1.max(d2), -error_exponent)
+        };
+        h = (100.0 * h0).min(h1).min(interval_length).min(max_step);
+        // Probe again only where the cap by the probe step set h.
+        if probe + 1 == probes || h < 100.0 * h0 || h <= h0 {
+            break;
+        }
+        h0 = h;
     }
-    let d2 = rms_norm(&(f1 - f0).component_div(&scale)) / h0;
-    let h1 = if d1 <= 1e-15 && d2 <= 1e-15 {
-        (h0 * 1e-3).max(1e-6)
-    } else {
-        crate::trig::pow(0.01 / d1.max(d2), -error_exponent)
-    };
-    Some((100.0 * h0).min(h1).min(interval_length).min(max_step))
+    Some(h)
 }
 
 /// Why a step attempt ended.
@@ -294,7 +308,7 @@ impl<P: RkPair<N>, const N: usize> Stepper<P, N> {
             let mut factor = if err == 0.0 {
                 MAX_FACTOR
             } else {
-                MAX_FACTOR.min(SAFETY * power)
+                MAX_FACTOR.min(P::SAFETY * power)
             };
             if trial.rejected {
                 factor = factor.min(1.0);
@@ -307,7 +321,7 @@ impl<P: RkPair<N>, const N: usize> Stepper<P, N> {
             self.h_abs = h_abs * factor;
             return Judgement::Accepted;
         }
-        trial.h_abs = h_abs * MIN_FACTOR.max(SAFETY * power);
+        trial.h_abs = h_abs * MIN_FACTOR.max(P::SAFETY * power);
         trial.rejected = true;
         Judgement::Retry
     }
@@ -333,5 +347,53 @@ mod tests {
         assert_eq!(next_after(0.0, 1.0), f64::from_bits(1));
         assert_eq!(next_after(0.0, -1.0), -f64::from_bits(1));
         assert_eq!(min_step(1.0, 1.0), 10.0 * f64::EPSILON);
+    }
+
+    /// A pendulum-like y'' = −sin y from rest off its equilibrium (y' = 0, y'' ≠ 0):
+    /// scipy's estimate from y = (0, 0) is capped at 100 × its 1e-6 probe; more probes lift
+    /// the cap, each one evaluation, and change nothing where the cap does not bind.
+    #[test]
+    fn more_probes_lift_the_cap_of_the_first_step_from_rest() {
+        struct Pendulum;
+        impl OdeSystem<2> for Pendulum {
+            fn rhs(&self, _t: f64, y: &State<2>) -> State<2> {
+                State::<2>::new(y[1], -libm::sin(y[0] + 0.5))
+            }
+        }
+        let first = |y0: State<2>, probes: usize| {
+            let f0 = Pendulum.rhs(0.0, &y0);
+            let mut nfev = 0;
+            let h = select_initial_step(
+                (-1.0 / 7.0, probes),
+                &Pendulum,
+                0.0,
+                &y0,
+                100.0,
+                f64::INFINITY,
+                &f0,
+                1.0,
+                1e-8,
+                1e-10,
+                &mut nfev,
+            );
+            (h.unwrap(), nfev)
+        };
+        let rest = State::<2>::zeros();
+        let (h1, n1) = first(rest, 1);
+        assert_eq!((h1, n1), (100.0 * 1e-6, 1), "scipy's cap");
+        let (h2, n2) = first(rest, 2);
+        let (h3, n3) = first(rest, 3);
+        assert_eq!((n2, n3), (2, 3));
+        assert_eq!(
+            h2,
+            100.0 * h1,
+            "the second probe is capped at 100 × the first"
+        );
+        // The third is not capped: the estimate itself, 0.01^(1/7) / max(d1, d2)^(1/7).
+        assert!(h3 > 1e-2 && h3 < 1.0, "{h3}");
+        // Moving: the estimate binds at once, the other probes are not made.
+        let moving = State::<2>::new(0.3, 0.2);
+        assert_eq!(first(moving, 3), first(moving, 1));
+        assert_eq!(first(moving, 3).1, 1);
     }
 }

@@ -54,6 +54,14 @@ pub trait RkPair<const N: usize>: Copy {
     /// The step-size exponent −1/(q + 1), q the order of the error estimator.
     const ERROR_EXPONENT: f64;
 
+    /// The margin by which the step-size factor multiplies err^ERROR_EXPONENT (scipy's
+    /// `SAFETY`, 0.9, unless the pair has its own).
+    const SAFETY: f64 = super::stepper::SAFETY;
+
+    /// Evaluations of f the first-step selection may make (scipy's: 1; see
+    /// [`super::stepper::select_initial_step`]).
+    const FIRST_STEP_PROBES: usize = 1;
+
     /// err^ERROR_EXPONENT, the heart of the step-size factor (each pair computes it without
     /// `pow`, whose latency is that of several stages).
     fn error_power(err: f64) -> f64;

@@ -1,7 +1,9 @@
 //! Verner's most efficient 7(6) pair: 10 stages (9 evaluations of f, plus f at the step end,
 //! which the next step begins with), scipy's error norm of the 6th-order estimate, and the
 //! 7th-degree interpolant from five extra stages. At tolerances of 1e-8 … 1e-11 it reaches a
-//! given accuracy with fewer evaluations than DOP853 (12 per step) on smooth problems.
+//! given accuracy with fewer evaluations than DOP853 (12 per step) on smooth problems. Its
+//! step control is scipy's but for the safety factor and the first step (below): no scipy
+//! steps to keep, unlike RK45 and DOP853.
 
 use super::{error_scale, rms_norm, solution, stage, weighted_sum, RkPair, Summand};
 use crate::ode::dense::MAX_DEGREE;
@@ -20,6 +22,15 @@ pub struct Vern7<const N: usize> {
 
 impl<const N: usize> RkPair<N> for Vern7<N> {
     const ERROR_EXPONENT: f64 = ERROR_EXPONENT;
+
+    /// Not scipy's 0.9: with 0.9 a quarter to a third of the steps of a rolling run are
+    /// rejected (the error constant changes quickly along a turn); 0.75 reaches the same
+    /// accuracy with 5–10 % fewer evaluations (39 rolling runs, rtol 3e-7 … 3e-12).
+    const SAFETY: f64 = 0.75;
+
+    /// From rest scipy's first step is 1e-4, and four steps pass before the step reaches
+    /// its size; two more probes of the first-step estimate save most of them.
+    const FIRST_STEP_PROBES: usize = 3;
 
     /// err^(−1/7) without `pow` ([`crate::trig::inv_seventh_root`], within 4 ulp of it).
     #[inline]
