@@ -85,7 +85,9 @@ pub fn select_initial_step<S: OdeSystem<N>, const N: usize>(
         let f1 = sys.rhs(t0 + h0 * direction, &y1);
         *nfev += 1;
         if !all_finite(&f1) {
-            return None;
+            // A later probe reaches farther than scipy's: where f is not finite there, the
+            // step found so far stands.
+            return (probe > 0).then_some(h);
         }
         let d2 = rms_norm(&(f1 - f0).component_div(&scale)) / h0;
         let h1 = if d1 <= 1e-15 && d2 <= 1e-15 {
@@ -391,6 +393,37 @@ mod tests {
         );
         // The third is not capped: the estimate itself, 0.01^(1/7) / max(d1, d2)^(1/7).
         assert!(h3 > 1e-2 && h3 < 1.0, "{h3}");
+        // A later probe where f is not finite keeps the step found before it.
+        struct Wall;
+        impl OdeSystem<2> for Wall {
+            fn rhs(&self, _t: f64, y: &State<2>) -> State<2> {
+                let a = if y[1] > 1e-3 { f64::NAN } else { 1.0 };
+                State::<2>::new(y[1], a)
+            }
+        }
+        let mut nfev = 0;
+        let f0 = Wall.rhs(0.0, &rest);
+        let args = (0.0, &rest, 100.0, f64::INFINITY, &f0, 1.0, 1e-8, 1e-10);
+        let wall = |probes, nfev: &mut usize| {
+            let (t0, y0, t1, max, f0, dir, rtol, atol) = args;
+            select_initial_step(
+                (-1.0 / 7.0, probes),
+                &Wall,
+                t0,
+                y0,
+                t1,
+                max,
+                f0,
+                dir,
+                rtol,
+                atol,
+                nfev,
+            )
+        };
+        // Probes at 1e-6 and 1e-4 see a finite f; the third, at 1e-2, does not.
+        let two = wall(2, &mut nfev).unwrap();
+        assert_eq!(two, 100.0 * wall(1, &mut nfev).unwrap());
+        assert_eq!(wall(3, &mut nfev), Some(two));
         // Moving: the estimate binds at once, the other probes are not made.
         let moving = State::<2>::new(0.3, 0.2);
         assert_eq!(first(moving, 3), first(moving, 1));
