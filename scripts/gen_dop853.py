@@ -8,6 +8,7 @@ Every entry is printed as the shortest decimal that round-trips to scipy's float
 Rust constants are bit-identical to scipy's.
 """
 
+from rust_literals import const, mat, row
 from scipy.integrate._ivp import dop853_coefficients as c
 
 HEADER = """\
@@ -21,23 +22,6 @@ HEADER = """\
 
 #![allow(clippy::excessive_precision, clippy::unreadable_literal)]
 """
-
-
-def lit(x: float) -> str:
-    r = repr(float(x))
-    return r if ("e" in r or "." in r) else r + ".0"
-
-
-def row(v) -> str:
-    return "[" + ", ".join(lit(x) for x in v) + "]"
-
-
-def mat(m) -> str:
-    return "[\n" + "".join(f"    {row(r)},\n" for r in m) + "]"
-
-
-def const(doc: str, name: str, ty: str, value: str) -> str:
-    return f"/// {doc}\npub const {name}: {ty} = {value};\n"
 
 
 S = c.N_STAGES

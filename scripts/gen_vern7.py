@@ -19,6 +19,7 @@ import sys
 from pathlib import Path
 
 from mpmath import mp, mpf
+from rust_literals import const, mat, row
 
 mp.dps = 50
 DATA = Path(__file__).with_name("vern7_coefficients.txt")
@@ -115,23 +116,6 @@ def check(c, a, b, bh, bi) -> None:
         f"// order conditions met; interpolant order 7 within {mp.nstr(worst[7], 2)}",
         file=sys.stderr,
     )
-
-
-def lit(x) -> str:
-    r = repr(float(x))
-    return r if ("e" in r or "." in r) else r + ".0"
-
-
-def row(v) -> str:
-    return "[" + ", ".join(lit(x) for x in v) + "]"
-
-
-def mat(m) -> str:
-    return "[\n" + "".join(f"    {row(r)},\n" for r in m) + "]"
-
-
-def const(doc: str, name: str, ty: str, value: str) -> str:
-    return f"/// {doc}\npub const {name}: {ty} = {value};\n"
 
 
 HEADER = """\

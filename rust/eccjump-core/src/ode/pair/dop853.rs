@@ -200,47 +200,15 @@ fn powers<const N: usize>(f: &[State<N>; MAX_DEGREE]) -> [State<N>; MAX_DEGREE] 
 mod tests {
     use super::*;
 
-    /// y' = cos t: every stage is known exactly, so one step checks the 8th order and
-    /// the dense output's 7th degree against sin.
-    struct Cos;
-    impl OdeSystem<1> for Cos {
-        fn rhs(&self, t: f64, _y: &State<1>) -> State<1> {
-            State::<1>::new(t.cos())
-        }
-    }
-
     #[test]
     fn one_step_of_a_quadrature_is_8th_order_and_dense_7th() {
-        let mut errs = Vec::new();
-        let mut dense_errs = Vec::new();
-        for h in [0.4, 0.2] {
-            let mut nfev = 0;
-            let mut pair = Dop853::<1>::empty();
-            let y = State::<1>::new(0.0);
-            let y_new = pair
-                .attempt(&Cos, 0.0, &y, &State::<1>::new(1.0), h, &mut nfev)
-                .unwrap();
-            assert_eq!(nfev, 12);
-            errs.push((y_new[0] - h.sin()).abs());
-            let d = pair.dense(&Cos, 0.0, h, &y, &y_new, &mut nfev).unwrap();
-            assert_eq!(nfev, 15);
-            assert_eq!(d.degree, 7);
-            let worst = (0..=20)
-                .map(|i| {
-                    let t = h * i as f64 / 20.0;
-                    (d.eval(t)[0] - t.sin()).abs()
-                })
-                .fold(0.0, f64::max);
-            dense_errs.push(worst);
-        }
+        let [(e0, d0, nfev, degree), (e1, d1, ..)] =
+            [0.4, 0.2].map(super::super::testing::quadrature_step::<Dop853<1>>);
+        assert_eq!((nfev, degree), ([12, 15], 7));
         // Local error O(h^9) for the step, O(h^8) for the interpolant: halving h divides
         // them by 2^9 = 512 and 2^8 = 256 (loosely: by more than 200 and 100).
-        assert!(
-            errs[0] < 1e-11 && errs[0] / errs[1].max(1e-300) > 200.0,
-            "{errs:?}"
-        );
-        assert!(dense_errs[0] < 1e-9, "{dense_errs:?}");
-        assert!(dense_errs[0] / dense_errs[1] > 100.0, "{dense_errs:?}");
+        assert!(e0 < 1e-11 && e0 / e1.max(1e-300) > 200.0, "{e0} {e1}");
+        assert!(d0 < 1e-9 && d0 / d1 > 100.0, "{d0} {d1}");
     }
 
     #[test]

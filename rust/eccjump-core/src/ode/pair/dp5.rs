@@ -1,7 +1,7 @@
 //! Dormand–Prince 5(4) (scipy's `RK45`): `rk_step`, the error norm and `RkDenseOutput`,
 //! operation by operation as scipy, so that accepted steps agree with scipy's to rounding.
 
-use super::{error_scale, rms_norm, solution, stage, weighted_sum, RkPair, Summand};
+use super::{scaled_error_norm, solution, stage, weighted_sum, RkPair, Summand};
 use crate::ode::dense::MAX_DEGREE;
 use crate::ode::tableau::dp5::{A, B, C, E, ERROR_EXPONENT, N_STAGES, P};
 use crate::ode::{DenseStep, OdeSystem, State};
@@ -70,8 +70,7 @@ impl<const N: usize> RkPair<N> for Dp5<N> {
         rtol: f64,
         atol: f64,
     ) -> f64 {
-        let err = sum * h;
-        rms_norm(&err.component_div(&error_scale(y, y_new, rtol, atol)))
+        scaled_error_norm(sum, h, y, y_new, rtol, atol)
     }
 
     #[inline]

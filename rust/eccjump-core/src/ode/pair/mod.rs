@@ -184,6 +184,21 @@ pub fn error_scale<const N: usize>(
     State::<N>::from_fn(|i, _| atol + y[i].abs().max(y_new[i].abs()) * rtol)
 }
 
+/// scipy's `RungeKutta._estimate_error_norm` from the error sum Σ E_j K_j: the RMS norm of
+/// h Σ E_j K_j over the error scale (the pairs with one error estimate, RK45 and Vern7).
+#[inline]
+pub fn scaled_error_norm<const N: usize>(
+    sum: &State<N>,
+    h: f64,
+    y: &State<N>,
+    y_new: &State<N>,
+    rtol: f64,
+    atol: f64,
+) -> f64 {
+    let err = sum * h;
+    rms_norm(&err.component_div(&error_scale(y, y_new, rtol, atol)))
+}
+
 /// The RMS norm of scipy's `common.norm`: ‖v‖₂ / √N.
 #[inline]
 pub fn rms_norm<const N: usize>(v: &State<N>) -> f64 {
@@ -266,4 +281,46 @@ pub(crate) fn stage<S: OdeSystem<N>, const N: usize>(
     k[s] = sys.rhs(t + c * h, &ys);
     *nfev += 1;
     all_finite(&k[s])
+}
+
+/// What the pairs' tests share.
+#[cfg(test)]
+pub(crate) mod testing {
+    use super::RkPair;
+    use crate::ode::{OdeSystem, State};
+
+    /// y' = cos t: every stage is known exactly, so one step checks the order of a pair's
+    /// solution and of its dense output against sin.
+    struct Cos;
+    impl OdeSystem<1> for Cos {
+        fn rhs(&self, t: f64, _y: &State<1>) -> State<1> {
+            State::<1>::new(t.cos())
+        }
+    }
+
+    /// One step of P over h of y' = cos t from 0 and its dense output: the step's error,
+    /// the dense output's largest error at 21 points, the evaluations of f (step, then
+    /// with the dense output) and the dense output's degree.
+    pub(crate) fn quadrature_step<P: RkPair<1>>(h: f64) -> (f64, f64, [usize; 2], usize) {
+        let mut nfev = 0;
+        let mut pair = P::empty();
+        let y = State::<1>::new(0.0);
+        let y_new = pair
+            .attempt(&Cos, 0.0, &y, &State::<1>::new(1.0), h, &mut nfev)
+            .unwrap();
+        let step_nfev = nfev;
+        let d = pair.dense(&Cos, 0.0, h, &y, &y_new, &mut nfev).unwrap();
+        let worst = (0..=20)
+            .map(|i| {
+                let t = h * i as f64 / 20.0;
+                (d.eval(t)[0] - t.sin()).abs()
+            })
+            .fold(0.0, f64::max);
+        (
+            (y_new[0] - h.sin()).abs(),
+            worst,
+            [step_nfev, nfev],
+            d.degree,
+        )
+    }
 }

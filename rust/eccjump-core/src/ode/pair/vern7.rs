@@ -5,7 +5,7 @@
 //! step control is scipy's but for the safety factor and the first step (below): no scipy
 //! steps to keep, unlike RK45 and DOP853.
 
-use super::{error_scale, rms_norm, solution, stage, weighted_sum, RkPair, Summand};
+use super::{scaled_error_norm, solution, stage, weighted_sum, RkPair, Summand};
 use crate::ode::dense::MAX_DEGREE;
 use crate::ode::tableau::vern7::{
     A, A_EXTRA, B, C, C_EXTRA, E, ERROR_EXPONENT, N_STAGES, N_STAGES_EXTENDED, R,
@@ -78,7 +78,6 @@ impl<const N: usize> RkPair<N> for Vern7<N> {
         [weighted_sum(&k[..=N_STAGES], &E), V::zero()]
     }
 
-    /// scipy's `_estimate_error_norm`: the RMS of h Σ E_j K_j over the error scale.
     #[inline]
     fn error_from_sums(
         [sum, _]: &[State<N>; 2],
@@ -88,8 +87,7 @@ impl<const N: usize> RkPair<N> for Vern7<N> {
         rtol: f64,
         atol: f64,
     ) -> f64 {
-        let err = sum * h;
-        rms_norm(&err.component_div(&error_scale(y, y_new, rtol, atol)))
+        scaled_error_norm(sum, h, y, y_new, rtol, atol)
     }
 
     #[inline]
@@ -168,47 +166,15 @@ impl<const N: usize> RkPair<N> for Vern7<N> {
 mod tests {
     use super::*;
 
-    /// y' = cos t: every stage is known exactly, so one step checks the 7th order and
-    /// the interpolant's 7th degree against sin.
-    struct Cos;
-    impl OdeSystem<1> for Cos {
-        fn rhs(&self, t: f64, _y: &State<1>) -> State<1> {
-            State::<1>::new(t.cos())
-        }
-    }
-
     #[test]
     fn one_step_of_a_quadrature_is_7th_order_and_dense_7th() {
-        let mut errs = Vec::new();
-        let mut dense_errs = Vec::new();
-        for h in [0.8, 0.4] {
-            let mut nfev = 0;
-            let mut pair = Vern7::<1>::empty();
-            let y = State::<1>::new(0.0);
-            let y_new = pair
-                .attempt(&Cos, 0.0, &y, &State::<1>::new(1.0), h, &mut nfev)
-                .unwrap();
-            assert_eq!(nfev, 10);
-            errs.push((y_new[0] - h.sin()).abs());
-            let d = pair.dense(&Cos, 0.0, h, &y, &y_new, &mut nfev).unwrap();
-            assert_eq!(nfev, 15);
-            assert_eq!(d.degree, 7);
-            let worst = (0..=20)
-                .map(|i| {
-                    let t = h * i as f64 / 20.0;
-                    (d.eval(t)[0] - t.sin()).abs()
-                })
-                .fold(0.0, f64::max);
-            dense_errs.push(worst);
-        }
+        let [(e0, d0, nfev, degree), (e1, d1, ..)] =
+            [0.8, 0.4].map(super::super::testing::quadrature_step::<Vern7<1>>);
+        assert_eq!((nfev, degree), ([10, 15], 7));
         // Local error O(h^8) for the step and the interpolant: halving h divides them by
         // 2^8 = 256 (loosely: by more than 150; smaller steps reach rounding).
-        assert!(
-            errs[0] < 1e-9 && errs[0] / errs[1].max(1e-300) > 150.0,
-            "{errs:?}"
-        );
-        assert!(dense_errs[0] < 1e-9, "{dense_errs:?}");
-        assert!(dense_errs[0] / dense_errs[1] > 150.0, "{dense_errs:?}");
+        assert!(e0 < 1e-9 && e0 / e1.max(1e-300) > 150.0, "{e0} {e1}");
+        assert!(d0 < 1e-9 && d0 / d1 > 150.0, "{d0} {d1}");
     }
 
     /// y' = y², y(0) = 1 (y = 1/(1 − t)): a nonlinear equation, so every tree's elementary
