@@ -54,6 +54,8 @@ HERE = Path(__file__).resolve().parent
 SNAPSHOT = HERE / "snapshot.json"
 TAU = 2.0 * math.pi
 MU_S = 1.0
+#: eccjump's Runge-Kutta pairs (the ``integrator`` argument)
+INTEGRATORS = ("RK45", "DOP853", "Vern7")
 ROOT_TOL = 1e-12  # diffrax event: optimistix Newton tolerance (1e-14 does not converge)
 # (alpha [deg], chi, k_m): runs that end at the paper's lift-off (F_y stays > 0 before it)
 CASES = [(40.0, 0.15, 0.02), (70.0, 0.1, 0.27), (30.0, 0.1, 0.09), (10.0, 0.1, 0.54)]
@@ -541,7 +543,7 @@ def part_accuracy(args) -> None:
                     eccjump.roll(body, alpha, rtol=r, atol=a, integrator=i).theta[-1]  # noqa: B023
                 ),
             )
-            for integ in ("RK45", "DOP853", "Vern7")
+            for integ in INTEGRATORS
         ]
         routes += [(n, lambda r, a, f=f: f(p, r, a)) for n, f in peers if f is not None]  # noqa: B023
         exact = exact_theta_J(alpha, chi, km)
@@ -730,7 +732,7 @@ def part_batch_accuracy(args) -> None:
     ref = first_theta(cf.reason, cf.theta_J, cf.theta_event)
     ladder = [10.0 ** (-q / 2) for q in range(12, 23)]  # 1e-6 ... 1e-11
     routes: list[tuple[str, Callable]] = []
-    for integ in ("RK45", "DOP853", "Vern7"):
+    for integ in INTEGRATORS:
 
         def ecc(rtol, integ=integ):
             r = eccjump.jarm(
@@ -952,7 +954,7 @@ def main() -> None:
     p.add_argument(
         "--integrator",
         default="RK45",
-        choices=("RK45", "DOP853", "Vern7"),
+        choices=INTEGRATORS,
         help="eccjump's Runge-Kutta pair in parts a, b and the ODE map of c (RK45)",
     )
     p.add_argument("--atol", type=float, default=1e-12)

@@ -78,9 +78,6 @@ pub fn pow(x: f64, y: f64) -> f64 {
 /// ∞ and NaN go to `pow` itself.
 #[inline]
 pub fn inv_fifth_root(x: f64) -> f64 {
-    if !(x.is_normal() && x > 0.0) {
-        return pow(x, -0.2);
-    }
     // 2^(−r/5), r = 0 … 4.
     const ROOT2: [f64; 5] = [
         1.0,
@@ -89,17 +86,17 @@ pub fn inv_fifth_root(x: f64) -> f64 {
         0.659_753_955_386_447_1,
         0.574_349_177_498_517_5,
     ];
-    let (m, q, r) = split_exponent(x, 5);
-    let t = m - 1.0;
-    let mut y = 0.999_980_730_183_848_9
-        + t * (-0.198_959_359_686_662_98
-            + t * (0.110_609_191_521_070_57
-                + t * (-0.055_623_152_120_730_206 + t * 0.014_557_430_005_373_31)));
-    for _ in 0..2 {
+    const FIT: [f64; 5] = [
+        0.999_980_730_183_848_9,
+        -0.198_959_359_686_662_98,
+        0.110_609_191_521_070_57,
+        -0.055_623_152_120_730_206,
+        0.014_557_430_005_373_31,
+    ];
+    inverse_root(x, -0.2, (&ROOT2, FIT), |y, m| {
         let y2 = y * y;
-        y = y * (6.0 - m * (y2 * y2 * y)) * 0.2;
-    }
-    y * ROOT2[r] * two_to_minus(q)
+        y * (6.0 - m * (y2 * y2 * y)) * 0.2
+    })
 }
 
 /// x^(−1/7), the step-size factor err^(−1/7) of Verner's 7(6) pair, as
@@ -108,9 +105,6 @@ pub fn inv_fifth_root(x: f64) -> f64 {
 /// rounding). Within 4 ulp of x^(−1/7); 0, subnormal, ∞ and NaN go to `pow`.
 #[inline]
 pub fn inv_seventh_root(x: f64) -> f64 {
-    if !(x.is_normal() && x > 0.0) {
-        return pow(x, -1.0 / 7.0);
-    }
     // 2^(−r/7), r = 0 … 6.
     const ROOT2: [f64; 7] = [
         1.0,
@@ -121,33 +115,45 @@ pub fn inv_seventh_root(x: f64) -> f64 {
         0.609_506_827_102_237_7,
         0.552_044_756_836_906_2,
     ];
-    let (m, q, r) = split_exponent(x, 7);
-    let t = m - 1.0;
-    let mut y = 0.999_974_336_802_711_7
-        + t * (-0.142_025_928_758_660_38
-            + t * (0.075_077_321_380_836_28
-                + t * (-0.036_837_931_476_801_7 + t * 0.009_554_433_893_881_583)));
-    for _ in 0..2 {
+    const FIT: [f64; 5] = [
+        0.999_974_336_802_711_7,
+        -0.142_025_928_758_660_38,
+        0.075_077_321_380_836_28,
+        -0.036_837_931_476_801_7,
+        0.009_554_433_893_881_583,
+    ];
+    inverse_root(x, -1.0 / 7.0, (&ROOT2, FIT), |y, m| {
         let y2 = y * y;
         let y3 = y2 * y;
-        y = y * (8.0 - m * (y3 * y3 * y)) * (1.0 / 7.0);
-    }
-    y * ROOT2[r] * two_to_minus(q)
+        y * (8.0 - m * (y3 * y3 * y)) * (1.0 / 7.0)
+    })
 }
 
-/// A positive normal x as m·2^e with m ∈ [1, 2), and e = k q + r with 0 ≤ r < k: (m, q, r).
+/// x^power for power = −1/k, k = `root2.len()`, without `pow`: x = m·2^e with m ∈ [1, 2) and
+/// e = k q + r gives 2^(−q)·2^(−r/k)·m^(−1/k), with m^(−1/k) from the quartic `fit` in m − 1
+/// refined by two `newton` steps y ← newton(y, m). 0, subnormal, ∞ and NaN go to `pow`.
 #[inline(always)]
-fn split_exponent(x: f64, k: i64) -> (f64, i64, usize) {
+fn inverse_root(
+    x: f64,
+    power: f64,
+    (root2, fit): (&[f64], [f64; 5]),
+    newton: impl Fn(f64, f64) -> f64,
+) -> f64 {
+    if !(x.is_normal() && x > 0.0) {
+        return pow(x, power);
+    }
     let bits = x.to_bits();
     let e = ((bits >> 52) & 0x7ff) as i64 - 1023;
     let m = f64::from_bits((bits & 0x000f_ffff_ffff_ffff) | 0x3ff0_0000_0000_0000);
-    (m, e.div_euclid(k), e.rem_euclid(k) as usize)
-}
-
-/// 2^(−q) for |q| ≤ 205 (x^(−1/5) and x^(−1/7) of a normal x need no more): a normal number.
-#[inline(always)]
-fn two_to_minus(q: i64) -> f64 {
-    f64::from_bits(((1023 - q) as u64) << 52)
+    let k = root2.len() as i64;
+    let (q, r) = (e.div_euclid(k), e.rem_euclid(k) as usize);
+    let t = m - 1.0;
+    let mut y = fit[0] + t * (fit[1] + t * (fit[2] + t * (fit[3] + t * fit[4])));
+    for _ in 0..2 {
+        y = newton(y, m);
+    }
+    // |q| ≤ 205: 2^(−q) is a normal number.
+    y * root2[r] * f64::from_bits(((1023 - q) as u64) << 52)
 }
 
 /// sin x.

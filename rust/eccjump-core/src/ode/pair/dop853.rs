@@ -1,7 +1,7 @@
 //! Dormand–Prince 8(5,3) (scipy's `DOP853`): 12 stages, the combined 5th/3rd-order error
 //! norm of Hairer's code, and the 7th-degree dense output from three extra stages.
 
-use super::{all_finite, error_scale, solution, stage, weighted_sum, RkPair, Summand};
+use super::{all_finite, error_scale, solution, unrolled_stages, weighted_sum, RkPair, Summand};
 use crate::ode::dense::MAX_DEGREE;
 use crate::ode::tableau::dop853::{
     A, A_EXTRA, B, C, C_EXTRA, D, E3, E5, ERROR_EXPONENT, N_STAGES, N_STAGES_EXTENDED,
@@ -47,16 +47,7 @@ impl<const N: usize> RkPair<N> for Dop853<N> {
         let k = &mut self.k;
         k[0] = *f;
         let at = (t, y, h);
-        // Stage by stage with constant s, so that each weighted sum is unrolled and its
-        // zero coefficients drop out.
-        macro_rules! stages {
-            ($($s:literal)*) => {
-                $(if !stage(sys, at, k, $s, (&A[$s], C[$s]), nfev) {
-                    return None;
-                })*
-            };
-        }
-        stages!(1 2 3 4 5 6 7 8 9 10 11);
+        unrolled_stages!(sys, at, k, nfev, 0, (A, C); 1 2 3 4 5 6 7 8 9 10 11);
         solution(sys, at, k, &B, nfev)
     }
 
@@ -108,14 +99,7 @@ impl<const N: usize> RkPair<N> for Dop853<N> {
     ) -> Option<DenseStep<N>> {
         let at = (t_old, y_old, h);
         let k = &mut self.k;
-        macro_rules! extra {
-            ($($i:literal)*) => {
-                $(if !stage(sys, at, k, N_STAGES + 1 + $i, (&A_EXTRA[$i], C_EXTRA[$i]), nfev) {
-                    return None;
-                })*
-            };
-        }
-        extra!(0 1 2);
+        unrolled_stages!(sys, at, k, nfev, N_STAGES + 1, (A_EXTRA, C_EXTRA); 0 1 2);
         self.dense_from_stages(t_old, h, y_old, y_new)
     }
 

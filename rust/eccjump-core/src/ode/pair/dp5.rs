@@ -1,7 +1,7 @@
 //! Dormand–Prince 5(4) (scipy's `RK45`): `rk_step`, the error norm and `RkDenseOutput`,
 //! operation by operation as scipy, so that accepted steps agree with scipy's to rounding.
 
-use super::{scaled_error_norm, solution, stage, weighted_sum, RkPair, Summand};
+use super::{scaled_error_norm, solution, unrolled_stages, weighted_sum, RkPair, Summand};
 use crate::ode::dense::MAX_DEGREE;
 use crate::ode::tableau::dp5::{A, B, C, E, ERROR_EXPONENT, N_STAGES, P};
 use crate::ode::{DenseStep, OdeSystem, State};
@@ -43,15 +43,7 @@ impl<const N: usize> RkPair<N> for Dp5<N> {
         let k = &mut self.k;
         k[0] = *f;
         let at = (t, y, h);
-        // The stages one by one with constant s, so that each weighted sum is unrolled.
-        if !stage(sys, at, k, 1, (&A[1], C[1]), nfev)
-            || !stage(sys, at, k, 2, (&A[2], C[2]), nfev)
-            || !stage(sys, at, k, 3, (&A[3], C[3]), nfev)
-            || !stage(sys, at, k, 4, (&A[4], C[4]), nfev)
-            || !stage(sys, at, k, 5, (&A[5], C[5]), nfev)
-        {
-            return None;
-        }
+        unrolled_stages!(sys, at, k, nfev, 0, (A, C); 1 2 3 4 5);
         solution(sys, at, k, &B, nfev)
     }
 

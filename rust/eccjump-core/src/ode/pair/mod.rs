@@ -266,6 +266,19 @@ pub(crate) fn solution<S: OdeSystem<N>, const N: usize>(
     all_finite(&k[s]).then_some(y_new)
 }
 
+/// Stages `$first + i` for the literal indices i, from row i of `$a` and node i of `$c`
+/// ([`stage`]), returning `None` from the calling function at the first one not finite.
+/// Each index is a constant, so that each weighted sum is unrolled and its zero
+/// coefficients drop out (DOP853's tableau is one-third zeros).
+macro_rules! unrolled_stages {
+    ($sys:expr, $at:expr, $k:expr, $nfev:expr, $first:expr, ($a:expr, $c:expr); $($i:literal)*) => {
+        $(if !$crate::ode::pair::stage($sys, $at, $k, $first + $i, (&$a[$i], $c[$i]), $nfev) {
+            return None;
+        })*
+    };
+}
+pub(crate) use unrolled_stages;
+
 /// Stage s of an explicit pair: k[s] = f(t + c h, y + (Σ_{j<s} K_j a_j) h), in scipy's
 /// order of operations; false if it is not finite.
 #[inline(always)]

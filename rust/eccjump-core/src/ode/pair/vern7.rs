@@ -5,7 +5,7 @@
 //! step control is scipy's but for the safety factor and the first step (below): no scipy
 //! steps to keep, unlike RK45 and DOP853.
 
-use super::{scaled_error_norm, solution, stage, weighted_sum, RkPair, Summand};
+use super::{scaled_error_norm, solution, unrolled_stages, weighted_sum, RkPair, Summand};
 use crate::ode::dense::MAX_DEGREE;
 use crate::ode::tableau::vern7::{
     A, A_EXTRA, B, C, C_EXTRA, E, ERROR_EXPONENT, N_STAGES, N_STAGES_EXTENDED, R,
@@ -59,16 +59,7 @@ impl<const N: usize> RkPair<N> for Vern7<N> {
         let k = &mut self.k;
         k[0] = *f;
         let at = (t, y, h);
-        // Stage by stage with constant s, so that each weighted sum is unrolled and its
-        // zero coefficients drop out.
-        macro_rules! stages {
-            ($($s:literal)*) => {
-                $(if !stage(sys, at, k, $s, (&A[$s], C[$s]), nfev) {
-                    return None;
-                })*
-            };
-        }
-        stages!(1 2 3 4 5 6 7 8 9);
+        unrolled_stages!(sys, at, k, nfev, 0, (A, C); 1 2 3 4 5 6 7 8 9);
         solution(sys, at, k, &B, nfev)
     }
 
@@ -107,14 +98,7 @@ impl<const N: usize> RkPair<N> for Vern7<N> {
     ) -> Option<DenseStep<N>> {
         let at = (t_old, y_old, h);
         let k = &mut self.k;
-        macro_rules! extra {
-            ($($i:literal)*) => {
-                $(if !stage(sys, at, k, N_STAGES + 1 + $i, (&A_EXTRA[$i], C_EXTRA[$i]), nfev) {
-                    return None;
-                })*
-            };
-        }
-        extra!(0 1 2 3 4);
+        unrolled_stages!(sys, at, k, nfev, N_STAGES + 1, (A_EXTRA, C_EXTRA); 0 1 2 3 4);
         self.dense_from_stages(t_old, h, y_old, y_new)
     }
 
