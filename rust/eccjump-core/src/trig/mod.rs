@@ -240,7 +240,9 @@ mod tests {
             f64::MIN_POSITIVE,
         ] {
             let (a, b) = (root(x), pow(x, power));
-            let same = a.to_bits() == b.to_bits();
+            // NaN is NaN whatever its sign bit, which an optimised build may fold
+            // differently for the two calls.
+            let same = a.to_bits() == b.to_bits() || (a.is_nan() && b.is_nan());
             assert!(same || (a - b).abs() <= 1e-14 * b, "{x}");
         }
     }
