@@ -241,7 +241,7 @@ impl<P: RkPair<N>, const N: usize> Run<P, N> {
         let h_abs = match opts.first_step {
             Some(h) => h,
             None => match select_initial_step(
-                (P::ERROR_EXPONENT, P::FIRST_STEP_PROBES),
+                (P::first_step_power, P::FIRST_STEP_PROBES),
                 sys,
                 t0,
                 &y0,

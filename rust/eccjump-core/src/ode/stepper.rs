@@ -42,7 +42,7 @@ pub fn min_step(t: f64, direction: f64) -> f64 {
 /// scipy 1.17 `select_initial_step` (Hairer–Nørsett–Wanner II.4 with scipy's bounds by
 /// the interval length and max_step). Makes one evaluation of f; `None` if it is not
 /// finite.
-/// `error_exponent` is the pair's −1/(q + 1).
+/// `power(d)` is the pair's (0.01/d)^(1/(q + 1)) ([`RkPair::first_step_power`]).
 ///
 /// With `probes` > 1, where scipy's answer is its cap of 100 times the probe step (always
 /// from y0 = 0, whose probe step is 1e-6), the estimate is made again from a probe of the
@@ -50,7 +50,7 @@ pub fn min_step(t: f64, direction: f64) -> f64 {
 /// that would grow the step tenfold at a time (three or four of them from rest).
 #[allow(clippy::too_many_arguments)]
 pub fn select_initial_step<S: OdeSystem<N>, const N: usize>(
-    (error_exponent, probes): (f64, usize),
+    (power, probes): (fn(f64) -> f64, usize),
     sys: &S,
     t0: f64,
     y0: &State<N>,
@@ -93,7 +93,7 @@ pub fn select_initial_step<S: OdeSystem<N>, const N: usize>(
         let h1 = if d1 <= 1e-15 && d2 <= 1e-15 {
             (h0 * 1e-3).max(1e-6)
         } else {
-            crate::trig::pow(0.01 / d1.max(d2), -error_exponent)
+            power(d1.max(d2))
         };
         h = (100.0 * h0).min(h1).min(interval_length).min(max_step);
         // Probe again only where the cap by the probe step set h.
@@ -340,6 +340,7 @@ impl<P: RkPair<N>, const N: usize> Stepper<P, N> {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::ode::pair::vern7::Vern7;
 
     #[test]
     fn next_after_moves_one_ulp() {
@@ -375,7 +376,7 @@ mod tests {
             let f0 = sys.rhs(0.0, &y0);
             let mut nfev = 0;
             let h = select_initial_step(
-                (-1.0 / 7.0, probes),
+                (Vern7::<2>::first_step_power, probes),
                 sys,
                 0.0,
                 &y0,

@@ -66,6 +66,14 @@ pub trait RkPair<const N: usize>: Copy {
     /// `pow`, whose latency is that of several stages).
     fn error_power(err: f64) -> f64;
 
+    /// (0.01/d)^(−ERROR_EXPONENT), the first-step estimate from d = max(d1, d2)
+    /// ([`super::stepper::select_initial_step`]): by `pow`, as scipy's `**`, so that RK45
+    /// and DOP853 take scipy's first step to the last bit, unless the pair has its own.
+    #[inline]
+    fn first_step_power(d: f64) -> f64 {
+        crate::trig::pow(0.01 / d, -Self::ERROR_EXPONENT)
+    }
+
     /// A pair with zeroed stages.
     fn empty() -> Self;
 
