@@ -309,10 +309,10 @@ def test_rule_normal_force_rolls_past_the_papers_liftoff():
     setups(),
     st.sampled_from([None, 0.3, 1.0]),
     st.sampled_from(["paper", "normal_force"]),
-    st.sampled_from(["DOP853", "Vern7"]),
+    st.sampled_from(["DOP853", "Vern7", "Vern9"]),
 )
 def test_dense_output_is_skipped_only_where_it_changes_nothing(s, mu_s, rule, integrator):
-    """Without dense_output, DOP853 and Vern7 make a step's dense output (3 and 5 more
+    """Without dense_output, DOP853, Vern7 and Vern9 make a step's dense output (3, 5, 4 more
     evaluations of f) only where the step's ends cannot clear it of events: the same steps,
     states, forces and events, bit for bit, as when every step's dense output is made."""
     body, alpha, theta0, omega0 = s
@@ -323,7 +323,7 @@ def test_dense_output_is_skipped_only_where_it_changes_nothing(s, mu_s, rule, in
         assert getattr(lean, name).tobytes() == getattr(full, name).tobytes(), name
     assert (lean.events, lean.status, lean.message) == (full.events, full.status, full.message)
     assert lean.nfev <= full.nfev
-    # Each step cleared from its ends saves 3 or 5 evaluations: a long run has such steps.
+    # Each step cleared from its ends saves 3, 5 or 4 evaluations: a long run has such steps.
     if len(lean.t) > 20:
         assert lean.nfev < full.nfev
 
@@ -478,74 +478,95 @@ def test_dop853_takes_scipys_dop853_steps():
     np.testing.assert_allclose(r.omega, w, rtol=0, atol=1e-9)
 
 
-def verner_7_for_scipy():
+#: Verner's pairs as (stages, order, error estimator order, interpolant's extra stages, the
+#: rtol of the comparison with scipy).
+VERNER = {"Vern7": (10, 7, 6, 5, 1e-6), "Vern9": (16, 9, 8, 4, 1e-5)}
+
+
+def verner_for_scipy(name: str):
     """scipy's explicit Runge–Kutta machinery (first step, controller, error norm) with
-    Verner's 7(6) tableau, read from the 40-digit data the core's tableau is generated from
-    (scripts/vern7_coefficients.txt), in float64 by numpy: an implementation of
-    integrator="Vern7" that shares none of the core's code."""
+    Verner's tableau `name`, read from the 40-digit data the core's tableau is generated from
+    (scripts/vern7_coefficients.txt, vern9_coefficients.txt), in float64 by numpy: an
+    implementation of integrator=name that shares none of the core's code."""
     from scipy.integrate._ivp.rk import RungeKutta
 
-    a, c = np.zeros((10, 10)), np.zeros(10)
-    b, bh = [Fraction(0)] * 10, [Fraction(0)] * 10
-    data = Path(__file__).parents[1] / "scripts" / "vern7_coefficients.txt"
+    stages, q, q_hat, *_ = VERNER[name]
+    a, c = np.zeros((stages, stages)), np.zeros(stages)
+    b, d = [Fraction(0)] * stages, [Fraction(0)] * stages
+    bh: list[Fraction] | None = None
+    data = Path(__file__).parents[1] / "scripts" / f"{name.lower()}_coefficients.txt"
     for line in data.read_text().splitlines():
         if not line.split() or line.startswith("#"):
             continue
         kind, *idx, value = line.split()
         i = [int(x) for x in idx]
-        if kind == "c" and i[0] < 10:
+        if kind == "c" and i[0] < stages:
             c[i[0]] = float(value)
-        elif kind == "a" and i[0] < 10:
+        elif kind == "a" and i[0] < stages:
             a[i[0], i[1]] = float(value)
-        elif kind in ("b", "bh"):
-            (b if kind == "b" else bh)[i[0]] = Fraction(value)
+        elif kind == "b":
+            b[i[0]] = Fraction(value)
+        elif kind == "bh":
+            bh = bh or [Fraction(0)] * stages
+            bh[i[0]] = Fraction(value)
+        elif kind == "d":  # b̂ − b
+            d[i[0]] = Fraction(value)
+    bh = bh or [x + y for x, y in zip(b, d, strict=True)]
     # b − b̂ exactly, then rounded once (as the core's tableau): the error estimate is a
     # small difference of stages, which a float64 difference would move by ~1e-3.
     e = [float(x - y) for x, y in zip(b, bh, strict=True)]
 
-    class Vern7(RungeKutta):
-        order, error_estimator_order, n_stages = 7, 6, 10
+    class Verner(RungeKutta):
+        order, error_estimator_order, n_stages = q, q_hat, stages
         C, A, B, E = c, a, np.array([float(x) for x in b]), np.array([*e, 0.0])
-        P = np.zeros((11, 1))  # no dense output
+        P = np.zeros((stages + 1, 1))  # no dense output
 
-    return Vern7
+    return Verner
 
 
-def test_vern7_takes_the_steps_of_scipys_runge_kutta_with_verners_tableau(monkeypatch):
-    """integrator="Vern7" against scipy's RungeKutta class given Verner's tableau, with
-    Vern7's own safety factor 0.75 (scipy's module constant, patched) and its first step
-    (scipy's estimate probed again from rest: tested in the core): the same steps, step
-    times to 1e-4, end states to 1e-10. Its error estimate is a small difference of stages:
-    where the step control lets it fall to the stages' rounding (tight rtol), the order of a
-    sum moves step sizes by percents, so the cases are at rtol 1e-6, where the two agree to
-    1e-5 (measured); exponent −1/8 instead of −1/7 moves them by 7-24 %, scipy's safety 0.9
-    by 13-21 %."""
+@pytest.mark.parametrize("name", list(VERNER))
+def test_verners_pairs_take_the_steps_of_scipys_runge_kutta_with_verners_tableaus(
+    monkeypatch, name
+):
+    """integrator="Vern7" and "Vern9" against scipy's RungeKutta class given Verner's
+    tableaus, with their own safety factor 0.75 (scipy's module constant, patched) and their
+    first step (scipy's estimate probed again from rest: tested in the core): the same steps,
+    step times to 1e-4, end states to 1e-10. The error estimate is a small difference of
+    stages: where the step control lets it fall to the stages' rounding (tight rtol), the
+    order of a sum moves step sizes by percents, so the cases are at rtol 1e-6 (Vern7) and
+    1e-5 (Vern9; at 1e-6 its first step's estimate is at that rounding), where the two agree
+    to 1e-5 and 4e-7 (measured); for Vern7, exponent −1/8 instead of −1/7 moves them by
+    7-24 %, scipy's safety 0.9 by 13-21 %."""
     import scipy.integrate._ivp.rk as rk
 
+    *_, extra_stages, rtol = VERNER[name]
     monkeypatch.setattr(rk, "SAFETY", 0.75)
     for chi, km, deg, t_max in [(0.15, 0.02, 40, 4.0), (0.05, 0.5, 20, 10.0)]:
         body, alpha = Cylinder(chi, km), math.radians(deg)
-        kw = dict(rtol=1e-6, atol=1e-9)
+        kw = dict(rtol=rtol, atol=rtol / 1000)
         r = roll(
-            body, alpha, t_max=t_max, theta_max=1e9, rule="normal_force", integrator="Vern7", **kw
+            body, alpha, t_max=t_max, theta_max=1e9, rule="normal_force", integrator=name, **kw
         )
         rhs = rolling_rhs_as_in_the_core(alpha, body.chi, body.Ic)
         first = float(r.t[1])
         ref = solve_ivp(
-            rhs, (0, t_max), [0.0, 0.0], method=verner_7_for_scipy(), first_step=first, **kw
+            rhs, (0, t_max), [0.0, 0.0], method=verner_for_scipy(name), first_step=first, **kw
         )
         assert (r.status, len(r.t)) == (0, len(ref.t))
         np.testing.assert_allclose(r.t, ref.t, rtol=1e-4, atol=0)
-        # nfev: scipy's 10 per attempt (its first step given), 1-3 probes of the first step,
-        # and the interpolant's 5 where events needed it.
+        # nfev: scipy's `stages` per attempt (its first step given), 1-3 probes of the first
+        # step, and the interpolant's extra stages where events needed it.
         extra = r.nfev - ref.nfev
-        assert any(0 <= extra - p <= 5 * len(r.t) and (extra - p) % 5 == 0 for p in (1, 2, 3))
+        assert any(
+            0 <= extra - p <= extra_stages * len(r.t) and (extra - p) % extra_stages == 0
+            for p in (1, 2, 3)
+        )
         np.testing.assert_allclose(r.theta[-1], ref.y[0, -1], rtol=0, atol=1e-10)
         np.testing.assert_allclose(r.omega[-1], ref.y[1, -1], rtol=0, atol=1e-10)
 
 
 @settings(max_examples=40, deadline=None)
-@given(setups(), st.sampled_from(["DOP853", "Vern7"]))
+@given(setups(), st.sampled_from(["DOP853", "Vern7", "Vern9"]))
 def test_the_integrators_agree_and_the_high_order_ones_take_fewer_steps(s, integrator):
     body, alpha, theta0, omega0 = s
     # theta_max and t_max not reached together by uniform rotation (theta = theta0 + 2 t).
@@ -568,7 +589,7 @@ def test_the_integrators_agree_and_the_high_order_ones_take_fewer_steps(s, integ
     assert np.max(np.abs(e - e[0])) < 1e-7 * max(1.0, np.max(np.abs(b.omega)) ** 2)
 
 
-@pytest.mark.parametrize("integrator", ["DOP853", "Vern7"])
+@pytest.mark.parametrize("integrator", ["DOP853", "Vern7", "Vern9"])
 def test_liftoff_by_a_high_order_pair_matches_the_closed_form_root(integrator):
     from eccjump import jarm
 

@@ -20,8 +20,9 @@ from eccjump._checks import U32_MAX, U64_MAX, flag, integer, real, text
 
 Method = Literal["closed_form", "ode"]
 Rule = Literal["paper", "normal_force"]
-#: The Runge–Kutta pair of an integration: scipy's "RK45" and "DOP853", or Verner's "Vern7".
-Integrator = Literal["RK45", "DOP853", "Vern7"]
+#: The Runge–Kutta pair of an integration: scipy's "RK45" and "DOP853", or Verner's "Vern7" and
+#: "Vern9".
+Integrator = Literal["RK45", "DOP853", "Vern7", "Vern9"]
 
 #: The raw result of a bridge call: one flat array per field.
 Raw = dict[str, NDArray]
@@ -40,7 +41,8 @@ class CallOptions:
     refine_extrema : refine max_ratio and min_Fy to full precision (closed form).
     stop_at_slip : stop at the first slip with reason SLIP (paper rule; see :func:`jarm`).
     n_threads : threads per call (0 = one per core); results do not depend on it.
-    integrator : the Runge–Kutta pair of ``method="ode"``, ``"RK45"``, ``"DOP853"`` or ``"Vern7"``.
+    integrator : the Runge–Kutta pair of ``method="ode"``, ``"RK45"``, ``"DOP853"``,
+        ``"Vern7"`` or ``"Vern9"``.
 
     A plain module-level frozen dataclass: it pickles into dask graphs.
     """

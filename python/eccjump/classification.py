@@ -178,9 +178,9 @@ def jarm(
         ``rule="normal_force"``.
     n_threads : threads (0 = one per core, at most 256); results are identical for any value.
     integrator : the Runge–Kutta pair of ``method="ode"``: ``"RK45"`` (Dormand–Prince 5(4)),
-        ``"DOP853"`` (Dormand–Prince 8(5,3), ~1.4x faster at the default tolerances) or
-        ``"Vern7"`` (Verner 7(6)); the same verdicts: each finds an event that only grazes
-        zero between two samples.
+        ``"DOP853"`` (Dormand–Prince 8(5,3), ~1.4x faster at the default tolerances),
+        ``"Vern7"`` (Verner 7(6)) or ``"Vern9"`` (Verner 9(8)); the same verdicts: each finds
+        an event that only grazes zero between two samples.
 
     Every bound, the memory and Ctrl-C behaviour: ``docs/limits.md``.
 

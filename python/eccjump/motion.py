@@ -324,9 +324,10 @@ def simulate(
     rtol, atol : tolerances of the integrator; max_steps : accepted steps of the whole run,
         1 ... 10**7.
     integrator : ``"RK45"`` (Dormand–Prince 5(4), as scipy's ``RK45``), ``"DOP853"``
-        (Dormand–Prince 8(5,3), as scipy's ``DOP853``: fewer steps at tight tolerances) or
+        (Dormand–Prince 8(5,3), as scipy's ``DOP853``: fewer steps at tight tolerances),
         ``"Vern7"`` (Verner's 7(6) pair: fewest evaluations for a given accuracy at rtol
-        1e-8 ... 1e-10).
+        1e-8 ... 1e-10 over a few turns) or ``"Vern9"`` (Verner's 9(8) pair: fewer still over
+        long runs and at tighter tolerances).
     dense_output : keep ``sol(t)`` across segments.
 
     Raises

@@ -176,9 +176,9 @@ def motion_map(
     Each of ``alpha`` [rad], ``chi``, ``km`` (the fraction k_m/(1 - chi) in [0, 1], so every
     grid point is a valid body), ``mu_s``, ``mu_k`` (None: mu_k = mu_s), ``restitution``,
     ``theta0`` and ``omega0`` is one number or a 1-D array (an axis of the map). The other
-    options are those of :func:`eccjump.simulate` (``integrator``: ``"RK45"``, ``"DOP853"`` or
-    ``"Vern7"``, recorded with the map as are ``rtol`` and ``atol``); a run ends at its first
-    landing (status "landed") once the mode after it is chosen, or at
+    options are those of :func:`eccjump.simulate` (``integrator``: ``"RK45"``, ``"DOP853"``,
+    ``"Vern7"`` or ``"Vern9"``, recorded with the map as are ``rtol`` and ``atol``); a run
+    ends at its first landing (status "landed") once the mode after it is chosen, or at
     ``t_max``/``max_transitions``. A point with invalid values (mu_k > mu_s, km fraction 0,
     ...) has status "invalid".
 

@@ -211,10 +211,13 @@ def roll(
         ``"DOP853"`` (Dormand–Prince 8(5,3) as scipy's ``DOP853``: about 3x fewer steps at
         the default tolerances, and faster; the same steps as scipy's, but ``nfev`` is lower:
         a step whose ends clear it of events is not given the dense output's 3 extra
-        evaluations unless ``dense_output`` is asked for) or ``"Vern7"`` (Verner's 7(6) pair,
+        evaluations unless ``dense_output`` is asked for), ``"Vern7"`` (Verner's 7(6) pair,
         10 evaluations per step and 5 more for an interpolant, which events need only
         rarely; scipy's step control with a safety factor of 0.75 and a first step probed
-        up to three times: at equal accuracy mostly the fastest, ``benches/README.md``).
+        up to three times: at equal accuracy mostly the fastest over a few turns) or
+        ``"Vern9"`` (Verner's 9(8) pair, 16 evaluations per step and 4 more for an
+        interpolant, the same step control: the fastest over long runs and at tight
+        tolerances; ``benches/README.md``).
 
     Events (located on the dense output to near machine precision): ``liftoff`` (paper's
     condition, rising), ``normal_force_zero`` (Fy = 0), ``slip`` (mu_s Fy = |Fx|),

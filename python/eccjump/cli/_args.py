@@ -14,13 +14,14 @@ INTEGRATORS: tuple[str, ...] = get_args(Integrator)
 
 
 def add_integrator(p: argparse._ActionsContainer, when: str = "") -> None:
-    """``--integrator {RK45,DOP853,Vern7}`` (default RK45); ``when`` says where it applies."""
+    """``--integrator {RK45,DOP853,Vern7,Vern9}`` (default RK45); ``when`` says where it
+    applies."""
     p.add_argument(
         "--integrator",
         choices=INTEGRATORS,
         default="RK45",
-        help=f"Runge-Kutta pair{when}: RK45 (Dormand-Prince 5(4), default), DOP853 (8(5,3)) "
-        "or Vern7 (Verner 7(6))",
+        help=f"Runge-Kutta pair{when}: RK45 (Dormand-Prince 5(4), default), DOP853 (8(5,3)), "
+        "Vern7 (Verner 7(6)) or Vern9 (Verner 9(8))",
     )
 
 

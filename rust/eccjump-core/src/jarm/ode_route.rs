@@ -881,7 +881,7 @@ mod tests {
 
     #[test]
     fn skipping_interior_samples_changes_nothing() {
-        let mut nfev = [[0; 2]; 3];
+        let mut nfev = [[0; 2]; ode::Method::ALL.len()];
         for (a, chi, km, mu_s, liftoff, forces) in bound_cases() {
             for (samples, pair) in [4, 16]
                 .into_iter()
@@ -911,8 +911,8 @@ mod tests {
                     (out, seen)
                 };
                 // The same steps, events and end; fewer evaluations where the dense output of
-                // a step proven quiet from its ends is not made (the extra stages of DOP853
-                // and Vern7).
+                // a step proven quiet from its ends is not made (the extra stages of DOP853,
+                // Vern7 and Vern9).
                 let (p, q) = (run(true), run(false));
                 let same = |o: &Outcome<2>| (o.status, o.t, o.y, o.n_accepted, o.n_rejected);
                 assert_eq!(same(&p.0), same(&q.0), "{a} {chi} {km} {pair:?}");

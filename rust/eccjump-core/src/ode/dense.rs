@@ -1,11 +1,12 @@
 //! The dense output of one accepted step: a polynomial in σ = (t − t_old)/h, whatever pair
 //! produced it (degree 4 for Dormand–Prince 5(4), as scipy's `RkDenseOutput`; degree 7 for
-//! DOP853, converted from scipy's `Dop853DenseOutput` form into powers of σ).
+//! DOP853, converted from scipy's `Dop853DenseOutput` form into powers of σ, and for Vern7;
+//! degree 8 for Vern9).
 
 use super::State;
 
-/// Highest degree of a dense-output polynomial (DOP853's).
-pub const MAX_DEGREE: usize = 7;
+/// Highest degree of a dense-output polynomial (Vern9's).
+pub const MAX_DEGREE: usize = 8;
 
 /// Dense output on [t_old, t_old + h]: y(t_old + σh) = y_old + h Σ_j Q_j σ^(j+1),
 /// j = 0..degree − 1.

@@ -21,7 +21,7 @@
 #![allow(clippy::needless_range_loop)]
 
 use super::dense::MAX_DEGREE;
-use super::pair::{all_finite, weighted_sum, Dop853, Dp5, Method, RkPair, Summand, Vern7};
+use super::pair::{all_finite, weighted_sum, Dop853, Dp5, Method, RkPair, Summand, Vern7, Vern9};
 use super::solver::{Observation, Outcome, Run, SolverOptions, Status};
 use super::stepper::{Judgement, Trial};
 use super::{DenseStep, EventFunctions, OdeSystem, State};
@@ -203,8 +203,8 @@ fn lanes<P, T, const N: usize>(
     T: Track<N>,
 {
     let mut slots: [Option<Slot<P, T, N>>; LANES] = std::array::from_fn(|_| None);
-    // Stages: STAGES, the FSAL one, the extra ones of the dense output (at most 16).
-    let mut k = [Lanes::<N>::zero(); 16];
+    // Stages: STAGES, the FSAL one, the extra ones of the dense output (at most 21, Vern9's).
+    let mut k = [Lanes::<N>::zero(); 21];
     let n_k = P::STAGES + 1 + P::EXTRA;
     debug_assert!(n_k <= k.len());
     loop {
@@ -488,6 +488,7 @@ pub fn solve_lanes_with<T: Track<N>, const N: usize>(
         Method::Rk45 => solve_lanes::<Dp5<N>, T, N>(next, done, stop),
         Method::Dop853 => solve_lanes::<Dop853<N>, T, N>(next, done, stop),
         Method::Vern7 => solve_lanes::<Vern7<N>, T, N>(next, done, stop),
+        Method::Vern9 => solve_lanes::<Vern9<N>, T, N>(next, done, stop),
     }
 }
 
@@ -696,6 +697,8 @@ mod tests {
                     (Method::Dop853, true) => solve_lanes::<Dop853<2>, _, 2>(next, done, &never),
                     (Method::Vern7, false) => lanes::<Vern7<2>, _, 2>(next, done, &never),
                     (Method::Vern7, true) => solve_lanes::<Vern7<2>, _, 2>(next, done, &never),
+                    (Method::Vern9, false) => lanes::<Vern9<2>, _, 2>(next, done, &never),
+                    (Method::Vern9, true) => solve_lanes::<Vern9<2>, _, 2>(next, done, &never),
                 }
                 for (j, g) in got.into_inner().iter().enumerate() {
                     assert_eq!(g, &want[j], "{method:?} avx2 {avx2} trajectory {j}");

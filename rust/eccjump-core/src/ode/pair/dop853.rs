@@ -148,18 +148,21 @@ impl<const N: usize> RkPair<N> for Dop853<N> {
         y_new: &State<N>,
     ) -> Option<DenseStep<N>> {
         let delta = y_new - y_old;
-        let mut f = [State::<N>::zeros(); MAX_DEGREE];
+        let mut f = [State::<N>::zeros(); DEGREE];
         f[0] = delta;
         f[1] = f_old * h - delta;
         f[2] = delta * 2.0 - (f_new + f_old) * h;
         for (fi, si) in f[3..].iter_mut().zip(sums) {
             *fi = si * h;
         }
-        let q: [State<N>; MAX_DEGREE] = powers(&f).map(|pj| pj / h);
+        let q: [State<N>; DEGREE] = powers(&f).map(|pj| pj / h);
         let dense = DenseStep::from_powers(t_old, h, *y_old, &q);
         dense.q.iter().all(all_finite).then_some(dense)
     }
 }
+
+/// Degree of DOP853's dense output.
+const DEGREE: usize = 7;
 
 /// scipy's nested form σ(F0 + (1−σ)(F1 + σ(F2 + (1−σ)(F3 + σ(F4 + (1−σ)(F5 + σF6))))))
 /// as the coefficients p_1 … p_7 of σ^1 … σ^7:
@@ -167,7 +170,7 @@ impl<const N: usize> RkPair<N> for Dop853<N> {
 /// p5 = F4 + 3F5 − 3F6, p6 = −F5 + 3F6, p7 = −F6 (expanded once per step, so the scan's
 /// samples cost a Horner sum each).
 #[inline]
-fn powers<const N: usize>(f: &[State<N>; MAX_DEGREE]) -> [State<N>; MAX_DEGREE] {
+fn powers<const N: usize>(f: &[State<N>; DEGREE]) -> [State<N>; DEGREE] {
     let [f0, f1, f2, f3, f4, f5, f6] = *f;
     [
         f0 + f1,
@@ -203,7 +206,7 @@ mod tests {
             2.0 * x - 1.0
         };
         for _ in 0..200 {
-            let f: [State<1>; MAX_DEGREE] = std::array::from_fn(|_| State::<1>::new(next()));
+            let f: [State<1>; DEGREE] = std::array::from_fn(|_| State::<1>::new(next()));
             let p = powers(&f);
             for i in 0..=10 {
                 let s = i as f64 / 10.0;
@@ -213,9 +216,7 @@ mod tests {
                     * (g(0)
                         + v * (g(1)
                             + s * (g(2) + v * (g(3) + s * (g(4) + v * (g(5) + s * g(6)))))));
-                let sum: f64 = (0..MAX_DEGREE)
-                    .map(|j| p[j][0] * s.powi(j as i32 + 1))
-                    .sum();
+                let sum: f64 = (0..DEGREE).map(|j| p[j][0] * s.powi(j as i32 + 1)).sum();
                 assert!((nested - sum).abs() < 1e-14, "{nested} {sum}");
             }
         }

@@ -135,7 +135,7 @@ impl<const N: usize> RkPair<N> for Vern7<N> {
     /// The coefficients Σ_i R_ji K_i of σ^(j+1), j = 0 … 6 (before the factor h).
     #[inline(always)]
     fn dense_sums<V: Summand>(k: &[V]) -> [V; MAX_DEGREE] {
-        std::array::from_fn(|j| weighted_sum(k, &R[j]))
+        std::array::from_fn(|j| R.get(j).map_or(V::zero(), |r| weighted_sum(k, r)))
     }
 
     /// The interpolant is already in powers of σ: y(σ) = y_old + h Σ_j Q_j σ^(j+1).
@@ -148,7 +148,7 @@ impl<const N: usize> RkPair<N> for Vern7<N> {
         y_old: &State<N>,
         _y_new: &State<N>,
     ) -> Option<DenseStep<N>> {
-        let dense = DenseStep::from_powers(t_old, h, *y_old, q);
+        let dense = DenseStep::from_powers(t_old, h, *y_old, &q[..R.len()]);
         dense.q.iter().all(super::all_finite).then_some(dense)
     }
 }

@@ -3,7 +3,7 @@
 //! Sec. II.2). A mistyped coefficient breaks some of them by far more than rounding (the
 //! generators check the same in 50 digits before writing the Rust files).
 
-use super::{dop853, dp5, vern7};
+use super::{dop853, dp5, vern7, vern9};
 
 /// A rooted tree as the keys (order, index in `Trees::by_order[order]`) of its subtrees,
 /// in non-increasing order.
@@ -162,6 +162,42 @@ fn verner_7_6_has_orders_7_and_6_and_an_interpolant_of_order_6() {
     }
     // The extra stages are consistent: each row of A sums to its node.
     for (row, c) in vern7::A_EXTRA.iter().zip(vern7::C_EXTRA) {
+        assert!((row.iter().sum::<f64>() - c).abs() < 1e-14);
+    }
+}
+
+#[test]
+fn verner_9_8_has_orders_9_and_8_and_an_interpolant_of_order_8() {
+    let t = Trees::up_to(10);
+    let a = square(&vern9::A, vern9::N_STAGES);
+    let b_hat: Vec<f64> = vern9::B.iter().zip(&vern9::E).map(|(x, e)| x - e).collect();
+    assert!(t.worst(&a, &vern9::B, 9, |_| 1.0) < 1e-12);
+    assert!(t.worst(&a, &b_hat, 8, |_| 1.0) < 1e-12);
+    assert!(t.worst(&a, &vern9::B, 10, |_| 1.0) > 1e-7);
+    assert!(t.worst(&a, &b_hat, 9, |_| 1.0) > 1e-7);
+    // The interpolant over all 21 stages (stage 16 is f at y_new: its row is b):
+    // Σ_i b_i(σ) Φ_i(t) = σ^ρ/γ(t) for ρ ≤ 8 exactly; for ρ = 9 within 1e-5 (4.8e-6 in 50
+    // digits, as Verner published it). Its weights reach 1e4, so f64 sums err by ~1e-12.
+    let mut rows: Vec<Vec<f64>> = vern9::A.iter().map(|r| r.to_vec()).collect();
+    rows.push(vern9::B.to_vec());
+    rows.extend(vern9::A_EXTRA.iter().map(|r| r.to_vec()));
+    let a = square(&rows, vern9::N_STAGES_EXTENDED);
+    for sigma in [0.0f64, 0.3, 0.7, 1.0] {
+        let w: Vec<f64> = (0..vern9::N_STAGES_EXTENDED)
+            .map(|i| {
+                (0..8)
+                    .map(|j| vern9::R[j][i] * sigma.powi(j as i32 + 1))
+                    .sum()
+            })
+            .collect();
+        let exact = t.worst(&a, &w, 8, |rho| sigma.powi(rho as i32));
+        assert!(exact < 1e-10, "{sigma}: {exact}");
+        assert!(
+            t.worst(&a, &w, 9, |rho| sigma.powi(rho as i32)) < 1e-5,
+            "{sigma}"
+        );
+    }
+    for (row, c) in vern9::A_EXTRA.iter().zip(vern9::C_EXTRA) {
         assert!((row.iter().sum::<f64>() - c).abs() < 1e-14);
     }
 }
