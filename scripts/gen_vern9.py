@@ -17,9 +17,8 @@ from __future__ import annotations
 
 from pathlib import Path
 
-from mpmath import mpf
-from rust_literals import const, mat, row
-from verner import check, load
+from rust_literals import const
+from verner import check, items, load
 
 DATA = Path(__file__).with_name("vern9_coefficients.txt")
 S, SE, DEG = 16, 21, 8  # main stages, stages with the interpolant's, interpolant degree
@@ -40,36 +39,8 @@ HEADER = """\
 """
 
 
-def items(c, a, b, bh, bi):
-    e = [b[i] - bh[i] for i in range(S)] + [mpf(0)]
-    r = [[bi[i][j] for i in range(SE)] for j in range(DEG)]
-    return [
-        ("Stages of one step (the FSAL derivative at the step end is stored as stage 16).",
-         "N_STAGES", "usize", str(S)),
-        ("Stages including the four extra ones of the 8th-degree interpolant.",
-         "N_STAGES_EXTENDED", "usize", str(SE)),
-        ("Order of the propagated solution.", "ORDER", "i32", "9"),
-        ("Order of the error estimator; step control uses the exponent −1/(8 + 1).",
-         "ERROR_ESTIMATOR_ORDER", "i32", "8"),
-        ("Step-size exponent −1/(error_estimator_order + 1).",
-         "ERROR_EXPONENT", "f64", "-1.0 / (ERROR_ESTIMATOR_ORDER as f64 + 1.0)"),
-        ("Nodes c_i of the 16 main stages.", "C", "[f64; N_STAGES]", row(c[:S])),
-        ("Stage coupling a_ij of the main stages (row i, columns j < i; zero-padded).",
-         "A", "[[f64; N_STAGES]; N_STAGES]", mat([r_[:S] for r_ in a[:S]])),
-        ("Weights of the 9th-order solution.", "B", "[f64; N_STAGES]", row(b)),
-        ("Error weights b − b̂ over the 17 stages (including FSAL, whose weight is 0).",
-         "E", "[f64; N_STAGES + 1]", row(e)),
-        ("Nodes of the four extra stages of the interpolant.",
-         "C_EXTRA", "[f64; 4]", row(c[S + 1 :])),
-        ("Coupling of the four extra stages to the 17 before them (and to each other).",
-         "A_EXTRA", "[[f64; N_STAGES_EXTENDED]; 4]", mat(a[S + 1 :])),
-        ("The interpolant y(t + σh) = y + h Σ_j σ^(j+1) Σ_i R[j][i] K_i (row j: σ^(j+1)).",
-         "R", "[[f64; N_STAGES_EXTENDED]; 8]", mat(r)),
-    ]  # fmt: skip
-
-
 if __name__ == "__main__":
     coefficients = load(DATA, S, SE, DEG)
     check(coefficients, (S, SE, DEG), (9, 8, 8), "1e-5")
     print(HEADER)
-    print("\n".join(const(*item) for item in items(*coefficients)))
+    print("\n".join(const(*item) for item in items(coefficients, (S, SE, DEG), (9, 8))))

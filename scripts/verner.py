@@ -8,6 +8,7 @@ import sys
 from pathlib import Path
 
 from mpmath import mp, mpf
+from rust_literals import mat, row
 
 mp.dps = 50
 
@@ -119,3 +120,37 @@ def check(tableau, sizes: tuple[int, int, int], orders: tuple[int, int, int], ne
         f"// order conditions met; interpolant order {p + 1} within {mp.nstr(worst[p + 1], 2)}",
         file=sys.stderr,
     )
+
+
+def items(tableau, sizes: tuple[int, int, int], orders: tuple[int, int]):
+    """The Rust constants of a pair, as (doc, name, type, value) for `rust_literals.const`:
+    b − b̂ is formed in 50 digits and rounded once. `orders` = (q, q̂)."""
+    c, a, b, bh, bi = tableau
+    s, se, deg = sizes
+    q, qh = orders
+    extra = se - s - 1
+    e = [b[i] - bh[i] for i in range(s)] + [mpf(0)]
+    r = [[bi[i][j] for i in range(se)] for j in range(deg)]
+    return [
+        (f"Stages of one step (the FSAL derivative at the step end is stored as stage {s}).",
+         "N_STAGES", "usize", str(s)),
+        (f"Stages including the {extra} extra ones of the degree-{deg} interpolant.",
+         "N_STAGES_EXTENDED", "usize", str(se)),
+        ("Order of the propagated solution.", "ORDER", "i32", str(q)),
+        (f"Order of the error estimator; step control uses the exponent −1/({qh} + 1).",
+         "ERROR_ESTIMATOR_ORDER", "i32", str(qh)),
+        ("Step-size exponent −1/(error_estimator_order + 1).",
+         "ERROR_EXPONENT", "f64", "-1.0 / (ERROR_ESTIMATOR_ORDER as f64 + 1.0)"),
+        (f"Nodes c_i of the {s} main stages.", "C", "[f64; N_STAGES]", row(c[:s])),
+        ("Stage coupling a_ij of the main stages (row i, columns j < i; zero-padded).",
+         "A", "[[f64; N_STAGES]; N_STAGES]", mat([r_[:s] for r_ in a[:s]])),
+        (f"Weights of the order-{q} solution.", "B", "[f64; N_STAGES]", row(b)),
+        (f"Error weights b − b̂ over the {s + 1} stages (including FSAL, whose weight is 0).",
+         "E", "[f64; N_STAGES + 1]", row(e)),
+        ("Nodes of the extra stages of the interpolant.",
+         "C_EXTRA", f"[f64; {extra}]", row(c[s + 1 :])),
+        (f"Coupling of the extra stages to the {s + 1} before them (and to each other).",
+         "A_EXTRA", f"[[f64; N_STAGES_EXTENDED]; {extra}]", mat(a[s + 1 :])),
+        ("The interpolant y(t + σh) = y + h Σ_j σ^(j+1) Σ_i R_ji K_i (row j: σ^(j+1)).",
+         "R", f"[[f64; N_STAGES_EXTENDED]; {deg}]", mat(r)),
+    ]  # fmt: skip

@@ -6,6 +6,7 @@ pub mod dop853;
 pub mod dp5;
 pub mod vern7;
 pub mod vern9;
+mod verner;
 
 pub use dop853::Dop853;
 pub use dp5::Dp5;

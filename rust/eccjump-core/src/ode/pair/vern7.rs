@@ -2,160 +2,25 @@
 //! which the next step begins with), scipy's error norm of the 6th-order estimate, and the
 //! 7th-degree interpolant from five extra stages. At tolerances of 1e-8 … 1e-11 it reaches a
 //! given accuracy with fewer evaluations than DOP853 (12 per step) on smooth problems. Its
-//! step control is scipy's but for the safety factor and the first step (below): no scipy
-//! steps to keep, unlike RK45 and DOP853.
+//! step control is scipy's but for the safety factor and the first step
+//! (`verner_pair!` in `pair/verner.rs`).
 
-use super::{scaled_error_norm, solution, unrolled_stages, weighted_sum, RkPair, Summand};
-use crate::ode::dense::MAX_DEGREE;
-use crate::ode::tableau::vern7::{
-    A, A_EXTRA, B, C, C_EXTRA, E, ERROR_EXPONENT, N_STAGES, N_STAGES_EXTENDED, R,
-};
-use crate::ode::{DenseStep, OdeSystem, State};
-
-/// The stages of one Verner 7(6) step: 10 stages, the FSAL derivative at the step end
-/// (`k[10]`) and, once the interpolant is built, its five extra stages.
-#[derive(Debug, Clone, Copy)]
-pub struct Vern7<const N: usize> {
-    /// Stages 0..=15.
-    pub k: [State<N>; N_STAGES_EXTENDED],
-}
-
-impl<const N: usize> RkPair<N> for Vern7<N> {
-    const ERROR_EXPONENT: f64 = ERROR_EXPONENT;
-
-    /// Not scipy's 0.9: with 0.9 a quarter to a third of the steps of a rolling run are
-    /// rejected (the error constant changes quickly along a turn); 0.75 reaches the same
-    /// accuracy with 5–10 % fewer evaluations (39 rolling runs, rtol 3e-7 … 3e-12).
-    const SAFETY: f64 = 0.75;
-
-    /// From rest scipy's first step is 1e-4, and four steps pass before the step reaches
-    /// its size; two more probes of the first-step estimate save most of them.
-    const FIRST_STEP_PROBES: usize = 3;
-
-    /// err^(−1/7) without `pow` ([`crate::trig::inv_seventh_root`], within 4 ulp of it).
-    #[inline]
-    fn error_power(err: f64) -> f64 {
-        crate::trig::inv_seventh_root(err)
-    }
-
-    /// (d/0.01)^(−1/7) by [`Self::error_power`]: the probes' three `pow` calls were 4 % of
-    /// a short run.
-    #[inline]
-    fn first_step_power(d: f64) -> f64 {
-        Self::error_power(d / 0.01)
-    }
-
-    #[inline]
-    fn empty() -> Self {
-        Self {
-            k: [State::<N>::zeros(); N_STAGES_EXTENDED],
-        }
-    }
-
-    /// 10 evaluations of f when it succeeds (stages 1 … 9 and f at y_new).
-    #[inline]
-    fn attempt<S: OdeSystem<N>>(
-        &mut self,
-        sys: &S,
-        t: f64,
-        y: &State<N>,
-        f: &State<N>,
-        h: f64,
-        nfev: &mut usize,
-    ) -> Option<State<N>> {
-        let k = &mut self.k;
-        k[0] = *f;
-        let at = (t, y, h);
-        unrolled_stages!(sys, at, k, nfev, 0, (A, C); 1 2 3 4 5 6 7 8 9);
-        solution(sys, at, k, &B, nfev)
-    }
-
-    /// The error estimate Σ (b_j − b̂_j) K_j (the second sum is not used).
-    #[inline(always)]
-    fn error_sums<V: Summand>(k: &[V]) -> [V; 2] {
-        [weighted_sum(&k[..=N_STAGES], &E), V::zero()]
-    }
-
-    #[inline]
-    fn error_from_sums(
-        [sum, _]: &[State<N>; 2],
-        h: f64,
-        y: &State<N>,
-        y_new: &State<N>,
-        rtol: f64,
-        atol: f64,
-    ) -> f64 {
-        scaled_error_norm(sum, h, y, y_new, rtol, atol)
-    }
-
-    #[inline]
-    fn f_new(&self) -> State<N> {
-        self.k[N_STAGES]
-    }
-
-    /// Five more stages, then [`Self::dense_from_stages`].
-    fn dense<S: OdeSystem<N>>(
-        &mut self,
-        sys: &S,
-        t_old: f64,
-        h: f64,
-        y_old: &State<N>,
-        y_new: &State<N>,
-        nfev: &mut usize,
-    ) -> Option<DenseStep<N>> {
-        let at = (t_old, y_old, h);
-        let k = &mut self.k;
-        unrolled_stages!(sys, at, k, nfev, N_STAGES + 1, (A_EXTRA, C_EXTRA); 0 1 2 3 4);
-        self.dense_from_stages(t_old, h, y_old, y_new)
-    }
-
-    const STAGES: usize = N_STAGES;
-    const EXTRA: usize = N_STAGES_EXTENDED - N_STAGES - 1;
-
-    #[inline(always)]
-    fn a(s: usize) -> &'static [f64] {
-        &A[s]
-    }
-
-    #[inline(always)]
-    fn b() -> &'static [f64] {
-        &B
-    }
-
-    #[inline(always)]
-    fn a_extra(i: usize) -> &'static [f64] {
-        &A_EXTRA[i]
-    }
-
-    #[inline(always)]
-    fn stages(&self) -> &[State<N>] {
-        &self.k
-    }
-
-    /// The coefficients Σ_i R_ji K_i of σ^(j+1), j = 0 … 6 (before the factor h).
-    #[inline(always)]
-    fn dense_sums<V: Summand>(k: &[V]) -> [V; MAX_DEGREE] {
-        std::array::from_fn(|j| R.get(j).map_or(V::zero(), |r| weighted_sum(k, r)))
-    }
-
-    /// The interpolant is already in powers of σ: y(σ) = y_old + h Σ_j Q_j σ^(j+1).
-    #[inline]
-    fn dense_from_sums(
-        q: &[State<N>; MAX_DEGREE],
-        _ends: (&State<N>, &State<N>),
-        t_old: f64,
-        h: f64,
-        y_old: &State<N>,
-        _y_new: &State<N>,
-    ) -> Option<DenseStep<N>> {
-        let dense = DenseStep::from_powers(t_old, h, *y_old, &q[..R.len()]);
-        dense.q.iter().all(super::all_finite).then_some(dense)
-    }
-}
+super::verner::verner_pair!(
+    /// The stages of one Verner 7(6) step: 10 stages, the FSAL derivative at the step end
+    /// (`k[10]`) and, once the interpolant is built, its five extra stages; err^(−1/7) by
+    /// [`crate::trig::inv_seventh_root`].
+    Vern7,
+    vern7,
+    crate::trig::inv_seventh_root,
+    [1 2 3 4 5 6 7 8 9],
+    [0 1 2 3 4]
+);
 
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::ode::pair::RkPair;
+    use crate::ode::{OdeSystem, State};
 
     #[test]
     fn one_step_of_a_quadrature_is_7th_order_and_dense_7th() {

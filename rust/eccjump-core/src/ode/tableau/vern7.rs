@@ -13,7 +13,7 @@
 /// Stages of one step (the FSAL derivative at the step end is stored as stage 10).
 pub const N_STAGES: usize = 10;
 
-/// Stages including the five extra ones of the 7th-degree interpolant.
+/// Stages including the 5 extra ones of the degree-7 interpolant.
 pub const N_STAGES_EXTENDED: usize = 16;
 
 /// Order of the propagated solution.
@@ -141,7 +141,7 @@ pub const A: [[f64; N_STAGES]; N_STAGES] = [
     ],
 ];
 
-/// Weights of the 7th-order solution.
+/// Weights of the order-7 solution.
 pub const B: [f64; N_STAGES] = [
     0.04715561848627222,
     0.0,
@@ -170,10 +170,10 @@ pub const E: [f64; N_STAGES + 1] = [
     0.0,
 ];
 
-/// Nodes of the five extra stages of the interpolant.
+/// Nodes of the extra stages of the interpolant.
 pub const C_EXTRA: [f64; 5] = [0.29, 0.125, 0.25, 0.53, 0.79];
 
-/// Coupling of the five extra stages to the 11 before them (and to each other).
+/// Coupling of the extra stages to the 11 before them (and to each other).
 pub const A_EXTRA: [[f64; N_STAGES_EXTENDED]; 5] = [
     [
         0.0523222769159969,
@@ -267,7 +267,7 @@ pub const A_EXTRA: [[f64; N_STAGES_EXTENDED]; 5] = [
     ],
 ];
 
-/// The interpolant y(t + σh) = y + h Σ_j σ^(j+1) Σ_i R[j][i] K_i (row j: σ^(j+1)).
+/// The interpolant y(t + σh) = y + h Σ_j σ^(j+1) Σ_i R_ji K_i (row j: σ^(j+1)).
 pub const R: [[f64; N_STAGES_EXTENDED]; 7] = [
     [
         1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0,

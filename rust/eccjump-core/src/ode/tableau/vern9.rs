@@ -13,7 +13,7 @@
 /// Stages of one step (the FSAL derivative at the step end is stored as stage 16).
 pub const N_STAGES: usize = 16;
 
-/// Stages including the four extra ones of the 8th-degree interpolant.
+/// Stages including the 4 extra ones of the degree-8 interpolant.
 pub const N_STAGES_EXTENDED: usize = 21;
 
 /// Order of the propagated solution.
@@ -307,7 +307,7 @@ pub const A: [[f64; N_STAGES]; N_STAGES] = [
     ],
 ];
 
-/// Weights of the 9th-order solution.
+/// Weights of the order-9 solution.
 pub const B: [f64; N_STAGES] = [
     0.014611976858423152,
     0.0,
@@ -348,10 +348,10 @@ pub const E: [f64; N_STAGES + 1] = [
     0.0,
 ];
 
-/// Nodes of the four extra stages of the interpolant.
+/// Nodes of the extra stages of the interpolant.
 pub const C_EXTRA: [f64; 4] = [0.7404185470631561, 0.888, 0.696, 0.487];
 
-/// Coupling of the four extra stages to the 17 before them (and to each other).
+/// Coupling of the extra stages to the 17 before them (and to each other).
 pub const A_EXTRA: [[f64; N_STAGES_EXTENDED]; 4] = [
     [
         0.015499736681895594,
@@ -447,7 +447,7 @@ pub const A_EXTRA: [[f64; N_STAGES_EXTENDED]; 4] = [
     ],
 ];
 
-/// The interpolant y(t + σh) = y + h Σ_j σ^(j+1) Σ_i R[j][i] K_i (row j: σ^(j+1)).
+/// The interpolant y(t + σh) = y + h Σ_j σ^(j+1) Σ_i R_ji K_i (row j: σ^(j+1)).
 pub const R: [[f64; N_STAGES_EXTENDED]; 8] = [
     [
         1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0,
