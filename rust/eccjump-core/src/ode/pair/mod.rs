@@ -28,7 +28,7 @@ pub enum Method {
     Dop853,
     /// Verner's most efficient 7(6) pair with its 7th-degree interpolant (not in scipy;
     /// `Vern7` as in DifferentialEquations.jl): the fewest evaluations for a given accuracy
-    /// at tolerances of about 1e-8 … 1e-11.
+    /// at tolerances of about 1e-8 … 1e-11 over a few turns.
     Vern7,
     /// Verner's most efficient 9(8) pair with its 8th-degree interpolant (`Vern9` as in
     /// DifferentialEquations.jl): fewer evaluations than Vern7 over long runs and at tight
