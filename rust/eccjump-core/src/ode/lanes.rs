@@ -21,7 +21,9 @@
 #![allow(clippy::needless_range_loop)]
 
 use super::dense::MAX_DEGREE;
-use super::pair::{all_finite, weighted_sum, Dop853, Dp5, Method, RkPair, Summand, Vern7, Vern9};
+use super::pair::{
+    all_finite, weighted_sum, Dop853, Dp5, Method, RkPair, Summand, Vern7, Vern9, MAX_STAGES,
+};
 use super::solver::{Observation, Outcome, Run, SolverOptions, Status};
 use super::stepper::{Judgement, Trial};
 use super::{DenseStep, EventFunctions, OdeSystem, State};
@@ -203,8 +205,8 @@ fn lanes<P, T, const N: usize>(
     T: Track<N>,
 {
     let mut slots: [Option<Slot<P, T, N>>; LANES] = std::array::from_fn(|_| None);
-    // Stages: STAGES, the FSAL one, the extra ones of the dense output (at most 21, Vern9's).
-    let mut k = [Lanes::<N>::zero(); 21];
+    // Stages: STAGES, the FSAL one, the extra ones of the dense output.
+    let mut k = [Lanes::<N>::zero(); MAX_STAGES];
     let n_k = P::STAGES + 1 + P::EXTRA;
     debug_assert!(n_k <= k.len());
     loop {

@@ -14,6 +14,26 @@ pub use vern7::Vern7;
 pub use vern9::Vern9;
 
 use super::dense::MAX_DEGREE;
+
+/// The most stages any pair keeps: its own, f at the step end and the dense output's extra
+/// ones (Vern9's 21; DOP853 and Vern7 keep 16, RK45 7).
+pub const MAX_STAGES: usize = {
+    use super::tableau::{dop853, vern7, vern9};
+    let mut most = 0;
+    let all = [
+        dop853::N_STAGES_EXTENDED,
+        vern7::N_STAGES_EXTENDED,
+        vern9::N_STAGES_EXTENDED,
+    ];
+    let mut i = 0;
+    while i < all.len() {
+        if all[i] > most {
+            most = all[i];
+        }
+        i += 1;
+    }
+    most
+};
 use super::{DenseStep, OdeSystem, State};
 
 /// Which pair an integration uses.
