@@ -21,7 +21,7 @@ use std::time::Instant;
 /// The order: the polynomials have K + 1 coefficients.
 const K: usize = 16;
 
-/// log2 |x| to about 1e-3 (exponent and a quadratic in the mantissa): step sizes only.
+/// log2 |x| within 0.008 (exponent and a quadratic in the mantissa): step sizes only.
 fn lg2(x: f64) -> f64 {
     let b = x.to_bits() & 0x7fff_ffff_ffff_ffff;
     let e = ((b >> 52) as i64 - 1023) as f64;
@@ -29,7 +29,7 @@ fn lg2(x: f64) -> f64 {
     e + m * (1.3466 - 0.3466 * m)
 }
 
-/// 2^y to about 1e-3.
+/// 2^y within 0.4 %.
 fn ex2(y: f64) -> f64 {
     let n = y.floor();
     let f = y - n;
