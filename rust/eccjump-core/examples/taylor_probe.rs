@@ -11,8 +11,9 @@
 //! χθ̇² sin θ + χ sin(α + θ) + sin α, for the Taylor coefficients x_k of θ(t + τ), v_k of
 //! θ̇: s, c (sin θ, cos θ) by s_k = (1/k) Σ j x_j c_{k−j}, c_k = −(1/k) Σ j x_j s_{k−j};
 //! p = θ̇², q = p s, d = Ĩ_C + 1 + 2χc, a = θ̈ = n/d with n = χq + χ(sin α c + cos α s) + sin α;
-//! v_{k+1} = a_k/(k + 1), x_{k+1} = v_k/(k + 1). The first coefficient a_0 is checked
-//! against the core's θ̈ (`Ramp::omega_dot`) at every step.
+//! v_{k+1} = a_k/(k + 1), x_{k+1} = v_k/(k + 1). Before the timed runs, one run per case
+//! (tolerance 1e-10) checks a_0 against the core's θ̈ (`Ramp::omega_dot`) at every step;
+//! θ_J is checked against the closed form's on every rung (the rule above).
 use eccjump_core::modes::rolling::run::{roll, RollOptions};
 use eccjump_core::ode::{Method, SolverOptions};
 use eccjump_core::{Cylinder, Ramp};
@@ -112,7 +113,7 @@ impl Series {
         };
         let (s0, c0) = libm::sincos(theta);
         (z.x[0], z.v[0], z.s[0], z.c[0]) = (theta, omega, s0, c0);
-        z.d[0] = r.body.ic + 1.0 + 2.0 * r.body.chi * c0;
+        z.d[0] = r.contact_inertia(c0);
         let id0 = 1.0 / z.d[0];
         orders!(z, r, id0, 0 1 2 3 4 5 6 7 8 9 10 11 12 13 14 15);
         z
