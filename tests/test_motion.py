@@ -270,8 +270,9 @@ def test_a_settle_that_ends_stuck_never_creates_energy(integrator):
 
 
 def test_fast_result_construction_equals_the_dataclass_init():
-    # simulate builds its MotionResult and records without the dataclass __init__ and the
-    # NamedTuples' __new__ (eccjump._records): the same objects as the ordinary way.
+    # The bridge builds simulate's MotionResult and records without the dataclass __init__
+    # and the NamedTuples' __new__ (rust/eccjump-py/src/records.rs): the same objects as
+    # the ordinary way.
     import dataclasses
 
     from eccjump.motion import FlightRecord, ImpactRecord, MotionResult, Segment, Transition

@@ -415,6 +415,32 @@ def test_fast_result_construction_equals_the_dataclass_init():
         r.status = 0
 
 
+def test_the_bridge_refuses_a_result_class_whose_fields_it_does_not_know():
+    # The bridge fills RollResult's fields by their names in its own list; a class whose
+    # fields differ (a field added in Python only) is refused at first use, not filled
+    # wrongly. In a fresh interpreter: the bridge keeps the class it checked.
+    import subprocess
+    import sys
+
+    code = """
+import dataclasses, math
+import eccjump, eccjump.rolling as r
+@dataclasses.dataclass(frozen=True)
+class Grown(r.RollResult):
+    extra: int = 0
+r.RollResult = Grown
+try:
+    eccjump.roll(eccjump.Cylinder(0.15, 0.02), math.radians(40))
+except TypeError as e:
+    print("TypeError:", e)
+"""
+    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True)
+    assert out.stdout == (
+        "TypeError: RollResult's fields differ from the bridge's at field 19: "
+        "'extra' against none\n"
+    ), out.stdout + out.stderr
+
+
 def test_arguments_of_any_accepted_type_give_the_run_of_plain_ones():
     # roll skips its type checks when every argument has its exact plain type (float, int,
     # bool, str, None): any other accepted type goes through them and gives the same run.

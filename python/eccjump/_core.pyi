@@ -5,8 +5,9 @@ from typing import Any, TypedDict
 import numpy as np
 from numpy.typing import NDArray
 
-from eccjump.motion import FlightRecord, ImpactRecord, Segment, Transition
-from eccjump.rolling import Event
+from eccjump.body import Cylinder
+from eccjump.motion import MotionResult
+from eccjump.rolling import RollResult
 
 VERSION: str
 
@@ -52,8 +53,7 @@ def impact(
     core) for a bad parameter, a non-finite state or km = 0."""
 
 def roll(
-    chi: float,
-    km: float,
+    body: Cylinder,
     alpha: float,
     *,
     theta0: float,
@@ -67,35 +67,11 @@ def roll(
     dense_output: bool,
     rule: str,
     integrator: str,
-) -> RollTuple:
-    """One pure-rolling run of the body (chi, km) on a ramp of angle alpha, with the GIL
-    released. Options are keyword-only, all required (``eccjump.roll`` gives the defaults),
-    and checked by the core: a ValueError names the parameter. Returns a :data:`RollTuple`."""
-
-_Series = tuple[
-    NDArray[np.float64],
-    NDArray[np.float64],
-    NDArray[np.float64],
-    NDArray[np.float64],
-    NDArray[np.float64],
-    NDArray[np.float64],
-    NDArray[np.float64],
-    NDArray[np.float64],
-]
-
-#: A run of ``roll``, in the order of ``RollResult``'s fields: the float64 series (t, theta,
-#: omega, omega_dot, Fx, Fy, l, friction_ratio), the events met (``Event`` records),
-#: the terminal event's name or None, the status code (0, 1, -1), the message, nfev, and the
-#: dense output (None unless ``dense_output``).
-RollTuple = tuple[
-    _Series,
-    tuple[Event, ...],
-    str | None,
-    int,
-    str,
-    int,
-    DenseSolution | None,
-]
+) -> RollResult:
+    """One pure-rolling run of ``body`` on a ramp of angle alpha, with the GIL released.
+    Options are keyword-only, all required (``eccjump.roll`` gives the defaults), and
+    checked by the core: a ValueError names the parameter. Returns the ``RollResult``,
+    made here (its dense output, if asked for, wrapped in ``eccjump.dense.DenseSolution``)."""
 
 class DenseSolution:
     """The dense output of a run, evaluated by the core (ends at the run's end)."""
@@ -113,8 +89,7 @@ class DenseSolution:
         of shape (len(t),); errors as :meth:`states`."""
 
 def simulate(
-    chi: float,
-    km: float,
+    body: Cylinder,
     alpha: float,
     *,
     mu_s: float,
@@ -132,44 +107,12 @@ def simulate(
     max_steps: int,
     dense_output: bool,
     integrator: str,
-) -> MotionTuple:
-    """The full motion of the body (chi, km) on a ramp of angle alpha (docs/motion.md), with
-    the GIL released. Options are keyword-only, all required (``eccjump.simulate`` gives the
-    defaults), and checked by the core: a ValueError names the parameter. Returns a
-    :data:`MotionTuple`: the float64 arrays t, theta, omega, l, ldot, b, bdot, Fx, Fy, energy,
-    dissipated and the int8 array mode (one row per recorded point); the ``Transition``,
-    ``FlightRecord``, ``ImpactRecord`` and ``Segment`` records; energy0,
-    dissipated_slip, dissipated_impacts; status (t_max, l_max, max_transitions, painleve, jam,
-    failed, landed), message, nfev; and a :class:`MotionDense` only when ``dense_output``."""
-
-_MotionSeries = tuple[
-    NDArray[np.float64],
-    NDArray[np.float64],
-    NDArray[np.float64],
-    NDArray[np.float64],
-    NDArray[np.float64],
-    NDArray[np.float64],
-    NDArray[np.float64],
-    NDArray[np.float64],
-    NDArray[np.float64],
-    NDArray[np.float64],
-    NDArray[np.float64],
-    NDArray[np.int8],
-]
-MotionTuple = tuple[
-    _MotionSeries,
-    tuple[Transition, ...],
-    tuple[FlightRecord, ...],
-    tuple[ImpactRecord, ...],
-    tuple[Segment, ...],
-    float,
-    float,
-    float,
-    str,
-    str,
-    int,
-    MotionDense | None,
-]
+) -> MotionResult:
+    """The full motion of ``body`` on a ramp of angle alpha (docs/motion.md), with the GIL
+    released. Options are keyword-only, all required (``eccjump.simulate`` gives the
+    defaults; mu_k resolved), and checked by the core: a ValueError names the parameter.
+    Returns the ``MotionResult``, made here (its dense output, if asked for, wrapped in
+    ``eccjump.motion.MotionSolution``)."""
 
 class MotionDense:
     """The dense output of a full-motion run (``MotionResult.sol``), evaluated by the core."""

@@ -17,7 +17,6 @@ from eccjump import _core
 from eccjump._arrays import same_values
 from eccjump._bridge import Integrator, Rule
 from eccjump._checks import flag, integer, optional_real, real, real_array, text
-from eccjump._records import frozen
 from eccjump.body import Cylinder
 from eccjump.units import Units
 
@@ -381,28 +380,14 @@ def simulate(
             dense_output=flag("dense_output", dense_output),
             integrator=text("integrator", integrator),  # type: ignore[arg-type]
         )
-    a, mus, e = alpha, mu_s, restitution
-    muk = mus if mu_k is None else mu_k
-    (
-        (t, theta, omega, l, ldot, b, bdot, Fx, Fy, energy, dissipated, mode),  # noqa: E741
-        transitions,
-        flights,
-        impacts,
-        segments,
-        energy0,
-        dissipated_slip,
-        dissipated_impacts,
-        status,
-        message,
-        nfev,
-        sol,
-    ) = _core.simulate(
-        body.chi,
-        body.km,
-        a,
-        mu_s=mus,
-        mu_k=muk,
-        restitution=e,
+    # The bridge builds the MotionResult itself (rust/eccjump-py/src/simulate.rs), as it
+    # builds roll's RollResult.
+    return _core.simulate(
+        body,
+        alpha,
+        mu_s=mu_s,
+        mu_k=mu_s if mu_k is None else mu_k,
+        restitution=restitution,
         rule=rule,
         theta0=theta0,
         omega0=omega0,
@@ -415,39 +400,4 @@ def simulate(
         max_steps=max_steps,
         dense_output=dense_output,
         integrator=integrator,
-    )
-    return frozen(
-        MotionResult,
-        {
-            "body": body,
-            "alpha": a,
-            "mu_s": mus,
-            "mu_k": muk,
-            "restitution": e,
-            "rule": rule,
-            "t": t,
-            "theta": theta,
-            "omega": omega,
-            "l": l,
-            "ldot": ldot,
-            "b": b,
-            "bdot": bdot,
-            "Fx": Fx,
-            "Fy": Fy,
-            "energy": energy,
-            "dissipated": dissipated,
-            "mode": mode,
-            "transitions": transitions,
-            "flights": flights,
-            "impacts": impacts,
-            "segments": segments,
-            "energy0": energy0,
-            "dissipated_slip": dissipated_slip,
-            "dissipated_impacts": dissipated_impacts,
-            "status": status,
-            "message": message,
-            "nfev": nfev,
-            "sol": None if sol is None else MotionSolution(sol),
-            "units": None,
-        },
     )

@@ -23,7 +23,6 @@ from eccjump import _core
 from eccjump._arrays import same_values
 from eccjump._bridge import Integrator, Rule
 from eccjump._checks import U64_MAX, flag, integer, optional_real, real, text
-from eccjump._records import frozen
 from eccjump.body import Cylinder
 from eccjump.dense import DenseSolution
 from eccjump.units import Units
@@ -266,9 +265,10 @@ def roll(
             dense_output=flag("dense_output", dense_output),
             integrator=text("integrator", integrator),  # type: ignore[arg-type]
         )
-    series, events, terminal_event, status, message, nfev, sol = _core.roll(
-        body.chi,
-        body.km,
+    # The bridge builds the RollResult itself (rust/eccjump-py/src/roll.rs): in Python its
+    # 19-entry dict alone cost as much as a tenth of a short run.
+    return _core.roll(
+        body,
         alpha,
         theta0=theta0,
         omega0=omega0,
@@ -281,29 +281,4 @@ def roll(
         dense_output=dense_output,
         rule=rule,
         integrator=integrator,
-    )
-    t, theta, omega, omega_dot, Fx, Fy, l, ratio = series  # noqa: E741 - the fields' names
-    return frozen(
-        RollResult,
-        {
-            "body": body,
-            "alpha": alpha,
-            "mu_s": mu_s,
-            "rule": rule,
-            "t": t,
-            "theta": theta,
-            "omega": omega,
-            "omega_dot": omega_dot,
-            "Fx": Fx,
-            "Fy": Fy,
-            "l": l,
-            "friction_ratio": ratio,
-            "events": events,
-            "terminal_event": terminal_event,
-            "status": status,
-            "message": message,
-            "nfev": nfev,
-            "sol": None if sol is None else DenseSolution(sol),
-            "units": None,
-        },
     )

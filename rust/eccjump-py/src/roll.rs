@@ -1,31 +1,20 @@
 //! `roll`: one pure-rolling run, computed with the GIL released, returned as numpy arrays.
 
+use crate::body::body_of;
 use crate::columns::dense_rows;
 use crate::errors::{detached, to_py};
 use crate::names::ROLL_EVENTS;
 use crate::options::{parse_integrator, parse_rule};
-use crate::records::RecordType;
+use crate::records::{RecordType, ResultType};
 use eccjump_core::mechanics::friction::friction_ratio;
 use eccjump_core::modes::rolling::run::{roll_until, RollOptions, RollRun, RollStatus};
 use eccjump_core::modes::rolling::solution::RollSolution;
 use eccjump_core::ode::SolverOptions;
-use eccjump_core::{Cylinder, Ramp};
-use numpy::{IntoPyArray, PyArray1, PyArray2, PyReadonlyArray1};
+use eccjump_core::Ramp;
+use numpy::{IntoPyArray, PyArray2, PyReadonlyArray1};
 use pyo3::prelude::*;
-use pyo3::types::{PyDict, PyString, PyTuple};
-
-/// The eight recorded series of a run as numpy arrays: t, θ, θ̇, θ̈, F_x, F_y, l − l0 and
-/// |F_x|/F_y at each recorded point.
-type Series<'py> = (
-    Bound<'py, PyArray1<f64>>,
-    Bound<'py, PyArray1<f64>>,
-    Bound<'py, PyArray1<f64>>,
-    Bound<'py, PyArray1<f64>>,
-    Bound<'py, PyArray1<f64>>,
-    Bound<'py, PyArray1<f64>>,
-    Bound<'py, PyArray1<f64>>,
-    Bound<'py, PyArray1<f64>>,
-);
+use pyo3::sync::PyOnceLock;
+use pyo3::types::{PyDict, PyString, PyType};
 
 /// One event met: (name, t, θ, θ̇), `Event`'s fields.
 type EventTuple<'py> = (Bound<'py, PyString>, f64, f64, f64);
@@ -33,33 +22,47 @@ type EventTuple<'py> = (Bound<'py, PyString>, f64, f64, f64);
 /// `eccjump.rolling.Event`.
 static EVENT: RecordType = RecordType::new("eccjump.rolling", "Event");
 
-/// A run as `roll` returns it, in the order of `RollResult`'s fields: the series, the
-/// events met, the terminal event's name (None if none ended the run), the status code, the
-/// message, the right-hand-side evaluations and the dense output (None unless asked for).
-/// A tuple, not a dict: a short run costs about 10 µs, and making, hashing and looking up
-/// thirteen key strings took 0.5 µs of it.
-type RollTuple<'py> = (
-    Series<'py>,
-    Bound<'py, PyTuple>,
-    Option<Bound<'py, PyString>>,
-    i32,
-    String,
-    usize,
-    Option<Bound<'py, DenseSolution>>,
+/// `eccjump.rolling.RollResult`, by its fields.
+static ROLL_RESULT: ResultType<19> = ResultType::new(
+    "eccjump.rolling",
+    "RollResult",
+    [
+        "body",
+        "alpha",
+        "mu_s",
+        "rule",
+        "t",
+        "theta",
+        "omega",
+        "omega_dot",
+        "Fx",
+        "Fy",
+        "l",
+        "friction_ratio",
+        "events",
+        "terminal_event",
+        "status",
+        "message",
+        "nfev",
+        "sol",
+        "units",
+    ],
 );
 
-/// Integrates pure rolling of the body (χ, k_m) on a ramp of angle α; returns the run as a
-/// tuple (`RollTuple`) that the Python layer unpacks into `RollResult`. The options are
+/// `eccjump.dense.DenseSolution`, the Python face of [`DenseSolution`].
+static DENSE_SOLUTION: PyOnceLock<Py<PyType>> = PyOnceLock::new();
+
+/// Integrates pure rolling of `body` (an `eccjump.Cylinder`: its χ and k_m) on a ramp of
+/// angle α; returns the run as an `eccjump.rolling.RollResult`. The options are
 /// keyword-only (named at every call, typed here). Bad input raises ValueError (from the
 /// core's checks) before any work is done.
 #[pyfunction]
-#[pyo3(signature = (chi, km, alpha, *, theta0, omega0, mu_s, t_max, theta_max, rtol, atol,
+#[pyo3(signature = (body, alpha, *, theta0, omega0, mu_s, t_max, theta_max, rtol, atol,
                     max_steps, dense_output, rule, integrator))]
 #[allow(clippy::too_many_arguments)] // keyword-only options of one run
 pub fn roll<'py>(
     py: Python<'py>,
-    chi: f64,
-    km: f64,
+    body: &Bound<'py, PyAny>,
     alpha: f64,
     theta0: f64,
     omega0: f64,
@@ -70,17 +73,17 @@ pub fn roll<'py>(
     atol: f64,
     max_steps: usize,
     dense_output: bool,
-    rule: &str,
+    rule: &Bound<'py, PyString>,
     integrator: &str,
-) -> PyResult<RollTuple<'py>> {
-    let ramp = Ramp::new(Cylinder::new(chi, km).map_err(to_py)?, alpha).map_err(to_py)?;
+) -> PyResult<Bound<'py, PyAny>> {
+    let ramp = Ramp::new(body_of(body)?, alpha).map_err(to_py)?;
     let opts = RollOptions {
         theta0,
         omega0,
         mu_s,
         t_max,
         theta_max,
-        rule: parse_rule(rule)?,
+        rule: parse_rule(rule.to_str()?)?,
         solver: SolverOptions {
             rtol,
             atol,
@@ -91,23 +94,21 @@ pub fn roll<'py>(
         dense_output,
     };
     let run = detached(py, |stop| roll_until(&ramp, &opts, stop))?;
-    to_tuple(py, run)
+    let inputs = [
+        body.clone(),
+        alpha.into_pyobject(py)?.into_any(),
+        mu_s.into_pyobject(py)?.into_any(),
+        rule.clone().into_any(),
+    ];
+    to_result(py, inputs, run)
 }
 
-fn to_tuple<'py>(py: Python<'py>, run: RollRun) -> PyResult<RollTuple<'py>> {
-    // The record's vectors move into numpy (no copy). One (8, n) array with row views was
-    // measured too: 0.05 µs faster, but it copies the record, doubling the peak memory of
-    // a long run.
-    let series = (
-        run.t.into_pyarray(py),
-        run.theta.into_pyarray(py),
-        run.omega.into_pyarray(py),
-        run.omega_dot.into_pyarray(py),
-        run.fx.into_pyarray(py),
-        run.fy.into_pyarray(py),
-        run.l.into_pyarray(py),
-        run.ratio.into_pyarray(py),
-    );
+/// The `RollResult` of `run`, after its `inputs` (body, α, μ_s, rule).
+fn to_result<'py>(
+    py: Python<'py>,
+    [body, alpha, mu_s, rule]: [Bound<'py, PyAny>; 4],
+    run: RollRun,
+) -> PyResult<Bound<'py, PyAny>> {
     let events = EVENT.tuple_of(
         py,
         run.events
@@ -115,22 +116,42 @@ fn to_tuple<'py>(py: Python<'py>, run: RollRun) -> PyResult<RollTuple<'py>> {
             .map(|e| -> EventTuple<'py> { (ROLL_EVENTS.of(py, e.event), e.t, e.theta, e.omega) }),
     )?;
     let terminal_event = match run.status {
-        RollStatus::Event(e) => Some(ROLL_EVENTS.of(py, e)),
-        _ => None,
+        RollStatus::Event(e) => ROLL_EVENTS.of(py, e).into_any(),
+        _ => py.None().into_bound(py),
     };
-    let sol = run
-        .dense
-        .map(|sol| Bound::new(py, DenseSolution { sol }))
-        .transpose()?;
-    Ok((
-        series,
-        events,
-        terminal_event,
-        run.status.code(),
-        run.status.message(),
-        run.nfev,
-        sol,
-    ))
+    let sol = match run.dense {
+        Some(sol) => DENSE_SOLUTION
+            .import(py, "eccjump.dense", "DenseSolution")?
+            .call1((Bound::new(py, DenseSolution { sol })?,))?,
+        None => py.None().into_bound(py),
+    };
+    // The record's vectors move into numpy (no copy). One (8, n) array with row views was
+    // measured too: 0.05 µs faster, but it copies the record, doubling the peak memory of
+    // a long run.
+    ROLL_RESULT.make(
+        py,
+        [
+            body,
+            alpha,
+            mu_s,
+            rule,
+            run.t.into_pyarray(py).into_any(),
+            run.theta.into_pyarray(py).into_any(),
+            run.omega.into_pyarray(py).into_any(),
+            run.omega_dot.into_pyarray(py).into_any(),
+            run.fx.into_pyarray(py).into_any(),
+            run.fy.into_pyarray(py).into_any(),
+            run.l.into_pyarray(py).into_any(),
+            run.ratio.into_pyarray(py).into_any(),
+            events.into_any(),
+            terminal_event,
+            run.status.code().into_pyobject(py)?.into_any(),
+            run.status.message().into_pyobject(py)?.into_any(),
+            run.nfev.into_pyobject(py)?.into_any(),
+            sol,
+            py.None().into_bound(py),
+        ],
+    )
 }
 
 /// The dense output of a run (`RollResult.sol`): the state and the kinematics at any time

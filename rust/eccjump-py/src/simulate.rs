@@ -1,40 +1,23 @@
 //! `simulate`: one full-motion run (rolling, slipping, flight, landing), computed with the
-//! GIL released, returned as numpy arrays and tuples that the Python layer wraps in
-//! `MotionResult`.
+//! GIL released, returned as an `eccjump.motion.MotionResult` made here.
 
+use crate::body::body_of;
 use crate::columns::dense_rows;
 use crate::errors::{detached, to_py};
 use crate::names::{MODES, REASONS, STATUSES};
 use crate::options::{parse_integrator, parse_rule};
-use crate::records::RecordType;
+use crate::records::{RecordType, ResultType};
 use eccjump_core::mechanics::BodyState;
 use eccjump_core::modes::contact::ContactLaw;
 use eccjump_core::motion::record::{MotionStatus, Point};
 use eccjump_core::motion::solution::MotionSolution;
 use eccjump_core::motion::{simulate_until, MotionRun, SimOptions};
 use eccjump_core::ode::SolverOptions;
-use eccjump_core::{Cylinder, Ramp};
-use numpy::{IntoPyArray, PyArray1, PyArray2, PyReadonlyArray1};
+use eccjump_core::Ramp;
+use numpy::{IntoPyArray, PyArray2, PyReadonlyArray1};
 use pyo3::prelude::*;
-use pyo3::types::{PyString, PyTuple};
-
-type Column<'py> = Bound<'py, PyArray1<f64>>;
-
-/// t, θ, θ̇, l, l̇, b, ḃ, F_x, F_y, energy, dissipated and the mode codes, per point.
-type Series<'py> = (
-    Column<'py>,
-    Column<'py>,
-    Column<'py>,
-    Column<'py>,
-    Column<'py>,
-    Column<'py>,
-    Column<'py>,
-    Column<'py>,
-    Column<'py>,
-    Column<'py>,
-    Column<'py>,
-    Bound<'py, PyArray1<i8>>,
-);
+use pyo3::sync::PyOnceLock;
+use pyo3::types::{PyString, PyType};
 
 /// A name from [`crate::names`].
 type Name<'py> = Bound<'py, PyString>;
@@ -68,39 +51,63 @@ static FLIGHT: RecordType = RecordType::new("eccjump.motion", "FlightRecord");
 static IMPACT: RecordType = RecordType::new("eccjump.motion", "ImpactRecord");
 static SEGMENT: RecordType = RecordType::new("eccjump.motion", "Segment");
 
-/// A run in the order `eccjump.simulate` unpacks it: a tuple, not a dict (whose keys cost
-/// more to make and look up than the short run of a flight takes).
-type MotionTuple<'py> = (
-    Series<'py>,
-    Bound<'py, PyTuple>,
-    Bound<'py, PyTuple>,
-    Bound<'py, PyTuple>,
-    Bound<'py, PyTuple>,
-    f64,
-    f64,
-    f64,
-    Name<'py>,
-    String,
-    usize,
-    Option<Bound<'py, MotionDense>>,
+/// `eccjump.motion.MotionResult`, by its fields.
+static MOTION_RESULT: ResultType<30> = ResultType::new(
+    "eccjump.motion",
+    "MotionResult",
+    [
+        "body",
+        "alpha",
+        "mu_s",
+        "mu_k",
+        "restitution",
+        "rule",
+        "t",
+        "theta",
+        "omega",
+        "l",
+        "ldot",
+        "b",
+        "bdot",
+        "Fx",
+        "Fy",
+        "energy",
+        "dissipated",
+        "mode",
+        "transitions",
+        "flights",
+        "impacts",
+        "segments",
+        "energy0",
+        "dissipated_slip",
+        "dissipated_impacts",
+        "status",
+        "message",
+        "nfev",
+        "sol",
+        "units",
+    ],
 );
 
-/// The full motion of the body (χ, k_m) on a ramp of angle α. Options are keyword-only and
-/// checked by the core (a ValueError naming the parameter).
+/// `eccjump.motion.MotionSolution`, the Python face of [`MotionDense`].
+static MOTION_SOLUTION: PyOnceLock<Py<PyType>> = PyOnceLock::new();
+
+/// The full motion of `body` (an `eccjump.Cylinder`: its χ and k_m) on a ramp of angle α,
+/// as an `eccjump.motion.MotionResult`. Options are keyword-only and checked by the core (a
+/// ValueError naming the parameter).
 #[pyfunction]
-#[pyo3(signature = (chi, km, alpha, *, mu_s, mu_k, restitution, rule, theta0, omega0, slip0,
+#[pyo3(signature = (body, alpha, *, mu_s, mu_k, restitution, rule, theta0, omega0, slip0,
                     t_max, l_max, max_transitions, rtol, atol, max_steps, dense_output,
                     integrator))]
 #[allow(clippy::too_many_arguments)] // keyword-only options of one run
 pub fn simulate<'py>(
     py: Python<'py>,
-    chi: f64,
-    km: f64,
+    body: &Bound<'py, PyAny>,
     alpha: f64,
     mu_s: f64,
     mu_k: f64,
     restitution: f64,
-    rule: &str,
+    rule: &Bound<'py, PyString>,
     theta0: f64,
     omega0: f64,
     slip0: f64,
@@ -112,13 +119,13 @@ pub fn simulate<'py>(
     max_steps: usize,
     dense_output: bool,
     integrator: &str,
-) -> PyResult<MotionTuple<'py>> {
-    let ramp = Ramp::new(Cylinder::new(chi, km).map_err(to_py)?, alpha).map_err(to_py)?;
+) -> PyResult<Bound<'py, PyAny>> {
+    let ramp = Ramp::new(body_of(body)?, alpha).map_err(to_py)?;
     let opts = SimOptions {
         law: ContactLaw {
             mu_s,
             mu_k,
-            rule: parse_rule(rule)?,
+            rule: parse_rule(rule.to_str()?)?,
         },
         restitution,
         theta0,
@@ -138,7 +145,15 @@ pub fn simulate<'py>(
         ..SimOptions::default()
     };
     let run = detached(py, |stop| simulate_until(&ramp, &opts, stop))?;
-    to_tuple(py, run)
+    let inputs = [
+        body.clone(),
+        alpha.into_pyobject(py)?.into_any(),
+        mu_s.into_pyobject(py)?.into_any(),
+        mu_k.into_pyobject(py)?.into_any(),
+        restitution.into_pyobject(py)?.into_any(),
+        rule.clone().into_any(),
+    ];
+    to_result(py, inputs, run)
 }
 
 /// (θ, θ̇, l, l̇, b, ḃ): the order of every full state handed to Python.
@@ -147,33 +162,26 @@ fn state_values(s: &BodyState) -> [f64; 6] {
 }
 
 /// One field of every recorded point, as a numpy array.
-fn column<'py>(py: Python<'py>, points: &[Point], field: impl Fn(&Point) -> f64) -> Column<'py> {
+fn column<'py>(
+    py: Python<'py>,
+    points: &[Point],
+    field: impl Fn(&Point) -> f64,
+) -> Bound<'py, PyAny> {
     points
         .iter()
         .map(field)
         .collect::<Vec<f64>>()
         .into_pyarray(py)
+        .into_any()
 }
 
-fn to_tuple<'py>(py: Python<'py>, run: MotionRun) -> PyResult<MotionTuple<'py>> {
+/// The `MotionResult` of `run`, after its `inputs` (body, α, μ_s, μ_k, restitution, rule).
+fn to_result<'py>(
+    py: Python<'py>,
+    [body, alpha, mu_s, mu_k, restitution, rule]: [Bound<'py, PyAny>; 6],
+    run: MotionRun,
+) -> PyResult<Bound<'py, PyAny>> {
     let p = &run.points;
-    let series = (
-        column(py, p, |q| q.t),
-        column(py, p, |q| q.state.theta),
-        column(py, p, |q| q.state.omega),
-        column(py, p, |q| q.state.l),
-        column(py, p, |q| q.state.ldot),
-        column(py, p, |q| q.state.b),
-        column(py, p, |q| q.state.bdot),
-        column(py, p, |q| q.fx),
-        column(py, p, |q| q.fy),
-        column(py, p, |q| q.energy),
-        column(py, p, |q| q.dissipated),
-        p.iter()
-            .map(|q| q.mode as i8)
-            .collect::<Vec<i8>>()
-            .into_pyarray(py),
-    );
     let transitions = TRANSITION.tuple_of(
         py,
         run.transitions.iter().map(|t| -> TransitionTuple<'py> {
@@ -218,24 +226,52 @@ fn to_tuple<'py>(py: Python<'py>, run: MotionRun) -> PyResult<MotionTuple<'py>> 
             (mode, why, s.t_start, s.t_end, s.nfev)
         }),
     )?;
-    let sol = run
-        .dense
-        .map(|sol| Bound::new(py, MotionDense { sol }))
-        .transpose()?;
-    Ok((
-        series,
-        transitions,
-        flights,
-        impacts,
-        segments,
-        run.energy0,
-        run.dissipated_slip,
-        run.dissipated_impacts,
-        STATUSES.of(py, run.status.unwrap_or(MotionStatus::Failed)),
-        run.message,
-        run.nfev,
-        sol,
-    ))
+    let sol = match run.dense {
+        Some(sol) => MOTION_SOLUTION
+            .import(py, "eccjump.motion", "MotionSolution")?
+            .call1((Bound::new(py, MotionDense { sol })?,))?,
+        None => py.None().into_bound(py),
+    };
+    let status = STATUSES.of(py, run.status.unwrap_or(MotionStatus::Failed));
+    MOTION_RESULT.make(
+        py,
+        [
+            body,
+            alpha,
+            mu_s,
+            mu_k,
+            restitution,
+            rule,
+            column(py, p, |q| q.t),
+            column(py, p, |q| q.state.theta),
+            column(py, p, |q| q.state.omega),
+            column(py, p, |q| q.state.l),
+            column(py, p, |q| q.state.ldot),
+            column(py, p, |q| q.state.b),
+            column(py, p, |q| q.state.bdot),
+            column(py, p, |q| q.fx),
+            column(py, p, |q| q.fy),
+            column(py, p, |q| q.energy),
+            column(py, p, |q| q.dissipated),
+            p.iter()
+                .map(|q| q.mode as i8)
+                .collect::<Vec<i8>>()
+                .into_pyarray(py)
+                .into_any(),
+            transitions.into_any(),
+            flights.into_any(),
+            impacts.into_any(),
+            segments.into_any(),
+            run.energy0.into_pyobject(py)?.into_any(),
+            run.dissipated_slip.into_pyobject(py)?.into_any(),
+            run.dissipated_impacts.into_pyobject(py)?.into_any(),
+            status.into_any(),
+            run.message.into_pyobject(py)?.into_any(),
+            run.nfev.into_pyobject(py)?.into_any(),
+            sol,
+            py.None().into_bound(py),
+        ],
+    )
 }
 
 /// The dense output of a full-motion run (`MotionResult.sol`), evaluated by the core.
