@@ -201,9 +201,16 @@ impl EventFunctions<2> for JarmEvents {
     }
     /// The same from the step's ends ([`ContactBounds::from_ends`]).
     #[inline]
-    fn change_bounds_ends(&self, first: usize, ends: &StepEnds<2>, out: &mut [Change]) {
+    fn change_bounds_ends(
+        &self,
+        first: usize,
+        ends: &StepEnds<2>,
+        bends: bool,
+        out: &mut [Change],
+    ) {
         let mu_s = self.slip.then_some(self.mu_s);
-        let b = ContactBounds::from_ends(&self.sys.ramp, mu_s, ends, Some(self.sys.anchor()));
+        let anchor = Some(self.sys.anchor());
+        let b = ContactBounds::from_ends(&self.sys.ramp, mu_s, ends, anchor, bends);
         let b = self.of_all(b);
         out.copy_from_slice(&b[first..first + out.len()]);
     }
@@ -864,6 +871,7 @@ mod tests {
                             check.slip.then_some(mu_s),
                             &ends,
                             anchor,
+                            true,
                         ));
                         if let Err(e) = check_change_bounds(dense.t_old, dense.h, at, &b) {
                             panic!("{pair:?} {a} {chi} {km} {e} ends, anchor {anchor:?} at {t}");

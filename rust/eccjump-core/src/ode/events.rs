@@ -74,10 +74,19 @@ pub trait EventFunctions<const N: usize> {
     /// output is built), meant to hold along the dense output whatever it turns out to be
     /// (computed along an interpolant of the ends, widened by an estimate of how far the
     /// dense output can stray from it): a step they clear of events needs no dense output
-    /// ([`quiet_step`]). The default, [`Change::ANY`], never skips.
+    /// ([`quiet_step`]). Without `bends` the bends may be left +∞ (not computed), but the
+    /// rates and slacks must be the same bits as with them: [`quiet_step`] tries them
+    /// alone first, as most steps far from events need no more. The default,
+    /// [`Change::ANY`], never skips.
     #[inline]
-    fn change_bounds_ends(&self, first: usize, ends: &StepEnds<N>, out: &mut [Change]) {
-        let _ = (first, ends);
+    fn change_bounds_ends(
+        &self,
+        first: usize,
+        ends: &StepEnds<N>,
+        bends: bool,
+        out: &mut [Change],
+    ) {
+        let _ = (first, ends, bends);
         out.fill(Change::ANY);
     }
 }
@@ -88,7 +97,9 @@ pub trait EventFunctions<const N: usize> {
 /// output is not needed for the scan, and the step end's values go to `carry` for the
 /// next step, as [`scan_step`] leaves them. False (and `carry` untouched) whenever in
 /// doubt: more events than one chunk, a non-finite value, or a bound that does not hold;
-/// [`scan_step`] then scans the step on its dense output, as always.
+/// [`scan_step`] then scans the step on its dense output, as always. The bounds without
+/// their bends come first; the bends only when the rates alone do not clear the step (the
+/// same verdict as the whole bounds at once: the rates are the same bits).
 pub fn quiet_step<E: EventFunctions<N>, const N: usize>(
     events: &E,
     ends: &StepEnds<N>,
@@ -101,7 +112,7 @@ pub fn quiet_step<E: EventFunctions<N>, const N: usize>(
     let mut g_a = [0.0; EVENT_CHUNK];
     let mut g_b = [0.0; EVENT_CHUNK];
     let mut bound = [Change::ANY; EVENT_CHUNK];
-    events.change_bounds_ends(0, ends, &mut bound[..m]);
+    events.change_bounds_ends(0, ends, false, &mut bound[..m]);
     if bound[..m].iter().any(|b| b.slack == f64::INFINITY) {
         return false;
     }
@@ -112,8 +123,15 @@ pub fn quiet_step<E: EventFunctions<N>, const N: usize>(
     }
     let t_new = ends.t_new;
     events.values(0, t_new, &ends.y_new, &mut g_b[..m]);
-    if !(0..m).all(|i| no_zero_inside(g_a[i], g_b[i], &bound[i], 1.0)) {
-        return false;
+    let clear = |bound: &[Change]| (0..m).all(|i| no_zero_inside(g_a[i], g_b[i], &bound[i], 1.0));
+    if !clear(&bound[..m]) {
+        if bound[..m].iter().all(|b| b.bend < f64::INFINITY) {
+            return false; // the bends were there already
+        }
+        events.change_bounds_ends(0, ends, true, &mut bound[..m]);
+        if !clear(&bound[..m]) {
+            return false;
+        }
     }
     *carry = EventCarry {
         t: t_new,
@@ -580,7 +598,10 @@ pub fn scan_step<E: EventFunctions<N>, const N: usize>(
     // Pass 2: sweep the sub-intervals in time order. Within one sub-interval several
     // events may cross; they are reported in order of (time, index) by repeatedly
     // picking the smallest one after the previous report (no buffer needed; more than
-    // one crossing in a sub-interval is rare, so the quadratic cost is irrelevant).
+    // one crossing in a sub-interval is rare, so the quadratic cost is irrelevant). The
+    // events' values (and, for the dip test, slopes) at the sub-interval's ends come a
+    // chunk at a time, as in pass 1: one evaluation of the shared work per point, not one
+    // per event.
     let forward = dense.h >= 0.0;
     let later = |a: (f64, usize), b: (f64, usize)| -> bool {
         // Is a strictly after b in integration order (ties broken by index)?
@@ -596,28 +617,40 @@ pub fn scan_step<E: EventFunctions<N>, const N: usize>(
         let mut prev: Option<(f64, usize)> = None;
         loop {
             let mut best: Option<(f64, usize)> = None;
-            for k in 0..n_events {
-                let dir = events.spec(k).direction;
-                let ga = checked(events.value(k, ta, &ya))?;
-                let gb = checked(events.value(k, tb, &yb))?;
-                // The part of [ta, tb] where g_k changes sign: all of it, or one side of a
-                // dip's extremum.
-                let (lo, hi) = if crosses(dir, ga, gb) {
-                    ((ta, ga), (tb, gb))
-                } else if dips {
-                    let a = (ta, ga, events.slope(k, ta, &ya));
-                    let b = (tb, gb, events.slope(k, tb, &yb));
-                    match dip(events, k, dense, a, b)? {
-                        Some(bracket) => bracket,
-                        None => continue,
+            for first in (0..n_events).step_by(EVENT_CHUNK) {
+                let m = (n_events - first).min(EVENT_CHUNK);
+                events.values(first, ta, &ya, &mut g_a[..m]);
+                events.values(first, tb, &yb, &mut g_b[..m]);
+                check_all(&g_a[..m])?;
+                check_all(&g_b[..m])?;
+                let mut slopes: Option<([f64; EVENT_CHUNK], [f64; EVENT_CHUNK])> = None;
+                for i in 0..m {
+                    let k = first + i;
+                    let (ga, gb) = (g_a[i], g_b[i]);
+                    // The part of [ta, tb] where g_k changes sign: all of it, or one side
+                    // of a dip's extremum.
+                    let (lo, hi) = if crosses(events.spec(k).direction, ga, gb) {
+                        ((ta, ga), (tb, gb))
+                    } else if dips {
+                        let (s_a, s_b) = *slopes.get_or_insert_with(|| {
+                            let (mut s_a, mut s_b) =
+                                ([f64::NAN; EVENT_CHUNK], [f64::NAN; EVENT_CHUNK]);
+                            events.slopes(first, ta, &ya, &mut s_a[..m]);
+                            events.slopes(first, tb, &yb, &mut s_b[..m]);
+                            (s_a, s_b)
+                        });
+                        match dip(events, k, dense, (ta, ga, s_a[i]), (tb, gb, s_b[i]))? {
+                            Some(bracket) => bracket,
+                            None => continue,
+                        }
+                    } else {
+                        continue;
+                    };
+                    let t = locate(events, k, dense, lo, hi)?;
+                    let cand = (t, k);
+                    if prev.is_none_or(|p| later(cand, p)) && best.is_none_or(|b| later(b, cand)) {
+                        best = Some(cand);
                     }
-                } else {
-                    continue;
-                };
-                let t = locate(events, k, dense, lo, hi)?;
-                let cand = (t, k);
-                if prev.is_none_or(|p| later(cand, p)) && best.is_none_or(|b| later(b, cand)) {
-                    best = Some(cand);
                 }
             }
             let Some((t, k)) = best else { break };

@@ -69,7 +69,7 @@ impl ContactBounds {
         dense: &DenseStep<2>,
         anchor: Option<(f64, f64, f64)>,
     ) -> Self {
-        Self::straying(ramp, mu_s, dense, anchor, [0.0; 2])
+        Self::straying(ramp, mu_s, dense, anchor, [0.0; 2], true)
     }
 
     /// Bounds from a step's ends alone, before its dense output is made
@@ -79,24 +79,28 @@ impl ContactBounds {
     /// the interpolant's own error (its estimate, doubled) plus the pair's (ten times the
     /// step's error scale): along a curve within (Δθ, Δθ̇) of the interpolant, a contact
     /// function differs from its value there by at most G_θ Δθ + G_ω Δθ̇, with G_θ, G_ω
-    /// its partials' bounds, taken with Θ and W raised by the same (Δθ, Δθ̇).
+    /// its partials' bounds, taken with Θ and W raised by the same (Δθ, Δθ̇). Without
+    /// `bends`, every contact function's bend is +∞ (not computed) and its rate and slack
+    /// are the same bits as with them: the cheap first test of [`crate::ode::quiet_step`].
     #[inline]
     pub(crate) fn from_ends(
         ramp: &Ramp,
         mu_s: Option<f64>,
         ends: &StepEnds<2>,
         anchor: Option<(f64, f64, f64)>,
+        bends: bool,
     ) -> Self {
         let (hermite, err) = ends.second_order_hermite();
         let stray = [
             2.0 * err[0] + 10.0 * ends.scale[0],
             2.0 * err[1] + 10.0 * ends.scale[1],
         ];
-        Self::straying(ramp, mu_s, &hermite, anchor, stray)
+        Self::straying(ramp, mu_s, &hermite, anchor, stray, bends)
     }
 
     /// [`Self::near`] for every curve within `stray` = (Δθ, Δθ̇) of `dense` (zero: `dense`
-    /// itself, the bounds of [`Self::near`] bit for bit).
+    /// itself, the bounds of [`Self::near`] bit for bit); the bends only with `bends` (else
+    /// +∞: the second partials are a third of the work, and most steps need none).
     #[inline]
     fn straying(
         ramp: &Ramp,
@@ -104,6 +108,7 @@ impl ContactBounds {
         dense: &DenseStep<2>,
         anchor: Option<(f64, f64, f64)>,
         stray: [f64; 2],
+        bends: bool,
     ) -> Self {
         let bounds = dense.bounds();
         let (theta_max, w) = (bounds.value[0] + stray[0], bounds.value[1] + stray[1]);
@@ -118,21 +123,24 @@ impl ContactBounds {
         // second partials' magnitudes the bend is (P_θθ R_θ² + 2P_θω R_θ R_ω + P_ωω R_ω²
         // + G_θ Q_θ + G_ω Q_ω) |h|²/8 (R, Q: the interpolant's rate and acceleration bounds).
         let bound = |(m, g_theta, g_omega): (f64, f64, f64),
-                     (p_tt, p_tw, p_ww): (f64, f64, f64),
+                     second: Option<(f64, f64, f64)>,
                      smooth: bool| {
             let mut delta = (m + g_theta * theta_max + g_omega * w) * eps40;
             if stray != [0.0; 2] {
                 delta += g_theta * stray[0] + g_omega * stray[1];
             }
-            let curvature = p_tt * theta_rate * theta_rate
-                + 2.0 * p_tw * theta_rate * omega_rate
-                + p_ww * omega_rate * omega_rate
-                + g_theta * theta_accel
-                + g_omega * omega_accel;
+            let bend = second.map_or(f64::INFINITY, |(p_tt, p_tw, p_ww)| {
+                let curvature = p_tt * theta_rate * theta_rate
+                    + 2.0 * p_tw * theta_rate * omega_rate
+                    + p_ww * omega_rate * omega_rate
+                    + g_theta * theta_accel
+                    + g_omega * omega_accel;
+                curvature * (h * h) / 8.0
+            });
             Change {
                 rate: (g_theta * theta_rate + g_omega * omega_rate) * h,
                 slack: 4.0 * delta,
-                bend: curvature * (h * h) / 8.0,
+                bend,
                 smooth,
             }
         };
@@ -153,7 +161,7 @@ impl ContactBounds {
         let (chi_w, chi_s, chi_c) = (chi * w, chi * s_max, chi * c_max);
         let liftoff = bound(
             (chi_w2 * c_max + ca, chi_w2 * s_max, 2.0 * chi_w * c_max),
-            (chi_w2 * c_max, 2.0 * chi_w * s_max, 2.0 * chi_c),
+            bends.then_some((chi_w2 * c_max, 2.0 * chi_w * s_max, 2.0 * chi_c)),
             true,
         );
         let (fy, slip) = if d_lo > 0.0 {
@@ -164,40 +172,46 @@ impl ContactBounds {
             let a = (chi_w2 * s_max + chi + sa) * inv_d;
             let a_theta = ((chi_w2 * c_max + chi) + 2.0 * chi * s_max * a) * inv_d;
             let a_omega = 2.0 * chi * w * s_max * inv_d;
-            let a_tt = (chi_w2 * s_max + chi + 4.0 * chi_s * a_theta + 2.0 * chi_c * a) * inv_d;
-            let a_tw = (2.0 * chi_w * c_max + 2.0 * chi_s * a_omega) * inv_d;
-            let a_ww = 2.0 * chi_s * inv_d;
             let lever = 1.0 + chi * c_max;
-            // (M, G_θ, G_ω) and (P_θθ, P_θω, P_ωω) of F_y and F_x.
+            // (M, G_θ, G_ω) of F_y and F_x.
             let fy = (
                 ca + chi_w2 * c_max + chi * a * s_max,
                 chi_w2 * s_max + chi * a * c_max + chi * s_max * a_theta,
                 2.0 * chi * w * c_max + chi * s_max * a_omega,
-            );
-            let fy2 = (
-                chi_w2 * c_max + chi * (a_tt * s_max + 2.0 * a_theta * c_max + a * s_max),
-                2.0 * chi_w * s_max + chi * (a_tw * s_max + a_omega * c_max),
-                2.0 * chi_c + chi * a_ww * s_max,
             );
             let fx = (
                 sa + chi_w2 * s_max + lever * a,
                 chi_w2 * c_max + chi * s_max * a + lever * a_theta,
                 2.0 * chi * w * s_max + lever * a_omega,
             );
-            let fx2 = (
-                chi_w2 * s_max + chi_c * a + 2.0 * chi_s * a_theta + lever * a_tt,
-                2.0 * chi_w * c_max + chi_s * a_omega + lever * a_tw,
-                2.0 * chi_s + lever * a_ww,
-            );
+            // (P_θθ, P_θω, P_ωω) of F_y and F_x, from θ̈'s second partials.
+            let second = bends.then(|| {
+                let a_tt = (chi_w2 * s_max + chi + 4.0 * chi_s * a_theta + 2.0 * chi_c * a) * inv_d;
+                let a_tw = (2.0 * chi_w * c_max + 2.0 * chi_s * a_omega) * inv_d;
+                let a_ww = 2.0 * chi_s * inv_d;
+                let fy2 = (
+                    chi_w2 * c_max + chi * (a_tt * s_max + 2.0 * a_theta * c_max + a * s_max),
+                    2.0 * chi_w * s_max + chi * (a_tw * s_max + a_omega * c_max),
+                    2.0 * chi_c + chi * a_ww * s_max,
+                );
+                let fx2 = (
+                    chi_w2 * s_max + chi_c * a + 2.0 * chi_s * a_theta + lever * a_tt,
+                    2.0 * chi_w * c_max + chi_s * a_omega + lever * a_tw,
+                    2.0 * chi_s + lever * a_ww,
+                );
+                (fy2, fx2)
+            });
             // μF_y − |F_x| = min(μF_y − F_x, μF_y + F_x): each branch has these bounds.
             let slip = mu_s.map_or(Change::NONE, |mu| {
                 bound(
                     (mu * fy.0 + fx.0, mu * fy.1 + fx.1, mu * fy.2 + fx.2),
-                    (mu * fy2.0 + fx2.0, mu * fy2.1 + fx2.1, mu * fy2.2 + fx2.2),
+                    second.map(|(fy2, fx2)| {
+                        (mu * fy2.0 + fx2.0, mu * fy2.1 + fx2.1, mu * fy2.2 + fx2.2)
+                    }),
                     false,
                 )
             });
-            (bound(fy, fy2, true), slip)
+            (bound(fy, second.map(|(fy2, _)| fy2), true), slip)
         } else {
             let slip = if mu_s.is_some() {
                 Change::ANY
@@ -206,7 +220,7 @@ impl ContactBounds {
             };
             (Change::ANY, slip)
         };
-        let omega = bound((w, 0.0, 1.0), (0.0, 0.0, 0.0), true);
+        let omega = bound((w, 0.0, 1.0), bends.then_some((0.0, 0.0, 0.0)), true);
         Self {
             liftoff,
             fy,
@@ -233,6 +247,64 @@ impl ContactBounds {
             slack: 4.0 * delta,
             bend: self.theta_accel * (self.h * self.h) / 8.0,
             smooth: true,
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::mechanics::Cylinder;
+    use crate::ode::{OdeSystem, State};
+    use crate::testing::Lcg;
+
+    /// Without the bends, the bounds from a step's ends keep the rates and slacks of the
+    /// whole bounds bit for bit (so `quiet_step`'s first test agrees with the whole one) and
+    /// leave every bend +∞ (a test by the bend never passes on them).
+    #[test]
+    fn bounds_without_bends_keep_the_rates_bit_for_bit() {
+        let mut rng = Lcg(11);
+        for i in 0..2000 {
+            let chi = 0.95 * rng.next();
+            let km = (1.0 - chi) * rng.next();
+            let ramp = Ramp::new(Cylinder::new(chi, km).unwrap(), 1.5 * rng.next()).unwrap();
+            let y_old = State::<2>::new(20.0 * rng.next() - 10.0, 6.0 * rng.next() - 3.0);
+            let h = 0.5 * rng.next() - 0.1;
+            // The ends of one explicit Euler step, with their exact derivatives: any two
+            // states will do for the property.
+            let f_old = ramp.rhs(0.0, &y_old);
+            let y_new = y_old + f_old * h;
+            let ends = StepEnds {
+                t_old: 0.0,
+                t_new: h,
+                h,
+                y_old,
+                f_old,
+                y_new,
+                f_new: ramp.rhs(h, &y_new),
+                scale: State::<2>::new(1e-9, 1e-9),
+            };
+            let mu_s = (i % 2 == 0).then(|| 2.0 * rng.next());
+            let theta = y_new[0];
+            let anchor = (i % 3 != 0).then(|| (theta, theta.sin(), theta.cos()));
+            let whole = ContactBounds::from_ends(&ramp, mu_s, &ends, anchor, true);
+            let rates = ContactBounds::from_ends(&ramp, mu_s, &ends, anchor, false);
+            let pairs = [
+                (whole.liftoff, rates.liftoff),
+                (whole.fy, rates.fy),
+                (whole.slip, rates.slip),
+                (whole.omega, rates.omega),
+            ];
+            for (k, (a, b)) in pairs.into_iter().enumerate() {
+                assert_eq!(a.rate.to_bits(), b.rate.to_bits(), "case {i}, bound {k}");
+                assert_eq!(a.slack.to_bits(), b.slack.to_bits(), "case {i}, bound {k}");
+                assert_eq!(a.smooth, b.smooth, "case {i}, bound {k}");
+                let constant = b == Change::NONE;
+                assert!(
+                    constant || b.bend == f64::INFINITY,
+                    "case {i}, bound {k}: {b:?}"
+                );
+            }
         }
     }
 }

@@ -187,14 +187,15 @@ impl RollEvents {
     }
 
     /// [`EventFunctions::change_bounds_ends`] of all four events, anchored at `anchor`
-    /// (see [`ContactBounds::from_ends`]).
+    /// (see [`ContactBounds::from_ends`]; the bends only with `bends`).
     pub(crate) fn change_bounds_ends(
         &self,
         ends: &StepEnds<2>,
         anchor: Option<(f64, f64, f64)>,
+        bends: bool,
     ) -> [Change; 4] {
         self.of_all(ContactBounds::from_ends(
-            &self.ramp, self.mu_s, ends, anchor,
+            &self.ramp, self.mu_s, ends, anchor, bends,
         ))
     }
 

@@ -71,10 +71,16 @@ impl EventFunctions<2> for Memo {
     }
     /// [`RollEvents::change_bounds_ends`], anchored as [`Self::change_bounds`].
     #[inline]
-    fn change_bounds_ends(&self, first: usize, ends: &StepEnds<2>, out: &mut [Change]) {
+    fn change_bounds_ends(
+        &self,
+        first: usize,
+        ends: &StepEnds<2>,
+        bends: bool,
+        out: &mut [Change],
+    ) {
         let b = self
             .events
-            .change_bounds_ends(ends, Some(self.sys.anchor()));
+            .change_bounds_ends(ends, Some(self.sys.anchor()), bends);
         out.copy_from_slice(&b[first..first + out.len()]);
     }
 }
