@@ -415,6 +415,17 @@ def test_fast_result_construction_equals_the_dataclass_init():
         r.status = 0
 
 
+def test_roll_passes_its_parameters_to_the_bridge_in_the_bridges_order():
+    # roll hands its arguments to _core.roll positionally, in its own signature's order:
+    # the two orders must be one (two floats swapped would still run).
+    import inspect
+
+    from eccjump import _core
+
+    ours = list(inspect.signature(roll).parameters)
+    assert list(inspect.signature(_core.roll).parameters) == ours
+
+
 def test_the_bridge_refuses_a_result_class_whose_fields_it_does_not_know():
     # The bridge fills RollResult's fields by their names in its own list; a class whose
     # fields differ (a field added in Python only) is refused at first use, not filled

@@ -55,7 +55,6 @@ def impact(
 def roll(
     body: Cylinder,
     alpha: float,
-    *,
     theta0: float,
     omega0: float,
     mu_s: float | None,
@@ -63,15 +62,17 @@ def roll(
     theta_max: float,
     rtol: float,
     atol: float,
-    max_steps: int,
     dense_output: bool,
+    max_steps: int,
     rule: str,
     integrator: str,
+    /,
 ) -> RollResult:
     """One pure-rolling run of ``body`` on a ramp of angle alpha, with the GIL released.
-    Options are keyword-only, all required (``eccjump.roll`` gives the defaults), and
-    checked by the core: a ValueError names the parameter. Returns the ``RollResult``,
-    made here (its dense output, if asked for, wrapped in ``eccjump.dense.DenseSolution``)."""
+    The parameters of ``eccjump.roll`` in its order, positionally, all required (it gives
+    the defaults), and checked by the core: a ValueError names the parameter. Returns the
+    ``RollResult``, made here (its dense output, if asked for, wrapped in
+    ``eccjump.dense.DenseSolution``)."""
 
 class DenseSolution:
     """The dense output of a run, evaluated by the core (ends at the run's end)."""

@@ -266,19 +266,20 @@ def roll(
             integrator=text("integrator", integrator),  # type: ignore[arg-type]
         )
     # The bridge builds the RollResult itself (rust/eccjump-py/src/roll.rs): in Python its
-    # 19-entry dict alone cost as much as a tenth of a short run.
+    # 19-entry dict alone cost as much as a tenth of a short run. The arguments go in this
+    # signature's order, positionally (the bridge's order: tested).
     return _core.roll(
         body,
         alpha,
-        theta0=theta0,
-        omega0=omega0,
-        mu_s=mu_s,
-        t_max=t_max,
-        theta_max=theta_max,
-        rtol=rtol,
-        atol=atol,
-        max_steps=max_steps,
-        dense_output=dense_output,
-        rule=rule,
-        integrator=integrator,
+        theta0,
+        omega0,
+        mu_s,
+        t_max,
+        theta_max,
+        rtol,
+        atol,
+        dense_output,
+        max_steps,
+        rule,
+        integrator,
     )

@@ -158,7 +158,10 @@ impl<const N: usize> ResultType<N> {
         let made = self.made(py)?;
         let dict = made.template.bind(py).copy()?;
         for (k, v) in made.keys.iter().zip(values) {
-            dict.set_item(k.bind(py), v)?;
+            // The template's values are None already.
+            if !v.is_none() {
+                dict.set_item(k.bind(py), v)?;
+            }
         }
         // object.__new__(cls), then object.__setattr__(result, "__dict__", dict): the
         // frozen class's own __setattr__ would refuse.

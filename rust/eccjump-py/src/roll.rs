@@ -53,13 +53,14 @@ static ROLL_RESULT: ResultType<19> = ResultType::new(
 static DENSE_SOLUTION: PyOnceLock<Py<PyType>> = PyOnceLock::new();
 
 /// Integrates pure rolling of `body` (an `eccjump.Cylinder`: its χ and k_m) on a ramp of
-/// angle α; returns the run as an `eccjump.rolling.RollResult`. The options are
-/// keyword-only (named at every call, typed here). Bad input raises ValueError (from the
+/// angle α; returns the run as an `eccjump.rolling.RollResult`. The parameters are those
+/// of `eccjump.roll`, in its order (tested), and come positionally: matching thirteen
+/// keywords by name took 0.15 µs of a 9 µs call. Bad input raises ValueError (from the
 /// core's checks) before any work is done.
 #[pyfunction]
-#[pyo3(signature = (body, alpha, *, theta0, omega0, mu_s, t_max, theta_max, rtol, atol,
-                    max_steps, dense_output, rule, integrator))]
-#[allow(clippy::too_many_arguments)] // keyword-only options of one run
+#[pyo3(signature = (body, alpha, theta0, omega0, mu_s, t_max, theta_max, rtol, atol,
+                    dense_output, max_steps, rule, integrator, /))]
+#[allow(clippy::too_many_arguments)] // the options of one run
 pub fn roll<'py>(
     py: Python<'py>,
     body: &Bound<'py, PyAny>,
@@ -71,8 +72,8 @@ pub fn roll<'py>(
     theta_max: f64,
     rtol: f64,
     atol: f64,
-    max_steps: usize,
     dense_output: bool,
+    max_steps: usize,
     rule: &Bound<'py, PyString>,
     integrator: &str,
 ) -> PyResult<Bound<'py, PyAny>> {
