@@ -426,6 +426,40 @@ def test_roll_passes_its_parameters_to_the_bridge_in_the_bridges_order():
     assert list(inspect.signature(_core.roll).parameters) == ours
 
 
+def test_the_bridge_runs_on_plain_arguments_only():
+    # _core.roll runs when every argument has its plain type and returns None otherwise
+    # (roll then converts them by its checks): an int or a numpy float for a float, a bool
+    # or an out-of-range int for max_steps, an int for dense_output.
+    from eccjump import _core
+
+    plain = dict(
+        theta0=0.0,
+        omega0=0.0,
+        mu_s=None,
+        t_max=50.0,
+        theta_max=math.inf,
+        rtol=1e-8,
+        atol=1e-10,
+        dense_output=False,
+        max_steps=1000,
+        rule="paper",
+        integrator="Vern7",
+    )
+    body = Cylinder(0.15, 0.02)
+    assert _core.roll(body, 0.7, *plain.values()) == roll(body, 0.7, **plain)
+    for name, value in [
+        ("theta0", 0),
+        ("mu_s", np.float64(1.0)),
+        ("rtol", np.float64(1e-8)),
+        ("max_steps", True),
+        ("max_steps", 0),
+        ("max_steps", 2**64),
+        ("dense_output", 0),
+    ]:
+        assert _core.roll(body, 0.7, *{**plain, name: value}.values()) is None, name
+    assert _core.roll(body, 1, *plain.values()) is None
+
+
 def test_the_bridge_refuses_a_result_class_whose_fields_it_does_not_know():
     # The bridge fills RollResult's fields by their names in its own list; a class whose
     # fields differ (a field added in Python only) is refused at first use, not filled

@@ -67,12 +67,13 @@ def roll(
     rule: str,
     integrator: str,
     /,
-) -> RollResult:
+) -> RollResult | None:
     """One pure-rolling run of ``body`` on a ramp of angle alpha, with the GIL released.
     The parameters of ``eccjump.roll`` in its order, positionally, all required (it gives
     the defaults), and checked by the core: a ValueError names the parameter. Returns the
     ``RollResult``, made here (its dense output, if asked for, wrapped in
-    ``eccjump.dense.DenseSolution``)."""
+    ``eccjump.dense.DenseSolution``), or None, with nothing done, if an argument is not of
+    its plain type (float, an int from 1 for max_steps, bool, str, None for mu_s)."""
 
 class DenseSolution:
     """The dense output of a run, evaluated by the core (ends at the run's end)."""

@@ -229,46 +229,12 @@ def roll(
     """
     if not isinstance(body, Cylinder):
         raise TypeError(f"body must be a Cylinder, not {type(body).__name__}")
-    # Most calls pass plain floats, an int, a bool and strings, which the checks would return
-    # unchanged: one test of their exact types (~0.1 us) stands in for the thirteen calls of
-    # the checks (~0.5 us of a run of about 10 us). Anything else goes through the checks,
-    # which alone define what is accepted, and comes back here plain.
-    if not (
-        type(alpha) is float
-        and type(theta0) is float
-        and type(omega0) is float
-        and (mu_s is None or type(mu_s) is float)
-        and type(t_max) is float
-        and type(theta_max) is float
-        and type(rtol) is float
-        and type(atol) is float
-        and type(max_steps) is int
-        and 1 <= max_steps <= U64_MAX
-        and type(dense_output) is bool
-        and isinstance(rule, str)
-        and isinstance(integrator, str)
-    ):
-        # The checks' historical order (alpha, mu_s, rule, then the signature's): of several
-        # bad arguments the same one is named.
-        return roll(
-            body,
-            real("alpha", alpha),
-            mu_s=optional_real("mu_s", mu_s),
-            rule=text("rule", rule),  # type: ignore[arg-type]  # its values: the core's
-            theta0=real("theta0", theta0),
-            omega0=real("omega0", omega0),
-            t_max=real("t_max", t_max),
-            theta_max=real("theta_max", theta_max),
-            rtol=real("rtol", rtol),
-            atol=real("atol", atol),
-            max_steps=integer("max_steps", max_steps, 1, U64_MAX),
-            dense_output=flag("dense_output", dense_output),
-            integrator=text("integrator", integrator),  # type: ignore[arg-type]
-        )
     # The bridge builds the RollResult itself (rust/eccjump-py/src/roll.rs): in Python its
     # 19-entry dict alone cost as much as a tenth of a short run. The arguments go in this
-    # signature's order, positionally (the bridge's order: tested).
-    return _core.roll(
+    # signature's order, positionally (the bridge's order: tested). Most calls pass plain
+    # floats, an int, a bool and strings, which the checks would return unchanged; the
+    # bridge runs on those at once and returns None if any argument has another type.
+    run = _core.roll(
         body,
         alpha,
         theta0,
@@ -282,4 +248,24 @@ def roll(
         max_steps,
         rule,
         integrator,
+    )
+    if run is not None:
+        return run
+    # Then the checks, which alone define what is accepted, name a bad argument or make it
+    # plain, in their historical order (alpha, mu_s, rule, then the signature's): of several
+    # bad arguments the same one is named.
+    return roll(
+        body,
+        real("alpha", alpha),
+        mu_s=optional_real("mu_s", mu_s),
+        rule=text("rule", rule),  # type: ignore[arg-type]  # its values: the core's
+        theta0=real("theta0", theta0),
+        omega0=real("omega0", omega0),
+        t_max=real("t_max", t_max),
+        theta_max=real("theta_max", theta_max),
+        rtol=real("rtol", rtol),
+        atol=real("atol", atol),
+        max_steps=integer("max_steps", max_steps, 1, U64_MAX),
+        dense_output=flag("dense_output", dense_output),
+        integrator=text("integrator", integrator),  # type: ignore[arg-type]
     )

@@ -12,6 +12,7 @@ mod jarm;
 mod motion_map;
 mod names;
 mod options;
+mod plain;
 mod records;
 mod roll;
 mod simulate;

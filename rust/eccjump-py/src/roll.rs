@@ -5,6 +5,7 @@ use crate::columns::dense_rows;
 use crate::errors::{detached, to_py};
 use crate::names::ROLL_EVENTS;
 use crate::options::{parse_integrator, parse_rule};
+use crate::plain;
 use crate::records::{RecordType, ResultType};
 use eccjump_core::mechanics::friction::friction_ratio;
 use eccjump_core::modes::rolling::run::{roll_until, RollOptions, RollRun, RollStatus};
@@ -55,7 +56,8 @@ static DENSE_SOLUTION: PyOnceLock<Py<PyType>> = PyOnceLock::new();
 /// Integrates pure rolling of `body` (an `eccjump.Cylinder`: its χ and k_m) on a ramp of
 /// angle α; returns the run as an `eccjump.rolling.RollResult`. The parameters are those
 /// of `eccjump.roll`, in its order (tested), and come positionally: matching thirteen
-/// keywords by name took 0.15 µs of a 9 µs call. Bad input raises ValueError (from the
+/// keywords by name took 0.15 µs of a 9 µs call. None, and nothing done, when an argument
+/// is not of its plain type ([`crate::plain`]). Bad input raises ValueError (from the
 /// core's checks) before any work is done.
 #[pyfunction]
 #[pyo3(signature = (body, alpha, theta0, omega0, mu_s, t_max, theta_max, rtol, atol,
@@ -64,24 +66,54 @@ static DENSE_SOLUTION: PyOnceLock<Py<PyType>> = PyOnceLock::new();
 pub fn roll<'py>(
     py: Python<'py>,
     body: &Bound<'py, PyAny>,
-    alpha: f64,
-    theta0: f64,
-    omega0: f64,
-    mu_s: Option<f64>,
-    t_max: f64,
-    theta_max: f64,
-    rtol: f64,
-    atol: f64,
-    dense_output: bool,
-    max_steps: usize,
-    rule: &Bound<'py, PyString>,
-    integrator: &str,
-) -> PyResult<Bound<'py, PyAny>> {
-    let ramp = Ramp::new(body_of(body)?, alpha).map_err(to_py)?;
+    alpha: &Bound<'py, PyAny>,
+    theta0: &Bound<'py, PyAny>,
+    omega0: &Bound<'py, PyAny>,
+    mu_s: &Bound<'py, PyAny>,
+    t_max: &Bound<'py, PyAny>,
+    theta_max: &Bound<'py, PyAny>,
+    rtol: &Bound<'py, PyAny>,
+    atol: &Bound<'py, PyAny>,
+    dense_output: &Bound<'py, PyAny>,
+    max_steps: &Bound<'py, PyAny>,
+    rule: &Bound<'py, PyAny>,
+    integrator: &Bound<'py, PyAny>,
+) -> PyResult<Option<Bound<'py, PyAny>>> {
+    let (
+        Some(alpha_value),
+        Some(theta0),
+        Some(omega0),
+        Some(mu_s_value),
+        Some(t_max),
+        Some(theta_max),
+        Some(rtol),
+        Some(atol),
+        Some(dense_output),
+        Some(max_steps),
+        Some(rule),
+        Some(integrator),
+    ) = (
+        plain::float(alpha),
+        plain::float(theta0),
+        plain::float(omega0),
+        plain::optional_float(mu_s),
+        plain::float(t_max),
+        plain::float(theta_max),
+        plain::float(rtol),
+        plain::float(atol),
+        plain::flag(dense_output),
+        plain::count(max_steps),
+        plain::text(rule),
+        plain::text(integrator),
+    )
+    else {
+        return Ok(None);
+    };
+    let ramp = Ramp::new(body_of(body)?, alpha_value).map_err(to_py)?;
     let opts = RollOptions {
         theta0,
         omega0,
-        mu_s,
+        mu_s: mu_s_value,
         t_max,
         theta_max,
         rule: parse_rule(rule.to_str()?)?,
@@ -89,7 +121,7 @@ pub fn roll<'py>(
             rtol,
             atol,
             max_steps,
-            method: parse_integrator(integrator)?,
+            method: parse_integrator(integrator.to_str()?)?,
             ..SolverOptions::default()
         },
         dense_output,
@@ -97,11 +129,11 @@ pub fn roll<'py>(
     let run = detached(py, |stop| roll_until(&ramp, &opts, stop))?;
     let inputs = [
         body.clone(),
-        alpha.into_pyobject(py)?.into_any(),
-        mu_s.into_pyobject(py)?.into_any(),
+        alpha.clone(),
+        mu_s.clone(),
         rule.clone().into_any(),
     ];
-    to_result(py, inputs, run)
+    to_result(py, inputs, run).map(Some)
 }
 
 /// The `RollResult` of `run`, after its `inputs` (body, α, μ_s, rule).
