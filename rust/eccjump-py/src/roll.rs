@@ -1,4 +1,4 @@
-//! `roll`: one pure-rolling run, computed with the GIL released, returned as numpy arrays.
+//! `roll`: one pure-rolling run, computed with the GIL released, returned as a `RollResult`.
 
 use crate::body::body_of;
 use crate::columns::dense_rows;
