@@ -100,7 +100,8 @@ impl ContactBounds {
 
     /// [`Self::near`] for every curve within `stray` = (Δθ, Δθ̇) of `dense` (zero: `dense`
     /// itself, the bounds of [`Self::near`] bit for bit); the bends only with `bends` (else
-    /// +∞: the second partials are a third of the work, and most steps need none).
+    /// +∞: the second partials were a fifth of its instructions, 421 → 345 a call, and most
+    /// steps need none).
     #[inline]
     fn straying(
         ramp: &Ramp,
