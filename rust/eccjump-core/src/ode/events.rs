@@ -428,7 +428,7 @@ fn locate<E: EventFunctions<N>, const N: usize>(
 const DIP_SCREEN: f64 = 0.01;
 
 /// A dip of g_k inside the sub-interval [ta, tb] (in integration order), where g_k has one
-/// sign at both ends (no crossing there) and slopes sa, sb: None unless the slope turns
+/// sign at both ends or starts at exactly 0 (no crossing there) and slopes sa, sb: None unless the slope turns
 /// towards zero then away (an extremum inside) and the extremum, located by Brent on the
 /// slope along the dense output, reaches the other side. Then g_k crosses twice, into the
 /// other side and back; the result is the bracket ((t, g), (t, g)) of the crossing that
@@ -444,11 +444,15 @@ fn dip<E: EventFunctions<N>, const N: usize>(
 ) -> Result<Option<((f64, f64), (f64, f64))>, NonFiniteEvent> {
     // σ = +1 looks for a minimum (g positive at both ends), σ = −1 for a maximum; the slopes
     // are per unit of time, h < 0 when integrating backwards.
+    // A g that starts the cell at exactly 0 counts as on the side its slope leaves 0 for:
+    // if it ends the cell back on the other side, it went out and came back across 0
+    // within the cell (a slip that starts at v = 0 and returns to it), which the sign
+    // test, needing a nonzero left value, cannot see.
     let h = tb - ta;
     let (ma, mb) = (h * sa, h * sb);
-    let sigma = if ga > 0.0 && gb > 0.0 && ma < 0.0 && mb > 0.0 {
+    let sigma = if ga >= 0.0 && gb > 0.0 && ma < 0.0 && mb > 0.0 {
         1.0
-    } else if ga < 0.0 && gb < 0.0 && ma > 0.0 && mb < 0.0 {
+    } else if ga <= 0.0 && gb < 0.0 && ma > 0.0 && mb < 0.0 {
         -1.0
     } else {
         return Ok(None);
@@ -867,6 +871,66 @@ mod tests {
         );
         assert_eq!(out.status, Status::Event(0));
         assert!((out.t - (3.3 + 1e-3)).abs() < 1e-12, "{}", out.t);
+    }
+
+    #[test]
+    fn a_start_at_zero_that_returns_within_the_first_cell_is_a_crossing() {
+        // g = ±y(c − y) along y = t: exactly 0 at the start, out to one side and back
+        // across 0 at t = c, inside the first cell of a first step of 1 (a slip that
+        // starts at v = 0 and returns to it: issue 35). The sign test cannot see it
+        // (its left value is 0); the dip test, from the slope at the start, does.
+        struct Return {
+            c: f64,
+            sign: f64,
+            slopes: bool,
+        }
+        impl EventFunctions<1> for Return {
+            fn count(&self) -> usize {
+                1
+            }
+            fn spec(&self, _k: usize) -> EventSpec {
+                EventSpec {
+                    direction: Direction::Any,
+                    terminal: true,
+                }
+            }
+            fn value(&self, _k: usize, _t: f64, y: &State<1>) -> f64 {
+                self.sign * y[0] * (self.c - y[0])
+            }
+            fn slopes(&self, _first: usize, _t: f64, y: &State<1>, out: &mut [f64]) {
+                let s = self.sign * (self.c - 2.0 * y[0]);
+                out[0] = if self.slopes { s } else { f64::NAN };
+            }
+            fn has_slopes(&self) -> bool {
+                self.slopes
+            }
+        }
+        let so = SolverOptions {
+            first_step: Some(1.0),
+            ..SolverOptions::default()
+        };
+        for sign in [1.0, -1.0] {
+            let at = |slopes| {
+                let ev = Return {
+                    c: 0.05,
+                    sign,
+                    slopes,
+                };
+                let out = solve(
+                    &Clock,
+                    &ev,
+                    0.0,
+                    State::<1>::zeros(),
+                    10.0,
+                    &so,
+                    &mut |_| {},
+                );
+                (out.status == Status::Event(0)).then_some(out.t)
+            };
+            assert_eq!(at(false), None, "sign sampling misses it");
+            let t = at(true).expect("the dip test finds it");
+            assert!((t - 0.05).abs() < 1e-14, "{t}");
+        }
     }
 
     #[test]
