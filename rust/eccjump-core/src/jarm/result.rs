@@ -3,6 +3,7 @@
 
 use crate::error::{check_range, Result};
 use crate::mechanics::Rule;
+use crate::ode::SolverOptions;
 
 /// Why a point is or is not a JARM. `#[repr(u8)]` with stable values (the bridge exports them).
 #[repr(u8)]
@@ -250,12 +251,9 @@ impl Method {
         Ok(())
     }
 
-    /// The tolerances any route accepts (the closed form ignores them, but they are recorded
-    /// with its results): rtol ∈ [1e-15, 1e-3], atol ∈ [1e-300, 1e-3]; looser tolerances
-    /// make the ODE route's verdicts unreliable.
+    /// The tolerances any route accepts ([`SolverOptions::check_tolerances`]; the closed
+    /// form ignores them, but they are recorded with its results).
     pub fn check_tolerances(rtol: f64, atol: f64) -> Result<()> {
-        check_range("rtol", rtol, 1e-15, 1e-3)?;
-        check_range("atol", atol, 1e-300, 1e-3)?;
-        Ok(())
+        SolverOptions::check_tolerances(rtol, atol)
     }
 }

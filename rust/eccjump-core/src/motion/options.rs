@@ -108,8 +108,7 @@ impl SimOptions {
             });
         }
         check_count("max_transitions", self.max_transitions, 1, MAX_TRANSITIONS)?;
-        check_range("rtol", self.solver.rtol, 1e-15, 1e-2)?;
-        check_range("atol", self.solver.atol, 1e-300, 1.0)?;
+        SolverOptions::check_tolerances(self.solver.rtol, self.solver.atol)?;
         check_count("max_steps", self.solver.max_steps, 1, MAX_STEPS)?;
         check_range("settle_speed", self.settle_speed, 0.0, MAX_SETTLE_SPEED)?;
         Ok(())

@@ -52,6 +52,17 @@ impl Default for SolverOptions {
     }
 }
 
+impl SolverOptions {
+    /// The tolerances every route accepts: rtol ∈ [1e-15, 1e-3], atol ∈ [1e-300, 1e-3].
+    /// Looser tolerances make the ODE route's verdicts unreliable and a full motion's
+    /// energy ledger meaningless (atol = 0.5 once gave a negative energy lost).
+    pub fn check_tolerances(rtol: f64, atol: f64) -> crate::error::Result<()> {
+        crate::error::check_range("rtol", rtol, 1e-15, 1e-3)?;
+        crate::error::check_range("atol", atol, 1e-300, 1e-3)?;
+        Ok(())
+    }
+}
+
 /// Why the integration stopped.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum Status {

@@ -264,8 +264,7 @@ impl RollOptions {
                 allowed: format!("(theta0, inf] = ({}, inf]", short(self.theta0)),
             });
         }
-        check_range("rtol", self.solver.rtol, 1e-15, 1e-2)?;
-        check_range("atol", self.solver.atol, 1e-300, 1.0)?;
+        SolverOptions::check_tolerances(self.solver.rtol, self.solver.atol)?;
         check_count("max_steps", self.solver.max_steps, 1, MAX_STEPS)?;
         Ok(())
     }
