@@ -3,11 +3,12 @@
 Only types are checked here (and whether an integer fits the bridge's integer type): the
 ranges are checked once, by the Rust core. What is not a real number raises ``TypeError``
 naming the parameter: ``None``, strings, bytes, bools (``True`` is not a number here),
-complex numbers, masked arrays, object arrays of non-numbers and ragged lists. Python ints
-and floats, numpy integer and floating scalars and arrays of real dtype are accepted; arrays
-are returned as native, contiguous, aligned float64 (big-endian, strided, read-only, 0-d and
-empty arrays all work). Messages are short (<= 200 characters): numbers are shown with
-:func:`short`.
+complex numbers, times (``np.timedelta64`` and ``np.datetime64``: numpy makes a timedelta an
+integer), masked arrays, object arrays of non-numbers and ragged lists; :func:`real` refuses
+an array of shape (1,) as well (a scalar is due). Python ints and floats, numpy integer and
+floating scalars and arrays of real dtype are accepted; arrays are returned as native,
+contiguous, aligned float64 (big-endian, strided, read-only, 0-d and empty arrays all work).
+Messages are short (<= 200 characters): numbers are shown with :func:`short`.
 """
 
 from __future__ import annotations
@@ -53,11 +54,13 @@ def _kind(value: object) -> str:
 
 
 def _not_real(value: object) -> bool:
-    """True for what is never a real number here: bools, complex, masked arrays, text."""
+    """True for what is never a real number here: bools, complex, masked arrays, text, times
+    (``np.timedelta64`` subclasses ``np.signedinteger``: without this it passes as an int)."""
     return (
         value is None
         or isinstance(value, bool | np.bool_ | str | bytes | np.ma.MaskedArray)
         or isinstance(value, complex | np.complexfloating)
+        or isinstance(value, np.timedelta64 | np.datetime64)
     )
 
 
@@ -95,7 +98,7 @@ def integer(name: str, value: object, lo: int = 0, hi: int = U64_MAX) -> int:
     if isinstance(value, np.ndarray) and not isinstance(value, np.ma.MaskedArray):
         if value.ndim == 0 and value.dtype.kind in "iu":
             value = value[()]
-    if isinstance(value, bool | np.bool_) or not isinstance(value, numbers.Integral):
+    if _not_real(value) or not isinstance(value, numbers.Integral):
         raise TypeError(f"{name} must be an integer, not {_kind(value)}")
     v = int(value)
     if not lo <= v <= hi:
