@@ -14,6 +14,7 @@ from typing import Any
 import numpy as np
 
 from eccjump import _core
+from eccjump._checks import integer
 from eccjump.fields import Field
 from eccjump.motion import MODES, REASONS, STATUSES
 
@@ -58,13 +59,22 @@ DTYPES: dict[str, np.dtype] = {f.name: f.dtype for f in TABLE}
 FILL: dict[str, Any] = {f.name: f.fill for f in TABLE}
 
 
+#: The largest sequence code: :data:`SEQUENCE_LEN` modes of 2 bits (the field's uint16).
+SEQUENCE_MAX = 4**SEQUENCE_LEN - 1
+
+
 def sequence_name(code: int) -> str:
-    """The modes of a sequence code, e.g. ``"ROLL→SLIP→FLIGHT"`` ("" for 0)."""
+    """The modes of a sequence code, e.g. ``"ROLL→SLIP→FLIGHT"`` ("" for 0). ``code``: an int
+    (or numpy integer) in [0, :data:`SEQUENCE_MAX`] made by :func:`sequence_code`; anything
+    else is a TypeError or ValueError naming ``code``."""
+    rest = integer("code", code, 0, SEQUENCE_MAX)
     names = []
-    code = int(code)
-    while code:
-        names.append(MODES[(code & 3) - 1])
-        code >>= 2
+    while rest:
+        mode = rest & 3
+        if mode == 0:  # a gap before a later mode: no sequence_code gives this
+            raise ValueError(f"code = {code} is not a sequence code (a mode of 2 bits is 0)")
+        names.append(MODES[mode - 1])
+        rest >>= 2
     return "→".join(names)
 
 
@@ -103,6 +113,7 @@ __all__ = [
     "INVALID",
     "LANDINGS",
     "SEQUENCE_LEN",
+    "SEQUENCE_MAX",
     "STATUS_NAMES",
     "TABLE",
     "Field",
