@@ -14,11 +14,21 @@ thresholded grid, so thin regions keep their true thickness in alpha.
 from eccjump.plot._common import TURN_COLORS
 from eccjump.plot.full_motion import MAX_FRAMES, MODE_COLORS, animate_motion, motion
 from eccjump.plot.maps import fraction_map, region_map, sequence_map
-from eccjump.plot.paper import JarmSurfaces, fig3b, fig4, fig4_slices, jarm_surfaces
+from eccjump.plot.paper import (
+    MAX_RESOLUTION,
+    MAX_SLICE_RESOLUTION,
+    JarmSurfaces,
+    fig3b,
+    fig4,
+    fig4_slices,
+    jarm_surfaces,
+)
 from eccjump.plot.trajectory import trajectory
 
 __all__ = [
     "MAX_FRAMES",
+    "MAX_RESOLUTION",
+    "MAX_SLICE_RESOLUTION",
     "MODE_COLORS",
     "TURN_COLORS",
     "JarmSurfaces",

@@ -22,6 +22,12 @@ if TYPE_CHECKING:
 
 from eccjump.plot._common import MAX_POINTS, _color, _new_axes, _plt
 
+#: The largest (chi, k_m) mesh of :func:`jarm_surfaces` and :func:`fig4`, per axis: each body
+#: is scanned ``n_scan`` times and drawn as polygons; 200 takes about a minute per figure.
+MAX_RESOLUTION = 200
+#: The most points along a slice of :func:`fig4_slices` (about 20 s per turn at 10**4).
+MAX_SLICE_RESOLUTION = 10_000
+
 # --------------------------------------------------------------------------------------------
 # Fig. 3b: mu(chi, k_m, theta_J)
 # --------------------------------------------------------------------------------------------
@@ -262,7 +268,9 @@ def jarm_surfaces(
     0 <= k_m <= 1 - chi finds the footprint of the region and the mesh is fitted to it
     (two coarse cells wider).
     Each body's ramp angles are scanned at ``n_scan`` points over (0, 90 deg], and intervals
-    narrower than the scan step are recovered next to found ones (see ``_grid_intervals``)."""
+    narrower than the scan step are recovered next to found ones (see ``_grid_intervals``).
+    ``resolution``: 2 ... :data:`MAX_RESOLUTION`."""
+    resolution = integer("resolution", resolution, 2, MAX_RESOLUTION)
     if chi_range is None or km_range is None:
         cc = np.linspace(0.0, 1.0, 21)
         kk = np.linspace(0.0, 1.0, 21)
@@ -336,8 +344,8 @@ def fig4(
     """The paper's Fig. 4: the JARM regions in (alpha, chi, k_m) for fixed ``mu_s`` and turns
     ``ns`` (green, purple, orange for n = 1, 2, 3), from rest at theta0 = 0, as closed solids
     between the exact boundary surfaces alpha_lo and alpha_hi on a ``resolution``^2 mesh
-    fitted to each region (see :func:`jarm_surfaces`; pass precomputed ``surfaces`` to skip
-    the computation). ``ax`` must be a 3-D axes if given."""
+    fitted to each region (see :func:`jarm_surfaces`, ``resolution`` 2 ... :data:`MAX_RESOLUTION`;
+    pass precomputed ``surfaces`` to skip the computation). ``ax`` must be a 3-D axes if given."""
     plt = _plt()
     from matplotlib.patches import Patch
     from matplotlib.ticker import MaxNLocator
@@ -420,7 +428,9 @@ def fig4_slices(
 ) -> Figure:
     """2-D slices of the Fig. 4 regions: top row, the JARM alpha-interval against chi at fixed
     (absolute) k_m; bottom row, against k_m at fixed chi; filled between the exact alpha_lo and
-    alpha_hi, one colour per turn n. ``resolution`` points along each slice."""
+    alpha_hi, one colour per turn n. ``resolution`` points along each slice, 2 ...
+    :data:`MAX_SLICE_RESOLUTION`."""
+    resolution = integer("resolution", resolution, 2, MAX_SLICE_RESOLUTION)
     plt = _plt()
     ncol = max(len(km_values), len(chi_values))
     fig, axes = plt.subplots(
