@@ -1,29 +1,38 @@
 """The ``eccjump`` command line: one module per subcommand, each with ``add_parser(sub)``.
 
-Angles are in degrees on the command line (radians in the Python API).
+Angles are in degrees on the command line (radians in the Python API). Every failure is one
+line on stderr and a non-zero exit status, never a traceback: 2 for a bad option (argparse's
+or the library's ValueError/TypeError), 1 for a file that cannot be written or memory that
+runs out, 130 for Ctrl-C.
 """
 
 from __future__ import annotations
 
-import argparse
 import sys
 from collections.abc import Sequence
 
 from eccjump.cli import design, figures, map, roll, simulate, starts
+from eccjump.cli._args import Parser, one_line
+from eccjump.cli._output import OutputError
 
 #: The subcommands, in the order of ``eccjump --help``.
 SUBCOMMANDS = (roll, simulate, map, starts, design, figures)
 
 
-def build_parser() -> argparse.ArgumentParser:
-    parser = argparse.ArgumentParser(
+def build_parser() -> Parser:
+    parser = Parser(
         prog="eccjump",
         description="Dynamics of an eccentric cylinder on a ramp: lift-off, slip, JARM regions.",
     )
-    sub = parser.add_subparsers(dest="command", required=True)
+    sub = parser.add_subparsers(dest="command", required=True)  # of the class Parser too
     for module in SUBCOMMANDS:
         module.add_parser(sub)
     return parser
+
+
+def _fail(message: object, code: int) -> int:
+    print(one_line(f"eccjump: error: {message}"), file=sys.stderr)
+    return code
 
 
 def main(argv: Sequence[str] | None = None) -> int:
@@ -32,9 +41,15 @@ def main(argv: Sequence[str] | None = None) -> int:
     args = parser.parse_args(argv)
     try:
         return int(args.func(args))
-    except ValueError as err:
-        print(f"eccjump: error: {err}", file=sys.stderr)
-        return 2
+    except (ValueError, TypeError) as err:
+        return _fail(err, 2)
+    except (OutputError, MemoryError) as err:
+        return _fail(str(err) or "out of memory", 1)
+    except ImportError as err:  # an optional extra (matplotlib, xarray) is missing
+        return _fail(err, 1)
+    except KeyboardInterrupt:
+        print("eccjump: aborted", file=sys.stderr)
+        return 130
     except BrokenPipeError:  # e.g. `eccjump roll ... | head`
         sys.stderr.close()
         return 0

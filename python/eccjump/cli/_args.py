@@ -1,16 +1,134 @@
-"""Argument types shared by the subcommands: each checks its range and says it in the units
-of the command line."""
+"""The parser and the argument types shared by the subcommands: each type checks its range and
+says it in the units of the command line; every parse error is one short line."""
 
 from __future__ import annotations
 
 import argparse
-from collections.abc import Callable
-from typing import get_args
+import difflib
+import re
+from collections.abc import Callable, Sequence
+from typing import Any, NoReturn, get_args
 
 from eccjump._bridge import Integrator
+from eccjump._checks import short
 
 #: The choices of ``--integrator`` (the Runge-Kutta pairs).
 INTEGRATORS: tuple[str, ...] = get_args(Integrator)
+
+#: The longest error line (the project's contract for messages, tests/fuzz_cases.py).
+MAX_MESSAGE = 200
+
+#: A negative number as ``float`` reads it ("-1e-3", "-.5", "-1_000", "-inf", "-nan").
+#: argparse's own pattern (``^-\d+$|^-\d*\.\d+$``) misses exponents and infinities and takes
+#: ``--omega0 -1e-3`` for an option followed by another option.
+NEGATIVE_NUMBER = re.compile(
+    r"^-(?:(?:\d[\d_]*\.?[\d_]*|\.\d[\d_]*)(?:e[-+]?\d+)?|inf(?:inity)?|nan)$", re.IGNORECASE
+)
+
+#: A quoted value longer than this is cut in error messages (argparse quotes the whole value).
+_QUOTED = re.compile(r"'([^']{40,})'")
+
+
+class Parser(argparse.ArgumentParser):
+    """An ``ArgumentParser`` that reads negative numbers as values, suggests the close
+    spelling of an unknown option, and keeps every error to one line of at most
+    :data:`MAX_MESSAGE` characters (its subcommands' parsers are of this class too)."""
+
+    def __init__(self, *args: Any, **kwargs: Any) -> None:
+        super().__init__(*args, **kwargs)
+        self._negative_number_matcher = NEGATIVE_NUMBER
+
+    def parse_known_args(  # type: ignore[override]
+        self, args: Sequence[str] | None = None, namespace: argparse.Namespace | None = None
+    ) -> tuple[argparse.Namespace, list[str]]:
+        # A subcommand checks its option names first: a misspelt option is named (with its
+        # close spelling) before argparse reports a required option as missing.
+        if self._subparsers is None and args is not None:
+            unknown = [a for a in args[: _end_of_options(args)] if self._is_unknown_option(a)]
+            if unknown:
+                self.error(self.unrecognized(unknown, "options"))
+        return super().parse_known_args(args, namespace)
+
+    def parse_args(  # type: ignore[override]
+        self, args: Sequence[str] | None = None, namespace: argparse.Namespace | None = None
+    ) -> argparse.Namespace:
+        ns, extras = self.parse_known_args(args, namespace)
+        if extras:  # reported by the subcommand's parser: its usage, its options
+            target = self._subcommand(ns) or self
+            target.error(target.unrecognized(extras))
+        return ns
+
+    def error(self, message: str) -> NoReturn:
+        """Usage, then ``prog: error: message`` on one line of at most MAX_MESSAGE."""
+        self.print_usage()
+        line = one_line(f"{self.prog}: error: {_QUOTED.sub(_cut_quoted, message)}")
+        self.exit(2, line + "\n")
+
+    def unrecognized(self, extras: Sequence[str], what: str = "arguments") -> str:
+        """The message "unrecognized arguments: ...", with the close spelling of the first
+        unknown option."""
+        text = f"unrecognized {what}: " + " ".join(short_text(a) for a in extras[:4])
+        for arg in extras:
+            hint = self.suggest(arg)
+            if hint:
+                return f"{text} (did you mean {hint}?)"
+        return text
+
+    def suggest(self, arg: str) -> str | None:
+        """The option closest to ``arg`` (``--mu_s`` -> ``--mu-s``), or None."""
+        name = arg.split("=", 1)[0]
+        if not name.startswith("-") or NEGATIVE_NUMBER.match(name):
+            return None
+        # compared without the leading dashes, which every long option shares
+        options = {o.lstrip("-"): o for o in self._option_string_actions if o.startswith("--")}
+        word = name.lstrip("-").replace("_", "-")
+        close = difflib.get_close_matches(word, list(options), n=1, cutoff=0.6)
+        return options[close[0]] if close else None
+
+    def _is_unknown_option(self, arg: str) -> bool:
+        """Whether ``arg`` is an option (not a negative number) that this parser does not know,
+        not even as an abbreviation (an ambiguous one is left to argparse)."""
+        if not arg.startswith("-") or arg == "-" or NEGATIVE_NUMBER.match(arg):
+            return False
+        known = self._option_string_actions
+        if arg.startswith("--"):
+            name = arg.split("=", 1)[0]
+            return not any(o.startswith(name) for o in known)
+        # -x, or -xVALUE / -qo (a short option with its value, or short flags together)
+        return arg[1:2].isalpha() and arg[:2] not in known
+
+    def _subcommand(self, ns: argparse.Namespace) -> Parser | None:
+        """The parser of the subcommand ``ns`` was parsed by, if any."""
+        for action in self._subparsers._group_actions if self._subparsers else ():
+            if isinstance(action, argparse._SubParsersAction):
+                parser = action.choices.get(getattr(ns, action.dest, None) or "")
+                return parser if isinstance(parser, Parser) else None
+        return None
+
+
+def _end_of_options(args: Sequence[str]) -> int:
+    """The index of ``--`` (after it, everything is a value), or len(args)."""
+    return list(args).index("--") if "--" in args else len(args)
+
+
+def _cut_quoted(m: re.Match[str]) -> str:
+    return f"'{m.group(1)[:37]}...'"
+
+
+def one_line(text: str) -> str:
+    """``text`` on one line of at most :data:`MAX_MESSAGE` characters."""
+    text = " ".join(text.split())
+    return text if len(text) <= MAX_MESSAGE else text[: MAX_MESSAGE - 3] + "..."
+
+
+def short_text(text: str, width: int = 40) -> str:
+    """A command-line value for a message: on one line, at most ``width`` characters, cut in
+    the middle (the end of a path names the file)."""
+    text = " ".join(str(text).split()) or repr(text)
+    if len(text) <= width:
+        return text
+    head = (width - 3) // 3
+    return f"{text[:head]}...{text[len(text) - (width - 3 - head) :]}"
 
 
 def add_integrator(p: argparse._ActionsContainer, when: str = "") -> None:
@@ -25,17 +143,30 @@ def add_integrator(p: argparse._ActionsContainer, when: str = "") -> None:
     )
 
 
-def int_at_least(lo: int) -> Callable[[str], int]:
-    """An integer option >= lo."""
+def int_in(lo: int, hi: int | None = None) -> Callable[[str], int]:
+    """An integer option in [lo, hi] (hi None: no upper bound here, the library has one)."""
+    allowed = f"[{lo}, {'inf' if hi is None else hi}]"
 
     def parse(text: str) -> int:
-        value = int(text)
-        if value < lo:
-            raise argparse.ArgumentTypeError(f"{value!r} is outside the allowed range [{lo}, inf)")
+        try:
+            value = int(text)
+        except ValueError:
+            raise argparse.ArgumentTypeError(
+                f"{short_text(text)!r} is not an integer in {allowed}"
+            ) from None
+        if value < lo or (hi is not None and value > hi):
+            raise argparse.ArgumentTypeError(
+                f"{short(value)} is outside the allowed range {allowed}"
+            )
         return value
 
-    parse.__name__ = f"integer >= {lo}"
+    parse.__name__ = f"integer in {allowed}"
     return parse
+
+
+def int_at_least(lo: int) -> Callable[[str], int]:
+    """An integer option >= lo."""
+    return int_in(lo)
 
 
 def degrees_in(lo: float, hi: float) -> Callable[[str], float]:
@@ -45,7 +176,7 @@ def degrees_in(lo: float, hi: float) -> Callable[[str], float]:
         value = float(text)
         if not (lo <= value <= hi):
             raise argparse.ArgumentTypeError(
-                f"{value!r} is outside the allowed range [{lo:g}, {hi:g}] deg"
+                f"{short(value)} is outside the allowed range [{lo:g}, {hi:g}] deg"
             )
         return value
 
