@@ -9,11 +9,14 @@ from pathlib import Path
 
 from eccjump import plot
 from eccjump.body import Cylinder
-from eccjump.cli._args import int_at_least
+from eccjump.cli._args import int_in, short_text
+from eccjump.cli._output import DPI_RANGE, check_outputs, save_figure
 from eccjump.rolling import roll
 
 #: Figure names, in the order they are written.
 FIGURES = ("fig3b", "fig4a", "fig4b", "fig4_slices", "trajectory")
+#: ``--n-scan``: the core's bound of ``alpha_intervals``' scan (docs/limits.md).
+N_SCAN_MAX = 10**5
 
 
 def add_parser(sub: argparse._SubParsersAction) -> None:
@@ -24,25 +27,38 @@ def add_parser(sub: argparse._SubParsersAction) -> None:
         "(mu_s = 1), fig4_slices.png (mu_s = 1) and trajectory.png (alpha = 40 deg, "
         "chi = 0.15, k_m = 0.02, mu_s = 1) into a directory; print the paths written.",
     )
-    p.add_argument("-o", "--outdir", type=Path, default=Path("."), help="output directory")
-    p.add_argument("--dpi", type=int, default=110, help="resolution of the PNG files")
+    p.add_argument(
+        "-o",
+        "--outdir",
+        type=Path,
+        default=Path("."),
+        help="output directory (made, with its parents, if missing)",
+    )
+    p.add_argument(
+        "--dpi",
+        type=int_in(*DPI_RANGE),
+        default=110,
+        help=f"resolution of the PNG files, {DPI_RANGE[0]} ... {DPI_RANGE[1]} (default 110)",
+    )
     p.add_argument(
         "--resolution",
-        type=int_at_least(2),
+        type=int_in(2, plot.MAX_RESOLUTION),
         default=36,
-        help="(chi, k_m) mesh points per axis of the 3-D regions (default 36)",
+        help="(chi, k_m) mesh points per axis of the 3-D regions, 2 ... "
+        f"{plot.MAX_RESOLUTION} (default 36)",
     )
     p.add_argument(
         "--slice-resolution",
-        type=int_at_least(2),
+        type=int_in(2, plot.MAX_SLICE_RESOLUTION),
         default=120,
-        help="points along each 2-D slice (default 120)",
+        help=f"points along each 2-D slice, 2 ... {plot.MAX_SLICE_RESOLUTION} (default 120)",
     )
     p.add_argument(
         "--n-scan",
-        type=int_at_least(2),
+        type=int_in(2, N_SCAN_MAX),
         default=90,
-        help="ramp angles scanned per body before the exact bisection (default 90)",
+        help="ramp angles scanned per body before the exact bisection, 2 ... "
+        f"{N_SCAN_MAX} (default 90)",
     )
     p.add_argument(
         "--only", choices=FIGURES, nargs="+", default=None, help="write only these figures"
@@ -50,13 +66,24 @@ def add_parser(sub: argparse._SubParsersAction) -> None:
     p.set_defaults(func=_cmd_figures)
 
 
+def _outdir(path: Path) -> Path:
+    """The output directory, made (with its missing parents) before any work; ValueError
+    naming --outdir if it cannot be."""
+    try:
+        path.mkdir(parents=True, exist_ok=True)
+    except (OSError, ValueError) as err:  # a file in the way, no permission, a long name
+        why = getattr(err, "strerror", None) or str(err)
+        raise ValueError(f"--outdir {short_text(str(path), 60)!r}: cannot make it: {why}") from None
+    return path
+
+
 def _cmd_figures(args: argparse.Namespace) -> int:
     import matplotlib
 
     matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
-
-    args.outdir.mkdir(parents=True, exist_ok=True)
+    names = args.only or FIGURES
+    outdir = _outdir(args.outdir)
+    paths = check_outputs("--outdir", (outdir / f"{n}.png" for n in names), {".png"})
     res, n_scan = args.resolution, args.n_scan
     makers = {
         "fig3b": lambda: plot.fig3b(0.5, 0.4),
@@ -69,11 +96,8 @@ def _cmd_figures(args: argparse.Namespace) -> int:
             roll(Cylinder(0.15, 0.02), math.radians(40.0), mu_s=1.0, dense_output=True)
         ),
     }
-    for name in args.only or FIGURES:
+    for name, path in zip(names, paths, strict=True):
         start = time.perf_counter()
-        fig = makers[name]()
-        path = args.outdir / f"{name}.png"
-        fig.savefig(path, dpi=args.dpi)
-        plt.close(fig)
+        save_figure("--outdir", makers[name](), path, args.dpi)
         print(f"{path}  ({time.perf_counter() - start:.1f} s)", flush=True)
     return 0

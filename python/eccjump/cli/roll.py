@@ -8,6 +8,7 @@ import math
 
 from eccjump.body import Cylinder
 from eccjump.cli._args import add_integrator, degrees_in
+from eccjump.cli._output import bounded
 from eccjump.rolling import RollResult, roll
 
 
@@ -76,6 +77,10 @@ def _roll_summary(res: RollResult, alpha_deg: float, integrator: str) -> dict[st
     }
 
 
+def _mu(mu_s: float | None) -> str:
+    return "None (enough friction)" if mu_s is None else f"{mu_s:g}"
+
+
 def _cmd_roll(args: argparse.Namespace) -> int:
     body = Cylinder(args.chi, args.km)
     res = roll(
@@ -101,7 +106,7 @@ def _cmd_roll(args: argparse.Namespace) -> int:
             "body",
             f"chi = {body.chi:g}, km = {body.km:g}  (Ic = {body.Ic:.6g}, Icm = {body.Icm:.6g})",
         ),
-        ("ramp", f"alpha = {args.alpha:g} deg, mu_s = {args.mu_s}, rule = {args.rule}"),
+        ("ramp", f"alpha = {args.alpha:g} deg, mu_s = {_mu(args.mu_s)}, rule = {args.rule}"),
         ("outcome", f"{res.message}"),
         ("time t", f"{s['t']:.10g} sqrt(R/g)"),
         ("angle theta", f"{s['theta_deg']:.10g} deg"),
@@ -119,5 +124,6 @@ def _cmd_roll(args: argparse.Namespace) -> int:
         print("\nevents")
         print(f"  {'name':<18} {'t':>16} {'theta [deg]':>16} {'omega':>14}")
         for e in res.events:
-            print(f"  {e.name:<18} {e.t:>16.10f} {math.degrees(e.theta):>16.10f} {e.omega:>14.10f}")
+            t, theta, omega = (bounded(x, ".10f") for x in (e.t, math.degrees(e.theta), e.omega))
+            print(f"  {e.name:<18} {t:>16} {theta:>16} {omega:>14}")
     return 0

@@ -17,6 +17,14 @@ import numpy as np
 from eccjump import plot
 from eccjump.body import Cylinder
 from eccjump.cli._args import add_integrator, degrees_in, int_at_least
+from eccjump.cli._output import (
+    ANIMATION_SUFFIXES,
+    bounded,
+    check_output,
+    figure_suffixes,
+    save_figure,
+    write_output,
+)
 from eccjump.motion import MODES, simulate
 
 UNITS = (
@@ -222,7 +230,7 @@ def summary(result: Any, body: Cylinder, alpha_deg: float, args: argparse.Namesp
 
 
 def _g(x: float | None, fmt: str) -> str:
-    return "n/a" if x is None else format(x, fmt)
+    return "n/a" if x is None else bounded(x, fmt)
 
 
 def print_table(s: dict) -> None:
@@ -253,13 +261,14 @@ def print_table(s: dict) -> None:
         landing = (
             "not landed by the end"
             if f["t_landing"] is None
-            else f"landing at t = {f['t_landing']:.8g} (theta = {f['theta_landing_deg']:.6g} deg)"
+            else f"landing at t = {f['t_landing']:.8g} "
+            f"(theta = {_g(f['theta_landing_deg'], '.6g')} deg)"
         )
         rows.append(
             (
                 "first flight",
-                f"lift-off at t = {f['t_liftoff']:.8g} "
-                f"(theta = {f['theta_liftoff_deg']:.6g} deg), {landing}",
+                f"lift-off at t = {_g(f['t_liftoff'], '.8g')} "
+                f"(theta = {_g(f['theta_liftoff_deg'], '.6g')} deg), {landing}",
             )
         )
         rows.append(
@@ -296,9 +305,18 @@ def print_table(s: dict) -> None:
 # --------------------------------------------------------------------------------------------
 
 
+def _check_outputs(args: argparse.Namespace) -> tuple[Path | None, Path | None]:
+    """The paths of --figure and --animate, checked before the run (None: not asked for)."""
+    figure = animation = None
+    if args.figure is not None:
+        figure = check_output("--figure", args.figure, figure_suffixes())
+    if args.animate is not None:
+        animation = check_output("--animate", args.animate, ANIMATION_SUFFIXES)
+    return figure, animation
+
+
 def _cmd_simulate(args: argparse.Namespace) -> int:
-    if args.animate is not None and Path(args.animate).suffix.lower() != ".gif":
-        raise ValueError(f"--animate {args.animate}: the animation is written as a .gif file")
+    figure, animation = _check_outputs(args)
     body = Cylinder(args.chi, args.km)
     alpha = math.radians(args.alpha)
     res = simulate(
@@ -317,27 +335,27 @@ def _cmd_simulate(args: argparse.Namespace) -> int:
         rtol=args.rtol,
         atol=args.atol,
         integrator=args.integrator,
-        dense_output=args.animate is not None,
+        dense_output=animation is not None,
     )
     s = summary(res, body, args.alpha, args)
     if args.json:
         print(json.dumps(s, indent=2))
     else:
         print_table(s)
-    if args.figure or args.animate:
+    if figure is not None or animation is not None:
         import matplotlib
 
         matplotlib.use("Agg")
-        import matplotlib.pyplot as plt
-
-        if args.figure:
-            fig = plot.motion(res, body=body, alpha=alpha)
-            fig.savefig(args.figure, dpi=110)
-            plt.close(fig)
-            if not args.json:
-                print(f"figure: {args.figure}")
-        if args.animate:
-            plot.animate_motion(res, args.animate, body=body, alpha=alpha)
-            if not args.json:
-                print(f"animation: {args.animate}")
+    if figure is not None:
+        save_figure("--figure", plot.motion(res, body=body, alpha=alpha), figure, dpi=110)
+        if not args.json:
+            print(f"figure: {figure}")
+    if animation is not None:
+        write_output(
+            "--animate",
+            animation,
+            lambda tmp: plot.animate_motion(res, tmp, body=body, alpha=alpha),
+        )
+        if not args.json:
+            print(f"animation: {animation}")
     return 0

@@ -16,8 +16,9 @@ import numpy as np
 
 from eccjump import plot
 from eccjump.classification import Region, region
-from eccjump.cli._args import int_at_least
-from eccjump.starts import optimal_start, start_map
+from eccjump.cli._args import int_in, short_text
+from eccjump.cli._output import DPI_RANGE, check_outputs, save_figure
+from eccjump.starts import GRID_MAX, STARTS_MAX, optimal_start, start_map
 
 
 def add_parser(sub: argparse._SubParsersAction) -> None:
@@ -30,46 +31,66 @@ def add_parser(sub: argparse._SubParsersAction) -> None:
         "(immediate flight, rocking back) over theta0 in [0, 360) deg and omega0 in "
         "[0, omega-max]. With -o, write the figures of docs/initial_conditions.md.",
     )
-    p.add_argument("--mu-s", type=float, nargs="+", default=[0.7, 1.0], help="static friction")
+    p.add_argument(
+        "--mu-s",
+        type=float,
+        nargs="+",
+        default=[0.7, 1.0],
+        help=f"static friction, 1 ... {MAX_MU_VALUES} values (default 0.7 1)",
+    )
     p.add_argument(
         "--grid",
-        type=int_at_least(2),
+        type=int_in(2, 64),
         default=24,
-        help="points per axis of the optimiser's grid (the fine grid is twice it; default 24)",
+        help="points per axis of the optimiser's grid, 2 ... 64 (the fine grid is twice it; "
+        "default 24)",
     )
     p.add_argument(
         "--lattice",
-        type=int_at_least(2),
+        type=int_in(2, 1000),
         nargs=2,
         default=[24, 12],
         metavar=("N_THETA", "N_OMEGA"),
-        help="the optimiser's first lattice of starts (default 24 12)",
+        help="the optimiser's first lattice of starts, each 2 ... 1000 (default 24 12)",
     )
     p.add_argument(
         "--map-grid",
-        type=int_at_least(2),
+        type=int_in(2, GRID_MAX),
         default=20,
-        help="points per axis of the grid of each start of the map (default 20)",
+        help=f"points per axis of each start's grid in the map, 2 ... {GRID_MAX} (default 20)",
     )
     p.add_argument(
         "--map-size",
-        type=int_at_least(2),
+        type=int_in(2, STARTS_MAX // 2),
         nargs=2,
         default=[72, 31],
         metavar=("N_THETA", "N_OMEGA"),
-        help="starts of the map, theta0 x omega0 (default 72 31)",
+        help=f"starts of the map, theta0 x omega0, at most {STARTS_MAX} (default 72 31)",
     )
     p.add_argument("--no-map", action="store_true", help="skip the map of starts")
     p.add_argument("--omega-max", type=float, default=3.0, help="largest omega0 [sqrt(g/R)]")
     p.add_argument(
         "--rule", choices=("paper", "normal_force"), default="paper", help="lift-off rule"
     )
-    p.add_argument("--threads", type=int, default=0, help="threads (0: one per core)")
-    p.add_argument("-o", "--outdir", type=Path, default=None, help="write the figures here")
-    p.add_argument("--dpi", type=int_at_least(20), default=90, help="resolution of the PNGs")
+    p.add_argument(
+        "--threads", type=int_in(0, 256), default=0, help="threads, 0 ... 256 (0: one per core)"
+    )
+    p.add_argument(
+        "-o", "--outdir", type=Path, default=None, help="write the figures here (a directory)"
+    )
+    p.add_argument(
+        "--dpi",
+        type=int_in(*DPI_RANGE),
+        default=90,
+        help=f"resolution of the PNGs, {DPI_RANGE[0]} ... {DPI_RANGE[1]} (default 90)",
+    )
     p.add_argument("--json", action="store_true", help="print machine-readable JSON")
     p.add_argument("-q", "--quiet", action="store_true", help="no progress on stderr")
     p.set_defaults(func=_cmd_starts)
+
+
+#: The most friction coefficients of one run (each is a search over the starts).
+MAX_MU_VALUES = 16
 
 
 def _say(args: argparse.Namespace, text: str) -> None:
@@ -81,14 +102,32 @@ def _tag(mu: float) -> str:
     return f"{mu:g}".replace(".", "p")
 
 
+def _figure_paths(args: argparse.Namespace) -> dict[str, Path]:
+    """The figures -o asks for, by name, checked before any work ({} without -o)."""
+    if args.outdir is None:
+        return {}
+    if not args.outdir.is_dir():
+        raise ValueError(f"--outdir {short_text(str(args.outdir), 60)!r} is not a directory")
+    names = []
+    for mu in args.mu_s:
+        if not args.no_map:
+            names.append(f"starts_mu{_tag(mu)}")
+        names += [f"starts_region_{where}_mu{_tag(mu)}" for where in ("rest", "optimum")]
+    paths = check_outputs("--outdir", (args.outdir / f"{n}.png" for n in names), {".png"})
+    return dict(zip(names, paths, strict=True))
+
+
 def _cmd_starts(args: argparse.Namespace) -> int:
-    if args.outdir is not None and not args.outdir.is_dir():
-        raise ValueError(f"outdir {str(args.outdir)[:120]!r} is not a directory")
-    if args.outdir is not None:
+    if len(args.mu_s) > MAX_MU_VALUES:
+        raise ValueError(f"--mu-s: {len(args.mu_s)} values; at most {MAX_MU_VALUES}")
+    n_th, n_om = args.map_size
+    if not args.no_map and n_th * n_om > STARTS_MAX:  # refused before the search, not after
+        raise ValueError(f"--map-size {n_th} {n_om}: {n_th * n_om} starts; at most {STARTS_MAX}")
+    figures = _figure_paths(args)
+    if figures:
         import matplotlib
 
         matplotlib.use("Agg")
-        import matplotlib.pyplot as plt
     results: list[dict[str, Any]] = []
     for mu in args.mu_s:
         start = time.perf_counter()
@@ -105,7 +144,6 @@ def _cmd_starts(args: argparse.Namespace) -> int:
         smap = None
         if not args.no_map:
             start = time.perf_counter()
-            n_th, n_om = args.map_size
             thetas = np.linspace(0.0, 2.0 * math.pi, n_th, endpoint=False)
             omegas = np.linspace(0.0, args.omega_max, n_om)
 
@@ -125,11 +163,10 @@ def _cmd_starts(args: argparse.Namespace) -> int:
                 "seconds": time.perf_counter() - start,
             }
         written = []
-        if args.outdir is not None and smap is not None:
+        if figures and smap is not None:
             fig = plot.fraction_map(smap, optimum=opt)
-            written.append(args.outdir / f"starts_mu{_tag(mu)}.png")
-            fig.savefig(written[-1], dpi=args.dpi)
-            plt.close(fig)
+            path = figures[f"starts_mu{_tag(mu)}"]
+            written.append(save_figure("--outdir", fig, path, args.dpi))
         g = 2 * opt.grid
         u = (np.arange(g) + 0.5) / g
         out["regions"] = {}
@@ -137,11 +174,9 @@ def _cmd_starts(args: argparse.Namespace) -> int:
             reg = region(mu, alpha=u * math.pi / 2, chi=u, km=u, theta0=th, omega0=om,
                          rule=args.rule, n_threads=args.threads)  # fmt: skip
             out["regions"][name] = _region_summary(reg)
-            if args.outdir is not None:
-                fig = plot.region_map(reg)
-                written.append(args.outdir / f"starts_region_{name}_mu{_tag(mu)}.png")
-                fig.savefig(written[-1], dpi=args.dpi)
-                plt.close(fig)
+            if figures:
+                path = figures[f"starts_region_{name}_mu{_tag(mu)}"]
+                written.append(save_figure("--outdir", plot.region_map(reg), path, args.dpi))
         if written:
             out["figures"] = [str(p) for p in written]
         results.append(out)
@@ -178,7 +213,16 @@ def _region_summary(reg: Region) -> dict[str, Any]:
     return out
 
 
+def _gain(r: dict[str, Any]) -> str:
+    """The optimum's fraction over the one from rest (which may be 0: no quotient then)."""
+    if r["fraction_at_rest"] <= 0:
+        return "no JARM from rest"
+    return f"{r['fraction'] / r['fraction_at_rest']:.4g} x the rest value"
+
+
 def _print(r: dict[str, Any]) -> None:
+    # Every number printed here is bounded (fractions in [0, 1], angles in [0, 360), omega0
+    # at most omega_max <= 100), so fixed-point formats print a few digits; _gain divides.
     fine = 2 * r["grid"]
     print(f"mu_s = {r['mu_s']:g}   (rule {r['rule']}, fraction on the {fine}^3 midpoint grid)")
     print(f"  from rest      fraction {r['fraction_at_rest']:.6f}")
@@ -188,8 +232,7 @@ def _print(r: dict[str, Any]) -> None:
     )
     print(
         f"                 fraction {r['fraction']:.6f} +- {r['fraction_err']:.6f} "
-        f"({r['grid']}^3: {r['fraction_coarse']:.6f}); "
-        f"{r['fraction'] / max(r['fraction_at_rest'], 1e-300):.1f} x the rest value"
+        f"({r['grid']}^3: {r['fraction_coarse']:.6f}); {_gain(r)}"
     )
     print(f"  search         {r['evaluations']} maps, {r['seconds_optimum']:.1f} s")
     m = r.get("map")
