@@ -74,8 +74,8 @@ def _bad_paths(tmp_path):
         "parent is a file": (tmp_path / "file" / "x.png", "not a directory"),
         "a directory at the path": (tmp_path / "dir.png", "is a directory"),
         "too long a name": (tmp_path / ("x" * 250 + ".png"), "longer than"),
-        "unknown suffix": (tmp_path / "x.xyz", "suffix must be one of"),
-        "no suffix": (tmp_path / "x", "suffix must be one of"),
+        "unknown suffix": (tmp_path / "x.xyz", "suffix '.xyz' is not one of"),
+        "no suffix": (tmp_path / "x", "no suffix: one of"),
         "empty": ("", "give a file name"),
     }
 
@@ -167,10 +167,11 @@ def _figures_faults(tmp_path):
     return {
         "outdir is a file": (tmp_path / "file", "cannot make it"),
         "outdir under a file": (tmp_path / "file" / "sub", "cannot make it"),
+        "a missing parent": (tmp_path / "no" / "such", "cannot make it"),
+        "a deep path": (tmp_path / ("a/" * 1500), "cannot make it"),  # was a RecursionError
         "too long a name": (tmp_path / ("d" * 300), "cannot make it"),
         "a directory at a figure's path": (tmp_path / "taken", "is a directory"),
         "a read-only file system": ("/proc/eccjump-figures", "cannot make it"),
-        "an empty name": ("", "cannot make it"),
     }
 
 
@@ -179,6 +180,8 @@ def _figures_faults(tmp_path):
     [
         "outdir is a file",
         "outdir under a file",
+        "a missing parent",
+        "a deep path",
         "too long a name",
         "a directory at a figure's path",
         "a read-only file system",
@@ -195,6 +198,13 @@ def test_figures_refuses_a_bad_outdir_before_the_work(tmp_path, fault, monkeypat
     assert "--outdir" in message and says in message, message
 
 
+@pytest.mark.parametrize("command", ["figures", "starts"])
+def test_an_empty_outdir_is_no_directory(command):
+    """``Path("")`` is the current directory: an empty -o used to write there."""
+    message = failure([command, "-o", " "], code=2)
+    assert "--outdir" in message and "names no directory" in message
+
+
 def test_figures_turns_a_write_error_into_one_line(tmp_path, monkeypatch):
     from matplotlib.figure import Figure
 
@@ -208,7 +218,7 @@ def test_figures_turns_a_write_error_into_one_line(tmp_path, monkeypatch):
 
 
 def test_figures_writes_through_the_checked_path(tmp_path):
-    out = tmp_path / "new" / "dir"
+    out = tmp_path / "new"
     code, stdout, err = run_cli_inprocess(["figures", "--only", "fig3b", "-o", str(out)])
     assert code == 0, err
     assert files(out) == ["fig3b.png"] and str(out / "fig3b.png") in stdout
@@ -502,6 +512,11 @@ def test_unknown_arguments_are_reported_by_the_subcommand():
     assert message.startswith("eccjump roll: error: unrecognized arguments: stray")
     message = failure([*ROLL, "--bogus"], code=2)
     assert message == "eccjump roll: error: unrecognized options: --bogus"
+
+
+def test_an_unknown_option_before_the_subcommand_is_named():
+    message = failure(["--bogus", *ROLL], code=2)
+    assert message == "eccjump: error: unrecognized options: --bogus"
 
 
 def test_long_values_are_cut_in_messages():

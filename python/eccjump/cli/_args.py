@@ -6,7 +6,9 @@ from __future__ import annotations
 import argparse
 import difflib
 import re
+import sys
 from collections.abc import Callable, Sequence
+from pathlib import Path
 from typing import Any, NoReturn, get_args
 
 from eccjump._bridge import Integrator
@@ -41,12 +43,12 @@ class Parser(argparse.ArgumentParser):
     def parse_known_args(  # type: ignore[override]
         self, args: Sequence[str] | None = None, namespace: argparse.Namespace | None = None
     ) -> tuple[argparse.Namespace, list[str]]:
-        # A subcommand checks its option names first: a misspelt option is named (with its
-        # close spelling) before argparse reports a required option as missing.
-        if self._subparsers is None and args is not None:
-            unknown = [a for a in args[: _end_of_options(args)] if self._is_unknown_option(a)]
-            if unknown:
-                self.error(self.unrecognized(unknown, "options"))
+        # The option names are checked first: a misspelt option is named (with its close
+        # spelling) before argparse reports a required option or the subcommand as missing.
+        args = sys.argv[1:] if args is None else list(args)
+        unknown = [a for a in args[: self._end_of_options(args)] if self._is_unknown_option(a)]
+        if unknown:
+            self.error(self.unrecognized(unknown, "options"))
         return super().parse_known_args(args, namespace)
 
     def parse_args(  # type: ignore[override]
@@ -97,6 +99,14 @@ class Parser(argparse.ArgumentParser):
         # -x, or -xVALUE / -qo (a short option with its value, or short flags together)
         return arg[1:2].isalpha() and arg[:2] not in known
 
+    def _end_of_options(self, args: Sequence[str]) -> int:
+        """Where this parser's own options end in ``args``: at ``--`` (after it, everything
+        is a value), or, with subcommands, at the subcommand (the first non-option)."""
+        for i, arg in enumerate(args):
+            if arg == "--" or (self._subparsers is not None and not arg.startswith("-")):
+                return i
+        return len(args)
+
     def _subcommand(self, ns: argparse.Namespace) -> Parser | None:
         """The parser of the subcommand ``ns`` was parsed by, if any."""
         for action in self._subparsers._group_actions if self._subparsers else ():
@@ -104,11 +114,6 @@ class Parser(argparse.ArgumentParser):
                 parser = action.choices.get(getattr(ns, action.dest, None) or "")
                 return parser if isinstance(parser, Parser) else None
         return None
-
-
-def _end_of_options(args: Sequence[str]) -> int:
-    """The index of ``--`` (after it, everything is a value), or len(args)."""
-    return list(args).index("--") if "--" in args else len(args)
 
 
 def _cut_quoted(m: re.Match[str]) -> str:
@@ -141,6 +146,14 @@ def add_integrator(p: argparse._ActionsContainer, when: str = "") -> None:
         help=f"Runge-Kutta pair{when}: RK45 (Dormand-Prince 5(4), default), DOP853 (8(5,3)), "
         "Vern7 (Verner 7(6)) or Vern9 (Verner 9(8))",
     )
+
+
+def directory(text: str) -> Path:
+    """A directory option: an empty name is refused (``Path("")`` would be the current
+    directory)."""
+    if not text.strip():
+        raise argparse.ArgumentTypeError(f"{text!r} names no directory")
+    return Path(text)
 
 
 def int_in(lo: int, hi: int | None = None) -> Callable[[str], int]:

@@ -78,8 +78,9 @@ def check_output(option: str, path: str | os.PathLike, suffixes: Iterable[str]) 
         raise ValueError(f"{_shown(option, text)}: give a file name")
     path = Path(text)
     allowed = sorted(suffixes)
-    if path.suffix.lower() not in allowed:
-        raise ValueError(f"{_shown(option, path)}: the suffix must be one of {' '.join(allowed)}")
+    if path.suffix.lower() not in allowed:  # the path is not shown: the list is long
+        what = f"the suffix {short_text(path.suffix, 20)!r} is not" if path.suffix else "no suffix:"
+        raise ValueError(f"{option}: {what} one of {' '.join(allowed)}")
     try:
         parent = path.absolute().parent
         longest = _name_max(parent) - (len(_temporary(path).name) - len(path.name))

@@ -9,7 +9,7 @@ from pathlib import Path
 
 from eccjump import plot
 from eccjump.body import Cylinder
-from eccjump.cli._args import int_in, short_text
+from eccjump.cli._args import directory, int_in, short_text
 from eccjump.cli._output import DPI_RANGE, check_outputs, save_figure
 from eccjump.rolling import roll
 
@@ -30,9 +30,9 @@ def add_parser(sub: argparse._SubParsersAction) -> None:
     p.add_argument(
         "-o",
         "--outdir",
-        type=Path,
+        type=directory,
         default=Path("."),
-        help="output directory (made, with its parents, if missing)",
+        help="output directory (made if missing; its parent must exist)",
     )
     p.add_argument(
         "--dpi",
@@ -67,10 +67,11 @@ def add_parser(sub: argparse._SubParsersAction) -> None:
 
 
 def _outdir(path: Path) -> Path:
-    """The output directory, made (with its missing parents) before any work; ValueError
-    naming --outdir if it cannot be."""
+    """The output directory, made before any work if its parent exists (no parents are
+    made: a typo in a parent is an error, not a new tree); ValueError naming --outdir if it
+    cannot be."""
     try:
-        path.mkdir(parents=True, exist_ok=True)
+        path.mkdir(exist_ok=True)
     except (OSError, ValueError) as err:  # a file in the way, no permission, a long name
         why = getattr(err, "strerror", None) or str(err)
         raise ValueError(f"--outdir {short_text(str(path), 60)!r}: cannot make it: {why}") from None

@@ -16,7 +16,7 @@ import numpy as np
 
 from eccjump import plot
 from eccjump.classification import Region, region
-from eccjump.cli._args import int_in, short_text
+from eccjump.cli._args import directory, int_in, short_text
 from eccjump.cli._output import DPI_RANGE, check_outputs, save_figure
 from eccjump.starts import GRID_MAX, STARTS_MAX, optimal_start, start_map
 
@@ -76,7 +76,7 @@ def add_parser(sub: argparse._SubParsersAction) -> None:
         "--threads", type=int_in(0, 256), default=0, help="threads, 0 ... 256 (0: one per core)"
     )
     p.add_argument(
-        "-o", "--outdir", type=Path, default=None, help="write the figures here (a directory)"
+        "-o", "--outdir", type=directory, default=None, help="write the figures here (a directory)"
     )
     p.add_argument(
         "--dpi",
