@@ -139,6 +139,22 @@ def test_a_failed_write_leaves_no_partial_file(tmp_path, monkeypatch):
     assert files(tmp_path) == []
 
 
+def test_ctrl_c_while_writing_leaves_no_partial_file(tmp_path, monkeypatch):
+    from matplotlib.figure import Figure
+
+    def interrupted(self, fname, **kwargs):
+        with open(fname, "wb") as fh:
+            fh.write(b"\x89PNG half")
+        raise KeyboardInterrupt
+
+    monkeypatch.setattr(Figure, "savefig", interrupted)
+    code, _, err = run_cli_inprocess(
+        [*SIMULATE, "--t-max", "1", "--figure", str(tmp_path / "x.png")]
+    )
+    assert code == 130 and err.strip() == "eccjump: aborted"
+    assert files(tmp_path) == []
+
+
 def test_an_existing_figure_is_replaced_only_when_the_new_one_is_complete(tmp_path):
     target = tmp_path / "x.png"
     target.write_bytes(b"old")
