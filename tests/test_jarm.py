@@ -11,6 +11,8 @@ import sympy as sp
 import test_paper_formulas as paper
 from hypothesis import assume, given, settings
 from hypothesis import strategies as st
+from properties import reach_rate
+from reference_points import jump_points
 
 import eccjump
 from eccjump import Cylinder, Reason, closed_form, jarm, region, roll
@@ -92,19 +94,38 @@ def test_printed_jump6_Njumpfn_ineq2_Jta_dega2(body, alpha, phi):
 
 
 @settings(max_examples=30, deadline=None)
-@given(bodies(), st.floats(0.2, math.pi / 2 - 0.05), st.integers(1, 3))
-def test_theta_nJ_against_brackets_and_reference(body, alpha, n):
-    chi, km = body
+@given(st.sampled_from(jump_points()))
+def test_theta_nJ_against_brackets_and_reference(point):
+    # Points whose jump from rolling lies on turn n: the brackets hold a root there.
+    alpha, chi, km, n, _ = point
     c1, c2 = closed_form.J_brackets(alpha, chi, km, n)
+    assert c1 < 0 < c2
     th = float(closed_form.theta_nJ(alpha, chi, km, n))
-    if c1 < 0 < c2:
-        assert 2 * math.pi * n - alpha <= th <= 2 * math.pi * n
-        assert abs(float(closed_form.liftoff_function(th, alpha, chi, km))) < 1e-12
-        expected = ref.theta_jump(n, alpha, chi, km)
-        if expected is not None:
-            assert th == pytest.approx(expected, abs=1e-11)
-    else:
-        assert math.isnan(th)
+    assert 2 * math.pi * n - alpha <= th <= 2 * math.pi * n
+    assert abs(float(closed_form.liftoff_function(th, alpha, chi, km))) < 1e-12
+    assert th == pytest.approx(ref.theta_jump(n, alpha, chi, km), abs=1e-11)
+
+
+NO_BRACKET = st.tuples(bodies(), st.floats(0.2, math.pi / 2 - 0.05), st.integers(1, 3))
+
+
+def brackets_no_root(draw) -> bool:
+    (chi, km), alpha, n = draw
+    c1, c2 = closed_form.J_brackets(alpha, chi, km, n)
+    return not c1 < 0 < c2
+
+
+@settings(max_examples=30, deadline=None)
+@given(NO_BRACKET)
+def test_theta_nJ_is_nan_without_a_bracket(draw):
+    assume(brackets_no_root(draw))
+    (chi, km), alpha, n = draw
+    assert math.isnan(float(closed_form.theta_nJ(alpha, chi, km, n)))
+
+
+def test_the_filtered_property_reaches_its_assertion():
+    # Over the whole space a turn's window brackets no root in most draws.
+    assert reach_rate(NO_BRACKET, brackets_no_root) >= 0.9
 
 
 # --- invariants ------------------------------------------------------------------------------
@@ -119,12 +140,15 @@ def test_alpha_zero_never_jarm(body, mu_s):
 
 
 @settings(max_examples=80, deadline=None)
-@given(bodies(), st.floats(0.01, math.pi / 2), st.floats(0.0, 3.0), st.floats(0.0, 3.0))
-def test_region_grows_monotonically_with_mu_s(body, alpha, m1, m2):
-    chi, km = body
-    lo, hi = sorted((m1, m2))
-    if bool(jarm(alpha, chi, km, lo).is_jarm):
-        assert bool(jarm(alpha, chi, km, hi).is_jarm)
+@given(st.sampled_from(jump_points()), st.floats(1e-9, 2.0), st.floats(0.0, 3.0))
+def test_region_grows_monotonically_with_mu_s(point, above, more):
+    # A point that jumps from rolling is JARM from the friction its path needs on, and
+    # for any more friction; just below that it slips first.
+    alpha, chi, km, _, needed = point
+    lo = needed * (1 + above)
+    assert bool(jarm(alpha, chi, km, lo).is_jarm)
+    assert bool(jarm(alpha, chi, km, lo + more).is_jarm)
+    assert not bool(jarm(alpha, chi, km, needed * (1 - 1e-9)).is_jarm)
 
 
 @settings(max_examples=60, deadline=None)

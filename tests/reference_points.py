@@ -1,0 +1,51 @@
+"""The named reference points the tests use, in one place, and the set of points that jump
+from pure rolling given enough friction, for properties that need such a point.
+
+The named points are the physics notes' (``shared/physics.md``): the JARM point of the
+paper (α = 40°, χ = 0.15, k_m = 0.02: θ_J = 334.344°, F_y,J = +0.01543 M g) and the paper's
+Fig. 3b body on a 30° ramp, which slips first at θ = 316.47° with μ_s = 1
+(μ_s,min ≈ 1.3916).
+"""
+
+from __future__ import annotations
+
+import math
+from functools import cache
+
+import numpy as np
+
+import eccjump
+
+#: (χ, k_m, α) of the paper's JARM point.
+JARM_POINT = (0.15, 0.02, math.radians(40))
+#: (χ, k_m, α) of the paper's Fig. 3b body on a 30° ramp: slips first at μ_s = 1.
+SLIP_FIRST_POINT = (0.5, 0.4, math.radians(30))
+
+#: (body, α) pairs as ``simulate`` and ``roll`` take them.
+JARM = (eccjump.Cylinder(*JARM_POINT[:2]), JARM_POINT[2])
+SLIP_FIRST = (eccjump.Cylinder(*SLIP_FIRST_POINT[:2]), SLIP_FIRST_POINT[2])
+
+#: μ_s large enough that friction never decides: a point is then JARM exactly when it
+#: jumps from pure rolling (θ_J in a window [2πn − α, 2πn] with F_y > 0 along the path).
+AMPLE_FRICTION = 1e3
+
+
+@cache
+def jump_points() -> tuple[tuple[float, float, float, int, float], ...]:
+    """The points (α, χ, k_m, n, μ_needed) of a 12³ grid over the part of the parameter space
+    where the JARM region lies (α ∈ [0.3, 1.3], χ ∈ [0.05, 0.4], k_m ∈ [0.002, 0.05]) that
+    jump from pure rolling, with the turn n of the jump and the largest friction ratio
+    μ_needed along their path (JARM exactly for μ_s ≥ μ_needed): about a quarter of the grid.
+    A property that needs such a point draws one from here, so that it reaches its assertion
+    in every example rather than in the few that a filter over the whole space lets through.
+    """
+    axes = (np.linspace(0.3, 1.3, 12), np.linspace(0.05, 0.4, 12), np.linspace(0.002, 0.05, 12))
+    alpha, chi, km = (a.ravel() for a in np.meshgrid(*axes, indexing="ij"))
+    r = eccjump.jarm(alpha, chi, km, AMPLE_FRICTION)
+    jumps = np.asarray(r.is_jarm, dtype=bool)
+    return tuple(
+        (float(a), float(c), float(k), int(n), float(m))
+        for a, c, k, n, m in zip(
+            alpha[jumps], chi[jumps], km[jumps], r.n[jumps], r.max_ratio[jumps], strict=True
+        )
+    )
