@@ -77,8 +77,9 @@ def test_block_function_and_graph_pickle():
 def test_chunk_validation():
     assert normalize_chunks({"alpha": 2}, (5, 6, 7)) == (2, 6, 7)
     assert normalize_chunks(10, (5, 6, 7)) == (5, 6, 7)
-    for bad in (0, (1, 2), {"beta": 1}, 1.5, (True, 1, 1)):
-        with pytest.raises(ValueError):
+    assert normalize_chunks((np.int64(-1), None, 3), (5, 6, 7)) == (5, 6, 3)
+    for bad in (0, (1, 2), {"beta": 1}, 1.5, (True, 1, 1), -2, np.timedelta64(1)):
+        with pytest.raises((ValueError, TypeError), match="chunks"):
             normalize_chunks(bad, (5, 6, 7))
 
 

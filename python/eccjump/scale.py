@@ -29,6 +29,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 from eccjump._bridge import CallOptions, jarm_grid
+from eccjump._checks import integer
 from eccjump.fields import FIELDS, RECORD
 
 AXES = ("alpha", "chi", "km")
@@ -63,12 +64,12 @@ def normalize_chunks(chunks: Chunks, shape: tuple[int, int, int]) -> tuple[int, 
             raise ValueError(f"chunks needs 3 sizes (alpha, chi, km), got {chunks!r}")
     out = []
     for c, size in zip(seq, shape, strict=True):
-        if c is None or c == -1:
-            out.append(max(size, 1))
-        elif isinstance(c, bool) or not isinstance(c, int | np.integer) or c < 1:
-            raise ValueError(f"chunk sizes must be integers >= 1 (or -1/None), got {c!r}")
-        else:
-            out.append(min(int(c), max(size, 1)))
+        # The checks of every integer argument: a numpy timedelta64 is a numpy integer
+        # too, and must not pass as a chunk size.
+        n = -1 if c is None else integer("chunks", c, -1)
+        if n == 0:
+            raise ValueError("chunks = 0: a chunk size is an integer >= 1 (or -1/None)")
+        out.append(max(size, 1) if n == -1 else min(n, max(size, 1)))
     return out[0], out[1], out[2]
 
 
