@@ -1,7 +1,11 @@
 """The kinds of map a file can hold -- the JARM region (:mod:`eccjump.fields`) and the full
 motion (:mod:`eccjump.motion_fields`) -- described by their field tables, so that the files
 of :mod:`eccjump.store` and ``eccjump map`` handle both with the same code. A file records
-its kind in the attribute ``kind`` (a file without it is a JARM map)."""
+its kind in the attribute ``kind`` (a file without it is a JARM map).
+
+Each kind also says what a valid map of it holds (checked by :mod:`eccjump._mapcheck` when
+a map is read or written): its axes (each a dimension of the map or one value in the
+attributes) and the allowed values of its coded fields (:meth:`MapKind.bad_codes`)."""
 
 from __future__ import annotations
 
@@ -9,8 +13,10 @@ from collections.abc import Callable, Mapping
 from typing import Any, NamedTuple
 
 import numpy as np
+from numpy.typing import NDArray
 
 from eccjump import fields, motion_fields
+from eccjump.motion import REASONS
 
 
 class MapKind(NamedTuple):
@@ -26,11 +32,49 @@ class MapKind(NamedTuple):
     fill: Mapping[str, Any]
     #: CF attributes of a field's variable.
     var_attrs: Callable[[str], dict[str, Any]]
-    #: File attributes every map of the kind has (how it was made).
+    #: File attributes every map of the kind has (how it was made), less the axes swept.
     required_attrs: tuple[str, ...]
+    #: The axes of the map as (parameter, dimension), in the order of the dimensions: each
+    #: is a dimension (with a 1-D coordinate) or, if not swept, the attribute ``parameter``.
+    axes: tuple[tuple[str, str], ...]
+    #: The dimensions every map of the kind has.
+    fixed_dims: tuple[str, ...]
+    #: The allowed values of each coded field, the fill value included.
+    codes: Mapping[str, frozenset[int]]
+    #: A field whose fill value no computed point has (None: the fill can be a result).
+    computed_mark: str | None = None
 
     def bytes_per_point(self) -> int:
         return sum(np.dtype(self.dtypes[k]).itemsize for k in self.fields)
+
+    def bad_codes(self, values: Mapping[str, NDArray]) -> str | None:
+        """What is wrong with the coded fields in ``values`` (None: nothing): a code not in
+        its table, or (JARM) ``is_jarm`` not saying ``reason`` is JARM."""
+        for name, allowed in self.codes.items():
+            a = np.asarray(values[name])
+            bad = ~np.isin(a, list(allowed))
+            if a.size and bad.any():
+                return f"{name} holds code {a[bad].flat[0].item()!r}, not in its table"
+        if self.name == "motion":
+            seq = np.asarray(values["sequence"]).astype(np.int64)
+            ok = valid_sequences(seq)
+            if not ok.all():
+                return f"sequence holds code {int(seq[~ok].flat[0])}, not a sequence code"
+        if self.name == "jarm":
+            is_jarm = np.asarray(values["is_jarm"], dtype=bool)
+            if not np.array_equal(is_jarm, np.asarray(values["reason"]) == fields.Reason.JARM):
+                return "is_jarm contradicts reason"
+        return None
+
+
+def valid_sequences(codes: NDArray[np.int64]) -> NDArray[np.bool_]:
+    """Which codes are sequence codes (:func:`eccjump.motion_fields.sequence_code`): at most
+    SEQUENCE_LEN modes of 2 bits, none 0 below a later one."""
+    ok = (codes >= 0) & (codes <= motion_fields.SEQUENCE_MAX)
+    for i in range(motion_fields.SEQUENCE_LEN):
+        gap = ((codes >> (2 * i)) & 3) == 0
+        ok &= ~(gap & ((codes >> (2 * i + 2)) != 0))
+    return ok
 
 
 JARM = MapKind(
@@ -40,6 +84,17 @@ JARM = MapKind(
     fields.FILL,
     fields.cf_attrs,
     ("mu_s", "n", "rule", "method", "theta0", "omega0"),
+    (
+        ("mu_s", "mu_s"),
+        ("theta0", "theta0"),
+        ("omega0", "omega0"),
+        ("alpha", "alpha"),
+        ("chi", "chi"),
+        ("km", "km_frac"),
+    ),
+    ("alpha", "chi", "km_frac"),
+    {"reason": frozenset([*(int(r) for r in fields.Reason), fields.FILL["reason"]])},
+    "reason",
 )
 MOTION = MapKind(
     "motion",
@@ -48,6 +103,22 @@ MOTION = MapKind(
     motion_fields.FILL,
     motion_fields.cf_attrs,
     ("mu_s", "mu_k", "restitution", "rule", "theta0", "omega0", "t_max", "max_transitions"),
+    (
+        ("alpha", "alpha"),
+        ("chi", "chi"),
+        ("km", "km_frac"),
+        ("mu_s", "mu_s"),
+        ("mu_k", "mu_k"),
+        ("restitution", "restitution"),
+        ("theta0", "theta0"),
+        ("omega0", "omega0"),
+    ),
+    (),
+    {
+        "status": frozenset(motion_fields.STATUS_NAMES),
+        "landing": frozenset(range(len(motion_fields.LANDINGS))),
+        "liftoff_reason": frozenset([*range(len(REASONS)), motion_fields.FILL["liftoff_reason"]]),
+    },
 )
 #: Every kind by name.
 KINDS: dict[str, MapKind] = {k.name: k for k in (JARM, MOTION)}
@@ -56,9 +127,9 @@ KINDS: dict[str, MapKind] = {k.name: k for k in (JARM, MOTION)}
 def kind_of(attrs: Mapping[str, Any]) -> MapKind:
     """The kind of a map from its attributes; ValueError for an unknown ``kind``."""
     name = attrs.get("kind", "jarm")
-    if name not in KINDS:
-        raise ValueError(f"unknown map kind {name!r}; known: {', '.join(KINDS)}")
-    return KINDS[str(name)]
+    if not isinstance(name, str) or name not in KINDS:
+        raise ValueError(f"unknown map kind {str(name)[:20]!r}; known: {', '.join(KINDS)}")
+    return KINDS[name]
 
 
-__all__ = ["JARM", "KINDS", "MOTION", "MapKind", "kind_of"]
+__all__ = ["JARM", "KINDS", "MOTION", "MapKind", "kind_of", "valid_sequences"]

@@ -13,6 +13,7 @@ The sequence of modes is a compact code (2 bits per mode, the start's mode first
 
 from __future__ import annotations
 
+import os
 from collections.abc import Mapping
 from dataclasses import dataclass, field
 from typing import TYPE_CHECKING, Any, Literal
@@ -22,9 +23,12 @@ from numpy.typing import ArrayLike, NDArray
 
 from eccjump import _core, store
 from eccjump._bridge import Integrator
-from eccjump._checks import U64_MAX, integer, real_array, text
+from eccjump._checks import U64_MAX, integer, real_array, short, text
+from eccjump._mapcheck import file_error
+from eccjump.map_kinds import MOTION, MapKind
 from eccjump.motion import MAX_STEPS, MAX_TRANSITIONS, Rule
 from eccjump.motion_fields import (
+    DTYPES,
     FIELDS,
     INVALID,
     LANDINGS,
@@ -41,9 +45,9 @@ if TYPE_CHECKING:
 
 #: The axes of a map, in the order of the grid (C order: alpha slowest). ``km`` is the
 #: fraction k_m/(1 - chi); its dimension is called ``km_frac``, as in JARM maps.
-AXES = ("alpha", "chi", "km", "mu_s", "mu_k", "restitution", "theta0", "omega0")
+AXES = tuple(a for a, _ in MOTION.axes)
 #: Dimension name of each axis.
-DIM_OF = {**{a: a for a in AXES}, "km": "km_frac"}
+DIM_OF = dict(MOTION.axes)
 
 
 @dataclass(frozen=True, eq=False)
@@ -219,12 +223,55 @@ def motion_map(
     info = {k: opts[k] for k in OPTIONS}
     # The shared options checked on one point first: a bad one is an error, not a map.
     _block(axis["alpha"][:1], tuple(a[:1] for a in rest), opts)
+    _check_scalars(scalars, opts)
     if chunks is not None:
         return _lazy(axis, rest, coords, scalars, info, opts, shape, chunks)
     flat = _block(axis["alpha"], rest, opts)
     fields = {k: flat[k].reshape(shape) for k in FIELDS}
     m = MotionMap(coords, scalars, fields, info)
     return m.to_xarray() if out == "xarray" else m
+
+
+#: A point where every axis has a valid value, where each axis given as one number is tried.
+_PROBE: dict[str, float | None] = {
+    "alpha": 0.5,
+    "chi": 0.3,
+    "km": 0.5,
+    "mu_s": 1.0,
+    "mu_k": None,
+    "restitution": 0.0,
+    "theta0": 0.0,
+    "omega0": 0.0,
+}
+
+
+def _check_scalars(scalars: Mapping[str, float | None], opts: dict[str, Any]) -> None:
+    """ValueError naming an axis given as one number that makes every point of the map
+    invalid (NaN, out of range): as in :func:`eccjump.region`, a bad parameter is an error,
+    not a map of invalid points. Each is tried alone at :data:`_PROBE` (a swept mu_s taken at
+    least as large as mu_k), then all together (mu_k > mu_s). Bad values on a swept axis only
+    mark their points invalid. The core alone knows the ranges, so it is asked."""
+    given = {k: v for k, v in scalars.items() if v is not None}
+    quick = {**opts, "t_max": min(opts["t_max"], 1e-3)}  # validity is known at the start
+    for name, value in given.items():
+        if not _valid_point({name: value}, quick):
+            raise ValueError(
+                f"{name} = {short(value)} is not allowed: every point of the map would be invalid"
+            )
+    if len(given) > 1 and not _valid_point(given, quick):
+        raise ValueError(
+            f"{', '.join(given)}: these values make every point of the map invalid (mu_k > mu_s?)"
+        )
+
+
+def _valid_point(values: Mapping[str, float], opts: dict[str, Any]) -> bool:
+    """Whether the core runs the point of :data:`_PROBE` with ``values`` (not invalid)."""
+    point = {**_PROBE, **values}
+    mu_k = values.get("mu_k")
+    if "mu_s" not in values and mu_k is not None and np.isfinite(mu_k):
+        point["mu_s"] = max(1.0, mu_k)
+    rest = tuple(np.empty(0) if point[k] is None else np.array([point[k]]) for k in AXES[1:])
+    return int(_block(np.array([point["alpha"]]), rest, opts)["status"][0]) != INVALID
 
 
 def _lazy(
@@ -262,30 +309,38 @@ def shape_of(axis: Mapping[str, NDArray]) -> tuple[int, ...]:
 
 def from_dataset(ds: xr.Dataset) -> MotionMap:
     """A :class:`MotionMap` from its Dataset (:meth:`MotionMap.to_xarray`, or a file of
-    ``eccjump map --kind motion`` opened with :func:`eccjump.store.open_dataset`)."""
-    return _from_layout(store.layout_from_xarray(ds))
+    ``eccjump map --kind motion`` opened with :func:`eccjump.store.open_dataset`);
+    ValueError naming ``ds`` if it is no valid motion map."""
+    if not hasattr(type(ds), "data_vars"):
+        raise TypeError(f"ds must be an xarray.Dataset, not {type(ds).__name__}")
+    lay = store.layout_from_xarray(ds)
+    return _from_layout(lay, store.check_layout(lay, "ds"), "ds")
 
 
-def _from_layout(lay: dict[str, Any]) -> MotionMap:
-    """A :class:`MotionMap` from a file layout (numpy only)."""
-    axis_of = {d: a for a, d in DIM_OF.items()}
+def _from_layout(lay: dict[str, Any], kind: MapKind, source: object) -> MotionMap:
+    """A :class:`MotionMap` from a layout checked to be a map of ``kind`` (numpy only);
+    ValueError naming ``source`` if it is a JARM map."""
+    if kind.name != "motion":
+        raise file_error(source, "is a JARM map, not a motion map: load it with eccjump.store.load")
     dims, attrs = lay["data_vars"][FIELDS[0]][0], lay["attrs"]
-    coords = {axis_of[str(d)]: np.asarray(lay["coords"][d][1]) for d in dims}
-    scalars: dict[str, float | None] = {
-        k: float(attrs[k]) for k in AXES if k not in coords and k in attrs
-    }
-    fields = {k: np.asarray(lay["data_vars"][k][1]) for k in FIELDS}
+    axis_of = {d: a for a, d in DIM_OF.items()}
+    coords = {axis_of[d]: np.asarray(lay["coords"][d][1], dtype=np.float64) for d in dims}
+    scalars: dict[str, float | None] = {}
+    for k in AXES:
+        if k not in coords:
+            # mu_k = mu_s (not given) is recorded as mu_s's value, or as "mu_s" if it is swept
+            scalars[k] = None if attrs.get(k, "mu_s") == "mu_s" else float(attrs[k])
+    fields = {k: np.asarray(lay["data_vars"][k][1], dtype=DTYPES[k]) for k in FIELDS}
     opts = {k: attrs[k] for k in OPTIONS if k in attrs}
     return MotionMap(coords, scalars, fields, opts)
 
 
-def load(path: str) -> MotionMap:
+def load(path: str | os.PathLike) -> MotionMap:
     """A motion map file (.nc, .zarr, .npz; .npz needs numpy only) as a :class:`MotionMap`;
-    ValueError naming the path for a file that is not one (a JARM map: :func:`store.load`)."""
-    lay = store.load_layout(path)
-    if store.check_layout(lay, path).name != "motion":
-        raise ValueError(f"{path} is a JARM map, not a motion map: load it with eccjump.store.load")
-    return _from_layout(lay)
+    ValueError naming the path for a file that is no valid motion map (a JARM map:
+    :func:`store.load`), as every loader of :mod:`eccjump.store`."""
+    lay, kind = store.read_layout(path)
+    return _from_layout(lay, kind, path)
 
 
 __all__ = [

@@ -26,9 +26,10 @@ import os
 import re
 import shutil
 import signal
+import stat
+import subprocess
 import sys
 import warnings
-import zipfile
 from collections.abc import Mapping
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
@@ -38,6 +39,7 @@ from numpy.typing import NDArray
 
 from eccjump._checks import mapping
 from eccjump._checks import path as check_path
+from eccjump._mapcheck import Invalid, check, check_layout, file_error, shown
 from eccjump.classification import Region
 from eccjump.labelled import (
     COORD_ATTRS,
@@ -83,12 +85,41 @@ def netcdf_engine() -> str:
     raise AssertionError  # pragma: no cover
 
 
-def _as_layout(obj: Region | Layout | xr.Dataset) -> Layout:
+def _as_layout(obj: object) -> Layout:
+    """The layout of ``obj``, a :class:`Region`, a :class:`~eccjump.MotionMap`, a dataset or
+    a layout; TypeError naming ``obj`` for anything else."""
+    from eccjump.motion_maps import MotionMap  # it imports this module
+
     if isinstance(obj, Region):
         return region_layout(obj.compute())
     if isinstance(obj, dict):
         return obj
-    return layout_from_xarray(obj)
+    if isinstance(obj, MotionMap):
+        obj = obj.to_xarray()
+    if hasattr(type(obj), "data_vars"):
+        return layout_from_xarray(obj)
+    raise TypeError(
+        f"obj must be a Region, a MotionMap, an xarray.Dataset or a layout, not {type(obj)}"
+    )
+
+
+def _valid_layout(obj: object, attrs: Mapping[str, Any] | None) -> Layout:
+    """The layout of ``obj`` with ``attrs``, a valid map: ValueError naming ``obj`` if it is
+    none, ``attrs`` if they make it none (another ``kind``, a NaN ``mu_s``, ...), so that
+    :func:`save` writes nothing that :func:`load` refuses."""
+    lay = _as_layout(obj)
+    _check_given("obj", lay)
+    if attrs:
+        lay = {**lay, "attrs": {**lay["attrs"], **attrs}}
+        _check_given("attrs", lay)
+    return lay
+
+
+def _check_given(name: str, lay: Layout) -> None:
+    try:
+        check(lay)
+    except Invalid as err:
+        raise ValueError(f"{name}: the map {err}"[:180]) from None
 
 
 #: Test hook, for tests/test_map.py only: ``ECCJUMP_TEST_KILL_AT=<step>`` (or ``<step>:<k>``,
@@ -154,6 +185,68 @@ def check_parent(path: str | os.PathLike) -> None:
         raise NotADirectoryError(errno.ENOTDIR, "not a directory", str(parent))
 
 
+def check_name(path: str | os.PathLike) -> None:
+    """ValueError naming ``path`` if its name is too long for its directory once made into the
+    longer name of its temporary sibling (:func:`temp_sibling`)."""
+    path = Path(path)
+    try:
+        name_max = os.pathconf(path.absolute().parent, "PC_NAME_MAX")
+    except (OSError, ValueError, AttributeError):
+        name_max = 255
+    longest = name_max - (len(temp_sibling(path).name) - len(path.name))
+    size = len(os.fsencode(path.name))
+    if size > longest:
+        raise file_error(path, f"has a name of {size} bytes, more than the {longest} allowed here")
+
+
+def _our_zarr_map(path: Path) -> bool:
+    """Whether the directory ``path`` is a zarr map written by eccjump: a group whose
+    attributes carry ``eccjump_version``, holding nothing but zarr arrays."""
+    try:
+        meta = json.loads((path / "zarr.json").read_text())
+        entries = list(path.iterdir())
+        attrs = meta["attributes"]
+        ours = meta["node_type"] == "group" and "eccjump_version" in attrs
+        return ours and all(
+            e.name == "zarr.json"
+            or (e.is_dir() and not e.is_symlink() and (e / "zarr.json").is_file())
+            for e in entries
+        )
+    except (OSError, ValueError, TypeError, KeyError):
+        return False
+
+
+def check_replaceable(path: str | os.PathLike, by_directory: bool) -> None:
+    """ValueError naming ``path`` unless what is there may be replaced by a new map file
+    (``by_directory`` False: a regular file) or zarr store (True: a zarr map of ours). A
+    directory of other files, a directory at an .npz/.nc path, a FIFO, a device are never
+    replaced: only what eccjump could have written is."""
+    try:
+        mode = os.stat(path).st_mode
+    except FileNotFoundError:  # a dangling symbolic link: only the link is replaced
+        return
+    except OSError as err:
+        raise file_error(path, f"cannot be replaced: {err.strerror}") from None
+    if by_directory and stat.S_ISDIR(mode):
+        if _our_zarr_map(Path(path)):
+            return
+        raise file_error(path, "is a directory that is no zarr map of eccjump: not replaced")
+    if not by_directory and stat.S_ISREG(mode):
+        return
+    want = "a zarr map" if by_directory else "a map file"
+    raise file_error(path, f"is {_file_type(mode)}, not {want}: not replaced")
+
+
+def check_target(path: str | os.PathLike, fmt: str) -> None:
+    """Before a map of ``fmt`` is written to ``path``: its directory exists
+    (FileNotFoundError/NotADirectoryError), its name is not too long and what is there, if
+    anything, may be replaced (ValueError naming ``path``)."""
+    check_parent(path)
+    check_name(path)
+    if os.path.lexists(path):
+        check_replaceable(path, fmt == "zarr")
+
+
 def _alive(pid: int) -> bool:
     """Whether process ``pid`` may still be running (True when it cannot be told)."""
     if pid == os.getpid() or os.name != "posix":
@@ -215,9 +308,11 @@ def _renameat2(src: Path, dst: Path, flags: int) -> bool:
 
 def install(tmp: str | os.PathLike, path: str | os.PathLike) -> None:
     """Rename the finished ``tmp`` to ``path``; a map already at ``path`` is removed only once
-    the new one is in place. A file replaces a file atomically (``os.replace``); a directory
-    is swapped in atomically on Linux, elsewhere the old one is renamed aside first (a crash
-    in between leaves it as ``.<name>.old-<pid>``, put back by :func:`recover`)."""
+    the new one is in place, and only if it is what ``tmp`` is (:func:`check_replaceable`:
+    else ValueError naming ``path``, and nothing is touched). A file replaces a file
+    atomically (``os.replace``); a directory is swapped in atomically on Linux, elsewhere the
+    old one is renamed aside first (a crash in between leaves it as ``.<name>.old-<pid>``,
+    put back by :func:`recover`)."""
     tmp, path = Path(tmp), Path(path)
     if not os.path.lexists(path):
         if not _renameat2(tmp, path, _RENAME_NOREPLACE):
@@ -225,7 +320,8 @@ def install(tmp: str | os.PathLike, path: str | os.PathLike) -> None:
                 raise FileExistsError(errno.EEXIST, "appeared while writing", str(path))
             os.rename(tmp, path)
         return
-    if not tmp.is_dir() and not path.is_dir():
+    check_replaceable(path, tmp.is_dir())  # the one place where what was there goes
+    if not tmp.is_dir():
         os.replace(tmp, path)
         return
     if _renameat2(tmp, path, _RENAME_EXCHANGE):
@@ -249,7 +345,7 @@ def _fsync(path: Path) -> None:
 
 
 def save(
-    obj: Region | Layout | xr.Dataset,
+    obj: object,
     path: str | os.PathLike,
     *,
     attrs: Mapping[str, Any] | None = None,
@@ -258,18 +354,16 @@ def save(
 
     Every format is written under a temporary name next to ``path`` and renamed into place
     (:func:`install`), so a map at ``path`` is always whole and the one it replaces is kept
-    until then; on failure nothing is left behind. The directory of ``path`` must exist.
-    ``.npz`` needs numpy only.
+    until then; on failure nothing is left behind. The directory of ``path`` must exist;
+    only a map file (or a zarr map of eccjump) there is replaced, never a directory of other
+    files or a FIFO (ValueError naming ``path``). A map that :func:`load` would refuse is not
+    written (ValueError naming ``obj`` or ``attrs``). ``.npz`` needs numpy only.
     """
     path = Path(check_path("path", path))
     mapping("attrs", attrs)
-    if not isinstance(obj, Region | dict) and not hasattr(obj, "data_vars"):
-        raise TypeError(f"obj must be a Region, an xarray.Dataset or a layout, not {type(obj)}")
     fmt = format_of(path)
-    check_parent(path)
-    lay = _as_layout(obj)
-    if attrs:
-        lay = {**lay, "attrs": {**lay["attrs"], **attrs}}
+    check_target(path, fmt)
+    lay = _valid_layout(obj, attrs)
     tmp = temp_sibling(path)
     try:
         if fmt == "npz":
@@ -309,11 +403,12 @@ def save_npz(layout: Layout, path: str | os.PathLike) -> None:
 
 
 def load_npz(path: str | os.PathLike) -> Layout:
+    """The layout in an ``.npz`` file (unchecked: see :func:`read_layout`)."""
     with np.load(path, allow_pickle=False) as z:
         if not isinstance(z, np.lib.npyio.NpzFile):
-            raise ValueError(f"{path} is a .npy array, not an .npz archive")
+            raise Invalid("is a .npy array, not an .npz archive")
         if "__layout__" not in z.files:
-            raise ValueError(f"{path} is not an eccjump map: no __layout__ array in the archive")
+            raise Invalid("is not an eccjump map: no __layout__ array in the archive")
         meta = json.loads(str(z["__layout__"]))
         lay: Layout = {"attrs": meta["attrs"]}
         for part in ("coords", "data_vars"):
@@ -324,82 +419,185 @@ def load_npz(path: str | os.PathLike) -> Layout:
     return lay
 
 
-def open_dataset(path: str | os.PathLike) -> xr.Dataset:
-    """A map file as an ``xarray.Dataset`` (loaded into memory)."""
-    fmt = format_of(path)
-    if fmt == "npz":
-        return layout_to_xarray(load_npz(path))
-    xr = require("xarray")
-    if fmt == "netcdf":
-        with xr.open_dataset(path, engine=netcdf_engine()) as ds:
-            return ds.load()
-    require("zarr")
-    with xr.open_zarr(path, consolidated=None) as ds:
-        return ds.load()
-
-
-#: What a map file holds (coordinates, data variables, attributes), checked by :func:`load`.
-def required(kind: MapKind) -> tuple[tuple[str, tuple[str, ...]], ...]:
-    """What a map file of ``kind`` holds: coordinates, data variables, attributes."""
-    return (
-        ("coordinates", ("alpha", "chi", "km_frac")),
-        ("variables", kind.fields),
-        ("attributes", kind.required_attrs),
-    )
-
-
 #: OSError numbers that are about reaching the file, not about what is in it.
 _ACCESS_ERRNOS = (errno.EACCES, errno.EPERM)
 
 
-def load_layout(path: str | os.PathLike) -> Layout:
-    """The layout of a map file; ValueError naming ``path`` if it is no readable map (a
-    missing or unreadable path raises the OSError)."""
-    fmt = format_of(path)
-    if not os.path.exists(path):
-        raise FileNotFoundError(errno.ENOENT, "no such map", str(path))
+def _check_source(path: str | os.PathLike, fmt: str) -> None:
+    """FileNotFoundError if ``path`` does not exist; ValueError naming it unless it is what a
+    map of ``fmt`` is read from: a regular file (.npz, .nc: a FIFO or a device would block the
+    reader for ever) or a directory (.zarr)."""
+    try:
+        mode = os.stat(path).st_mode
+    except FileNotFoundError:
+        raise FileNotFoundError(errno.ENOENT, "no such map", shown(path)) from None
+    except OSError as err:
+        if err.errno in _ACCESS_ERRNOS:
+            raise
+        raise file_error(path, f"cannot be read: {err.strerror}") from None
+    if fmt == "zarr" and not stat.S_ISDIR(mode):
+        raise file_error(path, f"is not a zarr map: {_file_type(mode)}, not a directory")
+    if fmt != "zarr" and not stat.S_ISREG(mode):
+        raise file_error(path, f"is not a {fmt} map: {_file_type(mode)}, not a regular file")
+
+
+def _file_type(mode: int) -> str:
+    kinds = (
+        (stat.S_ISDIR, "a directory"),
+        (stat.S_ISREG, "a file"),
+        (stat.S_ISFIFO, "a FIFO"),
+        (stat.S_ISSOCK, "a socket"),
+    )
+    return next((name for test, name in kinds if test(mode)), "a device")
+
+
+#: Seconds the netCDF library is given to read a file in :func:`_probe_netcdf`, plus one per
+#: :data:`PROBE_BYTES_PER_SECOND` of the file.
+PROBE_SECONDS = 10.0
+PROBE_BYTES_PER_SECOND = 50e6
+
+#: Reads every variable and attribute of the netCDF file argv[2] with the engine argv[1].
+_PROBE = """
+import sys
+engine, path = sys.argv[1:]
+if engine == "h5netcdf":
+    import h5netcdf
+    def walk(g):
+        dict(g.attrs)
+        for v in g.variables.values():
+            v[...]
+            dict(v.attrs)
+        for sub in g.groups.values():
+            walk(sub)
+    with h5netcdf.File(path, "r") as f:
+        walk(f)
+else:
+    import netCDF4
+    def walk(g):
+        g.__dict__
+        for v in g.variables.values():
+            v.set_auto_maskandscale(False)
+            v[...]
+            v.__dict__
+        for sub in g.groups.values():
+            walk(sub)
+    with netCDF4.Dataset(path) as f:
+        walk(f)
+"""
+
+
+def _probe_netcdf(path: str | os.PathLike, engine: str) -> None:
+    """ValueError naming ``path`` unless the netCDF library reads all of it in a subprocess.
+
+    The HDF5 library under both engines (netCDF4 and h5netcdf/h5py) trusts the bytes of a
+    file: a damaged one can make it loop for ever in C, deaf to Ctrl-C (512 zeroed bytes in
+    the global heap of a motion map do, in netCDF4 1.7 / HDF5 1.14), or crash the process.
+    No check of the file's signature or size finds such damage, and a thread cannot be
+    stopped, so the file is first read whole in a child process with a time limit; only a
+    file it reads is then opened here. Costs about 0.3 s per file.
+    """
+    limit = PROBE_SECONDS + os.path.getsize(path) / PROBE_BYTES_PER_SECOND
+    try:
+        proc = subprocess.run(
+            [sys.executable, "-c", _PROBE, engine, os.fspath(path)],
+            stdin=subprocess.DEVNULL,
+            capture_output=True,
+            text=True,
+            errors="replace",
+            timeout=limit,
+            check=False,
+        )
+    except subprocess.TimeoutExpired:  # run() has killed it
+        raise file_error(
+            path, f"is not a readable netcdf map: the netCDF library hangs on it ({limit:.0f} s)"
+        ) from None
+    if proc.returncode < 0:
+        crash = f"the netCDF library crashed on it (signal {-proc.returncode})"
+        raise file_error(path, f"is not a readable netcdf map: {crash}")
+    if proc.returncode:
+        lines = proc.stderr.replace(os.fspath(path), "").strip().splitlines() or ["?"]
+        if "ModuleNotFoundError" in lines[-1]:  # the engine is not importable from a child
+            raise ImportError(lines[-1])
+        raise file_error(path, f"is not a readable netcdf map: {lines[-1]}")
+
+
+def _read(path: str | os.PathLike, fmt: str) -> tuple[Layout, xr.Dataset | None]:
+    """The layout of the map file at ``path`` (unchecked) and, for .nc and .zarr, its
+    dataset (loaded into memory); ValueError naming ``path`` for whatever the reader of the
+    format cannot read (its errors are of many types: zipfile's, zarr's, zstd's, HDF5's)."""
+    _check_source(path, fmt)
     try:
         if fmt == "npz":
-            return load_npz(path)
-        return layout_from_xarray(open_dataset(path))
-    except ImportError:
+            return load_npz(path), None
+        xr = require("xarray")
+        if fmt == "netcdf":
+            engine = netcdf_engine()
+            _probe_netcdf(path, engine)
+            with xr.open_dataset(path, engine=engine) as ds:
+                ds = ds.load()
+        else:
+            require("zarr")
+            with warnings.catch_warnings():
+                warnings.simplefilter("ignore")  # zarr's about metadata: errors say enough
+                with xr.open_zarr(path, consolidated=None) as ds:
+                    ds = ds.load()
+        return layout_from_xarray(ds), ds
+    except (ImportError, MemoryError):
         raise
-    except (ValueError, KeyError, EOFError, zipfile.BadZipFile, OSError) as err:
-        if isinstance(err, OSError) and err.errno in (errno.EACCES, errno.EPERM):
+    except Invalid as err:
+        raise file_error(path, str(err)) from None
+    except OSError as err:
+        if err.errno in _ACCESS_ERRNOS:
             raise
-        if str(err).startswith(f"{path} "):  # already names the path (load_npz)
-            raise
-        raise ValueError(f"{path} is not a readable {fmt} map: {err}") from err
-
-
-def check_layout(lay: Layout, path: str | os.PathLike) -> MapKind:
-    """The kind of the map in ``lay``; ValueError naming ``path`` if something is missing."""
-    try:
-        kind = kind_of(lay.get("attrs", {}))
+        raise file_error(path, f"is not a readable {fmt} map: {_detail(err)}") from err
     except ValueError as err:
-        raise ValueError(f"{path} is not an eccjump map: {err}") from None
-    have = {
-        "coordinates": set(lay.get("coords", {})) | set(lay.get("data_vars", {})),
-        "variables": set(lay.get("data_vars", {})),
-        "attributes": set(lay.get("attrs", {})),
-    }
-    missing = [
-        f"{what} {', '.join(n for n in names if n not in have[what])}"
-        for what, names in required(kind)
-        if not set(names) <= have[what]
-    ]
-    if missing:
-        raise ValueError(f"{path} is not an eccjump {kind.name} map: missing " + "; ".join(missing))
-    return kind
+        if str(err).startswith(shown(path)):  # already names the file (_probe_netcdf)
+            raise
+        raise file_error(path, f"is not a readable {fmt} map: {_detail(err)}") from err
+    except Exception as err:
+        raise file_error(path, f"is not a readable {fmt} map: {_detail(err)}") from err
+
+
+def _detail(err: BaseException) -> str:
+    """An exception of a reader in a few words (without the file's path, named already)."""
+    text = str(err).replace(str(getattr(err, "filename", None) or "\0"), "")
+    return f"{type(err).__name__}: {text}"[:100]
+
+
+def read_layout(path: str | os.PathLike) -> tuple[Layout, MapKind]:
+    """The layout and kind of the map file at ``path``: every loader reads through here, so
+    each refuses the same files in the same words. ValueError naming ``path`` for anything
+    that is no valid map (unreadable, damaged, foreign, codes out of their tables, NaN
+    coordinates, wrong shapes: see :mod:`eccjump._mapcheck`); FileNotFoundError if missing,
+    PermissionError if not readable."""
+    path = check_path("path", path)
+    lay, _ = _read(path, format_of(path))
+    return lay, check_layout(lay, path)
+
+
+def load_layout(path: str | os.PathLike) -> Layout:
+    """The layout of a map file, checked as by :func:`read_layout`."""
+    return read_layout(path)[0]
+
+
+def open_dataset(path: str | os.PathLike) -> xr.Dataset:
+    """A map file as an ``xarray.Dataset`` (loaded into memory), checked as by
+    :func:`read_layout`."""
+    path = check_path("path", path)
+    lay, ds = _read(path, format_of(path))
+    check_layout(lay, path)
+    return layout_to_xarray(lay) if ds is None else ds
 
 
 def load(path: str | os.PathLike) -> Region:
     """A map file (of one map, no swept dimensions) as a :class:`Region`. ``.npz`` needs
     numpy only. The file's ``complete`` and ``alpha_done`` go to ``Region.attrs``. A file
-    that is not such a map raises ValueError naming it and what is missing."""
-    lay = load_layout(check_path("path", path))
-    if check_layout(lay, path).name != "jarm":
-        raise ValueError(f"{path} is a motion map: load it with eccjump.motion_maps.load")
+    that is not such a map raises ValueError naming it and what is wrong."""
+    lay, kind = read_layout(path)
+    if kind.name != "jarm":
+        raise file_error(path, "is a motion map: load it with eccjump.motion_maps.load")
+    if tuple(lay["data_vars"]["is_jarm"][0]) != DIMS:
+        raise file_error(path, "holds swept maps: open it with eccjump.store.open_dataset")
     reg = to_region(lay)
     if "alpha_done" in lay["data_vars"]:
         reg.attrs["alpha_done"] = np.asarray(lay["data_vars"]["alpha_done"][1], dtype=bool)
@@ -418,6 +616,14 @@ def _json_attrs(attrs: Mapping[str, Any]) -> dict[str, Any]:
     return json.loads(attrs_json(attrs))
 
 
+def _checked_zstd() -> Any:
+    """zarr's zstd codec with the frame checksum on: a damaged chunk fails to read instead
+    of reading as other numbers."""
+    from zarr.codecs import ZstdCodec
+
+    return ZstdCodec(level=0, checksum=True)
+
+
 class ZarrMap:
     """A map in a zarr store written chunk by chunk along alpha (``chunk`` slices each).
 
@@ -427,35 +633,41 @@ class ZarrMap:
 
     def __init__(self, path: str | os.PathLike) -> None:
         """Open the map at ``path`` for writing; ValueError naming ``path`` if it is not one
-        (FileNotFoundError if it does not exist)."""
+        (FileNotFoundError if it does not exist). The metadata of each array is read from
+        the array itself, not from the consolidated copy, which a damaged store may not
+        match."""
         zarr = require("zarr")
         self.path = Path(path)
-        if not self.path.exists():
-            raise FileNotFoundError(errno.ENOENT, "no such zarr map", str(self.path))
+        _check_source(self.path, "zarr")
         try:
-            self.group = zarr.open_group(self.path, mode="r+")
-        except (ValueError, KeyError) as err:  # zarr's errors are ValueErrors
-            raise ValueError(f"{self.path} is not a zarr map: {err}") from err
+            self.group = zarr.open_group(self.path, mode="r+", use_consolidated=False)
+            self.attrs: dict[str, Any] = dict(self.group.attrs)
+            self.kind = kind_of(self.attrs)
+            self._check_arrays()
+            self.alpha, self.chi, self.km_frac = (
+                np.asarray(self.group[k][:], dtype=np.float64) for k in ("alpha", "chi", "km_frac")
+            )
+            self.chunk = int(self.group["alpha_done"].chunks[0])
+        except (ImportError, MemoryError):
+            raise
+        except Invalid as err:
+            raise file_error(self.path, str(err)) from None
         except OSError as err:
             if err.errno in _ACCESS_ERRNOS:
                 raise
-            raise ValueError(f"{self.path} is not a zarr map: {err}") from err
-        self.attrs: dict[str, Any] = dict(self.group.attrs)
-        try:
-            self.kind = kind_of(self.attrs)
-        except ValueError as err:
-            raise ValueError(f"{self.path} is not an eccjump zarr map: {err}") from None
+            raise file_error(self.path, f"is not a zarr map: {_detail(err)}") from err
+        except Exception as err:  # zarr's errors are of many types
+            raise file_error(self.path, f"is not a zarr map: {_detail(err)}") from err
+
+    def _check_arrays(self) -> None:
+        """:class:`Invalid` if an array or an attribute of the kind is missing."""
         arrays = ("alpha", "chi", "km_frac", *self.kind.fields, "alpha_done")
         missing = [k for k in arrays if k not in self.group]
         missing_attrs = [k for k in self.kind.required_attrs if k not in self.attrs]
         if missing or missing_attrs:
             what = [f"arrays {', '.join(missing)}"] if missing else []
             what += [f"attributes {', '.join(missing_attrs)}"] if missing_attrs else []
-            raise ValueError(f"{self.path} is not an eccjump zarr map: missing " + "; ".join(what))
-        self.alpha = np.asarray(self.group["alpha"][:], dtype=np.float64)
-        self.chi = np.asarray(self.group["chi"][:], dtype=np.float64)
-        self.km_frac = np.asarray(self.group["km_frac"][:], dtype=np.float64)
-        self.chunk = int(self.group["alpha_done"].chunks[0])
+            raise Invalid("is not an eccjump zarr map: missing " + "; ".join(what))
 
     @classmethod
     def create(
@@ -518,6 +730,7 @@ class ZarrMap:
                 shape=shape,
                 dtype=kind.dtypes[name],
                 chunks=chunks,
+                compressors=_checked_zstd(),
                 fill_value=kind.fill[name],
                 dimension_names=DIMS,
                 attributes=_json_attrs({**kind.var_attrs(name), "coordinates": "alpha_deg km"}),
@@ -527,6 +740,7 @@ class ZarrMap:
             shape=(alpha.size,),
             dtype=np.bool_,
             chunks=(chunks[0],),
+            compressors=_checked_zstd(),
             fill_value=False,
             dimension_names=("alpha",),
             attributes=_json_attrs({**COORD_ATTRS["alpha_done"], "coordinates": "alpha_deg"}),
@@ -546,19 +760,60 @@ class ZarrMap:
     def alpha_done(self) -> NDArray[np.bool_]:
         return np.asarray(self.group["alpha_done"][:], dtype=bool)
 
+    def _done(self, i: int) -> bool:
+        """Whether chunk ``i`` is marked done (False if the mark cannot be read)."""
+        try:
+            return bool(np.asarray(self.group["alpha_done"][slice(*self.bounds(i))]).all())
+        except (MemoryError, ValueError, OSError, RuntimeError, TypeError):
+            return False
+
     def missing(self) -> list[int]:
         """Chunks not finished, in order."""
-        done = self.alpha_done()
-        return [i for i in range(self.n_chunks) if not done[slice(*self.bounds(i))].all()]
+        return [i for i in range(self.n_chunks) if not self._done(i)]
 
     def write(self, i: int, fields: Mapping[str, NDArray]) -> None:
-        """Write chunk ``i`` (every field, shape (i1 - i0, nchi, nkm)), then mark it done."""
+        """Write chunk ``i`` (every field, shape (i1 - i0, nchi, nkm)), then mark it done.
+        Every chunk is stored, even one of fill values, so that a chunk file missing from
+        a store says it was lost (:meth:`damage`)."""
+        zarr = require("zarr")
         i0, i1 = self.bounds(i)
-        for name in self.kind.fields:
-            self.group[name][i0:i1] = np.asarray(fields[name], dtype=self.kind.dtypes[name])
-        _step("chunk-data")
-        self.group["alpha_done"][i0:i1] = True
+        with zarr.config.set({"array.write_empty_chunks": True}):
+            for name in self.kind.fields:
+                self.group[name][i0:i1] = np.asarray(fields[name], dtype=self.kind.dtypes[name])
+            _step("chunk-data")
+            self.group["alpha_done"][i0:i1] = True
         _step("chunk-done")
+
+    def damage(self, i: int) -> str | None:
+        """What is wrong with chunk ``i``, marked done, in a few words (None: it reads back
+        whole and valid): a field's chunk file is missing (lost: each is written), cannot
+        be read (its checksum fails), or holds codes out of their tables."""
+        i0, i1 = self.bounds(i)
+        try:
+            for name in self.kind.fields:
+                key = self.group[name].metadata.encode_chunk_key((i, 0, 0))
+                if not (self.path / name / key).is_file():
+                    return f"{name}: chunk file missing"
+            values = self.read(i)
+        except MemoryError:
+            raise
+        except Exception as err:  # zarr's and the codecs' errors are of many types
+            return f"unreadable: {_detail(err)}"
+        shape = (i1 - i0, self.chi.size, self.km_frac.size)
+        wrong = [k for k, v in values.items() if v.shape != shape]
+        if wrong:
+            return f"{wrong[0]}: shape {values[wrong[0]].shape}"
+        mark = self.kind.computed_mark
+        if mark is not None and (values[mark] == self.kind.fill[mark]).any():
+            return f"{mark} {self.kind.fill[mark]} (not computed)"
+        return self.kind.bad_codes(values)
+
+    def rewrite_coords(self) -> None:
+        """Write the coordinates derived from alpha, chi and km_frac again (``alpha_deg``,
+        ``km``): a resume repairs them rather than trust them."""
+        for name, (_, values, _) in grid_coords(self.alpha, self.chi, self.km_frac).items():
+            if name not in ("alpha", "chi", "km_frac"):
+                self.group[name][...] = values
 
     def read(self, i: int, names: tuple[str, ...] | None = None) -> dict[str, NDArray]:
         """Fields ``names`` (default: all) of chunk ``i``."""
