@@ -33,6 +33,8 @@ import numpy as np
 from numpy.typing import NDArray
 
 from eccjump import store
+from eccjump._checks import short
+from eccjump._mapcheck import MAX_MESSAGE, shown
 from eccjump.cli import map_jobs
 from eccjump.cli._args import add_integrator, int_at_least
 from eccjump.cli.map_jobs import Job
@@ -42,6 +44,29 @@ from eccjump.store import ZarrMap, format_of, save
 
 #: Default points per chunk when --chunk is not given (a few seconds on a laptop core).
 POINTS_PER_CHUNK = 100_000
+#: Most points along one axis of the grid (--grid, --n-alpha, --n-chi, --n-km).
+MAX_AXIS_POINTS = 1_000_000
+
+
+def _axis_points(text: str) -> int:
+    """The type of the grid options: an integer in [1, MAX_AXIS_POINTS] (a larger one would
+    only fill the memory before anything is computed)."""
+    value = int(text)
+    if not 1 <= value <= MAX_AXIS_POINTS:
+        raise argparse.ArgumentTypeError(
+            f"{short(value)} is outside the allowed range [1, {MAX_AXIS_POINTS}]"
+        )
+    return value
+
+
+_axis_points.__name__ = "integer"
+
+
+def _line(text: str) -> str:
+    """``text`` as one line that fits an ``eccjump: error:`` line of MAX_MESSAGE."""
+    text = " ".join(text.split())
+    limit = MAX_MESSAGE - len("eccjump: error: ")
+    return text if len(text) <= limit else text[: limit - 3] + "..."
 
 
 def _range(lo: float, hi: float, name: str, lo_ok: float, hi_ok: float) -> None:
@@ -76,10 +101,10 @@ def add_parser(sub: argparse._SubParsersAction) -> None:
         "--figure", default=None, help="also draw the map to this image (needs eccjump[plot])"
     )
     g = p.add_argument_group("grid (end points included)")
-    g.add_argument("--grid", type=int_at_least(1), default=50, help="points per axis (default 50)")
-    g.add_argument("--n-alpha", type=int_at_least(1), help="points along alpha (default --grid)")
-    g.add_argument("--n-chi", type=int_at_least(1), help="points along chi (default --grid)")
-    g.add_argument("--n-km", type=int_at_least(1), help="points along km_frac (default --grid)")
+    g.add_argument("--grid", type=_axis_points, default=50, help="points per axis (default 50)")
+    g.add_argument("--n-alpha", type=_axis_points, help="points along alpha (default --grid)")
+    g.add_argument("--n-chi", type=_axis_points, help="points along chi (default --grid)")
+    g.add_argument("--n-km", type=_axis_points, help="points along km_frac (default --grid)")
     g.add_argument("--alpha-min", type=float, default=0.0, help="[deg] (default 0)")
     g.add_argument("--alpha-max", type=float, default=90.0, help="[deg] (default 90)")
     g.add_argument("--chi-min", type=float, default=0.0, help="(default 0)")
@@ -290,8 +315,11 @@ def _run(args: argparse.Namespace) -> int:
     _check_memory(held, fmt, shape_points, job.kind)
     try:
         store.check_parent(path)
+        store.check_name(path)
     except OSError as err:
-        raise ValueError(f"cannot write {path}: {_why(err)}") from err
+        raise ValueError(_line(f"cannot write {path}: {_why(err)}")) from err
+    except ValueError as err:
+        raise ValueError(f"-o {err}") from None
     try:
         for note in store.recover(path):
             print(f"eccjump: {note}", file=sys.stderr)
@@ -305,15 +333,62 @@ def _run(args: argparse.Namespace) -> int:
                 f"--resume: {path} does not exist (a run stopped before its first chunk "
                 "leaves nothing to resume; run without --resume)"
             )
-    elif path.exists() and not args.overwrite:
-        hint = " or --resume" if fmt == "zarr" else ""
-        raise ValueError(f"{path} exists; use --overwrite{hint}")
+    elif os.path.lexists(path):
+        try:  # not even --overwrite replaces what eccjump did not write
+            store.check_replaceable(path, fmt == "zarr")
+        except ValueError as err:
+            raise ValueError(f"-o {err}") from None
+        if not args.overwrite:
+            hint = " or --resume" if fmt == "zarr" else ""
+            raise ValueError(_line(f"{path} exists; use --overwrite{hint}"))
     # The handler goes first: a Ctrl-C while the store is created stops before the first chunk.
     with _Interrupt() as stop:
         try:
             return _write(args, path, fmt, (alpha, chi, km), job, chunk, stop)
         except (OSError, MemoryError) as err:
             raise _Failed(f"cannot write {path}: {_why(err)}") from err
+
+
+def _reopen(path: Path, job: Job, axes: tuple[NDArray, NDArray, NDArray]) -> ZarrMap:
+    """The store at ``path`` to resume, once it is known to be a map of the same kind, the
+    same options and the same grid (ValueError saying what differs); its derived coordinates
+    are written again. Whatever else its damage raises is a ValueError naming it."""
+    try:
+        zmap = ZarrMap(path)
+        if zmap.kind != job.kind:
+            raise ValueError(
+                f"{shown(path)} holds a {zmap.kind.name} map, not a {job.kind.name} map (--kind)"
+            )
+        stored = (zmap.alpha, zmap.chi, zmap.km_frac)
+        diffs = _mismatch(zmap.attrs, job.attrs, job.matched, stored, axes)
+        if diffs:
+            raise ValueError(f"the options differ from those of {shown(path)}: " + "; ".join(diffs))
+        zmap.rewrite_coords()
+        return zmap
+    except ValueError as err:
+        raise ValueError(_line(f"--resume: {err}")) from None
+    except (OSError, MemoryError):
+        raise
+    except Exception as err:  # zarr's errors on a damaged store are of many types
+        why = f"{type(err).__name__}: {err}"
+        raise ValueError(_line(f"--resume: {shown(path)} is damaged ({why})")) from err
+
+
+def _resume_todo(zmap: ZarrMap, job: Job, path: Path) -> list[int]:
+    """The chunks to compute: those not marked done, and those marked done that do not read
+    back whole and valid (:meth:`ZarrMap.damage`, said on stderr). The others are counted."""
+    todo = zmap.missing()
+    for i in sorted(set(range(zmap.n_chunks)) - set(todo)):
+        problem = zmap.damage(i)
+        if problem is None:
+            job.count(zmap.read(i, job.counted))
+            continue
+        print(
+            _line(f"eccjump: {shown(path)}: chunk {i} is damaged ({problem}); computing it again"),
+            file=sys.stderr,
+        )
+        todo.append(i)
+    return sorted(todo)
 
 
 class _Target:
@@ -367,31 +442,13 @@ def _write(
     done = np.zeros(alpha.size, dtype=bool)
     try:
         if args.resume:
-            try:
-                zmap = ZarrMap(path)
-            except ValueError as err:
-                raise ValueError(f"--resume: {err}") from err
-            target.zmap = zmap
-            if zmap.kind != kind:
-                raise ValueError(
-                    f"--resume: {path} holds a {zmap.kind.name} map, not a {kind.name} map (--kind)"
+            target.zmap = _reopen(path, job, axes)
+            todo = _resume_todo(target.zmap, job, path)
+            if args.chunk and args.chunk != target.zmap.chunk:
+                print(
+                    f"eccjump: resuming with the store's chunk of {target.zmap.chunk}",
+                    file=sys.stderr,
                 )
-            diffs = _mismatch(
-                zmap.attrs,
-                attrs,
-                job.matched,
-                (zmap.alpha, zmap.chi, zmap.km_frac),
-                (alpha, chi, km),
-            )
-            if diffs:
-                raise ValueError(
-                    f"--resume: the options differ from those of {path}:\n  " + "\n  ".join(diffs)
-                )
-            if args.chunk and args.chunk != zmap.chunk:
-                print(f"eccjump: resuming with the store's chunk of {zmap.chunk}", file=sys.stderr)
-            todo = zmap.missing()
-            for i in sorted(set(range(zmap.n_chunks)) - set(todo)):
-                job.count(zmap.read(i, job.counted))
         elif fmt == "zarr":
             target.zmap = ZarrMap.create(target.tmp, alpha, chi, km, attrs, chunk)
             todo = list(range(target.zmap.n_chunks))
