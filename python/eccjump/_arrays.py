@@ -81,11 +81,11 @@ def same_values(x: object, y: object) -> bool:
     if isinstance(x, tuple | list) and not hasattr(x, "_fields"):
         return (
             type(x) is type(y)
-            and len(x) == len(y)  # type: ignore[arg-type]
-            and all(same_values(p, q) for p, q in zip(x, y, strict=True))  # type: ignore[call-overload]
+            and len(x) == len(y)
+            and all(same_values(p, q) for p, q in zip(x, y, strict=True))
         )
     if isinstance(x, tuple):  # named tuples (Event): same type, then item by item
-        return type(x) is type(y) and same_values(tuple(x), tuple(y))  # type: ignore[arg-type]
+        return type(x) is type(y) and same_values(tuple(x), tuple(y))
     if isinstance(x, dict):
         return (
             isinstance(y, dict) and x.keys() == y.keys() and all(same_values(x[k], y[k]) for k in x)
@@ -95,7 +95,7 @@ def same_values(x: object, y: object) -> bool:
     return bool(x == y)
 
 
-def fields_equal(self: Any, other: object) -> bool:
+def fields_equal(self: Any, other: Any) -> bool:
     """``__eq__`` of the result dataclasses: field by field, arrays by shape, dtype and values
     (NaN equal to NaN; a lazy result is computed to compare)."""
     if type(other) is not type(self):

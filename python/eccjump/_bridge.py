@@ -127,8 +127,7 @@ def jarm_points(
     """Classify equal-length contiguous 1-D float64 arrays of points (``mu_s`` may have
     length 1), with a turn per point ``n`` (validated, >= 1, same length) or ``opts.n`` for
     all: one flat array per field."""
-    turns = np.array([opts.n or 0]) if n is None else n
-    turns = np.ascontiguousarray(turns, dtype=np.uint32)
+    turns = np.ascontiguousarray([opts.n or 0] if n is None else n, dtype=np.uint32)
     return _core.jarm_points(alpha, chi, km, mu_s, turns, _bridge_options(opts))
 
 

@@ -16,10 +16,13 @@ from __future__ import annotations
 import numbers
 import os
 from collections.abc import Mapping
-from typing import Any
+from typing import TYPE_CHECKING, Any, cast
 
 import numpy as np
 from numpy.typing import NDArray
+
+if TYPE_CHECKING:  # pragma: no cover
+    from eccjump._bridge import Rule
 
 #: The largest value of the bridge's unsigned integer types.
 U32_MAX = 2**32 - 1
@@ -118,6 +121,11 @@ def text(name: str, value: object) -> str:
     if not isinstance(value, str):
         raise TypeError(f"{name} must be a string, not {_kind(value)}")
     return value
+
+
+def rule_name(value: object) -> Rule:
+    """The lift-off rule's name (a string; the core checks which)."""
+    return cast("Rule", text("rule", value))
 
 
 def path(name: str, value: object) -> str | os.PathLike:

@@ -117,7 +117,9 @@ def make_layout(
     """The layout of a map of ``kind`` (an :class:`eccjump.map_kinds.MapKind`, above this
     module; default: a JARM map) on alpha x chi x km_frac (numpy only)."""
     names, var_attrs = (FIELDS, field_var) if kind is None else (kind.fields, kind.var_attrs)
-    data_vars = {k: (DIMS, fields[k], var_attrs(k)) for k in names}
+    data_vars: dict[str, tuple[tuple[str, ...], Any, dict[str, Any]]] = {
+        k: (DIMS, fields[k], var_attrs(k)) for k in names
+    }
     if alpha_done is not None:
         data_vars["alpha_done"] = (("alpha",), alpha_done, COORD_ATTRS["alpha_done"])
     return {

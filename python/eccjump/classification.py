@@ -440,8 +440,8 @@ def region(
         method=method,
         rtol=rtol,
         atol=atol,
-        theta0=theta0,
-        omega0=omega0,
+        theta0=real("theta0", theta0),
+        omega0=real("omega0", omega0),
         max_turns=max_turns,
         refine_extrema=refine_extrema,
         stop_at_slip=stop_at_slip,
@@ -492,7 +492,7 @@ def region_dataset(
     :func:`eccjump.region` (``chunks=`` gives a dask-backed, lazily computed dataset). The
     layout is described in :mod:`eccjump.labelled`.
     """
-    xr = require("xarray")
+    xarray = require("xarray")
     kwargs.pop("output", None)
     given = {"mu_s": mu_s, "theta0": theta0, "omega0": omega0}
     scalars: dict[str, float] = {}
@@ -508,7 +508,7 @@ def region_dataset(
     grid = {"alpha": alpha, "chi": chi, "km": km}
 
     def one(values: Mapping[str, float]) -> xr.Dataset:
-        reg = region(n=n, **grid, **scalars, **values, **kwargs)  # type: ignore[arg-type]
+        reg = region(n=n, **grid, **scalars, **values, **kwargs)  # type: ignore[call-overload]
         return reg.to_xarray()
 
     if not swept:
@@ -526,9 +526,9 @@ def region_dataset(
                 ds = one(here)
                 for k in names:  # swept values live in coordinates, not attributes
                     ds.attrs.pop(k, None)
-                ds = ds.assign_coords({k: xr.Variable((), here[k]) for k in names})
+                ds = ds.assign_coords({k: xarray.Variable((), here[k]) for k in names})
             parts.append(ds)
-        return xr.concat(
+        return xarray.concat(
             parts,
             dim=name,
             data_vars="all",

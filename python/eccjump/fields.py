@@ -78,18 +78,38 @@ FILL: dict[str, Any] = {f.name: f.fill for f in TABLE}
 RECORD = np.dtype([(f.name, f.dtype) for f in TABLE])
 
 
-Reason = enum.IntEnum("Reason", {name.upper(): code for code, name in _core.reason_codes()})
-Reason.__doc__ = """Why a point is (JARM) or is not a jump after pure rolling.
+class Reason(enum.IntEnum):
+    """Why a point is (JARM) or is not a jump after pure rolling.
 
-JARM: lift-off straight out of pure rolling. NO_ROOT: no lift-off (on the requested turn n,
-or ever). LIFTOFF_EARLIER: the lift-off rule held earlier than the requested turn n (or at the
-start). NORMAL_FORCE_LOST: F_y reached 0 before lift-off. SLIP_BEFORE: the rolling branch
-needs more than mu_s of friction before lift-off. SLIP_AT_JUMP: friction fails on the final
-approach, and the paper's jump-point test (Eq. ineq2) fails at theta_J. ROCKS_BACK: the body
-stops and rolls back. TURN_LIMIT: nothing happened within max_turns turns. INVALID_PARAMS: a
-parameter is NaN or out of range. SOLVER_FAILED: the integrator of ``method="ode"`` failed
-(no physical verdict). SLIP: friction fails before the paper's lift-off, and the search
-stopped there (``stop_at_slip=True``): SLIP_BEFORE or SLIP_AT_JUMP, not told apart."""
+    JARM: lift-off straight out of pure rolling. NO_ROOT: no lift-off (on the requested turn n,
+    or ever). LIFTOFF_EARLIER: the lift-off rule held earlier than the requested turn n (or at the
+    start). NORMAL_FORCE_LOST: F_y reached 0 before lift-off. SLIP_BEFORE: the rolling branch
+    needs more than mu_s of friction before lift-off. SLIP_AT_JUMP: friction fails on the final
+    approach, and the paper's jump-point test (Eq. ineq2) fails at theta_J. ROCKS_BACK: the body
+    stops and rolls back. TURN_LIMIT: nothing happened within max_turns turns. INVALID_PARAMS: a
+    parameter is NaN or out of range. SOLVER_FAILED: the integrator of ``method="ode"`` failed
+    (no physical verdict). SLIP: friction fails before the paper's lift-off, and the search
+    stopped there (``stop_at_slip=True``): SLIP_BEFORE or SLIP_AT_JUMP, not told apart.
+
+        Written out here so that type checkers and editors see the members; the core's codes
+        (``_core.reason_codes()``) are checked against them at import.
+    """
+
+    JARM = 0
+    NO_ROOT = 1
+    LIFTOFF_EARLIER = 2
+    NORMAL_FORCE_LOST = 3
+    SLIP_BEFORE = 4
+    SLIP_AT_JUMP = 5
+    ROCKS_BACK = 6
+    TURN_LIMIT = 7
+    INVALID_PARAMS = 8
+    SOLVER_FAILED = 9
+    SLIP = 10
+
+
+if {r.name.lower(): r.value for r in Reason} != {n: c for c, n in _core.reason_codes()}:
+    raise ImportError("eccjump.Reason differs from the core's reason codes: rebuild eccjump")
 
 
 def reason_table() -> str:

@@ -28,7 +28,7 @@ from numpy.typing import ArrayLike, NDArray
 
 from eccjump._arrays import axis
 from eccjump._bridge import Rule
-from eccjump._checks import U64_MAX, integer, real, short, text
+from eccjump._checks import U64_MAX, integer, real, rule_name, short
 from eccjump.classification import region
 from eccjump.fields import Reason
 
@@ -78,7 +78,7 @@ def _mu(mu_s: object) -> float:
 
 
 def _shares(
-    mu: float, theta0: float, omega0: float, grid: int, rule: str, n_threads: int
+    mu: float, theta0: float, omega0: float, grid: int, rule: Rule, n_threads: int
 ) -> NDArray[np.float64]:
     a, c, f = _midpoints(grid)
     reg = region(mu, alpha=a, chi=c, km=f, theta0=theta0, omega0=omega0, rule=rule,
@@ -105,7 +105,7 @@ def reason_shares(
     that rolls back up the ramp (omega reaches 0) before any event.
     """
     mu, th, om = _mu(mu_s), _theta0(theta0), _omega0(omega0)
-    s = _shares(mu, th, om, grid, text("rule", rule), _threads(n_threads))
+    s = _shares(mu, th, om, grid, rule_name(rule), _threads(n_threads))
     return {r: float(s[r.value]) for r in Reason}
 
 
@@ -204,7 +204,7 @@ def start_map(
     ths = [_theta0(float(x)) for x in th]
     oms = [_omega0(float(x)) for x in om]
     g = integer("grid", grid, 2, GRID_MAX)
-    r, nt = text("rule", rule), _threads(n_threads)
+    r, nt = rule_name(rule), _threads(n_threads)
     if progress is not None and not callable(progress):
         raise TypeError(f"progress must be callable or None, not {type(progress).__name__}")
     shares = np.empty((th.size, om.size, N_REASONS))
@@ -279,7 +279,7 @@ _MULTIPLES = (1, 2, 3)
 class _Objective:
     """The fraction on one grid as a function of the start, cached, counting evaluations."""
 
-    def __init__(self, mu: float, grid: int, rule: str, n_threads: int, omega_max: float,
+    def __init__(self, mu: float, grid: int, rule: Rule, n_threads: int, omega_max: float,
                  budget: list[int]) -> None:  # fmt: skip
         self.mu, self.grid, self.rule, self.n_threads = mu, grid, rule, n_threads
         self.omega_max = omega_max
@@ -404,7 +404,7 @@ def optimal_start(
     n_th = integer("lattice", lattice[0], 2, 1000)
     n_om = integer("lattice", lattice[1], 2, 1000)
     k = integer("n_starts", n_starts, 1, 50)
-    r, nt = text("rule", rule), _threads(n_threads)
+    r, nt = rule_name(rule), _threads(n_threads)
     budget = [integer("max_evaluations", max_evaluations, 1, EVALUATIONS_MAX)]
     _shares(mu, 0.0, 0.0, 2, r, nt)  # a bad rule or n_threads is refused before any work
     s_th, s_om = TWO_PI / n_th, wmax / (n_om - 1)

@@ -294,10 +294,10 @@ def print_table(s: dict) -> None:
     )
     rows.append(("integrator", p["integrator"]))
     rows.append(("steps", f"{s['points']} recorded points, {s['nfev']} evaluations"))
-    width = max(len(k) for k, _ in rows)
+    width = max(len(name) for name, _ in rows)
     print()
-    for k, v in rows:
-        print(f"{k:<{width}}  {v}")
+    for name, value in rows:
+        print(f"{name:<{width}}  {value}")
 
 
 # --------------------------------------------------------------------------------------------

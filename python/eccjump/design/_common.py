@@ -5,11 +5,12 @@ from __future__ import annotations
 import math
 from typing import Literal
 
+from eccjump._bridge import Rule
 from eccjump.fields import Reason
 
 Target = Literal["jarm", "slip"]
 #: The lift-off rules a verdict must hold under.
-RULES = ("paper", "normal_force")
+RULES: tuple[Rule, ...] = ("paper", "normal_force")
 _SLIPS = (int(Reason.SLIP_BEFORE), int(Reason.SLIP_AT_JUMP), int(Reason.SLIP))
 _HALF_PI = math.pi / 2
 #: Bounds of the work: grid points per axis, compass-search evaluations per candidate.

@@ -9,6 +9,7 @@ from typing import Any
 import numpy as np
 from numpy.typing import NDArray
 
+from eccjump._bridge import Rule
 from eccjump._checks import integer, optional_real, real, short, text
 from eccjump.body import Cylinder
 from eccjump.boundary import mu_s_min_path
@@ -229,7 +230,8 @@ def design(
     # 4. the sheet
     chosen = Cylinder(min(rho * (1.0 - km), 1.0 - km), km)
     _, res = _classify(alpha, chosen.chi, km, mu, spec)
-    theta_deg, reasons = {}, {}
+    theta_deg: dict[str, float] = {}
+    reasons: dict[str, str] = {}
     for r, one in zip(RULES, res, strict=True):
         reasons[r] = Reason(int(one.reason)).name
         theta_deg[r] = math.degrees(_angle(one, tgt))
@@ -294,7 +296,7 @@ def _compass(
 
 
 def _flight(
-    body: Cylinder, alpha: float, mu: float, rule: str, target: str, b: Build | None, g: float
+    body: Cylinder, alpha: float, mu: float, rule: Rule, target: str, b: Build | None, g: float
 ) -> Flight:
     nan = math.nan
     if body.km == 0.0:
@@ -373,7 +375,9 @@ def _sensitivity(
         ("friction mu_s", "", mu, lambda v: (alpha, chi, km, v + sign * err)),
     ]
 
-    def via(make: Callable[[float], Cylinder]) -> Callable[[float], tuple[float, ...]]:
+    def via(
+        make: Callable[[float], Cylinder],
+    ) -> Callable[[float], tuple[float, float, float, float]]:
         def point(v: float) -> tuple[float, float, float, float]:
             c = make(v)
             return (alpha, c.chi, c.km, worst)

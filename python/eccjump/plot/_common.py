@@ -2,7 +2,7 @@
 
 from __future__ import annotations
 
-from typing import TYPE_CHECKING, Any
+from typing import TYPE_CHECKING, Any, cast
 
 if TYPE_CHECKING:
     from matplotlib.axes import Axes
@@ -31,7 +31,8 @@ def _color(n: int) -> str:
 
 def _new_axes(ax: Axes | None, figsize: tuple[float, float]) -> tuple[Figure, Axes]:
     if ax is not None:
-        return ax.figure, ax
+        # The figure the axes draw on (a subfigure's too: its root is what is saved).
+        return cast("Figure", ax.get_figure(root=True)), ax
     plt = _plt()
     fig, ax = plt.subplots(figsize=figsize, layout="constrained")
     return fig, ax

@@ -288,7 +288,8 @@ def animate_motion(
 
     anim = FuncAnimation(fig, draw, frames=n, blit=False)
     try:
-        anim.save(path, writer=PillowWriter(fps=play_fps), dpi=dpi)
+        # A float rate works (the frame duration is 1000/fps); the stub says int.
+        anim.save(path, writer=PillowWriter(fps=play_fps), dpi=dpi)  # type: ignore[arg-type]
     finally:
         plt.close(fig)
     return path

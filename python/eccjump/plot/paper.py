@@ -6,7 +6,7 @@ from __future__ import annotations
 import math
 from collections.abc import Sequence
 from dataclasses import dataclass
-from typing import TYPE_CHECKING
+from typing import TYPE_CHECKING, Any, cast
 
 import numpy as np
 from numpy.typing import NDArray
@@ -74,8 +74,8 @@ def fig3b(
         theta_deg, m_plot, color="k", lw=1.6, label=r"$\mu(\chi, k_m, \theta_J)$ (Eq. ineq2)"
     )
     line.set_gid("mu")
-    mmin, phi = closed_form.mu_s_min(chi, km)
-    mmin, phi_deg = float(mmin), base + 360.0 + math.degrees(float(phi))
+    mmin_at, phi = closed_form.mu_s_min(chi, km)
+    mmin, phi_deg = float(mmin_at), base + 360.0 + math.degrees(float(phi))
     (pt,) = ax.plot(
         [phi_deg],
         [mmin],
@@ -97,8 +97,8 @@ def fig3b(
     )
     if mu_s is not None:
         ax.axhline(mu_s, color="#1f77b4", ls="--", lw=1.2, label=rf"$\mu_s = {mu_s:g}$")
-        lo, hi = closed_form.theta_J_range(chi, km, mu_s, n)
-        lo, hi = float(lo), float(hi)
+        lo_at, hi_at = closed_form.theta_J_range(chi, km, mu_s, n)
+        lo, hi = float(lo_at), float(hi_at)
         if np.isfinite(lo) and np.isfinite(hi):
             lo_d, hi_d = math.degrees(lo), math.degrees(hi)
             ax.plot(
@@ -221,8 +221,8 @@ def _grid_intervals(
         if not seeds:
             return out
         w = np.array(where)
-        lo, hi = alpha_interval_around(np.array(seeds), flat_c[w], flat_k[w], mu_s, n)
-        for i, lo_i, hi_i in zip(w, lo, hi, strict=True):
+        lows, highs = alpha_interval_around(np.array(seeds), flat_c[w], flat_k[w], mu_s, n)
+        for i, lo_i, hi_i in zip(w, lows, highs, strict=True):
             out[i] = [(float(lo_i), float(hi_i))]
 
 
@@ -351,11 +351,13 @@ def fig4(
     from matplotlib.ticker import MaxNLocator
     from mpl_toolkits.mplot3d.art3d import Poly3DCollection
 
+    # A 3-D axes (mplot3d's Axes3D, which matplotlib's stubs do not name).
+    ax3d: Any
     if ax is None:
         fig = plt.figure(figsize=(7.5, 6.5), layout="constrained")
-        ax = fig.add_subplot(projection="3d")
+        ax3d = fig.add_subplot(projection="3d")
     else:
-        fig = ax.figure
+        fig, ax3d = cast("Figure", ax.get_figure(root=True)), ax
     if surfaces is None:
         surfaces = [jarm_surfaces(mu_s, n, resolution=resolution, n_scan=n_scan) for n in ns]
     handles = []
@@ -367,7 +369,7 @@ def fig4(
             coll = Poly3DCollection(
                 polys, facecolors=color, edgecolors=color, linewidths=0.0, alpha=0.55, shade=True
             )
-            ax.add_collection3d(coll)
+            ax3d.add_collection3d(coll)
             ok = np.isfinite(s.lo)
             c, k = np.meshgrid(s.chi, s.km, indexing="ij")
             c_max, k_max = max(c_max, float(c[ok].max())), max(k_max, float(k[ok].max()))
@@ -378,18 +380,18 @@ def fig4(
         else:
             label = rf"$n = {s.n}$: none"
         handles.append(Patch(facecolor=color, alpha=0.7, label=label))
-    ax.set_xlim(0.0, round(c_max * 1.05 + 0.005, 2))
-    ax.set_ylim(0.0, round(k_max * 1.05 + 0.005, 2))
-    ax.set_zlim(0.0, 90.0)
-    ax.set_zticks(np.arange(0.0, 91.0, 15.0))
-    ax.xaxis.set_major_locator(MaxNLocator(6))
-    ax.yaxis.set_major_locator(MaxNLocator(5))
-    ax.set_xlabel(r"$\chi = d/R$")
-    ax.set_ylabel(r"$k_m = m_C/M$")
-    ax.set_zlabel(r"ramp angle $\alpha$ [deg]")
-    ax.view_init(elev=elev, azim=azim)
-    ax.legend(handles=handles, loc="upper left", fontsize=9, title="turn of the jump")
-    ax.set_title(
+    ax3d.set_xlim(0.0, round(c_max * 1.05 + 0.005, 2))
+    ax3d.set_ylim(0.0, round(k_max * 1.05 + 0.005, 2))
+    ax3d.set_zlim(0.0, 90.0)
+    ax3d.set_zticks(np.arange(0.0, 91.0, 15.0))
+    ax3d.xaxis.set_major_locator(MaxNLocator(6))
+    ax3d.yaxis.set_major_locator(MaxNLocator(5))
+    ax3d.set_xlabel(r"$\chi = d/R$")
+    ax3d.set_ylabel(r"$k_m = m_C/M$")
+    ax3d.set_zlabel(r"ramp angle $\alpha$ [deg]")
+    ax3d.view_init(elev=elev, azim=azim)
+    ax3d.legend(handles=handles, loc="upper left", fontsize=9, title="turn of the jump")
+    ax3d.set_title(
         title
         if title is not None
         else rf"JARM regions, $\mu_s = {mu_s:g}$ (from rest at $\theta_0 = 0$)"
