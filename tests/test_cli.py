@@ -9,6 +9,7 @@ from pathlib import Path
 
 import pytest
 
+import eccjump
 from eccjump import Cylinder, roll
 from eccjump.cli import main
 
@@ -73,3 +74,10 @@ class _no_exit:
 
     def __exit__(self, *exc):
         return False
+
+
+def test_version(capsys):
+    with pytest.raises(SystemExit) as exit_:
+        main(["--version"])
+    assert exit_.value.code == 0
+    assert capsys.readouterr().out.strip() == f"eccjump {eccjump.__version__}"

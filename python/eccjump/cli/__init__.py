@@ -11,6 +11,7 @@ from __future__ import annotations
 import sys
 from collections.abc import Sequence
 
+from eccjump import __version__
 from eccjump.cli import design, figures, map, roll, simulate, starts
 from eccjump.cli._args import Parser, one_line
 from eccjump.cli._output import OutputError
@@ -24,6 +25,7 @@ def build_parser() -> Parser:
         prog="eccjump",
         description="Dynamics of an eccentric cylinder on a ramp: lift-off, slip, JARM regions.",
     )
+    parser.add_argument("--version", action="version", version=f"eccjump {__version__}")
     sub = parser.add_subparsers(dest="command", required=True)  # of the class Parser too
     for module in SUBCOMMANDS:
         module.add_parser(sub)
