@@ -3,7 +3,7 @@ user-level calls that integrate (``roll`` to its first event, ``simulate`` throu
 transitions), at the same tolerances, with the error each gives against a tight reference
 (Vern9 at rtol 1e-14 for ``roll``, 1e-13 for ``simulate``).
 
-    python benches/bench_pairs.py [--points 600] [--rtol 1e-10] [--json pairs.json]
+    python benches/bench_pairs.py [--points 600] [--rtol 1e-10] [--json bench_pairs.json]
 
 The points are random bodies and ramps (χ ∈ [0.05, 0.9], k_m a random share of 1 − χ,
 α ∈ [0.1, 1.4] rad, μ_s = 1 for ``roll``, 0.8 for ``simulate`` with 6 transitions and
@@ -15,14 +15,12 @@ three transitions (where both runs have them).
 from __future__ import annotations
 
 import argparse
-import json
-import platform
 import time
 from collections.abc import Callable
-from datetime import date
 from typing import Any
 
 import numpy as np
+import results
 
 import eccjump
 
@@ -98,21 +96,14 @@ def measure(points: int, rtol: float) -> dict[str, Any]:
                     "p90_error": float(np.quantile(err, 0.9)),
                 }
             )
-    return {
-        "benchmark": "bench_pairs",
-        "date": date.today().isoformat(),
-        "machine": f"{platform.processor() or platform.machine()}, {platform.python_version()}",
-        "points": points,
-        "rtol": rtol,
-        "rows": rows,
-    }
+    return {"points": points, "rtol": rtol, "rows": rows}
 
 
 def main() -> None:
     ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     ap.add_argument("--points", type=int, default=600)
     ap.add_argument("--rtol", type=float, default=1e-10)
-    ap.add_argument("--json", default="bench_pairs.json", help="the results file")
+    results.add_json_option(ap, "pairs")
     args = ap.parse_args()
     res = measure(args.points, args.rtol)
     head = ("call", "pair", "µs/call", "× RK45", "median err", "90% err")
@@ -122,8 +113,7 @@ def main() -> None:
             f"{r['call']:9s} {r['integrator']:7s} {r['us_per_call']:9.1f} "
             f"{r['speed_vs_rk45']:7.2f} {r['median_error']:11.1e} {r['p90_error']:9.1e}"
         )
-    with open(args.json, "w") as f:
-        json.dump(res, f, indent=1)
+    results.write(args.json, "pairs", args, **res)
 
 
 if __name__ == "__main__":
