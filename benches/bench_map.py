@@ -5,7 +5,9 @@ G x G x G grid (default 200^3 = 8e6 points, mu_s = 0.7, full default ranges) and
 the peak resident memory of the process (``ru_maxrss``; also sampled from /proc during the
 run). The map must stay under 1 GiB: only one chunk is in memory at a time. Run:
 
-    PYTHONPATH=python python benches/bench_map.py [--grid 200] [--out /tmp/bench_map.zarr]
+    python benches/bench_map.py [--grid 200] [--out /tmp/eccjump_bench_map.zarr] [--json PATH]
+
+The figures also go to ``--json`` (default bench_map.json in the current directory).
 """
 
 from __future__ import annotations
@@ -17,6 +19,8 @@ import resource
 import shutil
 import threading
 import time
+
+import results
 
 from eccjump import __version__
 from eccjump.cli import main
@@ -37,6 +41,7 @@ def main_bench() -> None:
     p.add_argument("--threads", default="0")
     p.add_argument("--chunk", default=None, help="alpha slices per chunk (default: auto)")
     p.add_argument("--keep", action="store_true", help="keep the output")
+    results.add_json_option(p, "map")
     args = p.parse_args()
 
     peak = [rss_bytes()]
@@ -72,6 +77,20 @@ def main_bench() -> None:
     print(f"under 1 GiB    {max(maxrss, peak[0]) < GIB}")
     if not args.keep:
         shutil.rmtree(args.out, ignore_errors=True)
+    peak_bytes = max(maxrss, peak[0])
+    results.write(
+        args.json,
+        "map",
+        args,
+        command=["eccjump", *argv],
+        exit_status=code,
+        points=points,
+        wall_s=seconds,
+        points_per_s=points / seconds,
+        rss_start_mib=base / 2**20,
+        peak_rss_mib=peak_bytes / 2**20,
+        under_1_gib=peak_bytes < GIB,
+    )
 
 
 if __name__ == "__main__":

@@ -2,7 +2,12 @@
 
 Both integrate the same equation with Dormand–Prince 5(4) (scipy's ``RK45``), the same
 tolerances and the same terminal lift-off event (chi theta'^2 cos theta - cos alpha, rising);
-Python call overhead is included on both sides. Run:  python benches/bench_roll.py
+Python call overhead is included on both sides. Run:
+
+    python benches/bench_roll.py [--rtol 1e-10] [--atol 1e-12] [--number 200] [--json PATH]
+
+Time per call: the best mean of rounds of ``--number`` calls (five rounds for eccjump, three
+rounds of three calls for scipy). Results also go to ``--json`` (default bench_roll.json).
 """
 
 from __future__ import annotations
@@ -13,6 +18,7 @@ import platform
 import time
 
 import numpy as np
+import results
 from scipy.integrate import solve_ivp
 
 import eccjump
@@ -49,18 +55,22 @@ def best_time(fn, repeat: int, number: int) -> float:
 
 
 def main() -> None:
-    p = argparse.ArgumentParser(description=__doc__)
+    p = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawTextHelpFormatter)
     p.add_argument("--rtol", type=float, default=1e-10)
     p.add_argument("--atol", type=float, default=1e-12)
+    p.add_argument("--number", type=int, default=200, help="eccjump calls per round (200)")
+    results.add_json_option(p, "roll")
     args = p.parse_args()
     body = eccjump.Cylinder(0.15, 0.02)
     alpha = math.radians(40)
     ours = eccjump.roll(body, alpha, rtol=args.rtol, atol=args.atol)
     theirs = scipy_roll(alpha, body.chi, body.Ic, args.rtol, args.atol)
-    t_ours = best_time(lambda: eccjump.roll(body, alpha, rtol=args.rtol, atol=args.atol), 5, 200)
+    t_ours = best_time(
+        lambda: eccjump.roll(body, alpha, rtol=args.rtol, atol=args.atol), 5, max(1, args.number)
+    )
     t_scipy = best_time(lambda: scipy_roll(alpha, body.chi, body.Ic, args.rtol, args.atol), 3, 3)
     print(
-        f"machine: {platform.machine()}, {platform.processor() or 'cpu'}, "
+        f"machine: {platform.machine()}, {results.cpu_model()}, "
         f"python {platform.python_version()}, numpy {np.__version__}"
     )
     print(
@@ -75,6 +85,26 @@ def main() -> None:
     print(
         f"{'eccjump.roll':<22}{math.degrees(ours.theta[-1]):>18.12f}"
         f"{t_ours * 1e6:>15.3f} us{t_scipy / t_ours:>9.0f}x"
+    )
+    results.write(
+        args.json,
+        "roll",
+        args,
+        case={"alpha_deg": 40.0, "chi": body.chi, "km": body.km, "integrator": "RK45"},
+        rows=[
+            {
+                "route": "scipy solve_ivp RK45",
+                "theta_J_deg": math.degrees(theirs),
+                "us_per_call": t_scipy * 1e6,
+                "speed_up": 1.0,
+            },
+            {
+                "route": "eccjump.roll",
+                "theta_J_deg": math.degrees(ours.theta[-1]),
+                "us_per_call": t_ours * 1e6,
+                "speed_up": t_scipy / t_ours,
+            },
+        ],
     )
 
 
