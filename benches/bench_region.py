@@ -7,6 +7,9 @@ random subsample of the same grid, point by point. Prints points per second on b
 the speed-up, eccjump's peak RSS, and how often the two agree on the subsample.
 
 Run:  python benches/bench_region.py [--grid 100] [--baseline-points 300] [--ode-points 50]
+                                    [--repeat 3] [--routes closed_form,ode] [--json PATH]
+
+The figures also go to --json (default bench_region.json in the current directory).
 """
 
 from __future__ import annotations
@@ -20,6 +23,7 @@ import time
 from pathlib import Path
 
 import numpy as np
+import results
 
 import eccjump
 from eccjump.classification import FIELDS
@@ -110,6 +114,7 @@ def main() -> None:
     p.add_argument(
         "--routes", default="closed_form,ode", help="comma-separated routes (closed_form,ode)"
     )
+    results.add_json_option(p, "region")
     args = p.parse_args()
     load = os.getloadavg() if hasattr(os, "getloadavg") else (math.nan,) * 3
 
@@ -212,6 +217,46 @@ def main() -> None:
     print(f"load average (1 min) at start {load[0]:.2f}, at end {load2[0]:.2f}")
     for n in notes:
         print("note:", n)
+    results.write(
+        args.json,
+        "region",
+        args,
+        grid_points=npts,
+        threads=args.threads or os.cpu_count(),
+        routes=[
+            {
+                "route": r["m"],
+                "eccjump": {
+                    "points": npts,
+                    "wall_s": r["te"],
+                    "cpu_s": r["ce"],
+                    "points_per_s": r["pe"],
+                    "points_per_cpu_s": npts / r["ce"],
+                    "jarms": r["nj"],
+                    "rss_before_mib": r["rss0"],
+                    "peak_rss_mib": r["peak"],
+                    "returned_arrays_mib": r["out"],
+                    "stub": r["stub"],
+                },
+                "baseline": {
+                    "points": r["k"],
+                    "wall_s": r["tb"],
+                    "cpu_s": r["cb"],
+                    "points_per_s": r["pb"],
+                    "points_per_cpu_s": r["k"] / r["cb"],
+                },
+                "speed_up_wall": None if r["stub"] else r["pe"] / r["pb"],
+                "speed_up_per_cpu_s": None if r["stub"] else (npts / r["ce"]) / (r["k"] / r["cb"]),
+                "agree_is_jarm": r["sj"],
+                "agree_reason": r["sr"],
+                "max_theta_J_diff_rad": r["dth"],
+                "common_jarms": r["nboth"],
+            }
+            for r in rows
+        ],
+        load_average_end=load2[0],
+        notes=notes,
+    )
 
 
 if __name__ == "__main__":
