@@ -8,10 +8,14 @@ units g = R = M = 1.
     python benches/scipy_motion_cases.py            # every case: transitions and timing
     python benches/scipy_motion_cases.py jarm_paper  # only the named cases
     python benches/scipy_motion_cases.py --table     # one compact line per case
+
+Each run also writes its per-case figures to ``--json PATH`` (default
+bench_scipy_motion_cases.json in the current directory).
 """
 
 from __future__ import annotations
 
+import argparse
 import math
 import sys
 import time
@@ -19,6 +23,7 @@ from pathlib import Path
 
 sys.path.insert(0, str(Path(__file__).resolve().parent.parent / "tests"))
 
+import results
 from reference_motion import format_transitions, simulate_reference
 
 D = math.radians
@@ -84,10 +89,15 @@ def compact(res: dict, n: int = 8) -> str:
     return "".join(out)
 
 
-def main(argv: list[str]) -> None:
-    table = "--table" in argv
-    wanted = set(argv) - {"--table"}
+def main(argv: list[str] | None = None) -> None:
+    p = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    p.add_argument("names", nargs="*", help="only these cases (default: all)")
+    p.add_argument("--table", action="store_true", help="one compact line per case")
+    results.add_json_option(p, "scipy_motion_cases")
+    args = p.parse_args(argv)
+    wanted = set(args.names)
     total = 0.0
+    rows = []
     for name, kw in CASES:
         if wanted and name not in wanted:
             continue
@@ -98,7 +108,18 @@ def main(argv: list[str]) -> None:
         led = res["energy0"] - (
             res["energy_end"] + res["dissipated_slip"] + res["dissipated_impacts"]
         )
-        if table:
+        rows.append(
+            {
+                "case": name,
+                "sequence": compact(res),
+                "status": res["status"],
+                "ms": dt * 1e3,
+                "nfev": res["nfev"],
+                "transitions": len(res["transitions"]) - 1,
+                "ledger_residual": led,
+            }
+        )
+        if args.table:
             print(
                 f"{name:<22} {compact(res):<95} {res['status']:<15} {dt * 1e3:6.1f} ms "
                 f"nfev={res['nfev']:<6} n={len(res['transitions']) - 1:<3} ledger={led:+.0e}"
@@ -111,7 +132,8 @@ def main(argv: list[str]) -> None:
             f" ledger residual={led:+.1e}"
         )
     print(f"total {total:.2f} s")
+    results.write(args.json, "scipy_motion_cases", args, rows=rows, total_s=total)
 
 
 if __name__ == "__main__":
-    main(sys.argv[1:])
+    main()
