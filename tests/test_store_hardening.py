@@ -1,0 +1,425 @@
+"""Issue 35, the files: regression tests of the second hardening round of the loaders and
+writers of maps (eccjump.store, eccjump.motion_maps, ``eccjump map -o``).
+
+1. A writer replaces only a map of its own kind: never a directory of user files, a FIFO.
+2. No loader hangs: a FIFO is refused before it is opened, a damaged .nc file is read by the
+   netCDF library in a subprocess with a time limit.
+3. ``--resume`` computes again every chunk that does not read back whole and valid, and never
+   ends with exit 0 and a map that ``store.load`` refuses; a motion map refuses a NaN mu_s.
+4. One checked loader path: codes out of their tables, NaN coordinates, wrong shapes, foreign
+   files are ValueErrors naming the file in < 200 characters, even for long paths.
+5. ``eccjump map``: --grid bounded, a too long output name, both one-line errors.
+"""
+
+from __future__ import annotations
+
+import contextlib
+import io
+import math
+import os
+import random
+import shutil
+import subprocess
+import sys
+from pathlib import Path
+
+import numpy as np
+import pytest
+from fuzz_cases import MAX_MESSAGE, run_cli_inprocess
+
+import eccjump
+from eccjump import motion_maps, store
+from eccjump.cli import main
+
+xr = pytest.importorskip("xarray")
+pytest.importorskip("zarr")
+
+SUFFIXES = (".npz", ".nc", ".zarr")
+MAP = ["map", "--mu-s", "1", "--grid", "3", "-q"]
+
+
+def one_line(err: str) -> str:
+    """The one ``eccjump: error:`` line of stderr (no traceback), at most MAX_MESSAGE long."""
+    lines = err.strip().splitlines()
+    assert len(lines) == 1 and lines[0].startswith("eccjump: error: "), err[-500:]
+    assert len(lines[0]) <= MAX_MESSAGE, lines[0]
+    return lines[0]
+
+
+def cli(*argv: str) -> tuple[int, str, str]:
+    code, out, err = run_cli_inprocess(list(argv))
+    assert "Traceback" not in err, err[-800:]
+    return code, out, err
+
+
+def tree(path: Path) -> dict[str, bytes]:
+    """Every file under ``path`` (or ``path`` itself) with its bytes."""
+    if path.is_file():
+        return {"": path.read_bytes()}
+    return {str(p.relative_to(path)): p.read_bytes() for p in path.rglob("*") if p.is_file()}
+
+
+def refused(fn, path, *args, **kwargs) -> str:
+    """The message of the ValueError that ``fn`` raises, checked to name the file ``path``
+    and to be short."""
+    with pytest.raises(ValueError) as info:
+        fn(*args, **kwargs)
+    msg = str(info.value)
+    assert Path(path).name[-40:] in msg and len(msg) < MAX_MESSAGE, msg
+    return msg
+
+
+@pytest.fixture(scope="module")
+def region():
+    return eccjump.region(1.0, alpha=[0.3, 0.6, 0.9], chi=[0.2, 0.5], km=[0.1, 0.4])
+
+
+def motion(**axes):
+    kw = {"alpha": [0.5, 0.7], "chi": 0.3, "km": [0.2, 0.6], "mu_s": 1.0, **axes}
+    return eccjump.motion_map(**kw, t_max=20.0)
+
+
+# --- 1. writers replace only what they could have written -----------------------------------
+
+
+@pytest.mark.parametrize("suffix", SUFFIXES)
+def test_overwrite_never_deletes_a_directory_of_user_files(tmp_path, region, suffix):
+    path = tmp_path / f"d{suffix}"
+    path.mkdir()
+    (path / "notes.txt").write_text("x")
+    code, _, err = cli(*MAP, "-o", str(path), "--overwrite")
+    assert code == 2 and "not replaced" in one_line(err) and "-o" in err
+    refused(store.save, path, region, path)
+    assert tree(path) == {"notes.txt": b"x"}
+    assert sorted(os.listdir(tmp_path)) == [path.name]
+
+
+@pytest.mark.parametrize("suffix", SUFFIXES)
+def test_a_fifo_at_the_output_is_refused_not_opened(tmp_path, region, suffix):
+    path = tmp_path / f"f{suffix}"
+    os.mkfifo(path)
+    code = (
+        "import sys\nfrom eccjump.cli import main\n"
+        f"sys.exit(main({[*MAP, '-o', str(path), '--overwrite']!r}))"
+    )
+    p = subprocess.run(
+        [sys.executable, "-c", code], capture_output=True, text=True, timeout=60, check=False
+    )
+    assert p.returncode == 2 and "a FIFO" in one_line(p.stderr)
+    refused(store.save, path, region, path)
+    assert path.is_fifo()
+
+
+def test_a_map_of_ours_is_still_replaced(tmp_path, region):
+    for suffix in SUFFIXES:
+        path = tmp_path / f"m{suffix}"
+        assert cli(*MAP, "-o", str(path))[0] == 0
+        assert cli(*MAP, "-o", str(path), "--overwrite", "--grid", "2")[0] == 0
+        store.save(region, path)
+        assert store.load(path).alpha.size == 3
+
+
+def test_a_zarr_store_that_is_not_ours_is_not_replaced(tmp_path, region):
+    path = tmp_path / "foreign.zarr"
+    xr.Dataset({"foo": ("x", np.arange(3))}).to_zarr(path, zarr_format=3, consolidated=False)
+    before = tree(path)
+    refused(store.save, path, region, path)
+    code, _, err = cli(*MAP, "-o", str(path), "--overwrite")
+    assert code == 2 and "no zarr map of eccjump" in one_line(err)
+    assert tree(path) == before
+
+
+# --- 2. no loader hangs ---------------------------------------------------------------------
+
+
+def _in_subprocess(code: str, timeout: float = 60) -> str:
+    p = subprocess.run(
+        [sys.executable, "-c", code], capture_output=True, text=True, timeout=timeout, check=False
+    )
+    assert p.returncode == 0, p.stderr[-800:]
+    return p.stdout.strip()
+
+
+def test_a_netcdf_map_with_zeroed_bytes_is_refused_not_a_hang(tmp_path):
+    """The reproducer of the issue: HDF5 loops for ever on 512 zeroed bytes of the global heap
+    of a motion map (deaf to Ctrl-C). The probe subprocess is given 2 s here."""
+    path = tmp_path / "m.nc"
+    store.save(motion(), path)
+    data = bytearray(path.read_bytes())
+    data[3939:4451] = bytes(512)
+    path.write_bytes(bytes(data))
+    code = f"""
+from eccjump import store, motion_maps
+store.PROBE_SECONDS = 2
+for load in (store.load, store.open_dataset, motion_maps.load):
+    try:
+        load({str(path)!r})
+    except ValueError as err:
+        print(err)
+"""
+    lines = _in_subprocess(code, timeout=90).splitlines()
+    assert len(lines) == 3
+    for line in lines:
+        assert "m.nc" in line and "not a readable netcdf map" in line and len(line) < MAX_MESSAGE
+
+
+def test_every_loader_refuses_a_fifo_without_opening_it(tmp_path):
+    for suffix in SUFFIXES:
+        os.mkfifo(tmp_path / f"f{suffix}")
+    code = f"""
+from pathlib import Path
+from eccjump import store, motion_maps
+for p in sorted(Path({str(tmp_path)!r}).iterdir()):
+    for load in (store.load, store.open_dataset, store.load_layout, motion_maps.load):
+        try:
+            load(p)
+        except ValueError as err:
+            print(err)
+"""
+    lines = _in_subprocess(code).splitlines()
+    assert len(lines) == 12 and all("a FIFO" in line for line in lines), lines
+
+
+# --- 3. resume validates what it reads -------------------------------------------------------
+
+
+def _map_store(tmp_path: Path, *args: str) -> tuple[Path, xr.Dataset]:
+    path = tmp_path / "c.zarr"
+    assert cli(*MAP, "--chunk", "1", "-o", str(path), *args)[0] == 0
+    return path, store.open_dataset(path)
+
+
+def _same(path: Path, ref: xr.Dataset) -> bool:
+    ds = store.open_dataset(path)
+    return all(np.array_equal(ds[k].values, ref[k].values, equal_nan=True) for k in ref.data_vars)
+
+
+def test_a_lost_chunk_is_computed_again_on_resume(tmp_path):
+    """The reproducer: a deleted chunk of ``reason`` read as 255 and the resume ended with exit
+    0 and a map of unfinished points."""
+    path, ref = _map_store(tmp_path)
+    (path / "reason" / "c" / "1" / "0" / "0").unlink()
+    code, _, err = cli(*MAP, "-o", str(path), "--resume")
+    assert code == 0 and "chunk 1 is damaged" in err
+    assert _same(path, ref)
+    store.load(path)
+
+
+def test_a_garbage_chunk_is_computed_again_on_resume(tmp_path):
+    """A garbage chunk raised RuntimeError from zstd."""
+    path, ref = _map_store(tmp_path)
+    chunk = path / "theta_J" / "c" / "0" / "0" / "0"
+    chunk.write_bytes(random.Random(0).randbytes(chunk.stat().st_size))
+    code, _, err = cli(*MAP, "-o", str(path), "--resume")
+    assert code == 0 and "chunk 0 is damaged" in err
+    assert _same(path, ref)
+
+
+@pytest.mark.parametrize("kind", ["jarm", "motion"])
+def test_a_resume_of_a_damaged_store_ends_whole_or_with_one_error_line(tmp_path, kind):
+    """Each file of a store deleted, filled with garbage or zeros, or cut in half: a resume
+    ends either with exit 0 and the map of a fresh run, or exit 2 and one error line."""
+    args = ("--kind", "motion") if kind == "motion" else ()
+    good, ref = _map_store(tmp_path, *args)
+    files = sorted(p.relative_to(good) for p in good.rglob("*") if p.is_file())
+    rng = random.Random(35)
+    cases = [(f, how) for f in files for how in ("delete", "garbage", "zero", "cut")]
+    load = store.load if kind == "jarm" else motion_maps.load
+    for name, how in rng.sample(cases, 12):
+        path = tmp_path / "d.zarr"
+        shutil.rmtree(path, ignore_errors=True)
+        shutil.copytree(good, path)
+        target = path / name
+        data = target.read_bytes()
+        damaged = {
+            "delete": None,
+            "garbage": rng.randbytes(len(data)),
+            "zero": bytes(len(data)),
+            "cut": data[: len(data) // 2],
+        }[how]
+        target.unlink() if damaged is None else target.write_bytes(damaged)
+        code, _, err = cli(*MAP, *args, "--chunk", "1", "-o", str(path), "--resume")
+        if code == 0:
+            load(path)
+            assert _same(path, ref), (name, how)
+        else:
+            last = err.strip().splitlines()[-1]
+            assert code == 2 and last.startswith("eccjump: error: "), (name, how, err)
+            assert len(last) <= MAX_MESSAGE, last
+
+
+def test_the_motion_kind_refuses_a_nan_mu_s_as_the_jarm_kind(tmp_path):
+    for kind in ("jarm", "motion"):
+        path = tmp_path / f"{kind}.npz"
+        code, _, err = cli(*MAP, "--kind", kind, "--mu-s", "nan", "-o", str(path))
+        assert code == 2 and "mu_s" in one_line(err)
+        assert not path.exists()
+    for bad in ({"mu_s": math.nan}, {"restitution": 2.0}, {"mu_k": -1.0}, {"chi": math.inf}):
+        name = next(iter(bad))
+        with pytest.raises(ValueError, match=rf"^{name} = ") as info:
+            motion(**bad)
+        assert len(str(info.value)) < MAX_MESSAGE
+    m = motion(mu_s=[0.5, 1.0], mu_k=0.8)  # a swept axis may hold invalid points
+    assert (m.status[..., 0] == motion_maps.INVALID).all()
+
+
+# --- 4. one checked loader path --------------------------------------------------------------
+
+
+def _write_raw(lay: dict, path: Path) -> None:
+    """Write ``lay`` as it is, past the checks of store.save (a damaged or foreign file)."""
+    if path.suffix == ".npz":
+        store.save_npz(lay, path)
+    elif path.suffix == ".nc":
+        store.layout_to_xarray(lay).to_netcdf(path, engine=store.netcdf_engine())
+    else:
+        store.layout_to_xarray(lay).to_zarr(path, zarr_format=3, consolidated=False)
+
+
+def _edited(lay: dict, part: str, name: str, edit) -> dict:
+    dims, values, attrs = lay[part][name]
+    values = np.array(values, copy=True)
+    new = values if (new := edit(values)) is None else new
+    return {**lay, part: {**lay[part], name: (dims[: new.ndim], new, attrs)}}
+
+
+JARM_BAD = {
+    "code out of its table": ("data_vars", "reason", lambda v: v.fill(200)),
+    "NaN coordinate": ("coords", "alpha", lambda v: v.__setitem__(0, np.nan)),
+    "wrong shape": ("data_vars", "theta_J", lambda v: v[:, :, 0]),
+    "is_jarm against reason": ("data_vars", "is_jarm", lambda v: v.fill(True)),
+}
+MOTION_BAD = {
+    "status out of its table": ("data_vars", "status", lambda v: v.fill(77)),
+    "no sequence code": ("data_vars", "sequence", lambda v: v.fill(4)),
+    "landing out of its table": ("data_vars", "landing", lambda v: v.fill(9)),
+    "NaN coordinate": ("coords", "km_frac", lambda v: v.__setitem__(0, np.nan)),
+}
+
+
+@pytest.mark.parametrize("suffix", SUFFIXES)
+def test_loaders_refuse_bad_codes_nan_coordinates_and_wrong_shapes(tmp_path, region, suffix):
+    good = {"jarm": store.region_layout(region), "motion": store.layout_from_xarray(
+        motion().to_xarray())}  # fmt: skip
+    loaders = {
+        "jarm": (store.load, store.open_dataset, store.load_layout),
+        "motion": (motion_maps.load, store.open_dataset),
+    }
+    for kind, bad in (("jarm", JARM_BAD), ("motion", MOTION_BAD)):
+        for what, (part, name, edit) in bad.items():
+            path = tmp_path / f"{kind}-{what.replace(' ', '-')}{suffix}"
+            _write_raw(_edited(good[kind], part, name, edit), path)
+            for load in loaders[kind]:
+                refused(load, path, path)
+            with pytest.raises(ValueError, match="obj"):  # and save refuses to write it
+                store.save(_edited(good[kind], part, name, edit), tmp_path / f"x{suffix}")
+
+
+def test_messages_stay_short_for_long_paths(tmp_path):
+    deep = tmp_path / ("d" * 120) / ("e" * 120)
+    deep.mkdir(parents=True)
+    for suffix in SUFFIXES:
+        path = deep / (("x" * 150) + suffix)
+        (path.mkdir() if suffix == ".zarr" else path.write_bytes(b"garbage" * 10))
+        for load in (store.load, store.open_dataset, motion_maps.load):
+            refused(load, path, path)
+
+
+def test_save_refuses_attrs_that_contradict_the_data(tmp_path, region):
+    for attrs in ({"kind": "motion"}, {"kind": "other"}, {"mu_s": math.nan}, {"rule": 3}):
+        with pytest.raises(ValueError, match=r"^attrs") as info:
+            store.save(region, tmp_path / "h.npz", attrs=attrs)
+        assert len(str(info.value)) < MAX_MESSAGE
+    assert os.listdir(tmp_path) == []
+    store.save(region, tmp_path / "h.npz", attrs={"note": "kept"})
+    assert store.load(tmp_path / "h.npz").attrs["note"] == "kept"
+
+
+@pytest.mark.parametrize("obj", [{}, {"coords": {}, "data_vars": {}, "attrs": {}}, [], 3])
+def test_save_of_no_map_names_obj(tmp_path, obj):
+    with pytest.raises((TypeError, ValueError), match=r"^obj") as info:
+        store.save(obj, tmp_path / "x.npz")
+    assert len(str(info.value)) < MAX_MESSAGE and os.listdir(tmp_path) == []
+
+
+def test_open_dataset_wraps_the_readers_errors(tmp_path):
+    (tmp_path / "empty.zarr").mkdir()  # GroupNotFoundError
+    (tmp_path / "bad.npz").write_bytes(b"PK\x03\x04 not a zip")  # BadZipFile
+    np.save(tmp_path / "cut.npy", np.arange(100))
+    (tmp_path / "cut.npz").write_bytes(b"")  # EOFError
+    for name in ("empty.zarr", "bad.npz", "cut.npz"):
+        msg = refused(store.open_dataset, name, tmp_path / name)
+        assert "not a readable" in msg
+
+
+AXES = motion_maps.AXES
+SWEPT = {
+    "alpha": [0.5, 0.8],
+    "chi": [0.2, 0.4],
+    "km": [0.3, 0.6],
+    "mu_s": [0.5, 1.0],
+    "mu_k": [0.3, 0.5],
+    "restitution": [0.0, 0.5],
+    "theta0": [0.0, 0.2],
+    "omega0": [0.0, 0.3],
+}
+ONE = {"alpha": 0.6, "chi": 0.3, "km": 0.5, "mu_s": 1.0, "restitution": 0.2, "theta0": 0.1}
+ONE["omega0"] = 0.1
+
+
+def _same_map(a: motion_maps.MotionMap, b: motion_maps.MotionMap) -> None:
+    assert list(a.coords) == list(b.coords)
+    for k in a.coords:
+        assert a.coords[k].tobytes() == b.coords[k].tobytes(), k
+    mu_s = a.scalars.get("mu_s")
+    norm = [{k: (mu_s if k == "mu_k" and v is None else v) for k, v in m.scalars.items()}
+            for m in (a, b)]  # fmt: skip
+    assert norm[0] == norm[1]  # mu_k not given is mu_k = mu_s
+    for k in motion_maps.FIELDS:
+        assert a.fields[k].tobytes() == b.fields[k].tobytes(), k
+
+
+@pytest.mark.parametrize("seed", range(12))
+def test_motion_maps_with_any_axes_scalar_round_trip(tmp_path, seed):
+    rng = random.Random(seed)
+    swept = [a for a in AXES if rng.random() < 0.4]
+    kw = {a: SWEPT[a] if a in swept else ONE.get(a) for a in AXES}
+    m = eccjump.motion_map(**kw, t_max=5.0)
+    assert list(m.coords) == swept
+    _same_map(m, motion_maps.from_dataset(m.to_xarray()))
+    path = tmp_path / f"m{SUFFIXES[seed % 3]}"
+    store.save(m.to_xarray() if seed % 2 else m, path)
+    _same_map(m, motion_maps.load(path))
+
+
+def test_from_dataset_of_a_swept_mu_s(tmp_path):
+    ds = motion(mu_s=[0.5, 1.0])
+    back = motion_maps.from_dataset(motion(mu_s=[0.5, 1.0]).to_xarray())
+    _same_map(ds, back)
+    assert back.scalars["mu_k"] is None
+    with pytest.raises(ValueError, match=r"^ds "):
+        motion_maps.from_dataset(eccjump.region(1.0, alpha=[0.5], chi=[0.2], km=[0.1]).to_xarray())
+
+
+# --- 5. eccjump map: bounded grid, long names -----------------------------------------------
+
+
+@pytest.mark.parametrize("option", ["--grid", "--n-alpha", "--n-chi", "--n-km"])
+def test_a_huge_grid_is_one_error_line_naming_the_option(tmp_path, option):
+    err = io.StringIO()
+    with contextlib.redirect_stderr(err), pytest.raises(SystemExit) as info:
+        main([*MAP, option, "4294967296", "-o", str(tmp_path / "m.zarr")])
+    assert info.value.code == 2
+    last = err.getvalue().strip().splitlines()[-1]
+    assert option in last and "[1, 1000000]" in last and len(last) <= MAX_MESSAGE
+    assert os.listdir(tmp_path) == []
+
+
+@pytest.mark.parametrize("suffix", SUFFIXES)
+def test_a_too_long_output_name_is_one_error_line(tmp_path, region, suffix):
+    for size in (300, 250):
+        path = tmp_path / (("x" * size) + suffix)
+        code, _, err = cli(*MAP, "-o", str(path))
+        assert code == 2 and "name of" in one_line(err) and "-o" in err
+        refused(store.save, path, region, path)
+    assert os.listdir(tmp_path) == []
