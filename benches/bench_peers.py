@@ -32,6 +32,9 @@ d. ``--write-snapshot`` / ``--check-snapshot``: SHA-256 digests and per-reason c
 Peers that are not installed are skipped with a note (``pip install -e '.[bench]'``).
 
 Run:  python benches/bench_peers.py [--parts roll,accuracy,batch,closed,ode] [--batch 10000]
+                                   [--json PATH]
+
+Every part's figures also go to ``--json`` (default bench_peers.json in the current directory).
 """
 
 from __future__ import annotations
@@ -45,8 +48,10 @@ import platform
 import time
 from collections.abc import Callable
 from pathlib import Path
+from typing import Any
 
 import numpy as np
+import results
 
 import eccjump
 
@@ -61,6 +66,8 @@ ROOT_TOL = 1e-12  # diffrax event: optimistix Newton tolerance (1e-14 does not c
 CASES = [(40.0, 0.15, 0.02), (70.0, 0.1, 0.27), (30.0, 0.1, 0.09), (10.0, 0.1, 0.54)]
 
 NOTES: list[str] = []
+#: every part's figures, by part, for the results file
+RESULTS: dict[str, Any] = {}
 
 
 def note(msg: str) -> None:
@@ -404,6 +411,7 @@ def part_roll(args) -> None:
     print("-" * len(hdr))
     worst: dict[str, float] = {}
     ratios: dict[str, list[float]] = {}
+    rows: list[dict[str, Any]] = []
     for a_deg, chi, km in CASES:
         alpha = math.radians(a_deg)
         body = eccjump.Cylinder(chi, km)
@@ -418,6 +426,16 @@ def part_roll(args) -> None:
             f"{case:<26}{'eccjump.roll ' + args.integrator:<28}{math.degrees(ref):>20.12f}{'':>13}"
             f"{tw * 1e6:>14.2f}{tc * 1e6:>13.2f}{1.0:>13.2f}"
         )
+        rows.append(
+            {
+                "case": [a_deg, chi, km],
+                "route": f"eccjump.roll {args.integrator}",
+                "theta_J_deg": math.degrees(ref),
+                "us_wall": tw * 1e6,
+                "us_cpu": tc * 1e6,
+                "peer_over_eccjump_cpu": 1.0,
+            }
+        )
         p = params(alpha, chi, km)
         for name, fn, rep, num in peers:
             if fn is None:
@@ -430,6 +448,7 @@ def part_roll(args) -> None:
                 msg = msg[i:] if i >= 0 else msg
                 print(f"{'':<26}{name:<28}  FAILED: {msg[:150]}")
                 note(f"{name} failed on case {case}: {msg[:300]}")
+                rows.append({"case": [a_deg, chi, km], "route": name, "failed": msg[:300]})
                 continue
             pw, pc = per_call(lambda: fn(p, rtol, atol), num, rep)  # noqa: B023
             d = abs(th - ref)
@@ -447,6 +466,18 @@ def part_roll(args) -> None:
                 f"{pw * 1e6:>14.2f}{pc * 1e6:>13.2f}{pc / tc:>13.2f}"
                 f"{'  WRONG EVENT' if wrong else ''}"
             )
+            rows.append(
+                {
+                    "case": [a_deg, chi, km],
+                    "route": name,
+                    "theta_J_deg": math.degrees(th),
+                    "dtheta_rad": d,
+                    "us_wall": pw * 1e6,
+                    "us_cpu": pc * 1e6,
+                    "peer_over_eccjump_cpu": pc / tc,
+                    "wrong_event": wrong,
+                }
+            )
     print(
         "largest |theta_J(peer) - theta_J(eccjump)| over the cases where the peer found "
         "the same event [rad]: " + ", ".join(f"{k} {v:.1e}" for k, v in worst.items())
@@ -455,6 +486,14 @@ def part_roll(args) -> None:
         "peer CPU time / eccjump CPU time per call (min-max over the cases; > 1: eccjump "
         "faster): " + ", ".join(f"{k} {min(v):.2f}-{max(v):.2f}" for k, v in ratios.items())
     )
+    RESULTS["roll"] = {
+        "rtol": rtol,
+        "atol": atol,
+        "integrator": args.integrator,
+        "rows": rows,
+        "largest_dtheta_rad": worst,
+        "peer_over_eccjump_cpu_min_max": {k: [min(v), max(v)] for k, v in ratios.items()},
+    }
 
 
 # ------------------------------------------------------------------------------------------
@@ -489,12 +528,13 @@ def equal_accuracy_table(
     name_width: int,
     width: int,
     cell: Callable[[float, float, float | None], str],
+    out: list[dict[str, Any]] | None = None,
 ) -> dict[tuple[str, float], float]:
     """Prints, for each route of `table` (rows of (error, cost) along `ladder`) and each
     level of ACCURACY, the cost at the loosest rung that reaches the level (`reached`), as
     cell(cost, rtol, ratio); eccjump's routes come first and set the best cost per level,
     and a peer's ratio is its cost over that best (None for eccjump). Returns the peers'
-    ratios by (route, level)."""
+    ratios by (route, level). Each cell also goes to `out` (if given) as a dict."""
     print(
         f"{'route':<{name_width}}"
         + "".join(f"{'<= ' + format(lv, 'g'):>{width}}" for lv in ACCURACY)
@@ -507,6 +547,8 @@ def equal_accuracy_table(
             i = reached([e for e, _ in rows], lv)
             if i is None:
                 cells.append(f"{'not reached':>{width}}")
+                if out is not None:
+                    out.append({"route": name, "level": lv, "reached": False})
                 continue
             cost = rows[i][1]
             ratio = None
@@ -516,8 +558,28 @@ def equal_accuracy_table(
                 ratio = cost / best[lv] if lv in best else math.nan
                 ratios[(name, lv)] = ratio
             cells.append(cell(cost, ladder[i], ratio).rjust(width))
+            if out is not None:
+                out.append(
+                    {
+                        "route": name,
+                        "level": lv,
+                        "reached": True,
+                        "rtol": ladder[i],
+                        "cost": cost,
+                        "ratio": ratio,
+                    }
+                )
         print(f"{name:<{name_width}}" + "".join(cells))
     return ratios
+
+
+def renamed_cost(cells: list[dict[str, Any]], key: str, scale: float) -> list[dict[str, Any]]:
+    """equal_accuracy_table's cells with their "cost" as `key`, in its unit (cost x scale)."""
+    return [
+        {k: v for k, v in d.items() if k != "cost"}
+        | ({key: d["cost"] * scale} if "cost" in d else {})
+        for d in cells
+    ]
 
 
 def part_accuracy(args) -> None:
@@ -531,6 +593,7 @@ def part_accuracy(args) -> None:
     print("\n== a'. roll at equal accuracy: CPU us per call at the loosest rtol (atol = rtol/100)")
     print("   of 1e-6 ... 1e-12 (half decades) from which on |theta_J - exact| <= the level ==")
     cells: dict[str, dict[tuple[str, float], float]] = {}  # case -> (peer, level) -> ratio
+    cases_out: list[dict[str, Any]] = []
     for a_deg, chi, km in CASES:
         alpha = math.radians(a_deg)
         body = eccjump.Cylinder(chi, km)
@@ -566,10 +629,28 @@ def part_accuracy(args) -> None:
                 )
                 rows.append((abs(th - exact), c))
             table[name] = rows
+        reached_out: list[dict[str, Any]] = []
         ratios = equal_accuracy_table(
-            table, LADDER, 28, 22, lambda c, rtol, _r: f"{c * 1e6:>10.2f} us @{rtol:<8.0e}"
+            table,
+            LADDER,
+            28,
+            22,
+            lambda c, rtol, _r: f"{c * 1e6:>10.2f} us @{rtol:<8.0e}",
+            reached_out,
         )
         cells[case] = ratios
+        cases_out.append(
+            {
+                "case": [a_deg, chi, km],
+                "exact_theta_J": exact,
+                "ladder": [
+                    {"route": n, "rtol": r, "error": e, "cpu_us": c * 1e6}
+                    for n, rows in table.items()
+                    for r, (e, c) in zip(LADDER, rows, strict=True)
+                ],
+                "at_level": renamed_cost(reached_out, "cpu_us", 1e6),
+            }
+        )
     summary: dict[tuple[str, float], list[float]] = {}
     for ratios in cells.values():
         for key, ratio in ratios.items():
@@ -581,20 +662,28 @@ def part_accuracy(args) -> None:
     for (name, lv), v in sorted(summary.items()):
         if not name.startswith("eccjump"):
             print(f"  {name:<28} <= {lv:g} rad: {min(v):.2f}-{max(v):.2f}")
-    cell_table(cells, [n for n, f in peers if f is not None])
+    RESULTS["accuracy"] = {
+        "levels_rad": ACCURACY,
+        "cases": cases_out,
+        **cell_table(cells, [n for n, f in peers if f is not None]),
+    }
 
 
-def cell_table(cells: dict[str, dict[tuple[str, float], float]], peers: list[str]) -> None:
+def cell_table(
+    cells: dict[str, dict[tuple[str, float], float]], peers: list[str]
+) -> dict[str, Any]:
     """Prints every cell (case x peer x accuracy level) of the equal-accuracy comparison,
     peer CPU / eccjump CPU, and how many reach issue 10's target of 3x (a cell a peer did
-    not reach counts as reached by eccjump; one eccjump did not reach, as missed)."""
+    not reach counts as reached by eccjump; one eccjump did not reach, as missed). Returns
+    the cells and the count for the results file."""
     if not peers:
-        return
+        return {"cells": [], "cells_met": 0, "cells_total": 0}
     head = "".join(
         f"{p.split()[0] + ' <= ' + format(lv, 'g'):>22}" for p in peers for lv in ACCURACY
     )
     print(f"\nevery cell, peer CPU / eccjump CPU:\n{'case':<20}{head}")
     met = total = 0
+    out = []
     for case, ratios in cells.items():
         row = []
         for p in peers:
@@ -603,8 +692,20 @@ def cell_table(cells: dict[str, dict[tuple[str, float], float]], peers: list[str
                 total += 1
                 met += r >= 3.0  # NaN: eccjump did not reach the level
                 row.append(f"{r:>22.2f}")
+                out.append(
+                    {
+                        "case": case,
+                        "peer": p,
+                        "level": lv,
+                        "ratio": r,
+                        "peer_reached": not math.isinf(r),
+                        "eccjump_reached": not math.isnan(r),
+                        "met": bool(r >= 3.0),
+                    }
+                )
         print(f"{case:<20}" + "".join(row))
     print(f"cells at >= 3x: {met} of {total}")
+    return {"cells": out, "cells_met": int(met), "cells_total": total}
 
 
 # ------------------------------------------------------------------------------------------
@@ -688,6 +789,23 @@ def part_batch(args) -> None:
     for name, w, cpu in rows:
         rel = f"{cpu / rows[-1][2]:.2f}" if kern is not None else "-"
         print(f"{name:<34}{w:>9.3f}{cpu:>9.3f}{cpu / a.size * 1e6:>11.1f}{rel:>14}")
+    RESULTS["batch"] = {
+        "points": int(a.size),
+        "rtol": args.rtol,
+        "atol": args.atol,
+        "integrator": args.integrator,
+        "stop_at_slip": args.stop_at_slip,
+        "rows": [
+            {
+                "route": name,
+                "wall_s": w,
+                "cpu_s": cpu,
+                "us_per_point_cpu": cpu / a.size * 1e6,
+                "cpu_vs_numba": cpu / rows[-1][2] if kern is not None else None,
+            }
+            for name, w, cpu in rows
+        ],
+    }
     if kern is None:
         return
     er = ecc.reason
@@ -703,6 +821,16 @@ def part_batch(args) -> None:
         f"theta of the event, {int(both.sum())} points: max |d| {d.max():.1e} rad, "
         f"median {np.median(d):.1e}, > 1e-8 rad at {int(np.sum(d > 1e-8))}"
     )
+    RESULTS["batch"]["agree"] = {
+        "is_jarm": same_j,
+        "jarms_eccjump": int(np.sum(er == 0)),
+        "jarms_numba": int(np.sum(reason == 0)),
+        "first_event_verdict": same_c,
+        "theta_points": int(both.sum()),
+        "theta_max_diff_rad": float(d.max()) if d.size else math.nan,
+        "theta_median_diff_rad": float(np.median(d)) if d.size else math.nan,
+        "theta_over_1e-8": int(np.sum(d > 1e-8)),
+    }
     bad = np.flatnonzero(fc_e != fc_p)
     for i in bad[: args.show]:
         print(
@@ -769,6 +897,7 @@ def part_batch_accuracy(args) -> None:
         f"{'max rel err':>13}"
     )
     table: dict[str, list[tuple[float, float]]] = {}
+    rungs: list[dict[str, Any]] = []
     for name, fn in routes:
         rows = []
         for rtol in ladder:
@@ -783,16 +912,35 @@ def part_batch_accuracy(args) -> None:
                 f"{p99:>13.1e}{float(rel.max()) if rel.size else math.inf:>13.1e}"
             )
             rows.append((p99, cpu))
+            rungs.append(
+                {
+                    "route": name,
+                    "rtol": rtol,
+                    "cpu_s": cpu,
+                    "verdict_differs": int(np.sum(cls != ref_class)),
+                    "p99_rel_error": p99,
+                    "max_rel_error": float(rel.max()) if rel.size else math.inf,
+                }
+            )
         table[name] = rows
     print("\nCPU s for the batch at the loosest rtol from which on the p99 relative error stays")
     print("within the level (one thread):")
+    at_level: list[dict[str, Any]] = []
     equal_accuracy_table(
         table,
         ladder,
         32,
         26,
         lambda c, rtol, r: f"{c:.3f} s @{rtol:.0e}" + (f" ({r:.2f}x)" if r is not None else ""),
+        at_level,
     )
+    RESULTS["batch_accuracy"] = {
+        "points": n,
+        "stop_at_slip": args.stop_at_slip,
+        "levels_p99_rel": ACCURACY,
+        "rungs": rungs,
+        "at_level": renamed_cost(at_level, "cpu_s", 1.0),
+    }
 
 
 # ------------------------------------------------------------------------------------------
@@ -832,6 +980,14 @@ def part_closed(args) -> None:
         f"jarm, {args.points} random points: wall {w:.3f} s, CPU {cpu:.3f} s; "
         f"{verdict(w, 1.0) if args.points == 10**6 else ''}  JARMs {int(res.is_jarm.sum())}"
     )
+    out: dict[str, Any] = {"stop_at_slip": stop, "repeat": args.repeat}
+    out["jarm_random"] = {
+        "points": args.points,
+        "wall_s": w,
+        "cpu_s": cpu,
+        "jarms": int(res.is_jarm.sum()),
+        "target_s": 1.0 if args.points == 10**6 else None,
+    }
     ga, gc, gf = grid(args.grid)
     w, cpu, reg = best_of(
         lambda: eccjump.region(MU_S, alpha=ga, chi=gc, km=gf, stop_at_slip=stop), args.repeat
@@ -840,6 +996,14 @@ def part_closed(args) -> None:
         f"region, {args.grid}^3 grid: wall {w:.3f} s, CPU {cpu:.3f} s; "
         f"{verdict(w, 0.7) if args.grid == 100 else ''}  JARMs {int(reg.is_jarm.sum())}"
     )
+    out["region_grid"] = {
+        "grid": args.grid,
+        "wall_s": w,
+        "cpu_s": cpu,
+        "jarms": int(reg.is_jarm.sum()),
+        "target_s": 0.7 if args.grid == 100 else None,
+    }
+    RESULTS["closed"] = out
 
 
 def part_ode(args) -> None:
@@ -864,6 +1028,16 @@ def part_ode(args) -> None:
         )
     )
     n = reg.is_jarm.size
+    RESULTS["ode"] = {
+        "integrator": args.integrator,
+        "stop_at_slip": args.stop_at_slip,
+        "sub_grid": m,
+        "points": int(n),
+        "wall_s": w,
+        "cpu_s": cpu,
+        "extrapolated_1e6_wall_s": w * 1e6 / n,
+        "target_s": 10.0,
+    }
     if m >= 100:
         print(f"region ode, 100^3: wall {w:.2f} s, CPU {cpu:.2f} s; {verdict(w, 10.0)}")
     else:
@@ -922,6 +1096,7 @@ def part_snapshot(args) -> None:
         saved = json.loads(SNAPSHOT.read_text())
         print(f"\n== d. snapshot check against {SNAPSHOT.name} ({saved.get('written', '?')}) ==")
         ok = True
+        checks = []
         for threads in (1, 0):
             now = snapshot_now(threads, args.seed)
             for key in ("map_100", "random_1e6"):
@@ -930,6 +1105,15 @@ def part_snapshot(args) -> None:
                 reasons = s["reason_sha256"] == n["reason_sha256"] and s["counts"] == n["counts"]
                 theta = s["theta_J_sha256"] == n["theta_J_sha256"]
                 ok &= inputs and reasons
+                checks.append(
+                    {
+                        "key": key,
+                        "threads": threads or os.cpu_count(),
+                        "inputs_same": inputs,
+                        "reasons_identical": reasons,
+                        "theta_J_digest_matches": theta,
+                    }
+                )
                 print(
                     f"{key:<11} threads {threads or os.cpu_count()}: inputs "
                     f"{'same' if inputs else 'DIFFER'}, reasons "
@@ -938,6 +1122,7 @@ def part_snapshot(args) -> None:
                 )
                 if not reasons:
                     print(f"  counts saved {s['counts']}\n  counts now   {n['counts']}")
+        RESULTS["snapshot"] = {"saved": saved.get("written"), "ok": bool(ok), "checks": checks}
         if not ok:
             raise SystemExit("snapshot check failed")
 
@@ -996,6 +1181,7 @@ def main() -> None:
         action="store_true",
         help="recompute (1 thread and all threads) and compare with snapshot.json",
     )
+    results.add_json_option(p, "peers")
     args = p.parse_args()
     load = os.getloadavg()
     print(
@@ -1003,7 +1189,7 @@ def main() -> None:
         f"{platform.python_version()}, numpy {np.__version__}, eccjump {eccjump.__version__}; "
         f"load average {load[0]:.2f}"
     )
-    print("peers: " + ", ".join(versions()))
+    print("peers: " + ", ".join(f"{k} {v or 'missing'}" for k, v in peer_versions().items()))
     parts = set(args.parts.split(",")) if args.parts else set()
     if args.write_snapshot or args.check_snapshot:
         parts = set() if args.parts == p.get_default("parts") else parts
@@ -1019,35 +1205,23 @@ def main() -> None:
         part_closed(args)
     if "ode" in parts:
         part_ode(args)
-    part_snapshot(args)
-    print(f"\nload average (1 min) at the end {os.getloadavg()[0]:.2f}")
-    for n in NOTES:
-        print("note:", n)
-
-
-def cpu_model() -> str:
-    """The processor's model name (the ratios to the peers depend on it, not only on the
-    code: benches/README.md), or the platform's description where /proc/cpuinfo has none."""
     try:
-        with open("/proc/cpuinfo") as f:
-            for line in f:
-                if line.startswith("model name"):
-                    return line.split(":", 1)[1].strip()
-    except OSError:
-        pass
-    return platform.processor() or "unknown CPU"
+        part_snapshot(args)
+    finally:  # a failed snapshot check still leaves the parts' figures (and its own) on file
+        print(f"\nload average (1 min) at the end {os.getloadavg()[0]:.2f}")
+        for n in NOTES:
+            print("note:", n)
+        results.write(args.json, "peers", args, **RESULTS, notes=NOTES)
 
 
-def versions() -> list[str]:
-    from importlib.metadata import PackageNotFoundError, version
+#: the processor's model name (the ratios to the peers depend on it, not only on the code)
+cpu_model = results.cpu_model
 
-    out = []
-    for name in ("scipy", "numba", "numbalsoda", "pydiffsol", "diffrax", "jax"):
-        try:
-            out.append(f"{name} {version(name)}")
-        except PackageNotFoundError:
-            out.append(f"{name} missing")
-    return out
+
+def peer_versions() -> dict[str, str | None]:
+    """scipy's and the peers' versions (None: not installed)."""
+    v = results.versions()
+    return {k: v[k] for k in ("scipy", "numba", "numbalsoda", "pydiffsol", "diffrax", "jax")}
 
 
 if __name__ == "__main__":
