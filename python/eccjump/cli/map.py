@@ -259,7 +259,7 @@ def _why(err: BaseException) -> str:
         return f"out of memory ({err})" if str(err) else "out of memory"
     if isinstance(err, OSError) and err.strerror:
         name = err.filename2 or err.filename
-        return f"{err.strerror}: {name}" if name else err.strerror
+        return f"{err.strerror}: {shown(name)}" if name else err.strerror
     return str(err) or type(err).__name__
 
 
@@ -293,7 +293,7 @@ def _cmd_map(args: argparse.Namespace) -> int:
         print("eccjump: aborted", file=sys.stderr)
         return 130
     except _Failed as err:
-        print(f"eccjump: error: {err}", file=sys.stderr)
+        print(f"eccjump: error: {_line(str(err))}", file=sys.stderr)
         return 1
 
 
