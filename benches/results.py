@@ -107,6 +107,7 @@ def write(
     """Write header(name, args) and the figures to path; returns the path."""
     out = Path(path)
     doc = plain({**header(name, args), **figures})
+    out.parent.mkdir(parents=True, exist_ok=True)
     out.write_text(json.dumps(doc, indent=1, allow_nan=False, ensure_ascii=False) + "\n", "utf-8")
     print(f"results written to {out}")
     return out
