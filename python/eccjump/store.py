@@ -86,18 +86,16 @@ def netcdf_engine() -> str:
 
 
 def _as_layout(obj: object) -> Layout:
-    """The layout of ``obj``, a :class:`Region`, a :class:`~eccjump.MotionMap`, a dataset or
-    a layout; TypeError naming ``obj`` for anything else."""
-    from eccjump.motion_maps import MotionMap  # it imports this module
-
+    """The layout of ``obj``: a :class:`Region`, a layout, a dataset, or anything else with a
+    ``to_xarray`` method (a :class:`~eccjump.MotionMap`); TypeError naming ``obj`` else."""
     if isinstance(obj, Region):
         return region_layout(obj.compute())
     if isinstance(obj, dict):
         return obj
-    if isinstance(obj, MotionMap):
-        obj = obj.to_xarray()
+    if not hasattr(type(obj), "data_vars") and callable(getattr(obj, "to_xarray", None)):
+        obj = obj.to_xarray()  # type: ignore[union-attr]
     if hasattr(type(obj), "data_vars"):
-        return layout_from_xarray(obj)
+        return layout_from_xarray(obj)  # type: ignore[arg-type]
     raise TypeError(
         f"obj must be a Region, a MotionMap, an xarray.Dataset or a layout, not {type(obj)}"
     )
