@@ -193,8 +193,9 @@ def _finite(value: object) -> bool:
 
 
 def _count(value: object) -> bool:
-    value = value.item() if isinstance(value, np.generic) else value
-    return float(value) == int(value) and int(value) >= 0
+    """Whether ``value`` (a finite number) is a whole number >= 0."""
+    number = float(value.item() if isinstance(value, np.generic) else value)  # type: ignore[arg-type]
+    return number.is_integer() and number >= 0
 
 
 def _done(

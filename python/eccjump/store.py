@@ -93,7 +93,7 @@ def _as_layout(obj: object) -> Layout:
     if isinstance(obj, dict):
         return obj
     if not hasattr(type(obj), "data_vars") and callable(getattr(obj, "to_xarray", None)):
-        obj = obj.to_xarray()  # type: ignore[union-attr]
+        obj = obj.to_xarray()  # type: ignore[attr-defined]
     if hasattr(type(obj), "data_vars"):
         return layout_from_xarray(obj)  # type: ignore[arg-type]
     raise TypeError(
