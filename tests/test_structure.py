@@ -103,7 +103,7 @@ def test_imports_form_no_cycle():
             {"eccjump._core", "eccjump._arrays", "eccjump._checks", "eccjump.fields"},
         ),
         ("eccjump._layout", {"eccjump._core", "eccjump.fields"}),
-        ("eccjump.scale", {"eccjump._bridge", "eccjump.fields"}),
+        ("eccjump.scale", {"eccjump._bridge", "eccjump._checks", "eccjump.fields"}),
     ],
 )
 def test_layers(module, below):

@@ -19,10 +19,6 @@ from eccjump._arrays import turn
 from eccjump._checks import U32_MAX, U64_MAX, flag, integer, real, text
 
 Method = Literal["closed_form", "ode"]
-Rule = Literal["paper", "normal_force"]
-#: The Runge–Kutta pair of an integration: scipy's "RK45" and "DOP853", or Verner's "Vern7" and
-#: "Vern9".
-Integrator = Literal["RK45", "DOP853", "Vern7", "Vern9"]
 
 #: The raw result of a bridge call: one flat array per field.
 Raw = dict[str, NDArray]

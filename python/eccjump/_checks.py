@@ -16,13 +16,16 @@ from __future__ import annotations
 import numbers
 import os
 from collections.abc import Mapping
-from typing import TYPE_CHECKING, Any, cast
+from typing import Any, Literal, cast
 
 import numpy as np
 from numpy.typing import NDArray
 
-if TYPE_CHECKING:  # pragma: no cover
-    from eccjump._bridge import Rule
+#: The lift-off rules (``docs/motion.md``).
+Rule = Literal["paper", "normal_force"]
+#: The Runge–Kutta pair of an integration: scipy's "RK45" and "DOP853", or Verner's "Vern7" and
+#: "Vern9".
+Integrator = Literal["RK45", "DOP853", "Vern7", "Vern9"]
 
 #: The largest value of the bridge's unsigned integer types.
 U32_MAX = 2**32 - 1

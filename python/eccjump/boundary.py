@@ -8,8 +8,7 @@ from numpy.typing import ArrayLike, NDArray
 
 from eccjump import _core
 from eccjump._arrays import broadcast_flat, turn
-from eccjump._bridge import Rule
-from eccjump._checks import U64_MAX, integer, real, text
+from eccjump._checks import U64_MAX, Rule, integer, real, text
 
 
 def _threads(n_threads: object) -> int:

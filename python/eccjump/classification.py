@@ -17,15 +17,8 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from eccjump._arrays import axis, broadcast_flat, fields_equal, turns
-from eccjump._bridge import (
-    Integrator,
-    Method,
-    Rule,
-    call_options,
-    jarm_grid,
-    jarm_points,
-)
-from eccjump._checks import real, real_array, short, text
+from eccjump._bridge import Method, call_options, jarm_grid, jarm_points
+from eccjump._checks import Integrator, Rule, real, real_array, short, text
 from eccjump._layout import (
     COORD_ATTRS,
     SWEEPABLE,

@@ -15,8 +15,7 @@ from numpy.typing import ArrayLike, NDArray
 
 from eccjump import _core
 from eccjump._arrays import same_values
-from eccjump._bridge import Integrator, Rule
-from eccjump._checks import flag, integer, optional_real, real, real_array, text
+from eccjump._checks import Integrator, Rule, flag, integer, optional_real, real, real_array, text
 from eccjump.body import Cylinder
 from eccjump.units import Units
 

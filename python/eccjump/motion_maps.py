@@ -22,8 +22,7 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from eccjump import _core, store
-from eccjump._bridge import Integrator
-from eccjump._checks import U64_MAX, integer, real_array, short, text
+from eccjump._checks import U64_MAX, Integrator, integer, real_array, short, text
 from eccjump._mapcheck import file_error
 from eccjump.map_kinds import MOTION, MapKind
 from eccjump.motion import MAX_STEPS, MAX_TRANSITIONS, Rule

@@ -21,8 +21,7 @@ from numpy.typing import NDArray
 
 from eccjump import _core
 from eccjump._arrays import same_values
-from eccjump._bridge import Integrator, Rule
-from eccjump._checks import U64_MAX, flag, integer, optional_real, real, text
+from eccjump._checks import U64_MAX, Integrator, Rule, flag, integer, optional_real, real, text
 from eccjump.body import Cylinder
 from eccjump.dense import DenseSolution
 from eccjump.units import Units

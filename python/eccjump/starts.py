@@ -27,8 +27,7 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from eccjump._arrays import axis
-from eccjump._bridge import Rule
-from eccjump._checks import U64_MAX, integer, real, rule_name, short
+from eccjump._checks import U64_MAX, Rule, integer, real, rule_name, short
 from eccjump.classification import region
 from eccjump.fields import Reason
 

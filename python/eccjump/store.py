@@ -32,7 +32,7 @@ import sys
 import warnings
 from collections.abc import Mapping
 from pathlib import Path
-from typing import TYPE_CHECKING, Any
+from typing import TYPE_CHECKING, Any, Literal
 
 import numpy as np
 from numpy.typing import NDArray
@@ -72,9 +72,13 @@ def format_of(path: str | os.PathLike) -> str:
     return FORMATS[suffix]
 
 
-def netcdf_engine() -> str:
+def netcdf_engine() -> Literal["h5netcdf", "netcdf4"]:
     """h5netcdf if it and h5py are installed, else netCDF4."""
-    for modules, engine in ((("h5netcdf", "h5py"), "h5netcdf"), (("netCDF4",), "netcdf4")):
+    engines: tuple[tuple[tuple[str, ...], Literal["h5netcdf", "netcdf4"]], ...] = (
+        (("h5netcdf", "h5py"), "h5netcdf"),
+        (("netCDF4",), "netcdf4"),
+    )
+    for modules, engine in engines:
         try:
             for module in modules:
                 __import__(module)
@@ -265,7 +269,7 @@ def recover(path: str | os.PathLike) -> list[str]:
     touched (POSIX; elsewhere nothing is done). Returns notes of what was put back."""
     path = Path(path)
     pattern = re.compile(rf"\.{re.escape(path.name)}\.(tmp|old)-(\d+)")
-    notes = []
+    notes: list[str] = []
     try:
         siblings = sorted(path.parent.iterdir())
     except OSError:
@@ -397,7 +401,7 @@ def save_npz(layout: Layout, path: str | os.PathLike) -> None:
             meta[part][name] = {"dims": list(dims), "attrs": json.loads(attrs_json(attrs))}
     arrays["__layout__"] = np.array(json.dumps(meta))
     with open(path, "wb") as fh:
-        np.savez(fh, **arrays)
+        np.savez(fh, **arrays)  # type: ignore[arg-type]  # numpy's stub: allow_pickle first
 
 
 def load_npz(path: str | os.PathLike) -> Layout:

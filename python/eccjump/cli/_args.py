@@ -11,8 +11,7 @@ from collections.abc import Callable, Sequence
 from pathlib import Path
 from typing import Any, NoReturn, get_args
 
-from eccjump._bridge import Integrator
-from eccjump._checks import short
+from eccjump._checks import Integrator, short
 
 #: Which pair to pick, in one sentence (benches/bench_pairs.py measures it): the same words in
 #: the README, the docstrings and ``--help``.

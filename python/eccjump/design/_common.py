@@ -5,7 +5,7 @@ from __future__ import annotations
 import math
 from typing import Literal
 
-from eccjump._bridge import Rule
+from eccjump._checks import Rule
 from eccjump.fields import Reason
 
 Target = Literal["jarm", "slip"]

@@ -9,8 +9,7 @@ from typing import Any
 import numpy as np
 from numpy.typing import NDArray
 
-from eccjump._bridge import Rule
-from eccjump._checks import integer, optional_real, real, short, text
+from eccjump._checks import Rule, integer, optional_real, real, short, text
 from eccjump.body import Cylinder
 from eccjump.boundary import mu_s_min_path
 from eccjump.design._common import (
