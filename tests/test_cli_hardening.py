@@ -417,11 +417,6 @@ def test_times_are_refused_naming_the_parameter(call, name):
         call()
 
 
-@pytest.mark.xfail(
-    reason="motion_maps.py (another helper's file) reads rtol/atol/t_max by float(real_array()): "
-    "it must call eccjump._checks.real, which names the parameter",
-    strict=False,
-)
 def test_motion_map_refuses_an_array_tolerance_naming_it():
     with pytest.raises((TypeError, ValueError), match="rtol"):
         eccjump.motion_map(alpha=[0.5], chi=[0.2], km=[0.1], mu_s=1.0, rtol=np.array([1e-8]))

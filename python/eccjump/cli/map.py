@@ -37,6 +37,7 @@ from eccjump._checks import short
 from eccjump._mapcheck import MAX_MESSAGE, shown
 from eccjump.cli import map_jobs
 from eccjump.cli._args import add_integrator, int_at_least
+from eccjump.cli._output import check_output, figure_suffixes
 from eccjump.cli.map_jobs import Job
 from eccjump.labelled import make_layout
 from eccjump.map_kinds import MapKind
@@ -300,6 +301,9 @@ def _cmd_map(args: argparse.Namespace) -> int:
 def _run(args: argparse.Namespace) -> int:
     path = Path(args.output)
     fmt = format_of(path)
+    # The figure's path is checked before the work, as every figure of the command line.
+    if args.figure:
+        args.figure = check_output("--figure", args.figure, figure_suffixes())
     alpha, chi, km = _axes(args)
     job = map_jobs.job(args)
     if args.threads < 0:

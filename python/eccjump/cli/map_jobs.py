@@ -8,12 +8,14 @@ from __future__ import annotations
 
 import argparse
 import math
+from pathlib import Path
 
 import numpy as np
 from numpy.typing import NDArray
 
 from eccjump import motion_maps, plot, store
 from eccjump.classification import region
+from eccjump.cli._output import save_figure
 from eccjump.labelled import map_attrs
 from eccjump.map_kinds import JARM, MOTION, MapKind
 from eccjump.motion_fields import sequence_name
@@ -111,9 +113,8 @@ class JarmJob:
             lines.append(f"  n > {shown[-1]:<8}  {share(rest, self.points)}")
         return lines
 
-    def draw(self, path: str, figure: str) -> None:
-        fig = plot.region_map(store.load(path))
-        fig.savefig(figure, dpi=110)
+    def draw(self, path: str, figure: Path) -> None:
+        save_figure("--figure", plot.region_map(store.load(path)), figure, dpi=110)
 
 
 class MotionJob:
@@ -182,9 +183,8 @@ class MotionJob:
             lines.append(f"  {f'{len(top) - 10} other sequences':<44} {share(rest, p)}")
         return lines
 
-    def draw(self, path: str, figure: str) -> None:
-        fig = plot.sequence_map(motion_maps.load(path))
-        fig.savefig(figure, dpi=110)
+    def draw(self, path: str, figure: Path) -> None:
+        save_figure("--figure", plot.sequence_map(motion_maps.load(path)), figure, dpi=110)
 
 
 Job = JarmJob | MotionJob
