@@ -100,6 +100,20 @@ pub fn try_empty<T>(what: &'static str, count: usize) -> Result<Vec<T>> {
     Ok(v)
 }
 
+/// Checks that `bytes` could be allocated in one piece, before a result made of several
+/// buffers is: without it, where the system lends memory it may not have (overcommit), the
+/// first buffers are allocated and filled before a later one fails, which takes seconds and
+/// names only that buffer's size. The probe is never written and is released at once.
+pub fn check_room(what: &'static str, bytes: u64) -> Result<()> {
+    let too_large = Error::OutOfMemory { what, bytes };
+    let count = usize::try_from(bytes).map_err(|_| too_large.clone())?;
+    let mut probe = Vec::<u8>::new();
+    probe.try_reserve_exact(count).map_err(|_| too_large)?;
+    // An allocation that is never used may be optimised away, and would then always succeed.
+    std::hint::black_box(&probe);
+    Ok(())
+}
+
 /// Reserves room for one more element, fallibly (amortised doubling, like `push`).
 pub fn try_grow<T>(what: &'static str, v: &mut Vec<T>) -> Result<()> {
     if v.len() < v.capacity() {
@@ -177,5 +191,26 @@ pub fn check_finite(name: &'static str, value: f64) -> Result<f64> {
             value,
             allowed: "(-inf, inf)".to_string(),
         })
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn room_is_probed_without_being_used_and_a_refusal_names_the_whole_size() {
+        assert_eq!(check_room("x", 1 << 20), Ok(()));
+        // Far beyond any machine's memory and swap: refused at once, naming all of it.
+        let e = check_room("the result", 1 << 50).unwrap_err();
+        assert_eq!(
+            e,
+            Error::OutOfMemory {
+                what: "the result",
+                bytes: 1 << 50
+            }
+        );
+        assert!(e.to_string().contains("1048576.000 GiB"), "{e}");
+        assert!(check_room("x", u64::MAX).is_err());
     }
 }

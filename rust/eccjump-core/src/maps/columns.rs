@@ -5,7 +5,9 @@
 //! per-point results is built and then split. For 10⁶ points that array was 88 MB more
 //! memory to touch and a pass over it per field, about 40 ms of a 0.7 s map on two threads.
 
-use crate::error::Result;
+use std::mem::size_of;
+
+use crate::error::{check_room, Result};
 use crate::jarm::{JarmResult, Reason};
 use crate::maps::parallel::{filled_on, ThreadPool};
 use rayon::prelude::*;
@@ -42,6 +44,9 @@ impl JarmColumns {
     /// (`OutOfMemory` naming "the result") and first written by `pool`'s threads.
     pub fn new(pool: &ThreadPool, len: usize) -> Result<Self> {
         let blank = JarmResult::new(Reason::InvalidParams);
+        // All columns at once, so that a map too large is refused at once, naming its size.
+        let row = size_of::<bool>() + size_of::<u8>() + size_of::<u32>() + 8 * size_of::<f64>();
+        check_room("the result", len.saturating_mul(row) as u64)?;
         let real = |value: f64| filled_on(pool, "the result", len, value);
         Ok(Self {
             is_jarm: filled_on(pool, "the result", len, blank.is_jarm)?,
