@@ -990,7 +990,7 @@ def part_closed(args) -> None:
     }
     ga, gc, gf = grid(args.grid)
     w, cpu, reg = best_of(
-        lambda: eccjump.region(MU_S, alpha=ga, chi=gc, km=gf, stop_at_slip=stop), args.repeat
+        lambda: eccjump.region(MU_S, alpha=ga, chi=gc, km_frac=gf, stop_at_slip=stop), args.repeat
     )
     print(
         f"region, {args.grid}^3 grid: wall {w:.3f} s, CPU {cpu:.3f} s; "
@@ -1015,13 +1015,13 @@ def part_ode(args) -> None:
     m = args.ode_grid
     idx = np.unique(np.round(np.linspace(0, 99, m)).astype(int))
     sa, sc, sf = ga[idx], gc[idx], gf[idx]
-    eccjump.region(MU_S, alpha=sa[:3], chi=sc[:3], km=sf[:3], method="ode")
+    eccjump.region(MU_S, alpha=sa[:3], chi=sc[:3], km_frac=sf[:3], method="ode")
     w, cpu, reg = timed(
         lambda: eccjump.region(
             MU_S,
             alpha=sa,
             chi=sc,
-            km=sf,
+            km_frac=sf,
             method="ode",
             integrator=args.integrator,
             stop_at_slip=args.stop_at_slip,
@@ -1065,7 +1065,7 @@ def summary(res) -> dict:
 
 def snapshot_now(threads: int, seed: int) -> dict:
     ga, gc, gf = grid(100)
-    reg = eccjump.region(MU_S, alpha=ga, chi=gc, km=gf, n_threads=threads)
+    reg = eccjump.region(MU_S, alpha=ga, chi=gc, km_frac=gf, n_threads=threads)
     a, c, k = random_points(10**6, seed)
     pts = eccjump.jarm(a, c, k, MU_S, n_threads=threads)
     return {

@@ -554,6 +554,8 @@ JARM_PARAMS = (
     "alpha", "chi", "km", "mu_s", "n", "method", "rule", "theta0", "omega0", "rtol", "atol",
     "max_turns", "refine_extrema", "stop_at_slip", "n_threads", "shapes", "integrator",
 )  # fmt: skip
+#: A map's axes: the fraction km_frac, not the body's km.
+MAP_PARAMS = tuple("km_frac" if p == "km" else p for p in JARM_PARAMS)
 
 
 def _axis(d: Drawer, c: Case, lo: float, hi: float) -> Any:
@@ -562,15 +564,13 @@ def _axis(d: Drawer, c: Case, lo: float, hi: float) -> Any:
 
 
 def case_region(d: Drawer) -> Case:
-    c = Case(
-        "region", eccjump.region, params=(*JARM_PARAMS, "output", "chunks"), check=check_region
-    )
+    c = Case("region", eccjump.region, params=(*MAP_PARAMS, "output", "chunks"), check=check_region)
     opts = _classification_options(d, c, False)
     c.args = (real(d, c, 0.0, 3.0), turn(d, c))
     c.kwargs = {
         "alpha": _axis(d, c, 0.0, HALF_PI),
         "chi": _axis(d, c, 0.0, 1.0),
-        "km": _axis(d, c, 0.0, 1.0),
+        "km_frac": _axis(d, c, 0.0, 1.0),
         **opts,
         "integrator": text_param(d, c, INTEGRATORS),
     }
@@ -579,7 +579,7 @@ def case_region(d: Drawer) -> Case:
 
 def case_region_dataset(d: Drawer) -> Case:
     c = Case(
-        "region_dataset", eccjump.region_dataset, params=(*JARM_PARAMS, "output", "chunks"),
+        "region_dataset", eccjump.region_dataset, params=(*MAP_PARAMS, "output", "chunks"),
         check=check_dataset,
     )  # fmt: skip
     mu = d.choice((1.0, [0.5, 2.0], [], [[1.0]], "1", None, [math.nan]))
@@ -589,7 +589,7 @@ def case_region_dataset(d: Drawer) -> Case:
     c.kwargs = {
         "alpha": _axis(d, c, 0.0, HALF_PI),
         "chi": _axis(d, c, 0.0, 1.0),
-        "km": _axis(d, c, 0.0, 1.0),
+        "km_frac": _axis(d, c, 0.0, 1.0),
         "theta0": d.choice((0.0, [0.0, 0.1], True)),
         "omega0": real(d, c, 0.0, 2.0),
     }
@@ -728,7 +728,7 @@ def case_motion_map(d: Drawer) -> Case:
     c.kwargs = {
         "alpha": _axis(d, c, 0.0, HALF_PI),
         "chi": _axis(d, c, 0.0, 1.0),
-        "km": _axis(d, c, 0.0, 1.0),
+        "km_frac": _axis(d, c, 0.0, 1.0),
         "mu_s": d.pick(lambda: real(d, c, 0.0, 3.0), lambda: _axis(d, c, 0.0, 3.0)),
         "restitution": real(d, c, 0.0, 1.0),
         "theta0": real(d, c, -7.0, 7.0),
@@ -919,7 +919,7 @@ def case_store(d: Drawer) -> Case:
     where = tmpdir()
     if d.integer(0, 1):
         c = Case("store.save", store.save, params=("obj", "path", "attrs"), allow_oserror=True)
-        reg = eccjump.region(1.0, alpha=[0.5, 0.7], chi=[0.2], km=[0.1])
+        reg = eccjump.region(1.0, alpha=[0.5, 0.7], chi=[0.2], km_frac=[0.1])
         obj = d.choice((reg, reg, None, 3, "map"))
         path = d.choice(
             (
@@ -939,7 +939,7 @@ def case_store(d: Drawer) -> Case:
         c = Case("store.load", store.load, params=("path",), allow_oserror=True, check=check_region)
         good = where / "load.npz"
         if not good.exists():
-            store.save(eccjump.region(1.0, alpha=[0.5, 0.7], chi=[0.2], km=[0.1]), good)
+            store.save(eccjump.region(1.0, alpha=[0.5, 0.7], chi=[0.2], km_frac=[0.1]), good)
         path = d.choice(
             (good, str(good), None, 7, b"x.npz", where / "missing.npz", where / "x.csv")
         )
@@ -979,7 +979,7 @@ def case_plot(d: Drawer) -> Case:
         c = Case(
             "plot.region_map", plot.region_map, params=("region", "panels"), check=check_figure
         )
-        reg = eccjump.region(1.0, alpha=[0.5, 0.7], chi=[0.2], km=[0.1])
+        reg = eccjump.region(1.0, alpha=[0.5, 0.7], chi=[0.2], km_frac=[0.1])
         c.args = (d.choice((reg, None, 3)),)
         c.kwargs = {"panels": integer_param(d, c, (1, 2), (0, 2.5, True, None, 10**400))}
         c.must_raise = c.must_raise or c.args[0] is not reg

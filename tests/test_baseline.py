@@ -55,7 +55,7 @@ def points():
         MU_S,
         alpha=np.radians(np.linspace(3, 80, 40)),
         chi=np.linspace(0.02, 0.6, 40),
-        km=np.linspace(0.0, 0.3, 16),
+        km_frac=np.linspace(0.0, 0.3, 16),
     )
     ia, ic, ik = np.nonzero(reg.is_jarm)
     ja, jc = reg.alpha[ia], reg.chi[ic]

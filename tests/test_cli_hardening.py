@@ -407,7 +407,7 @@ TIME = np.timedelta64(1)
         (lambda: eccjump.jarm([TIME], 0.2, 0.1, 1.0), "alpha"),
         (lambda: eccjump.Units(g=TIME), "g"),
         (
-            lambda: eccjump.region(1.0, alpha=[0.5], chi=[0.2], km=[0.1], n_threads=TIME),
+            lambda: eccjump.region(1.0, alpha=[0.5], chi=[0.2], km_frac=[0.1], n_threads=TIME),
             "n_threads",
         ),
     ],
@@ -419,7 +419,7 @@ def test_times_are_refused_naming_the_parameter(call, name):
 
 def test_motion_map_refuses_an_array_tolerance_naming_it():
     with pytest.raises((TypeError, ValueError), match="rtol"):
-        eccjump.motion_map(alpha=[0.5], chi=[0.2], km=[0.1], mu_s=1.0, rtol=np.array([1e-8]))
+        eccjump.motion_map(alpha=[0.5], chi=[0.2], km_frac=[0.1], mu_s=1.0, rtol=np.array([1e-8]))
 
 
 def test_real_names_the_parameter_of_an_array():

@@ -21,14 +21,14 @@ MOTION = ("map", "--kind", "motion", "--mu-s", "0.8", "--restitution", "0.3", "-
 def reference() -> motion_maps.MotionMap:
     g = np.linspace(0.0, 1.0, 8)
     m = motion_maps.motion_map(
-        alpha=np.radians(np.linspace(0.0, 90.0, 8)), chi=g, km=g, mu_s=0.8, restitution=0.3
+        alpha=np.radians(np.linspace(0.0, 90.0, 8)), chi=g, km_frac=g, mu_s=0.8, restitution=0.3
     )
     assert isinstance(m, motion_maps.MotionMap)
     return m
 
 
 def assert_same(a: motion_maps.MotionMap, b: motion_maps.MotionMap) -> None:
-    for k in ("alpha", "chi", "km"):
+    for k in ("alpha", "chi", "km_frac"):
         assert a.coords[k].tobytes() == b.coords[k].tobytes(), k
     for f in FIELDS:
         assert a.fields[f].dtype == b.fields[f].dtype and a.fields[f].shape == b.fields[f].shape
@@ -92,7 +92,7 @@ def test_the_integrator_reaches_the_map_and_is_recorded(tmp_path):
     ref = motion_maps.motion_map(
         alpha=np.radians(np.linspace(0.0, 90.0, 8)),
         chi=g,
-        km=g,
+        km_frac=g,
         mu_s=0.8,
         restitution=0.3,
         integrator="DOP853",

@@ -19,7 +19,7 @@ da = pytest.importorskip("dask.array")
 GRID = {
     "alpha": np.radians(np.linspace(0.0, 90.0, 13)),
     "chi": np.linspace(0.0, 1.0, 11),
-    "km": np.linspace(0.0, 1.0, 7),
+    "km_frac": np.linspace(0.0, 1.0, 7),
 }
 
 

@@ -42,7 +42,7 @@ def test_output_too_large_is_a_memory_error():
         1.0,
         alpha=np.full(10000, 0.5),
         chi=np.full(1000, 0.5),
-        km=np.full(1000, 0.5),
+        km_frac=np.full(1000, 0.5),
         name="result",
     )
 
@@ -51,9 +51,9 @@ def test_grid_size_overflow_is_a_memory_error_not_a_panic():
     # 2^60 points: the size overflows before any allocation (was PanicException: capacity
     # overflow; 2^22 x 2^21 x 2^21 wrapped to 0 in release builds).
     a, c = np.full(2**22, 0.5), np.full(2**21, 0.5)
-    short_error(MemoryError, eccjump.region, 1.0, alpha=a, chi=c, km=c, name="the grid")
+    short_error(MemoryError, eccjump.region, 1.0, alpha=a, chi=c, km_frac=c, name="the grid")
     a = np.full(2**20, 0.5)
-    short_error(MemoryError, eccjump.region, 1.0, alpha=a, chi=a, km=a, name="the result")
+    short_error(MemoryError, eccjump.region, 1.0, alpha=a, chi=a, km_frac=a, name="the result")
 
 
 def test_memory_error_under_an_address_space_limit():
@@ -64,7 +64,7 @@ def test_memory_error_under_an_address_space_limit():
         resource.setrlimit(resource.RLIMIT_AS, (6 << 30, 6 << 30))
         try:
             eccjump.region(1.0, alpha=np.full(1000, .5), chi=np.full(1000, .5),
-                           km=np.full(100, .5))
+                           km_frac=np.full(100, .5))
         except MemoryError as e:
             print("MemoryError", e)
         """
@@ -115,7 +115,10 @@ def test_dense_output_too_large_is_a_memory_error():
     ("call", "name"),
     [
         (lambda: eccjump.jarm(0.7, 0.15, 0.02, 1.0, theta0=-1e16, omega0=2.0), "theta0"),
-        (lambda: eccjump.region(1.0, alpha=[0.7], chi=[0.2], km=[0.1], theta0=-1e300), "theta0"),
+        (
+            lambda: eccjump.region(1.0, alpha=[0.7], chi=[0.2], km_frac=[0.1], theta0=-1e300),
+            "theta0",
+        ),
         (lambda: eccjump.jarm(0.7, 0.15, 0.02, 1.0, n_threads=3000), "n_threads"),
         (lambda: eccjump.jarm(0.7, 0.15, 0.02, 1.0, max_turns=10**7), "max_turns"),
         (lambda: eccjump.jarm(1e-10, 0.15, 0.02, 1.0, max_turns=2**32 - 1), "max_turns"),
@@ -171,7 +174,9 @@ def test_invalid_input_is_never_answered_with_a_number():
 @pytest.mark.parametrize("mu_s", [float("nan"), -1.0, float("inf")])
 def test_a_grid_with_an_invalid_mu_s_is_an_error(mu_s):
     # (was: a "complete" map of INVALID_PARAMS points, also from `eccjump map --mu-s nan`)
-    short_error(ValueError, eccjump.region, mu_s, alpha=[0.7], chi=[0.2], km=[0.1], name="mu_s")
+    short_error(
+        ValueError, eccjump.region, mu_s, alpha=[0.7], chi=[0.2], km_frac=[0.1], name="mu_s"
+    )
 
 
 def test_messages_are_short():
@@ -225,7 +230,7 @@ def test_a_long_map_honours_ctrl_c_within_a_second():
         print("start", flush=True)
         t = time.time()
         try:
-            eccjump.region(1.0, alpha=a, chi=a / 1.6, km=np.linspace(0, .9, 60), method="ode")
+            eccjump.region(1.0, alpha=a, chi=a / 1.6, km_frac=np.linspace(0, .9, 60), method="ode")
             print("finished", time.time() - t)
         except KeyboardInterrupt:
             print("interrupted", time.time() - t, flush=True)
@@ -239,7 +244,7 @@ def test_a_long_motion_map_and_simulate_honour_ctrl_c_within_a_second():
     for call in (
         # a motion map of about 2.5 * 10^5 points: tens of seconds
         "eccjump.motion_map(alpha=np.linspace(0.02, 1.5, 64), chi=np.linspace(0.05, 0.9, 64), "
-        "km=np.linspace(0.05, 0.9, 64), mu_s=1.0)",
+        "km_frac=np.linspace(0.05, 0.9, 64), mu_s=1.0)",
         # one run hopping down a shallow ramp for 10^6 time units with 10^6 transitions
         "eccjump.simulate(eccjump.Cylinder(0.5, 0.4), 0.05, mu_s=1.0, restitution=0.5, "
         "t_max=1e6, max_transitions=10**6, max_steps=10**7)",

@@ -32,7 +32,7 @@ def grid(n: int = 20, na: int | None = None):
     return {
         "alpha": np.radians(np.linspace(0.0, 90.0, na or n)),
         "chi": np.linspace(0.0, 1.0, n),
-        "km": np.linspace(0.0, 1.0, n),
+        "km_frac": np.linspace(0.0, 1.0, n),
     }
 
 
@@ -118,8 +118,8 @@ def test_cli_writes_each_format_equal_to_region(tmp_path, reference, suffix):
 
 
 def test_cli_options_reach_region(tmp_path):
-    args = ["--n-alpha", "4", "--n-chi", "3", "--n-km", "5", "--alpha-min", "20"]
-    args += ["--alpha-max", "60", "--chi-min", "0.1", "--chi-max", "0.6", "--km-min", "0.2"]
+    args = ["--n-alpha", "4", "--n-chi", "3", "--n-km-frac", "5", "--alpha-min", "20"]
+    args += ["--alpha-max", "60", "--chi-min", "0.1", "--chi-max", "0.6", "--km-frac-min", "0.2"]
     args += ["--route", "ode", "--rule", "normal_force", "--theta0", "10", "--omega0", "0.3"]
     args += ["--n", "2", "--threads", "1"]
     code, path = run_map(tmp_path, "o.npz", *args)
@@ -129,7 +129,7 @@ def test_cli_options_reach_region(tmp_path):
         2,
         alpha=np.radians(np.linspace(20, 60, 4)),
         chi=np.linspace(0.1, 0.6, 3),
-        km=np.linspace(0.2, 1.0, 5),
+        km_frac=np.linspace(0.2, 1.0, 5),
         method="ode",
         rule="normal_force",
         theta0=np.radians(10.0),
@@ -234,7 +234,7 @@ def test_a_bad_integrator_is_refused_naming_it(bad):
 
 
 def test_cli_ode_route_takes_the_integrator_and_records_it(tmp_path):
-    args = ["--n-alpha", "5", "--n-chi", "4", "--n-km", "3", "--alpha-min", "10"]
+    args = ["--n-alpha", "5", "--n-chi", "4", "--n-km-frac", "3", "--alpha-min", "10"]
     args += ["--route", "ode", "--integrator", "DOP853", "--threads", "1"]
     code, path = run_map(tmp_path, "d.npz", *args)
     assert code == 0
@@ -242,7 +242,7 @@ def test_cli_ode_route_takes_the_integrator_and_records_it(tmp_path):
         MU_S,
         alpha=np.radians(np.linspace(10, 90, 5)),
         chi=np.linspace(0.0, 1.0, 4),
-        km=np.linspace(0.0, 1.0, 3),
+        km_frac=np.linspace(0.0, 1.0, 3),
         method="ode",
         integrator="DOP853",
     )

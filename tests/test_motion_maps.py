@@ -3,6 +3,7 @@ are the region's, the map is reproducible for any thread count and chunking."""
 
 from __future__ import annotations
 
+import json
 import math
 
 import numpy as np
@@ -33,7 +34,7 @@ JARM_REASONS = {"paper": ("liftoff",), "normal_force": ("normal_force", "slip_in
 def summary_from_simulate(point: dict, t_max: float, max_transitions: int) -> dict:
     """The summary of one point, extracted from a full simulate run independently of the
     core's extraction (the run goes on after the landing; only its head is read)."""
-    chi, frac = point["chi"], point["km"]
+    chi, frac = point["chi"], point["km_frac"]
     body = eccjump.Cylinder(chi, frac * (1 - chi))
     m = eccjump.simulate(
         body,
@@ -110,7 +111,7 @@ def test_every_point_is_what_simulate_gives_there(alpha, chi, frac, mu, e, omega
         "integrator": pair,
         "alpha": alpha,
         "chi": chi,
-        "km": frac,
+        "km_frac": frac,
         "mu_s": mu,
         "restitution": e,
         "omega0": omega0,
@@ -134,7 +135,7 @@ def test_jarm_points_are_the_regions(rule):
     grid = {
         "alpha": np.radians(np.linspace(20, 60, 9)),
         "chi": np.linspace(0.05, 0.3, 6),
-        "km": np.array([0.01, 0.03, 0.1, 0.3]),
+        "km_frac": np.array([0.01, 0.03, 0.1, 0.3]),
     }
     m = motion_map(**grid, mu_s=1.0, rule=rule, t_max=1e3)
     r = eccjump.region(1.0, **grid, rule=rule, method="ode")
@@ -146,18 +147,18 @@ def test_jarm_points_are_the_regions(rule):
 
 def test_the_start_is_a_grid_axis_too():
     m = motion_map(
-        alpha=0.7, chi=0.15, km=0.02 / 0.85, mu_s=1.0, theta0=[0.0, 0.3], omega0=[0.0, 0.5]
+        alpha=0.7, chi=0.15, km_frac=0.02 / 0.85, mu_s=1.0, theta0=[0.0, 0.3], omega0=[0.0, 0.5]
     )
     assert m.shape == (2, 2) and tuple(m.coords) == ("theta0", "omega0")
     for i, t0 in enumerate((0.0, 0.3)):
         r = eccjump.region(
-            1.0, alpha=[0.7], chi=[0.15], km=[0.02 / 0.85], theta0=t0, omega0=0.0, method="ode"
+            1.0, alpha=[0.7], chi=[0.15], km_frac=[0.02 / 0.85], theta0=t0, omega0=0.0, method="ode"
         )
         assert bool(m.jarm[i, 0]) == bool(r.result.is_jarm.item())
 
 
 def test_bit_identical_for_any_thread_count_and_chunks():
-    kw = {"alpha": ALPHA, "chi": CHI, "km": FRAC, "mu_s": 0.7, "restitution": [0.0, 0.6]}
+    kw = {"alpha": ALPHA, "chi": CHI, "km_frac": FRAC, "mu_s": 0.7, "restitution": [0.0, 0.6]}
     one = motion_map(**kw, n_threads=1)
     two = motion_map(**kw, n_threads=2)
     for k in FIELDS:
@@ -169,7 +170,7 @@ def test_bit_identical_for_any_thread_count_and_chunks():
 
 
 def test_invalid_points_are_marked_and_bad_options_refused():
-    m = motion_map(alpha=0.5, chi=0.5, km=[0.0, 0.5], mu_s=0.5, mu_k=[0.4, 0.6])
+    m = motion_map(alpha=0.5, chi=0.5, km_frac=[0.0, 0.5], mu_s=0.5, mu_k=[0.4, 0.6])
     assert m.status[0, 0] == INVALID  # km = 0: spin in flight undetermined
     assert m.status[1, 0] == 6 and m.status[1, 1] == INVALID  # mu_k > mu_s
     for kwargs, name in (
@@ -182,14 +183,14 @@ def test_invalid_points_are_marked_and_bad_options_refused():
         ({"alpha": [[0.5]]}, "alpha"),
         ({"chi": []}, "chi"),
     ):
-        args = {"alpha": 0.5, "chi": 0.5, "km": 0.5, "mu_s": 0.5, **kwargs}
+        args = {"alpha": 0.5, "chi": 0.5, "km_frac": 0.5, "mu_s": 0.5, **kwargs}
         with pytest.raises(ValueError, match=name) as err:
             motion_map(**args)
         assert len(str(err.value)) < 200
 
 
 def test_the_integrator_reaches_the_core_and_is_recorded():
-    kw = {"alpha": ALPHA, "chi": CHI, "km": FRAC, "mu_s": 0.7, "restitution": 0.3}
+    kw = {"alpha": ALPHA, "chi": CHI, "km_frac": FRAC, "mu_s": 0.7, "restitution": 0.3}
     rk = motion_map(**kw)
     assert motion_map(**kw, integrator="RK45").fields["liftoff_theta"].tobytes() == (
         rk.fields["liftoff_theta"].tobytes()
@@ -211,7 +212,7 @@ def test_the_integrator_reaches_the_core_and_is_recorded():
 
 def test_labelled_output_names_every_code():
     pytest.importorskip("xarray")
-    ds = motion_map(alpha=ALPHA, chi=CHI, km=0.5, mu_s=1.0, output="xarray")
+    ds = motion_map(alpha=ALPHA, chi=CHI, km_frac=0.5, mu_s=1.0, output="xarray")
     assert ds.sizes == {"alpha": ALPHA.size, "chi": CHI.size}
     back = eccjump.motion_maps.from_dataset(ds)
     for k in FIELDS:
@@ -219,4 +220,34 @@ def test_labelled_output_names_every_code():
     codes = set(np.unique(ds["sequence"].values).tolist())
     assert codes == set(ds["sequence"].attrs["flag_values"].tolist())
     assert ds.attrs["mu_k"] == ds.attrs["mu_s"] == 1.0 and ds.attrs["rule"] == "paper"
-    assert repr(motion_map(alpha=ALPHA, chi=0.5, km=0.5, mu_s=1.0)).startswith("MotionMap(")
+    assert repr(motion_map(alpha=ALPHA, chi=0.5, km_frac=0.5, mu_s=1.0)).startswith("MotionMap(")
+
+
+def test_km_is_the_body_and_a_maps_axis_is_km_frac(tmp_path):
+    # Before 0.2 a map's km meant the fraction k_m/(1 - chi) (a trap: region(km=[0.02])
+    # mapped the body k_m = 0.017 at chi = 0.15); now it is refused, naming km_frac.
+    for call in (
+        lambda: eccjump.motion_map(alpha=[0.5], chi=[0.2], km=0.4, mu_s=1.0),
+        lambda: eccjump.region(1.0, alpha=[0.698], chi=[0.15], km=[0.02]),
+        lambda: eccjump.region(1.0, alpha=[0.698], chi=[0.15], km=[0.02], output="xarray"),
+    ):
+        with pytest.raises(TypeError, match="km_frac"):
+            call()
+    reg = eccjump.region(1.0, alpha=[0.698], chi=[0.15], km_frac=[0.02 / 0.85])
+    one = eccjump.jarm(0.698, 0.15, 0.02, 1.0)
+    assert float(reg.result.theta_J.ravel()[0]) == pytest.approx(float(one.theta_J), abs=1e-13)
+
+
+def test_a_motion_map_file_from_before_0_2_reads_its_scalar_fraction(tmp_path):
+    # Files written before 0.2 record a scalar fraction axis as the attribute "km".
+    m = eccjump.motion_map(alpha=[0.5, 0.6], chi=[0.2, 0.3], km_frac=0.4, mu_s=1.0)
+    path = tmp_path / "old.npz"
+    eccjump.store.save(m, path)
+    arrays = dict(np.load(path))
+    meta = json.loads(str(arrays["__layout__"]))
+    meta["attrs"]["km"] = meta["attrs"].pop("km_frac")
+    arrays["__layout__"] = np.array(json.dumps(meta))
+    np.savez(path, **arrays)
+    old = eccjump.motion_maps.load(path)
+    assert old.scalars["km_frac"] == 0.4
+    assert np.array_equal(old.sequence, m.sequence)

@@ -144,7 +144,7 @@ def test_region_map_figure_and_map_cli_figure(tmp_path):
         1.0,
         alpha=np.radians(np.linspace(5, 85, 12)),
         chi=np.linspace(0.02, 0.6, 10),
-        km=np.linspace(0, 0.1, 4),
+        km_frac=np.linspace(0, 0.1, 4),
     )
     fig = plot.region_map(reg)
     ax = fig.axes[0]

@@ -24,7 +24,7 @@ TWO_PI = 2 * math.pi
 def midpoint_axes(g: int) -> dict[str, np.ndarray]:
     """The grid of the fraction, written out independently of the module."""
     u = (np.arange(g) + 0.5) / g
-    return {"alpha": u * (math.pi / 2), "chi": u, "km": u}
+    return {"alpha": u * (math.pi / 2), "chi": u, "km_frac": u}
 
 
 # --- the fraction --------------------------------------------------------------------------
@@ -155,7 +155,7 @@ def test_immediate_flight_is_liftoff_earlier_at_the_start_and_flies_in_the_simul
     ax = midpoint_axes(g)
     for th0, om0 in ((0.2, 1.5), (5.9, 0.8), (math.radians(280), 1.0)):
         reg = eccjump.region(1.0, **ax, theta0=th0, omega0=om0)
-        a, c, f = np.meshgrid(ax["alpha"], ax["chi"], ax["km"], indexing="ij")
+        a, c, f = np.meshgrid(ax["alpha"], ax["chi"], ax["km_frac"], indexing="ij")
         flies = c * om0**2 * math.cos(th0) > np.cos(a)
         assert flies.any()
         res = reg.result
@@ -179,7 +179,7 @@ def test_rocking_back_is_never_a_jarm_and_rolls_back_in_the_simulator():
     reg = eccjump.region(1.0, **ax, theta0=th0, omega0=0.0)
     back = reg.result.reason == Reason.ROCKS_BACK
     assert back.any() and not reg.result.is_jarm[back].any()
-    a, c, f = np.meshgrid(ax["alpha"], ax["chi"], ax["km"], indexing="ij")
+    a, c, f = np.meshgrid(ax["alpha"], ax["chi"], ax["km_frac"], indexing="ij")
     picks = np.argwhere(back)
     for i, j, k in picks[:: max(1, len(picks) // 5)][:5]:
         body = eccjump.Cylinder(c[i, j, k], f[i, j, k] * (1 - c[i, j, k]))

@@ -71,11 +71,11 @@ def refused(fn, path, *args, **kwargs) -> str:
 
 @pytest.fixture(scope="module")
 def region():
-    return eccjump.region(1.0, alpha=[0.3, 0.6, 0.9], chi=[0.2, 0.5], km=[0.1, 0.4])
+    return eccjump.region(1.0, alpha=[0.3, 0.6, 0.9], chi=[0.2, 0.5], km_frac=[0.1, 0.4])
 
 
 def motion(**axes):
-    kw = {"alpha": [0.5, 0.7], "chi": 0.3, "km": [0.2, 0.6], "mu_s": 1.0, **axes}
+    kw = {"alpha": [0.5, 0.7], "chi": 0.3, "km_frac": [0.2, 0.6], "mu_s": 1.0, **axes}
     return eccjump.motion_map(**kw, t_max=20.0)
 
 
@@ -356,14 +356,14 @@ AXES = motion_maps.AXES
 SWEPT = {
     "alpha": [0.5, 0.8],
     "chi": [0.2, 0.4],
-    "km": [0.3, 0.6],
+    "km_frac": [0.3, 0.6],
     "mu_s": [0.5, 1.0],
     "mu_k": [0.3, 0.5],
     "restitution": [0.0, 0.5],
     "theta0": [0.0, 0.2],
     "omega0": [0.0, 0.3],
 }
-ONE = {"alpha": 0.6, "chi": 0.3, "km": 0.5, "mu_s": 1.0, "restitution": 0.2, "theta0": 0.1}
+ONE = {"alpha": 0.6, "chi": 0.3, "km_frac": 0.5, "mu_s": 1.0, "restitution": 0.2, "theta0": 0.1}
 ONE["omega0"] = 0.1
 
 
@@ -398,13 +398,15 @@ def test_from_dataset_of_a_swept_mu_s(tmp_path):
     _same_map(ds, back)
     assert back.scalars["mu_k"] is None
     with pytest.raises(ValueError, match=r"^ds "):
-        motion_maps.from_dataset(eccjump.region(1.0, alpha=[0.5], chi=[0.2], km=[0.1]).to_xarray())
+        motion_maps.from_dataset(
+            eccjump.region(1.0, alpha=[0.5], chi=[0.2], km_frac=[0.1]).to_xarray()
+        )
 
 
 # --- 5. eccjump map: bounded grid, long names -----------------------------------------------
 
 
-@pytest.mark.parametrize("option", ["--grid", "--n-alpha", "--n-chi", "--n-km"])
+@pytest.mark.parametrize("option", ["--grid", "--n-alpha", "--n-chi", "--n-km-frac"])
 def test_a_huge_grid_is_one_error_line_naming_the_option(tmp_path, option):
     err = io.StringIO()
     with contextlib.redirect_stderr(err), pytest.raises(SystemExit) as info:

@@ -43,6 +43,22 @@ def axis(name: str, values: object) -> NDArray[np.float64]:
     return a
 
 
+def fraction_axis(km_frac: object, km: object) -> object:
+    """The grid axis of the shell mass fraction of a map: ``km_frac``, the share
+    k_m/(1 - chi) of its largest value. ``km`` is the body's k_m in every function of the
+    package; a map does not take it as an axis (it would not be rectangular), and before
+    0.2 a map's ``km`` meant the fraction: a TypeError that says so, never a silent
+    reading of one for the other."""
+    if km is not None:
+        raise TypeError(
+            "km is the body's k_m; a map's axis is km_frac, the fraction k_m/(1 - chi) in "
+            "[0, 1] (a map's km meant it before 0.2)"
+        )
+    if km_frac is None:
+        raise TypeError("km_frac is required: the axis of the fraction k_m/(1 - chi) in [0, 1]")
+    return km_frac
+
+
 #: The largest turn number (the core counts turns in 32 bits).
 MAX_TURN = U32_MAX
 

@@ -16,7 +16,7 @@ from typing import TYPE_CHECKING, Any, Literal, overload
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-from eccjump._arrays import axis, broadcast_flat, fields_equal, turns
+from eccjump._arrays import axis, broadcast_flat, fields_equal, fraction_axis, turns
 from eccjump._bridge import Method, call_options, jarm_grid, jarm_points
 from eccjump._checks import Integrator, Rule, real, real_array, short, text
 from eccjump._layout import (
@@ -317,7 +317,8 @@ def region(
     *,
     alpha: ArrayLike,
     chi: ArrayLike,
-    km: ArrayLike,
+    km_frac: ArrayLike | None = None,
+    km: None = None,
     method: Method = "closed_form",
     rule: Rule = "paper",
     theta0: float = 0.0,
@@ -341,7 +342,8 @@ def region(
     *,
     alpha: ArrayLike,
     chi: ArrayLike,
-    km: ArrayLike,
+    km_frac: ArrayLike | None = None,
+    km: None = None,
     method: Method = "closed_form",
     rule: Rule = "paper",
     theta0: float | ArrayLike = 0.0,
@@ -364,7 +366,8 @@ def region(
     *,
     alpha: ArrayLike,
     chi: ArrayLike,
-    km: ArrayLike,
+    km_frac: ArrayLike | None = None,
+    km: None = None,
     method: Method = "closed_form",
     rule: Rule = "paper",
     theta0: float | ArrayLike = 0.0,
@@ -381,12 +384,15 @@ def region(
 ) -> Region | xr.Dataset:
     """Map the JARM region on a rectangular grid, in parallel.
 
-    ``alpha`` [rad], ``chi`` and ``km`` are 1-D coordinate arrays; ``km`` is given as the
-    fraction k_m/(1 - chi) in [0, 1], so that every (chi, km) pair of the grid is a valid
-    body and the grid stays rectangular. Other arguments as :func:`jarm`; ``refine_extrema``
-    defaults to False here (the classification does not depend on it; maps are faster).
+    ``alpha`` [rad], ``chi`` and ``km_frac`` are 1-D coordinate arrays; ``km_frac`` is the
+    shell mass fraction as the share k_m/(1 - chi) in [0, 1] of its largest value, so that
+    every (chi, km_frac) pair of the grid is a valid body and the grid stays rectangular
+    (``Region.km`` gives k_m itself). ``km``, the body's k_m everywhere else (:func:`jarm`,
+    :func:`roll`, :func:`simulate`), is not a grid axis here: passing it is a TypeError.
+    Other arguments as :func:`jarm`; ``refine_extrema`` defaults to False here (the
+    classification does not depend on it; maps are faster).
 
-    chunks : None (default: compute now), or chunk sizes along (alpha, chi, km) -- one int
+    chunks : None (default: compute now), or chunk sizes along (alpha, chi, km_frac) -- one int
         for all, a 3-sequence or a dict; -1/None for a whole axis. The map is then built
         lazily with dask, one Rust grid call per block (see :mod:`eccjump.scale`); call
         ``.compute()`` on the result. Bit-identical to the unchunked map. ``n_threads`` is
@@ -406,6 +412,7 @@ def region(
             n,
             alpha=alpha,
             chi=chi,
+            km_frac=km_frac,
             km=km,
             method=method,
             rule=rule,
@@ -426,7 +433,7 @@ def region(
         if isinstance(value, list | tuple) or (isinstance(value, np.ndarray) and value.ndim):
             raise ValueError(f"{name} must be a number here; sweeps need output='xarray'")
     mu = real("mu_s", mu_s)
-    a, c, f = axis("alpha", alpha), axis("chi", chi), axis("km", km)
+    a, c, f = axis("alpha", alpha), axis("chi", chi), axis("km_frac", fraction_axis(km_frac, km))
     opts = call_options(
         n=n,
         rule=rule,
@@ -474,7 +481,8 @@ def region_dataset(
     *,
     alpha: ArrayLike,
     chi: ArrayLike,
-    km: ArrayLike,
+    km_frac: ArrayLike | None = None,
+    km: None = None,
     theta0: float | ArrayLike = 0.0,
     omega0: float | ArrayLike = 0.0,
     **kwargs: Any,
@@ -498,7 +506,7 @@ def region_dataset(
             swept[name] = arr
         else:
             raise ValueError(f"{name} must be a number or a non-empty 1-D sequence")
-    grid = {"alpha": alpha, "chi": chi, "km": km}
+    grid = {"alpha": alpha, "chi": chi, "km_frac": fraction_axis(km_frac, km)}
 
     def one(values: Mapping[str, float]) -> xr.Dataset:
         reg = region(n=n, **grid, **scalars, **values, **kwargs)  # type: ignore[call-overload]

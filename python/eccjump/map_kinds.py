@@ -90,7 +90,7 @@ JARM = MapKind(
         ("omega0", "omega0"),
         ("alpha", "alpha"),
         ("chi", "chi"),
-        ("km", "km_frac"),
+        ("km_frac", "km_frac"),
     ),
     ("alpha", "chi", "km_frac"),
     {"reason": frozenset([*(int(r) for r in fields.Reason), fields.FILL["reason"]])},
@@ -106,7 +106,7 @@ MOTION = MapKind(
     (
         ("alpha", "alpha"),
         ("chi", "chi"),
-        ("km", "km_frac"),
+        ("km_frac", "km_frac"),
         ("mu_s", "mu_s"),
         ("mu_k", "mu_k"),
         ("restitution", "restitution"),
@@ -132,4 +132,12 @@ def kind_of(attrs: Mapping[str, Any]) -> MapKind:
     return KINDS[name]
 
 
-__all__ = ["JARM", "KINDS", "MOTION", "MapKind", "kind_of", "valid_sequences"]
+def upgrade_attrs(attrs: dict[str, Any]) -> None:
+    """The attributes of a map file written before 0.2, in today's names, in place: a motion
+    map's scalar fraction axis was recorded as ``km`` (the parameter's name then); it is
+    ``km_frac`` now, and ``km`` always the body's k_m."""
+    if attrs.get("kind") == "motion" and "km" in attrs and "km_frac" not in attrs:
+        attrs["km_frac"] = attrs.pop("km")
+
+
+__all__ = ["JARM", "KINDS", "MOTION", "MapKind", "kind_of", "upgrade_attrs", "valid_sequences"]

@@ -22,9 +22,10 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from eccjump import _core, store
+from eccjump._arrays import fraction_axis
 from eccjump._checks import U64_MAX, Integrator, integer, real, real_array, short, text
 from eccjump._mapcheck import file_error
-from eccjump.map_kinds import MOTION, MapKind
+from eccjump.map_kinds import MOTION, MapKind, upgrade_attrs
 from eccjump.motion import MAX_STEPS, MAX_TRANSITIONS, Rule
 from eccjump.motion_fields import (
     DTYPES,
@@ -157,7 +158,7 @@ def motion_map(
     *,
     alpha: ArrayLike,
     chi: ArrayLike,
-    km: ArrayLike,
+    km_frac: ArrayLike | None = None,
     mu_s: ArrayLike,
     mu_k: ArrayLike | None = None,
     restitution: ArrayLike = 0.0,
@@ -173,18 +174,20 @@ def motion_map(
     integrator: Integrator = "RK45",
     chunks: int | None = None,
     output: Literal["map", "xarray"] = "map",
+    km: None = None,
 ) -> MotionMap | xr.Dataset:
     """Map the full motion, to the first landing, over the product of the given axes.
 
-    Each of ``alpha`` [rad], ``chi``, ``km`` (the fraction k_m/(1 - chi) in [0, 1], so every
-    grid point is a valid body), ``mu_s``, ``mu_k`` (None: mu_k = mu_s), ``restitution``,
-    ``theta0`` and ``omega0`` is one number or a 1-D array (an axis of the map). The other
-    options are those of :func:`eccjump.simulate` (``integrator``: ``"RK45"``, the default,
-    ``"DOP853"``, ``"Vern7"`` or ``"Vern9"``, recorded with the map as are ``rtol`` and
-    ``atol``; for speed pick ``"Vern9"`` (at the default rtol 1.5–1.9× faster than RK45 and
-    about 15× more accurate), keep ``"RK45"`` for step-for-step parity with scipy); a run
-    ends at its first landing (status "landed") once the mode after it is chosen, or at
-    ``t_max``/``max_transitions``. A point with invalid values (mu_k > mu_s, km fraction 0,
+    Each of ``alpha`` [rad], ``chi``, ``km_frac`` (the shell mass fraction as the share k_m/(1 -
+    chi) in [0, 1] of its largest value, so every grid point is a valid body; ``km``, the body's
+    k_m elsewhere, is a TypeError here), ``mu_s``, ``mu_k`` (None: mu_k = mu_s),
+    ``restitution``, ``theta0`` and ``omega0`` is one number or a 1-D array (an axis of the
+    map). The other options are those of :func:`eccjump.simulate` (``integrator``: ``"RK45"``,
+    the default, ``"DOP853"``, ``"Vern7"`` or ``"Vern9"``, recorded with the map as are ``rtol``
+    and ``atol``; for speed pick ``"Vern9"`` (at the default rtol 1.5–1.9× faster than RK45 and
+    about 15× more accurate), keep ``"RK45"`` for step-for-step parity with scipy); a run ends
+    at its first landing (status "landed") once the mode after it is chosen, or at
+    ``t_max``/``max_transitions``. A point with invalid values (mu_k > mu_s, km_frac 0,
     ...) has status "invalid".
 
     ``chunks`` (needs dask): the map as a lazily computed, dask-backed xarray Dataset, one
@@ -197,7 +200,7 @@ def motion_map(
         {
             "alpha": alpha,
             "chi": chi,
-            "km": km,
+            "km_frac": fraction_axis(km_frac, km),
             "mu_s": mu_s,
             "mu_k": mu_k,
             "restitution": restitution,
@@ -237,7 +240,7 @@ def motion_map(
 _PROBE: dict[str, float | None] = {
     "alpha": 0.5,
     "chi": 0.3,
-    "km": 0.5,
+    "km_frac": 0.5,
     "mu_s": 1.0,
     "mu_k": None,
     "restitution": 0.0,
@@ -315,6 +318,7 @@ def from_dataset(ds: xr.Dataset) -> MotionMap:
     if not hasattr(type(ds), "data_vars"):
         raise TypeError(f"ds must be an xarray.Dataset, not {type(ds).__name__}")
     lay = store.layout_from_xarray(ds)
+    upgrade_attrs(lay["attrs"])
     return _from_layout(lay, store.check_layout(lay, "ds"), "ds")
 
 

@@ -32,7 +32,7 @@ from eccjump._bridge import CallOptions, jarm_grid
 from eccjump._checks import integer
 from eccjump.fields import FIELDS, RECORD
 
-AXES = ("alpha", "chi", "km")
+AXES = ("alpha", "chi", "km_frac")
 
 Chunks = int | None | Sequence[int | None] | Mapping[str, int | None]
 
@@ -48,12 +48,13 @@ def require_dask() -> Any:
 
 
 def normalize_chunks(chunks: Chunks, shape: tuple[int, int, int]) -> tuple[int, int, int]:
-    """Chunk sizes along (alpha, chi, km), each in [1, size]."""
+    """Chunk sizes along (alpha, chi, km_frac), each in [1, size] (a dict may name the last
+    axis ``km``, as before 0.2: a chunk size cannot be mistaken for a body)."""
     if isinstance(chunks, Mapping):
-        unknown = set(chunks) - {*AXES, "km_frac"}
+        unknown = set(chunks) - {*AXES, "km"}
         if unknown:
             raise ValueError(f"chunks has unknown axes {sorted(unknown)}; use {AXES}")
-        seq = [chunks.get(k, chunks.get("km_frac") if k == "km" else None) for k in AXES]
+        seq = [chunks.get(k, chunks.get("km") if k == "km_frac" else None) for k in AXES]
     elif chunks is None or isinstance(chunks, int | np.integer):
         seq = [chunks] * 3
     elif not isinstance(chunks, Sequence):
@@ -61,7 +62,7 @@ def normalize_chunks(chunks: Chunks, shape: tuple[int, int, int]) -> tuple[int, 
     else:
         seq = list(chunks)
         if len(seq) != 3:
-            raise ValueError(f"chunks needs 3 sizes (alpha, chi, km), got {chunks!r}")
+            raise ValueError(f"chunks needs 3 sizes (alpha, chi, km_frac), got {chunks!r}")
     out = []
     for c, size in zip(seq, shape, strict=True):
         # The checks of every integer argument: a numpy timedelta64 is a numpy integer

@@ -80,7 +80,7 @@ def _shares(
     mu: float, theta0: float, omega0: float, grid: int, rule: Rule, n_threads: int
 ) -> NDArray[np.float64]:
     a, c, f = _midpoints(grid)
-    reg = region(mu, alpha=a, chi=c, km=f, theta0=theta0, omega0=omega0, rule=rule,
+    reg = region(mu, alpha=a, chi=c, km_frac=f, theta0=theta0, omega0=omega0, rule=rule,
                  n_threads=n_threads)  # fmt: skip
     counts = np.bincount(reg.result.reason.ravel().astype(np.intp), minlength=N_REASONS)
     return counts[:N_REASONS] / reg.result.reason.size

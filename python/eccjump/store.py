@@ -53,7 +53,7 @@ from eccjump.labelled import (
     require,
     to_region,
 )
-from eccjump.map_kinds import MapKind, kind_of
+from eccjump.map_kinds import MapKind, kind_of, upgrade_attrs
 
 if TYPE_CHECKING:  # pragma: no cover
     import xarray as xr
@@ -530,7 +530,9 @@ def _read(path: str | os.PathLike, fmt: str) -> tuple[Layout, xr.Dataset | None]
     _check_source(path, fmt)
     try:
         if fmt == "npz":
-            return load_npz(path), None
+            lay = load_npz(path)
+            upgrade_attrs(lay["attrs"])
+            return lay, None
         xr = require("xarray")
         if fmt == "netcdf":
             engine = netcdf_engine()
@@ -543,6 +545,7 @@ def _read(path: str | os.PathLike, fmt: str) -> tuple[Layout, xr.Dataset | None]
                 warnings.simplefilter("ignore")  # zarr's about metadata: errors say enough
                 with xr.open_zarr(path, consolidated=None) as ds:
                     ds = ds.load()
+        upgrade_attrs(ds.attrs)
         return layout_from_xarray(ds), ds
     except (ImportError, MemoryError):
         raise

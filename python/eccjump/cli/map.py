@@ -45,7 +45,7 @@ from eccjump.store import ZarrMap, format_of, save
 
 #: Default points per chunk when --chunk is not given (a few seconds on a laptop core).
 POINTS_PER_CHUNK = 100_000
-#: Most points along one axis of the grid (--grid, --n-alpha, --n-chi, --n-km).
+#: Most points along one axis of the grid (--grid, --n-alpha, --n-chi, --n-km-frac).
 MAX_AXIS_POINTS = 1_000_000
 
 
@@ -105,13 +105,18 @@ def add_parser(sub: argparse._SubParsersAction) -> None:
     g.add_argument("--grid", type=_axis_points, default=50, help="points per axis (default 50)")
     g.add_argument("--n-alpha", type=_axis_points, help="points along alpha (default --grid)")
     g.add_argument("--n-chi", type=_axis_points, help="points along chi (default --grid)")
-    g.add_argument("--n-km", type=_axis_points, help="points along km_frac (default --grid)")
+    g.add_argument("--n-km-frac", type=_axis_points, help="points along km_frac (default --grid)")
     g.add_argument("--alpha-min", type=float, default=0.0, help="[deg] (default 0)")
     g.add_argument("--alpha-max", type=float, default=90.0, help="[deg] (default 90)")
     g.add_argument("--chi-min", type=float, default=0.0, help="(default 0)")
     g.add_argument("--chi-max", type=float, default=1.0, help="(default 1)")
-    g.add_argument("--km-min", type=float, default=0.0, help="km fraction km/(1-chi) (default 0)")
-    g.add_argument("--km-max", type=float, default=1.0, help="km fraction (default 1)")
+    g.add_argument(
+        "--km-frac-min",
+        type=float,
+        default=0.0,
+        help="the fraction km/(1-chi) (default 0; --km is the body's k_m elsewhere)",
+    )
+    g.add_argument("--km-frac-max", type=float, default=1.0, help="km/(1-chi) (default 1)")
     m = p.add_argument_group("model")
     m.add_argument(
         "--route",
@@ -197,13 +202,13 @@ class _Interrupt:
 def _axes(args: argparse.Namespace) -> tuple[NDArray, NDArray, NDArray]:
     _range(args.alpha_min, args.alpha_max, "alpha [deg]", 0.0, 90.0)
     _range(args.chi_min, args.chi_max, "chi", 0.0, 1.0)
-    _range(args.km_min, args.km_max, "km fraction", 0.0, 1.0)
+    _range(args.km_frac_min, args.km_frac_max, "km_frac", 0.0, 1.0)
     na = args.n_alpha or args.grid
     nc = args.n_chi or args.grid
-    nk = args.n_km or args.grid
+    nk = args.n_km_frac or args.grid
     alpha = np.radians(np.linspace(args.alpha_min, args.alpha_max, na))
     chi = np.linspace(args.chi_min, args.chi_max, nc)
-    km = np.linspace(args.km_min, args.km_max, nk)
+    km = np.linspace(args.km_frac_min, args.km_frac_max, nk)
     return alpha, chi, km
 
 

@@ -88,7 +88,7 @@ class JarmJob:
             o["n"],
             alpha=alpha,
             chi=chi,
-            km=km,
+            km_frac=km,
             n_threads=threads,
             **{k: v for k, v in o.items() if k not in ("mu_s", "n")},
         )
@@ -153,7 +153,7 @@ class MotionJob:
     def compute(
         self, alpha: NDArray, chi: NDArray, km: NDArray, threads: int
     ) -> dict[str, NDArray]:
-        m = motion_maps.motion_map(alpha=alpha, chi=chi, km=km, n_threads=threads, **self.opts)
+        m = motion_maps.motion_map(alpha=alpha, chi=chi, km_frac=km, n_threads=threads, **self.opts)
         assert isinstance(m, motion_maps.MotionMap)
         return {f: m.fields[f] for f in self.kind.fields}
 

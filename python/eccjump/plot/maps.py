@@ -168,7 +168,7 @@ def sequence_map(m: MotionMap, *, panels: int = 4) -> Figure:
         raise TypeError(f"m must be a MotionMap, not {type(m).__name__}")
     panels = integer("panels", panels, 1, 64)
     if tuple(m.coords)[:2] != ("alpha", "chi") or len(m.coords) > 3:
-        raise ValueError("sequence_map needs a map over alpha, chi (and km) only")
+        raise ValueError("sequence_map needs a map over alpha, chi (and km_frac) only")
     plt = _plt()
     from matplotlib.colors import ListedColormap
     from matplotlib.patches import Patch
@@ -176,7 +176,7 @@ def sequence_map(m: MotionMap, *, panels: int = 4) -> Figure:
     seq = np.asarray(m.fields["sequence"])
     if seq.ndim == 2:
         seq = seq[:, :, None]
-    km = m.coords.get("km", np.array([m.scalars.get("km") or 0.0]))
+    km = m.coords.get("km_frac", np.array([m.scalars.get("km_frac") or 0.0]))
     top = [c for c in m.sequences() if c != 0][: len(SEQUENCE_COLORS)]
     cat = np.full(seq.shape, float(len(top)))  # "other"
     for k, code in enumerate(top):
