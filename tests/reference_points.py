@@ -41,7 +41,7 @@ def jump_points() -> tuple[tuple[float, float, float, int, float], ...]:
     """
     axes = (np.linspace(0.3, 1.3, 12), np.linspace(0.05, 0.4, 12), np.linspace(0.002, 0.05, 12))
     alpha, chi, km = (a.ravel() for a in np.meshgrid(*axes, indexing="ij"))
-    r = eccjump.jarm(alpha, chi, km, AMPLE_FRICTION)
+    r = eccjump.jarm(alpha, chi, km, AMPLE_FRICTION, refine_extrema=True)  # the exact maximum
     jumps = np.asarray(r.is_jarm, dtype=bool)
     return tuple(
         (float(a), float(c), float(k), int(n), float(m))

@@ -166,7 +166,7 @@ def motion_map(
     omega0: ArrayLike = 0.0,
     rule: Rule = "paper",
     t_max: float = 100.0,
-    max_transitions: int = 50,
+    max_transitions: int = 100,
     rtol: float = 1e-10,
     atol: float = 1e-12,
     max_steps: int = 1_000_000,

@@ -150,8 +150,8 @@ def add_parser(sub: argparse._SubParsersAction) -> None:
     k.add_argument(
         "--max-transitions",
         type=int_at_least(1),
-        default=50,
-        help="transitions before the first landing (default 50)",
+        default=100,
+        help="transitions before the first landing (default 100, as simulate)",
     )
     r = p.add_argument_group("run")
     r.add_argument("--threads", type=int, default=0, help="threads (0 = one per core)")
