@@ -990,7 +990,8 @@ def part_closed(args) -> None:
     }
     ga, gc, gf = grid(args.grid)
     w, cpu, reg = best_of(
-        lambda: eccjump.region(MU_S, alpha=ga, chi=gc, km_frac=gf, stop_at_slip=stop), args.repeat
+        lambda: eccjump.region(mu_s=MU_S, alpha=ga, chi=gc, km_frac=gf, stop_at_slip=stop),
+        args.repeat,
     )
     print(
         f"region, {args.grid}^3 grid: wall {w:.3f} s, CPU {cpu:.3f} s; "
@@ -1015,10 +1016,10 @@ def part_ode(args) -> None:
     m = args.ode_grid
     idx = np.unique(np.round(np.linspace(0, 99, m)).astype(int))
     sa, sc, sf = ga[idx], gc[idx], gf[idx]
-    eccjump.region(MU_S, alpha=sa[:3], chi=sc[:3], km_frac=sf[:3], method="ode")
+    eccjump.region(mu_s=MU_S, alpha=sa[:3], chi=sc[:3], km_frac=sf[:3], method="ode")
     w, cpu, reg = timed(
         lambda: eccjump.region(
-            MU_S,
+            mu_s=MU_S,
             alpha=sa,
             chi=sc,
             km_frac=sf,
@@ -1065,13 +1066,14 @@ def summary(res) -> dict:
 
 def snapshot_now(threads: int, seed: int) -> dict:
     ga, gc, gf = grid(100)
-    reg = eccjump.region(MU_S, alpha=ga, chi=gc, km_frac=gf, n_threads=threads)
+    reg = eccjump.region(mu_s=MU_S, alpha=ga, chi=gc, km_frac=gf, n_threads=threads)
     a, c, k = random_points(10**6, seed)
     pts = eccjump.jarm(a, c, k, MU_S, n_threads=threads)
     return {
         "map_100": {
-            "what": "eccjump.region(1.0, alpha=linspace(pi/200, pi/2, 100), chi=(j+0.5)/100, "
-            "km=l/100), closed form, paper rule, automatic n; reason as uint8, theta_J as "
+            "what": "eccjump.region(alpha=linspace(pi/200, pi/2, 100), chi=(j+0.5)/100, "
+            "km_frac=l/100, mu_s=1.0), closed form, paper rule, automatic n; reason as uint8, "
+            "theta_J as "
             "little-endian float64, C order",
             "inputs_sha256": digest(np.concatenate([ga, gc, gf])),
             **summary(reg.result),

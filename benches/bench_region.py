@@ -69,7 +69,9 @@ def time_eccjump(method: str, alpha, chi, frac, threads: int, repeat: int):
     """(wall, CPU) seconds of the fastest of `repeat` eccjump.region runs (CPU summed over
     threads), the last Region, RSS before and peak RSS during the runs [MiB] (NaN if the
     peak cannot be reset)."""
-    eccjump.region(MU_S, alpha=alpha[:4], chi=chi[:4], km_frac=frac[:4], method=method)  # warm-up
+    eccjump.region(
+        mu_s=MU_S, alpha=alpha[:4], chi=chi[:4], km_frac=frac[:4], method=method
+    )  # warm-up
     rss0 = _proc_status("VmRSS")
     can_reset = _reset_peak_rss()
     best, reg = (math.inf, math.inf), None
@@ -77,7 +79,7 @@ def time_eccjump(method: str, alpha, chi, frac, threads: int, repeat: int):
         reg = None  # free the previous map first
         t0, c0 = time.perf_counter(), time.process_time()
         reg = eccjump.region(
-            MU_S, alpha=alpha, chi=chi, km_frac=frac, method=method, n_threads=threads
+            mu_s=MU_S, alpha=alpha, chi=chi, km_frac=frac, method=method, n_threads=threads
         )
         best = min(best, (time.perf_counter() - t0, time.process_time() - c0))
     peak = _proc_status("VmHWM") if can_reset else math.nan

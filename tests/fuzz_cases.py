@@ -566,14 +566,10 @@ def _axis(d: Drawer, c: Case, lo: float, hi: float) -> Any:
 def case_region(d: Drawer) -> Case:
     c = Case("region", eccjump.region, params=(*MAP_PARAMS, "output", "chunks"), check=check_region)
     opts = _classification_options(d, c, False)
-    c.args = (real(d, c, 0.0, 3.0), turn(d, c))
-    c.kwargs = {
-        "alpha": _axis(d, c, 0.0, HALF_PI),
-        "chi": _axis(d, c, 0.0, 1.0),
-        "km_frac": _axis(d, c, 0.0, 1.0),
-        **opts,
-        "integrator": text_param(d, c, INTEGRATORS),
-    }
+    mu, n = real(d, c, 0.0, 3.0), turn(d, c)
+    axes = (_axis(d, c, 0.0, HALF_PI), _axis(d, c, 0.0, 1.0), _axis(d, c, 0.0, 1.0))
+    c.args = (*axes, mu, n)  # (alpha, chi, km_frac, mu_s, n): the point first, then mu_s
+    c.kwargs = {**opts, "integrator": text_param(d, c, INTEGRATORS)}
     return c
 
 
@@ -585,11 +581,10 @@ def case_region_dataset(d: Drawer) -> Case:
     mu = d.choice((1.0, [0.5, 2.0], [], [[1.0]], "1", None, [math.nan]))
     if mu in ("1", None):
         c.must_raise = True
-    c.args = (mu, turn(d, c))
+    n = turn(d, c)
+    axes = (_axis(d, c, 0.0, HALF_PI), _axis(d, c, 0.0, 1.0), _axis(d, c, 0.0, 1.0))
+    c.args = (*axes, mu, n)  # (alpha, chi, km_frac, mu_s, n): the point first, then mu_s
     c.kwargs = {
-        "alpha": _axis(d, c, 0.0, HALF_PI),
-        "chi": _axis(d, c, 0.0, 1.0),
-        "km_frac": _axis(d, c, 0.0, 1.0),
         "theta0": d.choice((0.0, [0.0, 0.1], True)),
         "omega0": real(d, c, 0.0, 2.0),
     }
@@ -919,7 +914,7 @@ def case_store(d: Drawer) -> Case:
     where = tmpdir()
     if d.integer(0, 1):
         c = Case("store.save", store.save, params=("obj", "path", "attrs"), allow_oserror=True)
-        reg = eccjump.region(1.0, alpha=[0.5, 0.7], chi=[0.2], km_frac=[0.1])
+        reg = eccjump.region(mu_s=1.0, alpha=[0.5, 0.7], chi=[0.2], km_frac=[0.1])
         obj = d.choice((reg, reg, None, 3, "map"))
         path = d.choice(
             (
@@ -939,7 +934,7 @@ def case_store(d: Drawer) -> Case:
         c = Case("store.load", store.load, params=("path",), allow_oserror=True, check=check_region)
         good = where / "load.npz"
         if not good.exists():
-            store.save(eccjump.region(1.0, alpha=[0.5, 0.7], chi=[0.2], km_frac=[0.1]), good)
+            store.save(eccjump.region(mu_s=1.0, alpha=[0.5, 0.7], chi=[0.2], km_frac=[0.1]), good)
         path = d.choice(
             (good, str(good), None, 7, b"x.npz", where / "missing.npz", where / "x.csv")
         )
@@ -979,7 +974,7 @@ def case_plot(d: Drawer) -> Case:
         c = Case(
             "plot.region_map", plot.region_map, params=("region", "panels"), check=check_figure
         )
-        reg = eccjump.region(1.0, alpha=[0.5, 0.7], chi=[0.2], km_frac=[0.1])
+        reg = eccjump.region(mu_s=1.0, alpha=[0.5, 0.7], chi=[0.2], km_frac=[0.1])
         c.args = (d.choice((reg, None, 3)),)
         c.kwargs = {"panels": integer_param(d, c, (1, 2), (0, 2.5, True, None, 10**400))}
         c.must_raise = c.must_raise or c.args[0] is not reg

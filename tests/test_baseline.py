@@ -52,7 +52,7 @@ def points():
     idx = np.flatnonzero(keep)[:35]
     # JARM points from a coarse map (random points are rarely JARMs)
     reg = eccjump.region(
-        MU_S,
+        mu_s=MU_S,
         alpha=np.radians(np.linspace(3, 80, 40)),
         chi=np.linspace(0.02, 0.6, 40),
         km_frac=np.linspace(0.0, 0.3, 16),

@@ -407,7 +407,7 @@ TIME = np.timedelta64(1)
         (lambda: eccjump.jarm([TIME], 0.2, 0.1, 1.0), "alpha"),
         (lambda: eccjump.Units(g=TIME), "g"),
         (
-            lambda: eccjump.region(1.0, alpha=[0.5], chi=[0.2], km_frac=[0.1], n_threads=TIME),
+            lambda: eccjump.region(mu_s=1.0, alpha=[0.5], chi=[0.2], km_frac=[0.1], n_threads=TIME),
             "n_threads",
         ),
     ],

@@ -32,12 +32,12 @@ def assert_bits(reference, fields) -> None:
 
 @pytest.fixture(scope="module")
 def reference():
-    return region(0.7, **GRID)
+    return region(mu_s=0.7, **GRID)
 
 
 @pytest.mark.parametrize("chunks", [4, (5, 3, -1), {"alpha": 2, "km": 3}, (1, 1, 1), -1])
 def test_chunked_region_is_lazy_and_bit_identical(reference, chunks):
-    lazy = region(0.7, **GRID, chunks=chunks, n_threads=1)
+    lazy = region(mu_s=0.7, **GRID, chunks=chunks, n_threads=1)
     assert lazy.lazy and isinstance(lazy.result.is_jarm, da.Array)
     done = lazy.compute(scheduler="threads")
     assert not done.lazy
@@ -53,21 +53,21 @@ def test_one_rust_call_per_block(monkeypatch):
         return real(a, c, f, *rest)
 
     monkeypatch.setattr(eccjump._core, "jarm_grid", counting)
-    lazy = region(0.7, **GRID, chunks=(5, 6, -1))
+    lazy = region(mu_s=0.7, **GRID, chunks=(5, 6, -1))
     assert not calls  # nothing computed yet
     lazy.compute(scheduler="sync")
     assert sorted(calls) == sorted((a, c, 7) for a in (5, 5, 3) for c in (6, 5))
 
 
 def test_lazy_xarray_dataset(reference):
-    ds = region(0.7, **GRID, chunks=4, output="xarray")
+    ds = region(mu_s=0.7, **GRID, chunks=4, output="xarray")
     assert ds.is_jarm.chunks is not None
     assert_bits(reference, {f: ds[f].values for f in FIELDS})
 
 
 def test_block_function_and_graph_pickle():
     assert pickle.loads(pickle.dumps(grid_block)) is grid_block
-    lazy = region(0.7, **GRID, chunks=4)
+    lazy = region(mu_s=0.7, **GRID, chunks=4)
     graph = dict(lazy.result.theta_J.__dask_graph__())
     assert pickle.loads(pickle.dumps(graph)).keys() == graph.keys()
     empty = grid_block(np.empty((0, 1, 1)), np.zeros((1, 2, 1)), np.zeros((1, 1, 3)), 0.7, ())
@@ -98,10 +98,10 @@ def test_distributed_cluster_two_processes_bit_identical(reference, monkeypatch)
         ) as cluster,
         distributed.Client(cluster) as client,
     ):
-        lazy = region(0.7, **GRID, chunks=(3, 4, -1), n_threads=1)
+        lazy = region(mu_s=0.7, **GRID, chunks=(3, 4, -1), n_threads=1)
         done = lazy.compute()  # the client is the default scheduler
         assert_bits(reference, {f: getattr(done.result, f) for f in FIELDS})
-        ds = region([0.7, 0.9], **GRID, chunks=(5, -1, -1), n_threads=1, output="xarray")
+        ds = region(mu_s=[0.7, 0.9], **GRID, chunks=(5, -1, -1), n_threads=1, output="xarray")
         ds = ds.compute()
         assert_bits(reference, {f: ds[f].sel(mu_s=0.7).values for f in FIELDS})
         workers = {w["id"] for w in client.scheduler_info()["workers"].values()}

@@ -126,7 +126,7 @@ def test_results_compare_after_a_deep_copy():
 
     r = eccjump.roll(eccjump.Cylinder(0.15, 0.02), 0.7, mu_s=1.0, dense_output=True)
     j = eccjump.jarm([0.5, 0.6, float("nan")], 0.2, 0.1, 1.0)
-    g = eccjump.region(1.0, alpha=[0.5, 0.7], chi=[0.2], km_frac=[0.1])
+    g = eccjump.region(mu_s=1.0, alpha=[0.5, 0.7], chi=[0.2], km_frac=[0.1])
     for x in (r, j, g):
         assert x == copy.deepcopy(x) and not (x != copy.deepcopy(x))
         with pytest.raises(TypeError):

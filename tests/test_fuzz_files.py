@@ -52,7 +52,7 @@ MAP = ["map", "--mu-s", "1", "--grid", "3", "-q"]
 def maps(tmp_path_factory) -> dict[tuple[str, str], Path]:
     """A good JARM and motion map in each format."""
     where = tmp_path_factory.mktemp("maps")
-    region = eccjump.region(1.0, alpha=[0.3, 0.6, 0.9], chi=[0.2, 0.5], km_frac=[0.1, 0.4])
+    region = eccjump.region(mu_s=1.0, alpha=[0.3, 0.6, 0.9], chi=[0.2, 0.5], km_frac=[0.1, 0.4])
     motion = eccjump.motion_map(alpha=[0.5, 0.7], chi=0.3, km_frac=[0.2, 0.6], mu_s=1.0, t_max=20.0)
     out = {}
     for suffix in SUFFIXES:

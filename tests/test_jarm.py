@@ -184,10 +184,10 @@ def test_first_jump_semantics_turns_do_not_overlap():
     a = np.linspace(0.5, 89.5, 60) * DEG
     c = np.linspace(0.02, 0.6, 25)
     f = np.linspace(0.0, 0.9, 10)
-    auto = region(1.0, alpha=a, chi=c, km_frac=f)
+    auto = region(mu_s=1.0, alpha=a, chi=c, km_frac=f)
     seen = np.zeros(auto.result.n.shape, dtype=int)
     for n in (1, 2, 3, 4):
-        rn = region(1.0, n, alpha=a, chi=c, km_frac=f)
+        rn = region(mu_s=1.0, n=n, alpha=a, chi=c, km_frac=f)
         seen += rn.is_jarm
         # a JARM on turn n is exactly an automatic JARM whose turn is n
         np.testing.assert_array_equal(rn.is_jarm, auto.is_jarm & (auto.result.n == n))
@@ -198,9 +198,9 @@ def test_region_is_bit_identical_for_any_thread_count():
     a = np.linspace(1, 89, 23) * DEG
     c = np.linspace(0.01, 0.9, 17)
     f = np.linspace(0.0, 0.95, 13)
-    r1 = region(0.7, alpha=a, chi=c, km_frac=f, n_threads=1)
-    r2 = region(0.7, alpha=a, chi=c, km_frac=f, n_threads=2)
-    r3 = region(0.7, alpha=a, chi=c, km_frac=f, n_threads=3)
+    r1 = region(mu_s=0.7, alpha=a, chi=c, km_frac=f, n_threads=1)
+    r2 = region(mu_s=0.7, alpha=a, chi=c, km_frac=f, n_threads=2)
+    r3 = region(mu_s=0.7, alpha=a, chi=c, km_frac=f, n_threads=3)
     for name in eccjump.classification.FIELDS:
         x1 = getattr(r1.result, name)
         assert (
@@ -238,8 +238,8 @@ def test_stop_at_slip_is_recorded_and_makes_slip_maps_of_the_same_region():
     a = np.linspace(5, 85, 9) * DEG
     c = np.linspace(0.05, 0.9, 6)
     f = np.linspace(0.0, 0.9, 4)
-    full = region(1.0, alpha=a, chi=c, km_frac=f)
-    stop = region(1.0, alpha=a, chi=c, km_frac=f, stop_at_slip=True)
+    full = region(mu_s=1.0, alpha=a, chi=c, km_frac=f)
+    stop = region(mu_s=1.0, alpha=a, chi=c, km_frac=f, stop_at_slip=True)
     assert stop.attrs["stop_at_slip"] is True and full.attrs["stop_at_slip"] is False
     np.testing.assert_array_equal(stop.is_jarm, full.is_jarm)
     slips = np.isin(full.result.reason, [Reason.SLIP_BEFORE, Reason.SLIP_AT_JUMP])
@@ -251,7 +251,7 @@ def test_region_grid_matches_pointwise_jarm():
     a = np.array([30, 40, 60]) * DEG
     c = np.array([0.1, 0.15, 0.5])
     f = np.array([0.0, 0.5])
-    g = region(1.0, alpha=a, chi=c, km_frac=f)
+    g = region(mu_s=1.0, alpha=a, chi=c, km_frac=f)
     A, C, F = np.meshgrid(a, c, f, indexing="ij")
     p = jarm(A, C, F * (1 - C), 1.0, refine_extrema=False)
     np.testing.assert_array_equal(g.result.reason, p.reason)
@@ -331,7 +331,7 @@ def test_shape_errors():
     with pytest.raises(ValueError, match="broadcast"):
         jarm(np.zeros(3), np.zeros(4), 0.1, 1.0)
     with pytest.raises(ValueError, match="1-D"):
-        region(1.0, alpha=np.zeros((2, 2)), chi=[0.1], km_frac=[0.1])
+        region(mu_s=1.0, alpha=np.zeros((2, 2)), chi=[0.1], km_frac=[0.1])
     with pytest.raises(ValueError, match="index 1"):
         closed_form.mu([0.1, 2.0], 0.0, 5.0)
 
@@ -470,10 +470,10 @@ def test_every_pair_and_the_closed_form_map_the_same_region(mu_s, rule):
     grid: the same reason and turn at every point. Until the ODE route's event scan tested
     dips between its samples (docs/jarm.md), DOP853's longer steps missed narrow slip windows
     at 0 to 5 points per map; now 0 of 13 824 (Vern7's steps are as long, Vern9's longer)."""
-    rk = region(mu_s, **GRID12, rule=rule, method="ode").result
-    cf = region(mu_s, **GRID12, rule=rule).result
+    rk = region(mu_s=mu_s, **GRID12, rule=rule, method="ode").result
+    cf = region(mu_s=mu_s, **GRID12, rule=rule).result
     for pair in ("DOP853", "Vern7", "Vern9"):
-        other = region(mu_s, **GRID12, rule=rule, method="ode", integrator=pair).result
+        other = region(mu_s=mu_s, **GRID12, rule=rule, method="ode", integrator=pair).result
         assert rk.theta_event.tobytes() != other.theta_event.tobytes()  # another pair ran
         for ode in (rk, other):
             differ = (ode.reason != cf.reason) | (ode.n != cf.n)
@@ -499,8 +499,8 @@ def test_ode_region_is_bit_identical_for_any_thread_count():
     a = np.linspace(5, 85, 7) * DEG
     c = np.linspace(0.05, 0.6, 5)
     f = np.linspace(0.0, 0.5, 3)
-    r1 = region(1.0, alpha=a, chi=c, km_frac=f, method="ode", n_threads=1)
-    r2 = region(1.0, alpha=a, chi=c, km_frac=f, method="ode", n_threads=2)
+    r1 = region(mu_s=1.0, alpha=a, chi=c, km_frac=f, method="ode", n_threads=1)
+    r2 = region(mu_s=1.0, alpha=a, chi=c, km_frac=f, method="ode", n_threads=2)
     for name in eccjump.classification.FIELDS:
         assert getattr(r1.result, name).tobytes() == getattr(r2.result, name).tobytes()
 
@@ -518,8 +518,8 @@ def test_the_classification_is_periodic_in_theta0():
     lift-off in (-alpha, 0), turn 0's window, used to be missed from theta0 < 0)."""
     g = {"alpha": np.radians(np.linspace(2, 88, 12)), "chi": np.linspace(0.03, 0.97, 12)}
     g["km_frac"] = np.linspace(0.03, 0.97, 6)
-    neg = eccjump.region(1.0, **g, theta0=-math.pi, omega0=1.0)
-    pos = eccjump.region(1.0, **g, theta0=math.pi, omega0=1.0)
+    neg = eccjump.region(mu_s=1.0, **g, theta0=-math.pi, omega0=1.0)
+    pos = eccjump.region(mu_s=1.0, **g, theta0=math.pi, omega0=1.0)
     assert pos.result.is_jarm.sum() > 20
     assert np.array_equal(neg.result.reason, pos.result.reason)
     assert np.array_equal(neg.result.n, pos.result.n)

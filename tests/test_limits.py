@@ -39,7 +39,7 @@ def test_output_too_large_is_a_memory_error():
     short_error(
         MemoryError,
         eccjump.region,
-        1.0,
+        mu_s=1.0,
         alpha=np.full(10000, 0.5),
         chi=np.full(1000, 0.5),
         km_frac=np.full(1000, 0.5),
@@ -51,9 +51,9 @@ def test_grid_size_overflow_is_a_memory_error_not_a_panic():
     # 2^60 points: the size overflows before any allocation (was PanicException: capacity
     # overflow; 2^22 x 2^21 x 2^21 wrapped to 0 in release builds).
     a, c = np.full(2**22, 0.5), np.full(2**21, 0.5)
-    short_error(MemoryError, eccjump.region, 1.0, alpha=a, chi=c, km_frac=c, name="the grid")
+    short_error(MemoryError, eccjump.region, mu_s=1.0, alpha=a, chi=c, km_frac=c, name="the grid")
     a = np.full(2**20, 0.5)
-    short_error(MemoryError, eccjump.region, 1.0, alpha=a, chi=a, km_frac=a, name="the result")
+    short_error(MemoryError, eccjump.region, mu_s=1.0, alpha=a, chi=a, km_frac=a, name="the result")
 
 
 def test_memory_error_under_an_address_space_limit():
@@ -63,7 +63,7 @@ def test_memory_error_under_an_address_space_limit():
         import resource, numpy as np, eccjump
         resource.setrlimit(resource.RLIMIT_AS, (6 << 30, 6 << 30))
         try:
-            eccjump.region(1.0, alpha=np.full(1000, .5), chi=np.full(1000, .5),
+            eccjump.region(mu_s=1.0, alpha=np.full(1000, .5), chi=np.full(1000, .5),
                            km_frac=np.full(100, .5))
         except MemoryError as e:
             print("MemoryError", e)
@@ -116,7 +116,7 @@ def test_dense_output_too_large_is_a_memory_error():
     [
         (lambda: eccjump.jarm(0.7, 0.15, 0.02, 1.0, theta0=-1e16, omega0=2.0), "theta0"),
         (
-            lambda: eccjump.region(1.0, alpha=[0.7], chi=[0.2], km_frac=[0.1], theta0=-1e300),
+            lambda: eccjump.region(mu_s=1.0, alpha=[0.7], chi=[0.2], km_frac=[0.1], theta0=-1e300),
             "theta0",
         ),
         (lambda: eccjump.jarm(0.7, 0.15, 0.02, 1.0, n_threads=3000), "n_threads"),
@@ -175,7 +175,7 @@ def test_invalid_input_is_never_answered_with_a_number():
 def test_a_grid_with_an_invalid_mu_s_is_an_error(mu_s):
     # (was: a "complete" map of INVALID_PARAMS points, also from `eccjump map --mu-s nan`)
     short_error(
-        ValueError, eccjump.region, mu_s, alpha=[0.7], chi=[0.2], km_frac=[0.1], name="mu_s"
+        ValueError, eccjump.region, mu_s=mu_s, alpha=[0.7], chi=[0.2], km_frac=[0.1], name="mu_s"
     )
 
 
@@ -230,7 +230,7 @@ def test_a_long_map_honours_ctrl_c_within_a_second():
         print("start", flush=True)
         t = time.time()
         try:
-            eccjump.region(1.0, alpha=a, chi=a / 1.6, km_frac=np.linspace(0, .9, 60), method="ode")
+            eccjump.region(a, a / 1.6, np.linspace(0, .9, 60), 1.0, method="ode")
             print("finished", time.time() - t)
         except KeyboardInterrupt:
             print("interrupted", time.time() - t, flush=True)

@@ -48,7 +48,7 @@ def assert_same(a, b) -> None:
 
 @pytest.fixture(scope="module")
 def reference():
-    return region(MU_S, **grid())
+    return region(mu_s=MU_S, **grid())
 
 
 def run_map(tmp_path: Path, name: str, *args: str) -> tuple[int, Path]:
@@ -60,7 +60,7 @@ def run_map(tmp_path: Path, name: str, *args: str) -> tuple[int, Path]:
 
 
 def test_to_xarray_labels_units_and_reason_table():
-    reg = region(MU_S, 2, **grid(5))
+    reg = region(mu_s=MU_S, n=2, **grid(5))
     ds = reg.to_xarray()
     assert ds.is_jarm.dims == ("alpha", "chi", "km_frac")
     assert ds.alpha.attrs["units"] == "rad"
@@ -78,27 +78,27 @@ def test_to_xarray_labels_units_and_reason_table():
 
 def test_sweeps_are_extra_dimensions_one_map_each():
     g = grid(6)
-    ds = region([0.5, 0.9], **g, theta0=[0.0, 0.2], omega0=0.1, output="xarray")
+    ds = region(mu_s=[0.5, 0.9], **g, theta0=[0.0, 0.2], omega0=0.1, output="xarray")
     assert ds.is_jarm.dims == ("mu_s", "theta0", "alpha", "chi", "km_frac")
     assert "mu_s" not in ds.attrs and ds.attrs["omega0"] == 0.1
     for mu in (0.5, 0.9):
         for th in (0.0, 0.2):
-            one = region(mu, **g, theta0=th, omega0=0.1)
+            one = region(mu_s=mu, **g, theta0=th, omega0=0.1)
             sel = ds.sel(mu_s=mu, theta0=th)
             for f in FIELDS:
                 assert sel[f].values.tobytes() == getattr(one.result, f).tobytes()
     with pytest.raises(ValueError, match="output='xarray'"):
-        region([0.5, 0.9], **g)
+        region(mu_s=[0.5, 0.9], **g)
 
 
 @pytest.mark.parametrize("suffix", [".nc", ".zarr", ".npz"])
 def test_save_and_load_round_trip_bit_for_bit(tmp_path, suffix):
-    reg = region(MU_S, **grid(6))
+    reg = region(mu_s=MU_S, **grid(6))
     path = store.save(reg, tmp_path / f"r{suffix}")
     back = store.load(path)
     assert_same(reg, back)
     assert (back.mu_s, back.n, back.rule, back.method) == (MU_S, None, "paper", "closed_form")
-    sweep = region([0.5, 0.9], **grid(4), output="xarray")
+    sweep = region(mu_s=[0.5, 0.9], **grid(4), output="xarray")
     spath = store.save(sweep, tmp_path / f"s{suffix}")
     xr.testing.assert_equal(store.open_dataset(spath), sweep)
 
@@ -125,8 +125,8 @@ def test_cli_options_reach_region(tmp_path):
     code, path = run_map(tmp_path, "o.npz", *args)
     assert code == 0
     ref = region(
-        0.7,
-        2,
+        mu_s=0.7,
+        n=2,
         alpha=np.radians(np.linspace(20, 60, 4)),
         chi=np.linspace(0.1, 0.6, 3),
         km_frac=np.linspace(0.2, 1.0, 5),
@@ -201,8 +201,8 @@ def test_resume_checks_the_options(tmp_path, capsys):
 @pytest.mark.parametrize("suffix", [".nc", ".zarr", ".npz"])
 def test_the_integrator_is_recorded_in_every_form_of_a_map(tmp_path, suffix):
     g = grid(4)
-    rk = region(MU_S, **g, method="ode")
-    dop = region(MU_S, **g, method="ode", integrator="DOP853")
+    rk = region(mu_s=MU_S, **g, method="ode")
+    dop = region(mu_s=MU_S, **g, method="ode", integrator="DOP853")
     assert rk.attrs["integrator"] == "RK45" and dop.attrs["integrator"] == "DOP853"
     # the option reaches the core: another pair, other bits (the same verdicts here)
     assert rk.result.theta_J.tobytes() != dop.result.theta_J.tobytes()
@@ -213,24 +213,24 @@ def test_the_integrator_is_recorded_in_every_form_of_a_map(tmp_path, suffix):
     assert back.attrs["integrator"] == "DOP853" and back.method == "ode"
     assert store.open_dataset(tmp_path / f"d{suffix}").attrs["integrator"] == "DOP853"
     # as rtol and atol, recorded (and checked) for the closed form too, which ignores it
-    closed = region(MU_S, **g, integrator="DOP853")
+    closed = region(mu_s=MU_S, **g, integrator="DOP853")
     assert closed.attrs["integrator"] == "DOP853"
-    assert_same(closed, region(MU_S, **g))
-    sweep = region([0.5, 0.9], **g, method="ode", integrator="DOP853", output="xarray")
+    assert_same(closed, region(mu_s=MU_S, **g))
+    sweep = region(mu_s=[0.5, 0.9], **g, method="ode", integrator="DOP853", output="xarray")
     assert sweep.attrs["integrator"] == "DOP853"
     assert (
         sweep.reason.sel(mu_s=0.9).values.tobytes()
-        == region(0.9, **g, method="ode", integrator="DOP853").result.reason.tobytes()
+        == region(mu_s=0.9, **g, method="ode", integrator="DOP853").result.reason.tobytes()
     )
 
 
 @pytest.mark.parametrize("bad", ["rk45", "", "DOP54", None, 45, b"RK45"])
 def test_a_bad_integrator_is_refused_naming_it(bad):
     with pytest.raises((ValueError, TypeError), match="integrator") as err:
-        region(MU_S, **grid(2), method="ode", integrator=bad)
+        region(mu_s=MU_S, **grid(2), method="ode", integrator=bad)
     assert len(str(err.value)) < 200
     with pytest.raises((ValueError, TypeError), match="integrator"):
-        region(MU_S, **grid(2), integrator=bad)  # the closed form checks it too, as rtol
+        region(mu_s=MU_S, **grid(2), integrator=bad)  # the closed form checks it too, as rtol
 
 
 def test_cli_ode_route_takes_the_integrator_and_records_it(tmp_path):
@@ -239,7 +239,7 @@ def test_cli_ode_route_takes_the_integrator_and_records_it(tmp_path):
     code, path = run_map(tmp_path, "d.npz", *args)
     assert code == 0
     ref = region(
-        MU_S,
+        mu_s=MU_S,
         alpha=np.radians(np.linspace(10, 90, 5)),
         chi=np.linspace(0.0, 1.0, 4),
         km_frac=np.linspace(0.0, 1.0, 3),
@@ -279,10 +279,10 @@ def test_stop_at_slip_reaches_the_map_is_recorded_and_checked_on_resume(tmp_path
     code, path = run_map(tmp_path, "s.npz", "--stop-at-slip")
     assert code == 0
     back = store.load(path)
-    ref = region(MU_S, **grid(), stop_at_slip=True)
+    ref = region(mu_s=MU_S, **grid(), stop_at_slip=True)
     assert_same(ref, back)
     assert back.attrs["stop_at_slip"] and (back.result.reason == Reason.SLIP).any()
-    np.testing.assert_array_equal(back.is_jarm, region(MU_S, **grid()).is_jarm)
+    np.testing.assert_array_equal(back.is_jarm, region(mu_s=MU_S, **grid()).is_jarm)
     pytest.importorskip("zarr")
     code, path = run_map(tmp_path, "s.zarr", "--chunk", "5", "--stop-after", "1")
     assert code == 130
@@ -343,7 +343,7 @@ def test_ctrl_c_in_a_subprocess_keeps_finished_chunks_and_resumes(tmp_path):
     assert part.attrs["complete"] == 0 and 0 < part.attrs["alpha_done"].sum() < 40
     p = subprocess.run([*cmd, "--resume"], env=env, capture_output=True, timeout=30, check=False)
     assert p.returncode == 0, p.stderr
-    assert_same(region(MU_S, **grid(40)), store.load(path))
+    assert_same(region(mu_s=MU_S, **grid(40)), store.load(path))
 
 
 # --- a map is never lost: crashes, full disks, bad paths, foreign files -------------------
@@ -354,7 +354,7 @@ OLD_MU_S = 0.5  # the map that --overwrite replaces, told apart by mu_s
 
 @pytest.fixture(scope="module")
 def small():
-    return {mu: region(mu, **grid(6)) for mu in (MU_S, OLD_MU_S)}
+    return {mu: region(mu_s=mu, **grid(6)) for mu in (MU_S, OLD_MU_S)}
 
 
 def map_cli(out: Path, *args: str, kill_at=None, fsize=None) -> subprocess.CompletedProcess:

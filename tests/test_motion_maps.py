@@ -138,7 +138,7 @@ def test_jarm_points_are_the_regions(rule):
         "km_frac": np.array([0.01, 0.03, 0.1, 0.3]),
     }
     m = motion_map(**grid, mu_s=1.0, rule=rule, t_max=1e3)
-    r = eccjump.region(1.0, **grid, rule=rule, method="ode")
+    r = eccjump.region(mu_s=1.0, **grid, rule=rule, method="ode")
     assert m.jarm.any()
     assert np.array_equal(m.jarm, r.result.is_jarm)
     # A JARM lifts off at the region's jump angle (same kernel: the same bits).
@@ -152,7 +152,13 @@ def test_the_start_is_a_grid_axis_too():
     assert m.shape == (2, 2) and tuple(m.coords) == ("theta0", "omega0")
     for i, t0 in enumerate((0.0, 0.3)):
         r = eccjump.region(
-            1.0, alpha=[0.7], chi=[0.15], km_frac=[0.02 / 0.85], theta0=t0, omega0=0.0, method="ode"
+            mu_s=1.0,
+            alpha=[0.7],
+            chi=[0.15],
+            km_frac=[0.02 / 0.85],
+            theta0=t0,
+            omega0=0.0,
+            method="ode",
         )
         assert bool(m.jarm[i, 0]) == bool(r.result.is_jarm.item())
 
@@ -228,12 +234,12 @@ def test_km_is_the_body_and_a_maps_axis_is_km_frac(tmp_path):
     # mapped the body k_m = 0.017 at chi = 0.15); now it is refused, naming km_frac.
     for call in (
         lambda: eccjump.motion_map(alpha=[0.5], chi=[0.2], km=0.4, mu_s=1.0),
-        lambda: eccjump.region(1.0, alpha=[0.698], chi=[0.15], km=[0.02]),
-        lambda: eccjump.region(1.0, alpha=[0.698], chi=[0.15], km=[0.02], output="xarray"),
+        lambda: eccjump.region(mu_s=1.0, alpha=[0.698], chi=[0.15], km=[0.02]),
+        lambda: eccjump.region(mu_s=1.0, alpha=[0.698], chi=[0.15], km=[0.02], output="xarray"),
     ):
         with pytest.raises(TypeError, match="km_frac"):
             call()
-    reg = eccjump.region(1.0, alpha=[0.698], chi=[0.15], km_frac=[0.02 / 0.85])
+    reg = eccjump.region(mu_s=1.0, alpha=[0.698], chi=[0.15], km_frac=[0.02 / 0.85])
     one = eccjump.jarm(0.698, 0.15, 0.02, 1.0)
     assert float(reg.result.theta_J.ravel()[0]) == pytest.approx(float(one.theta_J), abs=1e-13)
 

@@ -141,7 +141,7 @@ def test_region_map_figure_and_map_cli_figure(tmp_path):
     from eccjump.cli import main
 
     reg = region(
-        1.0,
+        mu_s=1.0,
         alpha=np.radians(np.linspace(5, 85, 12)),
         chi=np.linspace(0.02, 0.6, 10),
         km_frac=np.linspace(0, 0.1, 4),

@@ -33,7 +33,7 @@ def test_single_point_repr():
 
 def test_region_repr():
     reg = region(
-        0.7,
+        mu_s=0.7,
         alpha=np.radians(np.linspace(0, 90, 40)),
         chi=np.linspace(0, 1, 25),
         km_frac=np.linspace(0, 1, 10),
@@ -49,9 +49,9 @@ def test_region_repr():
 
 def test_region_repr_names_the_integrator_of_the_ode_route():
     grid = {"alpha": np.radians([20.0, 40.0]), "chi": [0.1, 0.3], "km_frac": [0.0, 0.5]}
-    assert "integrator" not in repr(region(0.7, **grid))
+    assert "integrator" not in repr(region(mu_s=0.7, **grid))
     for integrator in ("RK45", "DOP853"):
-        text = repr(region(0.7, **grid, method="ode", integrator=integrator))
+        text = repr(region(mu_s=0.7, **grid, method="ode", integrator=integrator))
         assert f"method=ode, integrator={integrator}" in text
 
 
@@ -59,7 +59,9 @@ def test_lazy_region_repr_does_not_compute(monkeypatch):
     pytest.importorskip("dask.array")
     calls = []
     monkeypatch.setattr(eccjump._core, "jarm_grid", lambda *a: calls.append(a))
-    lazy = region(1.0, 2, alpha=np.linspace(0.1, 1.0, 30), chi=[0.1, 0.2], km_frac=[0.5], chunks=7)
+    lazy = region(
+        mu_s=1.0, n=2, alpha=np.linspace(0.1, 1.0, 30), chi=[0.1, 0.2], km_frac=[0.5], chunks=7
+    )
     text = repr(lazy) + repr(lazy.result)
     assert not calls and "not computed" in text and "n=2" in text and len(text) < 600
 

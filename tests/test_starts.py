@@ -33,7 +33,7 @@ def midpoint_axes(g: int) -> dict[str, np.ndarray]:
 @pytest.mark.parametrize("mu_s", [0.7, 1.0])
 @pytest.mark.parametrize("grid", [7, 16])
 def test_at_rest_the_fraction_is_the_regions(mu_s, grid):
-    reg = eccjump.region(mu_s, **midpoint_axes(grid))
+    reg = eccjump.region(mu_s=mu_s, **midpoint_axes(grid))
     assert eccjump.jarm_fraction(mu_s, 0.0, 0.0, grid=grid) == reg.fraction()
     assert eccjump.jarm_fraction(mu_s, grid=grid) == reg.fraction()
     shares = eccjump.reason_shares(mu_s, grid=grid)
@@ -46,7 +46,7 @@ def test_at_rest_the_fraction_is_the_regions(mu_s, grid):
 
 def test_a_general_start_is_the_regions_at_that_start():
     g = 9
-    reg = eccjump.region(1.0, **midpoint_axes(g), theta0=4.7, omega0=1.0)
+    reg = eccjump.region(mu_s=1.0, **midpoint_axes(g), theta0=4.7, omega0=1.0)
     assert eccjump.jarm_fraction(1.0, 4.7, 1.0, grid=g) == reg.fraction()
 
 
@@ -154,7 +154,7 @@ def test_immediate_flight_is_liftoff_earlier_at_the_start_and_flies_in_the_simul
     g = 8
     ax = midpoint_axes(g)
     for th0, om0 in ((0.2, 1.5), (5.9, 0.8), (math.radians(280), 1.0)):
-        reg = eccjump.region(1.0, **ax, theta0=th0, omega0=om0)
+        reg = eccjump.region(mu_s=1.0, **ax, theta0=th0, omega0=om0)
         a, c, f = np.meshgrid(ax["alpha"], ax["chi"], ax["km_frac"], indexing="ij")
         flies = c * om0**2 * math.cos(th0) > np.cos(a)
         assert flies.any()
@@ -176,7 +176,7 @@ def test_rocking_back_is_never_a_jarm_and_rolls_back_in_the_simulator():
     """From rest at theta0 = 3.5 rad (past the bottom), part of the cube rolls back up."""
     g, th0 = 8, 3.5
     ax = midpoint_axes(g)
-    reg = eccjump.region(1.0, **ax, theta0=th0, omega0=0.0)
+    reg = eccjump.region(mu_s=1.0, **ax, theta0=th0, omega0=0.0)
     back = reg.result.reason == Reason.ROCKS_BACK
     assert back.any() and not reg.result.is_jarm[back].any()
     a, c, f = np.meshgrid(ax["alpha"], ax["chi"], ax["km_frac"], indexing="ij")

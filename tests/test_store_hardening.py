@@ -71,7 +71,7 @@ def refused(fn, path, *args, **kwargs) -> str:
 
 @pytest.fixture(scope="module")
 def region():
-    return eccjump.region(1.0, alpha=[0.3, 0.6, 0.9], chi=[0.2, 0.5], km_frac=[0.1, 0.4])
+    return eccjump.region(mu_s=1.0, alpha=[0.3, 0.6, 0.9], chi=[0.2, 0.5], km_frac=[0.1, 0.4])
 
 
 def motion(**axes):
@@ -399,7 +399,7 @@ def test_from_dataset_of_a_swept_mu_s(tmp_path):
     assert back.scalars["mu_k"] is None
     with pytest.raises(ValueError, match=r"^ds "):
         motion_maps.from_dataset(
-            eccjump.region(1.0, alpha=[0.5], chi=[0.2], km_frac=[0.1]).to_xarray()
+            eccjump.region(mu_s=1.0, alpha=[0.5], chi=[0.2], km_frac=[0.1]).to_xarray()
         )
 
 

@@ -150,7 +150,7 @@ def test_result_fields_come_from_one_table():
 
 def test_results_have_the_described_dtypes():
     r = eccjump.jarm([0.5, 0.7], 0.15, 0.02, 1.0)
-    reg = eccjump.region(1.0, alpha=[0.5, 0.7], chi=[0.15], km_frac=[0.1])
+    reg = eccjump.region(mu_s=1.0, alpha=[0.5, 0.7], chi=[0.15], km_frac=[0.1])
     for name, dtype in fields.DTYPES.items():
         assert getattr(r, name).dtype == dtype and getattr(reg.result, name).dtype == dtype
     ds = pytest.importorskip("xarray") and reg.to_xarray()

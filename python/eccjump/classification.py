@@ -314,12 +314,12 @@ def region_layout(region: Region) -> Layout:
 
 @overload
 def region(
+    alpha: ArrayLike,
+    chi: ArrayLike,
+    km_frac: ArrayLike,
     mu_s: float,
     n: int | None = None,
     *,
-    alpha: ArrayLike,
-    chi: ArrayLike,
-    km_frac: ArrayLike | None = None,
     km: None = None,
     method: Method = "closed_form",
     rule: Rule = "paper",
@@ -339,12 +339,12 @@ def region(
 
 @overload
 def region(
+    alpha: ArrayLike,
+    chi: ArrayLike,
+    km_frac: ArrayLike,
     mu_s: float | ArrayLike,
     n: int | None = None,
     *,
-    alpha: ArrayLike,
-    chi: ArrayLike,
-    km_frac: ArrayLike | None = None,
     km: None = None,
     method: Method = "closed_form",
     rule: Rule = "paper",
@@ -363,12 +363,12 @@ def region(
 
 
 def region(
+    alpha: ArrayLike,
+    chi: ArrayLike,
+    km_frac: ArrayLike,
     mu_s: float | ArrayLike,
     n: int | None = None,
     *,
-    alpha: ArrayLike,
-    chi: ArrayLike,
-    km_frac: ArrayLike | None = None,
     km: None = None,
     method: Method = "closed_form",
     rule: Rule = "paper",
@@ -386,6 +386,7 @@ def region(
 ) -> Region | xr.Dataset:
     """Map the JARM region on a rectangular grid, in parallel.
 
+    The grid first, then ``mu_s``, as every entry point takes the point or body first.
     ``alpha`` [rad], ``chi`` and ``km_frac`` are 1-D coordinate arrays; ``km_frac`` is the
     shell mass fraction as the share k_m/(1 - chi) in [0, 1] of its largest value, so that
     every (chi, km_frac) pair of the grid is a valid body and the grid stays rectangular
@@ -409,8 +410,8 @@ def region(
     """
     if output == "xarray":
         return region_dataset(
-            mu_s,
-            n,
+            mu_s=mu_s,
+            n=n,
             alpha=alpha,
             chi=chi,
             km_frac=km_frac,
@@ -477,12 +478,12 @@ def region(
 
 
 def region_dataset(
+    alpha: ArrayLike,
+    chi: ArrayLike,
+    km_frac: ArrayLike,
     mu_s: float | ArrayLike,
     n: int | None = None,
     *,
-    alpha: ArrayLike,
-    chi: ArrayLike,
-    km_frac: ArrayLike | None = None,
     km: None = None,
     theta0: float | ArrayLike = 0.0,
     omega0: float | ArrayLike = 0.0,

@@ -80,7 +80,7 @@ def _shares(
     mu: float, theta0: float, omega0: float, grid: int, rule: Rule, n_threads: int
 ) -> NDArray[np.float64]:
     a, c, f = _midpoints(grid)
-    reg = region(mu, alpha=a, chi=c, km_frac=f, theta0=theta0, omega0=omega0, rule=rule,
+    reg = region(mu_s=mu, alpha=a, chi=c, km_frac=f, theta0=theta0, omega0=omega0, rule=rule,
                  n_threads=n_threads)  # fmt: skip
     counts = np.bincount(reg.result.reason.ravel().astype(np.intp), minlength=N_REASONS)
     return counts[:N_REASONS] / reg.result.reason.size
@@ -120,7 +120,7 @@ def jarm_fraction(
     """The JARM fraction of the parameter cube for the start (theta0 [rad], omega0
     [sqrt(g/R)]): the share of JARM points on the midpoint grid of (alpha, chi, km_frac) with
     ``grid`` (2 ... 128) points per axis. At theta0 = omega0 = 0 it equals
-    ``eccjump.region(mu_s, alpha=..., chi=..., km=...).fraction()`` on the same grid."""
+    ``eccjump.region(alpha, chi, km_frac, mu_s).fraction()`` on the same grid."""
     return reason_shares(mu_s, theta0, omega0, grid=grid, rule=rule, n_threads=n_threads)[
         Reason.JARM
     ]

@@ -84,8 +84,8 @@ class JarmJob:
     ) -> dict[str, NDArray]:
         o = self.opts
         reg = region(
-            o["mu_s"],
-            o["n"],
+            mu_s=o["mu_s"],
+            n=o["n"],
             alpha=alpha,
             chi=chi,
             km_frac=km,

@@ -171,7 +171,7 @@ def _cmd_starts(args: argparse.Namespace) -> int:
         u = (np.arange(g) + 0.5) / g
         out["regions"] = {}
         for name, th, om in (("rest", 0.0, 0.0), ("optimum", opt.theta0, opt.omega0)):
-            reg = region(mu, alpha=u * math.pi / 2, chi=u, km_frac=u, theta0=th, omega0=om,
+            reg = region(mu_s=mu, alpha=u * math.pi / 2, chi=u, km_frac=u, theta0=th, omega0=om,
                          rule=args.rule, n_threads=args.threads)  # fmt: skip
             out["regions"][name] = _region_summary(reg)
             if figures:
