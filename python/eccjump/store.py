@@ -187,15 +187,22 @@ def check_parent(path: str | os.PathLike) -> None:
         raise NotADirectoryError(errno.ENOTDIR, "not a directory", str(parent))
 
 
-def check_name(path: str | os.PathLike) -> None:
-    """ValueError naming ``path`` if its name is too long for its directory once made into the
-    longer name of its temporary sibling (:func:`temp_sibling`)."""
-    path = Path(path)
+def name_room(path: Path, tmp: Path) -> int:
+    """The longest name (bytes) ``path`` may have in its directory so that ``tmp``, the name
+    it is written under first, still fits: the file system's NAME_MAX less what ``tmp``
+    adds."""
     try:
         name_max = os.pathconf(path.absolute().parent, "PC_NAME_MAX")
     except (OSError, ValueError, AttributeError):
         name_max = 255
-    longest = name_max - (len(temp_sibling(path).name) - len(path.name))
+    return name_max - (len(tmp.name) - len(path.name))
+
+
+def check_name(path: str | os.PathLike) -> None:
+    """ValueError naming ``path`` if its name is too long for its directory once made into the
+    longer name of its temporary sibling (:func:`temp_sibling`)."""
+    path = Path(path)
+    longest = name_room(path, temp_sibling(path))
     size = len(os.fsencode(path.name))
     if size > longest:
         raise file_error(path, f"has a name of {size} bytes, more than the {longest} allowed here")

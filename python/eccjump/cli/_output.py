@@ -60,13 +60,6 @@ def _temporary(path: Path) -> Path:
     return tmp.with_name(tmp.name + path.suffix)
 
 
-def _name_max(directory: Path) -> int:
-    try:
-        return os.pathconf(directory, "PC_NAME_MAX")
-    except (OSError, ValueError):
-        return 255
-
-
 def check_output(option: str, path: str | os.PathLike, suffixes: Iterable[str]) -> Path:
     """``path`` as a Path if a file can be written there, else ValueError naming ``option``:
     checked before the work, so that a bad path costs nothing. The suffix must be one of
@@ -83,7 +76,7 @@ def check_output(option: str, path: str | os.PathLike, suffixes: Iterable[str]) 
         raise ValueError(f"{option}: {what} one of {' '.join(allowed)}")
     try:
         parent = path.absolute().parent
-        longest = _name_max(parent) - (len(_temporary(path).name) - len(path.name))
+        longest = store.name_room(path, _temporary(path))
         if len(os.fsencode(path.name)) > longest:
             raise ValueError(f"{_shown(option, path)}: the name is longer than {longest} bytes")
         store.check_parent(path)
