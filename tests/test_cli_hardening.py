@@ -163,6 +163,7 @@ def test_an_existing_figure_is_replaced_only_when_the_new_one_is_complete(tmp_pa
     assert target.read_bytes()[:4] == b"\x89PNG" and files(tmp_path) == ["x.png"]
 
 
+@pytest.mark.slow
 def test_the_animation_is_written_through_a_temporary_sibling(tmp_path):
     target = tmp_path / "a.gif"
     code, out, err = run_cli_inprocess([*SIMULATE, "--t-max", "1", "--animate", str(target)])

@@ -209,6 +209,7 @@ def test_simulate_is_a_subcommand(capsys):
 # --- the figure and the animation ------------------------------------------------------------
 
 
+@pytest.mark.slow
 def test_figure_and_animation_are_written(fake, tmp_path, capsys):
     png, gif = tmp_path / "motion.png", tmp_path / "motion.gif"
     assert main([*BASE, "--figure", str(png), "--animate", str(gif)]) == 0

@@ -237,6 +237,7 @@ def test_the_sheet_says_what_the_lab_needs(jump, control):
     assert len(s["sensitivity"]) == len(jump.sensitivity)
 
 
+@pytest.mark.slow
 def test_cli_design():
     argv = ["design", "--alpha-range", "10", "40", "--mu-s", "0.6", "--mu-s-err", "0.1"]
     argv += ["--radius", "0.05", "--mass", "0.5", "--grid", "8"]

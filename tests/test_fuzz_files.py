@@ -190,6 +190,7 @@ def test_a_map_of_the_other_kind_is_refused(maps, loader, suffix):
             judge(loader, maps[kind, suffix], must_fail=True)
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("suffix", SUFFIXES)
 def test_nan_coordinates_and_codes_out_of_their_tables(maps, tmp_path, suffix):
     for kind, bad in (("jarm", JARM_BAD), ("motion", MOTION_BAD)):

@@ -56,6 +56,7 @@ def test_grid_size_overflow_is_a_memory_error_not_a_panic():
     short_error(MemoryError, eccjump.region, mu_s=1.0, alpha=a, chi=a, km_frac=a, name="the result")
 
 
+@pytest.mark.slow
 def test_memory_error_under_an_address_space_limit():
     # 10^8 points (8.8 GB of results) under a 6 GiB limit: MemoryError, the process lives on.
     code = textwrap.dedent(
@@ -239,6 +240,7 @@ def test_a_long_map_honours_ctrl_c_within_a_second():
     assert interrupted_after(code, 1.0) < 1.5  # the map takes about 10 s
 
 
+@pytest.mark.slow
 @pytest.mark.skipif(os.name != "posix", reason="needs POSIX signals")
 def test_a_long_motion_map_and_simulate_honour_ctrl_c_within_a_second():
     for call in (

@@ -319,6 +319,7 @@ def test_npz_works_without_xarray(tmp_path, reference, monkeypatch, capsys):
         reference.to_xarray()
 
 
+@pytest.mark.slow
 def test_ctrl_c_in_a_subprocess_keeps_finished_chunks_and_resumes(tmp_path):
     """A real SIGINT: exit 130, finished chunks kept, --resume completes the same map."""
     zarr = pytest.importorskip("zarr")

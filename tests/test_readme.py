@@ -116,6 +116,7 @@ def test_the_two_commands_come_first():
     assert (README.parent / ".ci" / "run").read_text().strip().endswith(second.strip())
 
 
+@pytest.mark.slow
 def test_first_command_writes_a_map_and_a_figure(tmp_path):
     command = blocks("bash")[0].split("&&", 1)[1].strip()
     out = run_cli(command, tmp_path)
@@ -124,6 +125,7 @@ def test_first_command_writes_a_map_and_a_figure(tmp_path):
     assert (tmp_path / "region.png").stat().st_size > 10_000
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("block", blocks("console"), ids=lambda b: b.split("\n")[0][2:40])
 def test_console_examples(block, tmp_path):
     chunks = re.split(r"^\$ ", block, flags=re.M)[1:]

@@ -140,6 +140,7 @@ def _in_subprocess(code: str, timeout: float = 60) -> str:
     return p.stdout.strip()
 
 
+@pytest.mark.slow
 def test_a_netcdf_map_with_zeroed_bytes_is_refused_not_a_hang(tmp_path):
     """The reproducer of the issue: HDF5 loops for ever on 512 zeroed bytes of the global heap
     of a motion map (deaf to Ctrl-C). The probe subprocess is given 2 s here."""
@@ -215,6 +216,7 @@ def test_a_garbage_chunk_is_computed_again_on_resume(tmp_path):
     assert _same(path, ref)
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("kind", ["jarm", "motion"])
 def test_a_resume_of_a_damaged_store_ends_whole_or_with_one_error_line(tmp_path, kind):
     """Each file of a store deleted, filled with garbage or zeros, or cut in half: a resume
@@ -297,6 +299,7 @@ MOTION_BAD = {
 }
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("suffix", SUFFIXES)
 def test_loaders_refuse_bad_codes_nan_coordinates_and_wrong_shapes(tmp_path, region, suffix):
     good = {"jarm": store.region_layout(region), "motion": store.layout_from_xarray(
