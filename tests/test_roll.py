@@ -673,3 +673,10 @@ def test_liftoff_by_a_high_order_pair_matches_the_closed_form_root(integrator):
         exact = jarm(alpha, chi, km, 1e9, rule="paper").theta_J
         assert r.terminal_event == "liftoff"
         assert r.theta[-1] == pytest.approx(float(exact), abs=1e-8)
+
+
+def test_an_angle_in_degrees_is_refused_naming_the_unit():
+    # The API takes radians (the command line degrees): 40 is far outside [0, pi/2] rad.
+    with pytest.raises(ValueError, match=r"alpha = 40.*\[0, pi/2\] rad.*math.radians") as err:
+        roll(Cylinder(0.15, 0.02), 40.0, mu_s=1.0)
+    assert len(str(err.value)) < 200

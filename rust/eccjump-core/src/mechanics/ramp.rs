@@ -6,7 +6,7 @@
 //! in contact), θ the angle of the vector C → CM from the normal, growing as the body rolls
 //! down. Gravity is (sin α, −cos α) in these coordinates.
 
-use crate::error::{check_range, Result};
+use crate::error::{Error, Result};
 use crate::mechanics::body::Cylinder;
 use std::f64::consts::FRAC_PI_2;
 
@@ -26,7 +26,15 @@ pub struct Ramp {
 impl Ramp {
     /// Validates α ∈ [0, π/2] and precomputes its sine and cosine.
     pub fn new(body: Cylinder, alpha: f64) -> Result<Self> {
-        check_range("alpha", alpha, 0.0, FRAC_PI_2)?;
+        if !(0.0..=FRAC_PI_2).contains(&alpha) {
+            // Radians: the API's unit (the command line's is degrees), said so, as a ramp of
+            // 40 meant as degrees is a likely mistake.
+            return Err(Error::InvalidParameter {
+                name: "alpha",
+                value: alpha,
+                allowed: "[0, pi/2] rad (math.radians(deg) for degrees)".to_string(),
+            });
+        }
         // One `sin_cos` of the kernels' own library (the same bits with every C library).
         let (sin_a, cos_a) = crate::trig::sin_cos(alpha);
         // cos(π/2) in floating point is 6e-17, not 0: keep it exact at the end point.
