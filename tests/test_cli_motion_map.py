@@ -19,9 +19,14 @@ MOTION = ("map", "--kind", "motion", "--mu-s", "0.8", "--restitution", "0.3", "-
 
 @pytest.fixture(scope="module")
 def reference() -> motion_maps.MotionMap:
-    g = np.linspace(0.0, 1.0, 8)
+    # The motion kind's default axes: chi up to 0.99 and km_frac from 0.01 (k_m > 0).
+    chi, frac = np.linspace(0.0, 0.99, 8), np.linspace(0.01, 1.0, 8)
     m = motion_maps.motion_map(
-        alpha=np.radians(np.linspace(0.0, 90.0, 8)), chi=g, km_frac=g, mu_s=0.8, restitution=0.3
+        alpha=np.radians(np.linspace(0.0, 90.0, 8)),
+        chi=chi,
+        km_frac=frac,
+        mu_s=0.8,
+        restitution=0.3,
     )
     assert isinstance(m, motion_maps.MotionMap)
     return m
@@ -88,11 +93,10 @@ def test_the_integrator_reaches_the_map_and_is_recorded(tmp_path):
     assert code == 0
     m = motion_maps.load(str(path))
     assert m.options["integrator"] == "DOP853"
-    g = np.linspace(0.0, 1.0, 8)
     ref = motion_maps.motion_map(
         alpha=np.radians(np.linspace(0.0, 90.0, 8)),
-        chi=g,
-        km_frac=g,
+        chi=np.linspace(0.0, 0.99, 8),
+        km_frac=np.linspace(0.01, 1.0, 8),
         mu_s=0.8,
         restitution=0.3,
         integrator="DOP853",
@@ -120,3 +124,8 @@ def test_a_jarm_map_is_not_loaded_as_a_motion_map(tmp_path):
     assert main(["map", "--mu-s", "1", "--grid", "3", "-o", str(path), "-q"]) == 0
     with pytest.raises(ValueError, match="JARM map"):
         motion_maps.load(str(path))
+
+
+def test_the_default_grid_has_no_invalid_point(reference):
+    # Before, the default axes held k_m = 0 (chi = 1, km_frac = 0): 4.9 % of a 40^3 map.
+    assert not (reference.status == motion_maps.INVALID).any()
