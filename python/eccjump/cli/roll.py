@@ -104,7 +104,8 @@ def _cmd_roll(args: argparse.Namespace) -> int:
     rows = [
         (
             "body",
-            f"chi = {body.chi:g}, km = {body.km:g}  (Ic = {body.Ic:.6g}, Icm = {body.Icm:.6g})",
+            f"chi = {body.chi:g}, km = {body.km:g}  (I_C = {body.Ic:.6g}, I_CM = {body.Icm:.6g} "
+            "M R^2)",
         ),
         ("ramp", f"alpha = {args.alpha:g} deg, mu_s = {_mu(args.mu_s)}, rule = {args.rule}"),
         ("outcome", f"{res.message}"),
@@ -122,8 +123,9 @@ def _cmd_roll(args: argparse.Namespace) -> int:
         print(f"{k:<{width}}  {v}")
     if res.events:
         print("\nevents")
-        print(f"  {'name':<18} {'t':>16} {'theta [deg]':>16} {'omega':>14}")
+        head = ("name", "t [sqrt(R/g)]", "theta [deg]", "omega [sqrt(g/R)]")
+        print("  {:<18} {:>16} {:>16} {:>17}".format(*head))
         for e in res.events:
             t, theta, omega = (bounded(x, ".10f") for x in (e.t, math.degrees(e.theta), e.omega))
-            print(f"  {e.name:<18} {t:>16} {theta:>16} {omega:>14}")
+            print(f"  {e.name:<18} {t:>16} {theta:>16} {omega:>17}")
     return 0

@@ -241,8 +241,8 @@ def print_table(s: dict) -> None:
         f"rule = {p['rule']}"
     )
     print(
-        f"\n{'#':>3} {'t':>14} {'theta [deg]':>14}  {'from -> to':<18} {'reason':<18} "
-        f"{'energy':>14}"
+        f"\n{'#':>3} {'t [sqrt(R/g)]':>14} {'theta [deg]':>14}  {'from -> to':<18} {'reason':<18} "
+        f"{'energy [M g R]':>14}"
     )
     for k, tr in enumerate(s["transitions"]):
         arrow = f"{tr['from'] or '-':>6} -> {tr['to']}"
