@@ -931,7 +931,8 @@ def case_store(d: Drawer) -> Case:
         c.must_raise = obj is not reg or not isinstance(path, str | Path) or attrs == 3
         c.args, c.kwargs, c.check = (obj, path), {"attrs": attrs}, check_any
     else:
-        c = Case("store.load", store.load, params=("path",), allow_oserror=True, check=check_region)
+        name, load = d.choice((("store.load", store.load), ("load_map", eccjump.load_map)))
+        c = Case(name, load, params=("path",), allow_oserror=True, check=check_region)
         good = where / "load.npz"
         if not good.exists():
             store.save(eccjump.region(mu_s=1.0, alpha=[0.5, 0.7], chi=[0.2], km_frac=[0.1]), good)

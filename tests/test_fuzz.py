@@ -10,6 +10,7 @@ their bounds are drawn too; the reproducers found before the core bounded them a
 
 from __future__ import annotations
 
+import re
 import subprocess
 import sys
 import warnings
@@ -133,3 +134,20 @@ def test_results_compare_after_a_deep_copy():
             hash(x)
     assert r.to_si() == r.to_si() and r != r.to_si()
     assert j != eccjump.jarm([0.5, 0.7, float("nan")], 0.2, 0.1, 1.0)
+
+
+def test_every_public_function_is_fuzzed():
+    """A public function joins the fuzz test the day it is added: each callable of
+    ``eccjump.__all__`` (not a class) has a family in BUDGET or is called by a case."""
+    import inspect
+    from pathlib import Path
+
+    source = (Path(__file__).parent / "fuzz_cases.py").read_text()
+    public = [
+        name
+        for name in eccjump.__all__
+        if inspect.isfunction(getattr(eccjump, name)) and not name.startswith("_")
+    ]
+    called = {n for n in public if re.search(rf'"{n}"|eccjump\.{n}\b', source)}
+    missing = [n for n in public if n not in BUDGET and n not in called]
+    assert public and not missing, f"not fuzzed: {missing}"

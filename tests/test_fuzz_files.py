@@ -31,7 +31,7 @@ from hypothesis import strategies as st
 from test_store_hardening import JARM_BAD, MOTION_BAD, _edited, _write_raw, tree
 
 import eccjump
-from eccjump import motion_maps, store
+from eccjump import maps, motion_maps, store
 
 pytest.importorskip("zarr")
 
@@ -40,6 +40,7 @@ LOADERS: dict[str, Callable] = {
     "store.load": store.load,
     "store.open_dataset": store.open_dataset,
     "motion_maps.load": motion_maps.load,
+    "maps.load": maps.load,
 }
 #: The loader of each kind of map (the other loaders refuse it).
 NATIVE = {"jarm": "store.load", "motion": "motion_maps.load"}
@@ -186,7 +187,7 @@ def test_a_directory_where_a_file_is_expected_and_back(tmp_path, loader, suffix)
 @pytest.mark.parametrize("loader", sorted(LOADERS))
 def test_a_map_of_the_other_kind_is_refused(maps, loader, suffix):
     for kind, native in NATIVE.items():
-        if loader not in (native, "store.open_dataset"):
+        if loader not in (native, "store.open_dataset", "maps.load"):
             judge(loader, maps[kind, suffix], must_fail=True)
 
 

@@ -5,13 +5,15 @@ behind a typed Python API. Units: g = R = M = 1 unless converted with :class:`Un
 angles in radians.
 """
 
-from eccjump import closed_form, store
+from eccjump import closed_form, maps, store
 from eccjump._core import VERSION as __version__
 from eccjump.body import Cylinder
 from eccjump.boundary import alpha_interval_around, alpha_intervals, mu_s_min_path
 from eccjump.classification import JarmResult, Reason, Region, jarm, region, region_dataset
 from eccjump.dense import DenseSolution
 from eccjump.design import Design, build, design
+from eccjump.maps import Map
+from eccjump.maps import load as load_map
 from eccjump.motion import MotionResult, simulate
 from eccjump.motion_maps import MotionMap, motion_map
 from eccjump.rolling import EVENT_NAMES, Event, RollResult, roll
@@ -32,6 +34,7 @@ __all__ = [
     "Design",
     "Event",
     "JarmResult",
+    "Map",
     "MotionMap",
     "MotionResult",
     "OptimalStart",
@@ -48,6 +51,8 @@ __all__ = [
     "design",
     "jarm",
     "jarm_fraction",
+    "load_map",
+    "maps",
     "motion_map",
     "mu_s_min_path",
     "optimal_start",

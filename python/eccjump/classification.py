@@ -11,7 +11,7 @@ import dataclasses
 import math
 from collections.abc import Mapping
 from dataclasses import dataclass, field, replace
-from typing import TYPE_CHECKING, Any, Literal, overload
+from typing import TYPE_CHECKING, Any, ClassVar, Literal, overload
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
@@ -28,6 +28,7 @@ from eccjump._layout import (
     map_attrs,
     require,
 )
+from eccjump._map import Map
 from eccjump.fields import FIELDS, Reason, docstring
 from eccjump.scale import lazy_fields, lazy_records
 
@@ -210,12 +211,17 @@ def jarm(
 
 
 @dataclass(frozen=True, repr=False, eq=False)
-class Region:
+class Region(Map):
     """A JARM map on the grid alpha x chi x km_frac, with k_m = km_frac (1 - chi).
 
     ``result`` holds the fields of :class:`JarmResult`, each of shape
     (len(alpha), len(chi), len(km_frac)); the remaining attributes record how it was made.
+    As every :class:`~eccjump.maps.Map`: ``coords``, ``fields``, ``shape``, ``fraction()`` and
+    ``to_xarray()``; :func:`eccjump.maps.save` writes it.
     """
+
+    kind: ClassVar[str] = "jarm"
+    jarm_field: ClassVar[str] = "is_jarm"
 
     alpha: NDArray[np.float64]
     chi: NDArray[np.float64]
@@ -235,12 +241,18 @@ class Region:
         return self.km_frac[None, :] * (1.0 - self.chi[:, None])
 
     @property
+    def coords(self) -> dict[str, NDArray[np.float64]]:
+        """The grid's axes by dimension name: alpha [rad], chi, km_frac."""
+        return {"alpha": self.alpha, "chi": self.chi, "km_frac": self.km_frac}
+
+    @property
+    def fields(self) -> dict[str, NDArray]:
+        """The fields of :attr:`result` by name (:data:`eccjump.fields.FIELDS`)."""
+        return self.result.fields()
+
+    @property
     def is_jarm(self) -> NDArray[np.bool_]:
         return self.result.is_jarm
-
-    def fraction(self) -> float:
-        """Fraction of grid points that are a JARM."""
-        return float(np.mean(self.result.is_jarm)) if self.result.is_jarm.size else 0.0
 
     @property
     def lazy(self) -> bool:

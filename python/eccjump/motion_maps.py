@@ -16,7 +16,7 @@ from __future__ import annotations
 import os
 from collections.abc import Mapping
 from dataclasses import dataclass, field
-from typing import TYPE_CHECKING, Any, Literal
+from typing import TYPE_CHECKING, Any, ClassVar, Literal
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
@@ -24,6 +24,7 @@ from numpy.typing import ArrayLike, NDArray
 from eccjump import _core, store
 from eccjump._arrays import fraction_axis
 from eccjump._checks import U64_MAX, Integrator, integer, real, real_array, short, text
+from eccjump._map import Map
 from eccjump._mapcheck import file_error
 from eccjump.map_kinds import MOTION, MapKind, upgrade_attrs
 from eccjump.motion import MAX_STEPS, MAX_TRANSITIONS, Rule
@@ -43,21 +44,26 @@ from eccjump.scale import require_dask
 if TYPE_CHECKING:
     import xarray as xr
 
-#: The axes of a map, in the order of the grid (C order: alpha slowest). ``km`` is the
-#: fraction k_m/(1 - chi); its dimension is called ``km_frac``, as in JARM maps.
+#: The axes of a map, in the order of the grid (C order: alpha slowest); ``km_frac`` is the
+#: fraction k_m/(1 - chi), as in JARM maps.
 AXES = tuple(a for a, _ in MOTION.axes)
 #: Dimension name of each axis.
 DIM_OF = dict(MOTION.axes)
 
 
 @dataclass(frozen=True, eq=False)
-class MotionMap:
+class MotionMap(Map):
     """A motion map: one array per summary field, with one dimension per swept axis.
 
-    ``coords`` holds the swept axes (1-D, in :data:`AXES` order; ``km`` as the fraction
-    k_m/(1 - chi)), ``scalars`` the axes given as one value (``mu_k`` None: mu_k = mu_s),
-    ``fields`` the summaries (see :data:`TABLE`), ``options`` the shared options.
+    ``coords`` holds the swept axes (1-D, in :data:`AXES` order), ``scalars`` the axes given
+    as one value (``mu_k`` None: mu_k = mu_s), ``fields`` the summaries (see :data:`TABLE`),
+    ``options`` the shared options. As every :class:`~eccjump.maps.Map`: ``shape``,
+    ``fraction()`` (the share of points that are a JARM) and ``to_xarray()``;
+    :func:`eccjump.maps.save` writes it.
     """
+
+    kind: ClassVar[str] = "motion"
+    jarm_field: ClassVar[str] = "jarm"
 
     coords: dict[str, NDArray[np.float64]]
     scalars: dict[str, float | None]
@@ -69,10 +75,6 @@ class MotionMap:
         if name in fields:
             return fields[name]
         raise AttributeError(f"MotionMap has no attribute {name!r}")
-
-    @property
-    def shape(self) -> tuple[int, ...]:
-        return tuple(c.size for c in self.coords.values())
 
     def sequences(self) -> dict[int, tuple[str, int]]:
         """Every sequence code in the map: (name, number of points), most frequent first."""
@@ -155,11 +157,11 @@ def _block(
 
 
 def motion_map(
-    *,
     alpha: ArrayLike,
     chi: ArrayLike,
-    km_frac: ArrayLike | None = None,
+    km_frac: ArrayLike,
     mu_s: ArrayLike,
+    *,
     mu_k: ArrayLike | None = None,
     restitution: ArrayLike = 0.0,
     theta0: ArrayLike = 0.0,
@@ -178,6 +180,8 @@ def motion_map(
 ) -> MotionMap | xr.Dataset:
     """Map the full motion, to the first landing, over the product of the given axes.
 
+    The grid first, then ``mu_s``, as :func:`eccjump.region` (the point or body first in
+    every entry point), then keyword-only options.
     Each of ``alpha`` [rad], ``chi``, ``km_frac`` (the shell mass fraction as the share k_m/(1 -
     chi) in [0, 1] of its largest value, so every grid point is a valid body; ``km``, the body's
     k_m elsewhere, is a TypeError here), ``mu_s``, ``mu_k`` (None: mu_k = mu_s),
@@ -319,14 +323,14 @@ def from_dataset(ds: xr.Dataset) -> MotionMap:
         raise TypeError(f"ds must be an xarray.Dataset, not {type(ds).__name__}")
     lay = store.layout_from_xarray(ds)
     upgrade_attrs(lay["attrs"])
-    return _from_layout(lay, store.check_layout(lay, "ds"), "ds")
+    return from_layout(lay, store.check_layout(lay, "ds"), "ds")
 
 
-def _from_layout(lay: dict[str, Any], kind: MapKind, source: object) -> MotionMap:
+def from_layout(lay: dict[str, Any], kind: MapKind, source: object) -> MotionMap:
     """A :class:`MotionMap` from a layout checked to be a map of ``kind`` (numpy only);
     ValueError naming ``source`` if it is a JARM map."""
     if kind.name != "motion":
-        raise file_error(source, "is a JARM map, not a motion map: load it with eccjump.store.load")
+        raise file_error(source, "is a JARM map, not a motion map: load it with eccjump.maps.load")
     dims, attrs = lay["data_vars"][FIELDS[0]][0], lay["attrs"]
     axis_of = {d: a for a, d in DIM_OF.items()}
     coords = {axis_of[d]: np.asarray(lay["coords"][d][1], dtype=np.float64) for d in dims}
@@ -345,7 +349,7 @@ def load(path: str | os.PathLike) -> MotionMap:
     ValueError naming the path for a file that is no valid motion map (a JARM map:
     :func:`store.load`), as every loader of :mod:`eccjump.store`."""
     lay, kind = store.read_layout(path)
-    return _from_layout(lay, kind, path)
+    return from_layout(lay, kind, path)
 
 
 __all__ = [

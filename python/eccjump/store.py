@@ -607,7 +607,13 @@ def load(path: str | os.PathLike) -> Region:
     that is not such a map raises ValueError naming it and what is wrong."""
     lay, kind = read_layout(path)
     if kind.name != "jarm":
-        raise file_error(path, "is a motion map: load it with eccjump.motion_maps.load")
+        raise file_error(path, "is a motion map: load it with eccjump.maps.load")
+    return region_of(lay, path)
+
+
+def region_of(lay: Layout, path: str | os.PathLike) -> Region:
+    """The :class:`Region` of the checked layout of a JARM map file ``path``; ValueError
+    naming ``path`` if it holds swept maps."""
     if tuple(lay["data_vars"]["is_jarm"][0]) != DIMS:
         raise file_error(path, "holds swept maps: open it with eccjump.store.open_dataset")
     reg = to_region(lay)
