@@ -70,12 +70,21 @@ GRAPH = {module_name(p): eccjump_imports(p) for p in SOURCES}
 
 
 def test_no_eccjump_import_inside_functions():
-    hidden = {m: local for m, (_, local) in GRAPH.items() if local}
+    """Except one, named: a result's ``.plot()`` reaches up to the figures, the optional
+    layer on top of every result (as pandas' ``.plot``); nothing below imports it."""
+    hidden = {
+        m: [n for n in local if n != "eccjump.plot"] for m, (_, local) in GRAPH.items() if local
+    }
+    hidden = {m: local for m, local in hidden.items() if local}
     assert not hidden, f"imports inside functions: {hidden}"
 
 
 def test_imports_form_no_cycle():
-    edges = {m: {d for d in deps if d in GRAPH} - {m} for m, (deps, _) in GRAPH.items()}
+    # a result's .plot() reaching up to the figures (the one allowed local import) is no edge
+    edges = {
+        m: {d for d in deps if d in GRAPH} - {m} - ({"eccjump.plot"} & set(local))
+        for m, (deps, local) in GRAPH.items()
+    }
     state: dict[str, int] = {}
 
     def walk(m: str, path: list[str]) -> None:

@@ -17,6 +17,7 @@ from dataclasses import dataclass, field
 
 from eccjump import _core
 from eccjump._checks import real
+from eccjump._html import card
 
 
 @dataclass(frozen=True, slots=True)
@@ -59,9 +60,21 @@ class Cylinder:
         self.__post_init__()
 
     def __repr__(self) -> str:
-        return (
-            f"Cylinder(chi={self.chi!r}, km={self.km!r})"
-            f"  # Ic={self.Ic:.6g}, Icm={self.Icm:.6g}, gamma={self.gamma:.6g}"
+        return f"Cylinder(chi={self.chi!r}, km={self.km!r})"
+
+    def __str__(self) -> str:
+        """The body with its derived inertias."""
+        return f"{self!r}: Ic={self.Ic:.6g}, Icm={self.Icm:.6g}, gamma={self.gamma:.6g}"
+
+    def _repr_html_(self) -> str:
+        return card(
+            "Cylinder",
+            [
+                ("chi", f"{self.chi:.6g} (CM offset d/R)"),
+                ("km", f"{self.km:.6g} (shell mass fraction)"),
+                ("Ic, Icm", f"{self.Ic:.6g}, {self.Icm:.6g} [M R^2] (about C, about the CM)"),
+                ("gamma", f"{self.gamma:.6g}"),
+            ],
         )
 
     @classmethod

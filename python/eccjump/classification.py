@@ -19,6 +19,7 @@ from numpy.typing import ArrayLike, NDArray
 from eccjump._arrays import axis, broadcast_flat, fields_equal, fraction_axis, turns
 from eccjump._bridge import Method, call_options, jarm_grid, jarm_points
 from eccjump._checks import Integrator, Rule, real, real_array, short, text
+from eccjump._html import best_slice, card, deg, jarm_slice, num, span
 from eccjump._layout import (
     COORD_ATTRS,
     SWEEPABLE,
@@ -34,6 +35,7 @@ from eccjump.scale import lazy_fields, lazy_records
 
 if TYPE_CHECKING:  # pragma: no cover
     import xarray as xr
+    from matplotlib.figure import Figure
 
 
 @dataclass(frozen=True, repr=False, eq=False)
@@ -100,6 +102,22 @@ class JarmResult:
         lines = [f"JarmResult(shape={self.shape}, {self.is_jarm.size} points)"]
         lines += [f"  {_reason_name(r):<18} {k}" for r, k in self.counts().items()]
         return "\n".join(lines)
+
+    def _repr_html_(self) -> str:
+        if self.lazy:
+            return card("JarmResult", [("shape", f"{self.shape}, lazy: not computed")])
+        if self.is_jarm.ndim == 0:
+            rows = [
+                ("reason", _reason_name(_reason(int(self.reason)))),
+                ("turn n", str(int(self.n))),
+                ("theta_J", deg(float(self.theta_J))),
+                ("Fx_J, Fy_J", f"{num(float(self.Fx_J))}, {num(float(self.Fy_J))} [M g]"),
+                ("max |Fx|/Fy before", num(float(self.max_ratio))),
+            ]
+            return card("JarmResult", rows)
+        rows = [("shape", f"{self.shape}, {self.is_jarm.size} points")]
+        rows += [(_reason_name(r), str(k)) for r, k in self.counts().items()]
+        return card("JarmResult", rows)
 
     __eq__ = fields_equal
 
@@ -302,6 +320,31 @@ class Region(Map):
                 f"  JARM fraction {jarm}",
             ]
         )
+
+    def _repr_html_(self) -> str:
+        made = f"mu_s = {self.mu_s:g}, n = {'first jump' if self.n is None else self.n}"
+        rows = [
+            ("alpha", span(np.degrees(self.alpha), " deg")),
+            ("chi", span(self.chi)),
+            ("km_frac", span(self.km_frac) + " (k_m / (1 - chi))"),
+            ("made with", f"{made}, rule = {self.rule}, method = {self.method}"),
+        ]
+        if self.lazy:
+            return card("Region", [*rows, ("JARM fraction", "lazy: not computed")])
+        rows.append(("JARM fraction", f"{self.fraction():.4g}"))
+        k, cut = best_slice(np.asarray(self.is_jarm, dtype=bool))
+        caption = (
+            f"JARM (green) over chi (across) and alpha (up) at km_frac = {self.km_frac[k]:.3g}"
+        )
+        return card("Region", rows, jarm_slice(cut, caption) if self.km_frac.size else "")
+
+    def plot(self, **kwargs: Any) -> Figure:
+        """The map in the (chi, alpha) plane, JARM points coloured by their turn, a few km_frac
+        slices (``eccjump.plot.region_map``; ``kwargs`` go to it). Needs ``pip install
+        eccjump[plot]``."""
+        from eccjump import plot  # figures: the layer on top of every result
+
+        return plot.region_map(self, **kwargs)
 
 
 def region_attrs(region: Region) -> dict[str, Any]:

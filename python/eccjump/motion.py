@@ -8,7 +8,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass, fields, replace
-from typing import NamedTuple
+from typing import TYPE_CHECKING, Any, NamedTuple
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
@@ -16,8 +16,12 @@ from numpy.typing import ArrayLike, NDArray
 from eccjump import _core
 from eccjump._arrays import same_values
 from eccjump._checks import Integrator, Rule, flag, integer, optional_real, real, real_array, text
+from eccjump._html import card, deg, num, timeline
 from eccjump.body import Cylinder
 from eccjump.units import Units
+
+if TYPE_CHECKING:  # pragma: no cover
+    from matplotlib.figure import Figure
 
 #: Mode codes of :attr:`MotionResult.mode`, by index.
 MODES = ("ROLL", "SLIP", "FLIGHT")
@@ -193,6 +197,39 @@ class MotionResult:
             f"transitions, {len(self.flights)} flights, {len(self.impacts)} impacts, "
             f"nfev={self.nfev}"
         )
+
+    def _repr_html_(self) -> str:
+        si = self.units is not None
+        time, length = (" s", " m") if si else (" sqrt(R/g)", " R")
+        seq = " → ".join(self.mode_names()[:8]) + (" → …" if len(self.transitions) > 8 else "")
+        end = float(self.t[-1]) if self.t.size else 0.0
+        ledger = self.energy0 - (self.energy[-1] + self.dissipated[-1]) if self.t.size else 0.0
+        rows = [
+            ("body", f"chi = {num(self.body.chi)}, km = {num(self.body.km)}"),
+            ("ramp", f"alpha = {deg(self.alpha)}"),
+            ("friction", f"mu_s = {self.mu_s:g}, mu_k = {self.mu_k:g}; e = {self.restitution:g}"),
+            ("rule", self.rule),
+            ("modes", seq),
+            ("ended", f"{self.status} at t = {num(end)}{time}"),
+        ]
+        for k, f in enumerate(self.flights[:3], start=1):
+            rows.append(
+                (
+                    f"flight {k}",
+                    f"from t = {num(f.t_liftoff)}{time} (theta = {deg(f.theta_liftoff)}): apex "
+                    f"{num(f.apex)}{length}, distance {num(f.distance)}{length}",
+                )
+            )
+        rows.append(("energy ledger", f"closes to {ledger:.2g} (energy0 = {num(self.energy0)})"))
+        pic = timeline(self.t, self.mode, MODES)
+        return card("MotionResult" + (" (SI units)" if si else ""), rows, pic)
+
+    def plot(self, **kwargs: Any) -> Figure:
+        """The run in six panels against time, the modes as coloured bands (``eccjump.plot.motion``;
+        ``kwargs`` go to it). Needs ``pip install eccjump[plot]``."""
+        from eccjump import plot  # figures: the layer on top of every result
+
+        return plot.motion(self, **kwargs)
 
     def to_si(
         self, units: Units | None = None, *, g: float = 9.81, R: float = 1.0, M: float = 1.0

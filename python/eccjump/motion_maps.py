@@ -24,6 +24,7 @@ from numpy.typing import ArrayLike, NDArray
 from eccjump import _core, store
 from eccjump._arrays import fraction_axis
 from eccjump._checks import U64_MAX, Integrator, integer, real, real_array, short, text
+from eccjump._html import best_slice, card, deg, jarm_slice, span
 from eccjump._map import Map
 from eccjump._mapcheck import file_error
 from eccjump.map_kinds import MOTION, MapKind, upgrade_attrs
@@ -43,6 +44,7 @@ from eccjump.scale import require_dask
 
 if TYPE_CHECKING:
     import xarray as xr
+    from matplotlib.figure import Figure
 
 #: The axes of a map, in the order of the grid (C order: alpha slowest); ``km_frac`` is the
 #: fraction k_m/(1 - chi), as in JARM maps.
@@ -114,6 +116,29 @@ class MotionMap(Map):
         top = list(self.sequences().values())[:3]
         seq = ", ".join(f"{n or '-'} ({c})" for n, c in top)
         return f"MotionMap({dims}; {int(np.prod(self.shape))} points; {seq})"
+
+    def _repr_html_(self) -> str:
+        rows = [(k, span(v, " deg" if k == "alpha" else "")) for k, v in self.coords.items()]
+        given = {k: v for k, v in self.scalars.items() if v is not None}
+        rows += [(k, deg(v) if k == "alpha" else f"{v:g}") for k, v in given.items()]
+        if isinstance(self.fields["sequence"], np.ndarray):
+            rows.append(("JARM fraction", f"{self.fraction():.4g}"))
+            for name, count in list(self.sequences().values())[:4]:
+                rows.append((f"{count} points", name or "-"))
+        picture = ""
+        if tuple(self.coords)[:2] == ("alpha", "chi") and len(self.coords) <= 3:
+            jarm = np.asarray(self.fields["jarm"], dtype=bool).reshape(*self.shape[:2], -1)
+            _, cut = best_slice(jarm)
+            picture = jarm_slice(cut, "JARM (green) over chi (across) and alpha (up)")
+        return card(f"MotionMap ({int(np.prod(self.shape))} points)", rows, picture)
+
+    def plot(self, **kwargs: Any) -> Figure:
+        """The map in the (chi, alpha) plane, coloured by the sequence of modes
+        (``eccjump.plot.sequence_map``; ``kwargs`` go to it). Needs ``pip install
+        eccjump[plot]``."""
+        from eccjump import plot  # figures: the layer on top of every result
+
+        return plot.sequence_map(self, **kwargs)
 
 
 #: The options shared by every point, recorded with a map.

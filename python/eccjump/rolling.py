@@ -14,7 +14,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass, fields, replace
-from typing import NamedTuple
+from typing import TYPE_CHECKING, Any, NamedTuple
 
 import numpy as np
 from numpy.typing import NDArray
@@ -22,9 +22,13 @@ from numpy.typing import NDArray
 from eccjump import _core
 from eccjump._arrays import same_values
 from eccjump._checks import U64_MAX, Integrator, Rule, flag, integer, optional_real, real, text
+from eccjump._html import card, deg, num
 from eccjump.body import Cylinder
 from eccjump.dense import DenseSolution
 from eccjump.units import Units
+
+if TYPE_CHECKING:  # pragma: no cover
+    from matplotlib.figure import Figure
 
 EVENT_NAMES = ("liftoff", "normal_force_zero", "slip", "theta_limit")
 
@@ -88,15 +92,16 @@ class RollResult:
         """True unless the integrator failed."""
         return self.status >= 0
 
+    def _outcome(self) -> str:
+        """How the run ended, in a few words."""
+        if self.terminal_event is not None:
+            return self.terminal_event
+        return "t_max reached" if self.status == 0 else f"failed ({self.message})"
+
     def __repr__(self) -> str:
         """A short summary: how the run ended, the end state, steps and evaluations (the
         arrays themselves are not shown)."""
-        if self.terminal_event is not None:
-            outcome = self.terminal_event
-        elif self.status == 0:
-            outcome = "t_max reached"
-        else:
-            outcome = f"failed ({self.message})"
+        outcome = self._outcome()
         si = self.units is not None
         mu = "enough friction" if self.mu_s is None else f"mu_s={self.mu_s:g}"
         body = f"Cylinder(chi={self.body.chi!r}, km={self.body.km!r})"
@@ -112,6 +117,36 @@ class RollResult:
             f"theta={math.degrees(theta):.6g} deg, omega={omega:.6g}{' rad/s' if si else ''}; "
             f"{self.t.size - 1} steps, {counts}"
         )
+
+    def _repr_html_(self) -> str:
+        si = self.units is not None
+        time, rate = (" s", " rad/s") if si else (" sqrt(R/g)", " sqrt(g/R)")
+        rows = [
+            ("body", f"chi = {num(self.body.chi)}, km = {num(self.body.km)}"),
+            ("ramp", f"alpha = {deg(self.alpha)}"),
+            (
+                "friction",
+                "enough (no slip event)" if self.mu_s is None else f"mu_s = {self.mu_s:g}",
+            ),
+            ("rule", self.rule),
+            ("ended by", self._outcome()),
+        ]
+        if self.t.size:
+            t, theta, omega = float(self.t[-1]), float(self.theta[-1]), float(self.omega[-1])
+            end = f"t = {num(t)}{time}, theta = {deg(theta)}, omega = {num(omega)}{rate}"
+            rows.append(("end state", end))
+        for e in self.events[:4]:
+            rows.append((f"event {e.name}", f"t = {num(e.t)}{time}, theta = {deg(e.theta)}"))
+        rows.append(("steps, nfev", f"{max(self.t.size - 1, 0)}, {self.nfev}"))
+        return card("RollResult" + (" (SI units)" if si else ""), rows)
+
+    def plot(self, **kwargs: Any) -> Figure:
+        """The run in four panels: theta against t; omega, F_x, F_y and the friction ratio against
+        theta (``eccjump.plot.trajectory``; ``kwargs`` go to it). Needs ``pip install
+        eccjump[plot]``."""
+        from eccjump import plot  # figures: the layer on top of every result
+
+        return plot.trajectory(self, **kwargs)
 
     def event(self, name: str) -> Event | None:
         """The first event called ``name``, or None."""

@@ -21,15 +21,19 @@ from __future__ import annotations
 import math
 from collections.abc import Callable
 from dataclasses import dataclass
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from eccjump._arrays import axis
 from eccjump._checks import U64_MAX, Rule, integer, real, rule_name, short
+from eccjump._html import card, deg, num, span
 from eccjump.classification import region
 from eccjump.fields import Reason
+
+if TYPE_CHECKING:  # pragma: no cover
+    from matplotlib.figure import Figure
 
 TWO_PI = 2.0 * math.pi
 #: The largest grid (points per axis of the parameter cube): 128**3 = 2.1e6 points per start.
@@ -178,6 +182,23 @@ class StartMap:
             f"omega0={om:.6g})"
         )
 
+    def plot(self, **kwargs: Any) -> Figure:
+        """The JARM fraction over the starts (theta0, omega0) (``eccjump.plot.fraction_map``;
+        ``kwargs`` go to it). Needs ``pip install eccjump[plot]``."""
+        from eccjump import plot  # figures: the layer on top of every result
+
+        return plot.fraction_map(self, **kwargs)
+
+    def _repr_html_(self) -> str:
+        th, om, f = self.best()
+        rows = [
+            ("theta0", span(np.degrees(self.theta0), " deg")),
+            ("omega0", span(self.omega0, " sqrt(g/R)")),
+            ("made with", f"mu_s = {self.mu_s:g}, grid = {self.grid}, rule = {self.rule}"),
+            ("best start", f"theta0 = {deg(th)}, omega0 = {num(om)}: JARM fraction {f:.4g}"),
+        ]
+        return card("StartMap", rows)
+
 
 def start_map(
     mu_s: float,
@@ -250,6 +271,16 @@ class OptimalStart:
     step_omega0: float
     fraction_at_rest: float
     evaluations: int
+
+    def _repr_html_(self) -> str:
+        rows = [
+            ("best start", f"theta0 = {deg(self.theta0)}, omega0 = {num(self.omega0)} sqrt(g/R)"),
+            ("JARM fraction", f"{self.fraction:.4g} ± {self.fraction_err:.2g}"),
+            ("from rest", f"{self.fraction_at_rest:.4g}"),
+            ("made with", f"mu_s = {self.mu_s:g}, grid = {self.grid}, rule = {self.rule}"),
+            ("maps computed", str(self.evaluations)),
+        ]
+        return card("OptimalStart", rows)
 
     def as_dict(self) -> dict[str, Any]:
         """The numbers, angles in degrees (for printing and JSON)."""

@@ -8,6 +8,7 @@ from dataclasses import dataclass, field
 from typing import Any
 
 from eccjump._checks import short
+from eccjump._html import card, deg, num
 from eccjump.body import Cylinder
 from eccjump.design.build import Build
 
@@ -156,6 +157,39 @@ class Design:
 
     def __str__(self) -> str:
         return self.sheet()
+
+    def __repr__(self) -> str:
+        """One screen at most: the design and its verdict (``print`` it for the lab sheet)."""
+        return (
+            f"Design(target={self.target!r}, {self.body!r}, alpha={math.degrees(self.alpha):.6g}"
+            f" deg, mu_s={self.mu_s:g}; paper rule: {self.reasons['paper']}, classical: "
+            f"{self.reasons['normal_force']}; robustness {100 * self.score:.1f} %)"
+        )
+
+    def _repr_html_(self) -> str:
+        rows = [
+            ("body", f"chi = {num(self.body.chi)}, km = {num(self.body.km)}"),
+            ("ramp", f"alpha = {deg(self.alpha)}"),
+            ("friction", f"mu_s = {self.mu_s:g} ± {self.mu_s_err:g}"),
+            (
+                "verdict",
+                f"paper rule: {self.reasons['paper']}, classical: {self.reasons['normal_force']}",
+            ),
+            ("robustness", f"{100 * self.score:.1f} % (the smallest relative margin)"),
+        ]
+        rows += [
+            (f"margin {m.name}", f"{num(m.margin, 4)} ({100 * m.relative:.1f} %)")
+            for m in self.margins
+        ]
+        unit = " m" if self.si else " R"
+        rows += [
+            (
+                f"flight ({f.rule})",
+                f"apex {num(f.apex, 4)}{unit}, distance {num(f.distance, 4)}{unit}",
+            )
+            for f in self.flights
+        ]
+        return card("Design (print it for the lab sheet)", rows)
 
 
 def _num(x: float) -> float | None:

@@ -11,6 +11,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 from eccjump._checks import integer, real
+from eccjump._html import MODE_COLORS
 
 if TYPE_CHECKING:
     from matplotlib.axes import Axes
@@ -25,9 +26,6 @@ from eccjump.plot._common import _plt
 
 #: The modes of :func:`eccjump.simulate`, by their code in ``MotionResult.mode``.
 MODE_NAMES = ("ROLL", "SLIP", "FLIGHT")
-
-#: Colours of the modes (background bands of :func:`motion`, the body in :func:`animate_motion`).
-MODE_COLORS = {"ROLL": "#2ca02c", "SLIP": "#ff7f0e", "FLIGHT": "#1f77b4"}
 
 #: The most frames :func:`animate_motion` writes (keeps the GIF small).
 MAX_FRAMES = 150
