@@ -1093,7 +1093,7 @@ def case_optimal_start(d: Drawer) -> Case:
 
 DESIGN_PARAMS = (
     "alpha_range", "mu_s", "mu_s_err", "target", "body", "km_range", "rod_range", "radius",
-    "mass", "g", "max_turns", "error", "grid", "shapes",
+    "mass", "g", "max_turns", "error", "grid", "min_apex", "shapes",
 )  # fmt: skip
 
 
@@ -1110,6 +1110,9 @@ def check_design(res: Any, case: Case) -> None:
     expect(set(res.reasons.values()) <= target_ok, f"verdict {res.reasons}")
     expect(isinstance(res.sheet(), str) and bool(res.sheet()), "no sheet")
     json.dumps(res.to_dict(), allow_nan=False)
+    least = case.kwargs.get("min_apex", 0.0)
+    if least > 0:  # the designed flights fly that high (in m with a radius, as min_apex)
+        expect(min(f.apex for f in res.flights) >= least, f"apex below min_apex {least}")
 
 
 def _pair(d: Drawer, c: Case, lo: float, hi: float) -> Any:
@@ -1163,6 +1166,8 @@ def case_design(d: Drawer) -> Case:
         c.kwargs["error"] = real(d, c, 0.0, 0.5)
     if d.integer(0, 4) == 0:
         c.kwargs["g"] = real(d, c, 1.0, 20.0)
+    if d.integer(0, 4) == 0:
+        c.kwargs["min_apex"] = real(d, c, 0.0, 0.02)
     return c
 
 

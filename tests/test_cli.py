@@ -81,3 +81,15 @@ def test_version(capsys):
         main(["--version"])
     assert exit_.value.code == 0
     assert capsys.readouterr().out.strip() == f"eccjump {eccjump.__version__}"
+
+
+@pytest.mark.slow
+@pytest.mark.parametrize("command", ["roll", "simulate"])
+def test_an_alpha_that_looks_like_radians_gets_a_hint(command):
+    """The command line takes degrees, Python radians: --alpha 0.7 runs at 0.7 deg and says
+    how to write 0.7 rad; --alpha 40 says nothing."""
+    body = ("--chi", "0.15", "--km", "0.02", "--mu-s", "1")
+    small = run(command, *body, "--alpha", "0.7")
+    assert small.returncode == 0 and "for 0.7 rad write --alpha 40.107" in small.stderr
+    plain = run(command, *body, "--alpha", "40")
+    assert plain.returncode == 0 and "note" not in plain.stderr

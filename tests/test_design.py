@@ -283,6 +283,11 @@ def test_cli_design():
         ({"max_turns": 0}, ValueError, "max_turns"),
         ({"max_turns": 1001}, ValueError, "max_turns"),
         ({"alpha_range": (0.0, 0.0)}, ValueError, "alpha_range"),  # no JARM at alpha = 0
+        ({"min_apex": -0.1}, ValueError, "min_apex"),
+        ({"min_apex": math.nan}, ValueError, "min_apex"),
+        ({"min_apex": "1"}, TypeError, "min_apex"),
+        ({"min_apex": 0.1, "target": "slip"}, ValueError, "min_apex"),
+        ({"min_apex": 5.0}, ValueError, "apex"),  # no grid point flies that high
     ],
 )
 def test_bad_input_names_the_parameter(kwargs, exc, name):
@@ -305,3 +310,23 @@ def test_build_bad_input():
 def test_the_design_is_deterministic(jump):
     again = design(RANGE, 0.6, 0.1, radius=0.05, mass=0.5, grid=12)
     assert again.to_dict() == jump.to_dict()
+
+
+def test_a_visible_jump_flies_at_least_min_apex():
+    """min_apex: the designed first flight (both rules, simulated again here) reaches it,
+    where the unconstrained design of the same ranges does not."""
+    rng = (math.radians(40), math.radians(70))
+    plain = design(rng, 1.0, grid=8)
+    seen = design(rng, 1.0, grid=12, min_apex=0.15)
+    assert min(f.apex for f in plain.flights) < 0.15
+    assert seen.reasons == {"paper": "JARM", "normal_force": "JARM"}
+    for rule in ("paper", "normal_force"):
+        run = eccjump.simulate(seen.body, seen.alpha, mu_s=1.0, rule=rule, max_transitions=2)
+        assert run.flights[0].apex >= 0.15
+
+
+def test_a_design_on_the_edge_of_its_range_says_so(jump):
+    """The default km_range starts at 0.01, where the example's optimum sits."""
+    edge = [n for n in jump.notes if "end of km_range" in n]
+    assert (jump.body.km == 0.01) == bool(edge), jump.notes
+    assert any("end of" in line for line in jump.sheet().splitlines() if line.startswith("note"))

@@ -5,6 +5,7 @@ from __future__ import annotations
 
 import argparse
 import difflib
+import math
 import re
 import sys
 from collections.abc import Callable, Sequence
@@ -201,3 +202,14 @@ def degrees_in(lo: float, hi: float) -> Callable[[str], float]:
 
     parse.__name__ = "degrees"
     return parse
+
+
+def radians_hint(option: str, degrees: float) -> None:
+    """A note on stderr when an angle given in degrees looks like radians (0 < value <=
+    pi/2: a ramp of a degree or so is rare, radians are what Python takes)."""
+    if 0.0 < degrees <= math.pi / 2:
+        print(
+            f"note: {option} is in degrees: {degrees:g} deg; for {degrees:g} rad write "
+            f"{option} {math.degrees(degrees):.6g}",
+            file=sys.stderr,
+        )

@@ -75,6 +75,13 @@ def add_parser(sub: argparse._SubParsersAction) -> None:
         default=24,
         help=f"coarse grid points per axis, {GRID_RANGE[0]} ... {GRID_RANGE[1]} (default 24)",
     )
+    p.add_argument(
+        "--min-apex",
+        type=float,
+        default=0.0,
+        help="least apex of the first flight [R, or m with --radius] for a jump you can see "
+        "(default 0: none; try 0.15 on a 40-70 deg ramp)",
+    )
     p.add_argument("--json", action="store_true", help="print machine-readable JSON")
     p.set_defaults(func=_cmd_design)
 
@@ -97,6 +104,7 @@ def _cmd_design(args: argparse.Namespace) -> int:
         max_turns=args.max_turns,
         error=args.error,
         grid=args.grid,
+        min_apex=args.min_apex,
     )
     if args.json:
         print(json.dumps(d.to_dict(), indent=2))

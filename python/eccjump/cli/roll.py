@@ -7,7 +7,7 @@ import json
 import math
 
 from eccjump.body import Cylinder
-from eccjump.cli._args import add_integrator, degrees_in
+from eccjump.cli._args import add_integrator, degrees_in, radians_hint
 from eccjump.cli._output import bounded
 from eccjump.rolling import RollResult, roll
 
@@ -83,6 +83,7 @@ def _mu(mu_s: float | None) -> str:
 
 def _cmd_roll(args: argparse.Namespace) -> int:
     body = Cylinder(args.chi, args.km)
+    radians_hint("--alpha", args.alpha)
     res = roll(
         body,
         math.radians(args.alpha),

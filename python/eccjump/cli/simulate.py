@@ -16,7 +16,7 @@ import numpy as np
 
 from eccjump import plot
 from eccjump.body import Cylinder
-from eccjump.cli._args import add_integrator, degrees_in, int_at_least
+from eccjump.cli._args import add_integrator, degrees_in, int_at_least, radians_hint
 from eccjump.cli._output import (
     ANIMATION_SUFFIXES,
     bounded,
@@ -318,6 +318,7 @@ def _check_outputs(args: argparse.Namespace) -> tuple[Path | None, Path | None]:
 def _cmd_simulate(args: argparse.Namespace) -> int:
     figure, animation = _check_outputs(args)
     body = Cylinder(args.chi, args.km)
+    radians_hint("--alpha", args.alpha)
     alpha = math.radians(args.alpha)
     res = simulate(
         body,

@@ -98,6 +98,7 @@ def design(
     max_turns: int = 10,
     error: float = 0.05,
     grid: int = 24,
+    min_apex: float = 0.0,
 ) -> Design:
     """The body and ramp angle whose verdict is most robust (``docs/design.md``).
 
@@ -116,6 +117,10 @@ def design(
         within them, i.e. within 2 pi R max_turns of rolling.
     error : the fractional error of each input in the sensitivity table, in (0, 0.5].
     grid : points per axis of the coarse search grid, 4 ... 64.
+    min_apex : the least apex of the first flight (the axis above contact, under both rules,
+        at the nominal mu_s) [R, or m with ``radius``], >= 0: ask for a jump you can see.
+        0 (default) asks for none; a JARM's first flight is often below 0.01 R. Target
+        ``"jarm"`` only.
 
     The verdict must hold under both lift-off rules and for every mu_s within the
     uncertainty; the margins are taken at the worst mu_s. Raises ValueError (naming the
@@ -148,6 +153,14 @@ def design(
     if not (0.0 < e <= 0.5):
         raise ValueError(f"error = {short(e)} is outside the allowed range (0, 0.5]")
     n = integer("grid", grid, *GRID_RANGE)
+    apex_min = real("min_apex", min_apex) / R
+    if not (0.0 <= apex_min <= 10.0):
+        raise ValueError(
+            f"min_apex = {short(min_apex)} is outside the allowed range [0, 10] R"
+            + (" (in m: radius given)" if si else "")
+        )
+    if apex_min > 0 and tgt != "jarm":
+        raise ValueError("min_apex: only a JARM design (target='jarm') has a flight to ask for")
     spec = _Spec(tgt, integer("max_turns", max_turns, 1, 1000))
 
     notes: list[str] = []
@@ -167,8 +180,12 @@ def design(
     C = P * (1.0 - K)
     ok = _holds(spec)(A, C, K, worst)
     evaluations = int(ok.size)
+    if apex_min > 0:
+        ok[ok] = _apex(A[ok], C[ok], K[ok], mu) >= apex_min
     if not ok.any():
         what = "gives a JARM" if tgt == "jarm" else "slips first"
+        if apex_min > 0:
+            what += f" with an apex of at least {apex_min:.3g} R"
         raise ValueError(
             f"no grid point in alpha_range, km_range, rod_range {what} under both rules within "
             f"max_turns at mu_s = {worst:.4g}; widen the ranges or raise grid"
@@ -204,6 +221,9 @@ def design(
         if key not in cache:
             x = lows + u * spans
             ms = _margins(spec, float(x[0]), float(x[1]), float(x[2]), mu, err, tol)
+            if apex_min > 0 and ms is not None:
+                c = x[2] * (1.0 - x[1])
+                ms = ms if _apex(x[:1], np.array([c]), x[1:2], mu)[0] >= apex_min else None
             cache[key] = (_score(ms), ms)
         return cache[key][0]
 
@@ -239,6 +259,9 @@ def design(
     flights = tuple(_flight(chosen, alpha, mu, r, tgt, b if si else None, gg) for r in RULES)
     if chosen.km == 0.0:
         notes.append("km = 0: the full motion is not simulated (the spin in flight is free)")
+    notes += _on_edges(
+        ((a_lo, a_hi, alpha, "alpha"), (k_lo, k_hi, km, "km"), (r_lo, r_hi, rho, "rod"))
+    )
     sens = _sensitivity(spec, chosen, alpha, mu, err, b, e)
     return Design(
         target=tgt,
@@ -262,6 +285,47 @@ def design(
         evaluations=evaluations,
         notes=tuple(notes),
     )
+
+
+_RANGE_OF = {"alpha": "alpha_range", "km": "km_range", "rod": "rod_range"}
+
+
+def _on_edges(axes: Sequence[tuple[float, float, float, str]]) -> list[str]:
+    """A note for each free input (lo < hi) the design put at an end of its range: the most
+    robust design may lie beyond it."""
+    notes = []
+    for lo, hi, x, name in axes:
+        if lo < hi and (x - lo <= 1e-9 * (hi - lo) or hi - x <= 1e-9 * (hi - lo)):
+            end = "lower" if x - lo <= hi - x else "upper"
+            notes.append(
+                f"{name} = {x:.6g} is the {end} end of {_RANGE_OF[name]}: a more robust "
+                "design may lie beyond it (widen the range if you can build it)"
+            )
+    return notes
+
+
+def _apex(
+    alpha: NDArray[np.float64], chi: NDArray[np.float64], km: NDArray[np.float64], mu: float
+) -> NDArray[np.float64]:
+    """The apex of the first flight (the axis above contact) [R] of each point, the lower of
+    the two rules' (0 without a flight), by the full motion at ``mu`` (restitution 0)."""
+    out = np.empty(np.shape(alpha))
+    for i, (a, c, k) in enumerate(zip(alpha, chi, km, strict=True)):
+        body = Cylinder(float(c), float(k))
+        apexes = [
+            f.apex if (f := _first_flight(body, float(a), mu, rule)) is not None else 0.0
+            for rule in RULES
+        ]
+        out[i] = min(apexes)
+    return out
+
+
+def _first_flight(body: Cylinder, alpha: float, mu: float, rule: Rule) -> Any:
+    """The first flight of the full motion from rest (None without one, or for km = 0)."""
+    if body.km == 0.0:
+        return None
+    run = simulate(body, alpha, mu_s=mu, rule=rule, max_transitions=2, t_max=1e4)
+    return run.flights[0] if run.flights else None
 
 
 def _compass(
