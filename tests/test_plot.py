@@ -155,3 +155,20 @@ def test_region_map_figure_and_map_cli_figure(tmp_path):
         main(["map", "--mu-s", "1", "--grid", "8", "-q", "-o", str(out), "--figure", str(png)]) == 0
     )
     assert png.stat().st_size > 10_000
+
+
+def test_every_first_flight_gets_its_frames():
+    """A flight of a few hundredths of the run still gets FLIGHT_FRAMES frames (evenly
+    spaced frames alone would skip the first flight of this run, 0.0071 R high)."""
+    from eccjump.plot.full_motion import FLIGHT_FRAMES, MAX_FRAMES, _frame_times
+
+    r = eccjump.simulate(eccjump.Cylinder(0.15, 0.02), 0.7, mu_s=1.0)
+    ts = _frame_times(float(r.t[0]), float(r.t[-1]), MAX_FRAMES, r.flights)
+    assert ts.size <= MAX_FRAMES and np.all(np.diff(ts) > 0)
+    assert ts[0] == r.t[0] and ts[-1] == r.t[-1]
+    for f in r.flights[:3]:
+        inside = np.count_nonzero((ts >= f.t_liftoff) & (ts <= f.t_landing))
+        assert inside >= FLIGHT_FRAMES
+    even = np.linspace(r.t[0], r.t[-1], MAX_FRAMES)
+    first = r.flights[0]
+    assert np.count_nonzero((even >= first.t_liftoff) & (even <= first.t_landing)) <= 2

@@ -29,6 +29,8 @@ MODE_NAMES = ("ROLL", "SLIP", "FLIGHT")
 
 #: The most frames :func:`animate_motion` writes (keeps the GIF small).
 MAX_FRAMES = 150
+#: Frames given to each flight of an animation (of the first ones that fit).
+FLIGHT_FRAMES = 24
 
 
 def _mode_runs(t: NDArray[np.float64], mode: NDArray[Any]) -> list[tuple[float, float, str]]:
@@ -72,7 +74,8 @@ def motion(
     alpha: float | None = None,
 ) -> Figure:
     """Six stacked panels of an :func:`eccjump.simulate` run against time (shared axis):
-    theta', the slip velocity v = l' - theta', F_x, F_y, the height b - 1 of the centre, and
+    theta', the slip velocity v = l' - theta', F_x, F_y, the gap b - 1 between the body and
+    the ramp (b: the height of the axis C above the ramp, 1 in contact), and
     the mechanical energy E with E + dissipated (dashed: flat when the ledger closes). The
     modes are coloured background bands (ROLL, SLIP, FLIGHT), impacts dotted vertical lines.
 
@@ -114,7 +117,7 @@ def motion(
         ("slip_velocity", result.slip_velocity, rf"slip $v = \dot l - \dot\theta$ [{u_v}]"),
         ("Fx", result.Fx, rf"friction $F_x$ [{u_f}]"),
         ("Fy", result.Fy, rf"normal $F_y$ [{u_f}]"),
-        ("height", result.height, rf"height $b - 1$ [{u_l}]"),
+        ("height", result.height, rf"gap to the ramp $b - 1$ [{u_l}]"),
     )
     for ax, (gid, y, label) in zip(axs, panels, strict=False):
         ax.axhline(0.0, color="0.6", lw=0.7)
@@ -185,7 +188,7 @@ def animate_motion(
     seconds: float | None = None,
     body: Cylinder | None = None,
     alpha: float | None = None,
-    dpi: int = 80,
+    dpi: int = 100,
     view: float = 2.6,
 ) -> Path:
     """Write an animated GIF of an :func:`eccjump.simulate` run (pillow's GIF writer).
@@ -195,8 +198,11 @@ def animate_motion(
     with the spoke C -> CM; the body and the title take the colour of the mode. The camera
     follows C (a window ``view`` R either side); ticks on the ramp every R show the travel,
     a trail the path of the centre of mass. Frames are evenly spaced in simulated time, at
-    most :data:`MAX_FRAMES` of them, played at ``fps`` (or over ``seconds``); the state comes
-    from ``result.sol`` if present, else from the recorded points.
+    most :data:`MAX_FRAMES` of them, except that each of the first flights gets at least
+    :data:`FLIGHT_FRAMES` (shown in slow motion: a flight of a few hundredths of the run would
+    else fall between two frames); the title gives the time and, in flight, the gap b - 1.
+    They play at ``fps`` (or over ``seconds``); the state comes from ``result.sol`` if
+    present, else from the recorded points. 600 x 450 pixels at the default ``dpi``.
 
     ``body`` (for chi) and ``alpha`` [rad] are required unless the result carries them.
     Returns the path written."""
@@ -225,7 +231,8 @@ def animate_motion(
         play_fps = n / seconds
     if t[-1] <= t[0]:
         n = 1
-    ts = np.linspace(t[0], t[-1], n)
+    ts = _frame_times(t[0], t[-1], n, result.flights)
+    n = ts.size
     theta, l_, b, names = _resample(result, ts)
 
     plt = _plt()
@@ -242,7 +249,7 @@ def animate_motion(
     cx, cy = lab(l_, b)
     mx, my = lab(l_ + chi * np.sin(theta), b + chi * np.cos(theta))
 
-    fig, ax = plt.subplots(figsize=(4.4, 3.6), dpi=dpi)
+    fig, ax = plt.subplots(figsize=(6.0, 4.5), dpi=dpi)
     fig.subplots_adjust(left=0.02, right=0.98, bottom=0.02, top=0.92)  # no per-frame layout
     ax.set_aspect("equal")
     ax.set_xticks([])
@@ -280,7 +287,8 @@ def animate_motion(
         )
         ax.set_xlim(cx[k] - view, cx[k] + view)
         ax.set_ylim(cy[k] - 0.75 * view, cy[k] + 0.9 * view)
-        title.set_text(f"t = {ts[k]:7.3f}   {names[k]}")
+        gap = f", gap {b[k] - 1.0:.3f} R" if names[k] == "FLIGHT" else ""
+        title.set_text(f"t = {ts[k]:7.3f} sqrt(R/g)   {names[k]}{gap}")
         title.set_color(color)
         return [circle, spoke, cm, centre, trail, hatch, title]
 
@@ -291,6 +299,22 @@ def animate_motion(
     finally:
         plt.close(fig)
     return path
+
+
+def _frame_times(t0: float, t1: float, n: int, flights: Sequence[Any]) -> NDArray[np.float64]:
+    """``n`` frame times evenly spaced over [t0, t1], with :data:`FLIGHT_FRAMES` more over
+    each of the first flights that fit within :data:`MAX_FRAMES` (taken from the even
+    ones), sorted and distinct."""
+    if n <= 1 or not t1 > t0:
+        return np.array([t0])
+    extra: list[NDArray[np.float64]] = []
+    for f in flights:
+        end = f.t_landing if math.isfinite(f.t_landing) else t1
+        if n - FLIGHT_FRAMES * (len(extra) + 1) < FLIGHT_FRAMES or not end > f.t_liftoff:
+            break
+        extra.append(np.linspace(f.t_liftoff, min(end, t1), FLIGHT_FRAMES))
+    even = np.linspace(t0, t1, n - FLIGHT_FRAMES * len(extra))
+    return np.unique(np.concatenate([even, *extra]))
 
 
 def _rgb(color: str) -> tuple[float, float, float]:

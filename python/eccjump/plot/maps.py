@@ -49,7 +49,10 @@ def region_map(region: Region, *, panels: int = 4) -> Figure:
         projected = np.nanmin(np.where(is_jarm, cat, np.inf), axis=2)
     projected[~np.isfinite(projected)] = np.nan
     views = [("any $k_m$ on the grid", projected)]
-    views += [(rf"$k_m = {region.km_frac[j]:.3g}\,(1-\chi)$", cat[:, :, j]) for j in best]
+    views += [
+        (rf"$k_m = {region.km_frac[j]:.3g}\,(1-\chi)$ (most JARM points)", cat[:, :, j])
+        for j in best
+    ]
     fig, axes = plt.subplots(
         1,
         len(views),
@@ -84,7 +87,11 @@ def region_map(region: Region, *, panels: int = 4) -> Figure:
     )
     fig.suptitle(
         f"JARM region, $\\mu_s = {region.mu_s:g}$, rule: {region.rule}, route: {region.method}"
-        f"{start} ({100.0 * region.fraction():.2f}% of {is_jarm.size} grid points)"
+        f"{start} ({100.0 * region.fraction():.2f}% of {is_jarm.size} grid points)\n"
+        "JARM: the body leaves the ramp straight out of pure rolling (no slip before). "
+        f"Panels: the projection over $k_m$, then the {len(best)} $k_m$ slices with the most "
+        "JARM points",
+        fontsize=10,
     )
     return fig
 
