@@ -131,7 +131,9 @@ def cf_attrs(name: str) -> dict[str, Any]:
 def docstring() -> str:
     """The fields as the ``Attributes`` section of a numpy-style docstring."""
     return "\n".join(
-        f"{f.name} : {f.dtype}, {f.description}" + ("" if f.units == "1" else f" [{f.units}]")
+        f"{f.name} : numpy.ndarray of {f.dtype}\n    {f.description}"
+        + ("" if f.units == "1" else f" [{f.units}]")
+        + "."
         for f in TABLE
     )
 
