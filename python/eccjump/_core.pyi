@@ -10,6 +10,7 @@ from eccjump.motion import MotionResult
 from eccjump.rolling import RollResult
 
 VERSION: str
+"""The package version, e.g. "0.2.0" (`eccjump --version` prints it; `eccjump.__version__`)."""
 
 def body_derived(chi: float, km: float) -> tuple[float, float, float]: ...
 def body_from_inertia(M: float, R: float, d: float, I_C: float) -> tuple[float, float]: ...

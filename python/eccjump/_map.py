@@ -22,11 +22,20 @@ if TYPE_CHECKING:  # pragma: no cover
 class Map:
     """A map of eccjump: one array per field over the product of its swept coordinates.
 
-    ``coords`` gives the swept axes by dimension name in grid order (1-D arrays, angles in
-    rad), ``fields`` the results by name (each of shape :attr:`shape`), :meth:`fraction` the
-    share of grid points that are a JARM, :meth:`to_xarray` the labelled form;
-    :func:`eccjump.maps.save` writes it and :func:`eccjump.maps.load` reads it back as the
-    same kind.
+    The common base of :class:`~eccjump.Region` (from :func:`~eccjump.region`) and
+    :class:`~eccjump.MotionMap` (from :func:`~eccjump.motion_map`). ``coords`` gives the
+    swept axes by dimension name in grid order (1-D arrays, angles in rad), ``fields`` the
+    results by name (each of shape :attr:`shape`), :meth:`fraction` the share of grid points
+    that are a JARM, ``to_xarray()`` the labelled form; :func:`eccjump.maps.save` writes it
+    and :func:`eccjump.maps.load` reads it back as the same kind.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> import eccjump
+    >>> m = eccjump.region(np.radians([35, 40, 45]), [0.1, 0.15], [0.0, 0.1], 1.0)
+    >>> isinstance(m, eccjump.Map), m.shape, list(m.coords)
+    (True, (3, 2, 2), ['alpha', 'chi', 'km_frac'])
     """
 
     #: ``"jarm"`` or ``"motion"``: the ``kind`` attribute of the map's files.
@@ -50,7 +59,12 @@ class Map:
         return tuple(c.size for c in self.coords.values())
 
     def fraction(self) -> float:
-        """The share of grid points that are a JARM (invalid points count as not); 0.0 for
-        an empty map."""
+        """The share of grid points that are a JARM.
+
+        Returns
+        -------
+        float
+            In [0, 1]; invalid points count as not a JARM; 0.0 for an empty map.
+        """
         jarm = np.asarray(self.fields[self.jarm_field])
         return float(np.mean(jarm)) if jarm.size else 0.0

@@ -24,12 +24,29 @@ from eccjump._html import card
 class Cylinder:
     """A validated eccentric cylinder, immutable and hashable.
 
+    The motion depends on the body only through ``chi`` and ``km`` (units g = R = M = 1).
+
     Parameters
     ----------
     chi : float
-        d/R, offset of the centre of mass from the axis, in [0, 1].
+        d/R, the offset of the centre of mass from the geometric axis, in [0, 1]
+        (dimensionless).
     km : float
-        Shell mass fraction m_C/M, in [0, 1 - chi].
+        The shell mass fraction m_C/M of the paper's shell-plus-line-mass model, in
+        [0, 1 - chi] (dimensionless).
+
+    Attributes
+    ----------
+    chi : float
+        As given.
+    km : float
+        As given.
+    Ic : float
+        Moment of inertia about the geometric axis, km + chi²/(1 - km) [M R²].
+    Icm : float
+        Moment of inertia about the centre of mass, Ic - chi² [M R²].
+    gamma : float
+        The paper's gamma = (Ic + 1 + 2 chi)/(4 pi chi) (Eq. dega2); inf for chi = 0.
 
     Raises
     ------
@@ -37,6 +54,23 @@ class Cylinder:
         If a parameter is NaN, infinite or out of its range (the message names it).
     TypeError
         If a parameter is not a real number (bools, strings, None, complex, arrays).
+
+    See Also
+    --------
+    from_inertia : the body of a given mass, radius, offset and moment of inertia.
+    from_shell_and_line : the paper's shell plus line mass.
+    eccjump.build : the inverse, a body as a shell plus a rod of given radius and mass.
+
+    Examples
+    --------
+    >>> import eccjump
+    >>> body = eccjump.Cylinder(chi=0.15, km=0.02)
+    >>> print(f"Ic = {body.Ic:.6f}, Icm = {body.Icm:.6f} M R^2")
+    Ic = 0.042959, Icm = 0.020459 M R^2
+    >>> eccjump.Cylinder(chi=0.5, km=0.6)
+    Traceback (most recent call last):
+    ...
+    ValueError: km = 0.6 is outside the allowed range [0, 1 - chi] = [0, 0.5]
     """
 
     chi: float
@@ -79,9 +113,39 @@ class Cylinder:
 
     @classmethod
     def from_inertia(cls, M: float, R: float, d: float, I_C: float) -> Cylinder:
-        """A body of mass ``M`` [kg], radius ``R`` [m], CM offset ``d`` [m] and moment of
-        inertia ``I_C`` [kg m²] about the geometric axis; valid iff 0 <= d <= R and
-        M d² <= I_C <= M R²."""
+        """The body of mass ``M``, radius ``R``, centre-of-mass offset ``d`` and moment of
+        inertia ``I_C`` about the geometric axis (any consistent units, e.g. SI).
+
+        Parameters
+        ----------
+        M : float
+            Mass [kg], finite and > 0.
+        R : float
+            Radius [m], finite and > 0.
+        d : float
+            Distance of the centre of mass from the geometric axis [m], in [0, R].
+        I_C : float
+            Moment of inertia about the geometric axis [kg m²], in [M d², M R²].
+
+        Returns
+        -------
+        Cylinder
+            chi = d/R and the km of the shell-plus-line-mass body with I_C/(M R²).
+
+        Raises
+        ------
+        ValueError
+            If a value is out of its range (the message names it).
+        TypeError
+            If a value is not a real number.
+
+        Examples
+        --------
+        >>> import eccjump
+        >>> body = eccjump.Cylinder.from_inertia(M=1.5, R=0.2, d=0.03, I_C=0.0026)
+        >>> print(f"chi = {body.chi:.4f}, km = {body.km:.6f}")
+        chi = 0.1500, km = 0.020366
+        """
         chi, km = _core.body_from_inertia(
             real("M", M), real("R", R), real("d", d), real("I_C", I_C)
         )
@@ -90,8 +154,39 @@ class Cylinder:
     @classmethod
     def from_shell_and_line(cls, m_C: float, m_P: float, R: float, d: float) -> Cylinder:
         """The paper's model: a uniform thin shell of mass ``m_C`` and radius ``R`` plus a line
-        mass ``m_P`` parallel to the axis, placed so that the CM is at distance ``d`` from the
-        axis (the line then sits at d/(1 - km) <= R)."""
+        mass ``m_P`` parallel to the axis, placed so that the centre of mass is at distance
+        ``d`` from the axis (the line then sits at d/(1 - km) <= R from it).
+
+        Parameters
+        ----------
+        m_C : float
+            Mass of the shell [kg], >= 0.
+        m_P : float
+            Mass of the line (a rod) [kg], >= 0; m_C + m_P > 0.
+        R : float
+            Radius of the shell [m], > 0.
+        d : float
+            Distance of the centre of mass from the axis [m], in [0, R m_P/(m_C + m_P)].
+
+        Returns
+        -------
+        Cylinder
+            chi = d/R, km = m_C/(m_C + m_P).
+
+        Raises
+        ------
+        ValueError
+            If a value is out of its range (the message names it).
+        TypeError
+            If a value is not a real number.
+
+        Examples
+        --------
+        >>> import eccjump
+        >>> body = eccjump.Cylinder.from_shell_and_line(m_C=0.03, m_P=1.47, R=0.2, d=0.03)
+        >>> print(f"chi = {body.chi:.4f}, km = {body.km:.4f}")
+        chi = 0.1500, km = 0.0200
+        """
         chi, km = _core.body_from_shell_and_line(
             real("m_C", m_C), real("m_P", m_P), real("R", R), real("d", d)
         )

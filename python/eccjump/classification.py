@@ -1,5 +1,5 @@
 """JARM classification (the paper's Section 3): does the cylinder jump straight out of pure
-rolling, and if not, why. See ``docs/jarm.md`` for the semantics.
+rolling, and if not, why. The user guide's "JARM analysis" page gives the semantics.
 
 Everything broadcasts over numpy arrays and runs in Rust, in parallel over points with the
 GIL released; results are bit-identical for any thread count.
@@ -72,18 +72,43 @@ class JarmResult:
         return hasattr(self.is_jarm, "__dask_graph__")  # the dask collection protocol
 
     def reasons(self) -> NDArray[np.object_]:
-        """The reasons as :class:`Reason` members (an object array; for display)."""
+        """The reasons as :class:`Reason` members, for display.
+
+        Returns
+        -------
+        numpy.ndarray of object
+            The :class:`Reason` of each point, of the result's shape.
+        """
         out = np.empty(self.reason.shape, dtype=object)
         out.ravel()[:] = [Reason(int(c)) for c in self.reason.ravel()]
         return out
 
     def fields(self) -> dict[str, NDArray]:
-        """Every field by name, in the order of :data:`eccjump.fields.FIELDS`."""
+        """Every field by name, in the order of :data:`eccjump.fields.FIELDS`.
+
+        Returns
+        -------
+        dict of str to numpy.ndarray
+        """
         return {k: getattr(self, k) for k in FIELDS}
 
     def counts(self) -> dict[Reason | int, int]:
-        """How many points have each reason (codes that are not a :class:`Reason`, such as
-        the fill value 255 of points not computed, are counted under their code)."""
+        """How many points have each reason.
+
+        Returns
+        -------
+        dict of Reason or int to int
+            The count of each reason met; codes that are not a :class:`Reason` (the fill
+            value 255 of points not computed) are counted under their code.
+
+        Examples
+        --------
+        >>> import numpy as np
+        >>> import eccjump
+        >>> r = eccjump.jarm(np.radians([30, 40]), [0.5, 0.15], [0.4, 0.02], mu_s=1.0)
+        >>> {reason.name: k for reason, k in r.counts().items()}
+        {'JARM': 1, 'SLIP_BEFORE': 1}
+        """
         codes = np.bincount(np.asarray(self.reason, dtype=np.intp).ravel(), minlength=1)
         return {_reason(c): int(k) for c, k in enumerate(codes.tolist()) if k}
 
@@ -166,43 +191,98 @@ def jarm(
 ) -> JarmResult:
     """Classify points (alpha, chi, km, mu_s, n) as JARM or not, broadcasting the five inputs.
 
+    A point is a JARM (a jump after rolling motion) when the body, started at (theta0,
+    omega0) in pure rolling, meets the lift-off rule before the friction cone is left or the
+    normal force vanishes; otherwise ``reason`` says what came first.
+
     Parameters
     ----------
-    alpha : ramp angle [rad] in [0, pi/2].
-    chi, km : the body (km is the shell mass fraction itself, in [0, 1 - chi]).
-    mu_s : static friction coefficient, >= 0.
-    n : the turn on which the jump must happen: an integer >= 1 or an array of them
-        (broadcast with the other inputs), or None for the first jump whatever its turn
-        (None only as a scalar). With first-jump semantics a point has at most one n, so the
-        regions of different n never overlap.
-    method : ``"closed_form"`` (the paper's formulas with a rigorous path scan) or ``"ode"``
-        (integration with events; an independent route, ~10x slower).
-    rule : lift-off rule, ``"paper"`` (default) or ``"normal_force"`` (classical).
-    theta0, omega0 : initial angle [rad], |theta0| <= 2 pi 1e6, and angular velocity,
-        0 <= omega0 <= 1e6 [sqrt(g/R) rad].
-    rtol, atol : integrator tolerances (``method="ode"`` only).
-    max_turns : cap of the search, in turns counted from the start's turn (1 ... 10**6).
-    refine_extrema : refine max_ratio, min_Fy and their angles to full precision (closed
-        form; default False, as in :func:`region`: the classification is the same either way,
-        and refining costs about a third more time on a map).
-    stop_at_slip : under the paper's rule, stop at the first slip and report ``Reason.SLIP``
-        instead of following rolling on to the lift-off to tell SLIP_BEFORE from
-        SLIP_AT_JUMP. ``is_jarm`` and every other reason are unchanged; maps where most
-        points slip are faster (1.7x with ``method="ode"``). No effect under
-        ``rule="normal_force"``.
-    n_threads : threads (0 = one per core, at most 256); results are identical for any value.
-    integrator : the Runge–Kutta pair of ``method="ode"``: ``"RK45"`` (Dormand–Prince 5(4),
-        the default), ``"DOP853"`` (Dormand–Prince 8(5,3)), ``"Vern7"`` (Verner 7(6)) or
-        ``"Vern9"`` (Verner 9(8)); the same verdicts: each finds an event that only grazes
-        zero between two samples. For speed pick ``"Vern9"`` (at the default rtol 1.5–1.9×
-        faster than RK45 and about 15× more accurate); keep ``"RK45"`` for step-for-step
-        parity with scipy (``benches/bench_pairs.py``).
+    alpha : array_like of float
+        Ramp angle [rad], in [0, pi/2].
+    chi : array_like of float
+        The body's d/R, in [0, 1].
+    km : array_like of float
+        The body's shell mass fraction k_m itself, in [0, 1 - chi].
+    mu_s : array_like of float
+        Static friction coefficient, in [0, inf).
+    n : int, array_like of int or None, default None
+        The turn on which the jump must happen: an integer >= 1 (at most 2**32 - 1) or an
+        array of them (broadcast with the other inputs), or None for the first jump whatever
+        its turn (None only as a scalar). With first-jump semantics a point has at most one
+        n, so the regions of different n never overlap.
+    method : {"closed_form", "ode"}, default "closed_form"
+        ``"closed_form"``: the paper's formulas with a rigorous path scan; ``"ode"``:
+        integration with events, an independent route (~10x slower).
+    rule : {"paper", "normal_force"}, default "paper"
+        Lift-off rule: the paper's condition chi theta'^2 cos theta = cos alpha, or the
+        classical Fy = 0.
+    theta0 : float, default 0.0
+        Initial angle [rad], |theta0| <= 2 pi 1e6.
+    omega0 : float, default 0.0
+        Initial angular velocity [sqrt(g/R) rad], in [0, 1e6].
+    rtol : float, default 1e-10
+        Relative tolerance of ``method="ode"``, in [1e-15, 1e-3] (checked and recorded,
+        unused by the closed form).
+    atol : float, default 1e-12
+        Absolute tolerance of ``method="ode"``, in [1e-300, 1e-3].
+    max_turns : int, default 10_000
+        Cap of the search, in turns counted from the start's turn, 1 ... 10**6.
+    refine_extrema : bool, default False
+        Refine ``max_ratio``, ``min_Fy`` and their angles to full precision (closed form).
+        The classification is the same either way; refining costs about a third more time
+        on a map.
+    stop_at_slip : bool, default False
+        Under the paper's rule, stop at the first slip and report ``Reason.SLIP`` instead of
+        following rolling on to the lift-off to tell SLIP_BEFORE from SLIP_AT_JUMP.
+        ``is_jarm`` and every other reason are unchanged; maps where most points slip are
+        faster (1.7x with ``method="ode"``). No effect under ``rule="normal_force"``.
+    n_threads : int, default 0
+        Threads, 0 (one per core) ... 256; results are identical for any value.
+    integrator : {"RK45", "DOP853", "Vern7", "Vern9"}, default "RK45"
+        The Runge–Kutta pair of ``method="ode"``: Dormand–Prince 5(4), Dormand–Prince
+        8(5,3), Verner 7(6) or Verner 9(8); the same verdicts. For speed pick ``"Vern9"``
+        (at the default rtol 1.5–1.9× faster than RK45 and about 15× more accurate); keep
+        ``"RK45"`` for step-for-step parity with scipy.
 
-    Every bound, the memory and Ctrl-C behaviour: ``docs/limits.md``.
+    Returns
+    -------
+    JarmResult
+        Every field an array of the broadcast shape of the five inputs (0-d for scalars).
+        Invalid points get ``Reason.INVALID_PARAMS``, not an error.
 
-    Invalid points get ``Reason.INVALID_PARAMS``; a ``ValueError`` is raised only for
-    arguments that apply to the whole call (shapes, rule, method, tolerances) and for an
-    ``n`` that is not None or integers >= 1.
+    Raises
+    ------
+    ValueError
+        For arguments that apply to the whole call (shapes that do not broadcast, rule,
+        method, tolerances, max_turns, n_threads, integrator) and for an ``n`` that is not
+        None or integers >= 1; the message names the parameter and its range.
+    TypeError
+        For an argument of the wrong type.
+    KeyboardInterrupt
+        On Ctrl-C, within about a second.
+    MemoryError
+        If the result cannot be allocated.
+
+    See Also
+    --------
+    region : the same classification on a grid, in parallel.
+    roll : one run of pure rolling, with its events.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> import eccjump
+    >>> r = eccjump.jarm(np.radians([30, 40, 60]), [0.5, 0.15, 0.15], [0.4, 0.02, 0.02], 1.0)
+    >>> [eccjump.Reason(int(c)).name for c in r.reason]
+    ['SLIP_BEFORE', 'JARM', 'SLIP_BEFORE']
+    >>> print(f"theta_J = {np.degrees(r.theta_J[1]):.6f} deg, Fy_J = {r.Fy_J[1]:.5f} M g")
+    theta_J = 334.343838 deg, Fy_J = 0.01543 M g
+
+    The independent route by integration agrees:
+
+    >>> ode = eccjump.jarm(np.radians(40), 0.15, 0.02, 1.0, method="ode")
+    >>> bool(abs(ode.theta_J - r.theta_J[1]) < 1e-9)
+    True
     """
     turn_arg = turns(n)
     opts = call_options(
@@ -232,10 +312,44 @@ def jarm(
 class Region(Map):
     """A JARM map on the grid alpha x chi x km_frac, with k_m = km_frac (1 - chi).
 
-    ``result`` holds the fields of :class:`JarmResult`, each of shape
-    (len(alpha), len(chi), len(km_frac)); the remaining attributes record how it was made.
-    As every :class:`~eccjump.maps.Map`: ``coords``, ``fields``, ``shape``, ``fraction()`` and
-    ``to_xarray()``; :func:`eccjump.maps.save` writes it.
+    Made by :func:`region`. As every :class:`~eccjump.Map`: ``coords``, ``fields``,
+    ``shape``, ``fraction()`` and ``to_xarray()``; :func:`eccjump.maps.save` writes it.
+
+    Attributes
+    ----------
+    alpha : numpy.ndarray
+        The ramp angles of the grid [rad], 1-D.
+    chi : numpy.ndarray
+        The bodies' d/R of the grid, 1-D.
+    km_frac : numpy.ndarray
+        The shell mass fraction as the share k_m/(1 - chi) of its largest value, 1-D.
+    result : JarmResult
+        The classification, each field of shape (len(alpha), len(chi), len(km_frac)).
+    mu_s : float
+        Static friction coefficient of the whole map.
+    n : int or None
+        The requested turn, or None for the first jump.
+    rule : str
+        Lift-off rule, ``"paper"`` or ``"normal_force"``.
+    method : str
+        ``"closed_form"`` or ``"ode"``.
+    theta0 : float
+        Initial angle [rad].
+    omega0 : float
+        Initial angular velocity [sqrt(g/R) rad].
+    attrs : dict
+        How it was made: tolerances, integrator, max_turns, refine_extrema, stop_at_slip.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> import eccjump
+    >>> m = eccjump.region(np.radians(np.linspace(1, 90, 90)), np.linspace(0.01, 0.99, 50),
+    ...                    np.linspace(0, 0.99, 50), 1.0)
+    >>> m.shape, m.km.shape
+    ((90, 50, 50), (50, 50))
+    >>> print(f"{m.fraction():.7f}")
+    0.0077022
     """
 
     kind: ClassVar[str] = "jarm"
@@ -278,8 +392,18 @@ class Region(Map):
         return self.result.lazy
 
     def compute(self, **kwargs: object) -> Region:
-        """A lazy map computed (all fields in one pass; ``kwargs`` go to ``dask.compute``);
-        an already computed map is returned as is."""
+        """A lazy map (made with ``chunks=``) computed, all fields in one pass.
+
+        Parameters
+        ----------
+        **kwargs
+            Passed to ``dask.compute`` (e.g. ``scheduler="synchronous"``).
+
+        Returns
+        -------
+        Region
+            The computed map; an already computed map is returned as is.
+        """
         if not self.lazy:
             return self
         import dask  # a lazy map exists only if dask is installed
@@ -293,8 +417,19 @@ class Region(Map):
     __hash__ = None  # type: ignore[assignment]  # mutable numpy arrays inside
 
     def to_xarray(self) -> xr.Dataset:
-        """The map as an ``xarray.Dataset`` (dask-backed if lazy); see :mod:`eccjump.labelled`.
-        Needs ``pip install eccjump[xarray]``."""
+        """The map as a labelled ``xarray.Dataset`` (dask-backed if lazy).
+
+        Returns
+        -------
+        xarray.Dataset
+            Coordinates alpha [rad], chi, km_frac and k_m; one variable per field with its
+            units; the options as attributes.
+
+        Raises
+        ------
+        ImportError
+            Without xarray (``pip install "eccjump[xarray]"``).
+        """
         return layout_to_xarray(region_layout(self))
 
     def __repr__(self) -> str:
@@ -441,27 +576,107 @@ def region(
 ) -> Region | xr.Dataset:
     """Map the JARM region on a rectangular grid, in parallel.
 
-    The grid first, then ``mu_s``, as every entry point takes the point or body first.
-    ``alpha`` [rad], ``chi`` and ``km_frac`` are 1-D coordinate arrays; ``km_frac`` is the
-    shell mass fraction as the share k_m/(1 - chi) in [0, 1] of its largest value, so that
-    every (chi, km_frac) pair of the grid is a valid body and the grid stays rectangular
-    (``Region.km`` gives k_m itself). ``km``, the body's k_m everywhere else (:func:`jarm`,
-    :func:`roll`, :func:`simulate`), is not a grid axis here: passing it is a TypeError.
-    Other arguments as :func:`jarm`.
+    The grid first, then ``mu_s``, as every entry point takes the point or body first. Each
+    point is classified as by :func:`jarm` (in Rust, with the GIL released), bit-identical
+    for any ``n_threads``. The third axis is ``km_frac``, the shell mass fraction as the
+    share k_m/(1 - chi) in [0, 1] of its largest value, so that every (chi, km_frac) pair of
+    the grid is a valid body and the grid stays rectangular (``Region.km`` gives k_m
+    itself).
 
-    chunks : None (default: compute now), or chunk sizes along (alpha, chi, km_frac) -- one int
-        for all, a 3-sequence or a dict; -1/None for a whole axis. The map is then built
-        lazily with dask, one Rust grid call per block (see :mod:`eccjump.scale`); call
-        ``.compute()`` on the result. Bit-identical to the unchunked map. ``n_threads`` is
-        per block: on a cluster use threads per worker / concurrent tasks per worker.
-    output : ``"region"`` (default) a :class:`Region`; ``"xarray"`` an ``xarray.Dataset``
-        (:mod:`eccjump.labelled`), and then ``mu_s``, ``theta0`` and ``omega0`` may be 1-D
-        sequences, swept as extra leading dimensions (one Rust call per combination).
+    Parameters
+    ----------
+    alpha : array_like of float, 1-D
+        Ramp angles [rad], each in [0, pi/2].
+    chi : array_like of float, 1-D
+        The bodies' d/R, each in [0, 1].
+    km_frac : array_like of float, 1-D
+        k_m/(1 - chi), each in [0, 1].
+    mu_s : float or array_like of float
+        Static friction coefficient, in [0, inf), one value for the whole map; with
+        ``output="xarray"`` a 1-D sequence is swept as an extra leading dimension.
+    n : int or None, default None
+        The turn on which the jump must happen (1 ... 2**32 - 1), or None for the first
+        jump whatever its turn.
+    km : None
+        Not accepted: ``km`` is the body's k_m in :func:`jarm`, :func:`roll` and
+        :func:`simulate`; on a map the axis is ``km_frac``. Passing it is a TypeError.
+    method : {"closed_form", "ode"}, default "closed_form"
+        The paper's formulas with a rigorous path scan, or integration with events.
+    rule : {"paper", "normal_force"}, default "paper"
+        Lift-off rule: the paper's condition chi theta'^2 cos theta = cos alpha, or Fy = 0.
+    theta0 : float or array_like of float, default 0.0
+        Initial angle [rad], |theta0| <= 2 pi 1e6 (a 1-D sequence is swept with
+        ``output="xarray"``).
+    omega0 : float or array_like of float, default 0.0
+        Initial angular velocity [sqrt(g/R) rad], in [0, 1e6] (swept as ``theta0``).
+    rtol : float, default 1e-10
+        Relative tolerance of ``method="ode"``, in [1e-15, 1e-3].
+    atol : float, default 1e-12
+        Absolute tolerance of ``method="ode"``, in [1e-300, 1e-3].
+    max_turns : int, default 10_000
+        Cap of the search per point, in turns from the start's turn, 1 ... 10**6.
+    refine_extrema : bool, default False
+        Refine ``max_ratio``, ``min_Fy`` and their angles to full precision (about a third
+        more time; the classification is the same).
+    stop_at_slip : bool, default False
+        Under the paper's rule, a slip ends the search (``Reason.SLIP``): the same
+        ``is_jarm``, faster where most points slip (1.7x with ``method="ode"``, 1.2x with
+        the closed form).
+    n_threads : int, default 0
+        Threads, 0 (one per core) ... 256; with ``chunks``, per block.
+    integrator : {"RK45", "DOP853", "Vern7", "Vern9"}, default "RK45"
+        The Runge–Kutta pair of ``method="ode"``. For speed pick ``"Vern9"``; keep
+        ``"RK45"`` for step-for-step parity with scipy.
+    chunks : int, sequence of int, dict or None, default None
+        None computes now. Otherwise chunk sizes along (alpha, chi, km_frac) -- one int for
+        all, a 3-sequence or a dict; -1 or None for a whole axis: the map is built lazily
+        with dask (``pip install "eccjump[dask]"``), one Rust grid call per block,
+        bit-identical to the unchunked map; call ``.compute()`` on the result. On a cluster
+        use ``n_threads`` = threads per worker / concurrent tasks per worker.
+    output : {"region", "xarray"}, default "region"
+        ``"region"``: a :class:`Region`. ``"xarray"``: a labelled ``xarray.Dataset``, and
+        then ``mu_s``, ``theta0`` and ``omega0`` may be 1-D sequences, swept as extra
+        leading dimensions (one Rust call per combination).
 
-    The tolerances, the ``integrator``, ``max_turns``, ``refine_extrema`` and ``stop_at_slip``
-    are recorded in
-    ``Region.attrs`` (and in the attributes of its dataset and files) whatever the method, as
-    given: the closed form ignores the tolerances and the integrator.
+    Returns
+    -------
+    Region or xarray.Dataset
+        The map; its ``attrs`` record the tolerances, the integrator, ``max_turns``,
+        ``refine_extrema`` and ``stop_at_slip`` as given, whatever the method (the closed
+        form ignores the tolerances and the integrator).
+
+    Raises
+    ------
+    ValueError
+        For an axis that is not a 1-D array of values in range, a bad ``mu_s``, ``n`` or
+        option; the message names the parameter and its range.
+    TypeError
+        If ``km`` is given, or an argument has the wrong type.
+    MemoryError
+        If the map does not fit in memory (refused before any work, naming its size).
+    ImportError
+        For ``chunks`` without dask, ``output="xarray"`` without xarray.
+    KeyboardInterrupt
+        On Ctrl-C, within about a second.
+
+    See Also
+    --------
+    jarm : the classification of scattered points.
+    region_dataset : the same as an ``xarray.Dataset``, sweeping mu_s, theta0 and omega0.
+    motion_map : maps of the full motion.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> import eccjump
+    >>> m = eccjump.region(
+    ...     alpha=np.radians(np.linspace(1, 90, 90)),
+    ...     chi=np.linspace(0.01, 0.99, 50),
+    ...     km_frac=np.linspace(0, 0.99, 50),
+    ...     mu_s=1.0,
+    ... )
+    >>> print(m.is_jarm.shape, f"{m.fraction():.7f}")
+    (90, 50, 50) 0.0077022
     """
     if output == "xarray":
         return region_dataset(
@@ -545,10 +760,59 @@ def region_dataset(
     **kwargs: Any,
 ) -> xr.Dataset:
     """Map the JARM region as an ``xarray.Dataset``, sweeping ``mu_s``, ``theta0`` and
-    ``omega0`` when they are 1-D sequences (one Rust grid call per combination; the swept
-    parameters become leading dimensions, in that order). Other arguments as
-    :func:`eccjump.region` (``chunks=`` gives a dask-backed, lazily computed dataset). The
-    layout is described in :mod:`eccjump.labelled`.
+    ``omega0`` when they are 1-D sequences.
+
+    One Rust grid call per combination of the swept values; the swept parameters become
+    leading dimensions, in the order mu_s, theta0, omega0. Needs xarray
+    (``pip install "eccjump[xarray]"``).
+
+    Parameters
+    ----------
+    alpha : array_like of float, 1-D
+        Ramp angles [rad], each in [0, pi/2].
+    chi : array_like of float, 1-D
+        The bodies' d/R, each in [0, 1].
+    km_frac : array_like of float, 1-D
+        k_m/(1 - chi), each in [0, 1].
+    mu_s : float or array_like of float
+        Static friction coefficient(s), each in [0, inf); a 1-D sequence is swept.
+    n : int or None, default None
+        The turn on which the jump must happen (>= 1), or None for the first jump.
+    km : None
+        Not accepted (the axis is ``km_frac``): passing it is a TypeError.
+    theta0 : float or array_like of float, default 0.0
+        Initial angle(s) [rad], |theta0| <= 2 pi 1e6; a 1-D sequence is swept.
+    omega0 : float or array_like of float, default 0.0
+        Initial angular velocity(ies) [sqrt(g/R) rad], in [0, 1e6]; a 1-D sequence is swept.
+    **kwargs
+        The options of :func:`region`: ``method``, ``rule``, ``rtol``, ``atol``,
+        ``max_turns``, ``refine_extrema``, ``stop_at_slip``, ``n_threads``, ``integrator``
+        and ``chunks`` (a dask-backed, lazily computed dataset).
+
+    Returns
+    -------
+    xarray.Dataset
+        Dimensions (swept parameters..., alpha, chi, km_frac), one variable per result
+        field with its units, the reasons as CF flags, the options as attributes.
+
+    Raises
+    ------
+    ValueError
+        For a swept value that is not a number or a non-empty 1-D sequence, or any bad
+        argument of :func:`region`.
+    TypeError
+        If ``km`` is given, or an argument has the wrong type.
+    ImportError
+        Without xarray.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> import eccjump
+    >>> ds = eccjump.region_dataset(np.radians([35, 40, 45]), [0.1, 0.15], [0.0, 0.1],
+    ...                             mu_s=[0.7, 1.0])
+    >>> dict(ds.sizes)
+    {'mu_s': 2, 'alpha': 3, 'chi': 2, 'km_frac': 2}
     """
     xarray = require("xarray")
     kwargs.pop("output", None)

@@ -12,10 +12,35 @@ from eccjump._checks import real_array
 
 
 class DenseSolution:
-    """Callable ``sol(t)`` returning the state (theta, omega) at times ``t``.
+    """Dense output of a rolling run: callable ``sol(t)`` returning (theta, omega) at ``t``.
 
-    Scalar ``t`` gives shape (2,); an array of shape (n,) gives shape (2, n), as scipy's
-    ``OdeSolution``. Times outside [t_min, t_max] raise ``ValueError``.
+    Returned as ``RollResult.sol`` by ``eccjump.roll(..., dense_output=True)``. It
+    evaluates the interpolant of every accepted step (as scipy's ``OdeSolution``) and covers
+    the run from its start to its end (the terminal event), not beyond.
+
+    Parameters
+    ----------
+    core : eccjump._core.DenseSolution
+        The core's interpolant (made by :func:`eccjump.roll`, not by hand).
+
+    Attributes
+    ----------
+    t_min : float
+        Start of the run [sqrt(R/g)].
+    t_max : float
+        End of the run [sqrt(R/g)]: the interpolant covers [t_min, t_max].
+
+    Examples
+    --------
+    >>> import math
+    >>> import eccjump
+    >>> body = eccjump.Cylinder(chi=0.15, km=0.02)
+    >>> res = eccjump.roll(body, math.radians(40), mu_s=1.0, dense_output=True)
+    >>> theta, omega = res.sol(1.0)  # at t = 1 sqrt(R/g)
+    >>> print(f"theta = {theta:.6f} rad, omega = {omega:.6f} sqrt(g/R)")
+    theta = 0.277564 rad, omega = 0.560613 sqrt(g/R)
+    >>> res.sol([0.0, 1.0, 2.0]).shape
+    (2, 3)
     """
 
     def __init__(self, core: _core.DenseSolution) -> None:
@@ -58,12 +83,49 @@ class DenseSolution:
     __hash__ = None  # type: ignore[assignment]
 
     def __call__(self, t: ArrayLike) -> NDArray[np.float64]:
+        """The state (theta [rad], omega [sqrt(g/R) rad]) at the times ``t``.
+
+        Parameters
+        ----------
+        t : float or array_like of shape (n,)
+            Times [sqrt(R/g)], each in [t_min, t_max].
+
+        Returns
+        -------
+        numpy.ndarray
+            Shape (2,) for a scalar ``t``, (2, n) for an array: rows theta and omega.
+
+        Raises
+        ------
+        ValueError
+            If a time is outside [t_min, t_max], not finite, or ``t`` has more than one
+            dimension.
+        MemoryError
+            If the result cannot be allocated.
+        """
         flat, scalar = self._times(t)
         y = self._core.states(flat)
         return y[:, 0] if scalar else y
 
     def kinematics(self, t: ArrayLike) -> dict[str, NDArray[np.float64]]:
-        """theta, omega, omega_dot, Fx, Fy at times ``t`` (1-D), from the core's equations of
-        the run's mode."""
+        """theta, omega, omega_dot, Fx, Fy at times ``t``, from the core's equations of the
+        run's mode.
+
+        Parameters
+        ----------
+        t : float or array_like of shape (n,)
+            Times [sqrt(R/g)], each in [t_min, t_max].
+
+        Returns
+        -------
+        dict of str to numpy.ndarray
+            ``theta`` [rad], ``omega`` [sqrt(g/R) rad], ``omega_dot`` [g/R rad], ``Fx`` and
+            ``Fy`` [M g], each of shape (n,).
+
+        Raises
+        ------
+        ValueError
+            If a time is outside [t_min, t_max] or not finite.
+        """
         flat, _ = self._times(t)
         return self._core.kinematics(flat)

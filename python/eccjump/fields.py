@@ -79,20 +79,48 @@ RECORD = np.dtype([(f.name, f.dtype) for f in TABLE])
 
 
 class Reason(enum.IntEnum):
-    """Why a point is (JARM) or is not a jump after pure rolling.
+    """Why a point is (JARM) or is not a jump after pure rolling: the ``reason`` codes of
+    :class:`~eccjump.JarmResult` and :class:`~eccjump.Region` (an ``IntEnum``, codes stable).
 
-    JARM: lift-off straight out of pure rolling. NO_ROOT: no lift-off (on the requested turn n,
-    or ever). LIFTOFF_EARLIER: the lift-off rule held earlier than the requested turn n (or at the
-    start). NORMAL_FORCE_LOST: F_y reached 0 before lift-off. SLIP_BEFORE: the rolling branch
-    needs more than mu_s of friction before lift-off. SLIP_AT_JUMP: friction fails on the final
-    approach, and the paper's jump-point test (Eq. ineq2) fails at theta_J. ROCKS_BACK: the body
-    stops and rolls back. TURN_LIMIT: nothing happened within max_turns turns. INVALID_PARAMS: a
-    parameter is NaN or out of range. SOLVER_FAILED: the integrator of ``method="ode"`` failed
-    (no physical verdict). SLIP: friction fails before the paper's lift-off, and the search
-    stopped there (``stop_at_slip=True``): SLIP_BEFORE or SLIP_AT_JUMP, not told apart.
+    Written out here so that type checkers and editors see the members; the core's codes
+    are checked against them at import.
 
-        Written out here so that type checkers and editors see the members; the core's codes
-        (``_core.reason_codes()``) are checked against them at import.
+    Attributes
+    ----------
+    JARM : 0
+        Lift-off straight out of pure rolling.
+    NO_ROOT : 1
+        No lift-off (on the requested turn n, or ever).
+    LIFTOFF_EARLIER : 2
+        The lift-off rule held earlier than the requested turn n (or at the start).
+    NORMAL_FORCE_LOST : 3
+        F_y reached 0 before lift-off.
+    SLIP_BEFORE : 4
+        The rolling branch needs more than mu_s of friction before lift-off.
+    SLIP_AT_JUMP : 5
+        Friction fails on the final approach, and the paper's jump-point test (Eq. ineq2)
+        fails at theta_J.
+    ROCKS_BACK : 6
+        The body stops and rolls back.
+    TURN_LIMIT : 7
+        Nothing happened within ``max_turns`` turns.
+    INVALID_PARAMS : 8
+        A parameter is NaN or out of range.
+    SOLVER_FAILED : 9
+        The integrator of ``method="ode"`` failed (no physical verdict).
+    SLIP : 10
+        Friction fails before the paper's lift-off, and the search stopped there
+        (``stop_at_slip=True``): SLIP_BEFORE or SLIP_AT_JUMP, not told apart.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> import eccjump
+    >>> r = eccjump.jarm(np.radians(30), 0.5, 0.4, mu_s=1.0)
+    >>> eccjump.Reason(int(r.reason)).name
+    'SLIP_BEFORE'
+    >>> int(eccjump.Reason.JARM)
+    0
     """
 
     JARM = 0
@@ -131,7 +159,9 @@ def cf_attrs(name: str) -> dict[str, Any]:
 def docstring() -> str:
     """The fields as the ``Attributes`` section of a numpy-style docstring."""
     return "\n".join(
-        f"{f.name} : {f.dtype}, {f.description}" + ("" if f.units == "1" else f" [{f.units}]")
+        f"{f.name} : numpy.ndarray of {f.dtype}\n    {f.description}"
+        + ("" if f.units == "1" else f" [{f.units}]")
+        + "."
         for f in TABLE
     )
 

@@ -18,10 +18,41 @@ from eccjump.store import save
 
 
 def load(path: str | os.PathLike) -> Map:
-    """The map file at ``path`` (``.nc``, ``.zarr`` or ``.npz``) as a :class:`Region` or a
-    :class:`MotionMap`, by the kind recorded in it. A file that is no valid map raises
-    ValueError naming it and what is wrong (a JARM file of swept maps, written with
-    ``region(..., output="xarray")``: open it with :func:`eccjump.store.open_dataset`)."""
+    """The map file at ``path`` as a :class:`Region` or a :class:`MotionMap`, by the kind
+    recorded in it.
+
+    Parameters
+    ----------
+    path : str or os.PathLike
+        A map file written by :func:`save` or ``eccjump map``: ``.nc`` (netCDF, needs
+        xarray), ``.zarr`` (needs zarr) or ``.npz`` (numpy only).
+
+    Returns
+    -------
+    Map
+        A :class:`Region` (JARM map) or a :class:`MotionMap`.
+
+    Raises
+    ------
+    ValueError
+        For a file that is no valid map, naming it and what is wrong (a JARM file of swept
+        maps, written with ``region(..., output="xarray")``: open it with
+        :func:`eccjump.store.open_dataset`) or an unknown suffix.
+    FileNotFoundError
+        If there is no file at ``path``.
+
+    Examples
+    --------
+    >>> import os, tempfile
+    >>> import numpy as np
+    >>> import eccjump
+    >>> m = eccjump.region(np.radians([35, 40, 45]), [0.1, 0.15], [0.0, 0.1], 1.0)
+    >>> path = os.path.join(tempfile.mkdtemp(), "region.npz")
+    >>> _ = eccjump.maps.save(m, path)
+    >>> back = eccjump.load_map(path)
+    >>> type(back).__name__, back == m
+    ('Region', True)
+    """
     lay, kind = store.read_layout(path)
     if kind.name == "motion":
         return from_layout(lay, kind, path)

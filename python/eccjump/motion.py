@@ -1,5 +1,6 @@
 """The full motion: :func:`simulate` follows the body through rolling, slipping, flight and
-landing (``docs/motion.md`` is the model, ``docs/impact_law.md`` the impact law).
+landing (the user guide's pages "The full motion" and "The impact law" give the model and
+the impact law).
 
 Units g = R = M = 1 unless converted with :meth:`MotionResult.to_si`; angles in radians.
 """
@@ -25,7 +26,7 @@ if TYPE_CHECKING:  # pragma: no cover
 
 #: Mode codes of :attr:`MotionResult.mode`, by index.
 MODES = ("ROLL", "SLIP", "FLIGHT")
-#: Why a mode began (``docs/motion.md``).
+#: Why a mode began (the user guide's "The full motion", Transitions).
 REASONS = (
     "start",
     "slip",
@@ -122,20 +123,89 @@ class MotionResult:
     Arrays hold one row per accepted step (contact) or sample (flight), in time order; the
     boundary of two segments is recorded on both sides (the velocities jump at an impact).
 
+    Units g = R = M = 1 unless converted with :meth:`to_si` (then seconds, metres, m/s,
+    rad/s, newtons and joules); angles in radians.
+
     Attributes
     ----------
-    t, theta, omega, l, ldot, b, bdot : time and state (l: C along the ramp from the start,
-        b: height of C above the ramp, 1 in contact)
-    Fx, Fy : contact force on the body [M g] (0 in flight)
-    mode : int8 code per row, an index into :data:`MODES`
-    energy : mechanical energy (kinetic + potential) [M g R]
-    dissipated : energy dissipated so far by sliding and impacts; energy + dissipated is
-        constant (``energy0``) to the integration tolerance
-    transitions, flights, impacts, segments : see :class:`Transition`, :class:`FlightRecord`,
-        :class:`ImpactRecord`, :class:`Segment`
-    energy0, dissipated_slip, dissipated_impacts : the energy ledger
-    status : one of :data:`STATUSES`; message : what happened, in words
-    nfev : right-hand-side evaluations; sol : dense output or None
+    body : Cylinder
+        The body.
+    alpha : float
+        Ramp angle [rad].
+    mu_s : float
+        Static friction coefficient.
+    mu_k : float
+        Kinetic friction coefficient.
+    restitution : float
+        Stronge's energetic coefficient of restitution e.
+    rule : str
+        Lift-off rule from rolling, ``"paper"`` or ``"normal_force"``.
+    t : numpy.ndarray
+        Time [sqrt(R/g)].
+    theta : numpy.ndarray
+        Angle of the vector C -> centre of mass from the ramp normal [rad].
+    omega : numpy.ndarray
+        Angular velocity theta' [sqrt(g/R) rad].
+    l : numpy.ndarray
+        Position of the centre C along the ramp from the start [R].
+    ldot : numpy.ndarray
+        Speed of C along the ramp [sqrt(gR)].
+    b : numpy.ndarray
+        Height of C above the ramp [R] (1 in contact).
+    bdot : numpy.ndarray
+        Rate of b [sqrt(gR)].
+    Fx : numpy.ndarray
+        Friction force on the body along the ramp, positive down the ramp [M g] (0 in
+        flight).
+    Fy : numpy.ndarray
+        Normal force on the body [M g] (0 in flight).
+    energy : numpy.ndarray
+        Mechanical energy, kinetic + potential [M g R].
+    dissipated : numpy.ndarray
+        Energy dissipated so far by sliding and impacts [M g R]; energy + dissipated is
+        constant (``energy0``) to the integration tolerance.
+    mode : numpy.ndarray of int8
+        Mode code per row, an index into ``MODES`` = ("ROLL", "SLIP", "FLIGHT").
+    transitions : tuple of Transition
+        Every change of mode (the start first): time, modes, reason, full state after it.
+    flights : tuple of FlightRecord
+        Every flight: lift-off and landing times and angles, apex of C above contact [R],
+        distance along the ramp [R].
+    impacts : tuple of ImpactRecord
+        Every landing: normal speed, slip velocity before it, impulses, energy lost, whether
+        the contact point stuck, the mode after it.
+    segments : tuple of Segment
+        Every stretch of one mode, with the integrator's evaluations in it.
+    energy0 : float
+        Mechanical energy at the start [M g R].
+    dissipated_slip : float
+        Energy dissipated by sliding over the run [M g R].
+    dissipated_impacts : float
+        Energy dissipated by the impacts over the run [M g R].
+    status : str
+        How the run ended: ``"t_max"``, ``"l_max"``, ``"max_transitions"``,
+        ``"painleve"``, ``"jam"`` or ``"failed"``.
+    message : str
+        What happened, in words.
+    nfev : int
+        Right-hand-side evaluations.
+    sol : MotionSolution or None
+        Dense output ``sol(t) -> (theta, omega, l, ldot, b, bdot)`` across segments, when
+        asked for.
+    units : Units or None
+        The scales of :meth:`to_si`, or None for a dimensionless result.
+
+    Examples
+    --------
+    >>> import math
+    >>> import eccjump
+    >>> body = eccjump.Cylinder(chi=0.5, km=0.4)
+    >>> res = eccjump.simulate(body, math.radians(30), mu_s=1.0, t_max=9.0)
+    >>> res.mode_names()
+    ['ROLL', 'SLIP', 'FLIGHT', 'SLIP', 'ROLL', 'SLIP', 'FLIGHT']
+    >>> f = res.flights[0]
+    >>> print(f"apex {f.apex:.6f} R, distance {f.distance:.5f} R")
+    apex 0.074954 R, distance 3.49484 R
     """
 
     body: Cylinder
@@ -171,12 +241,12 @@ class MotionResult:
 
     @property
     def slip_velocity(self) -> NDArray[np.float64]:
-        """The contact point's slip velocity ldot - omega (0 in pure rolling)."""
+        """The contact point's slip velocity ldot - omega [sqrt(gR)] (0 in pure rolling)."""
         return self.ldot - self.omega
 
     @property
     def height(self) -> NDArray[np.float64]:
-        """The height of C above contact, b - 1 (0 in contact)."""
+        """The height of C above contact, b - 1 [R] (0 in contact)."""
         return self.b - 1.0
 
     def mode_names(self) -> list[str]:
@@ -234,8 +304,33 @@ class MotionResult:
     def to_si(
         self, units: Units | None = None, *, g: float = 9.81, R: float = 1.0, M: float = 1.0
     ) -> MotionResult:
-        """The same run in SI units (angles unchanged, times x sqrt(R/g), lengths x R, speeds
-        x sqrt(gR), rates x sqrt(g/R), forces x M g, energies x M g R). ``sol`` is dropped."""
+        """The same run in SI units: angles unchanged, times x sqrt(R/g), lengths x R,
+        speeds x sqrt(gR), rates x sqrt(g/R), forces x M g, energies x M g R.
+
+        Parameters
+        ----------
+        units : Units, optional
+            The scales; if given, ``g``, ``R`` and ``M`` are ignored.
+        g : float, default 9.81
+            Gravitational acceleration [m/s²], in [1e-50, 1e50].
+        R : float, default 1.0
+            Radius [m], in [1e-50, 1e50].
+        M : float, default 1.0
+            Mass [kg], in [1e-50, 1e50].
+
+        Returns
+        -------
+        MotionResult
+            A copy with ``units`` set and ``sol`` None (the dense output is dropped).
+
+        Raises
+        ------
+        ValueError
+            If this result is already in SI units, a scale is out of range, or a value
+            overflows float64 in SI units.
+        TypeError
+            If ``units`` is not a Units or None.
+        """
         if self.units is not None:
             raise ValueError("units: this result is already in SI units")
         if units is not None and not isinstance(units, Units):
@@ -340,36 +435,96 @@ def simulate(
     integrator: Integrator = "RK45",
 ) -> MotionResult:
     """Follow ``body`` on a ramp of angle ``alpha`` through rolling, slipping, flight and
-    landing, from (theta0, omega0) with slip velocity ``slip0`` (``docs/motion.md``).
+    landing, from (theta0, omega0) with slip velocity ``slip0``.
+
+    One segment at a time: rolling and slipping are integrated with events, flight is exact,
+    every landing goes through the impact law (Routh's method with Coulomb friction and
+    Stronge's energetic restitution), and after every event the consistent contact mode is
+    chosen again. The run ends at ``t_max``, ``l_max`` or ``max_transitions``, or where the
+    rigid model cannot continue (Painlevé, a jam): that is a ``status``, not an error.
 
     Parameters
     ----------
-    body : Cylinder with km > 0 (km = 0 puts all the mass at the centre of mass; its spin in
+    body : Cylinder
+        The body, with km > 0 (km = 0 puts all the mass at the centre of mass: its spin in
         flight is undetermined).
-    alpha : ramp angle [rad], in [0, pi/2] (0: flat ground).
-    mu_s, mu_k : static and kinetic friction coefficients, 0 <= mu_k <= mu_s (default
-        mu_k = mu_s).
-    restitution : Stronge's energetic coefficient of restitution e in [0, 1].
-    rule : lift-off from rolling: "paper" (chi theta'^2 cos theta = cos alpha) or
-        "normal_force" (Fy = 0, or the friction cone left without a consistent slip).
-    theta0, omega0, slip0 : initial angle [rad], angular velocity and slip velocity
-        ldot - omega of the contact point.
-    t_max : end time, in (0, 1e6]; l_max : distance along the ramp that ends the run.
-    max_transitions : transitions after the start, 1 ... 10**6.
-    rtol, atol : tolerances of the integrator; max_steps : accepted steps of the whole run,
-        1 ... 10**7.
-    integrator : ``"RK45"`` (Dormand–Prince 5(4), as scipy's ``RK45``; the default),
-        ``"DOP853"`` (Dormand–Prince 8(5,3), as scipy's ``DOP853``), ``"Vern7"`` (Verner's
-        7(6) pair) or ``"Vern9"`` (Verner's 9(8) pair). For speed pick ``"Vern9"`` (at the
-        default rtol 1.5–1.9× faster than RK45 and about 15× more accurate); keep ``"RK45"``
-        for step-for-step parity with scipy (``benches/bench_pairs.py``).
-    dense_output : keep ``sol(t)`` across segments.
+    alpha : float
+        Ramp angle [rad], in [0, pi/2] (0: flat ground).
+    mu_s : float
+        Static friction coefficient, in [0, inf).
+    mu_k : float or None, default None
+        Kinetic friction coefficient, in [0, mu_s]; None: mu_k = mu_s.
+    restitution : float, default 0.0
+        Stronge's energetic coefficient of restitution e, in [0, 1].
+    rule : {"paper", "normal_force"}, default "paper"
+        Lift-off from rolling: ``"paper"`` (chi theta'^2 cos theta = cos alpha) or
+        ``"normal_force"`` (Fy = 0, or the friction cone left without a consistent slip).
+    theta0 : float, default 0.0
+        Initial angle [rad], |theta0| <= 2 pi 1e6.
+    omega0 : float, default 0.0
+        Initial angular velocity [sqrt(g/R) rad], |omega0| <= 1e6.
+    slip0 : float, default 0.0
+        Initial slip velocity ldot - omega of the contact point [sqrt(gR)], |slip0| <= 1e6.
+    t_max : float, default 100.0
+        End time [sqrt(R/g)], in (0, 1e6].
+    l_max : float, default inf
+        Distance of C along the ramp that ends the run [R], in (0, inf]; inf disables it.
+    max_transitions : int, default 100
+        Transitions after the start, 1 ... 10**6.
+    rtol : float, default 1e-10
+        Relative tolerance of the integrator, in [1e-15, 1e-3].
+    atol : float, default 1e-12
+        Absolute tolerance of the integrator, in [1e-300, 1e-3].
+    max_steps : int, default 1_000_000
+        Accepted steps of the whole run (rolling and slipping together), 1 ... 10**7.
+    dense_output : bool, default False
+        Keep ``sol(t)`` across segments.
+    integrator : {"RK45", "DOP853", "Vern7", "Vern9"}, default "RK45"
+        The Runge–Kutta pair: ``"RK45"`` (Dormand–Prince 5(4), as scipy's ``RK45``),
+        ``"DOP853"`` (Dormand–Prince 8(5,3), as scipy's ``DOP853``), ``"Vern7"``
+        (Verner's 7(6) pair) or ``"Vern9"`` (Verner's 9(8) pair). For speed pick
+        ``"Vern9"`` (at the default rtol 1.5–1.9× faster than RK45 and about 15× more
+        accurate); keep ``"RK45"`` for step-for-step parity with scipy.
+
+    Returns
+    -------
+    MotionResult
+        The recorded motion, its transitions, flights, impacts and segments, the energy
+        ledger, the ``status`` and, with ``dense_output``, ``sol``.
 
     Raises
     ------
     ValueError
-        For any parameter outside its range; the message names it. Ctrl-C raises
-        KeyboardInterrupt.
+        For any parameter outside its range; the message names it, its range and unit.
+    TypeError
+        If ``body`` is not a Cylinder or a parameter has the wrong type.
+    KeyboardInterrupt
+        On Ctrl-C, within about a second.
+    MemoryError
+        If the record of the run cannot be allocated.
+
+    See Also
+    --------
+    roll : pure rolling to its first event.
+    motion_map : the same run, to its first landing, at every point of a grid.
+
+    Examples
+    --------
+    The paper's Fig. 3b body slips first, then flies 3.5 R down the ramp:
+
+    >>> import math
+    >>> import eccjump
+    >>> body = eccjump.Cylinder(chi=0.5, km=0.4)
+    >>> res = eccjump.simulate(body, math.radians(30), mu_s=1.0, t_max=9.0)
+    >>> [tr.reason for tr in res.transitions[1:]]
+    ['slip', 'normal_force', 'impact', 'stick', 'slip', 'normal_force']
+    >>> f = res.flights[0]
+    >>> print(f"lift-off t = {f.t_liftoff:.6f}, landing t = {f.t_landing:.6f}")
+    lift-off t = 5.370832, landing t = 7.090869
+    >>> print(f"dissipated: slip {res.dissipated_slip:.6f}, impacts {res.dissipated_impacts:.6f}")
+    dissipated: slip 0.806067, impacts 0.293353
+    >>> res.status
+    't_max'
     """
     if not isinstance(body, Cylinder):
         raise TypeError(f"body must be a Cylinder, not {type(body).__name__}")

@@ -57,11 +57,37 @@ DIM_OF = dict(MOTION.axes)
 class MotionMap(Map):
     """A motion map: one array per summary field, with one dimension per swept axis.
 
-    ``coords`` holds the swept axes (1-D, in :data:`AXES` order), ``scalars`` the axes given
-    as one value (``mu_k`` None: mu_k = mu_s), ``fields`` the summaries (see :data:`TABLE`),
-    ``options`` the shared options. As every :class:`~eccjump.maps.Map`: ``shape``,
-    ``fraction()`` (the share of points that are a JARM) and ``to_xarray()``;
-    :func:`eccjump.maps.save` writes it.
+    Made by :func:`motion_map`. Each field is also an attribute (``m.apex``, ``m.sequence``,
+    ...). As every :class:`~eccjump.Map`: ``shape``, ``fraction()`` (the share of points
+    that are a JARM) and ``to_xarray()``; :func:`eccjump.maps.save` writes it.
+
+    Attributes
+    ----------
+    coords : dict of str to numpy.ndarray
+        The swept axes (1-D, angles in rad), in the order alpha, chi, km_frac, mu_s, mu_k,
+        restitution, theta0, omega0.
+    scalars : dict of str to float or None
+        The axes given as one value (``mu_k`` None: mu_k = mu_s).
+    fields : dict of str to numpy.ndarray
+        The summaries of the runs, each of the map's shape: ``status``, ``sequence`` (the
+        first modes as a code, named by ``sequence_name``), ``n_modes``, ``jarm``,
+        ``slipped_first``, ``slip_t`` [sqrt(R/g)], ``slip_theta`` [rad],
+        ``liftoff_reason``, ``liftoff_t`` [sqrt(R/g)], ``liftoff_theta`` [rad],
+        ``flight_time`` [sqrt(R/g)], ``apex`` [R], ``distance`` [R], ``landing`` and
+        ``energy_lost`` [M g R]; NaN or a fill code where a run never got there.
+    options : dict of str to object
+        The options shared by every point (rule, t_max, max_transitions, rtol, atol,
+        max_steps, integrator).
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> import eccjump
+    >>> m = eccjump.motion_map(np.radians([30, 40]), [0.15, 0.5], [0.02 / 0.85, 0.8], 1.0)
+    >>> m.shape, list(m.coords)
+    ((2, 2, 2), ['alpha', 'chi', 'km_frac'])
+    >>> print(f"{np.degrees(m.liftoff_theta[1, 0, 0]):.6f} deg, apex {m.apex[1, 0, 0]:.6f} R")
+    334.343838 deg, apex 0.006696 R
     """
 
     kind: ClassVar[str] = "motion"
@@ -79,14 +105,41 @@ class MotionMap(Map):
         raise AttributeError(f"MotionMap has no attribute {name!r}")
 
     def sequences(self) -> dict[int, tuple[str, int]]:
-        """Every sequence code in the map: (name, number of points), most frequent first."""
+        """Every sequence of modes in the map, most frequent first.
+
+        Returns
+        -------
+        dict of int to tuple of (str, int)
+            For each sequence code, its name (e.g. ``"ROLL→SLIP→FLIGHT→ROLL"``) and the
+            number of points with it.
+
+        Examples
+        --------
+        >>> import numpy as np
+        >>> import eccjump
+        >>> m = eccjump.motion_map(np.radians([30, 40]), [0.15, 0.5], [0.02 / 0.85, 0.8], 1.0)
+        >>> [name for name, count in m.sequences().values()][:2]
+        ['ROLL→SLIP→ROLL→SLIP→FLIGHT→SLIP', 'ROLL→SLIP→FLIGHT→ROLL']
+        """
         codes, counts = np.unique(self.fields["sequence"], return_counts=True)
         order = np.argsort(-counts, kind="stable")
         return {int(codes[i]): (sequence_name(codes[i]), int(counts[i])) for i in order}
 
     def to_xarray(self) -> xr.Dataset:
-        """The map as a labelled xarray Dataset (CF attributes and flag tables; a lazy
-        map's ``sequence`` codes are known once computed, :func:`sequence_name` names them)."""
+        """The map as a labelled ``xarray.Dataset``.
+
+        Returns
+        -------
+        xarray.Dataset
+            One variable per field with CF attributes and flag tables (a lazy map's
+            ``sequence`` codes are known once computed: ``sequence_name`` names them), the
+            options as attributes.
+
+        Raises
+        ------
+        ImportError
+            Without xarray (``pip install "eccjump[xarray]"``).
+        """
         import xarray as xr
 
         dims = tuple(DIM_OF[k] for k in self.coords)
@@ -205,25 +258,96 @@ def motion_map(
 ) -> MotionMap | xr.Dataset:
     """Map the full motion, to the first landing, over the product of the given axes.
 
-    The grid first, then ``mu_s``, as :func:`eccjump.region` (the point or body first in
-    every entry point), then keyword-only options.
-    Each of ``alpha`` [rad], ``chi``, ``km_frac`` (the shell mass fraction as the share k_m/(1 -
-    chi) in [0, 1] of its largest value, so every grid point is a valid body; ``km``, the body's
-    k_m elsewhere, is a TypeError here), ``mu_s``, ``mu_k`` (None: mu_k = mu_s),
-    ``restitution``, ``theta0`` and ``omega0`` is one number or a 1-D array (an axis of the
-    map). The other options are those of :func:`eccjump.simulate` (``integrator``: ``"RK45"``,
-    the default, ``"DOP853"``, ``"Vern7"`` or ``"Vern9"``, recorded with the map as are ``rtol``
-    and ``atol``; for speed pick ``"Vern9"`` (at the default rtol 1.5–1.9× faster than RK45 and
-    about 15× more accurate), keep ``"RK45"`` for step-for-step parity with scipy); a run ends
-    at its first landing (status "landed") once the mode after it is chosen, or at
-    ``t_max``/``max_transitions``. A point with invalid values (mu_k > mu_s, km_frac 0,
-    ...) has status "invalid".
+    At every point of the grid, :func:`eccjump.simulate` runs to its first landing (status
+    ``"landed"``, once the mode after it is chosen) or to ``t_max``/``max_transitions``, in
+    parallel in the Rust core with the GIL released, and a fixed-size summary is kept. Each
+    summary is exactly what ``simulate`` gives there; maps are bit-identical for any thread
+    count or chunking. The grid first, then ``mu_s``, as :func:`region`, then keyword-only
+    options. Each of the eight axes (``alpha``, ``chi``, ``km_frac``, ``mu_s``, ``mu_k``,
+    ``restitution``, ``theta0``, ``omega0``) is one number or a 1-D array (an axis of the
+    map). A point whose own values are invalid (mu_k > mu_s, km_frac 0, chi = 1, a value
+    out of range) has status ``"invalid"`` and the fill values: the map goes on.
 
-    ``chunks`` (needs dask): the map as a lazily computed, dask-backed xarray Dataset, one
-    core call per block of ``chunks`` alpha values. ``output="xarray"``: a labelled Dataset.
+    Parameters
+    ----------
+    alpha : float or array_like of float
+        Ramp angle(s) [rad], in [0, pi/2].
+    chi : float or array_like of float
+        The bodies' d/R, in [0, 1].
+    km_frac : float or array_like of float
+        The shell mass fraction as the share k_m/(1 - chi) of its largest value, in [0, 1]
+        (> 0 for a valid run: ``simulate`` needs km > 0).
+    mu_s : float or array_like of float
+        Static friction coefficient(s), in [0, inf).
+    mu_k : float, array_like of float or None, default None
+        Kinetic friction coefficient(s), in [0, mu_s]; None: mu_k = mu_s.
+    restitution : float or array_like of float, default 0.0
+        Stronge's energetic coefficient of restitution, in [0, 1].
+    theta0 : float or array_like of float, default 0.0
+        Initial angle(s) [rad], |theta0| <= 2 pi 1e6.
+    omega0 : float or array_like of float, default 0.0
+        Initial angular velocity(ies) [sqrt(g/R) rad], |omega0| <= 1e6.
+    rule : {"paper", "normal_force"}, default "paper"
+        Lift-off rule from rolling.
+    t_max : float, default 100.0
+        End time of each run [sqrt(R/g)], in (0, 1e6].
+    max_transitions : int, default 100
+        Transitions of each run after the start, 1 ... 10**6.
+    rtol : float, default 1e-10
+        Relative tolerance, in [1e-15, 1e-3] (recorded with the map).
+    atol : float, default 1e-12
+        Absolute tolerance, in [1e-300, 1e-3] (recorded with the map).
+    max_steps : int, default 1_000_000
+        Accepted steps of each run, 1 ... 10**7.
+    n_threads : int, default 0
+        Threads, 0 (one per core) ... 256; results are identical for any value.
+    integrator : {"RK45", "DOP853", "Vern7", "Vern9"}, default "RK45"
+        The Runge–Kutta pair (recorded with the map). For speed pick ``"Vern9"`` (at the
+        default rtol 1.5–1.9× faster than RK45 and about 15× more accurate); keep
+        ``"RK45"`` for step-for-step parity with scipy.
+    chunks : int or None, default None
+        Alpha values per block (>= 1): the map as a lazily computed, dask-backed
+        ``xarray.Dataset``, one core call per block (``pip install "eccjump[dask]"``).
+    output : {"map", "xarray"}, default "map"
+        ``"map"``: a :class:`MotionMap`; ``"xarray"``: a labelled ``xarray.Dataset``.
+    km : None
+        Not accepted: ``km`` is the body's k_m elsewhere; the axis is ``km_frac``. Passing
+        it is a TypeError.
 
-    Raises ValueError naming the parameter for a bad shared option or a malformed axis;
-    Ctrl-C raises KeyboardInterrupt (the work stops within a second).
+    Returns
+    -------
+    MotionMap or xarray.Dataset
+        The summaries, one array per field over the swept axes.
+
+    Raises
+    ------
+    ValueError
+        For a bad shared option or a malformed axis, or an axis given as one number that
+        makes every point invalid; the message names the parameter and its range.
+    TypeError
+        If ``km`` is given, or an argument has the wrong type.
+    MemoryError
+        If the map does not fit in memory.
+    KeyboardInterrupt
+        On Ctrl-C (the work stops within a second).
+
+    See Also
+    --------
+    simulate : one run, recorded in full.
+    region : maps of the JARM classification alone (faster, by the closed forms).
+
+    Examples
+    --------
+    The paper's JARM point (alpha = 40 deg, chi = 0.15, k_m = 0.02) and three others:
+
+    >>> import numpy as np
+    >>> import eccjump
+    >>> from eccjump.motion_maps import sequence_name
+    >>> m = eccjump.motion_map(np.radians([30, 40]), [0.15, 0.5], [0.02 / 0.85, 0.8], 1.0)
+    >>> [sequence_name(c) for c in m.sequence[:, 0, 0]]
+    ['ROLL→SLIP→FLIGHT→ROLL', 'ROLL→FLIGHT→SLIP']
+    >>> bool(m.jarm[1, 0, 0]), m.fraction()
+    (True, 0.125)
     """
     coords, scalars = _axes(
         {
@@ -370,9 +494,11 @@ def from_layout(lay: dict[str, Any], kind: MapKind, source: object) -> MotionMap
 
 
 def load(path: str | os.PathLike) -> MotionMap:
-    """A motion map file (.nc, .zarr, .npz; .npz needs numpy only) as a :class:`MotionMap`;
+    """A motion map file (.nc, .zarr, .npz; .npz needs numpy only) as a :class:`MotionMap`.
+
     ValueError naming the path for a file that is no valid motion map (a JARM map:
-    :func:`store.load`), as every loader of :mod:`eccjump.store`."""
+    ``eccjump.store.load``), as every loader of :mod:`eccjump.store`.
+    """
     lay, kind = store.read_layout(path)
     return from_layout(lay, kind, path)
 

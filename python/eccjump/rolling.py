@@ -1,6 +1,7 @@
 """Pure rolling: :func:`roll` integrates the rolling equation in the Rust core.
 
-Equations (units g = R = M = 1; ``docs/paper_formulas.md`` lists how each was checked):
+Equations (units g = R = M = 1; the user guide's "The paper's formulas" page lists how each
+was checked):
 
 * rolling equation (paper Eq. roll-eq):
   theta'' (Ic + 1 + 2 chi cos theta) = chi theta'^2 sin theta + chi sin(alpha + theta) + sin alpha
@@ -31,10 +32,24 @@ if TYPE_CHECKING:  # pragma: no cover
     from matplotlib.figure import Figure
 
 EVENT_NAMES = ("liftoff", "normal_force_zero", "slip", "theta_limit")
+"""The names of the events of :func:`roll`: the paper's lift-off condition (rising), the
+normal force Fy reaching 0, the friction cone left (mu_s Fy = |Fx|), ``theta_max`` reached."""
 
 
 class Event(NamedTuple):
-    """An event met during a run: its name, time and state (dimensionless units)."""
+    """An event met during a run of :func:`roll`: its name, time and state.
+
+    Attributes
+    ----------
+    name : str
+        One of :data:`EVENT_NAMES`.
+    t : float
+        Time [sqrt(R/g)] (seconds after ``to_si``).
+    theta : float
+        Angle of the vector axis -> centre of mass from the ramp normal [rad].
+    omega : float
+        Angular velocity theta' [sqrt(g/R) rad] (rad/s after ``to_si``).
+    """
 
     name: str
     t: float
@@ -47,24 +62,59 @@ class RollResult:
     """The outcome of :func:`roll`, in the spirit of scipy's ``OdeResult``.
 
     Arrays hold the accepted steps (the initial point first, the terminal event last), in
-    units g = R = M = 1 unless converted with :meth:`to_si`.
+    units g = R = M = 1 unless converted with :meth:`to_si` (then seconds, rad/s, rad/s²,
+    newtons and metres).
 
     Attributes
     ----------
-    t : time [sqrt(R/g)]
-    theta : angle of the vector C -> CM from the ramp normal [rad]
-    omega : angular velocity theta' [sqrt(g/R) rad]
-    omega_dot : angular acceleration theta'' from the rolling equation [g/R rad]
-    Fx : friction force on the cylinder along the ramp, positive down the ramp [M g]
-    Fy : normal force on the cylinder [M g]
-    l : distance rolled along the ramp since the start, l - l0 [R] (from the core)
-    friction_ratio : |Fx|/Fy, the friction the rolling branch needs (inf where Fy <= 0)
-    events : every event met, in time order (see :data:`EVENT_NAMES`)
-    terminal_event : name of the event that ended the run, or None
-    status : 0 reached t_max, 1 a terminal event, -1 the integrator failed
-    message : what happened, in words
-    nfev : right-hand-side evaluations
-    sol : dense output ``sol(t) -> (theta, omega)`` when asked for, else None
+    body : Cylinder
+        The body that rolled.
+    alpha : float
+        Ramp angle [rad].
+    mu_s : float or None
+        Static friction coefficient; None: enough friction (no slip event).
+    rule : str
+        Lift-off rule, ``"paper"`` or ``"normal_force"``.
+    t : numpy.ndarray
+        Time [sqrt(R/g)].
+    theta : numpy.ndarray
+        Angle of the vector axis -> centre of mass from the ramp normal [rad].
+    omega : numpy.ndarray
+        Angular velocity theta' [sqrt(g/R) rad].
+    omega_dot : numpy.ndarray
+        Angular acceleration theta'' from the rolling equation [g/R rad].
+    Fx : numpy.ndarray
+        Friction force on the cylinder along the ramp, positive down the ramp [M g].
+    Fy : numpy.ndarray
+        Normal force on the cylinder [M g].
+    l : numpy.ndarray
+        Distance rolled along the ramp since the start, l - l0 [R].
+    friction_ratio : numpy.ndarray
+        |Fx|/Fy, the friction the rolling branch needs (inf where Fy <= 0).
+    events : tuple of Event
+        Every event met, in time order (names in :data:`EVENT_NAMES`).
+    terminal_event : str or None
+        Name of the event that ended the run, or None.
+    status : int
+        0 reached ``t_max``, 1 a terminal event, -1 the integrator failed.
+    message : str
+        What happened, in words.
+    nfev : int
+        Right-hand-side evaluations.
+    sol : DenseSolution or None
+        Dense output ``sol(t) -> (theta, omega)`` when asked for, else None.
+    units : Units or None
+        The scales of :meth:`to_si`, or None for a dimensionless result.
+
+    Examples
+    --------
+    >>> import math
+    >>> import eccjump
+    >>> res = eccjump.roll(eccjump.Cylinder(chi=0.15, km=0.02), math.radians(40), mu_s=1.0)
+    >>> res.terminal_event, res.status, res.success
+    ('liftoff', 1, True)
+    >>> print(f"t = {res.t[-1]:.6f}, Fy = {res.Fy[-1]:.5f} M g")
+    t = 4.183024, Fy = 0.01543 M g
     """
 
     body: Cylinder
@@ -149,7 +199,22 @@ class RollResult:
         return plot.trajectory(self, **kwargs)
 
     def event(self, name: str) -> Event | None:
-        """The first event called ``name``, or None."""
+        """The first event called ``name``, or None if the run did not meet it.
+
+        Parameters
+        ----------
+        name : str
+            One of :data:`EVENT_NAMES`.
+
+        Returns
+        -------
+        Event or None
+
+        Raises
+        ------
+        ValueError
+            If ``name`` is not one of :data:`EVENT_NAMES`.
+        """
         if name not in EVENT_NAMES:
             raise ValueError(f"name = {name!r} is not one of {EVENT_NAMES}")
         return next((e for e in self.events if e.name == name), None)
@@ -157,9 +222,44 @@ class RollResult:
     def to_si(
         self, units: Units | None = None, *, g: float = 9.81, R: float = 1.0, M: float = 1.0
     ) -> RollResult:
-        """The same run in SI units for gravity ``g`` [m/s²], radius ``R`` [m], mass ``M``
-        [kg]: angles unchanged, times x sqrt(R/g), rates x sqrt(g/R), forces x M g.
-        The dense output is dropped (it stays available on the dimensionless result)."""
+        """The same run in SI units: angles unchanged, times x sqrt(R/g), rates x sqrt(g/R),
+        angular accelerations x g/R, forces x M g, lengths x R.
+
+        The dense output is dropped (it stays available on the dimensionless result).
+
+        Parameters
+        ----------
+        units : Units, optional
+            The scales; if given, ``g``, ``R`` and ``M`` are ignored.
+        g : float, default 9.81
+            Gravitational acceleration [m/s²], in [1e-50, 1e50].
+        R : float, default 1.0
+            Radius [m], in [1e-50, 1e50].
+        M : float, default 1.0
+            Mass [kg], in [1e-50, 1e50].
+
+        Returns
+        -------
+        RollResult
+            A copy with ``units`` set and ``sol`` None.
+
+        Raises
+        ------
+        ValueError
+            If this result is already in SI units, a scale is out of range, or a value
+            overflows float64 in SI units.
+        TypeError
+            If ``units`` is not a Units or None.
+
+        Examples
+        --------
+        >>> import math
+        >>> import eccjump
+        >>> res = eccjump.roll(eccjump.Cylinder(chi=0.15, km=0.02), math.radians(40), mu_s=1.0)
+        >>> si = res.to_si(g=9.81, R=0.2, M=1.5)
+        >>> print(f"lift-off after {si.t[-1]:.4f} s, Fy = {si.Fy[-1]:.4f} N")
+        lift-off after 0.5973 s, Fy = 0.2270 N
+        """
         if self.units is not None:
             raise ValueError("units: this result is already in SI units")
         if units is not None and not isinstance(units, Units):
@@ -224,45 +324,94 @@ def roll(
 ) -> RollResult:
     """Integrate pure rolling of ``body`` on a ramp of angle ``alpha`` until an event ends it.
 
+    The rolling equation (units g = R = M = 1)
+    theta'' (Ic + 1 + 2 chi cos theta) = chi theta'^2 sin theta + chi sin(alpha + theta)
+    + sin alpha, with the contact forces from Newton–Euler, integrated by an adaptive
+    Runge–Kutta pair with events located on its dense output to near machine precision:
+    ``liftoff`` (the paper's condition chi theta'^2 cos theta = cos alpha, rising),
+    ``normal_force_zero`` (Fy = 0), ``slip`` (mu_s Fy = |Fx|) and ``theta_limit``. A contact
+    condition already violated at t = 0 ends the run at once.
+
     Parameters
     ----------
     body : Cylinder
-    alpha : ramp angle [rad], in [0, pi/2].
-    theta0, omega0 : initial angle [rad], |theta0| <= 2 pi 1e6, and angular velocity,
-        |omega0| <= 1e6 [sqrt(g/R) rad].
-    mu_s : static friction coefficient, >= 0; None means enough friction (no slip event).
-    t_max : largest time [sqrt(R/g)], > 0.
-    theta_max : the run ends when theta reaches this angle [rad] (event ``theta_limit``).
-    rtol, atol : tolerances of the integrator (scipy's meaning).
-    dense_output : keep the interpolant, returned as ``sol``.
-    max_steps : step limit (1 ... 10**7); reaching it ends the run with status -1. A run
-        honours Ctrl-C (KeyboardInterrupt); bounds: ``docs/limits.md``.
-    rule : ``"paper"`` ends the run at the paper's lift-off condition
-        chi theta'^2 cos theta = cos alpha; ``"normal_force"`` keeps rolling until Fy = 0 or
-        (with ``mu_s``) the friction cone is left, recording the paper's condition as an event.
-    integrator : for speed pick ``"Vern9"`` (at the default rtol 1.5–1.9× faster than RK45
-        and about 15× more accurate); keep ``"RK45"`` for step-for-step parity with scipy
-        (``benches/bench_pairs.py``). The pairs: ``"RK45"`` (Dormand–Prince 5(4), step for
-        step as scipy's ``RK45``; the default),
-        ``"DOP853"`` (Dormand–Prince 8(5,3) as scipy's ``DOP853``: about 3x fewer steps at
-        the default tolerances, and faster; the same steps as scipy's, but ``nfev`` is lower:
-        a step whose ends clear it of events is not given the dense output's 3 extra
-        evaluations unless ``dense_output`` is asked for), ``"Vern7"`` (Verner's 7(6) pair,
-        10 evaluations per step and 5 more for an interpolant, which events need only
-        rarely; scipy's step control with a safety factor of 0.75 and a first step probed
-        up to three times: at equal accuracy mostly the fastest over a few turns) or
-        ``"Vern9"`` (Verner's 9(8) pair, 16 evaluations per step and 4 more for an
-        interpolant, the same step control: the fastest over long runs and at tight
-        tolerances; ``benches/README.md``).
+        The body (chi, km).
+    alpha : float
+        Ramp angle [rad], in [0, pi/2] (``math.radians`` for degrees).
+    theta0 : float, default 0.0
+        Initial angle of the vector axis -> centre of mass from the ramp normal [rad],
+        |theta0| <= 2 pi 1e6.
+    omega0 : float, default 0.0
+        Initial angular velocity [sqrt(g/R) rad], |omega0| <= 1e6.
+    mu_s : float or None, default None
+        Static friction coefficient, in [0, inf); None means enough friction (no slip event).
+    t_max : float, default 1000.0
+        Largest time [sqrt(R/g)], > 0.
+    theta_max : float, default inf
+        The run ends when theta reaches this angle [rad] (event ``theta_limit``).
+    rtol : float, default 1e-10
+        Relative tolerance of the integrator (scipy's meaning), in [1e-15, 1e-3].
+    atol : float, default 1e-12
+        Absolute tolerance of the integrator, in [1e-300, 1e-3].
+    dense_output : bool, default False
+        Keep the interpolant, returned as ``sol``.
+    max_steps : int, default 1_000_000
+        Step limit, 1 ... 10**7; reaching it ends the run with status -1.
+    rule : {"paper", "normal_force"}, default "paper"
+        ``"paper"`` ends the run at the paper's lift-off condition; ``"normal_force"``
+        keeps rolling until Fy = 0 or (with ``mu_s``) the friction cone is left, recording
+        the paper's condition as an event.
+    integrator : {"RK45", "DOP853", "Vern7", "Vern9"}, default "RK45"
+        The Runge–Kutta pair. For speed pick ``"Vern9"`` (at the default rtol 1.5–1.9×
+        faster than RK45 and about 15× more accurate); keep ``"RK45"`` for step-for-step
+        parity with scipy. ``"RK45"``: Dormand–Prince 5(4), step for step as scipy's
+        ``RK45``. ``"DOP853"``: Dormand–Prince 8(5,3) as scipy's ``DOP853``, about 3x fewer
+        steps at the default tolerances and the same steps as scipy's (``nfev`` is lower: a
+        step clear of events gets no dense output unless ``dense_output`` is asked for).
+        ``"Vern7"``: Verner's 7(6) pair, at equal accuracy mostly the fastest over a few
+        turns. ``"Vern9"``: Verner's 9(8) pair, the fastest over long runs and at tight
+        tolerances.
 
-    Events (located on the dense output to near machine precision): ``liftoff`` (paper's
-    condition, rising), ``normal_force_zero`` (Fy = 0), ``slip`` (mu_s Fy = |Fx|),
-    ``theta_limit``. A contact condition already violated at t = 0 ends the run at once.
+    Returns
+    -------
+    RollResult
+        The accepted steps, the events, how the run ended (``terminal_event``, ``status``,
+        ``message``) and, with ``dense_output``, ``sol``.
 
     Raises
     ------
     ValueError
-        For any parameter outside its range; the message names it.
+        For any parameter outside its range; the message names it, its range and unit.
+    TypeError
+        If ``body`` is not a Cylinder or a parameter has the wrong type.
+    KeyboardInterrupt
+        On Ctrl-C, within about a second (a run looks every 4096 steps).
+    MemoryError
+        If the record of the run cannot be allocated.
+
+    See Also
+    --------
+    simulate : the full motion on through slipping, flight and landing.
+    jarm : the same verdict for many points, by the paper's closed forms.
+
+    Examples
+    --------
+    The paper's JARM point: it lifts off straight out of pure rolling.
+
+    >>> import math
+    >>> import eccjump
+    >>> body = eccjump.Cylinder(chi=0.15, km=0.02)
+    >>> res = eccjump.roll(body, math.radians(40), mu_s=1.0)
+    >>> res.terminal_event
+    'liftoff'
+    >>> print(f"{math.degrees(res.theta[-1]):.6f} deg, Fy = {res.Fy[-1]:.5f} M g")
+    334.343838 deg, Fy = 0.01543 M g
+
+    The paper's Fig. 3b body needs more friction than mu_s = 1 before it lifts off:
+
+    >>> res = eccjump.roll(eccjump.Cylinder(chi=0.5, km=0.4), math.radians(30), mu_s=1.0)
+    >>> print(res.terminal_event, f"at {math.degrees(res.theta[-1]):.2f} deg")
+    slip at 316.47 deg
     """
     if not isinstance(body, Cylinder):
         raise TypeError(f"body must be a Cylinder, not {type(body).__name__}")

@@ -1,5 +1,5 @@
 """Initial conditions: how the JARM region depends on the start (theta0, omega0), and which
-start maximises it (the paper's open question; ``docs/initial_conditions.md``).
+start maximises it (the paper's open question; the user guide's "Initial conditions" page).
 
 The measure. For a start, the *JARM fraction* is the share of JARM points on the midpoint
 grid of the unit cube of (alpha / (pi/2), chi, km_frac), ``grid`` points per axis:
@@ -100,12 +100,47 @@ def reason_shares(
     n_threads: int = 0,
 ) -> dict[Reason, float]:
     """The share of every :class:`Reason` over the parameter cube for the start
-    (theta0, omega0): its midpoint grid of ``grid`` (2 ... 128) points per axis (see the
-    module docs). The shares sum to 1; ``[Reason.JARM]`` is :func:`jarm_fraction`.
+    (theta0, omega0).
 
-    What blocks a JARM at a start: ``LIFTOFF_EARLIER`` is the immediate flight (paper's rule:
-    chi omega0^2 cos theta0 > cos alpha, it leaves the ramp at theta0), ``ROCKS_BACK`` a start
-    that rolls back up the ramp (omega reaches 0) before any event.
+    The cube of (alpha / (pi/2), chi, km_frac) is sampled on its midpoint grid of ``grid``
+    points per axis (see the module's docstring). What blocks a JARM at a start:
+    ``LIFTOFF_EARLIER`` is the immediate flight (paper's rule: chi omega0^2 cos theta0 > cos
+    alpha, it leaves the ramp at theta0), ``ROCKS_BACK`` a start that rolls back up the ramp
+    (omega reaches 0) before any event.
+
+    Parameters
+    ----------
+    mu_s : float
+        Static friction coefficient, in [0, inf).
+    theta0 : float, default 0.0
+        Initial angle [rad], |theta0| <= 2 pi 1e6, taken modulo 2 pi.
+    omega0 : float, default 0.0
+        Initial angular velocity [sqrt(g/R) rad], in [0, 1e6].
+    grid : int, default 40
+        Points per axis of the midpoint grid of (alpha, chi, km_frac), 2 ... 128.
+    rule : {"paper", "normal_force"}, default "paper"
+        Lift-off rule.
+    n_threads : int, default 0
+        Threads, 0 (one per core) ... 256; results are identical for any value.
+
+    Returns
+    -------
+    dict of Reason to float
+        The share of each reason (every member, 0 for those not met); the shares sum to 1
+        and ``[Reason.JARM]`` is :func:`jarm_fraction`.
+
+    Raises
+    ------
+    ValueError
+        For a parameter out of its range (the message names it).
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> import eccjump
+    >>> shares = eccjump.reason_shares(1.0, grid=16)
+    >>> {r.name: round(s, 4) for r, s in shares.items() if s}
+    {'JARM': 0.0054, 'SLIP_BEFORE': 0.8457, 'SLIP_AT_JUMP': 0.1489}
     """
     mu, th, om = _mu(mu_s), _theta0(theta0), _omega0(omega0)
     s = _shares(mu, th, om, grid, rule_name(rule), _threads(n_threads))
@@ -121,10 +156,48 @@ def jarm_fraction(
     rule: Rule = "paper",
     n_threads: int = 0,
 ) -> float:
-    """The JARM fraction of the parameter cube for the start (theta0 [rad], omega0
-    [sqrt(g/R)]): the share of JARM points on the midpoint grid of (alpha, chi, km_frac) with
-    ``grid`` (2 ... 128) points per axis. At theta0 = omega0 = 0 it equals
-    ``eccjump.region(alpha, chi, km_frac, mu_s).fraction()`` on the same grid."""
+    """The JARM fraction of the parameter cube for the start (theta0, omega0).
+
+    The share of JARM points on the midpoint grid of (alpha, chi, km_frac) with ``grid``
+    points per axis. At theta0 = omega0 = 0 it equals
+    ``eccjump.region(alpha, chi, km_frac, mu_s).fraction()`` on the same grid.
+
+    Parameters
+    ----------
+    mu_s : float
+        Static friction coefficient, in [0, inf).
+    theta0 : float, default 0.0
+        Initial angle [rad], |theta0| <= 2 pi 1e6, taken modulo 2 pi.
+    omega0 : float, default 0.0
+        Initial angular velocity [sqrt(g/R) rad], in [0, 1e6].
+    grid : int, default 40
+        Points per axis of the midpoint grid of (alpha, chi, km_frac), 2 ... 128.
+    rule : {"paper", "normal_force"}, default "paper"
+        Lift-off rule.
+    n_threads : int, default 0
+        Threads, 0 (one per core) ... 256; results are identical for any value.
+
+    Returns
+    -------
+    float
+        The fraction, in [0, 1].
+
+    Raises
+    ------
+    ValueError
+        For a parameter out of its range (the message names it).
+
+    Examples
+    --------
+    From rest, and from the best start (theta0 about 271 deg, omega0 about 1):
+
+    >>> import numpy as np
+    >>> import eccjump
+    >>> print(f"{eccjump.jarm_fraction(1.0, grid=16):.4f}")
+    0.0054
+    >>> print(f"{eccjump.jarm_fraction(1.0, np.radians(271), 1.0, grid=16):.4f}")
+    0.2722
+    """
     return reason_shares(mu_s, theta0, omega0, grid=grid, rule=rule, n_threads=n_threads)[
         Reason.JARM
     ]
@@ -136,10 +209,23 @@ def _threads(n_threads: object) -> int:
 
 @dataclass(frozen=True, eq=False)
 class StartMap:
-    """The reason shares over a lattice of starts.
+    """The reason shares over a lattice of starts (:func:`start_map`).
 
-    ``shares[i, j, r]`` is the share of reason code r for the start (theta0[i], omega0[j])
-    (theta0 taken modulo 2 pi), on the midpoint grid of ``grid`` points per axis.
+    Attributes
+    ----------
+    theta0 : numpy.ndarray
+        The starts' angles [rad], taken modulo 2 pi, 1-D.
+    omega0 : numpy.ndarray
+        The starts' angular velocities [sqrt(g/R) rad], 1-D.
+    shares : numpy.ndarray
+        ``shares[i, j, r]`` is the share of reason code r for the start (theta0[i],
+        omega0[j]), shape (len(theta0), len(omega0), number of reasons).
+    mu_s : float
+        Static friction coefficient.
+    grid : int
+        Points per axis of the parameter cube's midpoint grid.
+    rule : str
+        Lift-off rule.
     """
 
     theta0: NDArray[np.float64]
@@ -170,7 +256,13 @@ class StartMap:
         return self.fraction == 0.0
 
     def best(self) -> tuple[float, float, float]:
-        """(theta0, omega0, fraction) of the lattice start with the largest fraction."""
+        """The lattice start with the largest JARM fraction.
+
+        Returns
+        -------
+        tuple of float
+            (theta0 [rad], omega0 [sqrt(g/R) rad], fraction).
+        """
         i, j = np.unravel_index(int(np.argmax(self.fraction)), self.fraction.shape)
         return float(self.theta0[i]), float(self.omega0[j]), float(self.fraction[i, j])
 
@@ -211,9 +303,51 @@ def start_map(
     progress: Callable[[int, int], None] | None = None,
 ) -> StartMap:
     """The reason shares (and the JARM fraction) for every start of the lattice
-    ``theta0`` x ``omega0`` (1-D arrays, at most 10**4 starts in all; theta0 [rad] is taken
-    modulo 2 pi, omega0 in [0, 1e6]), each on the midpoint grid of ``grid`` (2 ... 128)
-    points per axis. ``progress(done, total)`` is called after each start."""
+    ``theta0`` x ``omega0``.
+
+    Each start is a map of the parameter cube on its midpoint grid of ``grid`` points per
+    axis, as :func:`reason_shares`.
+
+    Parameters
+    ----------
+    mu_s : float
+        Static friction coefficient, in [0, inf).
+    theta0 : array_like of float, 1-D
+        Initial angles [rad], |theta0| <= 2 pi 1e6, taken modulo 2 pi.
+    omega0 : array_like of float, 1-D
+        Initial angular velocities [sqrt(g/R) rad], in [0, 1e6]; at most 10**4 starts in
+        all.
+    grid : int, default 24
+        Points per axis of the midpoint grid of (alpha, chi, km_frac), 2 ... 128.
+    rule : {"paper", "normal_force"}, default "paper"
+        Lift-off rule.
+    n_threads : int, default 0
+        Threads, 0 (one per core) ... 256; results are identical for any value.
+    progress : callable or None, default None
+        Called as ``progress(done, total)`` after each start.
+
+    Returns
+    -------
+    StartMap
+
+    Raises
+    ------
+    ValueError
+        For a parameter out of its range or more than 10**4 starts.
+    TypeError
+        If ``progress`` is not callable.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> import eccjump
+    >>> m = eccjump.start_map(1.0, np.radians([0, 90, 180, 270]), [0.0, 1.0], grid=8)
+    >>> m.fraction.round(4)
+    array([[0.0039, 0.002 ],
+           [0.0273, 0.0098],
+           [0.0527, 0.1172],
+           [0.1758, 0.2715]])
+    """
     mu = _mu(mu_s)
     th = axis("theta0", theta0)
     om = axis("omega0", omega0)
@@ -243,15 +377,44 @@ def start_map(
 class OptimalStart:
     """The start that maximises the JARM fraction (:func:`optimal_start`).
 
-    theta0 [rad, in [0, 2 pi)], omega0, fraction : the optimum on the fine grid (2 grid points
-        per axis) -- the answer.
-    theta0_coarse, omega0_coarse, fraction_coarse : the optimum on the grid itself.
-    theta0_err, omega0_err, fraction_err : the uncertainty from the grid resolution: the
-        differences between the two (theta0 on the circle).
-    step_theta0, step_omega0 : the resolution of the search in the start (the last pattern
-        step): no start within 3 steps along an axis or a diagonal does better, on either grid.
-    fraction_at_rest : the fraction at theta0 = omega0 = 0 on the fine grid, for comparison.
-    evaluations : maps computed (each one a grid of grid**3 or (2 grid)**3 points).
+    Attributes
+    ----------
+    mu_s : float
+        Static friction coefficient.
+    rule : str
+        Lift-off rule.
+    grid : int
+        Points per axis of the coarse grid (the fine grid has 2 grid).
+    omega_max : float
+        Largest omega0 searched [sqrt(g/R) rad].
+    theta0 : float
+        The optimum's angle on the fine grid [rad], in [0, 2 pi) -- the answer.
+    omega0 : float
+        The optimum's angular velocity on the fine grid [sqrt(g/R) rad].
+    fraction : float
+        The JARM fraction there, on the fine grid.
+    theta0_coarse : float
+        The optimum on the coarse grid [rad].
+    omega0_coarse : float
+        The optimum on the coarse grid [sqrt(g/R) rad].
+    fraction_coarse : float
+        The JARM fraction there, on the coarse grid.
+    theta0_err : float
+        Uncertainty of theta0 from the grid resolution: the difference of the two optima
+        on the circle [rad].
+    omega0_err : float
+        Uncertainty of omega0 [sqrt(g/R) rad].
+    fraction_err : float
+        Uncertainty of the fraction.
+    step_theta0 : float
+        Resolution of the search in theta0 (the last pattern step) [rad]: no start within 3
+        steps along an axis or a diagonal does better, on either grid.
+    step_omega0 : float
+        Resolution of the search in omega0 [sqrt(g/R) rad].
+    fraction_at_rest : float
+        The fraction at theta0 = omega0 = 0 on the fine grid, for comparison.
+    evaluations : int
+        Maps computed (each one a grid of grid**3 or (2 grid)**3 points).
     """
 
     mu_s: float
@@ -283,7 +446,13 @@ class OptimalStart:
         return card("OptimalStart", rows)
 
     def as_dict(self) -> dict[str, Any]:
-        """The numbers, angles in degrees (for printing and JSON)."""
+        """The numbers, angles in degrees (for printing and JSON).
+
+        Returns
+        -------
+        dict of str to object
+            The fields, with ``theta0_deg`` etc. for the angles.
+        """
         return {
             "mu_s": self.mu_s,
             "rule": self.rule,
@@ -408,8 +577,8 @@ def optimal_start(
     n_threads: int = 0,
     max_evaluations: int = 2000,
 ) -> OptimalStart:
-    """The start (theta0, omega0), theta0 in [0, 2 pi), 0 <= omega0 <= ``omega_max``, that
-    maximises the JARM fraction (:func:`jarm_fraction`), with its uncertainty from the grid.
+    """The start (theta0, omega0) that maximises the JARM fraction (:func:`jarm_fraction`),
+    with its uncertainty from the grid. Needs scipy (``pip install "eccjump[analysis]"``).
 
     The fraction on a finite grid is piecewise constant in the start, so the search uses no
     derivative: (1) a lattice of ``lattice`` = (n_theta, n_omega) starts (theta0 = 2 pi i /
@@ -420,9 +589,45 @@ def optimal_start(
     lattice by construction; (4) steps (2)--(3) again on the grid of 2 ``grid`` points per
     axis, from the first optimum. The difference between the two optima is the uncertainty.
 
-    grid : 2 ... 64 (the fine grid is 2 grid). lattice : each 2 ... 1000. n_starts : 1 ... 50.
-    omega_max : (0, 100]. max_evaluations : bound of the maps computed in all (1 ... 10**5);
-    a search that reaches it raises ValueError.
+    Parameters
+    ----------
+    mu_s : float
+        Static friction coefficient, in [0, inf).
+    grid : int, default 32
+        Points per axis of the coarse grid, 2 ... 64 (the fine grid is 2 grid).
+    omega_max : float, default 3.0
+        Largest omega0 searched [sqrt(g/R) rad], in (0, 100]; theta0 covers [0, 2 pi).
+    lattice : tuple of (int, int), default (24, 12)
+        Starts of the first lattice along theta0 and omega0, each 2 ... 1000.
+    n_starts : int, default 3
+        Lattice starts the local search begins from, 1 ... 50.
+    rule : {"paper", "normal_force"}, default "paper"
+        Lift-off rule.
+    n_threads : int, default 0
+        Threads, 0 (one per core) ... 256; results are identical for any value.
+    max_evaluations : int, default 2000
+        Bound of the maps computed in all, 1 ... 10**5.
+
+    Returns
+    -------
+    OptimalStart
+        The optimum on both grids, its uncertainty and the fraction at rest.
+
+    Raises
+    ------
+    ValueError
+        For a parameter out of its range, or a search that reaches ``max_evaluations``.
+    ImportError
+        Without scipy.
+
+    Examples
+    --------
+    A coarse search (the user guide's numbers use ``grid=32``):
+
+    >>> import eccjump
+    >>> best = eccjump.optimal_start(1.0, grid=6, lattice=(8, 4), n_starts=1)
+    >>> bool(best.fraction > 10 * best.fraction_at_rest)
+    True
     """
     mu = _mu(mu_s)
     g = integer("grid", grid, 2, GRID_MAX // 2)

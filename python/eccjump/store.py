@@ -62,7 +62,29 @@ FORMATS = {".nc": "netcdf", ".zarr": "zarr", ".npz": "npz"}
 
 
 def format_of(path: str | os.PathLike) -> str:
-    """``"netcdf"``, ``"zarr"`` or ``"npz"`` from the suffix of ``path``."""
+    """The format of a map file by its suffix.
+
+    Parameters
+    ----------
+    path : str or os.PathLike
+        A path ending in ``.nc``, ``.zarr`` or ``.npz`` (any case).
+
+    Returns
+    -------
+    str
+        ``"netcdf"``, ``"zarr"`` or ``"npz"``.
+
+    Raises
+    ------
+    ValueError
+        For another suffix.
+
+    Examples
+    --------
+    >>> from eccjump import store
+    >>> store.format_of("region.nc"), store.format_of("map.NPZ")
+    ('netcdf', 'npz')
+    """
     suffix = Path(path).suffix.lower()
     if suffix not in FORMATS:
         raise ValueError(
@@ -270,10 +292,22 @@ def _alive(pid: int) -> bool:
 
 
 def recover(path: str | os.PathLike) -> list[str]:
-    """Clean up after a process killed while writing ``path``: remove its temporary
-    ``.<name>.tmp-<pid>``, and put back a map it had set aside (``.<name>.old-<pid>``) if
-    ``path`` is missing, else remove that too. Only names of processes no longer running are
-    touched (POSIX; elsewhere nothing is done). Returns notes of what was put back."""
+    """Clean up after a process killed while writing ``path``.
+
+    Removes its temporary ``.<name>.tmp-<pid>``, and puts back a map it had set aside
+    (``.<name>.old-<pid>``) if ``path`` is missing, else removes that too. Only names of
+    processes no longer running are touched (POSIX; elsewhere nothing is done).
+
+    Parameters
+    ----------
+    path : str or os.PathLike
+        The map's path.
+
+    Returns
+    -------
+    list of str
+        Notes of what was put back.
+    """
     path = Path(path)
     pattern = re.compile(rf"\.{re.escape(path.name)}\.(tmp|old)-(\d+)")
     notes: list[str] = []
@@ -359,14 +393,38 @@ def save(
     *,
     attrs: Mapping[str, Any] | None = None,
 ) -> Path:
-    """Write a map (a :class:`Region`, a dataset or a layout) to ``path``, replacing it.
+    """Write a map to ``path``, replacing the map there; the format by the suffix.
 
     Every format is written under a temporary name next to ``path`` and renamed into place
     (:func:`install`), so a map at ``path`` is always whole and the one it replaces is kept
-    until then; on failure nothing is left behind. The directory of ``path`` must exist;
-    only a map file (or a zarr map of eccjump) there is replaced, never a directory of other
-    files or a FIFO (ValueError naming ``path``). A map that :func:`load` would refuse is not
-    written (ValueError naming ``obj`` or ``attrs``). ``.npz`` needs numpy only.
+    until then; on failure nothing is left behind. Only a map file (or a zarr map of
+    eccjump) is replaced, never a directory of other files or a FIFO.
+
+    Parameters
+    ----------
+    obj : Region, MotionMap, xarray.Dataset or layout
+        The map: a result of :func:`eccjump.region` or :func:`eccjump.motion_map`, its
+        dataset (``to_xarray()``, ``region(..., output="xarray")``) or a layout dict.
+    path : str or os.PathLike
+        ``.nc`` (netCDF4, needs xarray), ``.zarr`` (needs zarr) or ``.npz`` (numpy only); its
+        directory must exist.
+    attrs : mapping, optional
+        Extra attributes to record in the file.
+
+    Returns
+    -------
+    pathlib.Path
+        The path written.
+
+    Raises
+    ------
+    ValueError
+        For an unknown suffix, a target that is not a map, or a map that :func:`load`
+        would refuse (naming ``path``, ``obj`` or ``attrs``).
+    OSError
+        If the file cannot be written (its directory is missing, no space, ...).
+    ImportError
+        For ``.nc`` or ``.zarr`` without xarray or zarr.
     """
     path = Path(check_path("path", path))
     mapping("attrs", attrs)
@@ -593,8 +651,26 @@ def load_layout(path: str | os.PathLike) -> Layout:
 
 
 def open_dataset(path: str | os.PathLike) -> xr.Dataset:
-    """A map file as an ``xarray.Dataset`` (loaded into memory), checked as by
-    :func:`read_layout`."""
+    """A map file as an ``xarray.Dataset``, loaded into memory and checked.
+
+    Parameters
+    ----------
+    path : str or os.PathLike
+        A ``.nc``, ``.zarr`` or ``.npz`` map file, of either kind, swept or not.
+
+    Returns
+    -------
+    xarray.Dataset
+
+    Raises
+    ------
+    ValueError
+        For a file that is no valid map (naming it and what is wrong).
+    FileNotFoundError
+        If there is no file at ``path``.
+    ImportError
+        Without xarray.
+    """
     path = check_path("path", path)
     lay, ds = _read(path, format_of(path))
     check_layout(lay, path)
@@ -602,9 +678,28 @@ def open_dataset(path: str | os.PathLike) -> xr.Dataset:
 
 
 def load(path: str | os.PathLike) -> Region:
-    """A map file (of one map, no swept dimensions) as a :class:`Region`. ``.npz`` needs
-    numpy only. The file's ``complete`` and ``alpha_done`` go to ``Region.attrs``. A file
-    that is not such a map raises ValueError naming it and what is wrong."""
+    """A JARM map file (of one map, no swept dimensions) as a :class:`Region`.
+
+    ``.npz`` needs numpy only. The file's ``complete`` and ``alpha_done`` go to
+    ``Region.attrs``. :func:`eccjump.maps.load` reads either kind.
+
+    Parameters
+    ----------
+    path : str or os.PathLike
+        A ``.nc``, ``.zarr`` or ``.npz`` JARM map file.
+
+    Returns
+    -------
+    Region
+
+    Raises
+    ------
+    ValueError
+        For a file that is not such a map (a motion map, swept maps, damaged), naming it and
+        what is wrong.
+    FileNotFoundError
+        If there is no file at ``path``.
+    """
     lay, kind = read_layout(path)
     if kind.name != "jarm":
         raise file_error(path, "is a motion map: load it with eccjump.maps.load")

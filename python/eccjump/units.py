@@ -26,8 +26,35 @@ _UNITS = {"g": "m/s^2", "R": "m", "M": "kg"}
 
 @dataclass(frozen=True, slots=True)
 class Units:
-    """Physical scales: gravity ``g`` [m/s²], radius ``R`` [m], mass ``M`` [kg], each in
-    :data:`SCALE_RANGE` (a ValueError naming the scale outside it)."""
+    """Physical scales that convert a dimensionless result to SI units.
+
+    The core works in g = R = M = 1; ``result.to_si(units)`` multiplies times by
+    :attr:`time`, lengths by :attr:`length`, angular velocities by :attr:`rate`, angular
+    accelerations by :attr:`acceleration` and forces by :attr:`force` (angles are unchanged).
+
+    Parameters
+    ----------
+    g : float, default 9.81
+        Gravitational acceleration [m/s²], in [1e-50, 1e50].
+    R : float, default 1.0
+        Radius of the cylinder [m], in [1e-50, 1e50].
+    M : float, default 1.0
+        Mass of the cylinder [kg], in [1e-50, 1e50].
+
+    Raises
+    ------
+    ValueError
+        If a scale is NaN or outside [1e-50, 1e50] (the message names it and its unit).
+    TypeError
+        If a scale is not a real number.
+
+    Examples
+    --------
+    >>> import eccjump
+    >>> u = eccjump.Units(g=9.81, R=0.2, M=1.5)
+    >>> print(f"{u.time:.6f} s, {u.rate:.4f} rad/s, {u.force:.3f} N")
+    0.142784 s, 7.0036 rad/s, 14.715 N
+    """
 
     g: float = 9.81
     R: float = 1.0

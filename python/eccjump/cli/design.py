@@ -1,5 +1,6 @@
 """``eccjump design``: the body and ramp angle whose JARM (or, with ``--target slip``, whose
-slip before lift-off) is most robust, printed as a lab sheet (or JSON). See docs/design.md."""
+slip before lift-off) is most robust, printed as a lab sheet (or JSON). See the user guide's
+"Experiment design" page."""
 
 from __future__ import annotations
 

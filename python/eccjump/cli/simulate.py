@@ -1,7 +1,8 @@
 """``eccjump simulate``: the full motion (rolling, slipping, flight, landing), printed as a
 table of its transitions (or JSON), optionally drawn as a figure and an animated GIF.
 
-Uses only the documented fields of ``MotionResult`` (docs/motion.md, ``eccjump.simulate``).
+Uses only the documented fields of ``MotionResult`` (the user guide's "The full motion",
+``eccjump.simulate``).
 """
 
 from __future__ import annotations
@@ -111,7 +112,7 @@ def _num(x: Any) -> float | None:
 
 def state_energy(body: Cylinder, alpha: float, s: Any) -> float:
     """E = kinetic + potential (per M g R) of a state with fields theta, omega, l, ldot, b,
-    bdot (docs/motion.md)."""
+    bdot (the user guide's "The full motion", Energy ledger)."""
     chi, st, ct = body.chi, math.sin(s.theta), math.cos(s.theta)
     vx = s.ldot + chi * ct * s.omega
     vy = s.bdot - chi * st * s.omega

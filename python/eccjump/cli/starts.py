@@ -1,6 +1,6 @@
 """``eccjump starts``: the JARM fraction against the start (theta0, omega0), the start that
 maximises it, and what blocks a JARM at a start -- every number and figure of
-``docs/initial_conditions.md`` in one command."""
+the user guide's "Initial conditions" page in one command."""
 
 from __future__ import annotations
 

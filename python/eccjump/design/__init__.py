@@ -1,5 +1,6 @@
 """Experiment design: the body and ramp angle whose JARM (or, for a control run, whose slip
-before lift-off) is most robust, with a printable lab sheet (``docs/design.md``).
+before lift-off) is most robust, with a printable lab sheet (the user guide's "Experiment
+design" page).
 
 The design space is the ramp angle alpha, the shell mass fraction k_m and the rod position
 rho = r/R of the paper's body (a thin uniform shell plus a rod parallel to the axis): the rod

@@ -24,9 +24,42 @@ class Build(NamedTuple):
 
 
 def build(body: Cylinder, *, radius: float = 1.0, mass: float = 1.0) -> Build:
-    """``body`` built as the paper's shell plus rod, of radius ``radius`` and mass ``mass``
-    (both finite and > 0; units of your choice, e.g. m and kg). The inverse of
-    :meth:`Cylinder.from_shell_and_line` and :meth:`Cylinder.from_inertia`."""
+    """``body`` built as the paper's shell plus rod, of radius ``radius`` and mass ``mass``.
+
+    The inverse of :meth:`Cylinder.from_shell_and_line` and :meth:`Cylinder.from_inertia`:
+    a thin uniform shell of mass k_m M plus a rod of mass (1 - k_m) M at distance
+    r = d/(1 - k_m) from the axis.
+
+    Parameters
+    ----------
+    body : Cylinder
+        The body (chi, km).
+    radius : float, default 1.0
+        R, finite and > 0, in units of your choice (e.g. m).
+    mass : float, default 1.0
+        M, finite and > 0, in units of your choice (e.g. kg).
+
+    Returns
+    -------
+    Build
+        ``radius``, ``mass``, ``shell_mass``, ``rod_mass``, ``rod_position`` (r, from the
+        axis), ``d`` (the centre of mass from the axis) and ``I_C`` (about the axis, in mass
+        x length²).
+
+    Raises
+    ------
+    ValueError
+        If ``radius`` or ``mass`` is not finite and > 0.
+    TypeError
+        If ``body`` is not a Cylinder.
+
+    Examples
+    --------
+    >>> import eccjump
+    >>> b = eccjump.build(eccjump.Cylinder(chi=0.15, km=0.02), radius=0.05, mass=0.5)
+    >>> print(f"shell {b.shell_mass:.3f} kg, rod {b.rod_mass:.3f} kg at {b.rod_position:.6f} m")
+    shell 0.010 kg, rod 0.490 kg at 0.007653 m
+    """
     if not isinstance(body, Cylinder):
         raise TypeError(f"body must be a Cylinder, not {type(body).__name__}")
     R, M = _positive("radius", radius), _positive("mass", mass)

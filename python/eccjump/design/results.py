@@ -62,8 +62,52 @@ class Flight:
 
 @dataclass(frozen=True)
 class Design:
-    """A lab design (:func:`design`): print it (``str(d)`` or :meth:`sheet`) for the lab sheet,
-    :meth:`to_dict` for JSON. Angles in radians except the ``*_deg`` fields."""
+    """A lab design (:func:`design`): print it (``str(d)`` or :meth:`sheet`) for the lab
+    sheet, :meth:`to_dict` for JSON. Angles in radians except the ``*_deg`` fields.
+
+    Attributes
+    ----------
+    target : str
+        ``"jarm"`` or ``"slip"``.
+    body : Cylinder
+        The chosen body.
+    alpha : float
+        The chosen ramp angle [rad].
+    mu_s : float
+        The nominal static friction coefficient.
+    mu_s_err : float
+        Its uncertainty.
+    mu_s_worst : float
+        The end of [mu_s - mu_s_err, mu_s + mu_s_err] where the verdict is weakest.
+    build : Build
+        The body as a shell plus a rod, in SI units or in R and M.
+    si : bool
+        Whether the sheet is in SI units (``radius`` and ``mass`` given).
+    g : float
+        Gravitational acceleration [m/s²].
+    margins : tuple of Margin
+        The margins in ``"alpha"`` [rad], ``"mu_s"`` and ``"rod"`` (r/R).
+    score : float
+        The smallest relative margin: the robustness.
+    theta_deg : dict of str to float
+        The deciding angle under each rule [deg] (lift-off for a JARM, slip for a slip).
+    turn : int
+        The turn of the deciding event.
+    max_turns : int
+        The turns the ramp allows.
+    reasons : dict of str to str
+        The verdict under each rule (a :class:`~eccjump.Reason` name).
+    flights : tuple of Flight
+        The full motion at the design under each rule: its first modes and first flight.
+    sensitivity : tuple of Sensitivity
+        Each input moved by -error and +error.
+    error : float
+        The fractional error of the sensitivity table.
+    evaluations : int
+        Classifications made by the search.
+    notes : tuple of str
+        Warnings for the lab.
+    """
 
     target: str
     body: Cylinder
@@ -92,14 +136,37 @@ class Design:
         return self.build.rod_position / self.build.radius
 
     def margin(self, name: str) -> Margin:
-        """The margin of ``"alpha"``, ``"mu_s"`` or ``"rod"``."""
+        """The margin of one input.
+
+        Parameters
+        ----------
+        name : {"alpha", "mu_s", "rod"}
+            The input.
+
+        Returns
+        -------
+        Margin
+            ``value``, the boundaries ``lo`` and ``hi``, the ``margin`` and its
+            ``relative`` size.
+
+        Raises
+        ------
+        ValueError
+            For another name.
+        """
         for m in self.margins:
             if m.name == name:
                 return m
         raise ValueError(f"name = {short(name)}; use 'alpha', 'mu_s' or 'rod'")
 
     def to_dict(self) -> dict[str, Any]:
-        """Everything on the sheet as JSON-ready data (NaN and infinities as None)."""
+        """Everything on the sheet as JSON-ready data.
+
+        Returns
+        -------
+        dict of str to object
+            Angles in degrees; NaN and infinities as None.
+        """
         b = self.build
         return {
             "target": self.target,
@@ -152,7 +219,12 @@ class Design:
         }
 
     def sheet(self) -> str:
-        """The lab sheet, as text."""
+        """The lab sheet, as text.
+
+        Returns
+        -------
+        str
+        """
         return _sheet(self)
 
     def __str__(self) -> str:

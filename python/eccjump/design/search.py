@@ -100,31 +100,75 @@ def design(
     grid: int = 24,
     min_apex: float = 0.0,
 ) -> Design:
-    """The body and ramp angle whose verdict is most robust (``docs/design.md``).
+    """The body and ramp angle whose verdict is most robust, with a printable lab sheet.
+
+    The design space is the ramp angle, the shell mass fraction k_m and the rod position
+    r/R of the paper's shell-plus-rod body. The verdict must hold under both lift-off rules
+    and for every mu_s within the uncertainty; the margins -- distances to the exact
+    boundaries of the verdict's region in alpha, mu_s and r/R -- are taken at the worst
+    mu_s, and the design maximises the smallest relative margin (a coarse grid, then a
+    deterministic compass search).
 
     Parameters
     ----------
-    alpha_range : (lo, hi), the ramp angles the lab can set [rad], 0 <= lo <= hi <= pi/2.
-    mu_s, mu_s_err : the surface pair's static friction coefficient and its uncertainty
-        (0 <= mu_s_err < mu_s, mu_s finite).
-    target : ``"jarm"`` (a jump straight out of pure rolling) or ``"slip"`` (a body that
-        certainly slips before it lifts off: the control run).
-    body : a fixed body (then only the angle is chosen), or None to choose the body with
-        k_m in ``km_range`` (within [0, 1)) and rod position r/R in ``rod_range``
-        (within [0, 1]).
-    radius, mass : R [m] and M [kg] for the sheet in SI units (both or neither); g [m/s^2].
-    max_turns : the turns the ramp allows (1 ... 1000): the lift-off (or slip) must come
-        within them, i.e. within 2 pi R max_turns of rolling.
-    error : the fractional error of each input in the sensitivity table, in (0, 0.5].
-    grid : points per axis of the coarse search grid, 4 ... 64.
-    min_apex : the least apex of the first flight (the axis above contact, under both rules,
-        at the nominal mu_s) [R, or m with ``radius``], >= 0: ask for a jump you can see.
-        0 (default) asks for none; a JARM's first flight is often below 0.01 R. Target
-        ``"jarm"`` only.
+    alpha_range : sequence of two floats
+        (lo, hi), the ramp angles the lab can set [rad], 0 <= lo <= hi <= pi/2.
+    mu_s : float
+        The surface pair's static friction coefficient, finite and > 0.
+    mu_s_err : float, default 0.0
+        Its uncertainty, in [0, mu_s).
+    target : {"jarm", "slip"}, default "jarm"
+        ``"jarm"``: a jump straight out of pure rolling; ``"slip"``: a body that certainly
+        slips before it lifts off (the control run).
+    body : Cylinder or None, default None
+        A fixed body (then only the angle is chosen), or None to choose the body.
+    km_range : sequence of two floats, default (0.01, 0.9)
+        The range of k_m searched, within [0, 1).
+    rod_range : sequence of two floats, default (0.05, 0.95)
+        The range of the rod position r/R searched, within [0, 1].
+    radius : float or None, default None
+        R [m] for a sheet in SI units (with ``mass``; both or neither).
+    mass : float or None, default None
+        M [kg] for a sheet in SI units (with ``radius``).
+    g : float, default 9.81
+        Gravitational acceleration [m/s²] for the SI sheet.
+    max_turns : int, default 10
+        The turns the ramp allows, 1 ... 1000: the lift-off (or slip) must come within
+        them, i.e. within 2 pi R max_turns of rolling.
+    error : float, default 0.05
+        The fractional error of each input in the sensitivity table, in (0, 0.5].
+    grid : int, default 24
+        Points per axis of the coarse search grid, 4 ... 64.
+    min_apex : float, default 0.0
+        The least apex of the first flight (the gap to the ramp, under both rules, at the
+        nominal mu_s) [R, or m with ``radius``], in [0, 10 R]: ask for a jump you can see.
+        0 asks for none (a JARM's first flight is often below 0.01 R); target "jarm" only.
 
-    The verdict must hold under both lift-off rules and for every mu_s within the
-    uncertainty; the margins are taken at the worst mu_s. Raises ValueError (naming the
-    parameter) for bad input and when no point of the grid has the verdict.
+    Returns
+    -------
+    Design
+        The body, the angle, the margins, the lift-off angles, the first flight and the
+        sensitivity table; ``str(design)`` is the lab sheet.
+
+    Raises
+    ------
+    ValueError
+        For bad input (naming the parameter and its range), and when no point of the grid
+        has the verdict.
+    TypeError
+        For an argument of the wrong type.
+
+    Examples
+    --------
+    >>> import math
+    >>> import eccjump
+    >>> d = eccjump.design([math.radians(10), math.radians(40)], 0.6, 0.1, grid=8)
+    >>> d.target, d.reasons
+    ('jarm', {'paper': 'JARM', 'normal_force': 'JARM'})
+    >>> bool(d.margin("alpha").relative > 0.05)
+    True
+    >>> print(str(d).splitlines()[0])
+    eccjump design: a JARM: a jump straight out of pure rolling
     """
     tgt = text("target", target)
     if tgt not in ("jarm", "slip"):
