@@ -76,8 +76,8 @@ use crate::modes::rolling::memo::RollingMemo;
 use crate::modes::rolling::{ContactRates, Kinematics};
 use crate::ode::lanes::{solve_lanes_with, Start, Track};
 use crate::ode::{
-    self, Change, DenseStep, Direction, EventFunctions, EventSpec, Observation, Outcome,
-    SolverOptions, State, Status, StepEnds,
+    self, Change, DenseStep, Direction, EventBounds, EventFunctions, EventSpec, Observation,
+    Outcome, SolverOptions, State, Status, StepEnds,
 };
 use std::cell::Cell;
 use std::f64::consts::TAU;
@@ -153,6 +153,7 @@ impl JarmEvents {
 }
 
 impl EventFunctions<2> for JarmEvents {
+    const HAS_SLOPES: bool = true;
     fn count(&self) -> usize {
         N_EVENTS
     }
@@ -165,10 +166,6 @@ impl EventFunctions<2> for JarmEvents {
             direction,
             terminal: true,
         }
-    }
-    #[inline]
-    fn value(&self, k: usize, _t: f64, y: &State<2>) -> f64 {
-        self.value_of(k, &self.kinematics(y[0], y[1]))
     }
     /// All events from one evaluation of the kinematics (one `sin_cos` per sample).
     #[inline]
@@ -188,9 +185,12 @@ impl EventFunctions<2> for JarmEvents {
         }
     }
     #[inline]
-    fn has_slopes(&self) -> bool {
-        true
+    fn bounds(&self) -> Option<&impl EventBounds<2>> {
+        Some(self)
     }
+}
+
+impl EventBounds<2> for JarmEvents {
     /// The rolling run's bounds ([`ContactBounds::near`], anchored at the trigonometry in
     /// the memo, usually the step end's); a disabled event is a constant
     /// (bound 0).
@@ -217,7 +217,7 @@ impl EventFunctions<2> for JarmEvents {
 }
 
 impl JarmEvents {
-    /// [`EventFunctions::change_bounds`] of all events, anchored at `anchor` (see
+    /// [`EventBounds::change_bounds`] of all events, anchored at `anchor` (see
     /// [`ContactBounds::near`]).
     #[inline]
     fn change_bounds_near(

@@ -20,8 +20,8 @@ use crate::modes::rolling::track::{Begun, RollTrack};
 use crate::modes::rolling::Kinematics;
 use crate::ode::lanes::Track;
 use crate::ode::{
-    self, Change, DenseStep, Direction, EventFunctions, EventSpec, SolverOptions, State, Status,
-    StepEnds,
+    self, Change, DenseStep, Direction, EventBounds, EventFunctions, EventSpec, SolverOptions,
+    State, Status, StepEnds,
 };
 
 /// The built-in events of a rolling run, in the order of their indices.
@@ -99,6 +99,7 @@ impl RollEvents {
 }
 
 impl EventFunctions<2> for RollEvents {
+    const HAS_SLOPES: bool = true;
     fn count(&self) -> usize {
         RollEvent::ALL.len()
     }
@@ -113,9 +114,6 @@ impl EventFunctions<2> for RollEvents {
             terminal: self.is_terminal(event),
         }
     }
-    fn value(&self, k: usize, _t: f64, y: &State<2>) -> f64 {
-        self.value_at(RollEvent::ALL[k], y[0], y[1])
-    }
     /// All events from one evaluation of the kinematics (one sin_cos per sample).
     #[inline]
     fn values(&self, first: usize, _t: f64, y: &State<2>, out: &mut [f64]) {
@@ -126,9 +124,12 @@ impl EventFunctions<2> for RollEvents {
         self.rates_from(&self.ramp.kinematics(y[0], y[1]), first, out);
     }
     #[inline]
-    fn has_slopes(&self) -> bool {
-        true
+    fn bounds(&self) -> Option<&impl EventBounds<2>> {
+        Some(self)
     }
+}
+
+impl EventBounds<2> for RollEvents {
     /// Change bounds from bounds on the partial derivatives of each g in θ and θ̇ over
     /// the step (|sin|, |cos| ≤ 1, |θ̇| ≤ W, contact inertia ≥ Ĩ_C + 1 − 2χ), times the
     /// bounds on |dθ/dt|, |dθ̇/dt| of the interpolant.
@@ -171,7 +172,7 @@ impl RollEvents {
         }
     }
 
-    /// [`EventFunctions::change_bounds`] of all four events (see `ContactBounds`).
+    /// [`EventBounds::change_bounds`] of all four events (see `ContactBounds`).
     pub fn change_bounds_all(&self, dense: &DenseStep<2>) -> [Change; 4] {
         self.change_bounds_near(dense, None)
     }
@@ -186,7 +187,7 @@ impl RollEvents {
         self.of_all(ContactBounds::near(&self.ramp, self.mu_s, dense, anchor))
     }
 
-    /// [`EventFunctions::change_bounds_ends`] of all four events, anchored at `anchor`
+    /// [`EventBounds::change_bounds_ends`] of all four events, anchored at `anchor`
     /// (see [`ContactBounds::from_ends`]; the bends only with `bends`).
     pub(crate) fn change_bounds_ends(
         &self,

@@ -17,8 +17,8 @@ use crate::modes::rolling::solution::RollSolution;
 use crate::modes::rolling::Kinematics;
 use crate::ode::lanes::{solve_lanes_with, Keyed, Start, Track};
 use crate::ode::{
-    Change, DenseStep, EventFunctions, EventSpec, Method, Observation, Outcome, SolverOptions,
-    State, Status, StepEnds,
+    Change, DenseStep, EventBounds, EventFunctions, EventSpec, Method, Observation, Outcome,
+    SolverOptions, State, Status, StepEnds,
 };
 
 /// The rolling system and its events sharing one [`RollingMemo`].
@@ -35,6 +35,7 @@ impl Memo {
 }
 
 impl EventFunctions<2> for Memo {
+    const HAS_SLOPES: bool = true;
     #[inline]
     fn count(&self) -> usize {
         self.events.count()
@@ -42,10 +43,6 @@ impl EventFunctions<2> for Memo {
     #[inline]
     fn spec(&self, k: usize) -> EventSpec {
         self.events.spec(k)
-    }
-    #[inline]
-    fn value(&self, k: usize, t: f64, y: &State<2>) -> f64 {
-        self.events.value(k, t, y)
     }
     #[inline]
     fn values(&self, first: usize, _t: f64, y: &State<2>, out: &mut [f64]) {
@@ -58,9 +55,12 @@ impl EventFunctions<2> for Memo {
             .rates_from(&self.kinematics(y[0], y[1]), first, out);
     }
     #[inline]
-    fn has_slopes(&self) -> bool {
-        true
+    fn bounds(&self) -> Option<&impl EventBounds<2>> {
+        Some(self)
     }
+}
+
+impl EventBounds<2> for Memo {
     /// [`RollEvents::change_bounds_all`] tightened by the memo's trigonometry.
     #[inline]
     fn change_bounds(&self, first: usize, dense: &DenseStep<2>, out: &mut [Change]) {
