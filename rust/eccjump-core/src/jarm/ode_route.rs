@@ -87,7 +87,7 @@ const EV_LIFTOFF: usize = ContactEvent::Liftoff as usize;
 const EV_FY: usize = ContactEvent::NormalForce as usize;
 const EV_SLIP: usize = ContactEvent::Slip as usize;
 const EV_STOP: usize = ContactEvent::RocksBack as usize;
-const EV_END: usize = ContactEvent::End as usize;
+const EV_END: usize = ContactEvent::ThetaLimit as usize;
 const N_EVENTS: usize = ContactEvent::ALL.len();
 
 /// Relative θ-tolerance of the F_y / slip tie rule.

@@ -11,7 +11,8 @@ use crate::error::{try_grow, Error, Result};
 use crate::mechanics::Ramp;
 use crate::modes::rolling::memo::RollingMemo;
 use crate::modes::rolling::run::{
-    violated_at_start, EventHit, RollEvent, RollEvents, RollOptions, RollRun, RollStatus, RESERVE,
+    violated_at_start, ContactEvent, EventHit, RollEvents, RollOptions, RollRun, RollStatus,
+    RESERVE,
 };
 use crate::modes::rolling::solution::RollSolution;
 use crate::modes::rolling::Kinematics;
@@ -194,7 +195,7 @@ impl RollTrack {
         run.nfev = outcome.nfev;
         run.status = match outcome.status {
             Status::Finished => RollStatus::TimeLimit,
-            Status::Event(k) => RollStatus::Event(RollEvent::ALL[k]),
+            Status::Event(k) => RollStatus::Event(ContactEvent::ALL[k]),
             other => RollStatus::Failed(other),
         };
         // The last accepted step ends past a terminal event: end the record at the event.
@@ -250,7 +251,7 @@ impl Track<2> for RollTrack {
                 }
             }
             Observation::Event { index, t, y } => run.events.push(EventHit {
-                event: RollEvent::ALL[index],
+                event: ContactEvent::ALL[index],
                 t,
                 theta: y[0],
                 omega: y[1],
