@@ -97,8 +97,8 @@ const TIE_TOL: f64 = 1e-10;
 const STEPS_PER_TURN: usize = 20_000;
 
 /// The events of a classification run; disabled events are a constant that never crosses.
-/// Keeps the kinematics of the last evaluated state: a step's scan starts where the previous
-/// one ended, and the observer looks at the state the scan ended with.
+/// (A memo of the last state's kinematics, once kept here, bought under 2 % on every
+/// benchmark: docs/performance.md.)
 struct JarmEvents {
     sys: RollingMemo,
     mu_s: f64,
@@ -106,20 +106,12 @@ struct JarmEvents {
     normal_force: bool,
     slip: bool,
     theta_end: f64,
-    last: Cell<Option<Kinematics>>,
 }
 
 impl JarmEvents {
     #[inline]
     fn kinematics(&self, theta: f64, omega: f64) -> Kinematics {
-        if let Some(q) = self.last.get() {
-            if q.theta.to_bits() == theta.to_bits() && q.omega.to_bits() == omega.to_bits() {
-                return q;
-            }
-        }
-        let q = self.sys.kinematics(theta, omega);
-        self.last.set(Some(q));
-        q
+        self.sys.kinematics(theta, omega)
     }
 
     /// g_k at a state. (An exact 0 used to be nudged to ±the smallest normal number, to work
@@ -412,7 +404,6 @@ fn prepare(
         normal_force: true,
         slip: true,
         theta_end,
-        last: Cell::new(None),
     };
     let chi_w2 = chi * (omega0 * omega0);
     let start = StartValues {
@@ -540,7 +531,6 @@ impl Finding {
                 normal_force: false,
                 slip: false,
                 theta_end: ev.theta_end.max(self.y[0]),
-                last: Cell::new(None),
             };
             (cont, self.t, self.y)
         })
