@@ -1,4 +1,4 @@
-//! Profiling aid for the closed-form JARM route (`cargo run --release --example closed_cost
+//! Profiling aid for the closed-form JARM route (`cargo run --release -p eccjump-core --features profiling --example closed_cost
 //! [points] [grid]`): single-thread cost per point by reason on random points (the
 //! distribution of `benches/bench_peers.py`: α ~ U(0, π/2), χ ~ U(10⁻³, 1), k_m = u(1 − χ),
 //! μ_s = 1, refined extrema) and on every 5th point of the 100³ grid of `bench_region.py`

@@ -1,6 +1,6 @@
 //! Profiling aid: where a motion map spends its time, by the status of the points, one point
 //! at a time, then the same grid by `motion_grid` on one thread (its first rolling segments
-//! side by side) (`cargo run --release --example motion_map_cost [rk45|dop853]`).
+//! side by side) (`cargo run --release -p eccjump-core --features profiling --example motion_map_cost [rk45|dop853]`).
 use eccjump_core::maps::motion::{
     motion_grid, motion_point, MotionAxes, MotionMapOptions, MotionSummary,
 };

@@ -1,5 +1,5 @@
 //! Profiling aid: the best time per `simulate` run of one slip-then-jump case, 5 transitions
-//! (`cargo run --release --example simulate_best [rk45|dop853] [flight]`; with `perf record`
+//! (`cargo run --release -p eccjump-core --features profiling --example simulate_best [rk45|dop853] [flight]`; with `perf record`
 //! for a profile). `flight`: a bouncing case instead (flights and impacts only).
 use eccjump_core::mechanics::Rule;
 use eccjump_core::modes::contact::ContactLaw;

@@ -1,6 +1,6 @@
 //! Profiling aid: the best time per `simulate` run of each of the 20 cases of
 //! `benches/scipy_motion_cases.py`, cut to 5 transitions as `benches/bench_simulate.py` runs
-//! them (`cargo run --release -p eccjump-core --example simulate_cases [rk45|dop853]
+//! them (`cargo run --release -p eccjump-core --features profiling --example simulate_cases [rk45|dop853]
 //! [rounds]`; with `perf record` for a profile of the whole set).
 use eccjump_core::mechanics::Rule;
 use eccjump_core::modes::contact::ContactLaw;

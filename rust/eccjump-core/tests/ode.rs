@@ -59,8 +59,10 @@ impl<const N: usize> EventFunctions<N> for Events<'_, N> {
     fn spec(&self, k: usize) -> EventSpec {
         self.0[k].0
     }
-    fn value(&self, k: usize, t: f64, y: &State<N>) -> f64 {
-        (self.0[k].1)(t, y)
+    fn values(&self, first: usize, t: f64, y: &State<N>, out: &mut [f64]) {
+        for (k, o) in (first..).zip(out.iter_mut()) {
+            *o = (self.0[k].1)(t, y);
+        }
     }
 }
 

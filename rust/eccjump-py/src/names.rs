@@ -3,7 +3,7 @@
 //! much as the float beside it.
 
 use eccjump_core::modes::contact::{Mode, Reason};
-use eccjump_core::modes::rolling::run::RollEvent;
+use eccjump_core::modes::rolling::events::ContactEvent;
 use eccjump_core::motion::record::MotionStatus;
 use pyo3::prelude::*;
 use pyo3::sync::PyOnceLock;
@@ -46,5 +46,5 @@ pub static MODES: Names<Mode, 3> = Names::new(Mode::ALL, Mode::name);
 pub static REASONS: Names<Reason, 9> = Names::new(Reason::ALL, Reason::name);
 /// `MotionStatus::name`.
 pub static STATUSES: Names<MotionStatus, 7> = Names::new(MotionStatus::ALL, MotionStatus::name);
-/// `RollEvent::name`.
-pub static ROLL_EVENTS: Names<RollEvent, 4> = Names::new(RollEvent::ALL, RollEvent::name);
+/// `ContactEvent::name` (the events of a rolling run).
+pub static ROLL_EVENTS: Names<ContactEvent, 5> = Names::new(ContactEvent::ALL, ContactEvent::name);

@@ -3,8 +3,8 @@
 //! integration) to the [`Reason`] and the reported fields. Also the start of a search
 //! (equilibrium starts, the search bound) that both routes share.
 //!
-//! - `End` → the end reason of the search (`NoRoot`, or `TurnLimit` past `max_turns`);
-//!   `RocksBack` → `RocksBack`.
+//! - `ThetaLimit` (the end of the search) → the end reason of the search (`NoRoot`, or
+//!   `TurnLimit` past `max_turns`); `RocksBack` → `RocksBack`.
 //! - Paper rule, lift-off: at the start → `LiftoffEarlier`; outside a green window
 //!   2πn − α < θ_J < 2πn or with F_y,J ≤ 0 → `NormalForceLost`; μ(θ_J) > μ_s (Eq. ineq2) →
 //!   `SlipAtJump`; else a JARM with the jump-point forces of Sec. 3.1.
@@ -155,7 +155,7 @@ pub fn decide(
         x
     };
     match (case.rule, found.event) {
-        (_, ContactEvent::End) => JarmResult::with(case.end_reason, ext),
+        (_, ContactEvent::ThetaLimit) => JarmResult::with(case.end_reason, ext),
         (_, ContactEvent::RocksBack) => {
             let mut x = JarmResult::with(Reason::RocksBack, ext);
             x.theta_event = th;

@@ -76,8 +76,8 @@ use crate::modes::rolling::memo::RollingMemo;
 use crate::modes::rolling::{ContactRates, Kinematics};
 use crate::ode::lanes::{solve_lanes_with, Start, Track};
 use crate::ode::{
-    self, Change, DenseStep, Direction, EventFunctions, EventSpec, Observation, Outcome,
-    SolverOptions, State, Status, StepEnds,
+    self, Change, DenseStep, Direction, EventBounds, EventFunctions, EventSpec, Observation,
+    Outcome, SolverOptions, State, Status, StepEnds,
 };
 use std::cell::Cell;
 use std::f64::consts::TAU;
@@ -87,7 +87,7 @@ const EV_LIFTOFF: usize = ContactEvent::Liftoff as usize;
 const EV_FY: usize = ContactEvent::NormalForce as usize;
 const EV_SLIP: usize = ContactEvent::Slip as usize;
 const EV_STOP: usize = ContactEvent::RocksBack as usize;
-const EV_END: usize = ContactEvent::End as usize;
+const EV_END: usize = ContactEvent::ThetaLimit as usize;
 const N_EVENTS: usize = ContactEvent::ALL.len();
 
 /// Relative θ-tolerance of the F_y / slip tie rule.
@@ -97,8 +97,8 @@ const TIE_TOL: f64 = 1e-10;
 const STEPS_PER_TURN: usize = 20_000;
 
 /// The events of a classification run; disabled events are a constant that never crosses.
-/// Keeps the kinematics of the last evaluated state: a step's scan starts where the previous
-/// one ended, and the observer looks at the state the scan ended with.
+/// (A memo of the last state's kinematics, once kept here, bought under 2 % on every
+/// benchmark: docs/performance.md.)
 struct JarmEvents {
     sys: RollingMemo,
     mu_s: f64,
@@ -106,20 +106,12 @@ struct JarmEvents {
     normal_force: bool,
     slip: bool,
     theta_end: f64,
-    last: Cell<Option<Kinematics>>,
 }
 
 impl JarmEvents {
     #[inline]
     fn kinematics(&self, theta: f64, omega: f64) -> Kinematics {
-        if let Some(q) = self.last.get() {
-            if q.theta.to_bits() == theta.to_bits() && q.omega.to_bits() == omega.to_bits() {
-                return q;
-            }
-        }
-        let q = self.sys.kinematics(theta, omega);
-        self.last.set(Some(q));
-        q
+        self.sys.kinematics(theta, omega)
     }
 
     /// g_k at a state. (An exact 0 used to be nudged to ±the smallest normal number, to work
@@ -153,6 +145,7 @@ impl JarmEvents {
 }
 
 impl EventFunctions<2> for JarmEvents {
+    const HAS_SLOPES: bool = true;
     fn count(&self) -> usize {
         N_EVENTS
     }
@@ -165,10 +158,6 @@ impl EventFunctions<2> for JarmEvents {
             direction,
             terminal: true,
         }
-    }
-    #[inline]
-    fn value(&self, k: usize, _t: f64, y: &State<2>) -> f64 {
-        self.value_of(k, &self.kinematics(y[0], y[1]))
     }
     /// All events from one evaluation of the kinematics (one `sin_cos` per sample).
     #[inline]
@@ -188,9 +177,12 @@ impl EventFunctions<2> for JarmEvents {
         }
     }
     #[inline]
-    fn has_slopes(&self) -> bool {
-        true
+    fn bounds(&self) -> Option<&impl EventBounds<2>> {
+        Some(self)
     }
+}
+
+impl EventBounds<2> for JarmEvents {
     /// The rolling run's bounds ([`ContactBounds::near`], anchored at the trigonometry in
     /// the memo, usually the step end's); a disabled event is a constant
     /// (bound 0).
@@ -217,7 +209,7 @@ impl EventFunctions<2> for JarmEvents {
 }
 
 impl JarmEvents {
-    /// [`EventFunctions::change_bounds`] of all events, anchored at `anchor` (see
+    /// [`EventBounds::change_bounds`] of all events, anchored at `anchor` (see
     /// [`ContactBounds::near`]).
     #[inline]
     fn change_bounds_near(
@@ -412,7 +404,6 @@ fn prepare(
         normal_force: true,
         slip: true,
         theta_end,
-        last: Cell::new(None),
     };
     let chi_w2 = chi * (omega0 * omega0);
     let start = StartValues {
@@ -540,7 +531,6 @@ impl Finding {
                 normal_force: false,
                 slip: false,
                 theta_end: ev.theta_end.max(self.y[0]),
-                last: Cell::new(None),
             };
             (cont, self.t, self.y)
         })

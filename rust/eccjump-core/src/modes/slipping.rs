@@ -15,7 +15,9 @@
 use crate::mechanics::friction::Sliding;
 use crate::mechanics::Ramp;
 use crate::ode::lanes::{LaneRhs, Lanes, LANES};
-use crate::ode::{Change, DenseStep, Direction, EventFunctions, EventSpec, OdeSystem, State};
+use crate::ode::{
+    Change, DenseStep, Direction, EventBounds, EventFunctions, EventSpec, OdeSystem, State,
+};
 use crate::trig::lanes::sin_cos_lanes;
 use crate::trig::SinCosMemo;
 
@@ -186,6 +188,7 @@ pub struct SlipEvents {
 }
 
 impl EventFunctions<5> for SlipEvents {
+    const HAS_SLOPES: bool = true;
     fn count(&self) -> usize {
         SlipEvent::ALL.len()
     }
@@ -199,11 +202,6 @@ impl EventFunctions<5> for SlipEvents {
             direction,
             terminal: true,
         }
-    }
-    fn value(&self, k: usize, t: f64, y: &State<5>) -> f64 {
-        let mut out = [0.0];
-        self.values(k, t, y, &mut out);
-        out[0]
     }
     /// All events from one `sin_cos`.
     #[inline]
@@ -236,12 +234,14 @@ impl EventFunctions<5> for SlipEvents {
         }
     }
     #[inline]
-    fn has_slopes(&self) -> bool {
-        true
+    fn bounds(&self) -> Option<&impl EventBounds<5>> {
+        Some(self)
     }
+}
 
+impl EventBounds<5> for SlipEvents {
     /// Bounds on how much each event can change within the step `dense` (in the sense of
-    /// [`EventFunctions::change_bounds`]), so that the scan skips the interior samples (a
+    /// [`EventBounds::change_bounds`]), so that the scan skips the interior samples (a
     /// `sin_cos` each) wherever they provably cannot show a crossing. With Θ, W, Λ, V the
     /// interpolant's bounds on |θ|, |θ̇|, |l|, |l̇| over the step and R_θ, R_ω, R_l, R_v on
     /// their rates, each g changes by at most L|h|, L = Σ G_i R_i with G_i ≥ |∂g/∂y_i|:

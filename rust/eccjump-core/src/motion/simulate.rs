@@ -9,7 +9,7 @@ use crate::mechanics::{BodyState, Ramp};
 use crate::modes::contact::{decide, Mode, Reason, Verdict};
 use crate::modes::flight::landing::Landing;
 use crate::modes::flight::Flight;
-use crate::modes::rolling::run::{roll_until, RollEvent, RollOptions, RollRun, RollStatus};
+use crate::modes::rolling::run::{roll_until, ContactEvent, RollOptions, RollRun, RollStatus};
 use crate::modes::slipping::SlipEvent;
 use crate::motion::options::SimOptions;
 use crate::motion::record::{
@@ -414,14 +414,17 @@ impl Driver<'_> {
         let law = &self.opts.law;
         Ok(match rr.status {
             RollStatus::TimeLimit => self.end_of_time(),
-            RollStatus::Event(RollEvent::ThetaLimit) => self.end_of_ramp(),
-            RollStatus::Event(RollEvent::Liftoff) => {
+            // A run never ends rocking back (the event is not watched).
+            RollStatus::Event(ContactEvent::ThetaLimit | ContactEvent::RocksBack) => {
+                self.end_of_ramp()
+            }
+            RollStatus::Event(ContactEvent::Liftoff) => {
                 Next::Mode(Mode::Flight, Reason::Liftoff, end, 0.0)
             }
-            RollStatus::Event(RollEvent::NormalForceZero) => {
+            RollStatus::Event(ContactEvent::NormalForce) => {
                 after(decide(self.ramp, law, &end, true), Reason::NormalForce, end)
             }
-            RollStatus::Event(RollEvent::Slip) => {
+            RollStatus::Event(ContactEvent::Slip) => {
                 after(decide(self.ramp, law, &end, true), Reason::Slip, end)
             }
             RollStatus::Failed(status) => self.failed("rolling", status),

@@ -1,7 +1,7 @@
 //! An accepted step seen from its two ends only: the states, their derivatives and the
 //! tolerance the step met. From it the event scan can clear a step of events before (and
 //! instead of) building the step's dense output, which costs DOP853 three more
-//! evaluations of f ([`crate::ode::EventFunctions::change_bounds_ends`]).
+//! evaluations of f ([`crate::ode::EventBounds::change_bounds_ends`]).
 
 use super::{DenseStep, State};
 

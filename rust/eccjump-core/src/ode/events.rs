@@ -24,52 +24,48 @@ pub struct EventSpec {
     pub terminal: bool,
 }
 
-/// A set of event functions, evaluated by index (no boxing, no allocation).
+/// A set of event functions, evaluated by index (no boxing, no allocation): what the
+/// solver needs to find their zeros. Bounds that let it skip work are apart
+/// ([`EventBounds`], offered through [`Self::bounds`]), as scipy keeps its events apart
+/// from its solvers.
 pub trait EventFunctions<const N: usize> {
+    /// Whether [`Self::slopes`] gives slopes: the scan makes the dip test only then.
+    const HAS_SLOPES: bool = false;
     /// Number of event functions.
     fn count(&self) -> usize;
     /// Direction and terminality of event k.
     fn spec(&self, k: usize) -> EventSpec;
-    /// g_k(t, y).
-    fn value(&self, k: usize, t: f64, y: &State<N>) -> f64;
-    /// g_first, g_first+1, … at one point, into `out`. Override it when the events share
-    /// work (trigonometry of the state, say): the step scan calls this at every sample.
-    #[inline]
-    fn values(&self, first: usize, t: f64, y: &State<N>, out: &mut [f64]) {
-        for (i, o) in out.iter_mut().enumerate() {
-            *o = self.value(first + i, t, y);
-        }
-    }
-    /// dg_k/dt along the solution at a point, for the dip test of the step scan: where g_k
-    /// has one sign at two neighbouring samples but its slope turns between them (towards
-    /// zero, then away), the extremum between them is located and, if it reaches the other
-    /// side, counts as a crossing. Without it a dip narrower than the sample spacing (a
-    /// grazing event) is missed. NaN, the default: no dip test for k.
-    #[inline]
-    fn slope(&self, k: usize, t: f64, y: &State<N>) -> f64 {
-        let mut out = [f64::NAN];
-        self.slopes(k, t, y, &mut out);
-        out[0]
-    }
-    /// dg_first/dt, dg_first+1/dt, … at one point, into `out` (as [`Self::values`]); the
-    /// one to implement (NaN, the default: no dip test).
+    /// g_first, g_first+1, … at one point, into `out` (one value for a root search). The
+    /// step scan calls it for all events at every sample, so events that share work
+    /// (trigonometry of the state, say) do it once.
+    fn values(&self, first: usize, t: f64, y: &State<N>, out: &mut [f64]);
+    /// dg_first/dt, dg_first+1/dt, … along the solution at one point, into `out` (as
+    /// [`Self::values`]), for the dip test of the step scan: where g_k has one sign at two
+    /// neighbouring samples but its slope turns between them (towards zero, then away),
+    /// the extremum between them is located and, if it reaches the other side, counts as a
+    /// crossing. Without it a dip narrower than the sample spacing (a grazing event) is
+    /// missed. NaN, the default: no dip test for that event.
     #[inline]
     fn slopes(&self, first: usize, t: f64, y: &State<N>, out: &mut [f64]) {
         let _ = (first, t, y);
         out.fill(f64::NAN);
     }
-    /// Whether any event has a slope: the scan makes the dip test only then.
+    /// The events' change bounds, if they have any: the solver skips work they prove
+    /// idle (quiet steps, skipped samples and dip tests). None, the default: the scan
+    /// walks every sample of every step.
     #[inline]
-    fn has_slopes(&self) -> bool {
-        false
+    fn bounds(&self) -> Option<&impl EventBounds<N>> {
+        None::<&NoBounds>
     }
+}
+
+/// Bounds on how much event functions can change within a step (see [`Change`]), which
+/// let the solver skip work where they prove that no event can occur. Optional: the same
+/// events are found without them, at more cost.
+pub trait EventBounds<const N: usize> {
     /// Bounds on how much each event function g_first, g_first+1, … can change within the
-    /// step `dense`, into `out` (see [`Change`]). The default, [`Change::ANY`], never skips.
-    #[inline]
-    fn change_bounds(&self, first: usize, dense: &DenseStep<N>, out: &mut [Change]) {
-        let _ = (first, dense);
-        out.fill(Change::ANY);
-    }
+    /// step `dense`, into `out`.
+    fn change_bounds(&self, first: usize, dense: &DenseStep<N>, out: &mut [Change]);
     /// Bounds as [`Self::change_bounds`], from the step's ends alone (before its dense
     /// output is built), meant to hold along the dense output whatever it turns out to be
     /// (computed along an interpolant of the ends, widened by an estimate of how far the
@@ -91,8 +87,43 @@ pub trait EventFunctions<const N: usize> {
     }
 }
 
+/// No change bounds: the type of [`EventFunctions::bounds`] for events without any.
+pub struct NoBounds;
+
+impl<const N: usize> EventBounds<N> for NoBounds {
+    fn change_bounds(&self, _first: usize, _dense: &DenseStep<N>, out: &mut [Change]) {
+        out.fill(Change::ANY);
+    }
+}
+
+/// g_k at one point.
+#[inline]
+fn value_of<E: EventFunctions<N>, const N: usize>(
+    events: &E,
+    k: usize,
+    t: f64,
+    y: &State<N>,
+) -> f64 {
+    let mut out = [0.0];
+    events.values(k, t, y, &mut out);
+    out[0]
+}
+
+/// dg_k/dt at one point.
+#[inline]
+fn slope_of<E: EventFunctions<N>, const N: usize>(
+    events: &E,
+    k: usize,
+    t: f64,
+    y: &State<N>,
+) -> f64 {
+    let mut out = [f64::NAN];
+    events.slopes(k, t, y, &mut out);
+    out[0]
+}
+
 /// Is an accepted step free of events by its ends alone
-/// ([`EventFunctions::change_bounds_ends`]: every event's values at both ends of one strict
+/// ([`EventBounds::change_bounds_ends`]: every event's values at both ends of one strict
 /// sign, further from zero than it can travel or bend within the step)? Then its dense
 /// output is not needed for the scan, and the step end's values go to `carry` for the
 /// next step, as [`scan_step`] leaves them. False (and `carry` untouched) whenever in
@@ -109,10 +140,13 @@ pub fn quiet_step<E: EventFunctions<N>, const N: usize>(
     if m == 0 || m > EVENT_CHUNK {
         return m == 0;
     }
+    let Some(bounds) = events.bounds() else {
+        return false;
+    };
     let mut g_a = [0.0; EVENT_CHUNK];
     let mut g_b = [0.0; EVENT_CHUNK];
     let mut bound = [Change::ANY; EVENT_CHUNK];
-    events.change_bounds_ends(0, ends, false, &mut bound[..m]);
+    bounds.change_bounds_ends(0, ends, false, &mut bound[..m]);
     if bound[..m].iter().any(|b| b.slack == f64::INFINITY) {
         return false;
     }
@@ -128,7 +162,7 @@ pub fn quiet_step<E: EventFunctions<N>, const N: usize>(
         if bound[..m].iter().all(|b| b.bend < f64::INFINITY) {
             return false; // the bends were there already
         }
-        events.change_bounds_ends(0, ends, true, &mut bound[..m]);
+        bounds.change_bounds_ends(0, ends, true, &mut bound[..m]);
         if !clear(&bound[..m]) {
             return false;
         }
@@ -216,7 +250,7 @@ impl<const N: usize> EventFunctions<N> for NoEvents {
     fn spec(&self, _k: usize) -> EventSpec {
         unreachable!("NoEvents has no events")
     }
-    fn value(&self, _k: usize, _t: f64, _y: &State<N>) -> f64 {
+    fn values(&self, _first: usize, _t: f64, _y: &State<N>, _out: &mut [f64]) {
         unreachable!("NoEvents has no events")
     }
 }
@@ -396,7 +430,7 @@ fn locate<E: EventFunctions<N>, const N: usize>(
 ) -> Result<f64, NonFiniteEvent> {
     let mut bad = false;
     let g = |t: f64| {
-        let v = events.value(k, t, &dense.eval(t));
+        let v = value_of(events, k, t, &dense.eval(t));
         bad |= !v.is_finite();
         v
     };
@@ -409,7 +443,7 @@ fn locate<E: EventFunctions<N>, const N: usize>(
         Err(_) if bad => return Err(NonFiniteEvent),
         Err(_) => {
             let g2 = |t: f64| {
-                let v = events.value(k, t, &dense.eval(t));
+                let v = value_of(events, k, t, &dense.eval(t));
                 bad |= !v.is_finite();
                 v
             };
@@ -464,7 +498,7 @@ fn dip<E: EventFunctions<N>, const N: usize>(
     }
     let mut bad = false;
     let slope = |t: f64| {
-        let v = events.slope(k, t, &dense.eval(t));
+        let v = slope_of(events, k, t, &dense.eval(t));
         bad |= !v.is_finite();
         v
     };
@@ -474,7 +508,7 @@ fn dip<E: EventFunctions<N>, const N: usize>(
         Err(_) if bad => return Err(NonFiniteEvent),
         Err(_) => return Ok(None),
     };
-    let g = checked(events.value(k, at, &dense.eval(at)))?;
+    let g = checked(value_of(events, k, at, &dense.eval(at)))?;
     let direction = events.spec(k).direction;
     Ok(if crosses(direction, ga, g) {
         Some(((ta, ga), (at, g)))
@@ -519,12 +553,13 @@ pub fn scan_step<E: EventFunctions<N>, const N: usize>(
     // samples are skipped. The end values are checked for finiteness only where they are
     // used, as the plain walk would.
     let carry_all = n_events <= EVENT_CHUNK;
-    let dips = events.has_slopes();
+    let dips = E::HAS_SLOPES;
     let mut j_first = usize::MAX;
     let mut g_a = [0.0; EVENT_CHUNK];
     let mut g_b = [0.0; EVENT_CHUNK];
     let mut g_end = [0.0; EVENT_CHUNK];
-    let mut bound = [Change::NONE; EVENT_CHUNK];
+    // Without bounds (or with no interior samples) nothing is skipped.
+    let mut bound = [Change::ANY; EVENT_CHUNK];
     for first in (0..n_events).step_by(EVENT_CHUNK) {
         let m = (n_events - first).min(EVENT_CHUNK);
         let (t, y) = pts.point(0);
@@ -548,8 +583,8 @@ pub fn scan_step<E: EventFunctions<N>, const N: usize>(
         if limit == 0 {
             continue;
         }
-        if samples > 0 {
-            events.change_bounds(first, dense, &mut bound[..m]);
+        if let Some(bounds) = events.bounds().filter(|_| samples > 0) {
+            bounds.change_bounds(first, dense, &mut bound[..m]);
             if (0..m).all(|i| no_zero_inside(g_a[i], g_end[i], &bound[i], 1.0)) {
                 continue;
             }
@@ -723,23 +758,18 @@ pub struct WalkAll<'a, E>(pub &'a E);
 
 #[cfg(test)]
 impl<E: EventFunctions<N>, const N: usize> EventFunctions<N> for WalkAll<'_, E> {
+    const HAS_SLOPES: bool = E::HAS_SLOPES;
     fn count(&self) -> usize {
         self.0.count()
     }
     fn spec(&self, k: usize) -> EventSpec {
         self.0.spec(k)
     }
-    fn value(&self, k: usize, t: f64, y: &State<N>) -> f64 {
-        self.0.value(k, t, y)
-    }
     fn values(&self, first: usize, t: f64, y: &State<N>, out: &mut [f64]) {
         self.0.values(first, t, y, out)
     }
     fn slopes(&self, first: usize, t: f64, y: &State<N>, out: &mut [f64]) {
         self.0.slopes(first, t, y, out)
-    }
-    fn has_slopes(&self) -> bool {
-        self.0.has_slopes()
     }
 }
 

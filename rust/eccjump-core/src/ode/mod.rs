@@ -27,7 +27,8 @@ pub mod tableau;
 pub use dense::{DenseBounds, DenseStep};
 pub use ends::StepEnds;
 pub use events::{
-    quiet_step, Change, Direction, EventCarry, EventFunctions, EventSpec, NoEvents, EVENT_CHUNK,
+    quiet_step, Change, Direction, EventBounds, EventCarry, EventFunctions, EventSpec, NoBounds,
+    NoEvents, EVENT_CHUNK,
 };
 pub use pair::Method;
 pub use solver::{solve, solve_until, Observation, Outcome, SolverOptions, Status};

@@ -31,7 +31,7 @@ pub struct SolverOptions {
     pub method: Method,
     /// Make every accepted step's dense output, for an observer that keeps it. When false,
     /// a step of DOP853 whose ends alone clear it of events
-    /// ([`EventFunctions::change_bounds_ends`]) is observed without one, which saves the
+    /// ([`crate::ode::EventBounds::change_bounds_ends`]) is observed without one, which saves the
     /// three extra evaluations of f it costs. The steps, events and states are the same
     /// either way; only `nfev` differs.
     pub dense_every_step: bool,

@@ -106,7 +106,6 @@ fn events_for(sys: &RollingMemo, mu_s: f64, liftoff: bool, forces: bool) -> Jarm
         normal_force: forces,
         slip: forces,
         theta_end: 400.0,
-        last: Cell::new(None),
     }
 }
 

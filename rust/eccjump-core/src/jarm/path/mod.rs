@@ -125,7 +125,7 @@ pub struct RollingPath {
 /// The outcome of a scan along the rolling path.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct PathScan {
-    /// The event that stopped the scan (`End` if none).
+    /// The event that stopped the scan (`ThetaLimit` if none: the end of the search).
     pub event: ContactEvent,
     /// The state where the scan stopped (the event, or the end).
     pub at: PathPoint,

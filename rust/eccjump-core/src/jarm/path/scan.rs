@@ -206,7 +206,7 @@ impl RollingPath {
         };
         let (event, at) = match stop {
             Stop::Event(event, at) => (event, at),
-            Stop::End | Stop::Reached => (ContactEvent::End, cur.pts[cur.ia]),
+            Stop::End | Stop::Reached => (ContactEvent::ThetaLimit, cur.pts[cur.ia]),
         };
         let Cursor {
             min_fy,

@@ -284,7 +284,7 @@ fn bisection_finds_the_last_clean_turn_and_window() {
         let p = RollingPath::new(&r, 0.0, 0.0, 1.0);
         let end = 3000.0 * TAU;
         let full = p.scan_cells(0.0, end, Watch::ALL, false);
-        assert_ne!(full.event, ContactEvent::End, "{chi} {km} {a}");
+        assert_ne!(full.event, ContactEvent::ThetaLimit, "{chi} {km} {a}");
         let event_turn = (full.at.theta / TAU).floor() + 1.0; // turns counted from 1
         assert!(event_turn > 20.0, "{chi} {km} {a}: {event_turn}");
         // The cursor at the end of turn 2, as `skip_turns` leaves it before a skip.
@@ -398,7 +398,11 @@ fn window_liftoff_gives_the_scans_angle_bit_for_bit() {
                 found += 1;
             }
             WindowLift::Clean => {
-                assert_eq!(full.event, ContactEvent::End, "{alpha} {chi} {km} {m}");
+                assert_eq!(
+                    full.event,
+                    ContactEvent::ThetaLimit,
+                    "{alpha} {chi} {km} {m}"
+                );
                 clean += 1;
             }
             WindowLift::Within => panic!("every cell matters here"),
@@ -535,7 +539,7 @@ fn scan_agrees_with_dense_sampling() {
         let s = p.scan(end, Watch::ALL);
         let b = brute(&p, end, Watch::ALL);
         match (s.event, b) {
-            (ContactEvent::End, None) => {}
+            (ContactEvent::ThetaLimit, None) => {}
             (ev, Some((th, k))) => {
                 assert_eq!(ev, event_of(k), "{chi} {km} {a}");
                 assert!(

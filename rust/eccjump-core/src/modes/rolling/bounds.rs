@@ -7,7 +7,7 @@ use crate::mechanics::Ramp;
 use crate::ode::{Change, DenseStep, StepEnds};
 
 /// Bounds on how much the contact functions of pure rolling can change within one
-/// dense-output step, in the sense of [`EventFunctions::change_bounds`]: shared by the
+/// dense-output step, in the sense of [`crate::ode::EventBounds::change_bounds`]: shared by the
 /// rolling run ([`RollEvents`]) and the ODE route of the classification
 /// (`jarm::ode_route`).
 ///
@@ -73,7 +73,7 @@ impl ContactBounds {
     }
 
     /// Bounds from a step's ends alone, before its dense output is made
-    /// ([`crate::ode::EventFunctions::change_bounds_ends`]): those of [`Self::near`] along
+    /// ([`crate::ode::EventBounds::change_bounds_ends`]): those of [`Self::near`] along
     /// the quintic Hermite interpolant of the ends ([`StepEnds::second_order_hermite`]),
     /// widened for the dense output the pair would make, which strays from it by at most
     /// the interpolant's own error (its estimate, doubled) plus the pair's (ten times the

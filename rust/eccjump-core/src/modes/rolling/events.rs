@@ -1,14 +1,17 @@
-//! The catalogue of events that end pure rolling, shared by the closed-form path scan and
-//! the ODE route of the JARM classification (and named alike by the rolling run):
-//! the paper's lift-off (L = χθ̇² cos θ − cos α rising through 0), loss of normal force
-//! (F_y falling through 0), slip (the margin μ_s F_y − |F_x| falling through 0), the body
-//! stopping (θ̇² back to 0: it rocks back) and the end of the search.
+//! The one catalogue of events that end pure rolling, shared by the rolling run, the
+//! closed-form path scan and the ODE route of the JARM classification: the paper's
+//! lift-off (L = χθ̇² cos θ − cos α rising through 0), loss of normal force (F_y falling
+//! through 0), slip (the margin μ_s F_y − |F_x| falling through 0), the body stopping
+//! (θ̇² back to 0: it rocks back) and θ reaching its limit (a run's θ_max, the end of a
+//! search).
 //!
 //! Ties are resolved in the order of [`ContactEvent::ALL`]; a condition already violated at
 //! the start is found by [`violated_at_start`], the same test for both routes.
 
-/// An event that ends pure rolling, in tie order.
+/// An event that ends pure rolling, in tie order (the index is the discriminant, and the
+/// index of its event function in a run and in the ODE route).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+#[repr(u8)]
 pub enum ContactEvent {
     /// The paper's lift-off: L reaches 0 from below.
     Liftoff = 0,
@@ -16,10 +19,12 @@ pub enum ContactEvent {
     NormalForce = 1,
     /// μ_s F_y − |F_x| reaches 0: the rolling branch leaves the friction cone.
     Slip = 2,
-    /// θ̇² returns to 0: the body stops and rolls back.
+    /// θ̇² returns to 0: the body stops and rolls back (watched by a search; a run rolls
+    /// back and on).
     RocksBack = 3,
-    /// Nothing happened before the end of the search.
-    End = 4,
+    /// θ reaches its limit: a run's θ_max, or the end of a search (nothing happened
+    /// before it).
+    ThetaLimit = 4,
 }
 
 impl ContactEvent {
@@ -29,8 +34,19 @@ impl ContactEvent {
         ContactEvent::NormalForce,
         ContactEvent::Slip,
         ContactEvent::RocksBack,
-        ContactEvent::End,
+        ContactEvent::ThetaLimit,
     ];
+
+    /// A stable lower-case name, used by the Python layer and the command line.
+    pub fn name(self) -> &'static str {
+        match self {
+            ContactEvent::Liftoff => "liftoff",
+            ContactEvent::NormalForce => "normal_force_zero",
+            ContactEvent::Slip => "slip",
+            ContactEvent::RocksBack => "rocks_back",
+            ContactEvent::ThetaLimit => "theta_limit",
+        }
+    }
 }
 
 /// Which of the conditions a search watches (the stop and the end are always watched).

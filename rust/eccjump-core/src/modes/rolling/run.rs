@@ -1,11 +1,13 @@
 //! A pure-rolling run: the rolling equation integrated by the Dormand–Prince driver, with
 //! the built-in contact events, until the first terminal one (or t_max / θ_max).
 //!
-//! Events (all located on the dense output to near machine precision):
+//! Events, of the [`ContactEvent`] catalogue (all located on the dense output to near
+//! machine precision):
 //! - `Liftoff`: the paper's jump condition χ θ̇² cos θ − cos α = 0, rising;
-//! - `NormalForceZero`: F_y = 0, falling (the contact would need to pull);
+//! - `NormalForce`: F_y = 0, falling (the contact would need to pull);
 //! - `Slip`: μ_s F_y − |F_x| = 0, falling (the rolling branch leaves the friction cone);
-//! - `ThetaLimit`: θ = θ_max, rising.
+//! - `ThetaLimit`: θ = θ_max, rising;
+//! - `RocksBack` is not watched (a constant): a run rolls back and on.
 //!
 //! Which of them end the run is set by the lift-off [`Rule`].
 
@@ -15,48 +17,15 @@ use crate::mechanics::Ramp;
 pub use crate::mechanics::Rule;
 use crate::mechanics::{MAX_OMEGA0, MAX_THETA0};
 use crate::modes::rolling::bounds::ContactBounds;
+pub use crate::modes::rolling::events::ContactEvent;
 use crate::modes::rolling::solution::RollSolution;
 use crate::modes::rolling::track::{Begun, RollTrack};
 use crate::modes::rolling::Kinematics;
 use crate::ode::lanes::Track;
 use crate::ode::{
-    self, Change, DenseStep, Direction, EventFunctions, EventSpec, SolverOptions, State, Status,
-    StepEnds,
+    self, Change, DenseStep, Direction, EventBounds, EventFunctions, EventSpec, SolverOptions,
+    State, Status, StepEnds,
 };
-
-/// The built-in events of a rolling run, in the order of their indices.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-#[repr(u8)]
-pub enum RollEvent {
-    /// The paper's jump condition χ θ̇² cos θ − cos α = 0, rising.
-    Liftoff = 0,
-    /// F_y = 0, falling.
-    NormalForceZero = 1,
-    /// μ_s F_y − |F_x| = 0, falling.
-    Slip = 2,
-    /// θ = θ_max, rising.
-    ThetaLimit = 3,
-}
-
-impl RollEvent {
-    /// All events, indexed by their discriminant (the event-function index).
-    pub const ALL: [RollEvent; 4] = [
-        RollEvent::Liftoff,
-        RollEvent::NormalForceZero,
-        RollEvent::Slip,
-        RollEvent::ThetaLimit,
-    ];
-
-    /// A stable lower-case name, used by the Python layer and the command line.
-    pub fn name(self) -> &'static str {
-        match self {
-            RollEvent::Liftoff => "liftoff",
-            RollEvent::NormalForceZero => "normal_force_zero",
-            RollEvent::Slip => "slip",
-            RollEvent::ThetaLimit => "theta_limit",
-        }
-    }
-}
 
 /// The event functions of a rolling run.
 #[derive(Debug, Clone, Copy)]
@@ -72,49 +41,32 @@ pub struct RollEvents {
 }
 
 impl RollEvents {
-    /// g_k at a state, as a function of θ and θ̇ only.
-    pub fn value_at(&self, event: RollEvent, theta: f64, omega: f64) -> f64 {
-        match event {
-            RollEvent::Liftoff => self.ramp.kinematics(theta, omega).lift,
-            RollEvent::NormalForceZero => self.ramp.kinematics(theta, omega).fy,
-            RollEvent::Slip => {
-                let k = self.ramp.kinematics(theta, omega);
-                // The margin, not the ratio: it stays finite as F_y → 0.
-                self.mu_s.map_or(1.0, |mu| slip_margin(mu, k.fx, k.fy))
-            }
-            // θ_max = ∞ disables the event (a constant, finite g never crosses).
-            RollEvent::ThetaLimit if self.theta_max.is_finite() => theta - self.theta_max,
-            RollEvent::ThetaLimit => -1.0,
-        }
-    }
-
     /// Whether the event ends the run under the chosen rule.
-    pub fn is_terminal(&self, event: RollEvent) -> bool {
+    pub fn is_terminal(&self, event: ContactEvent) -> bool {
         match event {
-            RollEvent::Liftoff => self.rule == Rule::Paper,
-            RollEvent::Slip => self.mu_s.is_some(),
-            RollEvent::NormalForceZero | RollEvent::ThetaLimit => true,
+            ContactEvent::Liftoff => self.rule == Rule::Paper,
+            ContactEvent::Slip => self.mu_s.is_some(),
+            ContactEvent::NormalForce | ContactEvent::ThetaLimit => true,
+            ContactEvent::RocksBack => false,
         }
     }
 }
 
 impl EventFunctions<2> for RollEvents {
+    const HAS_SLOPES: bool = true;
     fn count(&self) -> usize {
-        RollEvent::ALL.len()
+        ContactEvent::ALL.len()
     }
     fn spec(&self, k: usize) -> EventSpec {
-        let event = RollEvent::ALL[k];
+        let event = ContactEvent::ALL[k];
         let direction = match event {
-            RollEvent::Liftoff | RollEvent::ThetaLimit => Direction::Rising,
-            RollEvent::NormalForceZero | RollEvent::Slip => Direction::Falling,
+            ContactEvent::Liftoff | ContactEvent::ThetaLimit => Direction::Rising,
+            _ => Direction::Falling,
         };
         EventSpec {
             direction,
             terminal: self.is_terminal(event),
         }
-    }
-    fn value(&self, k: usize, _t: f64, y: &State<2>) -> f64 {
-        self.value_at(RollEvent::ALL[k], y[0], y[1])
     }
     /// All events from one evaluation of the kinematics (one sin_cos per sample).
     #[inline]
@@ -126,9 +78,12 @@ impl EventFunctions<2> for RollEvents {
         self.rates_from(&self.ramp.kinematics(y[0], y[1]), first, out);
     }
     #[inline]
-    fn has_slopes(&self) -> bool {
-        true
+    fn bounds(&self) -> Option<&impl EventBounds<2>> {
+        Some(self)
     }
+}
+
+impl EventBounds<2> for RollEvents {
     /// Change bounds from bounds on the partial derivatives of each g in θ and θ̇ over
     /// the step (|sin|, |cos| ≤ 1, |θ̇| ≤ W, contact inertia ≥ Ĩ_C + 1 − 2χ), times the
     /// bounds on |dθ/dt|, |dθ̇/dt| of the interpolant.
@@ -144,11 +99,15 @@ impl RollEvents {
     #[inline]
     pub(super) fn values_from(&self, k: &Kinematics, first: usize, y: &State<2>, out: &mut [f64]) {
         for (i, o) in out.iter_mut().enumerate() {
-            *o = match RollEvent::ALL[first + i] {
-                RollEvent::Liftoff => k.lift,
-                RollEvent::NormalForceZero => k.fy,
-                RollEvent::Slip => self.mu_s.map_or(1.0, |mu| slip_margin(mu, k.fx, k.fy)),
-                RollEvent::ThetaLimit => self.value_at(RollEvent::ThetaLimit, y[0], y[1]),
+            *o = match ContactEvent::ALL[first + i] {
+                ContactEvent::Liftoff => k.lift,
+                ContactEvent::NormalForce => k.fy,
+                // The margin, not the ratio: it stays finite as F_y → 0.
+                ContactEvent::Slip => self.mu_s.map_or(1.0, |mu| slip_margin(mu, k.fx, k.fy)),
+                // Not watched, or θ_max = ∞: a constant, finite g never crosses.
+                ContactEvent::RocksBack => 1.0,
+                ContactEvent::ThetaLimit if self.theta_max.is_finite() => y[0] - self.theta_max,
+                ContactEvent::ThetaLimit => -1.0,
             };
         }
     }
@@ -159,20 +118,20 @@ impl RollEvents {
     pub(super) fn rates_from(&self, k: &Kinematics, first: usize, out: &mut [f64]) {
         let r = self.ramp.contact_rates(k);
         for (i, o) in out.iter_mut().enumerate() {
-            *o = match RollEvent::ALL[first + i] {
-                RollEvent::Liftoff => r.lift,
-                RollEvent::NormalForceZero => r.fy,
-                RollEvent::Slip => self
+            *o = match ContactEvent::ALL[first + i] {
+                ContactEvent::Liftoff => r.lift,
+                ContactEvent::NormalForce => r.fy,
+                ContactEvent::Slip => self
                     .mu_s
                     .map_or(0.0, |mu| slip_margin_rate(mu, k.fx, r.fx, r.fy)),
-                RollEvent::ThetaLimit if self.theta_max.is_finite() => k.omega,
-                RollEvent::ThetaLimit => 0.0,
+                ContactEvent::ThetaLimit if self.theta_max.is_finite() => k.omega,
+                ContactEvent::ThetaLimit | ContactEvent::RocksBack => 0.0,
             };
         }
     }
 
-    /// [`EventFunctions::change_bounds`] of all four events (see `ContactBounds`).
-    pub fn change_bounds_all(&self, dense: &DenseStep<2>) -> [Change; 4] {
+    /// [`EventBounds::change_bounds`] of all four events (see `ContactBounds`).
+    pub fn change_bounds_all(&self, dense: &DenseStep<2>) -> [Change; 5] {
         self.change_bounds_near(dense, None)
     }
 
@@ -182,18 +141,18 @@ impl RollEvents {
         &self,
         dense: &DenseStep<2>,
         anchor: Option<(f64, f64, f64)>,
-    ) -> [Change; 4] {
+    ) -> [Change; 5] {
         self.of_all(ContactBounds::near(&self.ramp, self.mu_s, dense, anchor))
     }
 
-    /// [`EventFunctions::change_bounds_ends`] of all four events, anchored at `anchor`
+    /// [`EventBounds::change_bounds_ends`] of all four events, anchored at `anchor`
     /// (see [`ContactBounds::from_ends`]; the bends only with `bends`).
     pub(crate) fn change_bounds_ends(
         &self,
         ends: &StepEnds<2>,
         anchor: Option<(f64, f64, f64)>,
         bends: bool,
-    ) -> [Change; 4] {
+    ) -> [Change; 5] {
         self.of_all(ContactBounds::from_ends(
             &self.ramp, self.mu_s, ends, anchor, bends,
         ))
@@ -201,13 +160,13 @@ impl RollEvents {
 
     /// The bounds of the four events, in their order, from the contact functions'.
     #[inline]
-    fn of_all(&self, b: ContactBounds) -> [Change; 4] {
+    fn of_all(&self, b: ContactBounds) -> [Change; 5] {
         let theta_limit = if self.theta_max.is_finite() {
             b.theta_above(self.theta_max)
         } else {
             Change::NONE
         };
-        [b.liftoff, b.fy, b.slip, theta_limit]
+        [b.liftoff, b.fy, b.slip, Change::NONE, theta_limit]
     }
 }
 
@@ -274,7 +233,7 @@ impl RollOptions {
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct EventHit {
     /// Which event.
-    pub event: RollEvent,
+    pub event: ContactEvent,
     /// Time of the event.
     pub t: f64,
     /// θ (rad) at the event.
@@ -289,7 +248,7 @@ pub enum RollStatus {
     /// t reached t_max without a terminal event.
     TimeLimit,
     /// A terminal event ended the run.
-    Event(RollEvent),
+    Event(ContactEvent),
     /// The integrator failed (step limit, step too small, non-finite values).
     Failed(Status),
 }
@@ -462,21 +421,29 @@ pub fn roll_until(ramp: &Ramp, opts: &RollOptions, stop: &dyn Fn() -> bool) -> R
 }
 
 /// The terminal event whose condition is already met at the start, if any.
-pub(super) fn violated_at_start(events: &RollEvents, theta: f64, omega: f64) -> Option<RollEvent> {
+pub(super) fn violated_at_start(
+    events: &RollEvents,
+    theta: f64,
+    omega: f64,
+) -> Option<ContactEvent> {
     // Every event's value from one evaluation of the kinematics.
-    let mut values = [0.0; RollEvent::ALL.len()];
+    let mut values = [0.0; ContactEvent::ALL.len()];
     events.values(0, 0.0, &State::<2>::new(theta, omega), &mut values);
-    RollEvent::ALL.into_iter().zip(values).find_map(|(e, g)| {
-        let outside = match e {
-            RollEvent::Liftoff | RollEvent::ThetaLimit => g > 0.0,
-            // Contact needs a strictly positive normal force (on a vertical ramp at rest
-            // F_y = 0: the body is not pressed onto the ramp at all).
-            RollEvent::NormalForceZero => g <= 0.0,
-            RollEvent::Slip => g < 0.0,
-        };
-        // θ_max is validated to lie above θ0, so it never fires here.
-        (events.is_terminal(e) && outside).then_some(e)
-    })
+    ContactEvent::ALL
+        .into_iter()
+        .zip(values)
+        .find_map(|(e, g)| {
+            let outside = match e {
+                ContactEvent::Liftoff | ContactEvent::ThetaLimit => g > 0.0,
+                // Contact needs a strictly positive normal force (on a vertical ramp at rest
+                // F_y = 0: the body is not pressed onto the ramp at all).
+                ContactEvent::NormalForce => g <= 0.0,
+                ContactEvent::Slip => g < 0.0,
+                ContactEvent::RocksBack => false,
+            };
+            // θ_max is validated to lie above θ0, so it never fires here.
+            (events.is_terminal(e) && outside).then_some(e)
+        })
 }
 
 #[cfg(test)]
@@ -525,7 +492,7 @@ mod skip_tests {
         let slip = run
             .events
             .iter()
-            .find(|e| e.event == RollEvent::Slip)
+            .find(|e| e.event == ContactEvent::Slip)
             .unwrap();
         assert!((slip.theta - 5868.836162570985).abs() < 1e-6, "{slip:?}");
     }
@@ -575,7 +542,7 @@ mod skip_tests {
                     let dense = dense.expect("every step's dense output");
                     steps += 1;
                     let g = |t: f64| {
-                        let mut v = [0.0; 4];
+                        let mut v = [0.0; 5];
                         ev.values(0, t, &dense.eval(t), &mut v);
                         v
                     };

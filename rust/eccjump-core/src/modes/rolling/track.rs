@@ -11,14 +11,15 @@ use crate::error::{try_grow, Error, Result};
 use crate::mechanics::Ramp;
 use crate::modes::rolling::memo::RollingMemo;
 use crate::modes::rolling::run::{
-    violated_at_start, EventHit, RollEvent, RollEvents, RollOptions, RollRun, RollStatus, RESERVE,
+    violated_at_start, ContactEvent, EventHit, RollEvents, RollOptions, RollRun, RollStatus,
+    RESERVE,
 };
 use crate::modes::rolling::solution::RollSolution;
 use crate::modes::rolling::Kinematics;
 use crate::ode::lanes::{solve_lanes_with, Keyed, Start, Track};
 use crate::ode::{
-    Change, DenseStep, EventFunctions, EventSpec, Method, Observation, Outcome, SolverOptions,
-    State, Status, StepEnds,
+    Change, DenseStep, EventBounds, EventFunctions, EventSpec, Method, Observation, Outcome,
+    SolverOptions, State, Status, StepEnds,
 };
 
 /// The rolling system and its events sharing one [`RollingMemo`].
@@ -35,6 +36,7 @@ impl Memo {
 }
 
 impl EventFunctions<2> for Memo {
+    const HAS_SLOPES: bool = true;
     #[inline]
     fn count(&self) -> usize {
         self.events.count()
@@ -42,10 +44,6 @@ impl EventFunctions<2> for Memo {
     #[inline]
     fn spec(&self, k: usize) -> EventSpec {
         self.events.spec(k)
-    }
-    #[inline]
-    fn value(&self, k: usize, t: f64, y: &State<2>) -> f64 {
-        self.events.value(k, t, y)
     }
     #[inline]
     fn values(&self, first: usize, _t: f64, y: &State<2>, out: &mut [f64]) {
@@ -58,9 +56,12 @@ impl EventFunctions<2> for Memo {
             .rates_from(&self.kinematics(y[0], y[1]), first, out);
     }
     #[inline]
-    fn has_slopes(&self) -> bool {
-        true
+    fn bounds(&self) -> Option<&impl EventBounds<2>> {
+        Some(self)
     }
+}
+
+impl EventBounds<2> for Memo {
     /// [`RollEvents::change_bounds_all`] tightened by the memo's trigonometry.
     #[inline]
     fn change_bounds(&self, first: usize, dense: &DenseStep<2>, out: &mut [Change]) {
@@ -194,7 +195,7 @@ impl RollTrack {
         run.nfev = outcome.nfev;
         run.status = match outcome.status {
             Status::Finished => RollStatus::TimeLimit,
-            Status::Event(k) => RollStatus::Event(RollEvent::ALL[k]),
+            Status::Event(k) => RollStatus::Event(ContactEvent::ALL[k]),
             other => RollStatus::Failed(other),
         };
         // The last accepted step ends past a terminal event: end the record at the event.
@@ -250,7 +251,7 @@ impl Track<2> for RollTrack {
                 }
             }
             Observation::Event { index, t, y } => run.events.push(EventHit {
-                event: RollEvent::ALL[index],
+                event: ContactEvent::ALL[index],
                 t,
                 theta: y[0],
                 omega: y[1],

@@ -20,7 +20,9 @@ struct Dip {
     slopes: bool,
     direction: Direction,
 }
+/// Without `slopes` its slopes are NaN: no dip test.
 impl EventFunctions<1> for Dip {
+    const HAS_SLOPES: bool = true;
     fn count(&self) -> usize {
         1
     }
@@ -30,13 +32,13 @@ impl EventFunctions<1> for Dip {
             terminal: true,
         }
     }
-    fn value(&self, _k: usize, _t: f64, y: &State<1>) -> f64 {
+    fn values(&self, _first: usize, _t: f64, y: &State<1>, out: &mut [f64]) {
         let g = (y[0] - self.c) * (y[0] - self.c) - self.depth;
-        if self.direction == Direction::Rising {
+        out[0] = if self.direction == Direction::Rising {
             -g
         } else {
             g
-        }
+        };
     }
     fn slopes(&self, _first: usize, _t: f64, y: &State<1>, out: &mut [f64]) {
         let s = 2.0 * (y[0] - self.c);
@@ -47,9 +49,6 @@ impl EventFunctions<1> for Dip {
         } else {
             s
         };
-    }
-    fn has_slopes(&self) -> bool {
-        self.slopes
     }
 }
 
@@ -96,6 +95,7 @@ fn a_dip_between_two_samples_is_a_crossing() {
     };
     struct Flip(Dip);
     impl EventFunctions<1> for Flip {
+        const HAS_SLOPES: bool = true;
         fn count(&self) -> usize {
             1
         }
@@ -105,14 +105,11 @@ fn a_dip_between_two_samples_is_a_crossing() {
                 terminal: true,
             }
         }
-        fn value(&self, k: usize, t: f64, y: &State<1>) -> f64 {
-            self.0.value(k, t, y)
+        fn values(&self, first: usize, t: f64, y: &State<1>, out: &mut [f64]) {
+            self.0.values(first, t, y, out)
         }
         fn slopes(&self, first: usize, t: f64, y: &State<1>, out: &mut [f64]) {
             self.0.slopes(first, t, y, out)
-        }
-        fn has_slopes(&self) -> bool {
-            true
         }
     }
     let so = SolverOptions::default();
@@ -141,6 +138,7 @@ fn a_start_at_zero_that_returns_within_the_first_cell_is_a_crossing() {
         slopes: bool,
     }
     impl EventFunctions<1> for Return {
+        const HAS_SLOPES: bool = true;
         fn count(&self) -> usize {
             1
         }
@@ -150,15 +148,12 @@ fn a_start_at_zero_that_returns_within_the_first_cell_is_a_crossing() {
                 terminal: true,
             }
         }
-        fn value(&self, _k: usize, _t: f64, y: &State<1>) -> f64 {
-            self.sign * y[0] * (self.c - y[0])
+        fn values(&self, _first: usize, _t: f64, y: &State<1>, out: &mut [f64]) {
+            out[0] = self.sign * y[0] * (self.c - y[0]);
         }
         fn slopes(&self, _first: usize, _t: f64, y: &State<1>, out: &mut [f64]) {
             let s = self.sign * (self.c - 2.0 * y[0]);
             out[0] = if self.slopes { s } else { f64::NAN };
-        }
-        fn has_slopes(&self) -> bool {
-            self.slopes
         }
     }
     let so = SolverOptions {

@@ -53,11 +53,9 @@ impl EventFunctions<2> for Swings {
             terminal: k == 0,
         }
     }
-    fn value(&self, k: usize, _t: f64, y: &State<2>) -> f64 {
-        if k == 0 {
-            y[1]
-        } else {
-            y[0] - 1.0
+    fn values(&self, first: usize, _t: f64, y: &State<2>, out: &mut [f64]) {
+        for (k, o) in (first..).zip(out.iter_mut()) {
+            *o = if k == 0 { y[1] } else { y[0] - 1.0 };
         }
     }
 }
