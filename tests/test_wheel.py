@@ -6,8 +6,9 @@
 - The compiled core agrees: its AVX (VEX-encoded) instructions are all inside those functions
   (or in libm's `fma`, which dispatches at run time itself).
 - `scripts/check_wheel.sh` passes: the sdist and the README's manylinux2014 wheel build,
-  install in fresh venvs and run (the wheel without Rust). It compiles the core twice (4-5
-  minutes on 2 busy cores), so it runs only with ECCJUMP_TEST_WHEEL=1.
+  install in fresh venvs and run (the wheel without Rust). It compiles the core twice (about
+  4 minutes of CPU time, 9-10 minutes on 2 shared cores), so it runs only with
+  ECCJUMP_TEST_WHEEL=1.
 """
 
 from __future__ import annotations
