@@ -137,12 +137,13 @@ def test_site_nav_lists_every_page() -> None:
 
 
 def test_ci_builds_the_site_with_the_readme_command() -> None:
-    """The README's "Documentation" command, verbatim, is the last line of .ci/run: after the
-    test command, whose line comes first."""
+    """The README's "Documentation" command, verbatim, is a line of .ci/run after the test
+    command's line."""
     readme = (ROOT / "README.md").read_text(encoding="utf-8")
     section = readme.split("\n## Documentation\n", 1)[1].split("\n## ", 1)[0]
     command = re.findall(r"```bash\n(.*?)\n```", section, re.DOTALL)[0].strip()
     assert "mkdocs build --strict" in command and command.startswith("pip install")
     lines = (ROOT / ".ci" / "run").read_text(encoding="utf-8").strip().splitlines()
-    assert lines[-1] == command
-    assert any("pytest" in line and "cargo test" in line for line in lines[:-1])
+    assert command in lines
+    docs = lines.index(command)
+    assert any("pytest" in line and "cargo test" in line for line in lines[:docs])
