@@ -4,7 +4,20 @@ theta, l, b in the ramp frame, detect and time slip, lift-off and landing, fit t
 (``docs/analysis.md``). The fit needs scipy (``pip install eccjump[analysis]``).
 """
 
+from eccjump.experiment.analysis import VERDICTS, Analysis, analyze
 from eccjump.experiment.reconstruct import Reconstruction, reconstruct
+from eccjump.experiment.synthetic import SyntheticTrack, synthetic_track
 from eccjump.experiment.track import Track, read_track, track_from_arrays
 
-__all__ = ["Reconstruction", "Track", "read_track", "reconstruct", "track_from_arrays"]
+__all__ = [
+    "VERDICTS",
+    "Analysis",
+    "Reconstruction",
+    "SyntheticTrack",
+    "Track",
+    "analyze",
+    "read_track",
+    "reconstruct",
+    "synthetic_track",
+    "track_from_arrays",
+]

@@ -41,7 +41,7 @@ class Reconstruction:
     ramp; R in contact), the slip displacement s = l - R (theta - theta[0]) [m] per frame
     with their standard errors, and the smoothed rates omega [rad/s], ldot, bdot and the
     slip velocity v = ldot - R omega [m/s] with theirs; the contact line (frame, alpha,
-    noise) and the smoothing window (frames)."""
+    noise), the smoothing window (frames), the marker's distance used and the one measured."""
 
     t: NDArray[np.float64]
     theta: NDArray[np.float64]
@@ -63,11 +63,17 @@ class Reconstruction:
     marker_radius: float
     marker_angle: float
     window: int
+    marker_measured: float
 
     @property
     def sigma(self) -> float:
         """The noise level of a tracked coordinate [m] (the standard error of l and b)."""
         return self.line.sigma
+
+    @property
+    def dt(self) -> float:
+        """The median frame interval [s]."""
+        return float(np.median(np.diff(self.t)))
 
     @property
     def height(self) -> NDArray[np.float64]:
@@ -96,7 +102,10 @@ def reconstruct(
     frame = line.frame
     qc, qm = frame.to_ramp(track.c), frame.to_ramp(track.m)
     offset = qm - qc
-    r_m = marker_radius if marker_radius is not None else float(np.median(np.hypot(*offset.T)))
+    measured = float(np.median(np.hypot(offset[:, 0], offset[:, 1])))
+    if not measured > 0:
+        raise ValueError("xm, ym: the marker coincides with the axle (it must be off the axle)")
+    r_m = marker_radius if marker_radius is not None else measured
     theta = theta_from_marker(offset, marker_angle)
     l, b = qc[:, 0], qc[:, 1] + radius  # noqa: E741
     sigma = max(line.sigma, 1e-12 * radius)  # a noise-free track: errors at rounding level
@@ -137,6 +146,7 @@ def reconstruct(
         marker_radius=r_m,
         marker_angle=marker_angle,
         window=w,
+        marker_measured=measured,
     )
 
 

@@ -70,9 +70,17 @@ def synthetic_track(
     unit = math.sqrt(radius / g)
     horizon = 3.0 / unit if duration is None else duration / unit
     run = simulate(
-        body, alpha, mu_s=mu_s, mu_k=mu_k, restitution=restitution, theta0=theta0,
-        omega0=omega0, t_max=horizon + 2.0, max_transitions=200, dense_output=True,
-    )  # fmt: skip
+        body,
+        alpha,
+        mu_s=mu_s,
+        mu_k=mu_k,
+        restitution=restitution,
+        theta0=theta0,
+        omega0=omega0,
+        t_max=horizon + 2.0,
+        max_transitions=200,
+        dense_output=True,
+    )
     if duration is None and run.flights and math.isfinite(run.flights[0].t_landing):
         f = run.flights[0]
         horizon = f.t_landing + 0.5 * (f.t_landing - f.t_liftoff)
@@ -94,9 +102,15 @@ def synthetic_track(
     m_px = (m - pts.min(axis=0)) * scale + rng.normal(0.0, noise_px, m.shape)
     track = Track(t=tau * unit, c=c_px / scale, m=m_px / scale, source="synthetic")
     return SyntheticTrack(
-        track=track, scale=scale, theta=theta, l=radius * l, b=radius * b,
-        mode=mode.astype(np.int8), motion=run, time_unit=unit,
-    )  # fmt: skip
+        track=track,
+        scale=scale,
+        theta=theta,
+        l=radius * l,
+        b=radius * b,
+        mode=mode.astype(np.int8),
+        motion=run,
+        time_unit=unit,
+    )
 
 
 __all__ = ["MODES", "SyntheticTrack", "synthetic_track"]
