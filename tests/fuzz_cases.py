@@ -1353,8 +1353,101 @@ def case_cli(d: Drawer) -> Case:
     )  # fmt: skip
 
 
+# --- analyze: tracked experiments, good and bad ------------------------------------------
+
+ANALYZE_PARAMS = (
+    "track", "source", "radius", "chi", "km", "alpha", "marker_angle", "marker_radius",
+    "scale", "g", "rule", "window", "design", "t", "xc", "yc", "xm", "ym",
+)  # fmt: skip
+_ROLLING_TRACK: list[Any] = []
+
+
+def rolling_track() -> Any:
+    """A short track of a body that rolls and never leaves the ramp (120 fps, 0.5 px)."""
+    if not _ROLLING_TRACK:
+        from eccjump.experiment.synthetic import synthetic_track
+
+        st = synthetic_track(eccjump.Cylinder(0.1, 0.3), 0.2, mu_s=1.0, fps=120.0,
+                             duration=0.25, noise_px=0.5, seed=1)  # fmt: skip
+        _ROLLING_TRACK.append(st.track)
+    return _ROLLING_TRACK[0]
+
+
+def check_analysis(res: Any, case: Case) -> None:
+    import json
+
+    from eccjump.experiment import VERDICTS
+
+    expect(isinstance(res, eccjump.Analysis), "not an Analysis")
+    expect(res.verdict in VERDICTS, f"verdict {res.verdict}")
+    expect(res.verdict != "undetermined" or bool(res.reason), "undetermined without a reason")
+    json.dumps(res.to_dict(), allow_nan=False)
+    expect(len(repr(res).splitlines()) <= 24, "repr longer than a screen")
+    if case.info.get("never_leaves"):
+        expect(res.verdict == "undetermined", f"a track that never leaves is {res.verdict}")
+
+
+def _bad_track_file(d: Drawer, c: Case) -> Path:
+    """A CSV of the rolling track, spoilt one way (or not at all)."""
+    tr = rolling_track()
+    cols = {"t": tr.t.copy(), "xc": tr.c[:, 0].copy(), "yc": tr.c[:, 1].copy(),
+            "xm": tr.m[:, 0].copy(), "ym": tr.m[:, 1].copy()}  # fmt: skip
+    how = d.choice(("good", "good", "nan", "inf", "unsorted", "repeated", "missing", "few",
+                    "text", "empty"))  # fmt: skip
+    name = d.choice(list(cols))
+    k = d.integer(1, tr.n - 2)
+    if how in ("nan", "inf"):
+        cols[name][k] = math.nan if how == "nan" else math.inf
+    elif how == "unsorted":
+        cols["t"][[k, k + 1]] = cols["t"][[k + 1, k]]
+    elif how == "repeated":
+        cols["t"][k + 1] = cols["t"][k]
+    elif how == "few":
+        keep = d.integer(0, 11)
+        cols = {n: v[:keep] for n, v in cols.items()}
+    elif how == "missing":
+        del cols[name]
+    c.info["never_leaves"] = how == "good"
+    path = tmpdir() / f"track-{how}-{d.integer(0, 10**6)}.csv"
+    if how == "empty":
+        path.write_text("")
+        return path
+    rows = [",".join(cols)] + [",".join(repr(float(v[i])) for v in cols.values())
+                               for i in range(len(next(iter(cols.values()))))]  # fmt: skip
+    if how == "text":
+        rows[min(3, len(rows) - 1)] = "0.1,abc,1,2,3"
+    path.write_text("\n".join(rows) + "\n")
+    return path
+
+
+def case_analyze(d: Drawer) -> Case:
+    c = Case("analyze", eccjump.analyze, params=ANALYZE_PARAMS, check=check_analysis)
+    c.args = (_bad_track_file(d, c) if d.integer(0, 3) else rolling_track(),)
+    c.info.setdefault("never_leaves", True)
+    c.kwargs = {
+        "radius": 0.05 if d.integer(0, 2) else real(d, c, 0.001, 1.0),
+        "chi": 0.1 if d.integer(0, 2) else real(d, c, 0.0, 1.0),
+        "km": 0.3 if d.integer(0, 2) else real(d, c, 0.0, 1.0),
+        "alpha": d.pick(None, 0.2, lambda: real(d, c, 0.0, HALF_PI)),
+        "marker_angle": 0.0 if d.integer(0, 2) else real(d, c, -7.0, 7.0),
+        "profile_mu_k": False,
+    }
+    if d.integer(0, 4) == 0:
+        c.kwargs["marker_radius"] = real(d, c, 0.0, 0.2)
+    if d.integer(0, 5) == 0:
+        c.kwargs["g"] = real(d, c, 0.1, 20.0)
+    if d.integer(0, 5) == 0:
+        c.kwargs["rule"] = text_param(d, c, ("paper", "normal_force"))
+    kw = c.kwargs
+    same = kw["radius"] == 0.05 and kw["chi"] == 0.1 and kw["km"] == 0.3
+    if not (same and kw["alpha"] in (None, 0.2)):
+        c.info["never_leaves"] = False  # another body or ramp may fit a flight in the noise
+    return c
+
+
 #: Every generator, by entry point family.
 GENERATORS: dict[str, Callable[[Drawer], Case]] = {
+    "analyze": case_analyze,
     "design": case_design,
     "build": case_build,
     "jarm": case_jarm,

@@ -56,6 +56,7 @@ BUDGET = {
     "optimal_start": 25,
     "design": 12,
     "build": 60,
+    "analyze": 30,
 }
 
 

@@ -12,6 +12,7 @@ from eccjump.boundary import alpha_interval_around, alpha_intervals, mu_s_min_pa
 from eccjump.classification import JarmResult, Reason, Region, jarm, region, region_dataset
 from eccjump.dense import DenseSolution
 from eccjump.design import Design, build, design
+from eccjump.experiment import Analysis, analyze
 from eccjump.maps import Map
 from eccjump.maps import load as load_map
 from eccjump.motion import MotionResult, simulate
@@ -29,6 +30,7 @@ from eccjump.units import Units
 
 __all__ = [
     "EVENT_NAMES",
+    "Analysis",
     "Cylinder",
     "DenseSolution",
     "Design",
@@ -46,6 +48,7 @@ __all__ = [
     "__version__",
     "alpha_interval_around",
     "alpha_intervals",
+    "analyze",
     "build",
     "closed_form",
     "design",

@@ -1,0 +1,487 @@
+"""``eccjump.analyze``: a tracked experiment in, a verdict with its evidence out.
+
+Verdicts:
+
+* ``jarm``: the body left the ramp straight from pure rolling -- the fitted model rolls up
+  to its lift-off (or slips for less than one frame, and a fit that forbids any slip before
+  the lift-off is as good), and the track shows the flight beyond its noise;
+* ``slip_first``: it slipped from t1 to t2 before lifting off -- the fitted model slips for
+  at least one frame before its lift-off, and the fit that forbids it is worse by a
+  chi-square of at least :data:`SIGNIFICANT` (3 standard errors);
+* ``undetermined``, with the reason: ``no_liftoff`` (the track never leaves the ramp),
+  ``noise`` (the flight, or the slip, is within the noise), ``frame_rate`` (a slip shorter
+  than :data:`MIN_SLIP_FRAMES` frames that the data cannot confirm), ``short_track`` (no
+  rolling before the lift-off to judge it by) or ``model`` (the track flies where the fitted
+  model does not: check the inputs).
+"""
+
+from __future__ import annotations
+
+import math
+import os
+import time
+from dataclasses import dataclass, field
+from typing import TYPE_CHECKING, Any
+
+import numpy as np
+
+from eccjump._checks import Rule, optional_real, real, rule_name
+from eccjump._html import card
+from eccjump.body import Cylinder
+from eccjump.experiment import figure
+from eccjump.experiment.events import Observed, Window, observe
+from eccjump.experiment.fit import (
+    UNITS,
+    Fit,
+    Setup,
+    event_times,
+    fit,
+    profile,
+    profile_interval,
+    rolling_needs,
+    slip_intervals,
+    time_errors,
+)
+from eccjump.experiment.reconstruct import Reconstruction, reconstruct
+from eccjump.experiment.sheet import design_inputs
+from eccjump.experiment.track import Track, read_track
+
+if TYPE_CHECKING:  # pragma: no cover
+    from matplotlib.figure import Figure
+
+VERDICTS = ("jarm", "slip_first", "undetermined")
+REASONS = ("", "no_liftoff", "noise", "frame_rate", "short_track", "model")
+#: The chi-square by which forbidding the slip must worsen the fit for a slip_first verdict.
+SIGNIFICANT = 9.0
+#: A slip shorter than this (in frames) may be reported as undetermined.
+MIN_SLIP_FRAMES = 3.0
+
+
+@dataclass(frozen=True)
+class SlipInterval:
+    """A slip of the fitted model before the lift-off: from t1 to t2 [s] with standard
+    errors, and its length in frames."""
+
+    t1: float
+    t2: float
+    t1_err: float
+    t2_err: float
+    frames: float
+
+
+@dataclass(frozen=True, eq=False)
+class Analysis:
+    """The outcome of :func:`analyze`: the verdict, its reason (for ``undetermined``) and
+    evidence (sentences), the lift-off time [s] with its standard error (from the fitted
+    model) and the observed window, the slips before it, the fits and what they rest on."""
+
+    verdict: str
+    reason: str
+    evidence: tuple[str, ...]
+    liftoff_t: float
+    liftoff_err: float
+    liftoff_window: Window | None
+    slips: tuple[SlipInterval, ...]
+    mu_k_interval: tuple[float, float]
+    delta_chi2: float
+    track: Track
+    rec: Reconstruction
+    observed: Observed
+    fit: Fit
+    fit_jarm: Fit | None
+    setup: Setup
+    times: dict[str, float]
+    time_errs: dict[str, float]
+    mu_s_needed: float
+    seconds: float
+    notes: tuple[str, ...] = field(default=())
+
+    @property
+    def model_modes(self) -> list[str]:
+        end = float(self.track.t[-1] - self.track.t[0]) / self.setup.time_unit
+        return [tr.to_mode for tr in self.fit.run.transitions if tr.t <= end]
+
+    def parameters(self) -> dict[str, dict[str, Any]]:
+        """The fitted parameters (value, ~95 % interval, unit), mu_s as a lower bound or a
+        value, the ramp angle in degrees."""
+        f, out = self.fit, {}
+        for name in f.names:
+            if name == "dmu":
+                continue
+            lo, hi = self.mu_k_interval if name == "mu_k" else f.interval(name)
+            out[name] = {"value": f.value(name), "lo": lo, "hi": hi, "unit": UNITS.get(name, "")}
+        mu_s = f.value("mu_k") + f.value("dmu")
+        lo_s, hi_s = _mu_s_interval(f)
+        out["mu_s"] = {
+            "value": mu_s,
+            "lo": lo_s,
+            "hi": hi_s,
+            "unit": "",
+            "rolling_needs": self.mu_s_needed,
+        }
+        return out
+
+    def to_dict(self) -> dict[str, Any]:
+        """JSON-ready (NaN as None)."""
+        t0 = float(self.track.t[0])
+        obs = self.observed
+        d: dict[str, Any] = {
+            "verdict": self.verdict,
+            "reason": self.reason or None,
+            "evidence": list(self.evidence),
+            "liftoff_t": self.liftoff_t,
+            "liftoff_t_err": self.liftoff_err,
+            "liftoff_window": _win(self.liftoff_window),
+            "slip_intervals": [vars(s) for s in self.slips],
+            "landing_t": _abs(self.times["landing"], t0, self.setup.time_unit),
+            "landing_t_err": self.time_errs["landing"],
+            "observed": {
+                "modes": obs.sequence(),
+                "flights": [
+                    {
+                        "liftoff": _win(f.liftoff),
+                        "apex": _win(f.apex),
+                        "apex_height": f.apex_height,
+                        "apex_err": f.apex_err,
+                        "landing": _win(f.landing),
+                    }
+                    for f in obs.flights
+                ],
+                "slips": [{"onset": _win(s.onset), "end": _win(s.end)} for s in obs.slips],
+            },
+            "model": {
+                "modes": self.model_modes,
+                "chi2_reduced": self.fit.chi2_reduced,
+                "delta_chi2_no_slip": self.delta_chi2,
+                "rule": self.setup.rule,
+            },
+            "parameters": self.parameters(),
+            "inputs": {
+                "chi": self.setup.body.chi,
+                "km": self.setup.body.km,
+                "radius": self.setup.radius,
+                "alpha_deg": math.degrees(self.rec.line.frame.alpha),
+                "alpha_err_deg": math.degrees(self.rec.line.alpha_err),
+                "marker_radius": self.setup.marker_radius,
+                "marker_angle_deg": math.degrees(self.setup.marker_angle),
+                "g": self.setup.g,
+            },
+            "track": {
+                "source": self.track.source,
+                "frames": self.track.n,
+                "fps": 1.0 / self.track.dt,
+                "noise_m": self.rec.sigma,
+                "window_frames": self.rec.window,
+            },
+            "notes": list(self.notes),
+            "seconds": self.seconds,
+        }
+        return _clean(d)
+
+    def __repr__(self) -> str:
+        head = f"Analysis: {self.verdict}" + (f" ({self.reason})" if self.reason else "")
+        lines = [head]
+        if math.isfinite(self.liftoff_t):
+            lines.append(f"  lift-off    t = {self.liftoff_t:.5f} +- {self.liftoff_err:.1e} s")
+        for s in self.slips:
+            lines.append(f"  slip        {s.t1:.5f} .. {s.t2:.5f} s ({s.frames:.1f} frames)")
+        lo, hi = self.mu_k_interval
+        lines.append(f"  mu_k        {self.fit.value('mu_k'):.3f} in [{lo:.3f}, {hi:.3f}]")
+        mu_s = self.parameters()["mu_s"]
+        lines.append(
+            f"  mu_s        {mu_s['value']:.3f} in [{mu_s['lo']:.3f}, {mu_s['hi']:.3g}]; "
+            f"the rolling needed >= {self.mu_s_needed:.3f}"
+        )
+        lines.append(f"  observed    {' -> '.join(self.observed.sequence())}")
+        lines.append(f"  model       {' -> '.join(self.model_modes[:8])}")
+        lines.extend(f"  - {e}" for e in self.evidence[:6])
+        return "\n".join(lines)
+
+    def _repr_html_(self) -> str:
+        lo, hi = self.mu_k_interval
+        rows = [("verdict", self.verdict + (f" ({self.reason})" if self.reason else ""))]
+        if math.isfinite(self.liftoff_t):
+            rows.append(("lift-off", f"t = {self.liftoff_t:.5f} ± {self.liftoff_err:.1e} s"))
+        rows += [
+            (f"slip {k + 1}", f"{s.t1:.5f} … {s.t2:.5f} s ({s.frames:.1f} frames)")
+            for k, s in enumerate(self.slips)
+        ]
+        rows += [
+            ("mu_k", f"{self.fit.value('mu_k'):.3f} in [{lo:.3f}, {hi:.3f}]"),
+            ("mu_s", f">= {self.mu_s_needed:.3f} (what the observed rolling needed)"),
+            ("observed", " → ".join(self.observed.sequence())),
+            ("model", " → ".join(self.model_modes[:8])),
+            (
+                "track",
+                f"{self.track.n} frames at {1 / self.track.dt:.4g} fps, noise "
+                f"{self.rec.sigma * 1e3:.3g} mm",
+            ),
+        ]
+        rows += [("evidence", e) for e in self.evidence]
+        return card("Analysis of a tracked experiment", rows)
+
+    def plot(self, **kwargs: Any) -> Figure:
+        """Data and model: theta, the slip velocity, the height of C, the modes as bands
+        (``eccjump.experiment.figure``; needs ``pip install eccjump[plot]``)."""
+        return figure.analysis_figure(self, **kwargs)
+
+
+def analyze(
+    track: Track | str | os.PathLike[str],
+    *,
+    radius: float | None = None,
+    chi: float | None = None,
+    km: float | None = None,
+    alpha: float | None = None,
+    marker_angle: float = 0.0,
+    marker_radius: float | None = None,
+    scale: float | None = None,
+    design: str | os.PathLike[str] | dict[str, Any] | None = None,
+    g: float = 9.81,
+    rule: Rule = "paper",
+    window: int | None = None,
+    profile_mu_k: bool = True,
+) -> Analysis:
+    """Analyse a tracked experiment: did the body jump straight out of pure rolling?
+
+    Parameters
+    ----------
+    track : a :class:`Track` or the path of a CSV (``t,xc,yc,xm,ym``) or Tracker file.
+    radius : R [m]; chi, km : the body. Each may come from ``design`` instead (a sheet of
+        ``eccjump design --json``, as a path or a dict); explicit values win.
+    alpha : the ramp angle [rad] (from ``design`` if given there); None estimates it from the
+        axle's path in contact, with its standard error.
+    marker_angle : the marker's angle from the direction axle -> centre of mass [rad],
+        measured like theta (towards the direction of rolling).
+    marker_radius : its distance from the axle [m] (None: measured from the track).
+    scale : pixels per metre, when the file holds pixels.
+    g : gravity [m/s^2]; rule : the lift-off rule of the model (``"paper"`` or
+        ``"normal_force"``); window : the smoothing window in frames (odd, >= 7).
+    profile_mu_k : widen mu_k's interval by its profile (a few seconds; the local interval
+        alone can miss a second minimum).
+    """
+    started = time.perf_counter()
+    body, R, a_given, notes = _inputs(radius, chi, km, alpha, design)
+    if not isinstance(track, Track):
+        track = read_track(track, scale=scale)
+    beta = real("marker_angle", marker_angle)
+    if not math.isfinite(beta):
+        raise ValueError(f"marker_angle must be finite [rad], got {beta:g}")
+    r_m = optional_real("marker_radius", marker_radius)
+    if r_m is not None and not (math.isfinite(r_m) and 0 < r_m <= 2 * R):
+        raise ValueError(f"marker_radius must be in (0, 2 R] = (0, {2 * R:g}] m, got {r_m:g}")
+    gg = real("g", g)
+    if not (math.isfinite(gg) and gg > 0):
+        raise ValueError(f"g must be a finite acceleration > 0 [m/s^2], got {gg:g}")
+    rec = reconstruct(
+        track, radius=R, marker_angle=beta, marker_radius=r_m, alpha=a_given, window=window
+    )
+    notes += _marker_note(rec, r_m)
+    setup = Setup(
+        body,
+        rec.line.frame.alpha,
+        R,
+        gg,
+        rec.marker_radius,
+        beta,
+        rule_name(rule),
+        fit_alpha=a_given is None,
+    )
+    observed = observe(rec)
+    best = fit(setup, track, rec)
+    mu_k_iv = best.interval("mu_k")
+    if profile_mu_k:
+        grid, costs = profile(best, setup, track, rec)
+        mu_k_iv = profile_interval(grid, costs, best)
+    return _judge(track, rec, observed, best, setup, mu_k_iv, notes, started)
+
+
+def _judge(
+    track: Track,
+    rec: Reconstruction,
+    observed: Observed,
+    best: Fit,
+    setup: Setup,
+    mu_k_iv: tuple[float, float],
+    notes: tuple[str, ...],
+    started: float,
+) -> Analysis:
+    unit, t0, dt = setup.time_unit, float(track.t[0]), track.dt
+    horizon = float(track.t[-1] - t0) / unit
+    times = event_times(best.run, horizon)
+    errs = time_errors(best, setup, track, rec)
+    lift = times["liftoff"]
+    slips_dimless = slip_intervals(best.run, lift if math.isfinite(lift) else horizon)
+    slip_frames = sum(b - a for a, b in slips_dimless) * unit / dt
+    needs = rolling_needs(best.run, lift if math.isfinite(lift) else horizon)
+    evidence: list[str] = []
+    verdict, reason, delta, jarm_fit = "undetermined", "", math.nan, None
+    seen = observed.flights[0] if observed.flights else None
+    if seen is None and not math.isfinite(lift):
+        reason = "no_liftoff"
+        evidence.append(
+            "the track never leaves the ramp: the axle stays on its contact line "
+            f"within {3 * rec.sigma * 1e3:.2g} mm (3 sigma), and so does the model"
+        )
+    elif seen is None:
+        reason = "noise"
+        evidence.append(
+            f"the model lifts off at t = {t0 + lift * unit:.4f} s, but its flight "
+            f"stays within 3 sigma = {3 * rec.sigma * 1e3:.2g} mm of the ramp"
+        )
+    elif not math.isfinite(lift):
+        reason = "model"
+        evidence.append(
+            f"the track flies ({seen.apex_height * 1e3:.3g} mm above the ramp) but "
+            "the fitted model does not leave it: check chi, km, alpha, R"
+        )
+    elif (lift * unit) < 4 * dt:
+        reason = "short_track"
+        evidence.append(
+            "the lift-off comes within 4 frames of the track's start: no rolling to judge it by"
+        )
+    else:
+        evidence.append(
+            f"the axle rises {seen.apex_height * 1e3:.3g} mm above the ramp "
+            f"({observed.peak_snr:.0f} sigma); lift-off seen in "
+            f"[{seen.liftoff.lo:.4f}, {seen.liftoff.hi:.4f}] s"
+        )
+        if slip_frames <= 0:
+            verdict = "jarm"
+            evidence.append(
+                f"the fitted model rolls without slipping from the first frame to "
+                f"its lift-off at t = {t0 + lift * unit:.5f} s"
+            )
+        else:
+            jarm_fit = fit(setup, track, rec, jarm_only=True, starts=[_as_start(best)])
+            delta = 2.0 * (jarm_fit.cost - best.cost) / max(best.chi2_reduced, 1e-12)
+            verdict, reason = _slip_verdict(slip_frames, delta)
+            evidence.append(
+                f"the fitted model slips for {slip_frames:.1f} frames before its "
+                f"lift-off; forbidding that slip worsens the fit by chi2 = "
+                f"{delta:.3g} (significant above {SIGNIFICANT:g})"
+            )
+    evidence.append(
+        f"the rolling before it needs mu_s >= {needs:.3f} (the model's friction ratio |F_x|/F_y)"
+    )
+    slips = tuple(
+        SlipInterval(
+            t0 + a * unit,
+            t0 + b * unit,
+            errs["slip_onset"] if k == 0 else math.nan,
+            errs["slip_end"] if k == len(slips_dimless) - 1 else math.nan,
+            (b - a) * unit / dt,
+        )
+        for k, (a, b) in enumerate(slips_dimless)
+    )
+    if verdict == "jarm":
+        slips = ()
+    return Analysis(
+        verdict=verdict,
+        reason=reason,
+        evidence=tuple(evidence),
+        liftoff_t=_abs(lift, t0, unit),
+        liftoff_err=errs["liftoff"],
+        liftoff_window=seen.liftoff if seen else None,
+        slips=slips,
+        mu_k_interval=mu_k_iv,
+        delta_chi2=delta,
+        track=track,
+        rec=rec,
+        observed=observed,
+        fit=best,
+        fit_jarm=jarm_fit,
+        setup=setup,
+        times=times,
+        time_errs=errs,
+        mu_s_needed=needs,
+        seconds=time.perf_counter() - started,
+        notes=notes,
+    )
+
+
+def _slip_verdict(frames: float, delta: float) -> tuple[str, str]:
+    if delta >= SIGNIFICANT and frames >= 1.0:
+        return "slip_first", ""
+    if frames < 1.0:
+        return "jarm", ""  # a slip shorter than a frame that the data do not ask for
+    return "undetermined", "frame_rate" if frames < MIN_SLIP_FRAMES else "noise"
+
+
+def _as_start(f: Fit) -> dict[str, float]:
+    start = {n: f.value(n) for n in f.names}
+    start["omega0"] = max(start["omega0"], 0.0)
+    return start
+
+
+def _inputs(
+    radius: float | None,
+    chi: float | None,
+    km: float | None,
+    alpha: float | None,
+    design: str | os.PathLike[str] | dict[str, Any] | None,
+) -> tuple[Cylinder, float, float | None, tuple[str, ...]]:
+    sheet = design_inputs(design) if design is not None else {}
+    notes: tuple[str, ...] = ()
+    R = optional_real("radius", radius)
+    R = R if R is not None else sheet.get("radius")
+    c = optional_real("chi", chi)
+    c = c if c is not None else sheet.get("chi")
+    k = optional_real("km", km)
+    k = k if k is not None else sheet.get("km")
+    a = optional_real("alpha", alpha)
+    a = a if a is not None else sheet.get("alpha")
+    for name, v in (("radius", R), ("chi", c), ("km", k)):
+        if v is None:
+            raise ValueError(f"{name} is needed (give it, or a design sheet that holds it)")
+    assert R is not None and c is not None and k is not None
+    if not (math.isfinite(R) and R > 0):
+        raise ValueError(f"radius must be a finite length > 0 [m], got {R:g}")
+    if a is not None and not 0 <= a <= math.pi / 2:
+        raise ValueError(f"alpha must be in [0, pi/2] rad (math.radians for degrees), got {a:g}")
+    body = Cylinder(chi=c, km=k)
+    if not body.km > 0:
+        raise ValueError("km must be > 0: the model's spin in flight is undetermined at km = 0")
+    return body, R, a, notes
+
+
+def _marker_note(rec: Reconstruction, given: float | None) -> tuple[str, ...]:
+    measured = rec.marker_measured
+    if given is None:
+        return (f"marker_radius measured from the track: {measured * 1e3:.4g} mm",)
+    if abs(measured - given) < 0.1 * given + 3 * rec.sigma:
+        return ()
+    return (
+        f"the tracked marker is {measured * 1e3:.4g} mm from the axle, not the "
+        f"{given * 1e3:.4g} mm given as marker_radius",
+    )
+
+
+def _mu_s_interval(f: Fit) -> tuple[float, float]:
+    i, j = f.names.index("mu_k"), f.names.index("dmu")
+    var = f.cov[i, i] + f.cov[j, j] + 2 * f.cov[i, j]
+    v = f.value("mu_k") + f.value("dmu")
+    if not math.isfinite(var):
+        return f.value("mu_k"), math.inf
+    e = 1.96 * math.sqrt(max(var, 0.0))
+    return max(v - e, 0.0), v + e
+
+
+def _abs(t: float, t0: float, unit: float) -> float:
+    return t0 + t * unit if math.isfinite(t) else math.nan
+
+
+def _win(w: Window | None) -> dict[str, float] | None:
+    return None if w is None else w.as_dict()
+
+
+def _clean(x: Any) -> Any:
+    if isinstance(x, dict):
+        return {k: _clean(v) for k, v in x.items()}
+    if isinstance(x, list | tuple):
+        return [_clean(v) for v in x]
+    if isinstance(x, float | np.floating):
+        return float(x) if math.isfinite(x) else None
+    if isinstance(x, np.integer):
+        return int(x)
+    return x
