@@ -1,6 +1,6 @@
 """``eccjump analyze``: a tracked experiment (CSV ``t,xc,yc,xm,ym`` or Tracker's export) in,
 the verdict -- jarm, slip_first or undetermined -- with its evidence out, as text or JSON, and
-optionally a figure of data and model. See docs/analysis.md."""
+optionally a figure of data and model (the site's page "Analysing an experiment")."""
 
 from __future__ import annotations
 

@@ -244,21 +244,71 @@ def analyze(
 ) -> Analysis:
     """Analyse a tracked experiment: did the body jump straight out of pure rolling?
 
+    Reads the track (axle C and a marker M in the lab frame), reconstructs theta, l, b and
+    the slip velocity in the ramp frame with their errors from the data's noise, detects and
+    times slips, lift-off, apex and landing, fits ``eccjump.simulate`` to the tracked points
+    (the start, mu_k, mu_s, e, and alpha if not given) and gives the verdict with its
+    evidence. The fit needs scipy (``pip install eccjump[analysis]``).
+
     Parameters
     ----------
-    track : a :class:`Track` or the path of a CSV (``t,xc,yc,xm,ym``) or Tracker file.
-    radius : R [m]; chi, km : the body. Each may come from ``design`` instead (a sheet of
-        ``eccjump design --json``, as a path or a dict); explicit values win.
-    alpha : the ramp angle [rad] (from ``design`` if given there); None estimates it from the
-        axle's path in contact, with its standard error.
-    marker_angle : the marker's angle from the direction axle -> centre of mass [rad],
-        measured like theta (towards the direction of rolling).
-    marker_radius : its distance from the axle [m] (None: measured from the track).
-    scale : pixels per metre, when the file holds pixels.
-    g : gravity [m/s^2]; rule : the lift-off rule of the model (``"paper"`` or
-        ``"normal_force"``); window : the smoothing window in frames (odd, >= 7).
-    profile_mu_k : widen mu_k's interval by its profile (a few seconds; the local interval
-        alone can miss a second minimum).
+    track : Track, str or path
+        A :class:`Track`, or the path of a CSV (``t,xc,yc,xm,ym``; s, and m or px) or of
+        Tracker's exported data table.
+    radius : float or None
+        R [m], > 0; or from ``design``.
+    chi, km : float or None
+        The body (chi in [0, 1], km in (0, 1 - chi]); or from ``design``. Explicit values win.
+    alpha : float or None
+        The ramp angle [rad], in (0, pi/2); None estimates it from the axle's path in
+        contact, with its standard error.
+    marker_angle : float, default 0.0
+        The marker's angle from the direction axle -> centre of mass [rad], measured like
+        theta (towards the direction of rolling).
+    marker_radius : float or None
+        The marker's distance from the axle [m], in (0, 2 R]; None measures it from the track.
+    scale : float or None
+        Pixels per metre, when the file holds pixels.
+    design : str, path, dict or None
+        A sheet of ``eccjump design --json`` (its path or its dict) for the body, R and alpha.
+    g : float, default 9.81
+        Gravity [m/s^2], > 0.
+    rule : {"paper", "normal_force"}, default "paper"
+        The lift-off rule of the model.
+    window : int or None
+        The smoothing window in frames (odd, >= 7); None chooses it from the frame rate.
+    profile_mu_k : bool, default True
+        Widen mu_k's interval by its profile (a few seconds; the local interval alone can
+        miss a second minimum).
+
+    Returns
+    -------
+    Analysis
+        ``verdict`` (``"jarm"``, ``"slip_first"`` or ``"undetermined"``) with its
+        ``reason`` and ``evidence``, ``liftoff_t`` [s] and ``liftoff_err``, ``slips``, the
+        fitted parameters and their intervals (``mu_k_interval``), ``to_dict()`` for the
+        JSON report and ``plot()`` for the figure.
+
+    Raises
+    ------
+    ValueError
+        For a bad track (NaN, unsorted or repeated times, missing columns, too few frames)
+        or a parameter outside its range; the message names it.
+    TypeError
+        For an argument of the wrong type.
+
+    Examples
+    --------
+    >>> import math, eccjump
+    >>> from eccjump.experiment import synthetic_track
+    >>> body = eccjump.Cylinder(0.10927, 0.0777)
+    >>> alpha = math.radians(66.087)
+    >>> made = synthetic_track(body, alpha, mu_s=1.2, mu_k=0.9, radius=0.05, fps=240.0,
+    ...                        noise_px=0.5, seed=1)
+    >>> res = eccjump.analyze(made.track, radius=0.05, chi=body.chi, km=body.km,
+    ...                       alpha=alpha, marker_radius=0.04, profile_mu_k=False)
+    >>> print(res.verdict, round(res.liftoff_t, 3))
+    jarm 0.246
     """
     started = time.perf_counter()
     body, R, a_given, notes = _inputs(radius, chi, km, alpha, design)
