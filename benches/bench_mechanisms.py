@@ -6,9 +6,10 @@ user-level benchmarks (docs/performance.md).
 Every configuration runs in its own process with ``ECCJUMP_OFF`` naming the mechanism
 switched off; ``base`` switches nothing off. The switches exist only in a build with
 ``benches/mechanism_switches.patch`` applied (made on commit 0f1e809; without it every
-configuration is ``base``): apply it, build the extension, point PYTHONPATH at that copy. Rounds interleave the configurations, and each figure is the best of its
-rounds in CPU time (one thread, so that the figures are per core and hold on a machine
-shared with other work). ``--configs`` limits the run.
+configuration is ``base``): apply it, build the extension, point PYTHONPATH at that copy.
+Rounds interleave the configurations, and each figure is the best of its rounds in CPU time
+(one thread, so that the figures are per core and hold on a machine shared with other work).
+``--configs`` limits the run.
 """
 
 from __future__ import annotations

@@ -1,7 +1,8 @@
 """From a lab video to a verdict: read a tracked experiment (axle and marker), reconstruct
 theta, l, b in the ramp frame, detect and time slip, lift-off and landing, fit the model
 (``eccjump.simulate``) and say whether the body jumped straight out of pure rolling
-(the site's page "Analysing an experiment"). The fit needs scipy (``pip install eccjump[analysis]``).
+(the site's page "Analysing an experiment"). The fit needs scipy
+(``pip install eccjump[analysis]``).
 """
 
 from eccjump.experiment.analysis import VERDICTS, Analysis, analyze
