@@ -13,6 +13,7 @@ from eccjump.classification import JarmResult, Reason, Region, jarm, region, reg
 from eccjump.dense import DenseSolution
 from eccjump.design import Design, build, design
 from eccjump.experiment import Analysis, analyze
+from eccjump.explorer import explore
 from eccjump.maps import Map
 from eccjump.maps import load as load_map
 from eccjump.motion import MotionResult, simulate
@@ -52,6 +53,7 @@ __all__ = [
     "build",
     "closed_form",
     "design",
+    "explore",
     "jarm",
     "jarm_fraction",
     "load_map",

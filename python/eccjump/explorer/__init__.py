@@ -1,0 +1,15 @@
+"""The explorer: sliders, the JARM region slice, the animated full motion and its numbers,
+in a Jupyter widget (:func:`explore`) or a local web page (``eccjump explore``,
+:class:`ExplorerServer`). ``docs/explorer.md`` describes it.
+
+- ``controls``: the sliders, described once (ranges, steps, units);
+- ``api``: the page's requests as plain functions of a query (``handle``);
+- ``server``: the local HTTP server of the page (standard library);
+- ``widget``: the anywidget, whose messages reach the same ``api.handle``;
+- ``static/``: the page (one HTML file, one script, one style sheet; nothing from the
+  internet).
+"""
+
+from eccjump.explorer.widget import explore
+
+__all__ = ["explore"]

@@ -1,0 +1,142 @@
+"""``eccjump.explore()``: the explorer as a Jupyter widget (anywidget).
+
+The widget runs the page's own script (``static/explorer.js``); its requests travel as the
+widget's messages to the kernel, which answers them with :func:`api.handle`, the function
+behind the local server. So the widget needs no port and no server, and works wherever the
+notebook runs (JupyterLab, Notebook, VS Code, a remote or hosted kernel), where an iframe of a
+server on the kernel's machine would not load.
+"""
+
+from __future__ import annotations
+
+import functools
+import math
+from pathlib import Path
+from typing import TYPE_CHECKING, Any
+
+from eccjump._checks import optional_real, real, rule_name
+from eccjump.explorer import api, controls
+
+if TYPE_CHECKING:
+    import anywidget
+
+STATIC = Path(__file__).parent / "static"
+
+
+@functools.cache
+def widget_class() -> type[anywidget.AnyWidget]:
+    """The widget's class, made at first use (anywidget is an optional extra)."""
+    try:
+        import anywidget
+        import traitlets
+    except ImportError as err:
+        raise ImportError("eccjump.explore needs anywidget: pip install eccjump[explore]") from err
+
+    class Explorer(anywidget.AnyWidget):  # type: ignore[misc]  # anywidget's base is untyped
+        """The eccjump explorer; ``params`` holds the current point (the sliders' units:
+        degrees, and strings as in a URL), kept in step with the sliders."""
+
+        _esm = STATIC / "explorer.js"
+        _css = STATIC / "explorer.css"
+        params = traitlets.Dict().tag(sync=True)
+
+        def __init__(self, **kwargs: Any) -> None:
+            super().__init__(**kwargs)
+            self.on_msg(self._answer)
+
+        def _answer(self, _widget: object, content: object, _buffers: object) -> None:
+            if not isinstance(content, dict) or content.get("kind") != "request":
+                return
+            query = content.get("query")
+            query = {str(k): str(v) for k, v in query.items()} if isinstance(query, dict) else {}
+            status, body = api.handle(str(content.get("endpoint")), query)
+            self.send({"kind": "response", "id": content.get("id"), "status": status, "body": body})
+
+    return Explorer
+
+
+def explore(
+    *,
+    alpha: float = math.radians(40.0),
+    chi: float = 0.15,
+    km: float = 0.02,
+    mu_s: float = 1.0,
+    mu_k: float | None = None,
+    restitution: float = 0.0,
+    theta0: float = 0.0,
+    omega0: float = 0.0,
+    rule: str = "paper",
+    t_max: float = 15.0,
+) -> anywidget.AnyWidget:
+    """The interactive explorer in a Jupyter notebook, starting at the given point.
+
+    Sliders for every parameter below, linked views of the JARM region slice over (χ, α) at
+    the current k_m and μ_s (click the map to move the point), the full motion of the point
+    as an animated cylinder on the ramp with its mode timeline (:func:`eccjump.simulate`), and
+    its numbers (lift-off angle and time, slip onset, flight apex and distance). The same
+    explorer runs as a local web page with ``eccjump explore`` (``docs/explorer.md``).
+
+    Parameters
+    ----------
+    alpha : ramp angle [rad], in [0, pi/2].
+    chi : offset of the centre of mass d/R, in [0, 1].
+    km : shell mass fraction, in [0, 1] (a body needs km <= 1 - chi; the explorer says so
+        when it is not).
+    mu_s : static friction coefficient, in [0, 3].
+    mu_k : kinetic friction coefficient, in [0, 3]; None (default) ties it to mu_s.
+    restitution : energetic coefficient of restitution e of the landings, in [0, 1].
+    theta0 : start angle [rad], in [-pi, pi]; omega0 : start rate [sqrt(g/R) rad], in [-3, 3].
+    rule : the lift-off rule from rolling, ``"paper"`` or ``"normal_force"``.
+    t_max : duration of the motion [sqrt(R/g)], in [2, 60].
+
+    Returns
+    -------
+    anywidget.AnyWidget
+        Display it (the last expression of a cell); its ``params`` trait follows the sliders.
+
+    Raises
+    ------
+    TypeError, ValueError
+        For a value of a wrong type or outside the sliders' range; the message names it.
+    ImportError
+        Without anywidget (``pip install eccjump[explore]``).
+
+    Examples
+    --------
+    >>> import math, eccjump
+    >>> w = eccjump.explore(alpha=math.radians(30), chi=0.5, km=0.4)  # doctest: +SKIP
+    >>> w  # in a notebook: the explorer  # doctest: +SKIP
+    """
+    point = {
+        "alpha": math.degrees(real("alpha", alpha)),
+        "chi": real("chi", chi),
+        "km": real("km", km),
+        "mu_s": real("mu_s", mu_s),
+        "mu_k": optional_real("mu_k", mu_k),
+        "restitution": real("restitution", restitution),
+        "theta0": math.degrees(real("theta0", theta0)),
+        "omega0": real("omega0", omega0),
+        "t_max": real("t_max", t_max),
+    }
+    controls.rule_checked(rule_name(rule))
+    for key, value in point.items():
+        if value is not None:
+            _in_range(key, value)
+    tie = point["mu_k"] is None
+    params = {k: repr(v) for k, v in point.items() if v is not None}
+    params.update(rule=rule, tie="1" if tie else "0")
+    return widget_class()(params=params)
+
+
+def _in_range(key: str, value: float) -> None:
+    """The slider's range check, its message in the Python API's units (radians)."""
+    try:
+        controls.checked(key, value)
+    except ValueError:
+        if key not in controls.ANGLES:
+            raise
+        c = controls.BY_KEY[key]
+        raise ValueError(
+            f"{key} = {math.radians(value):g} rad is outside the explorer's range "
+            f"[{math.radians(c.lo):g}, {math.radians(c.hi):g}] rad"
+        ) from None

@@ -1,0 +1,334 @@
+"""The explorer without a browser: its requests (``eccjump.explorer.api``), the local server,
+the command ``eccjump explore`` and the widget's Python side (``eccjump.explore``).
+
+The page itself is tested in a real browser by tests/test_explorer_browser.py."""
+
+from __future__ import annotations
+
+import json
+import math
+import re
+import signal
+import socket
+import subprocess
+import sys
+import time
+import urllib.error
+import urllib.request
+
+import numpy as np
+import pytest
+
+import eccjump
+from eccjump.explorer import api, controls, server
+from eccjump.explorer.server import ExplorerServer
+
+#: The README's worked example (it jumps straight out of rolling) and the paper's Fig. 3b
+#: body on a 30° ramp (it slips first), in the sliders' units.
+README = {"alpha": "40", "chi": "0.15", "km": "0.02", "mu_s": "1"}
+FIG3B = {"alpha": "30", "chi": "0.5", "km": "0.4", "mu_s": "1", "t_max": "9"}
+
+
+def ok(endpoint: str, query: dict[str, str]) -> dict:
+    status, body = api.handle(endpoint, query)
+    assert status == 200, body
+    json.dumps(body, allow_nan=False)  # what the server sends
+    return body
+
+
+def refused(endpoint: str, query: dict[str, str]) -> str:
+    status, body = api.handle(endpoint, query)
+    assert status == 400, body
+    assert set(body) == {"error"} and len(body["error"]) <= 200
+    assert "Traceback" not in body["error"]
+    return body["error"]
+
+
+# --- the controls --------------------------------------------------------------------------
+
+
+def test_every_slider_starts_inside_its_range_on_a_step():
+    for c in controls.CONTROLS:
+        assert c.lo <= c.default <= c.hi, c
+        steps = (c.default - c.lo) / c.step
+        assert steps == pytest.approx(round(steps), abs=1e-9), c
+    spec = ok("controls", {})
+    assert [c["key"] for c in spec["controls"]] == [c.key for c in controls.CONTROLS]
+    assert spec["rules"] == ["paper", "normal_force"]
+    assert set(spec["reasons"]) == {r.name for r in eccjump.Reason}
+
+
+# --- the region slice ----------------------------------------------------------------------
+
+
+def test_region_slice_is_the_classification_at_its_cell_centres():
+    body = ok("region", {"km": "0.02", "mu_s": "1"})
+    n = body["n"]
+    codes = np.array(body["codes"]).reshape(n, n)  # rows: alpha, columns: chi
+    chi, alpha = np.array(body["chi"]), np.radians(body["alpha_deg"])
+    for j, i in [(0, 0), (26, 9), (40, 30), (n - 1, n - 1), (10, 50)]:
+        expected = eccjump.jarm(alpha[j], chi[i], 0.02, 1.0).reason
+        assert codes[j, i] == expected, (j, i)
+    # the README's body (alpha 40 deg, chi 0.15) jumps: so does its cell
+    j, i = int(40 / 90 * n), int(0.15 * n)
+    assert body["names"][codes[j, i]] == "JARM"
+    valid = codes != eccjump.Reason.INVALID_PARAMS
+    assert body["jarm_fraction"] == pytest.approx((codes[valid] == 0).mean())
+    assert sum(body["counts"].values()) == n * n
+
+
+def test_region_slice_follows_km_mu_s_rule_and_start():
+    base = ok("region", {"km": "0.02", "mu_s": "1"})["codes"]
+    for change in ({"km": "0.1"}, {"mu_s": "0.3"}, {"rule": "normal_force"}, {"omega0": "1"}):
+        assert ok("region", {"km": "0.02", "mu_s": "1", **change})["codes"] != base, change
+
+
+def test_region_slice_marks_the_bodies_that_do_not_exist():
+    body = ok("region", {"km": "0.5"})
+    n = body["n"]
+    codes = np.array(body["codes"]).reshape(n, n)
+    chi = np.array(body["chi"])
+    invalid = codes == eccjump.Reason.INVALID_PARAMS
+    assert (invalid == (chi > 0.5)[None, :]).all()
+
+
+# --- the motion ----------------------------------------------------------------------------
+
+
+def test_motion_numbers_of_the_readme_body():
+    body = ok("motion", README)
+    assert body["verdict"]["reason"] == "JARM" and body["verdict"]["is_jarm"]
+    assert body["verdict"]["theta_J_deg"] == pytest.approx(334.3438379, abs=1e-6)
+    lift = body["numbers"]["liftoff"]
+    assert lift["theta_deg"] == pytest.approx(334.3438379, abs=1e-6)
+    assert lift["t"] == pytest.approx(4.183023843, abs=1e-8)
+    assert lift["from"] == "ROLL" and lift["reason"] == "liftoff"
+    assert body["numbers"]["sequence"][:2] == ["ROLL", "FLIGHT"]
+
+
+def test_motion_numbers_of_the_fig3b_body_are_the_readmes():
+    body = ok("motion", FIG3B)
+    n = body["numbers"]
+    assert n["slip"]["theta_deg"] == pytest.approx(316.471677, abs=1e-5)
+    assert n["slip"]["t"] == pytest.approx(5.26644580, abs=1e-7)
+    assert n["liftoff"]["theta_deg"] == pytest.approx(325.174146, abs=1e-5)
+    assert (n["liftoff"]["from"], n["liftoff"]["reason"]) == ("SLIP", "normal_force")
+    assert n["flight"]["apex"] == pytest.approx(0.0749541, abs=1e-7)
+    assert n["flight"]["distance"] == pytest.approx(3.49484, abs=1e-5)
+    assert n["flight"]["t_landing"] == pytest.approx(7.09086859, abs=1e-7)
+    assert (n["flights"], n["impacts"]) == (2, 1)
+    assert body["verdict"]["reason"] in ("SLIP_BEFORE", "SLIP_AT_JUMP")
+    assert body["status"] == "t_max" and body["t_end"] == pytest.approx(9.0)
+
+
+def test_motion_samples_are_the_run_at_even_times():
+    body = ok("motion", FIG3B)
+    t = np.array(body["t"])
+    assert t[0] == 0 and t[-1] == pytest.approx(body["t_end"], abs=1e-5)
+    assert np.allclose(np.diff(t), t[-1] / (t.size - 1), atol=2e-5)
+    res = eccjump.simulate(
+        eccjump.Cylinder(0.5, 0.4), math.radians(30), mu_s=1.0, t_max=9.0, dense_output=True,
+        max_transitions=api.MAX_TRANSITIONS,
+    )  # fmt: skip
+    theta, _, l, _, b, _ = res.sol(t)
+    assert np.allclose(body["theta"], theta, atol=1e-5)
+    assert np.allclose(body["cx"], l, atol=1e-5) and np.allclose(body["cy"], b, atol=1e-5)
+    # the centre of mass is chi from the axis, at the angle theta from the normal
+    gx, gy = np.array(body["gx"]) - body["cx"], np.array(body["gy"]) - body["cy"]
+    assert np.allclose(np.hypot(gx, gy), 0.5, atol=3e-5)
+    assert np.allclose(np.arctan2(gx, gy), np.arctan2(np.sin(theta), np.cos(theta)), atol=1e-4)
+    # each sample's mode is its segment's; the axis is on the ramp except in flight
+    modes = [body["modes"][m] for m in body["mode"]]
+    for s in body["segments"]:
+        inside = (t > s["t_start"] + 1e-9) & (t < s["t_end"] - 1e-9)
+        assert {modes[k] for k in np.flatnonzero(inside)} <= {s["mode"]}
+    contact = np.array([m != "FLIGHT" for m in modes])
+    assert np.allclose(np.array(body["cy"])[contact], 1.0, atol=1e-5)
+    assert (np.array(body["cy"])[~contact] >= 1.0 - 1e-5).all() and (~contact).any()
+
+
+def test_motion_of_a_body_that_does_not_exist_is_a_message():
+    message = refused("motion", {"chi": "0.5", "km": "0.6"})
+    assert message.startswith("No such body") and "1 − χ = 0.5" in message
+
+
+@pytest.mark.parametrize(
+    ("query", "names"),
+    [
+        ({"km": "0"}, "km"),
+        ({"alpha": "abc"}, "alpha"),
+        ({"alpha": "91"}, "alpha"),
+        ({"theta0": "nan"}, "theta0"),
+        ({"mu_s": "-1"}, "mu_s"),
+        ({"mu_s": "0.5", "mu_k": "1", "tie": "0"}, "mu_k"),
+        ({"rule": "bogus"}, "rule"),
+        ({"t_max": "1e9"}, "t_max"),
+    ],
+)
+def test_bad_queries_are_short_messages_naming_the_parameter(query, names):
+    assert re.search(rf"\b{names}\b", refused("motion", query))
+
+
+def test_mu_k_follows_mu_s_when_tied():
+    tied = ok("motion", {**FIG3B, "mu_k": "0.2", "tie": "1"})
+    free = ok("motion", {**FIG3B, "mu_k": "0.2", "tie": "0"})
+    assert tied["params"]["mu_k"] == 1.0 and free["params"]["mu_k"] == 0.2
+    assert tied["numbers"] != free["numbers"]
+
+
+def test_unknown_request_and_internal_errors_are_messages(monkeypatch, capsys):
+    assert api.handle("nope", {})[0] == 404
+
+    def broken(query):
+        raise RuntimeError("boom")
+
+    monkeypatch.setitem(api.ENDPOINTS, "motion", broken)
+    status, body = api.handle("motion", {})
+    assert status == 500 and "RuntimeError" in body["error"] and "boom" not in body["error"]
+    assert "Traceback" in capsys.readouterr().err  # for whoever runs the server
+
+
+# --- the server ----------------------------------------------------------------------------
+
+
+def get(url: str) -> tuple[int, str, bytes]:
+    try:
+        with urllib.request.urlopen(url, timeout=30) as r:
+            return r.status, r.headers["Content-Type"], r.read()
+    except urllib.error.HTTPError as err:
+        return err.code, err.headers["Content-Type"], err.read()
+
+
+def test_server_serves_the_page_and_answers_requests():
+    with ExplorerServer(0) as srv:
+        assert re.fullmatch(r"http://127\.0\.0\.1:\d+/", srv.url) and srv.port > 0
+        status, kind, page = get(srv.url)
+        assert status == 200 and kind.startswith("text/html") and b"explorer.js" in page
+        assert get(srv.url + "explorer.js")[1].startswith("text/javascript")
+        assert get(srv.url + "explorer.css")[1].startswith("text/css")
+        status, kind, data = get(srv.url + "api/motion?alpha=40&chi=0.15&km=0.02&mu_s=1")
+        assert status == 200 and kind == "application/json"
+        assert json.loads(data)["numbers"]["liftoff"]["theta_deg"] == pytest.approx(334.34383792)
+        status, _, data = get(srv.url + "api/motion?chi=0.9&km=0.5")
+        assert status == 400 and json.loads(data)["error"].startswith("No such body")
+        assert get(srv.url + "secret.txt")[0] == 404
+        assert get(srv.url + "../pyproject.toml")[0] == 404
+    with pytest.raises(OSError):  # stopped: nothing listens any more
+        get(srv.url)
+
+
+def test_the_page_fetches_nothing_from_the_internet():
+    """Every address in the page's files is relative (the SVG namespace is a name, not a
+    download)."""
+    for name in ("index.html", "explorer.js", "explorer.css"):
+        text = server.static_file(name).decode()
+        urls = set(re.findall(r"(?:https?:)?//[\w.-]+\.\w+[^\s\"'`)]*", text))
+        assert urls <= {"http://www.w3.org/2000/svg"}, (name, urls)
+        assert "@import" not in text and "<link rel=\"preconnect\"" not in text
+
+
+def test_the_static_files_are_in_the_package_directory():
+    """maturin ships every file under python/eccjump in the wheel: the page must live there."""
+    static = server.resources.files("eccjump.explorer").joinpath("static")
+    assert {p.name for p in static.iterdir()} >= {"index.html", "explorer.js", "explorer.css"}
+
+
+# --- the command line ----------------------------------------------------------------------
+
+
+def _explore(*args: str) -> subprocess.Popen:
+    return subprocess.Popen(
+        [sys.executable, "-m", "eccjump.cli", "explore", "--no-browser", *args],
+        stdout=subprocess.PIPE,
+        stderr=subprocess.PIPE,
+        text=True,
+    )
+
+
+@pytest.mark.slow
+def test_cli_serves_until_ctrl_c():
+    proc = _explore("--port", "0")
+    try:
+        line = proc.stdout.readline()
+        url = re.search(r"http://127\.0\.0\.1:\d+/", line).group(0)
+        assert get(url + "api/controls")[0] == 200
+        start = time.perf_counter()
+        proc.send_signal(signal.SIGINT)
+        code = proc.wait(timeout=30)
+        print(f"eccjump explore stopped {time.perf_counter() - start:.2f} s after Ctrl-C")
+        err = proc.stderr.read()
+        assert code == 0 and "Traceback" not in err and "stopped" in err
+    finally:
+        if proc.poll() is None:
+            proc.kill()
+
+
+@pytest.mark.slow
+def test_cli_port_in_use_is_one_line_naming_the_option():
+    with socket.socket() as taken:
+        taken.bind(("127.0.0.1", 0))
+        taken.listen()
+        proc = _explore("--port", str(taken.getsockname()[1]))
+        out, err = proc.communicate(timeout=60)
+    assert proc.returncode == 1 and "--port" in err and "Traceback" not in err
+    assert len(err.strip().splitlines()) == 1
+
+
+def test_cli_port_out_of_range_is_refused():
+    from eccjump.cli import main
+
+    with pytest.raises(SystemExit) as exc:
+        main(["explore", "--port", "70000"])
+    assert exc.value.code == 2
+
+
+# --- the widget (Python side) --------------------------------------------------------------
+
+
+@pytest.fixture
+def widget_module():
+    pytest.importorskip("anywidget", reason="eccjump.explore needs anywidget (eccjump[explore])")
+    from eccjump.explorer import widget
+
+    return widget
+
+
+def test_explore_returns_a_widget_holding_the_start(widget_module):
+    w = eccjump.explore(alpha=math.radians(30), chi=0.5, km=0.4, mu_k=0.5, rule="normal_force")
+    assert float(w.params["alpha"]) == pytest.approx(30.0)
+    assert (w.params["chi"], w.params["km"], w.params["mu_k"]) == ("0.5", "0.4", "0.5")
+    assert (w.params["rule"], w.params["tie"]) == ("normal_force", "0")
+    assert eccjump.explore().params["tie"] == "1"
+    assert "export default" in (widget_module.STATIC / "explorer.js").read_text()
+
+
+def test_widget_answers_the_page_through_its_messages(widget_module, monkeypatch):
+    w = eccjump.explore()
+    sent: list[dict] = []
+    monkeypatch.setattr(w, "send", lambda content, buffers=None: sent.append(content))
+    w._answer(w, {"kind": "request", "id": 7, "endpoint": "motion", "query": README}, [])
+    w._answer(w, {"kind": "request", "id": 8, "endpoint": "motion", "query": {"km": "0.99"}}, [])
+    w._answer(w, {"kind": "something else"}, [])
+    assert [m["id"] for m in sent] == [7, 8] and all(m["kind"] == "response" for m in sent)
+    assert sent[0]["status"] == 200
+    assert sent[0]["body"]["numbers"]["liftoff"]["theta_deg"] == pytest.approx(334.34383792)
+    assert sent[1]["status"] == 400 and sent[1]["body"]["error"].startswith("No such body")
+
+
+@pytest.mark.parametrize(
+    ("kwargs", "error", "names"),
+    [
+        ({"alpha": 2.0}, ValueError, r"alpha = 2 rad .*\[0, 1\.5708\] rad"),
+        ({"theta0": -4.0}, ValueError, r"theta0 = -4 rad"),
+        ({"chi": 1.5}, ValueError, r"chi = 1\.5 is outside"),
+        ({"mu_s": math.nan}, ValueError, "mu_s"),
+        ({"t_max": 100.0}, ValueError, r"t_max = 100 √\(R/g\)"),
+        ({"km": True}, TypeError, "km"),
+        ({"mu_k": "1"}, TypeError, "mu_k"),
+        ({"rule": "bogus"}, ValueError, "rule"),
+        ({"rule": None}, TypeError, "rule"),
+    ],
+)
+def test_explore_refuses_bad_starts(kwargs, error, names):
+    with pytest.raises(error, match=names):
+        eccjump.explore(**kwargs)
