@@ -1185,6 +1185,98 @@ def case_build(d: Drawer) -> Case:
     return c
 
 
+# --- the explorer (eccjump.explore, and the requests of its page) ---------------------------
+
+EXPLORE_PARAMS = (
+    "alpha", "chi", "km", "mu_s", "mu_k", "restitution", "theta0", "omega0", "rule", "t_max",
+)  # fmt: skip
+#: The explorer's sliders in the Python API's units (radians).
+EXPLORE_RANGES = (
+    ("alpha", 0.0, HALF_PI), ("chi", 0.0, 1.0), ("km", 0.0, 1.0), ("mu_s", 0.0, 3.0),
+    ("restitution", 0.0, 1.0), ("theta0", -math.pi, math.pi), ("omega0", 0.0, 3.0),
+    ("t_max", 2.0, 60.0),
+)  # fmt: skip
+
+
+def _in_slider_ranges(values: dict[str, Any]) -> None:
+    from eccjump.explorer import controls
+
+    for c in controls.CONTROLS:
+        if c.key in values:
+            v = float(values[c.key])
+            expect(c.lo <= v <= c.hi, f"{c.key} = {v} outside the slider [{c.lo}, {c.hi}]")
+
+
+def check_explore(res: Any, case: Case) -> None:
+    params = getattr(res, "params", None)
+    expect(isinstance(params, dict), "not the explorer widget")
+    expect(all(isinstance(v, str) for v in params.values()), "params are not strings")
+    expect(params.get("rule") in ("paper", "normal_force"), f"rule {params.get('rule')}")
+    expect(params.get("tie") == ("1" if case.kwargs.get("mu_k") is None else "0"), "tie")
+    _in_slider_ranges(params)
+
+
+def case_explore(d: Drawer) -> Case:
+    c = Case("explore", eccjump.explore, params=EXPLORE_PARAMS, check=check_explore)
+    c.kwargs = {k: real(d, c, lo, hi) for k, lo, hi in EXPLORE_RANGES if d.integer(0, 2)}
+    if d.integer(0, 2) == 0:
+        c.kwargs["mu_k"] = None if d.integer(0, 1) else real(d, c, 0.0, 3.0)
+    if d.integer(0, 2) == 0:
+        c.kwargs["rule"] = text_param(d, c, ("paper", "normal_force"))
+    return c
+
+
+#: What a message of the page's requests may name (the query's keys, and k_m in words).
+EXPLORE_API_PARAMS = (*EXPLORE_PARAMS, "k_m", "tie", "request")
+
+
+def check_explore_api(res: Any, case: Case) -> None:
+    import json
+
+    status, body = res
+    json.dumps(body, allow_nan=False)
+    expect(status in (200, 400, 404), f"status {status}")
+    if status != 200:
+        expect(set(body) == {"error"}, f"an error with more than its message: {set(body)}")
+        msg = body["error"]
+        expect(len(msg) <= MAX_MESSAGE, f"message of {len(msg)} characters")
+        expect(message_names(msg, EXPLORE_API_PARAMS), f"message names nothing: {msg[:150]}")
+        return
+    endpoint = case.args[0]
+    if endpoint == "region":
+        expect(len(body["codes"]) == body["n"] ** 2, "region: not n x n codes")
+        expect(0 <= body["jarm_fraction"] <= 1, "region: fraction")
+        _in_slider_ranges(body["params"])
+    elif endpoint == "motion":
+        n = len(body["t"])
+        for k in ("theta", "cx", "cy", "gx", "gy", "mode"):
+            expect(len(body[k]) == n, f"motion: {k} has another length than t")
+        expect(all(v is not None for k in ("theta", "cx", "cy") for v in body[k]), "NaN state")
+        expect(set(body["mode"]) <= {0, 1, 2}, "motion: mode codes")
+        p = body["params"]
+        _in_slider_ranges(p)
+        valid = p["mu_k"] <= p["mu_s"] and p["km"] <= 1 - p["chi"] + 1e-12
+        expect(valid, "an impossible point ran")
+
+
+def case_explore_api(d: Drawer) -> Case:
+    from eccjump.explorer import api, controls
+
+    c = Case("explorer.api.handle", api.handle, params=EXPLORE_API_PARAMS, check=check_explore_api)
+    query: dict[str, str] = {}
+    for ctl in controls.CONTROLS:
+        if d.integer(0, 2):
+            query[ctl.key] = cli_number(d, ctl.lo, ctl.hi)
+    if d.integer(0, 2) == 0:
+        query["rule"] = d.choice(("paper", "normal_force", "PAPER", ""))
+    if d.integer(0, 2) == 0:
+        query["tie"] = d.choice(("0", "1", "yes"))
+    if d.integer(0, 5) == 0:
+        query[d.choice(("zzz", "", "alpha "))] = "1"
+    c.args = (d.choice(("motion", "motion", "region", "controls", "bogus")), query)
+    return c
+
+
 # --- the command line ----------------------------------------------------------------------
 
 
@@ -1470,6 +1562,8 @@ GENERATORS: dict[str, Callable[[Drawer], Case]] = {
     "jarm_fraction": case_jarm_fraction,
     "start_map": case_start_map,
     "optimal_start": case_optimal_start,
+    "explore": case_explore,
+    "explore_api": case_explore_api,
     "cli": case_cli,
 }
 

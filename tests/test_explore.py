@@ -15,6 +15,7 @@ import sys
 import time
 import urllib.error
 import urllib.request
+from pathlib import Path
 
 import numpy as np
 import pytest
@@ -56,6 +57,20 @@ def test_every_slider_starts_inside_its_range_on_a_step():
     assert [c["key"] for c in spec["controls"]] == [c.key for c in controls.CONTROLS]
     assert spec["rules"] == ["paper", "normal_force"]
     assert set(spec["reasons"]) == {r.name for r in eccjump.Reason}
+
+
+def test_the_docs_table_is_the_controls_table():
+    doc = (Path(__file__).parents[1] / "docs" / "explorer.md").read_text()
+    rows = {
+        key: tuple(cell.strip() for cell in cells)
+        for key, *cells in re.findall(
+            r"^\| `(\w+)` \| [^|]+ \| ([^|]*) \| ([^|]*) \| ([^|]*) \|$", doc, re.M
+        )
+    }
+    assert set(rows) == {c.key for c in controls.CONTROLS} and "| `rule` |" in doc
+    for c in controls.CONTROLS:
+        shown = (f"{c.lo:g} … {c.hi:g}".replace("-", "−"), f"{c.step:g}", f"{c.default:g}")
+        assert rows[c.key] == shown, c.key
 
 
 # --- the region slice ----------------------------------------------------------------------
@@ -130,9 +145,9 @@ def test_motion_samples_are_the_run_at_even_times():
         eccjump.Cylinder(0.5, 0.4), math.radians(30), mu_s=1.0, t_max=9.0, dense_output=True,
         max_transitions=api.MAX_TRANSITIONS,
     )  # fmt: skip
-    theta, _, l, _, b, _ = res.sol(t)
+    theta, _, along, _, b, _ = res.sol(t)
     assert np.allclose(body["theta"], theta, atol=1e-5)
-    assert np.allclose(body["cx"], l, atol=1e-5) and np.allclose(body["cy"], b, atol=1e-5)
+    assert np.allclose(body["cx"], along, atol=1e-5) and np.allclose(body["cy"], b, atol=1e-5)
     # the centre of mass is chi from the axis, at the angle theta from the normal
     gx, gy = np.array(body["gx"]) - body["cx"], np.array(body["gy"]) - body["cy"]
     assert np.allclose(np.hypot(gx, gy), 0.5, atol=3e-5)
@@ -224,7 +239,7 @@ def test_the_page_fetches_nothing_from_the_internet():
         text = server.static_file(name).decode()
         urls = set(re.findall(r"(?:https?:)?//[\w.-]+\.\w+[^\s\"'`)]*", text))
         assert urls <= {"http://www.w3.org/2000/svg"}, (name, urls)
-        assert "@import" not in text and "<link rel=\"preconnect\"" not in text
+        assert "@import" not in text and '<link rel="preconnect"' not in text
 
 
 def test_the_static_files_are_in_the_package_directory():
@@ -269,7 +284,7 @@ def test_cli_port_in_use_is_one_line_naming_the_option():
         taken.bind(("127.0.0.1", 0))
         taken.listen()
         proc = _explore("--port", str(taken.getsockname()[1]))
-        out, err = proc.communicate(timeout=60)
+        _, err = proc.communicate(timeout=60)
     assert proc.returncode == 1 and "--port" in err and "Traceback" not in err
     assert len(err.strip().splitlines()) == 1
 

@@ -57,6 +57,8 @@ BUDGET = {
     "design": 12,
     "build": 60,
     "analyze": 30,
+    "explore": 80,
+    "explore_api": 60,
 }
 
 
@@ -77,6 +79,8 @@ def test_entry_point_keeps_its_contract(family):
         matplotlib.use("Agg")
     if family == "region_dataset":
         pytest.importorskip("xarray")
+    if family == "explore":
+        pytest.importorskip("anywidget", reason="eccjump.explore needs anywidget")
 
     @settings(
         max_examples=BUDGET[family],

@@ -37,7 +37,16 @@ CONTROLS: tuple[Control, ...] = (
     Control("mu_k", "kinetic friction μ_k", "", 0.0, 3.0, 0.05, 1.0, "kinetic friction"),
     Control("restitution", "restitution e", "", 0.0, 1.0, 0.05, 0.0, "energetic restitution"),
     Control("theta0", "start angle θ₀", "°", -180.0, 180.0, 1.0, 0.0, "angle at the start"),
-    Control("omega0", "start rate θ̇₀", "√(g/R)", -3.0, 3.0, 0.05, 0.0, "rate at the start"),
+    Control(
+        "omega0",
+        "start rate θ̇₀",
+        "√(g/R)",
+        0.0,
+        3.0,
+        0.05,
+        0.0,
+        "rate at the start (down the ramp)",
+    ),
     Control("t_max", "duration", "√(R/g)", 2.0, 60.0, 1.0, 15.0, "length of the motion"),
 )
 BY_KEY: dict[str, Control] = {c.key: c for c in CONTROLS}

@@ -32,7 +32,7 @@ def widget_class() -> type[anywidget.AnyWidget]:
     except ImportError as err:
         raise ImportError("eccjump.explore needs anywidget: pip install eccjump[explore]") from err
 
-    class Explorer(anywidget.AnyWidget):  # type: ignore[misc]  # anywidget's base is untyped
+    class Explorer(anywidget.AnyWidget):
         """The eccjump explorer; ``params`` holds the current point (the sliders' units:
         degrees, and strings as in a URL), kept in step with the sliders."""
 
@@ -85,7 +85,7 @@ def explore(
     mu_s : static friction coefficient, in [0, 3].
     mu_k : kinetic friction coefficient, in [0, 3]; None (default) ties it to mu_s.
     restitution : energetic coefficient of restitution e of the landings, in [0, 1].
-    theta0 : start angle [rad], in [-pi, pi]; omega0 : start rate [sqrt(g/R) rad], in [-3, 3].
+    theta0 : start angle [rad], in [-pi, pi]; omega0 : start rate [sqrt(g/R) rad], in [0, 3].
     rule : the lift-off rule from rolling, ``"paper"`` or ``"normal_force"``.
     t_max : duration of the motion [sqrt(R/g)], in [2, 60].
 

@@ -20,7 +20,7 @@ const REASON_COLORS = {
   SLIP_AT_JUMP: "#f4a259",
   ROCKS_BACK: "#c7c7c7",
   TURN_LIMIT: "#969696",
-  INVALID_PARAMS: "#ffffff",
+  INVALID_PARAMS: "#e4e4e4",
   SOLVER_FAILED: "#000000",
   SLIP: "#fdd0a2",
 };
@@ -341,7 +341,9 @@ class MotionView {
     this.spoke = svg("line", { class: "ej-spoke" });
     this.cm = svg("circle", { r: 0.09, class: "ej-cm" });
     this.axis = svg("circle", { r: 0.04, class: "ej-axis" });
-    this.world.append(this.ramp, this.ticks, this.trail, this.wheel, this.spoke, this.axis, this.cm);
+    const parts = [this.ramp, this.ticks, this.trail, this.wheel, this.spoke, this.axis, this.cm];
+    this.world.append(...parts);
+    const plate = svg("rect", { x: 4, y: 4, width: 330, height: 46, rx: 4, class: "ej-plate" });
     this.clock = svg("text", { x: 12, y: 22, class: "ej-clock" });
     this.modeLabel = svg("text", { x: 12, y: 42, class: "ej-mode" });
     const gravity = svg("g", { class: "ej-gravity" });
@@ -352,7 +354,7 @@ class MotionView {
     const g = svg("text", { x: 596, y: 34, "text-anchor": "end" });
     g.textContent = "g";
     gravity.append(g);
-    this.scene.append(this.world, this.clock, this.modeLabel, gravity);
+    this.scene.append(this.world, plate, this.clock, this.modeLabel, gravity);
 
     this.timeline = svg("svg", {
       viewBox: `0 0 ${TIMELINE.width} ${TIMELINE.height}`,
@@ -369,7 +371,7 @@ class MotionView {
     this.play = element("button", { type: "button", class: "ej-play", "aria-pressed": "true" });
     this.play.textContent = "Pause";
     const timeId = `${prefix}-time`;
-    this.scrub = element("input", { type: "range", id: timeId, min: 0, max: 1, step: 0.001 });
+    this.scrub = element("input", { type: "range", id: timeId, min: 0, max: 1, step: 0.05 });
     this.scrub.value = 0;
     const speedId = `${prefix}-speed`;
     this.speed = element("select", { id: speedId });
@@ -391,7 +393,7 @@ class MotionView {
     this.play.addEventListener("click", () => this.toggle());
     this.scrub.addEventListener("input", () => {
       if (!this.data) return;
-      this.time = Number(this.scrub.value) * this.data.t_end;
+      this.time = Number(this.scrub.value);
       this.frame();
     });
     this.timeline.addEventListener("click", (ev) => {
@@ -415,6 +417,7 @@ class MotionView {
     this.data = data;
     this.alpha = alphaDeg;
     this.time = 0;
+    this.scrub.max = data.t_end;
     this.scene.classList.remove("ej-invalid");
     this.bands.replaceChildren();
     this.axisText.replaceChildren();
@@ -442,7 +445,8 @@ class MotionView {
     label(TIMELINE.x0 + TIMELINE.w, `${fixed(T, 2)} √(R/g)`, "end");
     let legendX = TIMELINE.x0 + TIMELINE.w / 2 - 110;
     for (const [mode, color] of Object.entries(MODE_COLORS)) {
-      const sw = svg("rect", { x: legendX, y: TIMELINE.height - 13, width: 10, height: 10, fill: color });
+      const y = TIMELINE.height - 13;
+      const sw = svg("rect", { x: legendX, y, width: 10, height: 10, fill: color });
       this.axisText.append(sw);
       label(legendX + 14, mode, "start");
       legendX += 80;
@@ -522,7 +526,8 @@ class MotionView {
     const px = TIMELINE.x0 + (t / (d.t_end || 1)) * TIMELINE.w;
     this.playhead.setAttribute("x1", px);
     this.playhead.setAttribute("x2", px);
-    if (document.activeElement !== this.scrub) this.scrub.value = t / (d.t_end || 1);
+    if (document.activeElement !== this.scrub) this.scrub.value = t;
+    this.scrub.setAttribute("aria-valuetext", `t = ${t.toFixed(2)} √(R/g)`);
   }
 
   dispose() {
@@ -579,9 +584,12 @@ class NumbersView {
           ? "still in flight at the end"
           : `lands at t = ${fixed(n.flight.t_landing, 4)} √(R/g)`)
       : "none";
-    this.cells.counts.textContent = `${n.flights} flights, ${n.impacts} impacts`;
+    const plural = (k, word) => `${k} ${word}${k === 1 ? "" : "s"}`;
+    this.cells.counts.textContent =
+      `${plural(n.flights, "flight")}, ${plural(n.impacts, "impact")}`;
     this.cells.sequence.textContent =
-      n.sequence.join(" → ") + (n.more_transitions ? ` → … (${n.more_transitions} more)` : "");
+      n.sequence.join(" → ") +
+      (n.more_transitions ? ` → … (${n.more_transitions} more)` : "");
     this.cells.end.textContent = `${d.status} at t = ${fixed(d.t_end, 2)} √(R/g)`;
   }
 
@@ -599,6 +607,7 @@ export function mount(el, host) {
   const root = element("div", { class: "ej-root" });
   root.dataset.regionDraws = "0";
   root.dataset.motionDraws = "0";
+  root.dataset.settled = "0"; // redraws finished: every input answered and drawn
   const heading = element("p", { class: "ej-status", "aria-live": "polite" }, "Loading…");
   const message = element("div", { class: "ej-message", role: "alert" });
   message.hidden = true;
@@ -701,6 +710,7 @@ export function mount(el, host) {
     requestAnimationFrame(() => {
       const ms = performance.now() - since;
       root.dataset.latencyMs = ms.toFixed(1);
+      root.dataset.settled = String(Number(root.dataset.settled) + 1);
       const server = state.serverMs || {};
       ui.numbers.timing.textContent =
         `redraw ${ms.toFixed(0)} ms after the last input ` +
@@ -732,7 +742,8 @@ export function mount(el, host) {
     });
     ui.numbers = new NumbersView(numbersBox);
     heading.textContent =
-      "Move a slider (or click the map) to change the point; units g = R = M = 1, angles in degrees.";
+      "Move a slider (or click the map) to change the point; " +
+      "units g = R = M = 1, angles in degrees.";
     root.dataset.ready = "1";
     changed([...REGION_KEYS]);
   })();
