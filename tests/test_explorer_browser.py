@@ -278,6 +278,12 @@ def test_the_widget_front_end_talks_through_its_model(browser):
     pg.goto(browser.explorer_url + "widget.html")
     wait_settled(pg, 0)
     assert value(pg, "alpha") == "30.0°"  # the start came from the model
+    # JupyterLab runs its notebook shortcuts for keys typed in a focused element unless it
+    # carries data-lm-suppress-shortcuts (an arrow key would not move the slider)
+    assert pg.evaluate(
+        "[...document.querySelectorAll('.ej-root input, .ej-root select, .ej-root button')]"
+        ".every(e => e.dataset.lmSuppressShortcuts === 'true')"
+    )
     assert "θ = 325.17°" in number(pg, "liftoff")  # the Fig. 3b body, which slips first
     pg.focus('input[name="chi"]')
     act(pg, "ArrowLeft on chi (widget)", lambda: pg.keyboard.press("ArrowLeft"))

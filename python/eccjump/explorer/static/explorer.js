@@ -602,6 +602,18 @@ class NumbersView {
 // the explorer
 // ------------------------------------------------------------------------------------------
 
+// In JupyterLab, keys typed in the explorer must move its controls, not run the notebook's
+// command-mode shortcuts (arrows; "d d" deletes the cell). Lumino walks up from the focused
+// element and matches each against the shortcuts' selectors (one is
+// ".jp-Notebook.jp-mod-commandMode … :focus", which the focused slider itself matches) until
+// an element carries data-lm-suppress-shortcuts: so every control carries it.
+function suppressNotebookShortcuts(root) {
+  root.setAttribute("data-lm-suppress-shortcuts", "true");
+  for (const e of root.querySelectorAll("input, select, button")) {
+    e.setAttribute("data-lm-suppress-shortcuts", "true");
+  }
+}
+
 export function mount(el, host) {
   const prefix = `ej${++mounts}`;
   const root = element("div", { class: "ej-root" });
@@ -741,6 +753,7 @@ export function mount(el, host) {
       changed(["chi", "alpha"]);
     });
     ui.numbers = new NumbersView(numbersBox);
+    suppressNotebookShortcuts(root);
     heading.textContent =
       "Move a slider (or click the map) to change the point; " +
       "units g = R = M = 1, angles in degrees.";
