@@ -12,6 +12,7 @@ no traceback; besides, no partial file is left next to an output. The commands r
 from __future__ import annotations
 
 import argparse
+import contextlib
 import re
 import subprocess
 import sys
@@ -40,6 +41,7 @@ from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
 from eccjump.cli import build_parser
+from eccjump.explorer import server as explorer_server
 
 pytest.importorskip("matplotlib")
 
@@ -138,6 +140,14 @@ def cli_figures_argv(d: Drawer) -> list[str]:
     return argv
 
 
+def cli_explore_argv(d: Drawer) -> list[str]:
+    """A port that is free, taken, out of range or no number; with or without a browser."""
+    argv = ["explore"]
+    if d.integer(0, 3):
+        argv += ["--port", d.choice(("0", "-1", "65536", "x", "", "1.5", "9" * 30, "8050"))]
+    return argv + d.choice(([], ["--no-browser"]))
+
+
 # --- valid argument lists (the wild ones above rarely get past the parser) -----------------------
 
 
@@ -215,6 +225,11 @@ def valid_figures(d: Drawer) -> list[str]:
     return [*argv, "--n-scan", str(d.integer(2, 8)), "-o", str(outdir() / "figs")]
 
 
+def valid_explore(d: Drawer) -> list[str]:
+    port = d.choice((["--port", "0"], ["--port=0"]))
+    return ["explore", *port, *d.choice(([], ["--no-browser"]))]
+
+
 #: Argument lists of every subcommand: mostly valid, or wild (mostly refused by the parser).
 VALID: dict[str, Callable[[Drawer], list[str]]] = {
     "roll": valid_roll,
@@ -223,6 +238,7 @@ VALID: dict[str, Callable[[Drawer], list[str]]] = {
     "starts": valid_starts,
     "design": valid_design,
     "figures": valid_figures,
+    "explore": valid_explore,
 }
 WILD: dict[str, Callable[[Drawer], list[str]]] = {
     "roll": cli_roll_argv,
@@ -231,6 +247,7 @@ WILD: dict[str, Callable[[Drawer], list[str]]] = {
     "starts": cli_starts_argv,
     "design": cli_design_argv,
     "figures": cli_figures_argv,
+    "explore": cli_explore_argv,
 }
 
 
@@ -296,8 +313,15 @@ def judge(res: tuple[int, str, str], c: Case) -> None:
 
 
 def _run(c: Case) -> tuple[int, str, str]:
-    with warnings.catch_warnings():
+    with warnings.catch_warnings(), contextlib.ExitStack() as stack:
         warnings.simplefilter("ignore")  # overflow in casts of drawn values, matplotlib
+        if c.info["cmd"] == "explore":
+            # ``eccjump explore`` serves until Ctrl-C: here Ctrl-C comes as soon as it serves
+            # (and no browser opens)
+            stack.enter_context(mock.patch.object(
+                explorer_server._Server, "serve_forever", side_effect=KeyboardInterrupt
+            ))  # fmt: skip
+            stack.enter_context(mock.patch("webbrowser.open"))
         return run_cli_inprocess(c.info["argv"])
 
 
@@ -311,7 +335,9 @@ def _in_the_fuzzing_directory(monkeypatch):
 
 
 #: Examples per subcommand (about 30 s in all on a 2-core machine).
-BUDGET = {"roll": 100, "simulate": 60, "map": 25, "starts": 8, "design": 5, "figures": 10}
+BUDGET = {
+    "roll": 100, "simulate": 60, "map": 25, "starts": 8, "design": 5, "figures": 10, "explore": 20,
+}  # fmt: skip
 
 
 def test_every_subcommand_is_fuzzed():

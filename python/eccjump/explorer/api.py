@@ -20,6 +20,7 @@ from typing import Any
 import numpy as np
 from numpy.typing import NDArray
 
+from eccjump._checks import Rule
 from eccjump.body import Cylinder
 from eccjump.classification import Reason, jarm
 from eccjump.explorer import controls
@@ -76,7 +77,7 @@ def number(query: Mapping[str, str], key: str) -> float:
         raise BadQuery(str(err)) from None
 
 
-def rule(query: Mapping[str, str]) -> str:
+def rule(query: Mapping[str, str]) -> Rule:
     try:
         return controls.rule_checked(str(query.get("rule", controls.RULES[0])))
     except ValueError as err:
@@ -121,7 +122,7 @@ def region(query: Mapping[str, str]) -> dict[str, Any]:
 
 
 @lru_cache(maxsize=64)
-def _region(km: float, mu_s: float, rule: str, theta0: float, omega0: float) -> dict[str, Any]:
+def _region(km: float, mu_s: float, rule: Rule, theta0: float, omega0: float) -> dict[str, Any]:
     n = controls.GRID
     chi = (np.arange(n) + 0.5) / n  # cell centres: never 0 or 1
     alpha_deg = 90.0 * (np.arange(n) + 0.5) / n
@@ -130,7 +131,7 @@ def _region(km: float, mu_s: float, rule: str, theta0: float, omega0: float) -> 
         chi[None, :],
         km,
         mu_s,
-        rule=rule,  # type: ignore[arg-type]  # checked against controls.RULES
+        rule=rule,
         theta0=math.radians(theta0),
         omega0=omega0,
     )
@@ -165,7 +166,7 @@ def motion(query: Mapping[str, str]) -> dict[str, Any]:
         mu_s=p["mu_s"],
         mu_k=p["mu_k"],
         restitution=p["restitution"],
-        rule=how,  # type: ignore[arg-type]  # checked against controls.RULES
+        rule=how,
         theta0=api["theta0"],
         omega0=p["omega0"],
         t_max=p["t_max"],
@@ -177,7 +178,7 @@ def motion(query: Mapping[str, str]) -> dict[str, Any]:
         p["chi"],
         p["km"],
         p["mu_s"],
-        rule=how,  # type: ignore[arg-type]
+        rule=how,
         theta0=api["theta0"],
         omega0=p["omega0"],
     )

@@ -10,7 +10,7 @@ import math
 from collections.abc import Mapping
 from typing import Any, NamedTuple
 
-from eccjump._checks import short
+from eccjump._checks import Rule, short
 
 
 class Control(NamedTuple):
@@ -54,7 +54,7 @@ BY_KEY: dict[str, Control] = {c.key: c for c in CONTROLS}
 ANGLES = frozenset({"alpha", "theta0"})
 
 #: The lift-off rules, as the page's select offers them.
-RULES = ("paper", "normal_force")
+RULES: tuple[Rule, ...] = ("paper", "normal_force")
 
 #: The region slice's grid: points along each of χ and α (coarse enough to redraw at once).
 GRID = 60
@@ -84,7 +84,8 @@ def checked(key: str, value: float) -> float:
     return value
 
 
-def rule_checked(value: str) -> str:
+def rule_checked(value: str) -> Rule:
+    """``value`` if it names a lift-off rule, else a ValueError naming ``rule``."""
     if value not in RULES:
         raise ValueError(f"rule = {value[:30]!r} is not one of {', '.join(RULES)}")
     return value
