@@ -1,4 +1,5 @@
-"""``eccjump explore``: the interactive explorer as a local web page (``docs/explorer.md``).
+"""``eccjump explore``: the interactive explorer as a local web page (the user guide's page
+"The explorer").
 
 Serves the page on http://127.0.0.1:PORT/ until Ctrl-C, and opens it in the browser unless
 ``--no-browser``. Needs nothing beyond the standard library and eccjump itself.

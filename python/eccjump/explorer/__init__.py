@@ -1,6 +1,6 @@
 """The explorer: sliders, the JARM region slice, the animated full motion and its numbers,
 in a Jupyter widget (:func:`explore`) or a local web page (``eccjump explore``,
-:class:`ExplorerServer`). ``docs/explorer.md`` describes it.
+``eccjump.explorer.server.ExplorerServer``); the user guide's page "The explorer" describes it.
 
 - ``controls``: the sliders, described once (ranges, steps, units);
 - ``api``: the page's requests as plain functions of a query (``handle``);

@@ -14,7 +14,7 @@ import math
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
-from eccjump._checks import optional_real, real, rule_name
+from eccjump._checks import Rule, optional_real, real, rule_name
 from eccjump.explorer import api, controls
 
 if TYPE_CHECKING:
@@ -65,47 +65,77 @@ def explore(
     restitution: float = 0.0,
     theta0: float = 0.0,
     omega0: float = 0.0,
-    rule: str = "paper",
+    rule: Rule = "paper",
     t_max: float = 15.0,
 ) -> anywidget.AnyWidget:
     """The interactive explorer in a Jupyter notebook, starting at the given point.
 
-    Sliders for every parameter below, linked views of the JARM region slice over (χ, α) at
-    the current k_m and μ_s (click the map to move the point), the full motion of the point
-    as an animated cylinder on the ramp with its mode timeline (:func:`eccjump.simulate`), and
-    its numbers (lift-off angle and time, slip onset, flight apex and distance). The same
-    explorer runs as a local web page with ``eccjump explore`` (``docs/explorer.md``).
+    Sliders for every parameter below; the JARM region slice over (chi, alpha) at the current
+    km and mu_s, the point marked (click the map to move it); the full motion of the point
+    (:func:`eccjump.simulate`) as an animated cylinder on the ramp with its mode timeline; and its
+    numbers (lift-off angle and time, slip onset, flight apex and distance). The same
+    explorer runs as a local web page with ``eccjump explore`` (the user guide's page "The
+    explorer"). The sliders show angles in degrees; here they are in radians, as everywhere
+    in the Python API.
 
     Parameters
     ----------
-    alpha : ramp angle [rad], in [0, pi/2].
-    chi : offset of the centre of mass d/R, in [0, 1].
-    km : shell mass fraction, in [0, 1] (a body needs km <= 1 - chi; the explorer says so
-        when it is not).
-    mu_s : static friction coefficient, in [0, 3].
-    mu_k : kinetic friction coefficient, in [0, 3]; None (default) ties it to mu_s.
-    restitution : energetic coefficient of restitution e of the landings, in [0, 1].
-    theta0 : start angle [rad], in [-pi, pi]; omega0 : start rate [sqrt(g/R) rad], in [0, 3].
-    rule : the lift-off rule from rolling, ``"paper"`` or ``"normal_force"``.
-    t_max : duration of the motion [sqrt(R/g)], in [2, 60].
+    alpha : float, default radians(40)
+        Ramp angle [rad], in [0, pi/2].
+    chi : float, default 0.15
+        Offset of the centre of mass d/R, in [0, 1].
+    km : float, default 0.02
+        Shell mass fraction, in [0, 1]; a body needs km <= 1 - chi, and the explorer says so
+        when it is not one.
+    mu_s : float, default 1.0
+        Static friction coefficient, in [0, 3].
+    mu_k : float or None, default None
+        Kinetic friction coefficient, in [0, 3]; None ties it to mu_s (a tick box unties it).
+    restitution : float, default 0.0
+        Energetic coefficient of restitution e of the landings, in [0, 1].
+    theta0 : float, default 0.0
+        Start angle [rad], in [-pi, pi].
+    omega0 : float, default 0.0
+        Start rate [sqrt(g/R) rad], in [0, 3].
+    rule : {"paper", "normal_force"}, default "paper"
+        The lift-off rule from rolling.
+    t_max : float, default 15.0
+        Duration of the motion [sqrt(R/g)], in [2, 60].
 
     Returns
     -------
     anywidget.AnyWidget
-        Display it (the last expression of a cell); its ``params`` trait follows the sliders.
+        The explorer: display it (the last expression of a cell). Its ``params`` trait (the
+        sliders' values as strings, angles in degrees) follows the sliders.
 
     Raises
     ------
-    TypeError, ValueError
-        For a value of a wrong type or outside the sliders' range; the message names it.
+    ValueError
+        For a value outside its slider's range; the message names it, its range and unit.
+    TypeError
+        For a value of a wrong type (a bool, a string, None where a number is due).
     ImportError
-        Without anywidget (``pip install eccjump[explore]``).
+        Without anywidget: ``pip install "eccjump[explore]"``.
+
+    See Also
+    --------
+    simulate : the full motion the explorer animates.
+    region : JARM maps on any grid.
 
     Examples
     --------
-    >>> import math, eccjump
+    The paper's Fig. 3b body on a 30° ramp, in a notebook:
+
+    >>> import math
+    >>> import eccjump
     >>> w = eccjump.explore(alpha=math.radians(30), chi=0.5, km=0.4)  # doctest: +SKIP
-    >>> w  # in a notebook: the explorer  # doctest: +SKIP
+    >>> w  # doctest: +SKIP
+
+    A start outside the sliders' ranges is refused before anything is shown:
+
+    >>> eccjump.explore(alpha=2.0)
+    Traceback (most recent call last):
+    ValueError: alpha = 2 rad is outside the explorer's range [0, 1.5708] rad
     """
     point = {
         "alpha": math.degrees(real("alpha", alpha)),
