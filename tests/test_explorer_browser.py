@@ -246,6 +246,15 @@ def test_the_animation_runs_and_pauses(page):
     assert clock.text_content().startswith("t = 15.00")
 
 
+def test_reduced_motion_starts_paused(browser):
+    pg = browser.new_page(reduced_motion="reduce")
+    pg.goto(browser.explorer_url)
+    wait_settled(pg, 0)
+    assert pg.get_attribute(".ej-play", "aria-pressed") == "false"
+    assert pg.locator(".ej-clock").text_content().startswith("t = 0.00")
+    pg.close()
+
+
 WIDGET_PAGE = """<!doctype html><html><head><link rel="stylesheet" href="explorer.css"></head>
 <body><div id="w"></div><script type="module">
 import widget from "./explorer.js";

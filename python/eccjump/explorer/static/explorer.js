@@ -391,6 +391,8 @@ class MotionView {
     this.playing = true;
     this.last = null;
     this.play.addEventListener("click", () => this.toggle());
+    // who asks the system for less motion gets a still picture until Play
+    if (window.matchMedia?.("(prefers-reduced-motion: reduce)").matches) this.toggle();
     this.scrub.addEventListener("input", () => {
       if (!this.data) return;
       this.time = Number(this.scrub.value);
