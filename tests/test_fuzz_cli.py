@@ -148,6 +148,29 @@ def cli_explore_argv(d: Drawer) -> list[str]:
     return argv + d.choice(([], ["--no-browser"]))
 
 
+TRACK = Path(__file__).parent / "data" / "jarm_240fps.csv"
+#: The stored track's setup (tests/data/jarm_240fps.csv, scripts/make_tracks.py).
+TRACK_SETUP = ["--radius", "0.05", "--chi", "0.10927", "--km", "0.0777", "--scale", "1230.539145"]
+
+
+def cli_analyze_argv(d: Drawer) -> list[str]:
+    """The stored track or a missing, empty or foreign file, with the body and setup's values
+    good, out of range or no number."""
+    path = d.choice((str(TRACK), str(TRACK), str(outdir() / "none.csv"), "", str(Path(__file__))))
+    argv = ["analyze", path] if d.integer(0, 5) else ["analyze"]
+    for opt, good, bad in (
+        ("--radius", "0.05", ("0", "-1", "nan", "x")),
+        ("--chi", "0.10927", ("1.5", "-0.1", "nan")),
+        ("--km", "0.0777", ("0.95", "-1", "inf")),
+        ("--alpha", "66.087", ("95", "-3", "x")),
+        ("--scale", "1230.539145", ("0", "-5", "1e400")),
+        ("--marker-radius", "0.04", ("0", "1", "nan")),
+    ):
+        if d.integer(0, 4):
+            argv += [opt, good if d.integer(0, 2) else d.choice(bad)]
+    return argv + d.choice(([], ["--json"], ["--rule", d.choice(("normal_force", "bogus"))]))
+
+
 # --- valid argument lists (the wild ones above rarely get past the parser) -----------------------
 
 
@@ -230,6 +253,11 @@ def valid_explore(d: Drawer) -> list[str]:
     return ["explore", *port, *d.choice(([], ["--no-browser"]))]
 
 
+def valid_analyze(d: Drawer) -> list[str]:
+    alpha = ["--alpha", value(d, 64, 68)] if d.integer(0, 1) else []
+    return ["analyze", str(TRACK), *TRACK_SETUP, *alpha, *d.choice(([], ["--json"]))]
+
+
 #: Argument lists of every subcommand: mostly valid, or wild (mostly refused by the parser).
 VALID: dict[str, Callable[[Drawer], list[str]]] = {
     "roll": valid_roll,
@@ -239,6 +267,7 @@ VALID: dict[str, Callable[[Drawer], list[str]]] = {
     "design": valid_design,
     "figures": valid_figures,
     "explore": valid_explore,
+    "analyze": valid_analyze,
 }
 WILD: dict[str, Callable[[Drawer], list[str]]] = {
     "roll": cli_roll_argv,
@@ -248,6 +277,7 @@ WILD: dict[str, Callable[[Drawer], list[str]]] = {
     "design": cli_design_argv,
     "figures": cli_figures_argv,
     "explore": cli_explore_argv,
+    "analyze": cli_analyze_argv,
 }
 
 
@@ -337,6 +367,7 @@ def _in_the_fuzzing_directory(monkeypatch):
 #: Examples per subcommand (about 30 s in all on a 2-core machine).
 BUDGET = {
     "roll": 100, "simulate": 60, "map": 25, "starts": 8, "design": 5, "figures": 10, "explore": 20,
+    "analyze": 6,
 }  # fmt: skip
 
 
