@@ -1,5 +1,5 @@
 //! The driver of a full-motion run: one segment at a time (rolling and slipping integrated
-//! by the ODE core (RK45, DOP853, Vern7 or Vern9) with their events, flight exact with its rigorous landing search), the
+//! by the ODE core (RK45, DOP853 or Vern9) with their events, flight exact with its rigorous landing search), the
 //! impact law at every landing, and the consistency test after every event
 //! (`docs/motion.md` specifies the model).
 

@@ -22,7 +22,7 @@
 
 use super::dense::MAX_DEGREE;
 use super::pair::{
-    all_finite, weighted_sum, Dop853, Dp5, Method, RkPair, Summand, Vern7, Vern9, MAX_STAGES,
+    all_finite, weighted_sum, Dop853, Dp5, Method, RkPair, Summand, Vern9, MAX_STAGES,
 };
 use super::solver::{Observation, Outcome, Run, SolverOptions, Status};
 use super::stepper::{Judgement, Trial};
@@ -489,7 +489,6 @@ pub fn solve_lanes_with<T: Track<N>, const N: usize>(
     match method {
         Method::Rk45 => solve_lanes::<Dp5<N>, T, N>(next, done, stop),
         Method::Dop853 => solve_lanes::<Dop853<N>, T, N>(next, done, stop),
-        Method::Vern7 => solve_lanes::<Vern7<N>, T, N>(next, done, stop),
         Method::Vern9 => solve_lanes::<Vern9<N>, T, N>(next, done, stop),
     }
 }

@@ -7,7 +7,7 @@
 //! allocates.
 
 use super::events::{quiet_step, scan_step, EventCarry, NonFiniteEvent};
-use super::pair::{all_finite, error_scale, Dop853, Dp5, Method, RkPair, Vern7, Vern9};
+use super::pair::{all_finite, error_scale, Dop853, Dp5, Method, RkPair, Vern9};
 use super::stepper::{select_initial_step, StepStatus, Stepper, Trial};
 use super::{DenseStep, EventFunctions, OdeSystem, State, StepEnds};
 
@@ -176,9 +176,6 @@ where
         }
         Method::Dop853 => {
             drive::<Dop853<N>, _, _, _, N>(sys, events, t0, y0, t_end, opts, observer, stop)
-        }
-        Method::Vern7 => {
-            drive::<Vern7<N>, _, _, _, N>(sys, events, t0, y0, t_end, opts, observer, stop)
         }
         Method::Vern9 => {
             drive::<Vern9<N>, _, _, _, N>(sys, events, t0, y0, t_end, opts, observer, stop)

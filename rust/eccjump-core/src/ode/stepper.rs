@@ -340,7 +340,7 @@ impl<P: RkPair<N>, const N: usize> Stepper<P, N> {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::ode::pair::vern7::Vern7;
+    use crate::ode::pair::vern9::Vern9;
 
     #[test]
     fn next_after_moves_one_ulp() {
@@ -376,7 +376,7 @@ mod tests {
             let f0 = sys.rhs(0.0, &y0);
             let mut nfev = 0;
             let h = select_initial_step(
-                (Vern7::<2>::first_step_power, probes),
+                (Vern9::<2>::first_step_power, probes),
                 sys,
                 0.0,
                 &y0,
@@ -401,7 +401,7 @@ mod tests {
             h1.map(|h| 100.0 * h),
             "the second probe is capped at 100 × the first"
         );
-        // The third is not capped: the estimate itself, 0.01^(1/7) / max(d1, d2)^(1/7).
+        // The third is not capped: the estimate itself, 0.01^(1/9) / max(d1, d2)^(1/9).
         let h3 = h3.unwrap();
         assert!(h3 > 1e-2 && h3 < 1.0, "{h3}");
         // A later probe where f is not finite keeps the step found before it: probes at

@@ -237,8 +237,8 @@ fn skipping_interior_samples_changes_nothing() {
                 (out, seen)
             };
             // The same steps, events and end; fewer evaluations where the dense output of
-            // a step proven quiet from its ends is not made (the extra stages of DOP853,
-            // Vern7 and Vern9).
+            // a step proven quiet from its ends is not made (the extra stages of DOP853
+            // and Vern9).
             let (p, q) = (run(true), run(false));
             let same = |o: &Outcome<2>| (o.status, o.t, o.y, o.n_accepted, o.n_rejected);
             assert_eq!(same(&p.0), same(&q.0), "{a} {chi} {km} {pair:?}");

@@ -200,8 +200,6 @@ fn a_batch_is_each_trajectory_bit_for_bit() {
                 (Method::Dop853, false) => lanes::<Dop853<2>, _, 2>(next, done, &never),
                 (Method::Rk45, true) => solve_lanes::<Dp5<2>, _, 2>(next, done, &never),
                 (Method::Dop853, true) => solve_lanes::<Dop853<2>, _, 2>(next, done, &never),
-                (Method::Vern7, false) => lanes::<Vern7<2>, _, 2>(next, done, &never),
-                (Method::Vern7, true) => solve_lanes::<Vern7<2>, _, 2>(next, done, &never),
                 (Method::Vern9, false) => lanes::<Vern9<2>, _, 2>(next, done, &never),
                 (Method::Vern9, true) => solve_lanes::<Vern9<2>, _, 2>(next, done, &never),
             }
