@@ -23,7 +23,7 @@ import sys
 import time
 
 CONFIGS = ("base", "lanes", "quiet", "skip", "memo", "jmemo", "lanetrig", "roots", "pathskip")
-PAIRS = ("DOP853", "Vern7", "Vern9")
+PAIRS = ("DOP853", "Vern9")
 
 
 def best(fn, repeat: int = 5) -> float:

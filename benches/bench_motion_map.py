@@ -37,7 +37,7 @@ def main(argv: list[str] | None = None) -> int:
     p.add_argument("--grid", type=int, default=100, help="points per axis (100: 10^6 points)")
     p.add_argument("--sample", type=int, default=40, help="points run by the scipy model")
     p.add_argument("--threads", type=int, default=0, help="eccjump threads (0: every core)")
-    p.add_argument("--integrator", default="RK45", choices=("RK45", "DOP853", "Vern7", "Vern9"))
+    p.add_argument("--integrator", default="RK45", choices=("RK45", "DOP853", "Vern9"))
     results.add_json_option(p, "motion_map")
     args = p.parse_args(argv)
     n = args.grid

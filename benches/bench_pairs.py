@@ -24,7 +24,7 @@ import results
 
 import eccjump
 
-PAIRS = ("RK45", "DOP853", "Vern7", "Vern9")
+PAIRS = ("RK45", "DOP853", "Vern9")
 
 
 def random_points(n: int, seed: int) -> list[tuple[eccjump.Cylinder, float]]:

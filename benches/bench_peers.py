@@ -60,7 +60,7 @@ SNAPSHOT = HERE / "snapshot.json"
 TAU = 2.0 * math.pi
 MU_S = 1.0
 #: eccjump's Runge-Kutta pairs (the ``integrator`` argument)
-INTEGRATORS = ("RK45", "DOP853", "Vern7", "Vern9")
+INTEGRATORS = ("RK45", "DOP853", "Vern9")
 ROOT_TOL = 1e-12  # diffrax event: optimistix Newton tolerance (1e-14 does not converge)
 # (alpha [deg], chi, k_m): runs that end at the paper's lift-off (F_y stays > 0 before it)
 CASES = [(40.0, 0.15, 0.02), (70.0, 0.1, 0.27), (30.0, 0.1, 0.09), (10.0, 0.1, 0.54)]

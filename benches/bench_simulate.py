@@ -32,7 +32,7 @@ from scipy_motion_cases import CASES
 
 import eccjump
 
-INTEGRATORS = ("RK45", "DOP853", "Vern7", "Vern9")
+INTEGRATORS = ("RK45", "DOP853", "Vern9")
 
 
 def eccjump_call(kw: dict, transitions: int, integrator: str = "RK45"):

@@ -1,4 +1,4 @@
-"""Rust source for the tableau generators (`gen_dop853.py`, `gen_vern7.py`, `gen_vern9.py`):
+"""Rust source for the tableau generators (`gen_dop853.py`, `gen_vern9.py`):
 each number as the shortest decimal that round-trips to its float64, rows, matrices and
 documented consts."""
 

@@ -1,4 +1,4 @@
-"""What the Verner tableau generators (`gen_vern7.py`, `gen_vern9.py`) share: reading a pair's
+"""For the Verner tableau generator (`gen_vern9.py`; Vern7's was removed in 0.2.0): reading a pair's
 40-digit coefficients and checking every order condition (one per rooted tree) in 50-digit
 arithmetic before anything is written."""
 

@@ -307,7 +307,7 @@ def threads(d: Drawer, case: Case) -> Any:
 
 
 #: The Runge–Kutta pairs the integrating entry points take.
-INTEGRATORS = ("RK45", "DOP853", "Vern7", "Vern9")
+INTEGRATORS = ("RK45", "DOP853", "Vern9")
 
 
 def text_param(d: Drawer, case: Case, good: Sequence[str]) -> Any:

@@ -309,10 +309,10 @@ def test_rule_normal_force_rolls_past_the_papers_liftoff():
     setups(),
     st.sampled_from([None, 0.3, 1.0]),
     st.sampled_from(["paper", "normal_force"]),
-    st.sampled_from(["DOP853", "Vern7", "Vern9"]),
+    st.sampled_from(["DOP853", "Vern9"]),
 )
 def test_dense_output_is_skipped_only_where_it_changes_nothing(s, mu_s, rule, integrator):
-    """Without dense_output, DOP853, Vern7 and Vern9 make a step's dense output (3, 5, 4 more
+    """Without dense_output, DOP853 and Vern9 make a step's dense output (3 and 4 more
     evaluations of f) only where the step's ends cannot clear it of events: the same steps,
     states, forces and events, bit for bit, as when every step's dense output is made."""
     body, alpha, theta0, omega0 = s
@@ -443,7 +443,7 @@ def test_the_bridge_runs_on_plain_arguments_only():
         dense_output=False,
         max_steps=1000,
         rule="paper",
-        integrator="Vern7",
+        integrator="Vern9",
     )
     body = Cylinder(0.15, 0.02)
     assert _core.roll(body, 0.7, *plain.values()) == roll(body, 0.7, **plain)
@@ -551,13 +551,13 @@ def test_dop853_takes_scipys_dop853_steps():
 
 #: Verner's pairs as (stages, order, error estimator order, interpolant's extra stages, the
 #: rtol of the comparison with scipy).
-VERNER = {"Vern7": (10, 7, 6, 5, 1e-6), "Vern9": (16, 9, 8, 4, 1e-5)}
+VERNER = {"Vern9": (16, 9, 8, 4, 1e-5)}
 
 
 def verner_for_scipy(name: str):
     """scipy's explicit Runge–Kutta machinery (first step, controller, error norm) with
     Verner's tableau `name`, read from the 40-digit data the core's tableau is generated from
-    (scripts/vern7_coefficients.txt, vern9_coefficients.txt), in float64 by numpy: an
+    (scripts/vern9_coefficients.txt), in float64 by numpy: an
     implementation of integrator=name that shares none of the core's code."""
     from scipy.integrate._ivp.rk import RungeKutta
 
@@ -599,18 +599,16 @@ def verner_for_scipy(name: str):
 def test_verners_pairs_take_the_steps_of_scipys_runge_kutta_with_verners_tableaus(
     monkeypatch, name
 ):
-    """integrator="Vern7" and "Vern9" against scipy's RungeKutta class given Verner's
+    """integrator="Vern9" against scipy's RungeKutta class given Verner's
     tableaus, with their own safety factor 0.75 (scipy's module constant, patched) and their
     first step (scipy's estimate probed again from rest: tested in the core): the same steps,
     step times to 1e-4, end states to 1e-9. The error estimate is a small difference of
     stages: where the step control lets it fall to the stages' rounding (tight rtol), the
-    order of a sum moves step sizes by percents, so the cases are at rtol 1e-6 (Vern7) and
-    1e-5 (Vern9; at 1e-6 its first step's estimate is at that rounding). The core's
+    order of a sum moves step sizes by percents, so the cases are at rtol 1e-5 (at 1e-6
+    the first step's estimate is at that rounding). The core's
     step-size factor err^(−1/q) is a quartic fit (within 3e-5 of scipy's power, which
     needs two Newton steps more on the path from one step to the next): the step times
-    agree to 2e-5, the end states to 2e-10 (measured; 1e-12 with the exact power). For
-    Vern7, exponent −1/8 instead of −1/7 moves the step times by 7-24 %, scipy's safety
-    0.9 by 13-21 %."""
+    agree to 2e-5, the end states to 2e-10 (measured; 1e-12 with the exact power)."""
     import scipy.integrate._ivp.rk as rk
 
     *_, extra_stages, rtol = VERNER[name]
@@ -640,7 +638,7 @@ def test_verners_pairs_take_the_steps_of_scipys_runge_kutta_with_verners_tableau
 
 
 @settings(max_examples=40, deadline=None)
-@given(setups(), st.sampled_from(["DOP853", "Vern7", "Vern9"]))
+@given(setups(), st.sampled_from(["DOP853", "Vern9"]))
 def test_the_integrators_agree_and_the_high_order_ones_take_fewer_steps(s, integrator):
     body, alpha, theta0, omega0 = s
     # theta_max and t_max not reached together by uniform rotation (theta = theta0 + 2 t).
@@ -663,7 +661,19 @@ def test_the_integrators_agree_and_the_high_order_ones_take_fewer_steps(s, integ
     assert np.max(np.abs(e - e[0])) < 1e-7 * max(1.0, np.max(np.abs(b.omega)) ** 2)
 
 
-@pytest.mark.parametrize("integrator", ["DOP853", "Vern7", "Vern9"])
+@pytest.mark.parametrize("route", ["roll", "simulate"])
+def test_vern7_is_refused_naming_the_integrators_left(route):
+    """Vern7 was removed in 0.2.0 (slower than Vern9 on every benchmark, docs/performance.md)."""
+    from eccjump import simulate
+
+    run = roll if route == "roll" else simulate
+    allowed = r"integrator = .Vern7. .*'RK45', 'DOP853', 'Vern9'"
+    with pytest.raises(ValueError, match=allowed) as err:
+        run(Cylinder(0.15, 0.02), 0.7, mu_s=1.0, integrator="Vern7")  # type: ignore[arg-type]
+    assert len(str(err.value)) < 200
+
+
+@pytest.mark.parametrize("integrator", ["DOP853", "Vern9"])
 def test_liftoff_by_a_high_order_pair_matches_the_closed_form_root(integrator):
     from eccjump import jarm
 

@@ -37,8 +37,8 @@ class CallOptions:
     refine_extrema : refine max_ratio and min_Fy to full precision (closed form).
     stop_at_slip : stop at the first slip with reason SLIP (paper rule; see :func:`jarm`).
     n_threads : threads per call (0 = one per core); results do not depend on it.
-    integrator : the Runge–Kutta pair of ``method="ode"``, ``"RK45"``, ``"DOP853"``,
-        ``"Vern7"`` or ``"Vern9"``.
+    integrator : the Runge–Kutta pair of ``method="ode"``, ``"RK45"``, ``"DOP853"``
+        or ``"Vern9"``.
 
     A plain module-level frozen dataclass: it pickles into dask graphs.
     """

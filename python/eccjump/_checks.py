@@ -23,9 +23,8 @@ from numpy.typing import NDArray
 
 #: The lift-off rules (``docs/motion.md``).
 Rule = Literal["paper", "normal_force"]
-#: The Runge–Kutta pair of an integration: scipy's "RK45" and "DOP853", or Verner's "Vern7" and
-#: "Vern9".
-Integrator = Literal["RK45", "DOP853", "Vern7", "Vern9"]
+#: The Runge–Kutta pair of an integration: scipy's "RK45" and "DOP853", or Verner's "Vern9".
+Integrator = Literal["RK45", "DOP853", "Vern9"]
 
 #: The largest value of the bridge's unsigned integer types.
 U32_MAX = 2**32 - 1

@@ -238,9 +238,9 @@ def jarm(
         faster (1.7x with ``method="ode"``). No effect under ``rule="normal_force"``.
     n_threads : int, default 0
         Threads, 0 (one per core) ... 256; results are identical for any value.
-    integrator : {"RK45", "DOP853", "Vern7", "Vern9"}, default "RK45"
+    integrator : {"RK45", "DOP853", "Vern9"}, default "RK45"
         The Runge–Kutta pair of ``method="ode"``: Dormand–Prince 5(4), Dormand–Prince
-        8(5,3), Verner 7(6) or Verner 9(8); the same verdicts. For speed pick ``"Vern9"``
+        8(5,3) or Verner 9(8); the same verdicts. For speed pick ``"Vern9"``
         (at the default rtol 1.5–1.9× faster than RK45 and about 15× more accurate); keep
         ``"RK45"`` for step-for-step parity with scipy.
 
@@ -624,7 +624,7 @@ def region(
         the closed form).
     n_threads : int, default 0
         Threads, 0 (one per core) ... 256; with ``chunks``, per block.
-    integrator : {"RK45", "DOP853", "Vern7", "Vern9"}, default "RK45"
+    integrator : {"RK45", "DOP853", "Vern9"}, default "RK45"
         The Runge–Kutta pair of ``method="ode"``. For speed pick ``"Vern9"``; keep
         ``"RK45"`` for step-for-step parity with scipy.
     chunks : int, sequence of int, dict or None, default None

@@ -479,10 +479,10 @@ def simulate(
         Accepted steps of the whole run (rolling and slipping together), 1 ... 10**7.
     dense_output : bool, default False
         Keep ``sol(t)`` across segments.
-    integrator : {"RK45", "DOP853", "Vern7", "Vern9"}, default "RK45"
+    integrator : {"RK45", "DOP853", "Vern9"}, default "RK45"
         The Runge–Kutta pair: ``"RK45"`` (Dormand–Prince 5(4), as scipy's ``RK45``),
-        ``"DOP853"`` (Dormand–Prince 8(5,3), as scipy's ``DOP853``), ``"Vern7"``
-        (Verner's 7(6) pair) or ``"Vern9"`` (Verner's 9(8) pair). For speed pick
+        ``"DOP853"`` (Dormand–Prince 8(5,3), as scipy's ``DOP853``) or ``"Vern9"``
+        (Verner's 9(8) pair). For speed pick
         ``"Vern9"`` (at the default rtol 1.5–1.9× faster than RK45 and about 15× more
         accurate); keep ``"RK45"`` for step-for-step parity with scipy.
 

@@ -301,7 +301,7 @@ def motion_map(
         Accepted steps of each run, 1 ... 10**7.
     n_threads : int, default 0
         Threads, 0 (one per core) ... 256; results are identical for any value.
-    integrator : {"RK45", "DOP853", "Vern7", "Vern9"}, default "RK45"
+    integrator : {"RK45", "DOP853", "Vern9"}, default "RK45"
         The Runge–Kutta pair (recorded with the map). For speed pick ``"Vern9"`` (at the
         default rtol 1.5–1.9× faster than RK45 and about 15× more accurate); keep
         ``"RK45"`` for step-for-step parity with scipy.

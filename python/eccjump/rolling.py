@@ -361,16 +361,14 @@ def roll(
         ``"paper"`` ends the run at the paper's lift-off condition; ``"normal_force"``
         keeps rolling until Fy = 0 or (with ``mu_s``) the friction cone is left, recording
         the paper's condition as an event.
-    integrator : {"RK45", "DOP853", "Vern7", "Vern9"}, default "RK45"
+    integrator : {"RK45", "DOP853", "Vern9"}, default "RK45"
         The Runge–Kutta pair. For speed pick ``"Vern9"`` (at the default rtol 1.5–1.9×
         faster than RK45 and about 15× more accurate); keep ``"RK45"`` for step-for-step
         parity with scipy. ``"RK45"``: Dormand–Prince 5(4), step for step as scipy's
         ``RK45``. ``"DOP853"``: Dormand–Prince 8(5,3) as scipy's ``DOP853``, about 3x fewer
         steps at the default tolerances and the same steps as scipy's (``nfev`` is lower: a
         step clear of events gets no dense output unless ``dense_output`` is asked for).
-        ``"Vern7"``: Verner's 7(6) pair, at equal accuracy mostly the fastest over a few
-        turns. ``"Vern9"``: Verner's 9(8) pair, the fastest over long runs and at tight
-        tolerances.
+        ``"Vern9"``: Verner's 9(8) pair, the fastest.
 
     Returns
     -------

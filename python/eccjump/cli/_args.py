@@ -144,14 +144,14 @@ def short_text(text: str, width: int = 40) -> str:
 
 
 def add_integrator(p: argparse._ActionsContainer, when: str = "") -> None:
-    """``--integrator {RK45,DOP853,Vern7,Vern9}`` (default RK45); ``when`` says where it
+    """``--integrator {RK45,DOP853,Vern9}`` (default RK45); ``when`` says where it
     applies."""
     p.add_argument(
         "--integrator",
         choices=INTEGRATORS,
         default="RK45",
         help=f"Runge-Kutta pair{when}: RK45 (Dormand-Prince 5(4), default: scipy's steps "
-        "exactly), DOP853 (8(5,3)), Vern7 (Verner 7(6)) or Vern9 (Verner 9(8)). " + PAIR_CHOICE,
+        "exactly), DOP853 (8(5,3)) or Vern9 (Verner 9(8)). " + PAIR_CHOICE,
     )
 
 

@@ -1,7 +1,7 @@
 //! CPU cost of the ODE route per point, per Runge–Kutta pair, on the random
 //! points (α ~ U(0, π/2), χ ~ U(1e-3, 1), k_m = u(1 − χ), μ_s = 1), one thread, and how
 //! often the pairs agree on the reason. `cargo run --release -p eccjump-core --features profiling --example
-//! ode_route_cost [points] [rk45|dop853|vern7|vern9|all] [stop]` (`stop`: `stop_at_slip`); each pair
+//! ode_route_cost [points] [rk45|dop853|vern9|all] [stop]` (`stop`: `stop_at_slip`); each pair
 //! point by point, then all points side by side (`classify_ode_batch`, the maps' way).
 use eccjump_core::jarm::ode_route::classify_ode_batch;
 use eccjump_core::jarm::{classify_ode, JarmOptions, JarmResult, Reason};
@@ -39,7 +39,6 @@ fn main() {
     let pairs: Vec<Method> = match std::env::args().nth(2).as_deref() {
         Some("rk45") => vec![Method::Rk45],
         Some("dop853") => vec![Method::Dop853],
-        Some("vern7") => vec![Method::Vern7],
         Some("vern9") => vec![Method::Vern9],
         _ => Method::ALL.to_vec(),
     };

@@ -1,6 +1,6 @@
 //! Profiling aid: the best time per `roll` run from rest to the paper's lift-off, for the
 //! four cases of `benches/bench_peers.py` (α = 40°, 70°, 30°, 10°), per Runge–Kutta pair
-//! (`cargo run --release -p eccjump-core --features profiling --example roll_best [rk45|dop853|vern7|vern9] [rtol]`, atol =
+//! (`cargo run --release -p eccjump-core --features profiling --example roll_best [rk45|dop853|vern9] [rtol]`, atol =
 //! rtol/100; default the core's tolerances).
 use eccjump_core::modes::rolling::run::{roll, RollOptions};
 use eccjump_core::ode::{Method, SolverOptions};
@@ -10,7 +10,6 @@ fn main() {
     let pairs = match std::env::args().nth(1).as_deref() {
         Some("rk45") => vec![Method::Rk45],
         Some("dop853") => vec![Method::Dop853],
-        Some("vern7") => vec![Method::Vern7],
         Some("vern9") => vec![Method::Vern9],
         _ => Method::ALL.to_vec(),
     };

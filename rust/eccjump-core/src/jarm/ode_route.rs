@@ -74,7 +74,7 @@ use crate::modes::rolling::events::{
 };
 use crate::modes::rolling::memo::RollingMemo;
 use crate::modes::rolling::{ContactRates, Kinematics};
-use crate::ode::lanes::{solve_lanes_with, Start, Track};
+use crate::ode::batch::{solve_lanes_with, Start, Track};
 use crate::ode::{
     self, Change, DenseStep, Direction, EventBounds, EventFunctions, EventSpec, Observation,
     Outcome, SolverOptions, State, Status, StepEnds,
@@ -321,22 +321,33 @@ pub fn classify_ode(
     tol: (f64, f64),
     pair: ode::Method,
 ) -> JarmResult {
-    classify_ode_budget(alpha, chi, km, mu_s, o, tol, pair, STEPS_PER_TURN)
+    let how = Integration {
+        tol,
+        pair,
+        steps_per_turn: STEPS_PER_TURN,
+    };
+    classify_ode_budget(alpha, chi, km, mu_s, o, how)
 }
 
-/// [`classify_ode`] with a step budget of `steps_per_turn` per turn of the search.
-#[allow(clippy::too_many_arguments)] // classify_ode's and the budget
+/// How a point is integrated: the tolerances (rtol, atol), the pair and the step budget
+/// per turn of the search.
+#[derive(Debug, Clone, Copy)]
+struct Integration {
+    tol: (f64, f64),
+    pair: ode::Method,
+    steps_per_turn: usize,
+}
+
+/// [`classify_ode`] integrated as `how` says (its step budget, say).
 fn classify_ode_budget(
     alpha: f64,
     chi: f64,
     km: f64,
     mu_s: f64,
     o: &JarmOptions,
-    tol: (f64, f64),
-    pair: ode::Method,
-    steps_per_turn: usize,
+    how: Integration,
 ) -> JarmResult {
-    match prepare(alpha, chi, km, mu_s, o, tol, pair, steps_per_turn) {
+    match prepare(alpha, chi, km, mu_s, o, how) {
         Err(done) => done,
         Ok(p) => {
             let end = match p.at_start {
@@ -365,17 +376,15 @@ struct Prepared {
 
 /// Everything before the integration of [`classify_ode`]: the point's result if it needs
 /// none (invalid input, an equilibrium start, no search interval), else the prepared run.
-#[allow(clippy::too_many_arguments)] // classify_ode's and the budget
 fn prepare(
     alpha: f64,
     chi: f64,
     km: f64,
     mu_s: f64,
     o: &JarmOptions,
-    (rtol, atol): (f64, f64),
-    pair: ode::Method,
-    steps_per_turn: usize,
+    how: Integration,
 ) -> Result<Prepared, JarmResult> {
+    let ((rtol, atol), pair, steps_per_turn) = (how.tol, how.pair, how.steps_per_turn);
     let tol_ok = rtol.is_finite() && rtol > 0.0 && atol.is_finite() && atol > 0.0;
     let Some(r) = point_ramp(alpha, chi, km, mu_s, o).filter(|_| tol_ok) else {
         return Err(JarmResult::new(Reason::InvalidParams));
@@ -589,7 +598,7 @@ impl Track<2> for RouteTrack {
 }
 
 /// [`classify_ode`] of many points, `point(i)` = (α, χ, k_m, μ_s, options) for each
-/// `out[i]`, integrated side by side ([`ode::lanes`]): every result is bit for bit that of
+/// `out[i]`, integrated side by side ([`ode::batch`]): every result is bit for bit that of
 /// `classify_ode` at its point. `stop` is asked before each point starts and as the
 /// integrator asks it (every few thousand steps of a point); a `true` ends the points under
 /// way as integrator failures and leaves the others as they were: the caller discards
@@ -602,6 +611,11 @@ pub fn classify_ode_batch(
     stop: &dyn Fn() -> bool,
 ) {
     let out = Cell::from_mut(out).as_slice_of_cells();
+    let how = Integration {
+        tol,
+        pair,
+        steps_per_turn: STEPS_PER_TURN,
+    };
     // Continuations waiting for a lane (a few at a time: each is taken at the next fill).
     let waiting = std::cell::RefCell::new(Vec::new());
     let mut i = 0;
@@ -618,7 +632,7 @@ pub fn classify_ode_batch(
             let index = i;
             i += 1;
             let (alpha, chi, km, mu_s, o) = point(index);
-            match prepare(alpha, chi, km, mu_s, &o, tol, pair, STEPS_PER_TURN) {
+            match prepare(alpha, chi, km, mu_s, &o, how) {
                 Err(done) => out[index].set(done),
                 Ok(p) if p.at_start.is_some() => {
                     let k = p.at_start.unwrap_or_default();

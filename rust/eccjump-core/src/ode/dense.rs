@@ -1,7 +1,7 @@
 //! The dense output of one accepted step: a polynomial in σ = (t − t_old)/h, whatever pair
 //! produced it (degree 4 for Dormand–Prince 5(4), as scipy's `RkDenseOutput`; degree 7 for
-//! DOP853, converted from scipy's `Dop853DenseOutput` form into powers of σ, and for Vern7;
-//! degree 8 for Vern9).
+//! DOP853, converted from scipy's `Dop853DenseOutput` form into powers of σ; degree 8 for
+//! Vern9).
 
 use super::State;
 

@@ -237,8 +237,8 @@ fn skipping_interior_samples_changes_nothing() {
                 (out, seen)
             };
             // The same steps, events and end; fewer evaluations where the dense output of
-            // a step proven quiet from its ends is not made (the extra stages of DOP853,
-            // Vern7 and Vern9).
+            // a step proven quiet from its ends is not made (the extra stages of DOP853
+            // and Vern9).
             let (p, q) = (run(true), run(false));
             let same = |o: &Outcome<2>| (o.status, o.t, o.y, o.n_accepted, o.n_rejected);
             assert_eq!(same(&p.0), same(&q.0), "{a} {chi} {km} {pair:?}");
@@ -500,7 +500,12 @@ fn integrator_failure_is_no_physical_verdict() {
     let a = 1f64.to_radians();
     let ok = classify_ode(a, 0.3, 0.2, 1.0, &o, (RTOL, ATOL), ode::Method::Rk45);
     assert_ne!(ok.reason, Reason::SolverFailed);
-    let r = classify_ode_budget(a, 0.3, 0.2, 1.0, &o, (RTOL, ATOL), ode::Method::Rk45, 1);
+    let how = Integration {
+        tol: (RTOL, ATOL),
+        pair: ode::Method::Rk45,
+        steps_per_turn: 1,
+    };
+    let r = classify_ode_budget(a, 0.3, 0.2, 1.0, &o, how);
     assert_eq!(r.reason, Reason::SolverFailed, "{r:?}");
     assert!(!r.is_jarm && r.theta_event.is_finite() && r.theta_j.is_nan());
     assert!(r.theta_event < ok.theta_event.max(ok.theta_j));

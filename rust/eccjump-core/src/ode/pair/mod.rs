@@ -4,27 +4,21 @@
 
 pub mod dop853;
 pub mod dp5;
-pub mod vern7;
 pub mod vern9;
 mod verner;
 
 pub use dop853::Dop853;
 pub use dp5::Dp5;
-pub use vern7::Vern7;
 pub use vern9::Vern9;
 
 use super::dense::MAX_DEGREE;
 
 /// The most stages any pair keeps: its own, f at the step end and the dense output's extra
-/// ones (Vern9's 21; DOP853 and Vern7 keep 16, RK45 7).
+/// ones (Vern9's 21; DOP853 keeps 16, RK45 7).
 pub const MAX_STAGES: usize = {
-    use super::tableau::{dop853, vern7, vern9};
+    use super::tableau::{dop853, vern9};
     let mut most = 0;
-    let all = [
-        dop853::N_STAGES_EXTENDED,
-        vern7::N_STAGES_EXTENDED,
-        vern9::N_STAGES_EXTENDED,
-    ];
+    let all = [dop853::N_STAGES_EXTENDED, vern9::N_STAGES_EXTENDED];
     let mut i = 0;
     while i < all.len() {
         if all[i] > most {
@@ -46,26 +40,21 @@ pub enum Method {
     /// Dormand–Prince 8(5,3) with its 7th-degree dense output (scipy's `DOP853`): fewer
     /// steps at tight tolerances.
     Dop853,
-    /// Verner's most efficient 7(6) pair with its 7th-degree interpolant (not in scipy;
-    /// `Vern7` as in DifferentialEquations.jl): the fewest evaluations for a given accuracy
-    /// at tolerances of about 1e-8 … 1e-11 over a few turns.
-    Vern7,
     /// Verner's most efficient 9(8) pair with its 8th-degree interpolant (`Vern9` as in
-    /// DifferentialEquations.jl): fewer evaluations than Vern7 over long runs and at tight
-    /// tolerances.
+    /// DifferentialEquations.jl): the fastest pair at
+    /// the default tolerances (`docs/performance.md`).
     Vern9,
 }
 
 impl Method {
     /// Every pair, by name.
-    pub const ALL: [Method; 4] = [Method::Rk45, Method::Dop853, Method::Vern7, Method::Vern9];
+    pub const ALL: [Method; 3] = [Method::Rk45, Method::Dop853, Method::Vern9];
 
-    /// The pair's name: scipy's "RK45" or "DOP853", or "Vern7" or "Vern9".
+    /// The pair's name: scipy's "RK45" or "DOP853", or Verner's "Vern9".
     pub fn name(self) -> &'static str {
         match self {
             Method::Rk45 => "RK45",
             Method::Dop853 => "DOP853",
-            Method::Vern7 => "Vern7",
             Method::Vern9 => "Vern9",
         }
     }
@@ -156,7 +145,7 @@ pub trait RkPair<const N: usize>: Copy {
     ) -> Option<DenseStep<N>>;
 
     // The tableau as the integrator of many trajectories side by side
-    // ([`crate::ode::lanes`]) applies it: it computes the stages of all its lanes at once,
+    // ([`crate::ode::batch`]) applies it: it computes the stages of all its lanes at once,
     // then hands each lane's stages to the pair for the error norm and the dense output.
 
     /// The stages s of a step before its FSAL evaluation (stage s is f at y_new).
@@ -221,7 +210,7 @@ pub fn error_scale<const N: usize>(
 }
 
 /// scipy's `RungeKutta._estimate_error_norm` from the error sum Σ E_j K_j: the RMS norm of
-/// h Σ E_j K_j over the error scale (the pairs with one error estimate: RK45, Vern7, Vern9).
+/// h Σ E_j K_j over the error scale (the pairs with one error estimate: RK45, Vern9).
 #[inline]
 pub fn scaled_error_norm<const N: usize>(
     sum: &State<N>,

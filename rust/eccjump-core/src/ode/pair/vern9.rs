@@ -1,9 +1,8 @@
 //! Verner's most efficient 9(8) pair: 16 stages (15 evaluations of f, plus f at the step end,
 //! which the next step begins with), scipy's error norm of the 8th-order estimate, and the
-//! 8th-degree interpolant from four extra stages. Over long runs and at tight tolerances it
-//! reaches a given accuracy with fewer evaluations than Vern7 (10 per step); over a few
-//! turns at 1e-8 it does not. Its step control is Vern7's
-//! (`verner_pair!` in `pair/verner.rs`).
+//! 8th-degree interpolant from four extra stages: the fastest pair at the default
+//! tolerances (`docs/performance.md`). Its step control is scipy's but for the safety factor
+//! and the first step (`verner_pair!` in `pair/verner.rs`).
 
 super::verner::verner_pair!(
     /// The stages of one Verner 9(8) step: 16 stages, the FSAL derivative at the step end

@@ -1,7 +1,8 @@
-//! What Verner's pairs (Vern7, Vern9) share: the stages of a step with f at its end (which
-//! the next step begins with), scipy's error norm of the one embedded estimate, the
-//! interpolant from extra stages (built only where a step's ends cannot clear it of events),
-//! and their own step control. Each pair is [`verner_pair!`] over its tableau module.
+//! A Verner pair (today Vern9 alone; Vern7 was removed, `docs/performance.md`): the stages
+//! of a step with f at its end (which the next step begins with), scipy's error norm of the
+//! one embedded estimate, the interpolant from extra stages (built only where a step's ends
+//! cannot clear it of events), and its own step control, as [`verner_pair!`] over its
+//! tableau module.
 
 /// The Verner pair `$name` over the tableau module `$tab` (`crate::ode::tableau::$tab`: A,
 /// B, C, E, R, A_EXTRA, C_EXTRA and the sizes), with err^ERROR_EXPONENT by `$root` and the
@@ -12,7 +13,7 @@
 /// RK45 and DOP853):
 /// - safety 0.75, not scipy's 0.9: with 0.9 a quarter to a third of the steps of a rolling
 ///   run are rejected (the error constant changes quickly along a turn); 0.75 reaches the
-///   same accuracy with 5–10 % (Vern7) and 10–25 % (Vern9) fewer evaluations (Python models
+///   same accuracy with 10–25 % fewer evaluations (Python models
 ///   of the pairs over rolling runs, rtol 3e-7 … 3e-13);
 /// - a first step probed up to three times: from rest scipy's first step is 1e-4, and four
 ///   steps pass before the step reaches its size.
@@ -33,7 +34,7 @@ macro_rules! verner_pair {
             const FIRST_STEP_PROBES: usize = 3;
 
             /// err^ERROR_EXPONENT without `pow`, to the relative error of a quartic fit (below
-            /// 3e-5: `crate::trig::inv_seventh_root`), enough for a step-size factor.
+            /// 1e-5: `crate::trig::inv_ninth_root`), enough for a step-size factor.
             #[inline]
             fn error_power(err: f64) -> f64 {
                 $root(err)

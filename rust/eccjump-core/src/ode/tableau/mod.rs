@@ -3,7 +3,6 @@
 
 pub mod dop853;
 pub mod dp5;
-pub mod vern7;
 pub mod vern9;
 
 #[cfg(test)]
