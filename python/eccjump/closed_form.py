@@ -22,6 +22,8 @@ The paper's JARM point (alpha = 40 deg, chi = 0.15, k_m = 0.02) and Fig. 3b body
 
 from __future__ import annotations
 
+from collections.abc import Callable
+
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
@@ -33,11 +35,23 @@ F = NDArray[np.float64]
 
 
 def _call(
-    name: str, n: int, theta0: float = 0.0, omega0: float = 0.0, **inputs: ArrayLike
+    kernel: Callable[..., list[F]],
+    /,
+    n: int | None = None,
+    start: tuple[object, object] | None = None,
+    **inputs: ArrayLike,
 ) -> list[F]:
+    """The closed form ``kernel`` of the bridge at every point of the broadcast ``inputs``, on
+    turn ``n`` or along rolling from ``start`` (theta0, omega0) if it takes them; each output
+    in the broadcast shape."""
     shape, flat = broadcast_flat(**inputs)
-    outs = _core.pointwise(name, flat, n, real("theta0", theta0), real("omega0", omega0))
-    return [o.reshape(shape) for o in outs]
+    options: dict[str, float] = {}
+    if n is not None:
+        options["n"] = n
+    if start is not None:
+        options["theta0"] = real("theta0", start[0])
+        options["omega0"] = real("omega0", start[1])
+    return [o.reshape(shape) for o in kernel(*flat, **options)]
 
 
 def _n(n: object) -> int:
@@ -85,7 +99,7 @@ def jump_forces(alpha: ArrayLike, chi: ArrayLike, km: ArrayLike, theta_J: ArrayL
     >>> print(f"Fx_J = {fx:.6f}, Fy_J = {fy:.6f} M g")
     Fx_J = -0.005164, Fy_J = 0.015428 M g
     """
-    fx, fy = _call("jump_forces", 0, alpha=alpha, chi=chi, km=km, theta_J=theta_J)
+    fx, fy = _call(_core.jump_forces, alpha=alpha, chi=chi, km=km, theta_J=theta_J)
     return fx, fy
 
 
@@ -121,7 +135,7 @@ def mu(chi: ArrayLike, km: ArrayLike, theta_J: ArrayLike) -> F:
     >>> print(f"{closed_form.mu(0.5, 0.4, np.radians(302.49)):.6f}")
     1.391619
     """
-    return _call("mu", 0, chi=chi, km=km, theta_J=theta_J)[0]
+    return _call(_core.mu, chi=chi, km=km, theta_J=theta_J)[0]
 
 
 def green_turn(alpha: ArrayLike, theta_J: ArrayLike) -> NDArray[np.int64]:
@@ -152,7 +166,7 @@ def green_turn(alpha: ArrayLike, theta_J: ArrayLike) -> NDArray[np.int64]:
     >>> closed_form.green_turn(np.radians(40), np.radians([334.3, 300.0, 694.3])).tolist()
     [1, 0, 2]
     """
-    return _call("green", 0, alpha=alpha, theta_J=theta_J)[0].astype(np.int64)
+    return _call(_core.green_turn, alpha=alpha, theta_J=theta_J)[0].astype(np.int64)
 
 
 def in_green_interval(
@@ -224,7 +238,7 @@ def mu_s_min(chi: ArrayLike, km: ArrayLike) -> tuple[F, F]:
     >>> print(f"{m:.6f} at {360 + np.degrees(phi):.2f} deg")
     1.391619 at 302.49 deg
     """
-    m, phi = _call("mu_s_min", 0, chi=chi, km=km)
+    m, phi = _call(_core.mu_s_min, chi=chi, km=km)
     return m, phi
 
 
@@ -265,7 +279,7 @@ def theta_J_range(chi: ArrayLike, km: ArrayLike, mu_s: ArrayLike, n: int = 1) ->
     >>> print(f"[{np.degrees(lo):.2f}, {np.degrees(hi):.2f}] deg")
     [272.43, 324.78] deg
     """
-    lo, hi = _call("theta_j_range", _n(n), chi=chi, km=km, mu_s=mu_s)
+    lo, hi = _call(_core.theta_j_range, _n(n), chi=chi, km=km, mu_s=mu_s)
     return lo, hi
 
 
@@ -303,7 +317,7 @@ def alpha_min(chi: ArrayLike, km: ArrayLike, mu_s: ArrayLike, n: int = 1) -> F:
     >>> print(f"{np.degrees(closed_form.alpha_min(0.5, 0.4, 1.6)):.4f} deg")
     35.2185 deg
     """
-    return _call("alpha_min", _n(n), chi=chi, km=km, mu_s=mu_s)[0]
+    return _call(_core.alpha_min, _n(n), chi=chi, km=km, mu_s=mu_s)[0]
 
 
 def gamma(chi: ArrayLike, km: ArrayLike) -> F:
@@ -333,7 +347,7 @@ def gamma(chi: ArrayLike, km: ArrayLike) -> F:
     >>> print(f"{closed_form.gamma(0.15, 0.02):.6f}")
     0.712462
     """
-    return _call("gamma", 0, chi=chi, km=km)[0]
+    return _call(_core.gamma, chi=chi, km=km)[0]
 
 
 def J(theta: ArrayLike, alpha: ArrayLike, chi: ArrayLike, km: ArrayLike) -> F:
@@ -370,7 +384,7 @@ def J(theta: ArrayLike, alpha: ArrayLike, chi: ArrayLike, km: ArrayLike) -> F:
     >>> print(f"{closed_form.J(np.radians(300), np.radians(40), 0.15, 0.02):.6f}")
     -0.451845
     """
-    return _call("J", 0, theta=theta, alpha=alpha, chi=chi, km=km)[0]
+    return _call(_core.j_paper, theta=theta, alpha=alpha, chi=chi, km=km)[0]
 
 
 def liftoff_function(
@@ -420,7 +434,9 @@ def liftoff_function(
     >>> print(f"{closed_form.liftoff_function(np.radians(300), np.radians(40), 0.15, 0.02):.6f}")
     -0.346133
     """
-    return _call("liftoff", 0, theta0, omega0, theta=theta, alpha=alpha, chi=chi, km=km)[0]
+    return _call(
+        _core.liftoff_function, start=(theta0, omega0), theta=theta, alpha=alpha, chi=chi, km=km
+    )[0]
 
 
 def J_brackets(alpha: ArrayLike, chi: ArrayLike, km: ArrayLike, n: int = 1) -> tuple[F, F]:
@@ -460,7 +476,7 @@ def J_brackets(alpha: ArrayLike, chi: ArrayLike, km: ArrayLike, n: int = 1) -> t
     >>> print(f"{lo:.6f} {hi:.6f}")
     -0.162087 0.177747
     """
-    c1, c2 = _call("jtac", _n(n), alpha=alpha, chi=chi, km=km)
+    c1, c2 = _call(_core.j_brackets, _n(n), alpha=alpha, chi=chi, km=km)
     return c1, c2
 
 
@@ -501,7 +517,7 @@ def theta_nJ(alpha: ArrayLike, chi: ArrayLike, km: ArrayLike, n: int = 1) -> F:
     >>> print(f"{np.degrees(closed_form.theta_nJ(np.radians(40), 0.15, 0.02)):.6f} deg")
     334.343838 deg
     """
-    return _call("theta_nj", _n(n), alpha=alpha, chi=chi, km=km)[0]
+    return _call(_core.theta_nj, _n(n), alpha=alpha, chi=chi, km=km)[0]
 
 
 def path_forces(
@@ -552,5 +568,7 @@ def path_forces(
     >>> fy.round(6).tolist()
     [0.606559, 1.674246]
     """
-    fx, fy = _call("path_forces", 0, theta0, omega0, theta=theta, alpha=alpha, chi=chi, km=km)
+    fx, fy = _call(
+        _core.path_forces, start=(theta0, omega0), theta=theta, alpha=alpha, chi=chi, km=km
+    )
     return fx, fy

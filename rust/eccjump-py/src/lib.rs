@@ -2,9 +2,9 @@
 //! the GIL around the numerical work and maps core errors to Python exceptions. No physics
 //! lives here; the typed Python layer is `python/eccjump`.
 
-mod analysis;
 mod body;
 mod boundary;
+mod closed_form;
 mod columns;
 mod errors;
 mod impact;
@@ -25,11 +25,14 @@ mod _core {
     const VERSION: &str = env!("CARGO_PKG_VERSION");
 
     #[pymodule_export]
-    use crate::analysis::pointwise;
-    #[pymodule_export]
     use crate::body::{body_derived, body_from_inertia, body_from_shell_and_line};
     #[pymodule_export]
     use crate::boundary::{alpha_interval_around, alpha_intervals, mu_s_min_path};
+    #[pymodule_export]
+    use crate::closed_form::{
+        alpha_min, gamma, green_turn, j_brackets, j_paper, jump_forces, liftoff_function, mu,
+        mu_s_min, path_forces, theta_j_range, theta_nj,
+    };
     #[pymodule_export]
     use crate::impact::impact;
     #[pymodule_export]
