@@ -48,9 +48,9 @@ def test_one_rust_call_per_block(monkeypatch):
     calls = []
     real = eccjump._core.jarm_grid
 
-    def counting(a, c, f, *rest):
+    def counting(a, c, f, *rest, **options):
         calls.append((a.size, c.size, f.size))
-        return real(a, c, f, *rest)
+        return real(a, c, f, *rest, **options)
 
     monkeypatch.setattr(eccjump._core, "jarm_grid", counting)
     lazy = region(mu_s=0.7, **GRID, chunks=(5, 6, -1))

@@ -376,9 +376,9 @@ def test_n_per_point_is_one_core_call(monkeypatch):
     calls = []
     real = eccjump._core.jarm_points
 
-    def counting(*args):
+    def counting(*args, **options):
         calls.append(args[0].size)
-        return real(*args)
+        return real(*args, **options)
 
     monkeypatch.setattr(eccjump._core, "jarm_points", counting)
     mixed = jarm(N_ALPHA, N_CHI, N_KM, 2.0, n=n)

@@ -1,9 +1,9 @@
 """The only calls of the Rust classification bridge (``_core.jarm_points``, ``_core.jarm_grid``).
 
 :func:`call_options` converts the options that apply to a whole call into a
-:class:`CallOptions`; :func:`_bridge_options` alone knows how the bridge takes them (a dict,
-``CallOptions`` in ``rust/eccjump-py/src/options.rs``), so a change of that format touches
-this module only. The turn ``n`` travels separately: one per point for ``jarm_points``.
+:class:`CallOptions`; :func:`_bridge_options` alone knows how the bridge takes them (its
+keyword-only parameters, ``rust/eccjump-py/src/jarm.rs``), so a change of those touches this
+module only. The turn ``n`` travels separately: one per point for ``jarm_points``.
 """
 
 from __future__ import annotations
@@ -95,8 +95,8 @@ def call_options(
     )
 
 
-def _bridge_options(opts: CallOptions) -> _core.CallOptions:
-    """``opts`` in the form the bridge takes: a dict of the options without the turn."""
+def _bridge_options(opts: CallOptions) -> _core.ClassifyOptions:
+    """``opts`` as the bridge's keyword arguments: the options without the turn."""
     return {
         "rule": opts.rule,
         "method": opts.method,
@@ -124,7 +124,7 @@ def jarm_points(
     length 1), with a turn per point ``n`` (validated, >= 1, same length) or ``opts.n`` for
     all: one flat array per field."""
     turns = np.ascontiguousarray([opts.n or 0] if n is None else n, dtype=np.uint32)
-    return _core.jarm_points(alpha, chi, km, mu_s, turns, _bridge_options(opts))
+    return _core.jarm_points(alpha, chi, km, mu_s, turns, **_bridge_options(opts))
 
 
 def jarm_grid(
@@ -136,4 +136,5 @@ def jarm_grid(
 ) -> Raw:
     """Classify the grid alpha x chi x frac (k_m = frac (1 - chi)) on the turn ``opts.n``:
     one array per field, flat in C order."""
-    return _core.jarm_grid(alpha, chi, frac, real("mu_s", mu_s), opts.n or 0, _bridge_options(opts))
+    mu_s = real("mu_s", mu_s)
+    return _core.jarm_grid(alpha, chi, frac, mu_s, n=opts.n or 0, **_bridge_options(opts))

@@ -131,8 +131,9 @@ class MotionDense:
         (6, len(t)); at an impact, the state after it. ValueError names the first time
         outside [0, t_max]; MemoryError for too many times."""
 
-class CallOptions(TypedDict):
-    """The options of a classification call (extra keys are ignored)."""
+class ClassifyOptions(TypedDict):
+    """The keyword-only options of ``jarm_points`` and ``jarm_grid`` (typing only: the
+    Python layer passes them as keywords)."""
 
     rule: str
     method: str
@@ -147,20 +148,42 @@ class CallOptions(TypedDict):
     integrator: str
 
 def jarm_points(
-    alpha: NDArray[np.float64],
-    chi: NDArray[np.float64],
-    km: NDArray[np.float64],
-    mu_s: NDArray[np.float64],
+    alpha: F64,
+    chi: F64,
+    km: F64,
+    mu_s: F64,
     n: NDArray[np.uint32],
-    options: CallOptions,
+    *,
+    rule: str,
+    method: str,
+    rtol: float,
+    atol: float,
+    theta0: float,
+    omega0: float,
+    max_turns: int,
+    refine_extrema: bool,
+    stop_at_slip: bool,
+    n_threads: int,
+    integrator: str,
 ) -> dict[str, NDArray[Any]]: ...
 def jarm_grid(
-    alpha: NDArray[np.float64],
-    chi: NDArray[np.float64],
-    frac: NDArray[np.float64],
+    alpha: F64,
+    chi: F64,
+    frac: F64,
     mu_s: float,
+    *,
     n: int,
-    options: CallOptions,
+    rule: str,
+    method: str,
+    rtol: float,
+    atol: float,
+    theta0: float,
+    omega0: float,
+    max_turns: int,
+    refine_extrema: bool,
+    stop_at_slip: bool,
+    n_threads: int,
+    integrator: str,
 ) -> dict[str, NDArray[Any]]: ...
 def reason_codes() -> list[tuple[int, str]]: ...
 # The paper's closed forms over equal-length 1-D arrays, each returning its output columns.
@@ -184,6 +207,7 @@ def alpha_intervals(
     chi: NDArray[np.float64],
     km: NDArray[np.float64],
     mu_s: float,
+    *,
     n: int,
     rule: str,
     n_scan: int,
@@ -193,6 +217,7 @@ def mu_s_min_path(
     alpha: NDArray[np.float64],
     chi: NDArray[np.float64],
     km: NDArray[np.float64],
+    *,
     n: int,
     rule: str,
     n_threads: int,
@@ -202,6 +227,7 @@ def alpha_interval_around(
     chi: NDArray[np.float64],
     km: NDArray[np.float64],
     mu_s: float,
+    *,
     n: int,
     rule: str,
     step: float,

@@ -70,7 +70,13 @@ def alpha_intervals(
     scan = integer("n_scan", n_scan, 2, U64_MAX)
     _, (c, k) = broadcast_flat(chi=chi, km=km)
     return _core.alpha_intervals(
-        c, k, real("mu_s", mu_s), turn(n) or 0, text("rule", rule), scan, _threads(n_threads)
+        c,
+        k,
+        real("mu_s", mu_s),
+        n=turn(n) or 0,
+        rule=text("rule", rule),
+        n_scan=scan,
+        n_threads=_threads(n_threads),
     )
 
 
@@ -123,7 +129,9 @@ def mu_s_min_path(
     0.33471000675
     """
     shape, (a, c, k) = broadcast_flat(alpha=alpha, chi=chi, km=km)
-    out = _core.mu_s_min_path(a, c, k, turn(n) or 0, text("rule", rule), _threads(n_threads))
+    out = _core.mu_s_min_path(
+        a, c, k, n=turn(n) or 0, rule=text("rule", rule), n_threads=_threads(n_threads)
+    )
     return out.reshape(shape)
 
 
@@ -190,9 +198,9 @@ def alpha_interval_around(
         c,
         k,
         real("mu_s", mu_s),
-        turn(n) or 0,
-        text("rule", rule),
-        real("step", step),
-        _threads(n_threads),
+        n=turn(n) or 0,
+        rule=text("rule", rule),
+        step=real("step", step),
+        n_threads=_threads(n_threads),
     )
     return lo.reshape(shape), hi.reshape(shape)

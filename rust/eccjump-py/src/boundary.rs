@@ -1,4 +1,5 @@
-//! JARM boundaries: α-intervals per body and μ_s,min along the path, in parallel.
+//! JARM boundaries: α-intervals per body and μ_s,min along the path, in parallel (the turn,
+//! rule, scan and threads keyword-only).
 
 use crate::errors::detached;
 use crate::options::parse_rule;
@@ -14,7 +15,7 @@ type ArrayPair<'py> = (Bound<'py, PyArray1<f64>>, Bound<'py, PyArray1<f64>>);
 
 /// For each (χ_i, k_m,i): the list of (α_lo, α_hi) intervals of JARM (turn n, 0 = first).
 #[pyfunction]
-#[pyo3(signature = (chi, km, mu_s, n, rule, n_scan, n_threads))]
+#[pyo3(signature = (chi, km, mu_s, *, n, rule, n_scan, n_threads))]
 #[allow(clippy::too_many_arguments)]
 pub fn alpha_intervals<'py>(
     py: Python<'py>,
@@ -35,7 +36,7 @@ pub fn alpha_intervals<'py>(
 
 /// For each (α_i, χ_i, k_m,i): the smallest μ_s that gives a JARM (turn n, 0 = first).
 #[pyfunction]
-#[pyo3(signature = (alpha, chi, km, n, rule, n_threads))]
+#[pyo3(signature = (alpha, chi, km, *, n, rule, n_threads))]
 pub fn mu_s_min_path<'py>(
     py: Python<'py>,
     alpha: PyReadonlyArray1<'py, f64>,
@@ -58,7 +59,7 @@ pub fn mu_s_min_path<'py>(
 /// For each (seed_i, χ_i, k_m,i): the ends (α_lo, α_hi) of the JARM α-interval holding the
 /// JARM angle seed_i (NaN if seed_i is not a JARM), as two arrays.
 #[pyfunction]
-#[pyo3(signature = (seed, chi, km, mu_s, n, rule, step, n_threads))]
+#[pyo3(signature = (seed, chi, km, mu_s, *, n, rule, step, n_threads))]
 #[allow(clippy::too_many_arguments)]
 pub fn alpha_interval_around<'py>(
     py: Python<'py>,

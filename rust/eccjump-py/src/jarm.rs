@@ -1,4 +1,5 @@
-//! JARM classification of points and grids: arrays in, one array per result field out.
+//! JARM classification of points and grids: arrays and keyword-only options in, one array per
+//! result field out.
 
 use crate::errors::detached;
 use crate::options::CallOptions;
@@ -35,6 +36,8 @@ fn into_dict(py: Python<'_>, c: JarmColumns) -> PyResult<Bound<'_, PyDict>> {
 /// Classifies equal-length 1-D arrays of points (μ_s and the turn n, 0 = the first jump, may
 /// have length 1).
 #[pyfunction]
+#[pyo3(signature = (alpha, chi, km, mu_s, n, *, rule, method, rtol, atol, theta0, omega0,
+                    max_turns, refine_extrema, stop_at_slip, n_threads, integrator))]
 #[allow(clippy::too_many_arguments)] // five coordinates and the options
 pub fn jarm_points<'py>(
     py: Python<'py>,
@@ -43,8 +46,31 @@ pub fn jarm_points<'py>(
     km: PyReadonlyArray1<'py, f64>,
     mu_s: PyReadonlyArray1<'py, f64>,
     n: PyReadonlyArray1<'py, u32>,
-    options: CallOptions,
+    rule: &str,
+    method: &str,
+    rtol: f64,
+    atol: f64,
+    theta0: f64,
+    omega0: f64,
+    max_turns: u32,
+    refine_extrema: bool,
+    stop_at_slip: bool,
+    n_threads: usize,
+    integrator: &str,
 ) -> PyResult<Bound<'py, PyDict>> {
+    let options = CallOptions {
+        rule,
+        method,
+        rtol,
+        atol,
+        theta0,
+        omega0,
+        max_turns,
+        refine_extrema,
+        stop_at_slip,
+        n_threads,
+        integrator,
+    };
     let (opts, method, n_threads) = options.parse(0)?;
     let (a, c, k, m, n) = (
         alpha.as_slice()?,
@@ -64,6 +90,9 @@ pub fn jarm_points<'py>(
 /// Classifies the grid alpha × chi × frac (k_m = frac·(1 − χ)), flat in C order, on turn n
 /// (0 = the first jump).
 #[pyfunction]
+#[pyo3(signature = (alpha, chi, frac, mu_s, *, n, rule, method, rtol, atol, theta0, omega0,
+                    max_turns, refine_extrema, stop_at_slip, n_threads, integrator))]
+#[allow(clippy::too_many_arguments)] // the grid's axes, μ_s, the turn and the options
 pub fn jarm_grid<'py>(
     py: Python<'py>,
     alpha: PyReadonlyArray1<'py, f64>,
@@ -71,8 +100,31 @@ pub fn jarm_grid<'py>(
     frac: PyReadonlyArray1<'py, f64>,
     mu_s: f64,
     n: u32,
-    options: CallOptions,
+    rule: &str,
+    method: &str,
+    rtol: f64,
+    atol: f64,
+    theta0: f64,
+    omega0: f64,
+    max_turns: u32,
+    refine_extrema: bool,
+    stop_at_slip: bool,
+    n_threads: usize,
+    integrator: &str,
 ) -> PyResult<Bound<'py, PyDict>> {
+    let options = CallOptions {
+        rule,
+        method,
+        rtol,
+        atol,
+        theta0,
+        omega0,
+        max_turns,
+        refine_extrema,
+        stop_at_slip,
+        n_threads,
+        integrator,
+    };
     let (opts, method, n_threads) = options.parse(n)?;
     let (a, c, f) = (alpha.as_slice()?, chi.as_slice()?, frac.as_slice()?);
     let out = detached(py, |stop| {
