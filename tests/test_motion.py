@@ -304,9 +304,8 @@ def test_a_settle_that_ends_stuck_never_creates_energy(integrator):
 
 
 def test_fast_result_construction_equals_the_dataclass_init():
-    # The bridge builds simulate's MotionResult and records without the dataclass __init__
-    # and the NamedTuples' __new__ (rust/eccjump-py/src/records.rs): the same objects as
-    # the ordinary way.
+    # simulate makes its MotionResult without the dataclass __init__ (_arrays.frozen_result):
+    # the same object as the ordinary way, every field and record filled.
     import dataclasses
 
     from eccjump.motion import FlightRecord, ImpactRecord, MotionResult, Segment, Transition
@@ -335,3 +334,19 @@ def test_fast_result_construction_equals_the_dataclass_init():
     assert type(r.mode) is np.ndarray and r.mode.dtype == np.int8
     with pytest.raises(dataclasses.FrozenInstanceError):
         r.status = "t_max"  # type: ignore[misc]
+
+
+def test_the_bridge_takes_simulates_options_by_their_names():
+    # The bridge's convention: the body and the ramp positionally, every option keyword-only
+    # under simulate's own name for it (so no two floats can be swapped on the way).
+    import inspect
+
+    from eccjump import _core
+
+    def options(f):
+        ps = inspect.signature(f).parameters.values()
+        return sorted(p.name for p in ps if p.kind is p.KEYWORD_ONLY)
+
+    assert options(_core.simulate) == options(eccjump.simulate)
+    positional = inspect.signature(_core.simulate).parameters.values()
+    assert [p.name for p in positional if p.kind != p.KEYWORD_ONLY] == ["chi", "km", "alpha"]

@@ -113,7 +113,9 @@ def integer(name: str, value: object, lo: int = 0, hi: int = U64_MAX) -> int:
 
 def flag(name: str, value: object) -> bool:
     """A boolean option: True/False (or a numpy bool), nothing else."""
-    if not isinstance(value, bool | np.bool_):
+    if type(value) is bool:  # the common case first
+        return value
+    if not isinstance(value, np.bool_):
         raise TypeError(f"{name} must be True or False, not {_kind(value)}")
     return bool(value)
 

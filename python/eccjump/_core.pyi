@@ -1,13 +1,15 @@
-"""Type stubs of the compiled bridge ``eccjump._core`` (Rust, pyo3)."""
+"""Type stubs of the compiled bridge ``eccjump._core`` (Rust, pyo3).
+
+One convention (``docs/architecture.md``, "The bridge"): the arrays or numbers computed over
+come positionally, every option keyword-only, each of a plain type; results are plain values
+(numpy arrays, floats, ints, strings, and tuples, lists and dicts of them), from which the
+Python layer makes its result objects.
+"""
 
 from typing import Any, TypedDict
 
 import numpy as np
 from numpy.typing import NDArray
-
-from eccjump.body import Cylinder
-from eccjump.motion import MotionResult
-from eccjump.rolling import RollResult
 
 VERSION: str
 """The package version, e.g. "0.2.0" (`eccjump --version` prints it; `eccjump.__version__`)."""
@@ -55,9 +57,16 @@ def impact(
     restitution (docs/impact_law.md). Private, for the tests. ValueError (validated by the
     core) for a bad parameter, a non-finite state or km = 0."""
 
+#: The series of a rolling run: t, theta, omega, omega_dot, Fx, Fy, l, friction ratio.
+RollSeries = tuple[F64, F64, F64, F64, F64, F64, F64, F64]
+#: An event met: name, t, theta, omega (the fields of ``eccjump.rolling.Event``).
+EventFields = tuple[str, float, float, float]
+
 def roll(
-    body: Cylinder,
+    chi: float,
+    km: float,
     alpha: float,
+    *,
     theta0: float,
     omega0: float,
     mu_s: float | None,
@@ -69,14 +78,12 @@ def roll(
     max_steps: int,
     rule: str,
     integrator: str,
-    /,
-) -> RollResult | None:
-    """One pure-rolling run of ``body`` on a ramp of angle alpha, with the GIL released.
-    The parameters of ``eccjump.roll`` in its order, positionally, all required (it gives
-    the defaults), and checked by the core: a ValueError names the parameter. Returns the
-    ``RollResult``, made here (its dense output, if asked for, wrapped in
-    ``eccjump.dense.DenseSolution``), or None, with nothing done, if an argument is not of
-    its plain type (float, an int from 1 for max_steps, bool, str, None for mu_s)."""
+) -> tuple[RollSeries, list[EventFields], str | None, int, str, int, DenseSolution | None]:
+    """One pure-rolling run of the body (chi, km) on a ramp of angle alpha, with the GIL
+    released. The options of ``eccjump.roll``, all required (it gives the defaults), checked
+    by the core: a ValueError names the parameter. Returns (series, events, terminal event,
+    status, message, nfev, dense output or None), from which ``eccjump.roll`` makes the
+    ``RollResult``."""
 
 class DenseSolution:
     """The dense output of a run, evaluated by the core (ends at the run's end)."""
@@ -93,8 +100,21 @@ class DenseSolution:
         """theta, omega, omega_dot, Fx, Fy and ratio at the times ``t`` (1-D float64), each
         of shape (len(t),); errors as :meth:`states`."""
 
+#: The recorded points of a full-motion run: t, theta, omega, l, ldot, b, bdot, Fx, Fy,
+#: energy, dissipated (float64) and the mode codes (int8).
+MotionPoints = tuple[F64, F64, F64, F64, F64, F64, F64, F64, F64, F64, F64, NDArray[np.int8]]
+#: The fields of ``eccjump.motion.Transition``, ``FlightRecord``, ``ImpactRecord``, ``Segment``.
+TransitionFields = tuple[float, str | None, str, str, float, float, float, float, float, float]
+FlightFields = tuple[float, float, float, float, float, float]
+ImpactFields = tuple[float, float, float, float, float, float, bool, str]
+SegmentFields = tuple[str, str, float, float, int]
+MotionRecords = tuple[
+    list[TransitionFields], list[FlightFields], list[ImpactFields], list[SegmentFields]
+]
+
 def simulate(
-    body: Cylinder,
+    chi: float,
+    km: float,
     alpha: float,
     *,
     mu_s: float,
@@ -112,12 +132,20 @@ def simulate(
     max_steps: int,
     dense_output: bool,
     integrator: str,
-) -> MotionResult:
-    """The full motion of ``body`` on a ramp of angle alpha (docs/motion.md), with the GIL
-    released. Options are keyword-only, all required (``eccjump.simulate`` gives the
-    defaults; mu_k resolved), and checked by the core: a ValueError names the parameter.
-    Returns the ``MotionResult``, made here (its dense output, if asked for, wrapped in
-    ``eccjump.motion.MotionSolution``)."""
+) -> tuple[
+    MotionPoints,
+    MotionRecords,
+    tuple[float, float, float],
+    str,
+    str,
+    int,
+    MotionDense | None,
+]:
+    """The full motion of the body (chi, km) on a ramp of angle alpha (docs/motion.md), with
+    the GIL released. The options of ``eccjump.simulate``, all required (it gives the
+    defaults; mu_k resolved), checked by the core: a ValueError names the parameter. Returns
+    (points, records, (energy0, dissipated by sliding, by impacts), status, message, nfev,
+    dense output or None), from which ``eccjump.simulate`` makes the ``MotionResult``."""
 
 class MotionDense:
     """The dense output of a full-motion run (``MotionResult.sol``), evaluated by the core."""
@@ -186,6 +214,7 @@ def jarm_grid(
     integrator: str,
 ) -> dict[str, NDArray[Any]]: ...
 def reason_codes() -> list[tuple[int, str]]: ...
+
 # The paper's closed forms over equal-length 1-D arrays, each returning its output columns.
 def jump_forces(alpha: F64, chi: F64, km: F64, theta_j: F64) -> list[F64]: ...
 def mu(chi: F64, km: F64, theta_j: F64) -> list[F64]: ...

@@ -15,8 +15,18 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from eccjump import _core
-from eccjump._arrays import same_values
-from eccjump._checks import Integrator, Rule, flag, integer, optional_real, real, real_array, text
+from eccjump._arrays import frozen_result, same_values
+from eccjump._checks import (
+    Integrator,
+    Rule,
+    flag,
+    integer,
+    optional_real,
+    real,
+    real_array,
+    rule_name,
+    text,
+)
 from eccjump._html import card, deg, num, timeline
 from eccjump.body import Cylinder
 from eccjump.units import Units
@@ -528,67 +538,68 @@ def simulate(
     """
     if not isinstance(body, Cylinder):
         raise TypeError(f"body must be a Cylinder, not {type(body).__name__}")
-    # Plain floats, ints, a bool and strings, which the checks would return unchanged, skip
-    # them after one test of their exact types (as in `roll`); anything else goes through
-    # the checks, which alone define what is accepted, and comes back here plain.
-    if not (
-        type(alpha) is float
-        and type(mu_s) is float
-        and (mu_k is None or type(mu_k) is float)
-        and type(restitution) is float
-        and isinstance(rule, str)
-        and type(theta0) is float
-        and type(omega0) is float
-        and type(slip0) is float
-        and type(t_max) is float
-        and type(l_max) is float
-        and type(max_transitions) is int
-        and 1 <= max_transitions <= MAX_TRANSITIONS
-        and type(rtol) is float
-        and type(atol) is float
-        and type(max_steps) is int
-        and 1 <= max_steps <= MAX_STEPS
-        and type(dense_output) is bool
-        and isinstance(integrator, str)
-    ):
-        # Checked in the signature's order: of several bad arguments the first is named.
-        return simulate(
-            body,
-            real("alpha", alpha),
-            mu_s=real("mu_s", mu_s),
-            mu_k=optional_real("mu_k", mu_k),
-            restitution=real("restitution", restitution),
-            rule=text("rule", rule),  # type: ignore[arg-type]  # its values: the core's
-            theta0=real("theta0", theta0),
-            omega0=real("omega0", omega0),
-            slip0=real("slip0", slip0),
-            t_max=real("t_max", t_max),
-            l_max=real("l_max", l_max),
-            max_transitions=integer("max_transitions", max_transitions, 1, MAX_TRANSITIONS),
-            rtol=real("rtol", rtol),
-            atol=real("atol", atol),
-            max_steps=integer("max_steps", max_steps, 1, MAX_STEPS),
-            dense_output=flag("dense_output", dense_output),
-            integrator=text("integrator", integrator),  # type: ignore[arg-type]
-        )
-    # The bridge builds the MotionResult itself (rust/eccjump-py/src/simulate.rs), as it
-    # builds roll's RollResult.
-    return _core.simulate(
-        body,
+    # Checked in the signature's order: of several bad arguments the first is named.
+    alpha = real("alpha", alpha)
+    mu_s = real("mu_s", mu_s)
+    mu_k = optional_real("mu_k", mu_k)
+    mu_k = mu_s if mu_k is None else mu_k
+    restitution = real("restitution", restitution)
+    rule = rule_name(rule)
+    points, records, ledger, status, message, nfev, dense = _core.simulate(
+        body.chi,
+        body.km,
         alpha,
         mu_s=mu_s,
-        mu_k=mu_s if mu_k is None else mu_k,
+        mu_k=mu_k,
         restitution=restitution,
         rule=rule,
-        theta0=theta0,
-        omega0=omega0,
-        slip0=slip0,
-        t_max=t_max,
-        l_max=l_max,
-        max_transitions=max_transitions,
-        rtol=rtol,
-        atol=atol,
-        max_steps=max_steps,
-        dense_output=dense_output,
-        integrator=integrator,
+        theta0=real("theta0", theta0),
+        omega0=real("omega0", omega0),
+        slip0=real("slip0", slip0),
+        t_max=real("t_max", t_max),
+        l_max=real("l_max", l_max),
+        max_transitions=integer("max_transitions", max_transitions, 1, MAX_TRANSITIONS),
+        rtol=real("rtol", rtol),
+        atol=real("atol", atol),
+        max_steps=integer("max_steps", max_steps, 1, MAX_STEPS),
+        dense_output=flag("dense_output", dense_output),
+        integrator=text("integrator", integrator),
+    )
+    t, theta, omega, distance, ldot, b, bdot, Fx, Fy, energy, dissipated, mode = points
+    transitions, flights, impacts, segments = records
+    energy0, dissipated_slip, dissipated_impacts = ledger
+    return frozen_result(
+        MotionResult,
+        {
+            "body": body,
+            "alpha": alpha,
+            "mu_s": mu_s,
+            "mu_k": mu_k,
+            "restitution": restitution,
+            "rule": rule,
+            "t": t,
+            "theta": theta,
+            "omega": omega,
+            "l": distance,
+            "ldot": ldot,
+            "b": b,
+            "bdot": bdot,
+            "Fx": Fx,
+            "Fy": Fy,
+            "energy": energy,
+            "dissipated": dissipated,
+            "mode": mode,
+            "transitions": tuple(map(Transition._make, transitions)),
+            "flights": tuple(map(FlightRecord._make, flights)),
+            "impacts": tuple(map(ImpactRecord._make, impacts)),
+            "segments": tuple(map(Segment._make, segments)),
+            "energy0": energy0,
+            "dissipated_slip": dissipated_slip,
+            "dissipated_impacts": dissipated_impacts,
+            "status": status,
+            "message": message,
+            "nfev": nfev,
+            "sol": None if dense is None else MotionSolution(dense),
+            "units": None,
+        },
     )

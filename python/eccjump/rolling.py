@@ -21,8 +21,18 @@ import numpy as np
 from numpy.typing import NDArray
 
 from eccjump import _core
-from eccjump._arrays import same_values
-from eccjump._checks import U64_MAX, Integrator, Rule, flag, integer, optional_real, real, text
+from eccjump._arrays import frozen_result, same_values
+from eccjump._checks import (
+    U64_MAX,
+    Integrator,
+    Rule,
+    flag,
+    integer,
+    optional_real,
+    real,
+    rule_name,
+    text,
+)
 from eccjump._html import card, deg, num
 from eccjump.body import Cylinder
 from eccjump.dense import DenseSolution
@@ -413,43 +423,49 @@ def roll(
     """
     if not isinstance(body, Cylinder):
         raise TypeError(f"body must be a Cylinder, not {type(body).__name__}")
-    # The bridge builds the RollResult itself (rust/eccjump-py/src/roll.rs): in Python its
-    # 19-entry dict alone cost as much as a tenth of a short run. The arguments go in this
-    # signature's order, positionally (the bridge's order: tested). Most calls pass plain
-    # floats, an int, a bool and strings, which the checks would return unchanged; the
-    # bridge runs on those at once and returns None if any argument has another type.
-    run = _core.roll(
-        body,
+    # The checks in their historical order (alpha, mu_s, rule, then the signature's): of
+    # several bad arguments the same one is named.
+    alpha = real("alpha", alpha)
+    mu_s = optional_real("mu_s", mu_s)
+    rule = rule_name(rule)
+    series, events, terminal_event, status, message, nfev, dense = _core.roll(
+        body.chi,
+        body.km,
         alpha,
-        theta0,
-        omega0,
-        mu_s,
-        t_max,
-        theta_max,
-        rtol,
-        atol,
-        dense_output,
-        max_steps,
-        rule,
-        integrator,
-    )
-    if run is not None:
-        return run
-    # Then the checks, which alone define what is accepted, name a bad argument or make it
-    # plain, in their historical order (alpha, mu_s, rule, then the signature's): of several
-    # bad arguments the same one is named.
-    return roll(
-        body,
-        real("alpha", alpha),
-        mu_s=optional_real("mu_s", mu_s),
-        rule=text("rule", rule),  # type: ignore[arg-type]  # its values: the core's
         theta0=real("theta0", theta0),
         omega0=real("omega0", omega0),
+        mu_s=mu_s,
         t_max=real("t_max", t_max),
         theta_max=real("theta_max", theta_max),
         rtol=real("rtol", rtol),
         atol=real("atol", atol),
         max_steps=integer("max_steps", max_steps, 1, U64_MAX),
         dense_output=flag("dense_output", dense_output),
-        integrator=text("integrator", integrator),  # type: ignore[arg-type]
+        rule=rule,
+        integrator=text("integrator", integrator),
+    )
+    t, theta, omega, omega_dot, Fx, Fy, distance, friction_ratio = series
+    return frozen_result(
+        RollResult,
+        {
+            "body": body,
+            "alpha": alpha,
+            "mu_s": mu_s,
+            "rule": rule,
+            "t": t,
+            "theta": theta,
+            "omega": omega,
+            "omega_dot": omega_dot,
+            "Fx": Fx,
+            "Fy": Fy,
+            "l": distance,
+            "friction_ratio": friction_ratio,
+            "events": tuple(map(Event._make, events)),
+            "terminal_event": terminal_event,
+            "status": status,
+            "message": message,
+            "nfev": nfev,
+            "sol": None if dense is None else DenseSolution(dense),
+            "units": None,
+        },
     )

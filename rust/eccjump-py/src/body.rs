@@ -26,11 +26,3 @@ pub fn body_from_shell_and_line(m_C: f64, m_P: f64, R: f64, d: f64) -> PyResult<
     let b = Cylinder::from_shell_and_line(m_C, m_P, R, d).map_err(to_py)?;
     Ok((b.chi, b.km))
 }
-
-/// The core's body of an `eccjump.Cylinder` (its `chi` and `km`), validated by the core.
-pub fn body_of(body: &Bound<'_, PyAny>) -> PyResult<Cylinder> {
-    let py = body.py();
-    let chi: f64 = body.getattr(pyo3::intern!(py, "chi"))?.extract()?;
-    let km: f64 = body.getattr(pyo3::intern!(py, "km"))?.extract()?;
-    Cylinder::new(chi, km).map_err(to_py)
-}

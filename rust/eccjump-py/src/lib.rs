@@ -2,6 +2,10 @@
 //! the GIL around the numerical work and maps core errors to Python exceptions. No physics
 //! lives here; the typed Python layer is `python/eccjump`.
 
+// No unsafe code: the bridge returns plain values, which the Python layer makes into its
+// result objects.
+#![forbid(unsafe_code)]
+
 mod body;
 mod boundary;
 mod closed_form;
@@ -12,8 +16,6 @@ mod jarm;
 mod motion_map;
 mod names;
 mod options;
-mod plain;
-mod records;
 mod roll;
 mod simulate;
 
