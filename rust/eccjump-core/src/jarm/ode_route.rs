@@ -74,7 +74,7 @@ use crate::modes::rolling::events::{
 };
 use crate::modes::rolling::memo::RollingMemo;
 use crate::modes::rolling::{ContactRates, Kinematics};
-use crate::ode::batch::{solve_lanes_with, Start, Track};
+use crate::ode::lanes::{solve_lanes_with, Start, Track};
 use crate::ode::{
     self, Change, DenseStep, Direction, EventBounds, EventFunctions, EventSpec, Observation,
     Outcome, SolverOptions, State, Status, StepEnds,
@@ -589,7 +589,7 @@ impl Track<2> for RouteTrack {
 }
 
 /// [`classify_ode`] of many points, `point(i)` = (α, χ, k_m, μ_s, options) for each
-/// `out[i]`, integrated side by side ([`ode::batch`]): every result is bit for bit that of
+/// `out[i]`, integrated side by side ([`ode::lanes`]): every result is bit for bit that of
 /// `classify_ode` at its point. `stop` is asked before each point starts and as the
 /// integrator asks it (every few thousand steps of a point); a `true` ends the points under
 /// way as integrator failures and leaves the others as they were: the caller discards

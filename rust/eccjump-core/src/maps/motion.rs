@@ -15,7 +15,7 @@ use crate::modes::rolling::track::roll_batch;
 use crate::motion::simulate::{Need, Sim};
 use crate::motion::sliding::SlipTrack;
 use crate::motion::{simulate, MotionRun, MotionStatus, SimOptions};
-use crate::ode::batch::{solve_lanes_with, Keyed, Start};
+use crate::ode::lanes::{solve_lanes_with, Keyed, Start};
 use crate::ode::SolverOptions;
 use std::cell::{Cell, RefCell};
 

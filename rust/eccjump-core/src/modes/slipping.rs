@@ -14,7 +14,7 @@
 
 use crate::mechanics::friction::Sliding;
 use crate::mechanics::Ramp;
-use crate::ode::batch::{LaneRhs, Lanes, LANES};
+use crate::ode::lanes::{LaneRhs, Lanes, LANES};
 use crate::ode::{
     Change, DenseStep, Direction, EventBounds, EventFunctions, EventSpec, OdeSystem, State,
 };

@@ -17,7 +17,7 @@ use crate::motion::record::{
 };
 use crate::motion::sliding::{slip_state, SlipTrack};
 use crate::motion::solution::{MotionSolution, Piece};
-use crate::ode::batch::Track;
+use crate::ode::lanes::Track;
 use crate::ode::roots::brent;
 use crate::ode::{self, Outcome, Status};
 
@@ -83,15 +83,16 @@ pub fn simulate_until(
         match sim.advance()? {
             Need::Roll(o) => sim.rolled(roll_until(ramp, &o, stop))?,
             Need::Slip(track) => {
-                let ivp = ode::Ivp {
-                    sys: track.sys(),
-                    events: track.events(),
-                    t0: track.t0,
-                    y0: track.y0,
-                    t_end: track.t_end,
-                    opts: &track.solver,
-                };
-                let out = ode::solve_until(&ivp, &mut |obs| track.observe(obs), stop);
+                let out = ode::solve_until(
+                    track.sys(),
+                    track.events(),
+                    track.t0,
+                    track.y0,
+                    track.t_end,
+                    &track.solver,
+                    &mut |obs| track.observe(obs),
+                    stop,
+                );
                 sim.slid(*track, &out)?;
             }
             Need::Done => return sim.finish(),

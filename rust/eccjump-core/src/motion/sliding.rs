@@ -1,6 +1,6 @@
 //! A sliding segment under way: its system and events (sharing one memo of the
 //! trigonometry), its start and what it records. `simulate` integrates it alone; a motion
-//! map integrates the sliding segments of many runs side by side ([`crate::ode::batch`]),
+//! map integrates the sliding segments of many runs side by side ([`crate::ode::lanes`]),
 //! each the same as alone, bit for bit.
 
 use std::cell::RefCell;
@@ -11,7 +11,7 @@ use crate::modes::contact::Mode;
 use crate::modes::slipping::{SlipEvents, Slipping};
 use crate::motion::options::SimOptions;
 use crate::motion::record::Point;
-use crate::ode::batch::Track;
+use crate::ode::lanes::Track;
 use crate::ode::{DenseStep, Observation, SolverOptions, State};
 
 /// The contact state of a sliding segment's y = (θ, θ̇, l, l̇, q).

@@ -1,5 +1,5 @@
 //! Embedded Runge–Kutta integrators for small fixed-size states (Dormand–Prince 5(4) as
-//! scipy's `RK45`, the default, DOP853 as scipy's `DOP853`, and Verner's 9(8) pair), with
+//! scipy's `RK45`, the default, DOP853 as scipy's `DOP853`, and Verner's 7(6) pair), with
 //! dense output and exactly located events.
 //!
 //! Kept apart, as in scipy's `_ivp`: the Butcher tableaux ([`tableau`]), each pair's
@@ -7,17 +7,17 @@
 //! every pair shares ([`stepper`]), the dense-output polynomial ([`dense`]), a step seen
 //! from its ends before its dense output is made ([`ends`]), event
 //! detection and root location ([`events`]), and the driver loop that ties them together
-//! with step limits and statuses ([`solver`]). [`batch`] runs that same loop for many
+//! with step limits and statuses ([`solver`]). [`lanes`] runs that same loop for many
 //! independent trajectories side by side.
 //!
 //! The driver never allocates: accepted steps and events are reported to an observer
 //! callback, so a caller that needs only the end state pays nothing for a trajectory.
 
-pub mod batch;
 pub mod dense;
 pub mod ends;
 pub mod events;
 pub mod hermite;
+pub mod lanes;
 pub mod pair;
 pub mod roots;
 pub mod solver;
@@ -31,7 +31,7 @@ pub use events::{
     NoEvents, EVENT_CHUNK,
 };
 pub use pair::Method;
-pub use solver::{solve, solve_until, Ivp, Observation, Outcome, SolverOptions, Status};
+pub use solver::{solve, solve_until, Observation, Outcome, SolverOptions, Status};
 
 /// A state vector of fixed size N.
 pub type State<const N: usize> = nalgebra::SVector<f64, N>;

@@ -37,36 +37,6 @@ pub struct SolverOptions {
     pub dense_every_step: bool,
 }
 
-/// An initial value problem: y' = f(t, y) by `sys`, with `events`, from (t0, y0) towards
-/// t_end (either side of t0), integrated with `opts`.
-#[derive(Debug)]
-pub struct Ivp<'a, S, E, const N: usize> {
-    /// The right-hand side.
-    pub sys: &'a S,
-    /// The events.
-    pub events: &'a E,
-    /// Initial time.
-    pub t0: f64,
-    /// Initial state.
-    pub y0: State<N>,
-    /// Final time.
-    pub t_end: f64,
-    /// The integrator's options.
-    pub opts: &'a SolverOptions,
-}
-
-impl<S, E, const N: usize> Ivp<'_, S, E, N> {
-    /// +1 integrating forwards, −1 backwards.
-    #[inline]
-    pub fn direction(&self) -> f64 {
-        if self.t_end >= self.t0 {
-            1.0
-        } else {
-            -1.0
-        }
-    }
-}
-
 impl Default for SolverOptions {
     fn default() -> Self {
         Self {
@@ -175,15 +145,7 @@ where
     E: EventFunctions<N>,
     O: FnMut(Observation<'_, N>),
 {
-    let ivp = Ivp {
-        sys,
-        events,
-        t0,
-        y0,
-        t_end,
-        opts,
-    };
-    solve_until(&ivp, observer, &|| false)
+    solve_until(sys, events, t0, y0, t_end, opts, observer, &|| false)
 }
 
 /// Accepted steps between two calls of `stop` in [`solve_until`]: a few milliseconds.
@@ -192,8 +154,14 @@ pub(crate) const STOP_EVERY: usize = 4096;
 /// [`solve`], asking `stop()` every few thousand accepted steps; a `true` ends the
 /// integration with [`Status::Stopped`] at the last accepted point (e.g. on Ctrl-C). The
 /// steps taken are the same as without `stop`.
+#[allow(clippy::too_many_arguments)] // solve's arguments and the stop
 pub fn solve_until<S, E, O, const N: usize>(
-    ivp: &Ivp<'_, S, E, N>,
+    sys: &S,
+    events: &E,
+    t0: f64,
+    y0: State<N>,
+    t_end: f64,
+    opts: &SolverOptions,
     observer: &mut O,
     stop: &dyn Fn() -> bool,
 ) -> Outcome<N>
@@ -202,16 +170,28 @@ where
     E: EventFunctions<N>,
     O: FnMut(Observation<'_, N>),
 {
-    match ivp.opts.method {
-        Method::Rk45 => drive::<Dp5<N>, _, _, _, N>(ivp, observer, stop),
-        Method::Dop853 => drive::<Dop853<N>, _, _, _, N>(ivp, observer, stop),
-        Method::Vern9 => drive::<Vern9<N>, _, _, _, N>(ivp, observer, stop),
+    match opts.method {
+        Method::Rk45 => {
+            drive::<Dp5<N>, _, _, _, N>(sys, events, t0, y0, t_end, opts, observer, stop)
+        }
+        Method::Dop853 => {
+            drive::<Dop853<N>, _, _, _, N>(sys, events, t0, y0, t_end, opts, observer, stop)
+        }
+        Method::Vern9 => {
+            drive::<Vern9<N>, _, _, _, N>(sys, events, t0, y0, t_end, opts, observer, stop)
+        }
     }
 }
 
 /// [`solve_until`] with the pair P.
+#[allow(clippy::too_many_arguments)]
 fn drive<P, S, E, O, const N: usize>(
-    ivp: &Ivp<'_, S, E, N>,
+    sys: &S,
+    events: &E,
+    t0: f64,
+    y0: State<N>,
+    t_end: f64,
+    opts: &SolverOptions,
     observer: &mut O,
     stop: &dyn Fn() -> bool,
 ) -> Outcome<N>
@@ -221,14 +201,14 @@ where
     E: EventFunctions<N>,
     O: FnMut(Observation<'_, N>),
 {
-    match Run::<P, N>::begin(ivp) {
+    match Run::<P, N>::begin(sys, t0, y0, t_end, opts) {
         Err(out) => out,
-        Ok(run) => run.to_end(None, ivp.sys, ivp.events, observer, stop),
+        Ok(run) => run.to_end(None, sys, events, observer, stop),
     }
 }
 
 /// One integration between its steps: what [`solve_until`]'s loop carries from step to
-/// step. The integrator of many trajectories side by side ([`crate::ode::batch`]) runs
+/// step. The integrator of many trajectories side by side ([`crate::ode::lanes`]) runs
 /// the same integration through the same parts, the steps' stages excepted.
 #[derive(Debug, Clone, Copy)]
 pub(crate) struct Run<P, const N: usize> {
@@ -245,8 +225,13 @@ pub(crate) struct Run<P, const N: usize> {
 impl<P: RkPair<N>, const N: usize> Run<P, N> {
     /// The start of the integration: f0 and the first step size, or the outcome if it ends
     /// there (non-finite input or f0).
-    pub(crate) fn begin<S: OdeSystem<N>, E>(ivp: &Ivp<'_, S, E, N>) -> Result<Self, Outcome<N>> {
-        let (t0, y0, t_end, opts) = (ivp.t0, ivp.y0, ivp.t_end, ivp.opts);
+    pub(crate) fn begin<S: OdeSystem<N>>(
+        sys: &S,
+        t0: f64,
+        y0: State<N>,
+        t_end: f64,
+        opts: &SolverOptions,
+    ) -> Result<Self, Outcome<N>> {
         let mut out = Outcome {
             status: Status::NonFinite,
             t: t0,
@@ -258,22 +243,41 @@ impl<P: RkPair<N>, const N: usize> Run<P, N> {
         if !t0.is_finite() || !t_end.is_finite() || !all_finite(&y0) {
             return Err(out);
         }
-        let f0 = ivp.sys.rhs(t0, &y0);
+        let f0 = sys.rhs(t0, &y0);
         out.nfev = 1;
         if !all_finite(&f0) {
             return Err(out);
         }
-        let power: fn(f64) -> f64 = P::first_step_power;
+        let direction = if t_end >= t0 { 1.0 } else { -1.0 };
         let h_abs = match opts.first_step {
             Some(h) => h,
-            None => {
-                match select_initial_step(ivp, &f0, (power, P::FIRST_STEP_PROBES), &mut out.nfev) {
-                    Some(h) => h,
-                    None => return Err(out),
-                }
-            }
+            None => match select_initial_step(
+                (P::first_step_power, P::FIRST_STEP_PROBES),
+                sys,
+                t0,
+                &y0,
+                t_end,
+                opts.max_step,
+                &f0,
+                direction,
+                opts.rtol,
+                opts.atol,
+                &mut out.nfev,
+            ) {
+                Some(h) => h,
+                None => return Err(out),
+            },
         };
-        let st = Stepper::<P, N>::new(ivp, f0, h_abs);
+        let st = Stepper::<P, N>::new(
+            t0,
+            y0,
+            f0,
+            h_abs,
+            t_end,
+            opts.max_step,
+            opts.rtol,
+            opts.atol,
+        );
         Ok(Self {
             st,
             out,

@@ -7,7 +7,7 @@
 
 use super::dense::DenseStep;
 use super::pair::{all_finite, rms_norm, RkPair};
-use super::{Ivp, OdeSystem, State};
+use super::{OdeSystem, State};
 
 /// Multiplies the asymptotically optimal step factor, for a margin (scipy `SAFETY`).
 pub const SAFETY: f64 = 0.9;
@@ -48,15 +48,20 @@ pub fn min_step(t: f64, direction: f64) -> f64 {
 /// from y0 = 0, whose probe step is 1e-6), the estimate is made again from a probe of the
 /// step found, up to `probes` evaluations in all: one evaluation instead of the whole steps
 /// that would grow the step tenfold at a time (three or four of them from rest).
-pub fn select_initial_step<S: OdeSystem<N>, E, const N: usize>(
-    ivp: &Ivp<'_, S, E, N>,
-    f0: &State<N>,
+#[allow(clippy::too_many_arguments)]
+pub fn select_initial_step<S: OdeSystem<N>, const N: usize>(
     (power, probes): (fn(f64) -> f64, usize),
+    sys: &S,
+    t0: f64,
+    y0: &State<N>,
+    t_bound: f64,
+    max_step: f64,
+    f0: &State<N>,
+    direction: f64,
+    rtol: f64,
+    atol: f64,
     nfev: &mut usize,
 ) -> Option<f64> {
-    let (sys, t0, y0, t_bound) = (ivp.sys, ivp.t0, &ivp.y0, ivp.t_end);
-    let (max_step, rtol, atol) = (ivp.opts.max_step, ivp.opts.rtol, ivp.opts.atol);
-    let direction = ivp.direction();
     if N == 0 {
         return Some(f64::INFINITY);
     }
@@ -162,21 +167,31 @@ pub struct Stepper<P, const N: usize> {
 }
 
 impl<P: RkPair<N>, const N: usize> Stepper<P, N> {
-    /// A stepper at the start (t0, y0) of `ivp` with f0 = f(t0, y0), first trial step `h_abs`.
-    pub fn new<S, E>(ivp: &Ivp<'_, S, E, N>, f0: State<N>, h_abs: f64) -> Self {
+    /// A stepper at (t0, y0) with f0 = f(t0, y0), first trial step `h_abs`.
+    #[allow(clippy::too_many_arguments)]
+    pub fn new(
+        t0: f64,
+        y0: State<N>,
+        f0: State<N>,
+        h_abs: f64,
+        t_bound: f64,
+        max_step: f64,
+        rtol: f64,
+        atol: f64,
+    ) -> Self {
         Self {
-            t: ivp.t0,
-            y: ivp.y0,
+            t: t0,
+            y: y0,
             f: f0,
             h_abs,
-            t_old: ivp.t0,
-            y_old: ivp.y0,
+            t_old: t0,
+            y_old: y0,
             pair: P::empty(),
-            direction: ivp.direction(),
-            t_bound: ivp.t_end,
-            max_step: ivp.opts.max_step,
-            rtol: ivp.opts.rtol,
-            atol: ivp.opts.atol,
+            direction: if t_bound >= t0 { 1.0 } else { -1.0 },
+            t_bound,
+            max_step,
+            rtol,
+            atol,
         }
     }
 
@@ -184,7 +199,7 @@ impl<P: RkPair<N>, const N: usize> Stepper<P, N> {
     /// shrinks by max(0.2, 0.9 err^e) on rejection, grows by min(10, 0.9 err^e)
     /// on acceptance (e = −1/(q + 1) of the pair) but never grows right after a rejection
     /// in the same call. The integrator of many trajectories side by side
-    /// ([`crate::ode::batch`]) takes the same steps through the same three parts:
+    /// ([`crate::ode::lanes`]) takes the same steps through the same three parts:
     /// [`Self::first_trial`], [`Self::trial`] and [`Self::judge`].
     #[inline]
     pub fn step<S: OdeSystem<N>>(
@@ -326,7 +341,6 @@ impl<P: RkPair<N>, const N: usize> Stepper<P, N> {
 mod tests {
     use super::*;
     use crate::ode::pair::vern9::Vern9;
-    use crate::ode::{Ivp, NoEvents, SolverOptions};
 
     #[test]
     fn next_after_moves_one_ulp() {
@@ -361,21 +375,19 @@ mod tests {
         fn first<S: OdeSystem<2>>(sys: &S, y0: State<2>, probes: usize) -> (Option<f64>, usize) {
             let f0 = sys.rhs(0.0, &y0);
             let mut nfev = 0;
-            let opts = SolverOptions {
-                rtol: 1e-8,
-                atol: 1e-10,
-                ..SolverOptions::default()
-            };
-            let ivp = Ivp {
+            let h = select_initial_step(
+                (Vern9::<2>::first_step_power, probes),
                 sys,
-                events: &NoEvents,
-                t0: 0.0,
-                y0,
-                t_end: 100.0,
-                opts: &opts,
-            };
-            let power: fn(f64) -> f64 = Vern9::<2>::first_step_power;
-            let h = select_initial_step(&ivp, &f0, (power, probes), &mut nfev);
+                0.0,
+                &y0,
+                100.0,
+                f64::INFINITY,
+                &f0,
+                1.0,
+                1e-8,
+                1e-10,
+                &mut nfev,
+            );
             (h, nfev)
         }
         let rest = State::<2>::zeros();

@@ -1,6 +1,6 @@
 //! (sin x, cos x) of [`LANES`] angles at once, bit for bit [`super::sin_cos`] (musl's
 //! `sincos`, through the `libm` crate): the integrator of many trajectories side by side
-//! ([`crate::ode::batch`]) evaluates the right-hand sides of all its lanes together, and a
+//! ([`crate::ode::lanes`]) evaluates the right-hand sides of all its lanes together, and a
 //! call per lane would serialise their longest dependency chain.
 //!
 //! The same operations as musl in the same order, with every branch turned into a choice

@@ -3,7 +3,7 @@
 
 use crate::mechanics::Ramp;
 use crate::modes::rolling::Kinematics;
-use crate::ode::batch::{LaneRhs, Lanes, LANES};
+use crate::ode::lanes::{LaneRhs, Lanes, LANES};
 use crate::ode::{OdeSystem, State};
 use crate::trig::lanes::sin_cos_lanes;
 use crate::trig::SinCosMemo;

@@ -21,7 +21,7 @@ pub use crate::modes::rolling::events::ContactEvent;
 use crate::modes::rolling::solution::RollSolution;
 use crate::modes::rolling::track::{Begun, RollTrack};
 use crate::modes::rolling::Kinematics;
-use crate::ode::batch::Track;
+use crate::ode::lanes::Track;
 use crate::ode::{
     self, Change, DenseStep, Direction, EventBounds, EventFunctions, EventSpec, SolverOptions,
     State, Status, StepEnds,
@@ -407,15 +407,16 @@ pub fn roll_until(ramp: &Ramp, opts: &RollOptions, stop: &dyn Fn() -> bool) -> R
         Begun::Ended(run) => return Ok(run),
         Begun::Track(track, y0) => (track, y0),
     };
-    let ivp = ode::Ivp {
-        sys: track.sys(),
-        events: track.events(),
-        t0: 0.0,
+    let outcome = ode::solve_until(
+        track.sys(),
+        track.events(),
+        0.0,
         y0,
-        t_end: opts.t_max,
-        opts: &track.solver,
-    };
-    let outcome = ode::solve_until(&ivp, &mut |obs| track.observe(obs), stop);
+        opts.t_max,
+        &track.solver,
+        &mut |obs| track.observe(obs),
+        stop,
+    );
     track.finish(&outcome)
 }
 

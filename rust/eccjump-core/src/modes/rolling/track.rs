@@ -1,6 +1,6 @@
 //! A rolling run under way: its system and events (sharing one memo of the trigonometry)
 //! and its record. One run is integrated alone by [`roll_until`]; many are integrated side
-//! by side by [`roll_batch`] (the lanes of [`crate::ode::batch`]), each with the same steps,
+//! by side by [`roll_batch`] (the lanes of [`crate::ode::lanes`]), each with the same steps,
 //! record and result as alone, bit for bit.
 //!
 //! [`roll_until`]: crate::modes::rolling::run::roll_until
@@ -16,7 +16,7 @@ use crate::modes::rolling::run::{
 };
 use crate::modes::rolling::solution::RollSolution;
 use crate::modes::rolling::Kinematics;
-use crate::ode::batch::{solve_lanes_with, Keyed, Start, Track};
+use crate::ode::lanes::{solve_lanes_with, Keyed, Start, Track};
 use crate::ode::{
     Change, DenseStep, EventBounds, EventFunctions, EventSpec, Method, Observation, Outcome,
     SolverOptions, State, Status, StepEnds,

@@ -145,7 +145,7 @@ pub trait RkPair<const N: usize>: Copy {
     ) -> Option<DenseStep<N>>;
 
     // The tableau as the integrator of many trajectories side by side
-    // ([`crate::ode::batch`]) applies it: it computes the stages of all its lanes at once,
+    // ([`crate::ode::lanes`]) applies it: it computes the stages of all its lanes at once,
     // then hands each lane's stages to the pair for the error norm and the dense output.
 
     /// The stages s of a step before its FSAL evaluation (stage s is f at y_new).

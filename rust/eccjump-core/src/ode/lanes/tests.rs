@@ -1,12 +1,10 @@
-//! The unit tests of the batch (a child module, `#[cfg(test)] mod tests;` in `batch/mod.rs`,
-//! for the private items they use).
+//! The unit tests of `lanes.rs` (a child module, `#[cfg(test)] mod tests;` there, for the
+//! private items they use).
 
 use super::*;
 use crate::ode::events::{Direction, EventSpec};
 use crate::ode::pair::{Dop853, Dp5};
-use crate::ode::{
-    solve_until, EventFunctions, Ivp, Method, Observation, OdeSystem, SolverOptions, State, Status,
-};
+use crate::ode::{solve_until, Method};
 use crate::trig::lanes::sin_cos_lanes;
 use std::cell::RefCell;
 
@@ -145,15 +143,7 @@ fn alone(i: usize, method: Method) -> Vec<Record> {
             log: RefCell::new(Vec::new()),
         };
         let mut obs = |o: Observation<'_, 2>| ev.observe(o);
-        let ivp = Ivp {
-            sys: &ev.sys,
-            events: &ev,
-            t0,
-            y0,
-            t_end,
-            opts: &opts,
-        };
-        let out = solve_until(&ivp, &mut obs, &|| false);
+        let out = solve_until(&ev.sys, &ev, t0, y0, t_end, &opts, &mut obs, &|| false);
         runs.push((outcome_bits(&out), ev.log.into_inner()));
         (t0, y0) = (out.t, State::<2>::new(out.y[0], out.y[1] + 1.0));
     }
@@ -206,11 +196,11 @@ fn a_batch_is_each_trajectory_bit_for_bit() {
             };
             let never = || false;
             match (method, avx2) {
-                (Method::Rk45, false) => rounds::<Dp5<2>, _, 2>(next, done, &never),
-                (Method::Dop853, false) => rounds::<Dop853<2>, _, 2>(next, done, &never),
+                (Method::Rk45, false) => lanes::<Dp5<2>, _, 2>(next, done, &never),
+                (Method::Dop853, false) => lanes::<Dop853<2>, _, 2>(next, done, &never),
                 (Method::Rk45, true) => solve_lanes::<Dp5<2>, _, 2>(next, done, &never),
                 (Method::Dop853, true) => solve_lanes::<Dop853<2>, _, 2>(next, done, &never),
-                (Method::Vern9, false) => rounds::<Vern9<2>, _, 2>(next, done, &never),
+                (Method::Vern9, false) => lanes::<Vern9<2>, _, 2>(next, done, &never),
                 (Method::Vern9, true) => solve_lanes::<Vern9<2>, _, 2>(next, done, &never),
             }
             for (j, g) in got.into_inner().iter().enumerate() {
