@@ -113,4 +113,15 @@ def best_slice(is_jarm: NDArray[np.bool_]) -> tuple[int, NDArray[np.bool_]]:
     return k, is_jarm[:, :, k]
 
 
-__all__ = ["MODE_COLORS", "Row", "best_slice", "card", "deg", "jarm_slice", "num", "span"]
+__all__ = [
+    "MAX_CELLS",
+    "MODE_COLORS",
+    "Row",
+    "best_slice",
+    "card",
+    "deg",
+    "jarm_slice",
+    "num",
+    "span",
+    "timeline",
+]
