@@ -454,7 +454,7 @@ def simulate(
     chosen again. The run ends at ``t_max``, ``l_max`` or ``max_transitions``, or where the
     rigid model cannot continue (Painlevé, a jam): that is a ``status``, not an error.
 
-    Where the sliding normal force grows without bound (D = Ic_M + chi K sin theta below
+    Where the sliding normal force grows without bound (D = I_CM + chi K sin theta below
     1e-4, the Painlevé singularity) the slip goes on against the normal impulse, in which
     nothing diverges, until it stops, lifts off or recovers; only a slip whose impulse grows
     without bound ends the run (status ``"painleve"``). Each step of rolling or slipping
