@@ -29,6 +29,7 @@ from pathlib import Path
 from typing import Any
 
 import numpy as np
+from reference_points import JARM_BODY
 
 import eccjump
 from eccjump import closed_form, store
@@ -746,7 +747,7 @@ _RUN: list[eccjump.RollResult] = []
 
 def dense_run() -> eccjump.RollResult:
     if not _RUN:
-        _RUN.append(eccjump.roll(eccjump.Cylinder(0.15, 0.02), 0.7, mu_s=1.0, dense_output=True))
+        _RUN.append(eccjump.roll(eccjump.Cylinder(*JARM_BODY), 0.7, mu_s=1.0, dense_output=True))
     return _RUN[0]
 
 

@@ -42,6 +42,8 @@ mod _core {
     #[pymodule_export]
     use crate::motion_map::{landing_codes, motion_grid};
     #[pymodule_export]
+    use crate::options::{BoundaryOptions, ClassifyOptions};
+    #[pymodule_export]
     use crate::roll::{roll, DenseSolution};
     #[pymodule_export]
     use crate::simulate::{simulate, MotionDense};
