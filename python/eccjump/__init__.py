@@ -18,6 +18,7 @@ from eccjump.maps import Map
 from eccjump.maps import load as load_map
 from eccjump.motion import MotionResult, simulate
 from eccjump.motion_maps import MotionMap, motion_map
+from eccjump.motion_points import MotionPoints, motion_points
 from eccjump.rolling import EVENT_NAMES, Event, RollResult, roll
 from eccjump.starts import (
     OptimalStart,
@@ -39,6 +40,7 @@ __all__ = [
     "JarmResult",
     "Map",
     "MotionMap",
+    "MotionPoints",
     "MotionResult",
     "OptimalStart",
     "Reason",
@@ -59,6 +61,7 @@ __all__ = [
     "load_map",
     "maps",
     "motion_map",
+    "motion_points",
     "mu_s_min_path",
     "optimal_start",
     "reason_shares",
