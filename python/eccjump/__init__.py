@@ -28,6 +28,7 @@ from eccjump.starts import (
     reason_shares,
     start_map,
 )
+from eccjump.uncertainty import Uncertainty, uncertainty
 from eccjump.units import Units
 
 __all__ = [
@@ -47,6 +48,7 @@ __all__ = [
     "Region",
     "RollResult",
     "StartMap",
+    "Uncertainty",
     "Units",
     "__version__",
     "alpha_interval_around",
@@ -71,4 +73,5 @@ __all__ = [
     "simulate",
     "start_map",
     "store",
+    "uncertainty",
 ]
