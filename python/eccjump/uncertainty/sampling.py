@@ -88,6 +88,11 @@ class Spread:
 
 
 def _name(option: str, key: object, allowed: tuple[str, ...]) -> str:
+    if key in PARAMETERS and key not in allowed:
+        raise ValueError(
+            f"{option}: {key} does not enter question='jarm' (it varies {', '.join(allowed)}); "
+            "use question='motion'"
+        )
     if key not in allowed:
         raise ValueError(f"{option}: unknown parameter {short(key)}; allowed: {', '.join(allowed)}")
     return str(key)
