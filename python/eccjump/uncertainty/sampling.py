@@ -131,10 +131,10 @@ def check_nominal(nominal: Mapping[str, float]) -> None:
     for p in PARAMETERS:
         lo, hi = RANGES[p][0], upper.get(p, RANGES[p][1])
         x = nominal[p]
-        if not lo <= x <= hi:
+        if not (math.isfinite(x) and lo <= x <= hi):
+            end = f"{short(hi)}]" if math.isfinite(hi) else "inf)"
             raise ValueError(
-                f"{p} = {short(x)} [{UNITS[p]}] is outside the allowed range "
-                f"[{short(lo)}, {short(hi)}]"
+                f"{p} = {short(x)} [{UNITS[p]}] is outside the allowed range [{short(lo)}, {end}"
             )
 
 

@@ -136,7 +136,8 @@ def uncertainty(
     ValueError
         For an unknown parameter name, a negative or non-finite sd, bounds with lo > hi, a
         parameter varied that the question does not use, n < 1, a nominal value outside
-        its range; the message names the parameter with its unit and range.
+        its range, or no valid sample at all; the message names the parameter with its
+        unit and range.
     TypeError
         If ``body`` is not a Cylinder or an argument has the wrong type.
     ImportError
@@ -188,6 +189,11 @@ def uncertainty(
     cols, valid = draw(spec, size, seed_, how, policy)
     outcomes = evaluate(q, cols, valid, opts, progress)
     n_valid = int(valid.sum())
+    if n_valid == 0:  # no probability to give: an error, not NaN
+        raise ValueError(
+            "sd, bounds: no sample lies in the physical range (chi in [0, 1], km <= 1 - chi, "
+            "mu_k <= mu_s, ...); narrow them or use invalid='truncate'"
+        )
     k = int(jumps(q, outcomes)[valid].sum())
     return Uncertainty(
         question=q,
@@ -203,7 +209,7 @@ def uncertainty(
         valid=valid,
         outcomes=outcomes,
         n_valid=n_valid,
-        p_jarm=k / n_valid if n_valid else float("nan"),
+        p_jarm=k / n_valid,
         p_jarm_ci=wilson(k, n_valid, level),
         counts=outcome_counts(q, outcomes, valid),
         distributions={
