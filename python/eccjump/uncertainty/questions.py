@@ -13,7 +13,7 @@ from numpy.typing import NDArray
 
 from eccjump.classification import jarm
 from eccjump.fields import Reason
-from eccjump.motion_fields import DTYPES, FILL, sequence_name
+from eccjump.motion_fields import DTYPES, FILL, INVALID, sequence_name
 from eccjump.motion_points import motion_points
 
 #: Samples per core call: about 0.05 s of closed form, 1 s of full motion on 2 cores.
@@ -89,6 +89,14 @@ def evaluate(
     return out
 
 
+def ran(question: str, outcomes: Mapping[str, NDArray[Any]]) -> NDArray[np.bool_]:
+    """Whether the question could be answered at each sample (the core found its values
+    valid: not k_m = 0 for the full motion, for instance)."""
+    if question == "jarm":
+        return outcomes["reason"] != Reason.INVALID_PARAMS
+    return outcomes["status"] != INVALID
+
+
 def jumps(question: str, outcomes: Mapping[str, NDArray[Any]]) -> NDArray[np.bool_]:
     """Whether each sample is a JARM."""
     return outcomes["is_jarm" if question == "jarm" else "jarm"]
@@ -106,4 +114,4 @@ def outcome_counts(
     return {name(int(codes[i])): int(counts[i]) for i in order}
 
 
-__all__ = ["CHUNK", "JARM_FILL", "evaluate", "jumps", "outcome_counts"]
+__all__ = ["CHUNK", "JARM_FILL", "evaluate", "jumps", "outcome_counts", "ran"]

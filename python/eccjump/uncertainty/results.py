@@ -108,7 +108,8 @@ class Uncertainty:
     samples : dict of str to numpy.ndarray
         The sampled values of the varied parameters, one array of length n each.
     valid : numpy.ndarray of bool
-        The samples within the physical range (the others count in no probability).
+        The samples within the physical range that the question could answer (the others
+        count in no probability).
     outcomes : dict of str to numpy.ndarray
         What each sample did: for "jarm" ``is_jarm``, ``reason``, ``liftoff_theta`` (theta_J of
         a JARM, else NaN), ``Fy_J``, ``max_ratio``; for "motion" every field of

@@ -12,7 +12,7 @@ from eccjump._checks import Integrator, Rule, integer, optional_real, real, rule
 from eccjump.body import Cylinder
 from eccjump.motion import MAX_TRANSITIONS
 from eccjump.uncertainty.delta import delta_method
-from eccjump.uncertainty.questions import Progress, evaluate, jumps, outcome_counts
+from eccjump.uncertainty.questions import Progress, evaluate, jumps, outcome_counts, ran
 from eccjump.uncertainty.results import QUANTITIES, Summary, Uncertainty, wilson
 from eccjump.uncertainty.sampling import PARAMETERS, Invalid, Sampling, draw, options, spread
 
@@ -188,6 +188,7 @@ def uncertainty(
     opts = _question_options(q, rule, t_max, max_transitions, rtol, atol, integrator, n_threads)
     cols, valid = draw(spec, size, seed_, how, policy)
     outcomes = evaluate(q, cols, valid, opts, progress)
+    valid &= ran(q, outcomes)  # k_m = 0 has no full motion (simulate needs k_m > 0)
     n_valid = int(valid.sum())
     if n_valid == 0:  # no probability to give: an error, not NaN
         raise ValueError(
