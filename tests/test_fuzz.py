@@ -40,6 +40,8 @@ BUDGET = {
     "roll": 150,
     "simulate": 150,
     "motion_map": 100,
+    "motion_points": 100,
+    "uncertainty": 60,
     "to_si": 60,
     "sol": 60,
     "kinematics": 60,

@@ -269,5 +269,31 @@ def motion_grid(
     GIL released. One array per summary field (``eccjump.motion_maps.TABLE``); a point with
     invalid values has status 255. A bad shared option is a ValueError naming it."""
 
+def motion_points(
+    alpha: NDArray[np.float64],
+    chi: NDArray[np.float64],
+    km: NDArray[np.float64],
+    mu_s: NDArray[np.float64],
+    mu_k: NDArray[np.float64],
+    restitution: NDArray[np.float64],
+    theta0: NDArray[np.float64],
+    omega0: NDArray[np.float64],
+    *,
+    rule: str,
+    t_max: float,
+    max_transitions: int,
+    rtol: float,
+    atol: float,
+    max_steps: int,
+    n_threads: int,
+    integrator: str,
+) -> dict[str, NDArray[Any]]:
+    """The full motion to the first landing at each point (alpha[i], chi[i], km[i], mu_s[i],
+    mu_k[i], restitution[i], theta0[i], omega0[i]) (km: the body's k_m; columns of one
+    length, an empty ``mu_k``: mu_k = mu_s), with the GIL released, each point exactly what
+    ``simulate`` gives there, for any thread count. One array per summary field
+    (``eccjump.motion_fields.TABLE``); an invalid point has status 255. A bad shared option
+    or a column of another length is a ValueError naming it."""
+
 def landing_codes() -> list[tuple[int, str]]:
     """(code, name) of every landing outcome of a motion map."""

@@ -14,6 +14,7 @@ mod errors;
 mod impact;
 mod jarm;
 mod motion_map;
+mod motion_points;
 mod names;
 mod options;
 mod roll;
@@ -41,6 +42,8 @@ mod _core {
     use crate::jarm::{jarm_grid, jarm_points, reason_codes};
     #[pymodule_export]
     use crate::motion_map::{landing_codes, motion_grid};
+    #[pymodule_export]
+    use crate::motion_points::motion_points;
     #[pymodule_export]
     use crate::options::{BoundaryOptions, ClassifyOptions};
     #[pymodule_export]
