@@ -3,6 +3,8 @@ not computed to show it."""
 
 from __future__ import annotations
 
+import math
+
 import numpy as np
 import pytest
 from reference_points import JARM, JARM_ALPHA, JARM_BODY
@@ -81,3 +83,12 @@ def test_repr_of_points_not_computed():
     empty = eccjump.JarmResult(**{k: np.full((3, 4), FILL[k], dtype=DTYPES[k]) for k in FIELDS})
     assert repr(empty).splitlines()[1].split() == ["code", "255", "12"]
     assert empty.counts() == {255: 12}
+
+
+def test_uncertainty_repr_is_one_line_with_the_probability():
+    u = eccjump.uncertainty(
+        eccjump.Cylinder(0.15, 0.02), math.radians(40), 1.0, sd={"chi": 0.02}, n=500, seed=3
+    )
+    text = repr(u)
+    assert "\n" not in text and len(text) < 200, text
+    assert f"p_jarm={u.p_jarm:.4g}" in text and "chi ± 0.02" in text

@@ -82,7 +82,7 @@ class Summary(NamedTuple):
         return cls(int(x.size), float(np.mean(x)), sd, *(float(v) for v in q))
 
 
-@dataclass(frozen=True, eq=False)
+@dataclass(frozen=True, eq=False, repr=False)
 class Uncertainty:
     """What the spread of the inputs does to a JARM or to the first flight
     (:func:`eccjump.uncertainty`).
@@ -250,6 +250,14 @@ class Uncertainty:
         from eccjump import plot  # figures: the layer on top of every result
 
         return plot.uncertainty(self, **kwargs)
+
+    def __repr__(self) -> str:
+        lo, hi = self.p_jarm_ci
+        varied = "; ".join(self._spreads()) or "nothing"
+        return (
+            f"Uncertainty({self.question}: p_jarm={self.p_jarm:.4g} [{lo:.4g}, {hi:.4g}] "
+            f"from {self.n_valid} of {self.n} {self.sampling} samples; {varied})"
+        )
 
     def _repr_html_(self) -> str:
         lo, hi = self.p_jarm_ci
