@@ -1204,7 +1204,8 @@ def case_optimal_start(d: Drawer) -> Case:
 
 DESIGN_PARAMS = (
     "alpha_range", "mu_s", "mu_s_err", "target", "body", "km_range", "rod_range", "radius",
-    "mass", "g", "max_turns", "error", "grid", "min_apex", "shapes",
+    "mass", "g", "max_turns", "error", "grid", "min_apex", "tolerances", "maximise", "samples",
+    "seed", "shapes",
 )  # fmt: skip
 
 
@@ -1224,6 +1225,12 @@ def check_design(res: Any, case: Case) -> None:
     least = case.kwargs.get("min_apex", 0.0)
     if least > 0:  # the designed flights fly that high (in m with a radius, as min_apex)
         expect(min(f.apex for f in res.flights) >= least, f"apex below min_apex {least}")
+    odds = res.p_success
+    expect(
+        (odds is None) == (case.kwargs.get("tolerances") is None), "p_success without tolerances"
+    )
+    if odds is not None:
+        expect(0.0 <= odds.low <= odds.p <= odds.high <= 1.0, f"p_success {odds}")
 
 
 def _pair(d: Drawer, c: Case, lo: float, hi: float) -> Any:
@@ -1279,6 +1286,11 @@ def case_design(d: Drawer) -> Case:
         c.kwargs["g"] = real(d, c, 1.0, 20.0)
     if d.integer(0, 4) == 0:
         c.kwargs["min_apex"] = real(d, c, 0.0, 0.02)
+    if d.integer(0, 3) == 0:
+        names = d.choice((("alpha",), ("chi", "km"), ("mu_s", "alpha")))
+        c.kwargs["tolerances"] = {k: real(d, c, 0.0, 0.05) for k in names}
+        c.kwargs["maximise"] = text_param(d, c, ("margin", "probability"))
+        c.kwargs["samples"] = integer_param(d, c, (100, 300), (*INT_BAD, 99, 10**6 + 1))
     return c
 
 

@@ -167,6 +167,11 @@ def test_wilson_interval():
     z = NormalDist().inv_cdf(0.95)
     centre = (3 + z * z / 2) / (40 + z * z)
     assert abs((lo + hi) / 2 - centre) < 1e-12
+    # the share itself always lies inside, also at the ends (rounding put 1 outside)
+    for k, n in ((300, 300), (0, 7), (1, 1), (999_999, 10**6)):
+        lo, hi = wilson(k, n)
+        assert lo <= k / n <= hi
+    assert wilson(300, 300)[1] == 1.0
 
 
 def test_a_study_of_no_spread_is_the_nominal_point():
