@@ -5,7 +5,7 @@ mod common;
 
 use common::Lcg;
 use eccjump_core::mechanics::impact::{impact, resolve, Ending, ImpactLaw, ImpactMatrix, Impulse};
-use eccjump_core::mechanics::{Cylinder, Ramp};
+use eccjump_core::mechanics::{BodyState, Cylinder, Ramp};
 use eccjump_core::Error;
 use std::f64::consts::TAU;
 
@@ -45,7 +45,11 @@ fn random_law(r: &mut Lcg) -> ImpactLaw {
 /// potential part is the same before and after an impact and cancels).
 fn kinetic(body: &Cylinder, theta: f64, omega: f64, ldot: f64, bdot: f64) -> f64 {
     let ramp = Ramp::new(*body, 0.0).unwrap();
-    ramp.energy(theta, omega, 0.0, ldot, 1.0, bdot) - ramp.energy(theta, 0.0, 0.0, 0.0, 1.0, 0.0)
+    let moving = BodyState {
+        bdot,
+        ..BodyState::in_contact(theta, omega, 0.0, ldot)
+    };
+    ramp.energy_of(&moving) - ramp.energy_of(&BodyState::rolling(theta, 0.0, 0.0))
 }
 
 /// Angular momentum about the contact point P, from first principles:

@@ -321,22 +321,33 @@ pub fn classify_ode(
     tol: (f64, f64),
     pair: ode::Method,
 ) -> JarmResult {
-    classify_ode_budget(alpha, chi, km, mu_s, o, tol, pair, STEPS_PER_TURN)
+    let how = Integration {
+        tol,
+        pair,
+        steps_per_turn: STEPS_PER_TURN,
+    };
+    classify_ode_budget(alpha, chi, km, mu_s, o, how)
 }
 
-/// [`classify_ode`] with a step budget of `steps_per_turn` per turn of the search.
-#[allow(clippy::too_many_arguments)] // classify_ode's and the budget
+/// How a point is integrated: the tolerances (rtol, atol), the pair and the step budget
+/// per turn of the search.
+#[derive(Debug, Clone, Copy)]
+struct Integration {
+    tol: (f64, f64),
+    pair: ode::Method,
+    steps_per_turn: usize,
+}
+
+/// [`classify_ode`] integrated as `how` says (its step budget, say).
 fn classify_ode_budget(
     alpha: f64,
     chi: f64,
     km: f64,
     mu_s: f64,
     o: &JarmOptions,
-    tol: (f64, f64),
-    pair: ode::Method,
-    steps_per_turn: usize,
+    how: Integration,
 ) -> JarmResult {
-    match prepare(alpha, chi, km, mu_s, o, tol, pair, steps_per_turn) {
+    match prepare(alpha, chi, km, mu_s, o, how) {
         Err(done) => done,
         Ok(p) => {
             let end = match p.at_start {
@@ -365,17 +376,15 @@ struct Prepared {
 
 /// Everything before the integration of [`classify_ode`]: the point's result if it needs
 /// none (invalid input, an equilibrium start, no search interval), else the prepared run.
-#[allow(clippy::too_many_arguments)] // classify_ode's and the budget
 fn prepare(
     alpha: f64,
     chi: f64,
     km: f64,
     mu_s: f64,
     o: &JarmOptions,
-    (rtol, atol): (f64, f64),
-    pair: ode::Method,
-    steps_per_turn: usize,
+    how: Integration,
 ) -> Result<Prepared, JarmResult> {
+    let ((rtol, atol), pair, steps_per_turn) = (how.tol, how.pair, how.steps_per_turn);
     let tol_ok = rtol.is_finite() && rtol > 0.0 && atol.is_finite() && atol > 0.0;
     let Some(r) = point_ramp(alpha, chi, km, mu_s, o).filter(|_| tol_ok) else {
         return Err(JarmResult::new(Reason::InvalidParams));
@@ -602,6 +611,11 @@ pub fn classify_ode_batch(
     stop: &dyn Fn() -> bool,
 ) {
     let out = Cell::from_mut(out).as_slice_of_cells();
+    let how = Integration {
+        tol,
+        pair,
+        steps_per_turn: STEPS_PER_TURN,
+    };
     // Continuations waiting for a lane (a few at a time: each is taken at the next fill).
     let waiting = std::cell::RefCell::new(Vec::new());
     let mut i = 0;
@@ -618,7 +632,7 @@ pub fn classify_ode_batch(
             let index = i;
             i += 1;
             let (alpha, chi, km, mu_s, o) = point(index);
-            match prepare(alpha, chi, km, mu_s, &o, tol, pair, STEPS_PER_TURN) {
+            match prepare(alpha, chi, km, mu_s, &o, how) {
                 Err(done) => out[index].set(done),
                 Ok(p) if p.at_start.is_some() => {
                     let k = p.at_start.unwrap_or_default();

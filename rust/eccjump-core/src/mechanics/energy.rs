@@ -15,6 +15,7 @@
 //! with d = θ − θ0, u = d/2 (the product form avoids cancellation at small d).
 
 use crate::mechanics::ramp::Ramp;
+use crate::mechanics::state::BodyState;
 use crate::trig::{asin, cos, sin};
 use std::f64::consts::TAU;
 
@@ -27,35 +28,25 @@ pub fn rolling_kinetic(k0: f64, d: f64, sin_a: f64, chi: f64, sin_mid: f64, sin_
 }
 
 impl Ramp {
-    /// The mechanical energy of a general state (θ, θ̇, l, l̇, b, ḃ), per M g R.
-    #[allow(clippy::too_many_arguments)] // the six coordinates of the state
-    pub fn energy(&self, theta: f64, omega: f64, l: f64, ldot: f64, b: f64, bdot: f64) -> f64 {
-        let (s, c) = crate::trig::sin_cos(theta);
-        self.energy_trig((s, c), omega, l, ldot, b, bdot)
+    /// The mechanical energy of a state, per M g R.
+    pub fn energy_of(&self, s: &BodyState) -> f64 {
+        self.energy_of_trig(s, crate::trig::sin_cos(s.theta))
     }
 
-    /// [`Ramp::energy`] with (sin θ, cos θ) already known (a recorded point whose
-    /// trigonometry the integrator has just computed).
-    #[allow(clippy::too_many_arguments)] // the state, θ given by its sine and cosine
+    /// [`Ramp::energy_of`] with (sin θ, cos θ) of the state already known (a recorded
+    /// point whose trigonometry the integrator has just computed).
     #[inline]
-    pub fn energy_trig(
-        &self,
-        (s, c): (f64, f64),
-        omega: f64,
-        l: f64,
-        ldot: f64,
-        b: f64,
-        bdot: f64,
-    ) -> f64 {
+    pub fn energy_of_trig(&self, st: &BodyState, (s, c): (f64, f64)) -> f64 {
         let chi = self.body.chi;
-        let (vx, vy) = (ldot + chi * c * omega, bdot - chi * s * omega);
-        let height = -(l + chi * s) * self.sin_a + (b + chi * c) * self.cos_a;
+        let omega = st.omega;
+        let (vx, vy) = (st.ldot + chi * c * omega, st.bdot - chi * s * omega);
+        let height = -(st.l + chi * s) * self.sin_a + (st.b + chi * c) * self.cos_a;
         0.5 * (vx * vx + vy * vy) + 0.5 * self.body.icm * omega * omega + height
     }
 
     /// The energy of the pure-rolling state (θ, θ̇) with l = θ, b = 1.
     pub fn rolling_energy(&self, theta: f64, omega: f64) -> f64 {
-        self.energy(theta, omega, theta, omega, 1.0, 0.0)
+        self.energy_of(&BodyState::rolling(theta, omega, theta))
     }
 
     /// Where the rolling energy turns, as arcsin(sin α/χ): along pure rolling

@@ -5,8 +5,6 @@
 //! (see [`crate::mechanics::newton_euler`]): u_t is the slip velocity, u_n the normal
 //! velocity of the contact point.
 
-use crate::mechanics::Ramp;
-
 /// The state of the body: angle, position of the centre C along the ramp, height of C, and
 /// their rates (units g = R = M = 1).
 #[derive(Debug, Clone, Copy, PartialEq, Default)]
@@ -47,18 +45,5 @@ impl BodyState {
     #[inline]
     pub fn slip_velocity(&self) -> f64 {
         self.ldot - self.omega
-    }
-}
-
-impl Ramp {
-    /// The mechanical energy of a state, per M g R ([`Ramp::energy`]).
-    pub fn energy_of(&self, s: &BodyState) -> f64 {
-        self.energy(s.theta, s.omega, s.l, s.ldot, s.b, s.bdot)
-    }
-
-    /// [`Ramp::energy_of`] with (sin θ, cos θ) of the state already known.
-    #[inline]
-    pub fn energy_of_trig(&self, s: &BodyState, trig: (f64, f64)) -> f64 {
-        self.energy_trig(trig, s.omega, s.l, s.ldot, s.b, s.bdot)
     }
 }

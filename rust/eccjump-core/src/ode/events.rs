@@ -530,10 +530,9 @@ pub fn scan_step<E: EventFunctions<N>, const N: usize>(
     y_new: &State<N>,
     samples: usize,
     carry: &mut EventCarry<N>,
-    mut report: impl FnMut(EventHit<N>),
+    report: impl FnMut(EventHit<N>),
 ) -> Result<Option<EventHit<N>>, NonFiniteEvent> {
-    let n_events = events.count();
-    if n_events == 0 {
+    if events.count() == 0 {
         return Ok(None);
     }
     let pts = StepSamples {
@@ -542,26 +541,32 @@ pub fn scan_step<E: EventFunctions<N>, const N: usize>(
         y_new,
         samples,
     };
-    let last = samples + 1;
+    match first_crossing(events, &pts, carry)? {
+        Some(j_first) => report_crossings(events, &pts, j_first, report),
+        None => Ok(None),
+    }
+}
 
-    // Pass 1: the earliest sub-interval (ending at sample j_first) with any crossing.
-    // All events of a chunk are evaluated together at each sample, so the dense output
-    // and any shared work of the event functions are computed once per sample. The
-    // start values come from the previous step's end when possible; the end values are
-    // evaluated first (they are carried to the next step) and, when the events' change
-    // bounds prove that no sample inside the step can show a crossing, the interior
-    // samples are skipped. The end values are checked for finiteness only where they are
-    // used, as the plain walk would.
+/// Pass 1 of [`scan_step`]: the earliest sub-interval (ending at sample j) with any
+/// crossing. All events of a chunk are evaluated together at each sample, so the dense
+/// output and any shared work of the event functions are computed once per sample. The
+/// start values come from the previous step's end when possible; the end values are
+/// evaluated first (they are carried to the next step) and, when the events' change bounds
+/// prove that no sample inside the step can show a crossing, the interior samples are
+/// skipped. The end values are checked for finiteness only where they are used, as the
+/// plain walk would.
+#[inline(always)]
+fn first_crossing<E: EventFunctions<N>, const N: usize>(
+    events: &E,
+    pts: &StepSamples<'_, N>,
+    carry: &mut EventCarry<N>,
+) -> Result<Option<usize>, NonFiniteEvent> {
+    let n_events = events.count();
     let carry_all = n_events <= EVENT_CHUNK;
-    let dips = E::HAS_SLOPES;
-    let mut j_first = usize::MAX;
-    let mut g_a = [0.0; EVENT_CHUNK];
-    let mut g_b = [0.0; EVENT_CHUNK];
-    let mut g_end = [0.0; EVENT_CHUNK];
-    // Without bounds (or with no interior samples) nothing is skipped.
-    let mut bound = [Change::ANY; EVENT_CHUNK];
+    let mut j_first = None;
     for first in (0..n_events).step_by(EVENT_CHUNK) {
         let m = (n_events - first).min(EVENT_CHUNK);
+        let mut g_a = [0.0; EVENT_CHUNK];
         let (t, y) = pts.point(0);
         if carry_all && carry.matches(t, &y) {
             g_a[..m].copy_from_slice(&carry.g[..m]);
@@ -569,130 +574,106 @@ pub fn scan_step<E: EventFunctions<N>, const N: usize>(
             events.values(first, t, &y, &mut g_a[..m]);
         }
         check_all(&g_a[..m])?;
-        events.values(first, t_new, y_new, &mut g_end[..m]);
+        let mut g_end = [0.0; EVENT_CHUNK];
+        events.values(first, pts.t_new, pts.y_new, &mut g_end[..m]);
         if carry_all {
             *carry = EventCarry {
-                t: t_new,
-                y: *y_new,
+                t: pts.t_new,
+                y: *pts.y_new,
                 g: g_end,
                 valid: true,
             };
         }
         // Only sub-intervals before the earliest crossing found so far can matter.
-        let limit = last.min(j_first.saturating_sub(1));
-        if limit == 0 {
-            continue;
-        }
-        if let Some(bounds) = events.bounds().filter(|_| samples > 0) {
-            bounds.change_bounds(first, dense, &mut bound[..m]);
-            if (0..m).all(|i| no_zero_inside(g_a[i], g_end[i], &bound[i], 1.0)) {
-                continue;
-            }
-        }
-        let cell = 1.0 / (samples + 1) as f64 + time_slack(dense.t_old, dense.h);
-        // The dip test needs slopes, computed only at the ends of cells where g_k could
-        // reach zero at all (see `Change`).
-        let may_dip =
-            |i: usize, ga: f64, gb: f64| samples == 0 || !no_zero_inside(ga, gb, &bound[i], cell);
-        let mut s_a = [f64::NAN; EVENT_CHUNK];
-        let mut s_b = [f64::NAN; EVENT_CHUNK];
-        let mut s_a_at = usize::MAX; // the sample whose slopes s_a holds
-        for j in 1..=limit {
-            let (t, y) = pts.point(j);
-            if j == last {
-                g_b = g_end;
-            } else {
-                events.values(first, t, &y, &mut g_b[..m]);
-            }
-            check_all(&g_b[..m])?;
-            let any = (0..m).any(|i| crosses(events.spec(first + i).direction, g_a[i], g_b[i]));
-            if any {
-                j_first = j;
-                break;
-            }
-            if dips && (0..m).any(|i| may_dip(i, g_a[i], g_b[i])) {
-                let (ta, ya) = pts.point(j - 1);
-                if s_a_at != j - 1 {
-                    events.slopes(first, ta, &ya, &mut s_a[..m]);
-                }
-                events.slopes(first, t, &y, &mut s_b[..m]);
-                let mut found = false;
-                for i in (0..m).filter(|&i| may_dip(i, g_a[i], g_b[i])) {
-                    let a = (ta, g_a[i], s_a[i]);
-                    found |= dip(events, first + i, dense, a, (t, g_b[i], s_b[i]))?.is_some();
-                }
-                if found {
-                    j_first = j;
-                    break;
-                }
-                (s_a, s_a_at) = (s_b, j);
-            }
-            g_a = g_b;
+        let limit = (pts.samples + 1).min(j_first.map_or(usize::MAX, |j: usize| j - 1));
+        if limit > 0 {
+            let chunk = first..first + m;
+            j_first = walk_samples(events, pts, chunk, limit, g_a, &g_end)?.or(j_first);
         }
     }
-    if j_first == usize::MAX {
-        return Ok(None);
-    }
+    Ok(j_first)
+}
 
-    // Pass 2: sweep the sub-intervals in time order. Within one sub-interval several
-    // events may cross; they are reported in order of (time, index) by repeatedly
-    // picking the smallest one after the previous report (no buffer needed; more than
-    // one crossing in a sub-interval is rare, so the quadratic cost is irrelevant). The
-    // events' values (and, for the dip test, slopes) at the sub-interval's ends come a
-    // chunk at a time, as in pass 1: one evaluation of the shared work per point, not one
-    // per event.
-    let forward = dense.h >= 0.0;
-    let later = |a: (f64, usize), b: (f64, usize)| -> bool {
-        // Is a strictly after b in integration order (ties broken by index)?
-        if a.0 == b.0 {
-            a.1 > b.1
-        } else {
-            (a.0 > b.0) == forward
+/// The earliest sub-interval, up to the one ending at sample `limit`, where an event of
+/// `chunk` crosses (or dips across) zero, from their values `g_a` at the step's start and
+/// `g_end` at its end: none when their change bounds prove that no sample inside the step
+/// can show a crossing; else the samples in order, with the dip test in the cells where
+/// the bounds allow a dip.
+#[inline(always)]
+fn walk_samples<E: EventFunctions<N>, const N: usize>(
+    events: &E,
+    pts: &StepSamples<'_, N>,
+    chunk: std::ops::Range<usize>,
+    limit: usize,
+    mut g_a: [f64; EVENT_CHUNK],
+    g_end: &[f64; EVENT_CHUNK],
+) -> Result<Option<usize>, NonFiniteEvent> {
+    let (first, m) = (chunk.start, chunk.len());
+    let (dense, samples) = (pts.dense, pts.samples);
+    // Without bounds (or with no interior samples) nothing is skipped.
+    let mut bound = [Change::ANY; EVENT_CHUNK];
+    if let Some(bounds) = events.bounds().filter(|_| samples > 0) {
+        bounds.change_bounds(first, dense, &mut bound[..m]);
+        if (0..m).all(|i| no_zero_inside(g_a[i], g_end[i], &bound[i], 1.0)) {
+            return Ok(None);
         }
-    };
-    for j in j_first..=last {
-        let (ta, ya) = pts.point(j - 1);
-        let (tb, yb) = pts.point(j);
-        let mut prev: Option<(f64, usize)> = None;
-        loop {
-            let mut best: Option<(f64, usize)> = None;
-            for first in (0..n_events).step_by(EVENT_CHUNK) {
-                let m = (n_events - first).min(EVENT_CHUNK);
-                events.values(first, ta, &ya, &mut g_a[..m]);
-                events.values(first, tb, &yb, &mut g_b[..m]);
-                check_all(&g_a[..m])?;
-                check_all(&g_b[..m])?;
-                let mut slopes: Option<([f64; EVENT_CHUNK], [f64; EVENT_CHUNK])> = None;
-                for i in 0..m {
-                    let k = first + i;
-                    let (ga, gb) = (g_a[i], g_b[i]);
-                    // The part of [ta, tb] where g_k changes sign: all of it, or one side
-                    // of a dip's extremum.
-                    let (lo, hi) = if crosses(events.spec(k).direction, ga, gb) {
-                        ((ta, ga), (tb, gb))
-                    } else if dips {
-                        let (s_a, s_b) = *slopes.get_or_insert_with(|| {
-                            let (mut s_a, mut s_b) =
-                                ([f64::NAN; EVENT_CHUNK], [f64::NAN; EVENT_CHUNK]);
-                            events.slopes(first, ta, &ya, &mut s_a[..m]);
-                            events.slopes(first, tb, &yb, &mut s_b[..m]);
-                            (s_a, s_b)
-                        });
-                        match dip(events, k, dense, (ta, ga, s_a[i]), (tb, gb, s_b[i]))? {
-                            Some(bracket) => bracket,
-                            None => continue,
-                        }
-                    } else {
-                        continue;
-                    };
-                    let t = locate(events, k, dense, lo, hi)?;
-                    let cand = (t, k);
-                    if prev.is_none_or(|p| later(cand, p)) && best.is_none_or(|b| later(b, cand)) {
-                        best = Some(cand);
-                    }
-                }
+    }
+    let cell = 1.0 / (samples + 1) as f64 + time_slack(dense.t_old, dense.h);
+    // The dip test needs slopes, computed only at the ends of cells where g_k could reach
+    // zero at all (see `Change`).
+    let may_dip =
+        |i: usize, ga: f64, gb: f64| samples == 0 || !no_zero_inside(ga, gb, &bound[i], cell);
+    let mut g_b = [0.0; EVENT_CHUNK];
+    let mut s_a = [f64::NAN; EVENT_CHUNK];
+    let mut s_b = [f64::NAN; EVENT_CHUNK];
+    let mut s_a_at = usize::MAX; // the sample whose slopes s_a holds
+    for j in 1..=limit {
+        let (t, y) = pts.point(j);
+        if j == samples + 1 {
+            g_b = *g_end;
+        } else {
+            events.values(first, t, &y, &mut g_b[..m]);
+        }
+        check_all(&g_b[..m])?;
+        if (0..m).any(|i| crosses(events.spec(first + i).direction, g_a[i], g_b[i])) {
+            return Ok(Some(j));
+        }
+        if E::HAS_SLOPES && (0..m).any(|i| may_dip(i, g_a[i], g_b[i])) {
+            let (ta, ya) = pts.point(j - 1);
+            if s_a_at != j - 1 {
+                events.slopes(first, ta, &ya, &mut s_a[..m]);
             }
-            let Some((t, k)) = best else { break };
+            events.slopes(first, t, &y, &mut s_b[..m]);
+            let mut found = false;
+            for i in (0..m).filter(|&i| may_dip(i, g_a[i], g_b[i])) {
+                let a = (ta, g_a[i], s_a[i]);
+                found |= dip(events, first + i, dense, a, (t, g_b[i], s_b[i]))?.is_some();
+            }
+            if found {
+                return Ok(Some(j));
+            }
+            (s_a, s_a_at) = (s_b, j);
+        }
+        g_a = g_b;
+    }
+    Ok(None)
+}
+
+/// Pass 2 of [`scan_step`]: the sub-intervals from the one ending at sample `j_first` on,
+/// in time order. Within one sub-interval several events may cross; they are reported in
+/// order of (time, index) by repeatedly picking the earliest one after the previous report
+/// (no buffer needed; more than one crossing in a sub-interval is rare, so the quadratic
+/// cost is irrelevant).
+fn report_crossings<E: EventFunctions<N>, const N: usize>(
+    events: &E,
+    pts: &StepSamples<'_, N>,
+    j_first: usize,
+    mut report: impl FnMut(EventHit<N>),
+) -> Result<Option<EventHit<N>>, NonFiniteEvent> {
+    for j in j_first..=pts.samples + 1 {
+        let (a, b) = (pts.point(j - 1), pts.point(j));
+        let mut prev = None;
+        while let Some((t, k)) = next_crossing(events, pts.dense, &a, &b, prev)? {
             let hit = EventHit {
                 index: k,
                 t,
@@ -702,10 +683,71 @@ pub fn scan_step<E: EventFunctions<N>, const N: usize>(
             if events.spec(k).terminal {
                 return Ok(Some(hit));
             }
-            prev = best;
+            prev = Some((t, k));
         }
     }
     Ok(None)
+}
+
+/// The earliest crossing (t, k) inside the sub-interval from `a` to `b` after `prev` in
+/// integration order (ties broken by index), located. The events' values (and, for the
+/// dip test, slopes) at the sub-interval's ends come a chunk at a time, as in pass 1: one
+/// evaluation of the shared work per point, not one per event.
+fn next_crossing<E: EventFunctions<N>, const N: usize>(
+    events: &E,
+    dense: &DenseStep<N>,
+    (ta, ya): &(f64, State<N>),
+    (tb, yb): &(f64, State<N>),
+    prev: Option<(f64, usize)>,
+) -> Result<Option<(f64, usize)>, NonFiniteEvent> {
+    let (ta, tb) = (*ta, *tb);
+    let forward = dense.h >= 0.0;
+    let later = |a: (f64, usize), b: (f64, usize)| -> bool {
+        // Is a strictly after b in integration order (ties broken by index)?
+        if a.0 == b.0 {
+            a.1 > b.1
+        } else {
+            (a.0 > b.0) == forward
+        }
+    };
+    let n_events = events.count();
+    let mut best: Option<(f64, usize)> = None;
+    for first in (0..n_events).step_by(EVENT_CHUNK) {
+        let m = (n_events - first).min(EVENT_CHUNK);
+        let (mut g_a, mut g_b) = ([0.0; EVENT_CHUNK], [0.0; EVENT_CHUNK]);
+        events.values(first, ta, ya, &mut g_a[..m]);
+        events.values(first, tb, yb, &mut g_b[..m]);
+        check_all(&g_a[..m])?;
+        check_all(&g_b[..m])?;
+        let mut slopes: Option<([f64; EVENT_CHUNK], [f64; EVENT_CHUNK])> = None;
+        for i in 0..m {
+            let k = first + i;
+            let (ga, gb) = (g_a[i], g_b[i]);
+            // The part of [ta, tb] where g_k changes sign: all of it, or one side of a
+            // dip's extremum.
+            let (lo, hi) = if crosses(events.spec(k).direction, ga, gb) {
+                ((ta, ga), (tb, gb))
+            } else if E::HAS_SLOPES {
+                let (s_a, s_b) = *slopes.get_or_insert_with(|| {
+                    let (mut s_a, mut s_b) = ([f64::NAN; EVENT_CHUNK], [f64::NAN; EVENT_CHUNK]);
+                    events.slopes(first, ta, ya, &mut s_a[..m]);
+                    events.slopes(first, tb, yb, &mut s_b[..m]);
+                    (s_a, s_b)
+                });
+                match dip(events, k, dense, (ta, ga, s_a[i]), (tb, gb, s_b[i]))? {
+                    Some(bracket) => bracket,
+                    None => continue,
+                }
+            } else {
+                continue;
+            };
+            let cand = (locate(events, k, dense, lo, hi)?, k);
+            if prev.is_none_or(|p| later(cand, p)) && best.is_none_or(|b| later(b, cand)) {
+                best = Some(cand);
+            }
+        }
+    }
+    Ok(best)
 }
 
 /// For tests: the change bounds `b` of a step from `t_old` over `h` hold between every two

@@ -194,7 +194,12 @@ unsafe fn lanes_avx2<P, T, const N: usize>(
     lanes::<P, T, N>(next, done, stop);
 }
 
-/// The rounds of [`solve_lanes`].
+/// A lane per trajectory under way, `None` where free.
+type Slots<P, T, const N: usize> = [Option<Slot<P, T, N>>; LANES];
+
+/// The rounds of [`solve_lanes`]: each fills the free lanes, tries a step of every busy
+/// one (its stages computed for all lanes at once), judges each lane's attempt, and
+/// scans and observes each accepted step, with or without its dense output.
 #[inline(always)]
 fn lanes<P, T, const N: usize>(
     mut next: impl FnMut() -> Option<Start<T, N>>,
@@ -204,44 +209,12 @@ fn lanes<P, T, const N: usize>(
     P: RkPair<N>,
     T: Track<N>,
 {
-    let mut slots: [Option<Slot<P, T, N>>; LANES] = std::array::from_fn(|_| None);
+    let mut slots: Slots<P, T, N> = std::array::from_fn(|_| None);
     // Stages: STAGES, the FSAL one, the extra ones of the dense output.
     let mut k = [Lanes::<N>::zero(); MAX_STAGES];
-    let n_k = P::STAGES + 1 + P::EXTRA;
-    debug_assert!(n_k <= k.len());
+    debug_assert!(P::STAGES + 1 + P::EXTRA <= k.len());
     loop {
-        // Fill the free lanes; a trajectory that ends before its first step is done at once.
-        // `next` may have nothing now and more later (a trajectory that `done` starts).
-        let mut exhausted = false;
-        for slot in slots.iter_mut().filter(|s| s.is_none()) {
-            while slot.is_none() {
-                let Some(Start {
-                    track,
-                    t0,
-                    y0,
-                    t_end,
-                    opts,
-                }) = next()
-                else {
-                    exhausted = true;
-                    break;
-                };
-                match Run::<P, N>::begin(track.sys(), t0, y0, t_end, &opts) {
-                    Ok(mut run) => {
-                        if run.ends_here(stop) {
-                            done(track, run.out);
-                        } else {
-                            let trial = run.st.first_trial();
-                            *slot = Some(Slot { track, run, trial });
-                        }
-                    }
-                    Err(out) => done(track, out),
-                }
-            }
-            if exhausted {
-                break;
-            }
-        }
+        let exhausted = fill(&mut slots, &mut next, &mut done, stop);
         let busy = slots.iter().filter(|s| s.is_some()).count();
         if busy == 0 {
             if exhausted {
@@ -252,132 +225,291 @@ fn lanes<P, T, const N: usize>(
         // Too few left for a round: each goes on alone (the scalar step is the same step),
         // then `next` is asked again.
         if exhausted && busy < MIN_BUSY {
-            for slot in slots.iter_mut() {
-                if let Some(Slot { track, run, trial }) = slot.take() {
-                    let observer = &mut |obs: Observation<'_, N>| track.observe(obs);
-                    let (sys, events) = (track.sys(), track.events());
-                    let out = run.to_end(Some(trial), sys, events, observer, stop);
-                    done(track, out);
-                }
-            }
+            finish_alone(&mut slots, &mut done, stop);
             continue;
         }
-        // Each lane's trial step; a step too small ends its trajectory.
-        let mut h = [0.0; LANES];
-        let mut t_new = [0.0; LANES];
-        for (l, slot) in slots.iter_mut().enumerate() {
-            let Some(s) = slot else { continue };
-            match s.run.st.trial(s.trial.h_abs) {
-                Some((tn, hl)) => (t_new[l], h[l]) = (tn, hl),
-                None => {
-                    s.run.out.status = Status::StepTooSmall;
-                    let s = slot.take().expect("a lane in use");
-                    done(s.track, s.run.out);
-                }
-            }
-        }
-        let Some(first) = slots.iter().position(Option::is_some) else {
+        let Some(mut round) = trials(&mut slots, &mut done) else {
             continue;
         };
-
-        // Free lanes repeat the first busy one (the same inputs, the same finite values),
-        // so every lane's arithmetic is that of a real trajectory.
-        let busy = |l: usize| if slots[l].is_some() { l } else { first };
-        let systems: [&T::Sys; LANES] =
-            std::array::from_fn(|l| slots[busy(l)].as_ref().expect("busy").track.sys());
-        let mut y = Lanes::<N>::zero();
-        let mut f = Lanes::<N>::zero();
-        for l in 0..LANES {
-            let st = &slots[busy(l)].as_ref().expect("busy").run.st;
-            y.set_lane(l, &st.y);
-            f.set_lane(l, &st.f);
-            h[l] = h[busy(l)];
-        }
-        // The stages of every lane, then the end state y + (Σ b_j K_j) h and f there (FSAL).
-        k[0] = f;
-        for s in 1..P::STAGES {
-            let d = weighted_sum(&k[..s], &P::a(s)[..s]);
-            k[s] = T::Sys::rhs_lanes(&systems, &y.plus_times(&d, &h));
-        }
-        let y_new = y.plus_times(&weighted_sum(&k[..P::STAGES], P::b()), &h);
-        k[P::STAGES] = T::Sys::rhs_lanes(&systems, &y_new);
-        T::Sys::step_end_lanes(&systems, &y_new);
-        // Each lane's verdict by the scalar step control, from its error sums.
-        let err_sums = P::error_sums(&k[..=P::STAGES]);
-        let finite = finite_lanes(&k[1..=P::STAGES], &y_new);
-        let mut err = [0.0; LANES];
-        for l in 0..LANES {
-            if let Some(s) = slots[l].as_ref().filter(|_| finite[l]) {
-                let (st, sums) = (&s.run.st, err_sums.map(|e| e.lane(l)));
-                err[l] = P::error_from_sums(&sums, h[l], &st.y, &y_new.lane(l), st.rtol, st.atol);
-            }
-        }
-        // err^e of every lane at once (its square roots in vector registers).
-        let mut power = [0.0; LANES];
-        for l in 0..LANES {
-            power[l] = P::error_power(err[l]);
-        }
-        let mut accepted = [false; LANES];
-        for l in 0..LANES {
-            let Some(s) = slots[l].as_mut() else { continue };
-            let step = (t_new[l], h[l]);
-            let error = (err[l], power[l]);
-            match judge_lane(s, &k[..=P::STAGES], (l, finite[l]), error, step, &y_new) {
-                Judgement::Accepted => accepted[l] = true,
-                Judgement::Retry => s.run.out.n_rejected += 1,
-                Judgement::NonFinite => {
-                    let mut s = slots[l].take().expect("a lane in use");
-                    s.run.out.status = Status::NonFinite;
-                    done(s.track, s.run.out);
-                }
-            }
-        }
-        // The accepted steps that their ends alone clear of events: observed
-        // without dense output (the scalar code).
-        let mut ended = [false; LANES];
-        let mut dense_for = [false; LANES];
-        for l in (0..LANES).filter(|&l| accepted[l]) {
-            let s = slots[l].as_mut().expect("an accepted lane");
-            let track = &s.track;
-            let observer = &mut |obs: Observation<'_, N>| track.observe(obs);
-            if s.run.after_quiet_step(track.events(), &f.lane(l), observer) {
-                ended[l] = s.run.ends_here(stop);
-            } else {
-                dense_for[l] = true;
-            }
-        }
+        let y_new = stages::<P, T, N>(&slots, &mut round, &mut k);
+        let accepted = verdicts(&mut slots, &round, &k, &y_new, &mut done);
+        let (mut ended, dense_for) = quiet_steps(&mut slots, &round, accepted, stop);
         if dense_for.contains(&true) {
-            // The extra stages of the dense output, from the step's start (y, h), computed
-            // for all lanes, used by those that need them.
-            // (A lane whose trajectory ended meanwhile repeats one in use, as free lanes do.)
-            let any = slots.iter().flatten().next().expect("a lane in use");
-            let systems: [&T::Sys; LANES] =
-                std::array::from_fn(|l| slots[l].as_ref().unwrap_or(any).track.sys());
-            for i in 0..P::EXTRA {
-                let j = P::STAGES + 1 + i;
-                let d = weighted_sum(&k[..j], &P::a_extra(i)[..j]);
-                k[j] = T::Sys::rhs_lanes(&systems, &y.plus_times(&d, &h));
-            }
-            // The other accepted steps' dense output, events and observations: the scalar
-            // code.
-            let dense_sums = P::dense_sums(&k[..n_k]);
-            for l in (0..LANES).filter(|&l| dense_for[l]) {
-                let s = slots[l].as_mut().expect("an accepted lane");
-                let dense = dense_of_lane(s, &k[..n_k], &dense_sums, l);
-                let track = &s.track;
-                let observer = &mut |obs: Observation<'_, N>| track.observe(obs);
-                ended[l] = s.run.after_step(track.events(), dense.as_ref(), observer)
-                    || s.run.ends_here(stop);
+            dense_steps(&mut slots, &round, &mut k, dense_for, &mut ended, stop);
+        }
+        after_round(&mut slots, accepted, ended, &mut done);
+    }
+}
+
+/// Fills the free lanes from `next`; a trajectory that ends before its first step is done
+/// at once. True if `next` has nothing now (it may have more later: a trajectory that
+/// `done` starts).
+#[inline(always)]
+fn fill<P, T, const N: usize>(
+    slots: &mut Slots<P, T, N>,
+    next: &mut impl FnMut() -> Option<Start<T, N>>,
+    done: &mut impl FnMut(T, Outcome<N>),
+    stop: &dyn Fn() -> bool,
+) -> bool
+where
+    P: RkPair<N>,
+    T: Track<N>,
+{
+    for slot in slots.iter_mut().filter(|s| s.is_none()) {
+        while slot.is_none() {
+            let Some(Start {
+                track,
+                t0,
+                y0,
+                t_end,
+                opts,
+            }) = next()
+            else {
+                return true;
+            };
+            match Run::<P, N>::begin(track.sys(), t0, y0, t_end, &opts) {
+                Ok(mut run) => {
+                    if run.ends_here(stop) {
+                        done(track, run.out);
+                    } else {
+                        let trial = run.st.first_trial();
+                        *slot = Some(Slot { track, run, trial });
+                    }
+                }
+                Err(out) => done(track, out),
             }
         }
-        for l in (0..LANES).filter(|&l| accepted[l]) {
-            if ended[l] {
-                let s = slots[l].take().expect("a lane in use");
+    }
+    false
+}
+
+/// Every busy lane's trajectory to its end alone, by the scalar loop.
+#[inline(always)]
+fn finish_alone<P, T, const N: usize>(
+    slots: &mut Slots<P, T, N>,
+    done: &mut impl FnMut(T, Outcome<N>),
+    stop: &dyn Fn() -> bool,
+) where
+    P: RkPair<N>,
+    T: Track<N>,
+{
+    for slot in slots.iter_mut() {
+        if let Some(Slot { track, run, trial }) = slot.take() {
+            let observer = &mut |obs: Observation<'_, N>| track.observe(obs);
+            let (sys, events) = (track.sys(), track.events());
+            let out = run.to_end(Some(trial), sys, events, observer, stop);
+            done(track, out);
+        }
+    }
+}
+
+/// One round's steps, lane by lane: each one's start (y, f), size h and end time t_new.
+/// Free lanes repeat the first busy one (the same inputs, the same finite values), so
+/// every lane's arithmetic is that of a real trajectory.
+struct Round<const N: usize> {
+    y: Lanes<N>,
+    f: Lanes<N>,
+    h: Lane,
+    t_new: Lane,
+}
+
+/// Each busy lane's trial step (a step too small ends its trajectory): the round, or
+/// `None` if no lane is left busy.
+#[inline(always)]
+fn trials<P, T, const N: usize>(
+    slots: &mut Slots<P, T, N>,
+    done: &mut impl FnMut(T, Outcome<N>),
+) -> Option<Round<N>>
+where
+    P: RkPair<N>,
+{
+    let mut h = [0.0; LANES];
+    let mut t_new = [0.0; LANES];
+    for (l, slot) in slots.iter_mut().enumerate() {
+        let Some(s) = slot else { continue };
+        match s.run.st.trial(s.trial.h_abs) {
+            Some((tn, hl)) => (t_new[l], h[l]) = (tn, hl),
+            None => {
+                s.run.out.status = Status::StepTooSmall;
+                let s = slot.take().expect("a lane in use");
                 done(s.track, s.run.out);
-            } else {
-                let s = slots[l].as_mut().expect("an accepted lane");
-                s.trial = s.run.st.first_trial();
             }
+        }
+    }
+    let first = slots.iter().position(Option::is_some)?;
+    let busy = |l: usize| if slots[l].is_some() { l } else { first };
+    let mut y = Lanes::<N>::zero();
+    let mut f = Lanes::<N>::zero();
+    for l in 0..LANES {
+        let st = &slots[busy(l)].as_ref().expect("busy").run.st;
+        y.set_lane(l, &st.y);
+        f.set_lane(l, &st.f);
+        h[l] = h[busy(l)];
+    }
+    Some(Round { y, f, h, t_new })
+}
+
+/// Lane l's system, or that of a busy lane where l is free.
+#[inline(always)]
+fn systems<P, T: Track<N>, const N: usize>(slots: &Slots<P, T, N>) -> [&T::Sys; LANES] {
+    let any = slots.iter().flatten().next().expect("a lane in use");
+    std::array::from_fn(|l| slots[l].as_ref().unwrap_or(any).track.sys())
+}
+
+/// The stages of every lane into `k`, then the end state y + (Σ b_j K_j) h and f there
+/// (FSAL), which it returns.
+#[inline(always)]
+fn stages<P, T, const N: usize>(
+    slots: &Slots<P, T, N>,
+    round: &mut Round<N>,
+    k: &mut [Lanes<N>; MAX_STAGES],
+) -> Lanes<N>
+where
+    P: RkPair<N>,
+    T: Track<N>,
+{
+    let systems = systems(slots);
+    let (y, h) = (&round.y, &round.h);
+    k[0] = round.f;
+    for s in 1..P::STAGES {
+        let d = weighted_sum(&k[..s], &P::a(s)[..s]);
+        k[s] = T::Sys::rhs_lanes(&systems, &y.plus_times(&d, h));
+    }
+    let y_new = y.plus_times(&weighted_sum(&k[..P::STAGES], P::b()), h);
+    k[P::STAGES] = T::Sys::rhs_lanes(&systems, &y_new);
+    T::Sys::step_end_lanes(&systems, &y_new);
+    y_new
+}
+
+/// Each lane's verdict by the scalar step control, from its error sums (err^e of every
+/// lane at once, its square roots in vector registers): which lanes' steps were accepted.
+/// A lane whose attempt is not finite is done.
+#[inline(always)]
+fn verdicts<P, T, const N: usize>(
+    slots: &mut Slots<P, T, N>,
+    round: &Round<N>,
+    k: &[Lanes<N>; MAX_STAGES],
+    y_new: &Lanes<N>,
+    done: &mut impl FnMut(T, Outcome<N>),
+) -> [bool; LANES]
+where
+    P: RkPair<N>,
+{
+    let err_sums = P::error_sums(&k[..=P::STAGES]);
+    let finite = finite_lanes(&k[1..=P::STAGES], y_new);
+    let mut err = [0.0; LANES];
+    for l in 0..LANES {
+        if let Some(s) = slots[l].as_ref().filter(|_| finite[l]) {
+            let (st, sums) = (&s.run.st, err_sums.map(|e| e.lane(l)));
+            let h = round.h[l];
+            err[l] = P::error_from_sums(&sums, h, &st.y, &y_new.lane(l), st.rtol, st.atol);
+        }
+    }
+    let mut power = [0.0; LANES];
+    for l in 0..LANES {
+        power[l] = P::error_power(err[l]);
+    }
+    let mut accepted = [false; LANES];
+    for l in 0..LANES {
+        let Some(s) = slots[l].as_mut() else { continue };
+        let step = (round.t_new[l], round.h[l]);
+        let error = (err[l], power[l]);
+        match judge_lane(s, &k[..=P::STAGES], (l, finite[l]), error, step, y_new) {
+            Judgement::Accepted => accepted[l] = true,
+            Judgement::Retry => s.run.out.n_rejected += 1,
+            Judgement::NonFinite => {
+                let mut s = slots[l].take().expect("a lane in use");
+                s.run.out.status = Status::NonFinite;
+                done(s.track, s.run.out);
+            }
+        }
+    }
+    accepted
+}
+
+/// The accepted steps that their ends alone clear of events, observed without dense output
+/// (the scalar code): which lanes' trajectories ended there, and which steps need their
+/// dense output.
+#[inline(always)]
+fn quiet_steps<P, T, const N: usize>(
+    slots: &mut Slots<P, T, N>,
+    round: &Round<N>,
+    accepted: [bool; LANES],
+    stop: &dyn Fn() -> bool,
+) -> ([bool; LANES], [bool; LANES])
+where
+    P: RkPair<N>,
+    T: Track<N>,
+{
+    let mut ended = [false; LANES];
+    let mut dense_for = [false; LANES];
+    for l in (0..LANES).filter(|&l| accepted[l]) {
+        let s = slots[l].as_mut().expect("an accepted lane");
+        let track = &s.track;
+        let observer = &mut |obs: Observation<'_, N>| track.observe(obs);
+        if s.run
+            .after_quiet_step(track.events(), &round.f.lane(l), observer)
+        {
+            ended[l] = s.run.ends_here(stop);
+        } else {
+            dense_for[l] = true;
+        }
+    }
+    (ended, dense_for)
+}
+
+/// The extra stages of the dense output, from the step's start (y, h), computed for all
+/// lanes, used by those in `dense_for`, whose accepted steps' dense output, events and
+/// observations are then the scalar code's. Which trajectories ended goes to `ended`.
+#[inline(always)]
+fn dense_steps<P, T, const N: usize>(
+    slots: &mut Slots<P, T, N>,
+    round: &Round<N>,
+    k: &mut [Lanes<N>; MAX_STAGES],
+    dense_for: [bool; LANES],
+    ended: &mut [bool; LANES],
+    stop: &dyn Fn() -> bool,
+) where
+    P: RkPair<N>,
+    T: Track<N>,
+{
+    // (A lane whose trajectory ended meanwhile repeats one in use, as free lanes do.)
+    let systems = systems(slots);
+    for i in 0..P::EXTRA {
+        let j = P::STAGES + 1 + i;
+        let d = weighted_sum(&k[..j], &P::a_extra(i)[..j]);
+        k[j] = T::Sys::rhs_lanes(&systems, &round.y.plus_times(&d, &round.h));
+    }
+    let n_k = P::STAGES + 1 + P::EXTRA;
+    let dense_sums = P::dense_sums(&k[..n_k]);
+    for l in (0..LANES).filter(|&l| dense_for[l]) {
+        let s = slots[l].as_mut().expect("an accepted lane");
+        let dense = dense_of_lane(s, &k[..n_k], &dense_sums, l);
+        let track = &s.track;
+        let observer = &mut |obs: Observation<'_, N>| track.observe(obs);
+        ended[l] =
+            s.run.after_step(track.events(), dense.as_ref(), observer) || s.run.ends_here(stop);
+    }
+}
+
+/// After the round: each accepted lane whose trajectory ended is done, the others begin
+/// their next step.
+#[inline(always)]
+fn after_round<P, T, const N: usize>(
+    slots: &mut Slots<P, T, N>,
+    accepted: [bool; LANES],
+    ended: [bool; LANES],
+    done: &mut impl FnMut(T, Outcome<N>),
+) where
+    P: RkPair<N>,
+{
+    for l in (0..LANES).filter(|&l| accepted[l]) {
+        if ended[l] {
+            let s = slots[l].take().expect("a lane in use");
+            done(s.track, s.run.out);
+        } else {
+            let s = slots[l].as_mut().expect("an accepted lane");
+            s.trial = s.run.st.first_trial();
         }
     }
 }

@@ -8,7 +8,7 @@
 
 use super::events::{quiet_step, scan_step, EventCarry, NonFiniteEvent};
 use super::pair::{all_finite, error_scale, Dop853, Dp5, Method, RkPair, Vern9};
-use super::stepper::{select_initial_step, StepStatus, Stepper, Trial};
+use super::stepper::{select_initial_step, Point, StepStatus, Stepper, Trial};
 use super::{DenseStep, EventFunctions, OdeSystem, State, StepEnds};
 
 /// Integration options, with scipy's meanings.
@@ -178,27 +178,35 @@ where
     O: FnMut(Observation<'_, N>),
 {
     match opts.method {
-        Method::Rk45 => {
-            drive::<Dp5<N>, _, _, _, N>(sys, events, t0, y0, t_end, opts, observer, stop)
-        }
-        Method::Dop853 => {
-            drive::<Dop853<N>, _, _, _, N>(sys, events, t0, y0, t_end, opts, observer, stop)
-        }
-        Method::Vern9 => {
-            drive::<Vern9<N>, _, _, _, N>(sys, events, t0, y0, t_end, opts, observer, stop)
-        }
+        Method::Rk45 => drive(
+            Run::<Dp5<N>, N>::begin(sys, t0, y0, t_end, opts),
+            sys,
+            events,
+            observer,
+            stop,
+        ),
+        Method::Dop853 => drive(
+            Run::<Dop853<N>, N>::begin(sys, t0, y0, t_end, opts),
+            sys,
+            events,
+            observer,
+            stop,
+        ),
+        Method::Vern9 => drive(
+            Run::<Vern9<N>, N>::begin(sys, t0, y0, t_end, opts),
+            sys,
+            events,
+            observer,
+            stop,
+        ),
     }
 }
 
-/// [`solve_until`] with the pair P.
-#[allow(clippy::too_many_arguments)]
+/// A run just begun (or its outcome, if it ended at its start) driven to its end.
 fn drive<P, S, E, O, const N: usize>(
+    begun: Result<Run<P, N>, Outcome<N>>,
     sys: &S,
     events: &E,
-    t0: f64,
-    y0: State<N>,
-    t_end: f64,
-    opts: &SolverOptions,
     observer: &mut O,
     stop: &dyn Fn() -> bool,
 ) -> Outcome<N>
@@ -208,7 +216,7 @@ where
     E: EventFunctions<N>,
     O: FnMut(Observation<'_, N>),
 {
-    match Run::<P, N>::begin(sys, t0, y0, t_end, opts) {
+    match begun {
         Err(out) => out,
         Ok(run) => run.to_end(None, sys, events, observer, stop),
     }
@@ -255,36 +263,32 @@ impl<P: RkPair<N>, const N: usize> Run<P, N> {
         if !all_finite(&f0) {
             return Err(out);
         }
-        let direction = if t_end >= t0 { 1.0 } else { -1.0 };
+        let start = Point {
+            t: t0,
+            y: y0,
+            f: f0,
+        };
+        let tol = (opts.rtol, opts.atol);
         let h_abs = match opts.first_step {
             Some(h) => h,
-            None => match select_initial_step(
-                (P::first_step_power, P::FIRST_STEP_PROBES),
-                sys,
-                t0,
-                &y0,
-                t_end,
-                opts.max_step,
-                &f0,
-                direction,
-                opts.rtol,
-                opts.atol,
-                &mut out.nfev,
-            ) {
-                Some(h) => h,
-                None => return Err(out),
-            },
+            None => {
+                let power = (P::first_step_power as fn(f64) -> f64, P::FIRST_STEP_PROBES);
+                let first = select_initial_step(
+                    power,
+                    sys,
+                    &start,
+                    t_end,
+                    opts.max_step,
+                    tol,
+                    &mut out.nfev,
+                );
+                match first {
+                    Some(h) => h,
+                    None => return Err(out),
+                }
+            }
         };
-        let st = Stepper::<P, N>::new(
-            t0,
-            y0,
-            f0,
-            h_abs,
-            t_end,
-            opts.max_step,
-            opts.rtol,
-            opts.atol,
-        );
+        let st = Stepper::<P, N>::new(start, h_abs, t_end, opts.max_step, tol);
         let st = Stepper {
             max_first_change: opts.max_first_change,
             ..st

@@ -39,29 +39,52 @@ pub fn min_step(t: f64, direction: f64) -> f64 {
     10.0 * (next_after(t, direction) - t).abs()
 }
 
+/// A point of the solution with the derivative there: where an integration starts, (t0,
+/// y0) and f0 = f(t0, y0).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Point<const N: usize> {
+    /// t.
+    pub t: f64,
+    /// y(t).
+    pub y: State<N>,
+    /// f(t, y).
+    pub f: State<N>,
+}
+
+/// +1 or −1: the direction of integration from t0 to t_bound (+1 if they are equal).
+#[inline]
+fn direction_to(t0: f64, t_bound: f64) -> f64 {
+    if t_bound >= t0 {
+        1.0
+    } else {
+        -1.0
+    }
+}
+
 /// scipy 1.17 `select_initial_step` (Hairer–Nørsett–Wanner II.4 with scipy's bounds by
-/// the interval length and max_step). Makes one evaluation of f; `None` if it is not
-/// finite.
+/// the interval length and max_step), from `start` towards `t_bound` with the tolerances
+/// (rtol, atol). Makes one evaluation of f; `None` if it is not finite.
 /// `power(d)` is the pair's (0.01/d)^(1/(q + 1)) ([`RkPair::first_step_power`]).
 ///
 /// With `probes` > 1, where scipy's answer is its cap of 100 times the probe step (always
 /// from y0 = 0, whose probe step is 1e-6), the estimate is made again from a probe of the
 /// step found, up to `probes` evaluations in all: one evaluation instead of the whole steps
 /// that would grow the step tenfold at a time (three or four of them from rest).
-#[allow(clippy::too_many_arguments)]
 pub fn select_initial_step<S: OdeSystem<N>, const N: usize>(
     (power, probes): (fn(f64) -> f64, usize),
     sys: &S,
-    t0: f64,
-    y0: &State<N>,
+    start: &Point<N>,
     t_bound: f64,
     max_step: f64,
-    f0: &State<N>,
-    direction: f64,
-    rtol: f64,
-    atol: f64,
+    (rtol, atol): (f64, f64),
     nfev: &mut usize,
 ) -> Option<f64> {
+    let Point {
+        t: t0,
+        y: y0,
+        f: f0,
+    } = start;
+    let (t0, direction) = (*t0, direction_to(*t0, t_bound));
     if N == 0 {
         return Some(f64::INFINITY);
     }
@@ -171,27 +194,24 @@ pub struct Stepper<P, const N: usize> {
 }
 
 impl<P: RkPair<N>, const N: usize> Stepper<P, N> {
-    /// A stepper at (t0, y0) with f0 = f(t0, y0), first trial step `h_abs`.
-    #[allow(clippy::too_many_arguments)]
+    /// A stepper at `start`, first trial step `h_abs`, towards `t_bound` with steps of at
+    /// most `max_step` and the tolerances (rtol, atol).
     pub fn new(
-        t0: f64,
-        y0: State<N>,
-        f0: State<N>,
+        start: Point<N>,
         h_abs: f64,
         t_bound: f64,
         max_step: f64,
-        rtol: f64,
-        atol: f64,
+        (rtol, atol): (f64, f64),
     ) -> Self {
         Self {
-            t: t0,
-            y: y0,
-            f: f0,
+            t: start.t,
+            y: start.y,
+            f: start.f,
             h_abs,
-            t_old: t0,
-            y_old: y0,
+            t_old: start.t,
+            y_old: start.y,
             pair: P::empty(),
-            direction: if t_bound >= t0 { 1.0 } else { -1.0 },
+            direction: direction_to(start.t, t_bound),
             t_bound,
             max_step,
             max_first_change: f64::INFINITY,
@@ -390,17 +410,18 @@ mod tests {
         fn first<S: OdeSystem<2>>(sys: &S, y0: State<2>, probes: usize) -> (Option<f64>, usize) {
             let f0 = sys.rhs(0.0, &y0);
             let mut nfev = 0;
+            let start = Point {
+                t: 0.0,
+                y: y0,
+                f: f0,
+            };
             let h = select_initial_step(
                 (Vern9::<2>::first_step_power, probes),
                 sys,
-                0.0,
-                &y0,
+                &start,
                 100.0,
                 f64::INFINITY,
-                &f0,
-                1.0,
-                1e-8,
-                1e-10,
+                (1e-8, 1e-10),
                 &mut nfev,
             );
             (h, nfev)

@@ -500,7 +500,12 @@ fn integrator_failure_is_no_physical_verdict() {
     let a = 1f64.to_radians();
     let ok = classify_ode(a, 0.3, 0.2, 1.0, &o, (RTOL, ATOL), ode::Method::Rk45);
     assert_ne!(ok.reason, Reason::SolverFailed);
-    let r = classify_ode_budget(a, 0.3, 0.2, 1.0, &o, (RTOL, ATOL), ode::Method::Rk45, 1);
+    let how = Integration {
+        tol: (RTOL, ATOL),
+        pair: ode::Method::Rk45,
+        steps_per_turn: 1,
+    };
+    let r = classify_ode_budget(a, 0.3, 0.2, 1.0, &o, how);
     assert_eq!(r.reason, Reason::SolverFailed, "{r:?}");
     assert!(!r.is_jarm && r.theta_event.is_finite() && r.theta_j.is_nan());
     assert!(r.theta_event < ok.theta_event.max(ok.theta_j));
