@@ -1495,6 +1495,10 @@ def cli_design_argv(d: Drawer) -> list[str]:
             argv += [opt, cli_number(d, lo, hi)]
     if d.integer(0, 2) == 0:
         argv += ["--target", d.choice(("jarm", "slip", "fly"))]
+    if d.integer(0, 3) == 0:
+        argv += ["--sd", d.choice(("chi", "alpha", "mu_k")), cli_number(d, 0, 0.05)]
+        argv += ["--samples", d.choice(("100", "200", "99"))]
+        argv += ["--maximise", d.choice(("margin", "probability", "odds"))]
     if d.integer(0, 1):
         argv.append("--json")
     return argv
@@ -1508,7 +1512,8 @@ CLI_PARAMS = (
     "mu_k", "mu-k", "restitution", "max_transitions", "max-transitions", "route",
     "omega-max", "omega_max", "lattice", "map-grid", "map-size",
     "alpha_range", "alpha-range", "mu_s_err", "mu-s-err", "radius", "mass", "target",
-    "body", "g", "error", "km_range", "rod_range", "integrator",
+    "body", "g", "error", "km_range", "rod_range", "integrator", "sd", "samples", "maximise",
+    "tolerances",
 )  # fmt: skip
 
 

@@ -251,6 +251,14 @@ def test_cli_design():
     assert json.loads(out)["target"] == "slip"
     code, out, err = run_cli_inprocess(["design", "--alpha-range", "10", "40", "--mu-s", "-1"])
     assert code == 2 and "mu_s" in err and "Traceback" not in err
+    odds = ["--sd", "alpha", "2", "--sd", "chi", "0.02", "--samples", "500"]
+    code, out, err = run_cli_inprocess([*argv, *odds, "--maximise", "probability", "--json"])
+    assert code == 0, err
+    sheet = json.loads(out)
+    assert sheet["tolerances"] == {"alpha": math.radians(2), "chi": 0.02}
+    assert 0 <= sheet["p_success"]["low"] <= sheet["p_success"]["p"] <= 1
+    code, out, err = run_cli_inprocess([*argv, "--sd", "chi", "x"])
+    assert code == 2 and "--sd chi" in err and "Traceback" not in err
 
 
 # --- bad input --------------------------------------------------------------------------------
@@ -290,6 +298,13 @@ def test_cli_design():
         ({"min_apex": "1"}, TypeError, "min_apex"),
         ({"min_apex": 0.1, "target": "slip"}, ValueError, "min_apex"),
         ({"min_apex": 5.0}, ValueError, "apex"),  # no grid point flies that high
+        ({"maximise": "probability"}, ValueError, "tolerances"),
+        ({"maximise": "odds", "tolerances": {"chi": 0.01}}, ValueError, "maximise"),
+        ({"tolerances": {"mu_k": 0.01}}, ValueError, "mu_k"),
+        ({"tolerances": {"alpha": -0.01}}, ValueError, "alpha"),
+        ({"tolerances": [0.01]}, TypeError, "sd"),
+        ({"tolerances": {"chi": 0.01}, "samples": 99}, ValueError, "samples"),
+        ({"tolerances": {"chi": 0.01}, "seed": -1}, ValueError, "seed"),
     ],
 )
 def test_bad_input_names_the_parameter(kwargs, exc, name):
@@ -332,3 +347,43 @@ def test_a_design_on_the_edge_of_its_range_says_so(jump):
     edge = [n for n in jump.notes if "end of km_range" in n]
     assert (jump.body.km == 0.01) == bool(edge), jump.notes
     assert any("end of" in line for line in jump.sheet().splitlines() if line.startswith("note"))
+
+
+# --- the probability of success under the lab's tolerances ---------------------------------
+
+TOLERANCES = {"alpha": math.radians(2), "chi": 0.02, "km": 0.01, "mu_s": 0.1}
+
+
+def test_p_success_agrees_with_an_independent_monte_carlo():
+    """The design's P(verdict) against plain rejection sampling of the same normals (the
+    truncated law the design samples by its inverse CDF) judged point by point by jarm."""
+    d = design(RANGE, 0.6, 0.1, grid=8, tolerances=TOLERANCES, samples=4000, seed=5)
+    nominal = {"chi": d.body.chi, "km": d.body.km, "alpha": d.alpha, "mu_s": d.mu_s}
+    rng = np.random.default_rng(2026)
+    kept: list[dict[str, float]] = []
+    while len(kept) < 1500:
+        x = {k: rng.normal(v, TOLERANCES[k]) for k, v in nominal.items()}
+        body_ok = 0 <= x["chi"] <= 1 and 0 <= x["km"] <= 1 - x["chi"]
+        if body_ok and 0 <= x["alpha"] <= math.pi / 2 and x["mu_s"] >= 0:
+            kept.append(x)
+    hits = sum(verdict(d, x["alpha"], x["chi"], x["km"], x["mu_s"]) for x in kept)
+    p_mc, p = hits / len(kept), d.p_success.p
+    se = math.sqrt(p * (1 - p) / d.p_success.n_valid + p_mc * (1 - p_mc) / len(kept))
+    assert 0.05 < p < 0.99 and abs(p - p_mc) < 4 * se, (p, p_mc, se)
+    assert d.p_success.low <= p <= d.p_success.high
+
+
+def test_maximising_the_probability_never_does_worse_than_the_margin():
+    kw = {"grid": 8, "tolerances": TOLERANCES, "samples": 2000, "seed": 1}
+    by_margin = design(RANGE, 0.6, 0.1, **kw)
+    by_odds = design(RANGE, 0.6, 0.1, maximise="probability", **kw)
+    # the same samples: the margin's design is one of the candidates
+    assert by_odds.p_success.p >= by_margin.p_success.p
+    assert by_odds.reasons == {"paper": "JARM", "normal_force": "JARM"}
+    assert design(RANGE, 0.6, 0.1, grid=8).p_success is None
+
+
+def test_p_success_is_on_the_sheet_and_in_the_json():
+    d = design(RANGE, 0.6, 0.1, grid=8, tolerances={"chi": 0.02}, samples=500)
+    assert "P(success)" in str(d) and "chi ± 0.02" in str(d)
+    assert json.loads(json.dumps(d.to_dict()))["p_success"]["p"] == d.p_success.p

@@ -83,8 +83,40 @@ def add_parser(sub: argparse._SubParsersAction) -> None:
         help="least apex of the first flight [R, or m with --radius] for a jump you can see "
         "(default 0: none; try 0.15 on a 40-70 deg ramp)",
     )
+    p.add_argument(
+        "--sd",
+        nargs=2,
+        action="append",
+        default=[],
+        metavar=("NAME", "SD"),
+        help="a lab tolerance (repeatable): the normal standard deviation of chi, km, alpha "
+        "[deg] or mu_s; the sheet then gives P(success), the probability of the verdict",
+    )
+    p.add_argument(
+        "--maximise",
+        choices=("margin", "probability"),
+        default="margin",
+        help="maximise the smallest relative margin (default) or, with --sd, P(success)",
+    )
+    p.add_argument(
+        "--samples", type=int, default=10_000, help="samples per probability (default 10000)"
+    )
     p.add_argument("--json", action="store_true", help="print machine-readable JSON")
     p.set_defaults(func=_cmd_design)
+
+
+def _tolerances(pairs: list[list[str]]) -> dict[str, float] | None:
+    """--sd as the API's tolerances (alpha from degrees; a name given twice: ValueError)."""
+    out: dict[str, float] = {}
+    for name, text in pairs:
+        if name in out:
+            raise ValueError(f"--sd {name[:40]}: given twice")
+        try:
+            value = float(text)
+        except ValueError:
+            raise ValueError(f"--sd {name[:40]}: {text[:40]!r} is not a number") from None
+        out[name] = math.radians(value) if name == "alpha" else value
+    return out or None
 
 
 def _cmd_design(args: argparse.Namespace) -> int:
@@ -106,6 +138,9 @@ def _cmd_design(args: argparse.Namespace) -> int:
         error=args.error,
         grid=args.grid,
         min_apex=args.min_apex,
+        tolerances=_tolerances(args.sd),
+        maximise=args.maximise,
+        samples=args.samples,
     )
     if args.json:
         print(json.dumps(d.to_dict(), indent=2))

@@ -286,7 +286,10 @@ class Design:
 
 def _odds(s: Success, tolerances: dict[str, float] | None) -> str:
     """P(success) with its interval and what it is for, in one line."""
-    tol = ", ".join(f"{k} ± {v:g}" for k, v in (tolerances or {}).items())
+    tol = ", ".join(
+        f"alpha ± {math.degrees(v):.4g} deg" if k == "alpha" else f"{k} ± {v:g}"
+        for k, v in (tolerances or {}).items()
+    )
     return f"{s.p:.4f} [{s.low:.4f}, {s.high:.4f}] (95 %, {s.n_valid} samples; {tol})"
 
 
