@@ -153,7 +153,7 @@ def design(
         ``alpha`` [rad] and ``mu_s`` (as in :func:`eccjump.uncertainty`): the design then
         reports ``p_success``, the probability that a body built to it keeps the verdict
         (under both rules, within ``max_turns``, with ``min_apex``), from ``samples``
-        random samples truncated to the physical range.
+        random samples truncated to the physical range (needs scipy: ``eccjump[analysis]``).
     maximise : {"margin", "probability"}, default "margin"
         What the design maximises: the smallest relative margin, or (with ``tolerances``)
         ``p_success``, compared on the same samples over the best grid points and the
