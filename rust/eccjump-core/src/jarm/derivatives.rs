@@ -24,8 +24,11 @@
 //!
 //! Not differentiable (flagged `singular`, every derivative NaN): ∂g/∂θ = 0 within rounding
 //! (θ_J a double root: the lift-off function tangent to 0, where θ_J jumps between turns as
-//! p moves), and under the classical rule a tie F_x = F_y = 0 (the corner of the friction
-//! cone). "Within rounding" is |∂g/∂θ| ≤ √ε · s, with s = 1 + χ(θ̇² + |θ̈|) the size of the
+//! p moves), and under the classical rule a tie F_x = F_y = 0 with k_m > 0 (the corner of the
+//! friction cone; for k_m = 0, Ĩ_CM = 0, the contact force points at the centre of mass, F_x
+//! and F_y vanish together and g = F_y). Under the paper's rule a JARM is never a double
+//! root: where L = ∂L/∂θ = 0, θ̈ = θ̇² tan θ/2 and F_y = −χ θ̇² sin²θ/(2 cos θ) < 0, so the
+//! normal force was lost before. "Within rounding" is |∂g/∂θ| ≤ √ε · s, with s = 1 + χ(θ̇² + |θ̈|) the size of the
 //! terms of ∂g/∂θ: there the rounding of θ_J alone leaves no correct digit. Near it the
 //! derivatives are finite but lose digits, their relative error about (√ε s/|∂g/∂θ|)².
 
@@ -146,9 +149,12 @@ impl Rolling {
 
 /// The function g that vanishes at θ_J under `rule` (module notes), and whether it is the
 /// classical rule's F_y; None for the classical rule's tie F_x = F_y = 0 (within `tol`).
-fn vanishing(q: &Rolling, rule: Rule, mu_s: f64, tol: f64) -> Option<(Dual, bool)> {
+/// For k_m = 0 (Ĩ_CM = 0) the contact force points at the centre of mass, so F_x ∝ F_y and
+/// both vanish together at the classical lift-off: g = F_y, a simple root, not a tie.
+fn vanishing(q: &Rolling, rule: Rule, km: f64, mu_s: f64, tol: f64) -> Option<(Dual, bool)> {
     match rule {
         Rule::Paper => Some((q.lift, false)),
+        Rule::NormalForce if km == 0.0 => Some((q.fy, true)),
         Rule::NormalForce => {
             let (fx, fy) = (q.fx.v, q.fy.v);
             if fx.abs() <= tol && fy.abs() <= tol {
@@ -186,7 +192,7 @@ pub fn jump_derivatives(
         return q.along([0.0; 3], false);
     }
     let tol = TANGENT * q.scale(chi);
-    let Some((g, normal_force_root)) = vanishing(&q, o.rule, mu_s, tol) else {
+    let Some((g, normal_force_root)) = vanishing(&q, o.rule, km, mu_s, tol) else {
         return JumpDerivatives::nan(true);
     };
     let slope = g.d[0];

@@ -123,8 +123,41 @@ fn a_classical_tie_of_both_forces_at_zero_is_flagged() {
         fx: zero.scale(2.0),
         fy: zero.scale(-1.0),
     };
-    assert!(vanishing(&q, Rule::NormalForce, 1.0, 1e-12).is_none());
-    assert!(vanishing(&q, Rule::Paper, 1.0, 1e-12).is_some());
+    assert!(vanishing(&q, Rule::NormalForce, 0.1, 1.0, 1e-12).is_none());
+    assert!(vanishing(&q, Rule::Paper, 0.1, 1.0, 1e-12).is_some());
+    // k_m = 0: the forces vanish together at every classical lift-off; F_y is the root.
+    assert!(vanishing(&q, Rule::NormalForce, 0.0, 1.0, 1e-12).is_some_and(|(_, fy)| fy));
+}
+
+#[test]
+fn classical_jumps_of_a_body_without_inertia_about_its_centre_of_mass() {
+    // k_m = 0: F_x = F_y = 0 at the lift-off (not a tie); the α and χ slopes are those of
+    // the classification (for k_m > 0 these points slip first, so k_m is left out).
+    let o = JarmOptions {
+        rule: Rule::NormalForce,
+        ..JarmOptions::default()
+    };
+    let p = [0.6981317007977318, 0.27, 0.0];
+    let r = classified(p, 1.0, &o);
+    assert_eq!(r.reason, Reason::Jarm);
+    assert!(r.fx_j.abs() < 1e-12 && r.fy_j.abs() < 1e-12);
+    let d = jump_derivatives(p[0], p[1], p[2], 1.0, r.theta_j, &o);
+    assert!(!d.singular && d.mu_j.iter().all(|x| x.is_nan()), "{d:?}");
+    for i in 0..2 {
+        let fd = differences_of_theta(p, 1.0, &o, i);
+        assert!(
+            (d.theta_j[i] - fd).abs() < 1e-6 * (1.0 + fd.abs()),
+            "{i}: {d:?} {fd}"
+        );
+    }
+}
+
+fn differences_of_theta(p: [f64; 3], mu_s: f64, o: &JarmOptions, i: usize) -> f64 {
+    let h = 1e-6;
+    let (mut up, mut down) = (p, p);
+    up[i] += h;
+    down[i] -= h;
+    (classified(up, mu_s, o).theta_j - classified(down, mu_s, o).theta_j) / (2.0 * h)
 }
 
 #[test]
