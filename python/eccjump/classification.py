@@ -720,6 +720,10 @@ def region(
         in the labelled form and in the files of :func:`eccjump.maps.save` (not in the
         chunked files of ``eccjump map``). Not with ``chunks``. With respect to k_m itself,
         not km_frac: dk_m = (1 - chi) dkm_frac at fixed chi.
+
+    Returns
+    -------
+    Region or xarray.Dataset
         The map; its ``attrs`` record the tolerances, the integrator, ``max_turns``,
         ``refine_extrema`` and ``stop_at_slip`` as given, whatever the method (the closed
         form ignores the tolerances and the integrator).

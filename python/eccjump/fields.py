@@ -80,7 +80,7 @@ DERIVATIVE_TABLE: tuple[Field, ...] = (
         "d_theta_J",
         _F64,
         "rad",
-        "derivative of theta_J with respect to (alpha [rad], chi, km); NaN where theta_J is",
+        "derivative of theta_J with respect to (alpha, chi, km)",
         _NAN,
     ),
     Field("d_Fx_J", _F64, "M g", "derivative of Fx_J with respect to (alpha, chi, km)", _NAN),
@@ -201,7 +201,7 @@ def docstring() -> str:
     ]
     fields += [
         f"{f.name} : numpy.ndarray of {f.dtype} or None\n    {f.description}"
-        + ("" if f.units == "1" else f" [{f.units} per unit]")
+        + ("" if f.units == "1" else f" [{f.units} per unit of the parameter, alpha in rad]")
         + (". Shape: the point's plus (3,)" if f.dtype == _F64 else ". The point's shape")
         + "; None unless made with ``derivatives=True``."
         for f in DERIVATIVE_TABLE
