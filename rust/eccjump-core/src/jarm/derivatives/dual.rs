@@ -88,6 +88,8 @@ impl Neg for Dual {
 
 impl Mul for Dual {
     type Output = Self;
+    /// d(ab) = b da + a db.
+    #[allow(clippy::suspicious_arithmetic_impl)] // the product rule
     fn mul(self, o: Self) -> Self {
         Self {
             v: self.v * o.v,
@@ -99,6 +101,7 @@ impl Mul for Dual {
 impl Div for Dual {
     type Output = Self;
     /// d(a/b) = (da − (a/b) db)/b.
+    #[allow(clippy::suspicious_arithmetic_impl)] // the quotient rule
     fn div(self, o: Self) -> Self {
         let q = self.v / o.v;
         Self {
