@@ -875,8 +875,9 @@ def region_dataset(
         Initial angular velocity(ies) [sqrt(g/R) rad], in [0, 1e6]; a 1-D sequence is swept.
     **kwargs
         The options of :func:`region`: ``method``, ``rule``, ``rtol``, ``atol``,
-        ``max_turns``, ``refine_extrema``, ``stop_at_slip``, ``n_threads``, ``integrator``
-        and ``chunks`` (a dask-backed, lazily computed dataset).
+        ``max_turns``, ``refine_extrema``, ``stop_at_slip``, ``n_threads``, ``integrator``,
+        ``derivatives`` (the ``d_*`` variables, with a trailing dimension ``wrt``) and
+        ``chunks`` (a dask-backed, lazily computed dataset).
 
     Returns
     -------
