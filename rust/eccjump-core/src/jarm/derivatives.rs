@@ -18,7 +18,7 @@
 //! rolling (θ̇² moves with θ: ∂θ̇²/∂θ = 2θ̈) and ∂/∂p at fixed θ (θ̇² moves with p through the
 //! energy integral). A quantity q(θ; p) at the jump (F_x, F_y) then has the total derivative
 //! dq/dp = ∂q/∂θ dθ_J/dp + ∂q/∂p, and dμ_J = −(dF_x F_y − F_x dF_y)/F_y². The partials come
-//! from forward-mode differentiation ([`dual`]) of the formulas as written above. The route
+//! from forward-mode differentiation (module `dual`) of the formulas as written above. The route
 //! that found θ_J does not matter: the ODE route's θ_J enters the same formulas (θ̇² by
 //! energy is exact there too), so its derivatives carry only its error in θ_J.
 //!
