@@ -37,7 +37,7 @@ mod dual;
 use crate::jarm::decision::point_ramp;
 use crate::jarm::result::JarmOptions;
 use crate::mechanics::Rule;
-use dual::Dual;
+use dual::{sin, sin_cos, Dual};
 use std::f64::consts::TAU;
 
 /// √ε: below √ε times the size of its terms, ∂g/∂θ is zero within rounding.
@@ -98,16 +98,16 @@ impl Rolling {
         let k = Dual::variable(km, 3);
         // Ĩ_C = k_m + χ²/(1 − k_m); k_m = 1 forces χ = 0, where Ĩ_C = k_m.
         let ic = if km < 1.0 { k + x * x / (1.0 - k) } else { k };
-        let (s, c) = th.sin_cos();
-        let (sa, ca) = a.sin_cos();
+        let (s, c) = sin_cos(th);
+        let (sa, ca) = sin_cos(a);
         let ip = ic + (x * c).scale(2.0) + 1.0;
         let c0 = Dual::constant(crate::trig::sin_cos(theta0).1);
         let k0 = (ic + (x * c0).scale(2.0) + 1.0).scale(0.5 * omega0 * omega0);
         // χ(cos(α + θ0) − cos(α + θ)) = 2χ sin(α + (θ + θ0)/2) sin((θ − θ0)/2), as in the
         // energy module (no cancellation at small θ − θ0).
         let d = th + (-theta0);
-        let mid = (a + (th + theta0).scale(0.5)).sin();
-        let energy = k0 + d * sa + (x * mid * d.scale(0.5).sin()).scale(2.0);
+        let mid = sin(a + (th + theta0).scale(0.5));
+        let energy = k0 + d * sa + (x * mid * sin(d.scale(0.5))).scale(2.0);
         let omega_sq = energy.scale(2.0) / ip;
         let chi_w2 = x * omega_sq;
         let sin_at = sa * c + ca * s;

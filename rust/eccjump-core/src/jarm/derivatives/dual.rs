@@ -30,26 +30,6 @@ impl Dual {
         Self { v, d }
     }
 
-    /// (sin x, cos x), with d sin = cos dx and d cos = −sin dx.
-    pub fn sin_cos(self) -> (Self, Self) {
-        let (s, c) = crate::trig::sin_cos(self.v);
-        (
-            Self {
-                v: s,
-                d: self.d.map(|x| c * x),
-            },
-            Self {
-                v: c,
-                d: self.d.map(|x| -s * x),
-            },
-        )
-    }
-
-    /// sin x.
-    pub fn sin(self) -> Self {
-        self.sin_cos().0
-    }
-
     /// `k` times this number, for a constant `k`.
     pub fn scale(self, k: f64) -> Self {
         Self {
@@ -57,6 +37,27 @@ impl Dual {
             d: self.d.map(|x| k * x),
         }
     }
+}
+
+/// (sin x, cos x), with d sin = cos dx and d cos = −sin dx (free functions, as in
+/// [`crate::trig`], whose one implementation they use).
+pub fn sin_cos(x: Dual) -> (Dual, Dual) {
+    let (s, c) = crate::trig::sin_cos(x.v);
+    (
+        Dual {
+            v: s,
+            d: x.d.map(|dx| c * dx),
+        },
+        Dual {
+            v: c,
+            d: x.d.map(|dx| -s * dx),
+        },
+    )
+}
+
+/// sin x.
+pub fn sin(x: Dual) -> Dual {
+    sin_cos(x).0
 }
 
 impl Add for Dual {
@@ -136,8 +137,8 @@ mod tests {
     #[test]
     fn partials_match_central_differences() {
         let f = |x: [Dual; 2]| {
-            let (s, c) = x[0].sin_cos();
-            (s * x[1] + c.scale(3.0)) / (x[1] * x[1] + 1.0) - (2.0 - x[0]).sin()
+            let (s, c) = sin_cos(x[0]);
+            (s * x[1] + c.scale(3.0)) / (x[1] * x[1] + 1.0) - sin(2.0 - x[0])
         };
         let g = |x: [f64; 2]| {
             (x[0].sin() * x[1] + 3.0 * x[0].cos()) / (x[1] * x[1] + 1.0) - (2.0 - x[0]).sin()
