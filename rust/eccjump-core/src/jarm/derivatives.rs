@@ -18,19 +18,20 @@
 //! rolling (θ̇² moves with θ: ∂θ̇²/∂θ = 2θ̈) and ∂/∂p at fixed θ (θ̇² moves with p through the
 //! energy integral). A quantity q(θ; p) at the jump (F_x, F_y) then has the total derivative
 //! dq/dp = ∂q/∂θ dθ_J/dp + ∂q/∂p, and dμ_J = −(dF_x F_y − F_x dF_y)/F_y². The partials come
-//! from forward-mode differentiation (module `dual`) of the formulas as written above. The route
-//! that found θ_J does not matter: the ODE route's θ_J enters the same formulas (θ̇² by
+//! from forward-mode differentiation (module `dual`) of the formulas as written above. The
+//! route that found θ_J does not matter: the ODE route's θ_J enters the same formulas (θ̇² by
 //! energy is exact there too), so its derivatives carry only its error in θ_J.
 //!
 //! Not differentiable (flagged `singular`, every derivative NaN): ∂g/∂θ = 0 within rounding
 //! (θ_J a double root: the lift-off function tangent to 0, where θ_J jumps between turns as
 //! p moves), and under the classical rule a tie F_x = F_y = 0 with k_m > 0 (the corner of the
 //! friction cone; for k_m = 0, Ĩ_CM = 0, the contact force points at the centre of mass, F_x
-//! and F_y vanish together and g = F_y). Under the paper's rule a JARM is never a double
-//! root: where L = ∂L/∂θ = 0, θ̈ = θ̇² tan θ/2 and F_y = −χ θ̇² sin²θ/(2 cos θ) < 0, so the
-//! normal force was lost before. "Within rounding" is |∂g/∂θ| ≤ √ε · s, with s = 1 + χ(θ̇² + |θ̈|) the size of the
-//! terms of ∂g/∂θ: there the rounding of θ_J alone leaves no correct digit. Near it the
-//! derivatives are finite but lose digits, their relative error about (√ε s/|∂g/∂θ|)².
+//! and F_y vanish together and g = F_y). "Within rounding" is |∂g/∂θ| ≤ √ε s, with
+//! s = 1 + χ(θ̇² + |θ̈|) the size of the terms of ∂g/∂θ: there the rounding of θ_J alone leaves
+//! no correct digit. Near it the derivatives are finite but lose digits, their relative error
+//! about (√ε s/|∂g/∂θ|)². Under the paper's rule a JARM is never a double root: where
+//! L = ∂L/∂θ = 0, θ̈ = θ̇² tan θ/2 and F_y = −χ θ̇² sin²θ/(2 cos θ) < 0, so the normal force
+//! was lost before.
 
 mod dual;
 
