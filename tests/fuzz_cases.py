@@ -29,6 +29,7 @@ from pathlib import Path
 from typing import Any
 
 import numpy as np
+from reference_points import JARM_BODY
 
 import eccjump
 from eccjump import closed_form, store
@@ -766,12 +767,122 @@ def case_motion_map(d: Drawer) -> Case:
     return c
 
 
+MOTION_POINTS_PARAMS = (
+    "alpha", "chi", "km", "mu_s", "mu_k", "restitution", "theta0", "omega0", "rule", "t_max",
+    "max_transitions", "rtol", "atol", "max_steps", "n_threads", "integrator", "shapes",
+)  # fmt: skip
+
+
+def check_motion_points(res: Any, case: Case) -> None:
+    mm = eccjump.motion_maps
+    expect(isinstance(res, eccjump.MotionPoints), "not MotionPoints")
+    shapes = {getattr(res, f).shape for f in mm.FIELDS}
+    expect(len(shapes) == 1, f"fields of different shapes {shapes}")
+    ran = res.status != mm.INVALID
+    expect(all(int(v) in mm.STATUS_NAMES for v in np.unique(res.status)), "status code")
+    expect(all(mm.sequence_name(int(c)) for c in np.unique(res.sequence[ran])), "no sequence")
+    expect(not bool((res.jarm & res.slipped_first).any()), "a JARM that slipped first")
+    expect(bool(np.isnan(res.apex[~ran]).all()), "an invalid point has an apex")
+
+
+def case_motion_points(d: Drawer) -> Case:
+    c = Case("motion_points", eccjump.motion_points, params=MOTION_POINTS_PARAMS,
+             check=check_motion_points)  # fmt: skip
+    c.args = (
+        array(d, c, 0.0, HALF_PI),
+        array(d, c, 0.0, 1.0),
+        array(d, c, 0.0, 0.6),
+        array(d, c, 0.0, 3.0),
+    )
+    c.kwargs = {
+        "restitution": array(d, c, 0.0, 1.0),
+        "theta0": array(d, c, -7.0, 7.0),
+        "omega0": array(d, c, -3.0, 3.0),
+        "t_max": real(d, c, 0.0, 20.0),
+        "max_transitions": integer_param(d, c, (1, 5, 50), (*INT_BAD, 10**6 + 1)),
+        "rtol": d.choice((1e-10, 1e-6, *(() if d.clean else (0.0, math.nan, 1e-16)))),
+        "max_steps": integer_param(d, c, (1, 100, 100_000), (*INT_BAD, 10**7 + 1)),
+        "n_threads": integer_param(d, c, (0, 1, 2), (*INT_BAD, 257)),
+        "rule": text_param(d, c, ("paper", "normal_force")),
+        "integrator": text_param(d, c, INTEGRATORS),
+    }
+    if d.integer(0, 2) == 0:
+        c.kwargs["mu_k"] = array(d, c, 0.0, 3.0)
+    return c
+
+
+UNCERTAINTY_PARAMS = (
+    "body", "alpha", "mu_s", "mu_k", "restitution", "theta0", "omega0", "sd", "bounds", "n",
+    "seed", "sampling", "question", "invalid", "confidence", "rule", "t_max",
+    "max_transitions", "rtol", "atol", "integrator", "n_threads", "chi", "km",
+)  # fmt: skip
+
+
+def check_uncertainty(res: Any, case: Case) -> None:
+    expect(isinstance(res, eccjump.Uncertainty), "not an Uncertainty")
+    lo, hi = res.p_jarm_ci
+    expect(0 <= lo <= res.p_jarm <= hi <= 1, f"p_jarm {res.p_jarm} outside [{lo}, {hi}]")
+    expect(0 < res.n_valid <= res.n == res.valid.size, "n_valid")
+    expect(sum(res.counts.values()) == res.n_valid, "the outcomes do not add up")
+    expect(all(v.size == res.n for v in res.samples.values()), "a sample column's length")
+    for name, s in res.distributions.items():
+        ok = s.n == 0 or (s.q025 <= s.median <= s.q975 and math.isfinite(s.mean))
+        expect(ok, f"distribution {name}: {s}")
+    for p, x in res.samples.items():  # every valid sample in its physical range
+        expect(bool(np.isfinite(x[res.valid]).all()), f"sample {p} not finite")
+    expect(isinstance(res._repr_html_(), str), "html")
+
+
+def _spread_dict(d: Drawer, c: Case, names: Sequence[str], pair: bool) -> Any:
+    out: dict[Any, Any] = {}
+    for _ in range(d.integer(0, 2)):
+        name = d.choice(names) if d.clean or d.integer(0, 5) else d.choice(("bogus", 1, "KM"))
+        if pair:
+            lo = real(d, c, -0.1, 1.0, bad=False)
+            out[name] = (lo, d.choice((lo, 1.0, 0.5, -1.0))) if not d.clean else (0.1, 0.4)
+        else:
+            out[name] = real(d, c, 0.0, 0.1)
+    if not d.clean and d.integer(0, 9) == 0:
+        return d.choice(([0.1], "alpha", 0.1))
+    return out
+
+
+def case_uncertainty(d: Drawer) -> Case:
+    c = Case("uncertainty", eccjump.uncertainty, params=UNCERTAINTY_PARAMS,
+             check=check_uncertainty)  # fmt: skip
+    question = d.choice(("jarm", "jarm", "motion"))
+    names = ("chi", "km", "alpha", "mu_s") if question == "jarm" else (
+        "chi", "km", "alpha", "mu_s", "mu_k", "restitution", "theta0", "omega0")  # fmt: skip
+    c.args = (_body(d, c), real(d, c, 0.0, HALF_PI), real(d, c, 0.0, 2.0))
+    sd = _spread_dict(d, c, names, pair=False)
+    bounds = _spread_dict(d, c, names, pair=True)
+    if isinstance(sd, dict) and isinstance(bounds, dict):
+        bounds = {k: v for k, v in bounds.items() if k not in sd or not d.clean}
+    c.kwargs = {
+        "sd": sd,
+        "bounds": bounds,
+        "question": text_param(d, c, (question,)),
+        "n": integer_param(d, c, (1, 7, 64), (*INT_BAD, 10**9)),
+        "seed": integer_param(d, c, (0, 1, 12345), (-1, 2.5, None, "1", 2**64)),
+        "sampling": text_param(d, c, ("random", "sobol")),
+        "invalid": text_param(d, c, ("truncate", "count")),
+        "confidence": d.choice((0.95, 0.5, *(() if d.clean else (0.0, 1.0, math.nan)))),
+        "n_threads": integer_param(d, c, (0, 1, 2), (*INT_BAD, 257)),
+    }
+    if question == "motion":
+        c.kwargs["t_max"] = real(d, c, 0.0, 10.0)
+        c.kwargs["max_transitions"] = integer_param(d, c, (1, 5), (*INT_BAD, 10**6 + 1))
+    if d.integer(0, 2) == 0:
+        c.kwargs["restitution"] = real(d, c, 0.0, 1.0)
+    return c
+
+
 _RUN: list[eccjump.RollResult] = []
 
 
 def dense_run() -> eccjump.RollResult:
     if not _RUN:
-        _RUN.append(eccjump.roll(eccjump.Cylinder(0.15, 0.02), 0.7, mu_s=1.0, dense_output=True))
+        _RUN.append(eccjump.roll(eccjump.Cylinder(*JARM_BODY), 0.7, mu_s=1.0, dense_output=True))
     return _RUN[0]
 
 
@@ -1118,7 +1229,8 @@ def case_optimal_start(d: Drawer) -> Case:
 
 DESIGN_PARAMS = (
     "alpha_range", "mu_s", "mu_s_err", "target", "body", "km_range", "rod_range", "radius",
-    "mass", "g", "max_turns", "error", "grid", "min_apex", "shapes",
+    "mass", "g", "max_turns", "error", "grid", "min_apex", "tolerances", "maximise", "samples",
+    "seed", "shapes",
 )  # fmt: skip
 
 
@@ -1138,6 +1250,12 @@ def check_design(res: Any, case: Case) -> None:
     least = case.kwargs.get("min_apex", 0.0)
     if least > 0:  # the designed flights fly that high (in m with a radius, as min_apex)
         expect(min(f.apex for f in res.flights) >= least, f"apex below min_apex {least}")
+    odds = res.p_success
+    expect(
+        (odds is None) == (case.kwargs.get("tolerances") is None), "p_success without tolerances"
+    )
+    if odds is not None:
+        expect(0.0 <= odds.low <= odds.p <= odds.high <= 1.0, f"p_success {odds}")
 
 
 def _pair(d: Drawer, c: Case, lo: float, hi: float) -> Any:
@@ -1193,6 +1311,11 @@ def case_design(d: Drawer) -> Case:
         c.kwargs["g"] = real(d, c, 1.0, 20.0)
     if d.integer(0, 4) == 0:
         c.kwargs["min_apex"] = real(d, c, 0.0, 0.02)
+    if d.integer(0, 3) == 0:
+        names = d.choice((("alpha",), ("chi", "km"), ("mu_s", "alpha")))
+        c.kwargs["tolerances"] = {k: real(d, c, 0.0, 0.05) for k in names}
+        c.kwargs["maximise"] = text_param(d, c, ("margin", "probability"))
+        c.kwargs["samples"] = integer_param(d, c, (100, 300), (*INT_BAD, 99, 10**6 + 1))
     return c
 
 
@@ -1573,6 +1696,8 @@ GENERATORS: dict[str, Callable[[Drawer], Case]] = {
     "roll": case_roll,
     "simulate": case_simulate,
     "motion_map": case_motion_map,
+    "motion_points": case_motion_points,
+    "uncertainty": case_uncertainty,
     "to_si": case_to_si,
     "sol": case_sol,
     "kinematics": case_kinematics,

@@ -27,7 +27,39 @@ with ``numpy.linalg.solve`` at every right-hand-side call:
 - FLIGHT: F_x = 0, F_y = 0 (the flight is integrated with the resulting free equations
   θ̈ = 0, l̈ = χθ̇² sin θ + sin α, b̈ = χθ̇² cos θ − cos α, written out as a user would).
 
-The closed forms K, D of physics.md are used only for the Painlevé test D ≤ D_MIN.
+The closed forms K, D of physics.md are used only for the switches of a slip's form and the
+jam test below.
+
+Slips near D = 0: the normal impulse as the independent variable
+----------------------------------------------------------------
+In SLIP, F_y = Ĩ_CM B/D (B = cos α − χθ̇² cos θ) grows without bound as D = Ĩ_CM + χ K sin θ
+→ 0⁺ (Painlevé), yet the motion may go on (physics.md). Divide the three rows by F_y: with
+b̈ = 0 and F_x/F_y = σ μ_k known they are linear in (θ̈/F_y, l̈/F_y, 1/F_y)::
+
+    χ cos θ (θ̈/F_y) + (l̈/F_y) − (sin α + χ sin θ θ̇²)(1/F_y) = σ μ_k
+    −χ sin θ (θ̈/F_y) + B (1/F_y) = 1
+    Ĩ_CM (θ̈/F_y) = χ sin θ − σ μ_k (1 + χ cos θ)   (= K)
+
+Its determinant is Ĩ_CM B: the system stays regular at D = 0 (Ĩ_CM > 0, B > 0 in a slip);
+``newton_euler_impulse`` builds it from the same rows as ``newton_euler`` and solves it with
+``numpy.linalg.solve``. With the normal impulse P (dP = F_y dt) as the independent variable::
+
+    dt/dP = 1/F_y, dθ/dP = θ̇/F_y, dθ̇/dP = θ̈/F_y, dl/dP = l̇/F_y, dl̇/dP = l̈/F_y,
+    dq/dP = μ_k |v|
+
+are finite at D = 0. There 1/F_y = D/(Ĩ_CM B) → 0: t and θ freeze, the velocities move on a
+line in P, and D decays like exp(−cP), so it reaches 0 at no finite impulse. The ledger
+(dq/dP = μ_k|v|, the kinetic energy convex on that line) forces the slip velocity to 0 at a
+finite P: the slip goes on (stick, reversal) if that happens at a D float64 resolves,
+otherwise the rigid model needs an impulsive tangential impact: a jam.
+
+A slip is integrated in time while D > ``D_SWITCH`` = 1e-3 and in P below it, state
+(t, θ, θ̇, l, l̇, q), with the events: v = 0 (then ``decide`` as in time), D rises to
+2 ``D_SWITCH`` (back to time; the factor 2 keeps the forms from chattering), B falls to 0
+(flight), t reaches t_max, and D falls to ``D_JAM`` = 1e-12 with the slip still on: status
+"painleve", message "Painlevé jam: ..." (likewise if P reaches ``P_MAX`` = 1e6). A switch of
+form is not a transition. |dθ̇/dP| = |K|/Ĩ_CM ≤ (1 + 2μ_k)/Ĩ_CM, so the P steps are capped
+at ``MAX_STEP`` Ĩ_CM/(1 + 2μ_k): θ̇ changes by at most ``MAX_STEP`` per step.
 
 Impact law (written here from the impulse–momentum equations)
 --------------------------------------------------------------
@@ -69,7 +101,9 @@ from scipy.integrate import solve_ivp
 
 ROLL, SLIP, FLIGHT = "ROLL", "SLIP", "FLIGHT"
 SETTLE_SPEED = 1e-6
-D_MIN = 1e-6
+D_SWITCH = 1e-3
+D_JAM = 1e-12
+P_MAX = 1e6
 V_ZERO = 1e-12
 MAX_STEP = 0.05
 STATUSES = ("t_max", "max_transitions", "painleve", "jam", "failed")
@@ -110,17 +144,25 @@ class Body:
 # ---------------------------------------------------------------------------------------------
 
 
-def newton_euler(body: Body, mode: str, th: float, om: float, sigma: float = 0.0, mu_k=0.0):
-    """Solve the 5×5 Newton–Euler system of ``mode``: returns (θ̈, l̈, b̈, F_x, F_y)."""
+def newton_euler_rows(body: Body, th: float, om: float):
+    """The three Newton–Euler rows A z = r in z = (θ̈, l̈, b̈, F_x, F_y): A (3×5), r (3)."""
     chi = body.chi
     s, c = math.sin(th), math.cos(th)
-    a = np.zeros((5, 5))
-    r = np.zeros(5)
+    a = np.zeros((3, 5))
+    r = np.zeros(3)
     a[0, 0], a[0, 1], a[0, 3] = chi * c, 1.0, -1.0
     r[0] = body.sa + chi * s * om * om
     a[1, 0], a[1, 2], a[1, 4] = -chi * s, 1.0, -1.0
     r[1] = chi * c * om * om - body.ca
     a[2, 0], a[2, 3], a[2, 4] = body.icm, 1.0 + chi * c, -chi * s
+    return a, r
+
+
+def newton_euler(body: Body, mode: str, th: float, om: float, sigma: float = 0.0, mu_k=0.0):
+    """Solve the 5×5 Newton–Euler system of ``mode``: returns (θ̈, l̈, b̈, F_x, F_y)."""
+    a = np.zeros((5, 5))
+    r = np.zeros(5)
+    a[:3], r[:3] = newton_euler_rows(body, th, om)
     if mode == ROLL:
         a[3, 2] = 1.0
         a[4, 0], a[4, 1] = -1.0, 1.0
@@ -135,8 +177,19 @@ def newton_euler(body: Body, mode: str, th: float, om: float, sigma: float = 0.0
     return np.linalg.solve(a, r)
 
 
+def newton_euler_impulse(body: Body, th: float, om: float, sigma: float, mu_k: float):
+    """The sliding rows divided by F_y: returns (θ̈/F_y, l̈/F_y, 1/F_y), finite as D → 0.
+
+    With b̈ = 0 and F_x/F_y = σ μ_k the rows A z = r become, in x = (θ̈/F_y, l̈/F_y, 1/F_y),
+    A[:, 0] x0 + A[:, 1] x1 − r x2 = −σ μ_k A[:, 3] − A[:, 4]; its determinant is Ĩ_CM B.
+    """
+    a, r = newton_euler_rows(body, th, om)
+    m = np.column_stack([a[:, 0], a[:, 1], -r])
+    return np.linalg.solve(m, -sigma * mu_k * a[:, 3] - a[:, 4])
+
+
 def slip_d(body: Body, th: float, sigma: float, mu_k: float) -> float:
-    """D = Ĩ_CM + χ K sin θ, K = χ sin θ − σ μ_k (1 + χ cos θ) (only for the D ≤ D_MIN test)."""
+    """D = Ĩ_CM + χ K sin θ, K = χ sin θ − σ μ_k (1 + χ cos θ) (for the switches and the jam)."""
     s, c = math.sin(th), math.cos(th)
     k = body.chi * s - sigma * mu_k * (1.0 + body.chi * c)
     return body.icm + body.chi * k * s
@@ -355,6 +408,86 @@ def _fired(sol, names):
     return best[0], best[2]
 
 
+def _slip_events(body, sg, mu_k, p0):
+    """The events every slip piece watches: B falls to 0, the slip velocity to 0 (y ends
+    with θ, θ̇, l, l̇, q in both forms)."""
+
+    def b_fall(_p, y):
+        return -lift_l(body, y[-5], y[-4])
+
+    def v_zero(_p, y):
+        return -sg * (y[-2] - y[-4])
+
+    return ["B_fall", "v_zero"], [_event(b_fall, p0, -1), _event(v_zero, p0, -1)]
+
+
+def _slip_in_time(body, sg, mu_k, t, th, om, x, ld, t_max, rtol, atol):
+    """A slip piece in time, state (θ, θ̇, l, l̇, q), until an event, D = ``D_SWITCH`` or
+    t_max. Returns (event name or None, (t, θ, θ̇, l, l̇, q), nfev, failure message)."""
+
+    def rhs(_t, y):
+        z = newton_euler(body, SLIP, y[0], y[1], sg, mu_k)
+        return [y[1], z[0], y[3], z[1], mu_k * z[4] * abs(y[3] - y[1])]
+
+    names, events = _slip_events(body, sg, mu_k, t)
+    names.append("D_switch")
+    events.append(_event(lambda _t, y: slip_d(body, y[0], sg, mu_k) - D_SWITCH, t, -1))
+    sol = _run(rhs, t, [th, om, x, ld, 0.0], t_max, events, rtol, atol)
+    if sol.status < 0:
+        return None, None, sol.nfev, sol.message
+    name, y = _fired(sol, names)
+    if y is None:
+        y = sol.y[:, -1]
+    return name, (float(sol.t[-1]), *y), sol.nfev, ""
+
+
+def _slip_in_impulse(body, sg, mu_k, t, th, om, x, ld, t_max, rtol, atol):
+    """A slip piece in the normal impulse P (dP = F_y dt), state (t, θ, θ̇, l, l̇, q), until
+    an event, D = 2 ``D_SWITCH`` (back to time), t_max, D = ``D_JAM`` or P = ``P_MAX``."""
+
+    def rhs(_p, y):
+        a, b, w = newton_euler_impulse(body, y[1], y[2], sg, mu_k)  # θ̈/F_y, l̈/F_y, 1/F_y
+        return [w, y[2] * w, a, y[4] * w, b, mu_k * abs(y[4] - y[2])]
+
+    def d_of(y):
+        return slip_d(body, y[1], sg, mu_k)
+
+    if slip_d(body, th, sg, mu_k) <= D_JAM:
+        return "D_jam", (t, th, om, x, ld, 0.0), 0, ""
+    names, events = _slip_events(body, sg, mu_k, 0.0)
+    names += ["D_back", "D_jam", "t_max"]
+    events += [
+        _event(lambda _p, y: d_of(y) - 2.0 * D_SWITCH, 0.0, +1),
+        _event(lambda _p, y: d_of(y) - D_JAM, 0.0, -1),
+        _event(lambda _p, y: y[0] - t_max, 0.0, +1),
+    ]
+    # |dθ̇/dP| = |K|/Ĩ_CM ≤ (1 + 2μ_k)/Ĩ_CM: a step changes θ̇ by at most MAX_STEP
+    max_step = MAX_STEP * body.icm / (1.0 + 2.0 * mu_k)
+    sol = solve_ivp(
+        rhs,
+        (0.0, P_MAX),
+        [t, th, om, x, ld, 0.0],
+        method="RK45",
+        rtol=rtol,
+        atol=atol,
+        max_step=max_step,
+        events=events,
+    )
+    if sol.status < 0:
+        return None, None, sol.nfev, sol.message
+    name, y = _fired(sol, names)
+    if y is None:
+        y = sol.y[:, -1]
+        name = "P_max"
+    return name, tuple(y), sol.nfev, ""
+
+
+def _jam_message(name: str, t: float, th: float) -> str:
+    what = f"D fell to {D_JAM:g}" if name == "D_jam" else f"the normal impulse reached {P_MAX:g}"
+    where = f"t={t:.10g}, theta={math.degrees(th):.6f} deg"
+    return f"Painlevé jam: {what} with the slip still on at {where}"
+
+
 def simulate_reference(
     chi,
     km,
@@ -398,6 +531,8 @@ def simulate_reference(
     nfev = 0
     transitions = []
     status, message = None, ""
+    next_form = None  # the form a slip goes on in after a switch (D_switch, D_back)
+    impulse_pieces = 0
 
     def record(t, frm, to, reason):
         transitions.append((t, frm, to, reason, th, om, x, ld, b, bd))
@@ -467,36 +602,29 @@ def simulate_reference(
 
             elif mode == SLIP:
                 sg = sigma
-
-                def rhs_slip(_t, y, sg=sg):
-                    z = newton_euler(body, SLIP, y[0], y[1], sg, mu_k)
-                    return [y[1], z[0], y[3], z[1], mu_k * z[4] * abs(y[3] - y[1])]
-
-                names = ["B_fall", "v_zero", "D_min"]
-                events = [
-                    _event(lambda _t, y: -lift_l(body, y[0], y[1]), t, -1),
-                    _event(lambda _t, y, sg=sg: -sg * (y[3] - y[1]), t, -1),
-                    _event(lambda _t, y, sg=sg: slip_d(body, y[0], sg, mu_k) - D_MIN, t, -1),
-                ]
-                sol = _run(rhs_slip, t, [th, om, x, ld, 0.0], t_max, events, rtol, atol)
-                nfev += sol.nfev
-                if sol.status < 0:
-                    status, message = "failed", sol.message
+                form = next_form or (
+                    "impulse" if slip_d(body, th, sg, mu_k) <= D_SWITCH else "time"
+                )
+                next_form = None
+                impulse_pieces += form == "impulse"
+                piece = _slip_in_impulse if form == "impulse" else _slip_in_time
+                name, y, nfev_piece, failure = piece(
+                    body, sg, mu_k, t, th, om, x, ld, t_max, rtol, atol
+                )
+                nfev += nfev_piece
+                if failure:
+                    status, message = "failed", failure
                     break
-                name, y = _fired(sol, names)
-                if y is None:
-                    y = sol.y[:, -1]
-                t = float(sol.t[-1])
-                th, om, x, ld = (float(v_) for v_ in y[:4])
-                q_slip += float(y[4])
-                if name is None:
+                t, th, om, x, ld = (float(v_) for v_ in y[:5])
+                q_slip += float(y[5])
+                if name in ("D_switch", "D_back"):  # the same slip goes on in the other form
+                    next_form = "impulse" if name == "D_switch" else "time"
+                    continue
+                if name in (None, "t_max"):
                     status = "t_max"
                     break
-                if name == "D_min":
-                    status, message = (
-                        "painleve",
-                        (f"D fell to {D_MIN:g} at t={t:.6g}, theta={math.degrees(th):.4f} deg"),
-                    )
+                if name in ("D_jam", "P_max"):
+                    status, message = "painleve", _jam_message(name, t, th)
                     break
                 v = ld - om
                 if name == "v_zero":
@@ -603,6 +731,7 @@ def simulate_reference(
         "dissipated_slip": q_slip,
         "dissipated_impacts": q_imp,
         "nfev": nfev,
+        "impulse_pieces": impulse_pieces,
         "end": (t, mode, th, om, x, ld, b, bd),
         "wall_time": time.perf_counter() - t_wall,
     }

@@ -4,7 +4,9 @@ from pure rolling given enough friction, for properties that need such a point.
 The named points are the physics notes' (``shared/physics.md``): the JARM point of the
 paper (α = 40°, χ = 0.15, k_m = 0.02: θ_J = 334.344°, F_y,J = +0.01543 M g) and the paper's
 Fig. 3b body on a 30° ramp, which slips first at θ = 316.47° with μ_s = 1
-(μ_s,min ≈ 1.3916).
+(μ_s,min ≈ 1.3916). A test that uses one of these bodies or points takes it from here by
+name; its reference values (from the mpmath reference, ``tests/reference_physics.py``)
+stand beside it.
 """
 
 from __future__ import annotations
@@ -16,14 +18,24 @@ import numpy as np
 
 import eccjump
 
-#: (χ, k_m, α) of the paper's JARM point.
-JARM_POINT = (0.15, 0.02, math.radians(40))
-#: (χ, k_m, α) of the paper's Fig. 3b body on a 30° ramp: slips first at μ_s = 1.
-SLIP_FIRST_POINT = (0.5, 0.4, math.radians(30))
+#: (χ, k_m) of the paper's JARM point, and its ramp angle α [rad] (40°).
+JARM_BODY = (0.15, 0.02)
+JARM_ALPHA = math.radians(40)
+#: Its jump from rolling at μ_s = 1: θ_J [deg] and the contact forces there [M g].
+JARM_THETA_J_DEG = 334.34383789184907204
+JARM_FY_J = 0.015427991249042646579
+JARM_FX_J = -0.0051639030551486398888
+
+#: (χ, k_m) of the paper's Fig. 3b body, and the ramp angle α [rad] (30°) on which it slips
+#: first at μ_s = 1.
+SLIP_FIRST_BODY = (0.5, 0.4)
+SLIP_FIRST_ALPHA = math.radians(30)
+#: The angle at which it slips at μ_s = 1 [deg].
+SLIP_FIRST_THETA_DEG = 316.47167723304615645
 
 #: (body, α) pairs as ``simulate`` and ``roll`` take them.
-JARM = (eccjump.Cylinder(*JARM_POINT[:2]), JARM_POINT[2])
-SLIP_FIRST = (eccjump.Cylinder(*SLIP_FIRST_POINT[:2]), SLIP_FIRST_POINT[2])
+JARM = (eccjump.Cylinder(*JARM_BODY), JARM_ALPHA)
+SLIP_FIRST = (eccjump.Cylinder(*SLIP_FIRST_BODY), SLIP_FIRST_ALPHA)
 
 #: μ_s large enough that friction never decides: a point is then JARM exactly when it
 #: jumps from pure rolling (θ_J in a window [2πn − α, 2πn] with F_y > 0 along the path).

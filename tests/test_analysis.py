@@ -17,6 +17,7 @@ from pathlib import Path
 
 import numpy as np
 import pytest
+from reference_points import SLIP_FIRST
 
 import eccjump
 from eccjump.cli import main
@@ -166,7 +167,7 @@ def draw(family: str, seed: int) -> tuple[eccjump.Cylinder, float, float, dict]:
         body, alpha, R = eccjump.Cylinder(chi=0.10927, km=0.0777), math.radians(66.087), 0.05
         mu_s, th0, om0 = rng.uniform(0.95, 1.5), rng.uniform(-0.3, 0.3), rng.uniform(0, 0.5)
     else:
-        body, alpha, R = eccjump.Cylinder(chi=0.5, km=0.4), math.radians(30), 0.04
+        body, alpha, R = (*SLIP_FIRST, 0.04)
         mu_s, th0, om0 = rng.uniform(0.3, 0.5), rng.uniform(3.4, 3.8), rng.uniform(1.8, 2.2)
     kw = {
         "mu_s": mu_s,

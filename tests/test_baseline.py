@@ -9,6 +9,7 @@ from pathlib import Path
 
 import numpy as np
 import pytest
+from reference_points import JARM_ALPHA, JARM_BODY, SLIP_FIRST_ALPHA, SLIP_FIRST_BODY
 
 import eccjump
 
@@ -82,10 +83,10 @@ def test_baseline_agrees_with_eccjump(points, method):
 
 
 def test_reference_points():
-    v = bl.classify_closed_form(math.radians(40), 0.15, 0.02, 1.0)
+    v = bl.classify_closed_form(JARM_ALPHA, *JARM_BODY, 1.0)
     assert v.reason == bl.JARM
     assert math.degrees(v.theta_J) == pytest.approx(334.344, abs=1e-3)
-    v = bl.classify_closed_form(math.radians(30), 0.5, 0.4, 1.0)
+    v = bl.classify_closed_form(SLIP_FIRST_ALPHA, *SLIP_FIRST_BODY, 1.0)
     assert v.reason == bl.SLIP_BEFORE
     assert math.degrees(v.theta_event) == pytest.approx(316.47, abs=1e-2)
     assert bl.classify_closed_form(math.pi / 2, 0.3, 0.2, 1.0).reason == bl.LIFTOFF_EARLIER

@@ -8,9 +8,10 @@ import sysconfig
 from pathlib import Path
 
 import pytest
+from reference_points import JARM
 
 import eccjump
-from eccjump import Cylinder, roll
+from eccjump import roll
 from eccjump.cli import main
 
 
@@ -43,7 +44,7 @@ def test_roll_takes_the_integrator_and_records_it(capsys):
     args = ["roll", "--alpha", "40", "--chi", "0.15", "--km", "0.02", "--mu-s", "1", "--json"]
     assert main([*args, "--integrator", "DOP853"]) == 0
     data = json.loads(capsys.readouterr().out)
-    ref = roll(Cylinder(0.15, 0.02), math.radians(40), mu_s=1.0, integrator="DOP853")
+    ref = roll(*JARM, mu_s=1.0, integrator="DOP853")
     assert data["integrator"] == "DOP853" and data["nfev"] == ref.nfev
     assert data["theta_deg"] == math.degrees(ref.theta[-1])
     assert main(args) == 0

@@ -14,6 +14,7 @@ import re
 import numpy as np
 import pytest
 from fuzz_cases import MAX_MESSAGE, run_cli_inprocess
+from reference_points import JARM_BODY
 
 import eccjump
 from eccjump import motion_fields, plot
@@ -392,7 +393,7 @@ def test_roll_prints_bounded_numbers():
 
 # --- 5. times are not numbers; arrays where a scalar is due -------------------------------------
 
-BODY = eccjump.Cylinder(0.15, 0.02)
+BODY = eccjump.Cylinder(*JARM_BODY)
 #: numpy makes a timedelta64 an integer (np.signedinteger): it used to pass as one.
 TIME = np.timedelta64(1)
 
@@ -475,14 +476,15 @@ def test_sequence_name_names_every_code_of_the_table():
     ],
 )
 def test_to_si_refuses_scales_outside_their_range(scales, name):
-    r = eccjump.roll(eccjump.Cylinder(0.15, 0.02), 0.7, mu_s=1.0)
+    r = eccjump.roll(eccjump.Cylinder(*JARM_BODY), 0.7, mu_s=1.0)
     allowed = r"outside the allowed range \[1e-50, 1e\+50\]"
     with pytest.raises(ValueError, match=rf"^{name} = .* {allowed}"):
         r.to_si(**scales)
 
 
 def test_to_si_at_the_ends_of_the_range_is_finite_and_normal():
-    r = eccjump.simulate(eccjump.Cylinder(0.15, 0.02), 0.7, mu_s=1.0, t_max=2.0)
+    r = eccjump.simulate(eccjump.Cylinder(*JARM_BODY), 0.7, mu_s=1.0, t_max=2.0)
+
     for g, R, M in ((1e50, 1e50, 1e50), (1e-50, 1e-50, 1e-50), (1e50, 1e-50, 1e50)):
         si = r.to_si(g=g, R=R, M=M)
         for name in ("t", "omega", "l", "ldot", "Fx", "Fy", "energy"):

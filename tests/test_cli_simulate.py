@@ -18,6 +18,7 @@ import pytest
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt
 from motion_fake import MODES, energy, fake_result
+from reference_points import SLIP_FIRST, SLIP_FIRST_ALPHA, SLIP_FIRST_BODY
 
 from eccjump import Cylinder, plot
 from eccjump.cli import main
@@ -170,7 +171,7 @@ def test_json_writes_non_finite_numbers_as_null(fake, capsys, monkeypatch):
 
 
 def test_energy_from_the_state_where_no_point_matches():
-    body, alpha = Cylinder(0.5, 0.4), math.radians(30.0)
+    body, alpha = SLIP_FIRST
     res = fake_result()
     # the transitions moved off the recorded times: the energy comes from their states
     moved = tuple(replace(tr, t=tr.t + 1e-3) for tr in res.transitions)
@@ -228,7 +229,7 @@ def test_figure_and_animation_are_written(fake, tmp_path, capsys):
 
 def test_motion_panels():
     res = fake_result()
-    fig = plot.motion(res, body=Cylinder(0.5, 0.4), alpha=math.radians(30))
+    fig = plot.motion(res, body=Cylinder(*SLIP_FIRST_BODY), alpha=SLIP_FIRST_ALPHA)
     axes = fig.axes
     assert len(axes) == 6
     assert all(ax.get_shared_x_axes().joined(axes[0], ax) for ax in axes)
@@ -279,7 +280,7 @@ def test_animation_without_dense_output_and_its_frame_count(tmp_path):
 
     res = fake_result()
     path = plot.animate_motion(
-        res, tmp_path / "a.gif", body=Cylinder(0.5, 0.4), alpha=0.5, fps=10, seconds=1.2
+        res, tmp_path / "a.gif", body=Cylinder(*SLIP_FIRST_BODY), alpha=0.5, fps=10, seconds=1.2
     )
     with Image.open(path) as im:
         assert im.n_frames == 12
@@ -287,7 +288,7 @@ def test_animation_without_dense_output_and_its_frame_count(tmp_path):
     with pytest.raises(ValueError, match="body"):
         plot.animate_motion(res, tmp_path / "b.gif")
     with pytest.raises(ValueError, match=r"\.gif"):
-        plot.animate_motion(res, tmp_path / "b.mp4", body=Cylinder(0.5, 0.4), alpha=0.5)
+        plot.animate_motion(res, tmp_path / "b.mp4", body=Cylinder(*SLIP_FIRST_BODY), alpha=0.5)
 
 
 # --- the real simulate (runs once eccjump.motion exists) --------------------------------------
@@ -307,7 +308,7 @@ def test_real_slip_then_jump(tmp_path, capsys):
 
 def test_real_animation(tmp_path):
     motion = pytest.importorskip("eccjump.motion")
-    body, alpha = Cylinder(0.5, 0.4), math.radians(30.0)
+    body, alpha = SLIP_FIRST
     res = motion.simulate(body, alpha, mu_s=1.0, t_max=8.0, dense_output=True)
     path = plot.animate_motion(res, tmp_path / "m.gif", body=body, alpha=alpha, fps=10, seconds=2)
     assert path.read_bytes()[:6] == b"GIF89a"

@@ -11,6 +11,7 @@ import numpy as np
 import pytest
 import sympy as sp
 from fuzz_cases import run_cli_inprocess
+from reference_points import JARM_BODY
 
 import eccjump
 from eccjump import Cylinder, Reason, build, design, jarm, simulate
@@ -163,7 +164,8 @@ def test_the_jarm_jumps_out_of_rolling(jump):
 
 
 def test_a_fixed_body_keeps_its_body():
-    body = Cylinder(0.15, 0.02)
+    body = Cylinder(*JARM_BODY)
+
     d = design((math.radians(5), math.radians(60)), 1.0, body=body, grid=8)
     assert d.body.km == body.km and d.body.chi == pytest.approx(body.chi, abs=1e-15)
     assert verdict(d, d.alpha, body.chi, body.km, 1.0)

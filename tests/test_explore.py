@@ -19,6 +19,7 @@ from pathlib import Path
 
 import numpy as np
 import pytest
+from reference_points import SLIP_FIRST
 
 import eccjump
 from eccjump.explorer import api, controls, server
@@ -142,9 +143,8 @@ def test_motion_samples_are_the_run_at_even_times():
     assert t[0] == 0 and t[-1] == pytest.approx(body["t_end"], abs=1e-5)
     assert np.allclose(np.diff(t), t[-1] / (t.size - 1), atol=2e-5)
     res = eccjump.simulate(
-        eccjump.Cylinder(0.5, 0.4), math.radians(30), mu_s=1.0, t_max=9.0, dense_output=True,
-        max_transitions=api.MAX_TRANSITIONS,
-    )  # fmt: skip
+        *SLIP_FIRST, mu_s=1.0, t_max=9.0, dense_output=True, max_transitions=api.MAX_TRANSITIONS
+    )
     theta, _, along, _, b, _ = res.sol(t)
     assert np.allclose(body["theta"], theta, atol=1e-5)
     assert np.allclose(body["cx"], along, atol=1e-5) and np.allclose(body["cy"], b, atol=1e-5)

@@ -28,6 +28,7 @@ from fuzz_cases import (
 )
 from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
+from reference_points import JARM_BODY
 
 import eccjump
 
@@ -39,6 +40,8 @@ BUDGET = {
     "roll": 150,
     "simulate": 150,
     "motion_map": 100,
+    "motion_points": 100,
+    "uncertainty": 60,
     "to_si": 60,
     "sol": 60,
     "kinematics": 60,
@@ -130,7 +133,8 @@ def test_core_regression(gap):
 def test_results_compare_after_a_deep_copy():
     import copy
 
-    r = eccjump.roll(eccjump.Cylinder(0.15, 0.02), 0.7, mu_s=1.0, dense_output=True)
+    r = eccjump.roll(eccjump.Cylinder(*JARM_BODY), 0.7, mu_s=1.0, dense_output=True)
+
     j = eccjump.jarm([0.5, 0.6, float("nan")], 0.2, 0.1, 1.0)
     g = eccjump.region(mu_s=1.0, alpha=[0.5, 0.7], chi=[0.2], km_frac=[0.1])
     for x in (r, j, g):

@@ -148,6 +148,33 @@ def cli_explore_argv(d: Drawer) -> list[str]:
     return argv + d.choice(([], ["--no-browser"]))
 
 
+def cli_uncertainty_argv(d: Drawer) -> list[str]:
+    """A small study (n <= 64) with tolerances good, negative, unknown or repeated; sometimes
+    the motion question, a figure or a data file (good or bad paths)."""
+    argv = ["uncertainty", "--alpha", cli_number(d, 0, 90), "--chi", cli_number(d, 0, 1)]
+    argv += ["--km", cli_number(d, 0, 0.5), "--mu-s", cli_number(d, 0, 2)]
+    argv += ["-n", d.choice(("16", "64", "0", "-3", "x", "1" + "0" * 30))]
+    for _ in range(d.integer(0, 2)):
+        name = d.choice(("alpha", "chi", "km", "mu_s", "theta0", "bogus", ""))
+        argv += ["--sd", name, cli_number(d, 0, 2)]
+    if d.integer(0, 2) == 0:
+        argv += [
+            "--bounds",
+            d.choice(("mu_s", "chi", "x")),
+            cli_number(d, 0, 1),
+            cli_number(d, 0, 2),
+        ]
+    if d.integer(0, 2) == 0:
+        argv += ["--question", d.choice(("motion", "jarm", "fly")), "--t-max", cli_number(d, 0, 5)]
+    if d.integer(0, 3) == 0:
+        argv += ["--sampling", d.choice(("sobol", "random", "halton"))]
+    if d.integer(0, 3) == 0:
+        argv += ["--figure", output_file(d, d.choice((".png", ".svg")))]
+    if d.integer(0, 3) == 0:
+        argv += ["-o", output_file(d, d.choice((".csv", ".nc", ".txt")))]
+    return argv + d.choice(([], ["--json"], ["-q"]))
+
+
 TRACK = Path(__file__).parent / "data" / "jarm_240fps.csv"
 #: The stored track's setup (tests/data/jarm_240fps.csv, scripts/make_tracks.py).
 TRACK_SETUP = ["--radius", "0.05", "--chi", "0.10927", "--km", "0.0777", "--scale", "1230.539145"]
@@ -242,6 +269,24 @@ def valid_design(d: Drawer) -> list[str]:
     return argv + d.choice(([], ["--json"], ["--target", "slip"]))
 
 
+def valid_uncertainty(d: Drawer) -> list[str]:
+    argv = ["uncertainty", *options(d, {**BODY, "--mu-s": (0.3, 1.5)}, required=4)]
+    argv += ["-n", str(d.integer(1, 64)), "--seed", str(d.integer(0, 9)), "-q"]
+    question = d.choice(("jarm", "motion"))
+    names = ("alpha", "chi", "km", "mu_s") + (
+        ("restitution", "theta0") if question == "motion" else ()
+    )
+    for name in sorted({d.choice(names) for _ in range(d.integer(0, 3))}):
+        argv += ["--sd", name, value(d, 0, 0.05)]
+    argv += ["--question", question, "--t-max", "3"]
+    argv += d.choice(([], ["--sampling", "sobol"], ["--invalid", "count"]))
+    if d.integer(0, 3) == 0:
+        argv += ["-o", str(outdir() / f"u{d.choice(('.csv', '.nc'))}")]
+    if d.integer(0, 4) == 0:
+        argv += ["--figure", str(outdir() / "u.png"), "--dpi", "20"]
+    return argv + d.choice(([], ["--json"]))
+
+
 def valid_figures(d: Drawer) -> list[str]:
     argv = ["figures", "--only", d.choice(("fig3b", "trajectory", "fig4_slices"))]
     argv += ["--dpi", "20", "--slice-resolution", str(d.integer(2, 5))]
@@ -268,6 +313,7 @@ VALID: dict[str, Callable[[Drawer], list[str]]] = {
     "figures": valid_figures,
     "explore": valid_explore,
     "analyze": valid_analyze,
+    "uncertainty": valid_uncertainty,
 }
 WILD: dict[str, Callable[[Drawer], list[str]]] = {
     "roll": cli_roll_argv,
@@ -278,6 +324,7 @@ WILD: dict[str, Callable[[Drawer], list[str]]] = {
     "figures": cli_figures_argv,
     "explore": cli_explore_argv,
     "analyze": cli_analyze_argv,
+    "uncertainty": cli_uncertainty_argv,
 }
 
 
@@ -367,7 +414,7 @@ def _in_the_fuzzing_directory(monkeypatch):
 #: Examples per subcommand (about 30 s in all on a 2-core machine).
 BUDGET = {
     "roll": 100, "simulate": 60, "map": 25, "starts": 8, "design": 5, "figures": 10, "explore": 20,
-    "analyze": 6,
+    "analyze": 6, "uncertainty": 25,
 }  # fmt: skip
 
 

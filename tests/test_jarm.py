@@ -12,7 +12,17 @@ import test_paper_formulas as paper
 from hypothesis import assume, given, settings
 from hypothesis import strategies as st
 from properties import reach_rate
-from reference_points import jump_points
+from reference_points import (
+    JARM_ALPHA,
+    JARM_BODY,
+    JARM_FX_J,
+    JARM_FY_J,
+    JARM_THETA_J_DEG,
+    SLIP_FIRST_ALPHA,
+    SLIP_FIRST_BODY,
+    SLIP_FIRST_THETA_DEG,
+    jump_points,
+)
 
 import eccjump
 from eccjump import Cylinder, Reason, closed_form, jarm, region, roll
@@ -37,21 +47,21 @@ def bodies(draw, chi_min=0.01):
 
 
 def test_reference_jarm_point():
-    r = jarm(40 * DEG, 0.15, 0.02, 1.0)
+    r = jarm(JARM_ALPHA, *JARM_BODY, 1.0)
     assert bool(r.is_jarm) and Reason(int(r.reason)) == Reason.JARM and int(r.n) == 1
-    assert float(r.theta_J) == pytest.approx(334.34383789184907204 * DEG, abs=1e-12)
-    assert float(r.Fy_J) == pytest.approx(0.015427991249042646579, abs=1e-12)
-    assert float(r.Fx_J) == pytest.approx(-0.0051639030551486398888, abs=1e-12)
+    assert float(r.theta_J) == pytest.approx(JARM_THETA_J_DEG * DEG, abs=1e-12)
+    assert float(r.Fy_J) == pytest.approx(JARM_FY_J, abs=1e-12)
+    assert float(r.Fx_J) == pytest.approx(JARM_FX_J, abs=1e-12)
 
 
 def test_reference_slip_point():
-    r = jarm(30 * DEG, 0.5, 0.4, 1.0)
+    r = jarm(SLIP_FIRST_ALPHA, *SLIP_FIRST_BODY, 1.0)
     assert Reason(int(r.reason)) == Reason.SLIP_BEFORE
-    assert float(r.theta_event) == pytest.approx(316.47167723304615645 * DEG, abs=1e-10)
+    assert float(r.theta_event) == pytest.approx(SLIP_FIRST_THETA_DEG * DEG, abs=1e-10)
 
 
 def test_reference_mu_s_min():
-    m, phi = closed_form.mu_s_min(0.5, 0.4)
+    m, phi = closed_form.mu_s_min(*SLIP_FIRST_BODY)
     assert float(m) == pytest.approx(1.391618525237494122, rel=1e-12)
     assert float(phi) + 2 * math.pi == pytest.approx(302.48574753796158606 * DEG, abs=1e-9)
 
@@ -282,23 +292,23 @@ def test_ode_route_on_arrays_is_each_point_alone(alpha, mu_s, integrator, rule, 
 
 
 def test_boundaries_bracket_the_region_exactly():
-    (intervals,) = eccjump.alpha_intervals(0.15, 0.02, 1.0, n=1)
+    (intervals,) = eccjump.alpha_intervals(*JARM_BODY, 1.0, n=1)
     assert intervals
     for lo, hi in intervals:
-        assert bool(jarm(lo, 0.15, 0.02, 1.0, n=1).is_jarm)
-        assert bool(jarm(hi, 0.15, 0.02, 1.0, n=1).is_jarm)
+        assert bool(jarm(lo, *JARM_BODY, 1.0, n=1).is_jarm)
+        assert bool(jarm(hi, *JARM_BODY, 1.0, n=1).is_jarm)
         if lo > 0.01:
-            assert not bool(jarm(lo - 2e-12, 0.15, 0.02, 1.0, n=1).is_jarm)
+            assert not bool(jarm(lo - 2e-12, *JARM_BODY, 1.0, n=1).is_jarm)
         if hi < math.pi / 2:
-            assert not bool(jarm(hi + 2e-12, 0.15, 0.02, 1.0, n=1).is_jarm)
-    assert any(lo < 40 * DEG < hi for lo, hi in intervals)
+            assert not bool(jarm(hi + 2e-12, *JARM_BODY, 1.0, n=1).is_jarm)
+    assert any(lo < JARM_ALPHA < hi for lo, hi in intervals)
 
 
 def test_mu_s_min_path_is_the_jarm_threshold():
-    m = float(eccjump.mu_s_min_path(40 * DEG, 0.15, 0.02))
-    assert bool(jarm(40 * DEG, 0.15, 0.02, m).is_jarm)
-    assert not bool(jarm(40 * DEG, 0.15, 0.02, m * (1 - 1e-9)).is_jarm)
-    r = jarm(40 * DEG, 0.15, 0.02, 10.0)
+    m = float(eccjump.mu_s_min_path(JARM_ALPHA, *JARM_BODY))
+    assert bool(jarm(JARM_ALPHA, *JARM_BODY, m).is_jarm)
+    assert not bool(jarm(JARM_ALPHA, *JARM_BODY, m * (1 - 1e-9)).is_jarm)
+    r = jarm(JARM_ALPHA, *JARM_BODY, 10.0)
     assert m == pytest.approx(float(r.max_ratio), rel=1e-9)
 
 
@@ -339,7 +349,7 @@ def test_shape_errors():
 def test_broadcasting_keeps_shapes():
     r = jarm(np.linspace(0.1, 1.5, 4)[:, None], np.array([0.1, 0.2, 0.3]), 0.01, 1.0)
     assert r.shape == (4, 3) and r.theta_J.shape == (4, 3)
-    fx, fy = closed_form.jump_forces(0.7, 0.15, 0.02, np.linspace(5.6, 6.2, 5))
+    fx, fy = closed_form.jump_forces(0.7, *JARM_BODY, np.linspace(5.6, 6.2, 5))
     assert fx.shape == fy.shape == (5,)
 
 
@@ -395,9 +405,9 @@ def test_n_scalar_forms_and_lists():
     ref_ = jarm(N_ALPHA, N_CHI, N_KM, 2.0, n=2)
     for n in (np.int64(2), np.uint8(2), np.array(2), np.full((8, 8, 3), 2), [[[2]]]):
         assert_same_bits(jarm(N_ALPHA, N_CHI, N_KM, 2.0, n=n), ref_)
-    r = jarm(40 * DEG, 0.15, 0.02, 1.0, n=[1, 2])
+    r = jarm(JARM_ALPHA, *JARM_BODY, 1.0, n=[1, 2])
     assert r.shape == (2,) and bool(r.is_jarm[0]) and int(r.n[0]) == 1
-    assert jarm(np.zeros(0), 0.15, 0.02, 1.0, n=np.zeros(0, dtype=int)).shape == (0,)
+    assert jarm(np.zeros(0), *JARM_BODY, 1.0, n=np.zeros(0, dtype=int)).shape == (0,)
 
 
 @pytest.mark.parametrize("n", [0, -1, [0, 1], [1, -2], 2**32, 10**400, [1, 10**400]])
@@ -487,12 +497,12 @@ def test_every_pair_and_the_closed_form_map_the_same_region(mu_s, rule):
 
 
 def test_ode_route_reference_points():
-    r = jarm(40 * DEG, 0.15, 0.02, 1.0, method="ode")
+    r = jarm(JARM_ALPHA, *JARM_BODY, 1.0, method="ode")
     assert bool(r.is_jarm)
-    assert float(r.theta_J) == pytest.approx(334.34383789184907204 * DEG, abs=1e-9)
-    s = jarm(30 * DEG, 0.5, 0.4, 1.0, method="ode")
+    assert float(r.theta_J) == pytest.approx(JARM_THETA_J_DEG * DEG, abs=1e-9)
+    s = jarm(SLIP_FIRST_ALPHA, *SLIP_FIRST_BODY, 1.0, method="ode")
     assert Reason(int(s.reason)) == Reason.SLIP_BEFORE
-    assert float(s.theta_event) == pytest.approx(316.47167723304615645 * DEG, abs=1e-9)
+    assert float(s.theta_event) == pytest.approx(SLIP_FIRST_THETA_DEG * DEG, abs=1e-9)
 
 
 def test_ode_region_is_bit_identical_for_any_thread_count():

@@ -14,12 +14,13 @@ import time
 
 import numpy as np
 import pytest
+from reference_points import JARM_BODY, SLIP_FIRST_BODY
 
 import eccjump
 from eccjump import Cylinder, Reason
 from eccjump import closed_form as cf
 
-B = Cylinder(0.15, 0.02)
+B = Cylinder(*JARM_BODY)
 TAU = 2 * math.pi
 
 
@@ -115,15 +116,15 @@ def test_dense_output_too_large_is_a_memory_error():
 @pytest.mark.parametrize(
     ("call", "name"),
     [
-        (lambda: eccjump.jarm(0.7, 0.15, 0.02, 1.0, theta0=-1e16, omega0=2.0), "theta0"),
+        (lambda: eccjump.jarm(0.7, *JARM_BODY, 1.0, theta0=-1e16, omega0=2.0), "theta0"),
         (
             lambda: eccjump.region(mu_s=1.0, alpha=[0.7], chi=[0.2], km_frac=[0.1], theta0=-1e300),
             "theta0",
         ),
-        (lambda: eccjump.jarm(0.7, 0.15, 0.02, 1.0, n_threads=3000), "n_threads"),
-        (lambda: eccjump.jarm(0.7, 0.15, 0.02, 1.0, max_turns=10**7), "max_turns"),
-        (lambda: eccjump.jarm(1e-10, 0.15, 0.02, 1.0, max_turns=2**32 - 1), "max_turns"),
-        (lambda: eccjump.alpha_intervals(0.15, 0.02, 1.0, n_scan=2**31), "n_scan"),
+        (lambda: eccjump.jarm(0.7, *JARM_BODY, 1.0, n_threads=3000), "n_threads"),
+        (lambda: eccjump.jarm(0.7, *JARM_BODY, 1.0, max_turns=10**7), "max_turns"),
+        (lambda: eccjump.jarm(1e-10, *JARM_BODY, 1.0, max_turns=2**32 - 1), "max_turns"),
+        (lambda: eccjump.alpha_intervals(*JARM_BODY, 1.0, n_scan=2**31), "n_scan"),
         (lambda: eccjump.roll(B, 1e-10, max_steps=10**12, dense_output=True), "max_steps"),
         (lambda: eccjump.roll(B, 0.7, theta0=TAU * 1e12), "theta0"),
         (lambda: eccjump.roll(B, 0.7, omega0=1e200), "omega0"),
@@ -136,8 +137,8 @@ def test_work_parameters_are_bounded(call, name):
 def test_the_turn_cap_counts_from_the_start():
     # The motion is 2 pi periodic in theta0: a start 10000 turns on is the same problem (was
     # NO_ROOT at 10000 turns but JARM at 9999: the cap counted from 0).
-    a = eccjump.jarm(0.7, 0.15, 0.02, 1.0, theta0=TAU * 9999)
-    b = eccjump.jarm(0.7, 0.15, 0.02, 1.0, theta0=TAU * 10000)
+    a = eccjump.jarm(0.7, *JARM_BODY, 1.0, theta0=TAU * 9999)
+    b = eccjump.jarm(0.7, *JARM_BODY, 1.0, theta0=TAU * 10000)
     assert Reason(int(a.reason)) == Reason(int(b.reason)) == Reason.JARM
     assert float(b.theta_J) - float(a.theta_J) == pytest.approx(TAU, abs=1e-6)
     assert int(b.n) == int(a.n) + 1
@@ -158,18 +159,18 @@ def test_a_jump_in_the_first_half_turn_is_on_turn_one():
 
 
 def test_invalid_input_is_never_answered_with_a_number():
-    assert math.isnan(float(eccjump.mu_s_min_path(float("nan"), 0.15, 0.02)))
+    assert math.isnan(float(eccjump.mu_s_min_path(float("nan"), *JARM_BODY)))
     msg = short_error(ValueError, eccjump.alpha_intervals, 2.0, 0.02, 1.0, name="chi")
     assert "index 0" in msg
-    short_error(ValueError, cf.jump_forces, 5.0, 0.15, 0.02, 5.8, name="alpha")
-    short_error(ValueError, cf.J, float("inf"), 0.7, 0.15, 0.02, name="theta")
-    short_error(ValueError, cf.mu, 0.15, 0.02, float("nan"), name="theta_J")
-    short_error(ValueError, cf.theta_J_range, 0.5, 0.4, -1.0, name="mu_s")
-    short_error(ValueError, cf.liftoff_function, 1.0, 0.7, 0.15, 0.02, omega0=-1.0, name="omega0")
+    short_error(ValueError, cf.jump_forces, 5.0, *JARM_BODY, 5.8, name="alpha")
+    short_error(ValueError, cf.J, float("inf"), 0.7, *JARM_BODY, name="theta")
+    short_error(ValueError, cf.mu, *JARM_BODY, float("nan"), name="theta_J")
+    short_error(ValueError, cf.theta_J_range, *SLIP_FIRST_BODY, -1.0, name="mu_s")
+    short_error(ValueError, cf.liftoff_function, 1.0, 0.7, *JARM_BODY, omega0=-1.0, name="omega0")
     for kw, name in (({"atol": 1e300}, "atol"), ({"rtol": 1.0}, "rtol")):
-        short_error(ValueError, eccjump.jarm, 0.7, 0.15, 0.02, 1.0, method="ode", name=name, **kw)
+        short_error(ValueError, eccjump.jarm, 0.7, *JARM_BODY, 1.0, method="ode", name=name, **kw)
     # the closed form checks the tolerances it records too
-    short_error(ValueError, eccjump.jarm, 0.7, 0.15, 0.02, 1.0, rtol=float("nan"), name="rtol")
+    short_error(ValueError, eccjump.jarm, 0.7, *JARM_BODY, 1.0, rtol=float("nan"), name="rtol")
 
 
 @pytest.mark.parametrize("mu_s", [float("nan"), -1.0, float("inf")])

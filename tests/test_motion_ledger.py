@@ -19,6 +19,7 @@ import numpy as np
 import pytest
 from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
+from reference_points import SLIP_FIRST, SLIP_FIRST_BODY
 
 import eccjump
 from eccjump.motion import STATUSES
@@ -52,9 +53,9 @@ def check_ledger(r: eccjump.MotionResult) -> None:
 #: One run for each way a run can end (``landed`` is the motion maps' stop at the first
 #: landing, not an option of ``simulate``).
 BY_STATUS = {
-    "t_max": ((0.5, 0.4), 30.0, {"mu_s": 1.0, "t_max": 20.0}),
-    "l_max": ((0.5, 0.4), 30.0, {"mu_s": 1.0, "l_max": 25.0}),
-    "max_transitions": ((0.5, 0.4), 30.0, {"mu_s": 1.0, "max_transitions": 2}),
+    "t_max": (SLIP_FIRST_BODY, 30.0, {"mu_s": 1.0, "t_max": 20.0}),
+    "l_max": (SLIP_FIRST_BODY, 30.0, {"mu_s": 1.0, "l_max": 25.0}),
+    "max_transitions": (SLIP_FIRST_BODY, 30.0, {"mu_s": 1.0, "max_transitions": 2}),
     "painleve": (
         (0.9955002834343927, 0.0035667539688122203),
         math.degrees(0.9773168482142575),
@@ -79,7 +80,7 @@ BY_STATUS = {
             "t_max": 20.0,
         },
     ),
-    "failed": ((0.5, 0.4), 30.0, {"mu_s": 1.0, "max_steps": 40}),
+    "failed": (SLIP_FIRST_BODY, 30.0, {"mu_s": 1.0, "max_steps": 40}),
 }
 
 
@@ -114,7 +115,7 @@ def test_friction_opposes_the_slip_after_a_reversal() -> None:
 
 def test_a_run_stopped_by_its_budget_at_a_landing_keeps_arrays_and_totals_in_step() -> None:
     # Issue 35: the ledger by the totals was 0.293 off; the impact is now not made.
-    r = eccjump.simulate(eccjump.Cylinder(0.5, 0.4), math.radians(30), mu_s=1.0, max_transitions=2)
+    r = eccjump.simulate(*SLIP_FIRST, mu_s=1.0, max_transitions=2)
     assert r.status == "max_transitions"
     assert r.energy[-1] + r.dissipated_slip + r.dissipated_impacts == pytest.approx(
         r.energy0, abs=1e-9

@@ -10,10 +10,11 @@ from html.parser import HTMLParser
 
 import numpy as np
 import pytest
+from reference_points import JARM_BODY
 
 import eccjump
 
-BODY = eccjump.Cylinder(0.15, 0.02)
+BODY = eccjump.Cylinder(*JARM_BODY)
 
 
 class Balanced(HTMLParser):
@@ -45,8 +46,8 @@ def results() -> dict[str, object]:
         "Cylinder": BODY,
         "RollResult": eccjump.roll(BODY, 0.7, mu_s=1.0),
         "MotionResult": eccjump.simulate(BODY, 0.7, mu_s=1.0),
-        "JarmResult": eccjump.jarm(0.7, 0.15, 0.02, 1.0),
-        "JarmResult[]": eccjump.jarm([0.7, 0.2], 0.15, 0.02, 1.0),
+        "JarmResult": eccjump.jarm(0.7, *JARM_BODY, 1.0),
+        "JarmResult[]": eccjump.jarm([0.7, 0.2], *JARM_BODY, 1.0),
         "Region": eccjump.region(alpha, np.linspace(0.05, 0.4, 10), [0.05, 0.2], 2.0),
         "MotionMap": eccjump.motion_map(alpha, [0.1, 0.3], 0.1, 2.0),
         "StartMap": eccjump.start_map(1.0, [0.0, 4.7], [0.0, 1.0], grid=4),

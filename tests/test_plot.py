@@ -8,6 +8,7 @@ import pytest
 
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt
+from reference_points import JARM, JARM_BODY, SLIP_FIRST, SLIP_FIRST_BODY
 
 import eccjump
 from eccjump import closed_form, plot
@@ -26,7 +27,7 @@ def _labelled(ax) -> None:
 
 
 def test_fig3b_data_is_closed_form_mu_and_marks_the_minimum():
-    fig = plot.fig3b(0.5, 0.4, mu_s=1.6)
+    fig = plot.fig3b(*SLIP_FIRST_BODY, mu_s=1.6)
     assert isinstance(fig, matplotlib.figure.Figure)
     ax = fig.axes[0]
     _labelled(ax)
@@ -36,10 +37,12 @@ def test_fig3b_data_is_closed_form_mu_and_marks_the_minimum():
     x, y = (np.asarray(v, float) for v in line.get_data())
     ok = np.isfinite(y)
     assert ok.sum() > 0.9 * x.size
-    np.testing.assert_allclose(y[ok], closed_form.mu(0.5, 0.4, np.radians(x[ok])), rtol=1e-12)
+    np.testing.assert_allclose(
+        y[ok], closed_form.mu(*SLIP_FIRST_BODY, np.radians(x[ok])), rtol=1e-12
+    )
     mark = next(ln for ln in ax.get_lines() if ln.get_gid() == "mu_s_min")
     mx, my = (float(np.asarray(v)[0]) for v in mark.get_data())
-    m, phi = closed_form.mu_s_min(0.5, 0.4)
+    m, phi = closed_form.mu_s_min(*SLIP_FIRST_BODY)
     assert my == pytest.approx(float(m), rel=1e-14)
     assert my == pytest.approx(1.3916, abs=1e-4)
     assert mx == pytest.approx(360.0 + math.degrees(float(phi)), abs=1e-9)
@@ -92,7 +95,7 @@ def test_fig4_slices_labels_and_legend():
 
 
 def test_trajectory_panels_and_events():
-    res = eccjump.roll(eccjump.Cylinder(0.15, 0.02), math.radians(40), mu_s=1.0, dense_output=True)
+    res = eccjump.roll(*JARM, mu_s=1.0, dense_output=True)
     fig = plot.trajectory(res)
     assert len(fig.axes) == 4
     for ax in fig.axes:
@@ -106,7 +109,7 @@ def test_trajectory_panels_and_events():
 
 
 def test_trajectory_without_dense_output():
-    res = eccjump.roll(eccjump.Cylinder(0.5, 0.4), math.radians(30), mu_s=1.0)
+    res = eccjump.roll(*SLIP_FIRST, mu_s=1.0)
     fig = plot.trajectory(res)
     assert "slip" in " ".join(t.get_text() for t in fig.axes[1].get_legend().get_texts())
 
@@ -162,7 +165,7 @@ def test_every_first_flight_gets_its_frames():
     spaced frames alone would skip the first flight of this run, 0.0071 R high)."""
     from eccjump.plot.full_motion import FLIGHT_FRAMES, MAX_FRAMES, _frame_times
 
-    r = eccjump.simulate(eccjump.Cylinder(0.15, 0.02), 0.7, mu_s=1.0)
+    r = eccjump.simulate(eccjump.Cylinder(*JARM_BODY), 0.7, mu_s=1.0)
     ts = _frame_times(float(r.t[0]), float(r.t[-1]), MAX_FRAMES, r.flights)
     assert ts.size <= MAX_FRAMES and np.all(np.diff(ts) > 0)
     assert ts[0] == r.t[0] and ts[-1] == r.t[-1]

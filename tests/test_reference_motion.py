@@ -253,21 +253,107 @@ def test_jam_and_painleve(monkeypatch):
         chi=0.7, km=0.05, alpha=D(2.5), mu_s=1.1, theta0=4.73, omega0=0.08, slip0=1.0
     )
     assert jam["status"] == "jam" and len(jam["transitions"]) == 1
+    # A true Painlevé jam: continued in the impulse, D decays like exp(−cP) and would reach
+    # about 1e-156 before the slip velocity (4.4 when D = 1e-12) returned to 0.
     kw = {"chi": 0.9, "km": 0.05, "alpha": D(85.0), "mu_s": 1.0, "t_max": 10.0}
     pl = rm.simulate_reference(**kw)
     print(rm.format_transitions(pl))
-    assert pl["status"] == "painleve"
+    assert pl["status"] == "painleve" and pl["message"].startswith("Painlevé jam")
     assert seq(pl) == [(None, "ROLL", "start"), ("ROLL", "SLIP", "slip")]
-    assert 260.0 < math.degrees(pl["end"][2]) < 280.0  # physics.md: near θ ≈ 270°
+    assert pl["impulse_pieces"] == 1
+    t, _, th, om, _, ld, *_ = pl["end"]
+    assert 260.0 < math.degrees(th) < 280.0  # physics.md: near θ ≈ 270°
     body = rm.Body(0.9, 0.05, D(85.0))
-    sigma = -math.copysign(1.0, pl["end"][5] - pl["end"][3])
-    assert rm.slip_d(body, pl["end"][2], sigma, 1.0) == pytest.approx(rm.D_MIN, abs=1e-9)
-    # the time and angle hardly depend on the threshold (physics.md)
-    monkeypatch.setattr(rm, "D_MIN", 1e-4)
-    pl4 = rm.simulate_reference(**kw)
-    assert pl4["status"] == "painleve"
-    assert pl4["end"][0] == pytest.approx(pl["end"][0], abs=1e-3)
-    assert math.degrees(pl4["end"][2]) == pytest.approx(math.degrees(pl["end"][2]), abs=0.05)
+    sigma = -math.copysign(1.0, ld - om)
+    assert rm.slip_d(body, th, sigma, 1.0) == pytest.approx(rm.D_JAM, rel=1e-3)
+    assert abs(ld - om) > 4.0  # the slip is still fast
+    assert abs(ledger_residual(pl)) < 1e-8
+    # t and θ hardly depend on the thresholds, the velocities do (physics.md): dt/dP and
+    # dθ/dP vanish with D, the velocities change linearly in P ∝ −log D
+    monkeypatch.setattr(rm, "D_JAM", 1e-10)
+    monkeypatch.setattr(rm, "D_SWITCH", 1e-2)
+    pl10 = rm.simulate_reference(**kw)
+    assert pl10["status"] == "painleve"
+    assert pl10["end"][0] == pytest.approx(t, abs=1e-9)
+    assert pl10["end"][2] == pytest.approx(th, abs=1e-9)
+    assert 1e-3 < abs(pl10["end"][3] - om) < 0.1
+
+
+def test_impulse_form_is_the_slip_divided_by_the_normal_force():
+    rng = np.random.default_rng(5)
+    checked = 0
+    for _ in range(300):
+        chi = rng.uniform(0.0, 0.95)
+        body = rm.Body(chi, rng.uniform(0.01, 1.0 - chi), rng.uniform(0.0, math.pi / 2))
+        th, om, sigma, mu = rng.uniform(-7, 7), rng.uniform(-4, 4), rng.choice([-1.0, 1.0]), 1.3
+        if abs(rm.slip_d(body, th, sigma, mu)) < 1e-3 or abs(rm.lift_l(body, th, om)) < 1e-3:
+            continue
+        thdd, ldd, _, _, fy = rm.newton_euler(body, rm.SLIP, th, om, sigma, mu)
+        x = rm.newton_euler_impulse(body, th, om, sigma, mu)
+        np.testing.assert_allclose(x, [thdd / fy, ldd / fy, 1.0 / fy], rtol=1e-9, atol=1e-12)
+        checked += 1
+    assert checked > 200
+
+
+def test_impulse_form_is_finite_where_d_vanishes():
+    from scipy.optimize import brentq
+
+    body = rm.Body(0.9, 0.05, D(85.0))
+    sigma, mu, om = -1.0, 1.0, 1.4
+    th = brentq(lambda x: rm.slip_d(body, x, sigma, mu), D(265.0), D(275.0), xtol=1e-15)
+    a, b, w = rm.newton_euler_impulse(body, th, om, sigma, mu)
+    k = body.chi * math.sin(th) - sigma * mu * (1.0 + body.chi * math.cos(th))
+    assert abs(w) < 1e-12  # 1/F_y = D/(Ĩ_CM B), D at rounding level, Ĩ_CM B = 0.008
+    assert a == pytest.approx(k / body.icm, rel=1e-12)  # θ̈/F_y = K/Ĩ_CM
+    assert b == pytest.approx(sigma * mu - body.chi * math.cos(th) * a, rel=1e-12)
+
+
+#: Issue 38's reproducer: chi, km, alpha, then the options.
+ISSUE38 = (
+    (0.677301413067792, 0.17587848529965222, 1.3179033062341512),
+    {
+        "mu_s": 1.4800299961460412,
+        "mu_k": 1.0117188986517158,
+        "theta0": 3.479669684013747,
+        "omega0": 0.08695780632623507,
+        "t_max": 30.0,
+    },
+)
+
+
+def test_the_issue_38_slip_goes_on_through_its_painleve_point():
+    args, kw = ISSUE38
+    res = rm.simulate_reference(*args, **kw)
+    print(rm.format_transitions(res))
+    assert res["status"] == "t_max" and res["impulse_pieces"] >= 1
+    assert seq(res) == [
+        (None, "SLIP", "start"),
+        ("SLIP", "SLIP", "reverse"),
+        ("SLIP", "FLIGHT", "normal_force"),
+        ("FLIGHT", "SLIP", "impact"),
+        ("SLIP", "FLIGHT", "normal_force"),
+    ]
+    times = [tr[0] for tr in res["transitions"]]
+    # the issue's figures, to their printed digits
+    assert times[1] == pytest.approx(4.1456228514, abs=1e-10)
+    assert times[2] == pytest.approx(4.1599367580, abs=1e-10)
+    assert times[3] == pytest.approx(14.028, abs=1e-3)
+    th = res["transitions"][1][4]
+    d_before = rm.slip_d(rm.Body(*args), th, -1.0, kw["mu_k"])  # the slip had σ = −1
+    assert d_before == pytest.approx(2.1e-7, rel=0.05)  # v = 0 while D is still 2.1e-7
+    assert abs(ledger_residual(res)) < 1e-8
+
+
+@pytest.mark.parametrize("switch", [1e-1, 1e-2, 1e-4])
+def test_the_switch_to_the_impulse_changes_nothing_but_rounding(monkeypatch, switch):
+    args, kw = ISSUE38
+    base = rm.simulate_reference(*args, **kw)
+    monkeypatch.setattr(rm, "D_SWITCH", switch)
+    other = rm.simulate_reference(*args, **kw)
+    assert seq(other) == seq(base)
+    for a, b in zip(other["transitions"], base["transitions"], strict=True):
+        np.testing.assert_allclose(a[4:], b[4:], rtol=1e-8, atol=1e-8)
+        assert a[0] == pytest.approx(b[0], abs=1e-8)
 
 
 def exact_gap(body, th0, om, bd0, tau):

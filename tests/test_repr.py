@@ -7,6 +7,7 @@ import math
 
 import numpy as np
 import pytest
+from reference_points import JARM, JARM_ALPHA, JARM_BODY
 
 import eccjump
 from eccjump import Cylinder, Reason, jarm, region, roll
@@ -26,9 +27,9 @@ def test_jarm_result_repr_counts_reasons():
 
 
 def test_single_point_repr():
-    text = repr(jarm(math.radians(40), 0.15, 0.02, 1.0))
+    text = repr(jarm(JARM_ALPHA, *JARM_BODY, 1.0))
     assert text.startswith("JarmResult(JARM, n=1, theta_J=5.8354") and "334.3 deg" in text
-    assert repr(jarm(0.0, 0.15, 0.02, 1.0)) == "JarmResult(NO_ROOT, n=0)"
+    assert repr(jarm(0.0, *JARM_BODY, 1.0)) == "JarmResult(NO_ROOT, n=0)"
 
 
 def test_region_repr():
@@ -67,7 +68,7 @@ def test_lazy_region_repr_does_not_compute(monkeypatch):
 
 
 def test_roll_result_repr():
-    r = roll(Cylinder(0.15, 0.02), math.radians(40), mu_s=1.0, rtol=1e-12, atol=1e-14)
+    r = roll(*JARM, mu_s=1.0, rtol=1e-12, atol=1e-14)
     text = repr(r)
     assert r.t.size > 50 and len(text) < 400 and "array" not in text
     assert text.splitlines()[1].startswith("  liftoff at t=4.183")
@@ -75,10 +76,19 @@ def test_roll_result_repr():
     assert f"{r.t.size - 1} steps" in text and "mu_s=1" in text
     si = repr(r.to_si(g=9.81, R=0.5))
     assert "SI units" in si and " s," in si and "rad/s" in si
-    assert "t_max reached" in repr(roll(Cylinder(0.15, 0.02), 0.5, t_max=0.1))
+    assert "t_max reached" in repr(roll(Cylinder(*JARM_BODY), 0.5, t_max=0.1))
 
 
 def test_repr_of_points_not_computed():
     empty = eccjump.JarmResult(**{k: np.full((3, 4), FILL[k], dtype=DTYPES[k]) for k in FIELDS})
     assert repr(empty).splitlines()[1].split() == ["code", "255", "12"]
     assert empty.counts() == {255: 12}
+
+
+def test_uncertainty_repr_is_one_line_with_the_probability():
+    u = eccjump.uncertainty(
+        eccjump.Cylinder(0.15, 0.02), math.radians(40), 1.0, sd={"chi": 0.02}, n=500, seed=3
+    )
+    text = repr(u)
+    assert "\n" not in text and len(text) < 200, text
+    assert f"p_jarm={u.p_jarm:.4g}" in text and "chi ± 0.02" in text

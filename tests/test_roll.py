@@ -8,6 +8,7 @@ import numpy as np
 import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
+from reference_points import JARM, JARM_BODY, SLIP_FIRST
 from scipy.integrate import solve_ivp
 from scipy.optimize import brentq
 
@@ -143,7 +144,7 @@ def test_liftoff_from_rest_is_the_first_root_of_J(alpha_deg, chi, km):
 
 
 def test_reference_point_of_the_physics_notes():
-    r = roll(Cylinder(0.15, 0.02), math.radians(40), mu_s=1.0)
+    r = roll(*JARM, mu_s=1.0)
     assert r.terminal_event == "liftoff"
     assert math.degrees(r.theta[-1]) == pytest.approx(334.344, abs=1e-3)
     assert r.Fy[-1] == pytest.approx(0.01543, abs=1e-5)
@@ -152,7 +153,7 @@ def test_reference_point_of_the_physics_notes():
 
 
 def test_slips_first_at_the_second_reference_point():
-    r = roll(Cylinder(0.5, 0.4), math.radians(30), mu_s=1.0)
+    r = roll(*SLIP_FIRST, mu_s=1.0)
     assert r.terminal_event == "slip"
     assert math.degrees(r.theta[-1]) == pytest.approx(316.47, abs=0.01)
     assert abs(r.Fx[-1]) == pytest.approx(r.Fy[-1], rel=1e-8)
@@ -265,7 +266,7 @@ def test_dense_output_matches_the_steps():
 def test_dense_output_ends_at_the_terminal_event():
     # The README case: lift-off at t = 4.18302 inside a step that ends later; sol must not
     # return rolling states past the lift-off.
-    r = roll(Cylinder(0.15, 0.02), math.radians(40), mu_s=1.0, dense_output=True)
+    r = roll(*JARM, mu_s=1.0, dense_output=True)
     assert r.terminal_event == "liftoff"
     t_end = r.event("liftoff").t
     assert r.sol.t_max == t_end == r.t[-1]
@@ -296,7 +297,7 @@ def test_si_conversion_keeps_angles_and_scales_the_rest():
 
 
 def test_rule_normal_force_rolls_past_the_papers_liftoff():
-    body, alpha = Cylinder(0.15, 0.02), math.radians(40)
+    body, alpha = JARM
     paper = roll(body, alpha, mu_s=1.0)
     classical = roll(body, alpha, mu_s=1.0, rule="normal_force")
     assert classical.event("liftoff").theta == pytest.approx(paper.theta[-1], abs=1e-12)
@@ -331,8 +332,8 @@ def test_dense_output_is_skipped_only_where_it_changes_nothing(s, mu_s, rule, in
 def test_dop853_rolling_from_rest_makes_few_dense_outputs():
     # From rest to the lift-off at alpha = 40 deg: 27 of the 28 steps are cleared.
     kw = dict(integrator="DOP853")
-    lean = roll(Cylinder(0.15, 0.02), math.radians(40), **kw)
-    full = roll(Cylinder(0.15, 0.02), math.radians(40), dense_output=True, **kw)
+    lean = roll(*JARM, **kw)
+    full = roll(*JARM, dense_output=True, **kw)
     assert lean.theta.tobytes() == full.theta.tobytes()
     assert full.nfev - lean.nfev >= 3 * (len(lean.t) - 4)
 
@@ -405,7 +406,7 @@ def test_fast_result_construction_equals_the_dataclass_init():
 
     from eccjump.rolling import Event, RollResult
 
-    r = roll(Cylinder(0.15, 0.02), math.radians(40))
+    r = roll(*JARM)
     names = [f.name for f in dataclasses.fields(RollResult)]
     assert list(vars(r)) == names
     again = RollResult(**{n: getattr(r, n) for n in names})
@@ -442,7 +443,7 @@ def test_arguments_of_any_accepted_type_give_the_run_of_plain_ones():
     class Name(str):
         pass
 
-    body = Cylinder(0.15, 0.02)
+    body = Cylinder(*JARM_BODY)
     kw = dict(theta0=0.1, omega0=0.2, t_max=50.0, rtol=1e-9, atol=1e-11, dense_output=True)
     plain = roll(body, 0.7, mu_s=1.0, max_steps=10_000, rule="normal_force", **kw)
     other = roll(
@@ -619,7 +620,7 @@ def test_vern7_is_refused_naming_the_integrators_left(route):
     run = roll if route == "roll" else simulate
     allowed = r"integrator = .Vern7. .*'RK45', 'DOP853', 'Vern9'"
     with pytest.raises(ValueError, match=allowed) as err:
-        run(Cylinder(0.15, 0.02), 0.7, mu_s=1.0, integrator="Vern7")  # type: ignore[arg-type]
+        run(Cylinder(*JARM_BODY), 0.7, mu_s=1.0, integrator="Vern7")  # type: ignore[arg-type]
     assert len(str(err.value)) < 200
 
 
@@ -638,5 +639,5 @@ def test_liftoff_by_a_high_order_pair_matches_the_closed_form_root(integrator):
 def test_an_angle_in_degrees_is_refused_naming_the_unit():
     # The API takes radians (the command line degrees): 40 is far outside [0, pi/2] rad.
     with pytest.raises(ValueError, match=r"alpha = 40.*\[0, pi/2\] rad.*math.radians") as err:
-        roll(Cylinder(0.15, 0.02), 40.0, mu_s=1.0)
+        roll(Cylinder(*JARM_BODY), 40.0, mu_s=1.0)
     assert len(str(err.value)) < 200

@@ -6,6 +6,7 @@ from __future__ import annotations
 
 import ast
 import dataclasses
+import inspect
 import subprocess
 import sys
 from pathlib import Path
@@ -14,7 +15,7 @@ import numpy as np
 import pytest
 
 import eccjump
-from eccjump import fields, labelled, scale
+from eccjump import _core, fields, labelled, scale
 from eccjump.classification import JarmResult
 
 PACKAGE = Path(eccjump.__file__).parent
@@ -128,6 +129,22 @@ def test_the_bridge_is_called_from_one_module():
         if call in p.read_text()
     }
     assert callers == {"eccjump._bridge"}
+
+
+def keyword_only(f) -> list[str]:
+    ps = inspect.signature(f).parameters.values()
+    return sorted(p.name for p in ps if p.kind is p.KEYWORD_ONLY)
+
+
+def test_the_bridges_option_classes_take_the_public_names():
+    # The bridge's convention: shared options go in one options class, made from keyword-only
+    # plain values under the public function's own names (no two floats swapped on the way).
+    assert keyword_only(_core.ClassifyOptions) == keyword_only(eccjump.jarm)
+    searches = (eccjump.alpha_intervals, eccjump.mu_s_min_path, eccjump.alpha_interval_around)
+    for f in searches:
+        assert set(keyword_only(_core.BoundaryOptions)) <= set(inspect.signature(f).parameters)
+    for f in (_core.jarm_points, _core.jarm_grid, *(getattr(_core, g.__name__) for g in searches)):
+        assert "options" in keyword_only(f), f.__name__
 
 
 @pytest.mark.parametrize("module", IMPORTABLE)

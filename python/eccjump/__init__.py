@@ -18,6 +18,7 @@ from eccjump.maps import Map
 from eccjump.maps import load as load_map
 from eccjump.motion import MotionResult, simulate
 from eccjump.motion_maps import MotionMap, motion_map
+from eccjump.motion_points import MotionPoints, motion_points
 from eccjump.rolling import EVENT_NAMES, Event, RollResult, roll
 from eccjump.starts import (
     OptimalStart,
@@ -27,6 +28,7 @@ from eccjump.starts import (
     reason_shares,
     start_map,
 )
+from eccjump.uncertainty import Uncertainty, uncertainty
 from eccjump.units import Units
 
 __all__ = [
@@ -39,12 +41,14 @@ __all__ = [
     "JarmResult",
     "Map",
     "MotionMap",
+    "MotionPoints",
     "MotionResult",
     "OptimalStart",
     "Reason",
     "Region",
     "RollResult",
     "StartMap",
+    "Uncertainty",
     "Units",
     "__version__",
     "alpha_interval_around",
@@ -59,6 +63,7 @@ __all__ = [
     "load_map",
     "maps",
     "motion_map",
+    "motion_points",
     "mu_s_min_path",
     "optimal_start",
     "reason_shares",
@@ -68,4 +73,5 @@ __all__ = [
     "simulate",
     "start_map",
     "store",
+    "uncertainty",
 ]

@@ -1,9 +1,10 @@
 """The only calls of the Rust classification bridge (``_core.jarm_points``, ``_core.jarm_grid``).
 
 :func:`call_options` converts the options that apply to a whole call into a
-:class:`CallOptions`; :func:`_bridge_options` alone knows how the bridge takes them (its
-keyword-only parameters, ``rust/eccjump-py/src/jarm.rs``), so a change of those touches this
-module only. The turn ``n`` travels separately: one per point for ``jarm_points``.
+:class:`CallOptions` (plain values: it pickles into dask graphs); :func:`_bridge_options`
+alone knows how the bridge takes them (one ``_core.ClassifyOptions``, made for each call,
+``rust/eccjump-py/src/options.rs``), so a change of those touches this module only. The
+turn ``n`` travels separately: one per point for ``jarm_points``.
 """
 
 from __future__ import annotations
@@ -96,20 +97,20 @@ def call_options(
 
 
 def _bridge_options(opts: CallOptions) -> _core.ClassifyOptions:
-    """``opts`` as the bridge's keyword arguments: the options without the turn."""
-    return {
-        "rule": opts.rule,
-        "method": opts.method,
-        "rtol": opts.rtol,
-        "atol": opts.atol,
-        "theta0": opts.theta0,
-        "omega0": opts.omega0,
-        "max_turns": opts.max_turns,
-        "refine_extrema": opts.refine_extrema,
-        "stop_at_slip": opts.stop_at_slip,
-        "n_threads": opts.n_threads,
-        "integrator": opts.integrator,
-    }
+    """``opts`` as the bridge takes them: the options without the turn, converted once."""
+    return _core.ClassifyOptions(
+        rule=opts.rule,
+        method=opts.method,
+        rtol=opts.rtol,
+        atol=opts.atol,
+        theta0=opts.theta0,
+        omega0=opts.omega0,
+        max_turns=opts.max_turns,
+        refine_extrema=opts.refine_extrema,
+        stop_at_slip=opts.stop_at_slip,
+        n_threads=opts.n_threads,
+        integrator=opts.integrator,
+    )
 
 
 def jarm_points(
@@ -124,7 +125,7 @@ def jarm_points(
     length 1), with a turn per point ``n`` (validated, >= 1, same length) or ``opts.n`` for
     all: one flat array per field."""
     turns = np.ascontiguousarray([opts.n or 0] if n is None else n, dtype=np.uint32)
-    return _core.jarm_points(alpha, chi, km, mu_s, turns, **_bridge_options(opts))
+    return _core.jarm_points(alpha, chi, km, mu_s, turns, options=_bridge_options(opts))
 
 
 def jarm_grid(
@@ -137,4 +138,4 @@ def jarm_grid(
     """Classify the grid alpha x chi x frac (k_m = frac (1 - chi)) on the turn ``opts.n``:
     one array per field, flat in C order."""
     mu_s = real("mu_s", mu_s)
-    return _core.jarm_grid(alpha, chi, frac, mu_s, n=opts.n or 0, **_bridge_options(opts))
+    return _core.jarm_grid(alpha, chi, frac, mu_s, n=opts.n or 0, options=_bridge_options(opts))

@@ -1,7 +1,9 @@
 """Type stubs of the compiled bridge ``eccjump._core`` (Rust, pyo3).
 
 One convention (``docs/architecture.md``, "The bridge"): the arrays or numbers computed over
-come positionally, every option keyword-only, each of a plain type; results are plain values
+come positionally, every option keyword-only, each of a plain type (the options that several
+entry points share gathered once in a frozen options class, ``ClassifyOptions`` and
+``BoundaryOptions``, itself made from keyword-only plain values); results are plain values
 (numpy arrays, floats, ints, strings, and tuples, lists and dicts of them), from which the
 Python layer makes its result objects.
 """
@@ -44,18 +46,13 @@ class ImpactResult(TypedDict):
 def impact(
     chi: float,
     km: float,
-    theta: float,
-    omega: float,
-    ldot: float,
-    bdot: float,
-    mu_s: float,
-    mu_k: float,
-    restitution: float,
+    state: tuple[float, float, float, float],
+    law: tuple[float, float, float],
 ) -> ImpactResult:
-    """One impact of the body (chi, km) at angle theta arriving with velocities (omega, ldot,
-    bdot): Routh's method with Coulomb friction (mu_s, mu_k) and Stronge's energetic
-    restitution (docs/impact_law.md). Private, for the tests. ValueError (validated by the
-    core) for a bad parameter, a non-finite state or km = 0."""
+    """One impact of the body (chi, km) at the state (theta, omega, ldot, bdot) under the law
+    (mu_s, mu_k, restitution): Routh's method with Coulomb friction (mu_s, mu_k) and
+    Stronge's energetic restitution (docs/impact_law.md). Private, for the tests. ValueError
+    (validated by the core) for a bad parameter, a non-finite state or km = 0."""
 
 #: The series of a rolling run: t, theta, omega, omega_dot, Fx, Fy, l, friction ratio.
 RollSeries = tuple[F64, F64, F64, F64, F64, F64, F64, F64]
@@ -159,21 +156,26 @@ class MotionDense:
         (6, len(t)); at an impact, the state after it. ValueError names the first time
         outside [0, t_max]; MemoryError for too many times."""
 
-class ClassifyOptions(TypedDict):
-    """The keyword-only options of ``jarm_points`` and ``jarm_grid`` (typing only: the
-    Python layer passes them as keywords)."""
+class ClassifyOptions:
+    """The options of ``jarm_points`` and ``jarm_grid`` but the turn, converted once: made
+    from keyword-only plain values named as ``eccjump.jarm`` names them. ValueError for an
+    unknown rule, route or pair and for tolerances out of range."""
 
-    rule: str
-    method: str
-    rtol: float
-    atol: float
-    theta0: float
-    omega0: float
-    max_turns: int
-    refine_extrema: bool
-    stop_at_slip: bool
-    n_threads: int
-    integrator: str
+    def __init__(
+        self,
+        *,
+        rule: str,
+        method: str,
+        rtol: float,
+        atol: float,
+        theta0: float,
+        omega0: float,
+        max_turns: int,
+        refine_extrema: bool,
+        stop_at_slip: bool,
+        n_threads: int,
+        integrator: str,
+    ) -> None: ...
 
 def jarm_points(
     alpha: F64,
@@ -182,17 +184,7 @@ def jarm_points(
     mu_s: F64,
     n: NDArray[np.uint32],
     *,
-    rule: str,
-    method: str,
-    rtol: float,
-    atol: float,
-    theta0: float,
-    omega0: float,
-    max_turns: int,
-    refine_extrema: bool,
-    stop_at_slip: bool,
-    n_threads: int,
-    integrator: str,
+    options: ClassifyOptions,
 ) -> dict[str, NDArray[Any]]: ...
 def jarm_grid(
     alpha: F64,
@@ -201,17 +193,7 @@ def jarm_grid(
     mu_s: float,
     *,
     n: int,
-    rule: str,
-    method: str,
-    rtol: float,
-    atol: float,
-    theta0: float,
-    omega0: float,
-    max_turns: int,
-    refine_extrema: bool,
-    stop_at_slip: bool,
-    n_threads: int,
-    integrator: str,
+    options: ClassifyOptions,
 ) -> dict[str, NDArray[Any]]: ...
 def reason_codes() -> list[tuple[int, str]]: ...
 
@@ -246,24 +228,27 @@ def theta_nj(alpha: F64, chi: F64, km: F64, *, n: int) -> list[F64]: ...
 def path_forces(
     theta: F64, alpha: F64, chi: F64, km: F64, *, theta0: float, omega0: float
 ) -> list[F64]: ...
+
+class BoundaryOptions:
+    """The options every boundary search takes: the turn (0 = the first jump), the rule and
+    the threads, made from keyword-only plain values. ValueError for an unknown rule."""
+
+    def __init__(self, *, n: int, rule: str, n_threads: int) -> None: ...
+
 def alpha_intervals(
     chi: NDArray[np.float64],
     km: NDArray[np.float64],
     mu_s: float,
     *,
-    n: int,
-    rule: str,
     n_scan: int,
-    n_threads: int,
+    options: BoundaryOptions,
 ) -> list[list[tuple[float, float]]]: ...
 def mu_s_min_path(
     alpha: NDArray[np.float64],
     chi: NDArray[np.float64],
     km: NDArray[np.float64],
     *,
-    n: int,
-    rule: str,
-    n_threads: int,
+    options: BoundaryOptions,
 ) -> NDArray[np.float64]: ...
 def alpha_interval_around(
     seed: NDArray[np.float64],
@@ -271,10 +256,8 @@ def alpha_interval_around(
     km: NDArray[np.float64],
     mu_s: float,
     *,
-    n: int,
-    rule: str,
     step: float,
-    n_threads: int,
+    options: BoundaryOptions,
 ) -> tuple[NDArray[np.float64], NDArray[np.float64]]: ...
 def motion_grid(
     alpha: NDArray[np.float64],
@@ -299,6 +282,32 @@ def motion_grid(
     axes (k_m = frac (1 - chi); an empty ``mu_k``: mu_k = mu_s), flat in C order, with the
     GIL released. One array per summary field (``eccjump.motion_maps.TABLE``); a point with
     invalid values has status 255. A bad shared option is a ValueError naming it."""
+
+def motion_points(
+    alpha: NDArray[np.float64],
+    chi: NDArray[np.float64],
+    km: NDArray[np.float64],
+    mu_s: NDArray[np.float64],
+    mu_k: NDArray[np.float64],
+    restitution: NDArray[np.float64],
+    theta0: NDArray[np.float64],
+    omega0: NDArray[np.float64],
+    *,
+    rule: str,
+    t_max: float,
+    max_transitions: int,
+    rtol: float,
+    atol: float,
+    max_steps: int,
+    n_threads: int,
+    integrator: str,
+) -> dict[str, NDArray[Any]]:
+    """The full motion to the first landing at each point (alpha[i], chi[i], km[i], mu_s[i],
+    mu_k[i], restitution[i], theta0[i], omega0[i]) (km: the body's k_m; columns of one
+    length, an empty ``mu_k``: mu_k = mu_s), with the GIL released, each point exactly what
+    ``simulate`` gives there, for any thread count. One array per summary field
+    (``eccjump.motion_fields.TABLE``); an invalid point has status 255. A bad shared option
+    or a column of another length is a ValueError naming it."""
 
 def landing_codes() -> list[tuple[int, str]]:
     """(code, name) of every landing outcome of a motion map."""

@@ -11,8 +11,14 @@ from eccjump._arrays import broadcast_flat, turn
 from eccjump._checks import U64_MAX, Rule, integer, real, text
 
 
-def _threads(n_threads: object) -> int:
-    return integer("n_threads", n_threads, 0, U64_MAX)
+def _options(n: object, rule: object, n_threads: object) -> _core.BoundaryOptions:
+    """The options every boundary search takes, checked (TypeError naming one of the wrong
+    type) and converted by the bridge (ValueError for an unknown rule)."""
+    return _core.BoundaryOptions(
+        n=turn(n) or 0,
+        rule=text("rule", rule),
+        n_threads=integer("n_threads", n_threads, 0, U64_MAX),
+    )
 
 
 def alpha_intervals(
@@ -70,13 +76,7 @@ def alpha_intervals(
     scan = integer("n_scan", n_scan, 2, U64_MAX)
     _, (c, k) = broadcast_flat(chi=chi, km=km)
     return _core.alpha_intervals(
-        c,
-        k,
-        real("mu_s", mu_s),
-        n=turn(n) or 0,
-        rule=text("rule", rule),
-        n_scan=scan,
-        n_threads=_threads(n_threads),
+        c, k, real("mu_s", mu_s), n_scan=scan, options=_options(n, rule, n_threads)
     )
 
 
@@ -129,9 +129,7 @@ def mu_s_min_path(
     0.33471000675
     """
     shape, (a, c, k) = broadcast_flat(alpha=alpha, chi=chi, km=km)
-    out = _core.mu_s_min_path(
-        a, c, k, n=turn(n) or 0, rule=text("rule", rule), n_threads=_threads(n_threads)
-    )
+    out = _core.mu_s_min_path(a, c, k, options=_options(n, rule, n_threads))
     return out.reshape(shape)
 
 
@@ -194,13 +192,6 @@ def alpha_interval_around(
     """
     shape, (s, c, k) = broadcast_flat(seed=seed, chi=chi, km=km)
     lo, hi = _core.alpha_interval_around(
-        s,
-        c,
-        k,
-        real("mu_s", mu_s),
-        n=turn(n) or 0,
-        rule=text("rule", rule),
-        step=real("step", step),
-        n_threads=_threads(n_threads),
+        s, c, k, real("mu_s", mu_s), step=real("step", step), options=_options(n, rule, n_threads)
     )
     return lo.reshape(shape), hi.reshape(shape)

@@ -194,7 +194,8 @@ class MotionResult:
         Energy dissipated by the impacts over the run [M g R].
     status : str
         How the run ended: ``"t_max"``, ``"l_max"``, ``"max_transitions"``,
-        ``"painleve"``, ``"jam"`` or ``"failed"``.
+        ``"painleve"`` (an impulsive jam: the normal impulse of a slip grows without
+        bound), ``"jam"`` or ``"failed"``.
     message : str
         What happened, in words.
     nfev : int
@@ -452,6 +453,12 @@ def simulate(
     Stronge's energetic restitution), and after every event the consistent contact mode is
     chosen again. The run ends at ``t_max``, ``l_max`` or ``max_transitions``, or where the
     rigid model cannot continue (Painlevé, a jam): that is a ``status``, not an error.
+
+    Where the sliding normal force grows without bound (D = I_CM + chi K sin theta below
+    1e-4, the Painlevé singularity) the slip goes on against the normal impulse, in which
+    nothing diverges, until it stops, lifts off or recovers; only a slip whose impulse grows
+    without bound ends the run (status ``"painleve"``). Each step of rolling or slipping
+    turns the body by at most 0.5 rad, so that the record is fine enough to plot.
 
     Parameters
     ----------

@@ -12,12 +12,22 @@ import sys
 from collections.abc import Sequence
 
 from eccjump import __version__
-from eccjump.cli import analyze, design, explore, figures, map, roll, simulate, starts
+from eccjump.cli import (
+    analyze,
+    design,
+    explore,
+    figures,
+    map,
+    roll,
+    simulate,
+    starts,
+    uncertainty,
+)
 from eccjump.cli._args import Parser, one_line
 from eccjump.cli._output import OutputError
 
 #: The subcommands, in the order of ``eccjump --help``.
-SUBCOMMANDS = (roll, simulate, map, starts, design, figures, analyze, explore)
+SUBCOMMANDS = (roll, simulate, map, starts, design, uncertainty, figures, analyze, explore)
 
 
 def build_parser() -> Parser:

@@ -5,7 +5,7 @@ from __future__ import annotations
 import math
 from collections.abc import Callable
 from dataclasses import dataclass, field
-from typing import Any
+from typing import Any, NamedTuple
 
 from eccjump._checks import short
 from eccjump._html import card, deg, num
@@ -60,6 +60,16 @@ class Flight:
     duration: float
 
 
+class Success(NamedTuple):
+    """The probability that a body built to a design keeps its verdict under the lab's
+    tolerances: the share ``p`` of the ``n_valid`` samples, and its 95 % Wilson interval."""
+
+    p: float
+    low: float
+    high: float
+    n_valid: int
+
+
 @dataclass(frozen=True)
 class Design:
     """A lab design (:func:`design`): print it (``str(d)`` or :meth:`sheet`) for the lab
@@ -107,6 +117,10 @@ class Design:
         Classifications made by the search.
     notes : tuple of str
         Warnings for the lab.
+    tolerances : dict of str to float or None
+        The tolerances (normal standard deviations by name) ``p_success`` is for.
+    p_success : Success or None
+        The probability of the verdict under ``tolerances`` (None without them).
     """
 
     target: str
@@ -129,6 +143,8 @@ class Design:
     error: float
     evaluations: int
     notes: tuple[str, ...] = field(default=())
+    tolerances: dict[str, float] | None = None
+    p_success: Success | None = None
 
     @property
     def rod_position(self) -> float:
@@ -216,6 +232,8 @@ class Design:
             ],
             "evaluations": self.evaluations,
             "notes": list(self.notes),
+            "tolerances": self.tolerances,
+            "p_success": None if self.p_success is None else self.p_success._asdict(),
         }
 
     def sheet(self) -> str:
@@ -249,6 +267,8 @@ class Design:
             ),
             ("robustness", f"{100 * self.score:.1f} % (the smallest relative margin)"),
         ]
+        if self.p_success is not None:
+            rows.append(("P(success)", _odds(self.p_success, self.tolerances)))
         rows += [
             (f"margin {m.name}", f"{num(m.margin, 4)} ({100 * m.relative:.1f} %)")
             for m in self.margins
@@ -262,6 +282,12 @@ class Design:
             for f in self.flights
         ]
         return card("Design (print it for the lab sheet)", rows)
+
+
+def _odds(s: Success, tolerances: dict[str, float] | None) -> str:
+    """P(success) with its interval and what it is for, in one line."""
+    tol = ", ".join(f"{k} ± {v:g}" for k, v in (tolerances or {}).items())
+    return f"{s.p:.4f} [{s.low:.4f}, {s.high:.4f}] (95 %, {s.n_valid} samples; {tol})"
 
 
 def _num(x: float) -> float | None:
@@ -313,6 +339,7 @@ def _sheet(d: Design) -> str:
             f"mu_s = {d.mu_s:g} +- {d.mu_s_err:g} (worst case for the verdict: {d.mu_s_worst:g})",
         ),
         ("verdict", f"paper rule: {d.reasons['paper']}, classical: {d.reasons['normal_force']}"),
+        *([("P(success)", _odds(d.p_success, d.tolerances))] if d.p_success is not None else []),
         (
             "lift-off" if jump else "slip at",
             f"theta = {d.theta_deg['paper']:.4f} deg (paper rule), "

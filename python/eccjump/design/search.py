@@ -3,8 +3,8 @@
 from __future__ import annotations
 
 import math
-from collections.abc import Callable, Sequence
-from typing import Any
+from collections.abc import Callable, Mapping, Sequence
+from typing import Any, Literal
 
 import numpy as np
 from numpy.typing import NDArray
@@ -29,6 +29,7 @@ from eccjump.design.margins import (
     _score,
     _Spec,
 )
+from eccjump.design.probability import apex, best, tolerance_spread
 from eccjump.design.results import (
     Design,
     Flight,
@@ -99,6 +100,10 @@ def design(
     error: float = 0.05,
     grid: int = 24,
     min_apex: float = 0.0,
+    tolerances: Mapping[str, float] | None = None,
+    maximise: Literal["margin", "probability"] = "margin",
+    samples: int = 10_000,
+    seed: int = 0,
 ) -> Design:
     """The body and ramp angle whose verdict is most robust, with a printable lab sheet.
 
@@ -143,6 +148,20 @@ def design(
         The least apex of the first flight (the gap to the ramp, under both rules, at the
         nominal mu_s) [R, or m with ``radius``], in [0, 10 R]: ask for a jump you can see.
         0 asks for none (a JARM's first flight is often below 0.01 R); target "jarm" only.
+    tolerances : mapping of str to float or None, default None
+        The lab's tolerances as normal standard deviations by name, among ``chi``, ``km``,
+        ``alpha`` [rad] and ``mu_s`` (as in :func:`eccjump.uncertainty`): the design then
+        reports ``p_success``, the probability that a body built to it keeps the verdict
+        (under both rules, within ``max_turns``, with ``min_apex``), from ``samples``
+        random samples truncated to the physical range.
+    maximise : {"margin", "probability"}, default "margin"
+        What the design maximises: the smallest relative margin, or (with ``tolerances``)
+        ``p_success``, compared on the same samples over the best grid points and the
+        refined designs (a choice among candidates, not a search of its own).
+    samples : int, default 10_000
+        Samples per probability, 100 ... 10**6.
+    seed : int, default 0
+        The seed of the samples (the same for every candidate), >= 0.
 
     Returns
     -------
@@ -206,6 +225,7 @@ def design(
     if apex_min > 0 and tgt != "jarm":
         raise ValueError("min_apex: only a JARM design (target='jarm') has a flight to ask for")
     spec = _Spec(tgt, integer("max_turns", max_turns, 1, 1000))
+    odds = _odds_options(tolerances, maximise, samples, seed, mu)
 
     notes: list[str] = []
     if body is not None:
@@ -225,7 +245,7 @@ def design(
     ok = _holds(spec)(A, C, K, worst)
     evaluations = int(ok.size)
     if apex_min > 0:
-        ok[ok] = _apex(A[ok], C[ok], K[ok], mu) >= apex_min
+        ok[ok] = apex(A[ok], C[ok], K[ok], mu) >= apex_min
     if not ok.any():
         what = "gives a JARM" if tgt == "jarm" else "slips first"
         if apex_min > 0:
@@ -267,7 +287,7 @@ def design(
             ms = _margins(spec, float(x[0]), float(x[1]), float(x[2]), mu, err, tol)
             if apex_min > 0 and ms is not None:
                 c = x[2] * (1.0 - x[1])
-                ms = ms if _apex(x[:1], np.array([c]), x[1:2], mu)[0] >= apex_min else None
+                ms = ms if apex(x[:1], np.array([c]), x[1:2], mu)[0] >= apex_min else None
             cache[key] = (_score(ms), ms)
         return cache[key][0]
 
@@ -278,12 +298,19 @@ def design(
     starts = sorted(((evaluate(to_u(int(idx[j]))), j) for j in order), key=lambda t: (-t[0], t[1]))[
         :_REFINED
     ]
-    best_u, best = to_u(int(idx[starts[0][1]])), starts[0][0]
-    for s, j in starts:
-        u, f = _compass(evaluate, to_u(int(idx[j])), s, spans, per_axis)
-        if f > best:
-            best_u, best = u, f
+    refined = [_compass(evaluate, to_u(int(idx[j])), s, spans, per_axis) for s, j in starts]
+    best_u = max(refined, key=lambda uf: uf[1])[0]  # the first of equals, as before
     x = lows + np.clip(best_u, 0.0, 1.0) * spans
+    success = None
+    if odds is not None:
+        tol, n_samples, seed_, by_odds = odds
+        # the refined designs, then the grid's best points that hold, best margin first
+        us = [u for u, _ in sorted(refined, key=lambda uf: -uf[1])]
+        us += [to_u(int(idx[j])) for j in order if evaluate(to_u(int(idx[j]))) > 0]
+        xs = [lows + np.clip(u, 0.0, 1.0) * spans for u in (us if by_odds else us[:1])]
+        cands = [(float(c[0]), float(c[1]), float(c[2] * (1.0 - c[1]))) for c in xs]
+        pick, all_odds = best(spec, cands, tol, mu, n_samples, seed_, apex_min)
+        x, success = xs[pick], all_odds[pick]
     alpha, km, rho = float(x[0]), float(x[1]), float(x[2])
     final = _margins(spec, alpha, km, rho, mu, err, 1e-12)
     if final is None:  # pragma: no cover - the search only keeps points that hold
@@ -328,7 +355,28 @@ def design(
         error=e,
         evaluations=evaluations,
         notes=tuple(notes),
+        tolerances=None if odds is None else dict(odds[0]),
+        p_success=success,
     )
+
+
+def _odds_options(
+    tolerances: object, maximise: object, samples: object, seed: object, mu: float
+) -> tuple[dict[str, float], int, int, bool] | None:
+    """The checked tolerances, sample size and seed, and whether the design maximises its
+    probability of success (None without tolerances)."""
+    how = text("maximise", maximise)
+    if how not in ("margin", "probability"):
+        raise ValueError(f"maximise must be 'margin' or 'probability', not {short(how)}")
+    n = integer("samples", samples, 100, 10**6)
+    s = integer("seed", seed, 0, 2**64 - 1)
+    if tolerances is None:
+        if how == "probability":
+            raise ValueError("maximise='probability' needs tolerances (sd by parameter name)")
+        return None
+    # checked by name and value here, around a placeholder design
+    tol = tolerance_spread(tolerances, 0.5, 0.1, 0.1, mu).sd
+    return tol, n, s, how == "probability"
 
 
 _RANGE_OF = {"alpha": "alpha_range", "km": "km_range", "rod": "rod_range"}
@@ -346,30 +394,6 @@ def _on_edges(axes: Sequence[tuple[float, float, float, str]]) -> list[str]:
                 "design may lie beyond it (widen the range if you can build it)"
             )
     return notes
-
-
-def _apex(
-    alpha: NDArray[np.float64], chi: NDArray[np.float64], km: NDArray[np.float64], mu: float
-) -> NDArray[np.float64]:
-    """The apex of the first flight (the axis above contact) [R] of each point, the lower of
-    the two rules' (0 without a flight), by the full motion at ``mu`` (restitution 0)."""
-    out = np.empty(np.shape(alpha))
-    for i, (a, c, k) in enumerate(zip(alpha, chi, km, strict=True)):
-        body = Cylinder(float(c), float(k))
-        apexes = [
-            f.apex if (f := _first_flight(body, float(a), mu, rule)) is not None else 0.0
-            for rule in RULES
-        ]
-        out[i] = min(apexes)
-    return out
-
-
-def _first_flight(body: Cylinder, alpha: float, mu: float, rule: Rule) -> Any:
-    """The first flight of the full motion from rest (None without one, or for km = 0)."""
-    if body.km == 0.0:
-        return None
-    run = simulate(body, alpha, mu_s=mu, rule=rule, max_transitions=2, t_max=1e4)
-    return run.flights[0] if run.flights else None
 
 
 def _compass(

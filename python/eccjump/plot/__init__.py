@@ -1,5 +1,6 @@
 """Figures: the paper's Fig. 3b and Fig. 4 (JARM regions), a pure-rolling trajectory, and the
-full motion of :func:`eccjump.simulate` (panels and an animated GIF).
+full motion of :func:`eccjump.simulate` (panels and an animated GIF), an uncertainty study
+(:func:`eccjump.uncertainty`).
 
 Every function returns a :class:`matplotlib.figure.Figure` (:func:`animate_motion` writes a GIF
 instead; matplotlib is imported only when a function is called: ``pip install eccjump[plot]``).
@@ -24,6 +25,7 @@ from eccjump.plot.paper import (
     jarm_surfaces,
 )
 from eccjump.plot.trajectory import trajectory
+from eccjump.plot.uncertainty import uncertainty
 
 __all__ = [
     "MAX_FRAMES",
@@ -42,4 +44,5 @@ __all__ = [
     "region_map",
     "sequence_map",
     "trajectory",
+    "uncertainty",
 ]

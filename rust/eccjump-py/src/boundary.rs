@@ -1,11 +1,11 @@
 //! JARM boundaries: α-intervals per body and μ_s,min along the path, in parallel (the turn,
-//! rule, scan and threads keyword-only).
+//! rule and threads as one [`BoundaryOptions`]; the scan and the step keyword-only).
 
 use crate::errors::detached;
-use crate::options::parse_rule;
+use crate::options::BoundaryOptions;
 use eccjump_core::error::try_filled;
 use eccjump_core::maps::boundary::{
-    alpha_interval_around_many, alpha_intervals_many, boundary_options, mu_s_min_path_many,
+    alpha_interval_around_many, alpha_intervals_many, mu_s_min_path_many,
 };
 use numpy::{IntoPyArray, PyArray1, PyReadonlyArray1};
 use pyo3::prelude::*;
@@ -15,42 +15,37 @@ type ArrayPair<'py> = (Bound<'py, PyArray1<f64>>, Bound<'py, PyArray1<f64>>);
 
 /// For each (χ_i, k_m,i): the list of (α_lo, α_hi) intervals of JARM (turn n, 0 = first).
 #[pyfunction]
-#[pyo3(signature = (chi, km, mu_s, *, n, rule, n_scan, n_threads))]
-#[allow(clippy::too_many_arguments)]
+#[pyo3(signature = (chi, km, mu_s, *, n_scan, options))]
 pub fn alpha_intervals<'py>(
     py: Python<'py>,
     chi: PyReadonlyArray1<'py, f64>,
     km: PyReadonlyArray1<'py, f64>,
     mu_s: f64,
-    n: u32,
-    rule: &str,
     n_scan: usize,
-    n_threads: usize,
+    options: &BoundaryOptions,
 ) -> PyResult<Vec<Vec<(f64, f64)>>> {
-    let opts = boundary_options(parse_rule(rule)?, n);
+    let BoundaryOptions { jarm, n_threads } = options;
     let (c, k) = (chi.as_slice()?, km.as_slice()?);
     detached(py, |stop| {
-        alpha_intervals_many(c, k, mu_s, &opts, n_scan, n_threads, stop)
+        alpha_intervals_many(c, k, mu_s, jarm, n_scan, *n_threads, stop)
     })
 }
 
 /// For each (α_i, χ_i, k_m,i): the smallest μ_s that gives a JARM (turn n, 0 = first).
 #[pyfunction]
-#[pyo3(signature = (alpha, chi, km, *, n, rule, n_threads))]
+#[pyo3(signature = (alpha, chi, km, *, options))]
 pub fn mu_s_min_path<'py>(
     py: Python<'py>,
     alpha: PyReadonlyArray1<'py, f64>,
     chi: PyReadonlyArray1<'py, f64>,
     km: PyReadonlyArray1<'py, f64>,
-    n: u32,
-    rule: &str,
-    n_threads: usize,
+    options: &BoundaryOptions,
 ) -> PyResult<Bound<'py, PyArray1<f64>>> {
-    let opts = boundary_options(parse_rule(rule)?, n);
+    let BoundaryOptions { jarm, n_threads } = options;
     let (a, c, k) = (alpha.as_slice()?, chi.as_slice()?, km.as_slice()?);
     let out = detached(py, |stop| {
         let mut out = try_filled("the result", a.len(), 0.0)?;
-        mu_s_min_path_many(a, c, k, &opts, n_threads, &mut out, stop)?;
+        mu_s_min_path_many(a, c, k, jarm, *n_threads, &mut out, stop)?;
         Ok(out)
     })?;
     Ok(out.into_pyarray(py))
@@ -59,24 +54,21 @@ pub fn mu_s_min_path<'py>(
 /// For each (seed_i, χ_i, k_m,i): the ends (α_lo, α_hi) of the JARM α-interval holding the
 /// JARM angle seed_i (NaN if seed_i is not a JARM), as two arrays.
 #[pyfunction]
-#[pyo3(signature = (seed, chi, km, mu_s, *, n, rule, step, n_threads))]
-#[allow(clippy::too_many_arguments)]
+#[pyo3(signature = (seed, chi, km, mu_s, *, step, options))]
 pub fn alpha_interval_around<'py>(
     py: Python<'py>,
     seed: PyReadonlyArray1<'py, f64>,
     chi: PyReadonlyArray1<'py, f64>,
     km: PyReadonlyArray1<'py, f64>,
     mu_s: f64,
-    n: u32,
-    rule: &str,
     step: f64,
-    n_threads: usize,
+    options: &BoundaryOptions,
 ) -> PyResult<ArrayPair<'py>> {
-    let opts = boundary_options(parse_rule(rule)?, n);
+    let BoundaryOptions { jarm, n_threads } = options;
     let (s, c, k) = (seed.as_slice()?, chi.as_slice()?, km.as_slice()?);
     let out = detached(py, |stop| {
         let mut out = try_filled("the result", s.len(), (0.0, 0.0))?;
-        alpha_interval_around_many(s, c, k, mu_s, &opts, step, n_threads, &mut out, stop)?;
+        alpha_interval_around_many(s, c, k, mu_s, jarm, step, *n_threads, &mut out, stop)?;
         Ok(out)
     })?;
     let (lo, hi): (Vec<f64>, Vec<f64>) = out.into_iter().unzip();

@@ -7,25 +7,21 @@ use eccjump_core::Cylinder;
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
 
-/// One impact of the body (χ, k_m) at angle θ with velocities (θ̇, l̇, ḃ): a dict with W
-/// (wtt, wtn, wnn), the impulse (pt, pn), the contact velocity after it (ut, un), whether
-/// it ends sticking, the velocities after it (omega, ldot, bdot) and the works. Raises
-/// ValueError naming a bad parameter.
+/// One impact of the body (χ, k_m) at the state (θ, θ̇, l̇, ḃ) under the law (μ_s, μ_k, e): a
+/// dict with W (wtt, wtn, wnn), the impulse (pt, pn), the contact velocity after it (ut,
+/// un), whether it ends sticking, the velocities after it (omega, ldot, bdot) and the works.
+/// Raises ValueError naming a bad parameter.
 #[pyfunction]
-#[allow(clippy::too_many_arguments)] // the body, the state and the law, as plain numbers
 pub fn impact<'py>(
     py: Python<'py>,
     chi: f64,
     km: f64,
-    theta: f64,
-    omega: f64,
-    ldot: f64,
-    bdot: f64,
-    mu_s: f64,
-    mu_k: f64,
-    restitution: f64,
+    state: (f64, f64, f64, f64),
+    law: (f64, f64, f64),
 ) -> PyResult<Bound<'py, PyDict>> {
     let body = Cylinder::new(chi, km).map_err(to_py)?;
+    let (theta, omega, ldot, bdot) = state;
+    let (mu_s, mu_k, restitution) = law;
     let law = ImpactLaw {
         mu_s,
         mu_k,

@@ -1,8 +1,8 @@
-//! JARM classification of points and grids: arrays and keyword-only options in, one array per
-//! result field out.
+//! JARM classification of points and grids: arrays in, with the options as one
+//! [`ClassifyOptions`], one array per result field out.
 
 use crate::errors::detached;
-use crate::options::CallOptions;
+use crate::options::ClassifyOptions;
 use eccjump_core::jarm::Reason;
 use eccjump_core::maps::columns::JarmColumns;
 use eccjump_core::maps::parallel::pool;
@@ -36,9 +36,7 @@ fn into_dict(py: Python<'_>, c: JarmColumns) -> PyResult<Bound<'_, PyDict>> {
 /// Classifies equal-length 1-D arrays of points (μ_s and the turn n, 0 = the first jump, may
 /// have length 1).
 #[pyfunction]
-#[pyo3(signature = (alpha, chi, km, mu_s, n, *, rule, method, rtol, atol, theta0, omega0,
-                    max_turns, refine_extrema, stop_at_slip, n_threads, integrator))]
-#[allow(clippy::too_many_arguments)] // five coordinates and the options
+#[pyo3(signature = (alpha, chi, km, mu_s, n, *, options))]
 pub fn jarm_points<'py>(
     py: Python<'py>,
     alpha: PyReadonlyArray1<'py, f64>,
@@ -46,32 +44,10 @@ pub fn jarm_points<'py>(
     km: PyReadonlyArray1<'py, f64>,
     mu_s: PyReadonlyArray1<'py, f64>,
     n: PyReadonlyArray1<'py, u32>,
-    rule: &str,
-    method: &str,
-    rtol: f64,
-    atol: f64,
-    theta0: f64,
-    omega0: f64,
-    max_turns: u32,
-    refine_extrema: bool,
-    stop_at_slip: bool,
-    n_threads: usize,
-    integrator: &str,
+    options: &ClassifyOptions,
 ) -> PyResult<Bound<'py, PyDict>> {
-    let options = CallOptions {
-        rule,
-        method,
-        rtol,
-        atol,
-        theta0,
-        omega0,
-        max_turns,
-        refine_extrema,
-        stop_at_slip,
-        n_threads,
-        integrator,
-    };
-    let (opts, method, n_threads) = options.parse(0)?;
+    // Each point carries its own turn: the options' turn is 0.
+    let (opts, method, n_threads) = options.on_turn(0);
     let (a, c, k, m, n) = (
         alpha.as_slice()?,
         chi.as_slice()?,
@@ -90,9 +66,7 @@ pub fn jarm_points<'py>(
 /// Classifies the grid alpha × chi × frac (k_m = frac·(1 − χ)), flat in C order, on turn n
 /// (0 = the first jump).
 #[pyfunction]
-#[pyo3(signature = (alpha, chi, frac, mu_s, *, n, rule, method, rtol, atol, theta0, omega0,
-                    max_turns, refine_extrema, stop_at_slip, n_threads, integrator))]
-#[allow(clippy::too_many_arguments)] // the grid's axes, μ_s, the turn and the options
+#[pyo3(signature = (alpha, chi, frac, mu_s, *, n, options))]
 pub fn jarm_grid<'py>(
     py: Python<'py>,
     alpha: PyReadonlyArray1<'py, f64>,
@@ -100,32 +74,9 @@ pub fn jarm_grid<'py>(
     frac: PyReadonlyArray1<'py, f64>,
     mu_s: f64,
     n: u32,
-    rule: &str,
-    method: &str,
-    rtol: f64,
-    atol: f64,
-    theta0: f64,
-    omega0: f64,
-    max_turns: u32,
-    refine_extrema: bool,
-    stop_at_slip: bool,
-    n_threads: usize,
-    integrator: &str,
+    options: &ClassifyOptions,
 ) -> PyResult<Bound<'py, PyDict>> {
-    let options = CallOptions {
-        rule,
-        method,
-        rtol,
-        atol,
-        theta0,
-        omega0,
-        max_turns,
-        refine_extrema,
-        stop_at_slip,
-        n_threads,
-        integrator,
-    };
-    let (opts, method, n_threads) = options.parse(n)?;
+    let (opts, method, n_threads) = options.on_turn(n);
     let (a, c, f) = (alpha.as_slice()?, chi.as_slice()?, frac.as_slice()?);
     let out = detached(py, |stop| {
         let len = grid_size(a.len(), c.len(), f.len())?;

@@ -15,6 +15,7 @@ mod errors;
 mod impact;
 mod jarm;
 mod motion_map;
+mod motion_points;
 mod names;
 mod options;
 mod roll;
@@ -44,6 +45,10 @@ mod _core {
     use crate::jarm::{jarm_grid, jarm_points, reason_codes};
     #[pymodule_export]
     use crate::motion_map::{landing_codes, motion_grid};
+    #[pymodule_export]
+    use crate::motion_points::motion_points;
+    #[pymodule_export]
+    use crate::options::{BoundaryOptions, ClassifyOptions};
     #[pymodule_export]
     use crate::roll::{roll, DenseSolution};
     #[pymodule_export]

@@ -65,22 +65,30 @@ pub fn motion_grid<'py>(
         grid(&axes, &opts, n_threads, &mut out, stop)?;
         Ok(out)
     })?;
+    summary_columns(py, &out)
+}
+
+/// One numpy column per field of the summaries (the names of `eccjump.motion_fields.TABLE`).
+pub fn summary_columns<'py>(
+    py: Python<'py>,
+    out: &[MotionSummary],
+) -> PyResult<Bound<'py, PyDict>> {
     let d = PyDict::new(py);
-    set_column(&d, "status", &out, |s| s.status)?;
-    set_column(&d, "sequence", &out, |s| s.sequence)?;
-    set_column(&d, "n_modes", &out, |s| s.n_modes)?;
-    set_column(&d, "jarm", &out, |s| s.jarm)?;
-    set_column(&d, "slipped_first", &out, |s| s.slipped_first)?;
-    set_column(&d, "slip_t", &out, |s| s.slip_t)?;
-    set_column(&d, "slip_theta", &out, |s| s.slip_theta)?;
-    set_column(&d, "liftoff_reason", &out, |s| s.liftoff_reason)?;
-    set_column(&d, "liftoff_t", &out, |s| s.liftoff_t)?;
-    set_column(&d, "liftoff_theta", &out, |s| s.liftoff_theta)?;
-    set_column(&d, "flight_time", &out, |s| s.flight_time)?;
-    set_column(&d, "apex", &out, |s| s.apex)?;
-    set_column(&d, "distance", &out, |s| s.distance)?;
-    set_column(&d, "landing", &out, |s| s.landing)?;
-    set_column(&d, "energy_lost", &out, |s| s.energy_lost)?;
+    set_column(&d, "status", out, |s| s.status)?;
+    set_column(&d, "sequence", out, |s| s.sequence)?;
+    set_column(&d, "n_modes", out, |s| s.n_modes)?;
+    set_column(&d, "jarm", out, |s| s.jarm)?;
+    set_column(&d, "slipped_first", out, |s| s.slipped_first)?;
+    set_column(&d, "slip_t", out, |s| s.slip_t)?;
+    set_column(&d, "slip_theta", out, |s| s.slip_theta)?;
+    set_column(&d, "liftoff_reason", out, |s| s.liftoff_reason)?;
+    set_column(&d, "liftoff_t", out, |s| s.liftoff_t)?;
+    set_column(&d, "liftoff_theta", out, |s| s.liftoff_theta)?;
+    set_column(&d, "flight_time", out, |s| s.flight_time)?;
+    set_column(&d, "apex", out, |s| s.apex)?;
+    set_column(&d, "distance", out, |s| s.distance)?;
+    set_column(&d, "landing", out, |s| s.landing)?;
+    set_column(&d, "energy_lost", out, |s| s.energy_lost)?;
     Ok(d)
 }
 

@@ -1,53 +1,102 @@
-//! Names to the core's enums (rule, integrator, route), and the options of the
-//! classification entry points gathered for their conversion. Only names are converted
-//! here; every range is checked by the core.
+//! Names to the core's enums (rule, integrator, route), and the option objects that several
+//! entry points share: [`ClassifyOptions`] (`jarm_points`, `jarm_grid`) and
+//! [`BoundaryOptions`] (the three boundary searches). Only names are converted here; every
+//! range is checked by the core.
 
 use crate::errors::to_py;
 use eccjump_core::jarm::{JarmOptions, Method};
+use eccjump_core::maps::boundary::boundary_options;
 use eccjump_core::ode::Method as Integrator;
 use eccjump_core::Rule;
 use pyo3::exceptions::PyValueError;
-use pyo3::PyResult;
+use pyo3::prelude::*;
 
-/// The options of `jarm_points` and `jarm_grid`, their keyword-only parameters (those of
-/// `eccjump._bridge.CallOptions` but the turn).
-pub struct CallOptions<'a> {
-    pub rule: &'a str,
-    pub method: &'a str,
-    pub rtol: f64,
-    pub atol: f64,
-    pub theta0: f64,
-    pub omega0: f64,
-    pub max_turns: u32,
-    pub refine_extrema: bool,
-    pub stop_at_slip: bool,
-    pub n_threads: usize,
-    pub integrator: &'a str,
+/// The options of a classification call but the turn, converted once to the core's types:
+/// made in Python (`eccjump._bridge`) from keyword-only plain values named as `eccjump.jarm`
+/// names them, and passed to `jarm_points` or `jarm_grid`.
+#[pyclass(frozen, module = "eccjump._core")]
+pub struct ClassifyOptions {
+    /// The classification options, the turn 0 (each call gives its own).
+    jarm: JarmOptions,
+    /// The route, with its tolerances and pair.
+    method: Method,
+    /// Threads of the call (0 = one per core).
+    n_threads: usize,
 }
 
-impl CallOptions<'_> {
-    /// The classification options (turn `n`, 0 = the first jump), route and thread count.
-    pub fn parse(&self, n: u32) -> PyResult<(JarmOptions, Method, usize)> {
-        // Checked for every route: the closed form ignores them but they are recorded.
-        Method::check_tolerances(self.rtol, self.atol).map_err(to_py)?;
-        let pair = parse_integrator(self.integrator)?;
-        let method =
-            Method::from_name(self.method, self.rtol, self.atol, pair).ok_or_else(|| {
-                PyValueError::new_err(format!(
-                    "method = {:?} is not one of 'closed_form', 'ode'",
-                    self.method
-                ))
-            })?;
-        let opts = JarmOptions {
-            rule: parse_rule(self.rule)?,
-            n,
-            max_turns: self.max_turns,
-            theta0: self.theta0,
-            omega0: self.omega0,
-            refine_extrema: self.refine_extrema,
-            stop_at_slip: self.stop_at_slip,
+#[pymethods]
+impl ClassifyOptions {
+    /// Converts the names (ValueError for an unknown rule, route or pair) and checks the
+    /// tolerances, for every route: the closed form ignores them but they are recorded.
+    #[new]
+    #[pyo3(signature = (*, rule, method, rtol, atol, theta0, omega0, max_turns,
+                        refine_extrema, stop_at_slip, n_threads, integrator))]
+    #[allow(clippy::too_many_arguments)] // the options of `eccjump.jarm`, keyword-only
+    fn new(
+        rule: &str,
+        method: &str,
+        rtol: f64,
+        atol: f64,
+        theta0: f64,
+        omega0: f64,
+        max_turns: u32,
+        refine_extrema: bool,
+        stop_at_slip: bool,
+        n_threads: usize,
+        integrator: &str,
+    ) -> PyResult<Self> {
+        Method::check_tolerances(rtol, atol).map_err(to_py)?;
+        let pair = parse_integrator(integrator)?;
+        let method = Method::from_name(method, rtol, atol, pair).ok_or_else(|| {
+            PyValueError::new_err(format!(
+                "method = {method:?} is not one of 'closed_form', 'ode'"
+            ))
+        })?;
+        let jarm = JarmOptions {
+            rule: parse_rule(rule)?,
+            n: 0,
+            max_turns,
+            theta0,
+            omega0,
+            refine_extrema,
+            stop_at_slip,
         };
-        Ok((opts, method, self.n_threads))
+        Ok(Self {
+            jarm,
+            method,
+            n_threads,
+        })
+    }
+}
+
+impl ClassifyOptions {
+    /// The classification options on turn `n` (0 = the first jump), route and thread count.
+    pub fn on_turn(&self, n: u32) -> (JarmOptions, Method, usize) {
+        (JarmOptions { n, ..self.jarm }, self.method, self.n_threads)
+    }
+}
+
+/// The options every boundary search takes (`alpha_intervals`, `alpha_interval_around`,
+/// `mu_s_min_path`): the turn, the rule and the threads, made in Python
+/// (`eccjump.boundary`) from keyword-only plain values named as there.
+#[pyclass(frozen, module = "eccjump._core")]
+pub struct BoundaryOptions {
+    /// The core's classification options of a boundary search.
+    pub jarm: JarmOptions,
+    /// Threads of the call (0 = one per core).
+    pub n_threads: usize,
+}
+
+#[pymethods]
+impl BoundaryOptions {
+    /// Converts the rule's name (ValueError for an unknown one).
+    #[new]
+    #[pyo3(signature = (*, n, rule, n_threads))]
+    fn new(n: u32, rule: &str, n_threads: usize) -> PyResult<Self> {
+        Ok(Self {
+            jarm: boundary_options(parse_rule(rule)?, n),
+            n_threads,
+        })
     }
 }
 

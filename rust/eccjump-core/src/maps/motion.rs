@@ -16,7 +16,7 @@ use crate::motion::simulate::{Need, Sim};
 use crate::motion::sliding::SlipTrack;
 use crate::motion::{simulate, MotionRun, MotionStatus, SimOptions};
 use crate::ode::lanes::{solve_lanes_with, Keyed, Start};
-use crate::ode::SolverOptions;
+use crate::ode::{Method, SolverOptions};
 use std::cell::{Cell, RefCell};
 
 /// Modes of the sequence kept per point (the start's mode first): with 2 bits per mode the
@@ -305,7 +305,7 @@ pub struct MotionMapOptions {
 
 impl MotionMapOptions {
     /// The simulator's options for a point, before the point's own values are filled in.
-    fn base(&self) -> SimOptions {
+    pub(crate) fn base(&self) -> SimOptions {
         SimOptions {
             law: ContactLaw {
                 mu_s: 1.0,
@@ -361,28 +361,37 @@ pub fn motion_grid(
     par_fill_pieces_until(
         out,
         n_threads,
-        |start, piece, cancelled| motion_piece(axes, &base, start, piece, cancelled),
+        |start, piece, cancelled| {
+            motion_piece(
+                &|g| axes.point(g, &base),
+                base.law.rule,
+                base.solver.method,
+                start,
+                piece,
+                cancelled,
+            )
+        },
         stop,
     )
 }
 
-/// The summaries of the grid points start, start + 1, … into `out`, each exactly
-/// [`motion_point`] there. The points' runs go on together, in waves: every rolling segment
-/// that some run needs is integrated side by side with the others ([`roll_batch`]), then
-/// every sliding segment ([`solve_lanes_with`]), each run going on (flights, impacts,
-/// decisions) as soon as its segment ends, until every run is over.
-fn motion_piece(
-    axes: &MotionAxes<'_>,
-    base: &SimOptions,
+/// The summaries of the points start, start + 1, … (`point(g)`: the ramp and options of
+/// point g, None where invalid) into `out`, each exactly [`motion_point`] there. The points'
+/// runs go on together, in waves: every rolling segment that some run needs is integrated
+/// side by side with the others ([`roll_batch`]), then every sliding segment
+/// ([`solve_lanes_with`]), each run going on (flights, impacts, decisions) as soon as its
+/// segment ends, until every run is over. Grids and point lists share it.
+pub(crate) fn motion_piece(
+    point: &dyn Fn(usize) -> Option<(Ramp, SimOptions)>,
+    rule: Rule,
+    method: Method,
     start: usize,
     out: &mut [MotionSummary],
     cancelled: &dyn Fn() -> bool,
 ) {
-    let method = base.solver.method;
     // The points' parameters first: the runs borrow them.
-    let params: Vec<Option<(Ramp, SimOptions)>> = (0..out.len())
-        .map(|k| axes.point(start + k, base))
-        .collect();
+    let params: Vec<Option<(Ramp, SimOptions)>> =
+        (0..out.len()).map(|k| point(start + k)).collect();
     // As `motion_point`: a run is not stopped between its segments (a map stops between
     // the segments' steps, and discards what it has).
     let never = || false;
@@ -391,7 +400,7 @@ fn motion_piece(
         rolls: RefCell::new(Vec::new()),
         slips: RefCell::new(Vec::new()),
         out: Cell::from_mut(out).as_slice_of_cells(),
-        rule: base.law.rule,
+        rule,
     };
     for (k, p) in params.iter().enumerate() {
         match p {

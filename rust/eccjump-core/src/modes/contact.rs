@@ -2,12 +2,12 @@
 //! `docs/motion.md`, used at the start of a run, after every event that ends a contact
 //! mode and after every impact. Each mode is tried as a constraint on Newton–Euler and kept
 //! only if its forces are admissible (F_y > 0, friction inside the cone or against the
-//! slip, D above the Painlevé threshold); flight only where the free normal acceleration
+//! slip, D > 0, not Painlevé); flight only where the free normal acceleration
 //! L = χθ̇² cos θ − cos α does not push the body into the ramp.
 
 use crate::mechanics::friction::slip_margin;
 use crate::mechanics::{BodyState, Ramp, Rule};
-use crate::modes::slipping::{Slipping, D_MIN};
+use crate::modes::slipping::Slipping;
 
 /// A mode of motion.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
@@ -115,14 +115,15 @@ pub enum Verdict {
     Jam,
 }
 
-/// Is sliding with friction direction σ consistent at `s`? D above [`D_MIN`], a positive
+/// Is sliding with friction direction σ consistent at `s`? D above 0 (below
+/// [`crate::modes::slip_in_impulse::D_SWITCH`] it goes on in the normal impulse), a positive
 /// normal force (B > 0) and, at onset (v = 0), a slip acceleration along −σ. With μ_k = μ_s
 /// that acceleration is exactly 0 at onset (sliding and rolling coincide there), so a
 /// rounding-sized value counts as agreeing.
 fn slides(ramp: &Ramp, law: &ContactLaw, s: &BodyState, sigma: f64, onset: bool) -> bool {
     let sl = Slipping::new(*ramp, sigma, law.mu_k);
     let k = sl.kinematics(s.theta, s.omega);
-    if !(k.d > D_MIN && k.load > 0.0) {
+    if !(k.d > 0.0 && k.load > 0.0) {
         return false;
     }
     if !onset {

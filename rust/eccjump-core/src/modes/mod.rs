@@ -6,4 +6,5 @@
 pub mod contact;
 pub mod flight;
 pub mod rolling;
+pub mod slip_in_impulse;
 pub mod slipping;

@@ -14,17 +14,13 @@
 
 use crate::mechanics::friction::Sliding;
 use crate::mechanics::Ramp;
+use crate::modes::slip_in_impulse::D_SWITCH;
 use crate::ode::lanes::{LaneRhs, Lanes, LANES};
 use crate::ode::{
     Change, DenseStep, Direction, EventBounds, EventFunctions, EventSpec, OdeSystem, State,
 };
 use crate::trig::lanes::sin_cos_lanes;
 use crate::trig::SinCosMemo;
-
-/// During a slip, D = Ĩ_CM + χ K sin θ falling to this ends the run (Painlevé): the normal
-/// force Ĩ_CM B/D grows without bound as D → 0. The time and angle where D reaches it hardly
-/// depend on it (physics notes); the velocities there do, logarithmically.
-pub const D_MIN: f64 = 1e-6;
 
 /// Accelerations and contact force of the sliding mode at one state.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -162,8 +158,9 @@ pub enum SlipEvent {
     NormalForce = 0,
     /// The slip velocity returns to 0: stick or reverse.
     Stops = 1,
-    /// D falls to [`D_MIN`] (Painlevé).
-    Painleve = 2,
+    /// D falls to [`D_SWITCH`]: near the Painlevé singularity the slip goes on in the
+    /// normal impulse ([`crate::modes::slip_in_impulse`]).
+    Singular = 2,
     /// l reaches l_max.
     LLimit = 3,
 }
@@ -173,7 +170,7 @@ impl SlipEvent {
     pub const ALL: [SlipEvent; 4] = [
         SlipEvent::NormalForce,
         SlipEvent::Stops,
-        SlipEvent::Painleve,
+        SlipEvent::Singular,
         SlipEvent::LLimit,
     ];
 }
@@ -194,7 +191,7 @@ impl EventFunctions<5> for SlipEvents {
     }
     fn spec(&self, k: usize) -> EventSpec {
         let direction = match SlipEvent::ALL[k] {
-            SlipEvent::NormalForce | SlipEvent::Painleve => Direction::Falling,
+            SlipEvent::NormalForce | SlipEvent::Singular => Direction::Falling,
             SlipEvent::Stops => Direction::Any,
             SlipEvent::LLimit => Direction::Rising,
         };
@@ -213,7 +210,7 @@ impl EventFunctions<5> for SlipEvents {
             *o = match SlipEvent::ALL[first + i] {
                 SlipEvent::NormalForce => r.cos_a - r.body.chi * y[1] * y[1] * c,
                 SlipEvent::Stops => y[3] - y[1],
-                SlipEvent::Painleve => sl.d - D_MIN,
+                SlipEvent::Singular => sl.d - D_SWITCH,
                 // A constant, finite g never crosses: l_max = ∞ disables the event.
                 SlipEvent::LLimit if self.l_max.is_finite() => y[2] - self.l_max,
                 SlipEvent::LLimit => -1.0,
@@ -294,10 +291,10 @@ impl EventBounds<5> for SlipEvents {
                     bound(r.cos_a + chi_w2, &[(chi_w2, 0), (2.0 * chi * w, 1)], second)
                 }
                 SlipEvent::Stops => bound(0.0, &[(1.0, 3), (1.0, 1)], 0.0),
-                SlipEvent::Painleve => {
+                SlipEvent::Singular => {
                     let g = chi * chi + mu * chi * (1.0 + chi);
                     let p = 2.0 * chi * chi + mu * chi * (1.0 + 2.0 * chi);
-                    bound(r.body.icm + g + D_MIN, &[(g, 0)], p * r_theta * r_theta)
+                    bound(r.body.icm + g + D_SWITCH, &[(g, 0)], p * r_theta * r_theta)
                 }
                 SlipEvent::LLimit if self.l_max.is_finite() => {
                     bound(self.l_max.abs(), &[(1.0, 2)], 0.0)
@@ -354,7 +351,7 @@ mod tests {
             let v = 2.0 * (next() - 0.5);
             let sl = Slipping::new(ramp, -v.signum(), 0.05 + 0.6 * next());
             let k = sl.kinematics(theta, omega);
-            if !(k.d > D_MIN && k.load > 0.0) {
+            if !(k.d > D_SWITCH && k.load > 0.0) {
                 continue;
             }
             made += 1;

@@ -10,8 +10,9 @@ use crate::modes::contact::{decide, Mode, Reason, Verdict};
 use crate::modes::flight::landing::Landing;
 use crate::modes::flight::Flight;
 use crate::modes::rolling::run::{roll_until, ContactEvent, RollOptions, RollRun, RollStatus};
-use crate::modes::slipping::SlipEvent;
-use crate::motion::options::SimOptions;
+use crate::modes::slip_in_impulse::D_SWITCH;
+use crate::modes::slipping::{SlipEvent, Slipping};
+use crate::motion::options::{SimOptions, MAX_ANGLE_STEP};
 use crate::motion::record::{
     FlightRecord, ImpactRecord, MotionRun, MotionStatus, Point, Segment, Transition,
 };
@@ -29,6 +30,9 @@ enum Next {
     /// decide what follows, once the transition budget allows a transition (a run that
     /// stops at the budget keeps the state before the impact, and the ledger closes).
     Landing(BodyState),
+    /// The slip under way goes on from this state with friction direction σ, in time again
+    /// after a stretch in the normal impulse (a new segment, not a transition).
+    Resume(BodyState, f64),
     /// The run ends.
     End(MotionStatus, String),
 }
@@ -177,6 +181,7 @@ impl<'a> Sim<'a> {
                 Next::Landing(before) => d.impact(before),
                 other => other,
             };
+            let resumed = matches!(next, Next::Resume(..));
             let (mode, reason, state, sigma) = match next {
                 Next::End(status, message) => {
                     d.run.status = Some(status);
@@ -184,28 +189,32 @@ impl<'a> Sim<'a> {
                     return Ok(Need::Done);
                 }
                 Next::Mode(mode, reason, state, sigma) => (mode, reason, state, sigma),
+                Next::Resume(state, sigma) => (Mode::Slip, self.current.1, state, sigma),
                 Next::Landing(_) => unreachable!("the impact law decides a mode or an end"),
             };
             if d.run.transitions.len() % STOP_EVERY == STOP_EVERY - 1 && (d.stop)() {
                 return Err(Error::Interrupted);
             }
-            // Mode reason: the reason for a slip that follows a slip is a reversal.
-            let reason = match (self.from, mode, reason) {
-                (Some(Mode::Slip), Mode::Slip, Reason::Slip) => Reason::Reverse,
-                (Some(Mode::Slip), Mode::Roll, Reason::Slip) => Reason::Stick,
-                _ => reason,
-            };
-            d.run.transitions.push(Transition {
-                t: d.t,
-                from: self.from,
-                to: mode,
-                reason,
-                state,
-            });
-            if opts.stop_at_landing && !d.run.impacts.is_empty() {
-                d.run.status = Some(MotionStatus::Landed);
-                return Ok(Need::Done);
+            if !resumed {
+                // Mode reason: the reason for a slip that follows a slip is a reversal.
+                let reason = match (self.from, mode, reason) {
+                    (Some(Mode::Slip), Mode::Slip, Reason::Slip) => Reason::Reverse,
+                    (Some(Mode::Slip), Mode::Roll, Reason::Slip) => Reason::Stick,
+                    _ => reason,
+                };
+                d.run.transitions.push(Transition {
+                    t: d.t,
+                    from: self.from,
+                    to: mode,
+                    reason,
+                    state,
+                });
+                if opts.stop_at_landing && !d.run.impacts.is_empty() {
+                    d.run.status = Some(MotionStatus::Landed);
+                    return Ok(Need::Done);
+                }
             }
+            let reason = d.run.transitions.last().map_or(reason, |tr| tr.reason);
             self.current = (mode, reason, d.t, d.run.nfev);
             let next = match mode {
                 Mode::Roll => match d.roll_start(state) {
@@ -311,11 +320,18 @@ fn roll_options(opts: &SimOptions, s: BodyState, time_left: f64, steps_left: usi
         t_max: time_left,
         theta_max: s.theta + (opts.l_max - s.l),
         rule: opts.law.rule,
-        solver: ode::SolverOptions {
-            max_steps: steps_left.max(1),
-            ..opts.solver
-        },
+        solver: segment_solver(opts, steps_left),
         dense_output: opts.dense_output,
+    }
+}
+
+/// The integrator's options of a rolling or sliding segment in time (y₀ = θ): the run's,
+/// with the step budget left and each step's turn capped at [`MAX_ANGLE_STEP`].
+fn segment_solver(opts: &SimOptions, steps_left: usize) -> ode::SolverOptions {
+    ode::SolverOptions {
+        max_steps: steps_left.max(1),
+        max_first_change: MAX_ANGLE_STEP,
+        ..opts.solver
     }
 }
 
@@ -441,10 +457,11 @@ impl Driver<'_> {
         if self.time_left() <= 0.0 {
             return Ok(Err(self.end_of_time()));
         }
-        let solver = ode::SolverOptions {
-            max_steps: self.steps_left.max(1),
-            ..self.opts.solver
-        };
+        let k = Slipping::new(*self.ramp, sigma, self.opts.law.mu_k).kinematics(s.theta, s.omega);
+        if k.d < D_SWITCH {
+            return Ok(Err(self.slip_in_impulse(s, sigma)?));
+        }
+        let solver = segment_solver(self.opts, self.steps_left);
         let track = SlipTrack::begin(
             self.ramp,
             self.opts,
@@ -457,7 +474,7 @@ impl Driver<'_> {
 
     /// The sliding segment begun by [`Self::slip_start`], integrated: what comes next.
     fn slip_end(&mut self, track: SlipTrack, outcome: &Outcome<5>) -> Result<Next> {
-        let (t0, q0) = (track.t0, self.run.dissipated_slip);
+        let (t0, q0, sigma) = (track.t0, self.run.dissipated_slip, track.sigma());
         let (points, steps) = track.finish()?;
         for p in points {
             self.run.push(p)?;
@@ -482,15 +499,7 @@ impl Driver<'_> {
                     end.ldot = end.omega;
                     after(decide(self.ramp, law, &end, false), Reason::Slip, end)
                 }
-                SlipEvent::Painleve => Next::End(
-                    MotionStatus::Painleve,
-                    format!(
-                        "Painlevé: D fell to its threshold during the slip at t = {:.6}, θ = \
-                         {:.4}° (the sliding normal force grows without bound)",
-                        outcome.t,
-                        end.theta.to_degrees()
-                    ),
-                ),
+                SlipEvent::Singular => self.slip_in_impulse(end, sigma)?,
                 SlipEvent::LLimit => self.end_of_ramp(),
             },
             other => self.failed("slipping", other),
@@ -664,6 +673,7 @@ impl Driver<'_> {
             sticking,
             outcome: match &next {
                 Next::Mode(m, ..) => *m,
+                Next::Resume(..) => Mode::Slip,
                 Next::Landing(..) | Next::End(..) => Mode::Flight,
             },
         });
@@ -676,6 +686,8 @@ fn flight_samples(omega: f64, tau: f64) -> usize {
     let turns = (omega.abs() * tau / std::f64::consts::PI).min(1e6);
     (32.0f64.max(16.0 * turns)).min(4096.0) as usize
 }
+
+mod impulse;
 
 #[cfg(test)]
 mod tests;

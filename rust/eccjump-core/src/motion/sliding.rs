@@ -87,6 +87,11 @@ impl SlipTrack {
         Ok(track)
     }
 
+    /// The friction direction σ of the slip.
+    pub(crate) fn sigma(&self) -> f64 {
+        self.events.slipping.sigma
+    }
+
     /// The points and dense-output steps recorded (an error if recording ran out of
     /// memory).
     pub(crate) fn finish(self) -> Result<(Vec<Point>, Vec<DenseStep<5>>)> {

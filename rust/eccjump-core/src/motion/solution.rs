@@ -4,7 +4,8 @@
 
 use crate::mechanics::BodyState;
 use crate::modes::flight::Flight;
-use crate::ode::DenseStep;
+use crate::ode::roots::brent;
+use crate::ode::{DenseStep, State};
 
 /// The dense output of one segment.
 #[derive(Debug, Clone, PartialEq)]
@@ -20,6 +21,12 @@ pub enum Piece {
     Slip {
         /// The interpolants.
         steps: Vec<DenseStep<5>>,
+    },
+    /// Slipping near the Painlevé singularity: steps in the normal impulse since the
+    /// segment's start, state (t, θ, θ̇, l, l̇, q) (t increases with the impulse).
+    Impulse {
+        /// The interpolants.
+        steps: Vec<DenseStep<6>>,
     },
     /// Flight: exact.
     Flight(Flight),
@@ -42,6 +49,22 @@ fn step_at<const N: usize>(steps: &[DenseStep<N>], t: f64) -> Option<&DenseStep<
     steps.get(k.max(1) - 1)
 }
 
+/// The state of `steps` (in the normal impulse, time its first component, increasing) at
+/// time t: the step that covers t, then the impulse there by Brent's method.
+fn at_time(steps: &[DenseStep<6>], t: f64) -> Option<State<6>> {
+    let k = steps.partition_point(|s| s.y_old[0] <= t);
+    let step = steps.get(k.max(1) - 1)?;
+    let p_end = step.t_old + step.h;
+    let g = |p: f64| step.eval(p)[0] - t;
+    let (g0, g1) = (step.y_old[0] - t, g(p_end));
+    if g1 <= 0.0 {
+        // t past the last step's end (the run's end, up to rounding): its end state.
+        return Some(step.eval(p_end));
+    }
+    let root = brent(g, step.t_old, p_end, g0, g1, 0.0, 4.0 * f64::EPSILON, 200).ok()?;
+    Some(step.eval(root.x))
+}
+
 impl MotionSolution {
     /// The state at time t, or None outside [0, t_end] (or for NaN).
     pub fn state(&self, t: f64) -> Option<BodyState> {
@@ -58,6 +81,10 @@ impl MotionSolution {
             Piece::Slip { steps } => {
                 let y = step_at(steps, t)?.eval(t);
                 Some(BodyState::in_contact(y[0], y[1], y[2], y[3]))
+            }
+            Piece::Impulse { steps } => {
+                let y = at_time(steps, t)?;
+                Some(BodyState::in_contact(y[1], y[2], y[3], y[4]))
             }
             Piece::Flight(f) => Some(f.state(t - t0)),
             Piece::Still(s) => Some(*s),

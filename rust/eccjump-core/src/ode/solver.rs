@@ -24,6 +24,12 @@ pub struct SolverOptions {
     pub first_step: Option<f64>,
     /// Largest allowed step (scipy `max_step`).
     pub max_step: f64,
+    /// Largest change of the first component y₀ per step: each trial is clipped to
+    /// |h| ≤ this / |f₀| by its rate at the step's start, and an attempt whose y₀ changes
+    /// more is retried shorter (∞, the default, gives scipy's steps). The full motion
+    /// caps the angle θ so: with a rate that is nearly constant (χ → 0) the error estimate
+    /// lets a step span several turns, too coarse to plot or to close the energy ledger.
+    pub max_first_change: f64,
     /// Interior points per step at which event signs are sampled in addition to the step
     /// ends, so that a double crossing inside one step is not missed.
     pub event_samples: usize,
@@ -45,6 +51,7 @@ impl Default for SolverOptions {
             max_steps: 1_000_000,
             first_step: None,
             max_step: f64::INFINITY,
+            max_first_change: f64::INFINITY,
             event_samples: 4,
             method: Method::Rk45,
             dense_every_step: false,
@@ -278,6 +285,10 @@ impl<P: RkPair<N>, const N: usize> Run<P, N> {
             opts.rtol,
             opts.atol,
         );
+        let st = Stepper {
+            max_first_change: opts.max_first_change,
+            ..st
+        };
         Ok(Self {
             st,
             out,

@@ -160,6 +160,10 @@ pub struct Stepper<P, const N: usize> {
     pub t_bound: f64,
     /// Largest allowed |h|.
     pub max_step: f64,
+    /// Largest change of the first component per step: a trial is clipped to it by the
+    /// component's rate at the step's start, and an attempt that changes it more is retried
+    /// shorter ([`crate::ode::SolverOptions::max_first_change`]).
+    pub max_first_change: f64,
     /// Relative tolerance of the error norm.
     pub rtol: f64,
     /// Absolute tolerance of the error norm.
@@ -190,6 +194,7 @@ impl<P: RkPair<N>, const N: usize> Stepper<P, N> {
             direction: if t_bound >= t0 { 1.0 } else { -1.0 },
             t_bound,
             max_step,
+            max_first_change: f64::INFINITY,
             rtol,
             atol,
         }
@@ -241,12 +246,14 @@ impl<P: RkPair<N>, const N: usize> Stepper<P, N> {
         }
     }
 
-    /// The first trial of a step: the next step size, clipped to [min_step, max_step].
+    /// The first trial of a step: the next step size, clipped to [min_step, max_step] and
+    /// to `max_first_change` / |f₀| (∞ / 0 is ∞; a NaN rate leaves `max_step`).
     #[inline]
     pub fn first_trial(&self) -> Trial {
         let min_step = min_step(self.t, self.direction);
-        let h_abs = if self.h_abs > self.max_step {
-            self.max_step
+        let max_step = self.max_step.min(self.max_first_change / self.f[0].abs());
+        let h_abs = if self.h_abs > max_step {
+            max_step
         } else if self.h_abs < min_step {
             min_step
         } else {
@@ -305,6 +312,14 @@ impl<P: RkPair<N>, const N: usize> Stepper<P, N> {
         let h_abs = h.abs();
         if err.is_nan() {
             return Judgement::NonFinite;
+        }
+        let change = (y_new[0] - self.y[0]).abs();
+        if err < 1.0 && change > self.max_first_change {
+            // Accurate but too long a step (from a rate near 0, which `first_trial` could
+            // not clip): retried at the length that makes the change about 0.9 of the cap.
+            trial.h_abs = h_abs * (0.9 * self.max_first_change / change);
+            trial.rejected = true;
+            return Judgement::Retry;
         }
         if err < 1.0 {
             let mut factor = if err == 0.0 {

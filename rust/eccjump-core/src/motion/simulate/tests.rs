@@ -269,3 +269,32 @@ fn a_bad_settle_speed_is_refused() {
     };
     assert!(o.validate().is_err());
 }
+
+#[test]
+fn no_step_turns_the_body_more_than_the_cap() {
+    // Near χ = 0 rolling is nearly uniformly accelerated: without the cap RK45 took steps
+    // of several turns (12.8 rad) and the ledger drifted to 7e-7 (issue 38).
+    for (chi, pair) in [
+        (1e-9, ode::Method::Rk45),
+        (1e-9, ode::Method::Dop853),
+        (1e-6, ode::Method::Vern9),
+    ] {
+        let r = Ramp::new(Cylinder::new(chi, 0.5).unwrap(), 0.5).unwrap();
+        let o = SimOptions {
+            t_max: 20.0,
+            solver: ode::SolverOptions {
+                method: pair,
+                ..ode::SolverOptions::default()
+            },
+            ..SimOptions::default()
+        };
+        let run = simulate(&r, &o).unwrap();
+        assert!(run.points.last().unwrap().state.theta > 60.0);
+        for w in run.points.windows(2) {
+            assert!((w[1].state.theta - w[0].state.theta).abs() <= MAX_ANGLE_STEP);
+        }
+        for p in &run.points {
+            assert!((p.energy + p.dissipated - run.energy0).abs() < 1e-8);
+        }
+    }
+}

@@ -1,0 +1,127 @@
+"""The figure of an uncertainty study (:func:`eccjump.uncertainty`): the outcomes with their
+Wilson intervals, the samples over the two most spread parameters coloured JARM or not,
+and the distributions of the lift-off and the first flight."""
+
+from __future__ import annotations
+
+import math
+from typing import TYPE_CHECKING
+
+import numpy as np
+
+from eccjump._checks import integer
+from eccjump._html import JARM_COLOR
+from eccjump.plot._common import _plt
+from eccjump.uncertainty import Uncertainty
+from eccjump.uncertainty.sampling import UNITS
+
+if TYPE_CHECKING:
+    from matplotlib.axes import Axes
+    from matplotlib.figure import Figure
+
+#: How each distribution is shown: its label and the factor to its display unit.
+_SHOWN = {
+    "liftoff_theta": ("lift-off angle [deg]", 180 / math.pi),
+    "liftoff_t": (r"lift-off time [$\sqrt{R/g}$]", 1.0),
+    "flight_time": (r"flight time [$\sqrt{R/g}$]", 1.0),
+    "apex": ("apex [R]", 1.0),
+    "distance": ("flight distance [R]", 1.0),
+}
+
+#: The most samples drawn in the scatter panel (every k-th beyond it).
+MAX_SCATTER = 20_000
+
+
+def uncertainty(result: Uncertainty, *, outcomes: int = 6) -> Figure:
+    """The study in one figure: the ``outcomes`` most frequent outcomes (reasons or sequences)
+    as bars with their Wilson intervals, the samples over the two varied parameters of
+    largest relative spread (JARM in green), and a histogram of each distribution with its
+    median and central 95 %."""
+    if not isinstance(result, Uncertainty):
+        raise TypeError(f"result must be an Uncertainty, not {type(result).__name__}")
+    outcomes = integer("outcomes", outcomes, 1, 64)
+    plt = _plt()
+    shown = [k for k, s in result.distributions.items() if s.n]
+    panels = 2 + len(shown)
+    cols = min(panels, 3)
+    rows = math.ceil(panels / cols)
+    fig, axes = plt.subplots(rows, cols, figsize=(4.2 * cols, 3.4 * rows), layout="constrained")
+    flat = list(np.atleast_1d(axes).ravel())
+    _outcome_bars(flat[0], result, outcomes)
+    _scatter(flat[1], result)
+    for ax, name in zip(flat[2:], shown, strict=False):
+        _histogram(ax, result, name)
+    for ax in flat[panels:]:
+        ax.set_visible(False)
+    lo, hi = result.p_jarm_ci
+    fig.suptitle(
+        f"P(JARM) = {result.p_jarm:.4g} [{lo:.4g}, {hi:.4g}] "
+        f"({100 * result.confidence:g} %, {result.n_valid} valid of {result.n}, "
+        f"{result.sampling})"
+    )
+    return fig
+
+
+def _outcome_bars(ax: Axes, result: Uncertainty, most: int) -> None:
+    names = list(result.counts)[:most]
+    p = np.array([result.probabilities[k] for k in names])
+    ci = np.array([result.interval(k) for k in names]).reshape(-1, 2)
+    y = np.arange(len(names))
+    err = np.vstack([p - ci[:, 0], ci[:, 1] - p]) if names else None
+    ax.barh(y, p, xerr=err, color="#9ecae1", ecolor="k", capsize=3)
+    ax.set_yticks(y, [n.replace("→", ">") for n in names], fontsize=7)
+    ax.invert_yaxis()
+    ax.set_xlim(0, 1)
+    ax.set_xlabel("probability")
+    ax.set_title("outcomes", fontsize=9)
+
+
+def _spread_order(result: Uncertainty) -> list[str]:
+    """The varied parameters, most spread (relative to the nominal, or absolute) first."""
+
+    def rel(name: str) -> float:
+        x = result.samples[name]
+        scale = abs(result.nominal[name]) or 1.0
+        return float(np.nanstd(x)) / scale
+
+    return sorted(result.samples, key=rel, reverse=True)
+
+
+def _scatter(ax: Axes, result: Uncertainty) -> None:
+    names = _spread_order(result)
+    jarm = np.asarray(result.outcomes["is_jarm" if result.question == "jarm" else "jarm"])
+    step = max(1, math.ceil(result.n_valid / MAX_SCATTER))
+    idx = np.flatnonzero(result.valid)[::step]
+    if not names:
+        ax.text(0.5, 0.5, "no parameter varies", ha="center", va="center")
+        ax.set_axis_off()
+        return
+    x = result.samples[names[0]][idx]
+    y = result.samples[names[1]][idx] if len(names) > 1 else np.zeros(idx.size)
+    j = jarm[idx]
+    ax.scatter(x[~j], y[~j], s=2, c="#bbbbbb", label="not JARM", rasterized=True)
+    ax.scatter(x[j], y[j], s=2, c=JARM_COLOR, label="JARM", rasterized=True)
+    ax.set_xlabel(_label(names[0]))
+    ax.set_ylabel(_label(names[1]) if len(names) > 1 else "")
+    ax.legend(fontsize=7, markerscale=4, loc="best")
+    ax.set_title("samples", fontsize=9)
+
+
+def _label(name: str) -> str:
+    return f"{name} [{UNITS[name]}]"
+
+
+def _histogram(ax: Axes, result: Uncertainty, name: str) -> None:
+    label, factor = _SHOWN[name]
+    x = np.asarray(result.outcomes[name], dtype=float)[result.valid] * factor
+    x = x[np.isfinite(x)]
+    s = result.distributions[name]
+    ax.hist(x, bins=min(80, max(10, int(math.sqrt(x.size)))), color="#9ecae1")
+    for q, style in ((s.median, "-"), (s.q025, "--"), (s.q975, "--")):
+        ax.axvline(q * factor, color="k", ls=style, lw=0.8)
+    ax.set_xlabel(label)
+    ax.set_ylabel("samples")
+    ax.set_title(f"{name}: median {s.median * factor:.4g} (95 %: dashed)", fontsize=9)
+
+
+__all__ = ["MAX_SCATTER", "uncertainty"]

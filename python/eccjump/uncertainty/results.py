@@ -1,0 +1,293 @@
+"""The result of :func:`eccjump.uncertainty`: the samples, what each did, and the
+probabilities and distributions made of them (:class:`Uncertainty`), with the Wilson score
+interval of a binomial share (:func:`wilson`)."""
+
+from __future__ import annotations
+
+import math
+import os
+from dataclasses import dataclass
+from pathlib import Path
+from typing import TYPE_CHECKING, Any, NamedTuple
+
+import numpy as np
+from numpy.typing import NDArray
+
+from eccjump import store
+from eccjump._arrays import fields_equal
+from eccjump._checks import path as path_arg
+from eccjump._html import card, num
+from eccjump.uncertainty.delta import Delta
+from eccjump.uncertainty.sampling import UNITS
+
+if TYPE_CHECKING:
+    import xarray as xr
+    from matplotlib.figure import Figure
+
+#: The quantiles of each distribution's summary.
+QUANTILES = (0.025, 0.25, 0.5, 0.75, 0.975)
+
+#: The outcome quantities whose distributions are summarised, with their units: the
+#: lift-off angle for both questions (the JARM angle theta_J for "jarm", the first lift-off,
+#: from any mode, for "motion"), the rest for "motion" only.
+QUANTITIES = {
+    "liftoff_theta": "rad",
+    "liftoff_t": "sqrt(R/g)",
+    "flight_time": "sqrt(R/g)",
+    "apex": "R",
+    "distance": "R",
+}
+
+
+def wilson(k: int, n: int, confidence: float = 0.95) -> tuple[float, float]:
+    """The Wilson score interval of a share k/n at ``confidence`` (two-sided); (0, 1) for
+    n = 0. Its coverage is close to nominal even for shares near 0 or 1, unlike the normal
+    approximation, and it needs no iteration (Clopper–Pearson's is wider than nominal)."""
+    if n == 0:
+        return 0.0, 1.0
+    z = _z(confidence)
+    p = k / n
+    centre = (p + z * z / (2 * n)) / (1 + z * z / n)
+    half = z / (1 + z * z / n) * math.sqrt(p * (1 - p) / n + z * z / (4 * n * n))
+    # At k = 0 or k = n an end is exactly 0 or 1; rounding would put it a few ulps inside,
+    # on the wrong side of the share itself.
+    low = 0.0 if k == 0 else max(0.0, centre - half)
+    high = 1.0 if k == n else min(1.0, centre + half)
+    return low, high
+
+
+def _z(confidence: float) -> float:
+    """The standard normal quantile of a two-sided ``confidence``."""
+    from statistics import NormalDist
+
+    return NormalDist().inv_cdf(0.5 + confidence / 2)
+
+
+class Summary(NamedTuple):
+    """A distribution in numbers: the samples it holds (n), mean, standard deviation and the
+    :data:`QUANTILES` (NaN where it holds none)."""
+
+    n: int
+    mean: float
+    sd: float
+    q025: float
+    q25: float
+    median: float
+    q75: float
+    q975: float
+
+    @classmethod
+    def of(cls, x: NDArray[np.float64]) -> Summary:
+        x = x[np.isfinite(x)]
+        if x.size == 0:
+            return cls(0, *([math.nan] * 7))
+        q = np.quantile(x, QUANTILES)
+        sd = float(np.std(x, ddof=1)) if x.size > 1 else math.nan
+        return cls(int(x.size), float(np.mean(x)), sd, *(float(v) for v in q))
+
+
+@dataclass(frozen=True, eq=False, repr=False)
+class Uncertainty:
+    """What the spread of the inputs does to a JARM or to the first flight
+    (:func:`eccjump.uncertainty`).
+
+    Attributes
+    ----------
+    question : {"jarm", "motion"}
+        What each sample answered: the JARM classification (:func:`eccjump.jarm`) or the
+        full motion to the first landing (:func:`eccjump.motion_points`).
+    sampling : {"random", "sobol"}
+        Pseudo-random (numpy's PCG64) or scrambled Sobol' points.
+    invalid : {"truncate", "count"}
+        How samples outside the physical range were treated (:mod:`.sampling`).
+    n, seed : int
+        The sample size and the seed.
+    confidence : float
+        The level of the confidence intervals.
+    nominal : dict of str to float
+        The nominal value of every parameter (chi, km, alpha, mu_s, mu_k, restitution,
+        theta0, omega0).
+    sd, bounds : dict
+        The normal standard deviations and uniform ranges, by parameter.
+    samples : dict of str to numpy.ndarray
+        The sampled values of the varied parameters, one array of length n each.
+    valid : numpy.ndarray of bool
+        The samples within the physical range that the question could answer (the others
+        count in no probability).
+    outcomes : dict of str to numpy.ndarray
+        What each sample did: for "jarm" ``is_jarm``, ``reason``, ``liftoff_theta`` (theta_J of
+        a JARM, else NaN), ``Fy_J``, ``max_ratio``; for "motion" every field of
+        :class:`eccjump.MotionPoints` (``jarm``, ``sequence``, ``liftoff_theta``, ``apex``, ...).
+    n_valid : int
+        The valid samples.
+    p_jarm : float
+        The share of valid samples that jump straight out of pure rolling (a JARM).
+    p_jarm_ci : tuple of float
+        Its Wilson score interval at ``confidence``. For Sobol' samples this is the interval
+        of random sampling of the same size: conservative, as the quasi-random error is
+        usually smaller (estimate it from repeated seeds).
+    counts : dict of str to int
+        The valid samples of each outcome: each :class:`eccjump.Reason` by name ("jarm"),
+        each sequence of modes such as ``"ROLL→FLIGHT→SLIP"`` ("motion"), most frequent
+        first (:attr:`probabilities`: their shares).
+    distributions : dict of str to Summary
+        Count, mean, sd and quantiles of the lift-off angle [rad] ("jarm": over the JARM
+        samples) and, for "motion", the lift-off time, flight time, apex and distance of the
+        first flight (over the samples that fly).
+    delta : Delta or None
+        The first-order (delta-method) estimate beside the Monte Carlo one: None until the
+        exact derivatives of ``jarm(..., derivatives=True)`` are available
+        (:func:`eccjump.uncertainty.delta.delta_method`).
+    """
+
+    question: str
+    sampling: str
+    invalid: str
+    n: int
+    seed: int
+    confidence: float
+    nominal: dict[str, float]
+    sd: dict[str, float]
+    bounds: dict[str, tuple[float, float]]
+    samples: dict[str, NDArray[np.float64]]
+    valid: NDArray[np.bool_]
+    outcomes: dict[str, NDArray[Any]]
+    n_valid: int
+    p_jarm: float
+    p_jarm_ci: tuple[float, float]
+    counts: dict[str, int]
+    distributions: dict[str, Summary]
+    delta: Delta | None = None
+
+    __eq__ = fields_equal
+    __hash__ = None  # type: ignore[assignment]
+
+    @property
+    def p_invalid(self) -> float:
+        """The share of samples outside the physical range."""
+        return 1.0 - self.n_valid / self.n
+
+    @property
+    def probabilities(self) -> dict[str, float]:
+        """The share of each outcome of :attr:`counts` among the valid samples."""
+        return {k: c / max(self.n_valid, 1) for k, c in self.counts.items()}
+
+    def interval(self, outcome: str) -> tuple[float, float]:
+        """The Wilson interval of the probability of ``outcome`` (a key of :attr:`counts`;
+        one no sample had: (0, upper end)) at ``confidence``."""
+        return wilson(self.counts.get(outcome, 0), self.n_valid, self.confidence)
+
+    def to_dict(self) -> dict[str, Any]:
+        """The numbers (no sample arrays), JSON-ready."""
+        return {
+            "question": self.question,
+            "sampling": self.sampling,
+            "invalid": self.invalid,
+            "n": self.n,
+            "seed": self.seed,
+            "confidence": self.confidence,
+            "nominal": self.nominal,
+            "sd": self.sd,
+            "bounds": {k: list(v) for k, v in self.bounds.items()},
+            "n_valid": self.n_valid,
+            "p_jarm": self.p_jarm,
+            "p_jarm_ci": list(self.p_jarm_ci),
+            "counts": self.counts,
+            "probabilities": self.probabilities,
+            "distributions": {
+                k: {f: _json(v) for f, v in s._asdict().items()}
+                for k, s in self.distributions.items()
+            },
+        }
+
+    def columns(self) -> dict[str, NDArray[Any]]:
+        """One array per sample: ``valid``, the varied parameters, then the outcomes."""
+        return {"valid": self.valid, **self.samples, **self.outcomes}
+
+    def to_xarray(self) -> xr.Dataset:
+        """The samples and outcomes as an ``xarray.Dataset`` along ``sample``, the numbers of
+        :meth:`to_dict` as attributes (JSON text where nested)."""
+        import json
+
+        import xarray as xr
+
+        units = {**UNITS, **QUANTITIES}
+        data = {
+            k: ("sample", v, {"units": units[k]} if k in units else {})
+            for k, v in self.columns().items()
+        }
+        attrs = {
+            k: (json.dumps(v) if isinstance(v, dict | list) else v)
+            for k, v in self.to_dict().items()
+        }
+        return xr.Dataset(data, coords={"sample": np.arange(self.n)}, attrs=attrs)
+
+    def save(self, path: str | os.PathLike) -> Path:
+        """Write the samples and outcomes: ``.csv`` (numpy only; the numbers of
+        :meth:`to_dict` in ``#`` comment lines first) or ``.nc`` (netCDF, needs xarray).
+        The file appears whole or not at all."""
+        target = Path(path_arg("path", path))
+        suffix = target.suffix.lower()
+        if suffix not in (".csv", ".nc"):
+            raise ValueError(f"path: the suffix must be .csv or .nc, not {suffix or 'none'!r}")
+        tmp = store.temp_sibling(target)
+        try:
+            if suffix == ".csv":
+                self._write_csv(tmp)
+            else:
+                self.to_xarray().to_netcdf(tmp, engine=store.netcdf_engine())
+            store.install(tmp, target)
+        finally:
+            store.remove(tmp)
+        return target
+
+    def _write_csv(self, path: Path) -> None:
+        import json
+
+        cols = self.columns()
+        header = "\n".join([json.dumps(self.to_dict(), ensure_ascii=False), ",".join(cols)])
+        table = np.column_stack([np.asarray(v, dtype=np.float64) for v in cols.values()])
+        np.savetxt(path, table, delimiter=",", header=header, fmt="%.17g", encoding="utf-8")
+
+    def plot(self, **kwargs: Any) -> Figure:
+        """The figure of :func:`eccjump.plot.uncertainty` (needs matplotlib)."""
+        from eccjump import plot  # figures: the layer on top of every result
+
+        return plot.uncertainty(self, **kwargs)
+
+    def __repr__(self) -> str:
+        lo, hi = self.p_jarm_ci
+        varied = "; ".join(self._spreads()) or "nothing"
+        return (
+            f"Uncertainty({self.question}: p_jarm={self.p_jarm:.4g} [{lo:.4g}, {hi:.4g}] "
+            f"from {self.n_valid} of {self.n} {self.sampling} samples; {varied})"
+        )
+
+    def _repr_html_(self) -> str:
+        lo, hi = self.p_jarm_ci
+        pct = f"{100 * self.confidence:g} %"
+        rows = [
+            ("question", f"{self.question}, {self.n} samples ({self.sampling}, seed {self.seed})"),
+            ("varied", ", ".join(self._spreads()) or "nothing"),
+            ("valid", f"{self.n_valid} ({100 * (1 - self.p_invalid):.4g} %, {self.invalid})"),
+            ("P(JARM)", f"{num(self.p_jarm, 4)}  [{num(lo, 4)}, {num(hi, 4)}] ({pct}, Wilson)"),
+        ]
+        for name, p in list(self.probabilities.items())[:6]:
+            rows.append((f"P({name})", num(p, 4)))
+        for name, s in self.distributions.items():
+            if s.n:
+                spread = f"[{num(s.q025, 5)}, {num(s.q975, 5)}] {QUANTITIES[name]}"
+                rows.append((name, f"median {num(s.median, 5)} {spread} (95 % of {s.n})"))
+        return card("Uncertainty", rows)
+
+    def _spreads(self) -> list[str]:
+        out = [f"{k} ± {num(v, 3)}" for k, v in self.sd.items() if v > 0]
+        out += [f"{k} in [{num(lo, 4)}, {num(hi, 4)}]" for k, (lo, hi) in self.bounds.items()]
+        return out
+
+
+def _json(x: float | int) -> float | int | None:
+    return None if isinstance(x, float) and not math.isfinite(x) else x
+
+
+__all__ = ["QUANTILES", "QUANTITIES", "Summary", "Uncertainty", "wilson"]

@@ -1,0 +1,297 @@
+"""eccjump.uncertainty and eccjump.motion_points: the probability of a JARM against an
+independent Monte Carlo, Sobol' against random sampling, the same bits for any thread
+count, the physical ranges, bad input, the result's views and files, the command line."""
+
+from __future__ import annotations
+
+import json
+import math
+from statistics import NormalDist
+
+import numpy as np
+import pytest
+
+import eccjump
+from eccjump.cli import main
+from eccjump.uncertainty import wilson
+from eccjump.uncertainty.sampling import RANGES
+
+pytest.importorskip("scipy")
+
+BODY = eccjump.Cylinder(chi=0.15, km=0.02)
+ALPHA = math.radians(40)
+#: Tolerances wide enough that about one sample in five is no JARM.
+SD = {"alpha": math.radians(2), "chi": 0.02, "km": 0.01, "mu_s": 0.15}
+
+
+def _independent_p_jarm(n: int, seed: int) -> tuple[float, float]:
+    """P(JARM) and its standard error by a plain loop: numpy's legacy normal generator (not
+    the study's PCG64 stream), rejection of samples outside the physical range (the same
+    truncated distributions, drawn another way), one ``jarm`` call per point."""
+    rng = np.random.RandomState(seed)
+    hits = done = 0
+    while done < n:
+        chi = rng.normal(BODY.chi, SD["chi"])
+        km = rng.normal(BODY.km, SD["km"])
+        alpha = rng.normal(ALPHA, SD["alpha"])
+        mu = rng.normal(1.0, SD["mu_s"])
+        if not (0 <= chi <= 1 and 0 <= km <= 1 - chi and 0 <= alpha <= math.pi / 2 and mu >= 0):
+            continue
+        hits += bool(eccjump.jarm(alpha, chi, km, mu).is_jarm)
+        done += 1
+    p = hits / n
+    return p, math.sqrt(p * (1 - p) / n)
+
+
+def test_p_jarm_agrees_with_an_independent_monte_carlo():
+    # The independent loop rejects a whole sample when any value is out of range; the study
+    # truncates each parameter (km given its sample's chi). With these tolerances only km
+    # leaves its range (km < 0, about 2 % of draws), and only km's own draw depends on it, so
+    # both sample the same distribution.
+    u = eccjump.uncertainty(BODY, ALPHA, 1.0, sd=SD, n=20_000, seed=1)
+    p, se = _independent_p_jarm(3000, seed=7)
+    combined = math.hypot(se, math.sqrt(u.p_jarm * (1 - u.p_jarm) / u.n_valid))
+    assert 0.6 < u.p_jarm < 0.95  # a question with an answer to get wrong
+    assert abs(u.p_jarm - p) < 4 * combined, (u.p_jarm, p, combined)
+    lo, hi = u.p_jarm_ci
+    assert lo < u.p_jarm < hi and hi - lo < 0.02
+
+
+def test_sobol_converges_faster_on_a_smooth_question():
+    # The mean lift-off angle of JARM samples under a small spread of alpha alone is a smooth
+    # function of the Sobol' coordinate: its error over seeds shrinks faster than random's.
+    sd = {"alpha": math.radians(0.5)}
+    reference = eccjump.uncertainty(BODY, ALPHA, 1.0, sd=sd, n=2**16, sampling="sobol")
+    truth = reference.distributions["liftoff_theta"].mean
+
+    def spread(sampling: str) -> float:
+        means = [
+            eccjump.uncertainty(BODY, ALPHA, 1.0, sd=sd, n=256, seed=s, sampling=sampling)
+            .distributions["liftoff_theta"]
+            .mean
+            for s in range(1, 9)
+        ]
+        return float(np.sqrt(np.mean((np.array(means) - truth) ** 2)))
+
+    assert spread("sobol") < spread("random") / 4
+
+
+@pytest.mark.parametrize("question", ["jarm", "motion"])
+def test_same_bits_for_any_thread_count(question):
+    sd = {"alpha": math.radians(2), "chi": 0.02}
+    if question == "motion":
+        sd |= {"restitution": 0.2, "theta0": 0.1}
+    kw = dict(sd=sd, n=600, seed=3, question=question, t_max=20.0, sampling="sobol")
+    one = eccjump.uncertainty(BODY, ALPHA, 1.0, n_threads=1, **kw)
+    two = eccjump.uncertainty(BODY, ALPHA, 1.0, n_threads=2, **kw)
+    assert one == two
+    for k, v in one.outcomes.items():
+        assert v.tobytes() == two.outcomes[k].tobytes(), k
+
+
+def test_motion_points_are_simulate_at_each_point():
+    rng = np.random.default_rng(5)
+    n = 40
+    chi = rng.uniform(0.05, 0.9, n)
+    km = rng.uniform(0.01, 1, n) * (1 - chi)
+    alpha, mu = rng.uniform(0.2, 1.4, n), rng.uniform(0.3, 1.5, n)
+    e, theta0 = rng.uniform(0, 1, n), rng.uniform(-1, 1, n)
+    p = eccjump.motion_points(alpha, chi, km, mu, restitution=e, theta0=theta0, t_max=30.0)
+    for i in range(n):
+        run = eccjump.simulate(eccjump.Cylinder(chi[i], km[i]), alpha[i], mu_s=mu[i],
+                               restitution=e[i], theta0=theta0[i], t_max=30.0)  # fmt: skip
+        # the summary stops at the first landing: its modes begin simulate's
+        seq = eccjump.motion_maps.sequence_name(int(p.sequence[i])).split("→")
+        assert seq == run.mode_names()[: len(seq)]
+        if run.flights:
+            assert p.apex[i] == run.flights[0].apex
+            assert p.liftoff_t[i] == run.flights[0].t_liftoff
+
+
+def test_motion_points_mark_invalid_points_and_broadcast():
+    p = eccjump.motion_points([[0.5], [0.7]], [0.2, 0.5], [0.1, 0.6], 1.0, mu_k=[0.5, 2.0])
+    assert p.status.shape == (2, 2)
+    assert p.status[0, 0] != 255 and (p.status[:, 1] == 255).all()  # km > 1 - chi, mu_k > mu_s
+    assert np.isnan(p.apex[:, 1]).all()
+    assert sum(p.sequences().values()) == int(p.valid.sum())
+
+
+def test_motion_question_agrees_with_the_jarm_question():
+    # The motion's JARM points are those of the ODE route, which the closed form matches.
+    kw = dict(sd={"alpha": math.radians(2), "chi": 0.02, "mu_s": 0.15}, n=400, seed=2)
+    j = eccjump.uncertainty(BODY, ALPHA, 1.0, **kw)
+    m = eccjump.uncertainty(BODY, ALPHA, 1.0, question="motion", **kw)
+    assert np.array_equal(j.samples["alpha"], m.samples["alpha"])
+    agree = j.outcomes["is_jarm"] == m.outcomes["jarm"]
+    assert agree.mean() > 0.99
+    jump = j.outcomes["is_jarm"] & m.outcomes["jarm"]
+    assert np.allclose(j.outcomes["liftoff_theta"][jump], m.outcomes["liftoff_theta"][jump],
+                       atol=1e-7)  # fmt: skip
+    assert set(m.distributions) == {"liftoff_theta", "liftoff_t", "flight_time", "apex",
+                                    "distance"}  # fmt: skip
+    assert abs(sum(m.probabilities.values()) - 1) < 1e-12
+
+
+def test_truncation_keeps_every_sample_in_range_and_count_reports_the_rest():
+    body = eccjump.Cylinder(0.9, 0.09)  # km near its end 1 - chi = 0.1
+    sd = {"chi": 0.1, "km": 0.05, "mu_s": 2.0}
+    t = eccjump.uncertainty(body, ALPHA, 1.0, sd=sd, n=5000)
+    assert t.n_valid == t.n and t.p_invalid == 0
+    chi, km = t.samples["chi"], t.samples["km"]
+    assert (chi >= 0).all() and (chi <= 1).all() and (km >= 0).all() and (km <= 1 - chi).all()
+    assert (t.samples["mu_s"] >= RANGES["mu_s"][0]).all()
+    c = eccjump.uncertainty(body, ALPHA, 1.0, sd=sd, n=5000, invalid="count")
+    assert 0.3 < c.p_invalid < 0.9
+    assert sum(c.counts.values()) == c.n_valid
+    # The valid samples of "count" are those of the given normals inside the ranges.
+    v = c.valid
+    assert ((c.samples["km"][v] <= 1 - c.samples["chi"][v]) & (c.samples["mu_s"][v] >= 0)).all()
+
+
+def test_bounds_are_uniform_and_mu_k_follows_mu_s():
+    u = eccjump.uncertainty(BODY, ALPHA, 1.0, bounds={"mu_s": (0.2, 0.6)}, n=4000,
+                            question="motion", t_max=10.0)  # fmt: skip
+    mu = u.samples["mu_s"]
+    assert 0.2 <= mu.min() and mu.max() <= 0.6 and abs(mu.mean() - 0.4) < 0.01
+    assert "mu_k" not in u.samples and u.nominal["mu_k"] == 1.0
+
+
+def test_wilson_interval():
+    assert wilson(0, 0) == (0.0, 1.0)
+    lo, hi = wilson(0, 100)
+    assert lo == 0 and 0.03 < hi < 0.04  # the rule of three's neighbour
+    # the textbook values (e.g. statsmodels' proportion_confint(50, 100, method="wilson"))
+    lo, hi = wilson(50, 100)
+    assert abs(lo - 0.403832) < 1e-6 and abs(hi - 0.596168) < 1e-6
+    lo, hi = wilson(3, 40, 0.9)
+    z = NormalDist().inv_cdf(0.95)
+    centre = (3 + z * z / 2) / (40 + z * z)
+    assert abs((lo + hi) / 2 - centre) < 1e-12
+    # the share itself always lies inside, also at the ends (rounding put 1 outside)
+    for k, n in ((300, 300), (0, 7), (1, 1), (999_999, 10**6)):
+        lo, hi = wilson(k, n)
+        assert lo <= k / n <= hi
+    assert wilson(300, 300)[1] == 1.0
+
+
+def test_a_study_of_no_spread_is_the_nominal_point():
+    u = eccjump.uncertainty(BODY, ALPHA, 1.0, n=10)
+    assert u.p_jarm == 1.0 and u.samples == {}
+    theta = u.distributions["liftoff_theta"]
+    assert theta.q025 == theta.q975 == eccjump.jarm(ALPHA, 0.15, 0.02, 1.0).theta_J
+    assert u.delta is None  # the first-order estimate waits for the exact derivatives
+
+
+@pytest.mark.parametrize(
+    ("kwargs", "error", "names"),
+    [
+        ({"sd": {"bogus": 0.1}}, ValueError, "bogus"),
+        ({"sd": {"alpha": -0.1}}, ValueError, "sd['alpha']"),
+        ({"sd": {"alpha": math.nan}}, ValueError, "sd['alpha']"),
+        ({"bounds": {"chi": (0.3, 0.1)}}, ValueError, "bounds['chi']"),
+        ({"bounds": {"chi": 0.3}}, TypeError, "bounds['chi']"),
+        ({"sd": {"chi": 0.1}, "bounds": {"chi": (0.1, 0.2)}}, ValueError, "chi"),
+        ({"sd": {"theta0": 0.1}}, ValueError, "theta0"),
+        ({"sd": {"restitution": 0.1}}, ValueError, "restitution"),
+        ({"n": 0}, ValueError, "n"),
+        ({"n": 2.5}, TypeError, "n"),
+        ({"sd": [0.1]}, TypeError, "sd"),
+        ({"sampling": "halton"}, ValueError, "sampling"),
+        ({"question": "fly"}, ValueError, "question"),
+        ({"invalid": "redraw"}, ValueError, "invalid"),
+        ({"confidence": 1.0}, ValueError, "confidence"),
+        ({"mu_k": 2.0}, ValueError, "mu_k"),
+        ({"seed": -1}, ValueError, "seed"),
+        ({"sd": {"alpha": 1e6}, "invalid": "count", "n": 10}, ValueError, "sd"),
+    ],
+)
+def test_bad_input_names_the_parameter(kwargs, error, names):
+    with pytest.raises(error) as info:
+        eccjump.uncertainty(BODY, ALPHA, 1.0, **kwargs)
+    msg = str(info.value)
+    assert names in msg and len(msg) < 200, msg
+
+
+def test_bad_nominal_values_name_them_with_unit_and_range():
+    with pytest.raises(ValueError, match=r"alpha = 2 \[rad\].*\[0, 1.5708\]"):
+        eccjump.uncertainty(BODY, 2.0, 1.0)
+    with pytest.raises(ValueError, match=r"mu_s = inf"):
+        eccjump.uncertainty(BODY, ALPHA, math.inf)
+    with pytest.raises(TypeError, match="body"):
+        eccjump.uncertainty((0.15, 0.02), ALPHA, 1.0)  # type: ignore[arg-type]
+
+
+def test_progress_reaches_the_total():
+    seen: list[tuple[int, int]] = []
+    eccjump.uncertainty(BODY, ALPHA, 1.0, sd={"chi": 0.01}, n=300, question="motion",
+                        t_max=10.0, progress=lambda d, t: seen.append((d, t)))  # fmt: skip
+    assert seen and seen[-1] == (300, 300)
+
+
+def test_views_and_files(tmp_path):
+    u = eccjump.uncertainty(BODY, ALPHA, 1.0, sd=SD, n=500, question="motion", t_max=10.0)
+    html = u._repr_html_()
+    assert "P(JARM)" in html and "Wilson" in html
+    path = u.save(tmp_path / "u.csv")
+    lines = path.read_text().splitlines()
+    head = json.loads(lines[0].removeprefix("# "))
+    assert head["p_jarm"] == u.p_jarm and head["n"] == 500
+    table = np.loadtxt(path, delimiter=",")
+    assert table.shape == (500, len(u.columns()))
+    with pytest.raises(ValueError, match="path"):
+        u.save(tmp_path / "u.txt")
+    pytest.importorskip("xarray")
+    ds = u.to_xarray()
+    assert ds.sizes["sample"] == 500 and ds.attrs["p_jarm"] == u.p_jarm
+    u.save(tmp_path / "u.nc")
+    assert (tmp_path / "u.nc").stat().st_size > 0
+
+
+def test_plot():
+    pytest.importorskip("matplotlib")
+    import matplotlib
+
+    matplotlib.use("Agg")
+    u = eccjump.uncertainty(BODY, ALPHA, 1.0, sd=SD, n=300)
+    fig = u.plot()
+    assert len([ax for ax in fig.axes if ax.get_visible()]) == 3
+
+
+def test_command_line(tmp_path, capsys):
+    out, fig = tmp_path / "u.csv", tmp_path / "u.png"
+    argv = ["uncertainty", "--chi", "0.15", "--km", "0.02", "--alpha", "40", "--mu-s", "1",
+            "--sd", "alpha", "2", "--bounds", "mu_s", "0.8", "1.2", "-n", "256", "-q",
+            "-o", str(out), "--json"]  # fmt: skip
+    if _has_matplotlib():
+        argv += ["--figure", str(fig)]
+    assert main(argv) == 0
+    got = json.loads(capsys.readouterr().out)
+    # --sd alpha 2 is in degrees on the command line
+    direct = eccjump.uncertainty(BODY, ALPHA, 1.0, sd={"alpha": math.radians(2)},
+                                 bounds={"mu_s": (0.8, 1.2)}, n=256)  # fmt: skip
+    assert got["p_jarm"] == direct.p_jarm and out.exists()
+    assert main([*argv[:9], "--sd", "bogus", "1"]) == 2
+    assert "bogus" in capsys.readouterr().err
+
+
+def _has_matplotlib() -> bool:
+    try:
+        import matplotlib
+
+        matplotlib.use("Agg")
+    except ImportError:
+        return False
+    return True
+
+
+def test_theta_J_spread_is_small_for_a_small_tolerance():
+    # A sanity bound the delta method will sharpen: the lift-off angle moves smoothly.
+    u = eccjump.uncertainty(BODY, ALPHA, 1.0, sd={"alpha": 1e-4}, n=2000)
+    s = u.distributions["liftoff_theta"]
+    h = 1e-6
+    d = (closed_form_theta(ALPHA + h) - closed_form_theta(ALPHA - h)) / (2 * h)
+    assert abs(s.sd - abs(d) * 1e-4) < 0.05 * abs(d) * 1e-4
+
+
+def closed_form_theta(alpha: float) -> float:
+    return float(eccjump.jarm(alpha, BODY.chi, BODY.km, 1.0).theta_J)
