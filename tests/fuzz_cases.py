@@ -368,6 +368,7 @@ def check_jarm_result(res: Any, case: Case, shape: tuple[int, ...] | None = None
     expect(bool(np.isfinite(res.theta_J[jarm]).all()), "JARM point without a finite theta_J")
     if case.kwargs.get("rule") == "paper":  # normal_force: JARMs outside any green turn, n 0
         expect(bool((res.n[jarm] >= 1).all()), "JARM point with n < 1")
+    check_derivatives(res, case, shape)
     pts = _points(case) if case.name == "jarm" else None
     if pts is not None and pts[0].shape != shape:
         pts = tuple(np.broadcast_to(p, shape) for p in pts)
@@ -397,6 +398,28 @@ def check_jarm_result(res: Any, case: Case, shape: tuple[int, ...] | None = None
         invalid = reason == int(eccjump.Reason.INVALID_PARAMS)
         expect(bool(invalid[bad].all()), "an invalid point is not INVALID_PARAMS")
         expect(not bool(invalid[good].any()), "a valid point is INVALID_PARAMS")
+
+
+def check_derivatives(res: Any, case: Case, shape: tuple[int, ...]) -> None:
+    """The derivative fields: there iff asked for, of the shape plus (3,); finite exactly
+    where theta_J is finite and the point is not flagged singular (no silent NaN), the
+    forces' only where the forces are."""
+    asked = case.kwargs.get("derivatives", False)
+    derivs = res.derivatives()
+    expect(bool(derivs) == bool(asked), "derivative fields present iff derivatives=True")
+    if not derivs:
+        return
+    expect(derivs["d_singular"].shape == shape, "d_singular shape")
+    for k in ("d_theta_J", "d_Fx_J", "d_Fy_J", "d_mu_J"):
+        expect(derivs[k].shape == (*shape, 3), f"{k} has shape {derivs[k].shape}")
+    singular = derivs["d_singular"]
+    jump = np.isfinite(res.theta_J)
+    expect(not bool(singular[~jump].any()), "a point without theta_J flagged singular")
+    finite = np.isfinite(derivs["d_theta_J"]).all(axis=-1)
+    expect(bool((finite == (jump & ~singular)).all()), "d_theta_J finite where it must not be")
+    for k in ("d_Fx_J", "d_Fy_J"):
+        ok = np.isfinite(derivs[k]).all(axis=-1)
+        expect(bool((ok == (np.isfinite(res.Fx_J) & ~singular)).all()), f"{k} finite or NaN")
 
 
 def check_region(res: Any, case: Case) -> None:
@@ -540,6 +563,7 @@ def case_jarm(d: Drawer) -> Case:
         "n": turn(d, c, per_point=True),
         **_classification_options(d, c, True),
         "integrator": text_param(d, c, INTEGRATORS),
+        "derivatives": flag(d, c),
     }
     c.info = {
         "alpha": alpha,
@@ -554,6 +578,7 @@ def case_jarm(d: Drawer) -> Case:
 JARM_PARAMS = (
     "alpha", "chi", "km", "mu_s", "n", "method", "rule", "theta0", "omega0", "rtol", "atol",
     "max_turns", "refine_extrema", "stop_at_slip", "n_threads", "shapes", "integrator",
+    "derivatives",
 )  # fmt: skip
 #: A map's axes: the fraction km_frac, not the body's km.
 MAP_PARAMS = tuple("km_frac" if p == "km" else p for p in JARM_PARAMS)
@@ -570,7 +595,7 @@ def case_region(d: Drawer) -> Case:
     mu, n = real(d, c, 0.0, 3.0), turn(d, c)
     axes = (_axis(d, c, 0.0, HALF_PI), _axis(d, c, 0.0, 1.0), _axis(d, c, 0.0, 1.0))
     c.args = (*axes, mu, n)  # (alpha, chi, km_frac, mu_s, n): the point first, then mu_s
-    c.kwargs = {**opts, "integrator": text_param(d, c, INTEGRATORS)}
+    c.kwargs = {**opts, "integrator": text_param(d, c, INTEGRATORS), "derivatives": flag(d, c)}
     return c
 
 

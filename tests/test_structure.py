@@ -139,7 +139,9 @@ def keyword_only(f) -> list[str]:
 def test_the_bridges_option_classes_take_the_public_names():
     # The bridge's convention: shared options go in one options class, made from keyword-only
     # plain values under the public function's own names (no two floats swapped on the way).
-    assert keyword_only(_core.ClassifyOptions) == keyword_only(eccjump.jarm)
+    # derivatives: a second bridge call after the classification (_core.jarm_derivatives).
+    public = [p for p in keyword_only(eccjump.jarm) if p != "derivatives"]
+    assert keyword_only(_core.ClassifyOptions) == public
     searches = (eccjump.alpha_intervals, eccjump.mu_s_min_path, eccjump.alpha_interval_around)
     for f in searches:
         assert set(keyword_only(_core.BoundaryOptions)) <= set(inspect.signature(f).parameters)
@@ -164,19 +166,21 @@ def test_upper_modules_first_then_lower_in_one_interpreter():
 def test_result_fields_come_from_one_table():
     names = tuple(f.name for f in fields.TABLE)
     assert fields.FIELDS == names
-    assert tuple(f.name for f in dataclasses.fields(JarmResult)) == names
+    derivatives = tuple(f.name for f in fields.DERIVATIVE_TABLE)
+    assert fields.DERIVATIVES == derivatives
+    assert tuple(f.name for f in dataclasses.fields(JarmResult)) == names + derivatives
     assert eccjump.classification.FIELDS is fields.FIELDS
     assert scale.RECORD is fields.RECORD and fields.RECORD.names == names
     assert labelled.DTYPES is fields.DTYPES and labelled.FILL is fields.FILL
-    for f in fields.TABLE:
+    for f in fields.TABLE + fields.DERIVATIVE_TABLE:
         assert labelled.FIELD_ATTRS[f.name] == {"units": f.units, "long_name": f.description}
         assert f.name in (JarmResult.__doc__ or "") and f.description in JarmResult.__doc__
         assert np.array(f.fill).astype(f.dtype).dtype == f.dtype
 
 
 def test_results_have_the_described_dtypes():
-    r = eccjump.jarm([0.5, 0.7], 0.15, 0.02, 1.0)
-    reg = eccjump.region(mu_s=1.0, alpha=[0.5, 0.7], chi=[0.15], km_frac=[0.1])
+    r = eccjump.jarm([0.5, 0.7], 0.15, 0.02, 1.0, derivatives=True)
+    reg = eccjump.region(mu_s=1.0, alpha=[0.5, 0.7], chi=[0.15], km_frac=[0.1], derivatives=True)
     for name, dtype in fields.DTYPES.items():
         assert getattr(r, name).dtype == dtype and getattr(reg.result, name).dtype == dtype
     ds = pytest.importorskip("xarray") and reg.to_xarray()

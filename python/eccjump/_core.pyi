@@ -197,6 +197,20 @@ def jarm_grid(
 ) -> dict[str, NDArray[Any]]: ...
 def reason_codes() -> list[tuple[int, str]]: ...
 
+# The exact derivatives of a classification's theta_J, Fx_J, Fy_J and mu_J = -Fx_J/Fy_J with
+# respect to (alpha, chi, km): four (N, 3) arrays and the flag of the singular points.
+def jarm_derivatives(
+    alpha: F64,
+    chi: F64,
+    km: F64,
+    mu_s: F64,
+    theta_j: F64,
+    *,
+    rule: str,
+    theta0: float,
+    omega0: float,
+) -> tuple[F64, F64, F64, F64, NDArray[np.bool_]]: ...
+
 # The paper's closed forms over equal-length 1-D arrays, each returning its output columns.
 def jump_forces(alpha: F64, chi: F64, km: F64, theta_j: F64) -> list[F64]: ...
 def mu(chi: F64, km: F64, theta_j: F64) -> list[F64]: ...

@@ -17,7 +17,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 from eccjump import _core
-from eccjump.fields import FIELDS, cf_attrs, reason_table
+from eccjump.fields import BY_NAME, FIELDS, WRT, cf_attrs, reason_table
 
 if TYPE_CHECKING:  # pragma: no cover
     import xarray as xr
@@ -39,6 +39,7 @@ COORD_ATTRS: dict[str, dict[str, str]] = {
     "theta0": {"units": "rad", "long_name": "initial angle"},
     "omega0": {"units": "sqrt(g/R) rad", "long_name": "initial angular velocity"},
     "alpha_done": {"units": "1", "long_name": "alpha slice computed (False: missing, fill)"},
+    "wrt": {"long_name": "parameter of the derivative: alpha [rad], chi or km (k_m itself)"},
 }
 
 #: A layout: {"coords": {name: (dims, array, attrs)}, "data_vars": {...}, "attrs": {...}}.
@@ -129,18 +130,44 @@ def make_layout(
     }
 
 
+def with_derivatives(layout: Layout, derivatives: Mapping[str, Any]) -> Layout:
+    """``layout`` with the derivative fields ``derivatives`` (of
+    :data:`eccjump.fields.DERIVATIVES`; none: ``layout`` itself) as variables, the float
+    ones with the trailing dimension ``wrt`` and its coordinate of parameter names."""
+    if not derivatives:
+        return layout
+    data_vars = dict(layout["data_vars"])
+    for k, v in derivatives.items():
+        dims = (*DIMS, "wrt") if BY_NAME[k].dtype.kind == "f" else DIMS
+        data_vars[k] = (dims, v, field_var(k))
+    wrt = (("wrt",), np.array(WRT), COORD_ATTRS["wrt"])
+    return {**layout, "coords": {**layout["coords"], "wrt": wrt}, "data_vars": data_vars}
+
+
 def layout_to_xarray(layout: Layout) -> xr.Dataset:
     xr = require("xarray")
+
+    def variable(dims: tuple[str, ...], values: Any, attrs: dict[str, Any]) -> Any:
+        # Names (the coordinate wrt) as Python strings: zarr v3 has no fixed-width unicode
+        # (it warns), while .npz needs them fixed-width (no pickles), so only here.
+        if getattr(values, "dtype", None) is not None and values.dtype.kind == "U":
+            values = values.astype(object)
+        return xr.Variable(dims, values, attrs)
+
     return xr.Dataset(
-        data_vars={k: xr.Variable(*v) for k, v in layout["data_vars"].items()},
-        coords={k: xr.Variable(*v) for k, v in layout["coords"].items()},
+        data_vars={k: variable(*v) for k, v in layout["data_vars"].items()},
+        coords={k: variable(*v) for k, v in layout["coords"].items()},
         attrs=dict(layout["attrs"]),
     )
 
 
 def layout_from_xarray(ds: xr.Dataset) -> Layout:
+    def values(v: xr.Variable) -> Any:
+        # Strings back to fixed-width unicode (see layout_to_xarray).
+        return np.array(v.values.tolist(), dtype=str) if v.dtype.kind in "OT" else v.values
+
     def part(variables: Mapping) -> dict:
-        return {k: (tuple(v.dims), v.values, dict(v.attrs)) for k, v in variables.items()}
+        return {k: (tuple(v.dims), values(v), dict(v.attrs)) for k, v in variables.items()}
 
     return {"coords": part(ds.coords), "data_vars": part(ds.data_vars), "attrs": dict(ds.attrs)}
 

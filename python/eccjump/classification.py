@@ -17,8 +17,9 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from eccjump._arrays import axis, broadcast_flat, fields_equal, fraction_axis, turns
-from eccjump._bridge import Method, call_options, jarm_grid, jarm_points
-from eccjump._checks import Integrator, Rule, real, real_array, short, text
+from eccjump._bridge import CallOptions, Method, call_options, jarm_grid, jarm_points
+from eccjump._checks import Integrator, Rule, flag, real, real_array, short, text
+from eccjump._derivatives import derivative_fields
 from eccjump._html import best_slice, card, deg, jarm_slice, num, span
 from eccjump._layout import (
     COORD_ATTRS,
@@ -28,9 +29,10 @@ from eccjump._layout import (
     make_layout,
     map_attrs,
     require,
+    with_derivatives,
 )
 from eccjump._map import Map
-from eccjump.fields import FIELDS, Reason, docstring
+from eccjump.fields import DERIVATIVES, FIELDS, Reason, docstring
 from eccjump.scale import lazy_fields, lazy_records
 
 if TYPE_CHECKING:  # pragma: no cover
@@ -47,7 +49,9 @@ class JarmResult:
     {fields}
 
     ``reason`` holds codes of :class:`Reason`; the fields are described once, in
-    :mod:`eccjump.fields`.
+    :mod:`eccjump.fields`. The ``d_*`` fields are the exact derivatives of ``theta_J``,
+    ``Fx_J``, ``Fy_J`` and ``mu_J = -Fx_J/Fy_J`` with respect to (alpha, chi, km), in a
+    trailing axis of length 3, made by ``derivatives=True`` (see :func:`jarm`).
     """
 
     is_jarm: NDArray[np.bool_]
@@ -61,6 +65,11 @@ class JarmResult:
     theta_max_ratio: NDArray[np.float64]
     min_Fy: NDArray[np.float64]
     theta_min_Fy: NDArray[np.float64]
+    d_theta_J: NDArray[np.float64] | None = None
+    d_Fx_J: NDArray[np.float64] | None = None
+    d_Fy_J: NDArray[np.float64] | None = None
+    d_mu_J: NDArray[np.float64] | None = None
+    d_singular: NDArray[np.bool_] | None = None
 
     @property
     def shape(self) -> tuple[int, ...]:
@@ -84,13 +93,36 @@ class JarmResult:
         return out
 
     def fields(self) -> dict[str, NDArray]:
-        """Every field by name, in the order of :data:`eccjump.fields.FIELDS`.
+        """Every field by name, in the order of :data:`eccjump.fields.FIELDS` (the derivative
+        fields are in :meth:`derivatives`).
 
         Returns
         -------
         dict of str to numpy.ndarray
         """
         return {k: getattr(self, k) for k in FIELDS}
+
+    def derivatives(self) -> dict[str, NDArray]:
+        """The derivative fields by name (:data:`eccjump.fields.DERIVATIVES`), or an empty
+        dict for a result made without ``derivatives=True``.
+
+        Returns
+        -------
+        dict of str to numpy.ndarray
+
+        Examples
+        --------
+        >>> import numpy as np
+        >>> import eccjump
+        >>> r = eccjump.jarm(np.radians(40), 0.15, 0.02, 1.0, derivatives=True)
+        >>> {k: v.shape for k, v in r.derivatives().items()}["d_theta_J"]
+        (3,)
+        >>> eccjump.jarm(np.radians(40), 0.15, 0.02, 1.0).derivatives()
+        {}
+        """
+        if self.d_theta_J is None:
+            return {}
+        return {k: getattr(self, k) for k in DERIVATIVES}
 
     def counts(self) -> dict[Reason | int, int]:
         """How many points have each reason.
@@ -166,7 +198,9 @@ def _reason_name(reason: Reason | int) -> str:
 
 
 JarmResult.__doc__ = (JarmResult.__doc__ or "").format(fields=docstring().replace("\n", "\n    "))
-if tuple(f.name for f in dataclasses.fields(JarmResult)) != FIELDS:  # pragma: no cover
+if (
+    tuple(f.name for f in dataclasses.fields(JarmResult)) != FIELDS + DERIVATIVES
+):  # pragma: no cover
     raise ImportError("JarmResult and eccjump.fields.FIELDS list different fields")
 
 
@@ -188,6 +222,7 @@ def jarm(
     stop_at_slip: bool = False,
     n_threads: int = 0,
     integrator: Integrator = "RK45",
+    derivatives: bool = False,
 ) -> JarmResult:
     """Classify points (alpha, chi, km, mu_s, n) as JARM or not, broadcasting the five inputs.
 
@@ -243,11 +278,23 @@ def jarm(
         8(5,3) or Verner 9(8); the same verdicts. For speed pick ``"Vern9"``
         (at the default rtol 1.5–1.9× faster than RK45 and about 15× more accurate); keep
         ``"RK45"`` for step-for-step parity with scipy.
+    derivatives : bool, default False
+        Also give the exact derivatives of ``theta_J``, ``Fx_J``, ``Fy_J`` and
+        ``mu_J = -Fx_J/Fy_J`` (:func:`eccjump.closed_form.mu` at theta_J) with respect to
+        (alpha, chi, km), chi and km independent, mu_s and the start fixed: the fields
+        ``d_theta_J``, ``d_Fx_J``, ``d_Fy_J``, ``d_mu_J`` (the broadcast shape plus a
+        trailing axis of length 3) and ``d_singular``. NaN where theta_J (for the forces:
+        ``Fx_J``) is NaN. ``d_singular`` is True where theta_J is not differentiable (a
+        double root of the lift-off function, or under ``rule="normal_force"`` a tie
+        Fx = Fy = 0); its derivatives are NaN there. By implicit differentiation from the
+        classified theta_J (either method: the ODE route's carry its error in theta_J); the
+        user guide's "JARM analysis", section "Derivatives". Without it nothing is computed.
 
     Returns
     -------
     JarmResult
-        Every field an array of the broadcast shape of the five inputs (0-d for scalars).
+        Every field an array of the broadcast shape of the five inputs (0-d for scalars);
+        the ``d_*`` fields None unless ``derivatives=True``.
         Invalid points get ``Reason.INVALID_PARAMS``, not an error.
 
     Raises
@@ -283,7 +330,14 @@ def jarm(
     >>> ode = eccjump.jarm(np.radians(40), 0.15, 0.02, 1.0, method="ode")
     >>> bool(abs(ode.theta_J - r.theta_J[1]) < 1e-9)
     True
+
+    How the lift-off angle moves with (alpha, chi, km):
+
+    >>> d = eccjump.jarm(np.radians(40), 0.15, 0.02, 1.0, derivatives=True)
+    >>> print(np.round(d.d_theta_J, 4), bool(d.d_singular))
+    [-3.5887 -8.8737  1.3812] False
     """
+    want_derivatives = flag("derivatives", derivatives)
     turn_arg = turns(n)
     opts = call_options(
         n=None if isinstance(turn_arg, np.ndarray) else turn_arg,
@@ -305,7 +359,10 @@ def jarm(
     else:
         shape, (a, c, k, m) = broadcast_flat(alpha=alpha, chi=chi, km=km, mu_s=mu_s)
         raw = jarm_points(a, c, k, m, opts)
-    return JarmResult._from_raw(raw, shape)
+    res = JarmResult._from_raw(raw, shape)
+    if not want_derivatives:
+        return res
+    return replace(res, **derivative_fields((a, c, k, m), raw, opts, shape))
 
 
 @dataclass(frozen=True, repr=False, eq=False)
@@ -482,6 +539,21 @@ class Region(Map):
         return plot.region_map(self, **kwargs)
 
 
+def _grid_derivatives(
+    alpha: NDArray[np.float64],
+    chi: NDArray[np.float64],
+    km_frac: NDArray[np.float64],
+    mu_s: float,
+    raw: Mapping[str, NDArray],
+    opts: CallOptions,
+) -> dict[str, NDArray]:
+    """The derivative fields of the grid classification ``raw`` (flat in C order)."""
+    a, c, f = np.meshgrid(alpha, chi, km_frac, indexing="ij")
+    points = tuple(np.ascontiguousarray(x.ravel()) for x in (a, c, f * (1.0 - c)))
+    mu = np.full(a.size, mu_s)
+    return derivative_fields((*points, mu), dict(raw), opts, a.shape)
+
+
 def region_attrs(region: Region) -> dict[str, Any]:
     """The attributes of a :class:`Region` in a labelled map (see :mod:`eccjump.labelled`)."""
     return map_attrs(
@@ -497,9 +569,10 @@ def region_attrs(region: Region) -> dict[str, Any]:
 
 def region_layout(region: Region) -> Layout:
     """The labelled layout of a :class:`Region` (numpy only; dask arrays if lazy)."""
-    return make_layout(
+    lay = make_layout(
         region.alpha, region.chi, region.km_frac, region.result.fields(), region_attrs(region)
     )
+    return with_derivatives(lay, region.result.derivatives())
 
 
 @overload
@@ -523,6 +596,7 @@ def region(
     n_threads: int = 0,
     integrator: Integrator = "RK45",
     chunks: Any = None,
+    derivatives: bool = False,
     output: Literal["region"] = "region",
 ) -> Region: ...
 
@@ -548,6 +622,7 @@ def region(
     n_threads: int = 0,
     integrator: Integrator = "RK45",
     chunks: Any = None,
+    derivatives: bool = False,
     output: Literal["xarray"],
 ) -> xr.Dataset: ...
 
@@ -572,6 +647,7 @@ def region(
     n_threads: int = 0,
     integrator: Integrator = "RK45",
     chunks: Any = None,
+    derivatives: bool = False,
     output: Literal["region", "xarray"] = "region",
 ) -> Region | xr.Dataset:
     """Map the JARM region on a rectangular grid, in parallel.
@@ -637,6 +713,13 @@ def region(
         ``"region"``: a :class:`Region`. ``"xarray"``: a labelled ``xarray.Dataset``, and
         then ``mu_s``, ``theta0`` and ``omega0`` may be 1-D sequences, swept as extra
         leading dimensions (one Rust call per combination).
+    derivatives : bool, default False
+        Also give the exact derivatives of theta_J, Fx_J, Fy_J and mu_J with respect to
+        (alpha, chi, km) at every grid point, as :func:`jarm` does: the ``d_*`` fields of
+        ``result`` (shape of the grid plus 3), variables with a trailing dimension ``wrt``
+        in the labelled form and in the files of :func:`eccjump.maps.save` (not in the
+        chunked files of ``eccjump map``). Not with ``chunks``. With respect to k_m itself,
+        not km_frac: dk_m = (1 - chi) dkm_frac at fixed chi.
 
     Returns
     -------
@@ -698,9 +781,13 @@ def region(
             n_threads=n_threads,
             integrator=integrator,
             chunks=chunks,
+            derivatives=derivatives,
         )
     if text("output", output) != "region":
         raise ValueError(f"output = {short(output)}; use 'region' or 'xarray'")
+    want_derivatives = flag("derivatives", derivatives)
+    if want_derivatives and chunks is not None:
+        raise ValueError("derivatives=True needs chunks=None (a map computed now)")
     for name, value in (("mu_s", mu_s), ("theta0", theta0), ("omega0", omega0)):
         if isinstance(value, list | tuple) or (isinstance(value, np.ndarray) and value.ndim):
             raise ValueError(f"{name} must be a number here; sweeps need output='xarray'")
@@ -723,6 +810,8 @@ def region(
     if chunks is None:
         raw = jarm_grid(a, c, f, mu, opts)
         res = JarmResult._from_raw(raw, (a.size, c.size, f.size))
+        if want_derivatives:
+            res = replace(res, **_grid_derivatives(a, c, f, mu, raw, opts))
     else:
         res = JarmResult(**lazy_fields(lazy_records(a, c, f, mu, opts, chunks)))
     return Region(
@@ -786,8 +875,9 @@ def region_dataset(
         Initial angular velocity(ies) [sqrt(g/R) rad], in [0, 1e6]; a 1-D sequence is swept.
     **kwargs
         The options of :func:`region`: ``method``, ``rule``, ``rtol``, ``atol``,
-        ``max_turns``, ``refine_extrema``, ``stop_at_slip``, ``n_threads``, ``integrator``
-        and ``chunks`` (a dask-backed, lazily computed dataset).
+        ``max_turns``, ``refine_extrema``, ``stop_at_slip``, ``n_threads``, ``integrator``,
+        ``derivatives`` (the ``d_*`` variables, with a trailing dimension ``wrt``) and
+        ``chunks`` (a dask-backed, lazily computed dataset).
 
     Returns
     -------

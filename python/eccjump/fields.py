@@ -68,10 +68,45 @@ TABLE: tuple[Field, ...] = (
 
 #: Field names, in the order of the bridge.
 FIELDS: tuple[str, ...] = tuple(f.name for f in TABLE)
-#: Field by name.
-BY_NAME: dict[str, Field] = {f.name: f for f in TABLE}
-#: numpy dtype of each field.
-DTYPES: dict[str, np.dtype] = {f.name: f.dtype for f in TABLE}
+
+#: What the derivative fields differentiate with respect to: their trailing axis (the
+#: dimension ``wrt`` of a labelled map), alpha [rad] and the body's chi and k_m (independent).
+WRT: tuple[str, ...] = ("alpha", "chi", "km")
+
+#: The fields of a result made with ``derivatives=True`` (None otherwise), after :data:`TABLE`:
+#: each float field has the point's shape plus a trailing axis of length 3 (:data:`WRT`).
+DERIVATIVE_TABLE: tuple[Field, ...] = (
+    Field(
+        "d_theta_J",
+        _F64,
+        "rad",
+        "derivative of theta_J with respect to (alpha, chi, km)",
+        _NAN,
+    ),
+    Field("d_Fx_J", _F64, "M g", "derivative of Fx_J with respect to (alpha, chi, km)", _NAN),
+    Field("d_Fy_J", _F64, "M g", "derivative of Fy_J with respect to (alpha, chi, km)", _NAN),
+    Field(
+        "d_mu_J",
+        _F64,
+        "1",
+        "derivative of mu_J = -Fx_J/Fy_J (closed_form.mu at theta_J) w.r.t. (alpha, chi, km)",
+        _NAN,
+    ),
+    Field(
+        "d_singular",
+        _BOOL,
+        "1",
+        "theta_J not differentiable (a double root or a tie): its derivatives are NaN",
+        False,
+    ),
+)
+#: Derivative field names, in order.
+DERIVATIVES: tuple[str, ...] = tuple(f.name for f in DERIVATIVE_TABLE)
+
+#: Field by name (the derivative fields too).
+BY_NAME: dict[str, Field] = {f.name: f for f in TABLE + DERIVATIVE_TABLE}
+#: numpy dtype of each field (the derivative fields too).
+DTYPES: dict[str, np.dtype] = {f.name: f.dtype for f in TABLE + DERIVATIVE_TABLE}
 #: Value of each field where a point was not computed (``reason`` 255 is not a Reason).
 FILL: dict[str, Any] = {f.name: f.fill for f in TABLE}
 #: One record per point holding every field (the dtype of the dask blocks).
@@ -158,21 +193,32 @@ def cf_attrs(name: str) -> dict[str, Any]:
 
 def docstring() -> str:
     """The fields as the ``Attributes`` section of a numpy-style docstring."""
-    return "\n".join(
+    fields = [
         f"{f.name} : numpy.ndarray of {f.dtype}\n    {f.description}"
         + ("" if f.units == "1" else f" [{f.units}]")
         + "."
         for f in TABLE
-    )
+    ]
+    fields += [
+        f"{f.name} : numpy.ndarray of {f.dtype} or None\n    {f.description}"
+        + ("" if f.units == "1" else f" [{f.units} per unit of the parameter, alpha in rad]")
+        + (". Shape: the point's plus (3,)" if f.dtype == _F64 else ". The point's shape")
+        + "; None unless made with ``derivatives=True``."
+        for f in DERIVATIVE_TABLE
+    ]
+    return "\n".join(fields)
 
 
 __all__ = [
     "BY_NAME",
+    "DERIVATIVES",
+    "DERIVATIVE_TABLE",
     "DTYPES",
     "FIELDS",
     "FILL",
     "RECORD",
     "TABLE",
+    "WRT",
     "Field",
     "Reason",
     "cf_attrs",

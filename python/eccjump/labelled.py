@@ -48,7 +48,7 @@ from eccjump.classification import (
     region_dataset,
     region_layout,
 )
-from eccjump.fields import BY_NAME, DTYPES, FIELDS, FILL, reason_table
+from eccjump.fields import BY_NAME, DERIVATIVES, DTYPES, FIELDS, FILL, reason_table
 
 if TYPE_CHECKING:  # pragma: no cover
     import xarray as xr
@@ -73,7 +73,8 @@ def to_region(ds: xr.Dataset | Layout) -> Region:
             f"a Region has dims {DIMS}; this map has {tuple(dv['is_jarm'][0])} "
             "(select one value of each swept parameter first)"
         )
-    res = JarmResult(**{k: np.asarray(dv[k][1], dtype=DTYPES[k]) for k in FIELDS})
+    names = FIELDS + (DERIVATIVES if "d_theta_J" in dv else ())
+    res = JarmResult(**{k: np.asarray(dv[k][1], dtype=DTYPES[k]) for k in names})
     made = ("mu_s", "n", "rule", "method", "theta0", "omega0")
     n = int(at["n"])
     return Region(

@@ -10,6 +10,7 @@ mod body;
 mod boundary;
 mod closed_form;
 mod columns;
+mod derivatives;
 mod errors;
 mod impact;
 mod jarm;
@@ -36,6 +37,8 @@ mod _core {
         alpha_min, gamma, green_turn, j_brackets, j_paper, jump_forces, liftoff_function, mu,
         mu_s_min, path_forces, theta_j_range, theta_nj,
     };
+    #[pymodule_export]
+    use crate::derivatives::jarm_derivatives;
     #[pymodule_export]
     use crate::impact::impact;
     #[pymodule_export]

@@ -8,10 +8,12 @@
 //! - [`mod@classify`]: the closed-form route (path scan + jump-point formulas);
 //! - [`ode_route`]: the route by integration of the rolling equation with events;
 //! - [`turns`]: the turn of an angle and the search bound n*;
+//! - [`derivatives`]: exact derivatives of θ_J and the jump forces in (α, χ, k_m);
 //! - [`result`]: reasons, options and the per-point result.
 
 pub mod classify;
 pub mod decision;
+pub mod derivatives;
 pub mod from_rest;
 pub mod jump_point;
 pub mod ode_route;
