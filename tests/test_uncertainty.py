@@ -179,7 +179,7 @@ def test_a_study_of_no_spread_is_the_nominal_point():
     assert u.p_jarm == 1.0 and u.samples == {}
     theta = u.distributions["liftoff_theta"]
     assert theta.q025 == theta.q975 == eccjump.jarm(ALPHA, 0.15, 0.02, 1.0).theta_J
-    assert u.delta is None  # the first-order estimate waits for the exact derivatives
+    assert u.delta is not None and u.delta.theta_J_sd == 0.0 and u.delta.p_jarm == 1.0
 
 
 @pytest.mark.parametrize(
@@ -285,12 +285,45 @@ def _has_matplotlib() -> bool:
 
 
 def test_theta_J_spread_is_small_for_a_small_tolerance():
-    # A sanity bound the delta method will sharpen: the lift-off angle moves smoothly.
+    # The lift-off angle moves smoothly: its spread is |d theta_J / d alpha| sd, by a central
+    # difference here and by the exact derivative in the first-order estimate.
     u = eccjump.uncertainty(BODY, ALPHA, 1.0, sd={"alpha": 1e-4}, n=2000)
     s = u.distributions["liftoff_theta"]
     h = 1e-6
     d = (closed_form_theta(ALPHA + h) - closed_form_theta(ALPHA - h)) / (2 * h)
     assert abs(s.sd - abs(d) * 1e-4) < 0.05 * abs(d) * 1e-4
+    assert u.delta is not None and abs(u.delta.theta_J_sd - abs(d) * 1e-4) < 1e-6 * abs(d) * 1e-4
+
+
+#: Small tolerances around the paper's point: the first order should explain the spread.
+SMALL = {"alpha": math.radians(0.3), "chi": 0.002, "km": 0.001, "mu_s": 0.005}
+
+
+def test_the_first_order_spread_of_theta_J_matches_the_monte_carlo():
+    u = eccjump.uncertainty(BODY, ALPHA, 1.0, sd=SMALL, n=20_000, seed=4)
+    assert u.p_jarm == 1.0
+    mc = u.distributions["liftoff_theta"].sd  # sampling error of an sd: ~0.5 % at this n
+    assert u.delta is not None and abs(u.delta.theta_J_sd - mc) < 0.03 * mc
+
+
+def test_the_first_order_p_jarm_matches_the_monte_carlo_near_the_boundary():
+    # mu_s just above the friction the jump needs, mu_J: P(JARM) near 1/2, decided by the
+    # margin mu_s - mu_J whose first-order spread the derivatives give.
+    r = eccjump.jarm(ALPHA, BODY.chi, BODY.km, 1.0)
+    mu = float(-r.Fx_J / r.Fy_J) + 0.004
+    u = eccjump.uncertainty(BODY, ALPHA, mu, sd=SMALL, n=20_000, seed=5)
+    assert 0.3 < u.p_jarm < 0.8 and u.delta is not None and u.delta.p_jarm is not None
+    lo, hi = u.p_jarm_ci
+    assert lo - 0.01 <= u.delta.p_jarm <= hi + 0.01, (u.delta, u.p_jarm_ci)
+
+
+def test_no_first_order_p_jarm_where_it_has_no_derivative():
+    motion = eccjump.uncertainty(BODY, ALPHA, 1.0, sd={"chi": 0.01}, n=8, question="motion")
+    assert motion.delta is None  # the full motion's transitions are not differentiated yet
+    classical = eccjump.uncertainty(BODY, ALPHA, 1.0, sd={"chi": 0.01}, n=8, rule="normal_force")
+    assert classical.delta is None or classical.delta.p_jarm is None
+    slips = eccjump.uncertainty(eccjump.Cylinder(0.5, 0.4), math.radians(30), 1.0, sd=SMALL, n=8)
+    assert slips.delta is None  # the nominal point is no JARM
 
 
 def closed_form_theta(alpha: float) -> float:

@@ -135,8 +135,9 @@ class Uncertainty:
         samples) and, for "motion", the lift-off time, flight time, apex and distance of the
         first flight (over the samples that fly).
     delta : Delta or None
-        The first-order (delta-method) estimate beside the Monte Carlo one: None until the
-        exact derivatives of ``jarm(..., derivatives=True)`` are available
+        The first-order (delta-method) estimate beside the Monte Carlo one, from the exact
+        derivatives of ``jarm(..., derivatives=True)`` at the nominal point; None for the
+        full motion and where the nominal point is no JARM
         (:func:`eccjump.uncertainty.delta.delta_method`).
     """
 

@@ -128,8 +128,8 @@ def uncertainty(
         ``p_jarm`` with its Wilson interval ``p_jarm_ci`` (for Sobol' samples the random
         sampling interval: conservative), ``counts``/``probabilities`` of each outcome, the
         ``distributions`` of the lift-off angle (and, for "motion", its time, the flight
-        time, apex and distance), the samples and outcomes; ``delta`` (the first-order
-        estimate) is None until the exact derivatives are available.
+        time, apex and distance), the samples and outcomes, and ``delta``, the first-order
+        estimate from the exact derivatives at the nominal point (question "jarm").
 
     Raises
     ------
@@ -218,7 +218,7 @@ def uncertainty(
             for name in QUANTITIES
             if name in outcomes
         },
-        delta=delta_method(spec, q),
+        delta=delta_method(spec, q, rule_name(rule)),
     )
 
 
