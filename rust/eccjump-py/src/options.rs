@@ -8,7 +8,7 @@ use eccjump_core::jarm::{JarmOptions, Method};
 use eccjump_core::maps::boundary::boundary_options;
 use eccjump_core::maps::motion::MotionMapOptions;
 use eccjump_core::ode::{Method as Integrator, SolverOptions};
-use eccjump_core::Rule;
+use eccjump_core::{Cylinder, Ramp, Rule};
 use pyo3::exceptions::PyValueError;
 use pyo3::prelude::*;
 
@@ -133,12 +133,27 @@ pub fn motion_map_options(
         rule: parse_rule(rule)?,
         t_max,
         max_transitions,
-        solver: SolverOptions {
-            rtol,
-            atol,
-            max_steps,
-            method: parse_integrator(integrator)?,
-            ..SolverOptions::default()
-        },
+        solver: solver_options(rtol, atol, max_steps, integrator)?,
     })
+}
+
+/// The solver options of a run: the tolerances, the step budget and the pair by name.
+pub fn solver_options(
+    rtol: f64,
+    atol: f64,
+    max_steps: usize,
+    integrator: &str,
+) -> PyResult<SolverOptions> {
+    Ok(SolverOptions {
+        rtol,
+        atol,
+        max_steps,
+        method: parse_integrator(integrator)?,
+        ..SolverOptions::default()
+    })
+}
+
+/// The ramp of angle `alpha` under the body (χ, k_m); ValueError naming a bad parameter.
+pub fn ramp(chi: f64, km: f64, alpha: f64) -> PyResult<Ramp> {
+    Ramp::new(Cylinder::new(chi, km).map_err(to_py)?, alpha).map_err(to_py)
 }
