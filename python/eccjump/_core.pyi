@@ -129,6 +129,7 @@ def simulate(
     max_steps: int,
     dense_output: bool,
     integrator: str,
+    sensitivities: bool,
 ) -> tuple[
     MotionPoints,
     MotionRecords,
@@ -137,12 +138,14 @@ def simulate(
     str,
     int,
     MotionDense | None,
+    tuple[NDArray[np.float64], NDArray[np.bool_]] | None,
 ]:
     """The full motion of the body (chi, km) on a ramp of angle alpha (docs/motion.md), with
     the GIL released. The options of ``eccjump.simulate``, all required (it gives the
     defaults; mu_k resolved), checked by the core: a ValueError names the parameter. Returns
     (points, records, (energy0, dissipated by sliding, by impacts), status, message, nfev,
-    dense output or None), from which ``eccjump.simulate`` makes the ``MotionResult``."""
+    dense output or None, (d_transitions, d_singular) or None), from which
+    ``eccjump.simulate`` makes the ``MotionResult``."""
 
 class MotionDense:
     """The dense output of a full-motion run (``MotionResult.sol``), evaluated by the core."""
