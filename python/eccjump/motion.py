@@ -543,8 +543,8 @@ def simulate(
         Also give ``d_transitions``, the exact derivatives of every transition's time and
         angle with respect to (alpha, chi, km, mu_s, mu_k, restitution, theta0, omega0):
         the variational equations along each segment, each event's time correction and the
-        landing's Jacobian (docs/motion.md, "Sensitivities"). About ten times the run's
-        cost (2.5 ms for the paper's body over 19 transitions).
+        landing's Jacobian (the user guide's "The full motion", Sensitivities). About ten
+        times the run's cost (2.5 ms for the paper's body over 19 transitions).
 
     Returns
     -------
