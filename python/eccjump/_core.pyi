@@ -16,6 +16,9 @@ from numpy.typing import NDArray
 VERSION: str
 """The package version, e.g. "0.2.0" (`eccjump --version` prints it; `eccjump.__version__`)."""
 
+MOTION_PARAMETERS: list[str]
+"""The parameters of a full-motion run, in the order of the sensitivities' last axis."""
+
 F64 = NDArray[np.float64]
 
 def body_derived(chi: float, km: float) -> tuple[float, float, float]: ...

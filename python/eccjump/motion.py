@@ -38,16 +38,7 @@ if TYPE_CHECKING:  # pragma: no cover
 MODES = ("ROLL", "SLIP", "FLIGHT")
 
 #: The parameters of :attr:`MotionResult.d_transitions`, in the order of its last axis.
-SENSITIVITY_PARAMETERS = (
-    "alpha",
-    "chi",
-    "km",
-    "mu_s",
-    "mu_k",
-    "restitution",
-    "theta0",
-    "omega0",
-)
+SENSITIVITY_PARAMETERS: tuple[str, ...] = tuple(_core.MOTION_PARAMETERS)
 #: Why a mode began (the user guide's "The full motion", Transitions).
 REASONS = (
     "start",

@@ -35,20 +35,10 @@ use crate::motion::options::{SimOptions, MAX_ANGLE_STEP};
 use crate::motion::record::{Crossing, MotionRun, Segment};
 use crate::ode::{self, Method, NoEvents, OdeSystem, State, Status};
 
-/// The parameters, in the order of the sensitivities' last axis.
-pub const PARAMETERS: [&str; P] = [
-    "alpha",
-    "chi",
-    "km",
-    "mu_s",
-    "mu_k",
-    "restitution",
-    "theta0",
-    "omega0",
-];
+pub use crate::motion::options::PARAMETERS;
 
 /// The number of parameters.
-pub const P: usize = 8;
+pub const P: usize = PARAMETERS.len();
 
 /// In a `Dual<9>`, the direction of time (after the eight parameters).
 const TIME: usize = P;
