@@ -18,10 +18,12 @@
 //!
 //! R is piecewise smooth (Routh's phases, the Zeno threshold): its Jacobian is taken by
 //! central differences of the exact law with a relative step of 1e-6 (error about 1e-10),
-//! both sides on the same branch. Not differentiable, so flagged, with this and every
-//! later transition NaN: an event function tangent to 0 (a grazing touch: g_x f_m ≈ 0),
-//! two events of a segment at once (a tie), a landing whose outcome (sticking, flying,
-//! settling) changes within the step, and a slip that went on in the normal impulse.
+//! both sides on the same branch (at e = 0 the e-derivative is 0: the law reads e²). Not
+//! differentiable, so flagged, with this and every later transition NaN: an event function
+//! tangent to 0 (a grazing touch: g_x f_m ≈ 0), two events of a segment at once (a tie), a
+//! slip that went on in the normal impulse; and every transition after a landing whose
+//! outcome (sticking, flying, settling) changes within the step (the landing's own time and
+//! angle are those before it, and keep their derivatives).
 
 use crate::dual::{sin_cos, Dual};
 use crate::error::{Error, Result};
@@ -259,8 +261,8 @@ struct Walk<'a> {
 
 impl Walk<'_> {
     /// Segment `seg` from x (its start, with its sensitivity) to the transition `after` it:
-    /// d(t, θ)/dp of that transition and the state it hands on (None at the last segment);
-    /// None where it is not differentiable.
+    /// d(t, θ)/dp of that transition (None where it is not differentiable) and the state it
+    /// hands on (None at the last segment, and after a landing that is not differentiable).
     #[allow(clippy::type_complexity)]
     fn across(
         &self,
@@ -303,21 +305,20 @@ impl Walk<'_> {
         let dtau = self.time_shift(c, &before, &s_minus, &f, seg)?;
         let dx: [[f64; P]; 6] =
             std::array::from_fn(|j| std::array::from_fn(|k| s_minus[j][k] + f[j] * dtau[k]));
+        // The transition's own (t, θ) is that of the state before it; a landing that is not
+        // differentiable leaves them valid and only flags what follows.
         let dx_plus = match c {
-            Crossing::Landing => self.landing(&before, &dx)?,
-            _ => dx,
+            Crossing::Landing => self.landing(&before, &dx),
+            _ => Some(dx),
         };
-        let handed = run.segments.get(i + 1).and_then(|next_seg| {
+        let handed = dx_plus.and_then(|dx_plus| {
+            let next_seg = run.segments.get(i + 1)?;
             let f_plus = self.values(&after, next_seg.mode, next_seg.sigma)?;
             let s_plus = std::array::from_fn(|j| {
                 std::array::from_fn(|k| dx_plus[j][k] - f_plus[j] * dtau[k])
             });
             Some(with_partials(&after, &s_plus))
         });
-        let last = i + 2 >= run.transitions.len();
-        if handed.is_none() && !last {
-            return None;
-        }
         Some((dtau, dx[0], handed))
     }
 
@@ -436,8 +437,11 @@ impl Walk<'_> {
                 }
             }
         }
-        // The parameters the law reads: χ, k_m, μ_s, μ_k, e.
-        for k in 1..=5 {
+        // The parameters the law reads: χ, k_m, μ_s, μ_k, e. It reads e², so at e = 0 the
+        // derivative in e is 0; a step there would keep a bounce (e |u_n| above the Zeno
+        // threshold) that e = 0 never makes.
+        let last = if self.opts.restitution == 0.0 { 4 } else { 5 };
+        for k in 1..=last {
             let map = |h: f64| self.land_moved(before, k, h);
             let p = [0.0, self.ramp.body.chi, self.ramp.body.km, 0.0, 0.0, 0.0];
             let law = &self.opts.law;
