@@ -236,18 +236,26 @@ pub fn sensitivities(
         if seg.t_start != start.t || seg.mode != start.to {
             break;
         }
-        let Some((d_t, d_theta, x_next)) = walk.across(seg, &x, start.state, next.state, run, i)?
-        else {
+        let Some(passage) = walk.across(seg, &x, start.state, next.state, run, i)? else {
             break;
         };
-        out.transitions[i + 1] = [d_t, d_theta];
+        out.transitions[i + 1] = [passage.d_t, passage.d_theta];
         out.singular[i + 1] = false;
-        match x_next {
+        match passage.next {
             Some(xn) => x = xn,
             None => break,
         }
     }
     Ok(out)
+}
+
+/// What a segment hands on: the derivatives of the transition after it, and the state with
+/// its sensitivity that the next segment starts from (None at the last segment, and after a
+/// landing that is not differentiable).
+struct Passage {
+    d_t: [f64; P],
+    d_theta: [f64; P],
+    next: Option<[Dual<P>; 6]>,
 }
 
 /// What [`sensitivities`] walks a run with.
@@ -260,10 +268,8 @@ struct Walk<'a> {
 }
 
 impl Walk<'_> {
-    /// Segment `seg` from x (its start, with its sensitivity) to the transition `after` it:
-    /// d(t, θ)/dp of that transition (None where it is not differentiable) and the state it
-    /// hands on (None at the last segment, and after a landing that is not differentiable).
-    #[allow(clippy::type_complexity)]
+    /// Segment `seg` from x (its start, with its sensitivity) to the transition `after` it
+    /// (None where that transition is not differentiable).
     fn across(
         &self,
         seg: &Segment,
@@ -272,7 +278,7 @@ impl Walk<'_> {
         after: BodyState,
         run: &MotionRun,
         i: usize,
-    ) -> Result<Option<([f64; P], [f64; P], Option<[Dual<P>; 6]>)>> {
+    ) -> Result<Option<Passage>> {
         let Some(end) = self.integrate(seg, x)? else {
             return Ok(None);
         };
@@ -281,7 +287,6 @@ impl Walk<'_> {
 
     /// The transition after `seg`, which ended in `end` (its integrated sensitivity): see
     /// [`Self::across`].
-    #[allow(clippy::type_complexity)]
     fn event(
         &self,
         seg: &Segment,
@@ -290,7 +295,7 @@ impl Walk<'_> {
         after: BodyState,
         run: &MotionRun,
         i: usize,
-    ) -> Option<([f64; P], [f64; P], Option<[Dual<P>; 6]>)> {
+    ) -> Option<Passage> {
         let c = seg.crossing?;
         // The state at the event as the run had it, with the integrated sensitivity.
         let before = match c {
@@ -311,7 +316,7 @@ impl Walk<'_> {
             Crossing::Landing => self.landing(&before, &dx),
             _ => Some(dx),
         };
-        let handed = dx_plus.and_then(|dx_plus| {
+        let next = dx_plus.and_then(|dx_plus| {
             let next_seg = run.segments.get(i + 1)?;
             let f_plus = self.values(&after, next_seg.mode, next_seg.sigma)?;
             let s_plus = std::array::from_fn(|j| {
@@ -319,7 +324,11 @@ impl Walk<'_> {
             });
             Some(with_partials(&after, &s_plus))
         });
-        Some((dtau, dx[0], handed))
+        Some(Passage {
+            d_t: dtau,
+            d_theta: dx[0],
+            next,
+        })
     }
 
     /// The variational equations of `seg` integrated from x over the segment (None if
