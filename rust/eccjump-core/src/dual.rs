@@ -170,7 +170,7 @@ mod tests {
     /// Each operation against a central difference of the same expression in f64.
     #[test]
     fn partials_match_central_differences() {
-        let f = |x: [Dual<3>; 2]| {
+        let f = |x: [Dual<4>; 2]| {
             let (s, c) = sin_cos(x[0]);
             (s * x[1] + c.scale(3.0)) / (x[1] * x[1] + 1.0) - sin(2.0 - x[0])
         };

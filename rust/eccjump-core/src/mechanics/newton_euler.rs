@@ -79,7 +79,7 @@ pub(crate) fn equations<T: Number>(
 ) -> ([[T; 5]; 5], [T; 5]) {
     let (zero, one) = (T::of(0.0), T::of(1.0));
     let chi = q.chi;
-    let (s, c) = theta.sin_cos();
+    let (s, c) = Number::sin_cos(theta);
     let w = omega * omega;
     let (row4, row5) = match constraint {
         Constraint::Ramp => ([-one, one, zero, zero, zero], [zero, zero, one, zero, zero]),
