@@ -3,12 +3,9 @@
 
 use crate::columns::set_column;
 use crate::errors::detached;
-use crate::options::{parse_integrator, parse_rule};
+use crate::options::motion_map_options;
 use eccjump_core::error::try_filled;
-use eccjump_core::maps::motion::{
-    motion_grid as grid, LandingOutcome, MotionAxes, MotionMapOptions, MotionSummary,
-};
-use eccjump_core::ode::SolverOptions;
+use eccjump_core::maps::motion::{motion_grid as grid, LandingOutcome, MotionAxes, MotionSummary};
 use numpy::PyReadonlyArray1;
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
@@ -48,18 +45,12 @@ pub fn motion_grid<'py>(
         theta0: theta0.as_slice()?,
         omega0: omega0.as_slice()?,
     };
-    let opts = MotionMapOptions {
-        rule: parse_rule(rule)?,
-        t_max,
-        max_transitions,
-        solver: SolverOptions {
-            rtol,
-            atol,
-            max_steps,
-            method: parse_integrator(integrator)?,
-            ..SolverOptions::default()
-        },
-    };
+    let opts = motion_map_options(
+        rule,
+        (t_max, max_transitions),
+        (rtol, atol, max_steps),
+        integrator,
+    )?;
     let out = detached(py, |stop| {
         let mut out = try_filled("the map", axes.size()?, MotionSummary::invalid())?;
         grid(&axes, &opts, n_threads, &mut out, stop)?;

@@ -6,7 +6,8 @@
 use crate::errors::to_py;
 use eccjump_core::jarm::{JarmOptions, Method};
 use eccjump_core::maps::boundary::boundary_options;
-use eccjump_core::ode::Method as Integrator;
+use eccjump_core::maps::motion::MotionMapOptions;
+use eccjump_core::ode::{Method as Integrator, SolverOptions};
 use eccjump_core::Rule;
 use pyo3::exceptions::PyValueError;
 use pyo3::prelude::*;
@@ -117,5 +118,27 @@ pub fn parse_rule(rule: &str) -> PyResult<Rule> {
         PyValueError::new_err(format!(
             "rule = {rule:?} is not one of 'paper', 'normal_force'"
         ))
+    })
+}
+
+/// The options every point of a motion map or of `motion_points` runs with: the rule and
+/// the pair by name, the time and transition budgets, the tolerances and the step budget.
+pub fn motion_map_options(
+    rule: &str,
+    (t_max, max_transitions): (f64, usize),
+    (rtol, atol, max_steps): (f64, f64, usize),
+    integrator: &str,
+) -> PyResult<MotionMapOptions> {
+    Ok(MotionMapOptions {
+        rule: parse_rule(rule)?,
+        t_max,
+        max_transitions,
+        solver: SolverOptions {
+            rtol,
+            atol,
+            max_steps,
+            method: parse_integrator(integrator)?,
+            ..SolverOptions::default()
+        },
     })
 }
