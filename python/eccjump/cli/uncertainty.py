@@ -24,7 +24,7 @@ from eccjump.cli._output import (
     write_output,
 )
 from eccjump.uncertainty import Uncertainty, uncertainty
-from eccjump.uncertainty.results import QUANTITIES
+from eccjump.uncertainty.results import QUANTITIES, _first_order
 from eccjump.uncertainty.sampling import N_MAX, PARAMETERS
 
 #: Parameters given in degrees on the command line (radians in Python).
@@ -230,6 +230,8 @@ def _print(r: Uncertainty, written: dict[str, Path | None]) -> None:
         unit = "deg" if name == "liftoff_theta" else QUANTITIES[name]
         cells = " ".join(_shown(name, v) for v in (s.median, s.q025, s.q975))
         print(f"{name:<14}{s.n:>8} {cells}  {unit}")
+    if r.delta is not None:
+        print(f"first order   {_first_order(r.delta)}")
     for what, path in written.items():
         if path is not None:
             print(f"{what}: {path}")

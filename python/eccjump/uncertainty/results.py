@@ -199,6 +199,7 @@ class Uncertainty:
                 k: {f: _json(v) for f, v in s._asdict().items()}
                 for k, s in self.distributions.items()
             },
+            "delta": None if self.delta is None else self.delta._asdict(),
         }
 
     def columns(self) -> dict[str, NDArray[Any]]:
@@ -207,7 +208,7 @@ class Uncertainty:
 
     def to_xarray(self) -> xr.Dataset:
         """The samples and outcomes as an ``xarray.Dataset`` along ``sample``, the numbers of
-        :meth:`to_dict` as attributes (JSON text where nested)."""
+        :meth:`to_dict` as attributes (JSON text where nested or None)."""
         import json
 
         import xarray as xr
@@ -218,7 +219,7 @@ class Uncertainty:
             for k, v in self.columns().items()
         }
         attrs = {
-            k: (json.dumps(v) if isinstance(v, dict | list) else v)
+            k: (json.dumps(v) if v is None or isinstance(v, dict | list) else v)
             for k, v in self.to_dict().items()
         }
         return xr.Dataset(data, coords={"sample": np.arange(self.n)}, attrs=attrs)
@@ -279,12 +280,22 @@ class Uncertainty:
             if s.n:
                 spread = f"[{num(s.q025, 5)}, {num(s.q975, 5)}] {QUANTITIES[name]}"
                 rows.append((name, f"median {num(s.median, 5)} {spread} (95 % of {s.n})"))
+        if self.delta is not None:
+            rows.append(("first order", _first_order(self.delta)))
         return card("Uncertainty", rows)
 
     def _spreads(self) -> list[str]:
         out = [f"{k} ± {num(v, 3)}" for k, v in self.sd.items() if v > 0]
         out += [f"{k} in [{num(lo, 4)}, {num(hi, 4)}]" for k, (lo, hi) in self.bounds.items()]
         return out
+
+
+def _first_order(d: Delta) -> str:
+    """The delta-method estimate in one line (theta_J's spread in degrees)."""
+    p = "n/a (not the friction at the jump)" if d.p_jarm is None else f"{d.p_jarm:.5f}"
+    return (
+        f"theta_J sd {math.degrees(d.theta_J_sd):.4f} deg, P(JARM) {p} (exact as tolerances -> 0)"
+    )
 
 
 def _json(x: float | int) -> float | int | None:

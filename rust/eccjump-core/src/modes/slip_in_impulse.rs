@@ -17,6 +17,7 @@
 //! [`D_BACK`] (time again), B falling to 0 (lift-off), t_max or l_max end the segment.
 
 use crate::mechanics::friction::Sliding;
+use crate::mechanics::liftoff::free_normal_acceleration;
 use crate::mechanics::Ramp;
 use crate::ode::{Direction, EventFunctions, EventSpec, OdeSystem, State};
 
@@ -68,7 +69,8 @@ impl SlipInImpulse {
             cos_t,
             k: sl.k,
             d: sl.d,
-            load: r.cos_a - r.body.chi * omega * omega * cos_t,
+            // B = −L, the free normal acceleration's formula.
+            load: -free_normal_acceleration(r.body.chi * omega * omega, cos_t, r.cos_a),
         }
     }
 
