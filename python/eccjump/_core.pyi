@@ -259,6 +259,25 @@ def alpha_interval_around(
     step: float,
     options: BoundaryOptions,
 ) -> tuple[NDArray[np.float64], NDArray[np.float64]]: ...
+
+class MotionOptions:
+    """The options of ``motion_grid`` and ``motion_points``, converted once: made from
+    keyword-only plain values named as ``eccjump.motion_map`` names them. ValueError for an
+    unknown rule or pair (the core checks the ranges when a call uses them)."""
+
+    def __init__(
+        self,
+        *,
+        rule: str,
+        t_max: float,
+        max_transitions: int,
+        rtol: float,
+        atol: float,
+        max_steps: int,
+        n_threads: int,
+        integrator: str,
+    ) -> None: ...
+
 def motion_grid(
     alpha: NDArray[np.float64],
     chi: NDArray[np.float64],
@@ -269,14 +288,7 @@ def motion_grid(
     theta0: NDArray[np.float64],
     omega0: NDArray[np.float64],
     *,
-    rule: str,
-    t_max: float,
-    max_transitions: int,
-    rtol: float,
-    atol: float,
-    max_steps: int,
-    n_threads: int,
-    integrator: str,
+    options: MotionOptions,
 ) -> dict[str, NDArray[Any]]:
     """The full motion to the first landing at every point of the product of the eight 1-D
     axes (k_m = frac (1 - chi); an empty ``mu_k``: mu_k = mu_s), flat in C order, with the
@@ -293,14 +305,7 @@ def motion_points(
     theta0: NDArray[np.float64],
     omega0: NDArray[np.float64],
     *,
-    rule: str,
-    t_max: float,
-    max_transitions: int,
-    rtol: float,
-    atol: float,
-    max_steps: int,
-    n_threads: int,
-    integrator: str,
+    options: MotionOptions,
 ) -> dict[str, NDArray[Any]]:
     """The full motion to the first landing at each point (alpha[i], chi[i], km[i], mu_s[i],
     mu_k[i], restitution[i], theta0[i], omega0[i]) (km: the body's k_m; columns of one

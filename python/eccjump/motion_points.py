@@ -218,14 +218,16 @@ def motion_points(
         columns["restitution"],
         columns["theta0"],
         columns["omega0"],
-        rule=text("rule", rule),
-        t_max=real("t_max", t_max),
-        max_transitions=integer("max_transitions", max_transitions, 1, MAX_TRANSITIONS),
-        rtol=real("rtol", rtol),
-        atol=real("atol", atol),
-        max_steps=integer("max_steps", max_steps, 1, MAX_STEPS),
-        n_threads=integer("n_threads", n_threads, 0, 256),
-        integrator=text("integrator", integrator),
+        options=_core.MotionOptions(
+            rule=text("rule", rule),
+            t_max=real("t_max", t_max),
+            max_transitions=integer("max_transitions", max_transitions, 1, MAX_TRANSITIONS),
+            rtol=real("rtol", rtol),
+            atol=real("atol", atol),
+            max_steps=integer("max_steps", max_steps, 1, MAX_STEPS),
+            n_threads=integer("n_threads", n_threads, 0, 256),
+            integrator=text("integrator", integrator),
+        ),
     )
     return MotionPoints(**{k: raw[k].reshape(shape) for k in FIELDS})
 

@@ -4,6 +4,8 @@
 //!
 //! The layers, each using only those above it (see `docs/architecture.md`):
 //! - [`error`]: the one error enum and the parameter checks, written once;
+//! - [`dual`]: forward-mode differentiation, so that a formula written once has exact
+//!   partials;
 //! - [`ode`]: generic Dormand–Prince integrators (5(4) as scipy's RK45, 8(5,3) as DOP853)
 //!   with dense output and events, and bracketing root finders (no physics);
 //! - [`mechanics`]: the body, the ramp, Newton–Euler in its general form, energy, the
@@ -17,6 +19,7 @@
 
 #![warn(missing_docs)]
 
+pub mod dual;
 pub mod error;
 pub mod jarm;
 pub mod maps;

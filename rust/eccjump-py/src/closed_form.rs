@@ -93,170 +93,114 @@ fn or_nan(v: Option<f64>) -> f64 {
     v.unwrap_or(f64::NAN)
 }
 
-/// (α, χ, k_m, θ_J) → (F_x,J, F_y,J): Eqs. jump6, Njumpfn.
-#[pyfunction]
-pub fn jump_forces<'py>(
-    py: Python<'py>,
-    alpha: Input<'py>,
-    chi: Input<'py>,
-    km: Input<'py>,
-    theta_j: Input<'py>,
-) -> Columns<'py, 2> {
-    pointwise(py, [alpha, chi, km, theta_j], |[a, c, k, t]| {
+/// Declares a closed form as a `#[pyfunction]`: its input columns (one point's values are
+/// the closure's array, in this order), then after `;` its keyword-only options, the number
+/// of output columns and the closure from one point to its outputs, run by [`pointwise`].
+macro_rules! closed_form {
+    ($(#[$doc:meta])* $name:ident($($col:ident),+ $(; $($opt:ident: $ty:ty),+)?) -> $o:literal,
+     $f:expr) => {
+        $(#[$doc])*
+        #[pyfunction]
+        #[pyo3(signature = ($($col),+ $(, *, $($opt),+)?))]
+        pub fn $name<'py>(
+            py: Python<'py>,
+            $($col: Input<'py>,)+
+            $($($opt: $ty,)+)?
+        ) -> Columns<'py, $o> {
+            pointwise(py, [$($col),+], $f)
+        }
+    };
+}
+
+closed_form! {
+    /// (α, χ, k_m, θ_J) → (F_x,J, F_y,J): Eqs. jump6, Njumpfn.
+    jump_forces(alpha, chi, km, theta_j) -> 2, |[a, c, k, t]| {
         let r = ramp(a, c, k)?;
         let f = jump_point::jump_forces(&r.body, r.alpha, angle("theta_J", t)?);
         Ok([f.fx, f.fy])
-    })
+    }
 }
 
-/// (χ, k_m, θ_J) → μ: Eq. ineq2 (signed).
-#[pyfunction]
-pub fn mu<'py>(
-    py: Python<'py>,
-    chi: Input<'py>,
-    km: Input<'py>,
-    theta_j: Input<'py>,
-) -> Columns<'py, 1> {
-    pointwise(py, [chi, km, theta_j], |[c, k, t]| {
+closed_form! {
+    /// (χ, k_m, θ_J) → μ: Eq. ineq2 (signed).
+    mu(chi, km, theta_j) -> 1, |[c, k, t]| {
         Ok([jump_point::mu(&body(c, k)?, angle("theta_J", t)?)])
-    })
+    }
 }
 
-/// (α, θ_J) → n of the green window 2πn − α < θ_J < 2πn, or 0.
-#[pyfunction]
-pub fn green_turn<'py>(py: Python<'py>, alpha: Input<'py>, theta_j: Input<'py>) -> Columns<'py, 1> {
-    pointwise(py, [alpha, theta_j], |[a, t]| {
+closed_form! {
+    /// (α, θ_J) → n of the green window 2πn − α < θ_J < 2πn, or 0.
+    green_turn(alpha, theta_j) -> 1, |[a, t]| {
         let n = jump_point::green_turn(valid_alpha(a)?, angle("theta_J", t)?);
         Ok([n.map_or(0.0, f64::from)])
-    })
+    }
 }
 
-/// (χ, k_m) → (μ_s,min, the angle of the minimum relative to 2πn).
-#[pyfunction]
-pub fn mu_s_min<'py>(py: Python<'py>, chi: Input<'py>, km: Input<'py>) -> Columns<'py, 2> {
-    pointwise(py, [chi, km], |[c, k]| {
+closed_form! {
+    /// (χ, k_m) → (μ_s,min, the angle of the minimum relative to 2πn).
+    mu_s_min(chi, km) -> 2, |[c, k]| {
         let (m, t) = jump_point::mu_s_min(&body(c, k)?);
         Ok([m, t])
-    })
+    }
 }
 
-/// (χ, k_m, μ_s) → (θ_J,min, θ_J,max) on turn n (n = 0: relative to 2πn).
-#[pyfunction]
-#[pyo3(signature = (chi, km, mu_s, *, n))]
-pub fn theta_j_range<'py>(
-    py: Python<'py>,
-    chi: Input<'py>,
-    km: Input<'py>,
-    mu_s: Input<'py>,
-    n: u32,
-) -> Columns<'py, 2> {
-    pointwise(py, [chi, km, mu_s], |[c, k, m]| {
+closed_form! {
+    /// (χ, k_m, μ_s) → (θ_J,min, θ_J,max) on turn n (n = 0: relative to 2πn).
+    theta_j_range(chi, km, mu_s; n: u32) -> 2, |[c, k, m]| {
         let r = jump_point::theta_j_range_abs(&body(c, k)?, valid_mu_s(m)?, n);
         Ok([or_nan(r.map(|v| v.0)), or_nan(r.map(|v| v.1))])
-    })
+    }
 }
 
-/// (χ, k_m, μ_s) → α_min = 2πn − θ_J,max.
-#[pyfunction]
-#[pyo3(signature = (chi, km, mu_s, *, n))]
-pub fn alpha_min<'py>(
-    py: Python<'py>,
-    chi: Input<'py>,
-    km: Input<'py>,
-    mu_s: Input<'py>,
-    n: u32,
-) -> Columns<'py, 1> {
-    pointwise(py, [chi, km, mu_s], |[c, k, m]| {
+closed_form! {
+    /// (χ, k_m, μ_s) → α_min = 2πn − θ_J,max.
+    alpha_min(chi, km, mu_s; n: u32) -> 1, |[c, k, m]| {
         let b = body(c, k)?;
         Ok([or_nan(jump_point::alpha_min(&b, valid_mu_s(m)?, n))])
-    })
+    }
 }
 
-/// (χ, k_m) → γ: Eq. dega2.
-#[pyfunction]
-pub fn gamma<'py>(py: Python<'py>, chi: Input<'py>, km: Input<'py>) -> Columns<'py, 1> {
-    pointwise(py, [chi, km], |[c, k]| Ok([body(c, k)?.gamma()]))
+closed_form! {
+    /// (χ, k_m) → γ: Eq. dega2.
+    gamma(chi, km) -> 1, |[c, k]| Ok([body(c, k)?.gamma()])
 }
 
-/// (θ, α, χ, k_m) → J(θ): Eq. Jta as printed.
-#[pyfunction]
-pub fn j_paper<'py>(
-    py: Python<'py>,
-    theta: Input<'py>,
-    alpha: Input<'py>,
-    chi: Input<'py>,
-    km: Input<'py>,
-) -> Columns<'py, 1> {
-    pointwise(py, [theta, alpha, chi, km], |[t, a, c, k]| {
+closed_form! {
+    /// (θ, α, χ, k_m) → J(θ): Eq. Jta as printed.
+    j_paper(theta, alpha, chi, km) -> 1, |[t, a, c, k]| {
         Ok([from_rest::j_paper(&ramp(a, c, k)?, angle("theta", t)?)])
-    })
+    }
 }
 
-/// (θ, α, χ, k_m) → χ θ̇² cos θ − cos α along rolling from (θ0, θ̇0).
-#[pyfunction]
-#[pyo3(signature = (theta, alpha, chi, km, *, theta0, omega0))]
-pub fn liftoff_function<'py>(
-    py: Python<'py>,
-    theta: Input<'py>,
-    alpha: Input<'py>,
-    chi: Input<'py>,
-    km: Input<'py>,
-    theta0: f64,
-    omega0: f64,
-) -> Columns<'py, 1> {
-    pointwise(py, [theta, alpha, chi, km], |[t, a, c, k]| {
+closed_form! {
+    /// (θ, α, χ, k_m) → χ θ̇² cos θ − cos α along rolling from (θ0, θ̇0).
+    liftoff_function(theta, alpha, chi, km; theta0: f64, omega0: f64) -> 1, |[t, a, c, k]| {
         let r = ramp(a, c, k)?;
         let (t0, w0) = start(theta0, omega0)?;
         Ok([from_rest::liftoff_from(&r, t0, w0, angle("theta", t)?)])
-    })
+    }
 }
 
-/// (α, χ, k_m) → (J(2πn − α), J(2πn)): Eqs. JtaC1, JtaC2.
-#[pyfunction]
-#[pyo3(signature = (alpha, chi, km, *, n))]
-pub fn j_brackets<'py>(
-    py: Python<'py>,
-    alpha: Input<'py>,
-    chi: Input<'py>,
-    km: Input<'py>,
-    n: u32,
-) -> Columns<'py, 2> {
-    pointwise(py, [alpha, chi, km], |[a, c, k]| {
+closed_form! {
+    /// (α, χ, k_m) → (J(2πn − α), J(2πn)): Eqs. JtaC1, JtaC2.
+    j_brackets(alpha, chi, km; n: u32) -> 2, |[a, c, k]| {
         let r = ramp(a, c, k)?;
         Ok([from_rest::jtac1(&r, n), from_rest::jtac2(&r, n)])
-    })
+    }
 }
 
-/// (α, χ, k_m) → θ_{n,J}: the root in [2πn − α, 2πn], or NaN.
-#[pyfunction]
-#[pyo3(signature = (alpha, chi, km, *, n))]
-pub fn theta_nj<'py>(
-    py: Python<'py>,
-    alpha: Input<'py>,
-    chi: Input<'py>,
-    km: Input<'py>,
-    n: u32,
-) -> Columns<'py, 1> {
-    pointwise(py, [alpha, chi, km], |[a, c, k]| {
+closed_form! {
+    /// (α, χ, k_m) → θ_{n,J}: the root in [2πn − α, 2πn], or NaN.
+    theta_nj(alpha, chi, km; n: u32) -> 1, |[a, c, k]| {
         Ok([or_nan(from_rest::theta_nj(&ramp(a, c, k)?, n))])
-    })
+    }
 }
 
-/// (θ, α, χ, k_m) → (F_x, F_y) along rolling from (θ0, θ̇0), by energy.
-#[pyfunction]
-#[pyo3(signature = (theta, alpha, chi, km, *, theta0, omega0))]
-pub fn path_forces<'py>(
-    py: Python<'py>,
-    theta: Input<'py>,
-    alpha: Input<'py>,
-    chi: Input<'py>,
-    km: Input<'py>,
-    theta0: f64,
-    omega0: f64,
-) -> Columns<'py, 2> {
-    pointwise(py, [theta, alpha, chi, km], |[t, a, c, k]| {
+closed_form! {
+    /// (θ, α, χ, k_m) → (F_x, F_y) along rolling from (θ0, θ̇0), by energy.
+    path_forces(theta, alpha, chi, km; theta0: f64, omega0: f64) -> 2, |[t, a, c, k]| {
         let (t0, w0) = start(theta0, omega0)?;
         let kin = ramp(a, c, k)?.kinematics_along(t0, w0, angle("theta", t)?);
         Ok([kin.fx, kin.fy])
-    })
+    }
 }

@@ -48,7 +48,7 @@ mod _core {
     #[pymodule_export]
     use crate::motion_points::motion_points;
     #[pymodule_export]
-    use crate::options::{BoundaryOptions, ClassifyOptions};
+    use crate::options::{BoundaryOptions, ClassifyOptions, MotionOptions};
     #[pymodule_export]
     use crate::roll::{roll, DenseSolution};
     #[pymodule_export]

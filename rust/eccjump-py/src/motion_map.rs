@@ -3,7 +3,7 @@
 
 use crate::columns::set_column;
 use crate::errors::detached;
-use crate::options::motion_map_options;
+use crate::options::MotionOptions;
 use eccjump_core::error::try_filled;
 use eccjump_core::maps::motion::{motion_grid as grid, LandingOutcome, MotionAxes, MotionSummary};
 use numpy::PyReadonlyArray1;
@@ -13,8 +13,7 @@ use pyo3::types::PyDict;
 /// Summaries of the grid alpha × chi × frac × mu_s × mu_k × restitution × theta0 × omega0
 /// (k_m = frac·(1 − χ); an empty mu_k: μ_k = μ_s), flat in C order.
 #[pyfunction]
-#[pyo3(signature = (alpha, chi, frac, mu_s, mu_k, restitution, theta0, omega0, *, rule,
-                    t_max, max_transitions, rtol, atol, max_steps, n_threads, integrator))]
+#[pyo3(signature = (alpha, chi, frac, mu_s, mu_k, restitution, theta0, omega0, *, options))]
 #[allow(clippy::too_many_arguments)] // the eight axes and the shared options
 pub fn motion_grid<'py>(
     py: Python<'py>,
@@ -26,14 +25,7 @@ pub fn motion_grid<'py>(
     restitution: PyReadonlyArray1<'py, f64>,
     theta0: PyReadonlyArray1<'py, f64>,
     omega0: PyReadonlyArray1<'py, f64>,
-    rule: &str,
-    t_max: f64,
-    max_transitions: usize,
-    rtol: f64,
-    atol: f64,
-    max_steps: usize,
-    n_threads: usize,
-    integrator: &str,
+    options: &MotionOptions,
 ) -> PyResult<Bound<'py, PyDict>> {
     let axes = MotionAxes {
         alpha: alpha.as_slice()?,
@@ -45,15 +37,10 @@ pub fn motion_grid<'py>(
         theta0: theta0.as_slice()?,
         omega0: omega0.as_slice()?,
     };
-    let opts = motion_map_options(
-        rule,
-        (t_max, max_transitions),
-        (rtol, atol, max_steps),
-        integrator,
-    )?;
+    let MotionOptions { map, n_threads } = options;
     let out = detached(py, |stop| {
         let mut out = try_filled("the map", axes.size()?, MotionSummary::invalid())?;
-        grid(&axes, &opts, n_threads, &mut out, stop)?;
+        grid(&axes, map, *n_threads, &mut out, stop)?;
         Ok(out)
     })?;
     summary_columns(py, &out)

@@ -4,7 +4,7 @@
 
 use crate::errors::detached;
 use crate::motion_map::summary_columns;
-use crate::options::motion_map_options;
+use crate::options::MotionOptions;
 use eccjump_core::error::try_filled;
 use eccjump_core::maps::motion::MotionSummary;
 use eccjump_core::maps::motion_points::{motion_points as points, MotionColumns};
@@ -15,8 +15,7 @@ use pyo3::types::PyDict;
 /// Summaries of the points (alpha[i], chi[i], km[i], mu_s[i], mu_k[i], restitution[i],
 /// theta0[i], omega0[i]) (an empty mu_k: μ_k = μ_s), one column per field.
 #[pyfunction]
-#[pyo3(signature = (alpha, chi, km, mu_s, mu_k, restitution, theta0, omega0, *, rule,
-                    t_max, max_transitions, rtol, atol, max_steps, n_threads, integrator))]
+#[pyo3(signature = (alpha, chi, km, mu_s, mu_k, restitution, theta0, omega0, *, options))]
 #[allow(clippy::too_many_arguments)] // the eight columns and the shared options
 pub fn motion_points<'py>(
     py: Python<'py>,
@@ -28,14 +27,7 @@ pub fn motion_points<'py>(
     restitution: PyReadonlyArray1<'py, f64>,
     theta0: PyReadonlyArray1<'py, f64>,
     omega0: PyReadonlyArray1<'py, f64>,
-    rule: &str,
-    t_max: f64,
-    max_transitions: usize,
-    rtol: f64,
-    atol: f64,
-    max_steps: usize,
-    n_threads: usize,
-    integrator: &str,
+    options: &MotionOptions,
 ) -> PyResult<Bound<'py, PyDict>> {
     let columns = MotionColumns {
         alpha: alpha.as_slice()?,
@@ -47,15 +39,10 @@ pub fn motion_points<'py>(
         theta0: theta0.as_slice()?,
         omega0: omega0.as_slice()?,
     };
-    let opts = motion_map_options(
-        rule,
-        (t_max, max_transitions),
-        (rtol, atol, max_steps),
-        integrator,
-    )?;
+    let MotionOptions { map, n_threads } = options;
     let out = detached(py, |stop| {
         let mut out = try_filled("the points", columns.len()?, MotionSummary::invalid())?;
-        points(&columns, &opts, n_threads, &mut out, stop)?;
+        points(&columns, map, *n_threads, &mut out, stop)?;
         Ok(out)
     })?;
     summary_columns(py, &out)

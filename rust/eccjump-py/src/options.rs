@@ -1,6 +1,7 @@
 //! Names to the core's enums (rule, integrator, route), and the option objects that several
-//! entry points share: [`ClassifyOptions`] (`jarm_points`, `jarm_grid`) and
-//! [`BoundaryOptions`] (the three boundary searches). Only names are converted here; every
+//! entry points share: [`ClassifyOptions`] (`jarm_points`, `jarm_grid`),
+//! [`BoundaryOptions`] (the three boundary searches) and [`MotionOptions`] (`motion_grid`,
+//! `motion_points`). Only names are converted here; every
 //! range is checked by the core.
 
 use crate::errors::to_py;
@@ -8,7 +9,7 @@ use eccjump_core::jarm::{JarmOptions, Method};
 use eccjump_core::maps::boundary::boundary_options;
 use eccjump_core::maps::motion::MotionMapOptions;
 use eccjump_core::ode::{Method as Integrator, SolverOptions};
-use eccjump_core::Rule;
+use eccjump_core::{Cylinder, Ramp, Rule};
 use pyo3::exceptions::PyValueError;
 use pyo3::prelude::*;
 
@@ -121,24 +122,61 @@ pub fn parse_rule(rule: &str) -> PyResult<Rule> {
     })
 }
 
-/// The options every point of a motion map or of `motion_points` runs with: the rule and
-/// the pair by name, the time and transition budgets, the tolerances and the step budget.
-pub fn motion_map_options(
-    rule: &str,
-    (t_max, max_transitions): (f64, usize),
-    (rtol, atol, max_steps): (f64, f64, usize),
+/// The options every point of a motion map or of `motion_points` runs with, and the threads
+/// of the call: made in Python from keyword-only plain values named as `eccjump.motion_map`
+/// names them (ValueError for an unknown rule or pair; ranges are checked by the core).
+#[pyclass(frozen, module = "eccjump._core")]
+pub struct MotionOptions {
+    /// The options every point shares.
+    pub map: MotionMapOptions,
+    /// Threads of the call (0 = one per core).
+    pub n_threads: usize,
+}
+
+#[pymethods]
+impl MotionOptions {
+    /// Converts the rule's and the pair's names.
+    #[new]
+    #[pyo3(signature = (*, rule, t_max, max_transitions, rtol, atol, max_steps, n_threads,
+                        integrator))]
+    #[allow(clippy::too_many_arguments)] // the options of `eccjump.motion_map`, keyword-only
+    fn new(
+        rule: &str,
+        t_max: f64,
+        max_transitions: usize,
+        rtol: f64,
+        atol: f64,
+        max_steps: usize,
+        n_threads: usize,
+        integrator: &str,
+    ) -> PyResult<Self> {
+        let map = MotionMapOptions {
+            rule: parse_rule(rule)?,
+            t_max,
+            max_transitions,
+            solver: solver_options(rtol, atol, max_steps, integrator)?,
+        };
+        Ok(Self { map, n_threads })
+    }
+}
+
+/// The solver options of a run: the tolerances, the step budget and the pair by name.
+pub fn solver_options(
+    rtol: f64,
+    atol: f64,
+    max_steps: usize,
     integrator: &str,
-) -> PyResult<MotionMapOptions> {
-    Ok(MotionMapOptions {
-        rule: parse_rule(rule)?,
-        t_max,
-        max_transitions,
-        solver: SolverOptions {
-            rtol,
-            atol,
-            max_steps,
-            method: parse_integrator(integrator)?,
-            ..SolverOptions::default()
-        },
+) -> PyResult<SolverOptions> {
+    Ok(SolverOptions {
+        rtol,
+        atol,
+        max_steps,
+        method: parse_integrator(integrator)?,
+        ..SolverOptions::default()
     })
+}
+
+/// The ramp of angle `alpha` under the body (χ, k_m); ValueError naming a bad parameter.
+pub fn ramp(chi: f64, km: f64, alpha: f64) -> PyResult<Ramp> {
+    Ramp::new(Cylinder::new(chi, km).map_err(to_py)?, alpha).map_err(to_py)
 }

@@ -2,14 +2,12 @@
 //! (`eccjump.roll` makes the `RollResult`).
 
 use crate::columns::dense_rows;
-use crate::errors::{detached, to_py};
+use crate::errors::detached;
 use crate::names::ROLL_EVENTS;
-use crate::options::{parse_integrator, parse_rule};
+use crate::options::{parse_rule, ramp, solver_options};
 use eccjump_core::mechanics::friction::friction_ratio;
 use eccjump_core::modes::rolling::run::{roll_until, RollOptions, RollStatus};
 use eccjump_core::modes::rolling::solution::RollSolution;
-use eccjump_core::ode::SolverOptions;
-use eccjump_core::{Cylinder, Ramp};
 use numpy::{IntoPyArray, PyArray1, PyArray2, PyReadonlyArray1};
 use pyo3::prelude::*;
 use pyo3::types::{PyDict, PyString};
@@ -67,7 +65,7 @@ pub fn roll<'py>(
     rule: &str,
     integrator: &str,
 ) -> PyResult<RollOutput<'py>> {
-    let ramp = Ramp::new(Cylinder::new(chi, km).map_err(to_py)?, alpha).map_err(to_py)?;
+    let ramp = ramp(chi, km, alpha)?;
     let opts = RollOptions {
         theta0,
         omega0,
@@ -75,13 +73,7 @@ pub fn roll<'py>(
         t_max,
         theta_max,
         rule: parse_rule(rule)?,
-        solver: SolverOptions {
-            rtol,
-            atol,
-            max_steps,
-            method: parse_integrator(integrator)?,
-            ..SolverOptions::default()
-        },
+        solver: solver_options(rtol, atol, max_steps, integrator)?,
         dense_output,
     };
     let run = detached(py, |stop| roll_until(&ramp, &opts, stop))?;

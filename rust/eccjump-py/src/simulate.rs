@@ -2,16 +2,14 @@
 //! GIL released, returned as plain values (`eccjump.simulate` makes the `MotionResult`).
 
 use crate::columns::dense_rows;
-use crate::errors::{detached, to_py};
+use crate::errors::detached;
 use crate::names::{MODES, REASONS, STATUSES};
-use crate::options::{parse_integrator, parse_rule};
+use crate::options::{parse_rule, ramp, solver_options};
 use eccjump_core::mechanics::BodyState;
 use eccjump_core::modes::contact::ContactLaw;
 use eccjump_core::motion::record::{MotionStatus, Point};
 use eccjump_core::motion::solution::MotionSolution;
 use eccjump_core::motion::{simulate_until, MotionRun, SimOptions};
-use eccjump_core::ode::SolverOptions;
-use eccjump_core::{Cylinder, Ramp};
 use numpy::{IntoPyArray, PyArray1, PyArray2, PyReadonlyArray1};
 use pyo3::prelude::*;
 use pyo3::types::PyString;
@@ -112,7 +110,7 @@ pub fn simulate<'py>(
     dense_output: bool,
     integrator: &str,
 ) -> PyResult<MotionOutput<'py>> {
-    let ramp = Ramp::new(Cylinder::new(chi, km).map_err(to_py)?, alpha).map_err(to_py)?;
+    let ramp = ramp(chi, km, alpha)?;
     let opts = SimOptions {
         law: ContactLaw {
             mu_s,
@@ -126,13 +124,7 @@ pub fn simulate<'py>(
         t_max,
         l_max,
         max_transitions,
-        solver: SolverOptions {
-            rtol,
-            atol,
-            max_steps,
-            method: parse_integrator(integrator)?,
-            ..SolverOptions::default()
-        },
+        solver: solver_options(rtol, atol, max_steps, integrator)?,
         dense_output,
         ..SimOptions::default()
     };

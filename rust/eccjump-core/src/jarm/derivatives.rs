@@ -33,12 +33,13 @@
 //! L = ∂L/∂θ = 0, θ̈ = θ̇² tan θ/2 and F_y = −χ θ̇² sin²θ/(2 cos θ) < 0, so the normal force
 //! was lost before.
 
-mod dual;
-
+use crate::dual::{sin, sin_cos};
 use crate::jarm::decision::point_ramp;
 use crate::jarm::result::JarmOptions;
 use crate::mechanics::Rule;
-use dual::{sin, sin_cos, Dual};
+
+/// A rolling quantity with its partials in (θ, α, χ, k_m).
+pub(crate) type Dual = crate::dual::Dual<4>;
 use std::f64::consts::TAU;
 
 /// √ε: below √ε times the size of its terms, ∂g/∂θ is zero within rounding.

@@ -19,7 +19,6 @@
 //! (later ones are higher by 2πk sin α). If E(θ_m) ≤ 0 the body stops (θ̇² = 0) before θ_m
 //! and rolls back: from rest it then oscillates between 0 and that turning point forever.
 
-use crate::jarm::turns::turn_bound;
 use crate::mechanics::energy::rolling_kinetic;
 use crate::mechanics::liftoff::free_normal_acceleration;
 use crate::mechanics::Ramp;
@@ -71,13 +70,6 @@ pub fn liftoff(r: &Ramp, theta: f64) -> f64 {
         cos(theta),
         r.cos_a,
     )
-}
-
-/// n* = the smallest n ≥ 1 with n tan α > γ: the turn by which the first lift-off (or an
-/// earlier failure) must happen from rest. None if it does not exist (α = 0 or χ = 0) or
-/// exceeds `max_turns`. The from-rest case of [`turn_bound`].
-pub fn first_turn_bound(r: &Ramp, max_turns: u32) -> Option<u32> {
-    turn_bound(r, 0.0, 0.0, max_turns).filter(|&n| n <= max_turns)
 }
 
 /// θ_{n,J}: the root of the lift-off function in [2πn − α, 2πn] (Eq. thetasoL2), by
@@ -133,10 +125,17 @@ pub fn rock_back_angle(r: &Ramp) -> Option<f64> {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::jarm::turns::turn_bound;
     use crate::mechanics::Cylinder;
 
     fn ramp(chi: f64, km: f64, alpha_deg: f64) -> Ramp {
         Ramp::new(Cylinder::new(chi, km).unwrap(), alpha_deg.to_radians()).unwrap()
+    }
+
+    /// n* from rest: the turn by which the first lift-off (or an earlier failure) must
+    /// happen, None beyond `max_turns` ([`turn_bound`] from θ0 = θ̇0 = 0).
+    fn first_turn_bound(r: &Ramp, max_turns: u32) -> Option<u32> {
+        turn_bound(r, 0.0, 0.0, max_turns).filter(|&n| n <= max_turns)
     }
 
     #[test]

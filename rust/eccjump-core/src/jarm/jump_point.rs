@@ -29,7 +29,7 @@
 
 use crate::mechanics::Cylinder;
 use crate::ode::roots::bisect;
-use std::f64::consts::{FRAC_PI_2, PI, TAU};
+use std::f64::consts::{FRAC_PI_2, TAU};
 
 /// Forces at a jump point of the paper's rule, per M g.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -208,16 +208,6 @@ pub fn theta_j_range_abs(body: &Cylinder, mu_s: f64, n: u32) -> Option<(f64, f64
 /// friction allows. Independent of n (it equals −φ_max). None if μ_s < μ_s,min.
 pub fn alpha_min(body: &Cylinder, mu_s: f64, n: u32) -> Option<f64> {
     theta_j_range_abs(body, mu_s, n).map(|(_, tmax)| TAU * n as f64 - tmax)
-}
-
-/// φ = θ − 2πn reduced to (−π, π].
-pub fn relative_angle(theta: f64) -> f64 {
-    let r = theta - TAU * (theta / TAU).round();
-    if r <= -PI {
-        r + TAU
-    } else {
-        r
-    }
 }
 
 #[cfg(test)]

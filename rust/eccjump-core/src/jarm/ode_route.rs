@@ -16,12 +16,13 @@
 //! Conditions already violated at the start are tested first, in the closed form's order
 //! (lift-off, F_y ≤ 0, friction, θ̇0 = 0 with θ̈0 ≤ 0) and give its reasons.
 //!
-//! After the deciding event the result is filled as in `jarm.rs`: a `Paper` lift-off reached
-//! first already implies that the path conditions held, and is tested for the green window,
-//! F_y,J > 0 and μ(θ_J) ≤ μ_s ([`crate::jarm::jump_point`]); a slip under the `Paper` rule continues
-//! the integration without the friction and normal-force events to the paper's lift-off and
-//! tests it there (`SlipAtJump` vs `SlipBefore`); under the `NormalForce` rule the slip-onset
-//! consistency test (K, D, Ĩ_CM, L ≥ 0) decides between flight (a JARM) and `SlipBefore`.
+//! After the deciding event the result is filled as the closed form fills it
+//! ([`crate::jarm::decision`]): a `Paper` lift-off reached first already implies that the
+//! path conditions held, and is tested for the green window, F_y,J > 0 and μ(θ_J) ≤ μ_s
+//! ([`crate::jarm::jump_point`]); a slip under the `Paper` rule continues the integration
+//! without the friction and normal-force events to the paper's lift-off and tests it there
+//! (`SlipAtJump` vs `SlipBefore`); under the `NormalForce` rule the slip-onset consistency
+//! test (K, D, Ĩ_CM, L ≥ 0) decides between flight (a JARM) and `SlipBefore`.
 //!
 //! Near-ties: where the slip margin vanishes together with F_y (Ĩ_CM = 0, k_m = 0: the margin
 //! is F_y(μ_s − |tan(θ/2)|)), a slip root with F_y's own root within 1e-10(1 + θ) after it is
@@ -39,25 +40,14 @@
 //! verdict.
 //!
 //! Events are found on each step's dense output at 4 interior samples (the solver's
-//! default): by a sign change between two samples, or by a dip between them, where an event
-//! function keeps its sign at both samples but its slope (θ̇ times the derivative along
-//! rolling, the closed form's formulas) turns: the extremum is located by Brent on the slope
-//! and counts if it reaches zero ([`ode::events`]). So a violation window narrower than the
-//! sample spacing (a grazing slip, ~930 turns down a shallow ramp) is found, as the closed
-//! form's derivative test finds it; what could still hide is two extrema of one event
-//! function within one sample cell (≲ 0.1 rad of θ). θ is accurate to ~rtol·|θ| (relative
-//! error control), ×10 for shallow F_y
-//! roots. The interior samples of a step are skipped for the events whose rigorous change
-//! bounds (shared with the rolling run: `roll::ContactBounds`, tightened by the
-//! trigonometry of the step end) prove that no sample can show a crossing: the outcome is
-//! bit-identical to walking all samples (tested), at a fraction of the cost.
-//!
-//! Cost (rtol = 1e-10): ~185 steps per point on a 20³ grid from rest, dominated by small-α
-//! points that roll many turns; most of it is now the 6 `sin_cos` of the right-hand sides
-//! per step and the solver loop. The step end's trigonometry is computed by the FSAL
-//! right-hand side and handed on to the event scan and the observer
-//! (`ode::OdeSystem::rhs_with_trig`), and the step end's event values are carried to the
-//! next step's scan (`ode::events`).
+//! default), by a sign change between two samples or by a dip between them (the slope, θ̇
+//! times the derivative along rolling, turns; [`ode::events`]), so a violation window
+//! narrower than the sample spacing is found, as the closed form's derivative test finds it.
+//! θ is accurate to ~rtol·|θ|, ×10 for shallow F_y roots. The samples of a step that the
+//! rigorous change bounds (`modes::rolling::bounds`) prove free of crossings are skipped,
+//! bit-identically, and the step end's trigonometry is handed on by the right-hand side to the
+//! events and the observer (`ode::OdeSystem::rhs_with_trig`): their costs and gains are in
+//! `docs/performance.md`, the dip test's history in `docs/jarm.md`.
 //!
 //! No heap allocation, no shared state: deterministic, bit-identical for any thread count.
 

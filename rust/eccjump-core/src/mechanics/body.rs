@@ -6,6 +6,7 @@
 //!
 //! with 0 ≤ χ ≤ 1 and 0 ≤ k_m ≤ 1 − χ (the line mass must lie inside the shell).
 
+use crate::dual::Number;
 use crate::error::{check_positive, check_range, short, Error, Result};
 use std::f64::consts::PI;
 
@@ -20,6 +21,15 @@ pub struct Cylinder {
     pub ic: f64,
     /// Ĩ_CM = I_CM/(MR²), moment of inertia about the centre of mass.
     pub icm: f64,
+}
+
+/// (Ĩ_C, Ĩ_CM) = (k_m + χ²/(1 − k_m), k_m (1 − k_m + χ²)/(1 − k_m)) given 1 − k_m, the
+/// module's formulas written once for f64 and for the dual numbers of the sensitivities.
+pub(crate) fn inertias<T: Number>(chi: T, km: T, one_minus_km: T) -> (T, T) {
+    (
+        km + chi * chi / one_minus_km,
+        km * (one_minus_km + chi * chi) / one_minus_km,
+    )
 }
 
 impl Cylinder {
@@ -44,10 +54,7 @@ impl Cylinder {
             // 1 − k_m ≥ χ > 0 for valid input; the max() only absorbs the rounding slack
             // allowed above, so the division is always safe.
             let one_minus = (1.0 - km).max(chi);
-            (
-                km + chi * chi / one_minus,
-                km * (one_minus + chi * chi) / one_minus,
-            )
+            inertias(chi, km, one_minus)
         };
         Ok(Self { chi, km, ic, icm })
     }

@@ -20,12 +20,13 @@
 //! rolling in [`crate::modes::rolling`], of sliding in [`crate::mechanics::friction`], the
 //! lift-off function in [`crate::mechanics::liftoff`]); the kernels use those closed forms.
 
+use crate::dual::{Dual, Number};
 use crate::mechanics::ramp::Ramp;
 use nalgebra::{Matrix5, Vector5};
 
 /// The two equations a mode of motion adds to Newton–Euler.
 #[derive(Debug, Clone, Copy, PartialEq)]
-pub enum Constraint {
+pub enum Constraint<T = f64> {
     /// Contact without slip: l̈ = θ̈, b̈ = 0.
     Ramp,
     /// Contact with sliding friction F_x = σ μ_k F_y (σ = −sign of the slip velocity).
@@ -33,7 +34,7 @@ pub enum Constraint {
         /// Direction of the friction force along x, ±1.
         sigma: f64,
         /// Kinetic friction coefficient μ_k ≥ 0.
-        mu_k: f64,
+        mu_k: T,
     },
     /// No contact: F_x = F_y = 0.
     Free,
@@ -41,17 +42,68 @@ pub enum Constraint {
 
 /// Accelerations and contact force at one state.
 #[derive(Debug, Clone, Copy, PartialEq)]
-pub struct Response {
+pub struct Response<T = f64> {
     /// θ̈.
-    pub theta_dd: f64,
+    pub theta_dd: T,
     /// l̈, the acceleration of C along the ramp.
-    pub l_dd: f64,
+    pub l_dd: T,
     /// b̈, the acceleration of C along the normal.
-    pub b_dd: f64,
+    pub b_dd: T,
     /// Friction force on the body along the ramp [M g].
-    pub fx: f64,
+    pub fx: T,
     /// Normal force on the body [M g].
-    pub fy: f64,
+    pub fy: T,
+}
+
+/// What Newton–Euler needs of the body and the ramp: χ, Ĩ_CM, sin α and cos α.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Setting<T> {
+    /// χ.
+    pub chi: T,
+    /// Ĩ_CM.
+    pub icm: T,
+    /// sin α.
+    pub sin_a: T,
+    /// cos α.
+    pub cos_a: T,
+}
+
+/// Newton–Euler with `constraint` at (θ, θ̇) as the linear system M x = r in the unknowns
+/// x = (θ̈, l̈, b̈, F_x, F_y): written once, for f64 and for the dual numbers the
+/// sensitivities differentiate it with.
+pub(crate) fn equations<T: Number>(
+    q: &Setting<T>,
+    theta: T,
+    omega: T,
+    constraint: Constraint<T>,
+) -> ([[T; 5]; 5], [T; 5]) {
+    let (zero, one) = (T::of(0.0), T::of(1.0));
+    let chi = q.chi;
+    let (s, c) = theta.sin_cos();
+    let w = omega * omega;
+    let (row4, row5) = match constraint {
+        Constraint::Ramp => ([-one, one, zero, zero, zero], [zero, zero, one, zero, zero]),
+        Constraint::Sliding { sigma, mu_k } => (
+            [zero, zero, one, zero, zero],
+            [zero, zero, zero, one, -(T::of(sigma) * mu_k)],
+        ),
+        Constraint::Free => ([zero, zero, zero, one, zero], [zero, zero, zero, zero, one]),
+    };
+    let m = [
+        [chi * c, one, zero, -one, zero],
+        [-(chi * s), zero, one, zero, -one],
+        [q.icm, zero, zero, one + chi * c, -(chi * s)],
+        row4,
+        row5,
+    ];
+    let r = [
+        q.sin_a + chi * s * w,
+        chi * c * w - q.cos_a,
+        zero,
+        zero,
+        zero,
+    ];
+    (m, r)
 }
 
 impl Ramp {
@@ -59,46 +111,16 @@ impl Ramp {
     /// the module notes). None where the system is singular: sliding with D = 0 (Painlevé),
     /// or rolling/sliding of a body with Ĩ_CM = 0 at a singular angle.
     pub fn newton_euler(&self, theta: f64, omega: f64, constraint: Constraint) -> Option<Response> {
-        let chi = self.body.chi;
-        let (s, c) = crate::trig::sin_cos(theta);
-        let w = omega * omega;
-        // Unknowns x = (θ̈, l̈, b̈, F_x, F_y).
-        let (row4, row5, rhs4, rhs5) = match constraint {
-            Constraint::Ramp => (
-                [-1.0, 1.0, 0.0, 0.0, 0.0],
-                [0.0, 0.0, 1.0, 0.0, 0.0],
-                0.0,
-                0.0,
-            ),
-            Constraint::Sliding { sigma, mu_k } => (
-                [0.0, 0.0, 1.0, 0.0, 0.0],
-                [0.0, 0.0, 0.0, 1.0, -sigma * mu_k],
-                0.0,
-                0.0,
-            ),
-            Constraint::Free => (
-                [0.0, 0.0, 0.0, 1.0, 0.0],
-                [0.0, 0.0, 0.0, 0.0, 1.0],
-                0.0,
-                0.0,
-            ),
+        let q = Setting {
+            chi: self.body.chi,
+            icm: self.body.icm,
+            sin_a: self.sin_a,
+            cos_a: self.cos_a,
         };
-        #[rustfmt::skip]
-        let m = Matrix5::new(
-            chi * c, 1.0, 0.0, -1.0, 0.0,
-            -chi * s, 0.0, 1.0, 0.0, -1.0,
-            self.body.icm, 0.0, 0.0, 1.0 + chi * c, -chi * s,
-            row4[0], row4[1], row4[2], row4[3], row4[4],
-            row5[0], row5[1], row5[2], row5[3], row5[4],
-        );
-        let b = Vector5::new(
-            self.sin_a + chi * s * w,
-            chi * c * w - self.cos_a,
-            0.0,
-            rhs4,
-            rhs5,
-        );
-        let x = m.lu().solve(&b)?;
+        let (m, r) = equations(&q, theta, omega, constraint);
+        let x = Matrix5::from_fn(|i, j| m[i][j])
+            .lu()
+            .solve(&Vector5::from(r))?;
         x.iter().all(|v| v.is_finite()).then(|| Response {
             theta_dd: x[0],
             l_dd: x[1],
@@ -107,6 +129,40 @@ impl Ramp {
             fy: x[4],
         })
     }
+}
+
+/// Newton–Euler in dual numbers: the response and its partials. With M x = r, each partial
+/// solves M ∂x = ∂r − (∂M) x, by the one LU decomposition of M.
+pub(crate) fn newton_euler_dual<const N: usize>(
+    q: &Setting<Dual<N>>,
+    theta: Dual<N>,
+    omega: Dual<N>,
+    constraint: Constraint<Dual<N>>,
+) -> Option<Response<Dual<N>>> {
+    let (m, r) = equations(q, theta, omega, constraint);
+    let lu = Matrix5::from_fn(|i, j| m[i][j].v).lu();
+    let x = lu.solve(&Vector5::from_fn(|i, _| r[i].v))?;
+    let mut out = [Dual::<N>::constant(0.0); 5];
+    for (i, o) in out.iter_mut().enumerate() {
+        o.v = x[i];
+    }
+    for k in 0..N {
+        let rhs =
+            Vector5::from_fn(|i, _| r[i].d[k] - (0..5).map(|j| m[i][j].d[k] * x[j]).sum::<f64>());
+        let dx = lu.solve(&rhs)?;
+        for (i, o) in out.iter_mut().enumerate() {
+            o.d[k] = dx[i];
+        }
+    }
+    out.iter()
+        .all(|x| x.v.is_finite() && x.d.iter().all(|d| d.is_finite()))
+        .then_some(Response {
+            theta_dd: out[0],
+            l_dd: out[1],
+            b_dd: out[2],
+            fx: out[3],
+            fy: out[4],
+        })
 }
 
 #[cfg(test)]

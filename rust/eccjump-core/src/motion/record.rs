@@ -92,6 +92,28 @@ pub struct Segment {
     pub t_end: f64,
     /// Right-hand-side evaluations spent in it (0 in flight: it is exact).
     pub nfev: usize,
+    /// The friction direction σ of a slip (0 in the other modes).
+    pub sigma: f64,
+    /// The event that ended it (None: a limit, or the end of the run).
+    pub crossing: Option<Crossing>,
+}
+
+/// The event that ended a segment: where a function of the state crossed 0, located in
+/// time (the sensitivities carry each through its time correction).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Crossing {
+    /// Rolling: the paper's lift-off function L rose through 0.
+    Liftoff,
+    /// Rolling or sliding: the normal force fell through 0.
+    NormalForce,
+    /// Rolling: the friction margin μ_s F_y − |F_x| fell through 0.
+    FrictionCone,
+    /// Sliding: the slip velocity reached 0.
+    SlipStops,
+    /// Sliding: part of the segment went on in the normal impulse (near D = 0).
+    Impulse,
+    /// Flight: b fell to 1, a landing.
+    Landing,
 }
 
 /// How a run ended.

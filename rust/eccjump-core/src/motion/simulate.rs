@@ -4,7 +4,6 @@
 //! (`docs/motion.md` specifies the model).
 
 use crate::error::{Error, Result};
-use crate::mechanics::impact::{resolve, ImpactLaw, ImpactMatrix};
 use crate::mechanics::{BodyState, Ramp};
 use crate::modes::contact::{decide, Mode, Reason, Verdict};
 use crate::modes::flight::landing::Landing;
@@ -12,9 +11,10 @@ use crate::modes::flight::Flight;
 use crate::modes::rolling::run::{roll_until, ContactEvent, RollOptions, RollRun, RollStatus};
 use crate::modes::slip_in_impulse::D_SWITCH;
 use crate::modes::slipping::{SlipEvent, Slipping};
+use crate::motion::landing::{land, Landed};
 use crate::motion::options::{SimOptions, MAX_ANGLE_STEP};
 use crate::motion::record::{
-    FlightRecord, ImpactRecord, MotionRun, MotionStatus, Point, Segment, Transition,
+    Crossing, FlightRecord, ImpactRecord, MotionRun, MotionStatus, Point, Segment, Transition,
 };
 use crate::motion::sliding::{slip_state, SlipTrack};
 use crate::motion::solution::{MotionSolution, Piece};
@@ -61,6 +61,8 @@ struct Driver<'a> {
     steps_left: usize,
     /// The state the segment under way began from.
     segment_start: BodyState,
+    /// The event that ended the segment under way, once it has ended.
+    crossing: Option<Crossing>,
 }
 
 /// Segments between two asks of `stop` (from Python each ask takes the GIL: 0.25 µs, a few
@@ -125,8 +127,9 @@ pub(crate) struct Sim<'a> {
     /// What comes next (`None` while a segment is under way).
     next: Option<Next>,
     from: Option<Mode>,
-    /// The segment under way: its mode, reason, start time and evaluations before it.
-    current: (Mode, Reason, f64, usize),
+    /// The segment under way: its mode, reason, start time, evaluations before it and
+    /// friction direction.
+    current: (Mode, Reason, f64, usize, f64),
 }
 
 impl<'a> Sim<'a> {
@@ -149,13 +152,14 @@ impl<'a> Sim<'a> {
             t: 0.0,
             steps_left: opts.solver.max_steps,
             segment_start: start,
+            crossing: None,
         };
         Ok(Self {
             d,
             start,
             next: Some(next),
             from: None,
-            current: (Mode::Roll, Reason::Start, 0.0, 0),
+            current: (Mode::Roll, Reason::Start, 0.0, 0, 0.0),
         })
     }
 
@@ -215,7 +219,7 @@ impl<'a> Sim<'a> {
                 }
             }
             let reason = d.run.transitions.last().map_or(reason, |tr| tr.reason);
-            self.current = (mode, reason, d.t, d.run.nfev);
+            self.current = (mode, reason, d.t, d.run.nfev, sigma);
             let next = match mode {
                 Mode::Roll => match d.roll_start(state) {
                     Ok(o) => return Ok(Need::Roll(o)),
@@ -247,7 +251,7 @@ impl<'a> Sim<'a> {
 
     /// The segment under way has ended: `next` comes after it.
     fn segment_done(&mut self, next: Next) {
-        let (mode, reason, t_start, nfev_before) = self.current;
+        let (mode, reason, t_start, nfev_before, sigma) = self.current;
         let run = &mut self.d.run;
         run.segments.push(Segment {
             mode,
@@ -255,6 +259,8 @@ impl<'a> Sim<'a> {
             t_start,
             t_end: self.d.t,
             nfev: run.nfev - nfev_before,
+            sigma,
+            crossing: self.d.crossing.take(),
         });
         self.from = Some(mode);
         self.next = Some(next);
@@ -435,12 +441,15 @@ impl Driver<'_> {
                 self.end_of_ramp()
             }
             RollStatus::Event(ContactEvent::Liftoff) => {
+                self.crossing = Some(Crossing::Liftoff);
                 Next::Mode(Mode::Flight, Reason::Liftoff, end, 0.0)
             }
             RollStatus::Event(ContactEvent::NormalForce) => {
+                self.crossing = Some(Crossing::NormalForce);
                 after(decide(self.ramp, law, &end, true), Reason::NormalForce, end)
             }
             RollStatus::Event(ContactEvent::Slip) => {
+                self.crossing = Some(Crossing::FrictionCone);
                 after(decide(self.ramp, law, &end, true), Reason::Slip, end)
             }
             RollStatus::Failed(status) => self.failed("rolling", status),
@@ -494,8 +503,12 @@ impl Driver<'_> {
         Ok(match outcome.status {
             Status::Finished => self.end_of_time(),
             Status::Event(k) => match SlipEvent::ALL[k] {
-                SlipEvent::NormalForce => Next::Mode(Mode::Flight, Reason::NormalForce, end, 0.0),
+                SlipEvent::NormalForce => {
+                    self.crossing = Some(Crossing::NormalForce);
+                    Next::Mode(Mode::Flight, Reason::NormalForce, end, 0.0)
+                }
                 SlipEvent::Stops => {
+                    self.crossing = Some(Crossing::SlipStops);
                     end.ldot = end.omega;
                     after(decide(self.ramp, law, &end, false), Reason::Slip, end)
                 }
@@ -590,68 +603,30 @@ impl Driver<'_> {
         if !landed {
             return Ok(self.end_of_time());
         }
+        self.crossing = Some(Crossing::Landing);
         Ok(Next::Landing(BodyState { b: 1.0, ..end }))
     }
 
     /// The impact at a landing, then the mode after it.
     fn impact(&mut self, before: BodyState) -> Next {
         let (r, law) = (self.ramp, &self.opts.law);
-        let (sin_t, cos_t) = crate::trig::sin_cos(before.theta);
         // simulate refuses bodies with Ĩ_CM = 0, the one case without a matrix.
-        let Some(w) = ImpactMatrix::new(&r.body, sin_t, cos_t) else {
+        let Some(landed) = land(r, self.opts, &before) else {
             return Next::End(MotionStatus::Failed, "singular impact matrix".to_string());
         };
-        let imp = resolve(
-            &w,
-            &ImpactLaw {
-                mu_s: law.mu_s,
-                mu_k: law.mu_k,
-                restitution: self.opts.restitution,
-            },
-            before.slip_velocity(),
-            before.bdot,
-        );
-        let flies = imp.un > self.opts.settle_speed;
-        let sticking = imp.ending == crate::mechanics::impact::Ending::Sticking;
-        // The Zeno rule (docs/motion.md): a separation speed at or below the threshold is
-        // ended by one plastic impulse at the contact point in place of the bounces that
-        // would follow: ΔP = W⁻¹Δu with Δu = (0, −u_n) when the impact ended stuck (so it
-        // stays stuck), else the normal impulse −u_n/W_nn. It dissipates ½ΔuᵀW⁻¹Δu ≥ 0.
-        // Setting ḃ = 0 (or, after a normal-only impulse, l̇ = θ̇) directly would be an
-        // impulse at the centre, not at the contact point, and change the energy at first
-        // order (~θ̇ u_n), either way: hypothesis found −6.3e-7 that way.
-        let (settle_t, settle_n) = if !flies && imp.un > 0.0 {
-            if sticking {
-                (w.tn() * imp.un / w.det(), -w.tt() * imp.un / w.det())
-            } else {
-                (0.0, -imp.un / w.nn())
-            }
-        } else {
-            (0.0, 0.0)
-        };
-        let (pt, pn) = (imp.pt + settle_t, imp.pn + settle_n);
-        let (omega, ldot, bdot) =
-            r.body
-                .apply_impulse(before.theta, before.omega, before.ldot, before.bdot, pt, pn);
-        let mut after_state = BodyState {
-            omega,
-            ldot,
-            bdot,
-            ..before
-        };
-        if sticking {
-            // Zero up to rounding after the impulses: the rolling state.
-            after_state.ldot = after_state.omega;
-        }
-        let reason = if settle_n != 0.0 && self.opts.restitution > 0.0 {
+        let Landed {
+            state: after_state,
+            pt,
+            pn,
+            sticking,
+            flies,
+            settled,
+        } = landed;
+        let reason = if settled {
             Reason::Settle
         } else {
             Reason::Impact
         };
-        if !flies {
-            // u_n is 0 up to rounding after the plastic impulse: the contact state.
-            after_state.bdot = 0.0;
-        }
         let lost = r.energy_of(&before) - r.energy_of(&after_state);
         self.run.dissipated_impacts += lost;
         let next = if flies {

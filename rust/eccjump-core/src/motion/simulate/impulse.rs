@@ -9,7 +9,7 @@ use crate::error::{try_grow, Result};
 use crate::mechanics::BodyState;
 use crate::modes::contact::{decide, Mode, Reason};
 use crate::modes::slip_in_impulse::{ImpulseEvent, ImpulseEvents, SlipInImpulse, D_JAM, P_MAX};
-use crate::motion::record::{MotionStatus, Point};
+use crate::motion::record::{Crossing, MotionStatus, Point};
 use crate::motion::solution::Piece;
 use crate::ode::{self, Observation, Outcome, State, Status};
 
@@ -22,6 +22,7 @@ impl Driver<'_> {
     /// The slip from `s` with friction direction σ, integrated in the normal impulse from
     /// the run's time: what comes next.
     pub(super) fn slip_in_impulse(&mut self, s: BodyState, sigma: f64) -> Result<Next> {
+        self.crossing = Some(Crossing::Impulse);
         let opts = self.opts;
         let slip = SlipInImpulse {
             ramp: *self.ramp,

@@ -1,29 +1,28 @@
-//! Forward-mode differentiation for [`super`]: a number carrying its partial derivatives
-//! with respect to (θ, α, χ, k_m), so that each rolling quantity is written once, as in the
-//! physics notes, and its partials follow by the chain rule of each operation (exact up to
-//! rounding, no step size). Only the operations the rolling formulas use.
+//! Forward-mode differentiation: a number carrying its partial derivatives with respect to
+//! N independent variables, so that a formula is written once, as in the physics notes, and
+//! its partials follow by the chain rule of each operation (exact up to rounding, no step
+//! size). The exact derivatives of the jump (`jarm::derivatives`, N = 4: θ, α, χ, k_m) and
+//! the sensitivities of a full motion (`motion::sensitivities`, N = 9: eight parameters and
+//! time) use it. [`Number`] lets one formula serve f64 and `Dual` alike.
 
 use std::ops::{Add, Div, Mul, Neg, Sub};
 
-/// The number of partials: θ, α, χ, k_m, in that order.
-pub const N: usize = 4;
-
-/// A value and its partial derivatives ∂/∂(θ, α, χ, k_m).
+/// A value and its partial derivatives with respect to N variables.
 #[derive(Debug, Clone, Copy, PartialEq)]
-pub struct Dual {
+pub struct Dual<const N: usize> {
     /// The value.
     pub v: f64,
-    /// Its partials, in the order θ, α, χ, k_m.
+    /// Its partials.
     pub d: [f64; N],
 }
 
-impl Dual {
+impl<const N: usize> Dual<N> {
     /// A constant (all partials 0).
     pub fn constant(v: f64) -> Self {
         Self { v, d: [0.0; N] }
     }
 
-    /// The independent variable number `i` (0: θ, 1: α, 2: χ, 3: k_m) at value `v`.
+    /// The independent variable number `i` at value `v`.
     pub fn variable(v: f64, i: usize) -> Self {
         let mut d = [0.0; N];
         d[i] = 1.0;
@@ -41,7 +40,7 @@ impl Dual {
 
 /// (sin x, cos x), with d sin = cos dx and d cos = −sin dx (free functions, as in
 /// [`crate::trig`], whose one implementation they use).
-pub fn sin_cos(x: Dual) -> (Dual, Dual) {
+pub fn sin_cos<const N: usize>(x: Dual<N>) -> (Dual<N>, Dual<N>) {
     let (s, c) = crate::trig::sin_cos(x.v);
     (
         Dual {
@@ -56,11 +55,11 @@ pub fn sin_cos(x: Dual) -> (Dual, Dual) {
 }
 
 /// sin x.
-pub fn sin(x: Dual) -> Dual {
+pub fn sin<const N: usize>(x: Dual<N>) -> Dual<N> {
     sin_cos(x).0
 }
 
-impl Add for Dual {
+impl<const N: usize> Add for Dual<N> {
     type Output = Self;
     fn add(self, o: Self) -> Self {
         Self {
@@ -70,7 +69,7 @@ impl Add for Dual {
     }
 }
 
-impl Sub for Dual {
+impl<const N: usize> Sub for Dual<N> {
     type Output = Self;
     fn sub(self, o: Self) -> Self {
         Self {
@@ -80,14 +79,14 @@ impl Sub for Dual {
     }
 }
 
-impl Neg for Dual {
+impl<const N: usize> Neg for Dual<N> {
     type Output = Self;
     fn neg(self) -> Self {
         self.scale(-1.0)
     }
 }
 
-impl Mul for Dual {
+impl<const N: usize> Mul for Dual<N> {
     type Output = Self;
     /// d(ab) = b da + a db.
     #[allow(clippy::suspicious_arithmetic_impl)] // the product rule
@@ -99,7 +98,7 @@ impl Mul for Dual {
     }
 }
 
-impl Div for Dual {
+impl<const N: usize> Div for Dual<N> {
     type Output = Self;
     /// d(a/b) = (da − (a/b) db)/b.
     #[allow(clippy::suspicious_arithmetic_impl)] // the quotient rule
@@ -112,7 +111,7 @@ impl Div for Dual {
     }
 }
 
-impl Add<f64> for Dual {
+impl<const N: usize> Add<f64> for Dual<N> {
     type Output = Self;
     fn add(self, k: f64) -> Self {
         Self {
@@ -122,10 +121,45 @@ impl Add<f64> for Dual {
     }
 }
 
-impl Sub<Dual> for f64 {
-    type Output = Dual;
-    fn sub(self, x: Dual) -> Dual {
+impl<const N: usize> Sub<Dual<N>> for f64 {
+    type Output = Dual<N>;
+    fn sub(self, x: Dual<N>) -> Dual<N> {
         -x + self
+    }
+}
+
+/// A number a formula can be written for once: f64, or a [`Dual`] carrying partials.
+pub trait Number:
+    Copy
+    + Add<Output = Self>
+    + Sub<Output = Self>
+    + Mul<Output = Self>
+    + Div<Output = Self>
+    + Neg<Output = Self>
+{
+    /// A constant.
+    fn of(v: f64) -> Self;
+    /// (sin x, cos x), by the kernels' one implementation ([`crate::trig`]).
+    fn sin_cos(self) -> (Self, Self);
+}
+
+impl Number for f64 {
+    #[inline(always)]
+    fn of(v: f64) -> Self {
+        v
+    }
+    #[inline(always)]
+    fn sin_cos(self) -> (Self, Self) {
+        crate::trig::sin_cos(self)
+    }
+}
+
+impl<const N: usize> Number for Dual<N> {
+    fn of(v: f64) -> Self {
+        Self::constant(v)
+    }
+    fn sin_cos(self) -> (Self, Self) {
+        sin_cos(self)
     }
 }
 
@@ -136,7 +170,7 @@ mod tests {
     /// Each operation against a central difference of the same expression in f64.
     #[test]
     fn partials_match_central_differences() {
-        let f = |x: [Dual; 2]| {
+        let f = |x: [Dual<3>; 2]| {
             let (s, c) = sin_cos(x[0]);
             (s * x[1] + c.scale(3.0)) / (x[1] * x[1] + 1.0) - sin(2.0 - x[0])
         };
