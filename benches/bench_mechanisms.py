@@ -22,6 +22,8 @@ import subprocess
 import sys
 import time
 
+import results
+
 CONFIGS = ("base", "lanes", "quiet", "skip", "memo", "jmemo", "lanetrig", "roots", "pathskip")
 PAIRS = ("DOP853", "Vern9")
 
@@ -109,7 +111,7 @@ def main() -> None:
     p = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawTextHelpFormatter)
     p.add_argument("--rounds", type=int, default=3)
     p.add_argument("--configs", default=",".join(CONFIGS))
-    p.add_argument("--json", default="bench_mechanisms.json")
+    results.add_json_option(p, "mechanisms")
     p.add_argument("--integrator", default="RK45", help="the pair of every benchmark (RK45)")
     p.add_argument("--child", default=None, help=argparse.SUPPRESS)
     args = p.parse_args()
@@ -155,8 +157,7 @@ def main() -> None:
                 if f"{k}_{integ}" in base
             )
         )
-    with open(args.json, "w") as f:
-        json.dump(table, f, indent=1)
+    results.write(args.json, "mechanisms", args, table=table)
 
 
 if __name__ == "__main__":

@@ -22,6 +22,8 @@ import subprocess
 import sys
 from pathlib import Path
 
+import results
+
 #: Each benchmark: its name, what one run does, and its unit.
 BENCHES = {
     "roll RK45 [µs/call]": "roll",
@@ -110,7 +112,7 @@ def main() -> None:
     ap.add_argument("--after", type=Path, default=Path("."), help="the tree of the newer build")
     ap.add_argument("--rounds", type=int, default=3, help="alternating rounds (best kept)")
     ap.add_argument("--only", nargs="*", default=None, help="benchmark keys (default: all)")
-    ap.add_argument("--json", type=Path, default=None, help="also write the figures here")
+    results.add_json_option(ap, "compare")
     args = ap.parse_args()
     keys = args.only or list(BENCHES.values())
     best: dict[str, dict[str, float]] = {"before": {}, "after": {}}
@@ -121,12 +123,13 @@ def main() -> None:
                 best[side][k] = min(v, best[side].get(k, float("inf")))
     print("| benchmark | before | after | after / before |")
     print("|---|---:|---:|---:|")
+    rows = []
     for label, k in BENCHES.items():
         if k in keys:
             b, a = best["before"][k], best["after"][k]
             print(f"| {label} | {b:.4g} | {a:.4g} | {a / b:.3f} |")
-    if args.json:
-        args.json.write_text(json.dumps(best, indent=2))
+            rows.append({"benchmark": label, "key": k, "before": b, "after": a, "ratio": a / b})
+    results.write(args.json, "compare", args, rows=rows)
 
 
 if __name__ == "__main__":

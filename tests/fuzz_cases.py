@@ -672,6 +672,7 @@ SIMULATE_PARAMS = (
     "dense_output",
     "km",
     "integrator",
+    "sensitivities",
 )
 
 
@@ -688,6 +689,20 @@ def check_simulate(res: Any, case: Case) -> None:
     if res.status != "failed":
         expect(bool(np.isfinite(res.theta).all() and np.isfinite(res.b).all()), "state")
     expect(res == res, "a result is not equal to itself")
+    if case.kwargs["sensitivities"]:
+        check_sensitivities(res)
+    else:
+        expect(res.d_transitions is None and res.d_singular is None, "sensitivities given")
+
+
+def check_sensitivities(res: Any) -> None:
+    """(n, 2, 8) derivatives, NaN exactly where flagged, a flag kept once raised."""
+    d, singular = res.d_transitions, res.d_singular
+    n = len(res.transitions)
+    expect(d.shape == (n, 2, 8) and singular.shape == (n,), "sensitivities' shape")
+    expect(bool((np.isnan(d).all(axis=(1, 2)) == singular).all()), "NaN where not flagged")
+    expect(bool(np.isfinite(d[~singular]).all()), "a derivative not flagged is not finite")
+    expect(bool(np.all(np.diff(singular.astype(int)) >= 0)), "a flag does not propagate")
 
 
 def case_simulate(d: Drawer) -> Case:
@@ -707,6 +722,7 @@ def case_simulate(d: Drawer) -> Case:
         "dense_output": flag(d, c),
         "rule": text_param(d, c, ("paper", "normal_force")),
         "integrator": text_param(d, c, INTEGRATORS),
+        "sensitivities": flag(d, c),
     }
     if d.integer(0, 2) == 0:
         c.kwargs["mu_k"] = real(d, c, 0.0, 3.0)

@@ -57,3 +57,14 @@ def test_the_results_file_is_plain_json_with_the_shared_header(tmp_path) -> None
     assert doc["benchmark"] == "bench_peers" and doc["args"] == {"number": 3}
     assert {"date", "machine", "python", "versions", "argv"} <= doc.keys()
     assert doc["n"] == 2 and [c["ratio"] for c in doc["accuracy"]["cells"]][:2] == [None, None]
+
+
+def test_every_bench_script_takes_json_and_writes_the_results_file() -> None:
+    # benches/README.md promises a results file from every run of every script there.
+    benches = Path(__file__).resolve().parents[1] / "benches"
+    scripts = [p for p in sorted(benches.glob("*.py")) if "__main__" in p.read_text("utf-8")]
+    assert len(scripts) >= 12
+    for script in scripts:
+        text = script.read_text("utf-8")
+        assert "results.add_json_option(" in text, f"{script.name}: no --json option"
+        assert "results.write(" in text, f"{script.name}: writes no results file"

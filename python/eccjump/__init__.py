@@ -16,7 +16,7 @@ from eccjump.experiment import Analysis, analyze
 from eccjump.explorer import explore
 from eccjump.maps import Map
 from eccjump.maps import load as load_map
-from eccjump.motion import MotionResult, simulate
+from eccjump.motion import SENSITIVITY_PARAMETERS, MotionResult, simulate
 from eccjump.motion_maps import MotionMap, motion_map
 from eccjump.motion_points import MotionPoints, motion_points
 from eccjump.rolling import EVENT_NAMES, Event, RollResult, roll
@@ -33,6 +33,7 @@ from eccjump.units import Units
 
 __all__ = [
     "EVENT_NAMES",
+    "SENSITIVITY_PARAMETERS",
     "Analysis",
     "Cylinder",
     "DenseSolution",

@@ -16,6 +16,9 @@ from numpy.typing import NDArray
 VERSION: str
 """The package version, e.g. "0.2.0" (`eccjump --version` prints it; `eccjump.__version__`)."""
 
+MOTION_PARAMETERS: list[str]
+"""The parameters of a full-motion run, in the order of the sensitivities' last axis."""
+
 F64 = NDArray[np.float64]
 
 def body_derived(chi: float, km: float) -> tuple[float, float, float]: ...
@@ -129,6 +132,7 @@ def simulate(
     max_steps: int,
     dense_output: bool,
     integrator: str,
+    sensitivities: bool,
 ) -> tuple[
     MotionPoints,
     MotionRecords,
@@ -137,12 +141,14 @@ def simulate(
     str,
     int,
     MotionDense | None,
+    tuple[NDArray[np.float64], NDArray[np.bool_]] | None,
 ]:
     """The full motion of the body (chi, km) on a ramp of angle alpha (docs/motion.md), with
     the GIL released. The options of ``eccjump.simulate``, all required (it gives the
     defaults; mu_k resolved), checked by the core: a ValueError names the parameter. Returns
     (points, records, (energy0, dissipated by sliding, by impacts), status, message, nfev,
-    dense output or None), from which ``eccjump.simulate`` makes the ``MotionResult``."""
+    dense output or None, (d_transitions, d_singular) or None), from which
+    ``eccjump.simulate`` makes the ``MotionResult``."""
 
 class MotionDense:
     """The dense output of a full-motion run (``MotionResult.sol``), evaluated by the core."""

@@ -1,5 +1,7 @@
 """The first-order (delta-method) estimate beside the Monte Carlo one, from the exact
-derivatives of the lift-off at the nominal point (``jarm(..., derivatives=True)``).
+derivatives at the nominal point: of the lift-off (``jarm(..., derivatives=True)``) for the
+JARM question, of the first lift-off and landing (``simulate(..., sensitivities=True)``) for
+the full motion.
 
 To first order a quantity q(x) of the inputs x varies as q(x0) + g·(x - x0), g its gradient at
 the nominal point x0, so its standard deviation is sqrt(sum_i g_i^2 var_i) for independent
@@ -13,16 +15,26 @@ where that ratio is the largest along the path (``max_ratio`` = mu_J): where an 
 ratio binds, or the nominal point is no JARM, the margin has no derivative here (None). Both
 estimates are exact only in the limit of small tolerances; the Monte Carlo ones are the
 answer, these say how much of it a linearisation explains.
+
+For the full motion the gradients are those of the first lift-off's time and angle and of the
+first flight's duration with respect to all eight inputs (where mu_k follows mu_s, a change of
+mu_s moves both). P(JARM) has no first-order estimate there (None).
 """
 
 from __future__ import annotations
 
 import math
+from collections.abc import Mapping
 from statistics import NormalDist
-from typing import NamedTuple
+from typing import Any, NamedTuple
+
+import numpy as np
+from numpy.typing import NDArray
 
 from eccjump._checks import Rule
+from eccjump.body import Cylinder
 from eccjump.classification import jarm
+from eccjump.motion import SENSITIVITY_PARAMETERS, MotionResult, simulate
 from eccjump.uncertainty.sampling import Spread
 
 #: The inputs the derivatives are taken with respect to, in their order.
@@ -30,12 +42,17 @@ WRT = ("alpha", "chi", "km")
 
 
 class Delta(NamedTuple):
-    """The first-order estimate: the standard deviation of the lift-off angle theta_J [rad]
-    and P(JARM) from the nominal point's derivatives (None where the friction ratio at the
-    jump does not decide the verdict)."""
+    """The first-order estimate: the standard deviation of the lift-off angle [rad] (theta_J;
+    for the full motion the first lift-off's angle), P(JARM) from the nominal point's
+    derivatives (None where the friction ratio at the jump does not decide the verdict, and
+    for the full motion), and for the full motion the standard deviations of the first
+    lift-off's time and of the first flight's duration [sqrt(R/g)] (None if it does not
+    land)."""
 
     theta_J_sd: float
     p_jarm: float | None
+    liftoff_t_sd: float | None = None
+    flight_time_sd: float | None = None
 
 
 def variance(spec: Spread, name: str) -> float:
@@ -48,12 +65,15 @@ def variance(spec: Spread, name: str) -> float:
     return 0.0
 
 
-def delta_method(spec: Spread, question: str, rule: Rule = "paper") -> Delta | None:
-    """The delta-method estimate for ``spec`` under ``rule``: None for the full motion (its
-    transitions are not differentiated yet) and where the nominal point is no JARM or is a
-    non-differentiable point of the lift-off; P(JARM) under the paper's rule only."""
-    if question != "jarm":
-        return None
+def delta_method(
+    spec: Spread, question: str, rule: Rule = "paper", options: Mapping[str, Any] | None = None
+) -> Delta | None:
+    """The delta-method estimate for ``spec`` under ``rule`` (and, for the full motion, the
+    run's ``options``: t_max, max_transitions, rtol, atol, integrator): None where the
+    nominal point is no JARM ("jarm") or does not fly ("motion"), or the quantity is not
+    differentiable there; P(JARM) under the paper's rule only."""
+    if question == "motion":
+        return _motion(spec, rule, options or {})
     x0 = spec.nominal
     r = jarm(x0["alpha"], x0["chi"], x0["km"], x0["mu_s"], rule=rule, derivatives=True)
     if not bool(r.is_jarm) or bool(r.d_singular):
@@ -77,6 +97,55 @@ def delta_method(spec: Spread, question: str, rule: Rule = "paper") -> Delta | N
     if sd_m == 0.0:
         return Delta(theta_sd, 1.0 if margin > 0 else 0.0)
     return Delta(theta_sd, NormalDist().cdf(margin / sd_m))
+
+
+def _motion(spec: Spread, rule: Rule, options: Mapping[str, Any]) -> Delta | None:
+    """The full motion's estimate from the sensitivities of one run at the nominal point,
+    ended right after its first landing (the transitions before it are the same bits)."""
+    x0 = spec.nominal
+    if x0["km"] <= 0:  # simulate needs km > 0
+        return None
+    kw = {
+        "mu_s": x0["mu_s"],
+        "mu_k": x0["mu_k"],
+        "restitution": x0["restitution"],
+        "theta0": x0["theta0"],
+        "omega0": x0["omega0"],
+        "rule": rule,
+        **{k: options[k] for k in ("t_max", "rtol", "atol", "integrator") if k in options},
+    }
+    body = Cylinder(x0["chi"], x0["km"])
+    run = simulate(body, x0["alpha"], max_transitions=options.get("max_transitions", 50), **kw)
+    lift, land = _first_flight(run)
+    if lift is None:
+        return None
+    budget = max(1, lift if land is None else land)
+    run = simulate(body, x0["alpha"], max_transitions=budget, sensitivities=True, **kw)
+    d, singular = run.d_transitions, run.d_singular
+    if d is None or singular is None or singular[lift]:
+        return None
+    var = np.array([variance(spec, p) for p in SENSITIVITY_PARAMETERS])
+
+    def sd(g: NDArray[np.float64]) -> float:
+        if spec.mu_k_follows and "mu_k" not in spec.varied:  # mu_k is mu_s, sample by sample
+            g = g.copy()
+            g[SENSITIVITY_PARAMETERS.index("mu_s")] += g[SENSITIVITY_PARAMETERS.index("mu_k")]
+        return math.sqrt(float(np.sum(g * g * var)))
+
+    flight = None if land is None or singular[land] else sd(d[land, 0] - d[lift, 0])
+    return Delta(sd(d[lift, 1]), None, sd(d[lift, 0]), flight)
+
+
+def _first_flight(run: MotionResult) -> tuple[int | None, int | None]:
+    """The indices of the first transition into flight and of the landing that ends it."""
+    lift = next((i for i, t in enumerate(run.transitions) if t.to_mode == "FLIGHT"), None)
+    if lift is None:
+        return None, None
+    land = next(
+        (i for i, t in enumerate(run.transitions) if i > lift and t.reason in ("impact", "settle")),
+        None,
+    )
+    return lift, land
 
 
 __all__ = ["WRT", "Delta", "delta_method", "variance"]

@@ -136,8 +136,9 @@ class Uncertainty:
         first flight (over the samples that fly).
     delta : Delta or None
         The first-order (delta-method) estimate beside the Monte Carlo one, from the exact
-        derivatives of ``jarm(..., derivatives=True)`` at the nominal point; None for the
-        full motion and where the nominal point is no JARM
+        derivatives of ``jarm(..., derivatives=True)`` ("jarm") or of
+        ``simulate(..., sensitivities=True)`` ("motion") at the nominal point; None where the
+        nominal point is no JARM ("jarm") or does not fly ("motion")
         (:func:`eccjump.uncertainty.delta.delta_method`).
     """
 
@@ -291,7 +292,13 @@ class Uncertainty:
 
 
 def _first_order(d: Delta) -> str:
-    """The delta-method estimate in one line (theta_J's spread in degrees)."""
+    """The delta-method estimate in one line (angles' spreads in degrees)."""
+    if d.liftoff_t_sd is not None:  # the full motion
+        flight = "n/a" if d.flight_time_sd is None else f"{d.flight_time_sd:.5g}"
+        return (
+            f"lift-off angle sd {math.degrees(d.theta_J_sd):.4f} deg, time sd "
+            f"{d.liftoff_t_sd:.5g}, flight time sd {flight} (exact as tolerances -> 0)"
+        )
     p = "n/a (not the friction at the jump)" if d.p_jarm is None else f"{d.p_jarm:.5f}"
     return (
         f"theta_J sd {math.degrees(d.theta_J_sd):.4f} deg, P(JARM) {p} (exact as tolerances -> 0)"

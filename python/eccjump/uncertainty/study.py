@@ -218,7 +218,7 @@ def uncertainty(
             for name in QUANTITIES
             if name in outcomes
         },
-        delta=delta_method(spec, q, rule_name(rule)),
+        delta=delta_method(spec, q, rule_name(rule), opts),
     )
 
 

@@ -27,6 +27,9 @@ use pyo3::prelude::*;
 mod _core {
     #[pymodule_export]
     const VERSION: &str = env!("CARGO_PKG_VERSION");
+    /// The parameters of a full-motion run, in the order of the sensitivities' last axis.
+    #[pymodule_export]
+    const MOTION_PARAMETERS: [&str; 8] = eccjump_core::motion::options::PARAMETERS;
 
     #[pymodule_export]
     use crate::body::{body_derived, body_from_inertia, body_from_shell_and_line};

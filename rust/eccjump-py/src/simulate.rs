@@ -8,9 +8,12 @@ use crate::options::{parse_rule, ramp, solver_options};
 use eccjump_core::mechanics::BodyState;
 use eccjump_core::modes::contact::ContactLaw;
 use eccjump_core::motion::record::{MotionStatus, Point};
+use eccjump_core::motion::sensitivities::{
+    sensitivities as motion_sensitivities, Sensitivities, PARAMETERS,
+};
 use eccjump_core::motion::solution::MotionSolution;
 use eccjump_core::motion::{simulate_until, MotionRun, SimOptions};
-use numpy::{IntoPyArray, PyArray1, PyArray2, PyReadonlyArray1};
+use numpy::{IntoPyArray, PyArray1, PyArray2, PyArray3, PyArrayMethods, PyReadonlyArray1};
 use pyo3::prelude::*;
 use pyo3::types::PyString;
 
@@ -69,8 +72,8 @@ type Records<'py> = (
 );
 
 /// A finished run: its points, its records, the energy ledger (energy0, dissipated by
-/// sliding, by impacts), the status's name, the message, the evaluations and the dense
-/// output (or None).
+/// sliding, by impacts), the status's name, the message, the evaluations, the dense
+/// output and the sensitivities (each None unless asked for).
 type MotionOutput<'py> = (
     Points<'py>,
     Records<'py>,
@@ -79,7 +82,11 @@ type MotionOutput<'py> = (
     String,
     usize,
     Option<MotionDense>,
+    Option<Derivatives<'py>>,
 );
+
+/// A run's sensitivities: d(t, θ)/dp of each transition and its flag.
+type Derivatives<'py> = (Bound<'py, PyArray3<f64>>, Bound<'py, PyArray1<bool>>);
 
 /// The full motion of the body (χ, k_m) on a ramp of angle α, with the options of
 /// `eccjump.simulate` (keyword-only, named as there; μ_k resolved). Bad input raises
@@ -87,7 +94,7 @@ type MotionOutput<'py> = (
 #[pyfunction]
 #[pyo3(signature = (chi, km, alpha, *, mu_s, mu_k, restitution, rule, theta0, omega0, slip0,
                     t_max, l_max, max_transitions, rtol, atol, max_steps, dense_output,
-                    integrator))]
+                    integrator, sensitivities))]
 #[allow(clippy::too_many_arguments)] // the options of one run
 pub fn simulate<'py>(
     py: Python<'py>,
@@ -109,6 +116,7 @@ pub fn simulate<'py>(
     max_steps: usize,
     dense_output: bool,
     integrator: &str,
+    sensitivities: bool,
 ) -> PyResult<MotionOutput<'py>> {
     let ramp = ramp(chi, km, alpha)?;
     let opts = SimOptions {
@@ -128,7 +136,14 @@ pub fn simulate<'py>(
         dense_output,
         ..SimOptions::default()
     };
-    let run = detached(py, |stop| simulate_until(&ramp, &opts, stop))?;
+    let (run, sens) = detached(py, |stop| {
+        let run = simulate_until(&ramp, &opts, stop)?;
+        let sens = match sensitivities {
+            true => Some(motion_sensitivities(&ramp, &opts, &run, stop)?),
+            false => None,
+        };
+        Ok((run, sens))
+    })?;
     Ok((
         points(py, &run.points),
         records(py, &run),
@@ -137,7 +152,16 @@ pub fn simulate<'py>(
         run.message,
         run.nfev,
         run.dense.map(|sol| MotionDense { sol }),
+        sens.map(|s| derivatives(py, s)).transpose()?,
     ))
+}
+
+/// The sensitivities as (d_transitions of shape (transitions, 2, 8), d_singular).
+fn derivatives(py: Python<'_>, s: Sensitivities) -> PyResult<Derivatives<'_>> {
+    let n = s.transitions.len();
+    let flat: Vec<f64> = s.transitions.iter().flatten().flatten().copied().collect();
+    let d = flat.into_pyarray(py).reshape([n, 2, PARAMETERS.len()])?;
+    Ok((d, s.singular.into_pyarray(py)))
 }
 
 /// (θ, θ̇, l, l̇, b, ḃ): the order of every full state handed to Python.

@@ -229,16 +229,7 @@ impl MotionAxes<'_> {
     /// The number of grid points (an error if it overflows, or an axis other than μ_k is
     /// empty).
     pub fn size(&self) -> Result<usize> {
-        let names = [
-            "alpha",
-            "chi",
-            "km",
-            "mu_s",
-            "mu_k",
-            "restitution",
-            "theta0",
-            "omega0",
-        ];
+        let names = crate::motion::options::PARAMETERS;
         let shape = self.shape();
         if let Some(k) = shape.iter().position(|&n| n == 0) {
             return Err(Error::InvalidParameter {

@@ -17,6 +17,19 @@ pub const MAX_TIME: f64 = 1e6;
 /// keep steps shorter (every run at the default rtol but such bodies) it changes nothing.
 pub const MAX_ANGLE_STEP: f64 = 0.5;
 
+/// The eight parameters of a run, in the order every full-motion interface takes them (the
+/// axes of a motion map, the last axis of the sensitivities).
+pub const PARAMETERS: [&str; 8] = [
+    "alpha",
+    "chi",
+    "km",
+    "mu_s",
+    "mu_k",
+    "restitution",
+    "theta0",
+    "omega0",
+];
+
 /// max_transitions ≤ this.
 pub const MAX_TRANSITIONS: usize = 1_000_000;
 
