@@ -45,8 +45,8 @@
 //! narrower than the sample spacing is found, as the closed form's derivative test finds it.
 //! θ is accurate to ~rtol·|θ|, ×10 for shallow F_y roots. The samples of a step that the
 //! rigorous change bounds (`modes::rolling::bounds`) prove free of crossings are skipped,
-//! bit-identically, and the step end's trigonometry is shared by the right-hand side, the
-//! events and the observer (`modes::rolling::memo`): their costs and gains are in
+//! bit-identically, and the step end's trigonometry is handed on by the right-hand side to the
+//! events and the observer (`ode::OdeSystem::rhs_with_trig`): their costs and gains are in
 //! `docs/performance.md`, the dip test's history in `docs/jarm.md`.
 //!
 //! No heap allocation, no shared state: deterministic, bit-identical for any thread count.
@@ -58,17 +58,16 @@ use crate::jarm::result::{JarmOptions, JarmResult, Reason};
 use crate::jarm::turns::turn_of;
 use crate::mechanics::friction::{friction_ratio, slip_margin, slip_margin_rate};
 use crate::mechanics::liftoff::liftoff_slope;
-use crate::mechanics::Rule;
+use crate::mechanics::{Ramp, Rule};
 use crate::modes::rolling::bounds::ContactBounds;
 use crate::modes::rolling::events::{
     equilibrium_start, violated_at_start, ContactEvent, StartValues, Watched,
 };
-use crate::modes::rolling::memo::RollingMemo;
 use crate::modes::rolling::{ContactRates, Kinematics};
 use crate::ode::lanes::{solve_lanes_with, Start, Track};
 use crate::ode::{
     self, Change, DenseStep, Direction, EventBounds, EventFunctions, EventSpec, Observation,
-    Outcome, SolverOptions, State, Status, StepEnds,
+    Outcome, SinCos, SolverOptions, State, Status, StepEnds,
 };
 use std::cell::Cell;
 use std::f64::consts::TAU;
@@ -91,7 +90,7 @@ const STEPS_PER_TURN: usize = 20_000;
 /// (A memo of the last state's kinematics, once kept here, bought under 2 % on every
 /// benchmark: docs/performance.md.)
 struct JarmEvents {
-    sys: RollingMemo,
+    ramp: Ramp,
     mu_s: f64,
     liftoff: bool,
     normal_force: bool,
@@ -100,11 +99,6 @@ struct JarmEvents {
 }
 
 impl JarmEvents {
-    #[inline]
-    fn kinematics(&self, theta: f64, omega: f64) -> Kinematics {
-        self.sys.kinematics(theta, omega)
-    }
-
     /// g_k at a state. (An exact 0 used to be nudged to ±the smallest normal number, to work
     /// around a stale bracket of `roots::brent` on exact zeros; brent is fixed, and removing
     /// the nudge moved θ at 0.35 % of a 100³ map by ≤ 4e-14 rad, with the same verdicts and no
@@ -150,10 +144,15 @@ impl EventFunctions<2> for JarmEvents {
             terminal: true,
         }
     }
-    /// All events from one evaluation of the kinematics (one `sin_cos` per sample).
     #[inline]
-    fn values(&self, first: usize, _t: f64, y: &State<2>, out: &mut [f64]) {
-        let q = self.kinematics(y[0], y[1]);
+    fn values(&self, first: usize, t: f64, y: &State<2>, out: &mut [f64]) {
+        self.values_at(first, t, y, None, out);
+    }
+    /// All events from one evaluation of the kinematics (one `sin_cos` per sample, none
+    /// with `trig`).
+    #[inline]
+    fn values_at(&self, first: usize, _: f64, y: &State<2>, trig: Option<SinCos>, out: &mut [f64]) {
+        let q = self.ramp.kinematics_at(y[0], y[1], trig);
         for (i, o) in out.iter_mut().enumerate() {
             *o = self.value_of(first + i, &q);
         }
@@ -161,8 +160,8 @@ impl EventFunctions<2> for JarmEvents {
     /// Slopes for the dip test (grazing events between two samples).
     #[inline]
     fn slopes(&self, first: usize, _t: f64, y: &State<2>, out: &mut [f64]) {
-        let q = self.kinematics(y[0], y[1]);
-        let r = self.sys.ramp.contact_rates(&q);
+        let q = self.ramp.kinematics(y[0], y[1]);
+        let r = self.ramp.contact_rates(&q);
         for (i, o) in out.iter_mut().enumerate() {
             *o = self.slope_of(first + i, &q, &r);
         }
@@ -174,12 +173,17 @@ impl EventFunctions<2> for JarmEvents {
 }
 
 impl EventBounds<2> for JarmEvents {
-    /// The rolling run's bounds ([`ContactBounds::near`], anchored at the trigonometry in
-    /// the memo, usually the step end's); a disabled event is a constant
-    /// (bound 0).
+    /// The rolling run's bounds ([`ContactBounds::near`], anchored at the trigonometry of
+    /// the step end when it is there); a disabled event is a constant (bound 0).
     #[inline]
-    fn change_bounds(&self, first: usize, dense: &DenseStep<2>, out: &mut [Change]) {
-        let b = self.change_bounds_near(dense, Some(self.sys.anchor()));
+    fn change_bounds(
+        &self,
+        first: usize,
+        dense: &DenseStep<2>,
+        end_trig: Option<SinCos>,
+        out: &mut [Change],
+    ) {
+        let b = self.change_bounds_near(dense, end_trig);
         out.copy_from_slice(&b[first..first + out.len()]);
     }
     /// The same from the step's ends ([`ContactBounds::from_ends`]).
@@ -189,11 +193,11 @@ impl EventBounds<2> for JarmEvents {
         first: usize,
         ends: &StepEnds<2>,
         bends: bool,
+        end_trig: Option<SinCos>,
         out: &mut [Change],
     ) {
         let mu_s = self.slip.then_some(self.mu_s);
-        let anchor = Some(self.sys.anchor());
-        let b = ContactBounds::from_ends(&self.sys.ramp, mu_s, ends, anchor, bends);
+        let b = ContactBounds::from_ends(&self.ramp, mu_s, ends, end_trig, bends);
         let b = self.of_all(b);
         out.copy_from_slice(&b[first..first + out.len()]);
     }
@@ -206,10 +210,10 @@ impl JarmEvents {
     fn change_bounds_near(
         &self,
         dense: &DenseStep<2>,
-        anchor: Option<(f64, f64, f64)>,
+        anchor: Option<SinCos>,
     ) -> [Change; N_EVENTS] {
         let mu_s = self.slip.then_some(self.mu_s);
-        self.of_all(ContactBounds::near(&self.sys.ramp, mu_s, dense, anchor))
+        self.of_all(ContactBounds::near(&self.ramp, mu_s, dense, anchor))
     }
 
     /// The bounds of all events, in their order, from the contact functions'.
@@ -281,7 +285,7 @@ fn integrate(
     track: Option<&Cell<Extrema>>,
 ) -> End {
     let t_end = t0 + 1e300;
-    let out = ode::solve(&ev.sys, ev, t0, y0, t_end, so, &mut |obs| {
+    let out = ode::solve(&ev.ramp, ev, t0, y0, t_end, so, &mut |obs| {
         if let Some(tr) = track {
             observe_extrema(ev, tr, obs);
         }
@@ -292,9 +296,9 @@ fn integrate(
 /// The path extrema at an accepted step's end.
 #[inline]
 fn observe_extrema(ev: &JarmEvents, track: &Cell<Extrema>, obs: Observation<'_, 2>) {
-    if let Observation::Step { y, .. } = obs {
+    if let Observation::Step { y, trig, .. } = obs {
         let mut e = track.get();
-        extrema_add(&mut e, &ev.kinematics(y[0], y[1]));
+        extrema_add(&mut e, &ev.ramp.kinematics_at(y[0], y[1], trig));
         track.set(e);
     }
 }
@@ -398,7 +402,7 @@ fn prepare(
     };
     let paper = o.rule == Rule::Paper;
     let ev = JarmEvents {
-        sys: RollingMemo::new(r),
+        ramp: r,
         mu_s,
         liftoff: paper,
         normal_force: true,
@@ -461,7 +465,7 @@ struct Finding {
 /// the integrator failed.
 fn found(p: Prepared, end: End) -> Result<Finding, JarmResult> {
     let ext = p.ext.get();
-    let r = p.ev.sys.ramp;
+    let r = p.ev.ramp;
     let (k, t, y) = match end {
         End::Event { k, t, y } => (k, t, y),
         End::Failed { y } => {
@@ -506,7 +510,7 @@ impl Finding {
     fn case(&self) -> Case<'_> {
         let p = &self.p;
         Case {
-            body: &p.ev.sys.ramp.body,
+            body: &p.ev.ramp.body,
             alpha: p.alpha,
             mu_s: p.mu_s,
             rule: p.o.rule,
@@ -525,7 +529,7 @@ impl Finding {
         let ev = &self.p.ev;
         needed.then(|| {
             let cont = JarmEvents {
-                sys: ev.sys.clone(),
+                ramp: ev.ramp,
                 mu_s: ev.mu_s,
                 liftoff: ev.liftoff,
                 normal_force: false,
@@ -567,11 +571,11 @@ enum RouteTrack {
 }
 
 impl Track<2> for RouteTrack {
-    type Sys = RollingMemo;
+    type Sys = Ramp;
     type Events = JarmEvents;
     #[inline]
-    fn sys(&self) -> &RollingMemo {
-        &self.events().sys
+    fn sys(&self) -> &Ramp {
+        &self.events().ramp
     }
     #[inline]
     fn events(&self) -> &JarmEvents {

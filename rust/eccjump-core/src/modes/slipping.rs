@@ -15,12 +15,11 @@
 use crate::mechanics::friction::Sliding;
 use crate::mechanics::Ramp;
 use crate::modes::slip_in_impulse::D_SWITCH;
-use crate::ode::lanes::{LaneRhs, Lanes, LANES};
+use crate::ode::lanes::{Lane, LaneRhs, Lanes, LANES};
 use crate::ode::{
-    Change, DenseStep, Direction, EventBounds, EventFunctions, EventSpec, OdeSystem, State,
+    Change, DenseStep, Direction, EventBounds, EventFunctions, EventSpec, OdeSystem, SinCos, State,
 };
 use crate::trig::lanes::sin_cos_lanes;
-use crate::trig::SinCosMemo;
 
 /// Accelerations and contact force of the sliding mode at one state.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -49,8 +48,7 @@ impl SlipKinematics {
     }
 }
 
-/// The sliding mode of a body on its ramp, friction in direction σ = ±1 with μ_k, with the
-/// memo of sin_cos its right-hand side and its events share ([`SinCosMemo`]).
+/// The sliding mode of a body on its ramp, friction in direction σ = ±1 with μ_k.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Slipping {
     /// The body on its ramp.
@@ -59,31 +57,26 @@ pub struct Slipping {
     pub sigma: f64,
     /// Kinetic friction coefficient.
     pub mu_k: f64,
-    trig: SinCosMemo,
 }
 
 impl Slipping {
     /// The sliding mode with friction direction σ and kinetic coefficient μ_k.
     pub fn new(ramp: Ramp, sigma: f64, mu_k: f64) -> Self {
-        Self {
-            ramp,
-            sigma,
-            mu_k,
-            trig: SinCosMemo::default(),
-        }
-    }
-
-    /// (sin θ, cos θ), from the memo when θ is the last angle evaluated.
-    #[inline]
-    pub fn sin_cos(&self, theta: f64) -> (f64, f64) {
-        self.trig.get(theta)
+        Self { ramp, sigma, mu_k }
     }
 
     /// The sliding accelerations and force at (θ, θ̇). Computed for any D ≠ 0 (callers test
     /// `d`: the mode is consistent only where D > 0 and B > 0).
     #[inline]
     pub fn kinematics(&self, theta: f64, omega: f64) -> SlipKinematics {
-        let (s, c) = self.sin_cos(theta);
+        self.kinematics_at(theta, omega, None)
+    }
+
+    /// [`Self::kinematics`], with sin θ and cos θ from `trig` when it is of this θ
+    /// ([`SinCos::at`]).
+    #[inline]
+    pub fn kinematics_at(&self, theta: f64, omega: f64, trig: Option<SinCos>) -> SlipKinematics {
+        let (s, c) = SinCos::at(theta, trig);
         self.kinematics_sc(omega, s, c)
     }
 
@@ -113,9 +106,15 @@ impl Slipping {
 /// The sliding equations in y = (θ, θ̇, l, l̇, q), q the energy dissipated by friction.
 impl OdeSystem<5> for Slipping {
     #[inline]
-    fn rhs(&self, _t: f64, y: &State<5>) -> State<5> {
-        let (s, c) = self.sin_cos(y[0]);
-        self.derivative(y[1], y[3], s, c)
+    fn rhs(&self, t: f64, y: &State<5>) -> State<5> {
+        self.rhs_with_trig(t, y).0
+    }
+
+    /// f and (sin θ, cos θ).
+    #[inline]
+    fn rhs_with_trig(&self, _t: f64, y: &State<5>) -> (State<5>, Option<SinCos>) {
+        let trig = SinCos::of(y[0]);
+        (self.derivative(y[1], y[3], trig.sin, trig.cos), Some(trig))
     }
 }
 
@@ -135,19 +134,21 @@ impl LaneRhs<5> for Slipping {
     /// [`sin_cos_lanes`], the same arithmetic per lane).
     #[inline(always)]
     fn rhs_lanes(systems: &[&Self; LANES], y: &Lanes<5>) -> Lanes<5> {
+        Self::rhs_lanes_with_trig(systems, y).0
+    }
+
+    #[inline(always)]
+    fn rhs_lanes_with_trig(
+        systems: &[&Self; LANES],
+        y: &Lanes<5>,
+    ) -> (Lanes<5>, Option<[Lane; 2]>) {
         let (s, c) = sin_cos_lanes(&y.0[0]);
         let mut out = Lanes([[0.0; LANES]; 5]);
         for l in 0..LANES {
             let d = systems[l].derivative(y.0[1][l], y.0[3][l], s[l], c[l]);
             out.set_lane(l, &d);
         }
-        out
-    }
-
-    /// Each memo gets the trigonometry of its lane's step end, where the event scan starts.
-    #[inline(always)]
-    fn step_end_lanes(systems: &[&Self; LANES], y_new: &Lanes<5>) {
-        SinCosMemo::set_lanes(&y_new.0[0], |l| &systems[l].trig);
+        (out, Some([s, c]))
     }
 }
 
@@ -178,7 +179,7 @@ impl SlipEvent {
 /// The events of a slip, all terminal.
 #[derive(Debug, Clone, PartialEq)]
 pub struct SlipEvents {
-    /// The sliding mode (its memo shared with the right-hand side: integrate this one).
+    /// The sliding mode.
     pub slipping: Slipping,
     /// The l that ends the run (∞: never).
     pub l_max: f64,
@@ -200,11 +201,15 @@ impl EventFunctions<5> for SlipEvents {
             terminal: true,
         }
     }
-    /// All events from one `sin_cos`.
     #[inline]
-    fn values(&self, first: usize, _t: f64, y: &State<5>, out: &mut [f64]) {
+    fn values(&self, first: usize, t: f64, y: &State<5>, out: &mut [f64]) {
+        self.values_at(first, t, y, None, out);
+    }
+    /// All events from one `sin_cos` (or none, with `trig`).
+    #[inline]
+    fn values_at(&self, first: usize, _: f64, y: &State<5>, trig: Option<SinCos>, out: &mut [f64]) {
         let r = &self.slipping.ramp;
-        let (s, c) = self.slipping.sin_cos(y[0]);
+        let (s, c) = SinCos::at(y[0], trig);
         let sl = Sliding::new(&r.body, s, c, self.slipping.sigma, self.slipping.mu_k);
         for (i, o) in out.iter_mut().enumerate() {
             *o = match SlipEvent::ALL[first + i] {
@@ -258,7 +263,13 @@ impl EventBounds<5> for SlipEvents {
     /// - the slip velocity and l − l_max: linear, no P;
     /// - D − D_min: d²D/dθ² = 2χ² cos 2θ + σμ_kχ(sin θ + 2χ sin 2θ): P_θθ = 2χ² + μ_kχ(1 + 2χ).
     #[inline]
-    fn change_bounds(&self, first: usize, dense: &DenseStep<5>, out: &mut [Change]) {
+    fn change_bounds(
+        &self,
+        first: usize,
+        dense: &DenseStep<5>,
+        _: Option<SinCos>,
+        out: &mut [Change],
+    ) {
         let b = dense.bounds();
         let (value, rate, accel) = (b.value, b.rate, b.accel);
         let h = dense.h.abs();
@@ -386,7 +397,7 @@ mod tests {
                 let dense = dense.expect("every step's dense output");
                 steps += 1;
                 let mut bound = [Change::NONE; 4];
-                events.change_bounds(0, dense, &mut bound);
+                events.change_bounds(0, dense, None, &mut bound);
                 let g = |t: f64| {
                     let y = if t == dense.t_old {
                         dense.y_old

@@ -1,5 +1,4 @@
-//! A sliding segment under way: its system and events (sharing one memo of the
-//! trigonometry), its start and what it records. `simulate` integrates it alone; a motion
+//! A sliding segment under way: its system and events, its start and what it records. `simulate` integrates it alone; a motion
 //! map integrates the sliding segments of many runs side by side ([`crate::ode::lanes`]),
 //! each the same as alone, bit for bit.
 
@@ -12,7 +11,7 @@ use crate::modes::slipping::{SlipEvents, Slipping};
 use crate::motion::options::SimOptions;
 use crate::motion::record::Point;
 use crate::ode::lanes::Track;
-use crate::ode::{DenseStep, Observation, SolverOptions, State};
+use crate::ode::{DenseStep, Observation, SinCos, SolverOptions, State};
 
 /// The contact state of a sliding segment's y = (θ, θ̇, l, l̇, q).
 #[inline]
@@ -83,7 +82,7 @@ impl SlipTrack {
                 memory: None,
             }),
         };
-        track.record_point(&mut track.record.borrow_mut().points, t0, &track.y0)?;
+        track.record_point(&mut track.record.borrow_mut().points, t0, &track.y0, None)?;
         Ok(track)
     }
 
@@ -106,13 +105,20 @@ impl SlipTrack {
         }
     }
 
-    /// Records the point (t, y), if points are recorded.
-    fn record_point(&self, points: &mut Vec<Point>, t: f64, y: &State<5>) -> Result<()> {
+    /// Records the point (t, y), if points are recorded (with the trigonometry of θ from
+    /// `trig` when it is there).
+    fn record_point(
+        &self,
+        points: &mut Vec<Point>,
+        t: f64,
+        y: &State<5>,
+        trig: Option<SinCos>,
+    ) -> Result<()> {
         if !self.record_points {
             return Ok(());
         }
-        let sys = &self.events.slipping;
-        let k = sys.kinematics(y[0], y[1]);
+        let trig = SinCos::reuse(y[0], trig);
+        let k = self.events.slipping.kinematics_at(y[0], y[1], Some(trig));
         let state = slip_state(y);
         if points.len() == points.capacity() {
             try_grow("the record of the run", points)?;
@@ -122,8 +128,7 @@ impl SlipTrack {
             state,
             fx: k.fx,
             fy: k.fy,
-            // The trigonometry `kinematics` has just used (the memo's).
-            energy: self.ramp.energy_of_trig(&state, sys.sin_cos(y[0])),
+            energy: self.ramp.energy_of_trig(&state, (trig.sin, trig.cos)),
             dissipated: self.slid + y[4] + self.impacts,
             mode: Mode::Slip,
         });
@@ -144,7 +149,7 @@ impl Track<5> for SlipTrack {
     }
     #[inline]
     fn observe(&self, obs: Observation<'_, 5>) {
-        let Observation::Step { dense, t, y } = obs else {
+        let Observation::Step { dense, t, y, trig } = obs else {
             return;
         };
         let mut rec = self.record.borrow_mut();
@@ -157,7 +162,7 @@ impl Track<5> for SlipTrack {
         if memory.is_some() {
             return;
         }
-        if let Err(e) = self.record_point(points, t, y) {
+        if let Err(e) = self.record_point(points, t, y, trig) {
             *memory = Some(e);
         } else if let (true, Some(dense)) = (self.dense_output, dense) {
             // (always there: the solver makes every step's when it is recorded)

@@ -1,6 +1,6 @@
 //! Event functions g_k(t, y): their specs, and location of their zeros on the dense output.
 
-use super::{DenseStep, State, StepEnds};
+use super::{DenseStep, SinCos, State, StepEnds};
 use crate::ode::hermite::hermite_min;
 use crate::ode::roots;
 
@@ -39,6 +39,15 @@ pub trait EventFunctions<const N: usize> {
     /// step scan calls it for all events at every sample, so events that share work
     /// (trigonometry of the state, say) do it once.
     fn values(&self, first: usize, t: f64, y: &State<N>, out: &mut [f64]);
+    /// [`Self::values`] at a state whose y[0] has the sine and cosine `trig`, if known
+    /// (handed on from the right-hand side: [`crate::ode::OdeSystem::rhs_with_trig`]), for
+    /// events that need them. The scan asks so at each step's end. By default `trig` is
+    /// not used.
+    #[inline]
+    fn values_at(&self, first: usize, t: f64, y: &State<N>, trig: Option<SinCos>, out: &mut [f64]) {
+        let _ = trig;
+        self.values(first, t, y, out);
+    }
     /// dg_first/dt, dg_first+1/dt, … along the solution at one point, into `out` (as
     /// [`Self::values`]), for the dip test of the step scan: where g_k has one sign at two
     /// neighbouring samples but its slope turns between them (towards zero, then away),
@@ -62,10 +71,20 @@ pub trait EventFunctions<const N: usize> {
 /// Bounds on how much event functions can change within a step (see [`Change`]), which
 /// let the solver skip work where they prove that no event can occur. Optional: the same
 /// events are found without them, at more cost.
+///
+/// Both methods are given `end_trig`, the sine and cosine of y[0] at the step's end if the
+/// right-hand side computed them there ([`crate::ode::OdeSystem::rhs_with_trig`]): bounds
+/// on the trigonometry along the step may start from them.
 pub trait EventBounds<const N: usize> {
     /// Bounds on how much each event function g_first, g_first+1, … can change within the
     /// step `dense`, into `out`.
-    fn change_bounds(&self, first: usize, dense: &DenseStep<N>, out: &mut [Change]);
+    fn change_bounds(
+        &self,
+        first: usize,
+        dense: &DenseStep<N>,
+        end_trig: Option<SinCos>,
+        out: &mut [Change],
+    );
     /// Bounds as [`Self::change_bounds`], from the step's ends alone (before its dense
     /// output is built), meant to hold along the dense output whatever it turns out to be
     /// (computed along an interpolant of the ends, widened by an estimate of how far the
@@ -80,9 +99,10 @@ pub trait EventBounds<const N: usize> {
         first: usize,
         ends: &StepEnds<N>,
         bends: bool,
+        end_trig: Option<SinCos>,
         out: &mut [Change],
     ) {
-        let _ = (first, ends, bends);
+        let _ = (first, ends, bends, end_trig);
         out.fill(Change::ANY);
     }
 }
@@ -91,7 +111,7 @@ pub trait EventBounds<const N: usize> {
 pub struct NoBounds;
 
 impl<const N: usize> EventBounds<N> for NoBounds {
-    fn change_bounds(&self, _first: usize, _dense: &DenseStep<N>, out: &mut [Change]) {
+    fn change_bounds(&self, _: usize, _: &DenseStep<N>, _: Option<SinCos>, out: &mut [Change]) {
         out.fill(Change::ANY);
     }
 }
@@ -128,12 +148,14 @@ fn slope_of<E: EventFunctions<N>, const N: usize>(
 /// output is not needed for the scan, and the step end's values go to `carry` for the
 /// next step, as [`scan_step`] leaves them. False (and `carry` untouched) whenever in
 /// doubt: more events than one chunk, a non-finite value, or a bound that does not hold;
+/// `end_trig` is the sine and cosine of y_new[0], if known.
 /// [`scan_step`] then scans the step on its dense output, as always. The bounds without
 /// their bends come first; the bends only when the rates alone do not clear the step (the
 /// same verdict as the whole bounds at once: the rates are the same bits).
 pub fn quiet_step<E: EventFunctions<N>, const N: usize>(
     events: &E,
     ends: &StepEnds<N>,
+    end_trig: Option<SinCos>,
     carry: &mut EventCarry<N>,
 ) -> bool {
     let m = events.count();
@@ -146,7 +168,7 @@ pub fn quiet_step<E: EventFunctions<N>, const N: usize>(
     let mut g_a = [0.0; EVENT_CHUNK];
     let mut g_b = [0.0; EVENT_CHUNK];
     let mut bound = [Change::ANY; EVENT_CHUNK];
-    bounds.change_bounds_ends(0, ends, false, &mut bound[..m]);
+    bounds.change_bounds_ends(0, ends, false, end_trig, &mut bound[..m]);
     if bound[..m].iter().any(|b| b.slack == f64::INFINITY) {
         return false;
     }
@@ -156,13 +178,13 @@ pub fn quiet_step<E: EventFunctions<N>, const N: usize>(
         events.values(0, ends.t_old, &ends.y_old, &mut g_a[..m]);
     }
     let t_new = ends.t_new;
-    events.values(0, t_new, &ends.y_new, &mut g_b[..m]);
+    events.values_at(0, t_new, &ends.y_new, end_trig, &mut g_b[..m]);
     let clear = |bound: &[Change]| (0..m).all(|i| no_zero_inside(g_a[i], g_b[i], &bound[i], 1.0));
     if !clear(&bound[..m]) {
         if bound[..m].iter().all(|b| b.bend < f64::INFINITY) {
             return false; // the bends were there already
         }
-        bounds.change_bounds_ends(0, ends, true, &mut bound[..m]);
+        bounds.change_bounds_ends(0, ends, true, end_trig, &mut bound[..m]);
         if !clear(&bound[..m]) {
             return false;
         }
@@ -371,6 +393,8 @@ struct StepSamples<'a, const N: usize> {
     dense: &'a DenseStep<N>,
     t_new: f64,
     y_new: &'a State<N>,
+    /// sin and cos of y_new[0], if known.
+    trig_new: Option<SinCos>,
     samples: usize,
 }
 
@@ -519,15 +543,15 @@ fn dip<E: EventFunctions<N>, const N: usize>(
     })
 }
 
-/// Finds the events of one accepted step (dense output `dense`, ending at (t_new, y_new))
-/// and hands each to `report` in time order (ties by event index), stopping after the
-/// first terminal one, which is returned. `carry` holds the end values of the previous
-/// scanned step (start with `EventCarry::default()`).
+/// Finds the events of one accepted step (dense output `dense`, ending at (t_new, y_new),
+/// where y_new[0] has the sine and cosine `trig_new` if known) and hands each to `report`
+/// in time order (ties by event index), stopping after the first terminal one, which is
+/// returned. `carry` holds the end values of the previous scanned step (start with
+/// `EventCarry::default()`).
 pub fn scan_step<E: EventFunctions<N>, const N: usize>(
     events: &E,
     dense: &DenseStep<N>,
-    t_new: f64,
-    y_new: &State<N>,
+    (t_new, y_new, trig_new): (f64, &State<N>, Option<SinCos>),
     samples: usize,
     carry: &mut EventCarry<N>,
     report: impl FnMut(EventHit<N>),
@@ -539,6 +563,7 @@ pub fn scan_step<E: EventFunctions<N>, const N: usize>(
         dense,
         t_new,
         y_new,
+        trig_new,
         samples,
     };
     match first_crossing(events, &pts, carry)? {
@@ -575,7 +600,7 @@ fn first_crossing<E: EventFunctions<N>, const N: usize>(
         }
         check_all(&g_a[..m])?;
         let mut g_end = [0.0; EVENT_CHUNK];
-        events.values(first, pts.t_new, pts.y_new, &mut g_end[..m]);
+        events.values_at(first, pts.t_new, pts.y_new, pts.trig_new, &mut g_end[..m]);
         if carry_all {
             *carry = EventCarry {
                 t: pts.t_new,
@@ -613,7 +638,7 @@ fn walk_samples<E: EventFunctions<N>, const N: usize>(
     // Without bounds (or with no interior samples) nothing is skipped.
     let mut bound = [Change::ANY; EVENT_CHUNK];
     if let Some(bounds) = events.bounds().filter(|_| samples > 0) {
-        bounds.change_bounds(first, dense, &mut bound[..m]);
+        bounds.change_bounds(first, dense, pts.trig_new, &mut bound[..m]);
         if (0..m).all(|i| no_zero_inside(g_a[i], g_end[i], &bound[i], 1.0)) {
             return Ok(None);
         }

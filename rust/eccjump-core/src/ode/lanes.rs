@@ -26,7 +26,7 @@ use super::pair::{
 };
 use super::solver::{Observation, Outcome, Run, SolverOptions, Status};
 use super::stepper::{Judgement, Trial};
-use super::{DenseStep, EventFunctions, OdeSystem, State};
+use super::{DenseStep, EventFunctions, OdeSystem, SinCos, State};
 pub use crate::trig::lanes::{Lane, LANES};
 
 /// N components of [`LANES`] states: component i of lane l is `self.0[i][l]`.
@@ -100,12 +100,15 @@ pub trait LaneRhs<const N: usize>: OdeSystem<N> {
     /// [`OdeSystem::rhs`] (at any t: the system is autonomous).
     fn rhs_lanes(systems: &[&Self; LANES], y: &Lanes<N>) -> Lanes<N>;
 
-    /// Called once the stages of a round are done: lane l's system may prepare what the
-    /// event scan of its step will ask at the step's end `y_new` (a memo of its
-    /// trigonometry, say). Nothing by default.
+    /// [`Self::rhs_lanes`] with the sines and cosines of y[0] it computed on the way, if
+    /// any, lane by lane ([`OdeSystem::rhs_with_trig`]): asked at the steps' ends (FSAL),
+    /// for their event scans and observers. None by default.
     #[inline(always)]
-    fn step_end_lanes(systems: &[&Self; LANES], y_new: &Lanes<N>) {
-        let _ = (systems, y_new);
+    fn rhs_lanes_with_trig(
+        systems: &[&Self; LANES],
+        y: &Lanes<N>,
+    ) -> (Lanes<N>, Option<[Lane; 2]>) {
+        (Self::rhs_lanes(systems, y), None)
     }
 }
 
@@ -232,7 +235,7 @@ fn lanes<P, T, const N: usize>(
             continue;
         };
         let y_new = stages::<P, T, N>(&slots, &mut round, &mut k);
-        let accepted = verdicts(&mut slots, &round, &k, &y_new, &mut done);
+        let accepted = verdicts(&mut slots, &round, &k, y_new, &mut done);
         let (mut ended, dense_for) = quiet_steps(&mut slots, &round, accepted, stop);
         if dense_for.contains(&true) {
             dense_steps(&mut slots, &round, &mut k, dense_for, &mut ended, stop);
@@ -357,13 +360,14 @@ fn systems<P, T: Track<N>, const N: usize>(slots: &Slots<P, T, N>) -> [&T::Sys; 
 }
 
 /// The stages of every lane into `k`, then the end state y + (Σ b_j K_j) h and f there
-/// (FSAL), which it returns.
+/// (FSAL): returns the end state with the sine and cosine of its y[0] by lane, if f
+/// came with them.
 #[inline(always)]
 fn stages<P, T, const N: usize>(
     slots: &Slots<P, T, N>,
     round: &mut Round<N>,
     k: &mut [Lanes<N>; MAX_STAGES],
-) -> Lanes<N>
+) -> (Lanes<N>, Option<[Lane; 2]>)
 where
     P: RkPair<N>,
     T: Track<N>,
@@ -376,9 +380,9 @@ where
         k[s] = T::Sys::rhs_lanes(&systems, &y.plus_times(&d, h));
     }
     let y_new = y.plus_times(&weighted_sum(&k[..P::STAGES], P::b()), h);
-    k[P::STAGES] = T::Sys::rhs_lanes(&systems, &y_new);
-    T::Sys::step_end_lanes(&systems, &y_new);
-    y_new
+    let trig;
+    (k[P::STAGES], trig) = T::Sys::rhs_lanes_with_trig(&systems, &y_new);
+    (y_new, trig)
 }
 
 /// Each lane's verdict by the scalar step control, from its error sums (err^e of every
@@ -389,12 +393,13 @@ fn verdicts<P, T, const N: usize>(
     slots: &mut Slots<P, T, N>,
     round: &Round<N>,
     k: &[Lanes<N>; MAX_STAGES],
-    y_new: &Lanes<N>,
+    (y_new, trig): (Lanes<N>, Option<[Lane; 2]>),
     done: &mut impl FnMut(T, Outcome<N>),
 ) -> [bool; LANES]
 where
     P: RkPair<N>,
 {
+    let y_new = &y_new;
     let err_sums = P::error_sums(&k[..=P::STAGES]);
     let finite = finite_lanes(&k[1..=P::STAGES], y_new);
     let mut err = [0.0; LANES];
@@ -415,7 +420,14 @@ where
         let step = (round.t_new[l], round.h[l]);
         let error = (err[l], power[l]);
         match judge_lane(s, &k[..=P::STAGES], (l, finite[l]), error, step, y_new) {
-            Judgement::Accepted => accepted[l] = true,
+            Judgement::Accepted => {
+                accepted[l] = true;
+                s.run.st.trig = trig.map(|[sin, cos]| SinCos {
+                    theta: y_new.0[0][l],
+                    sin: sin[l],
+                    cos: cos[l],
+                });
+            }
             Judgement::Retry => s.run.out.n_rejected += 1,
             Judgement::NonFinite => {
                 let mut s = slots[l].take().expect("a lane in use");

@@ -24,6 +24,7 @@ pub mod solver;
 pub mod stepper;
 pub mod tableau;
 
+pub use crate::trig::SinCos;
 pub use dense::{DenseBounds, DenseStep};
 pub use ends::StepEnds;
 pub use events::{
@@ -40,4 +41,14 @@ pub type State<const N: usize> = nalgebra::SVector<f64, N>;
 pub trait OdeSystem<const N: usize> {
     /// The right-hand side f(t, y).
     fn rhs(&self, t: f64, y: &State<N>) -> State<N>;
+
+    /// [`Self::rhs`] with the sine and cosine of y[0] it computed on the way, if any. The
+    /// solver asks for them at each step's end (the FSAL evaluation) and hands them on, as
+    /// an explicit argument, to the events, their change bounds and the observer at that
+    /// same state ([`EventFunctions::values_at`], [`Observation::Step`]), so that none of
+    /// them computes them again. None by default.
+    #[inline]
+    fn rhs_with_trig(&self, t: f64, y: &State<N>) -> (State<N>, Option<SinCos>) {
+        (self.rhs(t, y), None)
+    }
 }

@@ -9,7 +9,7 @@
 use super::events::{quiet_step, scan_step, EventCarry, NonFiniteEvent};
 use super::pair::{all_finite, error_scale, Dop853, Dp5, Method, RkPair, Vern9};
 use super::stepper::{select_initial_step, Point, StepStatus, Stepper, Trial};
-use super::{DenseStep, EventFunctions, OdeSystem, State, StepEnds};
+use super::{DenseStep, EventFunctions, OdeSystem, SinCos, State, StepEnds};
 
 /// Integration options, with scipy's meanings.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -99,6 +99,9 @@ pub enum Observation<'a, const N: usize> {
         t: f64,
         /// State at `t`.
         y: &'a State<N>,
+        /// sin and cos of y[0], if the right-hand side computed them there (handed on:
+        /// [`OdeSystem::rhs_with_trig`]); `None` at a terminal event.
+        trig: Option<SinCos>,
     },
     /// Event k met at (t, y) (terminal or not); `y` is the dense output at t.
     Event {
@@ -258,7 +261,7 @@ impl<P: RkPair<N>, const N: usize> Run<P, N> {
         if !t0.is_finite() || !t_end.is_finite() || !all_finite(&y0) {
             return Err(out);
         }
-        let f0 = sys.rhs(t0, &y0);
+        let (f0, trig) = sys.rhs_with_trig(t0, &y0);
         out.nfev = 1;
         if !all_finite(&f0) {
             return Err(out);
@@ -291,6 +294,7 @@ impl<P: RkPair<N>, const N: usize> Run<P, N> {
         let st = Stepper::<P, N>::new(start, h_abs, t_end, opts.max_step, tol);
         let st = Stepper {
             max_first_change: opts.max_first_change,
+            trig,
             ..st
         };
         Ok(Self {
@@ -346,8 +350,7 @@ impl<P: RkPair<N>, const N: usize> Run<P, N> {
         let scan = scan_step(
             events,
             dense,
-            st.t,
-            &st.y,
+            (st.t, &st.y, st.trig),
             self.opts.event_samples,
             &mut self.carry,
             |hit| {
@@ -370,6 +373,7 @@ impl<P: RkPair<N>, const N: usize> Run<P, N> {
                     dense: Some(dense),
                     t: hit.t,
                     y: &hit.y,
+                    trig: None,
                 });
                 out.status = Status::Event(hit.index);
                 out.t = hit.t;
@@ -382,6 +386,7 @@ impl<P: RkPair<N>, const N: usize> Run<P, N> {
                     dense: Some(dense),
                     t: st.t,
                     y: &st.y,
+                    trig: st.trig,
                 });
                 out.t = st.t;
                 out.y = st.y;
@@ -421,7 +426,7 @@ impl<P: RkPair<N>, const N: usize> Run<P, N> {
             f_new: st.f,
             scale: error_scale(&st.y_old, &st.y, st.rtol, st.atol),
         };
-        if !quiet_step(events, &ends, &mut self.carry) {
+        if !quiet_step(events, &ends, st.trig, &mut self.carry) {
             return false;
         }
         let out = &mut self.out;
@@ -430,6 +435,7 @@ impl<P: RkPair<N>, const N: usize> Run<P, N> {
             dense: None,
             t: st.t,
             y: &st.y,
+            trig: st.trig,
         });
         out.t = st.t;
         out.y = st.y;

@@ -7,7 +7,7 @@
 
 use super::dense::DenseStep;
 use super::pair::{all_finite, rms_norm, RkPair};
-use super::{OdeSystem, State};
+use super::{OdeSystem, SinCos, State};
 
 /// Multiplies the asymptotically optimal step factor, for a margin (scipy `SAFETY`).
 pub const SAFETY: f64 = 0.9;
@@ -168,6 +168,9 @@ pub struct Stepper<P, const N: usize> {
     pub y: State<N>,
     /// f(t, y), reused as the first stage of the next step (FSAL).
     pub f: State<N>,
+    /// sin and cos of y[0], if the right-hand side computed them with f
+    /// ([`OdeSystem::rhs_with_trig`]): for the events and the observer at (t, y).
+    pub trig: Option<SinCos>,
     /// The step size to try next.
     pub h_abs: f64,
     /// Start of the last accepted step.
@@ -207,6 +210,7 @@ impl<P: RkPair<N>, const N: usize> Stepper<P, N> {
             t: start.t,
             y: start.y,
             f: start.f,
+            trig: None,
             h_abs,
             t_old: start.t,
             y_old: start.y,
@@ -251,7 +255,7 @@ impl<P: RkPair<N>, const N: usize> Stepper<P, N> {
                 return StepStatus::TooSmall;
             };
             let t = self.t;
-            let Some(y_new) = self.pair.attempt(sys, t, &self.y, &self.f, h, nfev) else {
+            let Some((y_new, trig)) = self.pair.attempt(sys, t, &self.y, &self.f, h, nfev) else {
                 return StepStatus::NonFinite;
             };
             let err = self
@@ -259,7 +263,10 @@ impl<P: RkPair<N>, const N: usize> Stepper<P, N> {
                 .error_norm(h, &self.y, &y_new, self.rtol, self.atol);
             let f_new = self.pair.f_new();
             match self.judge(&mut trial, t_new, h, err, &y_new, &f_new) {
-                Judgement::Accepted => return StepStatus::Accepted,
+                Judgement::Accepted => {
+                    self.trig = trig;
+                    return StepStatus::Accepted;
+                }
                 Judgement::NonFinite => return StepStatus::NonFinite,
                 Judgement::Retry => *n_rejected += 1,
             }
@@ -355,6 +362,8 @@ impl<P: RkPair<N>, const N: usize> Stepper<P, N> {
             self.t = t_new;
             self.y = *y_new;
             self.f = *f_new;
+            // Unknown here: the caller sets the trigonometry of y_new if f came with it.
+            self.trig = None;
             self.h_abs = h_abs * factor;
             return Judgement::Accepted;
         }

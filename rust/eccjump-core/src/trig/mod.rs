@@ -12,54 +12,44 @@ pub fn sin_cos(x: f64) -> (f64, f64) {
     libm::sincos(x)
 }
 
-/// A one-entry memo of (sin θ, cos θ), keyed on the bits of θ. Each accepted step of the
-/// integrator ends with the FSAL evaluation at the new state, where the event scan (and an
-/// observer) then look again: they find sin_cos in the memo. A pure function, so hits and
-/// misses give identical bits.
-#[derive(Debug, Clone, PartialEq)]
-pub struct SinCosMemo(std::cell::Cell<(f64, f64, f64)>);
-
-impl Default for SinCosMemo {
-    fn default() -> Self {
-        // θ = NaN never matches: the first lookup computes.
-        Self(std::cell::Cell::new((f64::NAN, f64::NAN, f64::NAN)))
-    }
+/// An angle θ with its (sin θ, cos θ), computed once where a state's right-hand side needs
+/// them and handed on explicitly by the integrator to whatever looks at the same state next
+/// (the event scan, the change bounds, the observer: [`crate::ode::OdeSystem::rhs_with_trig`]).
+/// `sin_cos` is a pure function, so using the handed-on values or computing them again gives
+/// identical bits.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct SinCos {
+    /// θ.
+    pub theta: f64,
+    /// sin θ.
+    pub sin: f64,
+    /// cos θ.
+    pub cos: f64,
 }
 
-impl SinCosMemo {
-    /// (sin θ, cos θ), from the memo when θ is the last one asked for.
+impl SinCos {
+    /// θ with its sine and cosine.
     #[inline]
-    pub fn get(&self, theta: f64) -> (f64, f64) {
-        let (th, s, c) = self.0.get();
-        if th.to_bits() == theta.to_bits() {
-            return (s, c);
-        }
-        let (s, c) = sin_cos(theta);
-        self.0.set((theta, s, c));
-        (s, c)
+    pub fn of(theta: f64) -> Self {
+        let (sin, cos) = sin_cos(theta);
+        Self { theta, sin, cos }
     }
 
-    /// Makes (θ, s, c) the entry, s and c being sin_cos(θ) computed elsewhere (by
-    /// [`lanes::sin_cos_lanes`], bit for bit the same).
+    /// θ with its sine and cosine: `known` when it is of this θ (the same bits), else
+    /// computed.
     #[inline]
-    pub fn set(&self, theta: f64, s: f64, c: f64) {
-        self.0.set((theta, s, c));
-    }
-
-    /// Sets the memo of each lane l, `memo(l)`, to (θ_l, sin θ_l, cos θ_l), the trigonometry
-    /// of all lanes computed at once ([`lanes::sin_cos_lanes`]).
-    #[inline(always)]
-    pub fn set_lanes<'a>(theta: &lanes::Lane, memo: impl Fn(usize) -> &'a SinCosMemo) {
-        let (s, c) = lanes::sin_cos_lanes(theta);
-        for l in 0..lanes::LANES {
-            memo(l).set(theta[l], s[l], c[l]);
+    pub fn reuse(theta: f64, known: Option<SinCos>) -> Self {
+        match known {
+            Some(k) if k.theta.to_bits() == theta.to_bits() => k,
+            _ => Self::of(theta),
         }
     }
 
-    /// The entry (θ, sin θ, cos θ); θ is NaN before the first lookup.
+    /// (sin θ, cos θ) of [`Self::reuse`].
     #[inline]
-    pub fn entry(&self) -> (f64, f64, f64) {
-        self.0.get()
+    pub fn at(theta: f64, known: Option<SinCos>) -> (f64, f64) {
+        let k = Self::reuse(theta, known);
+        (k.sin, k.cos)
     }
 }
 

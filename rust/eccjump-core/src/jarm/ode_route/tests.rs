@@ -98,9 +98,9 @@ fn bound_cases() -> Vec<(f64, f64, f64, f64, bool, bool)> {
     v
 }
 
-fn events_for(sys: &RollingMemo, mu_s: f64, liftoff: bool, forces: bool) -> JarmEvents {
+fn events_for(ramp: &Ramp, mu_s: f64, liftoff: bool, forces: bool) -> JarmEvents {
     JarmEvents {
-        sys: sys.clone(),
+        ramp: *ramp,
         mu_s,
         liftoff,
         normal_force: forces,
@@ -128,77 +128,71 @@ fn change_bounds_bound_the_change_along_each_step() {
             ..SolverOptions::default()
         };
         let r = Ramp::new(crate::mechanics::Cylinder::new(chi, km).unwrap(), a).unwrap();
-        let sys = RollingMemo::new(r);
-        let ev = events_for(&sys, mu_s, liftoff, forces);
-        // A second, independent evaluator, so that the checks do not disturb the memo.
-        let sys2 = RollingMemo::new(r);
-        let check = events_for(&sys2, mu_s, liftoff, forces);
-        ode::solve(
-            &sys,
-            &ev,
-            0.0,
-            State::<2>::zeros(),
-            1e300,
-            &so,
-            &mut |obs| {
-                let Observation::Step { dense, t, y } = obs else {
-                    return;
+        let ev = events_for(&r, mu_s, liftoff, forces);
+        let check = events_for(&r, mu_s, liftoff, forces);
+        ode::solve(&r, &ev, 0.0, State::<2>::zeros(), 1e300, &so, &mut |obs| {
+            let Observation::Step { dense, t, y, trig } = obs else {
+                return;
+            };
+            let dense = dense.expect("every step's dense output");
+            steps += 1;
+            let g = |t: f64, y: &State<2>| {
+                let mut v = [0.0; N_EVENTS];
+                check.values(0, t, y, &mut v);
+                v
+            };
+            let t_new = dense.t_old + dense.h;
+            let (th0, th1) = (dense.y_old[0], dense.eval(t_new)[0]);
+            let mid = dense.eval(dense.t_old + 0.37 * dense.h)[0];
+            let anchors = [
+                None,
+                trig,
+                Some(SinCos::of(th0)),
+                Some(SinCos::of(th1)),
+                Some(SinCos::of(mid)),
+            ];
+            for anchor in anchors {
+                let b = ev.change_bounds_near(dense, anchor);
+                // The start as it is, not as the interpolant gives it.
+                let at = |ti: f64| match ti == dense.t_old {
+                    true => g(ti, &dense.y_old),
+                    false => g(ti, &dense.eval(ti)),
                 };
-                let dense = dense.expect("every step's dense output");
-                steps += 1;
-                let g = |t: f64, y: &State<2>| {
-                    let mut v = [0.0; N_EVENTS];
-                    check.values(0, t, y, &mut v);
-                    v
-                };
-                let t_new = dense.t_old + dense.h;
-                let (th0, th1) = (dense.y_old[0], dense.eval(t_new)[0]);
-                let mid = dense.eval(dense.t_old + 0.37 * dense.h)[0];
-                let anchors = [
-                    None,
-                    Some(sys.anchor()),
-                    Some((th0, th0.sin(), th0.cos())),
-                    Some((th1, th1.sin(), th1.cos())),
-                    Some((mid, mid.sin(), mid.cos())),
-                ];
-                for anchor in anchors {
-                    let b = ev.change_bounds_near(dense, anchor);
-                    // The start as it is, not as the interpolant gives it.
-                    let at = |ti: f64| match ti == dense.t_old {
-                        true => g(ti, &dense.y_old),
-                        false => g(ti, &dense.eval(ti)),
-                    };
-                    if let Err(e) = check_change_bounds(dense.t_old, dense.h, at, &b) {
-                        panic!("{a} {chi} {km} {e} anchor {anchor:?} at {t} {y:?}");
-                    }
-                    // From the ends of a whole step (not one cut at an event).
-                    if (t - t_new).abs() > 1e-12 * t.abs().max(1.0) {
-                        continue;
-                    }
-                    let ends = StepEnds {
-                        t_old: dense.t_old,
-                        t_new: t,
-                        h: dense.h,
-                        y_old: dense.y_old,
-                        f_old: sys2.rhs(dense.t_old, &dense.y_old),
-                        y_new: *y,
-                        f_new: sys2.rhs(t, y),
-                        scale: error_scale(&dense.y_old, y, so.rtol, so.atol),
-                    };
-                    let b = check.of_all(ContactBounds::from_ends(
-                        &sys.ramp,
-                        check.slip.then_some(mu_s),
-                        &ends,
-                        anchor,
-                        true,
-                    ));
-                    if let Err(e) = check_change_bounds(dense.t_old, dense.h, at, &b) {
-                        panic!("{pair:?} {a} {chi} {km} {e} ends, anchor {anchor:?} at {t}");
-                    }
-                    quiet += usize::from(ode::quiet_step(&check, &ends, &mut Default::default()));
+                if let Err(e) = check_change_bounds(dense.t_old, dense.h, at, &b) {
+                    panic!("{a} {chi} {km} {e} anchor {anchor:?} at {t} {y:?}");
                 }
-            },
-        );
+                // From the ends of a whole step (not one cut at an event).
+                if (t - t_new).abs() > 1e-12 * t.abs().max(1.0) {
+                    continue;
+                }
+                let ends = StepEnds {
+                    t_old: dense.t_old,
+                    t_new: t,
+                    h: dense.h,
+                    y_old: dense.y_old,
+                    f_old: r.rhs(dense.t_old, &dense.y_old),
+                    y_new: *y,
+                    f_new: r.rhs(t, y),
+                    scale: error_scale(&dense.y_old, y, so.rtol, so.atol),
+                };
+                let b = check.of_all(ContactBounds::from_ends(
+                    &r,
+                    check.slip.then_some(mu_s),
+                    &ends,
+                    anchor,
+                    true,
+                ));
+                if let Err(e) = check_change_bounds(dense.t_old, dense.h, at, &b) {
+                    panic!("{pair:?} {a} {chi} {km} {e} ends, anchor {anchor:?} at {t}");
+                }
+                quiet += usize::from(ode::quiet_step(
+                    &check,
+                    &ends,
+                    anchor,
+                    &mut Default::default(),
+                ));
+            }
+        });
     }
     assert!(steps > 4000, "{steps}");
     // The ends prove most steps quiet (5 anchors each).
@@ -220,8 +214,7 @@ fn skipping_interior_samples_changes_nothing() {
             };
             let r = Ramp::new(crate::mechanics::Cylinder::new(chi, km).unwrap(), a).unwrap();
             let run = |skip: bool| {
-                let sys = RollingMemo::new(r);
-                let ev = events_for(&sys, mu_s, liftoff, forces);
+                let ev = events_for(&r, mu_s, liftoff, forces);
                 let mut seen = Vec::new();
                 let mut obs = |o: Observation<'_, 2>| {
                     if let Observation::Event { index, t, y } = o {
@@ -230,9 +223,9 @@ fn skipping_interior_samples_changes_nothing() {
                 };
                 let y0 = State::<2>::zeros();
                 let out = if skip {
-                    ode::solve(&sys, &ev, 0.0, y0, 1e300, &so, &mut obs)
+                    ode::solve(&r, &ev, 0.0, y0, 1e300, &so, &mut obs)
                 } else {
-                    ode::solve(&sys, &WalkAll(&ev), 0.0, y0, 1e300, &so, &mut obs)
+                    ode::solve(&r, &WalkAll(&ev), 0.0, y0, 1e300, &so, &mut obs)
                 };
                 (out, seen)
             };

@@ -4,7 +4,7 @@
 //! classification.
 
 use crate::mechanics::Ramp;
-use crate::ode::{Change, DenseStep, StepEnds};
+use crate::ode::{Change, DenseStep, SinCos, StepEnds};
 
 /// Bounds on how much the contact functions of pure rolling can change within one
 /// dense-output step, in the sense of [`crate::ode::EventBounds::change_bounds`]: shared by the
@@ -67,7 +67,7 @@ impl ContactBounds {
         ramp: &Ramp,
         mu_s: Option<f64>,
         dense: &DenseStep<2>,
-        anchor: Option<(f64, f64, f64)>,
+        anchor: Option<SinCos>,
     ) -> Self {
         Self::straying(ramp, mu_s, dense, anchor, [0.0; 2], true)
     }
@@ -87,7 +87,7 @@ impl ContactBounds {
         ramp: &Ramp,
         mu_s: Option<f64>,
         ends: &StepEnds<2>,
-        anchor: Option<(f64, f64, f64)>,
+        anchor: Option<SinCos>,
         bends: bool,
     ) -> Self {
         let (hermite, err) = ends.second_order_hermite();
@@ -107,7 +107,7 @@ impl ContactBounds {
         ramp: &Ramp,
         mu_s: Option<f64>,
         dense: &DenseStep<2>,
-        anchor: Option<(f64, f64, f64)>,
+        anchor: Option<SinCos>,
         stray: [f64; 2],
         bends: bool,
     ) -> Self {
@@ -147,7 +147,11 @@ impl ContactBounds {
         };
         let d_min = ramp.contact_inertia(-1.0);
         let (s_max, c_max, d_lo) = match anchor {
-            Some((theta_c, s_c, c_c)) => {
+            Some(SinCos {
+                theta: theta_c,
+                sin: s_c,
+                cos: c_c,
+            }) => {
                 let reach = (dense.y_old[0] - theta_c).abs() + h * theta_rate + stray[0];
                 let reach = reach * (1.0 + eps40) + (1.0 + theta_max) * eps40;
                 // NaN (never expected) falls back to the plain bounds through min/max.
@@ -287,7 +291,11 @@ mod tests {
             };
             let mu_s = (i % 2 == 0).then(|| 2.0 * rng.next());
             let theta = y_new[0];
-            let anchor = (i % 3 != 0).then(|| (theta, theta.sin(), theta.cos()));
+            let anchor = (i % 3 != 0).then(|| SinCos {
+                theta,
+                sin: theta.sin(),
+                cos: theta.cos(),
+            });
             let whole = ContactBounds::from_ends(&ramp, mu_s, &ends, anchor, true);
             let rates = ContactBounds::from_ends(&ramp, mu_s, &ends, anchor, false);
             let pairs = [

@@ -16,14 +16,14 @@
 
 pub mod bounds;
 pub mod events;
-pub mod memo;
+pub mod ode;
 pub mod run;
 pub mod solution;
 pub(crate) mod track;
 
 use crate::mechanics::liftoff::{free_normal_acceleration, liftoff_slope};
 use crate::mechanics::Ramp;
-use crate::ode::{OdeSystem, State};
+use crate::trig::SinCos;
 
 /// The numerator of roll-eq, χθ̇² sin θ + χ sin(α + θ) + sin α, given χθ̇², sin θ and
 /// sin(α + θ): θ̈ = this / Ĩ_P(θ).
@@ -108,6 +108,14 @@ impl Ramp {
         self.kinematics_sc(theta, omega, s, c)
     }
 
+    /// [`Ramp::kinematics`], with sin θ and cos θ from `trig` when it is of this θ
+    /// ([`SinCos::at`]).
+    #[inline]
+    pub fn kinematics_at(&self, theta: f64, omega: f64, trig: Option<SinCos>) -> Kinematics {
+        let (s, c) = SinCos::at(theta, trig);
+        self.kinematics_sc(theta, omega, s, c)
+    }
+
     /// [`Ramp::kinematics`] given s = sin θ and c = cos θ.
     #[inline]
     pub fn kinematics_sc(&self, theta: f64, omega: f64, s: f64, c: f64) -> Kinematics {
@@ -172,14 +180,6 @@ pub struct ContactRates {
     pub fy: f64,
     /// dL/dt of the lift-off function L = χθ̇² cos θ − cos α.
     pub lift: f64,
-}
-
-/// The rolling equation as a first-order system in y = (θ, θ̇).
-impl OdeSystem<2> for Ramp {
-    #[inline]
-    fn rhs(&self, _t: f64, y: &State<2>) -> State<2> {
-        State::<2>::new(y[1], self.omega_dot(y[0], y[1]))
-    }
 }
 
 #[cfg(test)]

@@ -23,8 +23,8 @@ use crate::modes::rolling::track::{Begun, RollTrack};
 use crate::modes::rolling::Kinematics;
 use crate::ode::lanes::Track;
 use crate::ode::{
-    self, Change, DenseStep, Direction, EventBounds, EventFunctions, EventSpec, SolverOptions,
-    State, Status, StepEnds,
+    self, Change, DenseStep, Direction, EventBounds, EventFunctions, EventSpec, SinCos,
+    SolverOptions, State, Status, StepEnds,
 };
 
 /// The event functions of a rolling run.
@@ -70,8 +70,13 @@ impl EventFunctions<2> for RollEvents {
     }
     /// All events from one evaluation of the kinematics (one sin_cos per sample).
     #[inline]
-    fn values(&self, first: usize, _t: f64, y: &State<2>, out: &mut [f64]) {
-        self.values_from(&self.ramp.kinematics(y[0], y[1]), first, y, out);
+    fn values(&self, first: usize, t: f64, y: &State<2>, out: &mut [f64]) {
+        self.values_at(first, t, y, None, out);
+    }
+    /// The same, with sin θ and cos θ from `trig` when they are there.
+    #[inline]
+    fn values_at(&self, first: usize, _: f64, y: &State<2>, trig: Option<SinCos>, out: &mut [f64]) {
+        self.values_from(&self.ramp.kinematics_at(y[0], y[1], trig), first, y, out);
     }
     #[inline]
     fn slopes(&self, first: usize, _t: f64, y: &State<2>, out: &mut [f64]) {
@@ -86,10 +91,30 @@ impl EventFunctions<2> for RollEvents {
 impl EventBounds<2> for RollEvents {
     /// Change bounds from bounds on the partial derivatives of each g in θ and θ̇ over
     /// the step (|sin|, |cos| ≤ 1, |θ̇| ≤ W, contact inertia ≥ Ĩ_C + 1 − 2χ), times the
-    /// bounds on |dθ/dt|, |dθ̇/dt| of the interpolant.
+    /// bounds on |dθ/dt|, |dθ̇/dt| of the interpolant; tightened by the trigonometry of the
+    /// step's end when it is there ([`ContactBounds::near`]).
     #[inline]
-    fn change_bounds(&self, first: usize, dense: &DenseStep<2>, out: &mut [Change]) {
-        let b = self.change_bounds_all(dense);
+    fn change_bounds(
+        &self,
+        first: usize,
+        dense: &DenseStep<2>,
+        end_trig: Option<SinCos>,
+        out: &mut [Change],
+    ) {
+        let b = self.change_bounds_near(dense, end_trig);
+        out.copy_from_slice(&b[first..first + out.len()]);
+    }
+    /// The same from the step's ends alone ([`ContactBounds::from_ends`]).
+    #[inline]
+    fn change_bounds_ends(
+        &self,
+        first: usize,
+        ends: &StepEnds<2>,
+        bends: bool,
+        end_trig: Option<SinCos>,
+        out: &mut [Change],
+    ) {
+        let b = RollEvents::change_bounds_ends(self, ends, end_trig, bends);
         out.copy_from_slice(&b[first..first + out.len()]);
     }
 }
@@ -140,7 +165,7 @@ impl RollEvents {
     pub(crate) fn change_bounds_near(
         &self,
         dense: &DenseStep<2>,
-        anchor: Option<(f64, f64, f64)>,
+        anchor: Option<SinCos>,
     ) -> [Change; 5] {
         self.of_all(ContactBounds::near(&self.ramp, self.mu_s, dense, anchor))
     }
@@ -150,7 +175,7 @@ impl RollEvents {
     pub(crate) fn change_bounds_ends(
         &self,
         ends: &StepEnds<2>,
-        anchor: Option<(f64, f64, f64)>,
+        anchor: Option<SinCos>,
         bends: bool,
     ) -> [Change; 5] {
         self.of_all(ContactBounds::from_ends(
@@ -546,13 +571,9 @@ mod skip_tests {
                         ev.values(0, t, &dense.eval(t), &mut v);
                         v
                     };
-                    // Plain, and anchored at the step's start and end (as `Memo` does).
+                    // Plain, and anchored at the step's start and end (as the scan does).
                     let (th0, th1) = (dense.y_old[0], dense.eval(dense.t_old + dense.h)[0]);
-                    for anchor in [
-                        None,
-                        Some((th0, th0.sin(), th0.cos())),
-                        Some((th1, th1.sin(), th1.cos())),
-                    ] {
+                    for anchor in [None, Some(SinCos::of(th0)), Some(SinCos::of(th1))] {
                         let bound = ev.change_bounds_near(dense, anchor);
                         check_change_bounds(dense.t_old, dense.h, g, &bound).unwrap();
                     }

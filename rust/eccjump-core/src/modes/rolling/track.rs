@@ -1,5 +1,4 @@
-//! A rolling run under way: its system and events (sharing one memo of the trigonometry)
-//! and its record. One run is integrated alone by [`roll_until`]; many are integrated side
+//! A rolling run under way: its events (whose ramp is the system) and its record. One run is integrated alone by [`roll_until`]; many are integrated side
 //! by side by [`roll_batch`] (the lanes of [`crate::ode::lanes`]), each with the same steps,
 //! record and result as alone, bit for bit.
 //!
@@ -9,82 +8,13 @@ use std::cell::RefCell;
 
 use crate::error::{try_grow, Error, Result};
 use crate::mechanics::Ramp;
-use crate::modes::rolling::memo::RollingMemo;
 use crate::modes::rolling::run::{
     violated_at_start, ContactEvent, EventHit, RollEvents, RollOptions, RollRun, RollStatus,
     RESERVE,
 };
 use crate::modes::rolling::solution::RollSolution;
-use crate::modes::rolling::Kinematics;
 use crate::ode::lanes::{solve_lanes_with, Keyed, Start, Track};
-use crate::ode::{
-    Change, DenseStep, EventBounds, EventFunctions, EventSpec, Method, Observation, Outcome,
-    SolverOptions, State, Status, StepEnds,
-};
-
-/// The rolling system and its events sharing one [`RollingMemo`].
-pub(crate) struct Memo {
-    events: RollEvents,
-    sys: RollingMemo,
-}
-
-impl Memo {
-    #[inline]
-    fn kinematics(&self, theta: f64, omega: f64) -> Kinematics {
-        self.sys.kinematics(theta, omega)
-    }
-}
-
-impl EventFunctions<2> for Memo {
-    const HAS_SLOPES: bool = true;
-    #[inline]
-    fn count(&self) -> usize {
-        self.events.count()
-    }
-    #[inline]
-    fn spec(&self, k: usize) -> EventSpec {
-        self.events.spec(k)
-    }
-    #[inline]
-    fn values(&self, first: usize, _t: f64, y: &State<2>, out: &mut [f64]) {
-        self.events
-            .values_from(&self.kinematics(y[0], y[1]), first, y, out);
-    }
-    #[inline]
-    fn slopes(&self, first: usize, _t: f64, y: &State<2>, out: &mut [f64]) {
-        self.events
-            .rates_from(&self.kinematics(y[0], y[1]), first, out);
-    }
-    #[inline]
-    fn bounds(&self) -> Option<&impl EventBounds<2>> {
-        Some(self)
-    }
-}
-
-impl EventBounds<2> for Memo {
-    /// [`RollEvents::change_bounds_all`] tightened by the memo's trigonometry.
-    #[inline]
-    fn change_bounds(&self, first: usize, dense: &DenseStep<2>, out: &mut [Change]) {
-        let b = self
-            .events
-            .change_bounds_near(dense, Some(self.sys.anchor()));
-        out.copy_from_slice(&b[first..first + out.len()]);
-    }
-    /// [`RollEvents::change_bounds_ends`], anchored as [`Self::change_bounds`].
-    #[inline]
-    fn change_bounds_ends(
-        &self,
-        first: usize,
-        ends: &StepEnds<2>,
-        bends: bool,
-        out: &mut [Change],
-    ) {
-        let b = self
-            .events
-            .change_bounds_ends(ends, Some(self.sys.anchor()), bends);
-        out.copy_from_slice(&b[first..first + out.len()]);
-    }
-}
+use crate::ode::{DenseStep, Method, Observation, Outcome, SolverOptions, State, Status};
 
 /// What a run has recorded so far.
 struct Record {
@@ -97,7 +27,7 @@ struct Record {
 
 /// A rolling run between its start and its end.
 pub(crate) struct RollTrack {
-    memo: Memo,
+    events: RollEvents,
     dense_output: bool,
     /// The integrator's options: the run's, with every step's dense output made when it
     /// is recorded.
@@ -124,10 +54,6 @@ impl RollTrack {
             theta_max: opts.theta_max,
             rule: opts.rule,
         };
-        let memo = Memo {
-            events,
-            sys: RollingMemo::new(*ramp),
-        };
         let capacity = RESERVE.min(opts.solver.max_steps.saturating_add(2));
         let mut run = RollRun {
             t: Vec::with_capacity(capacity),
@@ -144,11 +70,11 @@ impl RollTrack {
             nfev: 0,
             dense: None,
         };
-        run.push(0.0, &memo.kinematics(opts.theta0, opts.omega0))?;
+        run.push(0.0, &ramp.kinematics(opts.theta0, opts.omega0))?;
         // A contact event that already holds at t = 0 ends the run there: the integrator
         // looks for crossings only, and a run that starts outside the contact conditions
         // must not roll on as if it were inside them.
-        if let Some(event) = violated_at_start(&memo.events, opts.theta0, opts.omega0) {
+        if let Some(event) = violated_at_start(&events, opts.theta0, opts.omega0) {
             run.events.push(EventHit {
                 event,
                 t: 0.0,
@@ -161,7 +87,7 @@ impl RollTrack {
         }
         let steps = Vec::with_capacity(if opts.dense_output { capacity } else { 0 });
         let track = RollTrack {
-            memo,
+            events,
             dense_output: opts.dense_output,
             solver: SolverOptions {
                 dense_every_step: opts.solver.dense_every_step || opts.dense_output,
@@ -204,13 +130,13 @@ impl RollTrack {
                 run.pop();
             }
             if run.t.last().is_some_and(|&t| t < outcome.t) {
-                let end = self.memo.kinematics(outcome.y[0], outcome.y[1]);
+                let end = self.events.ramp.kinematics(outcome.y[0], outcome.y[1]);
                 run.push(outcome.t, &end)?;
             }
         }
         if self.dense_output {
             run.dense = Some(RollSolution {
-                ramp: self.memo.sys.ramp,
+                ramp: self.events.ramp,
                 steps,
                 t_end: run.t.last().copied().unwrap_or(0.0),
             });
@@ -221,25 +147,26 @@ impl RollTrack {
 }
 
 impl Track<2> for RollTrack {
-    type Sys = RollingMemo;
-    type Events = Memo;
+    type Sys = Ramp;
+    type Events = RollEvents;
     #[inline]
-    fn sys(&self) -> &RollingMemo {
-        &self.memo.sys
+    fn sys(&self) -> &Ramp {
+        &self.events.ramp
     }
     #[inline]
-    fn events(&self) -> &Memo {
-        &self.memo
+    fn events(&self) -> &RollEvents {
+        &self.events
     }
     #[inline]
     fn observe(&self, obs: Observation<'_, 2>) {
         let mut rec = self.record.borrow_mut();
         let Record { run, steps, memory } = &mut *rec;
         match obs {
-            Observation::Step { dense, t, y } => {
+            Observation::Step { dense, t, y, trig } => {
                 // After a failed allocation the rest is not recorded; the run reports it.
                 if memory.is_none() {
-                    if let Err(e) = run.push(t, &self.memo.kinematics(y[0], y[1])) {
+                    let k = self.events.ramp.kinematics_at(y[0], y[1], trig);
+                    if let Err(e) = run.push(t, &k) {
                         *memory = Some(e);
                     } else if let (true, Some(dense)) = (self.dense_output, dense) {
                         // (always there: the solver makes every step's when it is recorded)

@@ -6,7 +6,7 @@ use crate::ode::dense::MAX_DEGREE;
 use crate::ode::tableau::dop853::{
     A, A_EXTRA, B, C, C_EXTRA, D, E3, E5, ERROR_EXPONENT, N_STAGES, N_STAGES_EXTENDED,
 };
-use crate::ode::{DenseStep, OdeSystem, State};
+use crate::ode::{DenseStep, OdeSystem, SinCos, State};
 
 /// The stages of one DOP853 step: 12 stages, the FSAL derivative at the step end
 /// (`k[12]`) and, once the dense output is built, its three extra stages.
@@ -43,7 +43,7 @@ impl<const N: usize> RkPair<N> for Dop853<N> {
         f: &State<N>,
         h: f64,
         nfev: &mut usize,
-    ) -> Option<State<N>> {
+    ) -> Option<(State<N>, Option<SinCos>)> {
         let k = &mut self.k;
         k[0] = *f;
         let at = (t, y, h);
@@ -235,7 +235,8 @@ mod tests {
         let y = State::<1>::new(1.0);
         let y_new = pair
             .attempt(&Line, 0.0, &y, &State::<1>::new(2.0), 0.5, &mut nfev)
-            .unwrap();
+            .unwrap()
+            .0;
         assert!((y_new[0] - 2.0).abs() < 1e-15);
         assert!(pair.error_norm(0.5, &y, &y_new, 1e-6, 1e-9) < 1e-6);
     }

@@ -4,7 +4,7 @@
 use super::{scaled_error_norm, solution, unrolled_stages, weighted_sum, RkPair, Summand};
 use crate::ode::dense::MAX_DEGREE;
 use crate::ode::tableau::dp5::{A, B, C, E, ERROR_EXPONENT, N_STAGES, P};
-use crate::ode::{DenseStep, OdeSystem, State};
+use crate::ode::{DenseStep, OdeSystem, SinCos, State};
 
 /// The stages of one Dormand–Prince 5(4) step; `k[6]` is the FSAL derivative at its end.
 #[derive(Debug, Clone, Copy)]
@@ -39,7 +39,7 @@ impl<const N: usize> RkPair<N> for Dp5<N> {
         f: &State<N>,
         h: f64,
         nfev: &mut usize,
-    ) -> Option<State<N>> {
+    ) -> Option<(State<N>, Option<SinCos>)> {
         let k = &mut self.k;
         k[0] = *f;
         let at = (t, y, h);
@@ -151,7 +151,7 @@ mod tests {
         let mut pair = Dp5::<1>::empty();
         let y = State::<1>::new(2.0);
         let y_new = pair.attempt(&One, 0.0, &y, &State::<1>::new(1.0), 0.5, &mut nfev);
-        let y_new = y_new.unwrap();
+        let (y_new, _) = y_new.unwrap();
         assert!((y_new[0] - 2.5).abs() < 1e-15);
         assert_eq!(nfev, 6);
         assert!(pair.error_norm(0.5, &y, &y_new, 1e-6, 1e-9) < 1e-8);

@@ -28,7 +28,7 @@ pub const MAX_STAGES: usize = {
     }
     most
 };
-use super::{DenseStep, OdeSystem, State};
+use super::{DenseStep, OdeSystem, SinCos, State};
 
 /// Which pair an integration uses.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
@@ -94,9 +94,11 @@ pub trait RkPair<const N: usize>: Copy {
     /// A pair with zeroed stages.
     fn empty() -> Self;
 
-    /// One step of size h from (t, y) with f = f(t, y): returns y_new (and keeps the
-    /// stages, including the FSAL derivative f(t + h, y_new)), or `None` as soon as a
-    /// stage or y_new is not finite. `nfev` counts the evaluations of f made.
+    /// One step of size h from (t, y) with f = f(t, y): returns y_new with the sine and
+    /// cosine of y_new[0] if the FSAL evaluation computed them
+    /// ([`OdeSystem::rhs_with_trig`]), and keeps the stages, including the FSAL derivative
+    /// f(t + h, y_new); `None` as soon as a stage or y_new is not finite. `nfev` counts the
+    /// evaluations of f made.
     fn attempt<S: OdeSystem<N>>(
         &mut self,
         sys: &S,
@@ -105,7 +107,7 @@ pub trait RkPair<const N: usize>: Copy {
         f: &State<N>,
         h: f64,
         nfev: &mut usize,
-    ) -> Option<State<N>>;
+    ) -> Option<(State<N>, Option<SinCos>)>;
 
     /// The scaled error norm of the last attempt (scipy's `_estimate_error_norm`, with
     /// the scale atol + rtol max(|y|, |y_new|) per component).
@@ -272,7 +274,8 @@ impl<const N: usize> Summand for State<N> {
 }
 
 /// The end of an explicit step after its stages k[..b.len()]: y_new = y + (Σ_j b_j K_j) h
-/// and, FSAL, k[b.len()] = f(t + h, y_new); `None` if either is not finite.
+/// and, FSAL, k[b.len()] = f(t + h, y_new), with the trigonometry of y_new[0] that f
+/// computed; `None` if either is not finite.
 #[inline(always)]
 pub(crate) fn solution<S: OdeSystem<N>, const N: usize>(
     sys: &S,
@@ -280,15 +283,16 @@ pub(crate) fn solution<S: OdeSystem<N>, const N: usize>(
     k: &mut [State<N>],
     b: &[f64],
     nfev: &mut usize,
-) -> Option<State<N>> {
+) -> Option<(State<N>, Option<SinCos>)> {
     let s = b.len();
     let y_new = y + weighted_sum(&k[..s], b) * h;
     if !all_finite(&y_new) {
         return None;
     }
-    k[s] = sys.rhs(t + h, &y_new);
+    let trig;
+    (k[s], trig) = sys.rhs_with_trig(t + h, &y_new);
     *nfev += 1;
-    all_finite(&k[s]).then_some(y_new)
+    all_finite(&k[s]).then_some((y_new, trig))
 }
 
 /// Stages `$first + i` for the literal indices i, from row i of `$a` and node i of `$c`
@@ -345,7 +349,8 @@ pub(crate) mod testing {
         let y = State::<1>::new(0.0);
         let y_new = pair
             .attempt(&Cos, 0.0, &y, &State::<1>::new(1.0), h, &mut nfev)
-            .unwrap();
+            .unwrap()
+            .0;
         let step_nfev = nfev;
         let d = pair.dense(&Cos, 0.0, h, &y, &y_new, &mut nfev).unwrap();
         let worst = (0..=20)

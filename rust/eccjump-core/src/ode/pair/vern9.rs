@@ -49,7 +49,8 @@ mod tests {
             let y = State::<1>::new(0.5);
             let y_new = pair
                 .attempt(&Square, 0.0, &y, &State::<1>::new(0.25), h, &mut nfev)
-                .unwrap();
+                .unwrap()
+                .0;
             errs.push((y_new[0] - 1.0 / (2.0 - h)).abs());
             // With rtol = 1 and atol = 0 the norm is |error estimate| / |y_new|.
             estimates.push(pair.error_norm(h, &y, &y_new, 1.0, 0.0) * y_new[0]);

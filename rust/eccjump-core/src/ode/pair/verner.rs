@@ -66,7 +66,7 @@ macro_rules! verner_pair {
                 f: &$crate::ode::State<N>,
                 h: f64,
                 nfev: &mut usize,
-            ) -> Option<$crate::ode::State<N>> {
+            ) -> Option<($crate::ode::State<N>, Option<$crate::ode::SinCos>)> {
                 use $crate::ode::tableau::$tab::{A, B, C};
                 let k = &mut self.k;
                 k[0] = *f;
