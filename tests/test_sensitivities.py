@@ -153,13 +153,31 @@ def test_the_time_of_a_sticking_landing_has_its_derivatives() -> None:
     assert not m.d_singular[2]
 
 
-#: A run that settles on the ramp after its bounces (the Zeno rule: flagged from there on).
+#: A run that settles on the ramp after its bounces (the Zeno rule).
 SETTLES = (eccjump.Cylinder(0.5, 0.4), math.radians(30))
 SETTLES_KW: dict[str, Any] = {"mu_s": 1.0, "mu_k": 0.8, "restitution": 0.3, "t_max": 9.0}
 
+#: Bounces that settle into a slip through the normal impulse (flagged from there on).
+IMPULSE = (eccjump.Cylinder(0.81050848, 0.08156572), 0.97549785)
+IMPULSE_KW: dict[str, Any] = {
+    "mu_s": 1.22005392,
+    "mu_k": 1.09488566,
+    "restitution": 0.07081708,
+    "theta0": 5.19246307,
+    "omega0": 3.31312160,
+    "t_max": 10.0,
+}
+
+
+def test_a_settle_keeps_its_derivatives() -> None:
+    m = eccjump.simulate(*SETTLES, **SETTLES_KW, sensitivities=True)
+    assert m.d_transitions is not None and m.d_singular is not None
+    assert "settle" in [t.reason for t in m.transitions]
+    assert not m.d_singular.any() and np.isfinite(m.d_transitions).all()
+
 
 def test_nan_exactly_where_singular_and_singular_propagates() -> None:
-    m = eccjump.simulate(*SETTLES, **SETTLES_KW, sensitivities=True)
+    m = eccjump.simulate(*IMPULSE, **IMPULSE_KW, sensitivities=True)
     assert m.d_transitions is not None and m.d_singular is not None
     n = len(m.transitions)
     assert m.d_transitions.shape == (n, 2, len(PARAMETERS))
@@ -170,8 +188,8 @@ def test_nan_exactly_where_singular_and_singular_propagates() -> None:
     assert not nan[~m.d_singular].any()
     first = int(np.argmax(m.d_singular))
     assert m.d_singular[first:].all()
-    # the settle itself keeps its time and angle's derivatives; what follows it is flagged
-    assert m.transitions[first - 1].reason == "settle"
+    # the slip after the settle went on in the normal impulse: its end is flagged
+    assert [t.reason for t in m.transitions[first - 1 : first + 1]] == ["settle", "reverse"]
 
 
 def test_the_start_row_is_the_unit_vector_of_theta0() -> None:

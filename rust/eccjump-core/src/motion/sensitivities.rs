@@ -18,12 +18,14 @@
 //!
 //! R is piecewise smooth (Routh's phases, the Zeno threshold): its Jacobian is taken by
 //! central differences of the exact law with a relative step of 1e-6 (error about 1e-10),
-//! both sides on the same branch (at e = 0 the e-derivative is 0: the law reads e²). Not
+//! or 1e-8 or 1e-10 where a slow landing's branch is narrower, both sides on the same branch (at e = 0 the e-derivative is 0: the law reads e²). Not
 //! differentiable, so flagged, with this and every later transition NaN: an event function
 //! tangent to 0 (a grazing touch: g_x f_m ≈ 0), two events of a segment at once (a tie), a
 //! slip that went on in the normal impulse; and every transition after a landing whose
 //! outcome (sticking, flying, settling) changes within the step (the landing's own time and
 //! angle are those before it, and keep their derivatives).
+
+use std::cell::Cell;
 
 use crate::dual::{sin_cos, Dual};
 use crate::error::{Error, Result};
@@ -56,6 +58,9 @@ const TIE: f64 = 1e-9;
 
 /// The relative step of the central differences of the landing map.
 const STEP: f64 = 1e-6;
+
+/// The factors of [`STEP`] tried in turn where a step leaves the landing's branch.
+const SHRINK: [f64; 3] = [1.0, 1e-2, 1e-4];
 
 /// The derivatives of a run's transitions.
 #[derive(Debug, Clone, PartialEq, Default)]
@@ -225,6 +230,7 @@ pub fn sensitivities(
         stop,
         p8: Params::of(ramp, opts),
         p9: Params::of(ramp, opts),
+        steps_left: Cell::new(opts.solver.max_steps),
     };
     let mut x = with_partials(&first.state, &d0);
     for (i, seg) in run.segments.iter().enumerate() {
@@ -265,6 +271,8 @@ struct Walk<'a> {
     stop: &'a dyn Fn() -> bool,
     p8: Params<P>,
     p9: Params<{ P + 1 }>,
+    /// Accepted steps left for the variational equations of the remaining segments.
+    steps_left: Cell<usize>,
 }
 
 impl Walk<'_> {
@@ -344,14 +352,24 @@ impl Walk<'_> {
         };
         // DOP853 whatever the run's pair: the variational equations are a separate smooth
         // problem of 54 components, where RK45 at rtol 1e-10 took 13× its time (24 ms
-        // against 1.8 ms for the paper's body with 19 transitions).
+        // against 1.8 ms for the paper's body with 19 transitions). Tolerances no tighter
+        // than the defaults: the rounding of Newton–Euler's partials (its LU, conditioned
+        // like 1/D in a slip) lies above tighter ones and stalls the step size (a slip after
+        // a settle: 9.2 s and the step limit at rtol 1e-13, 3 ms at 1e-10). The steps of
+        // all segments together are bounded by the run's `max_steps`.
+        let defaults = ode::SolverOptions::default();
         let solver = ode::SolverOptions {
             max_first_change: MAX_ANGLE_STEP,
             method: Method::Dop853,
+            rtol: self.opts.solver.rtol.max(defaults.rtol),
+            atol: self.opts.solver.atol.max(defaults.atol),
+            max_steps: self.steps_left.get().max(1),
             ..self.opts.solver
         };
         let (t0, t1, y0) = (seg.t_start, seg.t_end, pack(x));
         let out = ode::solve_until(&sys, &NoEvents, t0, y0, t1, &solver, &mut |_| {}, self.stop);
+        self.steps_left
+            .set(self.steps_left.get().saturating_sub(out.n_accepted));
         match out.status {
             Status::Stopped => Err(Error::Interrupted),
             Status::Finished => Ok(Some(unpack(&out.y))),
@@ -404,14 +422,21 @@ impl Walk<'_> {
             let s = l.state;
             [s.theta, s.omega, s.l, s.ldot, s.b, s.bdot]
         };
-        // ∂R/∂(one input), by a central difference of `map` at h.
+        // ∂R/∂(one input), by a central difference of `map` at h, or at a smaller step where
+        // one side leaves the branch: a slow landing is on a branch only ~|u| wide (its
+        // outcome turns with the direction of the contact velocity u), so a step of 1e-6
+        // of θ̇ can cross a boundary that a step of 1e-10 does not (rounding then costs
+        // ~ε/1e-10 ≈ 2e-6 of relative accuracy). A switch at every step is a switch.
         let diff = |map: &dyn Fn(f64) -> Option<Landed>, h: f64| -> Option<[f64; 6]> {
-            let (up, down) = (map(h)?, map(-h)?);
-            if branch(&up) != branch(&base) || branch(&down) != branch(&base) {
-                return None;
-            }
-            let (u, w) = (rates(&up), rates(&down));
-            Some(std::array::from_fn(|j| (u[j] - w[j]) / (2.0 * h)))
+            SHRINK.iter().find_map(|&f| {
+                let h = h * f;
+                let (up, down) = (map(h)?, map(-h)?);
+                if branch(&up) != branch(&base) || branch(&down) != branch(&base) {
+                    return None;
+                }
+                let (u, w) = (rates(&up), rates(&down));
+                Some(std::array::from_fn(|j| (u[j] - w[j]) / (2.0 * h)))
+            })
         };
         let mut out = [[0.0; P]; 6];
         // The state: θ, θ̇, l̇, ḃ (l and b pass through unchanged).
