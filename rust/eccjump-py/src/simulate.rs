@@ -5,7 +5,6 @@ use crate::columns::dense_rows;
 use crate::errors::detached;
 use crate::names::{MODES, REASONS, STATUSES};
 use crate::options::{parse_rule, ramp, solver_options};
-use eccjump_core::mechanics::BodyState;
 use eccjump_core::modes::contact::ContactLaw;
 use eccjump_core::motion::record::{MotionStatus, Point};
 use eccjump_core::motion::sensitivities::{
@@ -164,11 +163,6 @@ fn derivatives(py: Python<'_>, s: Sensitivities) -> PyResult<Derivatives<'_>> {
     Ok((d, s.singular.into_pyarray(py)))
 }
 
-/// (θ, θ̇, l, l̇, b, ḃ): the order of every full state handed to Python.
-fn state_values(s: &BodyState) -> [f64; 6] {
-    [s.theta, s.omega, s.l, s.ldot, s.b, s.bdot]
-}
-
 /// One field of every recorded point, as a numpy array.
 fn column<'py>(py: Python<'py>, points: &[Point], field: impl Fn(&Point) -> f64) -> Series<'py> {
     points
@@ -202,7 +196,7 @@ fn points<'py>(py: Python<'py>, p: &[Point]) -> Points<'py> {
 /// The records of `run`, each as a tuple of its fields.
 fn records<'py>(py: Python<'py>, run: &MotionRun) -> Records<'py> {
     let transitions = run.transitions.iter().map(|t| {
-        let [theta, omega, l, ldot, b, bdot] = state_values(&t.state);
+        let [theta, omega, l, ldot, b, bdot] = t.state.values();
         let from = t.from.map(|m| MODES.of(py, m));
         let (to, why) = (MODES.of(py, t.to), REASONS.of(py, t.reason));
         (t.t, from, to, why, theta, omega, l, ldot, b, bdot)
@@ -259,7 +253,7 @@ impl MotionDense {
     ) -> PyResult<Bound<'py, PyArray2<f64>>> {
         let range = (0.0, self.sol.t_end);
         dense_rows(py, "the dense states", t.as_slice()?, range, |ti| {
-            self.sol.state(ti).map(|s| state_values(&s))
+            self.sol.state(ti).map(|s| s.values())
         })
     }
 }

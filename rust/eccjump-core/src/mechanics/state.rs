@@ -41,6 +41,23 @@ impl BodyState {
         }
     }
 
+    /// (θ, θ̇, l, l̇, b, ḃ): the order of every full state handed on as numbers.
+    pub fn values(&self) -> [f64; 6] {
+        [self.theta, self.omega, self.l, self.ldot, self.b, self.bdot]
+    }
+
+    /// The state of the values (θ, θ̇, l, l̇, b, ḃ).
+    pub fn from_values([theta, omega, l, ldot, b, bdot]: [f64; 6]) -> Self {
+        Self {
+            theta,
+            omega,
+            l,
+            ldot,
+            b,
+            bdot,
+        }
+    }
+
     /// The slip velocity u_t = l̇ − θ̇ of the contact point.
     #[inline]
     pub fn slip_velocity(&self) -> f64 {

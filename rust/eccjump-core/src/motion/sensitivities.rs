@@ -198,7 +198,7 @@ fn pack(x: &[Dual<P>; 6]) -> State<V> {
 
 /// The state `s` with sensitivity `d` (rows θ, θ̇, l, l̇, b, ḃ).
 fn with_partials<const N: usize>(s: &BodyState, d: &[[f64; N]; 6]) -> [Dual<N>; 6] {
-    let v = [s.theta, s.omega, s.l, s.ldot, s.b, s.bdot];
+    let v = s.values();
     std::array::from_fn(|i| Dual { v: v[i], d: d[i] })
 }
 
@@ -418,10 +418,7 @@ impl Walk<'_> {
     fn landing(&self, before: &BodyState, dx: &[[f64; P]; 6]) -> Option<[[f64; P]; 6]> {
         let base = land(self.ramp, self.opts, before)?;
         let branch = |l: &Landed| (l.sticking, l.flies, l.settled);
-        let rates = |l: &Landed| {
-            let s = l.state;
-            [s.theta, s.omega, s.l, s.ldot, s.b, s.bdot]
-        };
+        let rates = |l: &Landed| l.state.values();
         // ∂R/∂(one input), by a central difference of `map` at h, or at a smaller step where
         // one side leaves the branch: a slow landing is on a branch only ~|u| wide (its
         // outcome turns with the direction of the contact velocity u), so a step of 1e-6
@@ -442,27 +439,12 @@ impl Walk<'_> {
         // The state: θ, θ̇, l̇, ḃ (l and b pass through unchanged).
         out[2] = dx[2];
         out[4] = dx[4];
-        let v = [
-            before.theta,
-            before.omega,
-            before.l,
-            before.ldot,
-            before.b,
-            before.bdot,
-        ];
+        let v = before.values();
         for j in [0, 1, 3, 5] {
             let map = |h: f64| {
                 let mut w = v;
                 w[j] += h;
-                let s = BodyState {
-                    theta: w[0],
-                    omega: w[1],
-                    l: w[2],
-                    ldot: w[3],
-                    b: w[4],
-                    bdot: w[5],
-                };
-                land(self.ramp, self.opts, &s)
+                land(self.ramp, self.opts, &BodyState::from_values(w))
             };
             let col = diff(&map, STEP * (1.0 + v[j].abs()))?;
             for (row, c) in out.iter_mut().zip(col) {
@@ -474,13 +456,12 @@ impl Walk<'_> {
         // The parameters the law reads: χ, k_m, μ_s, μ_k, e. It reads e², so at e = 0 the
         // derivative in e is 0; a step there would keep a bounce (e |u_n| above the Zeno
         // threshold) that e = 0 never makes.
+        let (body, law) = (&self.ramp.body, &self.opts.law);
+        let values = [body.chi, body.km, law.mu_s, law.mu_k, self.opts.restitution];
         let last = if self.opts.restitution == 0.0 { 4 } else { 5 };
         for k in 1..=last {
             let map = |h: f64| self.land_moved(before, k, h);
-            let p = [0.0, self.ramp.body.chi, self.ramp.body.km, 0.0, 0.0, 0.0];
-            let law = &self.opts.law;
-            let value = [0.0, p[1], p[2], law.mu_s, law.mu_k, self.opts.restitution][k];
-            let col = diff(&map, STEP * (1.0 + value.abs()))?;
+            let col = diff(&map, STEP * (1.0 + values[k - 1].abs()))?;
             for (row, c) in out.iter_mut().zip(col) {
                 row[k] += c;
             }
