@@ -19,6 +19,9 @@
 
 #![warn(missing_docs)]
 
+#[macro_use]
+mod named_enum;
+
 pub mod dual;
 pub mod error;
 pub mod jarm;

@@ -5,59 +5,46 @@ use crate::error::{check_range, Result};
 use crate::mechanics::Rule;
 use crate::ode::SolverOptions;
 
-/// Why a point is or is not a JARM. `#[repr(u8)]` with stable values (the bridge exports them).
-#[repr(u8)]
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
-pub enum Reason {
-    /// 0: jump after pure rolling.
-    Jarm = 0,
-    /// 1: no lift-off (on the requested turn n, or ever: α = 0, χ = 0, or the path passes turn
-    /// n without event).
-    NoRoot = 1,
-    /// 2: the lift-off rule held earlier: on an earlier turn than the requested n, or at the
-    /// start itself (e.g. α = π/2 from rest, where F_y = 0 at θ0).
-    LiftoffEarlier = 2,
-    /// 3: the normal force reached 0 before lift-off (or F_y,J ≤ 0 at it).
-    NormalForceLost = 3,
-    /// 4: the rolling branch needs more than μ_s of friction before lift-off (and the paper's
-    /// jump-point test ineq2 alone would not have caught it), or slip is consistent there under
-    /// the `NormalForce` rule.
-    SlipBefore = 4,
-    /// 5: friction fails on the final approach: the paper's lift-off point that follows is in
-    /// the green window but needs μ(θ_J) > μ_s (Eq. ineq2 fails). Paper rule only.
-    SlipAtJump = 5,
-    /// 6: θ̇² returns to 0 before any event: the body stops and rolls back (not possible from
-    /// rest at θ0 = 0 with α > 0; see `from_rest::rock_back_angle`).
-    RocksBack = 6,
-    /// 7: nothing happened within `max_turns` turns and n* > `max_turns`.
-    TurnLimit = 7,
-    /// 8: a parameter is NaN or out of range.
-    InvalidParams = 8,
-    /// 9: the integrator of the ODE route failed (step too small, non-finite values, step
-    /// budget): no physical verdict.
-    SolverFailed = 9,
-    /// 10: friction fails before the paper's lift-off, and the search stopped there
-    /// (`JarmOptions::stop_at_slip`): `SlipBefore` or `SlipAtJump`, not told apart.
-    /// Paper rule only.
-    Slip = 10,
+named_enum! {
+    /// Why a point is or is not a JARM. `#[repr(u8)]` with stable values (the bridge exports them).
+    #[repr(u8)]
+    #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+    pub enum Reason {
+        /// 0: jump after pure rolling.
+        Jarm = 0 => "jarm",
+        /// 1: no lift-off (on the requested turn n, or ever: α = 0, χ = 0, or the path passes turn
+        /// n without event).
+        NoRoot = 1 => "no_root",
+        /// 2: the lift-off rule held earlier: on an earlier turn than the requested n, or at the
+        /// start itself (e.g. α = π/2 from rest, where F_y = 0 at θ0).
+        LiftoffEarlier = 2 => "liftoff_earlier",
+        /// 3: the normal force reached 0 before lift-off (or F_y,J ≤ 0 at it).
+        NormalForceLost = 3 => "normal_force_lost",
+        /// 4: the rolling branch needs more than μ_s of friction before lift-off (and the paper's
+        /// jump-point test ineq2 alone would not have caught it), or slip is consistent there under
+        /// the `NormalForce` rule.
+        SlipBefore = 4 => "slip_before",
+        /// 5: friction fails on the final approach: the paper's lift-off point that follows is in
+        /// the green window but needs μ(θ_J) > μ_s (Eq. ineq2 fails). Paper rule only.
+        SlipAtJump = 5 => "slip_at_jump",
+        /// 6: θ̇² returns to 0 before any event: the body stops and rolls back (not possible from
+        /// rest at θ0 = 0 with α > 0; see `from_rest::rock_back_angle`).
+        RocksBack = 6 => "rocks_back",
+        /// 7: nothing happened within `max_turns` turns and n* > `max_turns`.
+        TurnLimit = 7 => "turn_limit",
+        /// 8: a parameter is NaN or out of range.
+        InvalidParams = 8 => "invalid_params",
+        /// 9: the integrator of the ODE route failed (step too small, non-finite values, step
+        /// budget): no physical verdict.
+        SolverFailed = 9 => "solver_failed",
+        /// 10: friction fails before the paper's lift-off, and the search stopped there
+        /// (`JarmOptions::stop_at_slip`): `SlipBefore` or `SlipAtJump`, not told apart.
+        /// Paper rule only.
+        Slip = 10 => "slip",
+    }
 }
 
 impl Reason {
-    /// All reasons, indexed by code.
-    pub const ALL: [Reason; 11] = [
-        Reason::Jarm,
-        Reason::NoRoot,
-        Reason::LiftoffEarlier,
-        Reason::NormalForceLost,
-        Reason::SlipBefore,
-        Reason::SlipAtJump,
-        Reason::RocksBack,
-        Reason::TurnLimit,
-        Reason::InvalidParams,
-        Reason::SolverFailed,
-        Reason::Slip,
-    ];
-
     /// The numeric code.
     pub fn code(self) -> u8 {
         self as u8
@@ -66,23 +53,6 @@ impl Reason {
     /// The reason for a code, if valid.
     pub fn from_code(code: u8) -> Option<Reason> {
         Reason::ALL.get(code as usize).copied()
-    }
-
-    /// A short snake_case name.
-    pub fn name(self) -> &'static str {
-        match self {
-            Reason::Jarm => "jarm",
-            Reason::NoRoot => "no_root",
-            Reason::LiftoffEarlier => "liftoff_earlier",
-            Reason::NormalForceLost => "normal_force_lost",
-            Reason::SlipBefore => "slip_before",
-            Reason::SlipAtJump => "slip_at_jump",
-            Reason::RocksBack => "rocks_back",
-            Reason::TurnLimit => "turn_limit",
-            Reason::InvalidParams => "invalid_params",
-            Reason::SolverFailed => "solver_failed",
-            Reason::Slip => "slip",
-        }
     }
 }
 

@@ -29,40 +29,20 @@ pub const INVALID: u8 = 255;
 /// `liftoff_reason` of a point that never flies.
 pub const NO_REASON: u8 = 255;
 
-/// How the first landing ended.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub enum LandingOutcome {
-    /// No landing (no flight, or the run ended in the air).
-    None = 0,
-    /// The body leaves the impact rolling.
-    Sticks = 1,
-    /// It leaves the impact sliding.
-    Slides = 2,
-    /// It bounces (flies again).
-    Bounces = 3,
-    /// No contact mode is consistent after the impact: the run ends there (a jam).
-    Ends = 4,
-}
-
-impl LandingOutcome {
-    /// Every outcome, by code.
-    pub const ALL: [LandingOutcome; 5] = [
-        LandingOutcome::None,
-        LandingOutcome::Sticks,
-        LandingOutcome::Slides,
-        LandingOutcome::Bounces,
-        LandingOutcome::Ends,
-    ];
-
-    /// The name the Python layer prints.
-    pub fn name(self) -> &'static str {
-        match self {
-            LandingOutcome::None => "none",
-            LandingOutcome::Sticks => "sticks",
-            LandingOutcome::Slides => "slides",
-            LandingOutcome::Bounces => "bounces",
-            LandingOutcome::Ends => "ends",
-        }
+named_enum! {
+    /// How the first landing ended.
+    #[derive(Debug, Clone, Copy, PartialEq, Eq)]
+    pub enum LandingOutcome {
+        /// No landing (no flight, or the run ended in the air).
+        None = 0 => "none",
+        /// The body leaves the impact rolling.
+        Sticks = 1 => "sticks",
+        /// It leaves the impact sliding.
+        Slides = 2 => "slides",
+        /// It bounces (flies again).
+        Bounces = 3 => "bounces",
+        /// No contact mode is consistent after the impact: the run ends there (a jam).
+        Ends = 4 => "ends",
     }
 }
 

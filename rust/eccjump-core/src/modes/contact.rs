@@ -9,81 +9,41 @@ use crate::mechanics::friction::slip_margin;
 use crate::mechanics::{BodyState, Ramp, Rule};
 use crate::modes::slipping::Slipping;
 
-/// A mode of motion.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
-pub enum Mode {
-    /// Pure rolling.
-    Roll = 0,
-    /// Contact with sliding.
-    Slip = 1,
-    /// No contact.
-    Flight = 2,
-}
-
-impl Mode {
-    /// Every mode.
-    pub const ALL: [Mode; 3] = [Mode::Roll, Mode::Slip, Mode::Flight];
-
-    /// The mode's name as the Python layer prints it.
-    pub fn name(self) -> &'static str {
-        match self {
-            Mode::Roll => "ROLL",
-            Mode::Slip => "SLIP",
-            Mode::Flight => "FLIGHT",
-        }
+named_enum! {
+    /// A mode of motion.
+    #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+    pub enum Mode {
+        /// Pure rolling.
+        Roll = 0 => "ROLL",
+        /// Contact with sliding.
+        Slip = 1 => "SLIP",
+        /// No contact.
+        Flight = 2 => "FLIGHT",
     }
 }
 
-/// Why a mode began (the reasons of `docs/motion.md`).
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
-pub enum Reason {
-    /// The initial mode.
-    Start = 0,
-    /// The rolling branch left the friction cone and sliding is consistent.
-    Slip = 1,
-    /// The paper's lift-off: L reached 0 rising (or is positive in contact).
-    Liftoff = 2,
-    /// The normal force reached 0.
-    NormalForce = 3,
-    /// No sliding mode is consistent (Painlevé at onset) and L ≥ 0 allows flight.
-    SlipInconsistent = 4,
-    /// The slip velocity reached 0 and static friction holds.
-    Stick = 5,
-    /// The slip velocity reached 0 and the body slides the other way.
-    Reverse = 6,
-    /// The body landed (impact law, then the consistency test).
-    Impact = 7,
-    /// The body landed and the separation speed was below the settling threshold.
-    Settle = 8,
-}
-
-impl Reason {
-    /// All reasons, indexed by discriminant.
-    pub const ALL: [Reason; 9] = [
-        Reason::Start,
-        Reason::Slip,
-        Reason::Liftoff,
-        Reason::NormalForce,
-        Reason::SlipInconsistent,
-        Reason::Stick,
-        Reason::Reverse,
-        Reason::Impact,
-        Reason::Settle,
-    ];
-
-    /// The reason's name as the Python layer prints it.
-    pub fn name(self) -> &'static str {
-        match self {
-            Reason::Start => "start",
-            Reason::Slip => "slip",
-            Reason::Liftoff => "liftoff",
-            Reason::NormalForce => "normal_force",
-            Reason::SlipInconsistent => "slip_inconsistent",
-            Reason::Stick => "stick",
-            Reason::Reverse => "reverse",
-            Reason::Impact => "impact",
-            Reason::Settle => "settle",
-        }
+named_enum! {
+    /// Why a mode began (the reasons of `docs/motion.md`).
+    #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+    pub enum Reason {
+        /// The initial mode.
+        Start = 0 => "start",
+        /// The rolling branch left the friction cone and sliding is consistent.
+        Slip = 1 => "slip",
+        /// The paper's lift-off: L reached 0 rising (or is positive in contact).
+        Liftoff = 2 => "liftoff",
+        /// The normal force reached 0.
+        NormalForce = 3 => "normal_force",
+        /// No sliding mode is consistent (Painlevé at onset) and L ≥ 0 allows flight.
+        SlipInconsistent = 4 => "slip_inconsistent",
+        /// The slip velocity reached 0 and static friction holds.
+        Stick = 5 => "stick",
+        /// The slip velocity reached 0 and the body slides the other way.
+        Reverse = 6 => "reverse",
+        /// The body landed (impact law, then the consistency test).
+        Impact = 7 => "impact",
+        /// The body landed and the separation speed was below the settling threshold.
+        Settle = 8 => "settle",
     }
 }
 

@@ -109,34 +109,24 @@ impl OdeSystem<6> for SlipInImpulse {
     }
 }
 
-/// The events that end a slip in the normal impulse, in tie order (the index is the
-/// discriminant), all terminal.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub enum ImpulseEvent {
-    /// B falls to 0, so F_y does: the body leaves the ramp.
-    NormalForce = 0,
-    /// The slip velocity returns to 0: stick or reverse.
-    Stops = 1,
-    /// D rises to [`D_BACK`]: the slip goes on in time.
-    Recovers = 2,
-    /// D falls to [`D_JAM`] with the slip on: the impulsive jam.
-    Jam = 3,
-    /// t reaches t_max.
-    TLimit = 4,
-    /// l reaches l_max.
-    LLimit = 5,
-}
-
-impl ImpulseEvent {
-    /// All events, indexed by discriminant.
-    pub const ALL: [ImpulseEvent; 6] = [
-        ImpulseEvent::NormalForce,
-        ImpulseEvent::Stops,
-        ImpulseEvent::Recovers,
-        ImpulseEvent::Jam,
-        ImpulseEvent::TLimit,
-        ImpulseEvent::LLimit,
-    ];
+named_enum! {
+    /// The events that end a slip in the normal impulse, in tie order (the index is the
+    /// discriminant), all terminal.
+    #[derive(Debug, Clone, Copy, PartialEq, Eq)]
+    pub enum ImpulseEvent {
+        /// B falls to 0, so F_y does: the body leaves the ramp.
+        NormalForce = 0,
+        /// The slip velocity returns to 0: stick or reverse.
+        Stops = 1,
+        /// D rises to [`D_BACK`]: the slip goes on in time.
+        Recovers = 2,
+        /// D falls to [`D_JAM`] with the slip on: the impulsive jam.
+        Jam = 3,
+        /// t reaches t_max.
+        TLimit = 4,
+        /// l reaches l_max.
+        LLimit = 5,
+    }
 }
 
 /// The events of a slip in the normal impulse (no change bounds: such slips are rare and

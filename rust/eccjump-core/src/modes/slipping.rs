@@ -152,28 +152,20 @@ impl LaneRhs<5> for Slipping {
     }
 }
 
-/// The events that end a slip, in tie order (the index is the discriminant).
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub enum SlipEvent {
-    /// B falls to 0, so F_y does: the body leaves the ramp (both rules coincide here).
-    NormalForce = 0,
-    /// The slip velocity returns to 0: stick or reverse.
-    Stops = 1,
-    /// D falls to [`D_SWITCH`]: near the Painlevé singularity the slip goes on in the
-    /// normal impulse ([`crate::modes::slip_in_impulse`]).
-    Singular = 2,
-    /// l reaches l_max.
-    LLimit = 3,
-}
-
-impl SlipEvent {
-    /// All events, indexed by discriminant.
-    pub const ALL: [SlipEvent; 4] = [
-        SlipEvent::NormalForce,
-        SlipEvent::Stops,
-        SlipEvent::Singular,
-        SlipEvent::LLimit,
-    ];
+named_enum! {
+    /// The events that end a slip, in tie order (the index is the discriminant).
+    #[derive(Debug, Clone, Copy, PartialEq, Eq)]
+    pub enum SlipEvent {
+        /// B falls to 0, so F_y does: the body leaves the ramp (both rules coincide here).
+        NormalForce = 0,
+        /// The slip velocity returns to 0: stick or reverse.
+        Stops = 1,
+        /// D falls to [`D_SWITCH`]: near the Painlevé singularity the slip goes on in the
+        /// normal impulse ([`crate::modes::slip_in_impulse`]).
+        Singular = 2,
+        /// l reaches l_max.
+        LLimit = 3,
+    }
 }
 
 /// The events of a slip, all terminal.

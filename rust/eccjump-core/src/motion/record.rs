@@ -116,48 +116,24 @@ pub enum Crossing {
     Landing,
 }
 
-/// How a run ended.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub enum MotionStatus {
-    /// t reached t_max.
-    TimeLimit = 0,
-    /// l reached l_max.
-    DistanceLimit = 1,
-    /// The transition budget was used up.
-    MaxTransitions = 2,
-    /// D fell to its threshold during a slip (Painlevé).
-    Painleve = 3,
-    /// No consistent contact mode and flight impossible.
-    Jam = 4,
-    /// The integrator or the landing search failed.
-    Failed = 5,
-    /// Ended, as asked, at the first landing (once the mode after it was chosen).
-    Landed = 6,
-}
-
-impl MotionStatus {
-    /// Every status.
-    pub const ALL: [MotionStatus; 7] = [
-        MotionStatus::TimeLimit,
-        MotionStatus::DistanceLimit,
-        MotionStatus::MaxTransitions,
-        MotionStatus::Painleve,
-        MotionStatus::Jam,
-        MotionStatus::Failed,
-        MotionStatus::Landed,
-    ];
-
-    /// The status's name as the Python layer prints it.
-    pub fn name(self) -> &'static str {
-        match self {
-            MotionStatus::TimeLimit => "t_max",
-            MotionStatus::DistanceLimit => "l_max",
-            MotionStatus::MaxTransitions => "max_transitions",
-            MotionStatus::Painleve => "painleve",
-            MotionStatus::Jam => "jam",
-            MotionStatus::Failed => "failed",
-            MotionStatus::Landed => "landed",
-        }
+named_enum! {
+    /// How a run ended.
+    #[derive(Debug, Clone, Copy, PartialEq, Eq)]
+    pub enum MotionStatus {
+        /// t reached t_max.
+        TimeLimit = 0 => "t_max",
+        /// l reached l_max.
+        DistanceLimit = 1 => "l_max",
+        /// The transition budget was used up.
+        MaxTransitions = 2 => "max_transitions",
+        /// D fell to its threshold during a slip (Painlevé).
+        Painleve = 3 => "painleve",
+        /// No consistent contact mode and flight impossible.
+        Jam = 4 => "jam",
+        /// The integrator or the landing search failed.
+        Failed = 5 => "failed",
+        /// Ended, as asked, at the first landing (once the mode after it was chosen).
+        Landed = 6 => "landed",
     }
 }
 

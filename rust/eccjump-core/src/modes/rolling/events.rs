@@ -8,44 +8,24 @@
 //! Ties are resolved in the order of [`ContactEvent::ALL`]; a condition already violated at
 //! the start is found by [`violated_at_start`], the same test for both routes.
 
-/// An event that ends pure rolling, in tie order (the index is the discriminant, and the
-/// index of its event function in a run and in the ODE route).
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
-#[repr(u8)]
-pub enum ContactEvent {
-    /// The paper's lift-off: L reaches 0 from below.
-    Liftoff = 0,
-    /// F_y reaches 0.
-    NormalForce = 1,
-    /// μ_s F_y − |F_x| reaches 0: the rolling branch leaves the friction cone.
-    Slip = 2,
-    /// θ̇² returns to 0: the body stops and rolls back (watched by a search; a run rolls
-    /// back and on).
-    RocksBack = 3,
-    /// θ reaches its limit: a run's θ_max, or the end of a search (nothing happened
-    /// before it).
-    ThetaLimit = 4,
-}
-
-impl ContactEvent {
-    /// All events, in tie order (the index is the discriminant).
-    pub const ALL: [ContactEvent; 5] = [
-        ContactEvent::Liftoff,
-        ContactEvent::NormalForce,
-        ContactEvent::Slip,
-        ContactEvent::RocksBack,
-        ContactEvent::ThetaLimit,
-    ];
-
-    /// A stable lower-case name, used by the Python layer and the command line.
-    pub fn name(self) -> &'static str {
-        match self {
-            ContactEvent::Liftoff => "liftoff",
-            ContactEvent::NormalForce => "normal_force_zero",
-            ContactEvent::Slip => "slip",
-            ContactEvent::RocksBack => "rocks_back",
-            ContactEvent::ThetaLimit => "theta_limit",
-        }
+named_enum! {
+    /// An event that ends pure rolling, in tie order (the index is the discriminant, and the
+    /// index of its event function in a run and in the ODE route).
+    #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+    #[repr(u8)]
+    pub enum ContactEvent {
+        /// The paper's lift-off: L reaches 0 from below.
+        Liftoff = 0 => "liftoff",
+        /// F_y reaches 0.
+        NormalForce = 1 => "normal_force_zero",
+        /// μ_s F_y − |F_x| reaches 0: the rolling branch leaves the friction cone.
+        Slip = 2 => "slip",
+        /// θ̇² returns to 0: the body stops and rolls back (watched by a search; a run rolls
+        /// back and on).
+        RocksBack = 3 => "rocks_back",
+        /// θ reaches its limit: a run's θ_max, or the end of a search (nothing happened
+        /// before it).
+        ThetaLimit = 4 => "theta_limit",
     }
 }
 

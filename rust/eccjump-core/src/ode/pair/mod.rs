@@ -30,35 +30,26 @@ pub const MAX_STAGES: usize = {
 };
 use super::{DenseStep, OdeSystem, SinCos, State};
 
-/// Which pair an integration uses.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
-pub enum Method {
-    /// Dormand–Prince 5(4) with its 4th-degree dense output (scipy's `RK45`): the default,
-    /// step for step as scipy.
-    #[default]
-    Rk45,
-    /// Dormand–Prince 8(5,3) with its 7th-degree dense output (scipy's `DOP853`): fewer
-    /// steps at tight tolerances.
-    Dop853,
-    /// Verner's most efficient 9(8) pair with its 8th-degree interpolant (`Vern9` as in
-    /// DifferentialEquations.jl): the fastest pair at
-    /// the default tolerances (`docs/performance.md`).
-    Vern9,
+named_enum! {
+    /// Which pair an integration uses; its name is scipy's "RK45" or "DOP853", or Verner's
+    /// "Vern9".
+    #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+    pub enum Method {
+        /// Dormand–Prince 5(4) with its 4th-degree dense output (scipy's `RK45`): the default,
+        /// step for step as scipy.
+        #[default]
+        Rk45 = 0 => "RK45",
+        /// Dormand–Prince 8(5,3) with its 7th-degree dense output (scipy's `DOP853`): fewer
+        /// steps at tight tolerances.
+        Dop853 = 1 => "DOP853",
+        /// Verner's most efficient 9(8) pair with its 8th-degree interpolant (`Vern9` as in
+        /// DifferentialEquations.jl): the fastest pair at the default tolerances
+        /// (`docs/performance.md`).
+        Vern9 = 2 => "Vern9",
+    }
 }
 
 impl Method {
-    /// Every pair, by name.
-    pub const ALL: [Method; 3] = [Method::Rk45, Method::Dop853, Method::Vern9];
-
-    /// The pair's name: scipy's "RK45" or "DOP853", or Verner's "Vern9".
-    pub fn name(self) -> &'static str {
-        match self {
-            Method::Rk45 => "RK45",
-            Method::Dop853 => "DOP853",
-            Method::Vern9 => "Vern9",
-        }
-    }
-
     /// The pair named `name` (see [`Method::name`]).
     pub fn from_name(name: &str) -> Option<Method> {
         Method::ALL.into_iter().find(|m| m.name() == name)
