@@ -5,7 +5,6 @@
 pub mod dop853;
 pub mod dp5;
 pub mod vern9;
-mod verner;
 
 pub use dop853::Dop853;
 pub use dp5::Dp5;
@@ -17,16 +16,12 @@ use super::dense::MAX_DEGREE;
 /// ones (Vern9's 21; DOP853 keeps 16, RK45 7).
 pub const MAX_STAGES: usize = {
     use super::tableau::{dop853, vern9};
-    let mut most = 0;
-    let all = [dop853::N_STAGES_EXTENDED, vern9::N_STAGES_EXTENDED];
-    let mut i = 0;
-    while i < all.len() {
-        if all[i] > most {
-            most = all[i];
-        }
-        i += 1;
+    let (a, b) = (dop853::N_STAGES_EXTENDED, vern9::N_STAGES_EXTENDED);
+    if a > b {
+        a
+    } else {
+        b
     }
-    most
 };
 use super::{DenseStep, OdeSystem, SinCos, State};
 
