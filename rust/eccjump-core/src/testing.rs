@@ -1,5 +1,14 @@
 //! What the unit tests share (compiled for tests only).
 
+use crate::mechanics::{BodyState, Ramp};
+
+impl Ramp {
+    /// The energy of the pure-rolling state (θ, θ̇) with l = θ, b = 1.
+    pub(crate) fn rolling_energy(&self, theta: f64, omega: f64) -> f64 {
+        self.energy_of(&BodyState::rolling(theta, omega, theta))
+    }
+}
+
 /// A small deterministic generator (Knuth's MMIX LCG), uniform in [0, 1): reproducible
 /// random test points.
 pub(crate) struct Lcg(pub u64);

@@ -44,22 +44,8 @@ pub fn pool(n_threads: usize) -> Result<ThreadPool> {
         })
 }
 
-/// Fills `out[i] = point(i)` in parallel on `n_threads` threads (0 = one per core).
-pub fn par_fill<T, F>(out: &mut [T], n_threads: usize, point: F) -> Result<()>
-where
-    T: Send,
-    F: Fn(usize) -> T + Sync,
-{
-    pool(n_threads)?.install(|| {
-        out.par_iter_mut()
-            .enumerate()
-            .with_max_len(MAX_PIECE)
-            .for_each(|(i, o)| *o = point(i))
-    });
-    Ok(())
-}
-
-/// [`par_fill`] whose caller may stop it: while the pool works (driven from a scoped
+/// Fills `out[i] = point(i)` in parallel on `n_threads` threads (0 = one per core), and its
+/// caller may stop it: while the pool works (driven from a scoped
 /// thread), the calling thread asks `stop()` every [`POLL`]; a `true` makes the workers skip
 /// the points not yet started and ends the work with `Error::Interrupted` (the part of `out`
 /// not reached is left as it was). No barrier between parts of the work: the threads stay
@@ -217,9 +203,8 @@ mod tests {
     #[test]
     fn stoppable_fill_is_the_plain_fill_and_stops_when_asked() {
         let f = |i: usize| (i as f64).sqrt().sin();
-        let mut a = vec![0.0; 100_000];
+        let a: Vec<f64> = (0..100_000).map(f).collect();
         let mut b = vec![0.0; 100_000];
-        par_fill(&mut a, 1, f).unwrap();
         par_fill_until(&mut b, 2, f, &never).unwrap();
         assert!(a.iter().zip(&b).all(|(x, y)| x.to_bits() == y.to_bits()));
         // Slow points (1 ms each: 50 s in all) and a stop at the first poll after the start.

@@ -44,11 +44,6 @@ impl Ramp {
         0.5 * (vx * vx + vy * vy) + 0.5 * self.body.icm * omega * omega + height
     }
 
-    /// The energy of the pure-rolling state (θ, θ̇) with l = θ, b = 1.
-    pub fn rolling_energy(&self, theta: f64, omega: f64) -> f64 {
-        self.energy_of(&BodyState::rolling(theta, omega, theta))
-    }
-
     /// Where the rolling energy turns, as arcsin(sin α/χ): along pure rolling
     /// dE/dθ = sin α + χ sin(α + θ) vanishes where sin(α + θ) = −sin α/χ, a minimum at
     /// α + θ ≡ −arcsin(sin α/χ) and a maximum at α + θ ≡ π + arcsin(sin α/χ) (mod 2π).

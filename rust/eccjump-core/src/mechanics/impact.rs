@@ -104,8 +104,8 @@ pub enum Ending {
     Sliding,
 }
 
-/// The result of one impact: the impulse, the contact velocity after it and its works
-/// (all per M, in units of √(gR) and M g R).
+/// The result of one impact: the impulse, the contact velocity after it and its works (all
+/// per M, in units of √(gR) and M g R; the energy it removes is −(normal + friction work)).
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Impulse {
     /// Tangential impulse P_t (along x, down the ramp).
@@ -124,13 +124,6 @@ pub struct Impulse {
     pub normal_work: f64,
     /// ∫ u_t dP_t over the whole impact, ≤ 0 (friction dissipates).
     pub friction_work: f64,
-}
-
-impl Impulse {
-    /// The kinetic energy the impact removes, −(normal_work + friction_work) ≥ 0.
-    pub fn energy_loss(&self) -> f64 {
-        -(self.normal_work + self.friction_work)
-    }
 }
 
 /// What the contact point does along a segment of constant slopes.

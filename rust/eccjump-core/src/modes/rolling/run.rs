@@ -155,13 +155,8 @@ impl RollEvents {
         }
     }
 
-    /// [`EventBounds::change_bounds`] of all four events (see `ContactBounds`).
-    pub fn change_bounds_all(&self, dense: &DenseStep<2>) -> [Change; 5] {
-        self.change_bounds_near(dense, None)
-    }
-
-    /// [`RollEvents::change_bounds_all`], tightened near an anchor angle (see
-    /// [`ContactBounds::near`]).
+    /// [`EventBounds::change_bounds`] of all events (see `ContactBounds`), tightened near an
+    /// anchor angle (see [`ContactBounds::near`]).
     pub(crate) fn change_bounds_near(
         &self,
         dense: &DenseStep<2>,
