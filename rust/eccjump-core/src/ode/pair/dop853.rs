@@ -1,12 +1,10 @@
 //! Dormand–Prince 8(5,3) (scipy's `DOP853`): 12 stages, the combined 5th/3rd-order error
 //! norm of Hairer's code, and the 7th-degree dense output from three extra stages.
 
-use super::{all_finite, error_scale, solution, unrolled_stages, weighted_sum, RkPair, Summand};
+use super::{all_finite, error_scale, unrolled_stages, weighted_sum, RkPair, Summand};
 use crate::ode::dense::MAX_DEGREE;
-use crate::ode::tableau::dop853::{
-    A, A_EXTRA, B, C, C_EXTRA, D, E3, E5, ERROR_EXPONENT, N_STAGES, N_STAGES_EXTENDED,
-};
-use crate::ode::{DenseStep, OdeSystem, SinCos, State};
+use crate::ode::tableau::dop853::{A_EXTRA, C_EXTRA, D, E3, E5, N_STAGES, N_STAGES_EXTENDED};
+use crate::ode::{DenseStep, OdeSystem, State};
 
 /// The stages of one DOP853 step: 12 stages, the FSAL derivative at the step end
 /// (`k[12]`) and, once the dense output is built, its three extra stages.
@@ -17,38 +15,13 @@ pub struct Dop853<const N: usize> {
 }
 
 impl<const N: usize> RkPair<N> for Dop853<N> {
-    const ERROR_EXPONENT: f64 = ERROR_EXPONENT;
+    super::tableau_members!(dop853; 1 2 3 4 5 6 7 8 9 10 11);
 
     /// err^(−1/8) by three square roots (each correctly rounded, so portable to the last
     /// bit) instead of `pow`, which costs as much as a few stages.
     #[inline]
     fn error_power(err: f64) -> f64 {
         1.0 / err.sqrt().sqrt().sqrt()
-    }
-
-    #[inline]
-    fn empty() -> Self {
-        Self {
-            k: [State::<N>::zeros(); N_STAGES_EXTENDED],
-        }
-    }
-
-    /// scipy's `rk_step` with DOP853's tableau: 12 evaluations of f when it succeeds.
-    #[inline]
-    fn attempt<S: OdeSystem<N>>(
-        &mut self,
-        sys: &S,
-        t: f64,
-        y: &State<N>,
-        f: &State<N>,
-        h: f64,
-        nfev: &mut usize,
-    ) -> Option<(State<N>, Option<SinCos>)> {
-        let k = &mut self.k;
-        k[0] = *f;
-        let at = (t, y, h);
-        unrolled_stages!(sys, at, k, nfev, 0, (A, C); 1 2 3 4 5 6 7 8 9 10 11);
-        solution(sys, at, k, &B, nfev)
     }
 
     /// The 5th- and 3rd-order error estimates Σ E5_j K_j and Σ E3_j K_j.
@@ -81,11 +54,6 @@ impl<const N: usize> RkPair<N> for Dop853<N> {
         h.abs() * e5 / (denom * N as f64).sqrt()
     }
 
-    #[inline]
-    fn f_new(&self) -> State<N> {
-        self.k[N_STAGES]
-    }
-
     /// scipy's `_dense_output_impl` and `Dop853DenseOutput`: three more stages, then
     /// [`Self::dense_from_stages`].
     fn dense<S: OdeSystem<N>>(
@@ -101,29 +69,6 @@ impl<const N: usize> RkPair<N> for Dop853<N> {
         let k = &mut self.k;
         unrolled_stages!(sys, at, k, nfev, N_STAGES + 1, (A_EXTRA, C_EXTRA); 0 1 2);
         self.dense_from_stages(t_old, h, y_old, y_new)
-    }
-
-    const STAGES: usize = N_STAGES;
-    const EXTRA: usize = N_STAGES_EXTENDED - N_STAGES - 1;
-
-    #[inline(always)]
-    fn a(s: usize) -> &'static [f64] {
-        &A[s]
-    }
-
-    #[inline(always)]
-    fn b() -> &'static [f64] {
-        &B
-    }
-
-    #[inline(always)]
-    fn a_extra(i: usize) -> &'static [f64] {
-        &A_EXTRA[i]
-    }
-
-    #[inline(always)]
-    fn stages(&self) -> &[State<N>] {
-        &self.k
     }
 
     /// The sums Σ D_ij K_j of the dense output's F3 … F6 (before the factor h).

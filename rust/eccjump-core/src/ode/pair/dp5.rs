@@ -1,10 +1,10 @@
 //! Dormand–Prince 5(4) (scipy's `RK45`): `rk_step`, the error norm and `RkDenseOutput`,
 //! operation by operation as scipy, so that accepted steps agree with scipy's to rounding.
 
-use super::{scaled_error_norm, solution, unrolled_stages, weighted_sum, RkPair, Summand};
+use super::{scaled_error_norm, weighted_sum, RkPair, Summand};
 use crate::ode::dense::MAX_DEGREE;
-use crate::ode::tableau::dp5::{A, B, C, E, ERROR_EXPONENT, N_STAGES, P};
-use crate::ode::{DenseStep, OdeSystem, SinCos, State};
+use crate::ode::tableau::dp5::{E, N_STAGES, P};
+use crate::ode::{DenseStep, OdeSystem, State};
 
 /// The stages of one Dormand–Prince 5(4) step; `k[6]` is the FSAL derivative at its end.
 #[derive(Debug, Clone, Copy)]
@@ -14,37 +14,12 @@ pub struct Dp5<const N: usize> {
 }
 
 impl<const N: usize> RkPair<N> for Dp5<N> {
-    const ERROR_EXPONENT: f64 = ERROR_EXPONENT;
+    super::tableau_members!(dp5; 1 2 3 4 5);
 
     /// err^(−1/5) without `pow` ([`crate::trig::inv_fifth_root`], within 4 ulp of it).
     #[inline]
     fn error_power(err: f64) -> f64 {
         crate::trig::inv_fifth_root(err)
-    }
-
-    #[inline]
-    fn empty() -> Self {
-        Self {
-            k: [State::<N>::zeros(); N_STAGES + 1],
-        }
-    }
-
-    /// scipy's `rk_step`: exactly 6 evaluations of f when it succeeds.
-    #[inline]
-    fn attempt<S: OdeSystem<N>>(
-        &mut self,
-        sys: &S,
-        t: f64,
-        y: &State<N>,
-        f: &State<N>,
-        h: f64,
-        nfev: &mut usize,
-    ) -> Option<(State<N>, Option<SinCos>)> {
-        let k = &mut self.k;
-        k[0] = *f;
-        let at = (t, y, h);
-        unrolled_stages!(sys, at, k, nfev, 0, (A, C); 1 2 3 4 5);
-        solution(sys, at, k, &B, nfev)
     }
 
     /// The error estimate Σ E_j K_j (the second sum is not used).
@@ -65,11 +40,6 @@ impl<const N: usize> RkPair<N> for Dp5<N> {
         scaled_error_norm(sum, h, y, y_new, rtol, atol)
     }
 
-    #[inline]
-    fn f_new(&self) -> State<N> {
-        self.k[N_STAGES]
-    }
-
     /// scipy's `RkDenseOutput`: Q = Kᵀ P, no evaluation of f.
     #[inline]
     fn dense<S: OdeSystem<N>>(
@@ -82,28 +52,6 @@ impl<const N: usize> RkPair<N> for Dp5<N> {
         _nfev: &mut usize,
     ) -> Option<DenseStep<N>> {
         self.dense_from_stages(t_old, h, y_old, y_new)
-    }
-
-    const STAGES: usize = N_STAGES;
-    const EXTRA: usize = 0;
-
-    #[inline(always)]
-    fn a(s: usize) -> &'static [f64] {
-        &A[s]
-    }
-
-    #[inline(always)]
-    fn b() -> &'static [f64] {
-        &B
-    }
-
-    fn a_extra(_i: usize) -> &'static [f64] {
-        &[]
-    }
-
-    #[inline(always)]
-    fn stages(&self) -> &[State<N>] {
-        &self.k
     }
 
     /// scipy's `RkDenseOutput`: Q = Kᵀ P, summed stage after stage.

@@ -294,6 +294,73 @@ macro_rules! unrolled_stages {
 }
 pub(crate) use unrolled_stages;
 
+/// The members of [`RkPair`] that only name the pair's tableau (the module
+/// `crate::ode::tableau::$tab`), the same in every pair: its exponent, the zeroed pair, scipy's
+/// `rk_step` with its stages after the first (`$s`: literal indices, so that each stage is
+/// unrolled), f at y_new, and the tableau as the lanes apply it.
+macro_rules! tableau_members {
+    ($tab:ident; $($s:literal)*) => {
+        const ERROR_EXPONENT: f64 = $crate::ode::tableau::$tab::ERROR_EXPONENT;
+
+        #[inline]
+        fn empty() -> Self {
+            use $crate::ode::tableau::$tab::N_STAGES_EXTENDED;
+            Self {
+                k: [$crate::ode::State::<N>::zeros(); N_STAGES_EXTENDED],
+            }
+        }
+
+        /// scipy's `rk_step`: one evaluation of f per stage after the first, and one at y_new,
+        /// when it succeeds.
+        #[inline]
+        fn attempt<S: $crate::ode::OdeSystem<N>>(
+            &mut self,
+            sys: &S,
+            t: f64,
+            y: &$crate::ode::State<N>,
+            f: &$crate::ode::State<N>,
+            h: f64,
+            nfev: &mut usize,
+        ) -> Option<($crate::ode::State<N>, Option<$crate::ode::SinCos>)> {
+            use $crate::ode::tableau::$tab::{A, B, C};
+            let k = &mut self.k;
+            k[0] = *f;
+            let at = (t, y, h);
+            $crate::ode::pair::unrolled_stages!(sys, at, k, nfev, 0, (A, C); $($s)*);
+            $crate::ode::pair::solution(sys, at, k, &B, nfev)
+        }
+
+        #[inline]
+        fn f_new(&self) -> $crate::ode::State<N> {
+            self.k[$crate::ode::tableau::$tab::N_STAGES]
+        }
+
+        const STAGES: usize = $crate::ode::tableau::$tab::N_STAGES;
+        const EXTRA: usize = $crate::ode::tableau::$tab::N_STAGES_EXTENDED - Self::STAGES - 1;
+
+        #[inline(always)]
+        fn a(s: usize) -> &'static [f64] {
+            &$crate::ode::tableau::$tab::A[s]
+        }
+
+        #[inline(always)]
+        fn b() -> &'static [f64] {
+            &$crate::ode::tableau::$tab::B
+        }
+
+        #[inline(always)]
+        fn a_extra(i: usize) -> &'static [f64] {
+            &$crate::ode::tableau::$tab::A_EXTRA[i]
+        }
+
+        #[inline(always)]
+        fn stages(&self) -> &[$crate::ode::State<N>] {
+            &self.k
+        }
+    };
+}
+pub(crate) use tableau_members;
+
 /// Stage s of an explicit pair: k[s] = f(t + c h, y + (Σ_{j<s} K_j a_j) h), in scipy's
 /// order of operations; false if it is not finite.
 #[inline(always)]

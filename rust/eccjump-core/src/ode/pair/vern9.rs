@@ -12,13 +12,11 @@
 //! - a first step probed up to three times: from rest scipy's first step is 1e-4, and four
 //!   steps pass before the step reaches its size.
 
-use super::{all_finite, scaled_error_norm, solution, unrolled_stages, weighted_sum};
+use super::{all_finite, scaled_error_norm, unrolled_stages, weighted_sum};
 use super::{RkPair, Summand};
 use crate::ode::dense::MAX_DEGREE;
-use crate::ode::tableau::vern9::{
-    A, A_EXTRA, B, C, C_EXTRA, E, ERROR_EXPONENT, N_STAGES, N_STAGES_EXTENDED, R,
-};
-use crate::ode::{DenseStep, OdeSystem, SinCos, State};
+use crate::ode::tableau::vern9::{A_EXTRA, C_EXTRA, E, N_STAGES, N_STAGES_EXTENDED, R};
+use crate::ode::{DenseStep, OdeSystem, State};
 
 /// The stages of one Verner 9(8) step: 16 stages, the FSAL derivative at the step end
 /// (`k[16]`) and, once the interpolant is built, its four extra stages.
@@ -30,7 +28,7 @@ pub struct Vern9<const N: usize> {
 }
 
 impl<const N: usize> RkPair<N> for Vern9<N> {
-    const ERROR_EXPONENT: f64 = ERROR_EXPONENT;
+    super::tableau_members!(vern9; 1 2 3 4 5 6 7 8 9 10 11 12 13 14 15);
     const SAFETY: f64 = 0.75;
     const FIRST_STEP_PROBES: usize = 3;
 
@@ -46,31 +44,6 @@ impl<const N: usize> RkPair<N> for Vern9<N> {
     #[inline]
     fn first_step_power(d: f64) -> f64 {
         Self::error_power(d / 0.01)
-    }
-
-    #[inline]
-    fn empty() -> Self {
-        Self {
-            k: [State::<N>::zeros(); N_STAGES_EXTENDED],
-        }
-    }
-
-    /// 16 evaluations of f when it succeeds (stages 1 … 15 and f at y_new).
-    #[inline]
-    fn attempt<S: OdeSystem<N>>(
-        &mut self,
-        sys: &S,
-        t: f64,
-        y: &State<N>,
-        f: &State<N>,
-        h: f64,
-        nfev: &mut usize,
-    ) -> Option<(State<N>, Option<SinCos>)> {
-        let k = &mut self.k;
-        k[0] = *f;
-        let at = (t, y, h);
-        unrolled_stages!(sys, at, k, nfev, 0, (A, C); 1 2 3 4 5 6 7 8 9 10 11 12 13 14 15);
-        solution(sys, at, k, &B, nfev)
     }
 
     /// The error estimate Σ (b_j − b̂_j) K_j (the second sum is not used).
@@ -91,11 +64,6 @@ impl<const N: usize> RkPair<N> for Vern9<N> {
         scaled_error_norm(sum, h, y, y_new, rtol, atol)
     }
 
-    #[inline]
-    fn f_new(&self) -> State<N> {
-        self.k[N_STAGES]
-    }
-
     /// The extra stages, then `dense_from_stages`.
     fn dense<S: OdeSystem<N>>(
         &mut self,
@@ -110,29 +78,6 @@ impl<const N: usize> RkPair<N> for Vern9<N> {
         let k = &mut self.k;
         unrolled_stages!(sys, at, k, nfev, N_STAGES + 1, (A_EXTRA, C_EXTRA); 0 1 2 3);
         self.dense_from_stages(t_old, h, y_old, y_new)
-    }
-
-    const STAGES: usize = N_STAGES;
-    const EXTRA: usize = N_STAGES_EXTENDED - N_STAGES - 1;
-
-    #[inline(always)]
-    fn a(s: usize) -> &'static [f64] {
-        &A[s]
-    }
-
-    #[inline(always)]
-    fn b() -> &'static [f64] {
-        &B
-    }
-
-    #[inline(always)]
-    fn a_extra(i: usize) -> &'static [f64] {
-        &A_EXTRA[i]
-    }
-
-    #[inline(always)]
-    fn stages(&self) -> &[State<N>] {
-        &self.k
     }
 
     /// The coefficients Σ_i R_ji K_i of σ^(j+1), one per row of R (before the factor h);

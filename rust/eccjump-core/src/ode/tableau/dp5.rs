@@ -63,6 +63,12 @@ pub const E: [f64; N_STAGES + 1] = [
     1.0 / 40.0,
 ];
 
+/// Stages kept: the 6 and the FSAL one (the dense output needs no extra stages).
+pub const N_STAGES_EXTENDED: usize = N_STAGES + 1;
+
+/// No extra stages.
+pub const A_EXTRA: [[f64; 0]; 0] = [];
+
 /// Dense-output matrix (7 stages × 4 powers of σ): Q = Kᵀ P. Shampine's optimal c_6
 /// variant, as scipy.
 pub const P: [[f64; 4]; N_STAGES + 1] = [
