@@ -47,7 +47,8 @@ impl ClassifyOptions {
         n_threads: usize,
         integrator: &str,
     ) -> PyResult<Self> {
-        Method::check_tolerances(rtol, atol).map_err(to_py)?;
+        // Checked for either route: the closed form ignores them, but its results record them.
+        SolverOptions::check_tolerances(rtol, atol).map_err(to_py)?;
         let pair = parse_integrator(integrator)?;
         let method = Method::from_name(method, rtol, atol, pair).ok_or_else(|| {
             PyValueError::new_err(format!(

@@ -216,14 +216,8 @@ impl Method {
     /// Checks the tolerances of the ODE route.
     pub fn validate(&self) -> Result<()> {
         if let Method::Ode { rtol, atol, .. } = *self {
-            Self::check_tolerances(rtol, atol)?;
+            SolverOptions::check_tolerances(rtol, atol)?;
         }
         Ok(())
-    }
-
-    /// The tolerances any route accepts ([`SolverOptions::check_tolerances`]; the closed
-    /// form ignores them, but they are recorded with its results).
-    pub fn check_tolerances(rtol: f64, atol: f64) -> Result<()> {
-        SolverOptions::check_tolerances(rtol, atol)
     }
 }
