@@ -1,37 +1,13 @@
 //! Exact derivatives of the lift-off angle θ_J, of the forces at the jump and of the paper's
 //! friction ratio μ_J = −F_x,J/F_y,J with respect to p = (α, χ, k_m), χ and k_m independent,
-//! at fixed μ_s and start (θ0, θ̇0).
+//! at fixed μ_s and start (θ0, θ̇0), derived in `docs/jarm.md` ("Derivatives").
 //!
-//! θ_J is a root, in θ, of a function g(θ; p) along pure rolling, with θ̇² from the energy
-//! integral (exact, [`crate::mechanics::energy`]):
-//!
-//!   θ̇²(θ; p) = 2 [K0 + (θ − θ0) sin α + χ (cos(α + θ0) − cos(α + θ))] / Ĩ_P(θ),
-//!   K0 = ½ Ĩ_P(θ0) θ̇0²,  Ĩ_P(θ) = Ĩ_C + 1 + 2χ cos θ,  Ĩ_C = k_m + χ²/(1 − k_m),
-//!
-//! θ̈ from the rolling equation and F_x, F_y from Newton–Euler (the physics notes). g is
-//!
-//! - the paper's rule: L = χ θ̇² cos θ − cos α;
-//! - the classical rule: F_y (the normal force vanishes) or μ_s F_y − σ F_x with σ = sign F_x
-//!   (the friction cone is reached and sliding is inconsistent), whichever vanishes at θ_J.
-//!
-//! By the implicit function theorem dθ_J/dp = −(∂g/∂p)/(∂g/∂θ), where ∂/∂θ is taken along
-//! rolling (θ̇² moves with θ: ∂θ̇²/∂θ = 2θ̈) and ∂/∂p at fixed θ (θ̇² moves with p through the
-//! energy integral). A quantity q(θ; p) at the jump (F_x, F_y) then has the total derivative
-//! dq/dp = ∂q/∂θ dθ_J/dp + ∂q/∂p, and dμ_J = −(dF_x F_y − F_x dF_y)/F_y². The partials come
-//! from forward-mode differentiation (module `dual`) of the formulas as written above. The
-//! route that found θ_J does not matter: the ODE route's θ_J enters the same formulas (θ̇² by
-//! energy is exact there too), so its derivatives carry only its error in θ_J.
-//!
-//! Not differentiable (flagged `singular`, every derivative NaN): ∂g/∂θ = 0 within rounding
-//! (θ_J a double root: the lift-off function tangent to 0, where θ_J jumps between turns as
-//! p moves), and under the classical rule a tie F_x = F_y = 0 with k_m > 0 (the corner of the
-//! friction cone; for k_m = 0, Ĩ_CM = 0, the contact force points at the centre of mass, F_x
-//! and F_y vanish together and g = F_y). "Within rounding" is |∂g/∂θ| ≤ √ε s, with
-//! s = 1 + χ(θ̇² + |θ̈|) the size of the terms of ∂g/∂θ: there the rounding of θ_J alone leaves
-//! no correct digit. Near it the derivatives are finite but lose digits, their relative error
-//! about (√ε s/|∂g/∂θ|)². Under the paper's rule a JARM is never a double root: where
-//! L = ∂L/∂θ = 0, θ̈ = θ̇² tan θ/2 and F_y = −χ θ̇² sin²θ/(2 cos θ) < 0, so the normal force
-//! was lost before.
+//! θ_J is a root in θ of the rule's g(θ; p) along pure rolling, θ̇² by the energy integral
+//! (exact on either route, so the ODE route's derivatives carry only its error in θ_J), and
+//! dθ_J/dp = −(∂g/∂p)/(∂g/∂θ), the partials by forward-mode differentiation ([`crate::dual`])
+//! of the formulas as written. Not differentiable (`singular`, every derivative NaN): a
+//! double root, |∂g/∂θ| ≤ √ε s with s = 1 + χ(θ̇² + |θ̈|), where the rounding of θ_J alone
+//! leaves no correct digit; and under the classical rule a tie F_x = F_y = 0 with k_m > 0.
 
 use crate::dual::{sin, sin_cos};
 use crate::jarm::decision::point_ramp;

@@ -1,29 +1,11 @@
 //! The sensitivities of a full motion: the derivatives of each transition's time and angle
 //! with respect to the eight parameters p = (α, χ, k_m, μ_s, μ_k, e, θ0, θ̇0), computed
-//! after a run along its segments (`docs/motion.md`, "Sensitivities").
-//!
-//! In a segment of mode m the full state x = (θ, θ̇, l, l̇, b, ḃ) obeys x' = f_m(x; p), with
-//! the accelerations from Newton–Euler under the mode's constraint. Its sensitivity
-//! S = ∂x/∂p obeys the variational equations S' = f_x S + f_p, integrated beside x (one
-//! evaluation of f_m in dual numbers whose partials are the rows of S gives both: module
-//! [`crate::dual`]). A segment ends where an event function g(x; p) of its mode crosses 0
-//! at τ; then (the saltation of a switched system)
-//!
-//!   dτ/dp = −(g_x S + g_p)/(g_x f_m),   dx⁻ = S + f_m dτ,
-//!
-//! dx⁻ being the total derivative of the state at the event. A landing maps x⁻ to
-//! x⁺ = R(x⁻; p) (the impact law and the Zeno rule, [`crate::motion::landing`]), so
-//! dx⁺ = R_x dx⁻ + R_p; any other event leaves the state as it is, dx⁺ = dx⁻. The next
-//! mode starts from S⁺ = dx⁺ − f_m⁺ dτ. A transition's (t, θ) moves by (dτ, dθ⁻).
-//!
-//! R is piecewise smooth (Routh's phases, the Zeno threshold): its Jacobian is taken by
-//! central differences of the exact law with a relative step of 1e-6 (error about 1e-10),
-//! or 1e-8 or 1e-10 where a slow landing's branch is narrower, both sides on the same branch (at e = 0 the e-derivative is 0: the law reads e²). Not
-//! differentiable, so flagged, with this and every later transition NaN: an event function
-//! tangent to 0 (a grazing touch: g_x f_m ≈ 0), two events of a segment at once (a tie), a
-//! slip that went on in the normal impulse; and every transition after a landing whose
-//! outcome (sticking, flying, settling) changes within the step (the landing's own time and
-//! angle are those before it, and keep their derivatives).
+//! after a run along its segments, as `docs/motion.md` ("Sensitivities") derives them: along
+//! a segment the variational equations S' = f_x S + f_p in dual numbers ([`crate::dual`]); at
+//! an event g(x; p) = 0 the time's dτ/dp = −(g_x S + g_p)/(g_x f_m) and dx⁻ = S + f_m dτ;
+//! across a landing x⁺ = R(x⁻; p), R's Jacobian by central differences on its branch; the
+//! next mode from S⁺ = dx⁺ − f_m⁺ dτ. Flagged, with every later transition NaN: a grazing
+//! event, a tie, a slip in the normal impulse, a landing whose outcome changes within the step.
 
 use std::cell::Cell;
 
@@ -87,11 +69,10 @@ impl<const N: usize> Params<N> {
         );
         let (sin_a, mut cos_a) = sin_cos(Dual::variable(ramp.alpha, 0));
         cos_a.v = ramp.cos_a; // exactly 0 at π/2, as the run's
-                              // k_m = 1 forces χ = 0, where Ĩ_CM = k_m (the body module's limit).
         let icm = if ramp.body.km < 1.0 {
             inertias(chi, km, 1.0 - km).1
         } else {
-            km
+            km // k_m = 1 forces χ = 0, where Ĩ_CM = k_m (the body module's limit)
         };
         Self {
             setting: Setting {
