@@ -12,57 +12,88 @@ use crate::jarm::{JarmResult, Reason};
 use crate::maps::parallel::{filled_on, ThreadPool};
 use rayon::prelude::*;
 
-/// The results of a map, one vector per field of [`JarmResult`] (same names and order).
-#[derive(Debug, Clone, PartialEq)]
-pub struct JarmColumns {
-    /// [`JarmResult::is_jarm`] of every point.
-    pub is_jarm: Vec<bool>,
-    /// [`JarmResult::reason`] of every point, as its code.
-    pub reason: Vec<u8>,
-    /// [`JarmResult::n`] of every point.
-    pub n: Vec<u32>,
-    /// [`JarmResult::theta_j`] of every point.
-    pub theta_j: Vec<f64>,
-    /// [`JarmResult::theta_event`] of every point.
-    pub theta_event: Vec<f64>,
-    /// [`JarmResult::fx_j`] of every point.
-    pub fx_j: Vec<f64>,
-    /// [`JarmResult::fy_j`] of every point.
-    pub fy_j: Vec<f64>,
-    /// [`JarmResult::max_ratio`] of every point.
-    pub max_ratio: Vec<f64>,
-    /// [`JarmResult::theta_max_ratio`] of every point.
-    pub theta_max_ratio: Vec<f64>,
-    /// [`JarmResult::min_fy`] of every point.
-    pub min_fy: Vec<f64>,
-    /// [`JarmResult::theta_min_fy`] of every point.
-    pub theta_min_fy: Vec<f64>,
+/// [`JarmColumns`] and its [`Piece`] from one list of the fields of [`JarmResult`] (same
+/// names and order), each with its column's type, how a result `$r`'s field goes into the
+/// column and how a column's value `$x` comes back.
+macro_rules! jarm_columns {
+    (|$r:ident, $x:ident| $($f:ident: $t:ty = $put:expr, $get:expr;)*) => {
+        /// The results of a map, one vector per field of [`JarmResult`] (same names and order;
+        /// the reason as its code).
+        #[derive(Debug, Clone, PartialEq)]
+        pub struct JarmColumns {
+            $(
+                #[doc = concat!("[`JarmResult::", stringify!($f), "`] of every point.")]
+                pub $f: Vec<$t>,
+            )*
+        }
+
+        /// Consecutive points of [`JarmColumns`], written by one thread.
+        pub struct Piece<'a> {
+            $($f: &'a mut [$t],)*
+        }
+
+        impl JarmColumns {
+            /// `len` points, each `InvalidParams` until the map writes it, allocated fallibly
+            /// (`OutOfMemory` naming "the result") and first written by `pool`'s threads.
+            pub fn new(pool: &ThreadPool, len: usize) -> Result<Self> {
+                let $r = JarmResult::new(Reason::InvalidParams);
+                // All columns at once, so that a map too large is refused at once, naming
+                // its size.
+                let row = 0 $(+ size_of::<$t>())*;
+                check_room("the result", len.saturating_mul(row) as u64)?;
+                Ok(Self {
+                    $($f: filled_on(pool, "the result", len, $put)?,)*
+                })
+            }
+
+            /// The result of point `i` (a code that names no reason reads as `InvalidParams`).
+            pub fn row(&self, i: usize) -> JarmResult {
+                JarmResult {
+                    $($f: {
+                        let $x = self.$f[i];
+                        $get
+                    },)*
+                }
+            }
+
+            /// The consecutive pieces of at most `size` points (the last may be shorter), for
+            /// the map's threads to write in parallel.
+            pub fn pieces_mut(
+                &mut self,
+                size: usize,
+            ) -> impl IndexedParallelIterator<Item = Piece<'_>> {
+                ($(self.$f.par_chunks_mut(size),)*)
+                    .into_par_iter()
+                    .map(|($($f,)*)| Piece { $($f,)* })
+            }
+        }
+
+        impl Piece<'_> {
+            /// Writes `rows` (one per point of the piece, in order).
+            pub fn put(&mut self, rows: &[JarmResult]) {
+                for (i, $r) in rows.iter().enumerate().take(self.len()) {
+                    $(self.$f[i] = $put;)*
+                }
+            }
+        }
+    };
+}
+
+jarm_columns! { |r, x|
+    is_jarm: bool = r.is_jarm, x;
+    reason: u8 = r.reason.code(), Reason::from_code(x).unwrap_or(Reason::InvalidParams);
+    n: u32 = r.n, x;
+    theta_j: f64 = r.theta_j, x;
+    theta_event: f64 = r.theta_event, x;
+    fx_j: f64 = r.fx_j, x;
+    fy_j: f64 = r.fy_j, x;
+    max_ratio: f64 = r.max_ratio, x;
+    theta_max_ratio: f64 = r.theta_max_ratio, x;
+    min_fy: f64 = r.min_fy, x;
+    theta_min_fy: f64 = r.theta_min_fy, x;
 }
 
 impl JarmColumns {
-    /// `len` points, each `InvalidParams` until the map writes it, allocated fallibly
-    /// (`OutOfMemory` naming "the result") and first written by `pool`'s threads.
-    pub fn new(pool: &ThreadPool, len: usize) -> Result<Self> {
-        let blank = JarmResult::new(Reason::InvalidParams);
-        // All columns at once, so that a map too large is refused at once, naming its size.
-        let row = size_of::<bool>() + size_of::<u8>() + size_of::<u32>() + 8 * size_of::<f64>();
-        check_room("the result", len.saturating_mul(row) as u64)?;
-        let real = |value: f64| filled_on(pool, "the result", len, value);
-        Ok(Self {
-            is_jarm: filled_on(pool, "the result", len, blank.is_jarm)?,
-            reason: filled_on(pool, "the result", len, blank.reason.code())?,
-            n: filled_on(pool, "the result", len, blank.n)?,
-            theta_j: real(blank.theta_j)?,
-            theta_event: real(blank.theta_event)?,
-            fx_j: real(blank.fx_j)?,
-            fy_j: real(blank.fy_j)?,
-            max_ratio: real(blank.max_ratio)?,
-            theta_max_ratio: real(blank.theta_max_ratio)?,
-            min_fy: real(blank.min_fy)?,
-            theta_min_fy: real(blank.theta_min_fy)?,
-        })
-    }
-
     /// The number of points.
     pub fn len(&self) -> usize {
         self.reason.len()
@@ -73,76 +104,10 @@ impl JarmColumns {
         self.reason.is_empty()
     }
 
-    /// The result of point `i` (a code that names no reason reads as `InvalidParams`).
-    pub fn row(&self, i: usize) -> JarmResult {
-        JarmResult {
-            is_jarm: self.is_jarm[i],
-            reason: Reason::from_code(self.reason[i]).unwrap_or(Reason::InvalidParams),
-            n: self.n[i],
-            theta_j: self.theta_j[i],
-            theta_event: self.theta_event[i],
-            fx_j: self.fx_j[i],
-            fy_j: self.fy_j[i],
-            max_ratio: self.max_ratio[i],
-            theta_max_ratio: self.theta_max_ratio[i],
-            min_fy: self.min_fy[i],
-            theta_min_fy: self.theta_min_fy[i],
-        }
-    }
-
     /// Every point's result, in order.
     pub fn rows(&self) -> Vec<JarmResult> {
         (0..self.len()).map(|i| self.row(i)).collect()
     }
-
-    /// The consecutive pieces of at most `size` points (the last may be shorter), for the
-    /// map's threads to write in parallel.
-    pub fn pieces_mut(&mut self, size: usize) -> impl IndexedParallelIterator<Item = Piece<'_>> {
-        (
-            self.is_jarm.par_chunks_mut(size),
-            self.reason.par_chunks_mut(size),
-            self.n.par_chunks_mut(size),
-            self.theta_j.par_chunks_mut(size),
-            self.theta_event.par_chunks_mut(size),
-            self.fx_j.par_chunks_mut(size),
-            self.fy_j.par_chunks_mut(size),
-            self.max_ratio.par_chunks_mut(size),
-            self.theta_max_ratio.par_chunks_mut(size),
-            self.min_fy.par_chunks_mut(size),
-            self.theta_min_fy.par_chunks_mut(size),
-        )
-            .into_par_iter()
-            .map(
-                |(is_jarm, reason, n, theta_j, theta_event, fx_j, fy_j, mr, tmr, mf, tmf)| Piece {
-                    is_jarm,
-                    reason,
-                    n,
-                    theta_j,
-                    theta_event,
-                    fx_j,
-                    fy_j,
-                    max_ratio: mr,
-                    theta_max_ratio: tmr,
-                    min_fy: mf,
-                    theta_min_fy: tmf,
-                },
-            )
-    }
-}
-
-/// Consecutive points of [`JarmColumns`], written by one thread.
-pub struct Piece<'a> {
-    is_jarm: &'a mut [bool],
-    reason: &'a mut [u8],
-    n: &'a mut [u32],
-    theta_j: &'a mut [f64],
-    theta_event: &'a mut [f64],
-    fx_j: &'a mut [f64],
-    fy_j: &'a mut [f64],
-    max_ratio: &'a mut [f64],
-    theta_max_ratio: &'a mut [f64],
-    min_fy: &'a mut [f64],
-    theta_min_fy: &'a mut [f64],
 }
 
 impl Piece<'_> {
@@ -154,23 +119,6 @@ impl Piece<'_> {
     /// True if there are no points.
     pub fn is_empty(&self) -> bool {
         self.reason.is_empty()
-    }
-
-    /// Writes `rows` (one per point of the piece, in order).
-    pub fn put(&mut self, rows: &[JarmResult]) {
-        for (i, r) in rows.iter().enumerate().take(self.len()) {
-            self.is_jarm[i] = r.is_jarm;
-            self.reason[i] = r.reason.code();
-            self.n[i] = r.n;
-            self.theta_j[i] = r.theta_j;
-            self.theta_event[i] = r.theta_event;
-            self.fx_j[i] = r.fx_j;
-            self.fy_j[i] = r.fy_j;
-            self.max_ratio[i] = r.max_ratio;
-            self.theta_max_ratio[i] = r.theta_max_ratio;
-            self.min_fy[i] = r.min_fy;
-            self.theta_min_fy[i] = r.theta_min_fy;
-        }
     }
 }
 
