@@ -1,25 +1,10 @@
-//! Classification of one point (α, χ, k_m, μ_s): does the cylinder jump after pure rolling
-//! (a JARM), and if not, why. Start from rest at θ0 = 0 by default, or any (θ0, θ̇0 ≥ 0).
-//!
-//! First-jump semantics: the body leaves at the FIRST θ where the lift-off rule holds; every
-//! path condition is checked on the way there, and the first thing that happens decides.
-//!
-//! Two lift-off rules ([`Rule`]):
-//! - `Paper`: lift-off at the first rising zero θ_L of L = χθ̇² cos θ − cos α. JARM iff the
-//!   path keeps F_y > 0 and μ_s F_y − |F_x| ≥ 0 on [θ0, θ_L), θ_L lies in a green window
-//!   2πn − α < θ_L < 2πn with F_y,J > 0, and μ(θ_L) ≤ μ_s (Eq. ineq2).
-//! - `NormalForce` (classical unilateral contact): keep rolling until F_y = 0 or the rolling
-//!   branch needs |F_x| = μ_s F_y. There, if sliding is inconsistent — L ≥ 0 (the sliding
-//!   normal force Ĩ_CM(cos α − χθ̇² cos θ)/D would be ≤ 0), or D ≤ 0 (Painlevé), or Ĩ_CM = 0 —
-//!   with K = χ sin θ − σ μ_k (1 + χ cos θ), D = Ĩ_CM + χ K sin θ, μ_k = μ_s, σ = sign F_x —
-//!   the body goes straight to flight: a JARM with θ_J there. Otherwise it slips first.
-//!
-//! Search bound: at θ = 2πn the normal force is −L(2πn), and L(2πn) > 0 from turn
-//! n* = min{n : n tan α > γ} on (from rest; the general start shifts the threshold), so under
-//! either rule something happens by 2πn*; searches never go further. n* > `max_turns` gives
-//! `TurnLimit` if nothing happened within `max_turns` turns.
-//!
-//! Turn of an event: n = round(θ/2π) (a lift-off needs cos θ > 0, so this is unambiguous).
+//! Classification of one point (α, χ, k_m, μ_s) by the closed forms: does the cylinder jump
+//! after pure rolling (a JARM), and if not, why. Start from rest at θ0 = 0 by default, or any
+//! (θ0, θ̇0 ≥ 0). The two lift-off rules ([`Rule`]), the first-jump semantics (the first thing
+//! that happens on the path decides), the search bound 2πn* and the turn of an event are as
+//! `docs/jarm.md` ("Lift-off rules") states them: the rigorous path scan ([`crate::jarm::path`])
+//! finds the first event, the jump-point formulas ([`crate::jarm::jump_point`]) test a lift-off,
+//! and the decision tree shared with the ODE route ([`crate::jarm::decision`]) gives the verdict.
 
 use crate::jarm::decision::{decide, point_ramp, search_end, Case, EventPoint, Extrema, Found};
 use crate::jarm::jump_point::may_be_green;
