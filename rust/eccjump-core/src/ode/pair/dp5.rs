@@ -1,7 +1,7 @@
 //! Dormand–Prince 5(4) (scipy's `RK45`): `rk_step`, the error norm and `RkDenseOutput`,
 //! operation by operation as scipy, so that accepted steps agree with scipy's to rounding.
 
-use super::{scaled_error_norm, weighted_sum, RkPair, Summand};
+use super::{weighted_sum, RkPair, Summand};
 use crate::ode::dense::MAX_DEGREE;
 use crate::ode::tableau::dp5::{E, N_STAGES, P};
 use crate::ode::{DenseStep, OdeSystem, State};
@@ -26,18 +26,6 @@ impl<const N: usize> RkPair<N> for Dp5<N> {
     #[inline(always)]
     fn error_sums<V: Summand>(k: &[V]) -> [V; 2] {
         [weighted_sum(&k[..=N_STAGES], &E), V::zero()]
-    }
-
-    #[inline]
-    fn error_from_sums(
-        [sum, _]: &[State<N>; 2],
-        h: f64,
-        y: &State<N>,
-        y_new: &State<N>,
-        rtol: f64,
-        atol: f64,
-    ) -> f64 {
-        scaled_error_norm(sum, h, y, y_new, rtol, atol)
     }
 
     /// scipy's `RkDenseOutput`: Q = Kᵀ P, no evaluation of f.

@@ -107,15 +107,19 @@ pub trait RkPair<const N: usize>: Copy {
     /// one state, or for lanes).
     fn error_sums<V: Summand>(k: &[V]) -> [V; 2];
 
-    /// The error norm from [`Self::error_sums`].
+    /// The error norm from [`Self::error_sums`]: scipy's norm of the one estimate (DOP853
+    /// combines its two).
+    #[inline]
     fn error_from_sums(
-        sums: &[State<N>; 2],
+        [sum, _]: &[State<N>; 2],
         h: f64,
         y: &State<N>,
         y_new: &State<N>,
         rtol: f64,
         atol: f64,
-    ) -> f64;
+    ) -> f64 {
+        scaled_error_norm(sum, h, y, y_new, rtol, atol)
+    }
 
     /// f(t + h, y_new) of the last attempt.
     fn f_new(&self) -> State<N>;

@@ -12,7 +12,7 @@
 //! - a first step probed up to three times: from rest scipy's first step is 1e-4, and four
 //!   steps pass before the step reaches its size.
 
-use super::{all_finite, scaled_error_norm, unrolled_stages, weighted_sum};
+use super::{all_finite, unrolled_stages, weighted_sum};
 use super::{RkPair, Summand};
 use crate::ode::dense::MAX_DEGREE;
 use crate::ode::tableau::vern9::{A_EXTRA, C_EXTRA, E, N_STAGES, N_STAGES_EXTENDED, R};
@@ -50,18 +50,6 @@ impl<const N: usize> RkPair<N> for Vern9<N> {
     #[inline(always)]
     fn error_sums<V: Summand>(k: &[V]) -> [V; 2] {
         [weighted_sum(&k[..=N_STAGES], &E), V::zero()]
-    }
-
-    #[inline]
-    fn error_from_sums(
-        [sum, _]: &[State<N>; 2],
-        h: f64,
-        y: &State<N>,
-        y_new: &State<N>,
-        rtol: f64,
-        atol: f64,
-    ) -> f64 {
-        scaled_error_norm(sum, h, y, y_new, rtol, atol)
     }
 
     /// The extra stages, then `dense_from_stages`.
