@@ -56,19 +56,15 @@ use crate::jarm::decision::{
 };
 use crate::jarm::result::{JarmOptions, JarmResult, Reason};
 use crate::jarm::turns::turn_of;
-use crate::mechanics::friction::{friction_ratio, slip_margin, slip_margin_rate};
+use crate::mechanics::friction::friction_ratio;
 use crate::mechanics::liftoff::liftoff_slope;
 use crate::mechanics::{Ramp, Rule};
-use crate::modes::rolling::bounds::ContactBounds;
 use crate::modes::rolling::events::{
-    equilibrium_start, violated_at_start, ContactEvent, StartValues, Watched,
+    equilibrium_start, violated_at_start, ContactEvent, ContactEvents, StartValues, Watched,
 };
-use crate::modes::rolling::{ContactRates, Kinematics};
+use crate::modes::rolling::Kinematics;
 use crate::ode::lanes::{solve_lanes_with, Start, Track};
-use crate::ode::{
-    self, Change, DenseStep, Direction, EventBounds, EventFunctions, EventSpec, Observation,
-    Outcome, SinCos, SolverOptions, State, Status, StepEnds,
-};
+use crate::ode::{self, Observation, Outcome, SolverOptions, State, Status};
 use std::cell::Cell;
 use std::f64::consts::TAU;
 
@@ -76,159 +72,12 @@ use std::f64::consts::TAU;
 const EV_LIFTOFF: usize = ContactEvent::Liftoff as usize;
 const EV_FY: usize = ContactEvent::NormalForce as usize;
 const EV_SLIP: usize = ContactEvent::Slip as usize;
-const EV_STOP: usize = ContactEvent::RocksBack as usize;
-const EV_END: usize = ContactEvent::ThetaLimit as usize;
-const N_EVENTS: usize = ContactEvent::ALL.len();
 
 /// Relative θ-tolerance of the F_y / slip tie rule.
 const TIE_TOL: f64 = 1e-10;
 
 /// Accepted steps allowed per turn of the search interval (plus a fixed allowance).
 const STEPS_PER_TURN: usize = 20_000;
-
-/// The events of a classification run; disabled events are a constant that never crosses.
-/// (A memo of the last state's kinematics, once kept here, bought under 2 % on every
-/// benchmark: docs/performance.md.)
-struct JarmEvents {
-    ramp: Ramp,
-    mu_s: f64,
-    liftoff: bool,
-    normal_force: bool,
-    slip: bool,
-    theta_end: f64,
-}
-
-impl JarmEvents {
-    /// g_k at a state. (An exact 0 used to be nudged to ±the smallest normal number, to work
-    /// around a stale bracket of `roots::brent` on exact zeros; brent is fixed, and removing
-    /// the nudge moved θ at 0.35 % of a 100³ map by ≤ 4e-14 rad, with the same verdicts and no
-    /// change in accuracy against the closed form.)
-    #[inline]
-    fn value_of(&self, k: usize, q: &Kinematics) -> f64 {
-        match k {
-            EV_LIFTOFF if self.liftoff => q.lift,
-            EV_FY if self.normal_force => q.fy,
-            EV_SLIP if self.slip => slip_margin(self.mu_s, q.fx, q.fy),
-            EV_STOP => q.omega,
-            EV_END => q.theta - self.theta_end,
-            _ => 1.0,
-        }
-    }
-
-    /// dg_k/dt at a state, from the rates of the contact functions there.
-    #[inline]
-    fn slope_of(&self, k: usize, q: &Kinematics, r: &ContactRates) -> f64 {
-        match k {
-            EV_LIFTOFF if self.liftoff => r.lift,
-            EV_FY if self.normal_force => r.fy,
-            EV_SLIP if self.slip => slip_margin_rate(self.mu_s, q.fx, r.fx, r.fy),
-            EV_STOP => q.omega_dot,
-            EV_END => q.omega,
-            _ => 0.0,
-        }
-    }
-}
-
-impl EventFunctions<2> for JarmEvents {
-    const HAS_SLOPES: bool = true;
-    fn count(&self) -> usize {
-        N_EVENTS
-    }
-    fn spec(&self, k: usize) -> EventSpec {
-        let direction = match k {
-            EV_LIFTOFF | EV_END => Direction::Rising,
-            _ => Direction::Falling,
-        };
-        EventSpec {
-            direction,
-            terminal: true,
-        }
-    }
-    #[inline]
-    fn values(&self, first: usize, t: f64, y: &State<2>, out: &mut [f64]) {
-        self.values_at(first, t, y, None, out);
-    }
-    /// All events from one evaluation of the kinematics (one `sin_cos` per sample, none
-    /// with `trig`).
-    #[inline]
-    fn values_at(&self, first: usize, _: f64, y: &State<2>, trig: Option<SinCos>, out: &mut [f64]) {
-        let q = self.ramp.kinematics_at(y[0], y[1], trig);
-        for (i, o) in out.iter_mut().enumerate() {
-            *o = self.value_of(first + i, &q);
-        }
-    }
-    /// Slopes for the dip test (grazing events between two samples).
-    #[inline]
-    fn slopes(&self, first: usize, _t: f64, y: &State<2>, out: &mut [f64]) {
-        let q = self.ramp.kinematics(y[0], y[1]);
-        let r = self.ramp.contact_rates(&q);
-        for (i, o) in out.iter_mut().enumerate() {
-            *o = self.slope_of(first + i, &q, &r);
-        }
-    }
-    #[inline]
-    fn bounds(&self) -> Option<&impl EventBounds<2>> {
-        Some(self)
-    }
-}
-
-impl EventBounds<2> for JarmEvents {
-    /// The rolling run's bounds ([`ContactBounds::near`], anchored at the trigonometry of
-    /// the step end when it is there); a disabled event is a constant (bound 0).
-    #[inline]
-    fn change_bounds(
-        &self,
-        first: usize,
-        dense: &DenseStep<2>,
-        end_trig: Option<SinCos>,
-        out: &mut [Change],
-    ) {
-        let b = self.change_bounds_near(dense, end_trig);
-        out.copy_from_slice(&b[first..first + out.len()]);
-    }
-    /// The same from the step's ends ([`ContactBounds::from_ends`]).
-    #[inline]
-    fn change_bounds_ends(
-        &self,
-        first: usize,
-        ends: &StepEnds<2>,
-        bends: bool,
-        end_trig: Option<SinCos>,
-        out: &mut [Change],
-    ) {
-        let mu_s = self.slip.then_some(self.mu_s);
-        let b = ContactBounds::from_ends(&self.ramp, mu_s, ends, end_trig, bends);
-        let b = self.of_all(b);
-        out.copy_from_slice(&b[first..first + out.len()]);
-    }
-}
-
-impl JarmEvents {
-    /// [`EventBounds::change_bounds`] of all events, anchored at `anchor` (see
-    /// [`ContactBounds::near`]).
-    #[inline]
-    fn change_bounds_near(
-        &self,
-        dense: &DenseStep<2>,
-        anchor: Option<SinCos>,
-    ) -> [Change; N_EVENTS] {
-        let mu_s = self.slip.then_some(self.mu_s);
-        self.of_all(ContactBounds::near(&self.ramp, mu_s, dense, anchor))
-    }
-
-    /// The bounds of all events, in their order, from the contact functions'.
-    #[inline]
-    fn of_all(&self, b: ContactBounds) -> [Change; N_EVENTS] {
-        let on = |enabled: bool, x: Change| if enabled { x } else { Change::NONE };
-        [
-            on(self.liftoff, b.liftoff),
-            on(self.normal_force, b.fy),
-            b.slip,
-            b.omega,
-            b.theta_above(self.theta_end),
-        ]
-    }
-}
 
 /// Path extrema at the start (then sampled at step ends and the event point).
 fn extrema_start(q: &Kinematics) -> Extrema {
@@ -278,7 +127,7 @@ fn end_of(out: &Outcome<2>) -> End {
 /// Integrates rolling from (t0, y0) until the first terminal event of `ev`, reporting the
 /// kinematics at every accepted step end (the event point for the last step) to `track`.
 fn integrate(
-    ev: &JarmEvents,
+    ev: &ContactEvents,
     t0: f64,
     y0: State<2>,
     so: &SolverOptions,
@@ -295,7 +144,7 @@ fn integrate(
 
 /// The path extrema at an accepted step's end.
 #[inline]
-fn observe_extrema(ev: &JarmEvents, track: &Cell<Extrema>, obs: Observation<'_, 2>) {
+fn observe_extrema(ev: &ContactEvents, track: &Cell<Extrema>, obs: Observation<'_, 2>) {
     if let Observation::Step { y, trig, .. } = obs {
         let mut e = track.get();
         extrema_add(&mut e, &ev.ramp.kinematics_at(y[0], y[1], trig));
@@ -356,7 +205,7 @@ fn classify_ode_budget(
 
 /// A point ready for its integration, with what [`finish`] needs afterwards.
 struct Prepared {
-    ev: JarmEvents,
+    ev: ContactEvents,
     y0: State<2>,
     so: SolverOptions,
     /// The path extrema, updated at each accepted step.
@@ -401,14 +250,7 @@ fn prepare(
         ..SolverOptions::default()
     };
     let paper = o.rule == Rule::Paper;
-    let ev = JarmEvents {
-        ramp: r,
-        mu_s,
-        liftoff: paper,
-        normal_force: true,
-        slip: true,
-        theta_end,
-    };
+    let ev = ContactEvents::of_search(r, mu_s, theta_end, o.rule, true);
     let chi_w2 = chi * (omega0 * omega0);
     let start = StartValues {
         lift: q0.lift,
@@ -522,20 +364,14 @@ impl Finding {
     /// After a slip under the paper's rule (unless `stop_at_slip`), the verdict needs the
     /// paper's lift-off further along rolling: the events of that continuation (no friction,
     /// no normal-force event) and where it starts.
-    fn continuation(&self) -> Option<(JarmEvents, f64, State<2>)> {
+    fn continuation(&self) -> Option<(ContactEvents, f64, State<2>)> {
         let o = &self.p.o;
         let needed =
             o.rule == Rule::Paper && self.found.event == ContactEvent::Slip && !o.stop_at_slip;
         let ev = &self.p.ev;
         needed.then(|| {
-            let cont = JarmEvents {
-                ramp: ev.ramp,
-                mu_s: ev.mu_s,
-                liftoff: ev.liftoff,
-                normal_force: false,
-                slip: false,
-                theta_end: ev.theta_end.max(self.y[0]),
-            };
+            let theta_end = ev.theta_end.max(self.y[0]);
+            let cont = ContactEvents::of_search(ev.ramp, ev.mu_s, theta_end, o.rule, false);
             (cont, self.t, self.y)
         })
     }
@@ -566,19 +402,19 @@ enum RouteTrack {
     Continued {
         index: usize,
         f: Box<Finding>,
-        ev: JarmEvents,
+        ev: ContactEvents,
     },
 }
 
 impl Track<2> for RouteTrack {
     type Sys = Ramp;
-    type Events = JarmEvents;
+    type Events = ContactEvents;
     #[inline]
     fn sys(&self) -> &Ramp {
         &self.events().ramp
     }
     #[inline]
-    fn events(&self) -> &JarmEvents {
+    fn events(&self) -> &ContactEvents {
         match self {
             RouteTrack::First { p, .. } => &p.ev,
             RouteTrack::Continued { ev, .. } => ev,

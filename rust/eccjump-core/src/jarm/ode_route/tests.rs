@@ -8,10 +8,10 @@ use crate::maps::columns::JarmColumns;
 use crate::maps::parallel::{never, pool};
 use crate::maps::region::classify_grid;
 use crate::mechanics::Ramp;
-use crate::modes::rolling::bounds::ContactBounds;
+use crate::modes::rolling::events::N_EVENTS;
 use crate::ode::events::{check_change_bounds, WalkAll};
 use crate::ode::pair::error_scale;
-use crate::ode::{OdeSystem, Outcome, StepEnds};
+use crate::ode::{Change, EventBounds, EventFunctions, OdeSystem, Outcome, SinCos, StepEnds};
 use std::f64::consts::FRAC_PI_2;
 
 const RTOL: f64 = 1e-10;
@@ -98,14 +98,13 @@ fn bound_cases() -> Vec<(f64, f64, f64, f64, bool, bool)> {
     v
 }
 
-fn events_for(ramp: &Ramp, mu_s: f64, liftoff: bool, forces: bool) -> JarmEvents {
-    JarmEvents {
+fn events_for(ramp: &Ramp, mu_s: f64, liftoff: bool, forces: bool) -> ContactEvents {
+    ContactEvents {
         ramp: *ramp,
         mu_s,
-        liftoff,
-        normal_force: forces,
-        slip: forces,
         theta_end: 400.0,
+        watched: [liftoff, forces, forces, true, true],
+        terminal: [true; N_EVENTS],
     }
 }
 
@@ -175,13 +174,8 @@ fn change_bounds_bound_the_change_along_each_step() {
                     f_new: r.rhs(t, y),
                     scale: error_scale(&dense.y_old, y, so.rtol, so.atol),
                 };
-                let b = check.of_all(ContactBounds::from_ends(
-                    &r,
-                    check.slip.then_some(mu_s),
-                    &ends,
-                    anchor,
-                    true,
-                ));
+                let mut b = [Change::NONE; N_EVENTS];
+                check.change_bounds_ends(0, &ends, true, anchor, &mut b);
                 if let Err(e) = check_change_bounds(dense.t_old, dense.h, at, &b) {
                     panic!("{pair:?} {a} {chi} {km} {e} ends, anchor {anchor:?} at {t}");
                 }

@@ -8,7 +8,7 @@ use crate::ode::{Change, DenseStep, SinCos, StepEnds};
 
 /// Bounds on how much the contact functions of pure rolling can change within one
 /// dense-output step, in the sense of [`crate::ode::EventBounds::change_bounds`]: shared by the
-/// rolling run ([`RollEvents`]) and the ODE route of the classification
+/// rolling run ([`ContactEvents`](super::events::ContactEvents)) and the ODE route of the classification
 /// (`jarm::ode_route`).
 ///
 /// Along the interpolant (θ(t), θ̇(t)), |dg/dt| ≤ G_θ |dθ/dt| + G_ω |dθ̇/dt| with

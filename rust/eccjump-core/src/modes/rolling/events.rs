@@ -7,6 +7,16 @@
 //!
 //! Ties are resolved in the order of [`ContactEvent::ALL`]; a condition already violated at
 //! the start is found by [`violated_at_start`], the same test for both routes.
+//! [`ContactEvents`] are the event functions of one integration, a run's or the ODE route's:
+//! which events it watches and which of them end it.
+
+use crate::mechanics::friction::{slip_margin, slip_margin_rate};
+use crate::mechanics::{Ramp, Rule};
+use crate::modes::rolling::bounds::ContactBounds;
+use crate::modes::rolling::{ContactRates, Kinematics};
+use crate::ode::{
+    Change, DenseStep, Direction, EventBounds, EventFunctions, EventSpec, SinCos, State, StepEnds,
+};
 
 named_enum! {
     /// An event that ends pure rolling, in tie order (the index is the discriminant, and the
@@ -26,6 +36,222 @@ named_enum! {
         /// θ reaches its limit: a run's θ_max, or the end of a search (nothing happened
         /// before it).
         ThetaLimit = 4 => "theta_limit",
+    }
+}
+
+impl ContactEvent {
+    /// The direction of its crossing: the lift-off and θ's limit rise through 0, the others
+    /// fall.
+    pub fn direction(self) -> Direction {
+        match self {
+            ContactEvent::Liftoff | ContactEvent::ThetaLimit => Direction::Rising,
+            _ => Direction::Falling,
+        }
+    }
+}
+
+/// The events of the catalogue, in tie order.
+pub const N_EVENTS: usize = ContactEvent::ALL.len();
+
+/// The contact events of a rolling integration, a run's or a search's: which events of the
+/// catalogue it watches and which of them end it. An event not watched is a constant on its
+/// side before the crossing (−1 rising, 1 falling): it never crosses, and its change bound
+/// is 0.
+#[derive(Debug, Clone, Copy)]
+pub struct ContactEvents {
+    /// The body on its ramp (also the system integrated).
+    pub ramp: Ramp,
+    /// μ_s of the slip event (read only if the slip is watched).
+    pub mu_s: f64,
+    /// The angle of the `ThetaLimit` event (read only if it is watched).
+    pub theta_end: f64,
+    /// Whether each event is watched, in the order of [`ContactEvent::ALL`].
+    pub watched: [bool; N_EVENTS],
+    /// Whether each ends the integration, in the same order.
+    pub terminal: [bool; N_EVENTS],
+}
+
+impl ContactEvents {
+    /// A rolling run's: every event but the stop (a run rolls back and on), the slip only with
+    /// μ_s, θ_max only if finite; the lift-off ends the run under the paper's rule only.
+    pub fn of_run(ramp: Ramp, mu_s: Option<f64>, theta_max: f64, rule: Rule) -> Self {
+        Self {
+            ramp,
+            mu_s: mu_s.unwrap_or(0.0),
+            theta_end: theta_max,
+            watched: [true, true, mu_s.is_some(), false, theta_max.is_finite()],
+            terminal: [rule == Rule::Paper, true, mu_s.is_some(), false, true],
+        }
+    }
+
+    /// A search's (the ODE route of the classification), every event terminal: the lift-off
+    /// under the paper's rule only, the loss of contact (normal force, friction) unless
+    /// `contact` is false (the continuation after a slip), the stop, and θ reaching
+    /// `theta_end`.
+    pub fn of_search(ramp: Ramp, mu_s: f64, theta_end: f64, rule: Rule, contact: bool) -> Self {
+        Self {
+            ramp,
+            mu_s,
+            theta_end,
+            watched: [rule == Rule::Paper, contact, contact, true, true],
+            terminal: [true; N_EVENTS],
+        }
+    }
+
+    #[inline]
+    fn watches(&self, e: ContactEvent) -> bool {
+        self.watched[e as usize]
+    }
+
+    /// Whether the event ends the integration.
+    #[inline]
+    pub fn is_terminal(&self, e: ContactEvent) -> bool {
+        self.terminal[e as usize]
+    }
+
+    /// g of the event from the kinematics `k` at a state.
+    #[inline]
+    fn value(&self, e: ContactEvent, k: &Kinematics) -> f64 {
+        if !self.watches(e) {
+            return if e.direction() == Direction::Rising {
+                -1.0
+            } else {
+                1.0
+            };
+        }
+        match e {
+            ContactEvent::Liftoff => k.lift,
+            ContactEvent::NormalForce => k.fy,
+            // The margin, not the ratio: it stays finite as F_y → 0.
+            ContactEvent::Slip => slip_margin(self.mu_s, k.fx, k.fy),
+            ContactEvent::RocksBack => k.omega,
+            ContactEvent::ThetaLimit => k.theta - self.theta_end,
+        }
+    }
+
+    /// dg/dt of the event from the kinematics `k` and the contact functions' rates `r`.
+    #[inline]
+    fn rate(&self, e: ContactEvent, k: &Kinematics, r: &ContactRates) -> f64 {
+        if !self.watches(e) {
+            return 0.0;
+        }
+        match e {
+            ContactEvent::Liftoff => r.lift,
+            ContactEvent::NormalForce => r.fy,
+            ContactEvent::Slip => slip_margin_rate(self.mu_s, k.fx, r.fx, r.fy),
+            ContactEvent::RocksBack => k.omega_dot,
+            ContactEvent::ThetaLimit => k.omega,
+        }
+    }
+
+    /// [`EventBounds::change_bounds`] of all events, anchored at `anchor` (see
+    /// `ContactBounds::near`).
+    #[inline]
+    pub(crate) fn change_bounds_near(
+        &self,
+        dense: &DenseStep<2>,
+        anchor: Option<SinCos>,
+    ) -> [Change; N_EVENTS] {
+        self.of_all(ContactBounds::near(
+            &self.ramp,
+            self.slip_mu(),
+            dense,
+            anchor,
+        ))
+    }
+
+    /// μ_s where the slip is watched (the bounds' argument).
+    #[inline]
+    fn slip_mu(&self) -> Option<f64> {
+        self.watches(ContactEvent::Slip).then_some(self.mu_s)
+    }
+
+    /// The bounds of all events, in their order, from the contact functions'.
+    #[inline]
+    fn of_all(&self, b: ContactBounds) -> [Change; N_EVENTS] {
+        let on = |e, x: Change| if self.watches(e) { x } else { Change::NONE };
+        let theta_limit = if self.watches(ContactEvent::ThetaLimit) {
+            b.theta_above(self.theta_end)
+        } else {
+            Change::NONE
+        };
+        [
+            on(ContactEvent::Liftoff, b.liftoff),
+            on(ContactEvent::NormalForce, b.fy),
+            on(ContactEvent::Slip, b.slip),
+            on(ContactEvent::RocksBack, b.omega),
+            theta_limit,
+        ]
+    }
+}
+
+impl EventFunctions<2> for ContactEvents {
+    const HAS_SLOPES: bool = true;
+    fn count(&self) -> usize {
+        N_EVENTS
+    }
+    fn spec(&self, k: usize) -> EventSpec {
+        let e = ContactEvent::ALL[k];
+        EventSpec {
+            direction: e.direction(),
+            terminal: self.is_terminal(e),
+        }
+    }
+    #[inline]
+    fn values(&self, first: usize, t: f64, y: &State<2>, out: &mut [f64]) {
+        self.values_at(first, t, y, None, out);
+    }
+    /// All events from one evaluation of the kinematics (one `sin_cos` per sample, none
+    /// with `trig`).
+    #[inline]
+    fn values_at(&self, first: usize, _: f64, y: &State<2>, trig: Option<SinCos>, out: &mut [f64]) {
+        let k = self.ramp.kinematics_at(y[0], y[1], trig);
+        for (o, &e) in out.iter_mut().zip(&ContactEvent::ALL[first..]) {
+            *o = self.value(e, &k);
+        }
+    }
+    /// Slopes for the dip test (grazing events between two samples).
+    #[inline]
+    fn slopes(&self, first: usize, _t: f64, y: &State<2>, out: &mut [f64]) {
+        let k = self.ramp.kinematics(y[0], y[1]);
+        let r = self.ramp.contact_rates(&k);
+        for (o, &e) in out.iter_mut().zip(&ContactEvent::ALL[first..]) {
+            *o = self.rate(e, &k, &r);
+        }
+    }
+    #[inline]
+    fn bounds(&self) -> Option<&impl EventBounds<2>> {
+        Some(self)
+    }
+}
+
+impl EventBounds<2> for ContactEvents {
+    /// Change bounds from bounds on the partial derivatives of each g in θ and θ̇ over the
+    /// step, times the bounds on |dθ/dt|, |dθ̇/dt| of the interpolant; tightened by the
+    /// trigonometry of the step's end when it is there (`ContactBounds::near`).
+    #[inline]
+    fn change_bounds(
+        &self,
+        first: usize,
+        dense: &DenseStep<2>,
+        end_trig: Option<SinCos>,
+        out: &mut [Change],
+    ) {
+        let b = self.change_bounds_near(dense, end_trig);
+        out.copy_from_slice(&b[first..first + out.len()]);
+    }
+    /// The same from the step's ends alone (`ContactBounds::from_ends`).
+    #[inline]
+    fn change_bounds_ends(
+        &self,
+        first: usize,
+        ends: &StepEnds<2>,
+        bends: bool,
+        end_trig: Option<SinCos>,
+        out: &mut [Change],
+    ) {
+        let b = ContactBounds::from_ends(&self.ramp, self.slip_mu(), ends, end_trig, bends);
+        out.copy_from_slice(&self.of_all(b)[first..first + out.len()]);
     }
 }
 

@@ -12,183 +12,16 @@
 //! Which of them end the run is set by the lift-off [`Rule`].
 
 use crate::error::{check_count, check_positive, check_range, short, try_grow, Error, Result};
-use crate::mechanics::friction::{friction_ratio, slip_margin, slip_margin_rate};
+use crate::mechanics::friction::friction_ratio;
 use crate::mechanics::Ramp;
 pub use crate::mechanics::Rule;
 use crate::mechanics::{MAX_OMEGA0, MAX_THETA0};
-use crate::modes::rolling::bounds::ContactBounds;
-pub use crate::modes::rolling::events::ContactEvent;
+pub use crate::modes::rolling::events::{ContactEvent, ContactEvents};
 use crate::modes::rolling::solution::RollSolution;
 use crate::modes::rolling::track::{Begun, RollTrack};
 use crate::modes::rolling::Kinematics;
 use crate::ode::lanes::Track;
-use crate::ode::{
-    self, Change, DenseStep, Direction, EventBounds, EventFunctions, EventSpec, SinCos,
-    SolverOptions, State, Status, StepEnds,
-};
-
-/// The event functions of a rolling run.
-#[derive(Debug, Clone, Copy)]
-pub struct RollEvents {
-    /// The body on its ramp.
-    pub ramp: Ramp,
-    /// μ_s; `None` disables the slip event.
-    pub mu_s: Option<f64>,
-    /// θ_max (rad) of the `ThetaLimit` event; ∞ disables it.
-    pub theta_max: f64,
-    /// The lift-off rule, which decides which events are terminal.
-    pub rule: Rule,
-}
-
-impl RollEvents {
-    /// Whether the event ends the run under the chosen rule.
-    pub fn is_terminal(&self, event: ContactEvent) -> bool {
-        match event {
-            ContactEvent::Liftoff => self.rule == Rule::Paper,
-            ContactEvent::Slip => self.mu_s.is_some(),
-            ContactEvent::NormalForce | ContactEvent::ThetaLimit => true,
-            ContactEvent::RocksBack => false,
-        }
-    }
-}
-
-impl EventFunctions<2> for RollEvents {
-    const HAS_SLOPES: bool = true;
-    fn count(&self) -> usize {
-        ContactEvent::ALL.len()
-    }
-    fn spec(&self, k: usize) -> EventSpec {
-        let event = ContactEvent::ALL[k];
-        let direction = match event {
-            ContactEvent::Liftoff | ContactEvent::ThetaLimit => Direction::Rising,
-            _ => Direction::Falling,
-        };
-        EventSpec {
-            direction,
-            terminal: self.is_terminal(event),
-        }
-    }
-    /// All events from one evaluation of the kinematics (one sin_cos per sample).
-    #[inline]
-    fn values(&self, first: usize, t: f64, y: &State<2>, out: &mut [f64]) {
-        self.values_at(first, t, y, None, out);
-    }
-    /// The same, with sin θ and cos θ from `trig` when they are there.
-    #[inline]
-    fn values_at(&self, first: usize, _: f64, y: &State<2>, trig: Option<SinCos>, out: &mut [f64]) {
-        self.values_from(&self.ramp.kinematics_at(y[0], y[1], trig), first, y, out);
-    }
-    #[inline]
-    fn slopes(&self, first: usize, _t: f64, y: &State<2>, out: &mut [f64]) {
-        self.rates_from(&self.ramp.kinematics(y[0], y[1]), first, out);
-    }
-    #[inline]
-    fn bounds(&self) -> Option<&impl EventBounds<2>> {
-        Some(self)
-    }
-}
-
-impl EventBounds<2> for RollEvents {
-    /// Change bounds from bounds on the partial derivatives of each g in θ and θ̇ over
-    /// the step (|sin|, |cos| ≤ 1, |θ̇| ≤ W, contact inertia ≥ Ĩ_C + 1 − 2χ), times the
-    /// bounds on |dθ/dt|, |dθ̇/dt| of the interpolant; tightened by the trigonometry of the
-    /// step's end when it is there ([`ContactBounds::near`]).
-    #[inline]
-    fn change_bounds(
-        &self,
-        first: usize,
-        dense: &DenseStep<2>,
-        end_trig: Option<SinCos>,
-        out: &mut [Change],
-    ) {
-        let b = self.change_bounds_near(dense, end_trig);
-        out.copy_from_slice(&b[first..first + out.len()]);
-    }
-    /// The same from the step's ends alone ([`ContactBounds::from_ends`]).
-    #[inline]
-    fn change_bounds_ends(
-        &self,
-        first: usize,
-        ends: &StepEnds<2>,
-        bends: bool,
-        end_trig: Option<SinCos>,
-        out: &mut [Change],
-    ) {
-        let b = RollEvents::change_bounds_ends(self, ends, end_trig, bends);
-        out.copy_from_slice(&b[first..first + out.len()]);
-    }
-}
-
-impl RollEvents {
-    /// g_first, g_first+1, … at y from its kinematics `k`.
-    #[inline]
-    pub(super) fn values_from(&self, k: &Kinematics, first: usize, y: &State<2>, out: &mut [f64]) {
-        for (i, o) in out.iter_mut().enumerate() {
-            *o = match ContactEvent::ALL[first + i] {
-                ContactEvent::Liftoff => k.lift,
-                ContactEvent::NormalForce => k.fy,
-                // The margin, not the ratio: it stays finite as F_y → 0.
-                ContactEvent::Slip => self.mu_s.map_or(1.0, |mu| slip_margin(mu, k.fx, k.fy)),
-                // Not watched, or θ_max = ∞: a constant, finite g never crosses.
-                ContactEvent::RocksBack => 1.0,
-                ContactEvent::ThetaLimit if self.theta_max.is_finite() => y[0] - self.theta_max,
-                ContactEvent::ThetaLimit => -1.0,
-            };
-        }
-    }
-
-    /// dg_first/dt, dg_first+1/dt, … at y from its kinematics `k` (the dip test of the step
-    /// scan, which finds a grazing event between two samples).
-    #[inline]
-    pub(super) fn rates_from(&self, k: &Kinematics, first: usize, out: &mut [f64]) {
-        let r = self.ramp.contact_rates(k);
-        for (i, o) in out.iter_mut().enumerate() {
-            *o = match ContactEvent::ALL[first + i] {
-                ContactEvent::Liftoff => r.lift,
-                ContactEvent::NormalForce => r.fy,
-                ContactEvent::Slip => self
-                    .mu_s
-                    .map_or(0.0, |mu| slip_margin_rate(mu, k.fx, r.fx, r.fy)),
-                ContactEvent::ThetaLimit if self.theta_max.is_finite() => k.omega,
-                ContactEvent::ThetaLimit | ContactEvent::RocksBack => 0.0,
-            };
-        }
-    }
-
-    /// [`EventBounds::change_bounds`] of all events (see `ContactBounds`), tightened near an
-    /// anchor angle (see [`ContactBounds::near`]).
-    pub(crate) fn change_bounds_near(
-        &self,
-        dense: &DenseStep<2>,
-        anchor: Option<SinCos>,
-    ) -> [Change; 5] {
-        self.of_all(ContactBounds::near(&self.ramp, self.mu_s, dense, anchor))
-    }
-
-    /// [`EventBounds::change_bounds_ends`] of all four events, anchored at `anchor`
-    /// (see [`ContactBounds::from_ends`]; the bends only with `bends`).
-    pub(crate) fn change_bounds_ends(
-        &self,
-        ends: &StepEnds<2>,
-        anchor: Option<SinCos>,
-        bends: bool,
-    ) -> [Change; 5] {
-        self.of_all(ContactBounds::from_ends(
-            &self.ramp, self.mu_s, ends, anchor, bends,
-        ))
-    }
-
-    /// The bounds of the four events, in their order, from the contact functions'.
-    #[inline]
-    fn of_all(&self, b: ContactBounds) -> [Change; 5] {
-        let theta_limit = if self.theta_max.is_finite() {
-            b.theta_above(self.theta_max)
-        } else {
-            Change::NONE
-        };
-        [b.liftoff, b.fy, b.slip, Change::NONE, theta_limit]
-    }
-}
+use crate::ode::{self, EventFunctions, SolverOptions, State, Status};
 
 /// The inputs of a rolling run besides the body and ramp.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -442,7 +275,7 @@ pub fn roll_until(ramp: &Ramp, opts: &RollOptions, stop: &dyn Fn() -> bool) -> R
 
 /// The terminal event whose condition is already met at the start, if any.
 pub(super) fn violated_at_start(
-    events: &RollEvents,
+    events: &ContactEvents,
     theta: f64,
     omega: f64,
 ) -> Option<ContactEvent> {
@@ -471,9 +304,9 @@ mod skip_tests {
     use super::*;
     use crate::mechanics::Cylinder;
     use crate::ode::events::{check_change_bounds, WalkAll};
-    use crate::ode::Observation;
+    use crate::ode::{Observation, SinCos};
 
-    fn cases() -> Vec<(Ramp, RollEvents)> {
+    fn cases() -> Vec<(Ramp, ContactEvents)> {
         let mut out = Vec::new();
         for &(chi, km, alpha_deg, mu_s, rule, theta_max) in &[
             (0.15, 0.02, 40.0, None, Rule::Paper, f64::INFINITY),
@@ -482,12 +315,7 @@ mod skip_tests {
             (0.3, 0.3, 5.0, Some(2.0), Rule::Paper, 7.0),
         ] {
             let r = Ramp::new(Cylinder::new(chi, km).unwrap(), f64::to_radians(alpha_deg)).unwrap();
-            let ev = RollEvents {
-                ramp: r,
-                mu_s,
-                theta_max,
-                rule,
-            };
+            let ev = ContactEvents::of_run(r, mu_s, theta_max, rule);
             out.push((r, ev));
         }
         out

@@ -9,7 +9,7 @@ use std::cell::RefCell;
 use crate::error::{try_grow, Error, Result};
 use crate::mechanics::Ramp;
 use crate::modes::rolling::run::{
-    violated_at_start, ContactEvent, EventHit, RollEvents, RollOptions, RollRun, RollStatus,
+    violated_at_start, ContactEvent, ContactEvents, EventHit, RollOptions, RollRun, RollStatus,
     RESERVE,
 };
 use crate::modes::rolling::solution::RollSolution;
@@ -27,7 +27,7 @@ struct Record {
 
 /// A rolling run between its start and its end.
 pub(crate) struct RollTrack {
-    events: RollEvents,
+    events: ContactEvents,
     dense_output: bool,
     /// The integrator's options: the run's, with every step's dense output made when it
     /// is recorded.
@@ -48,12 +48,7 @@ impl RollTrack {
     /// Checks the options and records the start.
     pub(crate) fn begin(ramp: &Ramp, opts: &RollOptions) -> Result<Begun> {
         opts.validate()?;
-        let events = RollEvents {
-            ramp: *ramp,
-            mu_s: opts.mu_s,
-            theta_max: opts.theta_max,
-            rule: opts.rule,
-        };
+        let events = ContactEvents::of_run(*ramp, opts.mu_s, opts.theta_max, opts.rule);
         let capacity = RESERVE.min(opts.solver.max_steps.saturating_add(2));
         let mut run = RollRun {
             t: Vec::with_capacity(capacity),
@@ -148,13 +143,13 @@ impl RollTrack {
 
 impl Track<2> for RollTrack {
     type Sys = Ramp;
-    type Events = RollEvents;
+    type Events = ContactEvents;
     #[inline]
     fn sys(&self) -> &Ramp {
         &self.events.ramp
     }
     #[inline]
-    fn events(&self) -> &RollEvents {
+    fn events(&self) -> &ContactEvents {
         &self.events
     }
     #[inline]
