@@ -180,28 +180,22 @@ where
     E: EventFunctions<N>,
     O: FnMut(Observation<'_, N>),
 {
+    // One driver per pair, each compiled for it.
+    macro_rules! drive_with {
+        ($pair:ident) => {
+            drive(
+                Run::<$pair<N>, N>::begin(sys, t0, y0, t_end, opts),
+                sys,
+                events,
+                observer,
+                stop,
+            )
+        };
+    }
     match opts.method {
-        Method::Rk45 => drive(
-            Run::<Dp5<N>, N>::begin(sys, t0, y0, t_end, opts),
-            sys,
-            events,
-            observer,
-            stop,
-        ),
-        Method::Dop853 => drive(
-            Run::<Dop853<N>, N>::begin(sys, t0, y0, t_end, opts),
-            sys,
-            events,
-            observer,
-            stop,
-        ),
-        Method::Vern9 => drive(
-            Run::<Vern9<N>, N>::begin(sys, t0, y0, t_end, opts),
-            sys,
-            events,
-            observer,
-            stop,
-        ),
+        Method::Rk45 => drive_with!(Dp5),
+        Method::Dop853 => drive_with!(Dop853),
+        Method::Vern9 => drive_with!(Vern9),
     }
 }
 
