@@ -19,8 +19,30 @@ pub struct Root {
     pub evaluations: usize,
 }
 
-fn bracket_error(a: f64, b: f64, fa: f64, fb: f64) -> Error {
-    Error::NoBracket { a, b, fa, fb }
+impl Root {
+    /// The root x itself, found after `evaluations`.
+    fn exact(x: f64, evaluations: usize) -> Self {
+        Root {
+            x,
+            lo: x,
+            hi: x,
+            evaluations,
+        }
+    }
+}
+
+/// What every bracketing method checks first: an end of [a, b] that is a root, or a
+/// bracket without a sign change (or with a NaN), which is an error.
+fn settled_at_start(a: f64, b: f64, fa: f64, fb: f64) -> Option<Result<Root>> {
+    if fa == 0.0 {
+        Some(Ok(Root::exact(a, 0)))
+    } else if fb == 0.0 {
+        Some(Ok(Root::exact(b, 0)))
+    } else if fa.is_nan() || fb.is_nan() || fa.signum() == fb.signum() {
+        Some(Err(Error::NoBracket { a, b, fa, fb }))
+    } else {
+        None
+    }
 }
 
 /// Brent's method on [a, b] given f(a) = fa and f(b) = fb of opposite signs (or one zero).
@@ -40,24 +62,8 @@ pub fn brent<F: FnMut(f64) -> f64>(
     let (mut fpre, mut fcur) = (fa, fb);
     let (mut xblk, mut fblk) = (0.0f64, 0.0f64);
     let (mut spre, mut scur) = (0.0f64, 0.0f64);
-    if fpre == 0.0 {
-        return Ok(Root {
-            x: xpre,
-            lo: xpre,
-            hi: xpre,
-            evaluations: 0,
-        });
-    }
-    if fcur == 0.0 {
-        return Ok(Root {
-            x: xcur,
-            lo: xcur,
-            hi: xcur,
-            evaluations: 0,
-        });
-    }
-    if fpre.is_nan() || fcur.is_nan() || fpre.signum() == fcur.signum() {
-        return Err(bracket_error(a, b, fa, fb));
+    if let Some(settled) = settled_at_start(a, b, fa, fb) {
+        return settled;
     }
     for iter in 0..max_iter {
         if fpre != 0.0 && fcur != 0.0 && fpre.signum() != fcur.signum() {
@@ -161,22 +167,8 @@ pub fn newton_bracketed<F: FnMut(f64) -> (f64, f64)>(
     rtol: f64,
     max_iter: usize,
 ) -> Result<Root> {
-    let exact = |x: f64, evaluations: usize| {
-        Ok(Root {
-            x,
-            lo: x,
-            hi: x,
-            evaluations,
-        })
-    };
-    if fa == 0.0 {
-        return exact(a, 0);
-    }
-    if fb == 0.0 {
-        return exact(b, 0);
-    }
-    if fa.is_nan() || fb.is_nan() || fa.signum() == fb.signum() {
-        return Err(bracket_error(a, b, fa, fb));
+    if let Some(settled) = settled_at_start(a, b, fa, fb) {
+        return settled;
     }
     // `neg` is the end where f < 0, `pos` the end where f > 0.
     let (mut neg, mut pos) = if fa < 0.0 { (a, b) } else { (b, a) };
@@ -193,7 +185,7 @@ pub fn newton_bracketed<F: FnMut(f64) -> (f64, f64)>(
     let (mut x_prev, mut dfx_prev) = (f64::NAN, f64::NAN);
     for iter in 1..=max_iter {
         if fx == 0.0 {
-            return exact(x, iter);
+            return Ok(Root::exact(x, iter));
         }
         if fx.is_nan() {
             return Err(Error::NoConvergence {
@@ -270,24 +262,8 @@ pub fn newton_bracketed<F: FnMut(f64) -> (f64, f64)>(
 /// inside the bracket: the result is the root to the last bit the arithmetic can resolve.
 /// Deterministic and robust for functions with nearby extrema, where Brent may stall.
 pub fn bisect<F: FnMut(f64) -> f64>(mut f: F, a: f64, b: f64, fa: f64, fb: f64) -> Result<Root> {
-    if fa == 0.0 {
-        return Ok(Root {
-            x: a,
-            lo: a,
-            hi: a,
-            evaluations: 0,
-        });
-    }
-    if fb == 0.0 {
-        return Ok(Root {
-            x: b,
-            lo: b,
-            hi: b,
-            evaluations: 0,
-        });
-    }
-    if fa.is_nan() || fb.is_nan() || fa.signum() == fb.signum() {
-        return Err(bracket_error(a, b, fa, fb));
+    if let Some(settled) = settled_at_start(a, b, fa, fb) {
+        return settled;
     }
     let (mut lo, mut hi, mut flo) = (a, b, fa);
     // 2100 halvings exhaust any f64 interval; the limit only guards against NaN loops.
