@@ -69,17 +69,6 @@ fn bytes_text(bytes: u64) -> String {
     }
 }
 
-/// The number of bytes of `count` items of `T`, or an `OutOfMemory` error if that overflows.
-pub fn bytes_of<T>(what: &'static str, count: usize) -> Result<usize> {
-    count
-        .checked_mul(std::mem::size_of::<T>())
-        .filter(|&b| b <= isize::MAX as usize)
-        .ok_or(Error::OutOfMemory {
-            what,
-            bytes: u64::MAX,
-        })
-}
-
 /// A vector of `count` copies of `value`, allocated fallibly: `OutOfMemory` naming `what`
 /// instead of an abort when the allocator refuses (or the size overflows).
 pub fn try_filled<T: Clone>(what: &'static str, count: usize, value: T) -> Result<Vec<T>> {
@@ -91,12 +80,14 @@ pub fn try_filled<T: Clone>(what: &'static str, count: usize, value: T) -> Resul
 /// An empty vector with room for exactly `count` items, allocated fallibly: `OutOfMemory`
 /// naming `what` instead of an abort when the allocator refuses (or the size overflows).
 pub fn try_empty<T>(what: &'static str, count: usize) -> Result<Vec<T>> {
-    let bytes = bytes_of::<T>(what, count)?;
+    // A size beyond isize::MAX bytes is refused by the allocator too; it is named as saturated.
+    let bytes = count
+        .checked_mul(std::mem::size_of::<T>())
+        .filter(|&b| b <= isize::MAX as usize)
+        .map_or(u64::MAX, |b| b as u64);
     let mut v = Vec::new();
-    v.try_reserve_exact(count).map_err(|_| Error::OutOfMemory {
-        what,
-        bytes: bytes as u64,
-    })?;
+    v.try_reserve_exact(count)
+        .map_err(|_| Error::OutOfMemory { what, bytes })?;
     Ok(v)
 }
 

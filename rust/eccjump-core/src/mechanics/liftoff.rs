@@ -10,34 +10,26 @@
 //! turns positive. Along pure rolling (θ̈ from the rolling equation) its derivative in θ is
 //! dL/dθ = (2χ θ̈ cos θ − χ θ̇² sin θ) (using dθ̇²/dθ = 2θ̈).
 
-/// When the body leaves the ramp (see `docs/jarm.md` and the physics notes).
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default)]
-pub enum Rule {
-    /// The paper's rule (and its reference \[gomes\]): lift-off at the first rising zero of the
-    /// free-flight normal acceleration χ θ̇² cos θ − cos α. The default: it reproduces the paper.
-    #[default]
-    Paper,
-    /// The classical unilateral-contact rule: keep rolling while F_y > 0 and |F_x| ≤ μ_s F_y;
-    /// lift-off when F_y reaches 0, or at slip onset when no sliding contact is consistent.
-    NormalForce,
+named_enum! {
+    /// When the body leaves the ramp (see `docs/jarm.md` and the physics notes).
+    #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default)]
+    pub enum Rule {
+        /// The paper's rule (and its reference \[gomes\]): lift-off at the first rising zero of
+        /// the free-flight normal acceleration χ θ̇² cos θ − cos α. The default: it reproduces
+        /// the paper.
+        #[default]
+        Paper = 0 => "paper",
+        /// The classical unilateral-contact rule: keep rolling while F_y > 0 and |F_x| ≤ μ_s
+        /// F_y; lift-off when F_y reaches 0, or at slip onset when no sliding contact is
+        /// consistent.
+        NormalForce = 1 => "normal_force",
+    }
 }
 
 impl Rule {
-    /// The rule's name as the Python layer and the command line spell it.
-    pub fn name(self) -> &'static str {
-        match self {
-            Rule::Paper => "paper",
-            Rule::NormalForce => "normal_force",
-        }
-    }
-
     /// The rule named `name` ("paper" or "normal_force").
     pub fn from_name(name: &str) -> Option<Rule> {
-        match name {
-            "paper" => Some(Rule::Paper),
-            "normal_force" => Some(Rule::NormalForce),
-            _ => None,
-        }
+        Rule::ALL.into_iter().find(|r| r.name() == name)
     }
 }
 

@@ -15,13 +15,13 @@
 //! - sliding: b̈ = 0 and F_x = σ μ_k F_y (Coulomb friction against the slip, σ = −sign v);
 //! - flight: F_x = F_y = 0.
 //!
-//! [`Ramp::newton_euler`] solves the five linear equations for (θ̈, l̈, b̈, F_x, F_y) by LU
-//! decomposition. It is the reference every fast path is tested against (the closed forms of
-//! rolling in [`crate::modes::rolling`], of sliding in [`crate::mechanics::friction`], the
-//! lift-off function in [`crate::mechanics::liftoff`]); the kernels use those closed forms.
+//! `Ramp::newton_euler` solves the five linear equations for (θ̈, l̈, b̈, F_x, F_y) by LU
+//! decomposition. It is the reference every fast path is tested against, so it is built for
+//! the tests only (the closed forms of rolling in [`crate::modes::rolling`], of sliding in
+//! [`crate::mechanics::friction`], the lift-off function in [`crate::mechanics::liftoff`]);
+//! the kernels use those closed forms.
 
 use crate::dual::{Dual, Number};
-use crate::mechanics::ramp::Ramp;
 use nalgebra::{Matrix5, Vector5};
 
 /// The two equations a mode of motion adds to Newton–Euler.
@@ -106,31 +106,6 @@ pub(crate) fn equations<T: Number>(
     (m, r)
 }
 
-impl Ramp {
-    /// Solves Newton–Euler with `constraint` at angle θ and rate θ̇ (the general form; see
-    /// the module notes). None where the system is singular: sliding with D = 0 (Painlevé),
-    /// or rolling/sliding of a body with Ĩ_CM = 0 at a singular angle.
-    pub fn newton_euler(&self, theta: f64, omega: f64, constraint: Constraint) -> Option<Response> {
-        let q = Setting {
-            chi: self.body.chi,
-            icm: self.body.icm,
-            sin_a: self.sin_a,
-            cos_a: self.cos_a,
-        };
-        let (m, r) = equations(&q, theta, omega, constraint);
-        let x = Matrix5::from_fn(|i, j| m[i][j])
-            .lu()
-            .solve(&Vector5::from(r))?;
-        x.iter().all(|v| v.is_finite()).then(|| Response {
-            theta_dd: x[0],
-            l_dd: x[1],
-            b_dd: x[2],
-            fx: x[3],
-            fy: x[4],
-        })
-    }
-}
-
 /// Newton–Euler in dual numbers: the response and its partials. With M x = r, each partial
 /// solves M ∂x = ∂r − (∂M) x, by the one LU decomposition of M.
 pub(crate) fn newton_euler_dual<const N: usize>(
@@ -169,6 +144,7 @@ pub(crate) fn newton_euler_dual<const N: usize>(
 mod tests {
     use super::*;
     use crate::mechanics::body::Cylinder;
+    use crate::mechanics::Ramp;
 
     fn ramp(chi: f64, km: f64, alpha_deg: f64) -> Ramp {
         Ramp::new(Cylinder::new(chi, km).unwrap(), alpha_deg.to_radians()).unwrap()
@@ -202,5 +178,31 @@ mod tests {
             )
             .unwrap();
         assert!(y.b_dd.abs() < 1e-15 && (y.fx + 0.3 * y.fy).abs() < 1e-15);
+    }
+}
+
+#[cfg(test)]
+impl crate::mechanics::Ramp {
+    /// Solves Newton–Euler with `constraint` at angle θ and rate θ̇ (the general form; see
+    /// the module notes). None where the system is singular: sliding with D = 0 (Painlevé),
+    /// or rolling/sliding of a body with Ĩ_CM = 0 at a singular angle.
+    pub fn newton_euler(&self, theta: f64, omega: f64, constraint: Constraint) -> Option<Response> {
+        let q = Setting {
+            chi: self.body.chi,
+            icm: self.body.icm,
+            sin_a: self.sin_a,
+            cos_a: self.cos_a,
+        };
+        let (m, r) = equations(&q, theta, omega, constraint);
+        let x = Matrix5::from_fn(|i, j| m[i][j])
+            .lu()
+            .solve(&Vector5::from(r))?;
+        x.iter().all(|v| v.is_finite()).then(|| Response {
+            theta_dd: x[0],
+            l_dd: x[1],
+            b_dd: x[2],
+            fx: x[3],
+            fy: x[4],
+        })
     }
 }

@@ -32,8 +32,6 @@ pub struct SlipKinematics {
     pub fx: f64,
     /// Normal force [M g].
     pub fy: f64,
-    /// K of [`Sliding`].
-    pub k: f64,
     /// D of [`Sliding`]; ≤ 0 is the Painlevé case.
     pub d: f64,
     /// B = cos α − χθ̇² cos θ = −L (the normal force has its sign where D > 0).
@@ -96,7 +94,6 @@ impl Slipping {
             l_dd: r.sin_a + fx - chi * c * theta_dd + chi_w2 * s,
             fx,
             fy,
-            k: sl.k,
             d: sl.d,
             load,
         }
