@@ -141,6 +141,32 @@ pub(crate) fn newton_euler_dual<const N: usize>(
 }
 
 #[cfg(test)]
+impl crate::mechanics::Ramp {
+    /// Solves Newton–Euler with `constraint` at angle θ and rate θ̇ (the general form; see
+    /// the module notes). None where the system is singular: sliding with D = 0 (Painlevé),
+    /// or rolling/sliding of a body with Ĩ_CM = 0 at a singular angle.
+    pub fn newton_euler(&self, theta: f64, omega: f64, constraint: Constraint) -> Option<Response> {
+        let q = Setting {
+            chi: self.body.chi,
+            icm: self.body.icm,
+            sin_a: self.sin_a,
+            cos_a: self.cos_a,
+        };
+        let (m, r) = equations(&q, theta, omega, constraint);
+        let x = Matrix5::from_fn(|i, j| m[i][j])
+            .lu()
+            .solve(&Vector5::from(r))?;
+        x.iter().all(|v| v.is_finite()).then(|| Response {
+            theta_dd: x[0],
+            l_dd: x[1],
+            b_dd: x[2],
+            fx: x[3],
+            fy: x[4],
+        })
+    }
+}
+
+#[cfg(test)]
 mod tests {
     use super::*;
     use crate::mechanics::body::Cylinder;
@@ -178,31 +204,5 @@ mod tests {
             )
             .unwrap();
         assert!(y.b_dd.abs() < 1e-15 && (y.fx + 0.3 * y.fy).abs() < 1e-15);
-    }
-}
-
-#[cfg(test)]
-impl crate::mechanics::Ramp {
-    /// Solves Newton–Euler with `constraint` at angle θ and rate θ̇ (the general form; see
-    /// the module notes). None where the system is singular: sliding with D = 0 (Painlevé),
-    /// or rolling/sliding of a body with Ĩ_CM = 0 at a singular angle.
-    pub fn newton_euler(&self, theta: f64, omega: f64, constraint: Constraint) -> Option<Response> {
-        let q = Setting {
-            chi: self.body.chi,
-            icm: self.body.icm,
-            sin_a: self.sin_a,
-            cos_a: self.cos_a,
-        };
-        let (m, r) = equations(&q, theta, omega, constraint);
-        let x = Matrix5::from_fn(|i, j| m[i][j])
-            .lu()
-            .solve(&Vector5::from(r))?;
-        x.iter().all(|v| v.is_finite()).then(|| Response {
-            theta_dd: x[0],
-            l_dd: x[1],
-            b_dd: x[2],
-            fx: x[3],
-            fy: x[4],
-        })
     }
 }

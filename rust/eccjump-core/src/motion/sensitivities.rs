@@ -223,7 +223,10 @@ pub fn sensitivities(
         if seg.t_start != start.t || seg.mode != start.to {
             break;
         }
-        let Some(passage) = walk.across(seg, &x, start.state, next.state, run, i)? else {
+        let Some(end) = walk.integrate(seg, &x)? else {
+            break;
+        };
+        let Some(passage) = walk.event(seg, &end, start.state, next.state, run, i) else {
             break;
         };
         out.transitions[i + 1] = [passage.d_t, passage.d_theta];
@@ -257,25 +260,8 @@ struct Walk<'a> {
 }
 
 impl Walk<'_> {
-    /// Segment `seg` from x (its start, with its sensitivity) to the transition `after` it
-    /// (None where that transition is not differentiable).
-    fn across(
-        &self,
-        seg: &Segment,
-        x: &[Dual<P>; 6],
-        start: BodyState,
-        after: BodyState,
-        run: &MotionRun,
-        i: usize,
-    ) -> Result<Option<Passage>> {
-        let Some(end) = self.integrate(seg, x)? else {
-            return Ok(None);
-        };
-        Ok(self.event(seg, &end, start, after, run, i))
-    }
-
-    /// The transition after `seg`, which ended in `end` (its integrated sensitivity): see
-    /// [`Self::across`].
+    /// The transition `after` segment `seg` (number i of `run`, from `start`), which ended in
+    /// `end` (its integrated sensitivity); None where it is not differentiable.
     fn event(
         &self,
         seg: &Segment,

@@ -6,6 +6,7 @@
 use crate::error::{Error, Result};
 use crate::mechanics::{BodyState, Ramp};
 use crate::modes::contact::{decide, Mode, Reason, Verdict};
+use crate::modes::flight::apex;
 use crate::modes::flight::landing::Landing;
 use crate::modes::flight::Flight;
 use crate::modes::rolling::run::{roll_until, ContactEvent, RollOptions, RollRun, RollStatus};
@@ -317,20 +318,6 @@ fn opening(ramp: &Ramp, opts: &SimOptions) -> Result<(BodyState, Next)> {
     Ok((start, next))
 }
 
-/// The options of a rolling segment from `s` with `time_left` and `steps_left`.
-fn roll_options(opts: &SimOptions, s: BodyState, time_left: f64, steps_left: usize) -> RollOptions {
-    RollOptions {
-        theta0: s.theta,
-        omega0: s.omega,
-        mu_s: Some(opts.law.mu_s),
-        t_max: time_left,
-        theta_max: s.theta + (opts.l_max - s.l),
-        rule: opts.law.rule,
-        solver: segment_solver(opts, steps_left),
-        dense_output: opts.dense_output,
-    }
-}
-
 /// The integrator's options of a rolling or sliding segment in time (y₀ = θ): the run's,
 /// with the step budget left and each step's turn capped at [`MAX_ANGLE_STEP`].
 fn segment_solver(opts: &SimOptions, steps_left: usize) -> ode::SolverOptions {
@@ -390,12 +377,17 @@ impl Driver<'_> {
             return Err(self.end_of_time());
         }
         self.segment_start = s;
-        Ok(roll_options(
-            self.opts,
-            s,
-            self.time_left(),
-            self.steps_left,
-        ))
+        let opts = self.opts;
+        Ok(RollOptions {
+            theta0: s.theta,
+            omega0: s.omega,
+            mu_s: Some(opts.law.mu_s),
+            t_max: self.time_left(),
+            theta_max: s.theta + (opts.l_max - s.l),
+            rule: opts.law.rule,
+            solver: segment_solver(opts, self.steps_left),
+            dense_output: opts.dense_output,
+        })
     }
 
     /// The rolling segment begun by [`Self::roll_start`], integrated: what comes next.
@@ -543,7 +535,7 @@ impl Driver<'_> {
             }
         };
         // l_max inside the flight: the first sample past it, refined by Brent.
-        let samples = flight_samples(s.omega, tau_end);
+        let samples = apex::samples(s.omega, tau_end);
         let mut tau_stop = tau_end;
         let mut hit_l_max = false;
         if self.opts.l_max.is_finite() {
@@ -654,12 +646,6 @@ impl Driver<'_> {
         });
         next
     }
-}
-
-/// Samples recorded per flight: 16 per half turn of spin, at least 32, at most 4096.
-fn flight_samples(omega: f64, tau: f64) -> usize {
-    let turns = (omega.abs() * tau / std::f64::consts::PI).min(1e6);
-    (32.0f64.max(16.0 * turns)).min(4096.0) as usize
 }
 
 mod impulse;

@@ -15,18 +15,19 @@
 use super::Flight;
 use crate::ode::roots::brent;
 
-/// Samples per half turn of spin.
-const PER_HALF_TURN: f64 = 16.0;
-/// Fewest and most samples.
-const MIN_SAMPLES: f64 = 32.0;
-const MAX_SAMPLES: f64 = 4096.0;
+/// The samples of a stretch of flight `span` long: 16 per half turn of spin, at least 32, at
+/// most 4096 (the apex search, and the points a run records of a flight).
+pub fn samples(omega: f64, span: f64) -> usize {
+    let turns = omega.abs() * span / std::f64::consts::PI;
+    // max and min, not clamp: a NaN gives the fewest samples, not none.
+    32.0f64.max(16.0 * turns).min(4096.0) as usize
+}
 
 impl Flight {
     /// The largest gap b − 1 over [0, τ_end] (τ_end ≥ 0).
     pub fn apex(&self, tau_end: f64) -> f64 {
         let (lo, hi) = self.apex_window(tau_end);
-        let turns = self.start.omega.abs() * (hi - lo) / std::f64::consts::PI;
-        let n = (PER_HALF_TURN * turns).clamp(MIN_SAMPLES, MAX_SAMPLES) as usize;
+        let n = samples(self.start.omega, hi - lo);
         let at = |i: usize| {
             if i == n {
                 hi
