@@ -181,9 +181,4 @@ impl MotionRun {
     pub fn dissipated(&self) -> f64 {
         self.dissipated_slip + self.dissipated_impacts
     }
-
-    /// The modes in order of the transitions (the start first).
-    pub fn sequence(&self) -> impl Iterator<Item = Mode> + '_ {
-        self.transitions.iter().map(|t| t.to)
-    }
 }

@@ -12,7 +12,7 @@ use crate::modes::flight::Flight;
 use crate::modes::rolling::run::{roll_until, ContactEvent, RollOptions, RollRun, RollStatus};
 use crate::modes::slip_in_impulse::D_SWITCH;
 use crate::modes::slipping::{SlipEvent, Slipping};
-use crate::motion::landing::{land, Landed};
+use crate::motion::landing::land;
 use crate::motion::options::{SimOptions, MAX_ANGLE_STEP};
 use crate::motion::record::{
     Crossing, FlightRecord, ImpactRecord, MotionRun, MotionStatus, Point, Segment, Transition,
@@ -606,22 +606,15 @@ impl Driver<'_> {
         let Some(landed) = land(r, self.opts, &before) else {
             return Next::End(MotionStatus::Failed, "singular impact matrix".to_string());
         };
-        let Landed {
-            state: after_state,
-            pt,
-            pn,
-            sticking,
-            flies,
-            settled,
-        } = landed;
-        let reason = if settled {
+        let after_state = landed.state;
+        let reason = if landed.settled {
             Reason::Settle
         } else {
             Reason::Impact
         };
         let lost = r.energy_of(&before) - r.energy_of(&after_state);
         self.run.dissipated_impacts += lost;
-        let next = if flies {
+        let next = if landed.flies {
             Next::Mode(Mode::Flight, Reason::Impact, after_state, 0.0)
         } else {
             match after(decide(r, law, &after_state, false), reason, after_state) {
@@ -634,10 +627,10 @@ impl Driver<'_> {
             t: self.t,
             normal_speed: -before.bdot,
             slip_before: before.slip_velocity(),
-            pt,
-            pn,
+            pt: landed.pt,
+            pn: landed.pn,
             energy_lost: lost,
-            sticking,
+            sticking: landed.sticking,
             outcome: match &next {
                 Next::Mode(m, ..) => *m,
                 Next::Resume(..) => Mode::Slip,

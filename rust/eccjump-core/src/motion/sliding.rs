@@ -31,7 +31,6 @@ struct Record {
 /// A sliding segment between its start and its end.
 pub(crate) struct SlipTrack {
     events: SlipEvents,
-    ramp: Ramp,
     /// Start time.
     pub t0: f64,
     /// Start state (θ, θ̇, l, l̇, q = 0).
@@ -64,7 +63,6 @@ impl SlipTrack {
                 slipping: Slipping::new(*ramp, sigma, opts.law.mu_k),
                 l_max: opts.l_max,
             },
-            ramp: *ramp,
             t0,
             y0: State::<5>::new(s.theta, s.omega, s.l, s.ldot, 0.0),
             t_end: opts.t_max,
@@ -118,7 +116,8 @@ impl SlipTrack {
             return Ok(());
         }
         let trig = SinCos::reuse(y[0], trig);
-        let k = self.events.slipping.kinematics_at(y[0], y[1], Some(trig));
+        let slipping = &self.events.slipping;
+        let k = slipping.kinematics_at(y[0], y[1], Some(trig));
         let state = slip_state(y);
         if points.len() == points.capacity() {
             try_grow("the record of the run", points)?;
@@ -128,7 +127,7 @@ impl SlipTrack {
             state,
             fx: k.fx,
             fy: k.fy,
-            energy: self.ramp.energy_of_trig(&state, (trig.sin, trig.cos)),
+            energy: slipping.ramp.energy_of_trig(&state, (trig.sin, trig.cos)),
             dissipated: self.slid + y[4] + self.impacts,
             mode: Mode::Slip,
         });

@@ -111,7 +111,7 @@ fn apex_is_the_largest_gap_of_each_flight() {
 #[test]
 fn slip_then_jump_and_the_ledger_closes() {
     let (r, m) = run(0.5, 0.4, 30.0, 1.0, 0.0);
-    let seq: Vec<_> = m.sequence().take(4).collect();
+    let seq: Vec<_> = m.transitions.iter().map(|t| t.to).take(4).collect();
     assert_eq!(seq, [Mode::Roll, Mode::Slip, Mode::Flight, Mode::Slip]);
     assert_eq!(m.transitions[2].reason, Reason::NormalForce);
     for p in &m.points {
