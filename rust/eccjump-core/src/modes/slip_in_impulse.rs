@@ -1,5 +1,6 @@
 //! A slip near the Painlevé singularity, integrated against the normal impulse P
-//! (dP = F_y dt) instead of time: the state y = (t, θ, θ̇, l, l̇, q) and its events.
+//! (dP = F_y dt) instead of time: the state y = (t, θ, θ̇, l, l̇, q) and its events. The system
+//! is the sliding mode itself, [`Slipping`], as an `OdeSystem<6>` (in time it is one of 5).
 //!
 //! In time the sliding equations ([`crate::modes::slipping`]) divide by D = Ĩ_CM + χ K sin θ:
 //! as D → 0⁺ the normal force F_y = Ĩ_CM B/D and θ̈ = K B/D grow without bound, yet the motion
@@ -18,7 +19,7 @@
 
 use crate::mechanics::friction::Sliding;
 use crate::mechanics::liftoff::free_normal_acceleration;
-use crate::mechanics::Ramp;
+use crate::modes::slipping::Slipping;
 use crate::ode::{Direction, EventFunctions, EventSpec, OdeSystem, State};
 
 /// D below which a slip goes on in the normal impulse (the time form's event
@@ -39,17 +40,6 @@ pub const D_JAM: f64 = 1e-12;
 /// about P/Ĩ_CM, so this is far beyond any finite motion's.
 pub const P_MAX: f64 = 1e4;
 
-/// The slip with friction direction σ = ±1 and kinetic coefficient μ_k, in the normal impulse.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct SlipInImpulse {
-    /// The body on its ramp (Ĩ_CM > 0: `simulate` refuses the body without it).
-    pub ramp: Ramp,
-    /// Direction of the friction force along x (−sign of the slip velocity).
-    pub sigma: f64,
-    /// Kinetic friction coefficient.
-    pub mu_k: f64,
-}
-
 /// What the impulse form needs at one state: K, D and B = cos α − χθ̇² cos θ.
 struct Coefficients {
     sin_t: f64,
@@ -59,7 +49,8 @@ struct Coefficients {
     load: f64,
 }
 
-impl SlipInImpulse {
+/// The impulse form's coefficients and rates (Ĩ_CM > 0: `simulate` refuses the body without it).
+impl Slipping {
     fn coefficients(&self, theta: f64, omega: f64) -> Coefficients {
         let r = &self.ramp;
         let (sin_t, cos_t) = crate::trig::sin_cos(theta);
@@ -74,13 +65,6 @@ impl SlipInImpulse {
         }
     }
 
-    /// The normal force F_y = Ĩ_CM B/D and the friction force σμ_k F_y at (θ, θ̇).
-    pub fn forces(&self, theta: f64, omega: f64) -> (f64, f64) {
-        let c = self.coefficients(theta, omega);
-        let fy = self.ramp.body.icm * c.load / c.d;
-        (self.sigma * self.mu_k * fy, fy)
-    }
-
     /// d/dP of (θ̇, l̇): the velocities' change per unit impulse, and dt/dP.
     fn rates(&self, omega: f64, c: &Coefficients) -> (f64, f64, f64) {
         let r = &self.ramp;
@@ -93,7 +77,8 @@ impl SlipInImpulse {
     }
 }
 
-impl OdeSystem<6> for SlipInImpulse {
+/// The sliding equations against the normal impulse, in y = (t, θ, θ̇, l, l̇, q).
+impl OdeSystem<6> for Slipping {
     fn rhs(&self, _p: f64, y: &State<6>) -> State<6> {
         let c = self.coefficients(y[1], y[2]);
         let (dt, domega, dldot) = self.rates(y[2], &c);
@@ -131,10 +116,10 @@ named_enum! {
 
 /// The events of a slip in the normal impulse (no change bounds: such slips are rare and
 /// short, so the scan samples every step).
-#[derive(Debug, Clone, Copy, PartialEq)]
+#[derive(Debug, Clone, PartialEq)]
 pub struct ImpulseEvents {
     /// The slip.
-    pub slip: SlipInImpulse,
+    pub slip: Slipping,
     /// The time that ends the run.
     pub t_max: f64,
     /// The l that ends the run (∞: never).
@@ -193,8 +178,7 @@ impl EventFunctions<6> for ImpulseEvents {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::mechanics::Cylinder;
-    use crate::modes::slipping::Slipping;
+    use crate::mechanics::{Cylinder, Ramp};
 
     /// The impulse form is the time form divided by F_y, at random states.
     #[test]
@@ -215,12 +199,7 @@ mod tests {
             }
             checked += 1;
             let y = State::<6>::new(0.3, theta, omega, 0.2, ldot, 0.0);
-            let dp = SlipInImpulse {
-                ramp,
-                sigma,
-                mu_k: mu,
-            }
-            .rhs(0.0, &y);
+            let dp = time.rhs(0.0, &y);
             let v = ldot - omega;
             let expect = [1.0, omega, k.theta_dd, ldot, k.l_dd, -k.fx * v];
             for (i, e) in expect.iter().enumerate() {

@@ -8,7 +8,8 @@ use super::{after, Driver, Next};
 use crate::error::{try_grow, Result};
 use crate::mechanics::BodyState;
 use crate::modes::contact::{decide, Mode, Reason};
-use crate::modes::slip_in_impulse::{ImpulseEvent, ImpulseEvents, SlipInImpulse, D_JAM, P_MAX};
+use crate::modes::slip_in_impulse::{ImpulseEvent, ImpulseEvents, D_JAM, P_MAX};
+use crate::modes::slipping::Slipping;
 use crate::motion::record::{Crossing, MotionStatus, Point};
 use crate::motion::solution::Piece;
 use crate::ode::{self, Observation, Outcome, State, Status};
@@ -24,13 +25,8 @@ impl Driver<'_> {
     pub(super) fn slip_in_impulse(&mut self, s: BodyState, sigma: f64) -> Result<Next> {
         self.crossing = Some(Crossing::Impulse);
         let opts = self.opts;
-        let slip = SlipInImpulse {
-            ramp: *self.ramp,
-            sigma,
-            mu_k: opts.law.mu_k,
-        };
         let events = ImpulseEvents {
-            slip,
+            slip: Slipping::new(*self.ramp, sigma, opts.law.mu_k),
             t_max: opts.t_max,
             l_max: opts.l_max,
         };
@@ -44,7 +40,7 @@ impl Driver<'_> {
         // fallibly (the first failure ends the recording and is reported).
         let (mut ends, mut steps, mut memory) = (vec![y0], Vec::new(), None);
         let outcome = ode::solve_until(
-            &slip,
+            &events.slip,
             &events,
             0.0,
             y0,
@@ -71,14 +67,14 @@ impl Driver<'_> {
         if let Some(e) = memory {
             return Err(e);
         }
-        self.impulse_end(&slip, &ends, steps, &outcome)
+        self.impulse_end(&events.slip, &ends, steps, &outcome)
     }
 
     /// The slip in the impulse has ended with `outcome`, having passed through `ends`: its
     /// points and dense output recorded, the run's clock and ledger moved on.
     fn impulse_end(
         &mut self,
-        slip: &SlipInImpulse,
+        slip: &Slipping,
         ends: &[State<6>],
         steps: Vec<ode::DenseStep<6>>,
         outcome: &Outcome<6>,
@@ -89,12 +85,12 @@ impl Driver<'_> {
         let before = self.run.dissipated();
         for y in ends.iter().filter(|_| self.opts.record_points) {
             let state = state_of(y);
-            let (fx, fy) = slip.forces(y[1], y[2]);
+            let k = slip.kinematics(y[1], y[2]);
             self.run.push(Point {
                 t: y[0],
                 state,
-                fx,
-                fy,
+                fx: k.fx,
+                fy: k.fy,
                 energy: self.ramp.energy_of(&state),
                 dissipated: before + y[5],
                 mode: Mode::Slip,
