@@ -67,20 +67,13 @@ impl Slipping {
     /// `d`: the mode is consistent only where D > 0 and B > 0).
     #[inline]
     pub fn kinematics(&self, theta: f64, omega: f64) -> SlipKinematics {
-        self.kinematics_at(theta, omega, None)
-    }
-
-    /// [`Self::kinematics`], with sin θ and cos θ from `trig` when it is of this θ
-    /// ([`SinCos::at`]).
-    #[inline]
-    pub fn kinematics_at(&self, theta: f64, omega: f64, trig: Option<SinCos>) -> SlipKinematics {
-        let (s, c) = SinCos::at(theta, trig);
+        let (s, c) = crate::trig::sin_cos(theta);
         self.kinematics_sc(omega, s, c)
     }
 
     /// [`Self::kinematics`] given s = sin θ and c = cos θ.
     #[inline(always)]
-    fn kinematics_sc(&self, omega: f64, s: f64, c: f64) -> SlipKinematics {
+    pub(crate) fn kinematics_sc(&self, omega: f64, s: f64, c: f64) -> SlipKinematics {
         let r = &self.ramp;
         let chi = r.body.chi;
         let chi_w2 = chi * omega * omega;

@@ -117,7 +117,7 @@ impl SlipTrack {
         }
         let trig = SinCos::reuse(y[0], trig);
         let slipping = &self.events.slipping;
-        let k = slipping.kinematics_at(y[0], y[1], Some(trig));
+        let k = slipping.kinematics_sc(y[1], trig.sin, trig.cos);
         let state = slip_state(y);
         if points.len() == points.capacity() {
             try_grow("the record of the run", points)?;
