@@ -61,6 +61,18 @@ pub enum Error {
 /// Shorthand used throughout the core.
 pub type Result<T> = std::result::Result<T, Error>;
 
+impl Error {
+    /// `InvalidParameter`: `name` = `value` is outside `allowed`.
+    pub fn invalid(name: &'static str, value: f64, allowed: impl Into<String>) -> Self {
+        let allowed = allowed.into();
+        Error::InvalidParameter {
+            name,
+            value,
+            allowed,
+        }
+    }
+}
+
 fn bytes_text(bytes: u64) -> String {
     if bytes == u64::MAX {
         "more than 2^64 bytes".to_string()
@@ -122,11 +134,7 @@ pub fn check_count(name: &'static str, value: usize, lo: usize, hi: usize) -> Re
     if (lo..=hi).contains(&value) {
         Ok(value)
     } else {
-        Err(Error::InvalidParameter {
-            name,
-            value: value as f64,
-            allowed: format!("[{lo}, {hi}]"),
-        })
+        Err(Error::invalid(name, value as f64, format!("[{lo}, {hi}]")))
     }
 }
 
@@ -151,11 +159,8 @@ pub fn check_range(name: &'static str, value: f64, lo: f64, hi: f64) -> Result<f
         Ok(value)
     } else {
         let close = if hi >= f64::MAX { ")" } else { "]" };
-        Err(Error::InvalidParameter {
-            name,
-            value,
-            allowed: format!("[{}, {}{close}", short(lo), short(hi)),
-        })
+        let allowed = format!("[{}, {}{close}", short(lo), short(hi));
+        Err(Error::invalid(name, value, allowed))
     }
 }
 
@@ -164,11 +169,7 @@ pub fn check_positive(name: &'static str, value: f64) -> Result<f64> {
     if value.is_finite() && value > 0.0 {
         Ok(value)
     } else {
-        Err(Error::InvalidParameter {
-            name,
-            value,
-            allowed: "(0, inf)".to_string(),
-        })
+        Err(Error::invalid(name, value, "(0, inf)"))
     }
 }
 
@@ -177,11 +178,7 @@ pub fn check_finite(name: &'static str, value: f64) -> Result<f64> {
     if value.is_finite() {
         Ok(value)
     } else {
-        Err(Error::InvalidParameter {
-            name,
-            value,
-            allowed: "(-inf, inf)".to_string(),
-        })
+        Err(Error::invalid(name, value, "(-inf, inf)"))
     }
 }
 

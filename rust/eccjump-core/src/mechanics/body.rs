@@ -42,11 +42,8 @@ impl Cylinder {
         // 1 − χ is itself rounded (1 − 0.9 < 0.1 in binary), so allow a few ulps above it:
         // users write Cylinder(0.9, 0.1) and mean the boundary.
         if !(km.is_finite() && km >= 0.0 && km <= 1.0 - chi + 4.0 * f64::EPSILON) {
-            return Err(Error::InvalidParameter {
-                name: "km",
-                value: km,
-                allowed: format!("[0, 1 - chi] = [0, {}]", short(1.0 - chi)),
-            });
+            let allowed = format!("[0, 1 - chi] = [0, {}]", short(1.0 - chi));
+            return Err(Error::invalid("km", km, allowed));
         }
         let (ic, icm) = if chi == 0.0 {
             (km, km)
@@ -74,15 +71,12 @@ impl Cylinder {
         // Allow a few ulps of round-off in the bounds, then clamp.
         let slack = 8.0 * f64::EPSILON;
         if !i_c.is_finite() || ic < lo * (1.0 - slack) || ic > 1.0 + slack {
-            return Err(Error::InvalidParameter {
-                name: "I_C",
-                value: i_c,
-                allowed: format!(
-                    "[M d^2, M R^2] = [{}, {}]",
-                    short(m * d * d),
-                    short(m * r * r)
-                ),
-            });
+            let allowed = format!(
+                "[M d^2, M R^2] = [{}, {}]",
+                short(m * d * d),
+                short(m * r * r)
+            );
+            return Err(Error::invalid("I_C", i_c, allowed));
         }
         let ic = ic.clamp(lo, 1.0);
         let disc = ((1.0 - ic) * (1.0 - ic) + 4.0 * lo).max(0.0);

@@ -340,10 +340,8 @@ pub fn impact(
         check_finite(name, x)?;
     }
     let (s, c) = crate::trig::sin_cos(theta);
-    let w = ImpactMatrix::new(body, s, c).ok_or_else(|| Error::InvalidParameter {
-        name: "km",
-        value: body.km,
-        allowed: "(0, 1 - chi]: the impact law needs I_CM > 0".to_string(),
+    let w = ImpactMatrix::new(body, s, c).ok_or_else(|| {
+        Error::invalid("km", body.km, "(0, 1 - chi]: the impact law needs I_CM > 0")
     })?;
     let impulse = resolve(&w, law, ldot - omega, bdot);
     let (omega, _, _) = body.apply_impulse(theta, omega, ldot, bdot, impulse.pt, impulse.pn);

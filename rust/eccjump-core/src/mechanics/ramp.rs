@@ -29,11 +29,8 @@ impl Ramp {
         if !(0.0..=FRAC_PI_2).contains(&alpha) {
             // Radians: the API's unit (the command line's is degrees), said so, as a ramp of
             // 40 meant as degrees is a likely mistake.
-            return Err(Error::InvalidParameter {
-                name: "alpha",
-                value: alpha,
-                allowed: "[0, pi/2] rad (math.radians(deg) for degrees)".to_string(),
-            });
+            let allowed = "[0, pi/2] rad (math.radians(deg) for degrees)";
+            return Err(Error::invalid("alpha", alpha, allowed));
         }
         // One `sin_cos` of the kernels' own library (the same bits with every C library).
         let (sin_a, cos_a) = crate::trig::sin_cos(alpha);

@@ -104,29 +104,17 @@ impl SimOptions {
     pub fn validate(&self) -> Result<()> {
         check_range("mu_s", self.law.mu_s, 0.0, f64::MAX)?;
         if !(self.law.mu_k >= 0.0 && self.law.mu_k <= self.law.mu_s) {
-            return Err(Error::InvalidParameter {
-                name: "mu_k",
-                value: self.law.mu_k,
-                allowed: "[0, mu_s]".to_string(),
-            });
+            return Err(Error::invalid("mu_k", self.law.mu_k, "[0, mu_s]"));
         }
         check_range("restitution", self.restitution, 0.0, 1.0)?;
         check_range("theta0", self.theta0, -MAX_THETA0, MAX_THETA0)?;
         check_range("omega0", self.omega0, -MAX_OMEGA0, MAX_OMEGA0)?;
         check_range("slip0", self.slip0, -MAX_OMEGA0, MAX_OMEGA0)?;
         if !(self.t_max > 0.0 && self.t_max <= MAX_TIME) {
-            return Err(Error::InvalidParameter {
-                name: "t_max",
-                value: self.t_max,
-                allowed: "(0, 1e6]".to_string(),
-            });
+            return Err(Error::invalid("t_max", self.t_max, "(0, 1e6]"));
         }
         if self.l_max.is_nan() || self.l_max <= 0.0 {
-            return Err(Error::InvalidParameter {
-                name: "l_max",
-                value: self.l_max,
-                allowed: "(0, inf]".to_string(),
-            });
+            return Err(Error::invalid("l_max", self.l_max, "(0, inf]"));
         }
         check_count("max_transitions", self.max_transitions, 1, MAX_TRANSITIONS)?;
         SolverOptions::check_tolerances(self.solver.rtol, self.solver.atol)?;

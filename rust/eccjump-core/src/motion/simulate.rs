@@ -302,13 +302,9 @@ impl<'a> Sim<'a> {
 fn opening(ramp: &Ramp, opts: &SimOptions) -> Result<(BodyState, Next)> {
     opts.validate()?;
     if ramp.body.icm.is_nan() || ramp.body.icm <= 0.0 {
-        return Err(Error::InvalidParameter {
-            name: "km",
-            value: ramp.body.km,
-            allowed: "(0, 1 - chi] for simulate: with km = 0 all the mass is at the centre of \
-                      mass and the spin in flight is undetermined"
-                .to_string(),
-        });
+        let allowed = "(0, 1 - chi] for simulate: with km = 0 all the mass is at the centre of \
+                       mass and the spin in flight is undetermined";
+        return Err(Error::invalid("km", ramp.body.km, allowed));
     }
     let start = BodyState::in_contact(opts.theta0, opts.omega0, 0.0, opts.omega0 + opts.slip0);
     let next = match after(decide(ramp, &opts.law, &start, false), Reason::Start, start) {
