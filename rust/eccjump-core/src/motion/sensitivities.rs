@@ -7,8 +7,6 @@
 //! next mode from S⁺ = dx⁺ − f_m⁺ dτ. Flagged, with every later transition NaN: a grazing
 //! event, a tie, a slip in the normal impulse, a landing whose outcome changes within the step.
 
-use std::cell::Cell;
-
 use crate::dual::{sin_cos, Dual};
 use crate::error::{Error, Result};
 use crate::mechanics::body::{inertias, Cylinder};
@@ -205,13 +203,13 @@ pub fn sensitivities(
     let d0 = [unit(6), unit(7), [0.0; P], unit(7), [0.0; P], [0.0; P]];
     out.transitions[0] = [[0.0; P], d0[0]];
     out.singular[0] = false;
-    let walk = Walk {
+    let mut walk = Walk {
         ramp,
         opts,
         stop,
         p8: Params::of(ramp, opts),
         p9: Params::of(ramp, opts),
-        steps_left: Cell::new(opts.solver.max_steps),
+        steps_left: opts.solver.max_steps,
     };
     let mut x = with_partials(&first.state, &d0);
     for (i, seg) in run.segments.iter().enumerate() {
@@ -256,7 +254,7 @@ struct Walk<'a> {
     p8: Params<P>,
     p9: Params<{ P + 1 }>,
     /// Accepted steps left for the variational equations of the remaining segments.
-    steps_left: Cell<usize>,
+    steps_left: usize,
 }
 
 impl Walk<'_> {
@@ -308,7 +306,7 @@ impl Walk<'_> {
 
     /// The variational equations of `seg` integrated from x over the segment (None if
     /// the integrator failed).
-    fn integrate(&self, seg: &Segment, x: &[Dual<P>; 6]) -> Result<Option<[Dual<P>; 6]>> {
+    fn integrate(&mut self, seg: &Segment, x: &[Dual<P>; 6]) -> Result<Option<[Dual<P>; 6]>> {
         if seg.t_end <= seg.t_start {
             return Ok(Some(*x));
         }
@@ -330,13 +328,12 @@ impl Walk<'_> {
             method: Method::Dop853,
             rtol: self.opts.solver.rtol.max(defaults.rtol),
             atol: self.opts.solver.atol.max(defaults.atol),
-            max_steps: self.steps_left.get().max(1),
+            max_steps: self.steps_left.max(1),
             ..self.opts.solver
         };
         let (t0, t1, y0) = (seg.t_start, seg.t_end, pack(x));
         let out = ode::solve_until(&sys, &NoEvents, t0, y0, t1, &solver, &mut |_| {}, self.stop);
-        self.steps_left
-            .set(self.steps_left.get().saturating_sub(out.n_accepted));
+        self.steps_left = self.steps_left.saturating_sub(out.n_accepted);
         match out.status {
             Status::Stopped => Err(Error::Interrupted),
             Status::Finished => Ok(Some(unpack(&out.y))),

@@ -486,8 +486,7 @@ impl Driver<'_> {
         if let Some(sol) = self.run.dense.as_mut() {
             sol.pieces.push((t0, Piece::Slip { steps }));
         }
-        let mut end = slip_state(&outcome.y);
-        let law = &self.opts.law;
+        let end = slip_state(&outcome.y);
         Ok(match outcome.status {
             Status::Finished => self.end_of_time(),
             Status::Event(k) => match SlipEvent::ALL[k] {
@@ -497,14 +496,20 @@ impl Driver<'_> {
                 }
                 SlipEvent::Stops => {
                     self.crossing = Some(Crossing::SlipStops);
-                    end.ldot = end.omega;
-                    after(decide(self.ramp, law, &end, false), Reason::Slip, end)
+                    self.slip_stopped(end)
                 }
                 SlipEvent::Singular => self.slip_in_impulse(end, sigma)?,
                 SlipEvent::LLimit => self.end_of_ramp(),
             },
             other => self.failed("slipping", other),
         })
+    }
+
+    /// What follows a slip that stopped at `end` (in time or in the impulse).
+    fn slip_stopped(&self, mut end: BodyState) -> Next {
+        end.ldot = end.omega;
+        let verdict = decide(self.ramp, &self.opts.law, &end, false);
+        after(verdict, Reason::Slip, end)
     }
 
     /// A flight: exact, until the landing, then the impact.

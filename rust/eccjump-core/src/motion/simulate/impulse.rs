@@ -4,10 +4,10 @@
 //! an impulsive jam. Rare and short, so it is integrated alone, also inside a motion map:
 //! a map's run is the same as `simulate`'s, bit for bit.
 
-use super::{after, Driver, Next};
+use super::{Driver, Next};
 use crate::error::{try_grow, Result};
 use crate::mechanics::BodyState;
-use crate::modes::contact::{decide, Mode, Reason};
+use crate::modes::contact::{Mode, Reason};
 use crate::modes::slip_in_impulse::{ImpulseEvent, ImpulseEvents, D_JAM, P_MAX};
 use crate::modes::slipping::Slipping;
 use crate::motion::record::{Crossing, MotionStatus, Point};
@@ -103,7 +103,7 @@ impl Driver<'_> {
         self.run.nfev += outcome.nfev;
         self.run.dissipated_slip += outcome.y[5];
         self.t = outcome.y[0];
-        let mut end = state_of(&outcome.y);
+        let end = state_of(&outcome.y);
         let jam = || {
             Next::End(
                 MotionStatus::Painleve,
@@ -123,14 +123,7 @@ impl Driver<'_> {
                 ImpulseEvent::NormalForce => {
                     Next::Mode(Mode::Flight, Reason::NormalForce, end, 0.0)
                 }
-                ImpulseEvent::Stops => {
-                    end.ldot = end.omega;
-                    after(
-                        decide(self.ramp, &self.opts.law, &end, false),
-                        Reason::Slip,
-                        end,
-                    )
-                }
+                ImpulseEvent::Stops => self.slip_stopped(end),
                 ImpulseEvent::Recovers => Next::Resume(end, slip.sigma),
                 ImpulseEvent::Jam => jam(),
                 ImpulseEvent::TLimit => {
