@@ -92,14 +92,10 @@ impl SlipTrack {
     /// The points and dense-output steps recorded (an error if recording ran out of
     /// memory).
     pub(crate) fn finish(self) -> Result<(Vec<Point>, Vec<DenseStep<5>>)> {
-        let Record {
-            points,
-            steps,
-            memory,
-        } = self.record.into_inner();
-        match memory {
+        let rec = self.record.into_inner();
+        match rec.memory {
             Some(e) => Err(e),
-            None => Ok((points, steps)),
+            None => Ok((rec.points, rec.steps)),
         }
     }
 
@@ -151,23 +147,18 @@ impl Track<5> for SlipTrack {
         let Observation::Step { dense, t, y, trig } = obs else {
             return;
         };
-        let mut rec = self.record.borrow_mut();
-        let Record {
-            points,
-            steps,
-            memory,
-        } = &mut *rec;
+        let rec = &mut *self.record.borrow_mut();
         // After a failed allocation the rest is not recorded; the run reports it.
-        if memory.is_some() {
+        if rec.memory.is_some() {
             return;
         }
-        if let Err(e) = self.record_point(points, t, y, trig) {
-            *memory = Some(e);
+        if let Err(e) = self.record_point(&mut rec.points, t, y, trig) {
+            rec.memory = Some(e);
         } else if let (true, Some(dense)) = (self.dense_output, dense) {
             // (always there: the solver makes every step's when it is recorded)
-            match try_grow("the dense output", steps) {
-                Ok(()) => steps.push(*dense),
-                Err(e) => *memory = Some(e),
+            match try_grow("the dense output", &mut rec.steps) {
+                Ok(()) => rec.steps.push(*dense),
+                Err(e) => rec.memory = Some(e),
             }
         }
     }
