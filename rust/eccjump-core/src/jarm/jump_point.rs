@@ -133,11 +133,12 @@ pub fn mu_s_min(body: &Cylinder) -> (f64, f64) {
     }
     const N: usize = 256;
     let lo = -FRAC_PI_2;
+    let grid = (1..N).map(|i| lo + FRAC_PI_2 * (i as f64) / (N as f64));
     let mut best = (f64::INFINITY, f64::NAN);
     let mut prev_phi = lo;
     let mut prev_f = dmu_sign_fn(body, lo);
-    for i in 1..N {
-        let phi = lo + FRAC_PI_2 * (i as f64) / (N as f64);
+    // The grid's last cell ends just below 0, where f → +∞.
+    for phi in grid.chain([-f64::EPSILON * FRAC_PI_2]) {
         let f = dmu_sign_fn(body, phi);
         if prev_f < 0.0 && f >= 0.0 {
             if let Ok(r) = bisect(|p| dmu_sign_fn(body, p), prev_phi, phi, prev_f, f) {
@@ -149,17 +150,6 @@ pub fn mu_s_min(body: &Cylinder) -> (f64, f64) {
         }
         prev_phi = phi;
         prev_f = f;
-    }
-    // Last cell [φ_{N−1}, 0): f → +∞ at 0⁻.
-    if prev_f < 0.0 {
-        let hi = -f64::EPSILON * FRAC_PI_2;
-        let fh = dmu_sign_fn(body, hi);
-        if let Ok(r) = bisect(|p| dmu_sign_fn(body, p), prev_phi, hi, prev_f, fh) {
-            let m = mu(body, r.x);
-            if m < best.0 {
-                best = (m, r.x);
-            }
-        }
     }
     best
 }
