@@ -171,20 +171,14 @@ pub fn theta_j_range(body: &Cylinder, mu_s: f64) -> Option<(f64, f64)> {
         0.0
     } else {
         let hi = -f64::EPSILON;
-        match bisect(g, phi_star, hi, g(phi_star), g(hi)) {
-            Ok(r) => r.x,
-            Err(_) => phi_star,
-        }
+        bisect(g, phi_star, hi, g(phi_star), g(hi)).map_or(phi_star, |r| r.x)
     };
     let lo = -FRAC_PI_2;
     let phi_min = if g(lo) <= 0.0 {
         lo
     } else {
         let a = if body.icm == 0.0 { 0.0 } else { phi_star };
-        match bisect(g, lo, a, g(lo), g(a)) {
-            Ok(r) => r.x,
-            Err(_) => a,
-        }
+        bisect(g, lo, a, g(lo), g(a)).map_or(a, |r| r.x)
     };
     Some((phi_min, phi_max))
 }

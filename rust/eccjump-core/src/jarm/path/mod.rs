@@ -24,6 +24,7 @@
 //! - `skip`: skipping whole turns that provably hold no event, and the bisection behind it;
 //! - `liftoff`: the lift-off search after a slip, window by window.
 
+use crate::jarm::decision::Extrema;
 use crate::mechanics::energy::rolling_kinetic;
 use crate::mechanics::friction::friction_ratio;
 use crate::mechanics::liftoff::{free_normal_acceleration, liftoff_slope};
@@ -129,14 +130,9 @@ pub struct PathScan {
     pub event: ContactEvent,
     /// The state where the scan stopped (the event, or the end).
     pub at: PathPoint,
-    /// The largest |F_x|/F_y on [θ0, θ_event] (∞ if F_y reached 0).
-    pub max_ratio: f64,
-    /// Where `max_ratio` is reached (rad).
-    pub theta_max_ratio: f64,
-    /// The smallest F_y on [θ0, θ_event].
-    pub min_fy: f64,
-    /// Where `min_fy` is reached (rad).
-    pub theta_min_fy: f64,
+    /// The largest |F_x|/F_y (∞ if F_y reached 0) and the smallest F_y on [θ0, θ_event],
+    /// and where.
+    pub extrema: Extrema,
     /// Function evaluations used (a cost measure).
     pub evaluations: u32,
 }

@@ -222,22 +222,22 @@ fn turn_skip_finds_the_event_and_extrema_of_the_full_scan() {
             (ta - tb).abs() <= 1e-13 * tb.abs().max(1.0),
             "{ta} {tb} {at}"
         );
-        if w.normal_force && a.min_fy > 0.0 {
+        if w.normal_force && a.extrema.min_fy > 0.0 {
             let (min_fy, max_ratio) = brute_extrema(&p, th0, ta);
-            let (m, r) = (a.min_fy, a.max_ratio);
+            let (m, r) = (a.extrema.min_fy, a.extrema.max_ratio);
             // Reported: values on the path, at least as good as every brute-force sample.
             let tol = 1e-11 * (1.0 + m.abs() + r.abs());
             assert!(
                 m <= min_fy + tol,
                 "{m} {min_fy} (full scan {}) {at}",
-                b.min_fy
+                b.extrema.min_fy
             );
             assert!(
                 r >= max_ratio - tol,
                 "{r} {max_ratio} (full {}) {at}",
-                b.max_ratio
+                b.extrema.max_ratio
             );
-            for (x, f) in [(a.theta_min_fy, m), (a.theta_max_ratio, r)] {
+            for (x, f) in [(a.extrema.theta_min_fy, m), (a.extrema.theta_max_ratio, r)] {
                 assert!(x >= th0 && x <= ta, "{x} {at}");
                 let q = p.eval(x);
                 assert!(f == q.fy || f == q.ratio(), "{f} {x} {at}");
@@ -560,15 +560,15 @@ fn scan_agrees_with_dense_sampling() {
             mf = mf.min(q.fy);
         }
         assert!(
-            s.min_fy <= mf + 1e-12 && mf - s.min_fy < 1e-8,
+            s.extrema.min_fy <= mf + 1e-12 && mf - s.extrema.min_fy < 1e-8,
             "{} {mf}",
-            s.min_fy
+            s.extrema.min_fy
         );
         if mr.is_finite() {
             assert!(
-                s.max_ratio >= mr - 1e-12 && s.max_ratio - mr < 1e-6,
+                s.extrema.max_ratio >= mr - 1e-12 && s.extrema.max_ratio - mr < 1e-6,
                 "{} {mr}",
-                s.max_ratio
+                s.extrema.max_ratio
             );
         }
     }
