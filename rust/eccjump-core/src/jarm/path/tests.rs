@@ -58,7 +58,7 @@ fn uniform_step_shortcut_gives_the_square_root_rule_bit_for_bit() {
     // The step rule as it was: ¼√(Ĩ_P/χ) when below 2π/24 (with a floor), else 2π/24.
     let reference = |p: &RollingPath, q: &PathPoint| {
         let hmax = TAU / SAMPLES_PER_TURN;
-        let h = 0.25 * (p.ramp.contact_inertia(q.cos_t) / p.chi).sqrt();
+        let h = 0.25 * (p.ramp.contact_inertia(q.cos_t) / p.ramp.body.chi).sqrt();
         let floor = 1e-9 * (1.0 + q.theta.abs());
         if h < hmax {
             h.max(floor)
@@ -385,7 +385,7 @@ fn window_liftoff_gives_the_scans_angle_bit_for_bit() {
         let coarseness = if uniform(&mut s) < 0.5 { 1 } else { 3 };
         let w = Watch::liftoff_only(coarseness);
         // Skip windows where the energy could vanish (the loop assumes it cannot).
-        let e_low = p.k0 + (lo - th0) * p.sin_a + chi * (p.ca0 - 1.0);
+        let e_low = p.k0 + (lo - th0) * p.ramp.sin_a + chi * (p.ca0 - 1.0);
         if e_low <= 0.0 {
             continue;
         }
@@ -509,7 +509,7 @@ fn early_slip_lift_off_search_is_exact_where_energy_stays_positive() {
 fn brute(p: &RollingPath, theta_end: f64, watch: Watch) -> Option<(f64, usize)> {
     let n = 100_000;
     for i in 0..=n {
-        let th = p.theta0() + (theta_end - p.theta0()) * i as f64 / n as f64;
+        let th = p.theta0 + (theta_end - p.theta0) * i as f64 / n as f64;
         let q = p.eval(th);
         for &k in &[G_NOLIFT, G_FY, G_MPLUS, G_MMINUS, G_ENERGY] {
             if watch.active(k) && i > 0 && violated(k, q.g[k]) {
