@@ -3,9 +3,14 @@
 
 use eccjump_core::jarm::{classify, JarmOptions, JarmResult, Method};
 use eccjump_core::maps::columns::JarmColumns;
-use eccjump_core::maps::parallel::{never, pool};
+use eccjump_core::maps::parallel::pool;
 use eccjump_core::maps::region::{classify_grid, classify_points};
 use std::f64::consts::FRAC_PI_2;
+
+/// Never stop: the `stop` of a map that is not to be interrupted.
+fn never() -> bool {
+    false
+}
 
 /// Result columns for `len` points.
 fn blank(len: usize) -> JarmColumns {

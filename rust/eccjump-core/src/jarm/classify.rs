@@ -6,7 +6,7 @@
 //! finds the first event, the jump-point formulas ([`crate::jarm::jump_point`]) test a lift-off,
 //! and the decision tree shared with the ODE route ([`crate::jarm::decision`]) gives the verdict.
 
-use crate::jarm::decision::{decide, point_ramp, search_end, Case, EventPoint, Extrema, Found};
+use crate::jarm::decision::{decide, point_ramp, search_end, Case, EventPoint, Found};
 use crate::jarm::jump_point::may_be_green;
 use crate::jarm::path::{PathScan, RollingPath, Watch};
 use crate::jarm::result::{JarmOptions, JarmResult, Reason};
@@ -28,12 +28,7 @@ impl PathScan {
                 fy: p.fy,
                 lift: p.lift,
             },
-            extrema: Extrema {
-                max_ratio: self.max_ratio,
-                theta_max_ratio: self.theta_max_ratio,
-                min_fy: self.min_fy,
-                theta_min_fy: self.theta_min_fy,
-            },
+            extrema: self.extrema,
         }
     }
 }

@@ -87,12 +87,12 @@ pub struct Case<'a> {
 }
 
 impl JarmResult {
-    fn with(reason: Reason, e: &Extrema) -> Self {
-        Self::with_extrema(
-            reason,
-            (e.max_ratio, e.theta_max_ratio),
-            (e.min_fy, e.theta_min_fy),
-        )
+    /// A result with `reason` carrying the path extrema (shared by both routes).
+    pub(crate) fn with_extrema(reason: Reason, e: &Extrema) -> Self {
+        let mut r = Self::new(reason);
+        (r.max_ratio, r.theta_max_ratio) = (e.max_ratio, e.theta_max_ratio);
+        (r.min_fy, r.theta_min_fy) = (e.min_fy, e.theta_min_fy);
+        r
     }
 }
 
@@ -136,28 +136,27 @@ pub fn decide(
     let p = &found.at;
     let th = p.theta;
     let failure = |reason: Reason| {
-        let mut x = JarmResult::with(reason, ext);
+        let mut x = JarmResult::with_extrema(reason, ext);
         x.theta_event = th;
         x.n = turn_of(th);
         x
     };
-    let liftoff_earlier = || {
-        let mut x = failure(Reason::LiftoffEarlier);
-        x.theta_j = th;
+    // A failure with a lift-off angle: the earlier one, or the paper's after a slip.
+    let failure_at = |reason: Reason, theta_j: f64| {
+        let mut x = failure(reason);
+        x.theta_j = theta_j;
         x
     };
-    let jarm_here = || {
-        let mut x = JarmResult::with(Reason::Jarm, ext);
-        x.theta_j = th;
-        x.n = turn_of(th);
-        x.fx_j = p.fx;
-        x.fy_j = p.fy;
+    let liftoff_earlier = || failure_at(Reason::LiftoffEarlier, th);
+    let jarm = |n: u32, fx: f64, fy: f64| {
+        let mut x = JarmResult::with_extrema(Reason::Jarm, ext);
+        (x.n, x.theta_j, x.fx_j, x.fy_j) = (n, th, fx, fy);
         x
     };
     match (case.rule, found.event) {
-        (_, ContactEvent::ThetaLimit) => JarmResult::with(case.end_reason, ext),
+        (_, ContactEvent::ThetaLimit) => JarmResult::with_extrema(case.end_reason, ext),
         (_, ContactEvent::RocksBack) => {
-            let mut x = JarmResult::with(Reason::RocksBack, ext);
+            let mut x = JarmResult::with_extrema(Reason::RocksBack, ext);
             x.theta_event = th;
             x
         }
@@ -168,25 +167,16 @@ pub fn decide(
             if green.is_none() || jf.fy <= 0.0 {
                 failure(Reason::NormalForceLost)
             } else if mu(case.body, th) > case.mu_s {
-                let mut x = failure(Reason::SlipAtJump);
-                x.theta_j = th;
-                x
+                failure_at(Reason::SlipAtJump, th)
             } else {
-                let mut x = JarmResult::with(Reason::Jarm, ext);
-                x.n = green.unwrap_or(0);
-                x.theta_j = th;
-                x.fx_j = jf.fx;
-                x.fy_j = jf.fy;
-                x
+                jarm(green.unwrap_or(0), jf.fx, jf.fy)
             }
         }
         (Rule::Paper, ContactEvent::NormalForce) => failure(Reason::NormalForceLost),
         (Rule::Paper, ContactEvent::Slip) if case.stop_at_slip => failure(Reason::Slip),
         (Rule::Paper, ContactEvent::Slip) => match liftoff_after_slip() {
             Some(tl) if green_turn(case.alpha, tl).is_some() && mu(case.body, tl) > case.mu_s => {
-                let mut x = failure(Reason::SlipAtJump);
-                x.theta_j = tl;
-                x
+                failure_at(Reason::SlipAtJump, tl)
             }
             _ => failure(Reason::SlipBefore),
         },
@@ -196,12 +186,12 @@ pub fn decide(
             } else if found.at_start {
                 liftoff_earlier()
             } else {
-                jarm_here()
+                jarm(turn_of(th), p.fx, p.fy)
             }
         }
         // The classical rule: F_y = 0 is the lift-off (a lift-off event is not watched).
         (Rule::NormalForce, _) if found.at_start => liftoff_earlier(),
-        (Rule::NormalForce, _) => jarm_here(),
+        (Rule::NormalForce, _) => jarm(turn_of(th), p.fx, p.fy),
     }
 }
 

@@ -133,11 +133,12 @@ pub fn mu_s_min(body: &Cylinder) -> (f64, f64) {
     }
     const N: usize = 256;
     let lo = -FRAC_PI_2;
+    let grid = (1..N).map(|i| lo + FRAC_PI_2 * (i as f64) / (N as f64));
     let mut best = (f64::INFINITY, f64::NAN);
     let mut prev_phi = lo;
     let mut prev_f = dmu_sign_fn(body, lo);
-    for i in 1..N {
-        let phi = lo + FRAC_PI_2 * (i as f64) / (N as f64);
+    // The grid's last cell ends just below 0, where f → +∞.
+    for phi in grid.chain([-f64::EPSILON * FRAC_PI_2]) {
         let f = dmu_sign_fn(body, phi);
         if prev_f < 0.0 && f >= 0.0 {
             if let Ok(r) = bisect(|p| dmu_sign_fn(body, p), prev_phi, phi, prev_f, f) {
@@ -149,17 +150,6 @@ pub fn mu_s_min(body: &Cylinder) -> (f64, f64) {
         }
         prev_phi = phi;
         prev_f = f;
-    }
-    // Last cell [φ_{N−1}, 0): f → +∞ at 0⁻.
-    if prev_f < 0.0 {
-        let hi = -f64::EPSILON * FRAC_PI_2;
-        let fh = dmu_sign_fn(body, hi);
-        if let Ok(r) = bisect(|p| dmu_sign_fn(body, p), prev_phi, hi, prev_f, fh) {
-            let m = mu(body, r.x);
-            if m < best.0 {
-                best = (m, r.x);
-            }
-        }
     }
     best
 }
@@ -181,20 +171,14 @@ pub fn theta_j_range(body: &Cylinder, mu_s: f64) -> Option<(f64, f64)> {
         0.0
     } else {
         let hi = -f64::EPSILON;
-        match bisect(g, phi_star, hi, g(phi_star), g(hi)) {
-            Ok(r) => r.x,
-            Err(_) => phi_star,
-        }
+        bisect(g, phi_star, hi, g(phi_star), g(hi)).map_or(phi_star, |r| r.x)
     };
     let lo = -FRAC_PI_2;
     let phi_min = if g(lo) <= 0.0 {
         lo
     } else {
         let a = if body.icm == 0.0 { 0.0 } else { phi_star };
-        match bisect(g, lo, a, g(lo), g(a)) {
-            Ok(r) => r.x,
-            Err(_) => a,
-        }
+        bisect(g, lo, a, g(lo), g(a)).map_or(a, |r| r.x)
     };
     Some((phi_min, phi_max))
 }

@@ -312,11 +312,7 @@ fn found(p: Prepared, end: End) -> Result<Finding, JarmResult> {
         End::Event { k, t, y } => (k, t, y),
         End::Failed { y } => {
             // No physical verdict: the integrator stopped at its last good state.
-            let mut x = JarmResult::with_extrema(
-                Reason::SolverFailed,
-                (ext.max_ratio, ext.theta_max_ratio),
-                (ext.min_fy, ext.theta_min_fy),
-            );
+            let mut x = JarmResult::with_extrema(Reason::SolverFailed, &ext);
             x.theta_event = y[0];
             x.n = turn_of(y[0]);
             return Err(restrict_to_turn(x, p.o.n));

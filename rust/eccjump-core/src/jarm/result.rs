@@ -158,15 +158,6 @@ impl JarmResult {
             theta_min_fy: f64::NAN,
         }
     }
-
-    /// A result carrying the path extrema: the largest |F_x|/F_y and the smallest F_y, with
-    /// the angles where they occur (shared by both routes).
-    pub(crate) fn with_extrema(reason: Reason, max_ratio: (f64, f64), min_fy: (f64, f64)) -> Self {
-        let mut r = Self::new(reason);
-        (r.max_ratio, r.theta_max_ratio) = max_ratio;
-        (r.min_fy, r.theta_min_fy) = min_fy;
-        r
-    }
 }
 
 /// The largest turn cap of a search: every point's work is bounded by it (about a second

@@ -48,9 +48,16 @@ fn is_jarm(alpha: f64, chi: f64, km: f64, mu_s: f64, o: &JarmOptions) -> bool {
     classify(alpha, chi, km, mu_s, o).is_jarm
 }
 
-/// Bisects a transition of `f` between a (value fa) and b (value !fa) down to `TOL`.
-fn bisect_bool<F: Fn(f64) -> bool>(f: F, mut a: f64, mut b: f64, fa: bool) -> (f64, f64) {
-    while (b - a).abs() > TOL {
+/// Bisects a transition of `f` between a (value fa) and b (value !fa) until |b − a| ≤
+/// `tol(b)`.
+fn bisect_bool(
+    f: impl Fn(f64) -> bool,
+    mut a: f64,
+    mut b: f64,
+    fa: bool,
+    tol: impl Fn(f64) -> f64,
+) -> (f64, f64) {
+    while (b - a).abs() > tol(b) {
         let m = 0.5 * (a + b);
         if m == a || m == b {
             break;
@@ -84,7 +91,7 @@ pub fn alpha_intervals(
         let a = FRAC_PI_2 * i as f64 / n as f64;
         let cur = f(a);
         if cur != prev {
-            let (x, y) = bisect_bool(f, prev_a, a, prev);
+            let (x, y) = bisect_bool(f, prev_a, a, prev, |_| TOL);
             if cur {
                 lo = Some(y);
             } else if let Some(l) = lo.take() {
@@ -123,7 +130,7 @@ pub fn alpha_interval_around(
             let trial = (inner + dir * d).clamp(0.0, FRAC_PI_2);
             if !f(trial) {
                 // The JARM side of the transition.
-                return bisect_bool(f, inner, trial, true).0;
+                return bisect_bool(f, inner, trial, true, |_| TOL).0;
             }
             if trial == edge {
                 return edge;
@@ -154,19 +161,8 @@ pub fn mu_s_min_path(alpha: f64, chi: f64, km: f64, o: &JarmOptions) -> f64 {
             return f64::INFINITY;
         }
     }
-    let mut lo = if hi > 1.0 { 0.5 * hi } else { 0.0 };
-    while hi - lo > TOL * hi {
-        let m = 0.5 * (lo + hi);
-        if m <= lo || m >= hi {
-            break;
-        }
-        if f(m) {
-            hi = m;
-        } else {
-            lo = m;
-        }
-    }
-    hi
+    let lo = if hi > 1.0 { 0.5 * hi } else { 0.0 };
+    bisect_bool(f, lo, hi, false, |hi| TOL * hi).1
 }
 
 /// For many (χ_i, k_m,i): all α-intervals of JARM, each end to 1e-12 (in parallel,
@@ -244,7 +240,6 @@ pub fn mu_s_min_path_many(
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::maps::parallel::never;
 
     #[test]
     fn interval_around_a_seed_is_the_scanned_interval() {
@@ -297,8 +292,8 @@ mod tests {
         // Parallel, bit-identical.
         let chis = [0.15, 0.1, 0.2, 0.05];
         let kms = [0.02, 0.1, 0.0, 0.3];
-        let v1 = alpha_intervals_many(&chis, &kms, mu, &o, 90, 1, &never).unwrap();
-        let v2 = alpha_intervals_many(&chis, &kms, mu, &o, 90, 2, &never).unwrap();
+        let v1 = alpha_intervals_many(&chis, &kms, mu, &o, 90, 1, &|| false).unwrap();
+        let v2 = alpha_intervals_many(&chis, &kms, mu, &o, 90, 2, &|| false).unwrap();
         let bits = |v: &Vec<Vec<(f64, f64)>>| -> Vec<(u64, u64)> {
             v.iter()
                 .flatten()
@@ -321,7 +316,7 @@ mod tests {
         let r = classify(a, chi, km, 10.0, &o);
         assert!((r.max_ratio - m).abs() < 1e-9 * m, "{} {m}", r.max_ratio);
         let mut out = [0.0];
-        mu_s_min_path_many(&[a], &[chi], &[km], &o, 2, &mut out, &never).unwrap();
+        mu_s_min_path_many(&[a], &[chi], &[km], &o, 2, &mut out, &|| false).unwrap();
         assert_eq!(out[0].to_bits(), m.to_bits());
     }
 }
@@ -329,20 +324,21 @@ mod tests {
 #[cfg(test)]
 mod validation_tests {
     use super::*;
-    use crate::maps::parallel::never;
 
     #[test]
     fn invalid_input_is_an_error_or_nan_never_an_answer() {
         let o = boundary_options(Rule::Paper, 0);
         // A body out of range is an error naming it and its index (was: "never a JARM").
-        let e = alpha_intervals_many(&[0.1, 2.0], &[0.02, 0.02], 1.0, &o, 180, 1, &never);
+        let e = alpha_intervals_many(&[0.1, 2.0], &[0.02, 0.02], 1.0, &o, 180, 1, &|| false);
         let msg = e.unwrap_err().to_string();
         assert!(
             msg.starts_with("chi = 2 ") && msg.ends_with("(at index 1)"),
             "{msg}"
         );
-        assert!(alpha_intervals_many(&[0.1], &[0.02], f64::NAN, &o, 180, 1, &never).is_err());
-        assert!(alpha_intervals_many(&[0.1], &[0.02], 1.0, &o, MAX_SCAN + 1, 1, &never).is_err());
+        assert!(alpha_intervals_many(&[0.1], &[0.02], f64::NAN, &o, 180, 1, &|| false).is_err());
+        assert!(
+            alpha_intervals_many(&[0.1], &[0.02], 1.0, &o, MAX_SCAN + 1, 1, &|| false).is_err()
+        );
         // μ_s,min of an invalid point is NaN (was +∞).
         assert!(mu_s_min_path(f64::NAN, 0.15, 0.02, &o).is_nan());
         assert!(mu_s_min_path(0.7, 0.15, 0.02, &o).is_finite());

@@ -28,7 +28,7 @@ macro_rules! jarm_columns {
         }
 
         /// Consecutive points of [`JarmColumns`], written by one thread.
-        pub struct Piece<'a> {
+        pub(crate) struct Piece<'a> {
             $($f: &'a mut [$t],)*
         }
 
@@ -58,7 +58,7 @@ macro_rules! jarm_columns {
 
             /// The consecutive pieces of at most `size` points (the last may be shorter), for
             /// the map's threads to write in parallel.
-            pub fn pieces_mut(
+            pub(crate) fn pieces_mut(
                 &mut self,
                 size: usize,
             ) -> impl IndexedParallelIterator<Item = Piece<'_>> {
@@ -70,7 +70,7 @@ macro_rules! jarm_columns {
 
         impl Piece<'_> {
             /// Writes `rows` (one per point of the piece, in order).
-            pub fn put(&mut self, rows: &[JarmResult]) {
+            pub(crate) fn put(&mut self, rows: &[JarmResult]) {
                 for (i, $r) in rows.iter().enumerate().take(self.len()) {
                     $(self.$f[i] = $put;)*
                 }
@@ -112,13 +112,8 @@ impl JarmColumns {
 
 impl Piece<'_> {
     /// The number of points.
-    pub fn len(&self) -> usize {
+    pub(crate) fn len(&self) -> usize {
         self.reason.len()
-    }
-
-    /// True if there are no points.
-    pub fn is_empty(&self) -> bool {
-        self.reason.is_empty()
     }
 }
 

@@ -237,28 +237,37 @@ impl MotionAxes<'_> {
             rest /= shape[k];
         }
         let chi = self.chi[idx[1]];
-        let km = self.frac[idx[2]] * (1.0 - chi);
-        let body = Cylinder::new(chi, km).ok()?;
-        let ramp = Ramp::new(body, self.alpha[idx[0]]).ok()?;
         let mu_s = self.mu_s[idx[3]];
-        let opts = SimOptions {
-            law: ContactLaw {
-                mu_s,
-                mu_k: if self.mu_k.is_empty() {
-                    mu_s
-                } else {
-                    self.mu_k[idx[4]]
-                },
-                rule: base.law.rule,
-            },
-            restitution: self.restitution[idx[5]],
-            theta0: self.theta0[idx[6]],
-            omega0: self.omega0[idx[7]],
-            ..*base
-        };
-        opts.validate().ok()?;
-        Some((ramp, opts))
+        let values = [
+            self.alpha[idx[0]],
+            chi,
+            self.frac[idx[2]] * (1.0 - chi),
+            mu_s,
+            self.mu_k.get(idx[4]).copied().unwrap_or(mu_s),
+            self.restitution[idx[5]],
+            self.theta0[idx[6]],
+            self.omega0[idx[7]],
+        ];
+        point_from(values, base)
     }
+}
+
+/// The ramp and options of one point from its values, in the order of
+/// [`PARAMETERS`](crate::motion::options::PARAMETERS) (α, χ, k_m, μ_s, μ_k, e, θ0, θ̇0), the
+/// rest from `base`; None where a value is invalid (k_m > 1 − χ, μ_k > μ_s, out of range).
+pub(crate) fn point_from(values: [f64; 8], base: &SimOptions) -> Option<(Ramp, SimOptions)> {
+    let [alpha, chi, km, mu_s, mu_k, restitution, theta0, omega0] = values;
+    let ramp = Ramp::new(Cylinder::new(chi, km).ok()?, alpha).ok()?;
+    let rule = base.law.rule;
+    let opts = SimOptions {
+        law: ContactLaw { mu_s, mu_k, rule },
+        restitution,
+        theta0,
+        omega0,
+        ..*base
+    };
+    opts.validate().ok()?;
+    Some((ramp, opts))
 }
 
 /// The options every point of a map shares.

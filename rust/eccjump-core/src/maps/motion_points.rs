@@ -5,10 +5,9 @@
 //! count.
 
 use crate::error::Result;
-use crate::maps::motion::{motion_piece, MotionMapOptions, MotionSummary};
+use crate::maps::motion::{motion_piece, point_from, MotionMapOptions, MotionSummary};
 use crate::maps::parallel::{check_len, par_fill_pieces_until};
-use crate::mechanics::{Cylinder, Ramp};
-use crate::modes::contact::ContactLaw;
+use crate::mechanics::Ramp;
 use crate::motion::SimOptions;
 
 #[cfg(doc)]
@@ -66,22 +65,20 @@ impl MotionColumns<'_> {
     /// The body, ramp and options of point `i`, or None where a value is invalid (k_m > 1 − χ,
     /// μ_k > μ_s, a value out of range).
     fn point(&self, i: usize, base: &SimOptions) -> Option<(Ramp, SimOptions)> {
-        let body = Cylinder::new(self.chi[i], self.km[i]).ok()?;
-        let ramp = Ramp::new(body, self.alpha[i]).ok()?;
-        let mu_s = self.mu_s[i];
-        let opts = SimOptions {
-            law: ContactLaw {
-                mu_s,
-                mu_k: self.mu_k.get(i).copied().unwrap_or(mu_s),
-                rule: base.law.rule,
-            },
-            restitution: self.restitution[i],
-            theta0: self.theta0[i],
-            omega0: self.omega0[i],
-            ..*base
-        };
-        opts.validate().ok()?;
-        Some((ramp, opts))
+        let c = self;
+        let mu_s = c.mu_s[i];
+        let mu_k = c.mu_k.get(i).copied().unwrap_or(mu_s);
+        let values = [
+            c.alpha[i],
+            c.chi[i],
+            c.km[i],
+            mu_s,
+            mu_k,
+            c.restitution[i],
+            c.theta0[i],
+            c.omega0[i],
+        ];
+        point_from(values, base)
     }
 }
 

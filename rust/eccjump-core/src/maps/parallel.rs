@@ -177,11 +177,6 @@ pub fn filled_on<T: Clone + Send + Sync>(
     Ok(v)
 }
 
-/// Never stop: the `stop` of a map that is not to be interrupted.
-pub fn never() -> bool {
-    false
-}
-
 /// Checks that an input or output has the expected length, naming it otherwise.
 pub fn check_len(name: &'static str, got: usize, want: usize) -> Result<()> {
     if got == want {
@@ -205,7 +200,7 @@ mod tests {
         let f = |i: usize| (i as f64).sqrt().sin();
         let a: Vec<f64> = (0..100_000).map(f).collect();
         let mut b = vec![0.0; 100_000];
-        par_fill_until(&mut b, 2, f, &never).unwrap();
+        par_fill_until(&mut b, 2, f, &|| false).unwrap();
         assert!(a.iter().zip(&b).all(|(x, y)| x.to_bits() == y.to_bits()));
         // Slow points (1 ms each: 50 s in all) and a stop at the first poll after the start.
         let slow = |i: usize| {

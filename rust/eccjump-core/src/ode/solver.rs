@@ -183,39 +183,16 @@ where
     // One driver per pair, each compiled for it.
     macro_rules! drive_with {
         ($pair:ident) => {
-            drive(
-                Run::<$pair<N>, N>::begin(sys, t0, y0, t_end, opts),
-                sys,
-                events,
-                observer,
-                stop,
-            )
+            match Run::<$pair<N>, N>::begin(sys, t0, y0, t_end, opts) {
+                Err(out) => out,
+                Ok(run) => run.to_end(None, sys, events, observer, stop),
+            }
         };
     }
     match opts.method {
         Method::Rk45 => drive_with!(Dp5),
         Method::Dop853 => drive_with!(Dop853),
         Method::Vern9 => drive_with!(Vern9),
-    }
-}
-
-/// A run just begun (or its outcome, if it ended at its start) driven to its end.
-fn drive<P, S, E, O, const N: usize>(
-    begun: Result<Run<P, N>, Outcome<N>>,
-    sys: &S,
-    events: &E,
-    observer: &mut O,
-    stop: &dyn Fn() -> bool,
-) -> Outcome<N>
-where
-    P: RkPair<N>,
-    S: OdeSystem<N>,
-    E: EventFunctions<N>,
-    O: FnMut(Observation<'_, N>),
-{
-    match begun {
-        Err(out) => out,
-        Ok(run) => run.to_end(None, sys, events, observer, stop),
     }
 }
 

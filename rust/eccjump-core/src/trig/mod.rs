@@ -6,11 +6,8 @@
 
 pub mod lanes;
 
-/// (sin x, cos x).
-#[inline]
-pub fn sin_cos(x: f64) -> (f64, f64) {
-    libm::sincos(x)
-}
+/// The elementary functions of the kernels: `libm`'s own (`sin_cos` is its `sincos`).
+pub use libm::{acos, asin, cbrt, cos, pow, sin, sincos as sin_cos, tan};
 
 /// An angle θ with its (sin θ, cos θ), computed once where a state's right-hand side needs
 /// them and handed on explicitly by the integrator to whatever looks at the same state next
@@ -51,12 +48,6 @@ impl SinCos {
         let k = Self::reuse(theta, known);
         (k.sin, k.cos)
     }
-}
-
-/// x^y.
-#[inline]
-pub fn pow(x: f64, y: f64) -> f64 {
-    libm::pow(x, y)
 }
 
 /// x^(−1/5), the step-size factor err^(−1/5) of the 5(4) pair, without `pow` (61 ns of
@@ -163,42 +154,6 @@ fn root_fit(x: f64, (root2, fit): (&[f64], [f64; 5])) -> Option<(f64, f64, f64, 
     let y = fit[0] + t * (fit[1] + t * (fit[2] + t * (fit[3] + t * fit[4])));
     // |q| ≤ 205: 2^(−q) is a normal number.
     Some((m, y, root2[r], f64::from_bits(((1023 - q) as u64) << 52)))
-}
-
-/// sin x.
-#[inline]
-pub fn sin(x: f64) -> f64 {
-    libm::sin(x)
-}
-
-/// cos x.
-#[inline]
-pub fn cos(x: f64) -> f64 {
-    libm::cos(x)
-}
-
-/// tan x.
-#[inline]
-pub fn tan(x: f64) -> f64 {
-    libm::tan(x)
-}
-
-/// arcsin x.
-#[inline]
-pub fn asin(x: f64) -> f64 {
-    libm::asin(x)
-}
-
-/// arccos x.
-#[inline]
-pub fn acos(x: f64) -> f64 {
-    libm::acos(x)
-}
-
-/// ∛x.
-#[inline]
-pub fn cbrt(x: f64) -> f64 {
-    libm::cbrt(x)
 }
 
 #[cfg(test)]

@@ -5,7 +5,7 @@ use super::*;
 use crate::jarm::classify;
 use crate::jarm::Method;
 use crate::maps::columns::JarmColumns;
-use crate::maps::parallel::{never, pool};
+use crate::maps::parallel::pool;
 use crate::maps::region::classify_grid;
 use crate::mechanics::Ramp;
 use crate::modes::rolling::events::N_EVENTS;
@@ -13,6 +13,11 @@ use crate::ode::events::{check_change_bounds, WalkAll};
 use crate::ode::pair::error_scale;
 use crate::ode::{Change, EventBounds, EventFunctions, OdeSystem, Outcome, SinCos, StepEnds};
 use std::f64::consts::FRAC_PI_2;
+
+/// Never stop: the `stop` of a map that is not to be interrupted.
+fn never() -> bool {
+    false
+}
 
 const RTOL: f64 = 1e-10;
 const ATOL: f64 = 1e-12;

@@ -1,7 +1,7 @@
 //! The reported extrema of a scan (the smallest F_y, the largest |F_x|/F_y): tracked cell
 //! by cell, refined in their cells at the end.
 
-use super::{ContactEvent, PathPoint, PathScan, RollingPath, G_FY};
+use super::{ContactEvent, Extrema, PathPoint, PathScan, RollingPath, G_FY};
 use crate::ode::hermite::hermite_min;
 use crate::ode::roots::brent;
 
@@ -210,10 +210,12 @@ impl RollingPath {
         PathScan {
             event,
             at,
-            max_ratio: max_r.value,
-            theta_max_ratio: max_r.theta,
-            min_fy: min_fy.value,
-            theta_min_fy: min_fy.theta,
+            extrema: Extrema {
+                max_ratio: max_r.value,
+                theta_max_ratio: max_r.theta,
+                min_fy: min_fy.value,
+                theta_min_fy: min_fy.theta,
+            },
             evaluations: evals,
         }
     }

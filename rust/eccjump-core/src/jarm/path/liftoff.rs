@@ -45,20 +45,20 @@ impl RollingPath {
             let sc = self.scan_from(theta_start, theta_end, watch);
             (sc.event == ContactEvent::Liftoff).then_some(sc.at.theta)
         };
-        let chi = self.chi;
-        let guaranteed = self.cos_a > 0.0
-            && self.sin_a > 0.0
+        let chi = self.ramp.body.chi;
+        let guaranteed = self.ramp.cos_a > 0.0
+            && self.ramp.sin_a > 0.0
             && chi > 0.0
             && self.energy_stays_positive(theta_start);
         if !guaranteed || theta_end <= theta_start || theta_end.is_nan() {
             return plain();
         }
         // L < 0 on window m while 2χ E_ub(2πm + π/2) ≤ cos α (Ĩ_C + 1) (with a margin).
-        let need = self.cos_a * (self.ramp.body.ic + 1.0) / (2.0 * chi) * (1.0 - 1e-9);
+        let need = self.ramp.cos_a * (self.ramp.body.ic + 1.0) / (2.0 * chi) * (1.0 - 1e-9);
         let e_ub =
-            |theta: f64| self.k0 + (theta - self.theta0) * self.sin_a + chi * (self.ca0 + 1.0);
+            |theta: f64| self.k0 + (theta - self.theta0) * self.ramp.sin_a + chi * (self.ca0 + 1.0);
         // First window that can hold L ≥ 0: θ_hi = 2πm + π/2 with E_ub(θ_hi) > need.
-        let theta_need = self.theta0 + (need - e_ub(self.theta0)) / self.sin_a;
+        let theta_need = self.theta0 + (need - e_ub(self.theta0)) / self.ramp.sin_a;
         let m_start = ((theta_start + FRAC_PI_2) / TAU).floor();
         let m_need = ((theta_need - FRAC_PI_2) / TAU).floor();
         let mut m = m_start.max(m_need);
@@ -114,16 +114,18 @@ impl RollingPath {
     ///
     /// [`Ramp::energy_minimum_after`]: crate::mechanics::Ramp::energy_minimum_after
     pub(super) fn energy_stays_positive(&self, theta_start: f64) -> bool {
-        let chi = self.chi;
-        let e_low = self.k0 + (theta_start - self.theta0) * self.sin_a + chi * (self.ca0 - 1.0);
+        let chi = self.ramp.body.chi;
+        let e_low =
+            self.k0 + (theta_start - self.theta0) * self.ramp.sin_a + chi * (self.ca0 - 1.0);
         if e_low > 0.0 {
             return true;
         }
-        let margin =
-            |theta: f64| 1e-12 * (self.k0 + (theta - self.theta0).abs() * self.sin_a + 2.0 * chi);
+        let margin = |theta: f64| {
+            1e-12 * (self.k0 + (theta - self.theta0).abs() * self.ramp.sin_a + 2.0 * chi)
+        };
         let p = self.eval(theta_start);
         let (e, de) = (p.g[G_ENERGY], p.dg[G_ENERGY]);
-        let start = e > margin(theta_start) || (e >= 0.0 && de > 1e-12 * (self.sin_a + chi));
+        let start = e > margin(theta_start) || (e >= 0.0 && de > 1e-12 * (self.ramp.sin_a + chi));
         start
             && self
                 .ramp

@@ -24,6 +24,7 @@
 //! - `skip`: skipping whole turns that provably hold no event, and the bisection behind it;
 //! - `liftoff`: the lift-off search after a slip, window by window.
 
+use crate::jarm::decision::Extrema;
 use crate::mechanics::energy::rolling_kinetic;
 use crate::mechanics::friction::friction_ratio;
 use crate::mechanics::liftoff::{free_normal_acceleration, liftoff_slope};
@@ -108,9 +109,6 @@ impl PathPoint {
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct RollingPath {
     ramp: Ramp,
-    chi: f64,
-    sin_a: f64,
-    cos_a: f64,
     theta0: f64,
     s0: f64,
     c0: f64,
@@ -129,14 +127,9 @@ pub struct PathScan {
     pub event: ContactEvent,
     /// The state where the scan stopped (the event, or the end).
     pub at: PathPoint,
-    /// The largest |F_x|/F_y on [θ0, θ_event] (∞ if F_y reached 0).
-    pub max_ratio: f64,
-    /// Where `max_ratio` is reached (rad).
-    pub theta_max_ratio: f64,
-    /// The smallest F_y on [θ0, θ_event].
-    pub min_fy: f64,
-    /// Where `min_fy` is reached (rad).
-    pub theta_min_fy: f64,
+    /// The largest |F_x|/F_y (∞ if F_y reached 0) and the smallest F_y on [θ0, θ_event],
+    /// and where.
+    pub extrema: Extrema,
     /// Function evaluations used (a cost measure).
     pub evaluations: u32,
 }
@@ -232,9 +225,6 @@ impl RollingPath {
         let ip_uniform = 16.0 * hmax * hmax * r.body.chi * (1.0 + 1e-12);
         Self {
             ramp: *r,
-            chi: r.body.chi,
-            sin_a: r.sin_a,
-            cos_a: r.cos_a,
             theta0,
             s0,
             c0,
@@ -246,11 +236,6 @@ impl RollingPath {
         }
     }
 
-    /// θ0 of the path.
-    pub fn theta0(&self) -> f64 {
-        self.theta0
-    }
-
     /// The available kinetic energy E(θ) at θ (θ̇² = 2E/Ĩ_P).
     #[inline]
     pub fn energy(&self, theta: f64) -> f64 {
@@ -260,8 +245,8 @@ impl RollingPath {
         rolling_kinetic(
             self.k0,
             theta - self.theta0,
-            self.sin_a,
-            self.chi,
+            self.ramp.sin_a,
+            self.ramp.body.chi,
             sin_mid,
             su,
         )
@@ -352,9 +337,9 @@ impl RollingPath {
     /// [`Self::eval_half`] gives, bit for bit, for a fraction of its work.
     #[inline(always)]
     fn no_lift_half(&self, theta: f64, su: f64, cu: f64) -> (f64, f64, f64) {
-        let chi = self.chi;
+        let chi = self.ramp.body.chi;
         let st = self.state_half(theta, su, cu);
-        let lift = free_normal_acceleration(st.chi_w2, st.c, self.cos_a);
+        let lift = free_normal_acceleration(st.chi_w2, st.c, self.ramp.cos_a);
         let dlift = liftoff_slope(chi, st.chi_w2, st.acc, st.s, st.c);
         (-lift, -dlift, st.c)
     }
@@ -373,7 +358,7 @@ impl RollingPath {
         if ip >= self.ip_uniform {
             return hmax; // what the test below gives, without its square root and division
         }
-        let h = 0.25 * (ip / self.chi).sqrt();
+        let h = 0.25 * (ip / self.ramp.body.chi).sqrt();
         let floor = 1e-9 * (1.0 + theta.abs());
         if h < hmax {
             h.max(floor)

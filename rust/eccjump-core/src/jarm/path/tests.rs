@@ -58,7 +58,7 @@ fn uniform_step_shortcut_gives_the_square_root_rule_bit_for_bit() {
     // The step rule as it was: ¼√(Ĩ_P/χ) when below 2π/24 (with a floor), else 2π/24.
     let reference = |p: &RollingPath, q: &PathPoint| {
         let hmax = TAU / SAMPLES_PER_TURN;
-        let h = 0.25 * (p.ramp.contact_inertia(q.cos_t) / p.chi).sqrt();
+        let h = 0.25 * (p.ramp.contact_inertia(q.cos_t) / p.ramp.body.chi).sqrt();
         let floor = 1e-9 * (1.0 + q.theta.abs());
         if h < hmax {
             h.max(floor)
@@ -222,22 +222,22 @@ fn turn_skip_finds_the_event_and_extrema_of_the_full_scan() {
             (ta - tb).abs() <= 1e-13 * tb.abs().max(1.0),
             "{ta} {tb} {at}"
         );
-        if w.normal_force && a.min_fy > 0.0 {
+        if w.normal_force && a.extrema.min_fy > 0.0 {
             let (min_fy, max_ratio) = brute_extrema(&p, th0, ta);
-            let (m, r) = (a.min_fy, a.max_ratio);
+            let (m, r) = (a.extrema.min_fy, a.extrema.max_ratio);
             // Reported: values on the path, at least as good as every brute-force sample.
             let tol = 1e-11 * (1.0 + m.abs() + r.abs());
             assert!(
                 m <= min_fy + tol,
                 "{m} {min_fy} (full scan {}) {at}",
-                b.min_fy
+                b.extrema.min_fy
             );
             assert!(
                 r >= max_ratio - tol,
                 "{r} {max_ratio} (full {}) {at}",
-                b.max_ratio
+                b.extrema.max_ratio
             );
-            for (x, f) in [(a.theta_min_fy, m), (a.theta_max_ratio, r)] {
+            for (x, f) in [(a.extrema.theta_min_fy, m), (a.extrema.theta_max_ratio, r)] {
                 assert!(x >= th0 && x <= ta, "{x} {at}");
                 let q = p.eval(x);
                 assert!(f == q.fy || f == q.ratio(), "{f} {x} {at}");
@@ -385,7 +385,7 @@ fn window_liftoff_gives_the_scans_angle_bit_for_bit() {
         let coarseness = if uniform(&mut s) < 0.5 { 1 } else { 3 };
         let w = Watch::liftoff_only(coarseness);
         // Skip windows where the energy could vanish (the loop assumes it cannot).
-        let e_low = p.k0 + (lo - th0) * p.sin_a + chi * (p.ca0 - 1.0);
+        let e_low = p.k0 + (lo - th0) * p.ramp.sin_a + chi * (p.ca0 - 1.0);
         if e_low <= 0.0 {
             continue;
         }
@@ -509,7 +509,7 @@ fn early_slip_lift_off_search_is_exact_where_energy_stays_positive() {
 fn brute(p: &RollingPath, theta_end: f64, watch: Watch) -> Option<(f64, usize)> {
     let n = 100_000;
     for i in 0..=n {
-        let th = p.theta0() + (theta_end - p.theta0()) * i as f64 / n as f64;
+        let th = p.theta0 + (theta_end - p.theta0) * i as f64 / n as f64;
         let q = p.eval(th);
         for &k in &[G_NOLIFT, G_FY, G_MPLUS, G_MMINUS, G_ENERGY] {
             if watch.active(k) && i > 0 && violated(k, q.g[k]) {
@@ -560,15 +560,15 @@ fn scan_agrees_with_dense_sampling() {
             mf = mf.min(q.fy);
         }
         assert!(
-            s.min_fy <= mf + 1e-12 && mf - s.min_fy < 1e-8,
+            s.extrema.min_fy <= mf + 1e-12 && mf - s.extrema.min_fy < 1e-8,
             "{} {mf}",
-            s.min_fy
+            s.extrema.min_fy
         );
         if mr.is_finite() {
             assert!(
-                s.max_ratio >= mr - 1e-12 && s.max_ratio - mr < 1e-6,
+                s.extrema.max_ratio >= mr - 1e-12 && s.extrema.max_ratio - mr < 1e-6,
                 "{} {mr}",
-                s.max_ratio
+                s.extrema.max_ratio
             );
         }
     }

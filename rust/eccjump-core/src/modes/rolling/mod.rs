@@ -86,13 +86,6 @@ pub struct Kinematics {
 }
 
 impl Ramp {
-    /// θ̈ from the rolling equation (roll-eq).
-    #[inline]
-    pub fn omega_dot(&self, theta: f64, omega: f64) -> f64 {
-        let (s, c) = crate::trig::sin_cos(theta);
-        self.omega_dot_sc(s, c, omega)
-    }
-
     /// θ̈ from the rolling equation, given s = sin θ and c = cos θ.
     #[inline]
     pub fn omega_dot_sc(&self, s: f64, c: f64, omega: f64) -> f64 {
@@ -104,8 +97,7 @@ impl Ramp {
     /// θ̈, the contact forces and the lift-off function of pure rolling at (θ, θ̇).
     #[inline]
     pub fn kinematics(&self, theta: f64, omega: f64) -> Kinematics {
-        let (s, c) = crate::trig::sin_cos(theta);
-        self.kinematics_sc(theta, omega, s, c)
+        self.kinematics_at(theta, omega, None)
     }
 
     /// [`Ramp::kinematics`], with sin θ and cos θ from `trig` when it is of this θ
@@ -113,12 +105,6 @@ impl Ramp {
     #[inline]
     pub fn kinematics_at(&self, theta: f64, omega: f64, trig: Option<SinCos>) -> Kinematics {
         let (s, c) = SinCos::at(theta, trig);
-        self.kinematics_sc(theta, omega, s, c)
-    }
-
-    /// [`Ramp::kinematics`] given s = sin θ and c = cos θ.
-    #[inline]
-    pub fn kinematics_sc(&self, theta: f64, omega: f64, s: f64, c: f64) -> Kinematics {
         // χθ̇² is rounded as (χθ̇)θ̇ in θ̈ and L and as χ(θ̇²) in the forces, as this kernel
         // always has: every route's results stay bit-identical to earlier versions.
         let chi = self.body.chi;
@@ -229,7 +215,8 @@ mod tests {
         let h = 1e-6;
         let de_dth = (r.rolling_energy(th + h, w) - r.rolling_energy(th - h, w)) / (2.0 * h);
         let de_dw = (r.rolling_energy(th, w + h) - r.rolling_energy(th, w - h)) / (2.0 * h);
-        assert!((de_dth * w + de_dw * r.omega_dot(th, w)).abs() < 1e-8);
+        let (s, c) = crate::trig::sin_cos(th);
+        assert!((de_dth * w + de_dw * r.omega_dot_sc(s, c, w)).abs() < 1e-8);
     }
 
     #[test]
