@@ -250,7 +250,7 @@ def raw_get(port: int, target: str = "/api/controls", *headers: str) -> bytes:
     return "\r\n".join((f"GET {target} HTTP/1.1", *lines, "", "")).encode("latin-1")
 
 
-@pytest.fixture
+@pytest.fixture(scope="module")
 def srv():
     with ExplorerServer(0) as s:
         yield s
