@@ -19,6 +19,7 @@ import socket
 import sys
 import threading
 import time
+from email.message import Message
 from http.server import BaseHTTPRequestHandler, ThreadingHTTPServer
 from importlib import resources
 from types import TracebackType
@@ -58,7 +59,7 @@ def static_file(name: str) -> bytes:
     return resources.files("eccjump.explorer").joinpath("static", name).read_bytes()
 
 
-def refusal(headers: Any, port: int) -> str | None:
+def refusal(headers: Message, port: int) -> str | None:
     """Why a request with these headers is not for this server (None: it is). The Host must
     be one of :data:`LOCAL_NAMES` with this ``port`` or none, given once; an Origin, when the
     browser sends one, must be ``http://`` and such a host. A page of another site whose name
