@@ -22,6 +22,8 @@ import math
 import random
 import re
 import shutil
+import socket
+import sys
 import tempfile
 from collections.abc import Callable, Sequence
 from dataclasses import dataclass, field
@@ -1441,6 +1443,122 @@ def case_explore_api(d: Drawer) -> Case:
     return c
 
 
+# --- the explorer's server (raw requests to 127.0.0.1, through a socket) --------------------
+
+#: Statuses the explorer's server may answer: its routes (200, 400 a bad query, 404), the
+#: refusal of another host (403), and the standard library's refusals of a bad request (400,
+#: 414 too long a line, 431 too long or too many headers, 501 a method other than GET, 505 an
+#: unknown HTTP version).
+HTTP_STATUSES = {200, 400, 403, 404, 414, 431, 501, 505}
+HTTP_TARGETS = (
+    "/", "/index.html", "/explorer.js", "/explorer.css", "/api/controls", "/api/region",
+    "/api/motion", "/api/motion", "/api/", "/api/nope", "/nope", "/../pyproject.toml",
+    "/%2e%2e/%2e%2e/pyproject.toml", "/static/../server.py", "/api/..%2f..%2fcli",
+    "//evil.example/api/controls", "http://evil.example/api/controls", "*", "/\x00", "/%ff",
+)  # fmt: skip
+#: Host headers: this server's names (PORT becomes the server's port), then other hosts.
+LOCAL_HOSTS = ("127.0.0.1:PORT", "localhost:PORT", "[::1]:PORT", "LocalHost:PORT", "127.0.0.1")
+FOREIGN_HOSTS = (
+    "evil.example", "evil.example:PORT", "127.0.0.1:1", "127.0.0.1.evil.example:PORT",
+    "localhost.:PORT", "0.0.0.0:PORT", "",
+)  # fmt: skip
+
+
+def http_exchange(port: int, request: bytes, timeout: float = 10.0) -> tuple[int, bytes]:
+    """Send ``request`` (raw bytes) to 127.0.0.1:``port`` and read until the server closes:
+    (status, body). Status 0: it closed without an answer; -1: no status line."""
+    with socket.create_connection(("127.0.0.1", port), timeout=timeout) as s:
+        try:
+            s.sendall(request)
+        except (BrokenPipeError, ConnectionResetError):
+            pass  # refused before all of it was read: its answer may be waiting
+        answer = b""
+        try:
+            while chunk := s.recv(65536):
+                answer += chunk
+        except ConnectionResetError:
+            pass  # closed with bytes of ours unread (a body it does not read), after answering
+    if not answer:
+        return 0, b""
+    head, _, body = answer.partition(b"\r\n\r\n")
+    status = re.match(rb"HTTP/1\.[01] (\d{3}) ", head)
+    return (int(status.group(1)) if status else -1), body
+
+
+_HTTP: dict[str, Any] = {}
+
+
+def explorer_server() -> tuple[int, list[Any]]:
+    """A server of the explorer for this process, started on first use: (port, the errors
+    it would print a traceback for: none is allowed)."""
+    if not _HTTP:
+        from eccjump.explorer.server import ExplorerServer
+
+        srv = ExplorerServer(0).start()
+        errors: list[Any] = []
+        report = srv._httpd.handle_error
+
+        def record(request: Any, address: Any) -> None:
+            if not isinstance(sys.exc_info()[1], OSError):  # OSError: a client gone, quiet
+                errors.append(sys.exc_info()[1])
+            report(request, address)
+
+        srv._httpd.handle_error = record  # type: ignore[method-assign]
+        atexit.register(srv.stop)
+        _HTTP.update(port=srv.port, errors=errors)
+    return _HTTP["port"], _HTTP["errors"]
+
+
+def explore_http(request: bytes) -> tuple[int, bytes, int]:
+    """Send ``request`` to the explorer's server (PORT in it becomes the port): (status,
+    body, the status of a plain request right after it)."""
+    port, _ = explorer_server()
+    status, body = http_exchange(port, request.replace(b"PORT", str(port).encode()))
+    after = f"GET /api/controls HTTP/1.1\r\nHost: 127.0.0.1:{port}\r\n\r\n".encode()
+    return status, body, http_exchange(port, after)[0]
+
+
+def check_explore_http(res: Any, case: Case) -> None:
+    status, body, after = res
+    expect(status in HTTP_STATUSES, f"status {status}: {body[:80]!r}")
+    expect(after == 200, f"the next request got {after}")
+    expect(not explorer_server()[1], f"the server failed: {explorer_server()[1][:1]}")
+    if status != 200:
+        expect(len(body) <= 300 and b"Traceback" not in body, f"error body {body[:80]!r}")
+    if case.info["foreign"]:
+        expect(status not in (200, 404, 501), f"another host got {status}: no route may run")
+    elif status == 403:
+        expect(case.info["origin"], f"this server's host was refused: {body[:80]!r}")
+
+
+def case_explore_http(d: Drawer) -> Case:
+    c = Case("explorer.server", explore_http, check=check_explore_http)
+    target = d.choice(HTTP_TARGETS)
+    if target.startswith("/api/") and d.integer(0, 1):
+        values = (cli_number(d, -10, 100), "%ff", "%00", "9" * d.integer(1, 3000), "a&b=c")
+        target += "?" + "&".join(f"{k}={d.choice(values)}" for k in ("alpha", "chi", "km"))
+    method = d.choice(("GET",) * 6 + ("HEAD", "POST", "PUT", "G\x00T", "get"))
+    version = d.choice(("HTTP/1.1",) * 4 + ("HTTP/1.0", "HTTP/9.9", "HTTP/1", "FTP/1.0", ""))
+    hosts = [h for h in [d.choice(LOCAL_HOSTS * 2 + FOREIGN_HOSTS)] if h]
+    if d.integer(0, 5) == 0:
+        hosts.append(d.choice(LOCAL_HOSTS + FOREIGN_HOSTS))  # two Host headers
+    lines = [f"{method} {target} {version}".rstrip(), *(f"Host: {h}" for h in hosts)]
+    origin = d.choice((None,) * 4 + ("http://127.0.0.1:PORT", "http://evil.example", "null"))
+    if origin is not None:
+        lines.append(f"Origin: {origin}")
+    if d.integer(0, 5) == 0:
+        size = d.choice((1, 100, 70000))  # past 65536: too long a line; past 100: too many
+        lines += [f"X-{i}: {'v' * size}" for i in range(d.integer(1, 120))]
+    body = b""
+    if d.integer(0, 5) == 0:
+        body = d.choice((b"{bad json", b"\xff" * 5000, b"{}"))
+        lines.append(f"Content-Length: {d.choice((len(body), 10**12, -1))}")
+    c.args = ("\r\n".join(lines).encode("latin-1") + b"\r\n\r\n" + body,)
+    c.info["foreign"] = len(hosts) != 1 or hosts[0] not in LOCAL_HOSTS
+    c.info["origin"] = origin not in (None, "http://127.0.0.1:PORT")
+    return c
+
+
 # --- the command line ----------------------------------------------------------------------
 
 
@@ -1735,6 +1853,7 @@ GENERATORS: dict[str, Callable[[Drawer], Case]] = {
     "optimal_start": case_optimal_start,
     "explore": case_explore,
     "explore_api": case_explore_api,
+    "explore_http": case_explore_http,
     "cli": case_cli,
 }
 

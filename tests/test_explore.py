@@ -8,10 +8,12 @@ from __future__ import annotations
 import json
 import math
 import re
+import select
 import signal
 import socket
 import subprocess
 import sys
+import threading
 import time
 import urllib.error
 import urllib.request
@@ -19,6 +21,7 @@ from pathlib import Path
 
 import numpy as np
 import pytest
+from fuzz_cases import http_exchange
 from reference_points import SLIP_FIRST
 
 import eccjump
@@ -232,6 +235,190 @@ def test_server_serves_the_page_and_answers_requests():
         get(srv.url)
 
 
+# --- the server under abuse (raw requests from this machine) -------------------------------
+
+#: Every kind of route: the page's files, the requests, an unknown request, an unknown file.
+ROUTES = (
+    "/", "/index.html", "/explorer.js", "/explorer.css", "/api/controls", "/api/region",
+    "/api/motion?alpha=40", "/api/nope", "/nope",
+)  # fmt: skip
+
+
+def raw_get(port: int, target: str = "/api/controls", *headers: str) -> bytes:
+    """A GET of ``target`` with these header lines (Host: this server's by default)."""
+    lines = headers or (f"Host: 127.0.0.1:{port}",)
+    return "\r\n".join((f"GET {target} HTTP/1.1", *lines, "", "")).encode("latin-1")
+
+
+@pytest.fixture(scope="module")
+def srv():
+    with ExplorerServer(0) as s:
+        yield s
+
+
+def answers(port: int) -> bool:
+    return http_exchange(port, raw_get(port))[0] == 200
+
+
+@pytest.mark.parametrize(
+    "hosts",
+    [
+        ["evil.example"],
+        ["evil.example:{port}"],
+        ["127.0.0.1.evil.example:{port}"],
+        ["127.0.0.1:1"],
+        ["0.0.0.0:{port}"],
+        [],
+        ["127.0.0.1:{port}", "evil.example"],
+    ],
+)
+def test_another_host_is_refused_before_any_route(srv, hosts):
+    """A page of another site whose name was rebound to 127.0.0.1 sends its own name as Host:
+    403 on every route, and for any method, before the route runs."""
+    headers = [f"Host: {h.format(port=srv.port)}" for h in hosts]
+    for target in ROUTES:
+        status, body = http_exchange(srv.port, raw_get(srv.port, target, *headers, "X: 1"))
+        assert status == 403 and f"127.0.0.1:{srv.port}".encode() in body, (target, body)
+        assert len(body) < 200
+    post = "\r\n".join(("POST /api/motion HTTP/1.1", *headers, "", "")).encode()
+    assert http_exchange(srv.port, post)[0] == 403  # not 501: no method runs either
+
+
+@pytest.mark.parametrize("host", ["127.0.0.1:{port}", "localhost:{port}", "[::1]:{port}",
+                                  "LOCALHOST:{port}", "127.0.0.1", "localhost"])  # fmt: skip
+def test_this_machines_names_are_served(srv, host):
+    request = raw_get(srv.port, "/", f"Host: {host.format(port=srv.port)}")
+    assert http_exchange(srv.port, request)[0] == 200
+
+
+def test_another_sites_origin_is_refused(srv):
+    host = f"Host: 127.0.0.1:{srv.port}"
+    for origin in ("http://evil.example", "null", f"https://127.0.0.1:{srv.port}"):
+        status, body = http_exchange(srv.port, raw_get(srv.port, "/", host, f"Origin: {origin}"))
+        assert status == 403 and b"Origin" in body, origin
+    own = raw_get(srv.port, "/api/controls", host, f"Origin: http://127.0.0.1:{srv.port}")
+    assert http_exchange(srv.port, own)[0] == 200
+
+
+def test_150_simultaneous_clients_are_all_answered(srv):
+    """The listen backlog was 5: of 150 clients at once, half were reset and the rest waited
+    up to 107 s for the kernel's retries. Now they queue for the handlers."""
+    n = 150
+    go, results = threading.Event(), [(0, 0.0)] * n
+
+    def client(i: int) -> None:
+        go.wait()
+        start = time.perf_counter()
+        try:
+            status = http_exchange(srv.port, raw_get(srv.port), timeout=30)[0]
+        except OSError as err:
+            status = type(err).__name__
+        results[i] = (status, time.perf_counter() - start)
+
+    threads = [threading.Thread(target=client, args=(i,)) for i in range(n)]
+    for t in threads:
+        t.start()
+    go.set()
+    for t in threads:
+        t.join(60)
+    statuses = [status for status, _ in results]
+    assert statuses == [200] * n, {s: statuses.count(s) for s in set(statuses)}
+    latency = sorted(t for _, t in results)
+    print(f"{n} clients at once: median {latency[n // 2]:.3f} s, slowest {latency[-1]:.3f} s")
+
+
+@pytest.fixture
+def short_timeouts(monkeypatch):
+    """Two handlers and 0.5 s for a request, so that the tests take a second."""
+    monkeypatch.setattr(server, "WORKERS", 2)
+    monkeypatch.setattr(server._Handler, "timeout", 0.5)
+    with ExplorerServer(0) as s:
+        yield s
+
+
+def closed_by_server(sock: socket.socket, wait: float) -> bool:
+    """Whether the server closed ``sock`` (end of stream, or reset) within ``wait`` s."""
+    if not select.select([sock], [], [], wait)[0]:
+        return False
+    try:
+        return sock.recv(1) == b""
+    except ConnectionResetError:
+        return True
+
+
+def test_idle_connections_are_closed_and_do_not_block_a_new_client(short_timeouts):
+    """Connections that send nothing (three times the handlers) are closed after the
+    request timeout; a client behind them is answered."""
+    port = short_timeouts.port
+    idle = [socket.create_connection(("127.0.0.1", port)) for _ in range(6)]
+    try:
+        assert http_exchange(port, raw_get(port), timeout=20)[0] == 200
+        assert all(closed_by_server(s, 10) for s in idle)
+    finally:
+        for s in idle:
+            s.close()
+
+
+def test_a_client_sending_a_byte_at_a_time_is_closed_at_the_deadline(short_timeouts):
+    """A slowloris: each byte comes before the read timeout, the request never ends. It is
+    closed when the time for the whole request is up (0.5 s here), not after its 40 bytes."""
+    port = short_timeouts.port
+    with socket.create_connection(("127.0.0.1", port)) as s:
+        s.sendall(f"GET / HTTP/1.1\r\nHost: 127.0.0.1:{port}\r\n".encode())
+        for _ in range(40):
+            if closed_by_server(s, 0.1):
+                break
+            try:
+                s.sendall(b"X")
+            except OSError:
+                break
+        else:
+            pytest.fail("the slow request was still open after 4 s")
+    assert answers(port)
+
+
+MALFORMED = {
+    "no request line": (b"garbage\r\n\r\n", 400),
+    "one word": (b"GET\r\n\r\n", 400),
+    "binary": (b"\x00\xff\xfe\r\n\r\n", 400),
+    "URL past 64 KiB": (b"GET /" + b"a" * 70000 + b" HTTP/1.1\r\n\r\n", 414),
+    "header past 64 KiB": (b"GET / HTTP/1.1\r\nX: " + b"a" * 70000 + b"\r\n\r\n", 431),
+    "200 headers": (b"GET / HTTP/1.1\r\n" + b"X: 1\r\n" * 200 + b"\r\n", 431),
+    "unknown version": (b"GET / HTTP/9.9\r\nHost: H\r\n\r\n", 505),
+    "huge body, bad JSON": (
+        b"POST /api/motion HTTP/1.1\r\nHost: H\r\nContent-Length: 1000000000000\r\n\r\n{bad",
+        501,
+    ),
+    "a full URL": (b"GET http://evil.example/ HTTP/1.1\r\nHost: H\r\n\r\n", 400),
+    "asterisk": (b"OPTIONS * HTTP/1.1\r\nHost: H\r\n\r\n", 400),
+    "dot-dot": (b"GET /../pyproject.toml HTTP/1.1\r\nHost: H\r\n\r\n", 404),
+    "encoded dot-dot": (b"GET /%2e%2e/%2e%2e/pyproject.toml HTTP/1.1\r\nHost: H\r\n\r\n", 404),
+    "encoded slash in a request": (b"GET /api/..%2f..%2fcli HTTP/1.1\r\nHost: H\r\n\r\n", 404),
+    "bad bytes in a query": (b"GET /api/motion?alpha=%ff%00 HTTP/1.1\r\nHost: H\r\n\r\n", 400),
+    "long query value": (
+        b"GET /api/region?km=" + b"9" * 60000 + b" HTTP/1.1\r\nHost: H\r\n\r\n",
+        400,
+    ),
+    "a query of 5000 fields": (
+        b"GET /api/motion?" + b"&".join(b"f%d=1" % i for i in range(5000))
+        + b" HTTP/1.1\r\nHost: H\r\n\r\n",
+        200,
+    ),
+}  # fmt: skip
+
+
+@pytest.mark.parametrize("name", list(MALFORMED))
+def test_a_malformed_request_is_a_short_refusal_and_the_server_goes_on(srv, capfd, name):
+    request, expected = MALFORMED[name]
+    request = request.replace(b"Host: H", f"Host: 127.0.0.1:{srv.port}".encode())
+    status, body = http_exchange(srv.port, request)
+    assert status == expected, body[:200]
+    if status != 200:
+        assert len(body) <= 300 and b"Traceback" not in body, body[:300]
+    assert answers(srv.port)
+    assert "Traceback" not in capfd.readouterr().err
+
+
 def test_the_page_fetches_nothing_from_the_internet():
     """Every address in the page's files is relative (the SVG namespace is a name, not a
     download)."""
@@ -265,14 +452,19 @@ def test_cli_serves_until_ctrl_c():
     proc = _explore("--port", "0")
     try:
         line = proc.stdout.readline()
-        url = re.search(r"http://127\.0\.0\.1:\d+/", line).group(0)
-        assert get(url + "api/controls")[0] == 200
+        url = re.search(r"http://127\.0\.0\.1:(\d+)/", line)
+        assert get(url.group(0) + "api/controls")[0] == 200
+        # every handler held by a client that sends nothing, and more waiting
+        idle = [socket.create_connection(("127.0.0.1", int(url.group(1)))) for _ in range(30)]
+        time.sleep(0.2)
         start = time.perf_counter()
         proc.send_signal(signal.SIGINT)
         code = proc.wait(timeout=30)
         print(f"eccjump explore stopped {time.perf_counter() - start:.2f} s after Ctrl-C")
         err = proc.stderr.read()
         assert code == 0 and "Traceback" not in err and "stopped" in err
+        for s in idle:
+            s.close()
     finally:
         if proc.poll() is None:
             proc.kill()

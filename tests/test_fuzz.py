@@ -62,6 +62,7 @@ BUDGET = {
     "analyze": 30,
     "explore": 80,
     "explore_api": 60,
+    "explore_http": 60,
 }
 
 

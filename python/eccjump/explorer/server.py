@@ -3,17 +3,28 @@ the static page (``static/``) and answers its requests through :func:`api.handle
 
 It listens on 127.0.0.1 only and fetches nothing from the internet: the page is one HTML
 file, one script and one style sheet, all served from here.
+
+What a client of this machine may do to it is bounded (the user guide's page "The explorer",
+"Safety"): :data:`BACKLOG` connections wait for :data:`WORKERS` handlers, a request must
+arrive within :data:`REQUEST_TIMEOUT` seconds, and a request whose ``Host`` (or ``Origin``)
+is not this server is refused with 403 before any route runs (a page of another site that
+rebinds its name to 127.0.0.1 cannot read the answers).
 """
 
 from __future__ import annotations
 
+import io
 import json
+import socket
+import sys
 import threading
+import time
+from email.message import Message
 from http.server import BaseHTTPRequestHandler, ThreadingHTTPServer
 from importlib import resources
 from types import TracebackType
 from typing import Any
-from urllib.parse import parse_qsl, urlsplit
+from urllib.parse import parse_qsl
 
 from eccjump.explorer import api
 
@@ -28,6 +39,19 @@ FILES = {
 HOST = "127.0.0.1"
 #: The default port of ``eccjump explore``.
 DEFAULT_PORT = 8050
+#: Connections that may wait to be taken (the listen backlog; the standard library's is 5,
+#: and a sixth client waiting was reset or retried its connection for up to 100 s).
+BACKLOG = 256
+#: Requests handled at once; the next clients wait in the backlog (answers take milliseconds,
+#: so a handler is held long only by a client that is slow to send or to read).
+WORKERS = 16
+#: Seconds a client has to send its request line and headers, counted from when a handler
+#: takes the connection; then it is closed (an idle or half-open connection, a slowloris).
+REQUEST_TIMEOUT = 5.0
+#: Seconds each write of an answer may take (a client that does not read it).
+SEND_TIMEOUT = 10.0
+#: The names this server answers to (the Host header, without the port or with it).
+LOCAL_NAMES = ("127.0.0.1", "localhost", "[::1]")
 
 
 def static_file(name: str) -> bytes:
@@ -35,18 +59,83 @@ def static_file(name: str) -> bytes:
     return resources.files("eccjump.explorer").joinpath("static", name).read_bytes()
 
 
+def refusal(headers: Message, port: int) -> str | None:
+    """Why a request with these headers is not for this server (None: it is). The Host must
+    be one of :data:`LOCAL_NAMES` with this ``port`` or none, given once; an Origin, when the
+    browser sends one, must be ``http://`` and such a host. A page of another site whose name
+    now points to 127.0.0.1 (DNS rebinding) sends its own name as Host."""
+    hosts = headers.get_all("Host") or []
+    local = {*LOCAL_NAMES, *(f"{name}:{port}" for name in LOCAL_NAMES)}
+    if len(hosts) != 1 or hosts[0].lower() not in local:
+        shown = ", ".join(repr(h[:40]) for h in hosts[:2]) or "none"
+        return f"this server answers only requests to 127.0.0.1:{port} (Host: {shown})"
+    origin = headers.get("Origin")
+    if origin is not None and origin.lower() not in {f"http://{h}" for h in local}:
+        return f"this server answers only its own page (Origin: {origin[:40]!r})"
+    return None
+
+
+class _Deadline(io.RawIOBase):
+    """The connection's incoming bytes, all due by one deadline (a per-read timeout alone
+    would let a client that sends a byte every few seconds hold a handler for ever)."""
+
+    def __init__(self, sock: socket.socket, seconds: float) -> None:
+        self._sock = sock
+        self._end = time.monotonic() + seconds
+
+    def readable(self) -> bool:
+        return True
+
+    def readinto(self, buffer: Any) -> int:
+        left = self._end - time.monotonic()
+        if left <= 0:
+            raise TimeoutError("the request did not arrive in time")
+        self._sock.settimeout(left)
+        return self._sock.recv_into(buffer)
+
+
 class _Handler(BaseHTTPRequestHandler):
     server_version = "eccjump-explorer"
+    # The standard library's errors (a bad request line, too long a line, too many headers,
+    # an unknown method) with a status line even for a garbled request line (not as
+    # HTTP/0.9) and as one line of text rather than a page of HTML.
+    default_request_version = "HTTP/1.0"
+    error_message_format = "%(code)d %(message)s\n"
+    error_content_type = "text/plain; charset=utf-8"
     server: _Server
+    #: Seconds for the whole request head (:data:`REQUEST_TIMEOUT`).
+    timeout = REQUEST_TIMEOUT
+
+    def version_string(self) -> str:
+        return self.server_version  # not Python's version
+
+    def setup(self) -> None:
+        super().setup()
+        self.rfile = io.BufferedReader(_Deadline(self.connection, self.timeout))
+
+    def parse_request(self) -> bool:
+        """The standard checks of the request line and headers, then :func:`refusal`: a
+        request for another host is answered 403 before any route (or method) runs."""
+        if not super().parse_request():
+            return False
+        self.connection.settimeout(SEND_TIMEOUT)
+        why = refusal(self.headers, self.server.server_address[1])
+        if why is not None:
+            self._send(403, f"403 Forbidden: {why}\n".encode(), "text/plain; charset=utf-8")
+            return False
+        if not self.path.startswith("/"):  # "*", or a full URL as sent to a proxy
+            self.send_error(400, "the request target must be a path")
+            return False
+        return True
 
     def do_GET(self) -> None:
-        url = urlsplit(self.path)
-        if url.path.startswith("/api/"):
-            query = dict(parse_qsl(url.query, keep_blank_values=True))
-            status, answer = api.handle(url.path.removeprefix("/api/"), query)
+        path, _, query = self.path.partition("?")
+        if path.startswith("/api/"):
+            fields = dict(parse_qsl(query, keep_blank_values=True))
+            status, answer = api.handle(path.removeprefix("/api/"), fields)
             self._send(status, _json(answer), "application/json")
-        elif url.path in FILES:
-            name, kind = FILES[url.path]
+        elif path in FILES:
+            name, kind = FILES[path]
             self._send(200, static_file(name), kind)
         else:
             self._send(404, b"not found", "text/plain; charset=utf-8")
@@ -65,10 +154,49 @@ class _Handler(BaseHTTPRequestHandler):
 
 
 class _Server(ThreadingHTTPServer):
+    request_queue_size = BACKLOG
     # Requests in progress must not hold up Ctrl-C: their threads die with the process.
     daemon_threads = True
     block_on_close = False
     verbose = False
+
+    def __init__(self, address: tuple[str, int], handler: type[_Handler]) -> None:
+        super().__init__(address, handler)
+        self._workers = threading.BoundedSemaphore(WORKERS)
+        self._stopping = False
+
+    def process_request(self, request: Any, client_address: Any) -> None:
+        """Hand the connection to a handler thread once one of the :data:`WORKERS` is free;
+        until then this loop accepts nobody and new clients wait in the backlog. The wait
+        is in short steps, so that Ctrl-C and :meth:`shutdown` end it at once."""
+        while not self._workers.acquire(timeout=0.1):
+            if self._stopping:
+                self.shutdown_request(request)
+                return
+        try:
+            super().process_request(request, client_address)
+        except BaseException:
+            self._workers.release()
+            raise
+
+    def process_request_thread(self, request: Any, client_address: Any) -> None:
+        try:
+            super().process_request_thread(request, client_address)
+        finally:
+            self._workers.release()
+
+    def shutdown(self) -> None:
+        self._stopping = True
+        super().shutdown()
+
+    def handle_error(self, request: Any, client_address: Any) -> None:
+        """A client that went away or was too slow (an OSError) is no error of the server:
+        nothing to print. Anything else is a bug, and its traceback goes to stderr."""
+        if isinstance(sys.exc_info()[1], OSError):
+            if self.verbose:
+                print(f"{client_address}: {sys.exc_info()[1]}", file=sys.stderr)
+            return
+        super().handle_error(request, client_address)
 
 
 def _warm_up() -> None:
