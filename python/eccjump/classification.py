@@ -286,7 +286,9 @@ def jarm(
         trailing axis of length 3) and ``d_singular``. NaN where theta_J (for the forces:
         ``Fx_J``) is NaN. ``d_singular`` is True where theta_J is not differentiable (a
         double root of the lift-off function, or under ``rule="normal_force"`` a tie
-        Fx = Fy = 0); its derivatives are NaN there. By implicit differentiation from the
+        Fx = Fy = 0); its derivatives are NaN there. At km = 0 the km column is NaN (one-sided:
+        km < 0 is no body). On the friction cone (``rule="normal_force"``, Fy_J > 0) ``d_mu_J``
+        is exactly 0. By implicit differentiation from the
         classified theta_J (either method: the ODE route's carry its error in theta_J); the
         user guide's "JARM analysis", section "Derivatives". Without it nothing is computed.
 

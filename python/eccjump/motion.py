@@ -482,10 +482,11 @@ def simulate(
     chosen again. The run ends at ``t_max``, ``l_max`` or ``max_transitions``, or where the
     rigid model cannot continue (Painlevé, a jam): that is a ``status``, not an error.
 
-    Where the sliding normal force grows without bound (D = I_CM + chi K sin theta below
-    1e-4, the Painlevé singularity) the slip goes on against the normal impulse, in which
-    nothing diverges, until it stops, lifts off or recovers; only a slip whose impulse grows
-    without bound ends the run (status ``"painleve"``). Each step of rolling or slipping
+    Where the sliding normal force grows large (above 1e3 M g: D = I_CM + chi K sin theta
+    falls towards 0, the Painlevé singularity) the slip goes on against the normal impulse, in
+    which nothing diverges, until it stops, lifts off, or the force falls back below 1e2 M g;
+    only a slip whose normal force grows without bound at a finite impulse ends the run
+    (status ``"painleve"``). Each step of rolling or slipping
     turns the body by at most 0.5 rad, so that the record is fine enough to plot.
 
     Parameters

@@ -55,6 +55,16 @@ class Delta(NamedTuple):
     flight_time_sd: float | None = None
 
 
+def _spread(gradient: list[float], var: list[float]) -> float | None:
+    """The delta method's standard deviation sqrt(sum g_i^2 var_i); a parameter held fixed
+    (var 0) takes no part, so its derivative may be NaN (k_m's, one-sided at k_m = 0); None
+    where a NaN derivative meets a spread."""
+    terms = [g * g * v for g, v in zip(gradient, var, strict=True) if v > 0.0]
+    if not all(map(math.isfinite, terms)):
+        return None
+    return math.sqrt(sum(terms))
+
+
 def variance(spec: Spread, name: str) -> float:
     """The variance of one input: sd^2, (hi - lo)^2 / 12, or 0 where it does not vary."""
     if name in spec.sd:
@@ -81,19 +91,22 @@ def delta_method(
     if r.d_theta_J is None or r.d_mu_J is None:  # pragma: no cover - asked for: always there
         return None
     var = [variance(spec, p) for p in WRT]
-    theta_sd = math.sqrt(sum(g * g * v for g, v in zip(r.d_theta_J.tolist(), var, strict=True)))
+    theta_sd = _spread(r.d_theta_J.tolist(), var)
+    if theta_sd is None:  # a one-sided derivative (k_m = 0) meets a spread in k_m
+        return None
     if rule != "paper":  # under the classical rule the jump sits on the friction cone
         return Delta(theta_sd, None)
     mu_j = float(-r.Fx_J / r.Fy_J)
     d_mu = r.d_mu_J.tolist()
-    if not (math.isfinite(mu_j) and all(map(math.isfinite, d_mu))):
+    if not math.isfinite(mu_j):
         return Delta(theta_sd, None)
     if float(r.max_ratio) > mu_j * (1 + 1e-9):  # an earlier ratio decides: no derivative
         return Delta(theta_sd, None)
     margin = x0["mu_s"] - mu_j
-    sd_m = math.sqrt(
-        sum(g * g * v for g, v in zip(d_mu, var, strict=True)) + variance(spec, "mu_s")
-    )
+    spread_mu = _spread(d_mu, var)
+    if spread_mu is None:
+        return Delta(theta_sd, None)
+    sd_m = math.sqrt(spread_mu**2 + variance(spec, "mu_s"))
     if sd_m == 0.0:
         return Delta(theta_sd, 1.0 if margin > 0 else 0.0)
     return Delta(theta_sd, NormalDist().cdf(margin / sd_m))

@@ -8,6 +8,7 @@
 //! of the formulas as written. Not differentiable (`singular`, every derivative NaN): a
 //! double root, |∂g/∂θ| ≤ √ε s with s = 1 + χ(θ̇² + |θ̈|), where the rounding of θ_J alone
 //! leaves no correct digit; and under the classical rule a tie F_x = F_y = 0 with k_m > 0.
+//! At k_m = 0 the k_m column is NaN (one-sided: k_m < 0 is no body), the others stand.
 
 use crate::dual::{sin, sin_cos};
 use crate::jarm::decision::point_ramp;
@@ -38,6 +39,22 @@ pub struct JumpDerivatives {
 }
 
 impl JumpDerivatives {
+    /// At k_m = 0 the derivatives in k_m are one-sided (k_m < 0 is no body): NaN, as the
+    /// physics notes ask ("Derivatives at a rule's switch"); the other columns stand.
+    fn one_sided_in_km(mut self, km: f64) -> Self {
+        if km == 0.0 {
+            for d in [
+                &mut self.theta_j,
+                &mut self.fx_j,
+                &mut self.fy_j,
+                &mut self.mu_j,
+            ] {
+                d[2] = f64::NAN;
+            }
+        }
+        self
+    }
+
     /// Every derivative NaN, with the flag `singular`.
     fn nan(singular: bool) -> Self {
         Self {
@@ -105,15 +122,19 @@ impl Rolling {
         1.0 + chi * (self.omega_sq.v.abs() + self.omega_dot.v.abs())
     }
 
-    /// The derivatives of θ_J (given) and of the forces and μ_J along it.
-    fn along(&self, dtheta: [f64; 3], normal_force_root: bool) -> JumpDerivatives {
+    /// The derivatives of θ_J (given, found as the root of `root`) and of the forces and μ_J
+    /// along it.
+    fn along(&self, dtheta: [f64; 3], root: Root) -> JumpDerivatives {
         let total = |q: Dual| std::array::from_fn(|i| q.d[0] * dtheta[i] + q.d[i + 1]);
         let (fx, fy) = (self.fx.v, self.fy.v);
         let (dfx, dfy): ([f64; 3], [f64; 3]) = (total(self.fx), total(self.fy));
-        let mu_j = if normal_force_root {
-            [f64::NAN; 3]
-        } else {
-            std::array::from_fn(|i| -(dfx[i] * fy - fx * dfy[i]) / (fy * fy))
+        let mu_j = match root {
+            // F_y,J = 0: no ratio.
+            Root::NormalForce => [f64::NAN; 3],
+            // On the cone μ_J = −σ μ_s whatever p: exactly 0, not a difference of two large
+            // terms (which left up to 3 at μ_s = 1e6).
+            Root::Cone => [0.0; 3],
+            Root::Lift => std::array::from_fn(|i| -(dfx[i] * fy - fx * dfy[i]) / (fy * fy)),
         };
         JumpDerivatives {
             theta_j: dtheta,
@@ -125,24 +146,44 @@ impl Rolling {
     }
 }
 
-/// The function g that vanishes at θ_J under `rule` (module notes), and whether it is the
-/// classical rule's F_y; None for the classical rule's tie F_x = F_y = 0 (within `tol`).
-/// For k_m = 0 (Ĩ_CM = 0) the contact force points at the centre of mass, so F_x ∝ F_y and
-/// both vanish together at the classical lift-off: g = F_y, a simple root, not a tie.
-fn vanishing(q: &Rolling, rule: Rule, km: f64, mu_s: f64, tol: f64) -> Option<(Dual, bool)> {
+/// Which function's root θ_J is.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+enum Root {
+    /// The paper's lift-off function L (or the start itself).
+    Lift,
+    /// The classical rule's F_y.
+    NormalForce,
+    /// The classical rule's friction cone, μ_s F_y − σ F_x.
+    Cone,
+}
+
+/// The function g that vanishes at θ_J under `rule` (module notes) and which it is; None for the classical rule's tie F_x = F_y = 0 (within `tol`).
+/// Under the classical rule the cone decides where F_y > 0 at θ_J (physics notes,
+/// "Derivatives at a rule's switch"): g is then the margin μ_s F_y − σ F_x, and F_y only where
+/// it vanishes. For k_m = 0 (Ĩ_CM = 0) the contact force points at the centre of mass, so
+/// F_x ∝ F_y and both vanish together at a normal-force lift-off: a simple root of F_y, not a
+/// tie; but the ratio F_x/F_y moves with θ, so the cone can still be reached first, at F_y > 0.
+fn vanishing(q: &Rolling, rule: Rule, km: f64, mu_s: f64, tol: f64) -> Option<(Dual, Root)> {
     match rule {
-        Rule::Paper => Some((q.lift, false)),
-        Rule::NormalForce if km == 0.0 => Some((q.fy, true)),
+        Rule::Paper => Some((q.lift, Root::Lift)),
         Rule::NormalForce => {
             let (fx, fy) = (q.fx.v, q.fy.v);
+            let margin = q.fy.scale(mu_s) - q.fx.scale(fx.signum());
+            if km == 0.0 {
+                // F_x ∝ F_y: the margin is no measure of which root this is, F_y itself is.
+                return Some(if fy.abs() <= tol {
+                    (q.fy, Root::NormalForce)
+                } else {
+                    (margin, Root::Cone)
+                });
+            }
             if fx.abs() <= tol && fy.abs() <= tol {
                 return None;
             }
-            let margin = q.fy.scale(mu_s) - q.fx.scale(fx.signum());
             if fy.abs() <= margin.v.abs() {
-                Some((q.fy, true))
+                Some((q.fy, Root::NormalForce))
             } else {
-                Some((margin, false))
+                Some((margin, Root::Cone))
             }
         }
     }
@@ -167,20 +208,18 @@ pub fn jump_derivatives(
     let q = Rolling::at(theta_j, (alpha, chi, km), (o.theta0, o.omega0));
     // A start shifted into [0, 2π) and back (`classify_with`) may be a few ulps off θ0.
     if (theta_j - o.theta0).abs() <= 64.0 * f64::EPSILON * (o.theta0.abs() + TAU) {
-        return q.along([0.0; 3], false);
+        return q.along([0.0; 3], Root::Lift).one_sided_in_km(km);
     }
     let tol = TANGENT * q.scale(chi);
-    let Some((g, normal_force_root)) = vanishing(&q, o.rule, km, mu_s, tol) else {
+    let Some((g, root)) = vanishing(&q, o.rule, km, mu_s, tol) else {
         return JumpDerivatives::nan(true);
     };
     let slope = g.d[0];
     if !slope.is_finite() || slope.abs() <= tol {
         return JumpDerivatives::nan(true);
     }
-    q.along(
-        std::array::from_fn(|i| -g.d[i + 1] / slope),
-        normal_force_root,
-    )
+    q.along(std::array::from_fn(|i| -g.d[i + 1] / slope), root)
+        .one_sided_in_km(km)
 }
 
 #[cfg(test)]

@@ -75,8 +75,8 @@ pub enum Verdict {
     Jam,
 }
 
-/// Is sliding with friction direction σ consistent at `s`? D above 0 (below
-/// [`crate::modes::slip_in_impulse::D_SWITCH`] it goes on in the normal impulse), a positive
+/// Is sliding with friction direction σ consistent at `s`? D above 0 (where F_y is above
+/// [`crate::modes::slip_in_impulse::F_SWITCH`] it goes on in the normal impulse), a positive
 /// normal force (B > 0) and, at onset (v = 0), a slip acceleration along −σ. With μ_k = μ_s
 /// that acceleration is exactly 0 at onset (sliding and rolling coincide there), so a
 /// rounding-sized value counts as agreeing.

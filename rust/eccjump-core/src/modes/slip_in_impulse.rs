@@ -14,23 +14,35 @@
 //! with the slip on, dD/dP = (dD/dθ) θ̇ D/(Ĩ_CM B) makes it decay exponentially in P: time
 //! stands still while the impulse grows, the rigid model's impulsive jam. It is declared when D
 //! falls to [`D_JAM`] (below it float64 no longer resolves the time it takes) or P passes
-//! [`P_MAX`]; before that, the slip velocity reaching 0 (stick or reverse), D rising back to
-//! [`D_BACK`] (time again), B falling to 0 (lift-off), t_max or l_max end the segment.
+//! [`P_MAX`]; before that, the slip velocity reaching 0 (stick or reverse), F_y falling back to
+//! [`F_BACK`] (time again), B falling to 0 (lift-off), t_max or l_max end the segment.
+//!
+//! Which variable a slip is integrated in follows the size of F_y, not of D: the time form's
+//! rates grow like F_y, the impulse form's dt/dP = 1/F_y. Near a lift-off with D small B falls
+//! to 0 too, F_y → 0 and t(P) has a square-root end (B ∝ √(P* − P)): a step across it ran t
+//! backwards (issue 46), so such a slip goes back to time before F_y reaches 0.
 
 use crate::mechanics::friction::Sliding;
 use crate::mechanics::liftoff::free_normal_acceleration;
 use crate::modes::slipping::Slipping;
 use crate::ode::{Direction, EventFunctions, EventSpec, OdeSystem, State};
 
-/// D below which a slip goes on in the normal impulse (the time form's event
-/// [`crate::modes::slipping::SlipEvent::Singular`]). Both forms are exact; the switch only
-/// chooses the variable in which steps stay well scaled (F_y = Ĩ_CM B/D is at most ~10⁴
-/// times its usual size here).
-pub const D_SWITCH: f64 = 1e-4;
+/// The normal force [M g] above which a slip goes on in the normal impulse (the time form's
+/// event [`crate::modes::slipping::SlipEvent::Singular`]). Both forms are exact; the switch
+/// only chooses the variable in which steps stay well scaled: about 10³ times F_y's usual size,
+/// where D is near 10⁻⁴ for the usual Ĩ_CM B.
+pub const F_SWITCH: f64 = 1e3;
 
-/// D at which a slip in the normal impulse goes back to time: ten times [`D_SWITCH`], so
-/// that a slip hovering near the switch does not alternate at every step.
-pub const D_BACK: f64 = 1e-3;
+/// The normal force at which a slip in the normal impulse goes back to time: a tenth of
+/// [`F_SWITCH`], so that a slip hovering near the switch does not alternate at every step.
+pub const F_BACK: f64 = 1e2;
+
+/// A function of the contact state with the sign of F_y − `level` where D > 0, free of the
+/// pole of F_y = Ĩ_CM B/D at D = 0 (an event function's roots are found on it).
+#[inline]
+pub(crate) fn normal_force_above(level: f64, icm: f64, load: f64, d: f64) -> f64 {
+    icm * load - level * d
+}
 
 /// D at which the slip, still on, is an impulsive jam (status `painleve`): its time to
 /// fall further, D/(Ĩ_CM B) per unit impulse, is below what the run's float64 time resolves.
@@ -103,7 +115,7 @@ named_enum! {
         NormalForce = 0,
         /// The slip velocity returns to 0: stick or reverse.
         Stops = 1,
-        /// D rises to [`D_BACK`]: the slip goes on in time.
+        /// F_y falls to [`F_BACK`]: the slip goes on in time.
         Recovers = 2,
         /// D falls to [`D_JAM`] with the slip on: the impulsive jam.
         Jam = 3,
@@ -133,11 +145,11 @@ impl EventFunctions<6> for ImpulseEvents {
     }
     fn spec(&self, k: usize) -> EventSpec {
         let direction = match ImpulseEvent::ALL[k] {
-            ImpulseEvent::NormalForce | ImpulseEvent::Jam => Direction::Falling,
-            ImpulseEvent::Stops => Direction::Any,
-            ImpulseEvent::Recovers | ImpulseEvent::TLimit | ImpulseEvent::LLimit => {
-                Direction::Rising
+            ImpulseEvent::NormalForce | ImpulseEvent::Recovers | ImpulseEvent::Jam => {
+                Direction::Falling
             }
+            ImpulseEvent::Stops => Direction::Any,
+            ImpulseEvent::TLimit | ImpulseEvent::LLimit => Direction::Rising,
         };
         EventSpec {
             direction,
@@ -150,7 +162,9 @@ impl EventFunctions<6> for ImpulseEvents {
             *o = match ImpulseEvent::ALL[first + i] {
                 ImpulseEvent::NormalForce => c.load,
                 ImpulseEvent::Stops => y[4] - y[2],
-                ImpulseEvent::Recovers => c.d - D_BACK,
+                ImpulseEvent::Recovers => {
+                    normal_force_above(F_BACK, self.slip.ramp.body.icm, c.load, c.d)
+                }
                 ImpulseEvent::Jam => c.d - D_JAM,
                 ImpulseEvent::TLimit => y[0] - self.t_max,
                 // A constant, finite g never crosses: l_max = ∞ disables the event.

@@ -14,7 +14,7 @@
 
 use crate::mechanics::friction::Sliding;
 use crate::mechanics::Ramp;
-use crate::modes::slip_in_impulse::D_SWITCH;
+use crate::modes::slip_in_impulse::{normal_force_above, F_SWITCH};
 use crate::ode::lanes::{Lane, LaneRhs, Lanes, LANES};
 use crate::ode::{
     Change, DenseStep, Direction, EventBounds, EventFunctions, EventSpec, OdeSystem, SinCos, State,
@@ -150,8 +150,8 @@ named_enum! {
         NormalForce = 0,
         /// The slip velocity returns to 0: stick or reverse.
         Stops = 1,
-        /// D falls to [`D_SWITCH`]: near the Painlevé singularity the slip goes on in the
-        /// normal impulse ([`crate::modes::slip_in_impulse`]).
+        /// F_y rises to [`F_SWITCH`] (D falls towards the Painlevé singularity): the slip goes
+        /// on in the normal impulse ([`crate::modes::slip_in_impulse`]).
         Singular = 2,
         /// l reaches l_max.
         LLimit = 3,
@@ -174,9 +174,9 @@ impl EventFunctions<5> for SlipEvents {
     }
     fn spec(&self, k: usize) -> EventSpec {
         let direction = match SlipEvent::ALL[k] {
-            SlipEvent::NormalForce | SlipEvent::Singular => Direction::Falling,
+            SlipEvent::NormalForce => Direction::Falling,
             SlipEvent::Stops => Direction::Any,
-            SlipEvent::LLimit => Direction::Rising,
+            SlipEvent::Singular | SlipEvent::LLimit => Direction::Rising,
         };
         EventSpec {
             direction,
@@ -193,11 +193,12 @@ impl EventFunctions<5> for SlipEvents {
         let r = &self.slipping.ramp;
         let (s, c) = SinCos::at(y[0], trig);
         let sl = Sliding::new(&r.body, s, c, self.slipping.sigma, self.slipping.mu_k);
+        let load = r.cos_a - r.body.chi * y[1] * y[1] * c;
         for (i, o) in out.iter_mut().enumerate() {
             *o = match SlipEvent::ALL[first + i] {
-                SlipEvent::NormalForce => r.cos_a - r.body.chi * y[1] * y[1] * c,
+                SlipEvent::NormalForce => load,
                 SlipEvent::Stops => y[3] - y[1],
-                SlipEvent::Singular => sl.d - D_SWITCH,
+                SlipEvent::Singular => normal_force_above(F_SWITCH, r.body.icm, load, sl.d),
                 // A constant, finite g never crosses: l_max = ∞ disables the event.
                 SlipEvent::LLimit if self.l_max.is_finite() => y[2] - self.l_max,
                 SlipEvent::LLimit => -1.0,
@@ -231,8 +232,9 @@ impl EventBounds<5> for SlipEvents {
     /// their rates, each g changes by at most L|h|, L = Σ G_i R_i with G_i ≥ |∂g/∂y_i|:
     /// - B = cos α − χθ̇² cos θ: G_θ = χW², G_ω = 2χW;
     /// - the slip velocity l̇ − θ̇: G_v = G_ω = 1;
-    /// - D − D_min, D = Ĩ_CM + χ² sin²θ − σμ_kχ sin θ(1 + χ cos θ), dD/dθ = χ² sin 2θ −
-    ///   σμ_kχ(cos θ + χ cos 2θ): G_θ = χ² + μ_kχ(1 + χ);
+    /// - Ĩ_CM B − F D (F_y − F where D > 0), D = Ĩ_CM + χ² sin²θ − σμ_kχ sin θ(1 + χ cos θ),
+    ///   dD/dθ = χ² sin 2θ − σμ_kχ(cos θ + χ cos 2θ): G_θ = Ĩ_CM χW² + F(χ² + μ_kχ(1 + χ)),
+    ///   G_ω = 2Ĩ_CM χW;
     /// - l − l_max: G_l = 1 (a disabled l_max is a constant: 0).
     ///
     /// Plus 4δ, δ = 2⁻⁴⁰(M + Σ G_i |y_i|max) with M the sum of the magnitudes of g's terms:
@@ -243,7 +245,8 @@ impl EventBounds<5> for SlipEvents {
     /// Σ G_i Q_i with P_ij ≥ |∂²g/∂y_i∂y_j| and Q_i the interpolant's acceleration bounds:
     /// - B: P_θθ = χW², P_θω = 2χW, P_ωω = 2χ;
     /// - the slip velocity and l − l_max: linear, no P;
-    /// - D − D_min: d²D/dθ² = 2χ² cos 2θ + σμ_kχ(sin θ + 2χ sin 2θ): P_θθ = 2χ² + μ_kχ(1 + 2χ).
+    /// - Ĩ_CM B − F D: Ĩ_CM times B's, plus F times d²D/dθ² = 2χ² cos 2θ + σμ_kχ(sin θ +
+    ///   2χ sin 2θ): P_θθ = 2χ² + μ_kχ(1 + 2χ).
     #[inline]
     fn change_bounds(
         &self,
@@ -274,20 +277,25 @@ impl EventBounds<5> for SlipEvents {
                 smooth: true,
             }
         };
+        // B's terms (size, G_θ, G_ω, bend), which the switch's Ĩ_CM B − F D shares.
+        let chi_w2 = chi * w * w;
+        let (size_b, g_b) = (r.cos_a + chi_w2, [chi_w2, 2.0 * chi * w]);
+        let second_b = chi_w2 * r_theta * r_theta
+            + 4.0 * chi * w * r_theta * r_omega
+            + 2.0 * chi * r_omega * r_omega;
         for (i, o) in out.iter_mut().enumerate() {
             *o = match SlipEvent::ALL[first + i] {
-                SlipEvent::NormalForce => {
-                    let chi_w2 = chi * w * w;
-                    let second = chi_w2 * r_theta * r_theta
-                        + 4.0 * chi * w * r_theta * r_omega
-                        + 2.0 * chi * r_omega * r_omega;
-                    bound(r.cos_a + chi_w2, &[(chi_w2, 0), (2.0 * chi * w, 1)], second)
-                }
+                SlipEvent::NormalForce => bound(size_b, &[(g_b[0], 0), (g_b[1], 1)], second_b),
                 SlipEvent::Stops => bound(0.0, &[(1.0, 3), (1.0, 1)], 0.0),
                 SlipEvent::Singular => {
-                    let g = chi * chi + mu * chi * (1.0 + chi);
-                    let p = 2.0 * chi * chi + mu * chi * (1.0 + 2.0 * chi);
-                    bound(r.body.icm + g + D_SWITCH, &[(g, 0)], p * r_theta * r_theta)
+                    let (icm, f) = (r.body.icm, F_SWITCH);
+                    let g_d = chi * chi + mu * chi * (1.0 + chi);
+                    let p_d = 2.0 * chi * chi + mu * chi * (1.0 + 2.0 * chi);
+                    bound(
+                        icm * size_b + f * (icm + g_d),
+                        &[(icm * g_b[0] + f * g_d, 0), (icm * g_b[1], 1)],
+                        icm * second_b + f * p_d * r_theta * r_theta,
+                    )
                 }
                 SlipEvent::LLimit if self.l_max.is_finite() => {
                     bound(self.l_max.abs(), &[(1.0, 2)], 0.0)
@@ -344,7 +352,7 @@ mod tests {
             let v = 2.0 * (next() - 0.5);
             let sl = Slipping::new(ramp, -v.signum(), 0.05 + 0.6 * next());
             let k = sl.kinematics(theta, omega);
-            if !(k.d > D_SWITCH && k.load > 0.0) {
+            if !(k.d > 0.0 && k.fy < F_SWITCH && k.load > 0.0) {
                 continue;
             }
             made += 1;

@@ -10,7 +10,7 @@ use crate::modes::flight::apex;
 use crate::modes::flight::landing::Landing;
 use crate::modes::flight::Flight;
 use crate::modes::rolling::run::{roll_until, ContactEvent, RollOptions, RollRun, RollStatus};
-use crate::modes::slip_in_impulse::D_SWITCH;
+use crate::modes::slip_in_impulse::F_SWITCH;
 use crate::modes::slipping::{SlipEvent, Slipping};
 use crate::motion::landing::land;
 use crate::motion::options::{SimOptions, MAX_ANGLE_STEP};
@@ -455,7 +455,8 @@ impl Driver<'_> {
             return Ok(Err(self.end_of_time()));
         }
         let k = Slipping::new(*self.ramp, sigma, self.opts.law.mu_k).kinematics(s.theta, s.omega);
-        if k.d < D_SWITCH {
+        // (D ≤ 0 too: there the impulse form declares the jam)
+        if !(k.d > 0.0 && k.fy <= F_SWITCH) {
             return Ok(Err(self.slip_in_impulse(s, sigma)?));
         }
         let solver = segment_solver(self.opts, self.steps_left);

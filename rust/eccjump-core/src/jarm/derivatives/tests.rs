@@ -126,7 +126,8 @@ fn a_classical_tie_of_both_forces_at_zero_is_flagged() {
     assert!(vanishing(&q, Rule::NormalForce, 0.1, 1.0, 1e-12).is_none());
     assert!(vanishing(&q, Rule::Paper, 0.1, 1.0, 1e-12).is_some());
     // k_m = 0: the forces vanish together at every classical lift-off; F_y is the root.
-    assert!(vanishing(&q, Rule::NormalForce, 0.0, 1.0, 1e-12).is_some_and(|(_, fy)| fy));
+    assert!(vanishing(&q, Rule::NormalForce, 0.0, 1.0, 1e-12)
+        .is_some_and(|(_, g)| g == Root::NormalForce));
 }
 
 #[test]
@@ -143,6 +144,7 @@ fn classical_jumps_of_a_body_without_inertia_about_its_centre_of_mass() {
     assert!(r.fx_j.abs() < 1e-12 && r.fy_j.abs() < 1e-12);
     let d = jump_derivatives(p[0], p[1], p[2], 1.0, r.theta_j, &o);
     assert!(!d.singular && d.mu_j.iter().all(|x| x.is_nan()), "{d:?}");
+    assert!(d.theta_j[2].is_nan(), "one-sided at k_m = 0: {d:?}");
     for i in 0..2 {
         let fd = differences_of_theta(p, 1.0, &o, i);
         assert!(
@@ -193,5 +195,68 @@ fn no_jump_or_invalid_point_has_nan_derivatives() {
             .chain(&d.fx_j)
             .chain(&d.mu_j)
             .all(|x| x.is_nan()));
+    }
+}
+
+/// Central differences in α and χ only (k_m = 0 is the edge of the body's range).
+fn differences_in_alpha_and_chi(p: [f64; 3], mu_s: f64, o: &JarmOptions) -> [[f64; 4]; 2] {
+    [0, 1].map(|i| differences(p, mu_s, o, i))
+}
+
+#[test]
+fn the_cone_decides_at_km_zero_under_the_classical_rule() {
+    // Issue 46's reproducer: k_m = 0, the lift-off on the friction cone with F_y > 0. The
+    // force points at the centre of mass, so F_x/F_y depends on θ and χ only: dθ_J/dα = 0.
+    let o = JarmOptions {
+        rule: Rule::NormalForce,
+        ..JarmOptions::default()
+    };
+    let p = [0.14828865162181382, 0.47671855125849555, 0.0];
+    let r = classified(p, 0.3, &o);
+    assert_eq!(r.reason, Reason::Jarm);
+    assert!(r.fy_j > 0.01, "{}", r.fy_j);
+    let d = jump_derivatives(p[0], p[1], p[2], 0.3, r.theta_j, &o);
+    assert!(!d.singular);
+    for (i, fd) in differences_in_alpha_and_chi(p, 0.3, &o).iter().enumerate() {
+        let exact = [d.theta_j[i], d.fx_j[i], d.fy_j[i], d.mu_j[i]];
+        for (k, (x, y)) in exact.iter().zip(fd).enumerate() {
+            assert!(
+                (x - y).abs() <= 1e-6 * (1.0 + x.abs()),
+                "p{i} field {k}: {x} vs {y}"
+            );
+        }
+    }
+    assert!(d.theta_j[0].abs() < 1e-9 && d.fy_j[0] < -0.5, "{d:?}");
+    // μ_J = −σ μ_s on the cone: its derivatives are exactly 0.
+    assert_eq!(d.mu_j[..2], [0.0, 0.0]);
+    // The k_m column is one-sided at k_m = 0: NaN.
+    for col in [d.theta_j, d.fx_j, d.fy_j, d.mu_j] {
+        assert!(col[2].is_nan());
+    }
+}
+
+#[test]
+fn on_the_cone_the_ratio_does_not_move() {
+    let o = JarmOptions {
+        rule: Rule::NormalForce,
+        ..JarmOptions::default()
+    };
+    for (p, mu_s) in [
+        (
+            [1.307614733181189, 0.07753522892693436, 0.053726066545],
+            1.0,
+        ),
+        (
+            [1.307614733181189, 0.07753522892693436, 0.053726066545],
+            1e6,
+        ),
+    ] {
+        let r = classified(p, mu_s, &o);
+        let d = jump_derivatives(p[0], p[1], p[2], mu_s, r.theta_j, &o);
+        if r.fy_j > 1e-9 {
+            assert_eq!(d.mu_j, [0.0; 3], "{p:?} {mu_s}");
+        } else {
+            assert!(d.mu_j.iter().all(|m| m.is_nan()), "{p:?} {mu_s}");
+        }
     }
 }

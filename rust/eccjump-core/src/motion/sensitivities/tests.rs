@@ -106,7 +106,7 @@ fn slips_against_central_differences() {
 
 #[test]
 fn what_follows_a_slip_through_the_normal_impulse_is_flagged_and_nan() {
-    // A bounce settles into a slip whose D falls below D_SWITCH: it goes on in the normal
+    // A bounce settles into a slip whose F_y rises above F_SWITCH: it goes on in the normal
     // impulse, where the sensitivities do not follow (module notes).
     let p: [f64; P] = [
         0.97549785, 0.81050848, 0.08156572, 1.22005392, 1.09488566, 0.07081708, 5.19246307,

@@ -1,5 +1,5 @@
-//! The driver's slip in the normal impulse ([`crate::modes::slip_in_impulse`]): where D
-//! falls to `D_SWITCH` during a slip, or a slip begins below it, the slip goes on against
+//! The driver's slip in the normal impulse ([`crate::modes::slip_in_impulse`]): where F_y
+//! rises to `F_SWITCH` during a slip, or a slip begins above it, the slip goes on against
 //! the normal impulse until it stops, lifts off, recovers (time again, no transition) or is
 //! an impulsive jam. Rare and short, so it is integrated alone, also inside a motion map:
 //! a map's run is the same as `simulate`'s, bit for bit.
@@ -104,28 +104,30 @@ impl Driver<'_> {
         self.run.dissipated_slip += outcome.y[5];
         self.t = outcome.y[0];
         let end = state_of(&outcome.y);
-        let jam = || {
+        // The normal force grows without bound while the impulse stays finite (P = outcome.t,
+        // the independent variable), except where P itself passed P_MAX.
+        let jam = |cause: &str| {
             Next::End(
                 MotionStatus::Painleve,
                 format!(
-                    "Painlevé jam: during the slip at t = {:.6}, θ = {:.4}° the normal impulse grows \
-                     without bound (D fell to {D_JAM:e} with the slip still on): the rigid model \
-                     cannot continue",
+                    "Painlevé jam: during the slip at t = {:.6}, θ = {:.4}°, {cause} with the slip \
+                     still on (normal impulse {:.4} M√(gR)): the rigid model cannot continue",
                     outcome.y[0],
-                    end.theta.to_degrees()
+                    end.theta.to_degrees(),
+                    outcome.t,
                 ),
             )
         };
+        let force = format!("the normal force grows without bound (D fell to {D_JAM:e})");
         Ok(match outcome.status {
-            // The impulse reached P_MAX with the slip still on.
-            Status::Finished => jam(),
+            Status::Finished => jam("the normal impulse passed 1e4 (P_MAX)"),
             Status::Event(k) => match ImpulseEvent::ALL[k] {
                 ImpulseEvent::NormalForce => {
                     Next::Mode(Mode::Flight, Reason::NormalForce, end, 0.0)
                 }
                 ImpulseEvent::Stops => self.slip_stopped(end),
                 ImpulseEvent::Recovers => Next::Resume(end, slip.sigma),
-                ImpulseEvent::Jam => jam(),
+                ImpulseEvent::Jam => jam(&force),
                 ImpulseEvent::TLimit => {
                     self.t = self.opts.t_max;
                     self.end_of_time()
@@ -218,6 +220,43 @@ mod tests {
         }
     }
 
+    /// Issue 46's reproducer: a slip with D near 1e-5 whose normal force falls to 0. In the
+    /// impulse form t(P) has a square-root end there, and a step across it recorded time
+    /// running backwards; the slip now goes back to time before F_y reaches 0.
+    #[test]
+    fn a_lift_off_from_a_slip_with_a_small_d_keeps_time_running_forwards() {
+        let body = Cylinder::new(0.9758587534345973, 0.02414124656540273).unwrap();
+        let ramp = Ramp::new(body, 1.1591320168877168).unwrap();
+        let run_at = |rtol: f64, atol: f64| {
+            let mut opts = SimOptions {
+                law: ContactLaw {
+                    mu_s: 0.24285567417068332,
+                    mu_k: 0.24285567417068332,
+                    rule: Rule::NormalForce,
+                },
+                t_max: 50.0,
+                max_transitions: 400,
+                ..SimOptions::default()
+            };
+            (opts.solver.rtol, opts.solver.atol) = (rtol, atol);
+            simulate(&ramp, &opts).unwrap()
+        };
+        let (run, tight) = (run_at(1e-9, 1e-12), run_at(1e-12, 1e-14));
+        assert!(run.points.windows(2).all(|w| w[0].t <= w[1].t));
+        // The slip lifted off at F_y = 0 in time (D near 1e-5 with F_y small is no reason for
+        // the impulse form).
+        let lift = &run.transitions[4];
+        assert_eq!((lift.to, lift.reason), (Mode::Flight, Reason::NormalForce));
+        assert_eq!(run.segments[3].crossing, Some(Crossing::NormalForce));
+        assert!(run.points.iter().all(|p| p.fy >= -1e-9));
+        // Every transition agrees with a run a thousand times tighter.
+        assert_eq!(run.transitions.len(), tight.transitions.len());
+        for (a, b) in run.transitions.iter().zip(&tight.transitions) {
+            assert_eq!((a.to, a.reason), (b.to, b.reason));
+            assert!((a.t - b.t).abs() < 1e-6 * (1.0 + b.t), "{} {}", a.t, b.t);
+        }
+    }
+
     #[test]
     fn a_slip_whose_impulse_grows_without_bound_is_a_jam() {
         // Slipping on with the slip velocity near 3 while D decays in the impulse.
@@ -238,6 +277,17 @@ mod tests {
         let run = simulate(&ramp, &opts).unwrap();
         assert_eq!(run.status, Some(MotionStatus::Painleve));
         assert!(run.message.starts_with("Painlevé jam"), "{}", run.message);
+        // The force diverges, not the impulse (issue 46): the message says so and gives P.
+        assert!(
+            run.message.contains("normal force grows"),
+            "{}",
+            run.message
+        );
+        let p: f64 = run.message.split("normal impulse ").nth(1).unwrap()[..5]
+            .trim()
+            .parse()
+            .unwrap();
+        assert!(p > 0.0 && p < 1.0, "{}", run.message);
         let last = run.points.last().unwrap();
         assert!(last.state.slip_velocity().abs() > 1.0);
         assert!(last.fy > 1e8, "{}", last.fy);
