@@ -518,9 +518,10 @@ def simulate(
     max_transitions : int, default 100
         Transitions after the start, 1 ... 10**6.
     rtol : float, default 1e-10
-        Relative tolerance of the integrator, in [1e-15, 1e-3].
+        Relative tolerance of the integrator, in [1e-15, 1e-6] (looser, the energy ledger
+        no longer closes: docs/limits.md).
     atol : float, default 1e-12
-        Absolute tolerance of the integrator, in [1e-300, 1e-3].
+        Absolute tolerance of the integrator, in [1e-300, 1e-6].
     max_steps : int, default 1_000_000
         Accepted steps of the whole run (rolling and slipping together), 1 ... 10**7.
     dense_output : bool, default False

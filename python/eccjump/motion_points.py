@@ -152,9 +152,9 @@ def motion_points(
     max_transitions : int, default 100
         Transitions of each run after the start, 1 ... 10**6.
     rtol : float, default 1e-10
-        Relative tolerance, in [1e-15, 1e-3].
+        Relative tolerance, in [1e-15, 1e-6].
     atol : float, default 1e-12
-        Absolute tolerance, in [1e-300, 1e-3].
+        Absolute tolerance, in [1e-300, 1e-6].
     max_steps : int, default 1_000_000
         Accepted steps of each run, 1 ... 10**7.
     n_threads : int, default 0
