@@ -18,6 +18,7 @@ were found while it did not are kept in :data:`CORE_REGRESSIONS`.
 from __future__ import annotations
 
 import atexit
+import json
 import math
 import random
 import re
@@ -830,7 +831,7 @@ def case_motion_points(d: Drawer) -> Case:
 UNCERTAINTY_PARAMS = (
     "body", "alpha", "mu_s", "mu_k", "restitution", "theta0", "omega0", "sd", "bounds", "n",
     "seed", "sampling", "question", "invalid", "confidence", "rule", "t_max",
-    "max_transitions", "rtol", "atol", "integrator", "n_threads", "chi", "km",
+    "max_transitions", "rtol", "atol", "integrator", "n_threads", "chi", "km", "progress",
 )  # fmt: skip
 
 
@@ -847,20 +848,36 @@ def check_uncertainty(res: Any, case: Case) -> None:
     for p, x in res.samples.items():  # every valid sample in its physical range
         expect(bool(np.isfinite(x[res.valid]).all()), f"sample {p} not finite")
     expect(isinstance(res._repr_html_(), str), "html")
+    try:  # "JSON-ready": no inf or NaN, whatever the spreads
+        json.dumps(res.to_dict(), allow_nan=False)
+    except ValueError as err:
+        expect(False, f"to_dict: {err}")
 
 
 def _spread_dict(d: Drawer, c: Case, names: Sequence[str], pair: bool) -> Any:
     out: dict[Any, Any] = {}
     for _ in range(d.integer(0, 2)):
         name = d.choice(names) if d.clean or d.integer(0, 5) else d.choice(("bogus", 1, "KM"))
+        huge = not d.clean and d.integer(0, 9) == 0  # once an OverflowError, an inf in to_dict
         if pair:
             lo = real(d, c, -0.1, 1.0, bad=False)
             out[name] = (lo, d.choice((lo, 1.0, 0.5, -1.0))) if not d.clean else (0.1, 0.4)
+            if huge:
+                out[name] = d.choice(((-1.7e308, 1.7e308), (0.0, 1e300), (-1e101, 0.0)))
         else:
-            out[name] = real(d, c, 0.0, 0.1)
+            out[name] = d.choice((1e300, 1e101, 1.5e154)) if huge else real(d, c, 0.0, 0.1)
+        c.must_raise |= huge
     if not d.clean and d.integer(0, 9) == 0:
         return d.choice(([0.1], "alpha", 0.1))
     return out
+
+
+#: Confidence levels outside (0, 1 - 1e-15]: 1 - 1e-16 was a StatisticsError.
+BAD_CONFIDENCE = (0.0, 1.0, math.nan, 1 - 1e-16, -0.5, 2.0)
+
+
+def _no_progress(done: int, total: int) -> None:
+    """A progress callback that does nothing."""
 
 
 def case_uncertainty(d: Drawer) -> Case:
@@ -882,12 +899,20 @@ def case_uncertainty(d: Drawer) -> Case:
         "seed": integer_param(d, c, (0, 1, 12345), (-1, 2.5, None, "1", 2**64)),
         "sampling": text_param(d, c, ("random", "sobol")),
         "invalid": text_param(d, c, ("truncate", "count")),
-        "confidence": d.choice((0.95, 0.5, *(() if d.clean else (0.0, 1.0, math.nan)))),
+        "confidence": d.choice((0.95, 0.5, *(() if d.clean else BAD_CONFIDENCE))),
         "n_threads": integer_param(d, c, (0, 1, 2), (*INT_BAD, 257)),
     }
-    if question == "motion":
-        c.kwargs["t_max"] = real(d, c, 0.0, 10.0)
-        c.kwargs["max_transitions"] = integer_param(d, c, (1, 5), (*INT_BAD, 10**6 + 1))
+    c.must_raise |= c.kwargs["confidence"] in BAD_CONFIDENCE
+    # The full motion's options, checked whatever the question (t_max = NaN passed "jarm").
+    c.kwargs["t_max"] = real(d, c, 0.0, 10.0)
+    c.kwargs["max_transitions"] = integer_param(d, c, (1, 5), (*INT_BAD, 10**6 + 1))
+    if d.integer(0, 3) == 0:
+        c.kwargs["rtol"] = d.choice((1e-8, *(() if d.clean else (1.0, math.nan, 0.0))))
+        c.kwargs["integrator"] = text_param(d, c, ("RK45", "Vern9"))
+        c.must_raise |= c.kwargs["rtol"] != 1e-8 or c.kwargs["integrator"] not in ("RK45", "Vern9")
+    if d.integer(0, 3) == 0:
+        c.kwargs["progress"] = d.choice((None, _no_progress, *(() if d.clean else (1, "bar"))))
+        c.must_raise |= c.kwargs["progress"] in (1, "bar")
     if d.integer(0, 2) == 0:
         c.kwargs["restitution"] = real(d, c, 0.0, 1.0)
     return c

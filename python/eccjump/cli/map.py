@@ -35,6 +35,7 @@ from numpy.typing import NDArray
 from eccjump import store
 from eccjump._checks import short
 from eccjump._mapcheck import MAX_MESSAGE, shown
+from eccjump._sizes import gib, memory_limit
 from eccjump.cli import map_jobs
 from eccjump.cli._args import add_integrator, int_at_least
 from eccjump.cli._output import check_output, figure_suffixes
@@ -284,24 +285,17 @@ def _why(err: BaseException) -> str:
     return str(err) or type(err).__name__
 
 
-def _physical_memory() -> int | None:
-    try:
-        return os.sysconf("SC_PHYS_PAGES") * os.sysconf("SC_PAGE_SIZE")
-    except (AttributeError, ValueError, OSError):
-        return None
-
-
 def _check_memory(points: int, fmt: str, total: int, kind: MapKind) -> None:
-    """Fail early (exit 1) if the fields of ``points`` points cannot fit in this machine's
-    memory, rather than have numpy fill it and the system kill the process."""
+    """Fail early (exit 1) if the fields of ``points`` points cannot fit in the memory this
+    process can have, rather than have numpy fill it and the system kill the process."""
     need = points * kind.bytes_per_point()
-    have = _physical_memory()
+    have = memory_limit()  # the library's limit (eccjump._sizes), the same for every call
     if have is not None and need > have:
         how = "a smaller --chunk or grid" if fmt == "zarr" else ".zarr (written chunk by chunk)"
         held = "a chunk of" if fmt == "zarr" else "the whole map,"
         raise _Failed(
-            f"out of memory: {held} {points} points needs {need / 2**30:,.1f} GiB, the machine "
-            f"has {have / 2**30:,.1f} GiB; use {how} (grid of {total} points)"
+            f"out of memory: {held} {points} points needs {gib(need)}, the machine has "
+            f"{gib(have)} available; use {how} (grid of {total} points)"
         )
 
 
