@@ -1522,9 +1522,11 @@ def cli_map_argv(d: Drawer) -> list[str]:
     if d.integer(0, 2) == 0:
         argv += ["--threads", d.choice(("0", "1", "-1", "2.5", "99999999999999999999999"))]
     if d.integer(0, 2) == 0:
-        argv += ["--max-turns", d.choice(("1", "5", "0", "4294967296"))]
+        argv += ["--max-turns", d.choice(("1", "5", "0", "4294967296", "1000001"))]
     if d.integer(0, 2) == 0:
         argv += ["--route", d.choice(("ode", "closed-form", "x"))]
+    if d.integer(0, 4) == 0:
+        argv += ["--stop-at-slip"]
     cli_integrator(d, argv)
     if d.integer(0, 2) == 0:  # the full motion, with its own options
         argv += ["--kind", d.choice(("motion", "motion", "x"))]
@@ -1536,6 +1538,32 @@ def cli_map_argv(d: Drawer) -> list[str]:
     return argv
 
 
+#: The options of ``eccjump map`` that belong to one --kind (given with the other: exit 2).
+MAP_KIND_OPTIONS = {
+    "jarm": ("--n", "--route", "--max-turns", "--stop-at-slip"),
+    "motion": ("--mu-k", "--restitution", "--t-max", "--max-transitions"),
+}
+
+
+def cli_uncertainty_argv(d: Drawer) -> list[str]:
+    """A small study (64 samples), with bad spreads, confidences and outputs among them."""
+    argv = ["uncertainty", "--chi", cli_number(d, 0, 1), "--km", "0.02", "--alpha", "40"]
+    argv += ["--mu-s", cli_number(d, 0, 2), "-n", d.choice(("64", "64", "0")), "-q"]
+    argv += ["--sd", d.choice(("chi", "alpha", "bogus")), d.choice(("0.01", "0.01", "1e300"))]
+    if d.integer(0, 2) == 0:
+        argv += ["--confidence", d.choice(("0.9", "1", "0.9999999999999999", "nan", "0"))]
+    if d.integer(0, 3) == 0:
+        argv += ["--question", "motion", "--t-max", d.choice(("5", "nan", "0"))]
+    if d.integer(0, 2) == 0:
+        name = d.choice(("u.csv", "u.nc", "x" * 300 + ".csv", "no/such/u.csv", "u.txt"))
+        argv += ["-o", str(tmpdir() / name)]
+        if d.integer(0, 1):
+            argv.append("--overwrite")
+    if d.integer(0, 1):
+        argv.append("--json")
+    return argv
+
+
 def cli_starts_argv(d: Drawer) -> list[str]:
     argv = ["starts", "--mu-s", cli_number(d, 0, 3), "-q", "--lattice", "3", "2"]
     argv += ["--grid", d.choice(("2", "3", "0", "65", "x"))]
@@ -1544,6 +1572,8 @@ def cli_starts_argv(d: Drawer) -> list[str]:
         argv += ["--omega-max", cli_number(d, 0, 3)]
     if d.integer(0, 3) == 0:
         argv.append("--no-map")
+    if d.integer(0, 5) == 0:
+        argv += ["-o", str(tmpdir() / d.choice(("x" * 300, "no/such")))]
     if d.integer(0, 1):
         argv.append("--json")
     return argv
@@ -1579,7 +1609,7 @@ CLI_PARAMS = (
     "omega-max", "omega_max", "lattice", "map-grid", "map-size",
     "alpha_range", "alpha-range", "mu_s_err", "mu-s-err", "radius", "mass", "target",
     "body", "g", "error", "km_range", "rod_range", "integrator", "sd", "samples", "maximise",
-    "tolerances",
+    "tolerances", "stop-at-slip", "confidence", "output", "overwrite", "outdir", "question",
 )  # fmt: skip
 
 
@@ -1587,6 +1617,12 @@ def check_cli(res: Any, case: Case) -> None:
     code, out, err = res
     expect("Traceback" not in err, "a traceback on stderr: " + err.strip()[-150:])
     expect(code in (0, 1, 2), f"exit status {code}")
+    argv = case.info["argv"]
+    if case.info["cmd"] == "map":  # one rule for the options of the other --kind
+        kind = argv[argv.index("--kind") + 1] if "--kind" in argv else "jarm"
+        other = {"jarm": "motion", "motion": "jarm"}.get(kind)
+        crossed = other is not None and any(o in argv for o in MAP_KIND_OPTIONS[other])
+        expect(not crossed or code == 2, f"an option of --kind {other} passed with --kind {kind}")
     if code == 0:
         expect(bool(out.strip()) or case.info["cmd"] == "map", "no output")
         if "--json" in case.info["argv"] and case.info["cmd"] in ("roll", "starts"):
@@ -1625,12 +1661,13 @@ def run_cli_inprocess(argv: list[str]) -> tuple[int, str, str]:
 
 
 def case_cli(d: Drawer) -> Case:
-    cmd = d.choice(("roll", "roll", "map", "roll", "map", "starts", "design"))
+    cmd = d.choice(("roll", "roll", "map", "roll", "map", "starts", "design", "uncertainty"))
     make = {
         "roll": cli_roll_argv,
         "map": cli_map_argv,
         "starts": cli_starts_argv,
         "design": cli_design_argv,
+        "uncertainty": cli_uncertainty_argv,
     }
     argv = make[cmd](d)
     return Case(

@@ -1,4 +1,5 @@
-"""How much memory a call will hold, checked before any work (docs/limits.md, "Memory").
+"""How much memory a call will hold, checked before any work (the user guide's "Limits",
+section "Memory").
 
 One estimate per kind of result -- JARM points and maps (:func:`jarm_bytes`), full-motion
 points and maps (:func:`motion_bytes`), uncertainty studies (:func:`uncertainty_bytes`) --

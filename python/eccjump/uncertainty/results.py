@@ -267,7 +267,7 @@ class Uncertainty:
                 self.to_xarray().to_netcdf(tmp, engine=store.netcdf_engine())
             store.install(tmp, target)
         except RuntimeError as err:  # netCDF4 reports a failed write as "NetCDF: HDF error"
-            raise OSError(errno.EIO, f"cannot write it ({err})", str(target)) from err
+            raise OSError(errno.EIO, f"netCDF write failed ({err})", str(target)) from err
         except OSError as err:  # the user's path, not the temporary one
             raise OSError(err.errno, err.strerror or str(err), str(target)) from err
         finally:
