@@ -18,6 +18,7 @@ were found while it did not are kept in :data:`CORE_REGRESSIONS`.
 from __future__ import annotations
 
 import atexit
+import json
 import math
 import random
 import re
@@ -832,7 +833,7 @@ def case_motion_points(d: Drawer) -> Case:
 UNCERTAINTY_PARAMS = (
     "body", "alpha", "mu_s", "mu_k", "restitution", "theta0", "omega0", "sd", "bounds", "n",
     "seed", "sampling", "question", "invalid", "confidence", "rule", "t_max",
-    "max_transitions", "rtol", "atol", "integrator", "n_threads", "chi", "km",
+    "max_transitions", "rtol", "atol", "integrator", "n_threads", "chi", "km", "progress",
 )  # fmt: skip
 
 
@@ -849,20 +850,36 @@ def check_uncertainty(res: Any, case: Case) -> None:
     for p, x in res.samples.items():  # every valid sample in its physical range
         expect(bool(np.isfinite(x[res.valid]).all()), f"sample {p} not finite")
     expect(isinstance(res._repr_html_(), str), "html")
+    try:  # "JSON-ready": no inf or NaN, whatever the spreads
+        json.dumps(res.to_dict(), allow_nan=False)
+    except ValueError as err:
+        expect(False, f"to_dict: {err}")
 
 
 def _spread_dict(d: Drawer, c: Case, names: Sequence[str], pair: bool) -> Any:
     out: dict[Any, Any] = {}
     for _ in range(d.integer(0, 2)):
         name = d.choice(names) if d.clean or d.integer(0, 5) else d.choice(("bogus", 1, "KM"))
+        huge = not d.clean and d.integer(0, 9) == 0  # once an OverflowError, an inf in to_dict
         if pair:
             lo = real(d, c, -0.1, 1.0, bad=False)
             out[name] = (lo, d.choice((lo, 1.0, 0.5, -1.0))) if not d.clean else (0.1, 0.4)
+            if huge:
+                out[name] = d.choice(((-1.7e308, 1.7e308), (0.0, 1e300), (-1e101, 0.0)))
         else:
-            out[name] = real(d, c, 0.0, 0.1)
+            out[name] = d.choice((1e300, 1e101, 1.5e154)) if huge else real(d, c, 0.0, 0.1)
+        c.must_raise |= huge
     if not d.clean and d.integer(0, 9) == 0:
         return d.choice(([0.1], "alpha", 0.1))
     return out
+
+
+#: Confidence levels outside (0, 1 - 1e-15]: 1 - 1e-16 was a StatisticsError.
+BAD_CONFIDENCE = (0.0, 1.0, math.nan, 1 - 1e-16, -0.5, 2.0)
+
+
+def _no_progress(done: int, total: int) -> None:
+    """A progress callback that does nothing."""
 
 
 def case_uncertainty(d: Drawer) -> Case:
@@ -884,12 +901,20 @@ def case_uncertainty(d: Drawer) -> Case:
         "seed": integer_param(d, c, (0, 1, 12345), (-1, 2.5, None, "1", 2**64)),
         "sampling": text_param(d, c, ("random", "sobol")),
         "invalid": text_param(d, c, ("truncate", "count")),
-        "confidence": d.choice((0.95, 0.5, *(() if d.clean else (0.0, 1.0, math.nan)))),
+        "confidence": d.choice((0.95, 0.5, *(() if d.clean else BAD_CONFIDENCE))),
         "n_threads": integer_param(d, c, (0, 1, 2), (*INT_BAD, 257)),
     }
-    if question == "motion":
-        c.kwargs["t_max"] = real(d, c, 0.0, 10.0)
-        c.kwargs["max_transitions"] = integer_param(d, c, (1, 5), (*INT_BAD, 10**6 + 1))
+    c.must_raise |= c.kwargs["confidence"] in BAD_CONFIDENCE
+    # The full motion's options, checked whatever the question (t_max = NaN passed "jarm").
+    c.kwargs["t_max"] = real(d, c, 0.0, 10.0)
+    c.kwargs["max_transitions"] = integer_param(d, c, (1, 5), (*INT_BAD, 10**6 + 1))
+    if d.integer(0, 3) == 0:
+        c.kwargs["rtol"] = d.choice((1e-8, *(() if d.clean else (1.0, math.nan, 0.0))))
+        c.kwargs["integrator"] = text_param(d, c, ("RK45", "Vern9"))
+        c.must_raise |= c.kwargs["rtol"] != 1e-8 or c.kwargs["integrator"] not in ("RK45", "Vern9")
+    if d.integer(0, 3) == 0:
+        c.kwargs["progress"] = d.choice((None, _no_progress, *(() if d.clean else (1, "bar"))))
+        c.must_raise |= c.kwargs["progress"] in (1, "bar")
     if d.integer(0, 2) == 0:
         c.kwargs["restitution"] = real(d, c, 0.0, 1.0)
     return c
@@ -1615,9 +1640,11 @@ def cli_map_argv(d: Drawer) -> list[str]:
     if d.integer(0, 2) == 0:
         argv += ["--threads", d.choice(("0", "1", "-1", "2.5", "99999999999999999999999"))]
     if d.integer(0, 2) == 0:
-        argv += ["--max-turns", d.choice(("1", "5", "0", "4294967296"))]
+        argv += ["--max-turns", d.choice(("1", "5", "0", "4294967296", "1000001"))]
     if d.integer(0, 2) == 0:
         argv += ["--route", d.choice(("ode", "closed-form", "x"))]
+    if d.integer(0, 4) == 0:
+        argv += ["--stop-at-slip"]
     cli_integrator(d, argv)
     if d.integer(0, 2) == 0:  # the full motion, with its own options
         argv += ["--kind", d.choice(("motion", "motion", "x"))]
@@ -1629,6 +1656,32 @@ def cli_map_argv(d: Drawer) -> list[str]:
     return argv
 
 
+#: The options of ``eccjump map`` that belong to one --kind (given with the other: exit 2).
+MAP_KIND_OPTIONS = {
+    "jarm": ("--n", "--route", "--max-turns", "--stop-at-slip"),
+    "motion": ("--mu-k", "--restitution", "--t-max", "--max-transitions"),
+}
+
+
+def cli_uncertainty_argv(d: Drawer) -> list[str]:
+    """A small study (64 samples), with bad spreads, confidences and outputs among them."""
+    argv = ["uncertainty", "--chi", cli_number(d, 0, 1), "--km", "0.02", "--alpha", "40"]
+    argv += ["--mu-s", cli_number(d, 0, 2), "-n", d.choice(("64", "64", "0")), "-q"]
+    argv += ["--sd", d.choice(("chi", "alpha", "bogus")), d.choice(("0.01", "0.01", "1e300"))]
+    if d.integer(0, 2) == 0:
+        argv += ["--confidence", d.choice(("0.9", "1", "0.9999999999999999", "nan", "0"))]
+    if d.integer(0, 3) == 0:
+        argv += ["--question", "motion", "--t-max", d.choice(("5", "nan", "0"))]
+    if d.integer(0, 2) == 0:
+        name = d.choice(("u.csv", "u.nc", "x" * 300 + ".csv", "no/such/u.csv", "u.txt"))
+        argv += ["-o", str(tmpdir() / name)]
+        if d.integer(0, 1):
+            argv.append("--overwrite")
+    if d.integer(0, 1):
+        argv.append("--json")
+    return argv
+
+
 def cli_starts_argv(d: Drawer) -> list[str]:
     argv = ["starts", "--mu-s", cli_number(d, 0, 3), "-q", "--lattice", "3", "2"]
     argv += ["--grid", d.choice(("2", "3", "0", "65", "x"))]
@@ -1637,6 +1690,8 @@ def cli_starts_argv(d: Drawer) -> list[str]:
         argv += ["--omega-max", cli_number(d, 0, 3)]
     if d.integer(0, 3) == 0:
         argv.append("--no-map")
+    if d.integer(0, 5) == 0:
+        argv += ["-o", str(tmpdir() / d.choice(("x" * 300, "no/such")))]
     if d.integer(0, 1):
         argv.append("--json")
     return argv
@@ -1672,7 +1727,7 @@ CLI_PARAMS = (
     "omega-max", "omega_max", "lattice", "map-grid", "map-size",
     "alpha_range", "alpha-range", "mu_s_err", "mu-s-err", "radius", "mass", "target",
     "body", "g", "error", "km_range", "rod_range", "integrator", "sd", "samples", "maximise",
-    "tolerances",
+    "tolerances", "stop-at-slip", "confidence", "output", "overwrite", "outdir", "question",
 )  # fmt: skip
 
 
@@ -1680,6 +1735,12 @@ def check_cli(res: Any, case: Case) -> None:
     code, out, err = res
     expect("Traceback" not in err, "a traceback on stderr: " + err.strip()[-150:])
     expect(code in (0, 1, 2), f"exit status {code}")
+    argv = case.info["argv"]
+    if case.info["cmd"] == "map":  # one rule for the options of the other --kind
+        kind = argv[argv.index("--kind") + 1] if "--kind" in argv else "jarm"
+        other = {"jarm": "motion", "motion": "jarm"}.get(kind)
+        crossed = other is not None and any(o in argv for o in MAP_KIND_OPTIONS[other])
+        expect(not crossed or code == 2, f"an option of --kind {other} passed with --kind {kind}")
     if code == 0:
         expect(bool(out.strip()) or case.info["cmd"] == "map", "no output")
         if "--json" in case.info["argv"] and case.info["cmd"] in ("roll", "starts"):
@@ -1718,12 +1779,13 @@ def run_cli_inprocess(argv: list[str]) -> tuple[int, str, str]:
 
 
 def case_cli(d: Drawer) -> Case:
-    cmd = d.choice(("roll", "roll", "map", "roll", "map", "starts", "design"))
+    cmd = d.choice(("roll", "roll", "map", "roll", "map", "starts", "design", "uncertainty"))
     make = {
         "roll": cli_roll_argv,
         "map": cli_map_argv,
         "starts": cli_starts_argv,
         "design": cli_design_argv,
+        "uncertainty": cli_uncertainty_argv,
     }
     argv = make[cmd](d)
     return Case(

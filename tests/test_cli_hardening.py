@@ -549,3 +549,118 @@ def test_main_returns_the_status_of_a_parse_error():
     with pytest.raises(SystemExit) as exc:
         main([*ROLL, "--mu_s", "1"])
     assert exc.value.code == 2
+
+
+# --- issue 46, items 12, 14, 15: writes, overwrites and the options of each --kind --------
+
+UNCERTAINTY = ["uncertainty", "--chi", "0.15", "--km", "0.02", "--alpha", "40", "--mu-s", "1",
+               "--sd", "chi", "0.01", "-n", "64", "-q"]  # fmt: skip
+
+
+@pytest.fixture
+def small_tmpfs(tmp_path):
+    """A 64 KiB tmpfs (root only): a disk that fills up for real."""
+    mount = tmp_path / "full"
+    mount.mkdir()
+    if os.geteuid() != 0 or os.system(f"mount -t tmpfs -o size=64k tmpfs {mount} 2>/dev/null"):
+        pytest.skip("needs root to mount a small tmpfs")
+    yield mount
+    os.system(f"umount {mount}")
+
+
+@pytest.mark.parametrize("suffix", [".nc", ".csv"])
+def test_uncertainty_on_a_full_disk_is_one_line(small_tmpfs, suffix):
+    # -o u.nc on a full disk was a traceback (RuntimeError: NetCDF: HDF error).
+    if suffix == ".nc":
+        pytest.importorskip("xarray")
+    target = small_tmpfs / f"u{suffix}"
+    message = failure([*UNCERTAINTY, "-n", "20000", "-o", str(target)], code=1)
+    assert "--output" in message and "full/u" in message, message
+    assert files(small_tmpfs) == []
+
+
+def test_a_failed_netcdf_write_is_one_line(tmp_path, monkeypatch):
+    # The same without root: the netCDF writer raises what it raises on a full disk.
+    xr = pytest.importorskip("xarray")
+
+    def full(self, *args, **kwargs):
+        raise RuntimeError("NetCDF: HDF error")
+
+    monkeypatch.setattr(xr.Dataset, "to_netcdf", full)
+    message = failure([*UNCERTAINTY, "-o", str(tmp_path / "u.nc")], code=1)
+    assert "--output" in message and "HDF error" in message, message
+    assert files(tmp_path) == []
+
+
+def test_a_write_without_space_is_one_line(tmp_path, monkeypatch):
+    def no_space(*args, **kwargs):
+        raise OSError(errno.ENOSPC, "No space left on device", "somewhere")
+
+    monkeypatch.setattr(np, "savetxt", no_space)
+    message = failure([*UNCERTAINTY, "-o", str(tmp_path / "u.csv")], code=1)
+    assert "--output" in message and "No space left" in message and "u.csv" in message
+    assert files(tmp_path) == []
+
+
+def test_uncertainty_refuses_an_existing_output_unless_overwrite(tmp_path):
+    target = tmp_path / "u.csv"
+    target.write_text("mine")
+    message = failure([*UNCERTAINTY, "-o", str(target)], code=2)
+    assert "--output" in message and "--overwrite" in message
+    assert target.read_text() == "mine"
+    code, _, err = run_cli_inprocess([*UNCERTAINTY, "-o", str(target), "--overwrite"])
+    assert code == 0, err
+    assert eccjump.Uncertainty.load(target).n == 64
+
+
+def test_starts_with_a_name_too_long_is_one_line(tmp_path):
+    # -o <300 characters> was a traceback (OSError: File name too long).
+    message = failure(["starts", "--no-map", "-o", str(tmp_path / ("x" * 300))], code=2)
+    assert "--outdir" in message and "too long" in message
+
+
+def test_any_other_oserror_is_one_line_naming_the_option(tmp_path, monkeypatch):
+    # The fallback of every subcommand: an OSError outside the writes names its option.
+    from eccjump.cli import starts as cli_starts
+
+    target = tmp_path / "figs"
+    target.mkdir()
+
+    def broken(*args, **kwargs):
+        raise OSError(errno.EIO, "Input/output error", str(target / "starts_mu1.png"))
+
+    monkeypatch.setattr(cli_starts, "check_outputs", broken)
+    message = failure(["starts", "--no-map", "--mu-s", "1", "-o", str(target)], code=1)
+    assert message.startswith("eccjump: error: --outdir") and "Input/output error" in message
+
+
+MAP = ["map", "--mu-s", "1", "--grid", "2"]
+
+
+@pytest.mark.parametrize(
+    ("kind", "option", "value", "owner"),
+    [
+        ("motion", "--max-turns", "5", "jarm"),
+        ("motion", "--n", "2", "jarm"),
+        ("motion", "--route", "ode", "jarm"),
+        ("motion", "--stop-at-slip", None, "jarm"),
+        ("jarm", "--mu-k", "0.5", "motion"),
+        ("jarm", "--restitution", "0.5", "motion"),
+        ("jarm", "--t-max", "5", "motion"),
+        ("jarm", "--max-transitions", "5", "motion"),
+    ],
+)
+def test_map_refuses_the_options_of_the_other_kind(tmp_path, kind, option, value, owner):
+    # --max-turns 4294967296 with --kind motion exited 0, while --n was refused.
+    given = [option] if value is None else [option, value]
+    argv = [*MAP, "--kind", kind, *given, "-o", str(tmp_path / "m.npz")]
+    message = failure(argv, code=2)
+    assert f"{option} is an option of --kind {owner}" in message
+    assert files(tmp_path) == []
+
+
+@pytest.mark.parametrize("kind", ["jarm", "motion"])
+def test_map_checks_the_range_of_max_turns(tmp_path, kind):
+    argv = [*MAP, "--kind", kind, "--max-turns", "4294967296", "-o", str(tmp_path / "m.npz")]
+    message = failure(argv, code=2)
+    assert "--max-turns" in message and "1000000" in message

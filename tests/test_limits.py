@@ -49,12 +49,84 @@ def test_output_too_large_is_a_memory_error():
 
 
 def test_grid_size_overflow_is_a_memory_error_not_a_panic():
-    # 2^60 points: the size overflows before any allocation (was PanicException: capacity
-    # overflow; 2^22 x 2^21 x 2^21 wrapped to 0 in release builds).
+    # 2^64 points: the size overflows 64 bits (was PanicException: capacity overflow;
+    # 2^22 x 2^21 x 2^21 wrapped to 0 in release builds). Refused by the size check, which
+    # counts in Python integers, before the core is asked.
     a, c = np.full(2**22, 0.5), np.full(2**21, 0.5)
-    short_error(MemoryError, eccjump.region, mu_s=1.0, alpha=a, chi=c, km_frac=c, name="the grid")
+    short_error(MemoryError, eccjump.region, mu_s=1.0, alpha=a, chi=c, km_frac=c, name="the result")
     a = np.full(2**20, 0.5)
-    short_error(MemoryError, eccjump.region, mu_s=1.0, alpha=a, chi=a, km_frac=a, name="the result")
+    short_error(MemoryError, eccjump.region, mu_s=1.0, alpha=a, chi=a, km_frac=a, name="alpha, chi")
+
+
+# --- the size check counts every field, before any work (issue 46, item 3) ----------------
+
+
+@pytest.fixture
+def small_machine(monkeypatch):
+    """A machine with 1 GiB of memory available."""
+    from eccjump import _sizes
+
+    monkeypatch.setattr(_sizes, "memory_limit", lambda: 2**30)
+
+
+def _refuse_work(monkeypatch, module, name, *, above: int = 0):
+    """Make ``module.name`` fail if it is called on more than ``above`` points: the check
+    must come before the work."""
+    real = getattr(module, name)
+
+    def guarded(*args, **kwargs):
+        sizes = [np.size(a) for a in args if isinstance(a, np.ndarray)]
+        if max(sizes, default=0) > above:  # above=-1: any call
+            raise AssertionError(f"{name} was called: the work began")
+        return real(*args, **kwargs)
+
+    monkeypatch.setattr(module, name, guarded)
+
+
+def test_the_size_check_counts_the_derivative_fields(small_machine, monkeypatch):
+    # region(400^3, derivatives=True) computed for 86 s, then numpy's MemoryError named one
+    # 488 MiB array. 200^3 points: 0.56 GB of fields fit in 1 GiB, 1.7 GB with derivatives.
+    from eccjump import classification
+
+    _refuse_work(monkeypatch, classification, "jarm_grid")
+    a = np.linspace(0.1, 1.5, 200)
+    with pytest.raises(AssertionError, match="the work began"):  # the fields alone fit
+        eccjump.region(a, a / 2, a / 2, 1.0)
+    msg = short_error(MemoryError, eccjump.region, a, a / 2, a / 2, 1.0, derivatives=True,
+                      name="derivatives=False")  # fmt: skip
+    assert "GiB" in msg and "8,000,000 points" in msg and "alpha, chi or km_frac" in msg
+
+
+def test_jarm_points_with_derivatives_are_checked_too(small_machine, monkeypatch):
+    from eccjump import classification
+
+    _refuse_work(monkeypatch, classification, "jarm_points")
+    a = np.full(5_000_000, 0.5)  # 0.5 GB of inputs and fields; 1.2 GB with derivatives
+    with pytest.raises(AssertionError, match="the work began"):
+        eccjump.jarm(a, 0.15, 0.02, 1.0)
+    short_error(MemoryError, eccjump.jarm, a, 0.15, 0.02, 1.0, derivatives=True, name="inputs")
+
+
+def test_motion_maps_and_points_are_checked_before_the_work(small_machine, monkeypatch):
+    from eccjump import _core
+
+    _refuse_work(monkeypatch, _core, "motion_grid", above=1)
+    _refuse_work(monkeypatch, _core, "motion_points", above=1)
+    a = np.linspace(0.1, 1.5, 400)  # 400^3 points of 73 bytes: 4.7 GB
+    short_error(MemoryError, eccjump.motion_map, a, a / 2, a / 2, 1.0, name="the axes")
+    b = np.full(10_000_000, 0.5)  # 10^7 points, 1.4 GB with their inputs
+    short_error(MemoryError, eccjump.motion_points, b, 0.15, 0.02, 1.0, name="the inputs")
+
+
+def test_uncertainty_counts_its_samples_before_drawing_them(small_machine, monkeypatch):
+    # n = 10^8 was allowed and failed after 15 s naming one array.
+    from eccjump.uncertainty import study
+
+    _refuse_work(monkeypatch, study, "draw", above=-1)
+    body = Cylinder(0.15, 0.02)
+    msg = short_error(MemoryError, eccjump.uncertainty, body, 0.7, 1.0, sd={"chi": 0.01},
+                      n=10**8, name="shrink n")  # fmt: skip
+    assert "100,000,000 samples" in msg
 
 
 @pytest.mark.slow

@@ -530,7 +530,7 @@ def test_a_grid_too_big_for_memory_is_one_error_line(
     from eccjump.cli import map as cli_map
 
     if not precheck:  # numpy's own MemoryError (909 TiB: refused at once, nothing touched)
-        monkeypatch.setattr(cli_map, "_physical_memory", lambda: None)
+        monkeypatch.setattr(cli_map, "memory_limit", lambda: None)
     code = map_here(tmp_path / f"big{suffix}", "--grid", "100000")
     assert code == 1
     assert "out of memory" in one_error_line(capsys.readouterr().err)

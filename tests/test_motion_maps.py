@@ -5,6 +5,7 @@ from __future__ import annotations
 
 import json
 import math
+import re
 
 import numpy as np
 import pytest
@@ -85,6 +86,20 @@ def summary_from_simulate(point: dict, t_max: float, max_transitions: int) -> di
         "landing": landing,
         "energy_lost": lost,
     }
+
+
+@pytest.mark.parametrize(
+    ("modes", "error", "says"),
+    [
+        (["roll"], ValueError, "'roll' is not a mode; use ROLL, SLIP, FLIGHT"),
+        (["ROLL", None], ValueError, "None is not a mode"),
+        ("ROLL", TypeError, "modes must be a list or tuple"),
+    ],
+)
+def test_sequence_code_names_a_bad_mode(modes, error, says):
+    # ['roll'] was "tuple.index(x): x not in tuple".
+    with pytest.raises(error, match=re.escape(says)):
+        sequence_code(modes)
 
 
 def test_sequence_codes_round_trip():

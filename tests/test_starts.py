@@ -318,3 +318,15 @@ def test_a_rim_point_mass_loses_the_normal_force_at_the_start_above_omega0_one()
         below = eccjump.jarm(0.01, 0.999, 0.0, 1.0, theta0=t, omega0=0.95)
         assert above.reason == Reason.NORMAL_FORCE_LOST and above.theta_event == t
         assert not (below.reason == Reason.NORMAL_FORCE_LOST and below.theta_event == t)
+
+
+@pytest.mark.parametrize("omega_max", [5e-324, 1e-7, 0.0, -1.0, 101.0, math.nan])
+def test_omega_max_outside_its_range_names_it(omega_max):
+    # 5e-324 made the lattice's step 0: a ZeroDivisionError.
+    with pytest.raises(ValueError, match=r"omega_max = .* \[1e-6, 100\]"):
+        eccjump.optimal_start(1.0, grid=3, omega_max=omega_max)
+
+
+def test_the_smallest_omega_max_searches():
+    opt = eccjump.optimal_start(1.0, grid=2, omega_max=1e-6, lattice=(4, 2), n_starts=1)
+    assert 0.0 <= opt.omega0 <= 1e-6

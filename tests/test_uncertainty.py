@@ -203,6 +203,18 @@ def test_a_study_of_no_spread_is_the_nominal_point():
         ({"mu_k": 2.0}, ValueError, "mu_k"),
         ({"seed": -1}, ValueError, "seed"),
         ({"sd": {"alpha": 1e6}, "invalid": "count", "n": 10}, ValueError, "sd"),
+        # issue 46, item 12: an OverflowError, a StatisticsError, a TypeError after the work
+        ({"sd": {"chi": 1e300}}, ValueError, "sd['chi']"),
+        ({"bounds": {"mu_s": (-1.7e308, 1.7e308)}}, ValueError, "bounds['mu_s']"),
+        ({"confidence": 1 - 1e-16}, ValueError, "confidence"),
+        ({"confidence": 0.0}, ValueError, "confidence"),
+        ({"progress": 1}, TypeError, "progress"),
+        # the full motion's options, checked whatever the question
+        ({"t_max": math.nan}, ValueError, "t_max"),
+        ({"rtol": 1.0}, ValueError, "rtol"),
+        ({"integrator": "Vern7"}, ValueError, "integrator"),
+        ({"max_transitions": 0}, ValueError, "max_transitions"),
+        ({"t_max": math.nan, "question": "motion"}, ValueError, "t_max"),
     ],
 )
 def test_bad_input_names_the_parameter(kwargs, error, names):
@@ -210,6 +222,92 @@ def test_bad_input_names_the_parameter(kwargs, error, names):
         eccjump.uncertainty(BODY, ALPHA, 1.0, **kwargs)
     msg = str(info.value)
     assert names in msg and len(msg) < 200, msg
+
+
+def test_bad_options_are_refused_before_any_work(monkeypatch):
+    # progress=1 once failed only after the first chunk had been computed.
+    from eccjump.uncertainty import study
+
+    def no_work(*args, **kwargs):
+        raise AssertionError("the samples were drawn")
+
+    monkeypatch.setattr(study, "draw", no_work)
+    for bad in ({"progress": 1}, {"t_max": math.nan}, {"confidence": 1.0}):
+        with pytest.raises((TypeError, ValueError)):
+            eccjump.uncertainty(BODY, ALPHA, 1.0, sd=SD, **bad)
+
+
+def test_the_widest_spreads_give_a_json_ready_result():
+    # Bounds of +-1.7e308 put an inf into to_dict (the delta method's variance).
+    wide = {"theta0": (-1e100, 1e100)}
+    u = eccjump.uncertainty(BODY, ALPHA, 1.0, bounds=wide, n=50, question="motion", t_max=10.0)
+    json.dumps(u.to_dict(), allow_nan=False)
+    u = eccjump.uncertainty(BODY, ALPHA, 1.0, sd={"mu_s": 1e100}, n=50)
+    json.dumps(u.to_dict(), allow_nan=False)
+
+
+def test_the_largest_confidence_gives_a_finite_interval():
+    u = eccjump.uncertainty(BODY, ALPHA, 1.0, sd=SD, n=200, confidence=1 - 1e-15)
+    lo, hi = u.p_jarm_ci
+    assert 0 <= lo <= u.p_jarm <= hi <= 1
+    with pytest.raises(ValueError, match="confidence"):
+        wilson(3, 10, 1.0)
+
+
+@pytest.mark.parametrize("suffix", [".csv", ".nc"])
+@pytest.mark.parametrize("question", ["jarm", "motion"])
+def test_save_then_load_gives_an_equal_study(tmp_path, suffix, question):
+    if suffix == ".nc":
+        pytest.importorskip("xarray")
+    u = eccjump.uncertainty(BODY, ALPHA, 1.0, sd=SD, bounds={"mu_k": (0.5, 0.9)} if
+                            question == "motion" else None, n=120, question=question,
+                            t_max=10.0)  # fmt: skip
+    path = u.save(tmp_path / f"u{suffix}")
+    back = eccjump.Uncertainty.load(path)
+    assert back == u
+    assert back.to_dict() == u.to_dict()
+
+
+def test_save_refuses_an_existing_file_unless_asked(tmp_path):
+    u = eccjump.uncertainty(BODY, ALPHA, 1.0, sd=SD, n=50)
+    path = tmp_path / "u.csv"
+    path.write_text("mine")
+    with pytest.raises(ValueError, match="overwrite=True"):
+        u.save(path)
+    assert path.read_text() == "mine"
+    u.save(path, overwrite=True)
+    assert eccjump.Uncertainty.load(path) == u
+
+
+def test_save_to_a_missing_directory_names_the_path_given(tmp_path):
+    # The temporary file's name was in the message.
+    u = eccjump.uncertainty(BODY, ALPHA, 1.0, sd=SD, n=50)
+    target = tmp_path / "no" / "such" / "u.csv"
+    with pytest.raises(FileNotFoundError) as info:
+        u.save(target)
+    assert info.value.filename == str(target) and ".tmp-" not in str(info.value)
+
+
+def test_a_failed_netcdf_write_is_an_oserror_naming_the_path(tmp_path, monkeypatch):
+    # A full disk made netCDF4 raise RuntimeError("NetCDF: HDF error").
+    xr = pytest.importorskip("xarray")
+    u = eccjump.uncertainty(BODY, ALPHA, 1.0, sd=SD, n=50)
+
+    def full(self, *args, **kwargs):
+        raise RuntimeError("NetCDF: HDF error")
+
+    monkeypatch.setattr(xr.Dataset, "to_netcdf", full)
+    with pytest.raises(OSError) as info:
+        u.save(tmp_path / "u.nc")
+    assert info.value.filename == str(tmp_path / "u.nc") and "HDF error" in str(info.value)
+    assert list(tmp_path.iterdir()) == []
+
+
+def test_load_refuses_what_is_no_study(tmp_path):
+    path = tmp_path / "x.csv"
+    path.write_text("# {}\n# a,b\n1,2\n")
+    with pytest.raises(ValueError, match="no saved uncertainty study"):
+        eccjump.Uncertainty.load(path)
 
 
 def test_bad_nominal_values_name_them_with_unit_and_range():

@@ -32,6 +32,7 @@ from eccjump._layout import (
     with_derivatives,
 )
 from eccjump._map import Map
+from eccjump._sizes import check_fits, jarm_bytes
 from eccjump.fields import DERIVATIVES, FIELDS, Reason, docstring
 from eccjump.scale import lazy_fields, lazy_records
 
@@ -357,14 +358,23 @@ def jarm(
     )
     if isinstance(turn_arg, np.ndarray):
         shape, (a, c, k, m, nf) = broadcast_flat(alpha=alpha, chi=chi, km=km, mu_s=mu_s, n=turn_arg)
+        _fits_in_memory("jarm", a.size, want_derivatives, 5)
         raw = jarm_points(a, c, k, m, opts, n=nf.astype(np.int64))
     else:
         shape, (a, c, k, m) = broadcast_flat(alpha=alpha, chi=chi, km=km, mu_s=mu_s)
+        _fits_in_memory("jarm", a.size, want_derivatives, 4)
         raw = jarm_points(a, c, k, m, opts)
     res = JarmResult._from_raw(raw, shape)
     if not want_derivatives:
         return res
     return replace(res, **derivative_fields((a, c, k, m), raw, opts, shape))
+
+
+def _fits_in_memory(what: str, points: int, derivatives: bool, inputs: int) -> None:
+    """MemoryError before any work if the result (with its derivative fields) cannot fit."""
+    axes = "alpha, chi or km_frac" if what == "region" else "the inputs"
+    shrink = f"{axes} (or derivatives=False)" if derivatives else axes
+    check_fits(what, points, jarm_bytes(points, derivatives, inputs), shrink)
 
 
 @dataclass(frozen=True, repr=False, eq=False)
@@ -810,6 +820,7 @@ def region(
         integrator=integrator,
     )
     if chunks is None:
+        _fits_in_memory("region", a.size * c.size * f.size, want_derivatives, 0)
         raw = jarm_grid(a, c, f, mu, opts)
         res = JarmResult._from_raw(raw, (a.size, c.size, f.size))
         if want_derivatives:

@@ -452,6 +452,44 @@ def _sensitivities_si(d: NDArray[np.float64] | None, u: Units) -> NDArray[np.flo
     return out
 
 
+def motion_options(
+    *,
+    rule: object,
+    t_max: object,
+    max_transitions: object,
+    rtol: object,
+    atol: object,
+    max_steps: object,
+    integrator: object,
+) -> dict[str, Any]:
+    """The options of a run of the full motion, type-checked here, their ranges by the core
+    (``SimOptions::validate``): every entry point of the full motion passes them through
+    this one path -- :func:`simulate` (whose core call checks them with the body's values)
+    and, through :func:`checked_motion_options`, the maps, the points and the uncertainty
+    studies, whatever their question."""
+    return {
+        "rule": rule_name(rule),
+        "t_max": real("t_max", t_max),
+        "max_transitions": integer("max_transitions", max_transitions, 1, MAX_TRANSITIONS),
+        "rtol": real("rtol", rtol),
+        "atol": real("atol", atol),
+        "max_steps": integer("max_steps", max_steps, 1, MAX_STEPS),
+        "integrator": text("integrator", integrator),
+    }
+
+
+def checked_motion_options(*, n_threads: object = 0, **options: object) -> dict[str, Any]:
+    """:func:`motion_options` with ``n_threads`` (0 ... 256), range-checked by the core
+    before any work -- a call on no points checks the options alone: a ValueError naming
+    the first bad one, as ``simulate`` names it. The keywords of ``_core.MotionOptions``."""
+    opts = {**motion_options(**options), "n_threads": integer("n_threads", n_threads, 0, 256)}
+    none = np.empty(0)
+    _core.motion_points(
+        none, none, none, none, none, none, none, none, options=_core.MotionOptions(**opts)
+    )
+    return opts
+
+
 def simulate(
     body: Cylinder,
     alpha: float,
@@ -588,6 +626,16 @@ def simulate(
     mu_k = mu_s if mu_k is None else mu_k
     restitution = real("restitution", restitution)
     rule = rule_name(rule)
+    theta0, omega0, slip0 = real("theta0", theta0), real("omega0", omega0), real("slip0", slip0)
+    run = motion_options(
+        rule=rule,
+        t_max=t_max,
+        max_transitions=max_transitions,
+        rtol=rtol,
+        atol=atol,
+        max_steps=max_steps,
+        integrator=integrator,
+    )
     points, records, ledger, status, message, nfev, dense, sens = _core.simulate(
         body.chi,
         body.km,
@@ -595,18 +643,12 @@ def simulate(
         mu_s=mu_s,
         mu_k=mu_k,
         restitution=restitution,
-        rule=rule,
-        theta0=real("theta0", theta0),
-        omega0=real("omega0", omega0),
-        slip0=real("slip0", slip0),
-        t_max=real("t_max", t_max),
+        theta0=theta0,
+        omega0=omega0,
+        slip0=slip0,
         l_max=real("l_max", l_max),
-        max_transitions=integer("max_transitions", max_transitions, 1, MAX_TRANSITIONS),
-        rtol=real("rtol", rtol),
-        atol=real("atol", atol),
-        max_steps=integer("max_steps", max_steps, 1, MAX_STEPS),
+        **run,
         dense_output=flag("dense_output", dense_output),
-        integrator=text("integrator", integrator),
         sensitivities=flag("sensitivities", sensitivities),
     )
     d_transitions, d_singular = (None, None) if sens is None else sens

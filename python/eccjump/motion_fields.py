@@ -80,7 +80,13 @@ def sequence_name(code: int) -> str:
 
 def sequence_code(modes: list[str] | tuple[str, ...]) -> int:
     """The code of the first :data:`SEQUENCE_LEN` of ``modes`` (names from :data:`MODES`):
-    Σ (mode_i + 1)·4^i, so ROLL→FLIGHT is 13."""
+    Σ (mode_i + 1)·4^i, so ROLL→FLIGHT is 13. ValueError naming a mode not in MODES."""
+    if isinstance(modes, str) or not isinstance(modes, list | tuple):
+        raise TypeError(f"modes must be a list or tuple of mode names, not {type(modes).__name__}")
+    for m in modes:
+        if m not in MODES:
+            shown = repr(m) if len(repr(m)) <= 40 else repr(m)[:37] + "..."
+            raise ValueError(f"modes: {shown} is not a mode; use {', '.join(MODES)}")
     return sum((MODES.index(m) + 1) << (2 * i) for i, m in enumerate(modes[:SEQUENCE_LEN]))
 
 

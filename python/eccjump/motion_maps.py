@@ -23,12 +23,13 @@ from numpy.typing import ArrayLike, NDArray
 
 from eccjump import _core, store
 from eccjump._arrays import fraction_axis
-from eccjump._checks import U64_MAX, Integrator, integer, real, real_array, short, text
+from eccjump._checks import U64_MAX, Integrator, integer, real_array, short, text
 from eccjump._html import best_slice, card, deg, jarm_slice, span
 from eccjump._map import Map
 from eccjump._mapcheck import file_error
+from eccjump._sizes import check_fits, motion_bytes
 from eccjump.map_kinds import MOTION, MapKind, upgrade_attrs
-from eccjump.motion import MAX_STEPS, MAX_TRANSITIONS, Rule
+from eccjump.motion import Rule, checked_motion_options
 from eccjump.motion_fields import (
     DTYPES,
     FIELDS,
@@ -364,25 +365,26 @@ def motion_map(
     out = text("output", output)
     if out not in ("map", "xarray"):
         raise ValueError(f"output must be 'map' or 'xarray', got {out!r}")
-    opts = {
-        "rule": text("rule", rule),
-        "t_max": real("t_max", t_max),
-        "max_transitions": integer("max_transitions", max_transitions, 1, MAX_TRANSITIONS),
-        "rtol": real("rtol", rtol),
-        "atol": real("atol", atol),
-        "max_steps": integer("max_steps", max_steps, 1, MAX_STEPS),
-        "n_threads": integer("n_threads", n_threads, 0, 256),
-        "integrator": text("integrator", integrator),
-    }
+    # The shared options checked first: a bad one is an error, not a map.
+    opts = checked_motion_options(
+        rule=rule,
+        t_max=t_max,
+        max_transitions=max_transitions,
+        rtol=rtol,
+        atol=atol,
+        max_steps=max_steps,
+        integrator=integrator,
+        n_threads=n_threads,
+    )
     axis = {name: _axis(coords, scalars, name) for name in AXES}
     rest = tuple(axis[name] for name in AXES[1:])
     shape = tuple(c.size for c in coords.values())
     info = {k: opts[k] for k in OPTIONS}
-    # The shared options checked on one point first: a bad one is an error, not a map.
-    _block(axis["alpha"][:1], tuple(a[:1] for a in rest), opts)
     _check_scalars(scalars, opts)
     if chunks is not None:
         return _lazy(axis, rest, coords, scalars, info, opts, shape, chunks)
+    points = int(np.prod(shape, dtype=object))
+    check_fits("motion_map", points, motion_bytes(points), "the axes")
     flat = _block(axis["alpha"], rest, opts)
     fields = {k: flat[k].reshape(shape) for k in FIELDS}
     m = MotionMap(coords, scalars, fields, info)

@@ -19,8 +19,9 @@ from numpy.typing import ArrayLike, NDArray
 
 from eccjump import _core
 from eccjump._arrays import broadcast_flat, fields_equal
-from eccjump._checks import Integrator, Rule, integer, real, text
-from eccjump.motion import MAX_STEPS, MAX_TRANSITIONS
+from eccjump._checks import Integrator, Rule
+from eccjump._sizes import check_fits, motion_bytes
+from eccjump.motion import checked_motion_options
 from eccjump.motion_fields import FIELDS, INVALID, sequence_name
 
 
@@ -207,7 +208,19 @@ def motion_points(
     }
     if mu_k is not None:
         named["mu_k"] = mu_k
+    opts = checked_motion_options(
+        rule=rule,
+        t_max=t_max,
+        max_transitions=max_transitions,
+        rtol=rtol,
+        atol=atol,
+        max_steps=max_steps,
+        integrator=integrator,
+        n_threads=n_threads,
+    )
     shape, flat = broadcast_flat(**named)
+    points = flat[0].size
+    check_fits("motion_points", points, motion_bytes(points, len(flat)), "the inputs")
     columns = dict(zip(named, flat, strict=True))
     raw = _core.motion_points(
         columns["alpha"],
@@ -218,16 +231,7 @@ def motion_points(
         columns["restitution"],
         columns["theta0"],
         columns["omega0"],
-        options=_core.MotionOptions(
-            rule=text("rule", rule),
-            t_max=real("t_max", t_max),
-            max_transitions=integer("max_transitions", max_transitions, 1, MAX_TRANSITIONS),
-            rtol=real("rtol", rtol),
-            atol=real("atol", atol),
-            max_steps=integer("max_steps", max_steps, 1, MAX_STEPS),
-            n_threads=integer("n_threads", n_threads, 0, 256),
-            integrator=text("integrator", integrator),
-        ),
+        options=_core.MotionOptions(**opts),
     )
     return MotionPoints(**{k: raw[k].reshape(shape) for k in FIELDS})
 

@@ -46,6 +46,11 @@ THETA0_MAX = TWO_PI * 1e6
 OMEGA0_MAX = 1e6
 #: Bound of :func:`optimal_start`'s evaluations (each one a map of grid**3 points).
 EVALUATIONS_MAX = 100_000
+#: The range of ``omega_max`` of :func:`optimal_start` [sqrt(g/R) rad]. The search keys its
+#: starts by omega0 rounded to 12 decimals and steps in units of the lattice's step
+#: omega_max / (n_omega - 1) (n_omega <= 1000): below 1e-6 the steps no longer resolve
+#: (omega_max = 5e-324 made the step 0, a ZeroDivisionError), and every start is rest anyway.
+OMEGA_MAX_RANGE = (1e-6, 100.0)
 N_REASONS = len(Reason)
 
 
@@ -596,7 +601,7 @@ def optimal_start(
     grid : int, default 32
         Points per axis of the coarse grid, 2 ... 64 (the fine grid is 2 grid).
     omega_max : float, default 3.0
-        Largest omega0 searched [sqrt(g/R) rad], in (0, 100]; theta0 covers [0, 2 pi).
+        Largest omega0 searched [sqrt(g/R) rad], in [1e-6, 100]; theta0 covers [0, 2 pi).
     lattice : tuple of (int, int), default (24, 12)
         Starts of the first lattice along theta0 and omega0, each 2 ... 1000.
     n_starts : int, default 3
@@ -632,8 +637,10 @@ def optimal_start(
     mu = _mu(mu_s)
     g = integer("grid", grid, 2, GRID_MAX // 2)
     wmax = real("omega_max", omega_max)
-    if not (0.0 < wmax <= 100.0):
-        raise ValueError(f"omega_max = {short(wmax)} is outside the allowed range (0, 100]")
+    if not (OMEGA_MAX_RANGE[0] <= wmax <= OMEGA_MAX_RANGE[1]):
+        raise ValueError(
+            f"omega_max = {short(wmax)} [sqrt(g/R) rad] is outside the allowed range [1e-6, 100]"
+        )
     if not isinstance(lattice, tuple | list) or len(lattice) != 2:
         raise TypeError("lattice must be a pair of integers (n_theta, n_omega)")
     n_th = integer("lattice", lattice[0], 2, 1000)

@@ -6,7 +6,8 @@ from __future__ import annotations
 
 import math
 import os
-from collections.abc import Callable, Iterable
+from collections.abc import Callable, Iterable, Iterator
+from contextlib import contextmanager
 from pathlib import Path
 from typing import Any
 
@@ -94,18 +95,29 @@ def check_outputs(option: str, paths: Iterable[Path], suffixes: Iterable[str]) -
     return [check_output(option, p, suffixes) for p in paths]
 
 
+@contextmanager
+def writing(option: str, path: Path) -> Iterator[None]:
+    """The one handler of the command line's writes: an OSError (a full disk, a name too
+    long) or the RuntimeError netCDF4 raises for a failed write ("NetCDF: HDF error") inside
+    becomes an :class:`OutputError` naming ``option`` and ``path``: one line, exit status 1."""
+    try:
+        yield
+    except (OSError, RuntimeError) as err:
+        why = _why(err) if isinstance(err, OSError) else str(err) or type(err).__name__
+        raise OutputError(f"{_shown(option, path)}: cannot write it: {why}") from err
+
+
 def write_output(option: str, path: Path, save: Callable[[Path], object]) -> Path:
     """Write ``path`` (checked by :func:`check_output`) by calling ``save`` on a temporary
     sibling, then renaming it into place: a failure or a Ctrl-C leaves no partial file, and
-    an OSError becomes an :class:`OutputError` naming ``option`` and the path."""
+    a failed write is an :class:`OutputError` naming ``option`` and the path (:func:`writing`)."""
     tmp = _temporary(path)
     try:
-        save(tmp)
-        if path.is_dir():  # made while we worked: install would swap it out
-            raise IsADirectoryError(21, "is a directory", str(path))
-        store.install(tmp, path)
-    except OSError as err:
-        raise OutputError(f"{_shown(option, path)}: cannot write it: {_why(err)}") from err
+        with writing(option, path):
+            save(tmp)
+            if path.is_dir():  # made while we worked: install would swap it out
+                raise IsADirectoryError(21, "is a directory", str(path))
+            store.install(tmp, path)
     finally:
         store.remove(tmp)
     return path

@@ -33,10 +33,11 @@ import numpy as np
 from numpy.typing import NDArray
 
 from eccjump import store
-from eccjump._checks import short
+from eccjump._checks import U32_MAX, short
 from eccjump._mapcheck import MAX_MESSAGE, shown
+from eccjump._sizes import gib, memory_limit
 from eccjump.cli import map_jobs
-from eccjump.cli._args import add_integrator, int_at_least
+from eccjump.cli._args import add_integrator, int_at_least, int_in
 from eccjump.cli._output import check_output, figure_suffixes
 from eccjump.cli.map_jobs import Job
 from eccjump.labelled import make_layout
@@ -95,7 +96,10 @@ def add_parser(sub: argparse._SubParsersAction) -> None:
     )
     p.add_argument("--mu-s", type=float, required=True, help="static friction coefficient")
     p.add_argument(
-        "--n", type=int_at_least(1), default=None, help="turn of the jump (default: the first jump)"
+        "--n",
+        type=int_in(1, U32_MAX),
+        default=None,
+        help="turn of the jump (default: the first jump; --kind jarm)",
     )
     p.add_argument("-o", "--output", required=True, help="output file: .nc, .zarr or .npz")
     p.add_argument(
@@ -121,11 +125,13 @@ def add_parser(sub: argparse._SubParsersAction) -> None:
     )
     g.add_argument("--km-frac-max", type=float, default=1.0, help="km/(1-chi) (default 1)")
     m = p.add_argument_group("model")
+    # The options of one kind default to None here: map_jobs.kind_options tells given from
+    # not given, refuses those of the other kind and puts in the defaults.
     m.add_argument(
         "--route",
         choices=("closed-form", "ode"),
-        default="closed-form",
-        help="closed forms with a rigorous scan (default) or the integrator",
+        default=None,
+        help="closed forms with a rigorous scan (default) or the integrator (--kind jarm)",
     )
     m.add_argument(
         "--rule", choices=("paper", "normal_force"), default="paper", help="lift-off rule"
@@ -137,23 +143,29 @@ def add_parser(sub: argparse._SubParsersAction) -> None:
     m.add_argument("--rtol", type=float, default=1e-10, help="integrator rtol (--route ode)")
     m.add_argument("--atol", type=float, default=1e-12, help="integrator atol (--route ode)")
     add_integrator(m, " (--route ode, --kind motion)")
-    m.add_argument("--max-turns", type=int_at_least(1), default=10_000, help="cap of the search")
+    m.add_argument(
+        "--max-turns",
+        type=int_in(1, map_jobs.MAX_TURNS),
+        default=None,
+        help=f"cap of the search, 1 ... {map_jobs.MAX_TURNS} turns (default 10000; --kind jarm)",
+    )
     m.add_argument(
         "--stop-at-slip",
         action="store_true",
+        default=None,
         help="paper rule: stop at the first slip (reason slip), not telling slip_before from "
         "slip_at_jump; same is_jarm, faster (--kind jarm)",
     )
     k = p.add_argument_group("full motion (--kind motion)")
     k.add_argument("--mu-k", type=float, default=None, help="kinetic friction (default mu_s)")
     k.add_argument(
-        "--restitution", type=float, default=0.0, help="Stronge's coefficient e (default 0)"
+        "--restitution", type=float, default=None, help="Stronge's coefficient e (default 0)"
     )
-    k.add_argument("--t-max", type=float, default=100.0, help="end time of each run (default 100)")
+    k.add_argument("--t-max", type=float, default=None, help="end time of each run (default 100)")
     k.add_argument(
         "--max-transitions",
         type=int_at_least(1),
-        default=100,
+        default=None,
         help="transitions before the first landing (default 100, as simulate)",
     )
     r = p.add_argument_group("run")
@@ -284,24 +296,17 @@ def _why(err: BaseException) -> str:
     return str(err) or type(err).__name__
 
 
-def _physical_memory() -> int | None:
-    try:
-        return os.sysconf("SC_PHYS_PAGES") * os.sysconf("SC_PAGE_SIZE")
-    except (AttributeError, ValueError, OSError):
-        return None
-
-
 def _check_memory(points: int, fmt: str, total: int, kind: MapKind) -> None:
-    """Fail early (exit 1) if the fields of ``points`` points cannot fit in this machine's
-    memory, rather than have numpy fill it and the system kill the process."""
+    """Fail early (exit 1) if the fields of ``points`` points cannot fit in the memory this
+    process can have, rather than have numpy fill it and the system kill the process."""
     need = points * kind.bytes_per_point()
-    have = _physical_memory()
+    have = memory_limit()  # the library's limit (eccjump._sizes), the same for every call
     if have is not None and need > have:
         how = "a smaller --chunk or grid" if fmt == "zarr" else ".zarr (written chunk by chunk)"
         held = "a chunk of" if fmt == "zarr" else "the whole map,"
         raise _Failed(
-            f"out of memory: {held} {points} points needs {need / 2**30:,.1f} GiB, the machine "
-            f"has {have / 2**30:,.1f} GiB; use {how} (grid of {total} points)"
+            f"out of memory: {held} {points} points needs {gib(need)}, the machine has "
+            f"{gib(have)} available; use {how} (grid of {total} points)"
         )
 
 

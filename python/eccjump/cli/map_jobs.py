@@ -9,6 +9,7 @@ from __future__ import annotations
 import argparse
 import math
 from pathlib import Path
+from typing import Any
 
 import numpy as np
 from numpy.typing import NDArray
@@ -190,12 +191,34 @@ class MotionJob:
 Job = JarmJob | MotionJob
 
 
+#: The most turns of a JARM search (the core's ``jarm::MAX_TURNS``; the user guide's "Limits").
+MAX_TURNS = 10**6
+
+#: The options of one kind only, by dest, with their defaults. The parser leaves them None
+#: when not given (``--n`` and ``--mu-k`` are None by default too, which means the same).
+KIND_OPTIONS: dict[str, dict[str, Any]] = {
+    "jarm": {"n": None, "route": "closed-form", "max_turns": 10_000, "stop_at_slip": False},
+    "motion": {"mu_k": None, "restitution": 0.0, "t_max": 100.0, "max_transitions": 100},
+}
+
+
+def kind_options(args: argparse.Namespace) -> None:
+    """One rule for the options that belong to one ``--kind``: given with the other kind, a
+    ValueError naming the option and its kind (--max-turns with --kind motion once passed
+    unchecked, while --n was refused); not given, their defaults, in place."""
+    for kind, defaults in KIND_OPTIONS.items():
+        for dest, default in defaults.items():
+            if getattr(args, dest) is None:
+                setattr(args, dest, default)
+            elif kind != args.kind:
+                option = "--" + dest.replace("_", "-")
+                raise ValueError(f"{option} is an option of --kind {kind}, not --kind {args.kind}")
+
+
 def job(args: argparse.Namespace) -> Job:
-    if args.kind == "motion":
-        if args.n is not None or args.route != "closed-form":
-            raise ValueError("--n and --route are options of --kind jarm, not --kind motion")
-        return MotionJob(args)
-    return JarmJob(args)
+    """The job of ``args.kind``, once its options are checked (:func:`kind_options`)."""
+    kind_options(args)
+    return MotionJob(args) if args.kind == "motion" else JarmJob(args)
 
 
 def share(k: int, points: int) -> str:

@@ -106,8 +106,13 @@ def _figure_paths(args: argparse.Namespace) -> dict[str, Path]:
     """The figures -o asks for, by name, checked before any work ({} without -o)."""
     if args.outdir is None:
         return {}
-    if not args.outdir.is_dir():
-        raise ValueError(f"--outdir {short_text(str(args.outdir), 60)!r} is not a directory")
+    shown = f"--outdir {short_text(str(args.outdir), 60)!r}"
+    try:
+        is_dir = args.outdir.is_dir()
+    except OSError as err:  # a name too long, a loop of links: checked before the work too
+        raise ValueError(f"{shown}: {err.strerror or err}") from None
+    if not is_dir:
+        raise ValueError(f"{shown} is not a directory")
     names = []
     for mu in args.mu_s:
         if not args.no_map:

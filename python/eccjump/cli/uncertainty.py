@@ -13,6 +13,7 @@ from pathlib import Path
 from typing import Any
 
 from eccjump import plot
+from eccjump._checks import check_overwrite
 from eccjump.body import Cylinder
 from eccjump.cli._args import add_integrator, degrees_in, int_in
 from eccjump.cli._output import (
@@ -21,7 +22,7 @@ from eccjump.cli._output import (
     check_output,
     figure_suffixes,
     save_figure,
-    write_output,
+    writing,
 )
 from eccjump.uncertainty import Uncertainty, uncertainty
 from eccjump.uncertainty.results import QUANTITIES, _first_order
@@ -107,6 +108,9 @@ def add_parser(sub: argparse._SubParsersAction) -> None:
         "--threads", type=int_in(0, 256), default=0, help="threads, 0 ... 256 (0: one per core)"
     )
     p.add_argument("-o", "--output", default=None, help="write the samples (.csv or .nc)")
+    p.add_argument(
+        "--overwrite", action="store_true", help="replace the file at --output if there is one"
+    )
     p.add_argument("--figure", default=None, help="draw the study (needs eccjump[plot])")
     p.add_argument(
         "--dpi",
@@ -148,12 +152,14 @@ def _cmd_uncertainty(args: argparse.Namespace) -> int:
     output = figure = None
     if args.output is not None:
         output = check_output("--output", args.output, DATA_SUFFIXES)
+        check_overwrite("--output", output, args.overwrite, "use --overwrite")
     if args.figure is not None:
         figure = check_output("--figure", args.figure, figure_suffixes())
     sd, bounds = _spreads(args)
     result = _run(args, sd, bounds)
     if output is not None:
-        write_output("--output", output, result.save)
+        with writing("--output", output):  # save writes a temporary file and renames it
+            result.save(output, overwrite=args.overwrite)
     if figure is not None:
         import matplotlib
 

@@ -13,7 +13,7 @@ from numpy.typing import NDArray
 
 from eccjump.classification import jarm
 from eccjump.fields import Reason
-from eccjump.motion_fields import DTYPES, FILL, INVALID, sequence_name
+from eccjump.motion_fields import DTYPES, FIELDS, FILL, INVALID, sequence_name
 from eccjump.motion_points import motion_points
 
 #: Samples per core call: about 0.05 s of closed form, 1 s of full motion on 2 cores.
@@ -26,6 +26,12 @@ JARM_FILL: dict[str, Any] = {
     "liftoff_theta": np.nan,
     "Fy_J": np.nan,
     "max_ratio": np.nan,
+}
+
+#: The dtype of each outcome field of a question, in the order of ``Uncertainty.outcomes``.
+OUTCOME_DTYPES: dict[str, dict[str, np.dtype]] = {
+    "jarm": {k: np.asarray(v).dtype for k, v in JARM_FILL.items()},
+    "motion": {k: np.dtype(DTYPES[k]) for k in FIELDS},
 }
 
 Progress = Callable[[int, int], object]
@@ -114,4 +120,4 @@ def outcome_counts(
     return {name(int(codes[i])): int(counts[i]) for i in order}
 
 
-__all__ = ["CHUNK", "JARM_FILL", "evaluate", "jumps", "outcome_counts", "ran"]
+__all__ = ["CHUNK", "JARM_FILL", "OUTCOME_DTYPES", "evaluate", "jumps", "outcome_counts", "ran"]

@@ -4,8 +4,10 @@ interval of a binomial share (:func:`wilson`)."""
 
 from __future__ import annotations
 
+import errno
 import math
 import os
+from collections.abc import Mapping
 from dataclasses import dataclass
 from pathlib import Path
 from typing import TYPE_CHECKING, Any, NamedTuple
@@ -15,9 +17,11 @@ from numpy.typing import NDArray
 
 from eccjump import store
 from eccjump._arrays import fields_equal
+from eccjump._checks import check_overwrite, flag, real, short
 from eccjump._checks import path as path_arg
 from eccjump._html import card, num
 from eccjump.uncertainty.delta import Delta
+from eccjump.uncertainty.questions import OUTCOME_DTYPES
 from eccjump.uncertainty.sampling import UNITS
 
 if TYPE_CHECKING:
@@ -39,13 +43,28 @@ QUANTITIES = {
 }
 
 
+#: The largest confidence level: the two-sided quantile is that of 0.5 + confidence/2, which
+#: must stay below 1 in floating point (at 1 - 2**-53 it rounds to 1, where the normal
+#: quantile is infinite); 1 - 1e-15 keeps a clear margin (z = 8.1).
+CONFIDENCE_MAX = 1 - 1e-15
+
+
+def check_confidence(value: object) -> float:
+    """The confidence level, in (0, :data:`CONFIDENCE_MAX`]; ValueError naming it."""
+    level = real("confidence", value)
+    if not 0 < level <= CONFIDENCE_MAX:
+        raise ValueError(f"confidence = {short(level)} is outside the allowed range (0, 1 - 1e-15]")
+    return level
+
+
 def wilson(k: int, n: int, confidence: float = 0.95) -> tuple[float, float]:
-    """The Wilson score interval of a share k/n at ``confidence`` (two-sided); (0, 1) for
-    n = 0. Its coverage is close to nominal even for shares near 0 or 1, unlike the normal
-    approximation, and it needs no iteration (Clopper–Pearson's is wider than nominal)."""
+    """The Wilson score interval of a share k/n at ``confidence`` (two-sided, in
+    (0, 1 - 1e-15]); (0, 1) for n = 0. Its coverage is close to nominal even for shares near
+    0 or 1, unlike the normal approximation, and it needs no iteration (Clopper–Pearson's is
+    wider than nominal)."""
+    z = _z(check_confidence(confidence))
     if n == 0:
         return 0.0, 1.0
-    z = _z(confidence)
     p = k / n
     centre = (p + z * z / (2 * n)) / (1 + z * z / n)
     half = z / (1 + z * z / n) * math.sqrt(p * (1 - p) / n + z * z / (4 * n * n))
@@ -180,7 +199,8 @@ class Uncertainty:
         return wilson(self.counts.get(outcome, 0), self.n_valid, self.confidence)
 
     def to_dict(self) -> dict[str, Any]:
-        """The numbers (no sample arrays), JSON-ready."""
+        """The numbers (no sample arrays), JSON-ready: a number that is not finite (the
+        summary of a distribution without samples, for one) is None (null)."""
         return {
             "question": self.question,
             "sampling": self.sampling,
@@ -200,7 +220,9 @@ class Uncertainty:
                 k: {f: _json(v) for f, v in s._asdict().items()}
                 for k, s in self.distributions.items()
             },
-            "delta": None if self.delta is None else self.delta._asdict(),
+            "delta": None
+            if self.delta is None
+            else {k: _json(v) for k, v in self.delta._asdict().items()},
         }
 
     def columns(self) -> dict[str, NDArray[Any]]:
@@ -225,14 +247,18 @@ class Uncertainty:
         }
         return xr.Dataset(data, coords={"sample": np.arange(self.n)}, attrs=attrs)
 
-    def save(self, path: str | os.PathLike) -> Path:
+    def save(self, path: str | os.PathLike, *, overwrite: bool = False) -> Path:
         """Write the samples and outcomes: ``.csv`` (numpy only; the numbers of
-        :meth:`to_dict` in ``#`` comment lines first) or ``.nc`` (netCDF, needs xarray).
-        The file appears whole or not at all."""
+        :meth:`to_dict` in a ``#`` comment line first) or ``.nc`` (netCDF, needs xarray);
+        :meth:`load` reads either back. The file appears whole or not at all (it is written
+        under a temporary name and renamed); a file already at ``path`` is replaced only
+        with ``overwrite=True`` (else ValueError). An OSError names ``path`` (a missing
+        directory, a full disk)."""
         target = Path(path_arg("path", path))
         suffix = target.suffix.lower()
         if suffix not in (".csv", ".nc"):
             raise ValueError(f"path: the suffix must be .csv or .nc, not {suffix or 'none'!r}")
+        check_overwrite("path", target, flag("overwrite", overwrite), "pass overwrite=True")
         tmp = store.temp_sibling(target)
         try:
             if suffix == ".csv":
@@ -240,6 +266,10 @@ class Uncertainty:
             else:
                 self.to_xarray().to_netcdf(tmp, engine=store.netcdf_engine())
             store.install(tmp, target)
+        except RuntimeError as err:  # netCDF4 reports a failed write as "NetCDF: HDF error"
+            raise OSError(errno.EIO, f"netCDF write failed ({err})", str(target)) from err
+        except OSError as err:  # the user's path, not the temporary one
+            raise OSError(err.errno, err.strerror or str(err), str(target)) from err
         finally:
             store.remove(tmp)
         return target
@@ -251,6 +281,52 @@ class Uncertainty:
         header = "\n".join([json.dumps(self.to_dict(), ensure_ascii=False), ",".join(cols)])
         table = np.column_stack([np.asarray(v, dtype=np.float64) for v in cols.values()])
         np.savetxt(path, table, delimiter=",", header=header, fmt="%.17g", encoding="utf-8")
+
+    @classmethod
+    def load(cls, path: str | os.PathLike) -> Uncertainty:
+        """The study written by :meth:`save` (``.csv`` or ``.nc``): equal to the one saved.
+
+        ValueError naming ``path`` for a file that is no saved study; OSError for one that
+        cannot be read."""
+        source = Path(path_arg("path", path))
+        suffix = source.suffix.lower()
+        if suffix not in (".csv", ".nc"):
+            raise ValueError(f"path: the suffix must be .csv or .nc, not {suffix or 'none'!r}")
+        try:
+            numbers, columns = _read_csv(source) if suffix == ".csv" else _read_netcdf(source)
+            return cls._from_saved(numbers, columns)
+        except (KeyError, TypeError, ValueError, IndexError) as err:
+            shown = str(source) if len(str(source)) <= 60 else str(source)[:57] + "..."
+            raise ValueError(f"path {shown!r} is no saved uncertainty study ({err})"[:200]) from err
+
+    @classmethod
+    def _from_saved(cls, d: Mapping[str, Any], columns: Mapping[str, NDArray]) -> Uncertainty:
+        """The study from the numbers of :meth:`to_dict` and the columns of :meth:`columns`."""
+        dtypes = OUTCOME_DTYPES[d["question"]]
+        delta = d["delta"]
+        return cls(
+            question=d["question"],
+            sampling=d["sampling"],
+            invalid=d["invalid"],
+            n=int(d["n"]),
+            seed=int(d["seed"]),
+            confidence=float(d["confidence"]),
+            nominal={k: float(v) for k, v in d["nominal"].items()},
+            sd={k: float(v) for k, v in d["sd"].items()},
+            bounds={k: (float(lo), float(hi)) for k, (lo, hi) in d["bounds"].items()},
+            samples={k: np.asarray(v, np.float64) for k, v in columns.items() if k in UNITS},
+            valid=np.asarray(columns["valid"]).astype(bool),
+            outcomes={k: np.asarray(columns[k]).astype(t) for k, t in dtypes.items()},
+            n_valid=int(d["n_valid"]),
+            p_jarm=float(d["p_jarm"]),
+            p_jarm_ci=(float(d["p_jarm_ci"][0]), float(d["p_jarm_ci"][1])),
+            counts={k: int(v) for k, v in d["counts"].items()},
+            distributions={
+                k: Summary(int(s["n"]), *(_number(s[f]) for f in Summary._fields[1:]))
+                for k, s in d["distributions"].items()
+            },
+            delta=None if delta is None else Delta(**delta),
+        )
 
     def plot(self, **kwargs: Any) -> Figure:
         """The figure of :func:`eccjump.plot.uncertainty` (needs matplotlib)."""
@@ -305,8 +381,52 @@ def _first_order(d: Delta) -> str:
     )
 
 
-def _json(x: float | int) -> float | int | None:
+def _json(x: float | int | None) -> float | int | None:
+    """A number for JSON: a non-finite float (NaN, inf) as None (null)."""
     return None if isinstance(x, float) and not math.isfinite(x) else x
+
+
+def _number(x: float | None) -> float:
+    """A summary's number read back: null is NaN (:func:`_json`)."""
+    return math.nan if x is None else float(x)
+
+
+def _read_csv(path: Path) -> tuple[dict[str, Any], dict[str, NDArray]]:
+    """The numbers (the first comment line) and the columns of a study's ``.csv``."""
+    import json
+
+    with open(path, encoding="utf-8") as fh:
+        numbers = json.loads(fh.readline().removeprefix("# "))
+        names = fh.readline().removeprefix("# ").strip().split(",")
+    table = np.loadtxt(path, delimiter=",", comments="#", ndmin=2, encoding="utf-8")
+    if table.shape[1] != len(names):
+        raise ValueError(f"{table.shape[1]} columns under {len(names)} names")
+    return numbers, {k: table[:, i] for i, k in enumerate(names)}
+
+
+def _read_netcdf(path: Path) -> tuple[dict[str, Any], dict[str, NDArray]]:
+    """The numbers (the attributes, JSON where nested) and the columns of a study's ``.nc``."""
+    import json
+
+    import xarray as xr
+
+    with xr.open_dataset(path, engine=store.netcdf_engine()) as ds:
+        ds.load()
+        columns = {str(k): np.asarray(v.values) for k, v in ds.data_vars.items()}
+        attrs = dict(ds.attrs)
+    numbers = {k: json.loads(v) if k in _NESTED else _plain(v) for k, v in attrs.items()}
+    return numbers, columns
+
+
+#: The numbers of :meth:`Uncertainty.to_dict` that a netCDF file holds as JSON text.
+_NESTED = frozenset(
+    {"nominal", "sd", "bounds", "p_jarm_ci", "counts", "probabilities", "distributions", "delta"}
+)
+
+
+def _plain(v: Any) -> Any:
+    """A netCDF attribute as a Python value (numpy scalars as int, float)."""
+    return v.item() if isinstance(v, np.generic) else v
 
 
 __all__ = ["QUANTILES", "QUANTITIES", "Summary", "Uncertainty", "wilson"]

@@ -64,6 +64,12 @@ Invalid = Literal["truncate", "count"]
 #: The most samples of one study (8 columns of float64 and the outcomes: ~2 GB).
 N_MAX = 10**8
 
+#: The widest spread of a parameter, its sd or its bounds' |lo| and |hi|: the variance of the
+#: first-order estimate (sd**2, (hi - lo)**2 / 12) and its products with the derivatives stay
+#: finite (a sd of 1e300 overflowed), and hi - lo of a uniform too. Far wider than any
+#: physical range (|theta0| <= 2 pi 1e6 is the widest).
+SPREAD_MAX = 1e100
+
 
 @dataclass(frozen=True)
 class Spread:
@@ -103,8 +109,11 @@ def _sd(value: object, allowed: tuple[str, ...]) -> dict[str, float]:
     for key, v in (mapping("sd", value) or {}).items():
         name = _name("sd", key, allowed)
         x = real(f"sd[{name!r}]", v)
-        if not (math.isfinite(x) and x >= 0):
-            raise ValueError(f"sd[{name!r}] = {short(x)} [{UNITS[name]}] must be finite and >= 0")
+        if not 0 <= x <= SPREAD_MAX:
+            raise ValueError(
+                f"sd[{name!r}] = {short(x)} [{UNITS[name]}] is outside the allowed range "
+                f"[0, {SPREAD_MAX:g}]"
+            )
         out[name] = x
     return out
 
@@ -116,10 +125,10 @@ def _bounds(value: object, allowed: tuple[str, ...]) -> dict[str, tuple[float, f
         if isinstance(v, str | bytes) or not hasattr(v, "__len__") or len(v) != 2:
             raise TypeError(f"bounds[{name!r}] must be a pair (lo, hi), not {short(v)}")
         lo, hi = (real(f"bounds[{name!r}]", x) for x in v)
-        if not (math.isfinite(lo) and math.isfinite(hi) and lo <= hi):
+        if not -SPREAD_MAX <= lo <= hi <= SPREAD_MAX:
             raise ValueError(
                 f"bounds[{name!r}] = ({short(lo)}, {short(hi)}) [{UNITS[name]}]: "
-                "need finite lo <= hi"
+                f"need -{SPREAD_MAX:g} <= lo <= hi <= {SPREAD_MAX:g}"
             )
         out[name] = (lo, hi)
     return out
@@ -261,6 +270,7 @@ __all__ = [
     "N_MAX",
     "PARAMETERS",
     "RANGES",
+    "SPREAD_MAX",
     "UNITS",
     "Invalid",
     "Sampling",

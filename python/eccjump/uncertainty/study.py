@@ -8,12 +8,19 @@ from typing import Literal
 
 import numpy as np
 
-from eccjump._checks import Integrator, Rule, integer, optional_real, real, rule_name, text
+from eccjump._checks import Integrator, Rule, optional_real, real, rule_name, text
+from eccjump._sizes import check_fits, uncertainty_bytes
 from eccjump.body import Cylinder
-from eccjump.motion import MAX_TRANSITIONS
+from eccjump.motion import checked_motion_options
 from eccjump.uncertainty.delta import delta_method
 from eccjump.uncertainty.questions import Progress, evaluate, jumps, outcome_counts, ran
-from eccjump.uncertainty.results import QUANTITIES, Summary, Uncertainty, wilson
+from eccjump.uncertainty.results import (
+    QUANTITIES,
+    Summary,
+    Uncertainty,
+    check_confidence,
+    wilson,
+)
 from eccjump.uncertainty.sampling import PARAMETERS, Invalid, Sampling, draw, options, spread
 
 #: The parameters the JARM question can vary: :func:`eccjump.jarm` takes one start (theta0,
@@ -112,7 +119,8 @@ def uncertainty(
     invalid : {"truncate", "count"}, default "truncate"
         How samples outside the physical range are treated (see above).
     confidence : float, default 0.95
-        Level of the Wilson intervals, in (0, 1).
+        Level of the Wilson intervals, in (0, 1 - 1e-15] (closer to 1 the two-sided normal
+        quantile is infinite in floating point).
     rule : {"paper", "normal_force"}, default "paper"
         Lift-off rule from rolling.
     t_max, max_transitions, rtol, atol, integrator
@@ -120,7 +128,8 @@ def uncertainty(
     n_threads : int, default 0
         Threads, 0 (one per core) ... 256; results are identical for any value.
     progress : callable or None, default None
-        Called as ``progress(done, total)`` after each chunk of valid samples.
+        Called as ``progress(done, total)`` after each chunk of valid samples (anything
+        else is a TypeError before any work).
 
     Returns
     -------
@@ -182,10 +191,12 @@ def uncertainty(
     allowed = JARM_PARAMETERS if q == "jarm" else PARAMETERS
     spec = spread(nominal, sd, bounds, allowed, mu_k_follows=mu_k_ is None)
     size, seed_, how, policy = options(n, seed, sampling, invalid)
-    level = real("confidence", confidence)
-    if not 0 < level < 1:
-        raise ValueError(f"confidence = {level:g} is outside the allowed range (0, 1)")
+    level = check_confidence(confidence)
+    if progress is not None and not callable(progress):
+        raise TypeError(f"progress must be None or a callable, not {type(progress).__name__}")
     opts = _question_options(q, rule, t_max, max_transitions, rtol, atol, integrator, n_threads)
+    need = uncertainty_bytes(size, q, len(spec.varied))
+    check_fits("uncertainty", size, need, "n", "samples")
     cols, valid = draw(spec, size, seed_, how, policy)
     outcomes = evaluate(q, cols, valid, opts, progress)
     valid &= ran(q, outcomes)  # k_m = 0 has no full motion (simulate needs k_m > 0)
@@ -232,22 +243,22 @@ def _question_options(
     integrator: object,
     n_threads: object,
 ) -> dict[str, object]:
-    """The keyword options of the question's function, type-checked."""
-    common: dict[str, object] = {
-        "rule": rule_name(rule),
-        "n_threads": integer("n_threads", n_threads, 0, 256),
-    }
+    """The keyword options of the question's function. The full motion's options are checked
+    whatever the question (by the one path of every entry point of the full motion), so that
+    a bad one is an error even where the closed form does not use it."""
+    opts = checked_motion_options(
+        rule=rule,
+        t_max=t_max,
+        max_transitions=max_transitions,
+        rtol=rtol,
+        atol=atol,
+        max_steps=1_000_000,  # motion_map's default
+        integrator=integrator,
+        n_threads=n_threads,
+    )
     if question == "jarm":
-        return common
-    return {
-        **common,
-        "t_max": real("t_max", t_max),
-        "max_transitions": integer("max_transitions", max_transitions, 1, MAX_TRANSITIONS),
-        "rtol": real("rtol", rtol),
-        "atol": real("atol", atol),
-        "max_steps": 1_000_000,  # motion_map's default
-        "integrator": text("integrator", integrator),
-    }
+        return {"rule": opts["rule"], "n_threads": opts["n_threads"]}
+    return opts
 
 
 __all__ = ["JARM_PARAMETERS", "Question", "uncertainty"]
