@@ -403,6 +403,21 @@ def check_jarm_result(res: Any, case: Case, shape: tuple[int, ...] | None = None
         expect(not bool(invalid[good].any()), "a valid point is INVALID_PARAMS")
 
 
+def _km_is_zero(case: Case, shape: tuple[int, ...]) -> np.ndarray | None:
+    """Where km = 0 among the points of a ``jarm`` or ``region`` call (None: not known)."""
+    try:
+        if case.name == "jarm":
+            pts = _points(case)
+            return None if pts is None else np.broadcast_to(pts[2] == 0, shape)
+        if case.name == "region":  # axes (alpha, chi, km_frac): km = km_frac (1 - chi)
+            chi = np.atleast_1d(np.asarray(case.args[1], dtype=np.float64))
+            frac = np.atleast_1d(np.asarray(case.args[2], dtype=np.float64))
+            return np.broadcast_to((chi[:, None] == 1) | (frac[None, :] == 0), shape)
+    except (TypeError, ValueError):
+        return None
+    return None
+
+
 def check_derivatives(res: Any, case: Case, shape: tuple[int, ...]) -> None:
     """The derivative fields: there iff asked for, of the shape plus (3,); finite exactly
     where theta_J is finite and the point is not flagged singular (no silent NaN), the
@@ -418,8 +433,19 @@ def check_derivatives(res: Any, case: Case, shape: tuple[int, ...]) -> None:
     singular = derivs["d_singular"]
     jump = np.isfinite(res.theta_J)
     expect(not bool(singular[~jump].any()), "a point without theta_J flagged singular")
-    finite = np.isfinite(derivs["d_theta_J"]).all(axis=-1)
-    expect(bool((finite == (jump & ~singular)).all()), "d_theta_J finite where it must not be")
+    finite = np.isfinite(derivs["d_theta_J"])
+    due = jump & ~singular
+    expect(
+        bool((finite[..., :2].all(axis=-1) == due).all()), "d_theta_J finite where it must not be"
+    )
+    # The km column is one-sided, so NaN, at km = 0 (where the inputs say which points those are).
+    km_zero = _km_is_zero(case, shape)
+    km_due = due if km_zero is None else due & ~km_zero
+    expect(bool((finite[..., 2] <= due).all()), "d_theta_J/dkm finite without a jump")
+    if km_zero is not None:
+        expect(bool((finite[..., 2] == km_due).all()), "d_theta_J/dkm finite where it must not be")
+
+    return None
     for k in ("d_Fx_J", "d_Fy_J"):
         ok = np.isfinite(derivs[k]).all(axis=-1)
         expect(bool((ok == (np.isfinite(res.Fx_J) & ~singular)).all()), f"{k} finite or NaN")
