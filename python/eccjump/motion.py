@@ -557,7 +557,7 @@ def simulate(
         Transitions after the start, 1 ... 10**6.
     rtol : float, default 1e-10
         Relative tolerance of the integrator, in [1e-15, 1e-6] (looser, the energy ledger
-        no longer closes: docs/limits.md).
+        no longer closes: the user guide's "Limits" page).
     atol : float, default 1e-12
         Absolute tolerance of the integrator, in [1e-300, 1e-6].
     max_steps : int, default 1_000_000
