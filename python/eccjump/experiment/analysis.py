@@ -256,7 +256,7 @@ def analyze(
     track : Track, str or path
         A :class:`Track`, or the path of a CSV (``t,xc,yc,xm,ym``; s, and m or px) or of
         Tracker's exported data table (``"-"``: the standard input); a regular file of at
-        most 64 MiB and 20,000 frames (``read_track``).
+        most 64 MiB and 10,000 frames (``read_track``).
     radius : float or None
         R [m], in [1e-4, 10]; or from ``design``.
     chi, km : float or None

@@ -29,9 +29,13 @@ COLUMNS = ("t", "xc", "yc", "xm", "ym")
 #: The fewest frames that can be analysed (the smoothing window and a few frames of each
 #: phase need them).
 MIN_FRAMES = 12
-#: The most frames a track file may hold (docs/limits.md): analyze takes about a minute for
-#: MAX_FRAMES frames (the fit evaluates the model at every frame).
-MAX_FRAMES = 20_000
+#: The most frames a track may hold (docs/limits.md): analyze took 8 s (14 s with the mu_k
+#: profile) for 10^4 frames, 74 s (135 s) for 2 x 10^4: the lift-off timing in events.py
+#: grows with the square of a flight's frames.
+MAX_FRAMES = 10_000
+#: The most lines of a track file (rows, blank and comment lines): skipping a million blank
+#: lines would take seconds.
+MAX_LINES = 100_000
 #: The longest line of a track file [characters]: a row of Tracker's widest exports fits many
 #: times; a longer one is refused before it is split into cells.
 MAX_LINE = 2**16
@@ -227,9 +231,14 @@ def parse_tracker(text: str, *, name: str = "track") -> dict[str, NDArray[np.flo
 
 
 def _lines(text: str, name: str) -> Iterator[tuple[int, str]]:
-    """(line number, line) of ``text``, lazily (no list of a million empty lines); a line
-    longer than MAX_LINE characters is an error naming ``name`` and the line."""
+    """(line number, line) of ``text``, lazily (no list of a million empty lines); more
+    than MAX_LINES lines, or a line longer than MAX_LINE characters, is an error naming
+    ``name`` (and the line)."""
     sep = "\n" if "\n" in text or "\r" not in text else "\r"  # "\r" alone: old Mac files
+    if text.count(sep) > MAX_LINES:
+        raise ValueError(
+            f"{name}: {text.count(sep):,} lines, more than the {MAX_LINES:,} a track file may have"
+        )
     pos, number = 0, 0
     while pos < len(text):
         end = text.find(sep, pos)
