@@ -1,6 +1,6 @@
 """The ranges of what ``eccjump.analyze`` takes: one table (:data:`BOUNDS`), checked by
 :func:`in_range` in Python and by the parser of ``eccjump analyze`` (with its option names
-and degrees), and the bounds on a track and its marker (docs/limits.md, "analyze").
+and degrees), and the bounds on a track and its marker (the site's page "Limits").
 
 Why these ranges: they hold every lab experiment (a body from a tenth of a millimetre to ten
 metres, filmed at up to ten million frames per second) and keep the model's own inputs --
