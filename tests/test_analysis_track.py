@@ -301,3 +301,15 @@ def test_a_bad_design_sheet_is_a_value_error_naming_design(tmp_path, text):
         assert str(err).startswith("design:") and len(str(err)) <= 200
     else:  # json reads 1e400 as inf: the body's check refuses it
         assert out["chi"] == math.inf
+
+
+@pytest.mark.parametrize(
+    ("path", "message"),
+    [("a\0b", r"^source: a\?b is no path"), ("x" * 5000, r"^source: cannot read \.\.\.x+: "),
+     ("", r"^source: cannot read : ")],
+    ids=["nul", "long", "empty"],
+)  # fmt: skip
+def test_a_bad_path_is_a_value_error_naming_source(path, message):
+    with pytest.raises(ValueError, match=message) as err:
+        read_track(path)
+    assert len(str(err.value)) <= 200

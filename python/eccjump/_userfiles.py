@@ -23,12 +23,18 @@ import os
 import stat
 import sys
 from collections.abc import Callable
+from typing import Any, TypeVar
 
 from eccjump._checks import path as path_arg
 
-#: The largest file read [bytes]: 64 MiB, a million frames of a CSV track with room to spare
-#: (docs/limits.md). A design sheet is a few kilobytes.
+T = TypeVar("T")
+
+#: The largest file read [bytes]: 64 MiB, the most frames of a track (10^4) even in a wide
+#: Tracker export many times over (docs/limits.md). A design sheet is a few kilobytes.
 MAX_BYTES = 64 * 2**20
+
+#: Opens that cannot block on a FIFO swapped in after the stat (POSIX; 0 where there is none).
+_NONBLOCK = getattr(os, "O_NONBLOCK", 0)
 
 #: The byte-order marks read, the longest first (UTF-32-LE's starts like UTF-16-LE's).
 _BOMS = (
@@ -41,9 +47,10 @@ _BOMS = (
 
 
 def _shown(source: object) -> str:
-    """A path for a message: its end, which names the file, cut to 60 characters."""
+    """A path for a message: its end, which names the file, cut to 60 characters, with
+    "?" for what cannot be printed."""
     text = os.fspath(source) if isinstance(source, str | os.PathLike) else repr(source)
-    text = str(text)
+    text = "".join(c if c.isprintable() else "?" for c in str(text))  # one printable line
     return text if len(text) <= 60 else "..." + text[-57:]
 
 
@@ -90,19 +97,26 @@ def read_bytes(name: str, source: object, *, stdin: bool = False) -> bytes:
     source = path_arg(name, source)
     if stdin and source == "-":
         return _read_stdin(name)
+    _check_stat(name, source, _os_call(name, source, os.stat, source))
+    fd = _os_call(name, source, os.open, source, os.O_RDONLY | _NONBLOCK)
     try:
-        _check_stat(name, source, os.stat(source))
-        fd = os.open(source, os.O_RDONLY | getattr(os, "O_NONBLOCK", 0))
-    except OSError as err:
-        raise ValueError(f"{name}: cannot read {_shown(source)}: {err.strerror}") from None
-    try:
-        _check_stat(name, source, os.fstat(fd))
-        os.set_blocking(fd, True)  # a regular file: reads never wait anyway
-        return _read_bounded(name, source, lambda n: os.read(fd, n))
-    except OSError as err:
-        raise ValueError(f"{name}: cannot read {_shown(source)}: {err.strerror}") from None
+        _check_stat(name, source, _os_call(name, source, os.fstat, fd))
+        if _NONBLOCK:
+            _os_call(name, source, os.set_blocking, fd, True)  # a regular file: reads never wait
+        return _read_bounded(name, source, lambda n: _os_call(name, source, os.read, fd, n))
     finally:
         os.close(fd)
+
+
+def _os_call(name: str, source: object, fn: Callable[..., T], *args: Any) -> T:
+    """``fn(*args)``, its OSError (and os.stat's ValueError for a NUL in a path) as a
+    ValueError naming ``name`` and the file."""
+    try:
+        return fn(*args)
+    except OSError as err:
+        raise ValueError(f"{name}: cannot read {_shown(source)}: {err.strerror}") from None
+    except ValueError as err:  # "embedded null byte"
+        raise ValueError(f"{name}: {_shown(source)} is no path: {err}") from None
 
 
 def _read_stdin(name: str) -> bytes:
