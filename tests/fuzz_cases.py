@@ -20,13 +20,16 @@ from __future__ import annotations
 import atexit
 import json
 import math
+import os
 import random
 import re
 import shutil
+import signal
 import socket
 import sys
 import tempfile
-from collections.abc import Callable, Sequence
+from collections.abc import Callable, Iterator, Sequence
+from contextlib import contextmanager
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
@@ -1823,8 +1826,8 @@ def case_cli(d: Drawer) -> Case:
 # --- analyze: tracked experiments, good and bad ------------------------------------------
 
 ANALYZE_PARAMS = (
-    "track", "source", "radius", "chi", "km", "alpha", "marker_angle", "marker_radius",
-    "scale", "g", "rule", "window", "design", "t", "xc", "yc", "xm", "ym",
+    "track", "radius", "chi", "km", "alpha", "marker_angle", "marker_radius",
+    "scale", "g", "rule", "window", "design", "profile_mu_k", "t", "xc", "yc", "xm", "ym",
 )  # fmt: skip
 _ROLLING_TRACK: list[Any] = []
 
@@ -1854,13 +1857,20 @@ def check_analysis(res: Any, case: Case) -> None:
         expect(res.verdict == "undetermined", f"a track that never leaves is {res.verdict}")
 
 
+#: How a track file is spoilt (or written in another dialect that reads the same). The first
+#: group must read as the good track; the rest must be refused (a FIFO without blocking).
+TRACK_DIALECTS = ("good", "good", "semicolon", "quoted", "utf16", "bom", "tabs", "crlf")
+TRACK_SPOILINGS = ("nan", "inf", "unsorted", "repeated", "missing", "few", "text", "empty",
+                   "extra-cell", "short-row", "fifo", "device", "directory", "sparse",
+                   "long-line", "many-frames", "pixels")  # fmt: skip
+
+
 def _bad_track_file(d: Drawer, c: Case) -> Path:
-    """A CSV of the rolling track, spoilt one way (or not at all)."""
+    """A CSV of the rolling track, in another dialect, or spoilt one way."""
     tr = rolling_track()
     cols = {"t": tr.t.copy(), "xc": tr.c[:, 0].copy(), "yc": tr.c[:, 1].copy(),
             "xm": tr.m[:, 0].copy(), "ym": tr.m[:, 1].copy()}  # fmt: skip
-    how = d.choice(("good", "good", "nan", "inf", "unsorted", "repeated", "missing", "few",
-                    "text", "empty"))  # fmt: skip
+    how = d.choice(TRACK_DIALECTS + TRACK_SPOILINGS)
     name = d.choice(list(cols))
     k = d.integer(1, tr.n - 2)
     if how in ("nan", "inf"):
@@ -1874,17 +1884,64 @@ def _bad_track_file(d: Drawer, c: Case) -> Path:
         cols = {n: v[:keep] for n, v in cols.items()}
     elif how == "missing":
         del cols[name]
-    c.info["never_leaves"] = how == "good"
-    path = tmpdir() / f"track-{how}-{d.integer(0, 10**6)}.csv"
+    elif how == "pixels":  # a track in pixels, analysed without scale
+        cols = {n: v if n == "t" else v * 1230.5 for n, v in cols.items()}
+    elif how == "many-frames":
+        from eccjump.experiment.track import MAX_FRAMES
+
+        reps = MAX_FRAMES // tr.n + 1
+        span = tr.t[-1] - tr.t[0] + tr.dt
+        cols = {n: np.concatenate([v + (span * r if n == "t" else 0) for r in range(reps)])
+                for n, v in cols.items()}  # fmt: skip
+    c.info["never_leaves"] = how in TRACK_DIALECTS
+    path = Path(tempfile.mkdtemp(dir=tmpdir())) / f"track-{how}.csv"  # new: a replay too
+    special = _special_track_file(how, path)
+    if special is not None:
+        return special
+    rows = [list(cols)] + [[repr(float(v[i])) for v in cols.values()]
+                           for i in range(len(next(iter(cols.values()))))]  # fmt: skip
+    if how == "text":
+        rows[min(3, len(rows) - 1)] = ["0.1", "abc", "1", "2", "3"]
+    elif how == "extra-cell":
+        rows[min(k, len(rows) - 1)].append("1")
+    elif how == "short-row":
+        rows[min(k, len(rows) - 1)].pop()
+    _write_dialect(path, rows, how)
+    return path
+
+
+def _special_track_file(how: str, path: Path) -> Path | None:
+    """The path of a file that is no table: empty, a FIFO, a device, a directory, a sparse
+    file past the size limit, a line past the length limit; None for a table."""
     if how == "empty":
         path.write_text("")
-        return path
-    rows = [",".join(cols)] + [",".join(repr(float(v[i])) for v in cols.values())
-                               for i in range(len(next(iter(cols.values()))))]  # fmt: skip
-    if how == "text":
-        rows[min(3, len(rows) - 1)] = "0.1,abc,1,2,3"
-    path.write_text("\n".join(rows) + "\n")
+    elif how == "fifo":
+        os.mkfifo(path)
+    elif how == "device":
+        return Path(os.devnull)
+    elif how == "directory":
+        path.mkdir()
+    elif how == "sparse":
+        path.write_bytes(b"t,xc,yc,xm,ym\n")
+        os.truncate(path, 2**40)  # 1 TB, sparse
+    elif how == "long-line":
+        path.write_text("t,xc,yc,xm,ym\n" + "1," * 40_000 + "\n")
+    else:
+        return None
     return path
+
+
+def _write_dialect(path: Path, rows: list[list[str]], how: str) -> None:
+    """``rows`` as CSV in the dialect ``how`` names (commas otherwise)."""
+    delimiter = {"semicolon": ";", "tabs": "\t"}.get(how, ",")
+    if how == "semicolon":  # with decimal commas
+        rows = [[cell.replace(".", ",") for cell in row] for row in rows]
+    if how == "quoted":
+        rows = [[f'"{cell}"' for cell in row] for row in rows]
+    end = "\r\n" if how == "crlf" else "\n"
+    text = end.join(delimiter.join(row) for row in rows) + end
+    encoding = {"utf16": "utf-16", "bom": "utf-8-sig"}.get(how, "utf-8")
+    path.write_bytes(text.encode(encoding))
 
 
 def case_analyze(d: Drawer) -> Case:
@@ -1892,17 +1949,21 @@ def case_analyze(d: Drawer) -> Case:
     c.args = (_bad_track_file(d, c) if d.integer(0, 3) else rolling_track(),)
     c.info.setdefault("never_leaves", True)
     c.kwargs = {
-        "radius": 0.05 if d.integer(0, 2) else real(d, c, 0.001, 1.0),
+        "radius": 0.05 if d.integer(0, 2) else real(d, c, 1e-4, 10.0),
         "chi": 0.1 if d.integer(0, 2) else real(d, c, 0.0, 1.0),
         "km": 0.3 if d.integer(0, 2) else real(d, c, 0.0, 1.0),
         "alpha": d.pick(None, 0.2, lambda: real(d, c, 0.0, HALF_PI)),
-        "marker_angle": 0.0 if d.integer(0, 2) else real(d, c, -7.0, 7.0),
-        "profile_mu_k": False,
+        "marker_angle": 0.0 if d.integer(0, 2) else real(d, c, -2 * math.pi, 2 * math.pi),
+        "profile_mu_k": False if d.integer(0, 5) else flag(d, c),
     }
     if d.integer(0, 4) == 0:
         c.kwargs["marker_radius"] = real(d, c, 0.0, 0.2)
     if d.integer(0, 5) == 0:
-        c.kwargs["g"] = real(d, c, 0.1, 20.0)
+        c.kwargs["g"] = real(d, c, 0.01, 100.0)
+    if d.integer(0, 5) == 0:
+        c.kwargs["scale"] = real(d, c, 1.0, 1e9)
+    if d.integer(0, 5) == 0:
+        c.kwargs["window"] = integer_param(d, c, (7, 9, 11), (6, 8, 10**9, "7", 7.0, True))
     if d.integer(0, 5) == 0:
         c.kwargs["rule"] = text_param(d, c, ("paper", "normal_force"))
     kw = c.kwargs
@@ -1947,6 +2008,24 @@ GENERATORS: dict[str, Callable[[Drawer], Case]] = {
 
 
 # --- the contract -------------------------------------------------------------------------
+
+
+@contextmanager
+def alarm(seconds: int = 60) -> Iterator[None]:
+    """Fail (TimeoutError) instead of hanging if the block runs longer than ``seconds``: a
+    blocking read of a FIFO, say (in-process runs; the campaign's workers have their own
+    time limit)."""
+
+    def ring(signum: int, frame: Any) -> None:
+        raise TimeoutError(f"no answer in {seconds} s: a hang")
+
+    old = signal.signal(signal.SIGALRM, ring)
+    signal.alarm(seconds)
+    try:
+        yield
+    finally:
+        signal.alarm(0)
+        signal.signal(signal.SIGALRM, old)
 
 
 def message_names(message: str, params: Sequence[str]) -> bool:

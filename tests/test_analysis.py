@@ -13,6 +13,7 @@ from __future__ import annotations
 import importlib.util
 import json
 import math
+import re
 from pathlib import Path
 
 import numpy as np
@@ -127,7 +128,7 @@ def test_the_command_line_prints_the_json_report(capsys, tmp_path):
     assert {"mu_k", "mu_s", "e", "theta0", "omega0"} <= set(report["parameters"])
     assert main(["analyze", str(tmp_path / "none.csv"), "--radius", "0.05", "--chi", "0.1",
                  "--km", "0.2"]) == 2  # fmt: skip
-    assert "source" in capsys.readouterr().err
+    assert "track: cannot read" in capsys.readouterr().err
 
 
 def test_a_tracker_export_and_a_design_sheet(tmp_path):
@@ -153,6 +154,86 @@ def test_bad_inputs_name_the_parameter():
         with pytest.raises(ValueError, match=name) as err:
             analyze(st.track, **kwargs)
         assert len(str(err.value)) < 200
+
+
+#: The stored track's body and marker (tests/data/jarm_240fps.csv, in pixels).
+JARM = {"radius": 0.05, "chi": 0.10927, "km": 0.0777, "marker_radius": 0.04}
+JARM_ARGV = ["analyze", str(DATA / "jarm_240fps.csv"), "--radius", "0.05", "--chi", "0.10927",
+             "--km", "0.0777", "--marker-radius", "0.04"]  # fmt: skip
+#: What a message must never name: the model's internals, which the user did not give.
+INTERNAL = re.compile(r"\b(theta0|omega0|t_max|slip0|l_max)\b")
+
+
+def test_a_pixel_track_without_scale_is_refused_naming_scale(capsys):
+    with pytest.raises(ValueError, match=r"^scale: the tracked marker is 49.28 m .* in pixels"):
+        analyze(DATA / "jarm_240fps.csv", **JARM, profile_mu_k=False)
+    assert main(JARM_ARGV) == 2
+    assert "error: --scale: the tracked marker is 49.28 m" in capsys.readouterr().err
+
+
+@pytest.mark.parametrize(
+    ("kwargs", "message"),
+    [
+        ({"radius": 1e300}, r"^radius = 1e\+300 m is outside the allowed range \[0.0001, 10\] m"),
+        ({"radius": 1e-300}, r"^radius = 1e-300 m is outside"),
+        ({"scale": 1e-300}, r"^scale = 1e-300 px/m is outside the allowed range \[1, 1e\+09\]"),
+        ({"scale": 1e300}, r"^scale = 1e\+300 px/m is outside"),
+        ({"g": 1e300}, r"^g = 1e\+300 m/s\^2 is outside the allowed range \[0.01, 100\]"),
+        ({"g": 1e-300}, r"^g = 1e-300 m/s\^2 is outside"),
+        ({"marker_angle": 1e300}, r"^marker_angle = 1e\+300 rad is outside .*6.28319\] rad"),
+        ({"alpha": 1e300}, r"^alpha = 1e\+300 rad is outside"),
+        ({"marker_radius": 1e-300}, r"^marker_radius = 1e-300 m is outside .*\[R/1000, 2 R\]"),
+        ({"radius": 10**400}, r"^radius = ~1e\+400 is outside the allowed range of float64"),
+    ],
+)
+def test_huge_and_tiny_values_name_the_users_option_with_its_unit(kwargs, message):
+    args = {**JARM, "scale": 1230.539145, "profile_mu_k": False, **kwargs}
+    with pytest.raises(ValueError, match=message) as err:
+        analyze(DATA / "jarm_240fps.csv", **args)
+    assert len(str(err.value)) <= 200 and not INTERNAL.search(str(err.value))
+
+
+@pytest.mark.parametrize(
+    ("option", "value", "unit"),
+    [("--radius", "1e300", "m"), ("--radius", "1e-300", "m"), ("--scale", "1e-300", "px/m"),
+     ("--g", "1e300", "m/s^2"), ("--g", "1e-300", "m/s^2"), ("--marker-angle", "1e300", "deg"),
+     ("--marker-angle", "-361", "deg"), ("--scale", "nan", "px/m")],
+)  # fmt: skip
+def test_the_command_line_refuses_them_naming_the_option(capsys, option, value, unit):
+    argv = [a for a in JARM_ARGV if a != option]
+    with pytest.raises(SystemExit):
+        main([*argv, "--scale", "1230.5", option, value])
+    err = capsys.readouterr().err.strip().splitlines()[-1]
+    assert f"argument {option}: " in err and f"] {unit}" in err, err
+    assert not INTERNAL.search(err) and "Traceback" not in err
+
+
+@pytest.mark.parametrize(
+    ("kwargs", "name"),
+    [({"window": "7"}, "window"), ({"window": 7.0}, "window"), ({"window": True}, "window"),
+     ({"profile_mu_k": "no"}, "profile_mu_k"), ({"profile_mu_k": 0}, "profile_mu_k"),
+     ({"rule": 1}, "rule"), ({"g": "9.81"}, "g"), ({"scale": True}, "scale")],
+)  # fmt: skip
+def test_a_wrong_type_is_a_type_error_naming_it(kwargs, name):
+    with pytest.raises(TypeError, match=rf"^{name} must be"):
+        analyze(DATA / "jarm_240fps.csv", **{**JARM, "scale": 1230.539145, **kwargs})
+
+
+@pytest.mark.parametrize(
+    ("kwargs", "message"),
+    [({"window": 8}, r"^window must be an odd number"), ({"window": 5}, r"^window = 5 is outside"),
+     ({"rule": "bogus"}, r"^rule must be 'paper' or 'normal_force'")],
+)  # fmt: skip
+def test_window_and_rule_values_are_checked(kwargs, message):
+    with pytest.raises(ValueError, match=message):
+        analyze(DATA / "jarm_240fps.csv", **JARM, scale=1230.539145, **kwargs)
+
+
+def test_a_design_sheet_value_out_of_range_says_where_it_came_from(tmp_path):
+    path = tmp_path / "sheet.json"
+    path.write_text(json.dumps({"body": {"chi": 0.1, "km": 0.1, "radius": 1e300}}))
+    with pytest.raises(ValueError, match=r"^radius = 1e\+300 m \(from design\) is outside"):
+        analyze(DATA / "jarm_240fps.csv", design=path, scale=1230.539145)
 
 
 # --- the statistical claims (slow) ---------------------------------------------------------

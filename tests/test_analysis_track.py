@@ -4,17 +4,31 @@ simulated angles and distances within the noise."""
 
 from __future__ import annotations
 
+import io
 import math
+import os
+import re
+import subprocess
+import sys
+import time
 from pathlib import Path
 
 import numpy as np
 import pytest
 
 import eccjump
+from eccjump import _userfiles
 from eccjump.experiment.geometry import RampFrame, marker_offset, theta_from_marker
 from eccjump.experiment.reconstruct import derivative_weights, reconstruct
+from eccjump.experiment.sheet import design_inputs
 from eccjump.experiment.synthetic import synthetic_track
-from eccjump.experiment.track import MIN_FRAMES, read_track, track_from_arrays, write_csv
+from eccjump.experiment.track import (
+    MAX_FRAMES,
+    MIN_FRAMES,
+    read_track,
+    track_from_arrays,
+    write_csv,
+)
 
 DATA = Path(__file__).parent / "data"
 JARM_BODY = eccjump.Cylinder(chi=0.10927, km=0.0777)  # eccjump design --min-apex, 66.087 deg
@@ -111,3 +125,191 @@ def test_a_csv_without_a_column_is_an_error_naming_it(tmp_path):
     p.write_text("t,xc,yc,xm\n0,1,2,3\n")
     with pytest.raises(ValueError, match=r"missing column.*ym"):
         read_track(p)
+
+
+# --- reading the user's file (issue 46, item 1 and 11) ----------------------------------------
+
+GOOD = DATA / "jarm_240fps.csv"
+
+
+def _good_rows() -> list[list[str]]:
+    lines = [ln for ln in GOOD.read_text().splitlines() if not ln.startswith("#")]
+    return [ln.split(",") for ln in lines]
+
+
+def _refused_in_time(code: str) -> str:
+    """Run ``code`` in a subprocess with a time limit (a hang fails, not hangs); the
+    ValueError's message it prints."""
+    proc = subprocess.run(
+        [sys.executable, "-c", f"try:\n    {code}\nexcept ValueError as e:\n    print(e)"],
+        capture_output=True, text=True, timeout=30, check=False,
+    )  # fmt: skip
+    assert proc.returncode == 0, proc.stderr[-300:]
+    return proc.stdout.strip()
+
+
+@pytest.mark.skipif(not hasattr(os, "mkfifo"), reason="no FIFOs here")
+def test_a_fifo_is_refused_without_blocking(tmp_path):
+    fifo = tmp_path / "t.csv"
+    os.mkfifo(fifo)
+    msg = _refused_in_time(f"from eccjump.experiment import read_track; read_track({str(fifo)!r})")
+    assert msg.startswith("source:") and "FIFO" in msg and len(msg) <= 200
+    design = f"from eccjump.experiment.sheet import design_inputs; design_inputs({str(fifo)!r})"
+    assert _refused_in_time(design).startswith("design:")
+
+
+@pytest.mark.parametrize("device", ["/dev/zero", "/dev/null"])
+def test_a_device_is_refused_before_it_is_read(device):
+    if not os.path.exists(device):
+        pytest.skip(f"no {device}")
+    msg = _refused_in_time(f"from eccjump.experiment import read_track; read_track({device!r})")
+    assert re.match(r"^source: .* is a character device, not a regular", msg), msg
+
+
+def test_a_directory_is_refused(tmp_path):
+    with pytest.raises(ValueError, match=r"^source: .* is a directory"):
+        read_track(tmp_path)
+
+
+def test_a_sparse_terabyte_is_refused_from_its_size(tmp_path):
+    p = tmp_path / "huge.csv"
+    p.write_text("t,xc,yc,xm,ym\n")
+    try:
+        os.truncate(p, 2**40)
+    except OSError:
+        pytest.skip("no sparse files here")
+    started = time.perf_counter()
+    msg = _refused_in_time(f"from eccjump.experiment import read_track; read_track({str(p)!r})")
+    assert re.match(r"^source: .* bytes, more than the 64 MiB allowed", msg), msg
+    assert time.perf_counter() - started < 10.0  # a second or so of it starting Python
+
+
+def test_stdin_is_read_with_the_same_bound(monkeypatch):
+    data = GOOD.read_bytes()
+    monkeypatch.setattr(sys, "stdin", io.TextIOWrapper(io.BytesIO(data)))
+    tr = read_track("-", scale=1230.539145)
+    assert tr.source == "standard input"
+    assert np.array_equal(tr.c, read_track(GOOD, scale=1230.539145).c)
+    monkeypatch.setattr(_userfiles, "MAX_BYTES", len(data) - 1)
+    monkeypatch.setattr(sys, "stdin", io.TextIOWrapper(io.BytesIO(data)))
+    with pytest.raises(ValueError, match=r"^source: standard input has more than"):
+        read_track("-")
+
+
+def _write(path: Path, rows: list[list[str]], delimiter=",", encoding="utf-8", end="\n"):
+    path.write_bytes((end.join(delimiter.join(r) for r in rows) + end).encode(encoding))
+    return path
+
+
+@pytest.mark.parametrize(
+    "dialect",
+    ["semicolon-decimal-comma", "tabs", "quoted", "utf-16", "utf-8-bom", "crlf", "spaces"],
+)
+def test_every_dialect_reads_the_same_track(tmp_path, dialect):
+    rows = _good_rows()
+    p = tmp_path / "t.csv"
+    if dialect == "semicolon-decimal-comma":
+        _write(p, [[c.replace(".", ",") for c in r] for r in rows], ";")
+    elif dialect == "tabs":
+        _write(p, rows, "\t")
+    elif dialect == "quoted":
+        _write(p, [[f'"{c}"' for c in r] for r in rows])
+    elif dialect == "utf-16":
+        _write(p, rows, encoding="utf-16")
+        assert p.read_bytes()[:2] in (b"\xff\xfe", b"\xfe\xff")
+    elif dialect == "utf-8-bom":
+        _write(p, rows, encoding="utf-8-sig")
+    elif dialect == "crlf":
+        _write(p, rows, end="\r\n")
+    else:
+        _write(p, rows, ", ")
+    got, want = read_track(p, scale=1230.539145), read_track(GOOD, scale=1230.539145)
+    for a, b in ((got.t, want.t), (got.c, want.c), (got.m, want.m)):
+        assert np.array_equal(a, b)
+
+
+@pytest.mark.parametrize("change", [1, -1], ids=["extra-cell", "missing-cell"])
+def test_a_row_must_have_the_headers_cells(tmp_path, change):
+    rows = _good_rows()
+    rows[7] = rows[7] + ["1"] if change > 0 else rows[7][:-1]
+    p = _write(tmp_path / "t.csv", rows)
+    with pytest.raises(ValueError, match=r"^source: line 8 has \d cells, the header 5"):
+        read_track(p)
+
+
+def test_a_five_million_cell_row_is_refused_by_its_length(tmp_path):
+    p = tmp_path / "t.csv"
+    p.write_text("t,xc,yc,xm,ym\n" + "1," * 5_000_000 + "\n")
+    with pytest.raises(ValueError, match=r"^source: line 2 has 10,000,000 characters"):
+        read_track(p)
+
+
+def test_too_many_frames_are_refused(tmp_path):
+    n = MAX_FRAMES + 1
+    t = np.arange(n) / 240.0
+    rows = [["t", "xc", "yc", "xm", "ym"]] + [[f"{x:.6f}", "0", "0", "0.01", "0"] for x in t]
+    with pytest.raises(ValueError, match=rf"^source: more than {MAX_FRAMES:,} frames"):
+        read_track(_write(tmp_path / "t.csv", rows))
+    with pytest.raises(ValueError, match=r"^t: a track needs 12 to 10,000 frames"):
+        track_from_arrays(t, 0 * t, 0 * t, 0 * t + 0.01, 0 * t)
+
+
+def test_too_many_lines_are_refused_before_they_are_read(tmp_path):
+    p = tmp_path / "t.csv"
+    p.write_text("t,xc,yc,xm,ym\n" + "\n" * 200_000)
+    started = time.perf_counter()
+    with pytest.raises(ValueError, match=r"^source: 200,001 lines, more than the 100,000"):
+        read_track(p)
+    assert time.perf_counter() - started < 1.0
+
+
+@pytest.mark.parametrize(
+    ("times", "message"),
+    [(np.arange(20) * 100.0, r"^t: the track lasts 1900 s"),
+     (np.arange(20) * 1e-9, r"^t: a median frame interval of 1e-09 s")],
+    ids=["too-long", "too-fast"],
+)  # fmt: skip
+def test_times_in_other_units_are_refused(times, message):
+    _, *rest = _columns()
+    with pytest.raises(ValueError, match=message):
+        track_from_arrays(times, *rest)
+
+
+@pytest.mark.parametrize("scale", [1e-300, 0.5, 1e10, math.nan])
+def test_a_scale_outside_its_range_is_refused_naming_it(scale):
+    with pytest.raises(ValueError, match=r"^scale = .* px/m is outside the allowed range"):
+        track_from_arrays(*_columns(), scale=scale)
+
+
+def test_a_far_coordinate_is_refused_naming_its_column():
+    t, xc, yc, xm, ym = _columns()
+    with pytest.raises(ValueError, match=r"^xm: 1e\+07 m at frame 3"):
+        track_from_arrays(t, xc, yc, np.where(np.arange(t.size) == 3, 1e7, xm), ym)
+
+
+@pytest.mark.parametrize(
+    "text", ['{"body": ' * 100_000, '{"body": {"chi": 1' + "0" * 5000 + ', "km": 0.1}}',
+             '{"body": {"chi": 1e400, "km": 0.1}}'],
+    ids=["nested", "long-int", "overflow"],
+)  # fmt: skip
+def test_a_bad_design_sheet_is_a_value_error_naming_design(tmp_path, text):
+    p = tmp_path / "sheet.json"
+    p.write_text(text)
+    try:
+        out = design_inputs(p)
+    except ValueError as err:
+        assert str(err).startswith("design:") and len(str(err)) <= 200
+    else:  # json reads 1e400 as inf: the body's check refuses it
+        assert out["chi"] == math.inf
+
+
+@pytest.mark.parametrize(
+    ("path", "message"),
+    [("a\0b", r"^source: a\?b is no path"), ("x" * 5000, r"^source: cannot read \.\.\.x+: "),
+     ("", r"^source: cannot read : ")],
+    ids=["nul", "long", "empty"],
+)  # fmt: skip
+def test_a_bad_path_is_a_value_error_naming_source(path, message):
+    with pytest.raises(ValueError, match=message) as err:
+        read_track(path)
+    assert len(str(err.value)) <= 200

@@ -21,6 +21,7 @@ from fuzz_cases import (
     MAX_MESSAGE,
     HypothesisDrawer,
     Outcome,
+    alarm,
     case_cli,
     check_cli,
     make_case,
@@ -68,7 +69,7 @@ BUDGET = {
 
 def _judge(family: str, data: st.DataObject) -> None:
     case = make_case(family, HypothesisDrawer(data))
-    with warnings.catch_warnings():
+    with warnings.catch_warnings(), alarm(120):  # a hang fails the test instead
         warnings.simplefilter("ignore")  # overflow in casts of drawn values, matplotlib
         result: Outcome = outcome(case)
     assert not result.violation, f"{result.kind}: {result.detail}\n  {case.describe()}"

@@ -204,6 +204,26 @@ def degrees_in(lo: float, hi: float) -> Callable[[str], float]:
     return parse
 
 
+def real_in(lo: float, hi: float, unit: str) -> Callable[[str], float]:
+    """A real option within [lo, hi] in ``unit`` (NaN and infinities refused)."""
+
+    def parse(text: str) -> float:
+        try:
+            value = float(text)
+        except ValueError:
+            raise argparse.ArgumentTypeError(
+                f"{short_text(text)!r} is not a number in [{lo:g}, {hi:g}] {unit}"
+            ) from None
+        if not lo <= value <= hi:
+            raise argparse.ArgumentTypeError(
+                f"{short(value)} is outside the allowed range [{lo:g}, {hi:g}] {unit}"
+            )
+        return value
+
+    parse.__name__ = f"number in {unit}"
+    return parse
+
+
 def radians_hint(option: str, degrees: float) -> None:
     """A note on stderr when an angle given in degrees looks like radians (0 < value <=
     pi/2: a ramp of a degree or so is rare, radians are what Python takes)."""

@@ -1,16 +1,24 @@
 """``eccjump analyze``: a tracked experiment (CSV ``t,xc,yc,xm,ym`` or Tracker's export) in,
 the verdict -- jarm, slip_first or undetermined -- with its evidence out, as text or JSON, and
-optionally a figure of data and model (the site's page "Analysing an experiment")."""
+optionally a figure of data and model (the site's page "Analysing an experiment").
+
+The ranges are ``eccjump.experiment.inputs.BOUNDS``'s, checked by the parser (angles in
+degrees); what depends on another value (``--marker-radius`` on R, the track on its scale)
+is checked by ``eccjump.analyze``, whose messages name its keywords: :func:`_as_options`
+turns the one they start with into the option."""
 
 from __future__ import annotations
 
 import argparse
 import json
 import math
+import re
+from collections.abc import Callable
 
-from eccjump.cli._args import degrees_in, radians_hint
+from eccjump.cli._args import degrees_in, radians_hint, real_in
 from eccjump.cli._output import check_output, figure_suffixes, save_figure
 from eccjump.experiment import analyze
+from eccjump.experiment.inputs import cli_range
 
 
 def add_parser(sub: argparse._SubParsersAction) -> None:
@@ -21,13 +29,17 @@ def add_parser(sub: argparse._SubParsersAction) -> None:
         "marker, detect slip, lift-off and landing, fit the model (simulate) and give the "
         "verdict (jarm, slip_first or undetermined) with its evidence.",
     )
-    p.add_argument("track", help="CSV with t,xc,yc,xm,ym (s; m or px) or Tracker's data export")
-    p.add_argument("--radius", type=float, default=None, help="R [m] (or from --design)")
+    p.add_argument(
+        "track",
+        help="CSV with t,xc,yc,xm,ym (s; m or px; commas, semicolons or tabs) or Tracker's "
+        "data export; - reads the standard input",
+    )
+    p.add_argument("--radius", type=_bounded("radius"), default=None, help="R [m] (or --design)")
     p.add_argument("--chi", type=float, default=None, help="d/R (or from --design)")
     p.add_argument("--km", type=float, default=None, help="shell mass fraction (or --design)")
     p.add_argument(
         "--alpha",
-        type=degrees_in(0.0, 90.0),
+        type=_bounded("alpha"),
         default=None,
         help="ramp angle [deg] (default: from --design, else estimated from the track)",
     )
@@ -36,13 +48,15 @@ def add_parser(sub: argparse._SubParsersAction) -> None:
     )
     p.add_argument(
         "--marker-angle",
-        type=float,
+        type=_bounded("marker_angle"),
         default=0.0,
         help="marker angle from the axle->CM direction, measured like theta [deg] (default 0)",
     )
-    p.add_argument("--scale", type=float, default=None, help="pixels per metre (pixel tracks)")
+    p.add_argument(
+        "--scale", type=_bounded("scale"), default=None, help="pixels per metre (pixel tracks)"
+    )
     p.add_argument("--design", default=None, help="a sheet of eccjump design --json")
-    p.add_argument("--g", type=float, default=9.81, help="gravity [m/s^2] (default 9.81)")
+    p.add_argument("--g", type=_bounded("g"), default=9.81, help="gravity [m/s^2] (default 9.81)")
     p.add_argument(
         "--rule",
         choices=("paper", "normal_force"),
@@ -58,19 +72,22 @@ def run(args: argparse.Namespace) -> int:
     figure = check_output("--figure", args.figure, figure_suffixes()) if args.figure else None
     if args.alpha is not None:
         radians_hint("--alpha", args.alpha)
-    res = analyze(
-        args.track,
-        radius=args.radius,
-        chi=args.chi,
-        km=args.km,
-        alpha=None if args.alpha is None else math.radians(args.alpha),
-        marker_angle=math.radians(args.marker_angle),
-        marker_radius=args.marker_radius,
-        scale=args.scale,
-        design=args.design,
-        g=args.g,
-        rule=args.rule,
-    )
+    try:
+        res = analyze(
+            args.track,
+            radius=args.radius,
+            chi=args.chi,
+            km=args.km,
+            alpha=None if args.alpha is None else math.radians(args.alpha),
+            marker_angle=math.radians(args.marker_angle),
+            marker_radius=args.marker_radius,
+            scale=args.scale,
+            design=args.design,
+            g=args.g,
+            rule=args.rule,
+        )
+    except (ValueError, TypeError) as err:
+        raise type(err)(_as_options(str(err))) from None
     if args.json:
         print(json.dumps(res.to_dict(), indent=1, allow_nan=False))
     else:
@@ -82,3 +99,31 @@ def run(args: argparse.Namespace) -> int:
         if not args.json:
             print(f"figure: {figure}")
     return 0
+
+
+def _bounded(name: str) -> Callable[[str], float]:
+    """The parser's type for BOUNDS[name]: its range in the command line's unit."""
+    lo, hi, unit = cli_range(name)
+    return degrees_in(lo, hi) if unit == "deg" else real_in(lo, hi, unit)
+
+
+#: analyze's keywords and the options that give them.
+_OPTIONS = {
+    "radius": "--radius",
+    "chi": "--chi",
+    "km": "--km",
+    "alpha": "--alpha",
+    "marker_radius": "--marker-radius",
+    "marker_angle": "--marker-angle",
+    "scale": "--scale",
+    "design": "--design",
+    "g": "--g",
+    "rule": "--rule",
+}
+_LEADING_NAME = re.compile(r"^([a-z_]+)\b")
+
+
+def _as_options(message: str) -> str:
+    """A message of eccjump.analyze with the keyword it starts with as its option
+    (``marker_radius = ...`` -> ``--marker-radius = ...``)."""
+    return _LEADING_NAME.sub(lambda m: _OPTIONS.get(m.group(1), m.group(1)), message, count=1)

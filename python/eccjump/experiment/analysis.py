@@ -21,11 +21,11 @@ import math
 import os
 import time
 from dataclasses import dataclass, field
-from typing import TYPE_CHECKING, Any
+from typing import TYPE_CHECKING, Any, get_args
 
 import numpy as np
 
-from eccjump._checks import Rule, optional_real, real, rule_name
+from eccjump._checks import Rule, flag, integer, optional_real, rule_name, short
 from eccjump._html import card
 from eccjump.body import Cylinder
 from eccjump.experiment import figure
@@ -42,9 +42,10 @@ from eccjump.experiment.fit import (
     slip_intervals,
     time_errors,
 )
-from eccjump.experiment.reconstruct import Reconstruction, reconstruct
+from eccjump.experiment.inputs import MARKER_IN_R, in_range
+from eccjump.experiment.reconstruct import MIN_WINDOW, Reconstruction, reconstruct
 from eccjump.experiment.sheet import design_inputs
-from eccjump.experiment.track import Track, read_track
+from eccjump.experiment.track import MAX_FRAMES, Track, load_track
 
 if TYPE_CHECKING:  # pragma: no cover
     from matplotlib.figure import Figure
@@ -254,32 +255,35 @@ def analyze(
     ----------
     track : Track, str or path
         A :class:`Track`, or the path of a CSV (``t,xc,yc,xm,ym``; s, and m or px) or of
-        Tracker's exported data table.
+        Tracker's exported data table (``"-"``: the standard input); a regular file of at
+        most 64 MiB and 10,000 frames (``read_track``).
     radius : float or None
-        R [m], > 0; or from ``design``.
+        R [m], in [1e-4, 10]; or from ``design``.
     chi, km : float or None
         The body (chi in [0, 1], km in (0, 1 - chi]); or from ``design``. Explicit values win.
     alpha : float or None
-        The ramp angle [rad], in (0, pi/2); None estimates it from the axle's path in
+        The ramp angle [rad], in [0, pi/2]; None estimates it from the axle's path in
         contact, with its standard error.
     marker_angle : float, default 0.0
         The marker's angle from the direction axle -> centre of mass [rad], measured like
-        theta (towards the direction of rolling).
+        theta (towards the direction of rolling), in [-2 pi, 2 pi].
     marker_radius : float or None
-        The marker's distance from the axle [m], in (0, 2 R]; None measures it from the track.
+        The marker's distance from the axle [m], in [R/1000, 2 R]; None measures it from the
+        track (which must put it there too: a track in pixels without ``scale`` does not).
     scale : float or None
-        Pixels per metre, when the file holds pixels.
+        Pixels per metre, in [1, 1e9], when the file holds pixels.
     design : str, path, dict or None
         A sheet of ``eccjump design --json`` (its path or its dict) for the body, R and alpha.
     g : float, default 9.81
-        Gravity [m/s^2], > 0.
+        Gravity [m/s^2], in [0.01, 100].
     rule : {"paper", "normal_force"}, default "paper"
         The lift-off rule of the model.
     window : int or None
-        The smoothing window in frames (odd, >= 7); None chooses it from the frame rate.
+        The smoothing window in frames (an odd int, at least 7, at most the frames); None
+        chooses it from the frame rate.
     profile_mu_k : bool, default True
         Widen mu_k's interval by its profile (a few seconds; the local interval alone can
-        miss a second minimum).
+        miss a second minimum). True or False, nothing else.
 
     Returns
     -------
@@ -292,8 +296,9 @@ def analyze(
     Raises
     ------
     ValueError
-        For a bad track (NaN, unsorted or repeated times, missing columns, too few frames)
-        or a parameter outside its range; the message names it.
+        For a bad track (a file that is not a regular file or is too large, a row whose
+        cells do not match the header, NaN, unsorted or repeated times, missing columns, too
+        few or too many frames) or a parameter outside its range; the message names it.
     TypeError
         For an argument of the wrong type.
 
@@ -312,19 +317,18 @@ def analyze(
     """
     started = time.perf_counter()
     body, R, a_given, notes = _inputs(radius, chi, km, alpha, design)
+    beta = in_range("marker_angle", marker_angle)
+    gg = in_range("g", g)
+    px = None if scale is None else in_range("scale", scale)
+    r_m = _marker_radius(marker_radius, R)
+    w = None if window is None else integer("window", window, MIN_WINDOW, MAX_FRAMES)
+    profiled = flag("profile_mu_k", profile_mu_k)
+    rule = _rule(rule)
     if not isinstance(track, Track):
-        track = read_track(track, scale=scale)
-    beta = real("marker_angle", marker_angle)
-    if not math.isfinite(beta):
-        raise ValueError(f"marker_angle must be finite [rad], got {beta:g}")
-    r_m = optional_real("marker_radius", marker_radius)
-    if r_m is not None and not (math.isfinite(r_m) and 0 < r_m <= 2 * R):
-        raise ValueError(f"marker_radius must be in (0, 2 R] = (0, {2 * R:g}] m, got {r_m:g}")
-    gg = real("g", g)
-    if not (math.isfinite(gg) and gg > 0):
-        raise ValueError(f"g must be a finite acceleration > 0 [m/s^2], got {gg:g}")
+        track = load_track(track, scale=px, fmt="auto", name="track")
+    _check_marker_distance(track, R, px)
     rec = reconstruct(
-        track, radius=R, marker_angle=beta, marker_radius=r_m, alpha=a_given, window=window
+        track, radius=R, marker_angle=beta, marker_radius=r_m, alpha=a_given, window=w
     )
     notes += _marker_note(rec, r_m)
     setup = Setup(
@@ -334,13 +338,13 @@ def analyze(
         gg,
         rec.marker_radius,
         beta,
-        rule_name(rule),
+        rule,
         fit_alpha=a_given is None,
     )
     observed = observe(rec)
     best = fit(setup, track, rec)
     mu_k_iv = best.interval("mu_k")
-    if profile_mu_k:
+    if profiled:
         grid, costs = profile(best, setup, track, rec)
         mu_k_iv = profile_interval(grid, costs, best)
     return _judge(track, rec, observed, best, setup, mu_k_iv, notes, started)
@@ -473,26 +477,58 @@ def _inputs(
 ) -> tuple[Cylinder, float, float | None, tuple[str, ...]]:
     sheet = design_inputs(design) if design is not None else {}
     notes: tuple[str, ...] = ()
-    R = optional_real("radius", radius)
-    R = R if R is not None else sheet.get("radius")
-    c = optional_real("chi", chi)
-    c = c if c is not None else sheet.get("chi")
-    k = optional_real("km", km)
-    k = k if k is not None else sheet.get("km")
-    a = optional_real("alpha", alpha)
-    a = a if a is not None else sheet.get("alpha")
+    given = {"radius": radius, "chi": chi, "km": km, "alpha": alpha}
+    for name, v in given.items():
+        optional_real(name, v)  # the type first, as given
+    R, c, k, a = (v if v is not None else sheet.get(name) for name, v in given.items())
     for name, v in (("radius", R), ("chi", c), ("km", k)):
         if v is None:
             raise ValueError(f"{name} is needed (give it, or a design sheet that holds it)")
     assert R is not None and c is not None and k is not None
-    if not (math.isfinite(R) and R > 0):
-        raise ValueError(f"radius must be a finite length > 0 [m], got {R:g}")
-    if a is not None and not 0 <= a <= math.pi / 2:
-        raise ValueError(f"alpha must be in [0, pi/2] rad (math.radians for degrees), got {a:g}")
+    R = in_range("radius", R, "" if radius is not None else " (from design)")
+    if a is not None:
+        a = in_range("alpha", a, "" if alpha is not None else " (from design)")
     body = Cylinder(chi=c, km=k)
     if not body.km > 0:
         raise ValueError("km must be > 0: the model's spin in flight is undetermined at km = 0")
     return body, R, a, notes
+
+
+def _marker_radius(value: object, radius: float) -> float | None:
+    """marker_radius [m] within MARKER_IN_R times R, or None."""
+    r = optional_real("marker_radius", value)
+    lo, hi = MARKER_IN_R
+    if r is not None and not lo * radius <= r <= hi * radius:
+        raise ValueError(
+            f"marker_radius = {short(r)} m is outside the allowed range [R/{1 / lo:g}, "
+            f"{hi:g} R] = [{lo * radius:.4g}, {hi * radius:.4g}] m"
+        )
+    return r
+
+
+def _check_marker_distance(track: Track, radius: float, scale: float | None) -> None:
+    """The tracked marker must be a point of the body (within 2 R of the axle, as
+    marker_radius): a track in pixels without ``scale`` has it tens of "metres" away."""
+    d = float(np.median(np.hypot(*(track.m - track.c).T)))
+    lo, hi = MARKER_IN_R
+    if d > hi * radius:
+        why = "a track in pixels needs it [px/m]" if scale is None else "check it and the radius"
+        raise ValueError(
+            f"scale: the tracked marker is {d:.4g} m from the axle, more than {hi:g} R = "
+            f"{hi * radius:.4g} m: {why}"
+        )
+    if d < lo * radius:
+        raise ValueError(
+            f"xm, ym: the tracked marker is {d:.3g} m from the axle, less than R/{1 / lo:g}: "
+            "track a point away from the axle (or check scale)"
+        )
+
+
+def _rule(value: object) -> Rule:
+    name = rule_name(value)
+    if name not in get_args(Rule):
+        raise ValueError(f"rule must be 'paper' or 'normal_force', got {short(name)}")
+    return name
 
 
 def _marker_note(rec: Reconstruction, given: float | None) -> tuple[str, ...]:

@@ -6,20 +6,21 @@ from __future__ import annotations
 import json
 import math
 import os
-from pathlib import Path
 from typing import Any
+
+from eccjump._checks import short
+from eccjump._userfiles import read_text
 
 
 def design_inputs(design: str | os.PathLike[str] | dict[str, Any]) -> dict[str, float]:
     """{"chi", "km", "alpha" [rad], and "radius" [m] if the sheet has one} from a design
     sheet (a path to its JSON, or the dict of ``Design.to_dict()``)."""
     if isinstance(design, str | os.PathLike):
+        text = read_text("design", design)  # the guard of every user's file
         try:
-            sheet = json.loads(Path(design).read_text())
-        except OSError as err:
-            raise ValueError(f"design: cannot read {str(design)[:80]}: {err.strerror}") from None
-        except (json.JSONDecodeError, UnicodeDecodeError):
-            raise ValueError(f"design: {str(design)[:80]} is not a JSON design sheet") from None
+            sheet = json.loads(text)
+        except (ValueError, RecursionError):  # an int of 5000 digits; [[[[... nested deep
+            raise ValueError(f"design: {str(design)[-80:]} is not a JSON design sheet") from None
     elif isinstance(design, dict):
         sheet = design
     else:
@@ -38,4 +39,7 @@ def design_inputs(design: str | os.PathLike[str] | dict[str, Any]) -> dict[str, 
 def _number(value: Any, name: str) -> float:
     if isinstance(value, bool) or not isinstance(value, int | float):
         raise ValueError(f"design: {name} in the sheet is not a number: {str(value)[:30]}")
-    return float(value)
+    try:
+        return float(value)
+    except OverflowError:
+        raise ValueError(f"design: {name} in the sheet is beyond float64: {short(value)}") from None
