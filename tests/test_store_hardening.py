@@ -19,8 +19,10 @@ import math
 import os
 import random
 import shutil
+import signal
 import subprocess
 import sys
+import time
 from pathlib import Path
 
 import numpy as np
@@ -162,6 +164,75 @@ for load in (store.load, store.open_dataset, motion_maps.load):
     assert len(lines) == 3
     for line in lines:
         assert "m.nc" in line and "not a readable netcdf map" in line and len(line) < MAX_MESSAGE
+
+
+def _children(pid: int) -> list[int]:
+    path = Path(f"/proc/{pid}/task/{pid}/children")
+    return [int(c) for c in path.read_text().split()] if path.exists() else []
+
+
+def _gone(pid: int) -> bool:
+    """Whether process ``pid`` has ended (a zombie not yet reaped counts as ended)."""
+    try:
+        return Path(f"/proc/{pid}/stat").read_text().rsplit(")", 1)[1].split()[0] in "ZX"
+    except (FileNotFoundError, ProcessLookupError, IndexError):
+        return True
+
+
+def _cpu_seconds(pid: int) -> float:
+    fields = Path(f"/proc/{pid}/stat").read_text().rsplit(")", 1)[1].split()
+    return (int(fields[11]) + int(fields[12])) / os.sysconf("SC_CLK_TCK")
+
+
+@pytest.mark.skipif(not sys.platform.startswith("linux"), reason="/proc and PR_SET_PDEATHSIG")
+@pytest.mark.parametrize("how", ["SIGKILL", "SIGTERM"])
+def test_the_probe_child_dies_with_its_caller(tmp_path, region, how):
+    """Issue 46, 2: a caller killed while the netCDF probe spins on a damaged file left the
+    child spinning at 100 % CPU for ever, re-parented to init. The probe's reading is
+    replaced by a spin (as HDF5 on the damaged file of the test above)."""
+    path = tmp_path / "m.nc"
+    store.save(region, path)
+    code = (
+        "from eccjump import store\n"
+        "store._PROBE_BODY = 'while True: pass'\n"
+        "store.PROBE_SECONDS = 600\n"
+        f"store.load({str(path)!r})\n"
+    )
+    parent = subprocess.Popen([sys.executable, "-c", code])
+    kids: list[int] = []
+    try:
+        deadline = time.monotonic() + 60
+        while not (kids := _children(parent.pid)) or _cpu_seconds(kids[0]) < 0.5:
+            assert time.monotonic() < deadline and parent.poll() is None
+            time.sleep(0.05)
+        parent.send_signal(getattr(signal, how))
+        parent.wait(10)
+        deadline = time.monotonic() + 2
+        while not _gone(kids[0]) and time.monotonic() < deadline:
+            time.sleep(0.02)
+        assert _gone(kids[0]), f"the probe child {kids[0]} outlived its caller"
+    finally:
+        parent.kill()
+        for kid in kids:  # a child left over by a failure
+            with contextlib.suppress(ProcessLookupError):
+                os.kill(kid, signal.SIGKILL)
+
+
+@pytest.mark.skipif(os.name != "posix", reason="RLIMIT_CPU")
+def test_the_probe_child_stops_after_its_cpu_time(tmp_path, monkeypatch):
+    """The backstop where PR_SET_PDEATHSIG is missing: the child stops itself (SIGXCPU, no
+    core file) after its time, whoever waits for it."""
+    monkeypatch.setattr(store, "_PROBE_BODY", "while True: pass")
+    start = time.monotonic()
+    proc = subprocess.run(
+        store.probe_command("netcdf4", tmp_path / "x.nc", 0.5),
+        cwd=tmp_path,
+        capture_output=True,
+        timeout=30,
+        check=False,
+    )
+    assert proc.returncode in (-signal.SIGXCPU, -signal.SIGKILL), proc
+    assert time.monotonic() - start < 10 and os.listdir(tmp_path) == []
 
 
 def test_every_loader_refuses_a_fifo_without_opening_it(tmp_path):

@@ -22,6 +22,7 @@ from __future__ import annotations
 import ctypes
 import errno
 import json
+import math
 import os
 import re
 import shutil
@@ -523,10 +524,31 @@ def _file_type(mode: int) -> str:
 PROBE_SECONDS = 10.0
 PROBE_BYTES_PER_SECOND = 50e6
 
-#: Reads every variable and attribute of the netCDF file argv[2] with the engine argv[1].
-_PROBE = """
-import sys
-engine, path = sys.argv[1:]
+#: The start of the probe child (argv: the caller's pid, its CPU-time limit in seconds, the
+#: engine, the path). It dies with its caller: a caller killed by SIGKILL or SIGTERM (a job's
+#: timeout, a kernel restart) cannot kill its child, which, re-parented to init, would spin in
+#: HDF5 for ever. Linux's PR_SET_PDEATHSIG sends it SIGKILL when its parent dies (checked
+#: after the call, in case the parent died first); everywhere, RLIMIT_CPU stops it once it has
+#: used its time (SIGXCPU, without a core file).
+_PROBE_START = """
+import os, sys
+parent, cpu_limit = int(sys.argv[1]), int(sys.argv[2])
+engine, path = sys.argv[3:5]
+if sys.platform.startswith("linux"):
+    import ctypes, signal
+    ctypes.CDLL(None).prctl(1, int(signal.SIGKILL))  # PR_SET_PDEATHSIG
+if os.getppid() != parent:
+    sys.exit("the caller has gone")
+try:
+    import resource
+    resource.setrlimit(resource.RLIMIT_CORE, (0, 0))
+    resource.setrlimit(resource.RLIMIT_CPU, (cpu_limit, cpu_limit + 1))
+except (ImportError, ValueError, OSError):
+    pass
+"""
+
+#: Reads every variable and attribute of the netCDF file ``path`` with ``engine``.
+_PROBE_BODY = """
 if engine == "h5netcdf":
     import h5netcdf
     def walk(g):
@@ -553,6 +575,14 @@ else:
 """
 
 
+def probe_command(engine: str, path: str | os.PathLike, limit: float) -> list[str]:
+    """The command of the probe child that reads ``path`` with ``engine`` within ``limit``
+    seconds (of CPU time: the caller kills it after as many seconds of wall time)."""
+    cpu = str(math.ceil(limit) + 1)
+    code = _PROBE_START + _PROBE_BODY
+    return [sys.executable, "-c", code, str(os.getpid()), cpu, engine, os.fspath(path)]
+
+
 def _probe_netcdf(path: str | os.PathLike, engine: str) -> None:
     """ValueError naming ``path`` unless the netCDF library reads all of it in a subprocess.
 
@@ -561,12 +591,13 @@ def _probe_netcdf(path: str | os.PathLike, engine: str) -> None:
     the global heap of a motion map do, in netCDF4 1.7 / HDF5 1.14), or crash the process.
     No check of the file's signature or size finds such damage, and a thread cannot be
     stopped, so the file is first read whole in a child process with a time limit; only a
-    file it reads is then opened here. Costs about 0.3 s per file.
+    file it reads is then opened here. The child dies with its caller (see
+    :data:`_PROBE_START`). Costs about 0.3 s per file.
     """
     limit = PROBE_SECONDS + os.path.getsize(path) / PROBE_BYTES_PER_SECOND
     try:
         proc = subprocess.run(
-            [sys.executable, "-c", _PROBE, engine, os.fspath(path)],
+            probe_command(engine, path, limit),
             stdin=subprocess.DEVNULL,
             capture_output=True,
             text=True,
