@@ -121,13 +121,57 @@ def test_a_map_of_ours_is_still_replaced(tmp_path, region):
         assert store.load(path).alpha.size == 3
 
 
+@pytest.mark.parametrize("suffix", [".npz", ".nc"])
+def test_save_keeps_a_users_file_unless_overwrite_is_given(tmp_path, region, suffix):
+    """Issue 46, 8: ``maps.save`` replaced any regular file at the path (a user's
+    ``mydata.npz``), though its docstring says only a map is replaced. A map is recognised by
+    its content: a user's HDF5 file or zip named like a map is not one."""
+    path = tmp_path / f"mydata{suffix}"
+    user = {".npz": _users_zip, ".nc": _users_hdf5}[suffix](path)
+    for save in (store.save, eccjump.maps.save):
+        with pytest.raises(FileExistsError) as info:
+            save(region, path)
+        msg = str(info.value)
+        assert isinstance(info.value, ValueError) and len(msg) < MAX_MESSAGE
+        assert "mydata" in msg and "overwrite=True" in msg
+    code, _, err = cli(*MAP, "-o", str(path))
+    assert code == 2 and "--overwrite" in one_line(err) and "not a map" in err
+    assert path.read_bytes() == user and sorted(os.listdir(tmp_path)) == [path.name]
+    store.save(region, path, overwrite=True)
+    assert store.load(path).alpha.size == 3
+    store.save(region, path)  # a map of ours now: replaced without being asked
+    with pytest.raises(TypeError, match="overwrite"):
+        store.save(region, path, overwrite="yes")
+
+
+def _users_zip(path: Path) -> bytes:
+    np.savez(path, data=np.arange(3))  # an .npz, but not a map
+    return path.read_bytes()
+
+
+def _users_hdf5(path: Path) -> bytes:
+    xr.Dataset({"t": ("x", np.arange(3.0))}).to_netcdf(path, engine=store.netcdf_engine())
+    return path.read_bytes()
+
+
+def test_a_damaged_map_of_ours_is_still_replaced(tmp_path, region):
+    for suffix in (".npz", ".nc"):
+        path = tmp_path / f"m{suffix}"
+        store.save(region, path)
+        data = bytearray(path.read_bytes())
+        data[-200:] = bytes(200)  # the data damaged, the head (whose file it is) not
+        path.write_bytes(bytes(data))
+        store.save(region, path)
+        assert store.load(path) == region
+
+
 def test_a_zarr_store_that_is_not_ours_is_not_replaced(tmp_path, region):
     path = tmp_path / "foreign.zarr"
     xr.Dataset({"foo": ("x", np.arange(3))}).to_zarr(path, zarr_format=3, consolidated=False)
     before = tree(path)
     refused(store.save, path, region, path)
     code, _, err = cli(*MAP, "-o", str(path), "--overwrite")
-    assert code == 2 and "no zarr map of eccjump" in one_line(err)
+    assert code == 2 and "not a zarr map of eccjump" in one_line(err)
     assert tree(path) == before
 
 

@@ -31,6 +31,7 @@ import stat
 import subprocess
 import sys
 import warnings
+import zipfile
 from collections.abc import Mapping
 from pathlib import Path
 from typing import TYPE_CHECKING, Any, Literal
@@ -38,9 +39,10 @@ from typing import TYPE_CHECKING, Any, Literal
 import numpy as np
 from numpy.typing import NDArray
 
-from eccjump._checks import mapping
+from eccjump._checks import flag, mapping
 from eccjump._checks import path as check_path
 from eccjump._mapcheck import Invalid, check, check_layout, file_error, shown
+from eccjump._overwrite import check_overwrite, file_type
 from eccjump.classification import Region
 from eccjump.labelled import (
     COORD_ATTRS,
@@ -248,35 +250,64 @@ def _our_zarr_map(path: Path) -> bool:
         return False
 
 
-def check_replaceable(path: str | os.PathLike, by_directory: bool) -> None:
-    """ValueError naming ``path`` unless what is there may be replaced by a new map file
-    (``by_directory`` False: a regular file) or zarr store (True: a zarr map of ours). A
-    directory of other files, a directory at an .npz/.nc path, a FIFO, a device are never
-    replaced: only what eccjump could have written is."""
+#: The first bytes of a map file that say whose it is: an HDF5 (netCDF4) map of eccjump has
+#: its global attributes, ``eccjump_version`` among them, within them.
+_HEAD_BYTES = 65536
+_HDF5_SIGNATURE = b"\x89HDF\r\n\x1a\n"
+#: The start of an .npz map (:func:`save_npz`): the zip header of its member __layout__.npy.
+_ZIP_LAYOUT = re.compile(rb"PK\x03\x04.{22}\x0e\x00..__layout__\.npy", re.DOTALL)
+
+
+def is_map(path: str | os.PathLike) -> bool:
+    """Whether ``path`` holds a map of eccjump, by its content (never by its name): a zarr
+    map (:func:`_our_zarr_map`), an .npz archive holding the member ``__layout__.npy``, or a
+    netCDF4 (HDF5) file with ``eccjump_version`` among its first bytes. Damaged or not: a
+    writer may replace it. Nothing but regular files and directories is opened."""
+    path = Path(path)
     try:
         mode = os.stat(path).st_mode
-    except FileNotFoundError:  # a dangling symbolic link: only the link is replaced
-        return
-    except OSError as err:
-        raise file_error(path, f"cannot be replaced: {err.strerror}") from None
-    if by_directory and stat.S_ISDIR(mode):
-        if _our_zarr_map(Path(path)):
-            return
-        raise file_error(path, "is a directory that is no zarr map of eccjump: not replaced")
-    if not by_directory and stat.S_ISREG(mode):
-        return
-    want = "a zarr map" if by_directory else "a map file"
-    raise file_error(path, f"is {_file_type(mode)}, not {want}: not replaced")
+        if stat.S_ISDIR(mode):
+            return _our_zarr_map(path)
+        if not stat.S_ISREG(mode):
+            return False
+        with open(path, "rb") as fh:
+            head = fh.read(_HEAD_BYTES)
+        if _ZIP_LAYOUT.match(head):  # the first member (a damaged end is no matter)
+            return True
+        if head.startswith(b"PK"):
+            with zipfile.ZipFile(path) as z:
+                return "__layout__.npy" in z.namelist()
+    except (OSError, ValueError, EOFError, zipfile.BadZipFile):
+        return False
+    return head.startswith(_HDF5_SIGNATURE) and b"eccjump_version" in head
 
 
-def check_target(path: str | os.PathLike, fmt: str) -> None:
+def check_replaceable(
+    path: str | os.PathLike,
+    by_directory: bool,
+    *,
+    overwrite: bool = False,
+    option: str = "overwrite=True",
+) -> None:
+    """The overwrite policy (:mod:`eccjump._overwrite`) for a map written to ``path``: a new
+    map file (``by_directory`` False) replaces a regular file that is a map of eccjump
+    (:func:`is_map`), or any regular file with ``overwrite``; a zarr store (True) replaces
+    only a zarr map of eccjump. Anything else is an :class:`~eccjump._overwrite.ExistsError`
+    (a ValueError) naming ``path`` and ``option``."""
+    what = "a zarr map of eccjump" if by_directory else "a map of eccjump"
+    check_overwrite(
+        path, overwrite=overwrite, option=option, ours=is_map, what=what, directory=by_directory
+    )
+
+
+def check_target(path: str | os.PathLike, fmt: str, *, overwrite: bool = False) -> None:
     """Before a map of ``fmt`` is written to ``path``: its directory exists
     (FileNotFoundError/NotADirectoryError), its name is not too long and what is there, if
-    anything, may be replaced (ValueError naming ``path``)."""
+    anything, may be replaced (:func:`check_replaceable`: ValueError naming ``path``)."""
     check_parent(path)
     check_name(path)
     if os.path.lexists(path):
-        check_replaceable(path, fmt == "zarr")
+        check_replaceable(path, fmt == "zarr", overwrite=overwrite)
 
 
 def _alive(pid: int) -> bool:
@@ -350,10 +381,12 @@ def _renameat2(src: Path, dst: Path, flags: int) -> bool:
     raise OSError(err, os.strerror(err), str(src), None, str(dst))
 
 
-def install(tmp: str | os.PathLike, path: str | os.PathLike) -> None:
+def install(tmp: str | os.PathLike, path: str | os.PathLike, *, overwrite: bool = True) -> None:
     """Rename the finished ``tmp`` to ``path``; a map already at ``path`` is removed only once
-    the new one is in place, and only if it is what ``tmp`` is (:func:`check_replaceable`:
-    else ValueError naming ``path``, and nothing is touched). A file replaces a file
+    the new one is in place, and only if the overwrite policy allows it
+    (:func:`check_replaceable`, checked again here in case something appeared meanwhile;
+    ``overwrite`` True: the caller checked the target before, any regular file goes; else
+    ValueError naming ``path``, and nothing is touched). A file replaces a file
     atomically (``os.replace``); a directory is swapped in atomically on Linux, elsewhere the
     old one is renamed aside first (a crash in between leaves it as ``.<name>.old-<pid>``,
     put back by :func:`recover`)."""
@@ -364,7 +397,7 @@ def install(tmp: str | os.PathLike, path: str | os.PathLike) -> None:
                 raise FileExistsError(errno.EEXIST, "appeared while writing", str(path))
             os.rename(tmp, path)
         return
-    check_replaceable(path, tmp.is_dir())  # the one place where what was there goes
+    check_replaceable(path, tmp.is_dir(), overwrite=overwrite)  # where what was there goes
     if not tmp.is_dir():
         os.replace(tmp, path)
         return
@@ -393,13 +426,15 @@ def save(
     path: str | os.PathLike,
     *,
     attrs: Mapping[str, Any] | None = None,
+    overwrite: bool = False,
 ) -> Path:
-    """Write a map to ``path``, replacing the map there; the format by the suffix.
+    """Write a map to ``path``, replacing a map there; the format by the suffix.
 
     Every format is written under a temporary name next to ``path`` and renamed into place
     (:func:`install`), so a map at ``path`` is always whole and the one it replaces is kept
-    until then; on failure nothing is left behind. Only a map file (or a zarr map of
-    eccjump) is replaced, never a directory of other files or a FIFO.
+    until then; on failure nothing is left behind. A map of eccjump at ``path`` (recognised
+    by its content, :func:`is_map`) is replaced; another regular file only with
+    ``overwrite=True``; a directory of other files, a FIFO or a device never.
 
     Parameters
     ----------
@@ -410,7 +445,9 @@ def save(
         ``.nc`` (netCDF4, needs xarray), ``.zarr`` (needs zarr) or ``.npz`` (numpy only); its
         directory must exist.
     attrs : mapping, optional
-        Extra attributes to record in the file.
+        Extra attributes to record in the file (numbers, text, lists of them).
+    overwrite : bool, default False
+        Replace a regular file at ``path`` that is not a map of eccjump.
 
     Returns
     -------
@@ -420,8 +457,9 @@ def save(
     Raises
     ------
     ValueError
-        For an unknown suffix, a target that is not a map, or a map that :func:`load`
-        would refuse (naming ``path``, ``obj`` or ``attrs``).
+        For an unknown suffix, a target that may not be replaced (a
+        ``FileExistsError`` too), or a map that :func:`load` would refuse (naming ``path``,
+        ``obj`` or ``attrs``).
     OSError
         If the file cannot be written (its directory is missing, no space, ...).
     ImportError
@@ -429,8 +467,9 @@ def save(
     """
     path = Path(check_path("path", path))
     mapping("attrs", attrs)
+    overwrite = flag("overwrite", overwrite)
     fmt = format_of(path)
-    check_target(path, fmt)
+    check_target(path, fmt, overwrite=overwrite)
     lay = _valid_layout(obj, attrs)
     tmp = temp_sibling(path)
     try:
@@ -449,7 +488,7 @@ def save(
             with _quiet_consolidation():
                 ds.to_zarr(tmp, mode="w-", consolidated=True)
         _step("written")
-        install(tmp, path)
+        install(tmp, path, overwrite=overwrite)
     except BaseException:
         remove(tmp)
         raise
@@ -457,7 +496,9 @@ def save(
 
 
 def save_npz(layout: Layout, path: str | os.PathLike) -> None:
-    """A layout as ``.npz``: one array per variable, dims and attributes as JSON."""
+    """A layout as ``.npz``: one array per variable, dims and attributes as JSON in the first
+    member, ``__layout__`` (so that :func:`is_map` knows the file by its first bytes). Each
+    member has its CRC-32, which numpy's reading checks."""
     arrays: dict[str, NDArray] = {}
     meta: dict[str, Any] = {"attrs": json.loads(attrs_json(layout["attrs"]))}
     for part in ("coords", "data_vars"):
@@ -465,7 +506,7 @@ def save_npz(layout: Layout, path: str | os.PathLike) -> None:
         for name, (dims, values, attrs) in layout[part].items():
             arrays[f"{part}/{name}"] = np.asarray(values)
             meta[part][name] = {"dims": list(dims), "attrs": json.loads(attrs_json(attrs))}
-    arrays["__layout__"] = np.array(json.dumps(meta))
+    arrays = {"__layout__": np.array(json.dumps(meta)), **arrays}
     with open(path, "wb") as fh:
         np.savez(fh, **arrays)  # type: ignore[arg-type]  # numpy's stub: allow_pickle first
 
@@ -504,19 +545,9 @@ def _check_source(path: str | os.PathLike, fmt: str) -> None:
             raise
         raise file_error(path, f"cannot be read: {err.strerror}") from None
     if fmt == "zarr" and not stat.S_ISDIR(mode):
-        raise file_error(path, f"is not a zarr map: {_file_type(mode)}, not a directory")
+        raise file_error(path, f"is not a zarr map: {file_type(mode)}, not a directory")
     if fmt != "zarr" and not stat.S_ISREG(mode):
-        raise file_error(path, f"is not a {fmt} map: {_file_type(mode)}, not a regular file")
-
-
-def _file_type(mode: int) -> str:
-    kinds = (
-        (stat.S_ISDIR, "a directory"),
-        (stat.S_ISREG, "a file"),
-        (stat.S_ISFIFO, "a FIFO"),
-        (stat.S_ISSOCK, "a socket"),
-    )
-    return next((name for test, name in kinds if test(mode)), "a device")
+        raise file_error(path, f"is not a {fmt} map: {file_type(mode)}, not a regular file")
 
 
 #: Seconds the netCDF library is given to read a file in :func:`_probe_netcdf`, plus one per
