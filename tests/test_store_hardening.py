@@ -453,6 +453,19 @@ def test_save_refuses_attrs_that_contradict_the_data(tmp_path, region):
     assert store.load(tmp_path / "h.npz").attrs["note"] == "kept"
 
 
+@pytest.mark.parametrize(
+    "attrs", [{"x": object()}, {"x": True}, {"x": {"a": 1}}, {"x": [[1]]}, {"x": [1, "a"]}, {3: 1}]
+)
+def test_save_of_attrs_no_format_stores_names_attrs(tmp_path, region, attrs):
+    """Issue 46, 14: ``attrs={'x': object()}`` was a TypeError of json naming nothing (and a
+    bool one of netCDF4's): the same refusal for every format, naming ``attrs``."""
+    for suffix in SUFFIXES:
+        with pytest.raises(ValueError, match=r"^attrs") as info:
+            store.save(region, tmp_path / f"h{suffix}", attrs=attrs)
+        assert len(str(info.value)) < MAX_MESSAGE
+    assert os.listdir(tmp_path) == []
+
+
 @pytest.mark.parametrize("obj", [{}, {"coords": {}, "data_vars": {}, "attrs": {}}, [], 3])
 def test_save_of_no_map_names_obj(tmp_path, obj):
     with pytest.raises((TypeError, ValueError), match=r"^obj") as info:

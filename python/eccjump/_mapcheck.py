@@ -183,6 +183,36 @@ def _axis_attrs(kind: MapKind, dims: tuple[str, ...], attrs: dict) -> None:
             raise Invalid(f"has a bad attribute {name} (not text)")
 
 
+def attr_problem(attrs: Mapping[str, Any], name: str) -> str | None:
+    """What makes ``attrs`` (called ``name``) no attributes every format stores alike (None:
+    nothing): each is text, a number (not a bool: netCDF has none) or a 1-D list or array of
+    numbers or of texts, under a text key."""
+    for key, value in attrs.items():
+        if not isinstance(key, str):
+            return f"{name} has a key {str(key)[:20]!r} that is not text"
+        if not _attr_value(value):
+            what = getattr(value, "dtype", None) or type(value).__name__
+            return (
+                f"{name}[{key[:20]!r}] is of type {str(what)[:20]}, not text, a number or "
+                "a 1-D list of numbers or of texts"
+            )
+    return None
+
+
+def _attr_value(value: object) -> bool:
+    if isinstance(value, str):
+        return True
+    if isinstance(value, list | tuple):
+        return all(isinstance(v, str) for v in value) or all(map(_number, value))
+    if isinstance(value, np.ndarray):
+        return value.ndim <= 1 and value.dtype.kind in "iufU"
+    return _number(value)
+
+
+def _number(value: object) -> bool:
+    return isinstance(value, numbers.Real) and not isinstance(value, bool | np.bool_)
+
+
 def _finite(value: object) -> bool:
     value = value.item() if isinstance(value, np.generic) else value
     return (

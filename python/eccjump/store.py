@@ -41,7 +41,7 @@ from numpy.typing import NDArray
 
 from eccjump._checks import flag, mapping
 from eccjump._checks import path as check_path
-from eccjump._mapcheck import Invalid, check, check_layout, file_error, shown
+from eccjump._mapcheck import Invalid, attr_problem, check, check_layout, file_error, shown
 from eccjump._overwrite import check_overwrite, file_type
 from eccjump.classification import Region
 from eccjump.labelled import (
@@ -137,6 +137,9 @@ def _valid_layout(obj: object, attrs: Mapping[str, Any] | None) -> Layout:
     lay = _as_layout(obj)
     _check_given("obj", lay)
     if attrs:
+        problem = attr_problem(attrs, "attrs")
+        if problem:
+            raise ValueError(problem[:180])
         lay = {**lay, "attrs": {**lay["attrs"], **attrs}}
         _check_given("attrs", lay)
     return lay
@@ -145,6 +148,9 @@ def _valid_layout(obj: object, attrs: Mapping[str, Any] | None) -> Layout:
 def _check_given(name: str, lay: Layout) -> None:
     try:
         check(lay)
+        problem = attr_problem(lay["attrs"], "attrs")
+        if problem:
+            raise Invalid(problem)
     except Invalid as err:
         raise ValueError(f"{name}: the map {err}"[:180]) from None
 
