@@ -433,6 +433,77 @@ def test_loaders_refuse_bad_codes_nan_coordinates_and_wrong_shapes(tmp_path, reg
                 store.save(_edited(good[kind], part, name, edit), tmp_path / f"x{suffix}")
 
 
+def _set(index, value):
+    return lambda v: v.__setitem__(index, value)
+
+
+#: Issue 46, 7: values outside their physical range, written with the raw library. A
+#: coordinate out of its range is refused only with valid points there (a map keeps the
+#: invalid points its computation marked so).
+OUT_OF_RANGE = {
+    "jarm": {
+        "alpha 10 rad": {
+            ("coords", "alpha"): _set(0, 10.0),
+            ("coords", "alpha_deg"): _set(0, math.degrees(10.0)),
+        },
+        "theta_J -inf": {("data_vars", "theta_J"): lambda v: v.fill(-math.inf)},
+        "a JARM without theta_J": {("data_vars", "theta_J"): lambda v: v.fill(math.nan)},
+        "Fy_J < 0": {("data_vars", "Fy_J"): lambda v: np.negative(v, out=v)},
+        "alpha_deg not alpha's": {("coords", "alpha_deg"): _set(1, 35.0)},
+        "mu_s -1": {("attrs", "mu_s"): -1.0},
+    },
+    "motion": {
+        "energy_lost -5": {("data_vars", "energy_lost"): lambda v: v.fill(-5.0)},
+        "alpha 10 rad": {("coords", "alpha"): _set(0, 10.0)},
+        "km_frac 2": {("coords", "km_frac"): _set(1, 2.0)},
+        "liftoff_t lost": {("data_vars", "liftoff_t"): lambda v: v.fill(math.nan)},
+        "negative time": {("data_vars", "slip_t"): lambda v: v.fill(-1.0)},
+        "restitution 2": {("attrs", "restitution"): 2.0},
+    },
+}
+
+
+def _edits(lay: dict, edits: dict) -> dict:
+    lay = {part: dict(lay[part]) for part in ("coords", "data_vars", "attrs")}
+    for (part, name), edit in edits.items():
+        if part == "attrs":
+            lay["attrs"][name] = edit
+            continue
+        dims, values, attrs = lay[part][name]
+        values = np.array(values, dtype=np.float64, copy=True)
+        edit(values)
+        lay[part][name] = (dims, values, attrs)
+    return lay
+
+
+@pytest.mark.parametrize("suffix", SUFFIXES)
+def test_values_outside_their_physical_range_are_refused(tmp_path, suffix):
+    region = eccjump.region(mu_s=1.0, alpha=[0.3, 0.6, 0.9], chi=[0.1, 0.2], km_frac=[0.01, 0.1])
+    good = {"jarm": store.region_layout(region), "motion": store.layout_from_xarray(
+        motion(chi=[0.2, 0.4]).to_xarray())}  # fmt: skip
+    assert region.result.is_jarm.any()  # a JARM to lose its theta_J
+    assert (good["motion"]["data_vars"]["liftoff_reason"][1] != 255).any()
+    loaders = {"jarm": (store.load, store.open_dataset), "motion": (motion_maps.load,)}
+    for kind, cases in OUT_OF_RANGE.items():
+        for what, edits in cases.items():
+            path = tmp_path / f"{kind}-{what.replace(' ', '-')}{suffix}"
+            _write_raw(_edits(good[kind], edits), path)
+            for load in loaders[kind]:
+                refused(load, path, path)
+            with pytest.raises(ValueError, match=r"^obj"):
+                store.save(_edits(good[kind], edits), tmp_path / f"x{suffix}")
+
+
+def test_out_of_range_coordinates_of_invalid_points_are_kept(tmp_path):
+    """region and motion_map mark the points of a coordinate out of range invalid and go
+    on: such a map is saved and loaded as it is."""
+    reg = eccjump.region([0.5, 10.0], [0.2, 1.5], [0.1], 1.0)
+    m = eccjump.motion_map([0.5, 10.0], 0.3, [0.2, 2.0], [1.0, -1.0], t_max=5.0)
+    for suffix in SUFFIXES:
+        assert eccjump.load_map(store.save(reg, tmp_path / f"r{suffix}")) == reg
+        assert eccjump.load_map(store.save(m, tmp_path / f"m{suffix}")) == m
+
+
 def test_messages_stay_short_for_long_paths(tmp_path):
     deep = tmp_path / ("d" * 120) / ("e" * 120)
     deep.mkdir(parents=True)

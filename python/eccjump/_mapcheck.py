@@ -22,7 +22,7 @@ from typing import Any
 
 import numpy as np
 
-from eccjump.map_kinds import MapKind, kind_of
+from eccjump.map_kinds import AXIS_RANGES, MapKind, kind_of, outside
 
 #: Longest error message, the prefix ``eccjump: error: `` of the command line included.
 MAX_MESSAGE = 200
@@ -75,7 +75,10 @@ def check(lay: object) -> MapKind:
     _axis_attrs(kind, dims, attrs)
     done = _done(variables, attrs, dims, shape)
     values = {k: np.asarray(data_vars[k][1]) for k in kind.fields}
-    problem = kind.bad_codes(values)
+    _derived_coords(variables, dims)
+    _axis_ranges(kind, variables, dims, values)
+    extra = {k: np.asarray(v[1]) for k, v in data_vars.items() if k in kind.valid}
+    problem = kind.bad_codes(values) or kind.bad_values({**extra, **values})
     if problem is None and kind.computed_mark is not None and done is not None:
         name, fill = kind.computed_mark, kind.fill[kind.computed_mark]
         if (values[name].compress(done, axis=dims.index("alpha")) == fill).any():
@@ -144,6 +147,41 @@ def _coordinate(variables: dict, dim: str) -> int:
     return values.size
 
 
+def _axis_ranges(kind: MapKind, variables: dict, dims: tuple[str, ...], values: dict) -> None:
+    """A swept coordinate may leave its physical range (:data:`AXIS_RANGES`) only where every
+    point of the map is invalid: the computation marks such points so and goes on."""
+    mark, codes = kind.invalid
+    for axis, dim in kind.axes:
+        if dim not in dims or axis not in AXIS_RANGES:
+            continue
+        lo, hi = AXIS_RANGES[axis]
+        coord = np.asarray(variables[dim][1], dtype=np.float64)
+        out = ~((coord >= lo) & (coord <= hi))
+        at = np.asarray(values[mark]).compress(out, axis=dims.index(dim))
+        if out.any() and not np.isin(at, list(codes)).all():
+            raise Invalid(
+                f"has a coordinate {dim} = {outside(coord[out][0], lo, hi)} with valid points"
+            )
+
+
+#: The coordinates derived from others (:func:`eccjump.labelled.grid_coords`), by their
+#: dimensions and how: each must be what its sources give, bit for bit.
+_DERIVED = {
+    "alpha_deg": (("alpha",), lambda v: np.degrees(v["alpha"])),
+    "km": (("chi", "km_frac"), lambda v: v["km_frac"][None, :] * (1.0 - v["chi"][:, None])),
+}
+
+
+def _derived_coords(variables: dict, dims: tuple[str, ...]) -> None:
+    for name, (sources, derive) in _DERIVED.items():
+        if name not in variables or not set(sources) <= set(dims):
+            continue
+        have = np.asarray(variables[name][1])
+        want = derive({d: np.asarray(variables[d][1], dtype=np.float64) for d in sources})
+        if tuple(variables[name][0]) != sources or not np.array_equal(have, want):
+            raise Invalid(f"has a coordinate {name} that is not what {', '.join(sources)} give")
+
+
 def _field(
     kind: MapKind, name: str, var: Any, dims: tuple[str, ...], shape: tuple[int, ...]
 ) -> None:
@@ -178,6 +216,9 @@ def _axis_attrs(kind: MapKind, dims: tuple[str, ...], attrs: dict) -> None:
             continue
         if not _finite(value) or (name in COUNT_ATTRS and not _count(value)):
             raise Invalid(f"has a bad attribute {name} = {str(value)[:20]!r}")
+        lo, hi = AXIS_RANGES.get(name, (-np.inf, np.inf))
+        if not lo <= float(value) <= hi:
+            raise Invalid(f"has an attribute {name} = {outside(float(value), lo, hi)}")
     for name in TEXT_ATTRS:
         if name in attrs and not isinstance(attrs[name], str):
             raise Invalid(f"has a bad attribute {name} (not text)")

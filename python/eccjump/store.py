@@ -987,7 +987,7 @@ class ZarrMap:
         mark = self.kind.computed_mark
         if mark is not None and (values[mark] == self.kind.fill[mark]).any():
             return f"{mark} {self.kind.fill[mark]} (not computed)"
-        return self.kind.bad_codes(values)
+        return self.kind.bad_codes(values) or self.kind.bad_values(values)
 
     def rewrite_coords(self) -> None:
         """Write the coordinates derived from alpha, chi and km_frac again (``alpha_deg``,
