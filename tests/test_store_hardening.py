@@ -23,6 +23,7 @@ import signal
 import subprocess
 import sys
 import time
+import warnings
 from pathlib import Path
 
 import numpy as np
@@ -191,7 +192,7 @@ def test_a_netcdf_map_with_zeroed_bytes_is_refused_not_a_hang(tmp_path):
     """The reproducer of the issue: HDF5 loops for ever on 512 zeroed bytes of the global heap
     of a motion map (deaf to Ctrl-C). The probe subprocess is given 2 s here."""
     path = tmp_path / "m.nc"
-    store.save(motion(), path)
+    _write_raw(store.layout_from_xarray(motion().to_xarray()), path)  # the layout of then
     data = bytearray(path.read_bytes())
     data[3939:4451] = bytes(512)
     path.write_bytes(bytes(data))
@@ -207,7 +208,7 @@ for load in (store.load, store.open_dataset, motion_maps.load):
     lines = _in_subprocess(code, timeout=90).splitlines()
     assert len(lines) == 3
     for line in lines:
-        assert "m.nc" in line and "not a readable netcdf map" in line and len(line) < MAX_MESSAGE
+        assert "m.nc" in line and "hangs" in line and len(line) < MAX_MESSAGE
 
 
 def _children(pid: int) -> list[int]:
@@ -627,3 +628,112 @@ def test_a_too_long_output_name_is_one_error_line(tmp_path, region, suffix):
         assert code == 2 and "name of" in one_line(err) and "-o" in err
         refused(store.save, path, region, path)
     assert os.listdir(tmp_path) == []
+
+
+# --- 6. issue 46: checksums, lost chunks, bounded metadata ------------------------------------
+
+
+@pytest.fixture(scope="module")
+def maps_of_both_kinds() -> dict[str, eccjump.Map]:
+    grid = {"alpha": [0.3, 0.6, 0.9], "chi": [0.1, 0.2], "km_frac": [0.01, 0.1]}
+    return {"jarm": eccjump.region(mu_s=1.0, **grid), "motion": motion(chi=[0.2, 0.4])}
+
+
+def _arrays(m: eccjump.Map) -> dict[str, np.ndarray]:
+    return {**{k: np.asarray(v) for k, v in m.coords.items()}, **m.fields}
+
+
+def _flip_in(path: Path, values: np.ndarray, zero: int = 0) -> None:
+    """Flip a bit in the stored bytes of ``values`` in the file ``path`` (the first copy),
+    or zero ``zero`` bytes there."""
+    data = bytearray(path.read_bytes())
+    at = data.find(values.tobytes())
+    assert at >= 0, "the array is stored as it is"
+    if zero:
+        data[at : at + zero] = bytes(zero)
+    else:
+        data[at + values.nbytes // 2] ^= 0x10
+    path.write_bytes(bytes(data))
+
+
+@pytest.mark.slow
+@pytest.mark.parametrize("kind", ["jarm", "motion"])
+@pytest.mark.parametrize("suffix", [".npz", ".nc"])
+def test_a_flipped_bit_or_a_zeroed_block_in_a_file_is_refused(
+    tmp_path, maps_of_both_kinds, kind, suffix
+):
+    """Issue 46, 6: a 1-bit flip loaded alpha = 35 deg instead of 70, a zeroed block of a .nc
+    other lift-off times. Each array's bytes damaged in turn: every load refuses the file
+    (.npz: zip's CRC-32; .nc: Fletcher-32), none reads other numbers."""
+    m = maps_of_both_kinds[kind]
+    good = store.save(m, tmp_path / f"good{suffix}")
+    for name, values in _arrays(m).items():
+        if values.nbytes < 8 or values.dtype.kind == "b":
+            continue  # a bool's bytes (0/1) are found anywhere: not located by value
+        for zero in (0, min(values.nbytes, 512)):
+            path = tmp_path / f"{name}-{zero}{suffix}"
+            shutil.copyfile(good, path)
+            _flip_in(path, values, zero)
+            refused(eccjump.load_map, path, path)
+
+
+@pytest.mark.parametrize("kind", ["jarm", "motion"])
+def test_damaged_or_lost_zarr_chunks_are_refused(tmp_path, maps_of_both_kinds, kind):
+    """Issue 46, 6: a flipped bit in a chunk read as other numbers, a deleted chunk of
+    theta_J as a JARM with theta_J = NaN (zarr's fill value). Every chunk of every array:
+    crc32c refuses the flip, a missing chunk is damage."""
+    m = maps_of_both_kinds[kind]
+    good = store.save(m, tmp_path / "good.zarr")
+    chunks = sorted(p.relative_to(good) for p in good.rglob("c/**/*") if p.is_file())
+    assert {c.parts[0] for c in chunks} >= set(m.fields) | set(m.coords)
+    for chunk in chunks:
+        for how in ("flip", "delete"):
+            path = tmp_path / f"{how}.zarr"
+            shutil.rmtree(path, ignore_errors=True)
+            shutil.copytree(good, path)
+            if how == "delete":
+                (path / chunk).unlink()
+            else:
+                data = bytearray((path / chunk).read_bytes())
+                data[len(data) // 2] ^= 0x01
+                (path / chunk).write_bytes(bytes(data))
+            msg = refused(eccjump.load_map, path, path)
+            assert ("missing" if how == "delete" else "checksum") in msg, msg
+
+
+def test_an_interrupted_zarr_map_loads_without_its_chunks_not_computed(tmp_path):
+    """The chunks of slices not computed are not written: not damage; a chunk of a slice
+    done is."""
+    path = tmp_path / "part.zarr"
+    assert cli(*MAP, "--chunk", "1", "--stop-after", "1", "-o", str(path))[0] == 130
+    assert not (path / "theta_J" / "c" / "1" / "0" / "0").exists()
+    assert store.load(path).attrs["alpha_done"].tolist() == [True, False, False]
+    (path / "theta_J" / "c" / "0" / "0" / "0").unlink()
+    assert "theta_J/c/0/0/0 is missing" in refused(store.load, path, path)
+
+
+@pytest.mark.parametrize("suffix", [".nc", ".zarr"])
+def test_a_map_written_without_checksums_loads_with_a_warning(tmp_path, region, suffix):
+    """The files of earlier builds (no Fletcher-32, no crc32c) are read, with a warning that
+    their damage cannot be found; saving them again adds the checksums."""
+    old = tmp_path / f"old{suffix}"
+    _write_raw(store.region_layout(region), old)
+    with pytest.warns(eccjump.store.UncheckedMapWarning, match="no checksums"):
+        assert store.load(old) == region
+    new = store.save(store.load(old), tmp_path / f"new{suffix}")
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        assert store.load(new) == region
+
+
+@pytest.mark.parametrize("where", ["zarr.json", "theta_J/zarr.json"])
+def test_a_huge_sparse_zarr_json_is_refused_before_it_is_read(tmp_path, region, where):
+    """Issue 46, 3: a 1 TB sparse zarr.json was a MemoryError with an empty message."""
+    path = store.save(region, tmp_path / "big.zarr")
+    with open(path / where, "r+b") as fh:
+        fh.truncate(10**12)
+    for load in (store.load, store.open_dataset, eccjump.load_map):
+        msg = refused(load, path, path)
+        assert where in msg and "1,000,000,000,000 bytes" in msg, msg
+    code, _, err = cli(*MAP, "-o", str(path), "--resume")
+    assert code == 2 and "1,000,000,000,000 bytes" in one_line(err)

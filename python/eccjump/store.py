@@ -41,6 +41,14 @@ from numpy.typing import NDArray
 
 from eccjump._checks import flag, mapping
 from eccjump._checks import path as check_path
+from eccjump._integrity import UncheckedMapWarning as UncheckedMapWarning  # public here
+from eccjump._integrity import (
+    check_metadata_size,
+    check_netcdf,
+    check_zarr,
+    netcdf_encoding,
+    zarr_codecs,
+)
 from eccjump._mapcheck import Invalid, attr_problem, check, check_layout, file_error, shown
 from eccjump._overwrite import check_overwrite, file_type
 from eccjump.classification import Region
@@ -243,6 +251,7 @@ def _our_zarr_map(path: Path) -> bool:
     """Whether the directory ``path`` is a zarr map written by eccjump: a group whose
     attributes carry ``eccjump_version``, holding nothing but zarr arrays."""
     try:
+        check_metadata_size(path)
         meta = json.loads((path / "zarr.json").read_text())
         entries = list(path.iterdir())
         attrs = meta["attributes"]
@@ -483,16 +492,21 @@ def save(
             save_npz(lay, tmp)
             _fsync(tmp)
         elif fmt == "netcdf":
+            ds = layout_to_xarray(lay)
+            encoding = netcdf_encoding(ds.variables.items())
             try:
-                layout_to_xarray(lay).to_netcdf(tmp, engine=netcdf_engine())
+                ds.to_netcdf(tmp, engine=netcdf_engine(), encoding=encoding)
             except RuntimeError as err:  # netCDF4 reports a failed write as "HDF error"
                 raise OSError(errno.EIO, f"netCDF write failed ({err})", str(tmp)) from err
             _fsync(tmp)
         else:
             ds = layout_to_xarray(lay)
             require("zarr")
-            with _quiet_consolidation():
-                ds.to_zarr(tmp, mode="w-", consolidated=True)
+            codecs = {k: {"compressors": zarr_codecs()} for k in ds.variables}
+            with _quiet_consolidation():  # every chunk stored: a missing one is damage
+                ds.to_zarr(
+                    tmp, mode="w-", consolidated=True, encoding=codecs, write_empty_chunks=True
+                )
         _step("written")
         install(tmp, path, overwrite=overwrite)
     except BaseException:
@@ -669,15 +683,12 @@ def _read(path: str | os.PathLike, fmt: str) -> tuple[Layout, xr.Dataset | None]
         xr = require("xarray")
         if fmt == "netcdf":
             engine = netcdf_engine()
-            _probe_netcdf(path, engine)
+            _probe_netcdf(path, engine)  # reads it all: the checksums are checked there
             with xr.open_dataset(path, engine=engine) as ds:
                 ds = ds.load()
+            check_netcdf(path, ds)
         else:
-            require("zarr")
-            with warnings.catch_warnings():
-                warnings.simplefilter("ignore")  # zarr's about metadata: errors say enough
-                with xr.open_zarr(path, consolidated=None) as ds:
-                    ds = ds.load()
+            ds = _read_zarr(xr, path)
         upgrade_attrs(ds.attrs)
         return layout_from_xarray(ds), ds
     except (ImportError, MemoryError):
@@ -696,9 +707,27 @@ def _read(path: str | os.PathLike, fmt: str) -> tuple[Layout, xr.Dataset | None]
         raise file_error(path, f"is not a readable {fmt} map: {_detail(err)}") from err
 
 
+def _read_zarr(xr: Any, path: str | os.PathLike) -> xr.Dataset:
+    """The zarr map at ``path``, loaded, after its integrity check (:mod:`eccjump._integrity`);
+    each array's own metadata is read, not the consolidated copy, which a damaged store may
+    not match."""
+    zarr = require("zarr")
+    check_metadata_size(path)
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")  # zarr's about metadata: errors say enough
+        group = zarr.open_group(path, mode="r", use_consolidated=False)
+    check_zarr(path, group)
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        with xr.open_zarr(path, consolidated=False) as ds:
+            return ds.load()
+
+
 def _detail(err: BaseException) -> str:
     """An exception of a reader in a few words (without the file's path, named already)."""
     text = str(err).replace(str(getattr(err, "filename", None) or "\0"), "")
+    if "checksum do not match" in text:  # zarr's crc32c codec: the bytes of no use
+        return "a chunk's checksum does not match: the map is damaged"
     return f"{type(err).__name__}: {text}"[:100]
 
 
@@ -797,14 +826,6 @@ def _json_attrs(attrs: Mapping[str, Any]) -> dict[str, Any]:
     return json.loads(attrs_json(attrs))
 
 
-def _checked_zstd() -> Any:
-    """zarr's zstd codec with the frame checksum on: a damaged chunk fails to read instead
-    of reading as other numbers."""
-    from zarr.codecs import ZstdCodec
-
-    return ZstdCodec(level=0, checksum=True)
-
-
 class ZarrMap:
     """A map in a zarr store written chunk by chunk along alpha (``chunk`` slices each).
 
@@ -821,6 +842,7 @@ class ZarrMap:
         self.path = Path(path)
         _check_source(self.path, "zarr")
         try:
+            check_metadata_size(self.path)
             self.group = zarr.open_group(self.path, mode="r+", use_consolidated=False)
             self.attrs: dict[str, Any] = dict(self.group.attrs)
             self.kind = kind_of(self.attrs)
@@ -898,6 +920,7 @@ class ZarrMap:
                 shape=values.shape,
                 dtype=values.dtype,
                 chunks=values.shape if values.size else None,
+                compressors=zarr_codecs(),
                 fill_value=np.nan,
                 dimension_names=dims,
                 attributes=_json_attrs(vattrs),
@@ -911,7 +934,7 @@ class ZarrMap:
                 shape=shape,
                 dtype=kind.dtypes[name],
                 chunks=chunks,
-                compressors=_checked_zstd(),
+                compressors=zarr_codecs(),
                 fill_value=kind.fill[name],
                 dimension_names=DIMS,
                 attributes=_json_attrs({**kind.var_attrs(name), "coordinates": "alpha_deg km"}),
@@ -921,12 +944,13 @@ class ZarrMap:
             shape=(alpha.size,),
             dtype=np.bool_,
             chunks=(chunks[0],),
-            compressors=_checked_zstd(),
+            compressors=zarr_codecs(),
             fill_value=False,
             dimension_names=("alpha",),
             attributes=_json_attrs({**COORD_ATTRS["alpha_done"], "coordinates": "alpha_deg"}),
         )
-        done[...] = np.zeros(alpha.size, dtype=bool)
+        with zarr.config.set({"array.write_empty_chunks": True}):  # each chunk is there
+            done[...] = np.zeros(alpha.size, dtype=bool)
         with _quiet_consolidation():
             zarr.consolidate_metadata(str(path))
 
