@@ -6,8 +6,12 @@ A map (a layout, see :mod:`eccjump.labelled`) is valid when it has the variables
 attributes of its kind (:mod:`eccjump.map_kinds`); every field has the same dimensions, a
 sub-sequence of the kind's axes with its fixed ones, each with a finite 1-D coordinate of the
 field's length; every axis that is not a dimension is a finite number in the attributes; the
-dtypes fit; the coded fields hold codes of their tables; and (JARM) no slice marked done holds
-the fill value ``reason`` 255 of a point not computed.
+dtypes fit; the coded fields hold codes of their tables; every float field is within its
+physical range (:attr:`eccjump.fields.Field.valid`) and the fields that must agree do
+(:attr:`eccjump.map_kinds.MapKind.agree`); every axis is within
+:data:`eccjump.map_kinds.AXIS_RANGES` (a swept coordinate outside it only where every point
+is invalid); the derived coordinates ``alpha_deg`` and ``km`` are what their sources give;
+and (JARM) no slice marked done holds the fill value ``reason`` 255 of a point not computed.
 
 Errors are ValueErrors naming the file (:func:`shown`: at most :data:`SHOWN` characters of
 its path) in at most :data:`MAX_MESSAGE` characters.

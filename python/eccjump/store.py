@@ -14,7 +14,11 @@ A map is never half there. Every new file or store is written under a temporary 
 replaces is removed only after that (a directory is swapped in with one atomic
 ``renameat2(RENAME_EXCHANGE)`` on Linux, elsewhere the old one is renamed aside to
 ``.<name>.old-<pid>`` first). :func:`recover` removes what a killed process left behind and
-puts back a map left aside. A missing parent directory is an error, never created.
+puts back a map left aside. A missing parent directory is an error, never created. What may
+be replaced is the one overwrite policy of :mod:`eccjump._overwrite` (:func:`is_map`: a map
+of eccjump, by its content). Every format carries checksums and a missing zarr chunk is
+damage (:mod:`eccjump._integrity`); every value is checked against its physical range
+(:mod:`eccjump._mapcheck`).
 """
 
 from __future__ import annotations
