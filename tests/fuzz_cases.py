@@ -1145,11 +1145,43 @@ def case_store(d: Drawer) -> Case:
         if not good.exists():
             store.save(eccjump.region(mu_s=1.0, alpha=[0.5, 0.7], chi=[0.2], km_frac=[0.1]), good)
         path = d.choice(
-            (good, str(good), None, 7, b"x.npz", where / "missing.npz", where / "x.csv")
+            (
+                *(good, str(good), None, 7, b"x.npz", where / "missing.npz", where / "x.csv"),
+                *damaged_maps(where),
+            )
         )
         c.must_raise = path not in (good, str(good))
         c.args = (path,)
     return c
+
+
+def damaged_maps(where: Path) -> tuple[Path, ...]:
+    """JARM maps damaged as in issue 46, 6 and 7 (made once in ``where``): a bit flipped in
+    the data of theta_J (.npz, .zarr), a chunk of theta_J deleted (.zarr), an alpha of 10 rad
+    and a theta_J of -inf written with the raw library (.npz). Each must be refused."""
+    names = ("flip.npz", "flip.zarr", "lost.zarr", "alpha.npz", "inf.npz")
+    paths = tuple(where / n for n in names)
+    if all(p.exists() for p in paths):
+        return paths
+    reg = eccjump.region(mu_s=1.0, alpha=[0.5, 0.7], chi=[0.1, 0.2], km_frac=[0.01, 0.1])
+    lay = store.region_layout(reg)
+    store.save(reg, paths[0], overwrite=True)
+    data = bytearray(paths[0].read_bytes())
+    data[data.find(reg.result.theta_J.tobytes()) + 5] ^= 0x10
+    paths[0].write_bytes(bytes(data))
+    for path in paths[1:3]:
+        store.save(reg, path)
+    chunk = paths[1] / "theta_J" / "c" / "0" / "0" / "0"
+    data = bytearray(chunk.read_bytes())
+    data[len(data) // 2] ^= 0x01
+    chunk.write_bytes(bytes(data))
+    (paths[2] / "theta_J" / "c" / "0" / "0" / "0").unlink()
+    alpha = (("alpha",), np.array([0.5, 10.0]), {})
+    deg = (("alpha",), np.degrees(alpha[1]), {})
+    store.save_npz({**lay, "coords": {**lay["coords"], "alpha": alpha, "alpha_deg": deg}}, paths[3])
+    theta = (lay["data_vars"]["theta_J"][0], np.full(reg.shape, -math.inf), {})
+    store.save_npz({**lay, "data_vars": {**lay["data_vars"], "theta_J": theta}}, paths[4])
+    return paths
 
 
 def case_plot(d: Drawer) -> Case:

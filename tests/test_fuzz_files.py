@@ -232,7 +232,9 @@ def _inject(monkeypatch, code: int) -> None:
     monkeypatch.setattr(store.ZarrMap, "_build", staticmethod(fail(1)))
 
 
-FAULTS = ("missing-parent", "exists", "user-directory", "read-only", "full-disk", "long-name")
+FAULTS = (
+    "missing-parent", "exists", "user-directory", "user-file", "read-only", "full-disk", "long-name"
+)  # fmt: skip
 
 
 def _target(tmp_path: Path, fault: str, suffix: str, maps) -> tuple[Path, list[str]]:
@@ -246,6 +248,9 @@ def _target(tmp_path: Path, fault: str, suffix: str, maps) -> tuple[Path, list[s
         path.mkdir()
         (path / "notes.txt").write_text("mine")
         return path, ["--overwrite"]
+    if fault == "user-file":  # issue 46, 8: kept without overwrite, whatever its suffix
+        path.write_bytes(b"PK\x03\x04 the user's own data")
+        return path, []
     source = maps["jarm", suffix]
     (shutil.copytree if source.is_dir() else shutil.copyfile)(source, path)
     return path, [] if fault == "exists" else ["--overwrite"]

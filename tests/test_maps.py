@@ -77,3 +77,49 @@ def test_region_and_motion_map_take_the_grid_then_mu_s_positionally():
     assert isinstance(r, Region) and isinstance(m, MotionMap)
     with pytest.raises(TypeError, match="km_frac"):
         eccjump.motion_map([0.5], [0.2], mu_s=1.0, km=[0.1])
+
+
+# --- issue 46, 13: maps survive a save and a load, and compare ----------------------------
+
+SUFFIXES = (".npz", ".nc", ".zarr")
+
+
+@pytest.mark.parametrize("suffix", SUFFIXES)
+def test_a_map_of_eccjump_map_can_be_saved_again(tmp_path, suffix):
+    """Its loaded ``attrs['alpha_done']`` (an array of bools, which netCDF cannot store as an
+    attribute) goes back to the variable it came from, in every format."""
+    pytest.importorskip("xarray")
+    from fuzz_cases import run_cli_inprocess
+
+    first = tmp_path / "first.zarr"
+    argv = ["map", "--mu-s", "1", "--grid", "3", "--chunk", "1", "--stop-after", "2", "-q"]
+    assert run_cli_inprocess([*argv, "-o", str(first)])[0] == 130  # 2 of 3 slices
+    loaded = eccjump.load_map(first)
+    assert loaded.attrs["alpha_done"].tolist() == [True, True, False]
+    again = eccjump.maps.save(loaded, tmp_path / f"again{suffix}")
+    back = eccjump.load_map(again)
+    assert back == loaded and back.attrs["alpha_done"].tolist() == [True, True, False]
+
+
+def test_motion_maps_compare_field_by_field(both):
+    m = both["motion"]
+    same = eccjump.motion_map(*m.coords.values(), 2.0, t_max=20.0)
+    assert m == same and not (m != same)  # NaN fields equal NaN
+    assert np.isnan(m.fields["slip_t"]).any()
+    other = eccjump.motion_map(*m.coords.values(), 2.0, t_max=10.0)
+    assert m != other and m != both["jarm"]
+    with pytest.raises(TypeError, match="unhashable"):
+        hash(m)
+
+
+@pytest.mark.parametrize("suffix", SUFFIXES)
+def test_a_motion_map_is_equal_after_save_and_load(both, tmp_path, suffix):
+    """``scalars['mu_k']`` None (mu_k = mu_s) came back as mu_s's value."""
+    pytest.importorskip("xarray")
+    m = both["motion"]
+    assert m.scalars["mu_k"] is None
+    back = eccjump.load_map(eccjump.maps.save(m, tmp_path / f"m{suffix}"))
+    assert back.scalars["mu_k"] is None and back == m
+    given = eccjump.motion_map(*m.coords.values(), 2.0, mu_k=2.0, t_max=20.0)
+    back = eccjump.load_map(eccjump.maps.save(given, tmp_path / f"k{suffix}"))
+    assert back.scalars["mu_k"] == 2.0 and back == given

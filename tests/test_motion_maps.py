@@ -240,7 +240,7 @@ def test_labelled_output_names_every_code():
         assert np.array_equal(back.fields[k], ds[k].values, equal_nan=True)
     codes = set(np.unique(ds["sequence"].values).tolist())
     assert codes == set(ds["sequence"].attrs["flag_values"].tolist())
-    assert ds.attrs["mu_k"] == ds.attrs["mu_s"] == 1.0 and ds.attrs["rule"] == "paper"
+    assert ds.attrs["mu_k"] == "mu_s" and ds.attrs["mu_s"] == 1.0 and ds.attrs["rule"] == "paper"
     assert repr(motion_map(alpha=ALPHA, chi=0.5, km_frac=0.5, mu_s=1.0)).startswith("MotionMap(")
 
 

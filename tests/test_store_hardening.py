@@ -19,8 +19,11 @@ import math
 import os
 import random
 import shutil
+import signal
 import subprocess
 import sys
+import time
+import warnings
 from pathlib import Path
 
 import numpy as np
@@ -119,13 +122,57 @@ def test_a_map_of_ours_is_still_replaced(tmp_path, region):
         assert store.load(path).alpha.size == 3
 
 
+@pytest.mark.parametrize("suffix", [".npz", ".nc"])
+def test_save_keeps_a_users_file_unless_overwrite_is_given(tmp_path, region, suffix):
+    """Issue 46, 8: ``maps.save`` replaced any regular file at the path (a user's
+    ``mydata.npz``), though its docstring says only a map is replaced. A map is recognised by
+    its content: a user's HDF5 file or zip named like a map is not one."""
+    path = tmp_path / f"mydata{suffix}"
+    user = {".npz": _users_zip, ".nc": _users_hdf5}[suffix](path)
+    for save in (store.save, eccjump.maps.save):
+        with pytest.raises(FileExistsError) as info:
+            save(region, path)
+        msg = str(info.value)
+        assert isinstance(info.value, ValueError) and len(msg) < MAX_MESSAGE
+        assert "mydata" in msg and "overwrite=True" in msg
+    code, _, err = cli(*MAP, "-o", str(path))
+    assert code == 2 and "--overwrite" in one_line(err) and "not a map" in err
+    assert path.read_bytes() == user and sorted(os.listdir(tmp_path)) == [path.name]
+    store.save(region, path, overwrite=True)
+    assert store.load(path).alpha.size == 3
+    store.save(region, path)  # a map of ours now: replaced without being asked
+    with pytest.raises(TypeError, match="overwrite"):
+        store.save(region, path, overwrite="yes")
+
+
+def _users_zip(path: Path) -> bytes:
+    np.savez(path, data=np.arange(3))  # an .npz, but not a map
+    return path.read_bytes()
+
+
+def _users_hdf5(path: Path) -> bytes:
+    xr.Dataset({"t": ("x", np.arange(3.0))}).to_netcdf(path, engine=store.netcdf_engine())
+    return path.read_bytes()
+
+
+def test_a_damaged_map_of_ours_is_still_replaced(tmp_path, region):
+    for suffix in (".npz", ".nc"):
+        path = tmp_path / f"m{suffix}"
+        store.save(region, path)
+        data = bytearray(path.read_bytes())
+        data[-200:] = bytes(200)  # the data damaged, the head (whose file it is) not
+        path.write_bytes(bytes(data))
+        store.save(region, path)
+        assert store.load(path) == region
+
+
 def test_a_zarr_store_that_is_not_ours_is_not_replaced(tmp_path, region):
     path = tmp_path / "foreign.zarr"
     xr.Dataset({"foo": ("x", np.arange(3))}).to_zarr(path, zarr_format=3, consolidated=False)
     before = tree(path)
     refused(store.save, path, region, path)
     code, _, err = cli(*MAP, "-o", str(path), "--overwrite")
-    assert code == 2 and "no zarr map of eccjump" in one_line(err)
+    assert code == 2 and "not a zarr map of eccjump" in one_line(err)
     assert tree(path) == before
 
 
@@ -145,7 +192,7 @@ def test_a_netcdf_map_with_zeroed_bytes_is_refused_not_a_hang(tmp_path):
     """The reproducer of the issue: HDF5 loops for ever on 512 zeroed bytes of the global heap
     of a motion map (deaf to Ctrl-C). The probe subprocess is given 2 s here."""
     path = tmp_path / "m.nc"
-    store.save(motion(), path)
+    _write_raw(store.layout_from_xarray(motion().to_xarray()), path)  # the layout of then
     data = bytearray(path.read_bytes())
     data[3939:4451] = bytes(512)
     path.write_bytes(bytes(data))
@@ -161,7 +208,76 @@ for load in (store.load, store.open_dataset, motion_maps.load):
     lines = _in_subprocess(code, timeout=90).splitlines()
     assert len(lines) == 3
     for line in lines:
-        assert "m.nc" in line and "not a readable netcdf map" in line and len(line) < MAX_MESSAGE
+        assert "m.nc" in line and "hangs" in line and len(line) < MAX_MESSAGE
+
+
+def _children(pid: int) -> list[int]:
+    path = Path(f"/proc/{pid}/task/{pid}/children")
+    return [int(c) for c in path.read_text().split()] if path.exists() else []
+
+
+def _gone(pid: int) -> bool:
+    """Whether process ``pid`` has ended (a zombie not yet reaped counts as ended)."""
+    try:
+        return Path(f"/proc/{pid}/stat").read_text().rsplit(")", 1)[1].split()[0] in "ZX"
+    except (FileNotFoundError, ProcessLookupError, IndexError):
+        return True
+
+
+def _cpu_seconds(pid: int) -> float:
+    fields = Path(f"/proc/{pid}/stat").read_text().rsplit(")", 1)[1].split()
+    return (int(fields[11]) + int(fields[12])) / os.sysconf("SC_CLK_TCK")
+
+
+@pytest.mark.skipif(not sys.platform.startswith("linux"), reason="/proc and PR_SET_PDEATHSIG")
+@pytest.mark.parametrize("how", ["SIGKILL", "SIGTERM"])
+def test_the_probe_child_dies_with_its_caller(tmp_path, region, how):
+    """Issue 46, 2: a caller killed while the netCDF probe spins on a damaged file left the
+    child spinning at 100 % CPU for ever, re-parented to init. The probe's reading is
+    replaced by a spin (as HDF5 on the damaged file of the test above)."""
+    path = tmp_path / "m.nc"
+    store.save(region, path)
+    code = (
+        "from eccjump import store\n"
+        "store._PROBE_BODY = 'while True: pass'\n"
+        "store.PROBE_SECONDS = 600\n"
+        f"store.load({str(path)!r})\n"
+    )
+    parent = subprocess.Popen([sys.executable, "-c", code])
+    kids: list[int] = []
+    try:
+        deadline = time.monotonic() + 60
+        while not (kids := _children(parent.pid)) or _cpu_seconds(kids[0]) < 0.5:
+            assert time.monotonic() < deadline and parent.poll() is None
+            time.sleep(0.05)
+        parent.send_signal(getattr(signal, how))
+        parent.wait(10)
+        deadline = time.monotonic() + 2
+        while not _gone(kids[0]) and time.monotonic() < deadline:
+            time.sleep(0.02)
+        assert _gone(kids[0]), f"the probe child {kids[0]} outlived its caller"
+    finally:
+        parent.kill()
+        for kid in kids:  # a child left over by a failure
+            with contextlib.suppress(ProcessLookupError):
+                os.kill(kid, signal.SIGKILL)
+
+
+@pytest.mark.skipif(os.name != "posix", reason="RLIMIT_CPU")
+def test_the_probe_child_stops_after_its_cpu_time(tmp_path, monkeypatch):
+    """The backstop where PR_SET_PDEATHSIG is missing: the child stops itself (SIGXCPU, no
+    core file) after its time, whoever waits for it."""
+    monkeypatch.setattr(store, "_PROBE_BODY", "while True: pass")
+    start = time.monotonic()
+    proc = subprocess.run(
+        store.probe_command("netcdf4", tmp_path / "x.nc", 0.5),
+        cwd=tmp_path,
+        capture_output=True,
+        timeout=30,
+        check=False,
+    )
+    assert proc.returncode in (-signal.SIGXCPU, -signal.SIGKILL), proc
+    assert time.monotonic() - start < 10 and os.listdir(tmp_path) == []
 
 
 def test_every_loader_refuses_a_fifo_without_opening_it(tmp_path):
@@ -318,6 +434,77 @@ def test_loaders_refuse_bad_codes_nan_coordinates_and_wrong_shapes(tmp_path, reg
                 store.save(_edited(good[kind], part, name, edit), tmp_path / f"x{suffix}")
 
 
+def _set(index, value):
+    return lambda v: v.__setitem__(index, value)
+
+
+#: Issue 46, 7: values outside their physical range, written with the raw library. A
+#: coordinate out of its range is refused only with valid points there (a map keeps the
+#: invalid points its computation marked so).
+OUT_OF_RANGE = {
+    "jarm": {
+        "alpha 10 rad": {
+            ("coords", "alpha"): _set(0, 10.0),
+            ("coords", "alpha_deg"): _set(0, math.degrees(10.0)),
+        },
+        "theta_J -inf": {("data_vars", "theta_J"): lambda v: v.fill(-math.inf)},
+        "a JARM without theta_J": {("data_vars", "theta_J"): lambda v: v.fill(math.nan)},
+        "Fy_J < 0": {("data_vars", "Fy_J"): lambda v: np.negative(v, out=v)},
+        "alpha_deg not alpha's": {("coords", "alpha_deg"): _set(1, 35.0)},
+        "mu_s -1": {("attrs", "mu_s"): -1.0},
+    },
+    "motion": {
+        "energy_lost -5": {("data_vars", "energy_lost"): lambda v: v.fill(-5.0)},
+        "alpha 10 rad": {("coords", "alpha"): _set(0, 10.0)},
+        "km_frac 2": {("coords", "km_frac"): _set(1, 2.0)},
+        "liftoff_t lost": {("data_vars", "liftoff_t"): lambda v: v.fill(math.nan)},
+        "negative time": {("data_vars", "slip_t"): lambda v: v.fill(-1.0)},
+        "restitution 2": {("attrs", "restitution"): 2.0},
+    },
+}
+
+
+def _edits(lay: dict, edits: dict) -> dict:
+    lay = {part: dict(lay[part]) for part in ("coords", "data_vars", "attrs")}
+    for (part, name), edit in edits.items():
+        if part == "attrs":
+            lay["attrs"][name] = edit
+            continue
+        dims, values, attrs = lay[part][name]
+        values = np.array(values, dtype=np.float64, copy=True)
+        edit(values)
+        lay[part][name] = (dims, values, attrs)
+    return lay
+
+
+@pytest.mark.parametrize("suffix", SUFFIXES)
+def test_values_outside_their_physical_range_are_refused(tmp_path, suffix):
+    region = eccjump.region(mu_s=1.0, alpha=[0.3, 0.6, 0.9], chi=[0.1, 0.2], km_frac=[0.01, 0.1])
+    good = {"jarm": store.region_layout(region), "motion": store.layout_from_xarray(
+        motion(chi=[0.2, 0.4]).to_xarray())}  # fmt: skip
+    assert region.result.is_jarm.any()  # a JARM to lose its theta_J
+    assert (good["motion"]["data_vars"]["liftoff_reason"][1] != 255).any()
+    loaders = {"jarm": (store.load, store.open_dataset), "motion": (motion_maps.load,)}
+    for kind, cases in OUT_OF_RANGE.items():
+        for what, edits in cases.items():
+            path = tmp_path / f"{kind}-{what.replace(' ', '-')}{suffix}"
+            _write_raw(_edits(good[kind], edits), path)
+            for load in loaders[kind]:
+                refused(load, path, path)
+            with pytest.raises(ValueError, match=r"^obj"):
+                store.save(_edits(good[kind], edits), tmp_path / f"x{suffix}")
+
+
+def test_out_of_range_coordinates_of_invalid_points_are_kept(tmp_path):
+    """region and motion_map mark the points of a coordinate out of range invalid and go
+    on: such a map is saved and loaded as it is."""
+    reg = eccjump.region([0.5, 10.0], [0.2, 1.5], [0.1], 1.0)
+    m = eccjump.motion_map([0.5, 10.0], 0.3, [0.2, 2.0], [1.0, -1.0], t_max=5.0)
+    for suffix in SUFFIXES:
+        assert eccjump.load_map(store.save(reg, tmp_path / f"r{suffix}")) == reg
+        assert eccjump.load_map(store.save(m, tmp_path / f"m{suffix}")) == m
+
+
 def test_messages_stay_short_for_long_paths(tmp_path):
     deep = tmp_path / ("d" * 120) / ("e" * 120)
     deep.mkdir(parents=True)
@@ -336,6 +523,19 @@ def test_save_refuses_attrs_that_contradict_the_data(tmp_path, region):
     assert os.listdir(tmp_path) == []
     store.save(region, tmp_path / "h.npz", attrs={"note": "kept"})
     assert store.load(tmp_path / "h.npz").attrs["note"] == "kept"
+
+
+@pytest.mark.parametrize(
+    "attrs", [{"x": object()}, {"x": True}, {"x": {"a": 1}}, {"x": [[1]]}, {"x": [1, "a"]}, {3: 1}]
+)
+def test_save_of_attrs_no_format_stores_names_attrs(tmp_path, region, attrs):
+    """Issue 46, 14: ``attrs={'x': object()}`` was a TypeError of json naming nothing (and a
+    bool one of netCDF4's): the same refusal for every format, naming ``attrs``."""
+    for suffix in SUFFIXES:
+        with pytest.raises(ValueError, match=r"^attrs") as info:
+            store.save(region, tmp_path / f"h{suffix}", attrs=attrs)
+        assert len(str(info.value)) < MAX_MESSAGE
+    assert os.listdir(tmp_path) == []
 
 
 @pytest.mark.parametrize("obj", [{}, {"coords": {}, "data_vars": {}, "attrs": {}}, [], 3])
@@ -428,3 +628,112 @@ def test_a_too_long_output_name_is_one_error_line(tmp_path, region, suffix):
         assert code == 2 and "name of" in one_line(err) and "-o" in err
         refused(store.save, path, region, path)
     assert os.listdir(tmp_path) == []
+
+
+# --- 6. issue 46: checksums, lost chunks, bounded metadata ------------------------------------
+
+
+@pytest.fixture(scope="module")
+def maps_of_both_kinds() -> dict[str, eccjump.Map]:
+    grid = {"alpha": [0.3, 0.6, 0.9], "chi": [0.1, 0.2], "km_frac": [0.01, 0.1]}
+    return {"jarm": eccjump.region(mu_s=1.0, **grid), "motion": motion(chi=[0.2, 0.4])}
+
+
+def _arrays(m: eccjump.Map) -> dict[str, np.ndarray]:
+    return {**{k: np.asarray(v) for k, v in m.coords.items()}, **m.fields}
+
+
+def _flip_in(path: Path, values: np.ndarray, zero: int = 0) -> None:
+    """Flip a bit in the stored bytes of ``values`` in the file ``path`` (the first copy),
+    or zero ``zero`` bytes there."""
+    data = bytearray(path.read_bytes())
+    at = data.find(values.tobytes())
+    assert at >= 0, "the array is stored as it is"
+    if zero:
+        data[at : at + zero] = bytes(zero)
+    else:
+        data[at + values.nbytes // 2] ^= 0x10
+    path.write_bytes(bytes(data))
+
+
+@pytest.mark.slow
+@pytest.mark.parametrize("kind", ["jarm", "motion"])
+@pytest.mark.parametrize("suffix", [".npz", ".nc"])
+def test_a_flipped_bit_or_a_zeroed_block_in_a_file_is_refused(
+    tmp_path, maps_of_both_kinds, kind, suffix
+):
+    """Issue 46, 6: a 1-bit flip loaded alpha = 35 deg instead of 70, a zeroed block of a .nc
+    other lift-off times. Each array's bytes damaged in turn: every load refuses the file
+    (.npz: zip's CRC-32; .nc: Fletcher-32), none reads other numbers."""
+    m = maps_of_both_kinds[kind]
+    good = store.save(m, tmp_path / f"good{suffix}")
+    for name, values in _arrays(m).items():
+        if values.nbytes < 8 or values.dtype.kind == "b":
+            continue  # a bool's bytes (0/1) are found anywhere: not located by value
+        for zero in (0, min(values.nbytes, 512)):
+            path = tmp_path / f"{name}-{zero}{suffix}"
+            shutil.copyfile(good, path)
+            _flip_in(path, values, zero)
+            refused(eccjump.load_map, path, path)
+
+
+@pytest.mark.parametrize("kind", ["jarm", "motion"])
+def test_damaged_or_lost_zarr_chunks_are_refused(tmp_path, maps_of_both_kinds, kind):
+    """Issue 46, 6: a flipped bit in a chunk read as other numbers, a deleted chunk of
+    theta_J as a JARM with theta_J = NaN (zarr's fill value). Every chunk of every array:
+    crc32c refuses the flip, a missing chunk is damage."""
+    m = maps_of_both_kinds[kind]
+    good = store.save(m, tmp_path / "good.zarr")
+    chunks = sorted(p.relative_to(good) for p in good.rglob("c/**/*") if p.is_file())
+    assert {c.parts[0] for c in chunks} >= set(m.fields) | set(m.coords)
+    for chunk in chunks:
+        for how in ("flip", "delete"):
+            path = tmp_path / f"{how}.zarr"
+            shutil.rmtree(path, ignore_errors=True)
+            shutil.copytree(good, path)
+            if how == "delete":
+                (path / chunk).unlink()
+            else:
+                data = bytearray((path / chunk).read_bytes())
+                data[len(data) // 2] ^= 0x01
+                (path / chunk).write_bytes(bytes(data))
+            msg = refused(eccjump.load_map, path, path)
+            assert ("missing" if how == "delete" else "checksum") in msg, msg
+
+
+def test_an_interrupted_zarr_map_loads_without_its_chunks_not_computed(tmp_path):
+    """The chunks of slices not computed are not written: not damage; a chunk of a slice
+    done is."""
+    path = tmp_path / "part.zarr"
+    assert cli(*MAP, "--chunk", "1", "--stop-after", "1", "-o", str(path))[0] == 130
+    assert not (path / "theta_J" / "c" / "1" / "0" / "0").exists()
+    assert store.load(path).attrs["alpha_done"].tolist() == [True, False, False]
+    (path / "theta_J" / "c" / "0" / "0" / "0").unlink()
+    assert "theta_J/c/0/0/0 is missing" in refused(store.load, path, path)
+
+
+@pytest.mark.parametrize("suffix", [".nc", ".zarr"])
+def test_a_map_written_without_checksums_loads_with_a_warning(tmp_path, region, suffix):
+    """The files of earlier builds (no Fletcher-32, no crc32c) are read, with a warning that
+    their damage cannot be found; saving them again adds the checksums."""
+    old = tmp_path / f"old{suffix}"
+    _write_raw(store.region_layout(region), old)
+    with pytest.warns(eccjump.store.UncheckedMapWarning, match="no checksums"):
+        assert store.load(old) == region
+    new = store.save(store.load(old), tmp_path / f"new{suffix}")
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        assert store.load(new) == region
+
+
+@pytest.mark.parametrize("where", ["zarr.json", "theta_J/zarr.json"])
+def test_a_huge_sparse_zarr_json_is_refused_before_it_is_read(tmp_path, region, where):
+    """Issue 46, 3: a 1 TB sparse zarr.json was a MemoryError with an empty message."""
+    path = store.save(region, tmp_path / "big.zarr")
+    with open(path / where, "r+b") as fh:
+        fh.truncate(10**12)
+    for load in (store.load, store.open_dataset, eccjump.load_map):
+        msg = refused(load, path, path)
+        assert where in msg and "1,000,000,000,000 bytes" in msg, msg
+    code, _, err = cli(*MAP, "-o", str(path), "--resume")
+    assert code == 2 and "1,000,000,000,000 bytes" in one_line(err)

@@ -141,17 +141,6 @@ def path(name: str, value: object) -> str | os.PathLike:
     return value
 
 
-def check_overwrite(name: str, value: str | os.PathLike, overwrite: bool, hint: str) -> None:
-    """The overwrite policy of the results' writers (``Uncertainty.save``, ``eccjump
-    uncertainty -o``): a file already at ``value`` is replaced only when the caller asked
-    for it (``overwrite``); else a ValueError naming ``name`` and saying how (``hint``).
-    Checked before the work, so that a refusal costs nothing."""
-    if not overwrite and os.path.lexists(value):
-        shown = os.fspath(value)
-        shown = shown if len(shown) <= 60 else shown[:57] + "..."
-        raise ValueError(f"{name} {shown!r} exists; {hint} to replace it")
-
-
 def mapping(name: str, value: object) -> Mapping[str, Any] | None:
     """None or a mapping."""
     if value is not None and not isinstance(value, Mapping):

@@ -6,8 +6,12 @@ A map (a layout, see :mod:`eccjump.labelled`) is valid when it has the variables
 attributes of its kind (:mod:`eccjump.map_kinds`); every field has the same dimensions, a
 sub-sequence of the kind's axes with its fixed ones, each with a finite 1-D coordinate of the
 field's length; every axis that is not a dimension is a finite number in the attributes; the
-dtypes fit; the coded fields hold codes of their tables; and (JARM) no slice marked done holds
-the fill value ``reason`` 255 of a point not computed.
+dtypes fit; the coded fields hold codes of their tables; every float field is within its
+physical range (:attr:`eccjump.fields.Field.valid`) and the fields that must agree do
+(:attr:`eccjump.map_kinds.MapKind.agree`); every axis is within
+:data:`eccjump.map_kinds.AXIS_RANGES` (a swept coordinate outside it only where every point
+is invalid); the derived coordinates ``alpha_deg`` and ``km`` are what their sources give;
+and (JARM) no slice marked done holds the fill value ``reason`` 255 of a point not computed.
 
 Errors are ValueErrors naming the file (:func:`shown`: at most :data:`SHOWN` characters of
 its path) in at most :data:`MAX_MESSAGE` characters.
@@ -22,7 +26,7 @@ from typing import Any
 
 import numpy as np
 
-from eccjump.map_kinds import MapKind, kind_of
+from eccjump.map_kinds import AXIS_RANGES, MapKind, kind_of, outside
 
 #: Longest error message, the prefix ``eccjump: error: `` of the command line included.
 MAX_MESSAGE = 200
@@ -40,9 +44,13 @@ def shown(path: object) -> str:
     return text if len(text) <= SHOWN else "..." + text[3 - SHOWN :]
 
 
-def file_error(path: object, what: str, cls: type[Exception] = ValueError) -> Exception:
-    """``cls("<path> <what>")``, cut to fit an ``eccjump: error:`` line of MAX_MESSAGE."""
+def file_error(
+    path: object, what: str, cls: type[Exception] = ValueError, name: str | None = None
+) -> Exception:
+    """``cls("<path> <what>")`` (``"<name>: <path> <what>"`` with the parameter or option
+    ``name`` that gave the path), cut to fit an ``eccjump: error:`` line of MAX_MESSAGE."""
     text = " ".join(f"{shown(path)} {what}".split())  # one line
+    text = text if name is None else f"{name}: {text}"
     limit = MAX_MESSAGE - len("eccjump: error: ")
     return cls(text if len(text) <= limit else text[: limit - 3] + "...")
 
@@ -75,7 +83,10 @@ def check(lay: object) -> MapKind:
     _axis_attrs(kind, dims, attrs)
     done = _done(variables, attrs, dims, shape)
     values = {k: np.asarray(data_vars[k][1]) for k in kind.fields}
-    problem = kind.bad_codes(values)
+    _derived_coords(variables, dims)
+    _axis_ranges(kind, variables, dims, values)
+    extra = {k: np.asarray(v[1]) for k, v in data_vars.items() if k in kind.valid}
+    problem = kind.bad_codes(values) or kind.bad_values({**extra, **values})
     if problem is None and kind.computed_mark is not None and done is not None:
         name, fill = kind.computed_mark, kind.fill[kind.computed_mark]
         if (values[name].compress(done, axis=dims.index("alpha")) == fill).any():
@@ -144,6 +155,41 @@ def _coordinate(variables: dict, dim: str) -> int:
     return values.size
 
 
+def _axis_ranges(kind: MapKind, variables: dict, dims: tuple[str, ...], values: dict) -> None:
+    """A swept coordinate may leave its physical range (:data:`AXIS_RANGES`) only where every
+    point of the map is invalid: the computation marks such points so and goes on."""
+    mark, codes = kind.invalid
+    for axis, dim in kind.axes:
+        if dim not in dims or axis not in AXIS_RANGES:
+            continue
+        lo, hi = AXIS_RANGES[axis]
+        coord = np.asarray(variables[dim][1], dtype=np.float64)
+        out = ~((coord >= lo) & (coord <= hi))
+        at = np.asarray(values[mark]).compress(out, axis=dims.index(dim))
+        if out.any() and not np.isin(at, list(codes)).all():
+            raise Invalid(
+                f"has a coordinate {dim} = {outside(coord[out][0], lo, hi)} with valid points"
+            )
+
+
+#: The coordinates derived from others (:func:`eccjump.labelled.grid_coords`), by their
+#: dimensions and how: each must be what its sources give, bit for bit.
+_DERIVED = {
+    "alpha_deg": (("alpha",), lambda v: np.degrees(v["alpha"])),
+    "km": (("chi", "km_frac"), lambda v: v["km_frac"][None, :] * (1.0 - v["chi"][:, None])),
+}
+
+
+def _derived_coords(variables: dict, dims: tuple[str, ...]) -> None:
+    for name, (sources, derive) in _DERIVED.items():
+        if name not in variables or not set(sources) <= set(dims):
+            continue
+        have = np.asarray(variables[name][1])
+        want = derive({d: np.asarray(variables[d][1], dtype=np.float64) for d in sources})
+        if tuple(variables[name][0]) != sources or not np.array_equal(have, want):
+            raise Invalid(f"has a coordinate {name} that is not what {', '.join(sources)} give")
+
+
 def _field(
     kind: MapKind, name: str, var: Any, dims: tuple[str, ...], shape: tuple[int, ...]
 ) -> None:
@@ -178,9 +224,42 @@ def _axis_attrs(kind: MapKind, dims: tuple[str, ...], attrs: dict) -> None:
             continue
         if not _finite(value) or (name in COUNT_ATTRS and not _count(value)):
             raise Invalid(f"has a bad attribute {name} = {str(value)[:20]!r}")
+        lo, hi = AXIS_RANGES.get(name, (-np.inf, np.inf))
+        if not lo <= float(value) <= hi:
+            raise Invalid(f"has an attribute {name} = {outside(float(value), lo, hi)}")
     for name in TEXT_ATTRS:
         if name in attrs and not isinstance(attrs[name], str):
             raise Invalid(f"has a bad attribute {name} (not text)")
+
+
+def attr_problem(attrs: Mapping[str, Any], name: str) -> str | None:
+    """What makes ``attrs`` (called ``name``) no attributes every format stores alike (None:
+    nothing): each is text, a number (not a bool: netCDF has none) or a 1-D list or array of
+    numbers or of texts, under a text key."""
+    for key, value in attrs.items():
+        if not isinstance(key, str):
+            return f"{name} has a key {str(key)[:20]!r} that is not text"
+        if not _attr_value(value):
+            what = getattr(value, "dtype", None) or type(value).__name__
+            return (
+                f"{name}[{key[:20]!r}] is of type {str(what)[:20]}, not text, a number or "
+                "a 1-D list of numbers or of texts"
+            )
+    return None
+
+
+def _attr_value(value: object) -> bool:
+    if isinstance(value, str):
+        return True
+    if isinstance(value, list | tuple):
+        return all(isinstance(v, str) for v in value) or all(map(_number, value))
+    if isinstance(value, np.ndarray):
+        return value.ndim <= 1 and value.dtype.kind in "iufU"
+    return _number(value)
+
+
+def _number(value: object) -> bool:
+    return isinstance(value, numbers.Real) and not isinstance(value, bool | np.bool_)
 
 
 def _finite(value: object) -> bool:

@@ -580,9 +580,19 @@ def region_attrs(region: Region) -> dict[str, Any]:
 
 
 def region_layout(region: Region) -> Layout:
-    """The labelled layout of a :class:`Region` (numpy only; dask arrays if lazy)."""
+    """The labelled layout of a :class:`Region` (numpy only; dask arrays if lazy). The
+    attribute ``alpha_done`` of a Region loaded from a map file (which slices were computed)
+    goes back to the variable it came from: no format stores an array of bools as an
+    attribute."""
+    attrs = region_attrs(region)
+    done = attrs.pop("alpha_done", None)
     lay = make_layout(
-        region.alpha, region.chi, region.km_frac, region.result.fields(), region_attrs(region)
+        region.alpha,
+        region.chi,
+        region.km_frac,
+        region.result.fields(),
+        attrs,
+        alpha_done=None if done is None else np.asarray(done),
     )
     return with_derivatives(lay, region.result.derivatives())
 

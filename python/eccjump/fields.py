@@ -13,6 +13,8 @@ This module depends on numpy and the compiled core only (for the :class:`Reason`
 from __future__ import annotations
 
 import enum
+import math
+import sys
 from typing import Any, NamedTuple
 
 import numpy as np
@@ -33,10 +35,18 @@ class Field(NamedTuple):
     description: str
     #: Value of a point not computed (an interrupted map).
     fill: Any
+    #: The physical range [lo, hi] of a float field's values other than NaN (checked when a
+    #: map is read or written, :mod:`eccjump._mapcheck`): finite unless a bound is infinite.
+    valid: tuple[float, float] = (-sys.float_info.max, sys.float_info.max)
 
 
 _BOOL, _U8, _U32, _F64 = (np.dtype(t) for t in (np.bool_, np.uint8, np.uint32, np.float64))
 _NAN = float("nan")
+#: Slack of a bound at 0 that a result reaches with rounding (a normal force at lift-off).
+ROUNDING = 1e-9
+#: The angles of a JARM search: from the start (|theta0| <= 2 pi 10^6) over at most 10^6
+#: turns (max_turns), with room to spare.
+ANGLES = (-2 * math.pi * 1e7, 2 * math.pi * 1e7)
 
 #: Every field, in the order of the bridge.
 TABLE: tuple[Field, ...] = (
@@ -56,14 +66,24 @@ TABLE: tuple[Field, ...] = (
         "rad",
         "lift-off angle (JARM, LIFTOFF_EARLIER, SLIP_AT_JUMP), else NaN",
         _NAN,
+        ANGLES,
     ),
-    Field("theta_event", _F64, "rad", "angle of the deciding failure (NaN for a JARM)", _NAN),
+    Field(
+        "theta_event", _F64, "rad", "angle of the deciding failure (NaN for a JARM)", _NAN, ANGLES
+    ),
     Field("Fx_J", _F64, "M g", "friction force at the jump (JARM only)", _NAN),
-    Field("Fy_J", _F64, "M g", "normal force at the jump (JARM only)", _NAN),
-    Field("max_ratio", _F64, "1", "largest |Fx|/Fy on the rolling path", _NAN),
-    Field("theta_max_ratio", _F64, "rad", "angle of the largest |Fx|/Fy", _NAN),
+    Field(
+        "Fy_J",
+        _F64,
+        "M g",
+        "normal force at the jump (JARM only)",
+        _NAN,
+        (-ROUNDING, sys.float_info.max),
+    ),
+    Field("max_ratio", _F64, "1", "largest |Fx|/Fy on the rolling path", _NAN, (0.0, math.inf)),
+    Field("theta_max_ratio", _F64, "rad", "angle of the largest |Fx|/Fy", _NAN, ANGLES),
     Field("min_Fy", _F64, "M g", "smallest normal force on the rolling path", _NAN),
-    Field("theta_min_Fy", _F64, "rad", "angle of the smallest normal force", _NAN),
+    Field("theta_min_Fy", _F64, "rad", "angle of the smallest normal force", _NAN, ANGLES),
 )
 
 #: Field names, in the order of the bridge.
@@ -109,6 +129,10 @@ BY_NAME: dict[str, Field] = {f.name: f for f in TABLE + DERIVATIVE_TABLE}
 DTYPES: dict[str, np.dtype] = {f.name: f.dtype for f in TABLE + DERIVATIVE_TABLE}
 #: Value of each field where a point was not computed (``reason`` 255 is not a Reason).
 FILL: dict[str, Any] = {f.name: f.fill for f in TABLE}
+#: The physical range of each float field (the derivative fields too), NaN aside.
+VALID: dict[str, tuple[float, float]] = {
+    f.name: f.valid for f in TABLE + DERIVATIVE_TABLE if f.dtype.kind == "f"
+}
 #: One record per point holding every field (the dtype of the dask blocks).
 RECORD = np.dtype([(f.name, f.dtype) for f in TABLE])
 
@@ -218,6 +242,7 @@ __all__ = [
     "FILL",
     "RECORD",
     "TABLE",
+    "VALID",
     "WRT",
     "Field",
     "Reason",

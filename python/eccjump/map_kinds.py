@@ -9,7 +9,10 @@ attributes) and the allowed values of its coded fields (:meth:`MapKind.bad_codes
 
 from __future__ import annotations
 
+import math
+import sys
 from collections.abc import Callable, Mapping
+from types import MappingProxyType
 from typing import Any, NamedTuple
 
 import numpy as np
@@ -43,6 +46,15 @@ class MapKind(NamedTuple):
     codes: Mapping[str, frozenset[int]]
     #: A field whose fill value no computed point has (None: the fill can be a result).
     computed_mark: str | None = None
+    #: The physical range of each float field, NaN aside (:attr:`eccjump.fields.Field.valid`).
+    valid: Mapping[str, tuple[float, float]] = MappingProxyType({})
+    #: The field and codes that mark a point invalid (or not computed): the only points a map
+    #: may hold at a coordinate outside its range (:data:`AXIS_RANGES`).
+    invalid: tuple[str, frozenset[int]] = ("", frozenset())
+    #: Rules (flag, float field, both ways): where a point has the flag (a bool, or a code
+    #: other than the flag's fill), the float field is a number (not NaN); both ways: only
+    #: there.
+    agree: tuple[tuple[str, str, bool], ...] = ()
 
     def bytes_per_point(self) -> int:
         return sum(np.dtype(self.dtypes[k]).itemsize for k in self.fields)
@@ -64,6 +76,27 @@ class MapKind(NamedTuple):
             is_jarm = np.asarray(values["is_jarm"], dtype=bool)
             if not np.array_equal(is_jarm, np.asarray(values["reason"]) == fields.Reason.JARM):
                 return "is_jarm contradicts reason"
+        return None
+
+    def bad_values(self, values: Mapping[str, NDArray]) -> str | None:
+        """What is wrong with the values in ``values`` (None: nothing): a float field outside
+        its physical range (:attr:`valid`), or two fields that disagree (:attr:`agree`)."""
+        for name, (lo, hi) in self.valid.items():
+            if name not in values:
+                continue
+            a = np.asarray(values[name], dtype=np.float64)
+            with np.errstate(invalid="ignore"):
+                bad = ~((a >= lo) & (a <= hi)) & ~np.isnan(a)
+            if bad.any():
+                return f"{name} holds {outside(a[bad].flat[0], lo, hi)}"
+        for flag, name, both in self.agree:
+            f = np.asarray(values[flag])
+            has = f if f.dtype.kind == "b" else f != self.fill[flag]
+            number = ~np.isnan(np.asarray(values[name], dtype=np.float64))
+            if (has & ~number).any():
+                return f"{name} is NaN where {flag} says it is set"
+            if both and (number & ~has).any():
+                return f"{name} is set where {flag} says it is not"
         return None
 
 
@@ -95,6 +128,9 @@ JARM = MapKind(
     ("alpha", "chi", "km_frac"),
     {"reason": frozenset([*(int(r) for r in fields.Reason), fields.FILL["reason"]])},
     "reason",
+    fields.VALID,
+    ("reason", frozenset([int(fields.Reason.INVALID_PARAMS), fields.FILL["reason"]])),
+    (("is_jarm", "Fx_J", True), ("is_jarm", "Fy_J", True), ("is_jarm", "theta_J", False)),
 )
 MOTION = MapKind(
     "motion",
@@ -119,7 +155,38 @@ MOTION = MapKind(
         "landing": frozenset(range(len(motion_fields.LANDINGS))),
         "liftoff_reason": frozenset([*range(len(REASONS)), motion_fields.FILL["liftoff_reason"]]),
     },
+    None,
+    motion_fields.VALID,
+    ("status", frozenset([motion_fields.INVALID])),
+    (
+        ("status", "energy_lost", True),
+        ("slipped_first", "slip_t", True),
+        ("slipped_first", "slip_theta", True),
+        ("liftoff_reason", "liftoff_t", True),
+        ("liftoff_reason", "liftoff_theta", True),
+        ("liftoff_reason", "apex", True),
+    ),
 )
+#: The physical range of each axis of a map, a coordinate or (not swept) an attribute; a map
+#: may hold points outside it only as invalid points (:attr:`MapKind.invalid`): the
+#: computation marks them so and goes on.
+AXIS_RANGES: dict[str, tuple[float, float]] = {
+    "alpha": (0.0, math.pi / 2),
+    "chi": (0.0, 1.0),
+    "km_frac": (0.0, 1.0),
+    "mu_s": (0.0, sys.float_info.max),
+    "mu_k": (0.0, sys.float_info.max),
+    "restitution": (0.0, 1.0),
+    "theta0": (-2 * math.pi * 1e6, 2 * math.pi * 1e6),
+    "omega0": (-1e6, 1e6),
+}
+
+
+def outside(value: float, lo: float, hi: float) -> str:
+    """How ``value`` leaves the range [lo, hi], in words: ``"-5 (below -0.001)"``."""
+    return f"{value:g} ({f'below {lo:g}' if value < lo else f'above {hi:g}'})"
+
+
 #: Every kind by name.
 KINDS: dict[str, MapKind] = {k.name: k for k in (JARM, MOTION)}
 
@@ -140,4 +207,13 @@ def upgrade_attrs(attrs: dict[str, Any]) -> None:
         attrs["km_frac"] = attrs.pop("km")
 
 
-__all__ = ["JARM", "KINDS", "MOTION", "MapKind", "kind_of", "upgrade_attrs", "valid_sequences"]
+__all__ = [
+    "AXIS_RANGES",
+    "JARM",
+    "KINDS",
+    "MOTION",
+    "MapKind",
+    "kind_of",
+    "upgrade_attrs",
+    "valid_sequences",
+]

@@ -9,13 +9,14 @@ this table. Also the codes of the sequence of modes, the statuses and the landin
 from __future__ import annotations
 
 import math
+import sys
 from typing import Any
 
 import numpy as np
 
 from eccjump import _core
 from eccjump._checks import integer
-from eccjump.fields import Field
+from eccjump.fields import ROUNDING, Field
 from eccjump.motion import MODES, REASONS, STATUSES
 
 #: Modes kept in the sequence code.
@@ -30,6 +31,10 @@ STATUS_NAMES: dict[int, str] = {**dict(enumerate(STATUSES)), INVALID: "invalid"}
 
 _B, _U8, _U16, _F = (np.dtype(t) for t in (np.bool_, np.uint8, np.uint16, np.float64))
 _T = "sqrt(R/g)"
+#: Times of a run: t_max is at most 10^6.
+_TIMES = (0.0, 1e6)
+#: Energy dissipated: never negative, less the rounding of the energy balance of fast runs.
+_LOST = (-1e-3, sys.float_info.max)
 #: Every summary field, in the order of the bridge. A point not computed has status
 #: :data:`INVALID` and the fill values.
 TABLE: tuple[Field, ...] = (
@@ -38,16 +43,30 @@ TABLE: tuple[Field, ...] = (
     Field("n_modes", _U16, "1", "modes in the run, the start's included", 0),
     Field("jarm", _B, "1", "lift-off straight out of pure rolling from the start", False),
     Field("slipped_first", _B, "1", "a slip came before the first flight", False),
-    Field("slip_t", _F, _T, "time of the first slip onset (NaN: none)", math.nan),
+    Field("slip_t", _F, _T, "time of the first slip onset (NaN: none)", math.nan, _TIMES),
     Field("slip_theta", _F, "rad", "angle of the first slip onset (NaN: none)", math.nan),
     Field("liftoff_reason", _U8, "1", "why the first flight began (255: none)", 255),
-    Field("liftoff_t", _F, _T, "time of the first lift-off (NaN: none)", math.nan),
+    Field("liftoff_t", _F, _T, "time of the first lift-off (NaN: none)", math.nan, _TIMES),
     Field("liftoff_theta", _F, "rad", "angle of the first lift-off (NaN: none)", math.nan),
-    Field("flight_time", _F, _T, "duration of the first flight (NaN: did not land)", math.nan),
-    Field("apex", _F, "R", "largest height of the first flight above contact", math.nan),
+    Field(
+        "flight_time",
+        _F,
+        _T,
+        "duration of the first flight (NaN: did not land)",
+        math.nan,
+        _TIMES,
+    ),
+    Field(
+        "apex",
+        _F,
+        "R",
+        "largest height of the first flight above contact",
+        math.nan,
+        (-ROUNDING, sys.float_info.max),
+    ),
     Field("distance", _F, "R", "distance down the ramp covered by the first flight", math.nan),
     Field("landing", _U8, "1", "how the first landing ended", 0),
-    Field("energy_lost", _F, "M g R", "energy dissipated by sliding and impacts", math.nan),
+    Field("energy_lost", _F, "M g R", "energy dissipated by sliding and impacts", math.nan, _LOST),
 )
 #: Field names, in the order of the bridge.
 FIELDS: tuple[str, ...] = tuple(f.name for f in TABLE)
@@ -57,6 +76,8 @@ BY_NAME: dict[str, Field] = {f.name: f for f in TABLE}
 DTYPES: dict[str, np.dtype] = {f.name: f.dtype for f in TABLE}
 #: Value of each field where a point was not computed.
 FILL: dict[str, Any] = {f.name: f.fill for f in TABLE}
+#: The physical range of each float field, NaN aside.
+VALID: dict[str, tuple[float, float]] = {f.name: f.valid for f in TABLE if f.dtype.kind == "f"}
 
 
 #: The largest sequence code: :data:`SEQUENCE_LEN` modes of 2 bits (the field's uint16).
@@ -122,6 +143,7 @@ __all__ = [
     "SEQUENCE_MAX",
     "STATUS_NAMES",
     "TABLE",
+    "VALID",
     "Field",
     "cf_attrs",
     "sequence_code",

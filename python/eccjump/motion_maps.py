@@ -22,7 +22,7 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from eccjump import _core, store
-from eccjump._arrays import fraction_axis
+from eccjump._arrays import fields_equal, fraction_axis
 from eccjump._checks import U64_MAX, Integrator, integer, real_array, short, text
 from eccjump._html import best_slice, card, deg, jarm_slice, span
 from eccjump._map import Map
@@ -99,6 +99,11 @@ class MotionMap(Map):
     fields: dict[str, NDArray]
     options: dict[str, Any] = field(default_factory=dict)
 
+    #: Field by field: coords, scalars, fields (by shape, dtype and values, NaN equal to NaN)
+    #: and options; a map loaded from a file equals the map saved.
+    __eq__ = fields_equal
+    __hash__ = None  # type: ignore[assignment]
+
     def __getattr__(self, name: str) -> NDArray:
         fields = self.__dict__.get("fields", {})
         if name in fields:
@@ -151,11 +156,11 @@ class MotionMap(Map):
         return xr.Dataset(data, coords=coords, attrs=self.attrs())
 
     def attrs(self) -> dict[str, Any]:
-        """How the map was made, as netCDF-safe file attributes (``mu_k`` = mu_s where it
-        was not given)."""
+        """How the map was made, as netCDF-safe file attributes (``mu_k`` the text "mu_s"
+        where it was not given: mu_k = mu_s, and ``scalars['mu_k']`` None once loaded)."""
         given: dict[str, Any] = {k: float(v) for k, v in self.scalars.items() if v is not None}
         if "mu_k" in self.scalars and self.scalars["mu_k"] is None:
-            given["mu_k"] = given.get("mu_s", "mu_s")  # mu_k = mu_s, swept or not
+            given["mu_k"] = "mu_s"
         return {
             "title": "motion map of an eccentric cylinder on a ramp (eccjump)",
             "kind": "motion",

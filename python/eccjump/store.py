@@ -14,7 +14,11 @@ A map is never half there. Every new file or store is written under a temporary 
 replaces is removed only after that (a directory is swapped in with one atomic
 ``renameat2(RENAME_EXCHANGE)`` on Linux, elsewhere the old one is renamed aside to
 ``.<name>.old-<pid>`` first). :func:`recover` removes what a killed process left behind and
-puts back a map left aside. A missing parent directory is an error, never created.
+puts back a map left aside. A missing parent directory is an error, never created. What may
+be replaced is the one overwrite policy of :mod:`eccjump._overwrite` (:func:`is_map`: a map
+of eccjump, by its content). Every format carries checksums and a missing zarr chunk is
+damage (:mod:`eccjump._integrity`); every value is checked against its physical range
+(:mod:`eccjump._mapcheck`).
 """
 
 from __future__ import annotations
@@ -22,6 +26,7 @@ from __future__ import annotations
 import ctypes
 import errno
 import json
+import math
 import os
 import re
 import shutil
@@ -30,6 +35,7 @@ import stat
 import subprocess
 import sys
 import warnings
+import zipfile
 from collections.abc import Mapping
 from pathlib import Path
 from typing import TYPE_CHECKING, Any, Literal
@@ -37,9 +43,18 @@ from typing import TYPE_CHECKING, Any, Literal
 import numpy as np
 from numpy.typing import NDArray
 
-from eccjump._checks import mapping
+from eccjump._checks import flag, mapping
 from eccjump._checks import path as check_path
-from eccjump._mapcheck import Invalid, check, check_layout, file_error, shown
+from eccjump._integrity import UncheckedMapWarning as UncheckedMapWarning  # public here
+from eccjump._integrity import (
+    check_metadata_size,
+    check_netcdf,
+    check_zarr,
+    netcdf_encoding,
+    zarr_codecs,
+)
+from eccjump._mapcheck import Invalid, attr_problem, check, check_layout, file_error, shown
+from eccjump._overwrite import check_overwrite, file_type
 from eccjump.classification import Region
 from eccjump.labelled import (
     COORD_ATTRS,
@@ -134,6 +149,9 @@ def _valid_layout(obj: object, attrs: Mapping[str, Any] | None) -> Layout:
     lay = _as_layout(obj)
     _check_given("obj", lay)
     if attrs:
+        problem = attr_problem(attrs, "attrs")
+        if problem:
+            raise ValueError(problem[:180])
         lay = {**lay, "attrs": {**lay["attrs"], **attrs}}
         _check_given("attrs", lay)
     return lay
@@ -142,6 +160,9 @@ def _valid_layout(obj: object, attrs: Mapping[str, Any] | None) -> Layout:
 def _check_given(name: str, lay: Layout) -> None:
     try:
         check(lay)
+        problem = attr_problem(lay["attrs"], "attrs")
+        if problem:
+            raise Invalid(problem)
     except Invalid as err:
         raise ValueError(f"{name}: the map {err}"[:180]) from None
 
@@ -234,6 +255,7 @@ def _our_zarr_map(path: Path) -> bool:
     """Whether the directory ``path`` is a zarr map written by eccjump: a group whose
     attributes carry ``eccjump_version``, holding nothing but zarr arrays."""
     try:
+        check_metadata_size(path)
         meta = json.loads((path / "zarr.json").read_text())
         entries = list(path.iterdir())
         attrs = meta["attributes"]
@@ -247,35 +269,64 @@ def _our_zarr_map(path: Path) -> bool:
         return False
 
 
-def check_replaceable(path: str | os.PathLike, by_directory: bool) -> None:
-    """ValueError naming ``path`` unless what is there may be replaced by a new map file
-    (``by_directory`` False: a regular file) or zarr store (True: a zarr map of ours). A
-    directory of other files, a directory at an .npz/.nc path, a FIFO, a device are never
-    replaced: only what eccjump could have written is."""
+#: The first bytes of a map file that say whose it is: an HDF5 (netCDF4) map of eccjump has
+#: its global attributes, ``eccjump_version`` among them, within them.
+_HEAD_BYTES = 65536
+_HDF5_SIGNATURE = b"\x89HDF\r\n\x1a\n"
+#: The start of an .npz map (:func:`save_npz`): the zip header of its member __layout__.npy.
+_ZIP_LAYOUT = re.compile(rb"PK\x03\x04.{22}\x0e\x00..__layout__\.npy", re.DOTALL)
+
+
+def is_map(path: str | os.PathLike) -> bool:
+    """Whether ``path`` holds a map of eccjump, by its content (never by its name): a zarr
+    map (:func:`_our_zarr_map`), an .npz archive holding the member ``__layout__.npy``, or a
+    netCDF4 (HDF5) file with ``eccjump_version`` among its first bytes. Damaged or not: a
+    writer may replace it. Nothing but regular files and directories is opened."""
+    path = Path(path)
     try:
         mode = os.stat(path).st_mode
-    except FileNotFoundError:  # a dangling symbolic link: only the link is replaced
-        return
-    except OSError as err:
-        raise file_error(path, f"cannot be replaced: {err.strerror}") from None
-    if by_directory and stat.S_ISDIR(mode):
-        if _our_zarr_map(Path(path)):
-            return
-        raise file_error(path, "is a directory that is no zarr map of eccjump: not replaced")
-    if not by_directory and stat.S_ISREG(mode):
-        return
-    want = "a zarr map" if by_directory else "a map file"
-    raise file_error(path, f"is {_file_type(mode)}, not {want}: not replaced")
+        if stat.S_ISDIR(mode):
+            return _our_zarr_map(path)
+        if not stat.S_ISREG(mode):
+            return False
+        with open(path, "rb") as fh:
+            head = fh.read(_HEAD_BYTES)
+        if _ZIP_LAYOUT.match(head):  # the first member (a damaged end is no matter)
+            return True
+        if head.startswith(b"PK"):
+            with zipfile.ZipFile(path) as z:
+                return "__layout__.npy" in z.namelist()
+    except (OSError, ValueError, EOFError, zipfile.BadZipFile):
+        return False
+    return head.startswith(_HDF5_SIGNATURE) and b"eccjump_version" in head
 
 
-def check_target(path: str | os.PathLike, fmt: str) -> None:
+def check_replaceable(
+    path: str | os.PathLike,
+    by_directory: bool,
+    *,
+    overwrite: bool = False,
+    option: str = "overwrite=True",
+) -> None:
+    """The overwrite policy (:mod:`eccjump._overwrite`) for a map written to ``path``: a new
+    map file (``by_directory`` False) replaces a regular file that is a map of eccjump
+    (:func:`is_map`), or any regular file with ``overwrite``; a zarr store (True) replaces
+    only a zarr map of eccjump. Anything else is an :class:`~eccjump._overwrite.ExistsError`
+    (a ValueError) naming ``path`` and ``option``."""
+    what = "a zarr map of eccjump" if by_directory else "a map of eccjump"
+    check_overwrite(
+        path, overwrite=overwrite, option=option, ours=is_map, what=what, directory=by_directory
+    )
+
+
+def check_target(path: str | os.PathLike, fmt: str, *, overwrite: bool = False) -> None:
     """Before a map of ``fmt`` is written to ``path``: its directory exists
     (FileNotFoundError/NotADirectoryError), its name is not too long and what is there, if
-    anything, may be replaced (ValueError naming ``path``)."""
+    anything, may be replaced (:func:`check_replaceable`: ValueError naming ``path``)."""
     check_parent(path)
     check_name(path)
     if os.path.lexists(path):
-        check_replaceable(path, fmt == "zarr")
+        check_replaceable(path, fmt == "zarr", overwrite=overwrite)
 
 
 def _alive(pid: int) -> bool:
@@ -349,10 +400,12 @@ def _renameat2(src: Path, dst: Path, flags: int) -> bool:
     raise OSError(err, os.strerror(err), str(src), None, str(dst))
 
 
-def install(tmp: str | os.PathLike, path: str | os.PathLike) -> None:
+def install(tmp: str | os.PathLike, path: str | os.PathLike, *, overwrite: bool = True) -> None:
     """Rename the finished ``tmp`` to ``path``; a map already at ``path`` is removed only once
-    the new one is in place, and only if it is what ``tmp`` is (:func:`check_replaceable`:
-    else ValueError naming ``path``, and nothing is touched). A file replaces a file
+    the new one is in place, and only if the overwrite policy allows it
+    (:func:`check_replaceable`, checked again here in case something appeared meanwhile;
+    ``overwrite`` True: the caller checked the target before, any regular file goes; else
+    ValueError naming ``path``, and nothing is touched). A file replaces a file
     atomically (``os.replace``); a directory is swapped in atomically on Linux, elsewhere the
     old one is renamed aside first (a crash in between leaves it as ``.<name>.old-<pid>``,
     put back by :func:`recover`)."""
@@ -363,7 +416,7 @@ def install(tmp: str | os.PathLike, path: str | os.PathLike) -> None:
                 raise FileExistsError(errno.EEXIST, "appeared while writing", str(path))
             os.rename(tmp, path)
         return
-    check_replaceable(path, tmp.is_dir())  # the one place where what was there goes
+    check_replaceable(path, tmp.is_dir(), overwrite=overwrite)  # where what was there goes
     if not tmp.is_dir():
         os.replace(tmp, path)
         return
@@ -392,13 +445,15 @@ def save(
     path: str | os.PathLike,
     *,
     attrs: Mapping[str, Any] | None = None,
+    overwrite: bool = False,
 ) -> Path:
-    """Write a map to ``path``, replacing the map there; the format by the suffix.
+    """Write a map to ``path``, replacing a map there; the format by the suffix.
 
     Every format is written under a temporary name next to ``path`` and renamed into place
     (:func:`install`), so a map at ``path`` is always whole and the one it replaces is kept
-    until then; on failure nothing is left behind. Only a map file (or a zarr map of
-    eccjump) is replaced, never a directory of other files or a FIFO.
+    until then; on failure nothing is left behind. A map of eccjump at ``path`` (recognised
+    by its content, :func:`is_map`) is replaced; another regular file only with
+    ``overwrite=True``; a directory of other files, a FIFO or a device never.
 
     Parameters
     ----------
@@ -409,7 +464,9 @@ def save(
         ``.nc`` (netCDF4, needs xarray), ``.zarr`` (needs zarr) or ``.npz`` (numpy only); its
         directory must exist.
     attrs : mapping, optional
-        Extra attributes to record in the file.
+        Extra attributes to record in the file (numbers, text, lists of them).
+    overwrite : bool, default False
+        Replace a regular file at ``path`` that is not a map of eccjump.
 
     Returns
     -------
@@ -419,8 +476,9 @@ def save(
     Raises
     ------
     ValueError
-        For an unknown suffix, a target that is not a map, or a map that :func:`load`
-        would refuse (naming ``path``, ``obj`` or ``attrs``).
+        For an unknown suffix, a target that may not be replaced (a
+        ``FileExistsError`` too), or a map that :func:`load` would refuse (naming ``path``,
+        ``obj`` or ``attrs``).
     OSError
         If the file cannot be written (its directory is missing, no space, ...).
     ImportError
@@ -428,8 +486,9 @@ def save(
     """
     path = Path(check_path("path", path))
     mapping("attrs", attrs)
+    overwrite = flag("overwrite", overwrite)
     fmt = format_of(path)
-    check_target(path, fmt)
+    check_target(path, fmt, overwrite=overwrite)
     lay = _valid_layout(obj, attrs)
     tmp = temp_sibling(path)
     try:
@@ -437,18 +496,23 @@ def save(
             save_npz(lay, tmp)
             _fsync(tmp)
         elif fmt == "netcdf":
+            ds = layout_to_xarray(lay)
+            encoding = netcdf_encoding(ds.variables.items())
             try:
-                layout_to_xarray(lay).to_netcdf(tmp, engine=netcdf_engine())
+                ds.to_netcdf(tmp, engine=netcdf_engine(), encoding=encoding)
             except RuntimeError as err:  # netCDF4 reports a failed write as "HDF error"
                 raise OSError(errno.EIO, f"netCDF write failed ({err})", str(tmp)) from err
             _fsync(tmp)
         else:
             ds = layout_to_xarray(lay)
             require("zarr")
-            with _quiet_consolidation():
-                ds.to_zarr(tmp, mode="w-", consolidated=True)
+            codecs = {k: {"compressors": zarr_codecs()} for k in ds.variables}
+            with _quiet_consolidation():  # every chunk stored: a missing one is damage
+                ds.to_zarr(
+                    tmp, mode="w-", consolidated=True, encoding=codecs, write_empty_chunks=True
+                )
         _step("written")
-        install(tmp, path)
+        install(tmp, path, overwrite=overwrite)
     except BaseException:
         remove(tmp)
         raise
@@ -456,7 +520,9 @@ def save(
 
 
 def save_npz(layout: Layout, path: str | os.PathLike) -> None:
-    """A layout as ``.npz``: one array per variable, dims and attributes as JSON."""
+    """A layout as ``.npz``: one array per variable, dims and attributes as JSON in the first
+    member, ``__layout__`` (so that :func:`is_map` knows the file by its first bytes). Each
+    member has its CRC-32, which numpy's reading checks."""
     arrays: dict[str, NDArray] = {}
     meta: dict[str, Any] = {"attrs": json.loads(attrs_json(layout["attrs"]))}
     for part in ("coords", "data_vars"):
@@ -464,7 +530,7 @@ def save_npz(layout: Layout, path: str | os.PathLike) -> None:
         for name, (dims, values, attrs) in layout[part].items():
             arrays[f"{part}/{name}"] = np.asarray(values)
             meta[part][name] = {"dims": list(dims), "attrs": json.loads(attrs_json(attrs))}
-    arrays["__layout__"] = np.array(json.dumps(meta))
+    arrays = {"__layout__": np.array(json.dumps(meta)), **arrays}
     with open(path, "wb") as fh:
         np.savez(fh, **arrays)  # type: ignore[arg-type]  # numpy's stub: allow_pickle first
 
@@ -503,19 +569,9 @@ def _check_source(path: str | os.PathLike, fmt: str) -> None:
             raise
         raise file_error(path, f"cannot be read: {err.strerror}") from None
     if fmt == "zarr" and not stat.S_ISDIR(mode):
-        raise file_error(path, f"is not a zarr map: {_file_type(mode)}, not a directory")
+        raise file_error(path, f"is not a zarr map: {file_type(mode)}, not a directory")
     if fmt != "zarr" and not stat.S_ISREG(mode):
-        raise file_error(path, f"is not a {fmt} map: {_file_type(mode)}, not a regular file")
-
-
-def _file_type(mode: int) -> str:
-    kinds = (
-        (stat.S_ISDIR, "a directory"),
-        (stat.S_ISREG, "a file"),
-        (stat.S_ISFIFO, "a FIFO"),
-        (stat.S_ISSOCK, "a socket"),
-    )
-    return next((name for test, name in kinds if test(mode)), "a device")
+        raise file_error(path, f"is not a {fmt} map: {file_type(mode)}, not a regular file")
 
 
 #: Seconds the netCDF library is given to read a file in :func:`_probe_netcdf`, plus one per
@@ -523,10 +579,31 @@ def _file_type(mode: int) -> str:
 PROBE_SECONDS = 10.0
 PROBE_BYTES_PER_SECOND = 50e6
 
-#: Reads every variable and attribute of the netCDF file argv[2] with the engine argv[1].
-_PROBE = """
-import sys
-engine, path = sys.argv[1:]
+#: The start of the probe child (argv: the caller's pid, its CPU-time limit in seconds, the
+#: engine, the path). It dies with its caller: a caller killed by SIGKILL or SIGTERM (a job's
+#: timeout, a kernel restart) cannot kill its child, which, re-parented to init, would spin in
+#: HDF5 for ever. Linux's PR_SET_PDEATHSIG sends it SIGKILL when its parent dies (checked
+#: after the call, in case the parent died first); everywhere, RLIMIT_CPU stops it once it has
+#: used its time (SIGXCPU, without a core file).
+_PROBE_START = """
+import os, sys
+parent, cpu_limit = int(sys.argv[1]), int(sys.argv[2])
+engine, path = sys.argv[3:5]
+if sys.platform.startswith("linux"):
+    import ctypes, signal
+    ctypes.CDLL(None).prctl(1, int(signal.SIGKILL))  # PR_SET_PDEATHSIG
+if os.getppid() != parent:
+    sys.exit("the caller has gone")
+try:
+    import resource
+    resource.setrlimit(resource.RLIMIT_CORE, (0, 0))
+    resource.setrlimit(resource.RLIMIT_CPU, (cpu_limit, cpu_limit + 1))
+except (ImportError, ValueError, OSError):
+    pass
+"""
+
+#: Reads every variable and attribute of the netCDF file ``path`` with ``engine``.
+_PROBE_BODY = """
 if engine == "h5netcdf":
     import h5netcdf
     def walk(g):
@@ -553,6 +630,14 @@ else:
 """
 
 
+def probe_command(engine: str, path: str | os.PathLike, limit: float) -> list[str]:
+    """The command of the probe child that reads ``path`` with ``engine`` within ``limit``
+    seconds (of CPU time: the caller kills it after as many seconds of wall time)."""
+    cpu = str(math.ceil(limit) + 1)
+    code = _PROBE_START + _PROBE_BODY
+    return [sys.executable, "-c", code, str(os.getpid()), cpu, engine, os.fspath(path)]
+
+
 def _probe_netcdf(path: str | os.PathLike, engine: str) -> None:
     """ValueError naming ``path`` unless the netCDF library reads all of it in a subprocess.
 
@@ -561,12 +646,13 @@ def _probe_netcdf(path: str | os.PathLike, engine: str) -> None:
     the global heap of a motion map do, in netCDF4 1.7 / HDF5 1.14), or crash the process.
     No check of the file's signature or size finds such damage, and a thread cannot be
     stopped, so the file is first read whole in a child process with a time limit; only a
-    file it reads is then opened here. Costs about 0.3 s per file.
+    file it reads is then opened here. The child dies with its caller (see
+    :data:`_PROBE_START`). Costs about 0.3 s per file.
     """
     limit = PROBE_SECONDS + os.path.getsize(path) / PROBE_BYTES_PER_SECOND
     try:
         proc = subprocess.run(
-            [sys.executable, "-c", _PROBE, engine, os.fspath(path)],
+            probe_command(engine, path, limit),
             stdin=subprocess.DEVNULL,
             capture_output=True,
             text=True,
@@ -601,15 +687,12 @@ def _read(path: str | os.PathLike, fmt: str) -> tuple[Layout, xr.Dataset | None]
         xr = require("xarray")
         if fmt == "netcdf":
             engine = netcdf_engine()
-            _probe_netcdf(path, engine)
+            _probe_netcdf(path, engine)  # reads it all: the checksums are checked there
             with xr.open_dataset(path, engine=engine) as ds:
                 ds = ds.load()
+            check_netcdf(path, ds)
         else:
-            require("zarr")
-            with warnings.catch_warnings():
-                warnings.simplefilter("ignore")  # zarr's about metadata: errors say enough
-                with xr.open_zarr(path, consolidated=None) as ds:
-                    ds = ds.load()
+            ds = _read_zarr(xr, path)
         upgrade_attrs(ds.attrs)
         return layout_from_xarray(ds), ds
     except (ImportError, MemoryError):
@@ -628,9 +711,27 @@ def _read(path: str | os.PathLike, fmt: str) -> tuple[Layout, xr.Dataset | None]
         raise file_error(path, f"is not a readable {fmt} map: {_detail(err)}") from err
 
 
+def _read_zarr(xr: Any, path: str | os.PathLike) -> xr.Dataset:
+    """The zarr map at ``path``, loaded, after its integrity check (:mod:`eccjump._integrity`);
+    each array's own metadata is read, not the consolidated copy, which a damaged store may
+    not match."""
+    zarr = require("zarr")
+    check_metadata_size(path)
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")  # zarr's about metadata: errors say enough
+        group = zarr.open_group(path, mode="r", use_consolidated=False)
+    check_zarr(path, group)
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        with xr.open_zarr(path, consolidated=False) as ds:
+            return ds.load()
+
+
 def _detail(err: BaseException) -> str:
     """An exception of a reader in a few words (without the file's path, named already)."""
     text = str(err).replace(str(getattr(err, "filename", None) or "\0"), "")
+    if "checksum do not match" in text:  # zarr's crc32c codec: the bytes of no use
+        return "a chunk's checksum does not match: the map is damaged"
     return f"{type(err).__name__}: {text}"[:100]
 
 
@@ -729,14 +830,6 @@ def _json_attrs(attrs: Mapping[str, Any]) -> dict[str, Any]:
     return json.loads(attrs_json(attrs))
 
 
-def _checked_zstd() -> Any:
-    """zarr's zstd codec with the frame checksum on: a damaged chunk fails to read instead
-    of reading as other numbers."""
-    from zarr.codecs import ZstdCodec
-
-    return ZstdCodec(level=0, checksum=True)
-
-
 class ZarrMap:
     """A map in a zarr store written chunk by chunk along alpha (``chunk`` slices each).
 
@@ -753,6 +846,7 @@ class ZarrMap:
         self.path = Path(path)
         _check_source(self.path, "zarr")
         try:
+            check_metadata_size(self.path)
             self.group = zarr.open_group(self.path, mode="r+", use_consolidated=False)
             self.attrs: dict[str, Any] = dict(self.group.attrs)
             self.kind = kind_of(self.attrs)
@@ -830,6 +924,7 @@ class ZarrMap:
                 shape=values.shape,
                 dtype=values.dtype,
                 chunks=values.shape if values.size else None,
+                compressors=zarr_codecs(),
                 fill_value=np.nan,
                 dimension_names=dims,
                 attributes=_json_attrs(vattrs),
@@ -843,7 +938,7 @@ class ZarrMap:
                 shape=shape,
                 dtype=kind.dtypes[name],
                 chunks=chunks,
-                compressors=_checked_zstd(),
+                compressors=zarr_codecs(),
                 fill_value=kind.fill[name],
                 dimension_names=DIMS,
                 attributes=_json_attrs({**kind.var_attrs(name), "coordinates": "alpha_deg km"}),
@@ -853,12 +948,13 @@ class ZarrMap:
             shape=(alpha.size,),
             dtype=np.bool_,
             chunks=(chunks[0],),
-            compressors=_checked_zstd(),
+            compressors=zarr_codecs(),
             fill_value=False,
             dimension_names=("alpha",),
             attributes=_json_attrs({**COORD_ATTRS["alpha_done"], "coordinates": "alpha_deg"}),
         )
-        done[...] = np.zeros(alpha.size, dtype=bool)
+        with zarr.config.set({"array.write_empty_chunks": True}):  # each chunk is there
+            done[...] = np.zeros(alpha.size, dtype=bool)
         with _quiet_consolidation():
             zarr.consolidate_metadata(str(path))
 
@@ -919,7 +1015,7 @@ class ZarrMap:
         mark = self.kind.computed_mark
         if mark is not None and (values[mark] == self.kind.fill[mark]).any():
             return f"{mark} {self.kind.fill[mark]} (not computed)"
-        return self.kind.bad_codes(values)
+        return self.kind.bad_codes(values) or self.kind.bad_values(values)
 
     def rewrite_coords(self) -> None:
         """Write the coordinates derived from alpha, chi and km_frac again (``alpha_deg``,

@@ -363,11 +363,13 @@ def _run(args: argparse.Namespace) -> int:
                 "leaves nothing to resume; run without --resume)"
             )
     elif os.path.lexists(path):
-        try:  # not even --overwrite replaces what eccjump did not write
-            store.check_replaceable(path, fmt == "zarr")
+        try:  # the overwrite policy of every writer (eccjump._overwrite)
+            store.check_replaceable(
+                path, fmt == "zarr", overwrite=args.overwrite, option="--overwrite"
+            )
         except ValueError as err:
             raise ValueError(f"-o {err}") from None
-        if not args.overwrite:
+        if not args.overwrite:  # even a map: it may be the one to --resume
             hint = " or --resume" if fmt == "zarr" else ""
             raise ValueError(_line(f"{path} exists; use --overwrite{hint}"))
     # The handler goes first: a Ctrl-C while the store is created stops before the first chunk.

@@ -13,7 +13,7 @@ from pathlib import Path
 from typing import Any
 
 from eccjump import plot
-from eccjump._checks import check_overwrite
+from eccjump._overwrite import check_overwrite, never
 from eccjump.body import Cylinder
 from eccjump.cli._args import add_integrator, degrees_in, int_in
 from eccjump.cli._output import (
@@ -152,7 +152,14 @@ def _cmd_uncertainty(args: argparse.Namespace) -> int:
     output = figure = None
     if args.output is not None:
         output = check_output("--output", args.output, DATA_SUFFIXES)
-        check_overwrite("--output", output, args.overwrite, "use --overwrite")
+        check_overwrite(
+            output,
+            overwrite=args.overwrite,
+            option="--overwrite",
+            ours=never,
+            what="an uncertainty result",
+            name="--output",
+        )
     if args.figure is not None:
         figure = check_output("--figure", args.figure, figure_suffixes())
     sd, bounds = _spreads(args)

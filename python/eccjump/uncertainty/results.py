@@ -17,9 +17,10 @@ from numpy.typing import NDArray
 
 from eccjump import store
 from eccjump._arrays import fields_equal
-from eccjump._checks import check_overwrite, flag, real, short
+from eccjump._checks import flag, real, short
 from eccjump._checks import path as path_arg
 from eccjump._html import card, num
+from eccjump._overwrite import check_overwrite, never
 from eccjump.uncertainty.delta import Delta
 from eccjump.uncertainty.questions import OUTCOME_DTYPES
 from eccjump.uncertainty.sampling import UNITS
@@ -258,7 +259,14 @@ class Uncertainty:
         suffix = target.suffix.lower()
         if suffix not in (".csv", ".nc"):
             raise ValueError(f"path: the suffix must be .csv or .nc, not {suffix or 'none'!r}")
-        check_overwrite("path", target, flag("overwrite", overwrite), "pass overwrite=True")
+        check_overwrite(
+            target,
+            overwrite=flag("overwrite", overwrite),
+            option="overwrite=True",
+            ours=never,
+            what="an uncertainty result",
+            name="path",
+        )
         tmp = store.temp_sibling(target)
         try:
             if suffix == ".csv":
