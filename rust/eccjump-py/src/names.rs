@@ -2,7 +2,7 @@
 //! records repeat a handful of names dozens of times, and a new string for each costs as
 //! much as the float beside it.
 
-use eccjump_core::modes::contact::{Mode, Reason};
+use eccjump_core::modes::contact::{Mode, TransitionReason};
 use eccjump_core::modes::rolling::events::ContactEvent;
 use eccjump_core::motion::record::MotionStatus;
 use pyo3::prelude::*;
@@ -42,8 +42,8 @@ impl<T: Copy + PartialEq, const K: usize> Names<T, K> {
 
 /// `Mode::name`.
 pub static MODES: Names<Mode, 3> = Names::new(Mode::ALL, Mode::name);
-/// `Reason::name` (why a mode began).
-pub static REASONS: Names<Reason, 9> = Names::new(Reason::ALL, Reason::name);
+/// `TransitionReason::name` (why a mode began).
+pub static REASONS: Names<TransitionReason, 9> = Names::new(TransitionReason::ALL, TransitionReason::name);
 /// `MotionStatus::name`.
 pub static STATUSES: Names<MotionStatus, 7> = Names::new(MotionStatus::ALL, MotionStatus::name);
 /// `ContactEvent::name` (the events of a rolling run).
