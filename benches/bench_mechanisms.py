@@ -4,9 +4,12 @@ user-level benchmarks (docs/performance.md).
     python benches/bench_mechanisms.py [--rounds 3] [--json PATH]
 
 Every configuration runs in its own process with ``ECCJUMP_OFF`` naming the mechanism
-switched off; ``base`` switches nothing off. The switches exist only in a build with
-``benches/mechanism_switches.patch`` applied (made on commit 0f1e809; without it every
-configuration is ``base``): apply it, build the extension, point PYTHONPATH at that copy.
+switched off; ``base`` switches nothing off. The switches exist only in a build with a
+temporary patch that reads ``ECCJUMP_OFF`` at the mechanism measured (without it every
+configuration is ``base``): write it, build the extension, point PYTHONPATH at that copy.
+The patch of the table in docs/performance.md, made on commit 0f1e809, no longer applies
+(two of its mechanisms are gone); it stays in the history: ``git show
+c4c8373:benches/mechanism_switches.patch``.
 Rounds interleave the configurations, and each figure is the best of its rounds in CPU time
 (one thread, so that the figures are per core and hold on a machine shared with other work).
 ``--configs`` limits the run.

@@ -1,8 +1,9 @@
 """The core's non-test Rust in lines, as issue 36 counts it (the "lean core" measure).
 
-A file counts up to its first ``#[cfg(test)]`` line; a module declared under
-``#[cfg(test)]`` in its own file (``mod tests;`` beside ``foo.rs`` as ``foo/tests.rs``)
-is test code and does not count. ``examples/`` and ``tests/`` are reported apart::
+Every line of a file counts except the items under ``#[cfg(test)]``, wherever they are in the
+file: ``mod tests { ... }`` blocks, test-only functions, types and impls, and the declarations
+``#[cfg(test)] mod tests;``, whose own files (``foo/tests.rs`` beside ``foo.rs``) are test
+code too. ``examples/`` and ``tests/`` are reported apart::
 
     python scripts/core_lines.py                # this checkout
     python scripts/core_lines.py /path/to/tree --top 20
@@ -11,36 +12,69 @@ is test code and does not count. ``examples/`` and ``tests/`` are reported apart
 from __future__ import annotations
 
 import argparse
-import itertools
 import re
 from pathlib import Path
 
-_TEST_MOD = re.compile(r"\s*(pub(\(crate\))?\s+)?mod (\w+);")
+_CFG_TEST = "#[cfg(test)]"
+_MOD_DECL = re.compile(r"\s*(pub(\([\w:]+\))?\s+)?mod (\w+)\s*;")
+# What braces and semicolons inside do not count: comments, strings and character literals.
+_NOISE = re.compile(r'//.*|"(\\.|[^"\\])*"|\'(\\.|[^\\\'])\'')
 
 
-def _test_modules(src: Path) -> set[Path]:
-    """The files of modules declared right after a ``#[cfg(test)]`` line."""
-    found = set()
+def _item_end(lines: list[str], start: int) -> int:
+    """The index of the last line of the item starting at ``lines[start]``: the line of its
+    ``;`` if it has no body, else the line where its braces close."""
+    depth = 0  # of (), [] and {} together: `[f64; K]` in a signature ends nothing
+    for i in range(start, len(lines)):
+        for ch in _NOISE.sub("", lines[i]):
+            if ch in "([{":
+                depth += 1
+            elif ch in ")]}":
+                depth -= 1
+                if depth == 0 and ch == "}":
+                    return i
+            elif ch == ";" and depth == 0:
+                return i
+    return len(lines) - 1
+
+
+def _split(path: Path) -> tuple[int, list[str]]:
+    """The non-test lines of ``path`` and the names of the modules it declares, without a
+    body, under ``#[cfg(test)]``."""
+    lines = path.read_text().splitlines()
+    kept, test_mods, i = 0, [], 0
+    while i < len(lines):
+        if not lines[i].strip().startswith(_CFG_TEST):
+            kept += 1
+            i += 1
+            continue
+        # The item the attribute applies to: after any other attributes and doc comments.
+        start = i
+        rest = lines[i].strip()[len(_CFG_TEST) :].strip()
+        if not rest:
+            start += 1
+            while start < len(lines) and lines[start].strip().startswith(("#[", "///", "//")):
+                start += 1
+        end = _item_end(lines, start) if rest or start < len(lines) else start
+        if m := _MOD_DECL.match(rest or (lines[start] if start < len(lines) else "")):
+            test_mods.append(m.group(3))
+        i = end + 1
+    return kept, test_mods
+
+
+def _counts(src: Path) -> dict[Path, int]:
+    """Non-test lines of every non-test file under ``src``."""
+    kept, tests = {}, set()
     for path in src.rglob("*.rs"):
-        lines = path.read_text().splitlines()
-        for attr, decl in itertools.pairwise(lines):
-            m = _TEST_MOD.match(decl)
-            if attr.strip().startswith("#[cfg(test)]") and m:
-                parent = path.parent if path.name in ("mod.rs", "lib.rs") else path.with_suffix("")
-                name = m.group(3)
-                candidates = (parent / f"{name}.rs", parent / name / "mod.rs")
-                found.update(p for p in candidates if p.exists())
-    return found
-
-
-def _before_tests(path: Path) -> int:
-    """Lines of ``path`` before its first ``#[cfg(test)]``."""
-    n = 0
-    for line in path.read_text().splitlines():
-        if line.strip().startswith("#[cfg(test)]"):
-            break
-        n += 1
-    return n
+        kept[path], mods = _split(path)
+        parent = path.parent if path.name in ("mod.rs", "lib.rs") else path.with_suffix("")
+        for name in mods:
+            tests.update(p for p in (parent / f"{name}.rs", parent / name / "mod.rs") if p.exists())
+    # A test module's own file is test code whole, and so are the files of its submodules.
+    for path in list(tests):
+        below = path.parent if path.name == "mod.rs" else path.with_suffix("")
+        tests.update(p for p in kept if p.is_relative_to(below))
+    return {p: n for p, n in kept.items() if p not in tests}
 
 
 def main() -> None:
@@ -50,13 +84,11 @@ def main() -> None:
     args = ap.parse_args()
     core = args.tree / "rust" / "eccjump-core"
     src = core / "src"
-    tests = _test_modules(src)
-    rows = sorted(
-        ((_before_tests(p), p.relative_to(core)) for p in src.rglob("*.rs") if p not in tests),
-        reverse=True,
-    )
+    kept = _counts(src)
+    rows = sorted(((n, p.relative_to(core)) for p, n in kept.items()), reverse=True)
     print(f"core non-test: {sum(n for n, _ in rows)} lines in {len(rows)} files")
-    print(f"test modules in src/: {sum(len(p.read_text().splitlines()) for p in tests)} lines")
+    total = sum(len(p.read_text().splitlines()) for p in src.rglob("*.rs"))
+    print(f"test code in src/: {total - sum(kept.values())} lines")
     for sub in ("examples", "tests"):
         files = list((core / sub).rglob("*.rs"))
         print(f"{sub}/: {sum(len(p.read_text().splitlines()) for p in files)} lines")

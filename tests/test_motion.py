@@ -5,6 +5,7 @@ integrated with the slip for the ledger, closed forms for the impact."""
 
 from __future__ import annotations
 
+import importlib.util
 import math
 
 import numpy as np
@@ -15,7 +16,7 @@ from properties import reach_rate
 from reference_points import JARM, JARM_THETA_J_DEG, SLIP_FIRST, jump_points
 
 import eccjump
-from eccjump import Cylinder
+from eccjump import Cylinder, motion, motion_fields
 from eccjump.motion import MODES, REASONS, STATUSES
 
 
@@ -241,6 +242,26 @@ def test_reproducible_to_the_last_bit():
     assert a == b
     assert set(a.mode.tolist()) <= set(range(len(MODES)))
     assert a.status in STATUSES and all(t.reason in REASONS for t in a.transitions)
+
+
+def test_the_names_and_bounds_are_the_cores():
+    core = eccjump._core
+    assert [MODES, REASONS, STATUSES] == [
+        tuple(name for _, name in codes())
+        for codes in (core.mode_codes, core.transition_reason_codes, core.status_codes)
+    ]
+    assert (motion.MAX_TRANSITIONS, motion.MAX_STEPS) == (10**6, 10**7)
+    assert motion_fields.SEQUENCE_LEN == 8
+
+
+@pytest.mark.parametrize("table", ["mode_codes", "transition_reason_codes", "status_codes"])
+def test_a_core_whose_names_moved_is_refused_at_import(monkeypatch, table):
+    names = [name for _, name in getattr(eccjump._core, table)()]
+    monkeypatch.setattr(eccjump._core, table, lambda: list(enumerate(names[::-1])))
+    spec = importlib.util.spec_from_file_location("motion_again", motion.__file__)
+    assert spec is not None and spec.loader is not None
+    with pytest.raises(ImportError, match="differ from the core's: rebuild eccjump"):
+        spec.loader.exec_module(importlib.util.module_from_spec(spec))
 
 
 @pytest.mark.parametrize(

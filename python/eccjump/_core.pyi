@@ -8,10 +8,55 @@ entry points share gathered once in a frozen options class, ``ClassifyOptions`` 
 Python layer makes its result objects.
 """
 
-from typing import Any, TypedDict
+from typing import Any, TypedDict, final
 
 import numpy as np
 from numpy.typing import NDArray
+
+# The module's exports (stubtest compares them with the list pyo3 makes at run time).
+__all__ = [
+    "MAX_STEPS",
+    "MAX_TRANSITIONS",
+    "MOTION_PARAMETERS",
+    "SEQUENCE_LEN",
+    "VERSION",
+    "BoundaryOptions",
+    "ClassifyOptions",
+    "DenseSolution",
+    "MotionDense",
+    "MotionOptions",
+    "alpha_interval_around",
+    "alpha_intervals",
+    "alpha_min",
+    "body_derived",
+    "body_from_inertia",
+    "body_from_shell_and_line",
+    "gamma",
+    "green_turn",
+    "impact",
+    "j_brackets",
+    "j_paper",
+    "jarm_derivatives",
+    "jarm_grid",
+    "jarm_points",
+    "jump_forces",
+    "landing_codes",
+    "liftoff_function",
+    "mode_codes",
+    "motion_grid",
+    "motion_points",
+    "mu",
+    "mu_s_min",
+    "mu_s_min_path",
+    "path_forces",
+    "reason_codes",
+    "roll",
+    "simulate",
+    "status_codes",
+    "theta_j_range",
+    "theta_nj",
+    "transition_reason_codes",
+]
 
 VERSION: str
 """The package version, e.g. "0.2.0" (`eccjump --version` prints it; `eccjump.__version__`)."""
@@ -19,13 +64,28 @@ VERSION: str
 MOTION_PARAMETERS: list[str]
 """The parameters of a full-motion run, in the order of the sensitivities' last axis."""
 
-F64 = NDArray[np.float64]
+MAX_TRANSITIONS: int
+"""The largest ``max_transitions`` of a full-motion run."""
+
+MAX_STEPS: int
+"""The largest ``max_steps`` of an integration."""
+
+SEQUENCE_LEN: int
+"""The modes a motion map's sequence code keeps."""
+
+# (code, name) of the full motion's modes, transition reasons and statuses, by code
+# (eccjump.motion checks its MODES, REASONS and STATUSES against them at import).
+def mode_codes() -> list[tuple[int, str]]: ...
+def transition_reason_codes() -> list[tuple[int, str]]: ...
+def status_codes() -> list[tuple[int, str]]: ...
+
+_F64 = NDArray[np.float64]
 
 def body_derived(chi: float, km: float) -> tuple[float, float, float]: ...
 def body_from_inertia(M: float, R: float, d: float, I_C: float) -> tuple[float, float]: ...
 def body_from_shell_and_line(m_C: float, m_P: float, R: float, d: float) -> tuple[float, float]: ...
 
-class ImpactResult(TypedDict):
+class _ImpactResult(TypedDict):
     """One impact (``impact``): W = (wtt, wtn; wtn, wnn), the impulse (pt, pn) per M, the
     contact velocity after it (ut = l' - theta', un = b'), whether the contact point ends
     sticking, the velocities after it (omega, ldot, bdot) and the works (compression, normal,
@@ -51,16 +111,16 @@ def impact(
     km: float,
     state: tuple[float, float, float, float],
     law: tuple[float, float, float],
-) -> ImpactResult:
+) -> _ImpactResult:
     """One impact of the body (chi, km) at the state (theta, omega, ldot, bdot) under the law
     (mu_s, mu_k, restitution): Routh's method with Coulomb friction (mu_s, mu_k) and
     Stronge's energetic restitution (docs/impact_law.md). Private, for the tests. ValueError
     (validated by the core) for a bad parameter, a non-finite state or km = 0."""
 
 #: The series of a rolling run: t, theta, omega, omega_dot, Fx, Fy, l, friction ratio.
-RollSeries = tuple[F64, F64, F64, F64, F64, F64, F64, F64]
+_RollSeries = tuple[_F64, _F64, _F64, _F64, _F64, _F64, _F64, _F64]
 #: An event met: name, t, theta, omega (the fields of ``eccjump.rolling.Event``).
-EventFields = tuple[str, float, float, float]
+_EventFields = tuple[str, float, float, float]
 
 def roll(
     chi: float,
@@ -78,13 +138,14 @@ def roll(
     max_steps: int,
     rule: str,
     integrator: str,
-) -> tuple[RollSeries, list[EventFields], str | None, int, str, int, DenseSolution | None]:
+) -> tuple[_RollSeries, list[_EventFields], str | None, int, str, int, DenseSolution | None]:
     """One pure-rolling run of the body (chi, km) on a ramp of angle alpha, with the GIL
     released. The options of ``eccjump.roll``, all required (it gives the defaults), checked
     by the core: a ValueError names the parameter. Returns (series, events, terminal event,
     status, message, nfev, dense output or None), from which ``eccjump.roll`` makes the
     ``RollResult``."""
 
+@final
 class DenseSolution:
     """The dense output of a run, evaluated by the core (ends at the run's end)."""
 
@@ -102,14 +163,16 @@ class DenseSolution:
 
 #: The recorded points of a full-motion run: t, theta, omega, l, ldot, b, bdot, Fx, Fy,
 #: energy, dissipated (float64) and the mode codes (int8).
-MotionPoints = tuple[F64, F64, F64, F64, F64, F64, F64, F64, F64, F64, F64, NDArray[np.int8]]
+_MotionPoints = tuple[
+    _F64, _F64, _F64, _F64, _F64, _F64, _F64, _F64, _F64, _F64, _F64, NDArray[np.int8]
+]
 #: The fields of ``eccjump.motion.Transition``, ``FlightRecord``, ``ImpactRecord``, ``Segment``.
-TransitionFields = tuple[float, str | None, str, str, float, float, float, float, float, float]
-FlightFields = tuple[float, float, float, float, float, float]
-ImpactFields = tuple[float, float, float, float, float, float, bool, str]
-SegmentFields = tuple[str, str, float, float, int]
-MotionRecords = tuple[
-    list[TransitionFields], list[FlightFields], list[ImpactFields], list[SegmentFields]
+_TransitionFields = tuple[float, str | None, str, str, float, float, float, float, float, float]
+_FlightFields = tuple[float, float, float, float, float, float]
+_ImpactFields = tuple[float, float, float, float, float, float, bool, str]
+_SegmentFields = tuple[str, str, float, float, int]
+_MotionRecords = tuple[
+    list[_TransitionFields], list[_FlightFields], list[_ImpactFields], list[_SegmentFields]
 ]
 
 def simulate(
@@ -134,8 +197,8 @@ def simulate(
     integrator: str,
     sensitivities: bool,
 ) -> tuple[
-    MotionPoints,
-    MotionRecords,
+    _MotionPoints,
+    _MotionRecords,
     tuple[float, float, float],
     str,
     str,
@@ -150,6 +213,7 @@ def simulate(
     dense output or None, (d_transitions, d_singular) or None), from which
     ``eccjump.simulate`` makes the ``MotionResult``."""
 
+@final
 class MotionDense:
     """The dense output of a full-motion run (``MotionResult.sol``), evaluated by the core."""
 
@@ -162,13 +226,14 @@ class MotionDense:
         (6, len(t)); at an impact, the state after it. ValueError names the first time
         outside [0, t_max]; MemoryError for too many times."""
 
+@final
 class ClassifyOptions:
     """The options of ``jarm_points`` and ``jarm_grid`` but the turn, converted once: made
     from keyword-only plain values named as ``eccjump.jarm`` names them. ValueError for an
     unknown rule, route or pair and for tolerances out of range."""
 
-    def __init__(
-        self,
+    def __new__(
+        cls,
         *,
         rule: str,
         method: str,
@@ -181,21 +246,21 @@ class ClassifyOptions:
         stop_at_slip: bool,
         n_threads: int,
         integrator: str,
-    ) -> None: ...
+    ) -> ClassifyOptions: ...
 
 def jarm_points(
-    alpha: F64,
-    chi: F64,
-    km: F64,
-    mu_s: F64,
+    alpha: _F64,
+    chi: _F64,
+    km: _F64,
+    mu_s: _F64,
     n: NDArray[np.uint32],
     *,
     options: ClassifyOptions,
 ) -> dict[str, NDArray[Any]]: ...
 def jarm_grid(
-    alpha: F64,
-    chi: F64,
-    frac: F64,
+    alpha: _F64,
+    chi: _F64,
+    frac: _F64,
     mu_s: float,
     *,
     n: int,
@@ -206,40 +271,41 @@ def reason_codes() -> list[tuple[int, str]]: ...
 # The exact derivatives of a classification's theta_J, Fx_J, Fy_J and mu_J = -Fx_J/Fy_J with
 # respect to (alpha, chi, km): four (N, 3) arrays and the flag of the singular points.
 def jarm_derivatives(
-    alpha: F64,
-    chi: F64,
-    km: F64,
-    mu_s: F64,
-    theta_j: F64,
+    alpha: _F64,
+    chi: _F64,
+    km: _F64,
+    mu_s: _F64,
+    theta_j: _F64,
     *,
     rule: str,
     theta0: float,
     omega0: float,
-) -> tuple[F64, F64, F64, F64, NDArray[np.bool_]]: ...
+) -> tuple[_F64, _F64, _F64, _F64, NDArray[np.bool_]]: ...
 
 # The paper's closed forms over equal-length 1-D arrays, each returning its output columns.
-def jump_forces(alpha: F64, chi: F64, km: F64, theta_j: F64) -> list[F64]: ...
-def mu(chi: F64, km: F64, theta_j: F64) -> list[F64]: ...
-def green_turn(alpha: F64, theta_j: F64) -> list[F64]: ...
-def mu_s_min(chi: F64, km: F64) -> list[F64]: ...
-def theta_j_range(chi: F64, km: F64, mu_s: F64, *, n: int) -> list[F64]: ...
-def alpha_min(chi: F64, km: F64, mu_s: F64, *, n: int) -> list[F64]: ...
-def gamma(chi: F64, km: F64) -> list[F64]: ...
-def j_paper(theta: F64, alpha: F64, chi: F64, km: F64) -> list[F64]: ...
+def jump_forces(alpha: _F64, chi: _F64, km: _F64, theta_j: _F64) -> list[_F64]: ...
+def mu(chi: _F64, km: _F64, theta_j: _F64) -> list[_F64]: ...
+def green_turn(alpha: _F64, theta_j: _F64) -> list[_F64]: ...
+def mu_s_min(chi: _F64, km: _F64) -> list[_F64]: ...
+def theta_j_range(chi: _F64, km: _F64, mu_s: _F64, *, n: int) -> list[_F64]: ...
+def alpha_min(chi: _F64, km: _F64, mu_s: _F64, *, n: int) -> list[_F64]: ...
+def gamma(chi: _F64, km: _F64) -> list[_F64]: ...
+def j_paper(theta: _F64, alpha: _F64, chi: _F64, km: _F64) -> list[_F64]: ...
 def liftoff_function(
-    theta: F64, alpha: F64, chi: F64, km: F64, *, theta0: float, omega0: float
-) -> list[F64]: ...
-def j_brackets(alpha: F64, chi: F64, km: F64, *, n: int) -> list[F64]: ...
-def theta_nj(alpha: F64, chi: F64, km: F64, *, n: int) -> list[F64]: ...
+    theta: _F64, alpha: _F64, chi: _F64, km: _F64, *, theta0: float, omega0: float
+) -> list[_F64]: ...
+def j_brackets(alpha: _F64, chi: _F64, km: _F64, *, n: int) -> list[_F64]: ...
+def theta_nj(alpha: _F64, chi: _F64, km: _F64, *, n: int) -> list[_F64]: ...
 def path_forces(
-    theta: F64, alpha: F64, chi: F64, km: F64, *, theta0: float, omega0: float
-) -> list[F64]: ...
+    theta: _F64, alpha: _F64, chi: _F64, km: _F64, *, theta0: float, omega0: float
+) -> list[_F64]: ...
 
+@final
 class BoundaryOptions:
     """The options every boundary search takes: the turn (0 = the first jump), the rule and
     the threads, made from keyword-only plain values. ValueError for an unknown rule."""
 
-    def __init__(self, *, n: int, rule: str, n_threads: int) -> None: ...
+    def __new__(cls, *, n: int, rule: str, n_threads: int) -> BoundaryOptions: ...
 
 def alpha_intervals(
     chi: NDArray[np.float64],
@@ -266,13 +332,14 @@ def alpha_interval_around(
     options: BoundaryOptions,
 ) -> tuple[NDArray[np.float64], NDArray[np.float64]]: ...
 
+@final
 class MotionOptions:
     """The options of ``motion_grid`` and ``motion_points``, converted once: made from
     keyword-only plain values named as ``eccjump.motion_map`` names them. ValueError for an
     unknown rule or pair (the core checks the ranges when a call uses them)."""
 
-    def __init__(
-        self,
+    def __new__(
+        cls,
         *,
         rule: str,
         t_max: float,
@@ -282,7 +349,7 @@ class MotionOptions:
         max_steps: int,
         n_threads: int,
         integrator: str,
-    ) -> None: ...
+    ) -> MotionOptions: ...
 
 def motion_grid(
     alpha: NDArray[np.float64],

@@ -51,12 +51,23 @@ REASONS = (
     "impact",
     "settle",
 )
-#: The core's bounds on the work of a run (rust/eccjump-core/src/motion/options.rs and
-#: modes/rolling/run.rs), checked here first so that the error states the true range.
-MAX_TRANSITIONS = 10**6
-MAX_STEPS = 10**7
+#: The core's bounds on the work of a run, checked here first so that the error states the
+#: true range.
+MAX_TRANSITIONS: int = _core.MAX_TRANSITIONS
+MAX_STEPS: int = _core.MAX_STEPS
 #: How a run can end.
 STATUSES = ("t_max", "l_max", "max_transitions", "painleve", "jam", "failed", "landed")
+
+# The names above, by code, are the core's (written out to be read here): a build whose
+# codes moved would mislabel every record, so it is refused at import, as for ``Reason``.
+if (
+    list(enumerate(MODES)) != _core.mode_codes()
+    or list(enumerate(REASONS)) != _core.transition_reason_codes()
+    or list(enumerate(STATUSES)) != _core.status_codes()
+):
+    raise ImportError(
+        "eccjump.motion's MODES, REASONS or STATUSES differ from the core's: rebuild eccjump"
+    )
 
 
 class Transition(NamedTuple):

@@ -19,8 +19,8 @@ from eccjump._checks import integer
 from eccjump.fields import ROUNDING, Field
 from eccjump.motion import MODES, REASONS, STATUSES
 
-#: Modes kept in the sequence code.
-SEQUENCE_LEN = 8
+#: Modes kept in the sequence code (the core's).
+SEQUENCE_LEN: int = _core.SEQUENCE_LEN
 #: ``status`` of a point with invalid parameters (mu_k > mu_s, a value out of range).
 INVALID = 255
 #: How the first landing ended, by code.
@@ -101,7 +101,10 @@ def sequence_name(code: int) -> str:
 
 def sequence_code(modes: list[str] | tuple[str, ...]) -> int:
     """The code of the first :data:`SEQUENCE_LEN` of ``modes`` (names from :data:`MODES`):
-    Σ (mode_i + 1)·4^i, so ROLL→FLIGHT is 13. ValueError naming a mode not in MODES."""
+    Σ (mode_i + 1)·4^i, so ROLL→FLIGHT is 13. ValueError naming a mode not in MODES.
+
+    A mode's index in MODES is its code in the core (checked at import in
+    :mod:`eccjump.motion`), so this is the code a motion map stores."""
     if isinstance(modes, str) or not isinstance(modes, list | tuple):
         raise TypeError(f"modes must be a list or tuple of mode names, not {type(modes).__name__}")
     for m in modes:

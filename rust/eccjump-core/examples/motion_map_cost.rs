@@ -7,13 +7,13 @@ use eccjump_core::maps::motion::{
 use eccjump_core::mechanics::Rule;
 use eccjump_core::modes::contact::ContactLaw;
 use eccjump_core::motion::SimOptions;
-use eccjump_core::ode::{Method, SolverOptions};
+use eccjump_core::ode::{Integrator, SolverOptions};
 use eccjump_core::{Cylinder, Ramp};
 use std::time::Instant;
 fn main() {
     let method = match std::env::args().nth(1).as_deref() {
-        Some("dop853") => Method::Dop853,
-        _ => Method::Rk45,
+        Some("dop853") => Integrator::Dop853,
+        _ => Integrator::Rk45,
     };
     let solver = SolverOptions {
         method,

@@ -5,7 +5,7 @@
 //! point by point, then all points side by side (`classify_ode_batch`, the maps' way).
 use eccjump_core::jarm::ode_route::classify_ode_batch;
 use eccjump_core::jarm::{classify_ode, JarmOptions, JarmResult, Reason};
-use eccjump_core::ode::Method;
+use eccjump_core::ode::Integrator;
 use std::time::Instant;
 
 /// A small deterministic generator (SplitMix64), so the points are the same every run.
@@ -36,11 +36,11 @@ fn main() {
         ..JarmOptions::default()
     };
     let mut reasons = Vec::new();
-    let pairs: Vec<Method> = match std::env::args().nth(2).as_deref() {
-        Some("rk45") => vec![Method::Rk45],
-        Some("dop853") => vec![Method::Dop853],
-        Some("vern9") => vec![Method::Vern9],
-        _ => Method::ALL.to_vec(),
+    let pairs: Vec<Integrator> = match std::env::args().nth(2).as_deref() {
+        Some("rk45") => vec![Integrator::Rk45],
+        Some("dop853") => vec![Integrator::Dop853],
+        Some("vern9") => vec![Integrator::Vern9],
+        _ => Integrator::ALL.to_vec(),
     };
     for pair in pairs {
         let t0 = Instant::now();

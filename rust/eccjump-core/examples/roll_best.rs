@@ -3,15 +3,15 @@
 //! (`cargo run --release -p eccjump-core --features profiling --example roll_best [rk45|dop853|vern9] [rtol]`, atol =
 //! rtol/100; default the core's tolerances).
 use eccjump_core::modes::rolling::run::{roll, RollOptions};
-use eccjump_core::ode::{Method, SolverOptions};
+use eccjump_core::ode::{Integrator, SolverOptions};
 use eccjump_core::{Cylinder, Ramp};
 use std::time::Instant;
 fn main() {
     let pairs = match std::env::args().nth(1).as_deref() {
-        Some("rk45") => vec![Method::Rk45],
-        Some("dop853") => vec![Method::Dop853],
-        Some("vern9") => vec![Method::Vern9],
-        _ => Method::ALL.to_vec(),
+        Some("rk45") => vec![Integrator::Rk45],
+        Some("dop853") => vec![Integrator::Dop853],
+        Some("vern9") => vec![Integrator::Vern9],
+        _ => Integrator::ALL.to_vec(),
     };
     let rtol: Option<f64> = std::env::args().nth(2).map(|r| r.parse().expect("rtol"));
     let cases = [

@@ -5,7 +5,7 @@
 use eccjump_core::mechanics::Rule;
 use eccjump_core::modes::contact::ContactLaw;
 use eccjump_core::motion::{simulate, SimOptions};
-use eccjump_core::ode::{Method, SolverOptions};
+use eccjump_core::ode::{Integrator, SolverOptions};
 use eccjump_core::{Cylinder, Ramp};
 use std::time::Instant;
 
@@ -54,8 +54,8 @@ const CASES: [Case; 20] = [
 
 fn main() {
     let method = match std::env::args().nth(1).as_deref() {
-        Some("dop853") => Method::Dop853,
-        _ => Method::Rk45,
+        Some("dop853") => Integrator::Dop853,
+        _ => Integrator::Rk45,
     };
     let rounds: usize = std::env::args()
         .nth(2)

@@ -4,14 +4,17 @@
 //!
 //! The layers, each using only those above it (see `docs/architecture.md`):
 //! - [`error`]: the one error enum and the parameter checks, written once;
+//! - [`trig`]: the elementary functions, the same bits on every platform;
 //! - [`dual`]: forward-mode differentiation, so that a formula written once has exact
 //!   partials;
-//! - [`ode`]: generic Dormand–Prince integrators (5(4) as scipy's RK45, 8(5,3) as DOP853)
-//!   with dense output and events, and bracketing root finders (no physics);
+//! - [`ode`]: generic embedded Runge–Kutta pairs (Dormand–Prince 5(4) as scipy's RK45,
+//!   8(5,3) as DOP853, and Verner's 9(8)) with dense output and events, and bracketing root
+//!   finders (no physics);
 //! - [`mechanics`]: the body, the ramp, Newton–Euler in its general form, energy, the
 //!   lift-off rules, friction and the Painlevé test: every formula once;
-//! - [`modes`]: the modes of motion as constraints on Newton–Euler (pure rolling: its
-//!   equations, events, bounds and runs);
+//! - [`modes`]: the modes of motion as constraints on Newton–Euler (pure rolling, slipping
+//!   in time and in the normal impulse, flight with its landing search) and the consistency
+//!   test that picks a contact state's mode;
 //! - [`jarm`]: the paper's Section 3 (jump-point formulas, from-rest closed forms, the path
 //!   scan, the ODE route and the decision tree they share);
 //! - [`motion`]: the full motion (rolling, slipping, flight, landing), segment by segment;

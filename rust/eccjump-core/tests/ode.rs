@@ -7,7 +7,7 @@ use std::cell::Cell;
 use std::f64::consts::PI;
 
 use eccjump_core::ode::{
-    solve, DenseStep, Direction, EventFunctions, EventSpec, Method, NoEvents, Observation,
+    solve, DenseStep, Direction, EventFunctions, EventSpec, Integrator, NoEvents, Observation,
     OdeSystem, Outcome, SolverOptions, State, Status,
 };
 
@@ -215,7 +215,7 @@ fn kepler_orbit_conserves_energy_and_angular_momentum() {
 /// The least-squares slope of log |global error| against log h at fixed steps (loose
 /// tolerances so every step is accepted, max_step = first_step = h, h a power of two so
 /// the steps land exactly on t_end), for y' = y cos t, y = exp(sin t).
-fn observed_order(method: Method, powers: std::ops::RangeInclusive<i32>) -> f64 {
+fn observed_order(method: Integrator, powers: std::ops::RangeInclusive<i32>) -> f64 {
     let sys = Rhs(|t: f64, y: &State<1>| y * t.cos());
     let t_end: f64 = 4.0;
     let exact = t_end.sin().exp();
@@ -251,7 +251,7 @@ fn observed_order(method: Method, powers: std::ops::RangeInclusive<i32>) -> f64 
 fn global_error_converges_at_fifth_order() {
     // h = 1/8 .. 1/64: past the pre-asymptotic regime, errors ~3e-9 .. 1e-13, well above
     // rounding.
-    let slope = observed_order(Method::Rk45, 3..=6);
+    let slope = observed_order(Integrator::Rk45, 3..=6);
     assert!((4.5..=5.6).contains(&slope), "order {slope}");
 }
 
@@ -259,7 +259,7 @@ fn global_error_converges_at_fifth_order() {
 fn dop853_global_error_converges_at_eighth_order() {
     // h = 1/2 .. 1/8: errors well above rounding (an 8th-order method reaches 1e-14
     // quickly).
-    let slope = observed_order(Method::Dop853, 1..=3);
+    let slope = observed_order(Integrator::Dop853, 1..=3);
     assert!((7.3..=8.9).contains(&slope), "order {slope}");
 }
 
@@ -268,7 +268,7 @@ fn dop853_oscillator_dense_output_and_event_are_accurate() {
     let opts = SolverOptions {
         rtol: 1e-10,
         atol: 1e-12,
-        method: Method::Dop853,
+        method: Integrator::Dop853,
         ..Default::default()
     };
     let evs = [(spec(Direction::Falling, true), cos_falling as EventFn<2>)];
@@ -283,7 +283,7 @@ fn dop853_oscillator_dense_output_and_event_are_accurate() {
         v2(1.0, 0.0),
         10.0,
         &SolverOptions {
-            method: Method::Rk45,
+            method: Integrator::Rk45,
             ..opts
         },
     );
@@ -579,12 +579,12 @@ fn empty_interval_finishes_at_once() {
 
 #[test]
 fn solve_does_not_allocate() {
-    for method in Method::ALL {
+    for method in Integrator::ALL {
         solve_does_not_allocate_with(method);
     }
 }
 
-fn solve_does_not_allocate_with(method: Method) {
+fn solve_does_not_allocate_with(method: Integrator) {
     let evs = [
         (spec(Direction::Any, false), sin_t as EventFn<2>),
         (spec(Direction::Rising, true), cos_falling),
@@ -635,13 +635,18 @@ fn agrees_step_for_step_with_scipy_rk45() {
     // Step sizes changed by eps <= 1e-6 relative change each local error (~ rtol |y| + atol
     // <= 3e-6, |y| <= 2.7) by ~5 eps of itself: over 89 steps y(10) moves by
     // ~89 * 5e-6 * 3e-6 ~ 1.3e-9 (with bounded growth on the attracting limit cycle).
-    assert_van_der_pol_as_scipy(Method::Rk45, &SCIPY_VDP_T, SCIPY_VDP_NFEV, SCIPY_VDP_Y_END);
+    assert_van_der_pol_as_scipy(
+        Integrator::Rk45,
+        &SCIPY_VDP_T,
+        SCIPY_VDP_NFEV,
+        SCIPY_VDP_Y_END,
+    );
 }
 
 /// Van der Pol (mu = 1) from (2, 0) over [0, 10] at rtol 1e-6, atol 1e-9 with `method`:
 /// the same step count and evaluations as scipy's, step times to 1e-6 relative, y(10) to
 /// 1e-8 (the reasons for each tolerance are in the RK45 test).
-fn assert_van_der_pol_as_scipy(method: Method, t_ref: &[f64], nfev: usize, y_end: [f64; 2]) {
+fn assert_van_der_pol_as_scipy(method: Integrator, t_ref: &[f64], nfev: usize, y_end: [f64; 2]) {
     let opts = SolverOptions {
         rtol: 1e-6,
         atol: 1e-9,
@@ -768,7 +773,7 @@ const SCIPY_VDP_T: [f64; 90] = [
 #[test]
 fn agrees_step_for_step_with_scipy_dop853() {
     assert_van_der_pol_as_scipy(
-        Method::Dop853,
+        Integrator::Dop853,
         &SCIPY_DOP853_VDP_T,
         SCIPY_DOP853_VDP_NFEV,
         SCIPY_DOP853_VDP_Y_END,

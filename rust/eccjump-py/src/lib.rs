@@ -30,6 +30,15 @@ mod _core {
     /// The parameters of a full-motion run, in the order of the sensitivities' last axis.
     #[pymodule_export]
     const MOTION_PARAMETERS: [&str; 8] = eccjump_core::motion::options::PARAMETERS;
+    /// The largest `max_transitions` of a full-motion run.
+    #[pymodule_export]
+    const MAX_TRANSITIONS: usize = eccjump_core::motion::options::MAX_TRANSITIONS;
+    /// The largest `max_steps` of an integration.
+    #[pymodule_export]
+    const MAX_STEPS: usize = eccjump_core::modes::rolling::run::MAX_STEPS;
+    /// The modes a motion map's sequence code keeps.
+    #[pymodule_export]
+    const SEQUENCE_LEN: usize = eccjump_core::maps::motion::SEQUENCE_LEN;
 
     #[pymodule_export]
     use crate::body::{body_derived, body_from_inertia, body_from_shell_and_line};
@@ -50,6 +59,8 @@ mod _core {
     use crate::motion_map::{landing_codes, motion_grid};
     #[pymodule_export]
     use crate::motion_points::motion_points;
+    #[pymodule_export]
+    use crate::names::{mode_codes, status_codes, transition_reason_codes};
     #[pymodule_export]
     use crate::options::{BoundaryOptions, ClassifyOptions, MotionOptions};
     #[pymodule_export]

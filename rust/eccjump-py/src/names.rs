@@ -2,7 +2,7 @@
 //! records repeat a handful of names dozens of times, and a new string for each costs as
 //! much as the float beside it.
 
-use eccjump_core::modes::contact::{Mode, Reason};
+use eccjump_core::modes::contact::{Mode, TransitionReason};
 use eccjump_core::modes::rolling::events::ContactEvent;
 use eccjump_core::motion::record::MotionStatus;
 use pyo3::prelude::*;
@@ -25,6 +25,11 @@ impl<T: Copy + PartialEq, const K: usize> Names<T, K> {
         }
     }
 
+    /// (code, name) of every value: `all` is indexed by code (`named_enum!`'s `ALL`).
+    fn table(&self) -> Vec<(u8, &'static str)> {
+        (0..).zip(self.all.map(self.name)).collect()
+    }
+
     /// The name of `value`, the same string object at every call.
     pub fn of<'py>(&self, py: Python<'py>, value: T) -> Bound<'py, PyString> {
         let strings = self.strings.get_or_init(py, || {
@@ -42,9 +47,31 @@ impl<T: Copy + PartialEq, const K: usize> Names<T, K> {
 
 /// `Mode::name`.
 pub static MODES: Names<Mode, 3> = Names::new(Mode::ALL, Mode::name);
-/// `Reason::name` (why a mode began).
-pub static REASONS: Names<Reason, 9> = Names::new(Reason::ALL, Reason::name);
+/// `TransitionReason::name` (why a mode began).
+pub static REASONS: Names<TransitionReason, 9> =
+    Names::new(TransitionReason::ALL, TransitionReason::name);
 /// `MotionStatus::name`.
 pub static STATUSES: Names<MotionStatus, 7> = Names::new(MotionStatus::ALL, MotionStatus::name);
 /// `ContactEvent::name` (the events of a rolling run).
 pub static ROLL_EVENTS: Names<ContactEvent, 5> = Names::new(ContactEvent::ALL, ContactEvent::name);
+
+// The tables the Python layer checks its copies against at import (`eccjump.motion`): a
+// stale build whose codes moved would otherwise mislabel every record.
+
+/// (code, name) of every mode of the full motion; a sequence code's digit is code + 1.
+#[pyfunction]
+pub fn mode_codes() -> Vec<(u8, &'static str)> {
+    MODES.table()
+}
+
+/// (code, name) of every reason a mode of the full motion began.
+#[pyfunction]
+pub fn transition_reason_codes() -> Vec<(u8, &'static str)> {
+    REASONS.table()
+}
+
+/// (code, name) of every way a full-motion run ends.
+#[pyfunction]
+pub fn status_codes() -> Vec<(u8, &'static str)> {
+    STATUSES.table()
+}

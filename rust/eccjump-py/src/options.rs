@@ -8,7 +8,7 @@ use crate::errors::to_py;
 use eccjump_core::jarm::{JarmOptions, Method};
 use eccjump_core::maps::boundary::boundary_options;
 use eccjump_core::maps::motion::MotionMapOptions;
-use eccjump_core::ode::{Method as Integrator, SolverOptions};
+use eccjump_core::ode::{Integrator, SolverOptions};
 use eccjump_core::{Cylinder, Ramp, Rule};
 use pyo3::exceptions::PyValueError;
 use pyo3::prelude::*;

@@ -168,7 +168,7 @@ mod tests {
             Method::Ode {
                 rtol: 1e-10,
                 atol: 1e-12,
-                pair: crate::ode::Method::Dop853,
+                pair: crate::ode::Integrator::Dop853,
             },
         ];
         for method in methods {
@@ -201,7 +201,7 @@ mod tests {
             Method::Ode {
                 rtol: 1e-10,
                 atol: 1e-12,
-                pair: crate::ode::Method::Rk45,
+                pair: crate::ode::Integrator::Rk45,
             },
         ] {
             for i in 0..12 {
@@ -239,7 +239,7 @@ mod tests {
         let ode = Method::Ode {
             rtol: 1e-10,
             atol: 1e-12,
-            pair: crate::ode::Method::Dop853,
+            pair: crate::ode::Integrator::Dop853,
         };
         let mut slips = [0usize; 2];
         for (m, method) in [Method::ClosedForm, ode].into_iter().enumerate() {

@@ -163,7 +163,7 @@ pub fn classify_ode(
     mu_s: f64,
     o: &JarmOptions,
     tol: (f64, f64),
-    pair: ode::Method,
+    pair: ode::Integrator,
 ) -> JarmResult {
     let how = Integration {
         tol,
@@ -178,7 +178,7 @@ pub fn classify_ode(
 #[derive(Debug, Clone, Copy)]
 struct Integration {
     tol: (f64, f64),
-    pair: ode::Method,
+    pair: ode::Integrator,
     steps_per_turn: usize,
 }
 
@@ -433,7 +433,7 @@ impl Track<2> for RouteTrack {
 pub fn classify_ode_batch(
     point: impl Fn(usize) -> (f64, f64, f64, f64, JarmOptions),
     tol: (f64, f64),
-    pair: ode::Method,
+    pair: ode::Integrator,
     out: &mut [JarmResult],
     stop: &dyn Fn() -> bool,
 ) {

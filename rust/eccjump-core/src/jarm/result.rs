@@ -189,14 +189,19 @@ pub enum Method {
         /// Absolute tolerance, > 0.
         atol: f64,
         /// The Runge–Kutta pair.
-        pair: crate::ode::Method,
+        pair: crate::ode::Integrator,
     },
 }
 
 impl Method {
     /// The route named `name` ("closed_form" or "ode", the latter with its tolerances and
     /// pair).
-    pub fn from_name(name: &str, rtol: f64, atol: f64, pair: crate::ode::Method) -> Option<Method> {
+    pub fn from_name(
+        name: &str,
+        rtol: f64,
+        atol: f64,
+        pair: crate::ode::Integrator,
+    ) -> Option<Method> {
         match name {
             "closed_form" => Some(Method::ClosedForm),
             "ode" => Some(Method::Ode { rtol, atol, pair }),

@@ -9,14 +9,14 @@
 use crate::error::{Error, Result};
 use crate::maps::parallel::par_fill_pieces_until;
 use crate::mechanics::{Cylinder, Ramp, Rule};
-use crate::modes::contact::{ContactLaw, Mode, Reason};
+use crate::modes::contact::{ContactLaw, Mode, TransitionReason};
 use crate::modes::rolling::run::RollOptions;
 use crate::modes::rolling::track::roll_batch;
 use crate::motion::simulate::{Need, Sim};
 use crate::motion::sliding::SlipTrack;
 use crate::motion::{simulate, MotionRun, MotionStatus, SimOptions};
 use crate::ode::lanes::{solve_lanes_with, Keyed, Start};
-use crate::ode::{Method, SolverOptions};
+use crate::ode::{Integrator, SolverOptions};
 use std::cell::{Cell, RefCell};
 
 /// Modes of the sequence kept per point (the start's mode first): with 2 bits per mode the
@@ -65,7 +65,7 @@ pub struct MotionSummary {
     pub slip_t: f64,
     /// See `slip_t`.
     pub slip_theta: f64,
-    /// [`Reason`] code of the first transition into flight, or [`NO_REASON`].
+    /// [`TransitionReason`] code of the first transition into flight, or [`NO_REASON`].
     pub liftoff_reason: u8,
     /// Time and angle of the first lift-off (NaN if none).
     pub liftoff_t: f64,
@@ -152,10 +152,13 @@ impl MotionSummary {
 /// JARM): under "paper" its condition χθ̇² cos θ = cos α; under "normal_force" F_y reaching 0,
 /// which the friction ratio |F_x|/F_y → ∞ turns into a slip onset found inconsistent just
 /// before it (`docs/motion.md`), both as the JARM classification counts them.
-pub fn leaves_by_the_rule(rule: Rule, reason: Reason) -> bool {
+pub fn leaves_by_the_rule(rule: Rule, reason: TransitionReason) -> bool {
     match rule {
-        Rule::Paper => reason == Reason::Liftoff,
-        Rule::NormalForce => matches!(reason, Reason::NormalForce | Reason::SlipInconsistent),
+        Rule::Paper => reason == TransitionReason::Liftoff,
+        Rule::NormalForce => matches!(
+            reason,
+            TransitionReason::NormalForce | TransitionReason::SlipInconsistent
+        ),
     }
 }
 
@@ -364,7 +367,7 @@ pub fn motion_grid(
 pub(crate) fn motion_piece(
     point: &dyn Fn(usize) -> Option<(Ramp, SimOptions)>,
     rule: Rule,
-    method: Method,
+    method: Integrator,
     start: usize,
     out: &mut [MotionSummary],
     cancelled: &dyn Fn() -> bool,
@@ -554,7 +557,7 @@ mod tests {
             theta0: &theta0,
             omega0: &omega0,
         };
-        for method in crate::ode::Method::ALL {
+        for method in crate::ode::Integrator::ALL {
             let o = MotionMapOptions {
                 t_max: 20.0,
                 max_transitions: 20,
@@ -598,7 +601,7 @@ mod tests {
             theta0: &[0.0],
             omega0: &[0.0],
         };
-        for method in crate::ode::Method::ALL {
+        for method in crate::ode::Integrator::ALL {
             let o = MotionMapOptions {
                 max_transitions: 50,
                 solver: SolverOptions {

@@ -113,7 +113,7 @@ mod tests {
     use crate::maps::motion::{motion_point, INVALID};
     use crate::mechanics::Rule;
     use crate::motion::MotionStatus;
-    use crate::ode::{Method, SolverOptions};
+    use crate::ode::{Integrator, SolverOptions};
 
     /// Points of every kind: JARM and slip-first bodies, moving starts, bounces, invalid
     /// points (k_m > 1 − χ, μ_k > μ_s).
@@ -152,7 +152,7 @@ mod tests {
     fn each_point_is_motion_point_there_for_any_thread_count() {
         let c = sample(600);
         let cols = columns(&c);
-        for method in Method::ALL {
+        for method in Integrator::ALL {
             let opts = MotionMapOptions {
                 rule: Rule::Paper,
                 t_max: 30.0,

@@ -25,7 +25,7 @@ named_enum! {
 named_enum! {
     /// Why a mode began (the reasons of `docs/motion.md`).
     #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
-    pub enum Reason {
+    pub enum TransitionReason {
         /// The initial mode.
         Start = 0 => "start",
         /// The rolling branch left the friction cone and sliding is consistent.
@@ -69,14 +69,14 @@ pub enum Verdict {
         sigma: f64,
     },
     /// The body flies, for this reason.
-    Flight(Reason),
+    Flight(TransitionReason),
     /// No contact mode is consistent and L < 0 forbids flight: the rigid model needs an
     /// impulsive tangential impact (a dynamic jam). The run ends.
     Jam,
 }
 
 /// Is sliding with friction direction σ consistent at `s`? D above 0 (where F_y is above
-/// [`crate::modes::slip_in_impulse::F_SWITCH`] it goes on in the normal impulse), a positive
+/// [`crate::modes::slipping::F_SWITCH`] it goes on in the normal impulse), a positive
 /// normal force (B > 0) and, at onset (v = 0), a slip acceleration along −σ. With μ_k = μ_s
 /// that acceleration is exactly 0 at onset (sliding and rolling coincide there), so a
 /// rounding-sized value counts as agreeing.
@@ -112,10 +112,10 @@ pub fn decide(ramp: &Ramp, law: &ContactLaw, s: &BodyState, rolling_excluded: bo
         if slides(ramp, law, s, sigma, false) {
             return Verdict::Slip { sigma };
         }
-        return fly(Reason::SlipInconsistent);
+        return fly(TransitionReason::SlipInconsistent);
     }
     if law.rule == Rule::Paper && lift >= 0.0 {
-        return Verdict::Flight(Reason::Liftoff);
+        return Verdict::Flight(TransitionReason::Liftoff);
     }
     if !rolling_excluded && rolling.fy > 0.0 && slip_margin(law.mu_s, rolling.fx, rolling.fy) > 0.0
     {
@@ -127,9 +127,9 @@ pub fn decide(ramp: &Ramp, law: &ContactLaw, s: &BodyState, rolling_excluded: bo
         return Verdict::Slip { sigma };
     }
     fly(if rolling.fy <= 0.0 {
-        Reason::NormalForce
+        TransitionReason::NormalForce
     } else {
-        Reason::SlipInconsistent
+        TransitionReason::SlipInconsistent
     })
 }
 
@@ -163,7 +163,7 @@ mod tests {
         let fast = BodyState::rolling(0.0, 3.0, 0.0);
         assert_eq!(
             decide(&r, &grip, &fast, false),
-            Verdict::Flight(Reason::Liftoff)
+            Verdict::Flight(TransitionReason::Liftoff)
         );
         // A slip velocity down the ramp: friction up the ramp.
         let mut sliding = s;

@@ -24,25 +24,8 @@
 
 use crate::mechanics::friction::Sliding;
 use crate::mechanics::liftoff::free_normal_acceleration;
-use crate::modes::slipping::Slipping;
+use crate::modes::slipping::{normal_force_above, Slipping, F_BACK};
 use crate::ode::{Direction, EventFunctions, EventSpec, OdeSystem, State};
-
-/// The normal force [M g] above which a slip goes on in the normal impulse (the time form's
-/// event [`crate::modes::slipping::SlipEvent::Singular`]). Both forms are exact; the switch
-/// only chooses the variable in which steps stay well scaled: about 10³ times F_y's usual size,
-/// where D is near 10⁻⁴ for the usual Ĩ_CM B.
-pub const F_SWITCH: f64 = 1e3;
-
-/// The normal force at which a slip in the normal impulse goes back to time: a tenth of
-/// [`F_SWITCH`], so that a slip hovering near the switch does not alternate at every step.
-pub const F_BACK: f64 = 1e2;
-
-/// A function of the contact state with the sign of F_y − `level` where D > 0, free of the
-/// pole of F_y = Ĩ_CM B/D at D = 0 (an event function's roots are found on it).
-#[inline]
-pub(crate) fn normal_force_above(level: f64, icm: f64, load: f64, d: f64) -> f64 {
-    icm * load - level * d
-}
 
 /// D at which the slip, still on, is an impulsive jam (status `painleve`): its time to
 /// fall further, D/(Ĩ_CM B) per unit impulse, is below what the run's float64 time resolves.

@@ -14,12 +14,33 @@
 
 use crate::mechanics::friction::Sliding;
 use crate::mechanics::Ramp;
-use crate::modes::slip_in_impulse::{normal_force_above, F_SWITCH};
 use crate::ode::lanes::{Lane, LaneRhs, Lanes, LANES};
 use crate::ode::{
     Change, DenseStep, Direction, EventBounds, EventFunctions, EventSpec, OdeSystem, SinCos, State,
 };
 use crate::trig::lanes::sin_cos_lanes;
+
+// The switch between the two forms of a slip (in time, here; in the normal impulse,
+// `slip_in_impulse`, which builds on `Slipping`) is kept here, below both, so that neither
+// form's module needs the other's.
+
+/// The normal force [M g] above which a slip goes on in the normal impulse (the time form's
+/// event [`SlipEvent::Singular`]). Both forms are exact; the switch only chooses the variable
+/// in which steps stay well scaled: about 10³ times F_y's usual size, where D is near 10⁻⁴
+/// for the usual Ĩ_CM B.
+pub const F_SWITCH: f64 = 1e3;
+
+/// The normal force at which a slip in the normal impulse ([`crate::modes::slip_in_impulse`])
+/// goes back to time: a tenth of [`F_SWITCH`], so that a slip hovering near the switch does
+/// not alternate at every step.
+pub const F_BACK: f64 = 1e2;
+
+/// A function of the contact state with the sign of F_y − `level` where D > 0, free of the
+/// pole of F_y = Ĩ_CM B/D at D = 0 (an event function's roots are found on it).
+#[inline]
+pub(crate) fn normal_force_above(level: f64, icm: f64, load: f64, d: f64) -> f64 {
+    icm * load - level * d
+}
 
 /// Accelerations and contact force of the sliding mode at one state.
 #[derive(Debug, Clone, Copy, PartialEq)]

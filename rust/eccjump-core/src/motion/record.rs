@@ -4,7 +4,7 @@
 
 use crate::error::{try_grow, Result};
 use crate::mechanics::BodyState;
-use crate::modes::contact::{Mode, Reason};
+use crate::modes::contact::{Mode, TransitionReason};
 use crate::motion::solution::MotionSolution;
 
 /// One recorded point of the run.
@@ -36,7 +36,7 @@ pub struct Transition {
     /// The mode after.
     pub to: Mode,
     /// Why.
-    pub reason: Reason,
+    pub reason: TransitionReason,
     /// The state after the transition (after the impact, for a landing).
     pub state: BodyState,
 }
@@ -85,7 +85,7 @@ pub struct Segment {
     /// The mode.
     pub mode: Mode,
     /// Why it began.
-    pub reason: Reason,
+    pub reason: TransitionReason,
     /// Start time.
     pub t_start: f64,
     /// End time.

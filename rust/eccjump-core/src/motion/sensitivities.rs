@@ -17,7 +17,7 @@ use crate::modes::flight::Flight;
 use crate::motion::landing::{land, Landed};
 use crate::motion::options::{SimOptions, MAX_ANGLE_STEP};
 use crate::motion::record::{Crossing, MotionRun, Segment};
-use crate::ode::{self, Method, NoEvents, OdeSystem, State, Status};
+use crate::ode::{self, Integrator, NoEvents, OdeSystem, State, Status};
 
 pub use crate::motion::options::PARAMETERS;
 
@@ -325,7 +325,7 @@ impl Walk<'_> {
         let defaults = ode::SolverOptions::default();
         let solver = ode::SolverOptions {
             max_first_change: MAX_ANGLE_STEP,
-            method: Method::Dop853,
+            method: Integrator::Dop853,
             rtol: self.opts.solver.rtol.max(defaults.rtol),
             atol: self.opts.solver.atol.max(defaults.atol),
             max_steps: self.steps_left.max(1),

@@ -5,12 +5,12 @@
 
 use crate::error::{Error, Result};
 use crate::mechanics::{BodyState, Ramp};
-use crate::modes::contact::{decide, Mode, Reason, Verdict};
+use crate::modes::contact::{decide, Mode, TransitionReason, Verdict};
 use crate::modes::flight::apex;
 use crate::modes::flight::landing::Landing;
 use crate::modes::flight::Flight;
 use crate::modes::rolling::run::{roll_until, ContactEvent, RollOptions, RollRun, RollStatus};
-use crate::modes::slip_in_impulse::F_SWITCH;
+use crate::modes::slipping::F_SWITCH;
 use crate::modes::slipping::{SlipEvent, Slipping};
 use crate::motion::landing::land;
 use crate::motion::options::{SimOptions, MAX_ANGLE_STEP};
@@ -26,7 +26,7 @@ use crate::ode::{self, Outcome, Status};
 /// What comes after a segment.
 enum Next {
     /// Another mode, for a reason, from a state.
-    Mode(Mode, Reason, BodyState, f64),
+    Mode(Mode, TransitionReason, BodyState, f64),
     /// A landing in this state (b = 1, ḃ < 0): the impact law and the consistency test
     /// decide what follows, once the transition budget allows a transition (a run that
     /// stops at the budget keeps the state before the impact, and the ledger closes).
@@ -39,7 +39,7 @@ enum Next {
 }
 
 /// The mode chosen by the consistency test as a [`Next`], for `reason` where it flies.
-fn after(verdict: Verdict, reason: Reason, s: BodyState) -> Next {
+fn after(verdict: Verdict, reason: TransitionReason, s: BodyState) -> Next {
     match verdict {
         Verdict::Roll => Next::Mode(Mode::Roll, reason, s, 0.0),
         Verdict::Slip { sigma } => Next::Mode(Mode::Slip, reason, s, sigma),
@@ -130,7 +130,7 @@ pub(crate) struct Sim<'a> {
     from: Option<Mode>,
     /// The segment under way: its mode, reason, start time, evaluations before it and
     /// friction direction.
-    current: (Mode, Reason, f64, usize, f64),
+    current: (Mode, TransitionReason, f64, usize, f64),
 }
 
 impl<'a> Sim<'a> {
@@ -160,7 +160,7 @@ impl<'a> Sim<'a> {
             start,
             next: Some(next),
             from: None,
-            current: (Mode::Roll, Reason::Start, 0.0, 0, 0.0),
+            current: (Mode::Roll, TransitionReason::Start, 0.0, 0, 0.0),
         })
     }
 
@@ -203,8 +203,12 @@ impl<'a> Sim<'a> {
             if !resumed {
                 // Mode reason: the reason for a slip that follows a slip is a reversal.
                 let reason = match (self.from, mode, reason) {
-                    (Some(Mode::Slip), Mode::Slip, Reason::Slip) => Reason::Reverse,
-                    (Some(Mode::Slip), Mode::Roll, Reason::Slip) => Reason::Stick,
+                    (Some(Mode::Slip), Mode::Slip, TransitionReason::Slip) => {
+                        TransitionReason::Reverse
+                    }
+                    (Some(Mode::Slip), Mode::Roll, TransitionReason::Slip) => {
+                        TransitionReason::Stick
+                    }
                     _ => reason,
                 };
                 d.run.transitions.push(Transition {
@@ -307,8 +311,14 @@ fn opening(ramp: &Ramp, opts: &SimOptions) -> Result<(BodyState, Next)> {
         return Err(Error::invalid("km", ramp.body.km, allowed));
     }
     let start = BodyState::in_contact(opts.theta0, opts.omega0, 0.0, opts.omega0 + opts.slip0);
-    let next = match after(decide(ramp, &opts.law, &start, false), Reason::Start, start) {
-        Next::Mode(mode, _, state, sigma) => Next::Mode(mode, Reason::Start, state, sigma),
+    let next = match after(
+        decide(ramp, &opts.law, &start, false),
+        TransitionReason::Start,
+        start,
+    ) {
+        Next::Mode(mode, _, state, sigma) => {
+            Next::Mode(mode, TransitionReason::Start, state, sigma)
+        }
         end => end,
     };
     Ok((start, next))
@@ -430,15 +440,23 @@ impl Driver<'_> {
             }
             RollStatus::Event(ContactEvent::Liftoff) => {
                 self.crossing = Some(Crossing::Liftoff);
-                Next::Mode(Mode::Flight, Reason::Liftoff, end, 0.0)
+                Next::Mode(Mode::Flight, TransitionReason::Liftoff, end, 0.0)
             }
             RollStatus::Event(ContactEvent::NormalForce) => {
                 self.crossing = Some(Crossing::NormalForce);
-                after(decide(self.ramp, law, &end, true), Reason::NormalForce, end)
+                after(
+                    decide(self.ramp, law, &end, true),
+                    TransitionReason::NormalForce,
+                    end,
+                )
             }
             RollStatus::Event(ContactEvent::Slip) => {
                 self.crossing = Some(Crossing::FrictionCone);
-                after(decide(self.ramp, law, &end, true), Reason::Slip, end)
+                after(
+                    decide(self.ramp, law, &end, true),
+                    TransitionReason::Slip,
+                    end,
+                )
             }
             RollStatus::Failed(status) => self.failed("rolling", status),
         })
@@ -493,7 +511,7 @@ impl Driver<'_> {
             Status::Event(k) => match SlipEvent::ALL[k] {
                 SlipEvent::NormalForce => {
                     self.crossing = Some(Crossing::NormalForce);
-                    Next::Mode(Mode::Flight, Reason::NormalForce, end, 0.0)
+                    Next::Mode(Mode::Flight, TransitionReason::NormalForce, end, 0.0)
                 }
                 SlipEvent::Stops => {
                     self.crossing = Some(Crossing::SlipStops);
@@ -510,7 +528,7 @@ impl Driver<'_> {
     fn slip_stopped(&self, mut end: BodyState) -> Next {
         end.ldot = end.omega;
         let verdict = decide(self.ramp, &self.opts.law, &end, false);
-        after(verdict, Reason::Slip, end)
+        after(verdict, TransitionReason::Slip, end)
     }
 
     /// A flight: exact, until the landing, then the impact.
@@ -610,14 +628,14 @@ impl Driver<'_> {
         };
         let after_state = landed.state;
         let reason = if landed.settled {
-            Reason::Settle
+            TransitionReason::Settle
         } else {
-            Reason::Impact
+            TransitionReason::Impact
         };
         let lost = r.energy_of(&before) - r.energy_of(&after_state);
         self.run.dissipated_impacts += lost;
         let next = if landed.flies {
-            Next::Mode(Mode::Flight, Reason::Impact, after_state, 0.0)
+            Next::Mode(Mode::Flight, TransitionReason::Impact, after_state, 0.0)
         } else {
             match after(decide(r, law, &after_state, false), reason, after_state) {
                 // After a landing the reason is the landing, whatever the mode.

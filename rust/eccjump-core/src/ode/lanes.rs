@@ -22,7 +22,7 @@
 
 use super::dense::MAX_DEGREE;
 use super::pair::{
-    all_finite, weighted_sum, Dop853, Dp5, Method, RkPair, Summand, Vern9, MAX_STAGES,
+    all_finite, weighted_sum, Dop853, Dp5, Integrator, RkPair, Summand, Vern9, MAX_STAGES,
 };
 use super::solver::{Observation, Outcome, Run, SolverOptions, Status};
 use super::stepper::{Judgement, Trial};
@@ -625,15 +625,15 @@ impl<K, T: Track<N>, const N: usize> Track<N> for Keyed<K, T> {
 
 /// [`solve_lanes`] with the pair `method`.
 pub fn solve_lanes_with<T: Track<N>, const N: usize>(
-    method: Method,
+    method: Integrator,
     next: impl FnMut() -> Option<Start<T, N>>,
     done: impl FnMut(T, Outcome<N>),
     stop: &dyn Fn() -> bool,
 ) {
     match method {
-        Method::Rk45 => solve_lanes::<Dp5<N>, T, N>(next, done, stop),
-        Method::Dop853 => solve_lanes::<Dop853<N>, T, N>(next, done, stop),
-        Method::Vern9 => solve_lanes::<Vern9<N>, T, N>(next, done, stop),
+        Integrator::Rk45 => solve_lanes::<Dp5<N>, T, N>(next, done, stop),
+        Integrator::Dop853 => solve_lanes::<Dop853<N>, T, N>(next, done, stop),
+        Integrator::Vern9 => solve_lanes::<Vern9<N>, T, N>(next, done, stop),
     }
 }
 

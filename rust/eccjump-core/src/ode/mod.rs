@@ -1,6 +1,6 @@
 //! Embedded Runge–Kutta integrators for small fixed-size states (Dormand–Prince 5(4) as
-//! scipy's `RK45`, the default, DOP853 as scipy's `DOP853`, and Verner's 7(6) pair), with
-//! dense output and exactly located events.
+//! scipy's `RK45`, the default, DOP853 as scipy's `DOP853`, and Verner's 9(8) pair `Vern9`;
+//! [`Integrator`] names them), with dense output and exactly located events.
 //!
 //! Kept apart, as in scipy's `_ivp`: the Butcher tableaux ([`tableau`]), each pair's
 //! stages, error norm and dense-output construction ([`pair`]), the step-size control that
@@ -31,7 +31,7 @@ pub use events::{
     quiet_step, Change, Direction, EventBounds, EventCarry, EventFunctions, EventSpec, NoBounds,
     NoEvents, EVENT_CHUNK,
 };
-pub use pair::Method;
+pub use pair::Integrator;
 pub use solver::{solve, solve_until, Observation, Outcome, SolverOptions, Status};
 
 /// A state vector of fixed size N.

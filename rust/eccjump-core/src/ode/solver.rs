@@ -1,13 +1,13 @@
 //! The driver loop: initial step, adaptive steps, events, limits and statuses.
 //!
 //! Mirrors scipy's `solve_ivp` loop (f0, `select_initial_step`, then `step` until
-//! t_bound) for any pair ([`Method`]), with events found on each accepted step's dense
+//! t_bound) for any pair ([`Integrator`]), with events found on each accepted step's dense
 //! output.
 //! Everything lives on the stack; results go to the observer, so the loop never
 //! allocates.
 
 use super::events::{quiet_step, scan_step, EventCarry, NonFiniteEvent};
-use super::pair::{all_finite, error_scale, Dop853, Dp5, Method, RkPair, Vern9};
+use super::pair::{all_finite, error_scale, Dop853, Dp5, Integrator, RkPair, Vern9};
 use super::stepper::{select_initial_step, Point, StepStatus, Stepper, Trial};
 use super::{DenseStep, EventFunctions, OdeSystem, SinCos, State, StepEnds};
 
@@ -34,7 +34,7 @@ pub struct SolverOptions {
     /// ends, so that a double crossing inside one step is not missed.
     pub event_samples: usize,
     /// The Runge–Kutta pair.
-    pub method: Method,
+    pub method: Integrator,
     /// Make every accepted step's dense output, for an observer that keeps it. When false,
     /// a step of DOP853 whose ends alone clear it of events
     /// ([`crate::ode::EventBounds::change_bounds_ends`]) is observed without one, which saves the
@@ -53,7 +53,7 @@ impl Default for SolverOptions {
             max_step: f64::INFINITY,
             max_first_change: f64::INFINITY,
             event_samples: 4,
-            method: Method::Rk45,
+            method: Integrator::Rk45,
             dense_every_step: false,
         }
     }
@@ -190,9 +190,9 @@ where
         };
     }
     match opts.method {
-        Method::Rk45 => drive_with!(Dp5),
-        Method::Dop853 => drive_with!(Dop853),
-        Method::Vern9 => drive_with!(Vern9),
+        Integrator::Rk45 => drive_with!(Dp5),
+        Integrator::Dop853 => drive_with!(Dop853),
+        Integrator::Vern9 => drive_with!(Vern9),
     }
 }
 

@@ -9,8 +9,8 @@ use super::dense::DenseStep;
 use super::pair::{all_finite, rms_norm, RkPair};
 use super::{OdeSystem, SinCos, State};
 
-/// Multiplies the asymptotically optimal step factor, for a margin (scipy `SAFETY`).
-pub const SAFETY: f64 = 0.9;
+// scipy's third constant, `SAFETY`, is the pair's ([`RkPair::SAFETY`]): Vern9 has its own.
+
 /// Smallest factor by which a rejected step shrinks (scipy `MIN_FACTOR`).
 pub const MIN_FACTOR: f64 = 0.2;
 /// Largest factor by which an accepted step grows (scipy `MAX_FACTOR`).

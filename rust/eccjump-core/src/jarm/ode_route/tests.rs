@@ -23,7 +23,7 @@ const RTOL: f64 = 1e-10;
 const ATOL: f64 = 1e-12;
 
 fn ode(a: f64, chi: f64, km: f64, mu_s: f64, o: &JarmOptions) -> JarmResult {
-    classify_ode(a, chi, km, mu_s, o, (RTOL, ATOL), ode::Method::Rk45)
+    classify_ode(a, chi, km, mu_s, o, (RTOL, ATOL), ode::Integrator::Rk45)
 }
 
 /// The closed form's verdict is robust: a relative change of α by ±1e-6 keeps its reason.
@@ -121,7 +121,7 @@ fn change_bounds_bound_the_change_along_each_step() {
     let mut steps = 0;
     let mut quiet = 0;
     let cases = bound_cases().into_iter();
-    for (pair, (a, chi, km, mu_s, liftoff, forces)) in ode::Method::ALL
+    for (pair, (a, chi, km, mu_s, liftoff, forces)) in ode::Integrator::ALL
         .into_iter()
         .flat_map(|p| cases.clone().map(move |c| (p, c)))
     {
@@ -200,11 +200,11 @@ fn change_bounds_bound_the_change_along_each_step() {
 
 #[test]
 fn skipping_interior_samples_changes_nothing() {
-    let mut nfev = [[0; 2]; ode::Method::ALL.len()];
+    let mut nfev = [[0; 2]; ode::Integrator::ALL.len()];
     for (a, chi, km, mu_s, liftoff, forces) in bound_cases() {
         for (samples, pair) in [4, 16]
             .into_iter()
-            .flat_map(|s| ode::Method::ALL.map(|p| (s, p)))
+            .flat_map(|s| ode::Integrator::ALL.map(|p| (s, p)))
         {
             let so = SolverOptions {
                 event_samples: samples,
@@ -244,7 +244,7 @@ fn skipping_interior_samples_changes_nothing() {
         nfev[0][0], nfev[0][1],
         "RK45 always makes its (free) dense output"
     );
-    for (i, pair) in ode::Method::ALL.into_iter().enumerate().skip(1) {
+    for (i, pair) in ode::Integrator::ALL.into_iter().enumerate().skip(1) {
         assert!(10 * nfev[i][0] < 9 * nfev[i][1], "{pair:?}: {:?}", nfev[i]);
     }
 }
@@ -261,7 +261,7 @@ fn a_grazing_slip_after_930_turns_is_found_by_every_pair() {
     let o = JarmOptions::default();
     let c = classify(a, chi, km, 1.0, &o);
     assert_eq!((c.reason, c.n), (Reason::SlipAtJump, 934));
-    for pair in ode::Method::ALL {
+    for pair in ode::Integrator::ALL {
         let e = classify_ode(a, chi, km, 1.0, &o, (RTOL, ATOL), pair);
         assert_eq!((e.reason, e.n), (c.reason, c.n), "{pair:?}");
         assert!(
@@ -370,7 +370,15 @@ fn shallow_roots_converge() {
     let c = classify(a, chi, 0.0, 1.0, &k);
     let mut last = f64::INFINITY;
     for rtol in [1e-10, 1e-12] {
-        let e = classify_ode(a, chi, 0.0, 1.0, &k, (rtol, 1e-2 * rtol), ode::Method::Rk45);
+        let e = classify_ode(
+            a,
+            chi,
+            0.0,
+            1.0,
+            &k,
+            (rtol, 1e-2 * rtol),
+            ode::Integrator::Rk45,
+        );
         assert_eq!(e.reason, c.reason);
         let d = (e.theta_j - c.theta_j).abs();
         assert!(d < last && d < 1e4 * rtol, "{rtol} {d}");
@@ -479,7 +487,7 @@ fn special_cases() {
     let bad = JarmOptions { omega0: -1.0, ..o };
     assert_eq!(ode(0.5, 0.1, 0.1, 1.0, &bad).reason, Reason::InvalidParams);
     for (rt, at) in [(0.0, 1e-12), (1e-10, f64::NAN), (f64::INFINITY, 1e-12)] {
-        let r = classify_ode(0.5, 0.1, 0.1, 1.0, &o, (rt, at), ode::Method::Rk45);
+        let r = classify_ode(0.5, 0.1, 0.1, 1.0, &o, (rt, at), ode::Integrator::Rk45);
         assert_eq!(r.reason, Reason::InvalidParams);
     }
 }
@@ -490,11 +498,11 @@ fn integrator_failure_is_no_physical_verdict() {
     // MaxSteps, reported as SolverFailed at the last good θ, never as a slip or turn limit.
     let o = JarmOptions::default();
     let a = 1f64.to_radians();
-    let ok = classify_ode(a, 0.3, 0.2, 1.0, &o, (RTOL, ATOL), ode::Method::Rk45);
+    let ok = classify_ode(a, 0.3, 0.2, 1.0, &o, (RTOL, ATOL), ode::Integrator::Rk45);
     assert_ne!(ok.reason, Reason::SolverFailed);
     let how = Integration {
         tol: (RTOL, ATOL),
-        pair: ode::Method::Rk45,
+        pair: ode::Integrator::Rk45,
         steps_per_turn: 1,
     };
     let r = classify_ode_budget(a, 0.3, 0.2, 1.0, &o, how);
@@ -537,7 +545,7 @@ fn a_lane_batch_is_each_point_bit_for_bit() {
         .chain((0..80).map(|_| (0.3 + 0.9 * u(), 0.5, 0.1, 0.05 + 0.2 * u(), paper)))
         .collect();
     let bits = |r: &JarmResult| r.as_f64s().map(f64::to_bits);
-    for pair in ode::Method::ALL {
+    for pair in ode::Integrator::ALL {
         let mut out = vec![JarmResult::new(Reason::NoRoot); points.len()];
         classify_ode_batch(|i| points[i], (RTOL, ATOL), pair, &mut out, &never);
         let mut reasons = std::collections::BTreeSet::new();
@@ -584,7 +592,7 @@ fn deterministic() {
     let m = Method::Ode {
         rtol: RTOL,
         atol: ATOL,
-        pair: ode::Method::Rk45,
+        pair: ode::Integrator::Rk45,
     };
     let o = JarmOptions::default();
     let mut r1 = JarmColumns::new(&pool(1).unwrap(), 216).unwrap();
@@ -633,7 +641,7 @@ fn timing() {
     let m = Method::Ode {
         rtol: RTOL,
         atol: ATOL,
-        pair: ode::Method::Rk45,
+        pair: ode::Integrator::Rk45,
     };
     let o = JarmOptions::default();
     let mut out = JarmColumns::new(&pool(1).unwrap(), 8000).unwrap();

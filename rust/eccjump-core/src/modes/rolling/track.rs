@@ -14,7 +14,7 @@ use crate::modes::rolling::run::{
 };
 use crate::modes::rolling::solution::RollSolution;
 use crate::ode::lanes::{solve_lanes_with, Keyed, Start, Track};
-use crate::ode::{DenseStep, Method, Observation, Outcome, SolverOptions, State, Status};
+use crate::ode::{DenseStep, Integrator, Observation, Outcome, SolverOptions, State, Status};
 
 /// What a run has recorded so far.
 struct Record {
@@ -190,7 +190,7 @@ impl Track<2> for RollTrack {
 ///
 /// [`roll_until`]: crate::modes::rolling::run::roll_until
 pub(crate) fn roll_batch<K>(
-    method: Method,
+    method: Integrator,
     mut next: impl FnMut() -> Option<(K, Ramp, RollOptions)>,
     done: impl FnMut(K, Result<RollRun>),
     stop: &dyn Fn() -> bool,
@@ -235,7 +235,7 @@ mod tests {
     /// Runs of every kind: from rest and moving, slipping or lifting off or reaching
     /// θ_max or t_max, ending at the start, with and without the dense output, and bad
     /// options (an error).
-    fn runs(method: Method) -> Vec<(Ramp, RollOptions)> {
+    fn runs(method: Integrator) -> Vec<(Ramp, RollOptions)> {
         let mut rng = Lcg(7);
         (0..90)
             .map(|i| {
@@ -272,7 +272,7 @@ mod tests {
 
     #[test]
     fn a_batch_gives_each_run_as_alone_bit_for_bit() {
-        for method in Method::ALL {
+        for method in Integrator::ALL {
             let runs = runs(method);
             let mut got = vec![None; runs.len()];
             let mut queue = runs.iter().enumerate();
@@ -302,11 +302,11 @@ mod tests {
 
     #[test]
     fn a_stopped_batch_ends_its_runs_as_interrupted() {
-        let runs = runs(Method::Rk45);
+        let runs = runs(Integrator::Rk45);
         let mut results = Vec::new();
         let mut queue = runs.iter().enumerate();
         roll_batch(
-            Method::Rk45,
+            Integrator::Rk45,
             || queue.next().map(|(i, (r, o))| (i, *r, *o)),
             |_, result| results.push(result),
             &|| true,

@@ -154,7 +154,7 @@ fn a_slow_landing_keeps_its_derivatives() {
     let (r, o) = setup(c, params(c));
     let run = simulate(&r, &o).unwrap();
     let s = sensitivities(&r, &o, &run, &|| false).unwrap();
-    let settle = crate::modes::contact::Reason::Settle;
+    let settle = crate::modes::contact::TransitionReason::Settle;
     assert!(run.transitions.iter().any(|t| t.reason == settle));
     assert!(s.singular.iter().all(|&x| !x));
 }

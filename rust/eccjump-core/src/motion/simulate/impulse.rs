@@ -7,7 +7,7 @@
 use super::{Driver, Next};
 use crate::error::{try_grow, Result};
 use crate::mechanics::BodyState;
-use crate::modes::contact::{Mode, Reason};
+use crate::modes::contact::{Mode, TransitionReason};
 use crate::modes::slip_in_impulse::{ImpulseEvent, ImpulseEvents, D_JAM, P_MAX};
 use crate::modes::slipping::Slipping;
 use crate::motion::record::{Crossing, MotionStatus, Point};
@@ -123,7 +123,7 @@ impl Driver<'_> {
             Status::Finished => jam("the normal impulse passed 1e4 (P_MAX)"),
             Status::Event(k) => match ImpulseEvent::ALL[k] {
                 ImpulseEvent::NormalForce => {
-                    Next::Mode(Mode::Flight, Reason::NormalForce, end, 0.0)
+                    Next::Mode(Mode::Flight, TransitionReason::NormalForce, end, 0.0)
                 }
                 ImpulseEvent::Stops => self.slip_stopped(end),
                 ImpulseEvent::Recovers => Next::Resume(end, slip.sigma),
@@ -173,10 +173,10 @@ mod tests {
         assert_eq!(
             seq[..4],
             [
-                (Mode::Slip, Reason::Start),
-                (Mode::Slip, Reason::Reverse),
-                (Mode::Flight, Reason::NormalForce),
-                (Mode::Slip, Reason::Impact),
+                (Mode::Slip, TransitionReason::Start),
+                (Mode::Slip, TransitionReason::Reverse),
+                (Mode::Flight, TransitionReason::NormalForce),
+                (Mode::Slip, TransitionReason::Impact),
             ]
         );
         // The figures (integrated tighter and against the normal impulse there).
@@ -246,7 +246,10 @@ mod tests {
         // The slip lifted off at F_y = 0 in time (D near 1e-5 with F_y small is no reason for
         // the impulse form).
         let lift = &run.transitions[4];
-        assert_eq!((lift.to, lift.reason), (Mode::Flight, Reason::NormalForce));
+        assert_eq!(
+            (lift.to, lift.reason),
+            (Mode::Flight, TransitionReason::NormalForce)
+        );
         assert_eq!(run.segments[3].crossing, Some(Crossing::NormalForce));
         assert!(run.points.iter().all(|p| p.fy >= -1e-9));
         // Every transition agrees with a run a thousand times tighter.

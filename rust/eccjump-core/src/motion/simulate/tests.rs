@@ -113,7 +113,7 @@ fn slip_then_jump_and_the_ledger_closes() {
     let (r, m) = run(0.5, 0.4, 30.0, 1.0, 0.0);
     let seq: Vec<_> = m.transitions.iter().map(|t| t.to).take(4).collect();
     assert_eq!(seq, [Mode::Roll, Mode::Slip, Mode::Flight, Mode::Slip]);
-    assert_eq!(m.transitions[2].reason, Reason::NormalForce);
+    assert_eq!(m.transitions[2].reason, TransitionReason::NormalForce);
     for p in &m.points {
         // Recorded with the integrator's trigonometry: the same bits as anew.
         assert_eq!(p.energy.to_bits(), r.energy_of(&p.state).to_bits());
@@ -190,7 +190,10 @@ fn a_run_stopped_at_a_landing_by_its_budget_keeps_its_ledger() {
             "{max_transitions}: {along:e}, {end:e}"
         );
         let landings = m.transitions.iter().filter(|t| {
-            matches!(t.reason, Reason::Impact | Reason::Settle) && t.from == Some(Mode::Flight)
+            matches!(
+                t.reason,
+                TransitionReason::Impact | TransitionReason::Settle
+            ) && t.from == Some(Mode::Flight)
         });
         assert_eq!(landings.count(), m.impacts.len(), "{max_transitions}");
     }
@@ -224,7 +227,10 @@ fn stop_is_asked_every_few_dozen_segments() {
 fn bounces_settle_by_the_zeno_rule() {
     // e = 0.5: bounces shrink geometrically and end in `settle`, not at max_transitions.
     let (_, m) = run(0.5, 0.4, 30.0, 1.0, 0.5);
-    assert!(m.transitions.iter().any(|t| t.reason == Reason::Settle));
+    assert!(m
+        .transitions
+        .iter()
+        .any(|t| t.reason == TransitionReason::Settle));
     assert_eq!(m.status, Some(MotionStatus::TimeLimit));
 }
 
@@ -241,7 +247,7 @@ fn transitions_before_a_settle_do_not_depend_on_the_settle_speed() {
         let coarse = &runs[0].transitions;
         let k = coarse
             .iter()
-            .position(|t| t.reason == Reason::Settle)
+            .position(|t| t.reason == TransitionReason::Settle)
             .expect("the coarse run settles");
         assert!(k >= 3, "settled after {k} transitions");
         for fine in &runs[1..] {
@@ -249,7 +255,7 @@ fn transitions_before_a_settle_do_not_depend_on_the_settle_speed() {
             let t_fine = fine
                 .transitions
                 .iter()
-                .find(|t| t.reason == Reason::Settle)
+                .find(|t| t.reason == TransitionReason::Settle)
                 .expect("the fine run settles")
                 .t;
             assert!(
@@ -275,9 +281,9 @@ fn no_step_turns_the_body_more_than_the_cap() {
     // Near χ = 0 rolling is nearly uniformly accelerated: without the cap RK45 took steps
     // of several turns (12.8 rad) and the ledger drifted to 7e-7 (issue 38).
     for (chi, pair) in [
-        (1e-9, ode::Method::Rk45),
-        (1e-9, ode::Method::Dop853),
-        (1e-6, ode::Method::Vern9),
+        (1e-9, ode::Integrator::Rk45),
+        (1e-9, ode::Integrator::Dop853),
+        (1e-6, ode::Integrator::Vern9),
     ] {
         let r = Ramp::new(Cylinder::new(chi, 0.5).unwrap(), 0.5).unwrap();
         let o = SimOptions {

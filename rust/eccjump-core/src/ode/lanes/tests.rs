@@ -4,7 +4,7 @@
 use super::*;
 use crate::ode::events::{Direction, EventSpec};
 use crate::ode::pair::{Dop853, Dp5};
-use crate::ode::{solve_until, Method};
+use crate::ode::{solve_until, Integrator};
 use crate::trig::lanes::sin_cos_lanes;
 use std::cell::RefCell;
 
@@ -109,7 +109,7 @@ fn outcome_bits(o: &Outcome<2>) -> Bits {
 
 /// Trajectory i: its pendulum, start, end and options (some end at their event, some
 /// at t_end, some at the step limit, some do not start at all).
-fn problem(i: usize, method: Method) -> (Pendulum, State<2>, f64, SolverOptions) {
+fn problem(i: usize, method: Integrator) -> (Pendulum, State<2>, f64, SolverOptions) {
     let x = i as f64;
     let sys = Pendulum {
         g: 1.0 + (x * 0.37).fract() * 9.0,
@@ -133,7 +133,7 @@ fn problem(i: usize, method: Method) -> (Pendulum, State<2>, f64, SolverOptions)
 
 /// Trajectory i and its continuations (each from where the one before ended, with a
 /// kick), each by `solve_until` alone.
-fn alone(i: usize, method: Method) -> Vec<Record> {
+fn alone(i: usize, method: Integrator) -> Vec<Record> {
     let (_, mut y0, t_end, opts) = problem(i, method);
     let mut t0 = 0.0;
     let mut runs = Vec::new();
@@ -156,7 +156,7 @@ fn alone(i: usize, method: Method) -> Vec<Record> {
 #[test]
 fn a_batch_is_each_trajectory_bit_for_bit() {
     let n = 150;
-    for method in Method::ALL {
+    for method in Integrator::ALL {
         let want: Vec<_> = (0..n).map(|i| alone(i, method)).collect();
         for avx2 in [false, true] {
             let got = RefCell::new(vec![Vec::new(); n]);
@@ -196,12 +196,12 @@ fn a_batch_is_each_trajectory_bit_for_bit() {
             };
             let never = || false;
             match (method, avx2) {
-                (Method::Rk45, false) => lanes::<Dp5<2>, _, 2>(next, done, &never),
-                (Method::Dop853, false) => lanes::<Dop853<2>, _, 2>(next, done, &never),
-                (Method::Rk45, true) => solve_lanes::<Dp5<2>, _, 2>(next, done, &never),
-                (Method::Dop853, true) => solve_lanes::<Dop853<2>, _, 2>(next, done, &never),
-                (Method::Vern9, false) => lanes::<Vern9<2>, _, 2>(next, done, &never),
-                (Method::Vern9, true) => solve_lanes::<Vern9<2>, _, 2>(next, done, &never),
+                (Integrator::Rk45, false) => lanes::<Dp5<2>, _, 2>(next, done, &never),
+                (Integrator::Dop853, false) => lanes::<Dop853<2>, _, 2>(next, done, &never),
+                (Integrator::Rk45, true) => solve_lanes::<Dp5<2>, _, 2>(next, done, &never),
+                (Integrator::Dop853, true) => solve_lanes::<Dop853<2>, _, 2>(next, done, &never),
+                (Integrator::Vern9, false) => lanes::<Vern9<2>, _, 2>(next, done, &never),
+                (Integrator::Vern9, true) => solve_lanes::<Vern9<2>, _, 2>(next, done, &never),
             }
             for (j, g) in got.into_inner().iter().enumerate() {
                 assert_eq!(g, &want[j], "{method:?} avx2 {avx2} trajectory {j}");

@@ -29,7 +29,7 @@ named_enum! {
     /// Which pair an integration uses; its name is scipy's "RK45" or "DOP853", or Verner's
     /// "Vern9".
     #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
-    pub enum Method {
+    pub enum Integrator {
         /// Dormand–Prince 5(4) with its 4th-degree dense output (scipy's `RK45`): the default,
         /// step for step as scipy.
         #[default]
@@ -44,10 +44,10 @@ named_enum! {
     }
 }
 
-impl Method {
-    /// The pair named `name` (see [`Method::name`]).
-    pub fn from_name(name: &str) -> Option<Method> {
-        Method::ALL.into_iter().find(|m| m.name() == name)
+impl Integrator {
+    /// The pair named `name` (see [`Integrator::name`]).
+    pub fn from_name(name: &str) -> Option<Integrator> {
+        Integrator::ALL.into_iter().find(|m| m.name() == name)
     }
 }
 
@@ -58,8 +58,9 @@ pub trait RkPair<const N: usize>: Copy {
     const ERROR_EXPONENT: f64;
 
     /// The margin by which the step-size factor multiplies err^ERROR_EXPONENT (scipy's
-    /// `SAFETY`, 0.9, unless the pair has its own).
-    const SAFETY: f64 = super::stepper::SAFETY;
+    /// `SAFETY`, 0.9, unless the pair has its own). Here, not in [`super::stepper`], which
+    /// reads it from the pair, so that the pairs do not depend on the step-size control.
+    const SAFETY: f64 = 0.9;
 
     /// Evaluations of f the first-step selection may make (scipy's: 1; see
     /// [`super::stepper::select_initial_step`]).
