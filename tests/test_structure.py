@@ -17,8 +17,11 @@ import numpy as np
 import pytest
 
 import eccjump
-from eccjump import _core, fields, labelled, scale
-from eccjump.classification import JarmResult
+from eccjump import _core
+from eccjump.classification import fields
+from eccjump.classification.classify import JarmResult
+from eccjump.maps import dask as scale
+from eccjump.maps import xarray as labelled
 
 PACKAGE = Path(eccjump.__file__).parent
 SOURCES = sorted(PACKAGE.rglob("*.py"))
@@ -108,14 +111,22 @@ def test_imports_form_no_cycle():
 @pytest.mark.parametrize(
     ("module", "below"),
     [
-        ("eccjump._checks", set()),
-        ("eccjump.fields", {"eccjump._core"}),
+        ("eccjump._base.checks", set()),
+        ("eccjump.classification.fields", {"eccjump._core"}),
         (
-            "eccjump._bridge",
-            {"eccjump._core", "eccjump._arrays", "eccjump._checks", "eccjump.fields"},
+            "eccjump._base.bridge",
+            {
+                "eccjump._core",
+                "eccjump._base.arrays",
+                "eccjump._base.checks",
+                "eccjump.classification.fields",
+            },
         ),
-        ("eccjump._layout", {"eccjump._core", "eccjump.fields"}),
-        ("eccjump.scale", {"eccjump._bridge", "eccjump._checks", "eccjump.fields"}),
+        ("eccjump.maps.layout", {"eccjump._core", "eccjump.classification.fields"}),
+        (
+            "eccjump.maps.dask",
+            {"eccjump._base.bridge", "eccjump._base.checks", "eccjump.classification.fields"},
+        ),
     ],
 )
 def test_layers(module, below):
@@ -130,7 +141,7 @@ def test_the_bridge_is_called_from_one_module():
         for call in ("_core.jarm_points", "_core.jarm_grid")
         if call in p.read_text()
     }
-    assert callers == {"eccjump._bridge"}
+    assert callers == {"eccjump._base.bridge"}
 
 
 def keyword_only(f) -> list[str]:
@@ -198,7 +209,15 @@ def test_each_module_imports_alone_in_a_fresh_interpreter(module, import_failure
 
 
 def test_upper_modules_first_then_lower_in_one_interpreter():
-    order = ["labelled", "scale", "store", "classification", "fields", "cli.map", "_bridge"]
+    order = [
+        "maps.xarray",
+        "maps.dask",
+        "maps.store",
+        "classification.classify",
+        "classification.fields",
+        "cli.map",
+        "_base.bridge",
+    ]
     code = "; ".join(f"import eccjump.{m}" for m in order)
     subprocess.run([sys.executable, "-c", code], check=True, timeout=120)
 
