@@ -5,7 +5,10 @@ behind a typed Python API. Units: g = R = M = 1 unless converted with :class:`Un
 angles in radians.
 """
 
-from eccjump import maps
+import sys
+from typing import TYPE_CHECKING
+
+from eccjump import _compat, maps
 from eccjump._base.body import Cylinder
 from eccjump._base.units import Units
 from eccjump._core import VERSION as __version__
@@ -77,3 +80,10 @@ __all__ = [
     "store",
     "uncertainty",
 ]
+
+# The module paths before the layers (eccjump.rolling, eccjump.store, ...) for one release.
+_compat.install(sys.modules[__name__])
+if not TYPE_CHECKING:  # (a module __getattr__ would let mypy pass any eccjump.<typo>)
+
+    def __getattr__(name: str):
+        return _compat.old_attribute(name)
