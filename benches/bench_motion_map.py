@@ -29,7 +29,7 @@ sys.path.insert(0, str(Path(__file__).resolve().parent.parent / "tests"))
 from reference_motion import simulate_reference
 
 import eccjump
-from eccjump.motion_fields import sequence_name
+from eccjump.motion.fields import sequence_name
 
 
 def main(argv: list[str] | None = None) -> int:

@@ -26,7 +26,7 @@ import numpy as np
 import results
 
 import eccjump
-from eccjump.classification import FIELDS
+from eccjump.classification.classify import FIELDS
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
 import baseline_numpy as bl

@@ -1,6 +1,6 @@
 """Write the small synthetic tracks of tests/data/ (python scripts/make_tracks.py [--check]).
 
-Each is filmed from `eccjump.simulate` by `eccjump.experiment.synthetic.synthetic_track`:
+Each is filmed from `eccjump.simulate` by `eccjump.studies.experiment.synthetic.synthetic_track`:
 frames at the given rate, Gaussian pixel noise on a 1000-pixel field, positions in pixels
 (CSV, with the scale in a comment line) or in metres (the Tracker export). The tests read
 them and regenerate them with `--check` (the files must come out the same).
@@ -15,8 +15,8 @@ import sys
 from pathlib import Path
 
 import eccjump
-from eccjump.experiment.synthetic import SyntheticTrack, synthetic_track
-from eccjump.experiment.track import write_csv
+from eccjump.studies.experiment.synthetic import SyntheticTrack, synthetic_track
+from eccjump.studies.experiment.track import write_csv
 
 DATA = Path(__file__).resolve().parent.parent / "tests" / "data"
 

@@ -38,9 +38,10 @@ import numpy as np
 from reference_points import JARM_BODY
 
 import eccjump
-from eccjump import closed_form, store
-from eccjump.boundary import alpha_interval_around
-from eccjump.design import Build
+from eccjump.classification import closed_form
+from eccjump.classification.boundary import alpha_interval_around
+from eccjump.maps import store
+from eccjump.studies.design import Build
 
 
 @dataclass(frozen=True)
@@ -762,7 +763,7 @@ def case_simulate(d: Drawer) -> Case:
 
 
 MOTION_MAP_PARAMS = (
-    *eccjump.motion_maps.AXES,
+    *eccjump.motion.maps.AXES,
     "rule",
     "t_max",
     "max_transitions",
@@ -777,7 +778,7 @@ MOTION_MAP_PARAMS = (
 
 
 def check_motion_map(res: Any, case: Case) -> None:
-    mm = eccjump.motion_maps
+    mm = eccjump.motion.maps
     expect(isinstance(res, eccjump.MotionMap), "not a MotionMap")
     for name in mm.FIELDS:
         expect(res.fields[name].shape == res.shape, f"{name} has another shape than the grid")
@@ -822,7 +823,7 @@ MOTION_POINTS_PARAMS = (
 
 
 def check_motion_points(res: Any, case: Case) -> None:
-    mm = eccjump.motion_maps
+    mm = eccjump.motion.maps
     expect(isinstance(res, eccjump.MotionPoints), "not MotionPoints")
     shapes = {getattr(res, f).shape for f in mm.FIELDS}
     expect(len(shapes) == 1, f"fields of different shapes {shapes}")
@@ -1222,7 +1223,7 @@ def case_plot(d: Drawer) -> Case:
     return c
 
 
-# --- initial conditions (eccjump.starts) -----------------------------------------------------
+# --- initial conditions (eccjump.classification.starts) -------------------------------------------
 
 START_PARAMS = (
     "mu_s", "theta0", "omega0", "grid", "rule", "n_threads", "omega_max", "lattice", "n_starts",
@@ -1867,7 +1868,7 @@ _ROLLING_TRACK: list[Any] = []
 def rolling_track() -> Any:
     """A short track of a body that rolls and never leaves the ramp (120 fps, 0.5 px)."""
     if not _ROLLING_TRACK:
-        from eccjump.experiment.synthetic import synthetic_track
+        from eccjump.studies.experiment.synthetic import synthetic_track
 
         st = synthetic_track(eccjump.Cylinder(0.1, 0.3), 0.2, mu_s=1.0, fps=120.0,
                              duration=0.25, noise_px=0.5, seed=1)  # fmt: skip
@@ -1878,7 +1879,7 @@ def rolling_track() -> Any:
 def check_analysis(res: Any, case: Case) -> None:
     import json
 
-    from eccjump.experiment import VERDICTS
+    from eccjump.studies.experiment import VERDICTS
 
     expect(isinstance(res, eccjump.Analysis), "not an Analysis")
     expect(res.verdict in VERDICTS, f"verdict {res.verdict}")
@@ -1919,7 +1920,7 @@ def _bad_track_file(d: Drawer, c: Case) -> Path:
     elif how == "pixels":  # a track in pixels, analysed without scale
         cols = {n: v if n == "t" else v * 1230.5 for n, v in cols.items()}
     elif how == "many-frames":
-        from eccjump.experiment.track import MAX_FRAMES
+        from eccjump.studies.experiment.track import MAX_FRAMES
 
         reps = MAX_FRAMES // tr.n + 1
         span = tr.t[-1] - tr.t[0] + tr.dt

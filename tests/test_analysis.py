@@ -22,8 +22,8 @@ from reference_points import SLIP_FIRST
 
 import eccjump
 from eccjump.cli import main
-from eccjump.experiment import analyze
-from eccjump.experiment.synthetic import SyntheticTrack, synthetic_track
+from eccjump.studies.experiment import analyze
+from eccjump.studies.experiment.synthetic import SyntheticTrack, synthetic_track
 
 ROOT = Path(__file__).resolve().parent.parent
 DATA = ROOT / "tests" / "data"

@@ -1,4 +1,4 @@
-"""Reading a track and reconstructing theta, l, b from it (eccjump.experiment: track,
+"""Reading a track and reconstructing theta, l, b from it (eccjump.studies.experiment: track,
 geometry, reconstruct). The round trip: tracks filmed from `simulate` come back to the
 simulated angles and distances within the noise."""
 
@@ -17,12 +17,12 @@ import numpy as np
 import pytest
 
 import eccjump
-from eccjump import _userfiles
-from eccjump.experiment.geometry import RampFrame, marker_offset, theta_from_marker
-from eccjump.experiment.reconstruct import derivative_weights, reconstruct
-from eccjump.experiment.sheet import design_inputs
-from eccjump.experiment.synthetic import synthetic_track
-from eccjump.experiment.track import (
+from eccjump._base import userfiles as _userfiles
+from eccjump.studies.experiment.geometry import RampFrame, marker_offset, theta_from_marker
+from eccjump.studies.experiment.reconstruct import derivative_weights, reconstruct
+from eccjump.studies.experiment.sheet import design_inputs
+from eccjump.studies.experiment.synthetic import synthetic_track
+from eccjump.studies.experiment.track import (
     MAX_FRAMES,
     MIN_FRAMES,
     read_track,
@@ -152,9 +152,13 @@ def _refused_in_time(code: str) -> str:
 def test_a_fifo_is_refused_without_blocking(tmp_path):
     fifo = tmp_path / "t.csv"
     os.mkfifo(fifo)
-    msg = _refused_in_time(f"from eccjump.experiment import read_track; read_track({str(fifo)!r})")
+    msg = _refused_in_time(
+        f"from eccjump.studies.experiment import read_track; read_track({str(fifo)!r})"
+    )
     assert msg.startswith("source:") and "FIFO" in msg and len(msg) <= 200
-    design = f"from eccjump.experiment.sheet import design_inputs; design_inputs({str(fifo)!r})"
+    design = (
+        f"from eccjump.studies.experiment.sheet import design_inputs; design_inputs({str(fifo)!r})"
+    )
     assert _refused_in_time(design).startswith("design:")
 
 
@@ -162,7 +166,9 @@ def test_a_fifo_is_refused_without_blocking(tmp_path):
 def test_a_device_is_refused_before_it_is_read(device):
     if not os.path.exists(device):
         pytest.skip(f"no {device}")
-    msg = _refused_in_time(f"from eccjump.experiment import read_track; read_track({device!r})")
+    msg = _refused_in_time(
+        f"from eccjump.studies.experiment import read_track; read_track({device!r})"
+    )
     assert re.match(r"^source: .* is a character device, not a regular", msg), msg
 
 
@@ -179,7 +185,9 @@ def test_a_sparse_terabyte_is_refused_from_its_size(tmp_path):
     except OSError:
         pytest.skip("no sparse files here")
     started = time.perf_counter()
-    msg = _refused_in_time(f"from eccjump.experiment import read_track; read_track({str(p)!r})")
+    msg = _refused_in_time(
+        f"from eccjump.studies.experiment import read_track; read_track({str(p)!r})"
+    )
     assert re.match(r"^source: .* bytes, more than the 64 MiB allowed", msg), msg
     assert time.perf_counter() - started < 10.0  # a second or so of it starting Python
 

@@ -17,11 +17,12 @@ from fuzz_cases import MAX_MESSAGE, run_cli_inprocess
 from reference_points import JARM_BODY
 
 import eccjump
-from eccjump import motion_fields, plot
+from eccjump import plot
 from eccjump.cli import build_parser, main
 from eccjump.cli import simulate as cli_simulate
 from eccjump.cli._args import NEGATIVE_NUMBER, Parser
 from eccjump.cli._output import bounded, figure_suffixes
+from eccjump.motion import fields as motion_fields
 
 SIMULATE = ["simulate", "--alpha", "30", "--chi", "0.5", "--km", "0.4", "--mu-s", "1"]
 ROLL = ["roll", "--alpha", "30", "--chi", "0.5", "--km", "0.4"]
@@ -425,7 +426,7 @@ def test_motion_map_refuses_an_array_tolerance_naming_it():
 
 
 def test_real_names_the_parameter_of_an_array():
-    from eccjump._checks import real
+    from eccjump._base.checks import real
 
     with pytest.raises(TypeError, match=r"^rtol must be a real number, not an array"):
         real("rtol", np.array([1e-8]))

@@ -10,9 +10,10 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from eccjump import motion_maps, store
 from eccjump.cli import main
-from eccjump.motion_fields import FIELDS, sequence_name
+from eccjump.maps import store
+from eccjump.motion import maps as motion_maps
+from eccjump.motion.fields import FIELDS, sequence_name
 
 MOTION = ("map", "--kind", "motion", "--mu-s", "0.8", "--restitution", "0.3", "--grid", "8")
 

@@ -11,8 +11,8 @@ import numpy as np
 import pytest
 
 import eccjump
-from eccjump.classification import FIELDS, region
-from eccjump.scale import RECORD, grid_block, normalize_chunks
+from eccjump.classification.classify import FIELDS, region
+from eccjump.maps.dask import RECORD, grid_block, normalize_chunks
 
 da = pytest.importorskip("dask.array")
 

@@ -27,7 +27,7 @@ from properties import reach_rate
 
 import eccjump
 from eccjump import _core
-from eccjump.fields import DERIVATIVES
+from eccjump.classification.fields import DERIVATIVES
 
 FIELDS = ("d_theta_J", "d_Fx_J", "d_Fy_J", "d_mu_J")
 RULES = ("paper", "normal_force")

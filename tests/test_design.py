@@ -107,7 +107,7 @@ def test_the_score_is_the_smallest_relative_margin(jump, control):
 
 def test_the_design_beats_the_grid_points_it_started_from(jump):
     """The refinement ends no worse than a few nearby points of the design space."""
-    from eccjump.design.margins import _margins, _score, _Spec
+    from eccjump.studies.design.margins import _margins, _score, _Spec
 
     spec = _Spec("jarm", jump.max_turns)
     km, rho = jump.body.km, jump.rod_position
@@ -169,7 +169,9 @@ def test_a_fixed_body_keeps_its_body():
     d = design((math.radians(5), math.radians(60)), 1.0, body=body, grid=8)
     assert d.body.km == body.km and d.body.chi == pytest.approx(body.chi, abs=1e-15)
     assert verdict(d, d.alpha, body.chi, body.km, 1.0)
-    lo, hi = eccjump.boundary.alpha_interval_around(d.alpha, body.chi, body.km, 1.0, d.turn)
+    lo, hi = eccjump.classification.boundary.alpha_interval_around(
+        d.alpha, body.chi, body.km, 1.0, d.turn
+    )
     assert d.margin("alpha").lo >= lo - 1e-12 and d.margin("alpha").hi <= hi + 1e-12
 
 

@@ -21,7 +21,7 @@ ROOT = Path(__file__).resolve().parents[1]
 REFERENCE = ROOT / "docs" / "reference"
 
 #: Modules whose examples take a second or more (searches, maps): marked slow.
-SLOW_MODULES = {"eccjump.design.search", "eccjump.starts"}
+SLOW_MODULES = {"eccjump.studies.design.search", "eccjump.classification.starts"}
 
 
 def _modules() -> list[str]:

@@ -31,7 +31,9 @@ from hypothesis import strategies as st
 from test_store_hardening import JARM_BAD, MOTION_BAD, _edited, _write_raw, tree
 
 import eccjump
-from eccjump import maps, motion_maps, store
+from eccjump import maps
+from eccjump.maps import store
+from eccjump.motion import maps as motion_maps
 
 pytest.importorskip("zarr")
 

@@ -25,7 +25,8 @@ from reference_points import (
 )
 
 import eccjump
-from eccjump import Cylinder, Reason, closed_form, jarm, region, roll
+from eccjump import Cylinder, Reason, jarm, region, roll
+from eccjump.classification import closed_form
 
 DEG = math.pi / 180
 
@@ -362,7 +363,7 @@ N_KM = np.array([0.0, 0.02, 0.05])[None, None, :] * (1 - N_CHI)
 
 
 def assert_same_bits(x, y):
-    for name in eccjump.fields.FIELDS:
+    for name in eccjump.classification.fields.FIELDS:
         a, b = getattr(x, name), getattr(y, name)
         assert a.dtype == b.dtype and a.shape == b.shape, name
         assert a.tobytes() == b.tobytes(), name  # NaNs compared by bytes
@@ -375,7 +376,10 @@ def test_n_array_broadcasts_and_equals_per_n_calls():
     for i, n in enumerate(turns):
         one = jarm(N_ALPHA, N_CHI, N_KM, 2.0, n=int(n))
         assert_same_bits(
-            eccjump.JarmResult(**{k: getattr(both, k)[i] for k in eccjump.fields.FIELDS}), one
+            eccjump.JarmResult(
+                **{k: getattr(both, k)[i] for k in eccjump.classification.fields.FIELDS}
+            ),
+            one,
         )
     assert len({int(both.is_jarm[i].sum()) for i in range(3)}) == 3  # n does matter here
 
@@ -396,7 +400,7 @@ def test_n_per_point_is_one_core_call(monkeypatch):
     for v in (1, 2, 3):
         one = jarm(N_ALPHA, N_CHI, N_KM, 2.0, n=v)
         mask = n == v
-        for name in eccjump.fields.FIELDS:
+        for name in eccjump.classification.fields.FIELDS:
             a, b = getattr(mixed, name)[mask], getattr(one, name)[mask]
             assert a.tobytes() == b.tobytes(), (v, name)
 

@@ -18,7 +18,7 @@ from reference_points import JARM_BODY, SLIP_FIRST_BODY
 
 import eccjump
 from eccjump import Cylinder, Reason
-from eccjump import closed_form as cf
+from eccjump.classification import closed_form as cf
 
 B = Cylinder(*JARM_BODY)
 TAU = 2 * math.pi
@@ -64,7 +64,7 @@ def test_grid_size_overflow_is_a_memory_error_not_a_panic():
 @pytest.fixture
 def small_machine(monkeypatch):
     """A machine with 1 GiB of memory available."""
-    from eccjump import _sizes
+    from eccjump._base import sizes as _sizes
 
     monkeypatch.setattr(_sizes, "memory_limit", lambda: 2**30)
 
@@ -86,7 +86,7 @@ def _refuse_work(monkeypatch, module, name, *, above: int = 0):
 def test_the_size_check_counts_the_derivative_fields(small_machine, monkeypatch):
     # region(400^3, derivatives=True) computed for 86 s, then numpy's MemoryError named one
     # 488 MiB array. 200^3 points: 0.56 GB of fields fit in 1 GiB, 1.7 GB with derivatives.
-    from eccjump import classification
+    from eccjump.classification import classify as classification
 
     _refuse_work(monkeypatch, classification, "jarm_grid")
     a = np.linspace(0.1, 1.5, 200)
@@ -98,7 +98,7 @@ def test_the_size_check_counts_the_derivative_fields(small_machine, monkeypatch)
 
 
 def test_jarm_points_with_derivatives_are_checked_too(small_machine, monkeypatch):
-    from eccjump import classification
+    from eccjump.classification import classify as classification
 
     _refuse_work(monkeypatch, classification, "jarm_points")
     a = np.full(5_000_000, 0.5)  # 0.5 GB of inputs and fields; 1.2 GB with derivatives
@@ -120,7 +120,7 @@ def test_motion_maps_and_points_are_checked_before_the_work(small_machine, monke
 
 def test_uncertainty_counts_its_samples_before_drawing_them(small_machine, monkeypatch):
     # n = 10^8 was allowed and failed after 15 s naming one array.
-    from eccjump.uncertainty import study
+    from eccjump.studies.uncertainty import study
 
     _refuse_work(monkeypatch, study, "draw", above=-1)
     body = Cylinder(0.15, 0.02)

@@ -17,9 +17,9 @@ import numpy as np
 import pytest
 
 import eccjump
-from eccjump import store
-from eccjump.classification import FIELDS, Reason, region
+from eccjump.classification.classify import FIELDS, Reason, region
 from eccjump.cli import main
+from eccjump.maps import store
 
 xr = pytest.importorskip("xarray")
 

@@ -16,8 +16,10 @@ from properties import reach_rate
 from reference_points import JARM, JARM_THETA_J_DEG, SLIP_FIRST, jump_points
 
 import eccjump
-from eccjump import Cylinder, motion, motion_fields
-from eccjump.motion import MODES, REASONS, STATUSES
+from eccjump import Cylinder
+from eccjump.motion import fields as motion_fields
+from eccjump.motion import simulation as motion
+from eccjump.motion.simulation import MODES, REASONS, STATUSES
 
 
 def bodies():
@@ -339,7 +341,13 @@ def test_fast_result_construction_equals_the_dataclass_init():
     # the same object as the ordinary way, every field and record filled.
     import dataclasses
 
-    from eccjump.motion import FlightRecord, ImpactRecord, MotionResult, Segment, Transition
+    from eccjump.motion.simulation import (
+        FlightRecord,
+        ImpactRecord,
+        MotionResult,
+        Segment,
+        Transition,
+    )
 
     r = eccjump.simulate(*SLIP_FIRST, mu_s=1.0, max_transitions=6, dense_output=True)
 

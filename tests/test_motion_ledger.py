@@ -22,7 +22,7 @@ from hypothesis import strategies as st
 from reference_points import SLIP_FIRST, SLIP_FIRST_BODY
 
 import eccjump
-from eccjump.motion import STATUSES
+from eccjump.motion.simulation import STATUSES
 
 #: E + dissipated − E0 against the energies in play, at the default tolerances (the largest
 #: seen over 40 000 random runs was 5e-8, near a Painlevé point with forces of 5e7).

@@ -13,7 +13,7 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 
 import eccjump
-from eccjump.motion_maps import (
+from eccjump.motion.maps import (
     FIELDS,
     INVALID,
     LANDINGS,
@@ -218,7 +218,7 @@ def test_the_integrator_reaches_the_core_and_is_recorded():
     )
     dop = motion_map(**kw, integrator="DOP853")
     assert rk.options["integrator"] == "RK45" and dop.options["integrator"] == "DOP853"
-    assert "integrator" in eccjump.motion_maps.OPTIONS
+    assert "integrator" in eccjump.motion.maps.OPTIONS
     assert rk.fields["liftoff_theta"].tobytes() != dop.fields["liftoff_theta"].tobytes()
     ran = dop.status != INVALID
     assert np.allclose(
@@ -228,14 +228,14 @@ def test_the_integrator_reaches_the_core_and_is_recorded():
     pytest.importorskip("xarray")
     ds = motion_map(**kw, integrator="DOP853", output="xarray")
     assert ds.attrs["integrator"] == "DOP853"
-    assert eccjump.motion_maps.from_dataset(ds).options["integrator"] == "DOP853"
+    assert eccjump.motion.maps.from_dataset(ds).options["integrator"] == "DOP853"
 
 
 def test_labelled_output_names_every_code():
     pytest.importorskip("xarray")
     ds = motion_map(alpha=ALPHA, chi=CHI, km_frac=0.5, mu_s=1.0, output="xarray")
     assert ds.sizes == {"alpha": ALPHA.size, "chi": CHI.size}
-    back = eccjump.motion_maps.from_dataset(ds)
+    back = eccjump.motion.maps.from_dataset(ds)
     for k in FIELDS:
         assert np.array_equal(back.fields[k], ds[k].values, equal_nan=True)
     codes = set(np.unique(ds["sequence"].values).tolist())
@@ -269,6 +269,6 @@ def test_a_motion_map_file_from_before_0_2_reads_its_scalar_fraction(tmp_path):
     meta["attrs"]["km"] = meta["attrs"].pop("km_frac")
     arrays["__layout__"] = np.array(json.dumps(meta))
     np.savez(path, **arrays)
-    old = eccjump.motion_maps.load(path)
+    old = eccjump.motion.maps.load(path)
     assert old.scalars["km_frac"] == 0.4
     assert np.array_equal(old.sequence, m.sequence)

@@ -11,7 +11,8 @@ import matplotlib.pyplot as plt
 from reference_points import JARM, JARM_BODY, SLIP_FIRST, SLIP_FIRST_BODY
 
 import eccjump
-from eccjump import closed_form, plot
+from eccjump import plot
+from eccjump.classification import closed_form
 from eccjump.cli import main
 from eccjump.plot import paper
 

@@ -11,7 +11,7 @@ from reference_points import JARM, JARM_ALPHA, JARM_BODY
 
 import eccjump
 from eccjump import Cylinder, Reason, jarm, region, roll
-from eccjump.fields import DTYPES, FIELDS, FILL
+from eccjump.classification.fields import DTYPES, FIELDS, FILL
 
 
 def test_jarm_result_repr_counts_reasons():

@@ -404,7 +404,7 @@ def test_fast_result_construction_equals_the_dataclass_init():
     # same object as the ordinary way, every field filled, still frozen.
     import dataclasses
 
-    from eccjump.rolling import Event, RollResult
+    from eccjump.motion.roll import Event, RollResult
 
     r = roll(*JARM)
     names = [f.name for f in dataclasses.fields(RollResult)]

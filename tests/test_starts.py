@@ -1,5 +1,5 @@
-"""Initial conditions (``eccjump.starts``, ``docs/initial_conditions.md``): the JARM fraction
-against the start, the optimal start, and the starts that block a JARM."""
+"""Initial conditions (``eccjump.classification.starts``, ``docs/initial_conditions.md``): the
+JARM fraction against the start, the optimal start, and the starts that block a JARM."""
 
 from __future__ import annotations
 
@@ -15,8 +15,8 @@ from hypothesis import strategies as st
 
 import eccjump
 from eccjump import Reason
+from eccjump.classification.starts import _DIRECTIONS, _MULTIPLES, _Objective
 from eccjump.cli import main
-from eccjump.starts import _DIRECTIONS, _MULTIPLES, _Objective
 
 TWO_PI = 2 * math.pi
 

@@ -1,5 +1,5 @@
 """Issue 35, the files: regression tests of the second hardening round of the loaders and
-writers of maps (eccjump.store, eccjump.motion_maps, ``eccjump map -o``).
+writers of maps (eccjump.store, eccjump.motion.maps, ``eccjump map -o``).
 
 1. A writer replaces only a map of its own kind: never a directory of user files, a FIFO.
 2. No loader hangs: a FIFO is refused before it is opened, a damaged .nc file is read by the
@@ -31,8 +31,9 @@ import pytest
 from fuzz_cases import MAX_MESSAGE, run_cli_inprocess
 
 import eccjump
-from eccjump import motion_maps, store
 from eccjump.cli import main
+from eccjump.maps import store
+from eccjump.motion import maps as motion_maps
 
 xr = pytest.importorskip("xarray")
 pytest.importorskip("zarr")

@@ -1,11 +1,15 @@
-"""The structure of the Python package: one description of the result fields, one place that
-calls the classification bridge, and one-directional imports (no circles, no imports hidden
-inside functions to dodge one)."""
+"""The structure of the Python package: subpackages in layers whose imports point down only
+(no cycle, no import hidden inside a function to dodge one), at most ten modules at the top, no
+public name hiding a module, one description of the result fields, one place that calls the
+classification bridge. The import graph is read by ``scripts/python_layers.py``, which also
+gives the counts of ``docs/architecture.md``."""
 
 from __future__ import annotations
 
 import ast
 import dataclasses
+import importlib
+import importlib.util
 import inspect
 import json
 import os
@@ -17,75 +21,122 @@ import numpy as np
 import pytest
 
 import eccjump
-from eccjump import _core, fields, labelled, scale
-from eccjump.classification import JarmResult
+from eccjump import _core
+from eccjump.classification import fields
+from eccjump.classification.classify import JarmResult
+from eccjump.maps import dask as scale
+from eccjump.maps import xarray as labelled
 
 PACKAGE = Path(eccjump.__file__).parent
-SOURCES = sorted(PACKAGE.rglob("*.py"))
+ROOT = Path(__file__).resolve().parent.parent
 
 
-def module_name(path: Path) -> str:
-    parts = ("eccjump", *path.relative_to(PACKAGE).with_suffix("").parts)
-    return ".".join(parts[:-1] if parts[-1] == "__init__" else parts)
+def _python_layers():
+    spec = importlib.util.spec_from_file_location(
+        "python_layers", ROOT / "scripts" / "python_layers.py"
+    )
+    assert spec is not None and spec.loader is not None
+    mod = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(mod)
+    return mod
 
 
-MODULES = sorted(module_name(p) for p in SOURCES)
+python_layers = _python_layers()
+SOURCES = python_layers.sources(PACKAGE)
+GRAPH = python_layers.graph(PACKAGE)  # module -> (eccjump modules it imports, inside functions)
+MODULES = sorted(GRAPH)
 IMPORTABLE = [m for m in MODULES if not m.endswith("__main__")]  # __main__ runs the CLI
 
 
-def is_module(name: str) -> bool:
-    rel = Path(*name.split(".")[1:])
-    return (
-        name == "eccjump._core"
-        or (PACKAGE / rel).with_suffix(".py").exists()
-        or (PACKAGE / rel / "__init__.py").exists()
-    )
+def module_name(path: Path) -> str:
+    return python_layers.module_name(PACKAGE, path)
 
 
-def eccjump_imports(path: Path) -> tuple[set[str], list[str]]:
-    """The eccjump modules ``path`` imports, and those imported inside functions."""
-    tree = ast.parse(path.read_text())
-    found: set[str] = set()
-    local: list[str] = []
+# --- the layers -----------------------------------------------------------------------------
 
-    def visit(node: ast.AST, in_function: bool) -> None:
-        for child in ast.iter_child_nodes(node):
-            names: list[str] = []
-            if isinstance(child, ast.Import):
-                names = [a.name for a in child.names]
-            elif isinstance(child, ast.ImportFrom) and child.module and child.level == 0:
-                for a in child.names:
-                    sub = f"{child.module}.{a.name}"
-                    names.append(sub if is_module(sub) else child.module)
-            for name in names:
-                if name == "eccjump" or name.startswith("eccjump."):
-                    found.add(name)
-                    if in_function:
-                        local.append(name)
-            fn = isinstance(child, ast.FunctionDef | ast.AsyncFunctionDef | ast.Lambda)
-            visit(child, in_function or fn)
+#: The layers, lowest first: a module imports from its own layer and those below, never above.
+#: A module's layer is its longest dotted prefix here (``eccjump`` itself: the public API).
+LAYERS = {
+    "eccjump._core": 0,  # the compiled core
+    "eccjump._base": 0,  # checks, arrays, the bridge, HTML, sizes, user files; Cylinder, Units
+    "eccjump._compat": 0,  # the old module paths (imports nothing of eccjump's by name)
+    "eccjump.maps": 1,  # the map type, kinds, layout, files, xarray, dask
+    "eccjump.classification": 2,  # closed forms, fields, jarm, region, boundary, starts
+    # above the classification: motion.fields builds on classification.fields (Field, ROUNDING)
+    "eccjump.motion": 3,  # roll, simulate, dense output, motion points and maps
+    "eccjump.studies": 4,  # design, uncertainty, experiment
+    "eccjump.plot": 5,
+    "eccjump.explorer": 6,
+    "eccjump": 7,  # the public API, __init__.py
+    "eccjump.cli": 8,  # argparse and printing over the public API
+}
 
-    visit(tree, False)
-    return found, local
+#: The imports that still run upward, each to be turned round by one of issue 47's inversions
+#: (a map kind carrying its own fields and validator, ...): this list only shrinks. Besides
+#: these, a result's ``.plot()`` imports ``eccjump.plot`` inside the method (the figures are
+#: the optional layer on top of every result, as pandas' ``.plot``).
+UPWARD = {
+    # the overwrite policy names a file by maps.check's file_error
+    ("eccjump._base.overwrite", "eccjump.maps.check"),
+    # the size guard prices a point by the field tables
+    ("eccjump._base.sizes", "eccjump.classification.fields"),
+    ("eccjump._base.sizes", "eccjump.motion.fields"),
+    # load() makes a Region or a MotionMap by the kind in the file
+    ("eccjump.maps", "eccjump.classification.classify"),
+    ("eccjump.maps", "eccjump.motion.maps"),
+    # the map layer knows the JARM fields and the motion's by name
+    ("eccjump.maps.dask", "eccjump.classification.fields"),
+    ("eccjump.maps.kinds", "eccjump.classification.fields"),
+    ("eccjump.maps.kinds", "eccjump.motion.fields"),
+    ("eccjump.maps.kinds", "eccjump.motion.simulation"),
+    ("eccjump.maps.layout", "eccjump.classification.fields"),
+    ("eccjump.maps.xarray", "eccjump.classification.fields"),
+    # the JARM files make a Region
+    ("eccjump.maps.store", "eccjump.classification.classify"),
+    ("eccjump.maps.xarray", "eccjump.classification.classify"),
+    # the analysis figure takes matplotlib through the figures' loader
+    ("eccjump.studies.experiment.figure", "eccjump.plot._common"),
+}
 
 
-GRAPH = {module_name(p): eccjump_imports(p) for p in SOURCES}
+def layer(module: str) -> int:
+    parts = module.split(".")
+    for cut in range(len(parts), 0, -1):
+        if ".".join(parts[:cut]) in LAYERS:
+            return LAYERS[".".join(parts[:cut])]
+    raise KeyError(module)
+
+
+def upward_imports() -> set[tuple[str, str]]:
+    return {
+        (m, d)
+        for m, (deps, local) in GRAPH.items()
+        for d in deps
+        if layer(d) > layer(m) and not (d == "eccjump.plot" and d in local)
+    }
+
+
+def test_every_module_has_a_layer():
+    top = {m for m in MODULES if m.count(".") == 1 and m not in LAYERS}
+    assert not top, f"modules at the top with no layer in LAYERS: {top}"
+
+
+def test_imports_point_down():
+    found = upward_imports()
+    assert not found - UPWARD, f"imports running up a layer: {sorted(found - UPWARD)}"
+    assert not UPWARD - found, f"turned round (strike from UPWARD): {sorted(UPWARD - found)}"
 
 
 def test_no_eccjump_import_inside_functions():
-    """Except one, named: a result's ``.plot()`` reaches up to the figures, the optional
-    layer on top of every result (as pandas' ``.plot``); nothing below imports it."""
-    hidden = {
-        m: [n for n in local if n != "eccjump.plot"] for m, (_, local) in GRAPH.items() if local
-    }
+    """Except a result's ``.plot()`` reaching up to the figures (see ``UPWARD``)."""
+    hidden = {m: local - {"eccjump.plot"} for m, (_, local) in GRAPH.items()}
     hidden = {m: local for m, local in hidden.items() if local}
     assert not hidden, f"imports inside functions: {hidden}"
 
 
 def test_imports_form_no_cycle():
-    # a result's .plot() reaching up to the figures (the one allowed local import) is no edge
     edges = {
-        m: {d for d in deps if d in GRAPH} - {m} - ({"eccjump.plot"} & set(local))
+        m: {d for d in deps if d in GRAPH} - {m} - ({"eccjump.plot"} & local)
         for m, (deps, local) in GRAPH.items()
     }
     state: dict[str, int] = {}
@@ -105,22 +156,59 @@ def test_imports_form_no_cycle():
             walk(m, [m])
 
 
-@pytest.mark.parametrize(
-    ("module", "below"),
-    [
-        ("eccjump._checks", set()),
-        ("eccjump.fields", {"eccjump._core"}),
-        (
-            "eccjump._bridge",
-            {"eccjump._core", "eccjump._arrays", "eccjump._checks", "eccjump.fields"},
-        ),
-        ("eccjump._layout", {"eccjump._core", "eccjump.fields"}),
-        ("eccjump.scale", {"eccjump._bridge", "eccjump._checks", "eccjump.fields"}),
-    ],
-)
-def test_layers(module, below):
-    """fields <- _bridge, _layout, scale <- classification <- labelled <- store <- cli."""
-    assert GRAPH[module][0] <= below
+def test_at_most_ten_modules_at_the_top():
+    top = python_layers.top_level(PACKAGE)
+    assert len(top) <= 10, f"{len(top)} modules at the top of eccjump: {top}"
+
+
+#: Names bound in a package that hide a module of it, from before the layers (to rename).
+HIDING = {
+    ("eccjump.plot", "trajectory"),
+    ("eccjump.plot", "uncertainty"),
+    ("eccjump.studies.design", "build"),
+    ("eccjump.studies.experiment", "reconstruct"),
+}
+
+
+def bindings(init: Path) -> dict[str, str | None]:
+    """The names a package's ``__init__.py`` binds at import time: to the module of that
+    name, or (None) to anything else."""
+    package = module_name(init)
+    bound: dict[str, str | None] = {}
+
+    def visit(body: list[ast.stmt]) -> None:
+        for node in body:
+            if isinstance(node, ast.ImportFrom) and node.module and node.level == 0:
+                for a in node.names:
+                    sub = f"{node.module}.{a.name}"
+                    bound[a.asname or a.name] = sub if sub in GRAPH else None
+            elif isinstance(node, ast.Import):
+                for a in node.names:
+                    bound[a.asname or a.name.partition(".")[0]] = a.asname and a.name
+            elif isinstance(node, ast.FunctionDef | ast.AsyncFunctionDef | ast.ClassDef):
+                bound[node.name] = None
+            elif isinstance(node, ast.Assign | ast.AnnAssign | ast.AugAssign):
+                targets = node.targets if isinstance(node, ast.Assign) else [node.target]
+                bound.update(
+                    {n.id: None for x in targets for n in ast.walk(x) if type(n) is ast.Name}
+                )
+            elif isinstance(node, ast.If | ast.Try):
+                visit([*node.body, *node.orelse, *getattr(node, "finalbody", [])])
+
+    visit(ast.parse(init.read_text(encoding="utf-8")).body)
+    return {n: m for n, m in bound.items() if m != f"{package}.{n}"}
+
+
+def test_no_name_in_a_package_hides_its_module():
+    """``eccjump.design`` is the function, so the package of the studies is
+    ``eccjump.studies.design``: a name equal to a module's of the same package makes
+    ``pkg.name`` the one and ``import pkg.name`` the other."""
+    hiding = set()
+    for init in sorted(PACKAGE.rglob("__init__.py")):
+        package = module_name(init)
+        children = {m.rpartition(".")[2] for m in GRAPH if m.rpartition(".")[0] == package}
+        hiding |= {(package, n) for n in bindings(init).keys() & children}
+    assert hiding == HIDING, f"names hiding a module: {sorted(hiding ^ HIDING)}"
 
 
 def test_the_bridge_is_called_from_one_module():
@@ -130,7 +218,7 @@ def test_the_bridge_is_called_from_one_module():
         for call in ("_core.jarm_points", "_core.jarm_grid")
         if call in p.read_text()
     }
-    assert callers == {"eccjump._bridge"}
+    assert callers == {"eccjump._base.bridge"}
 
 
 def keyword_only(f) -> list[str]:
@@ -198,7 +286,15 @@ def test_each_module_imports_alone_in_a_fresh_interpreter(module, import_failure
 
 
 def test_upper_modules_first_then_lower_in_one_interpreter():
-    order = ["labelled", "scale", "store", "classification", "fields", "cli.map", "_bridge"]
+    order = [
+        "maps.xarray",
+        "maps.dask",
+        "maps.store",
+        "classification.classify",
+        "classification.fields",
+        "cli.map",
+        "_base.bridge",
+    ]
     code = "; ".join(f"import eccjump.{m}" for m in order)
     subprocess.run([sys.executable, "-c", code], check=True, timeout=120)
 

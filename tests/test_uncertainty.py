@@ -13,8 +13,8 @@ import pytest
 
 import eccjump
 from eccjump.cli import main
-from eccjump.uncertainty import wilson
-from eccjump.uncertainty.sampling import RANGES
+from eccjump.studies.uncertainty import wilson
+from eccjump.studies.uncertainty.sampling import RANGES
 
 pytest.importorskip("scipy")
 
@@ -101,7 +101,7 @@ def test_motion_points_are_simulate_at_each_point():
         run = eccjump.simulate(eccjump.Cylinder(chi[i], km[i]), alpha[i], mu_s=mu[i],
                                restitution=e[i], theta0=theta0[i], t_max=30.0)  # fmt: skip
         # the summary stops at the first landing: its modes begin simulate's
-        seq = eccjump.motion_maps.sequence_name(int(p.sequence[i])).split("→")
+        seq = eccjump.motion.maps.sequence_name(int(p.sequence[i])).split("→")
         assert seq == run.mode_names()[: len(seq)]
         if run.flights:
             assert p.apex[i] == run.flights[0].apex
@@ -226,7 +226,7 @@ def test_bad_input_names_the_parameter(kwargs, error, names):
 
 def test_bad_options_are_refused_before_any_work(monkeypatch):
     # progress=1 once failed only after the first chunk had been computed.
-    from eccjump.uncertainty import study
+    from eccjump.studies.uncertainty import study
 
     def no_work(*args, **kwargs):
         raise AssertionError("the samples were drawn")

@@ -2,8 +2,9 @@
 
 Two things the static reading of the sources cannot do by itself:
 
-* a docstring completed at import (``JarmResult`` lists the fields of ``eccjump.fields``)
-  is taken from the imported object, so the page and ``help()`` agree;
+* a docstring completed at import (``JarmResult`` lists the fields of
+  ``eccjump.classification.fields``) is taken from the imported object, so the page and
+  ``help()`` agree;
 * the compiled core (``eccjump._core``) is read by inspection, which gives its constants the
   docstring of their type (``str``): their docstrings come from its stub, ``_core.pyi``;
 * a numpydoc "See Also" section (``name : what``) becomes a list of links;

@@ -5,22 +5,17 @@ behind a typed Python API. Units: g = R = M = 1 unless converted with :class:`Un
 angles in radians.
 """
 
-from eccjump import closed_form, maps, store
+import sys
+from typing import TYPE_CHECKING
+
+from eccjump import _compat, maps
+from eccjump._base.body import Cylinder
+from eccjump._base.units import Units
 from eccjump._core import VERSION as __version__
-from eccjump.body import Cylinder
-from eccjump.boundary import alpha_interval_around, alpha_intervals, mu_s_min_path
-from eccjump.classification import JarmResult, Reason, Region, jarm, region, region_dataset
-from eccjump.dense import DenseSolution
-from eccjump.design import Design, build, design
-from eccjump.experiment import Analysis, analyze
-from eccjump.explorer import explore
-from eccjump.maps import Map
-from eccjump.maps import load as load_map
-from eccjump.motion import SENSITIVITY_PARAMETERS, MotionResult, simulate
-from eccjump.motion_maps import MotionMap, motion_map
-from eccjump.motion_points import MotionPoints, motion_points
-from eccjump.rolling import EVENT_NAMES, Event, RollResult, roll
-from eccjump.starts import (
+from eccjump.classification import closed_form
+from eccjump.classification.boundary import alpha_interval_around, alpha_intervals, mu_s_min_path
+from eccjump.classification.classify import JarmResult, Reason, Region, jarm, region, region_dataset
+from eccjump.classification.starts import (
     OptimalStart,
     StartMap,
     jarm_fraction,
@@ -28,8 +23,17 @@ from eccjump.starts import (
     reason_shares,
     start_map,
 )
-from eccjump.uncertainty import Uncertainty, uncertainty
-from eccjump.units import Units
+from eccjump.explorer import explore
+from eccjump.maps import Map, store
+from eccjump.maps import load as load_map
+from eccjump.motion.dense import DenseSolution
+from eccjump.motion.maps import MotionMap, motion_map
+from eccjump.motion.points import MotionPoints, motion_points
+from eccjump.motion.roll import EVENT_NAMES, Event, RollResult, roll
+from eccjump.motion.simulation import SENSITIVITY_PARAMETERS, MotionResult, simulate
+from eccjump.studies.design import Design, build, design
+from eccjump.studies.experiment import Analysis, analyze
+from eccjump.studies.uncertainty import Uncertainty, uncertainty
 
 __all__ = [
     "EVENT_NAMES",
@@ -76,3 +80,10 @@ __all__ = [
     "store",
     "uncertainty",
 ]
+
+# The module paths before the layers (eccjump.rolling, eccjump.store, ...) for one release.
+_compat.install(sys.modules[__name__])
+if not TYPE_CHECKING:  # (a module __getattr__ would let mypy pass any eccjump.<typo>)
+
+    def __getattr__(name: str):
+        return _compat.old_attribute(name)

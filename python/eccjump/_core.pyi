@@ -119,7 +119,7 @@ def impact(
 
 #: The series of a rolling run: t, theta, omega, omega_dot, Fx, Fy, l, friction ratio.
 _RollSeries = tuple[_F64, _F64, _F64, _F64, _F64, _F64, _F64, _F64]
-#: An event met: name, t, theta, omega (the fields of ``eccjump.rolling.Event``).
+#: An event met: name, t, theta, omega (the fields of ``eccjump.motion.roll.Event``).
 _EventFields = tuple[str, float, float, float]
 
 def roll(
@@ -365,7 +365,7 @@ def motion_grid(
 ) -> dict[str, NDArray[Any]]:
     """The full motion to the first landing at every point of the product of the eight 1-D
     axes (k_m = frac (1 - chi); an empty ``mu_k``: mu_k = mu_s), flat in C order, with the
-    GIL released. One array per summary field (``eccjump.motion_maps.TABLE``); a point with
+    GIL released. One array per summary field (``eccjump.motion.maps.TABLE``); a point with
     invalid values has status 255. A bad shared option is a ValueError naming it."""
 
 def motion_points(
@@ -384,7 +384,7 @@ def motion_points(
     mu_k[i], restitution[i], theta0[i], omega0[i]) (km: the body's k_m; columns of one
     length, an empty ``mu_k``: mu_k = mu_s), with the GIL released, each point exactly what
     ``simulate`` gives there, for any thread count. One array per summary field
-    (``eccjump.motion_fields.TABLE``); an invalid point has status 255. A bad shared option
+    (``eccjump.motion.fields.TABLE``); an invalid point has status 255. A bad shared option
     or a column of another length is a ValueError naming it."""
 
 def landing_codes() -> list[tuple[int, str]]:

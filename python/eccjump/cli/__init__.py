@@ -16,17 +16,7 @@ from collections.abc import Sequence
 from pathlib import Path
 
 from eccjump import __version__
-from eccjump.cli import (
-    analyze,
-    design,
-    explore,
-    figures,
-    map,
-    roll,
-    simulate,
-    starts,
-    uncertainty,
-)
+from eccjump.cli import analyze, design, explore, figures, map, roll, simulate, starts, uncertainty
 from eccjump.cli._args import Parser, one_line, short_text
 from eccjump.cli._output import OutputError
 

@@ -12,7 +12,7 @@ from collections.abc import Callable, Sequence
 from pathlib import Path
 from typing import Any, NoReturn, get_args
 
-from eccjump._checks import Integrator, short
+from eccjump._base.checks import Integrator, short
 
 #: Which pair to pick, in one sentence (benches/bench_pairs.py measures it): the same words in
 #: the README, the docstrings and ``--help``.

@@ -11,8 +11,8 @@ from contextlib import contextmanager
 from pathlib import Path
 from typing import Any
 
-from eccjump import store
 from eccjump.cli._args import short_text
+from eccjump.maps import store
 
 #: ``--dpi`` of the PNG writers: at 600 dpi a 12 x 9 inch figure is already 150 MB of pixels.
 DPI_RANGE = (20, 600)

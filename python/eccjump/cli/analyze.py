@@ -2,7 +2,7 @@
 the verdict -- jarm, slip_first or undetermined -- with its evidence out, as text or JSON, and
 optionally a figure of data and model (the site's page "Analysing an experiment").
 
-The ranges are ``eccjump.experiment.inputs.BOUNDS``'s, checked by the parser (angles in
+The ranges are ``eccjump.studies.experiment.inputs.BOUNDS``'s, checked by the parser (angles in
 degrees); what depends on another value (``--marker-radius`` on R, the track on its scale)
 is checked by ``eccjump.analyze``, whose messages name its keywords: :func:`_as_options`
 turns the one they start with into the option."""
@@ -17,8 +17,8 @@ from collections.abc import Callable
 
 from eccjump.cli._args import degrees_in, radians_hint, real_in
 from eccjump.cli._output import check_output, figure_suffixes, save_figure
-from eccjump.experiment import analyze
-from eccjump.experiment.inputs import cli_range
+from eccjump.studies.experiment import analyze
+from eccjump.studies.experiment.inputs import cli_range
 
 
 def add_parser(sub: argparse._SubParsersAction) -> None:

@@ -8,9 +8,9 @@ import argparse
 import json
 import math
 
-from eccjump.body import Cylinder
+from eccjump._base.body import Cylinder
 from eccjump.cli._args import degrees_in, int_at_least
-from eccjump.design import GRID_RANGE, design
+from eccjump.studies.design import GRID_RANGE, design
 
 
 def add_parser(sub: argparse._SubParsersAction) -> None:

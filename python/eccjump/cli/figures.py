@@ -8,10 +8,10 @@ import time
 from pathlib import Path
 
 from eccjump import plot
-from eccjump.body import Cylinder
+from eccjump._base.body import Cylinder
 from eccjump.cli._args import directory, int_in, short_text
 from eccjump.cli._output import DPI_RANGE, check_outputs, save_figure
-from eccjump.rolling import roll
+from eccjump.motion.roll import roll
 
 #: Figure names, in the order they are written.
 FIGURES = ("fig3b", "fig4a", "fig4b", "fig4_slices", "trajectory")

@@ -32,17 +32,17 @@ from typing import Any
 import numpy as np
 from numpy.typing import NDArray
 
-from eccjump import store
-from eccjump._checks import U32_MAX, short
-from eccjump._mapcheck import MAX_MESSAGE, shown
-from eccjump._sizes import gib, memory_limit
+from eccjump._base.checks import U32_MAX, short
+from eccjump._base.sizes import gib, memory_limit
 from eccjump.cli import map_jobs
 from eccjump.cli._args import add_integrator, int_at_least, int_in
 from eccjump.cli._output import check_output, figure_suffixes
 from eccjump.cli.map_jobs import Job
-from eccjump.labelled import make_layout
-from eccjump.map_kinds import MapKind
-from eccjump.store import ZarrMap, format_of, save
+from eccjump.maps import store
+from eccjump.maps.check import MAX_MESSAGE, shown
+from eccjump.maps.kinds import MapKind
+from eccjump.maps.store import ZarrMap, format_of, save
+from eccjump.maps.xarray import make_layout
 
 #: Default points per chunk when --chunk is not given (a few seconds on a laptop core).
 POINTS_PER_CHUNK = 100_000
@@ -300,7 +300,7 @@ def _check_memory(points: int, fmt: str, total: int, kind: MapKind) -> None:
     """Fail early (exit 1) if the fields of ``points`` points cannot fit in the memory this
     process can have, rather than have numpy fill it and the system kill the process."""
     need = points * kind.bytes_per_point()
-    have = memory_limit()  # the library's limit (eccjump._sizes), the same for every call
+    have = memory_limit()  # the library's limit (eccjump._base.sizes), the same for every call
     if have is not None and need > have:
         how = "a smaller --chunk or grid" if fmt == "zarr" else ".zarr (written chunk by chunk)"
         held = "a chunk of" if fmt == "zarr" else "the whole map,"
@@ -363,7 +363,7 @@ def _run(args: argparse.Namespace) -> int:
                 "leaves nothing to resume; run without --resume)"
             )
     elif os.path.lexists(path):
-        try:  # the overwrite policy of every writer (eccjump._overwrite)
+        try:  # the overwrite policy of every writer (eccjump._base.overwrite)
             store.check_replaceable(
                 path, fmt == "zarr", overwrite=args.overwrite, option="--overwrite"
             )

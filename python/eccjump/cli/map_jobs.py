@@ -14,12 +14,14 @@ from typing import Any
 import numpy as np
 from numpy.typing import NDArray
 
-from eccjump import motion_maps, plot, store
-from eccjump.classification import region
+from eccjump import plot
+from eccjump.classification.classify import region
 from eccjump.cli._output import save_figure
-from eccjump.labelled import map_attrs
-from eccjump.map_kinds import JARM, MOTION, MapKind
-from eccjump.motion_fields import sequence_name
+from eccjump.maps import store
+from eccjump.maps.kinds import JARM, MOTION, MapKind
+from eccjump.maps.xarray import map_attrs
+from eccjump.motion import maps as motion_maps
+from eccjump.motion.fields import sequence_name
 
 #: Options of a JARM map that must match the store for --resume (attribute names).
 MAP_OPTIONS = (

@@ -6,10 +6,10 @@ import argparse
 import json
 import math
 
-from eccjump.body import Cylinder
+from eccjump._base.body import Cylinder
 from eccjump.cli._args import add_integrator, degrees_in, radians_hint
 from eccjump.cli._output import bounded
-from eccjump.rolling import RollResult, roll
+from eccjump.motion.roll import RollResult, roll
 
 
 def _add_body_args(p: argparse.ArgumentParser) -> None:

@@ -16,7 +16,7 @@ from typing import Any
 import numpy as np
 
 from eccjump import plot
-from eccjump.body import Cylinder
+from eccjump._base.body import Cylinder
 from eccjump.cli._args import add_integrator, degrees_in, int_at_least, radians_hint
 from eccjump.cli._output import (
     ANIMATION_SUFFIXES,
@@ -26,7 +26,7 @@ from eccjump.cli._output import (
     save_figure,
     write_output,
 )
-from eccjump.motion import MODES, simulate
+from eccjump.motion.simulation import MODES, simulate
 
 UNITS = (
     "g = R = M = 1: time in sqrt(R/g), lengths in R, omega in sqrt(g/R) rad, "

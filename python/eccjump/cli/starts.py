@@ -15,10 +15,10 @@ from typing import Any
 import numpy as np
 
 from eccjump import plot
-from eccjump.classification import Region, region
+from eccjump.classification.classify import Region, region
+from eccjump.classification.starts import GRID_MAX, STARTS_MAX, optimal_start, start_map
 from eccjump.cli._args import directory, int_in, short_text
 from eccjump.cli._output import DPI_RANGE, check_outputs, save_figure
-from eccjump.starts import GRID_MAX, STARTS_MAX, optimal_start, start_map
 
 
 def add_parser(sub: argparse._SubParsersAction) -> None:

@@ -13,8 +13,8 @@ from pathlib import Path
 from typing import Any
 
 from eccjump import plot
-from eccjump._overwrite import check_overwrite, never
-from eccjump.body import Cylinder
+from eccjump._base.body import Cylinder
+from eccjump._base.overwrite import check_overwrite, never
 from eccjump.cli._args import add_integrator, degrees_in, int_in
 from eccjump.cli._output import (
     DPI_RANGE,
@@ -24,9 +24,9 @@ from eccjump.cli._output import (
     save_figure,
     writing,
 )
-from eccjump.uncertainty import Uncertainty, uncertainty
-from eccjump.uncertainty.results import QUANTITIES, _first_order
-from eccjump.uncertainty.sampling import N_MAX, PARAMETERS
+from eccjump.studies.uncertainty import Uncertainty, uncertainty
+from eccjump.studies.uncertainty.results import QUANTITIES, _first_order
+from eccjump.studies.uncertainty.sampling import N_MAX, PARAMETERS
 
 #: Parameters given in degrees on the command line (radians in Python).
 ANGLES = ("alpha", "theta0")

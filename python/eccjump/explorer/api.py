@@ -20,11 +20,11 @@ from typing import Any
 import numpy as np
 from numpy.typing import NDArray
 
-from eccjump._checks import Rule
-from eccjump.body import Cylinder
-from eccjump.classification import Reason, jarm
+from eccjump._base.body import Cylinder
+from eccjump._base.checks import Rule
+from eccjump.classification.classify import Reason, jarm
 from eccjump.explorer import controls
-from eccjump.motion import MODES, MotionResult, simulate
+from eccjump.motion.simulation import MODES, MotionResult, simulate
 
 #: What each verdict of the JARM classification means, for the page.
 REASON_TEXT: dict[str, str] = {

@@ -10,7 +10,7 @@ import math
 from collections.abc import Mapping
 from typing import Any, NamedTuple
 
-from eccjump._checks import Rule, short
+from eccjump._base.checks import Rule, short
 
 
 class Control(NamedTuple):

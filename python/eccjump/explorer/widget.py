@@ -14,7 +14,7 @@ import math
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
-from eccjump._checks import Rule, optional_real, real, rule_name
+from eccjump._base.checks import Rule, optional_real, real, rule_name
 from eccjump.explorer import api, controls
 
 if TYPE_CHECKING:

@@ -10,14 +10,14 @@ from typing import TYPE_CHECKING, Any
 import numpy as np
 from numpy.typing import NDArray
 
-from eccjump._checks import integer, real
-from eccjump._html import MODE_COLORS
+from eccjump._base.checks import integer, real
+from eccjump._base.html import MODE_COLORS
 
 if TYPE_CHECKING:
     from matplotlib.axes import Axes
     from matplotlib.figure import Figure
 
-    from eccjump.body import Cylinder
+    from eccjump._base.body import Cylinder
 from eccjump.plot._common import _plt
 
 # --------------------------------------------------------------------------------------------

@@ -8,11 +8,11 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
-from eccjump._checks import integer
-from eccjump.classification import Region
-from eccjump.motion_fields import sequence_name
-from eccjump.motion_maps import MotionMap
-from eccjump.starts import OptimalStart, StartMap
+from eccjump._base.checks import integer
+from eccjump.classification.classify import Region
+from eccjump.classification.starts import OptimalStart, StartMap
+from eccjump.motion.fields import sequence_name
+from eccjump.motion.maps import MotionMap
 
 if TYPE_CHECKING:
     from matplotlib.figure import Figure

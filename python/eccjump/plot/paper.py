@@ -11,10 +11,10 @@ from typing import TYPE_CHECKING, Any, cast
 import numpy as np
 from numpy.typing import NDArray
 
-from eccjump import closed_form
-from eccjump._checks import U32_MAX, integer
-from eccjump.boundary import alpha_interval_around, alpha_intervals
-from eccjump.classification import jarm
+from eccjump._base.checks import U32_MAX, integer
+from eccjump.classification import closed_form
+from eccjump.classification.boundary import alpha_interval_around, alpha_intervals
+from eccjump.classification.classify import jarm
 
 if TYPE_CHECKING:
     from matplotlib.axes import Axes

@@ -8,8 +8,8 @@ from typing import TYPE_CHECKING
 import numpy as np
 from numpy.typing import NDArray
 
-from eccjump._checks import integer, optional_real
-from eccjump.rolling import RollResult
+from eccjump._base.checks import integer, optional_real
+from eccjump.motion.roll import RollResult
 
 if TYPE_CHECKING:
     from matplotlib.figure import Figure

@@ -9,11 +9,11 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
-from eccjump._checks import integer
-from eccjump._html import JARM_COLOR
+from eccjump._base.checks import integer
+from eccjump._base.html import JARM_COLOR
 from eccjump.plot._common import _plt
-from eccjump.uncertainty import Uncertainty
-from eccjump.uncertainty.sampling import UNITS
+from eccjump.studies.uncertainty import Uncertainty
+from eccjump.studies.uncertainty.sampling import UNITS
 
 if TYPE_CHECKING:
     from matplotlib.axes import Axes

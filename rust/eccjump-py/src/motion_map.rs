@@ -46,7 +46,7 @@ pub fn motion_grid<'py>(
     summary_columns(py, &out)
 }
 
-/// One numpy column per field of the summaries (the names of `eccjump.motion_fields.TABLE`).
+/// One numpy column per field of the summaries (the names of `eccjump.motion.fields.TABLE`).
 pub fn summary_columns<'py>(
     py: Python<'py>,
     out: &[MotionSummary],

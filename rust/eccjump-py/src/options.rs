@@ -14,7 +14,7 @@ use pyo3::exceptions::PyValueError;
 use pyo3::prelude::*;
 
 /// The options of a classification call but the turn, converted once to the core's types:
-/// made in Python (`eccjump._bridge`) from keyword-only plain values named as `eccjump.jarm`
+/// made in Python (`eccjump._base.bridge`) from keyword-only plain values named as `eccjump.jarm`
 /// names them, and passed to `jarm_points` or `jarm_grid`.
 #[pyclass(frozen, module = "eccjump._core")]
 pub struct ClassifyOptions {
@@ -81,7 +81,7 @@ impl ClassifyOptions {
 
 /// The options every boundary search takes (`alpha_intervals`, `alpha_interval_around`,
 /// `mu_s_min_path`): the turn, the rule and the threads, made in Python
-/// (`eccjump.boundary`) from keyword-only plain values named as there.
+/// (`eccjump.classification.boundary`) from keyword-only plain values named as there.
 #[pyclass(frozen, module = "eccjump._core")]
 pub struct BoundaryOptions {
     /// The core's classification options of a boundary search.

@@ -1,0 +1,574 @@
+"""The paper's closed forms (Sections 3.1 and 3.2), element-wise over numpy arrays.
+
+All angles in radians, forces per M g. Every function broadcasts its array arguments and
+raises ``ValueError`` naming the parameter and the index of the first invalid point.
+The formulas were re-derived from Newton–Euler and checked against the printed ones (the
+user guide's "The paper's formulas" page).
+
+Examples
+--------
+The paper's JARM point (alpha = 40 deg, chi = 0.15, k_m = 0.02) and Fig. 3b body
+(chi = 0.5, k_m = 0.4):
+
+>>> import numpy as np
+>>> from eccjump import closed_form
+>>> theta_J = closed_form.theta_nJ(np.radians(40), 0.15, 0.02)
+>>> print(f"{np.degrees(theta_J):.6f} deg")
+334.343838 deg
+>>> print(f"{closed_form.mu_s_min(0.5, 0.4)[0]:.6f}")
+1.391619
+
+"""
+
+from __future__ import annotations
+
+from collections.abc import Callable
+
+import numpy as np
+from numpy.typing import ArrayLike, NDArray
+
+from eccjump import _core
+from eccjump._base.arrays import broadcast_flat, turn
+from eccjump._base.checks import real
+
+F = NDArray[np.float64]
+
+
+def _call(
+    kernel: Callable[..., list[F]],
+    /,
+    n: int | None = None,
+    start: tuple[object, object] | None = None,
+    **inputs: ArrayLike,
+) -> list[F]:
+    """The closed form ``kernel`` of the bridge at every point of the broadcast ``inputs``, on
+    turn ``n`` or along rolling from ``start`` (theta0, omega0) if it takes them; each output
+    in the broadcast shape."""
+    shape, flat = broadcast_flat(**inputs)
+    options: dict[str, float] = {}
+    if n is not None:
+        options["n"] = n
+    if start is not None:
+        options["theta0"] = real("theta0", start[0])
+        options["omega0"] = real("omega0", start[1])
+    return [o.reshape(shape) for o in kernel(*flat, **options)]
+
+
+def _n(n: object) -> int:
+    """A turn n >= 1 (None is not allowed here: these formulas are for one given turn)."""
+    if n is None:
+        raise TypeError("n must be an integer >= 1 here, not None")
+    return turn(n)  # type: ignore[return-value]
+
+
+def jump_forces(alpha: ArrayLike, chi: ArrayLike, km: ArrayLike, theta_J: ArrayLike) -> tuple[F, F]:
+    """The friction and normal force at a jump point theta_J (Eqs. jump6, Njumpfn).
+
+    With theta'_J^2 = cos(alpha)/(chi cos theta_J): valid only at a true jump point
+    (chi > 0, cos theta_J > 0).
+
+    Parameters
+    ----------
+    alpha : array_like of float
+        Ramp angle [rad], in [0, pi/2].
+    chi : array_like of float
+        The body's d/R, in [0, 1].
+    km : array_like of float
+        The body's shell mass fraction k_m, in [0, 1 - chi].
+    theta_J : array_like of float
+        The jump angle [rad].
+
+    Returns
+    -------
+    Fx_J, Fy_J : numpy.ndarray of float64
+        Friction (positive down the ramp) and normal force at the jump [M g], of the
+        broadcast shape.
+
+    Raises
+    ------
+    ValueError
+        For a value out of its range, naming the parameter and the index of the first
+        invalid point, or arrays that do not broadcast.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from eccjump import closed_form
+    >>> a = np.radians(40)
+    >>> fx, fy = closed_form.jump_forces(a, 0.15, 0.02, closed_form.theta_nJ(a, 0.15, 0.02))
+    >>> print(f"Fx_J = {fx:.6f}, Fy_J = {fy:.6f} M g")
+    Fx_J = -0.005164, Fy_J = 0.015428 M g
+    """
+    fx, fy = _call(_core.jump_forces, alpha=alpha, chi=chi, km=km, theta_J=theta_J)
+    return fx, fy
+
+
+def mu(chi: ArrayLike, km: ArrayLike, theta_J: ArrayLike) -> F:
+    """mu(chi, k_m, theta_J) of Eq. ineq2: the signed ratio -F_x,J/F_y,J.
+
+    It is the friction ratio |F_x,J|/F_y,J only where sin theta_J < 0 (the green window).
+
+    Parameters
+    ----------
+    chi : array_like of float
+        The body's d/R, in [0, 1].
+    km : array_like of float
+        The body's shell mass fraction k_m, in [0, 1 - chi].
+    theta_J : array_like of float
+        The jump angle [rad].
+
+    Returns
+    -------
+    numpy.ndarray of float64
+        mu, dimensionless, of the broadcast shape.
+
+    Raises
+    ------
+    ValueError
+        For a value out of its range, naming the parameter and the index of the first
+        invalid point, or arrays that do not broadcast.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from eccjump import closed_form
+    >>> print(f"{closed_form.mu(0.5, 0.4, np.radians(302.49)):.6f}")
+    1.391619
+    """
+    return _call(_core.mu, chi=chi, km=km, theta_J=theta_J)[0]
+
+
+def green_turn(alpha: ArrayLike, theta_J: ArrayLike) -> NDArray[np.int64]:
+    """The turn n with 2 pi n - alpha < theta_J < 2 pi n (where F_y,J > 0), or 0 if none.
+
+    Parameters
+    ----------
+    alpha : array_like of float
+        Ramp angle [rad], in [0, pi/2].
+    theta_J : array_like of float
+        The jump angle [rad].
+
+    Returns
+    -------
+    numpy.ndarray of int64
+        n >= 1, or 0, of the broadcast shape.
+
+    Raises
+    ------
+    ValueError
+        For a value out of its range, naming the parameter and the index of the first
+        invalid point, or arrays that do not broadcast.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from eccjump import closed_form
+    >>> closed_form.green_turn(np.radians(40), np.radians([334.3, 300.0, 694.3])).tolist()
+    [1, 0, 2]
+    """
+    return _call(_core.green_turn, alpha=alpha, theta_J=theta_J)[0].astype(np.int64)
+
+
+def in_green_interval(
+    alpha: ArrayLike, theta_J: ArrayLike, n: int | None = None
+) -> NDArray[np.bool_]:
+    """The green-interval test 2 pi n - alpha < theta_J < 2 pi n.
+
+    Parameters
+    ----------
+    alpha : array_like of float
+        Ramp angle [rad], in [0, pi/2].
+    theta_J : array_like of float
+        The jump angle [rad].
+    n : int or None, default None
+        The turn, >= 1; None: any turn.
+
+    Returns
+    -------
+    numpy.ndarray of bool
+        Of the broadcast shape.
+
+    Raises
+    ------
+    ValueError
+        For a value out of its range, naming the parameter and the index of the first
+        invalid point, or arrays that do not broadcast.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from eccjump import closed_form
+    >>> bool(closed_form.in_green_interval(np.radians(40), np.radians(334.3), n=1))
+    True
+    """
+    g = green_turn(alpha, theta_J)
+    return np.asarray(g > 0 if n is None else g == _n(n))
+
+
+def mu_s_min(chi: ArrayLike, km: ArrayLike) -> tuple[F, F]:
+    """The smallest static friction that allows a JARM for the body, and where.
+
+    Parameters
+    ----------
+    chi : array_like of float
+        The body's d/R, in [0, 1].
+    km : array_like of float
+        The body's shell mass fraction k_m, in [0, 1 - chi].
+
+    Returns
+    -------
+    mu_s_min : numpy.ndarray of float64
+        The minimum of mu(chi, k_m, .) over the green window, dimensionless.
+    phi : numpy.ndarray of float64
+        The angle [rad] in (-pi/2, 0), relative to 2 pi n, where it is taken.
+
+    Raises
+    ------
+    ValueError
+        For a value out of its range, naming the parameter and the index of the first
+        invalid point, or arrays that do not broadcast.
+
+    Examples
+    --------
+    The paper's Fig. 3b body:
+
+    >>> import numpy as np
+    >>> from eccjump import closed_form
+    >>> m, phi = closed_form.mu_s_min(0.5, 0.4)
+    >>> print(f"{m:.6f} at {360 + np.degrees(phi):.2f} deg")
+    1.391619 at 302.49 deg
+    """
+    m, phi = _call(_core.mu_s_min, chi=chi, km=km)
+    return m, phi
+
+
+def theta_J_range(chi: ArrayLike, km: ArrayLike, mu_s: ArrayLike, n: int = 1) -> tuple[F, F]:
+    """The jump angles allowed by friction on turn n: (theta_J,min, theta_J,max).
+
+    Where mu(chi, k_m, theta_J) <= mu_s inside the quarter turn before 2 pi n.
+
+    Parameters
+    ----------
+    chi : array_like of float
+        The body's d/R, in [0, 1].
+    km : array_like of float
+        The body's shell mass fraction k_m, in [0, 1 - chi].
+    mu_s : array_like of float
+        Static friction coefficient, in [0, inf).
+    n : int, default 1
+        The turn, >= 1 (not None: these formulas are for one given turn).
+
+    Returns
+    -------
+    theta_J_min, theta_J_max : numpy.ndarray of float64
+        [rad], of the broadcast shape; NaN where mu_s < mu_s,min.
+
+    Raises
+    ------
+    ValueError
+        For a value out of its range, naming the parameter and the index of the first
+        invalid point, or arrays that do not broadcast.
+    TypeError
+        If ``n`` is None or not an integer.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from eccjump import closed_form
+    >>> lo, hi = closed_form.theta_J_range(0.5, 0.4, 1.6)
+    >>> print(f"[{np.degrees(lo):.2f}, {np.degrees(hi):.2f}] deg")
+    [272.43, 324.78] deg
+    """
+    lo, hi = _call(_core.theta_j_range, _n(n), chi=chi, km=km, mu_s=mu_s)
+    return lo, hi
+
+
+def alpha_min(chi: ArrayLike, km: ArrayLike, mu_s: ArrayLike, n: int = 1) -> F:
+    """alpha_min = 2 pi n - theta_J,max: no JARM on turn n on a gentler ramp.
+
+    Parameters
+    ----------
+    chi : array_like of float
+        The body's d/R, in [0, 1].
+    km : array_like of float
+        The body's shell mass fraction k_m, in [0, 1 - chi].
+    mu_s : array_like of float
+        Static friction coefficient, in [0, inf).
+    n : int, default 1
+        The turn, >= 1 (not None: these formulas are for one given turn).
+
+    Returns
+    -------
+    numpy.ndarray of float64
+        alpha_min [rad], of the broadcast shape; NaN where mu_s < mu_s,min.
+
+    Raises
+    ------
+    ValueError
+        For a value out of its range, naming the parameter and the index of the first
+        invalid point, or arrays that do not broadcast.
+    TypeError
+        If ``n`` is None or not an integer.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from eccjump import closed_form
+    >>> print(f"{np.degrees(closed_form.alpha_min(0.5, 0.4, 1.6)):.4f} deg")
+    35.2185 deg
+    """
+    return _call(_core.alpha_min, _n(n), chi=chi, km=km, mu_s=mu_s)[0]
+
+
+def gamma(chi: ArrayLike, km: ArrayLike) -> F:
+    """gamma = (I_C + 1 + 2 chi)/(4 pi chi) of Eq. dega2.
+
+    Parameters
+    ----------
+    chi : array_like of float
+        The body's d/R, in [0, 1].
+    km : array_like of float
+        The body's shell mass fraction k_m, in [0, 1 - chi].
+
+    Returns
+    -------
+    numpy.ndarray of float64
+        gamma, dimensionless; inf for chi = 0.
+
+    Raises
+    ------
+    ValueError
+        For a value out of its range, naming the parameter and the index of the first
+        invalid point, or arrays that do not broadcast.
+
+    Examples
+    --------
+    >>> from eccjump import closed_form
+    >>> print(f"{closed_form.gamma(0.15, 0.02):.6f}")
+    0.712462
+    """
+    return _call(_core.gamma, chi=chi, km=km)[0]
+
+
+def J(theta: ArrayLike, alpha: ArrayLike, chi: ArrayLike, km: ArrayLike) -> F:
+    """The paper's J(theta) (Eq. Jta) as printed, from rest at theta0 = 0.
+
+    It divides by cos(alpha): prefer :func:`liftoff_function`, equal to cos(alpha) J(theta).
+
+    Parameters
+    ----------
+    theta : array_like of float
+        Angle [rad].
+    alpha : array_like of float
+        Ramp angle [rad], in [0, pi/2].
+    chi : array_like of float
+        The body's d/R, in [0, 1].
+    km : array_like of float
+        The body's shell mass fraction k_m, in [0, 1 - chi].
+
+    Returns
+    -------
+    numpy.ndarray of float64
+        J, dimensionless, of the broadcast shape.
+
+    Raises
+    ------
+    ValueError
+        For a value out of its range, naming the parameter and the index of the first
+        invalid point, or arrays that do not broadcast.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from eccjump import closed_form
+    >>> print(f"{closed_form.J(np.radians(300), np.radians(40), 0.15, 0.02):.6f}")
+    -0.451845
+    """
+    return _call(_core.j_paper, theta=theta, alpha=alpha, chi=chi, km=km)[0]
+
+
+def liftoff_function(
+    theta: ArrayLike,
+    alpha: ArrayLike,
+    chi: ArrayLike,
+    km: ArrayLike,
+    *,
+    theta0: float = 0.0,
+    omega0: float = 0.0,
+) -> F:
+    """The lift-off function chi theta'^2 cos(theta) - cos(alpha) along pure rolling.
+
+    theta'^2 comes from conservation of energy from (theta0, omega0); its rising zero is the
+    paper's lift-off.
+
+    Parameters
+    ----------
+    theta : array_like of float
+        Angle [rad].
+    alpha : array_like of float
+        Ramp angle [rad], in [0, pi/2].
+    chi : array_like of float
+        The body's d/R, in [0, 1].
+    km : array_like of float
+        The body's shell mass fraction k_m, in [0, 1 - chi].
+    theta0 : float, default 0.0
+        Initial angle [rad], |theta0| <= 2 pi 1e6.
+    omega0 : float, default 0.0
+        Initial angular velocity [sqrt(g/R) rad], in [0, 1e6].
+
+    Returns
+    -------
+    numpy.ndarray of float64
+        Dimensionless (per g/R), of the broadcast shape.
+
+    Raises
+    ------
+    ValueError
+        For a value out of its range, naming the parameter and the index of the first
+        invalid point, or arrays that do not broadcast.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from eccjump import closed_form
+    >>> print(f"{closed_form.liftoff_function(np.radians(300), np.radians(40), 0.15, 0.02):.6f}")
+    -0.346133
+    """
+    return _call(
+        _core.liftoff_function, start=(theta0, omega0), theta=theta, alpha=alpha, chi=chi, km=km
+    )[0]
+
+
+def J_brackets(alpha: ArrayLike, chi: ArrayLike, km: ArrayLike, n: int = 1) -> tuple[F, F]:
+    """(J(2 pi n - alpha), J(2 pi n)) of Eqs. JtaC1, JtaC2.
+
+    A root of J on turn n is bracketed iff the first is < 0 and the second > 0.
+
+    Parameters
+    ----------
+    alpha : array_like of float
+        Ramp angle [rad], in [0, pi/2].
+    chi : array_like of float
+        The body's d/R, in [0, 1].
+    km : array_like of float
+        The body's shell mass fraction k_m, in [0, 1 - chi].
+    n : int, default 1
+        The turn, >= 1 (not None: these formulas are for one given turn).
+
+    Returns
+    -------
+    J_lo, J_hi : numpy.ndarray of float64
+        Dimensionless, of the broadcast shape.
+
+    Raises
+    ------
+    ValueError
+        For a value out of its range, naming the parameter and the index of the first
+        invalid point, or arrays that do not broadcast.
+    TypeError
+        If ``n`` is None or not an integer.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from eccjump import closed_form
+    >>> lo, hi = closed_form.J_brackets(np.radians(40), 0.15, 0.02)
+    >>> print(f"{lo:.6f} {hi:.6f}")
+    -0.162087 0.177747
+    """
+    c1, c2 = _call(_core.j_brackets, _n(n), alpha=alpha, chi=chi, km=km)
+    return c1, c2
+
+
+def theta_nJ(alpha: ArrayLike, chi: ArrayLike, km: ArrayLike, n: int = 1) -> F:
+    """theta_{n,J}: the root of the lift-off function in [2 pi n - alpha, 2 pi n].
+
+    Found by bisection to the last bit. Whether the body gets there in pure rolling is what
+    :func:`eccjump.jarm` decides.
+
+    Parameters
+    ----------
+    alpha : array_like of float
+        Ramp angle [rad], in [0, pi/2].
+    chi : array_like of float
+        The body's d/R, in [0, 1].
+    km : array_like of float
+        The body's shell mass fraction k_m, in [0, 1 - chi].
+    n : int, default 1
+        The turn, >= 1 (not None: these formulas are for one given turn).
+
+    Returns
+    -------
+    numpy.ndarray of float64
+        theta_{n,J} [rad], of the broadcast shape; NaN if JtaC1/JtaC2 fail.
+
+    Raises
+    ------
+    ValueError
+        For a value out of its range, naming the parameter and the index of the first
+        invalid point, or arrays that do not broadcast.
+    TypeError
+        If ``n`` is None or not an integer.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from eccjump import closed_form
+    >>> print(f"{np.degrees(closed_form.theta_nJ(np.radians(40), 0.15, 0.02)):.6f} deg")
+    334.343838 deg
+    """
+    return _call(_core.theta_nj, _n(n), alpha=alpha, chi=chi, km=km)[0]
+
+
+def path_forces(
+    theta: ArrayLike,
+    alpha: ArrayLike,
+    chi: ArrayLike,
+    km: ArrayLike,
+    *,
+    theta0: float = 0.0,
+    omega0: float = 0.0,
+) -> tuple[F, F]:
+    """The contact forces (F_x(theta), F_y(theta)) along pure rolling from (theta0, omega0).
+
+    The paper's Eqs. FxL2, FyL2 for the start from rest, computed from theta'^2 by energy
+    and theta'' by the rolling equation (not from the long printed forms).
+
+    Parameters
+    ----------
+    theta : array_like of float
+        Angle [rad].
+    alpha : array_like of float
+        Ramp angle [rad], in [0, pi/2].
+    chi : array_like of float
+        The body's d/R, in [0, 1].
+    km : array_like of float
+        The body's shell mass fraction k_m, in [0, 1 - chi].
+    theta0 : float, default 0.0
+        Initial angle [rad], |theta0| <= 2 pi 1e6.
+    omega0 : float, default 0.0
+        Initial angular velocity [sqrt(g/R) rad], in [0, 1e6].
+
+    Returns
+    -------
+    Fx, Fy : numpy.ndarray of float64
+        Friction (positive down the ramp) and normal force [M g], of the broadcast shape.
+
+    Raises
+    ------
+    ValueError
+        For a value out of its range, naming the parameter and the index of the first
+        invalid point, or arrays that do not broadcast.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from eccjump import closed_form
+    >>> fx, fy = closed_form.path_forces(np.radians([90, 180]), np.radians(40), 0.15, 0.02)
+    >>> fy.round(6).tolist()
+    [0.606559, 1.674246]
+    """
+    fx, fy = _call(
+        _core.path_forces, start=(theta0, omega0), theta=theta, alpha=alpha, chi=chi, km=km
+    )
+    return fx, fy

@@ -1,0 +1,62 @@
+"""Maps: a result at every point of a parameter grid, JARM maps and motion maps alike.
+
+Both kinds are a :class:`Map` -- :class:`~eccjump.Region` from :func:`~eccjump.region` and
+:class:`~eccjump.MotionMap` from :func:`~eccjump.motion_map` -- with the same ``coords``,
+``fields``, ``shape``, ``fraction()`` and ``to_xarray()``. :func:`save` writes a map of either
+kind to a file (``.nc``, ``.zarr`` or ``.npz``) and :func:`load` reads it back as its type.
+"""
+
+from __future__ import annotations
+
+import os
+
+from eccjump.classification.classify import Region, region
+from eccjump.maps import store
+from eccjump.maps.map import Map
+from eccjump.maps.store import save
+from eccjump.motion.maps import MotionMap, from_layout, motion_map
+
+
+def load(path: str | os.PathLike) -> Map:
+    """The map file at ``path`` as a :class:`Region` or a :class:`MotionMap`, by the kind
+    recorded in it.
+
+    Parameters
+    ----------
+    path : str or os.PathLike
+        A map file written by :func:`save` or ``eccjump map``: ``.nc`` (netCDF, needs
+        xarray), ``.zarr`` (needs zarr) or ``.npz`` (numpy only).
+
+    Returns
+    -------
+    Map
+        A :class:`Region` (JARM map) or a :class:`MotionMap`.
+
+    Raises
+    ------
+    ValueError
+        For a file that is no valid map, naming it and what is wrong (a JARM file of swept
+        maps, written with ``region(..., output="xarray")``: open it with
+        :func:`eccjump.store.open_dataset`) or an unknown suffix.
+    FileNotFoundError
+        If there is no file at ``path``.
+
+    Examples
+    --------
+    >>> import os, tempfile
+    >>> import numpy as np
+    >>> import eccjump
+    >>> m = eccjump.region(np.radians([35, 40, 45]), [0.1, 0.15], [0.0, 0.1], 1.0)
+    >>> path = os.path.join(tempfile.mkdtemp(), "region.npz")
+    >>> _ = eccjump.maps.save(m, path)
+    >>> back = eccjump.load_map(path)
+    >>> type(back).__name__, back == m
+    ('Region', True)
+    """
+    lay, kind = store.read_layout(path)
+    if kind.name == "motion":
+        return from_layout(lay, kind, path)
+    return store.region_of(lay, path)
+
+
+__all__ = ["Map", "MotionMap", "Region", "load", "motion_map", "region", "save"]

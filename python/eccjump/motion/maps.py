@@ -1,0 +1,526 @@
+"""Maps of the full motion: what the cylinder does at every point of a parameter grid.
+
+:func:`motion_map` runs :func:`eccjump.simulate` to the first landing at every point of the
+product of up to eight axes -- (alpha, chi, km fraction, mu_s, mu_k, restitution, theta0,
+omega0) -- in parallel in the Rust core with the GIL released, and keeps a fixed-size
+summary per point (:data:`FIELDS`). Each summary is exactly what ``simulate`` gives at that
+point; maps are bit-identical for any thread count or dask chunking.
+
+The sequence of modes is a compact code (2 bits per mode, the start's mode first, at most
+:data:`SEQUENCE_LEN` modes): :func:`sequence_name` names any code, and
+:meth:`MotionMap.sequences` tabulates those in a map with their counts.
+"""
+
+from __future__ import annotations
+
+import os
+from collections.abc import Mapping
+from dataclasses import dataclass, field
+from typing import TYPE_CHECKING, Any, ClassVar, Literal
+
+import numpy as np
+from numpy.typing import ArrayLike, NDArray
+
+from eccjump import _core
+from eccjump._base.arrays import fields_equal, fraction_axis
+from eccjump._base.checks import U64_MAX, Integrator, integer, real_array, short, text
+from eccjump._base.html import best_slice, card, deg, jarm_slice, span
+from eccjump._base.sizes import check_fits, motion_bytes
+from eccjump.maps import store
+from eccjump.maps.check import file_error
+from eccjump.maps.dask import require_dask
+from eccjump.maps.kinds import MOTION, MapKind, upgrade_attrs
+from eccjump.maps.map import Map
+from eccjump.motion.fields import (
+    DTYPES,
+    FIELDS,
+    INVALID,
+    LANDINGS,
+    STATUS_NAMES,
+    TABLE,
+    cf_attrs,
+    sequence_code,
+    sequence_name,
+)
+from eccjump.motion.simulation import Rule, checked_motion_options
+
+if TYPE_CHECKING:
+    import xarray as xr
+    from matplotlib.figure import Figure
+
+#: The axes of a map, in the order of the grid (C order: alpha slowest); ``km_frac`` is the
+#: fraction k_m/(1 - chi), as in JARM maps.
+AXES = tuple(a for a, _ in MOTION.axes)
+#: Dimension name of each axis.
+DIM_OF = dict(MOTION.axes)
+
+
+@dataclass(frozen=True, eq=False)
+class MotionMap(Map):
+    """A motion map: one array per summary field, with one dimension per swept axis.
+
+    Made by :func:`motion_map`. Each field is also an attribute (``m.apex``, ``m.sequence``,
+    ...). As every :class:`~eccjump.Map`: ``shape``, ``fraction()`` (the share of points
+    that are a JARM) and ``to_xarray()``; :func:`eccjump.maps.save` writes it.
+
+    Attributes
+    ----------
+    coords : dict of str to numpy.ndarray
+        The swept axes (1-D, angles in rad), in the order alpha, chi, km_frac, mu_s, mu_k,
+        restitution, theta0, omega0.
+    scalars : dict of str to float or None
+        The axes given as one value (``mu_k`` None: mu_k = mu_s).
+    fields : dict of str to numpy.ndarray
+        The summaries of the runs, each of the map's shape: ``status``, ``sequence`` (the
+        first modes as a code, named by ``sequence_name``), ``n_modes``, ``jarm``,
+        ``slipped_first``, ``slip_t`` [sqrt(R/g)], ``slip_theta`` [rad],
+        ``liftoff_reason``, ``liftoff_t`` [sqrt(R/g)], ``liftoff_theta`` [rad],
+        ``flight_time`` [sqrt(R/g)], ``apex`` [R], ``distance`` [R], ``landing`` and
+        ``energy_lost`` [M g R]; NaN or a fill code where a run never got there.
+    options : dict of str to object
+        The options shared by every point (rule, t_max, max_transitions, rtol, atol,
+        max_steps, integrator).
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> import eccjump
+    >>> m = eccjump.motion_map(np.radians([30, 40]), [0.15, 0.5], [0.02 / 0.85, 0.8], 1.0)
+    >>> m.shape, list(m.coords)
+    ((2, 2, 2), ['alpha', 'chi', 'km_frac'])
+    >>> print(f"{np.degrees(m.liftoff_theta[1, 0, 0]):.6f} deg, apex {m.apex[1, 0, 0]:.6f} R")
+    334.343838 deg, apex 0.006696 R
+    """
+
+    kind: ClassVar[str] = "motion"
+    jarm_field: ClassVar[str] = "jarm"
+
+    coords: dict[str, NDArray[np.float64]]
+    scalars: dict[str, float | None]
+    fields: dict[str, NDArray]
+    options: dict[str, Any] = field(default_factory=dict)
+
+    #: Field by field: coords, scalars, fields (by shape, dtype and values, NaN equal to NaN)
+    #: and options; a map loaded from a file equals the map saved.
+    __eq__ = fields_equal
+    __hash__ = None  # type: ignore[assignment]
+
+    def __getattr__(self, name: str) -> NDArray:
+        fields = self.__dict__.get("fields", {})
+        if name in fields:
+            return fields[name]
+        raise AttributeError(f"MotionMap has no attribute {name!r}")
+
+    def sequences(self) -> dict[int, tuple[str, int]]:
+        """Every sequence of modes in the map, most frequent first.
+
+        Returns
+        -------
+        dict of int to tuple of (str, int)
+            For each sequence code, its name (e.g. ``"ROLL→SLIP→FLIGHT→ROLL"``) and the
+            number of points with it.
+
+        Examples
+        --------
+        >>> import numpy as np
+        >>> import eccjump
+        >>> m = eccjump.motion_map(np.radians([30, 40]), [0.15, 0.5], [0.02 / 0.85, 0.8], 1.0)
+        >>> [name for name, count in m.sequences().values()][:2]
+        ['ROLL→SLIP→ROLL→SLIP→FLIGHT→SLIP', 'ROLL→SLIP→FLIGHT→ROLL']
+        """
+        codes, counts = np.unique(self.fields["sequence"], return_counts=True)
+        order = np.argsort(-counts, kind="stable")
+        return {int(codes[i]): (sequence_name(codes[i]), int(counts[i])) for i in order}
+
+    def to_xarray(self) -> xr.Dataset:
+        """The map as a labelled ``xarray.Dataset``.
+
+        Returns
+        -------
+        xarray.Dataset
+            One variable per field with CF attributes and flag tables (a lazy map's
+            ``sequence`` codes are known once computed: ``sequence_name`` names them), the
+            options as attributes.
+
+        Raises
+        ------
+        ImportError
+            Without xarray (``pip install "eccjump[xarray]"``).
+        """
+        import xarray as xr
+
+        dims = tuple(DIM_OF[k] for k in self.coords)
+        seq = self.fields["sequence"]
+        codes = np.unique(seq) if isinstance(seq, np.ndarray) else None
+        data = {f: (dims, self.fields[f], cf_attrs(f, codes)) for f in FIELDS}
+        coords = {DIM_OF[k]: (DIM_OF[k], v) for k, v in self.coords.items()}
+        return xr.Dataset(data, coords=coords, attrs=self.attrs())
+
+    def attrs(self) -> dict[str, Any]:
+        """How the map was made, as netCDF-safe file attributes (``mu_k`` the text "mu_s"
+        where it was not given: mu_k = mu_s, and ``scalars['mu_k']`` None once loaded)."""
+        given: dict[str, Any] = {k: float(v) for k, v in self.scalars.items() if v is not None}
+        if "mu_k" in self.scalars and self.scalars["mu_k"] is None:
+            given["mu_k"] = "mu_s"
+        return {
+            "title": "motion map of an eccentric cylinder on a ramp (eccjump)",
+            "kind": "motion",
+            "eccjump_version": _core.VERSION,
+            "units": "g = R = M = 1: angles in rad, times in sqrt(R/g), lengths in R",
+            **given,
+            **self.options,
+        }
+
+    def __repr__(self) -> str:
+        dims = ", ".join(f"{k}: {v.size}" for k, v in self.coords.items()) or "one point"
+        top = list(self.sequences().values())[:3]
+        seq = ", ".join(f"{n or '-'} ({c})" for n, c in top)
+        return f"MotionMap({dims}; {int(np.prod(self.shape))} points; {seq})"
+
+    def _repr_html_(self) -> str:
+        rows = [(k, span(v, " deg" if k == "alpha" else "")) for k, v in self.coords.items()]
+        given = {k: v for k, v in self.scalars.items() if v is not None}
+        rows += [(k, deg(v) if k == "alpha" else f"{v:g}") for k, v in given.items()]
+        if isinstance(self.fields["sequence"], np.ndarray):
+            rows.append(("JARM fraction", f"{self.fraction():.4g}"))
+            for name, count in list(self.sequences().values())[:4]:
+                rows.append((f"{count} points", name or "-"))
+        picture = ""
+        if tuple(self.coords)[:2] == ("alpha", "chi") and len(self.coords) <= 3:
+            jarm = np.asarray(self.fields["jarm"], dtype=bool).reshape(*self.shape[:2], -1)
+            _, cut = best_slice(jarm)
+            picture = jarm_slice(cut, "JARM (green) over chi (across) and alpha (up)")
+        return card(f"MotionMap ({int(np.prod(self.shape))} points)", rows, picture)
+
+    def plot(self, **kwargs: Any) -> Figure:
+        """The map in the (chi, alpha) plane, coloured by the sequence of modes
+        (``eccjump.plot.sequence_map``; ``kwargs`` go to it). Needs ``pip install
+        eccjump[plot]``."""
+        from eccjump import plot  # figures: the layer on top of every result
+
+        return plot.sequence_map(self, **kwargs)
+
+
+#: The options shared by every point, recorded with a map.
+OPTIONS = ("rule", "t_max", "max_transitions", "rtol", "atol", "max_steps", "integrator")
+
+
+def _axes(values: Mapping[str, object]) -> tuple[dict[str, NDArray], dict[str, float | None]]:
+    coords: dict[str, NDArray] = {}
+    scalars: dict[str, float | None] = {}
+    for name in AXES:
+        v = values[name]
+        if name == "mu_k" and v is None:
+            scalars[name] = None
+            continue
+        a = real_array(name, v)
+        if a.ndim == 0:
+            scalars[name] = float(a)
+        elif a.ndim == 1 and a.size > 0:
+            coords[name] = a
+        else:
+            raise ValueError(
+                f"{name} must be a number or a non-empty 1-D array, got shape {a.shape}"
+            )
+    return coords, scalars
+
+
+def _axis(coords: Mapping[str, NDArray], scalars: Mapping[str, float | None], name: str) -> NDArray:
+    if name in coords:
+        return coords[name]
+    v = scalars[name]
+    return np.empty(0) if v is None else np.array([v])
+
+
+def _block(
+    alpha: NDArray[np.float64], rest: tuple[NDArray, ...], opts: dict[str, Any]
+) -> dict[str, NDArray]:
+    """One grid call of the core: the flat fields of alpha × the other axes."""
+    a = np.array(alpha, dtype=np.float64, order="C").ravel()
+    others = [np.array(x, dtype=np.float64, order="C").ravel() for x in rest]
+    return _core.motion_grid(a, *others, options=_core.MotionOptions(**opts))
+
+
+def motion_map(
+    alpha: ArrayLike,
+    chi: ArrayLike,
+    km_frac: ArrayLike,
+    mu_s: ArrayLike,
+    *,
+    mu_k: ArrayLike | None = None,
+    restitution: ArrayLike = 0.0,
+    theta0: ArrayLike = 0.0,
+    omega0: ArrayLike = 0.0,
+    rule: Rule = "paper",
+    t_max: float = 100.0,
+    max_transitions: int = 100,
+    rtol: float = 1e-10,
+    atol: float = 1e-12,
+    max_steps: int = 1_000_000,
+    n_threads: int = 0,
+    integrator: Integrator = "RK45",
+    chunks: int | None = None,
+    output: Literal["map", "xarray"] = "map",
+    km: None = None,
+) -> MotionMap | xr.Dataset:
+    """Map the full motion, to the first landing, over the product of the given axes.
+
+    At every point of the grid, :func:`eccjump.simulate` runs to its first landing (status
+    ``"landed"``, once the mode after it is chosen) or to ``t_max``/``max_transitions``, in
+    parallel in the Rust core with the GIL released, and a fixed-size summary is kept. Each
+    summary is exactly what ``simulate`` gives there; maps are bit-identical for any thread
+    count or chunking. The grid first, then ``mu_s``, as :func:`region`, then keyword-only
+    options. Each of the eight axes (``alpha``, ``chi``, ``km_frac``, ``mu_s``, ``mu_k``,
+    ``restitution``, ``theta0``, ``omega0``) is one number or a 1-D array (an axis of the
+    map). A point whose own values are invalid (mu_k > mu_s, km_frac 0, chi = 1, a value
+    out of range) has status ``"invalid"`` and the fill values: the map goes on.
+
+    Parameters
+    ----------
+    alpha : float or array_like of float
+        Ramp angle(s) [rad], in [0, pi/2].
+    chi : float or array_like of float
+        The bodies' d/R, in [0, 1].
+    km_frac : float or array_like of float
+        The shell mass fraction as the share k_m/(1 - chi) of its largest value, in [0, 1]
+        (> 0 for a valid run: ``simulate`` needs km > 0).
+    mu_s : float or array_like of float
+        Static friction coefficient(s), in [0, inf).
+    mu_k : float, array_like of float or None, default None
+        Kinetic friction coefficient(s), in [0, mu_s]; None: mu_k = mu_s.
+    restitution : float or array_like of float, default 0.0
+        Stronge's energetic coefficient of restitution, in [0, 1].
+    theta0 : float or array_like of float, default 0.0
+        Initial angle(s) [rad], |theta0| <= 2 pi 1e6.
+    omega0 : float or array_like of float, default 0.0
+        Initial angular velocity(ies) [sqrt(g/R) rad], |omega0| <= 1e6.
+    rule : {"paper", "normal_force"}, default "paper"
+        Lift-off rule from rolling.
+    t_max : float, default 100.0
+        End time of each run [sqrt(R/g)], in (0, 1e6].
+    max_transitions : int, default 100
+        Transitions of each run after the start, 1 ... 10**6.
+    rtol : float, default 1e-10
+        Relative tolerance, in [1e-15, 1e-6] (recorded with the map).
+    atol : float, default 1e-12
+        Absolute tolerance, in [1e-300, 1e-6] (recorded with the map).
+    max_steps : int, default 1_000_000
+        Accepted steps of each run, 1 ... 10**7.
+    n_threads : int, default 0
+        Threads, 0 (one per core) ... 256; results are identical for any value.
+    integrator : {"RK45", "DOP853", "Vern9"}, default "RK45"
+        The Runge–Kutta pair (recorded with the map). For speed pick ``"Vern9"`` (at the
+        default rtol 1.5–1.9× faster than RK45 and about 15× more accurate); keep
+        ``"RK45"`` for step-for-step parity with scipy.
+    chunks : int or None, default None
+        Alpha values per block (>= 1): the map as a lazily computed, dask-backed
+        ``xarray.Dataset``, one core call per block (``pip install "eccjump[dask]"``).
+    output : {"map", "xarray"}, default "map"
+        ``"map"``: a :class:`MotionMap`; ``"xarray"``: a labelled ``xarray.Dataset``.
+    km : None
+        Not accepted: ``km`` is the body's k_m elsewhere; the axis is ``km_frac``. Passing
+        it is a TypeError.
+
+    Returns
+    -------
+    MotionMap or xarray.Dataset
+        The summaries, one array per field over the swept axes.
+
+    Raises
+    ------
+    ValueError
+        For a bad shared option or a malformed axis, or an axis given as one number that
+        makes every point invalid; the message names the parameter and its range.
+    TypeError
+        If ``km`` is given, or an argument has the wrong type.
+    MemoryError
+        If the map does not fit in memory.
+    KeyboardInterrupt
+        On Ctrl-C (the work stops within a second).
+
+    See Also
+    --------
+    simulate : one run, recorded in full.
+    region : maps of the JARM classification alone (faster, by the closed forms).
+
+    Examples
+    --------
+    The paper's JARM point (alpha = 40 deg, chi = 0.15, k_m = 0.02) and three others:
+
+    >>> import numpy as np
+    >>> import eccjump
+    >>> from eccjump.motion.maps import sequence_name
+    >>> m = eccjump.motion_map(np.radians([30, 40]), [0.15, 0.5], [0.02 / 0.85, 0.8], 1.0)
+    >>> [sequence_name(c) for c in m.sequence[:, 0, 0]]
+    ['ROLL→SLIP→FLIGHT→ROLL', 'ROLL→FLIGHT→SLIP']
+    >>> bool(m.jarm[1, 0, 0]), m.fraction()
+    (True, 0.125)
+    """
+    coords, scalars = _axes(
+        {
+            "alpha": alpha,
+            "chi": chi,
+            "km_frac": fraction_axis(km_frac, km),
+            "mu_s": mu_s,
+            "mu_k": mu_k,
+            "restitution": restitution,
+            "theta0": theta0,
+            "omega0": omega0,
+        }
+    )
+    out = text("output", output)
+    if out not in ("map", "xarray"):
+        raise ValueError(f"output must be 'map' or 'xarray', got {out!r}")
+    # The shared options checked first: a bad one is an error, not a map.
+    opts = checked_motion_options(
+        rule=rule,
+        t_max=t_max,
+        max_transitions=max_transitions,
+        rtol=rtol,
+        atol=atol,
+        max_steps=max_steps,
+        integrator=integrator,
+        n_threads=n_threads,
+    )
+    axis = {name: _axis(coords, scalars, name) for name in AXES}
+    rest = tuple(axis[name] for name in AXES[1:])
+    shape = tuple(c.size for c in coords.values())
+    info = {k: opts[k] for k in OPTIONS}
+    _check_scalars(scalars, opts)
+    if chunks is not None:
+        return _lazy(axis, rest, coords, scalars, info, opts, shape, chunks)
+    points = int(np.prod(shape, dtype=object))
+    check_fits("motion_map", points, motion_bytes(points), "the axes")
+    flat = _block(axis["alpha"], rest, opts)
+    fields = {k: flat[k].reshape(shape) for k in FIELDS}
+    m = MotionMap(coords, scalars, fields, info)
+    return m.to_xarray() if out == "xarray" else m
+
+
+#: A point where every axis has a valid value, where each axis given as one number is tried.
+_PROBE: dict[str, float | None] = {
+    "alpha": 0.5,
+    "chi": 0.3,
+    "km_frac": 0.5,
+    "mu_s": 1.0,
+    "mu_k": None,
+    "restitution": 0.0,
+    "theta0": 0.0,
+    "omega0": 0.0,
+}
+
+
+def _check_scalars(scalars: Mapping[str, float | None], opts: dict[str, Any]) -> None:
+    """ValueError naming an axis given as one number that makes every point of the map
+    invalid (NaN, out of range): as in :func:`eccjump.region`, a bad parameter is an error,
+    not a map of invalid points. Each is tried alone at :data:`_PROBE` (a swept mu_s taken at
+    least as large as mu_k), then all together (mu_k > mu_s). Bad values on a swept axis only
+    mark their points invalid. The core alone knows the ranges, so it is asked."""
+    given = {k: v for k, v in scalars.items() if v is not None}
+    quick = {**opts, "t_max": min(opts["t_max"], 1e-3)}  # validity is known at the start
+    for name, value in given.items():
+        if not _valid_point({name: value}, quick):
+            raise ValueError(
+                f"{name} = {short(value)} is not allowed: every point of the map would be invalid"
+            )
+    if len(given) > 1 and not _valid_point(given, quick):
+        raise ValueError(
+            f"{', '.join(given)}: these values make every point of the map invalid (mu_k > mu_s?)"
+        )
+
+
+def _valid_point(values: Mapping[str, float], opts: dict[str, Any]) -> bool:
+    """Whether the core runs the point of :data:`_PROBE` with ``values`` (not invalid)."""
+    point = {**_PROBE, **values}
+    mu_k = values.get("mu_k")
+    if "mu_s" not in values and mu_k is not None and np.isfinite(mu_k):
+        point["mu_s"] = max(1.0, mu_k)
+    rest = tuple(np.empty(0) if point[k] is None else np.array([point[k]]) for k in AXES[1:])
+    return int(_block(np.array([point["alpha"]]), rest, opts)["status"][0]) != INVALID
+
+
+def _lazy(
+    axis: dict[str, NDArray],
+    rest: tuple[NDArray, ...],
+    coords: dict[str, NDArray],
+    scalars: dict[str, float | None],
+    info: dict[str, Any],
+    opts: dict[str, Any],
+    shape: tuple[int, ...],
+    chunks: object,
+) -> xr.Dataset:
+    """A dask-backed Dataset: one core call per block of alpha values."""
+    da = require_dask()
+    import dask
+
+    c = integer("chunks", chunks, 1, U64_MAX)
+    alpha = axis["alpha"]
+    inner = tuple(s for name, s in zip(AXES, shape_of(axis), strict=True) if name != "alpha")
+    pieces: dict[str, list[Any]] = {k: [] for k in FIELDS}
+    for i0 in range(0, alpha.size, c):
+        part = dask.delayed(_block)(alpha[i0 : i0 + c], rest, opts)
+        n = min(c, alpha.size - i0)
+        for f in TABLE:
+            arr = da.from_delayed(part[f.name], shape=(n * int(np.prod(inner)),), dtype=f.dtype)
+            pieces[f.name].append(arr.reshape((n, *inner)))
+    fields = {k: da.concatenate(v, axis=0).reshape(shape) for k, v in pieces.items()}
+    return MotionMap(coords, scalars, fields, info).to_xarray()
+
+
+def shape_of(axis: Mapping[str, NDArray]) -> tuple[int, ...]:
+    """Lengths of the eight grid axes (mu_k empty counts 1)."""
+    return tuple(max(axis[name].size, 1) for name in AXES)
+
+
+def from_dataset(ds: xr.Dataset) -> MotionMap:
+    """A :class:`MotionMap` from its Dataset (:meth:`MotionMap.to_xarray`, or a file of
+    ``eccjump map --kind motion`` opened with :func:`eccjump.store.open_dataset`);
+    ValueError naming ``ds`` if it is no valid motion map."""
+    if not hasattr(type(ds), "data_vars"):
+        raise TypeError(f"ds must be an xarray.Dataset, not {type(ds).__name__}")
+    lay = store.layout_from_xarray(ds)
+    upgrade_attrs(lay["attrs"])
+    return from_layout(lay, store.check_layout(lay, "ds"), "ds")
+
+
+def from_layout(lay: dict[str, Any], kind: MapKind, source: object) -> MotionMap:
+    """A :class:`MotionMap` from a layout checked to be a map of ``kind`` (numpy only);
+    ValueError naming ``source`` if it is a JARM map."""
+    if kind.name != "motion":
+        raise file_error(source, "is a JARM map, not a motion map: load it with eccjump.maps.load")
+    dims, attrs = lay["data_vars"][FIELDS[0]][0], lay["attrs"]
+    axis_of = {d: a for a, d in DIM_OF.items()}
+    coords = {axis_of[d]: np.asarray(lay["coords"][d][1], dtype=np.float64) for d in dims}
+    scalars: dict[str, float | None] = {}
+    for k in AXES:
+        if k not in coords:
+            # mu_k = mu_s (not given) is recorded as mu_s's value, or as "mu_s" if it is swept
+            scalars[k] = None if attrs.get(k, "mu_s") == "mu_s" else float(attrs[k])
+    fields = {k: np.asarray(lay["data_vars"][k][1], dtype=DTYPES[k]) for k in FIELDS}
+    opts = {k: attrs[k] for k in OPTIONS if k in attrs}
+    return MotionMap(coords, scalars, fields, opts)
+
+
+def load(path: str | os.PathLike) -> MotionMap:
+    """A motion map file (.nc, .zarr, .npz; .npz needs numpy only) as a :class:`MotionMap`.
+
+    ValueError naming the path for a file that is no valid motion map (a JARM map:
+    ``eccjump.store.load``), as every loader of :mod:`eccjump.store`.
+    """
+    lay, kind = store.read_layout(path)
+    return from_layout(lay, kind, path)
+
+
+__all__ = [
+    "AXES",
+    "FIELDS",
+    "INVALID",
+    "LANDINGS",
+    "STATUS_NAMES",
+    "TABLE",
+    "MotionMap",
+    "from_dataset",
+    "motion_map",
+    "sequence_code",
+    "sequence_name",
+]

@@ -1,0 +1,239 @@
+"""The full motion to the first landing at given points: :func:`motion_points`.
+
+Where :func:`eccjump.motion_map` runs the product of its axes, :func:`motion_points` runs the
+points it is given (broadcast together, as :func:`eccjump.jarm`), each with its own body,
+ramp, friction, restitution and start -- what a Monte Carlo sample needs
+(:func:`eccjump.uncertainty`). Each point keeps the summary of a motion map (the fields of
+:data:`eccjump.motion.fields.TABLE`) and is exactly what :func:`eccjump.simulate` gives
+there; the points run in parallel in the Rust core, bit-identical for any thread count.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+from dataclasses import dataclass
+from typing import Any
+
+import numpy as np
+from numpy.typing import ArrayLike, NDArray
+
+from eccjump import _core
+from eccjump._base.arrays import broadcast_flat, fields_equal
+from eccjump._base.checks import Integrator, Rule
+from eccjump._base.sizes import check_fits, motion_bytes
+from eccjump.motion.fields import FIELDS, INVALID, sequence_name
+from eccjump.motion.simulation import checked_motion_options
+
+
+@dataclass(frozen=True, eq=False)
+class MotionPoints:
+    """The summary of the full motion at each point of :func:`motion_points`, one array per
+    field of the broadcast shape (the fields of :data:`eccjump.motion.fields.TABLE`, with
+    their units and meanings).
+
+    Attributes
+    ----------
+    status : numpy.ndarray of uint8
+        How the run ended (:data:`eccjump.motion.fields.STATUS_NAMES`); 255: invalid point.
+    sequence : numpy.ndarray of uint16
+        The first modes as a code (:func:`eccjump.motion.fields.sequence_name`).
+    n_modes : numpy.ndarray of uint16
+        Modes in the run, the start's included.
+    jarm : numpy.ndarray of bool
+        Lift-off straight out of pure rolling from the start.
+    slipped_first : numpy.ndarray of bool
+        A slip came before the first flight.
+    slip_t, slip_theta : numpy.ndarray of float64
+        Time [sqrt(R/g)] and angle [rad] of the first slip onset (NaN: none).
+    liftoff_reason : numpy.ndarray of uint8
+        Why the first flight began (255: none).
+    liftoff_t, liftoff_theta : numpy.ndarray of float64
+        Time [sqrt(R/g)] and angle [rad] of the first lift-off (NaN: none).
+    flight_time : numpy.ndarray of float64
+        Duration of the first flight [sqrt(R/g)] (NaN: did not land).
+    apex : numpy.ndarray of float64
+        Largest height of the first flight above contact [R] (NaN: no flight).
+    distance : numpy.ndarray of float64
+        Distance down the ramp covered by the first flight [R] (NaN: no flight).
+    landing : numpy.ndarray of uint8
+        How the first landing ended (:data:`eccjump.motion.fields.LANDINGS`).
+    energy_lost : numpy.ndarray of float64
+        Energy dissipated by sliding and impacts [M g R].
+    """
+
+    status: NDArray[np.uint8]
+    sequence: NDArray[np.uint16]
+    n_modes: NDArray[np.uint16]
+    jarm: NDArray[np.bool_]
+    slipped_first: NDArray[np.bool_]
+    slip_t: NDArray[np.float64]
+    slip_theta: NDArray[np.float64]
+    liftoff_reason: NDArray[np.uint8]
+    liftoff_t: NDArray[np.float64]
+    liftoff_theta: NDArray[np.float64]
+    flight_time: NDArray[np.float64]
+    apex: NDArray[np.float64]
+    distance: NDArray[np.float64]
+    landing: NDArray[np.uint8]
+    energy_lost: NDArray[np.float64]
+
+    __eq__ = fields_equal
+    __hash__ = None  # type: ignore[assignment]
+
+    @property
+    def valid(self) -> NDArray[np.bool_]:
+        """The points whose parameters are valid (status not 255)."""
+        return self.status != INVALID
+
+    def sequences(self) -> dict[str, int]:
+        """Each sequence of modes among the valid points, by name, with its count (most
+        frequent first)."""
+        codes, counts = np.unique(self.sequence[self.valid], return_counts=True)
+        order = np.argsort(-counts, kind="stable")
+        return {sequence_name(int(codes[i])): int(counts[i]) for i in order}
+
+    def as_dict(self) -> dict[str, NDArray[Any]]:
+        """The fields by name."""
+        return {f.name: getattr(self, f.name) for f in dataclasses.fields(self)}
+
+
+def motion_points(
+    alpha: ArrayLike,
+    chi: ArrayLike,
+    km: ArrayLike,
+    mu_s: ArrayLike,
+    *,
+    mu_k: ArrayLike | None = None,
+    restitution: ArrayLike = 0.0,
+    theta0: ArrayLike = 0.0,
+    omega0: ArrayLike = 0.0,
+    rule: Rule = "paper",
+    t_max: float = 100.0,
+    max_transitions: int = 100,
+    rtol: float = 1e-10,
+    atol: float = 1e-12,
+    max_steps: int = 1_000_000,
+    n_threads: int = 0,
+    integrator: Integrator = "RK45",
+) -> MotionPoints:
+    """The full motion, to the first landing, at each point (alpha, chi, km, mu_s, mu_k,
+    restitution, theta0, omega0), broadcasting the eight inputs.
+
+    Each point runs :func:`eccjump.simulate` to its first landing (or ``t_max``,
+    ``max_transitions``) and keeps the summary of a motion map; the points run in parallel
+    in the Rust core with the GIL released, their rolling and sliding segments side by side,
+    each exactly what ``simulate`` gives there, bit-identical for any ``n_threads``. The
+    point first, as :func:`eccjump.jarm` (``km`` is the body's k_m), then ``mu_s``, then
+    keyword-only options with :func:`eccjump.motion_map`'s names and defaults. A point whose
+    own values are invalid (k_m > 1 - chi, k_m = 0, mu_k > mu_s, a value out of range) has
+    status 255 and the fill values.
+
+    Parameters
+    ----------
+    alpha : array_like of float
+        Ramp angles [rad], in [0, pi/2].
+    chi : array_like of float
+        The bodies' d/R, in [0, 1].
+    km : array_like of float
+        The bodies' shell mass fraction k_m, in (0, 1 - chi].
+    mu_s : array_like of float
+        Static friction coefficients, in [0, inf).
+    mu_k : array_like of float or None, default None
+        Kinetic friction coefficients, in [0, mu_s]; None: mu_k = mu_s at every point.
+    restitution : array_like of float, default 0.0
+        Stronge's energetic coefficients of restitution, in [0, 1].
+    theta0 : array_like of float, default 0.0
+        Initial angles [rad], |theta0| <= 2 pi 1e6.
+    omega0 : array_like of float, default 0.0
+        Initial angular velocities [sqrt(g/R) rad], |omega0| <= 1e6.
+    rule : {"paper", "normal_force"}, default "paper"
+        Lift-off rule from rolling.
+    t_max : float, default 100.0
+        End time of each run [sqrt(R/g)], in (0, 1e6].
+    max_transitions : int, default 100
+        Transitions of each run after the start, 1 ... 10**6.
+    rtol : float, default 1e-10
+        Relative tolerance, in [1e-15, 1e-6].
+    atol : float, default 1e-12
+        Absolute tolerance, in [1e-300, 1e-6].
+    max_steps : int, default 1_000_000
+        Accepted steps of each run, 1 ... 10**7.
+    n_threads : int, default 0
+        Threads, 0 (one per core) ... 256; results are identical for any value.
+    integrator : {"RK45", "DOP853", "Vern9"}, default "RK45"
+        The Runge–Kutta pair. For speed pick ``"Vern9"`` or ``"DOP853"``; keep ``"RK45"``
+        for step-for-step parity with scipy.
+
+    Returns
+    -------
+    MotionPoints
+        One array per summary field, of the broadcast shape.
+
+    Raises
+    ------
+    ValueError
+        For a bad shared option (naming it and its range) or inputs that do not broadcast.
+    TypeError
+        If an argument has the wrong type.
+    MemoryError
+        If the result does not fit in memory.
+    KeyboardInterrupt
+        On Ctrl-C (the work stops within a second).
+
+    See Also
+    --------
+    motion_map : the same summaries over the product of axes.
+    simulate : one run, recorded in full.
+
+    Examples
+    --------
+    The paper's JARM point and its Fig. 3b body, which slips first:
+
+    >>> import numpy as np
+    >>> import eccjump
+    >>> p = eccjump.motion_points(np.radians([40, 30]), [0.15, 0.5], [0.02, 0.4], 1.0)
+    >>> p.jarm.tolist(), p.slipped_first.tolist()
+    ([True, False], [False, True])
+    >>> print(f"apex {p.apex[0]:.6f} R, distance {p.distance[1]:.5f} R")
+    apex 0.006696 R, distance 3.49484 R
+    """
+    named: dict[str, object] = {
+        "alpha": alpha,
+        "chi": chi,
+        "km": km,
+        "mu_s": mu_s,
+        "restitution": restitution,
+        "theta0": theta0,
+        "omega0": omega0,
+    }
+    if mu_k is not None:
+        named["mu_k"] = mu_k
+    opts = checked_motion_options(
+        rule=rule,
+        t_max=t_max,
+        max_transitions=max_transitions,
+        rtol=rtol,
+        atol=atol,
+        max_steps=max_steps,
+        integrator=integrator,
+        n_threads=n_threads,
+    )
+    shape, flat = broadcast_flat(**named)
+    points = flat[0].size
+    check_fits("motion_points", points, motion_bytes(points, len(flat)), "the inputs")
+    columns = dict(zip(named, flat, strict=True))
+    raw = _core.motion_points(
+        columns["alpha"],
+        columns["chi"],
+        columns["km"],
+        columns["mu_s"],
+        columns.get("mu_k", np.empty(0)),
+        columns["restitution"],
+        columns["theta0"],
+        columns["omega0"],
+        options=_core.MotionOptions(**opts),
+    )
+    return MotionPoints(**{k: raw[k].reshape(shape) for k in FIELDS})
+
+
+__all__ = ["MotionPoints", "motion_points"]

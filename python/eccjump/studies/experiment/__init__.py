@@ -1,0 +1,24 @@
+"""From a lab video to a verdict: read a tracked experiment (axle and marker), reconstruct
+theta, l, b in the ramp frame, detect and time slip, lift-off and landing, fit the model
+(``eccjump.simulate``) and say whether the body jumped straight out of pure rolling
+(the site's page "Analysing an experiment"). The fit needs scipy
+(``pip install eccjump[analysis]``).
+"""
+
+from eccjump.studies.experiment.analysis import VERDICTS, Analysis, analyze
+from eccjump.studies.experiment.reconstruct import Reconstruction, reconstruct
+from eccjump.studies.experiment.synthetic import SyntheticTrack, synthetic_track
+from eccjump.studies.experiment.track import Track, read_track, track_from_arrays
+
+__all__ = [
+    "VERDICTS",
+    "Analysis",
+    "Reconstruction",
+    "SyntheticTrack",
+    "Track",
+    "analyze",
+    "read_track",
+    "reconstruct",
+    "synthetic_track",
+    "track_from_arrays",
+]

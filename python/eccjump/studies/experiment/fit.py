@@ -1,0 +1,441 @@
+"""The model fitted to the track: ``eccjump.simulate`` from an unknown start, with unknown
+friction and restitution, by least squares on the tracked points (scipy's
+``least_squares``).
+
+Parameters (:data:`NAMES`): the start theta0 [rad] and omega0 [rad/s] at the first frame,
+mu_k, dmu = mu_s - mu_k >= 0 (so mu_k <= mu_s always holds), the restitution e, and two
+offsets of the ramp frame, l0 and n0 [m] (where the axle starts along the ramp, and the
+contact line's height: nuisance parameters); ``alpha`` too when the ramp angle was not
+given. Residuals: the model's C and M minus the tracked ones, both coordinates, divided by
+the noise level sigma, so the cost is half a chi-square and the covariance of the
+parameters is (J^T J)^-1 s^2 (s^2 the reduced chi-square) at the optimum. A direction the
+track does not constrain (mu_s above what the observed rolling needed, e when nothing lands)
+has a vanishing singular value: its interval is the parameter's whole range ("not
+identified").
+
+``jarm_only=True`` fits under the constraint that the body does not slip before its first
+lift-off: mu_s is raised to the largest friction ratio |F_x|/F_y the rolling from the fitted
+start needs up to the lift-off (``eccjump.jarm``'s max_ratio), the bound on mu_s that an
+observed rolling implies. Comparing the two fits tests a slip before the lift-off.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+from typing import Any
+
+import numpy as np
+from numpy.typing import NDArray
+
+from eccjump._base.body import Cylinder
+from eccjump.classification.classify import jarm
+from eccjump.motion.simulation import MotionResult, simulate
+from eccjump.studies.experiment.geometry import RampFrame, marker_offset
+from eccjump.studies.experiment.reconstruct import Reconstruction, derivative_weights
+from eccjump.studies.experiment.track import Track
+
+NAMES = ("theta0", "omega0", "mu_k", "dmu", "e", "l0", "n0", "alpha")
+UNITS = {"theta0": "rad", "omega0": "rad/s", "l0": "m", "n0": "m", "alpha": "rad"}
+#: The friction coefficients searched are below this.
+MU_MAX = 3.0
+#: Most transitions a fitted run may take (bounces after a landing).
+MAX_TRANSITIONS = 60
+#: Evaluations of one least-squares run, and of one point of a profile.
+MAX_NFEV, PROFILE_NFEV = 250, 60
+
+
+@dataclass(frozen=True)
+class Setup:
+    """What the fit knows: the body, the ramp (``alpha`` fixed unless ``fit_alpha``), the
+    radius R [m], g [m/s^2], the marker, the lift-off rule."""
+
+    body: Cylinder
+    alpha: float
+    radius: float
+    g: float
+    marker_radius: float
+    marker_angle: float
+    rule: str
+    fit_alpha: bool
+
+    @property
+    def time_unit(self) -> float:
+        return math.sqrt(self.radius / self.g)
+
+
+@dataclass(frozen=True, eq=False)
+class Fit:
+    """One least-squares fit: the parameters (SI, :data:`NAMES` order, those fitted), their
+    covariance, the cost (half the sum of squared normalised residuals), the degrees of
+    freedom, the fitted run (dimensionless, time 0 at the first frame) and its states at the
+    frames, and whether it was constrained to roll up to the lift-off."""
+
+    names: tuple[str, ...]
+    x: NDArray[np.float64]
+    cov: NDArray[np.float64]
+    lower: NDArray[np.float64]
+    upper: NDArray[np.float64]
+    cost: float
+    dof: int
+    run: MotionResult
+    states: NDArray[np.float64]
+    jarm_only: bool
+    mu_s_bound: float
+    nfev: int
+
+    def value(self, name: str) -> float:
+        return float(self.x[self.names.index(name)])
+
+    def error(self, name: str) -> float:
+        i = self.names.index(name)
+        return float(math.sqrt(max(self.cov[i, i], 0.0)))
+
+    def interval(self, name: str, z: float = 1.96) -> tuple[float, float]:
+        """The ~95 % interval of a parameter, within its range (the whole range when the
+        track does not constrain it)."""
+        i = self.names.index(name)
+        v, e = self.x[i], self.error(name)
+        if not math.isfinite(e) or e > self.upper[i] - self.lower[i]:
+            return float(self.lower[i]), float(self.upper[i])
+        return float(max(v - z * e, self.lower[i])), float(min(v + z * e, self.upper[i]))
+
+    @property
+    def chi2_reduced(self) -> float:
+        return 2.0 * self.cost / max(self.dof, 1)
+
+
+class Model:
+    """The residuals of a parameter vector against one reconstructed track."""
+
+    def __init__(self, setup: Setup, track: Track, rec: Reconstruction, *, jarm_only: bool):
+        self.setup, self.track, self.rec = setup, track, rec
+        self.jarm_only = jarm_only
+        self.names = NAMES if setup.fit_alpha else NAMES[:-1]
+        self.tau = (track.t - track.t[0]) / setup.time_unit
+        self.sigma = max(rec.sigma, 1e-12 * setup.radius)
+        frame = rec.line.frame
+        self.side, self.origin = frame.side, frame.origin
+        self.nfev = 0
+
+    def frame(self, alpha: float) -> RampFrame:
+        return RampFrame(alpha, self.side, self.origin)
+
+    def params(self, x: NDArray[np.float64]) -> dict[str, float]:
+        p = dict(zip(self.names, (float(v) for v in x), strict=True))
+        p.setdefault("alpha", self.setup.alpha)
+        return p
+
+    def simulate(self, p: dict[str, float], mu_s: float | None = None) -> MotionResult:
+        """The run of ``p`` over the track (dimensionless, dense)."""
+        s = self.setup
+        mu_k = p["mu_k"]
+        mu_s = mu_k + p["dmu"] if mu_s is None else mu_s
+        if self.jarm_only:
+            mu_s = max(mu_s, self.mu_bound(p) * (1 + 1e-9))
+        self.nfev += 1
+        return simulate(
+            s.body,
+            p["alpha"],
+            mu_s=mu_s,
+            mu_k=mu_k,
+            restitution=p["e"],
+            rule=s.rule,  # type: ignore[arg-type]
+            theta0=p["theta0"],
+            omega0=p["omega0"] * s.time_unit,
+            t_max=float(self.tau[-1]) + 1e-9,
+            max_transitions=MAX_TRANSITIONS,
+            dense_output=True,
+        )
+
+    def mu_bound(self, p: dict[str, float]) -> float:
+        """The friction the rolling from the start needs up to its lift-off (0 if none)."""
+        res = jarm(
+            p["alpha"],
+            self.setup.body.chi,
+            self.setup.body.km,
+            1e6,
+            rule=self.setup.rule,  # type: ignore[arg-type]
+            theta0=p["theta0"],
+            omega0=max(p["omega0"] * self.setup.time_unit, 0.0),
+            refine_extrema=True,
+            max_turns=20,
+            n_threads=1,
+        )
+        bound = float(np.asarray(res.max_ratio).reshape(-1)[0])
+        return bound if math.isfinite(bound) and bound > 0 else 0.0
+
+    def states(self, run: MotionResult) -> NDArray[np.float64]:
+        """(6, n) states at the frames; frames past the run's end hold its last state."""
+        assert run.sol is not None
+        return run.sol(np.minimum(self.tau, run.sol.t_max))
+
+    def residuals(self, x: NDArray[np.float64]) -> NDArray[np.float64]:
+        p = self.params(x)
+        try:
+            y = self.states(self.simulate(p))
+        except ValueError:  # a start the model refuses: far from the data
+            return np.full(4 * self.tau.size, 1e6)
+        return self.compare(p, y)
+
+    def compare(self, p: dict[str, float], y: NDArray[np.float64]) -> NDArray[np.float64]:
+        s = self.setup
+        frame = self.frame(p["alpha"])
+        qc_obs, qm_obs = frame.to_ramp(self.track.c), frame.to_ramp(self.track.m)
+        qc = np.column_stack([p["l0"] + s.radius * y[2], p["n0"] + s.radius * (y[4] - 1.0)])
+        qm = qc + marker_offset(y[0], s.marker_radius, s.marker_angle)
+        return np.concatenate([(qc - qc_obs).ravel(), (qm - qm_obs).ravel()]) / self.sigma
+
+    def bounds(self, guess: dict[str, float]) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
+        """The range of each parameter around the smoothed start ``guess``."""
+        r, th, om, al = self.setup.radius, guess["theta0"], guess["omega0"], guess["alpha"]
+        lo = {
+            "theta0": th - 1.5,
+            "omega0": 0.0,
+            "mu_k": 0.0,
+            "dmu": 0.0,
+            "e": 0.0,
+            "l0": -r,
+            "n0": -0.5 * r,
+            "alpha": max(al - 0.2, 0.0),
+        }
+        hi = {
+            "theta0": th + 1.5,
+            "omega0": max(3 * om, 50.0 / self.setup.time_unit),
+            "mu_k": MU_MAX,
+            "dmu": MU_MAX,
+            "e": 1.0,
+            "l0": r,
+            "n0": 0.5 * r,
+            "alpha": min(al + 0.2, math.pi / 2),
+        }
+        return np.array([lo[n] for n in self.names]), np.array([hi[n] for n in self.names])
+
+
+def start_guess(setup: Setup, rec: Reconstruction) -> dict[str, float]:
+    """theta0, omega0 and l0 from the smoothed track at its first frame."""
+    idx, w0 = derivative_weights(rec.t, rec.window, deriv=0)
+    _, w1 = derivative_weights(rec.t, rec.window, deriv=1)
+    return {
+        "theta0": float(w0[0] @ rec.theta[idx[0]]),
+        "omega0": float(max(w1[0] @ rec.theta[idx[0]], 0.0)),
+        "l0": float(w0[0] @ rec.l[idx[0]]),
+        "n0": 0.0,
+        "alpha": setup.alpha,
+    }
+
+
+def fit(
+    setup: Setup,
+    track: Track,
+    rec: Reconstruction,
+    *,
+    jarm_only: bool = False,
+    starts: list[dict[str, float]] | None = None,
+) -> Fit:
+    """The best of a few least-squares fits: from the smoothed start with two friction
+    guesses (the bound the rolling needs up to its lift-off, and 0.5), or from ``starts``
+    (each a dict of some of :data:`NAMES`, on top of that guess)."""
+    from scipy.optimize import least_squares  # the optional extra 'analysis'
+
+    model = Model(setup, track, rec, jarm_only=jarm_only)
+    guess = start_guess(setup, rec)
+    if starts is None:
+        bound = model.mu_bound(guess)
+        mus = sorted({round(m, 3) for m in (1.1 * bound, 0.5) if 0.02 < m < MU_MAX})
+        starts = [{"mu_k": 0.75 * m, "dmu": 0.25 * m, "e": 0.05} for m in mus]
+    best: Any = None
+    for s in starts:
+        x0 = np.array([(guess | s)[n] for n in model.names], dtype=float)
+        lo, hi = model.bounds(guess)
+        x0 = np.clip(x0, lo, hi)
+        res = least_squares(
+            model.residuals,
+            x0,
+            bounds=(lo, hi),
+            x_scale="jac",
+            diff_step=1e-6,
+            max_nfev=MAX_NFEV,
+            method="trf",
+        )
+        if best is None or res.cost < best[0].cost:
+            best = (res, lo, hi)
+    res, lo, hi = best
+    return _result(model, res, lo, hi)
+
+
+def profile(
+    best: Fit, setup: Setup, track: Track, rec: Reconstruction, name: str = "mu_k", n: int = 11
+) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
+    """The profile of the cost along one parameter: at each of ``n`` values over its range
+    the other parameters are refitted (from the best fit). A local (Jacobian) interval
+    misses a second minimum (e.g. a landing that a lower mu_k with some bounce explains as
+    well); the profile does not, within its grid."""
+    from scipy.optimize import least_squares
+
+    model = Model(setup, track, rec, jarm_only=best.jarm_only)
+    i = best.names.index(name)
+    others = [j for j in range(best.x.size) if j != i]
+    grid = np.unique(np.r_[np.linspace(best.lower[i], best.upper[i] / 2, n), best.x[i]])
+    starts = [best.x[others]]
+    if "e" in best.names and best.value("e") > 0.05:  # a bounce can mimic friction: try none
+        y = best.x.copy()
+        y[best.names.index("e")] = 0.0
+        starts.append(y[others])
+    costs = np.empty(grid.size)
+    for k, v in enumerate(grid):
+
+        def fun(y: NDArray[np.float64], v: float = float(v)) -> NDArray[np.float64]:
+            x = best.x.copy()
+            x[others] = y
+            x[i] = v
+            return model.residuals(x)
+
+        costs[k] = best.cost if v == best.x[i] else math.inf
+        for y0 in starts:
+            res = least_squares(
+                fun,
+                y0,
+                bounds=(best.lower[others], best.upper[others]),
+                x_scale="jac",
+                diff_step=1e-6,
+                max_nfev=PROFILE_NFEV,
+                method="trf",
+            )
+            costs[k] = min(costs[k], res.cost)
+    return grid, costs
+
+
+def profile_interval(
+    grid: NDArray[np.float64],
+    costs: NDArray[np.float64],
+    best: Fit,
+    name: str = "mu_k",
+    level: float = 3.84,
+) -> tuple[float, float]:
+    """The local ~95 % interval of ``name``, widened to every grid value of the profile
+    whose cost is within ``level`` / 2 (in units of the reduced chi-square) of the least,
+    plus one grid step beyond it (a second minimum narrower than a step can be missed)."""
+    lo, hi = best.interval(name)
+    s2 = max(best.chi2_reduced, 1e-12)
+    low = min(float(costs.min()), best.cost)
+    accepted = grid[2.0 * (costs - low) / s2 <= level]
+    far = accepted[(accepted < lo) | (accepted > hi)]
+    if far.size:
+        step = float(np.max(np.diff(grid))) if grid.size > 1 else 0.0
+        i = best.names.index(name)
+        lo = max(min(lo, float(far.min()) - step), float(best.lower[i]))
+        hi = min(max(hi, float(far.max()) + step), float(best.upper[i]))
+    return lo, hi
+
+
+def _result(model: Model, res: Any, lo: NDArray[np.float64], hi: NDArray[np.float64]) -> Fit:
+    m = res.fun.size
+    dof = max(m - res.x.size, 1)
+    s2 = max(2.0 * res.cost / dof, 1e-300)
+    J = res.jac
+    _, sv, vt = np.linalg.svd(J, full_matrices=False)
+    keep = sv > sv[0] * 1e-8 if sv.size and sv[0] > 0 else np.zeros_like(sv, dtype=bool)
+    inv = np.where(keep, 1.0 / np.where(keep, sv, 1.0) ** 2, 0.0)
+    cov = (vt.T * inv) @ vt * s2
+    # a direction with no singular value left gets an infinite variance
+    free = ~keep
+    if free.any():
+        lost = (np.abs(vt[free]) > 0.1).any(axis=0)
+        cov[lost, lost] = np.inf
+    p = model.params(res.x)
+    run = model.simulate(p)
+    bound = model.mu_bound(p)
+    return Fit(
+        names=model.names,
+        x=res.x,
+        cov=cov,
+        lower=lo,
+        upper=hi,
+        cost=float(res.cost),
+        dof=dof,
+        run=run,
+        states=model.states(run),
+        jarm_only=model.jarm_only,
+        mu_s_bound=bound,
+        nfev=model.nfev,
+    )
+
+
+def event_times(run: MotionResult, horizon: float) -> dict[str, float]:
+    """Key times of a run (dimensionless): the first lift-off, the first landing, and the
+    onset and end of the first slip before that lift-off (NaN when absent)."""
+    out = dict.fromkeys(("liftoff", "landing", "slip_onset", "slip_end"), math.nan)
+    trs = [tr for tr in run.transitions[1:] if tr.t <= horizon]
+    lift = next((tr.t for tr in trs if tr.to_mode == "FLIGHT"), math.nan)
+    out["liftoff"] = lift
+    if math.isfinite(lift):
+        out["landing"] = next((tr.t for tr in trs if tr.from_mode == "FLIGHT"), math.nan)
+    before = [tr for tr in trs if not tr.t > lift or math.isnan(lift)]
+    onset = next((tr for tr in before if tr.to_mode == "SLIP"), None)
+    if onset is not None:
+        out["slip_onset"] = onset.t
+        out["slip_end"] = next(
+            (tr.t for tr in before if tr.t > onset.t and tr.from_mode == "SLIP"), lift
+        )
+    return out
+
+
+def slip_intervals(run: MotionResult, until: float) -> list[tuple[float, float]]:
+    """(start, end) of every slip of the run before ``until`` (dimensionless); a reversal
+    continues the slip."""
+    out: list[tuple[float, float]] = []
+    for seg in run.segments:
+        if seg.mode == "SLIP" and seg.t_start < until:
+            end = min(seg.t_end, until)
+            if out and seg.t_start <= out[-1][1]:
+                out[-1] = (out[-1][0], end)
+            else:
+                out.append((seg.t_start, end))
+    return out
+
+
+def rolling_needs(run: MotionResult, until: float) -> float:
+    """The largest friction ratio |F_x|/F_y of the run's rolling before ``until``: the
+    lower bound on mu_s that the rolling implies (0 without rolling)."""
+    rows = (np.asarray(run.mode) == 0) & (np.asarray(run.t) <= until) & (np.asarray(run.Fy) > 0)
+    if not rows.any():
+        return 0.0
+    return float(np.max(np.abs(run.Fx[rows]) / run.Fy[rows]))
+
+
+def time_errors(
+    model_fit: Fit, setup: Setup, track: Track, rec: Reconstruction
+) -> dict[str, float]:
+    """Standard errors [s] of the key times of the fitted run, from their derivatives with
+    respect to the parameters (central differences) and the covariance."""
+    model = Model(setup, track, rec, jarm_only=model_fit.jarm_only)
+    horizon = float(model.tau[-1])
+    base = event_times(model_fit.run, horizon)
+    grads = {k: np.zeros(model_fit.x.size) for k in base}
+    for i in range(model_fit.x.size):
+        err = math.sqrt(model_fit.cov[i, i]) if math.isfinite(model_fit.cov[i, i]) else math.nan
+        if not (math.isfinite(err) and err > 0):
+            continue
+        h = 0.1 * err
+        x_hi, x_lo = model_fit.x.copy(), model_fit.x.copy()
+        x_hi[i] = min(x_hi[i] + h, model_fit.upper[i])
+        x_lo[i] = max(x_lo[i] - h, model_fit.lower[i])
+        if x_hi[i] == x_lo[i]:
+            continue
+        try:
+            up = event_times(model.simulate(model.params(x_hi)), horizon)
+            dn = event_times(model.simulate(model.params(x_lo)), horizon)
+        except ValueError:
+            continue
+        for k in base:
+            grads[k][i] = (up[k] - dn[k]) / (x_hi[i] - x_lo[i])
+    cov = np.where(np.isfinite(model_fit.cov), model_fit.cov, 0.0)
+    unit = setup.time_unit
+    out = {}
+    for k, g in grads.items():
+        g = np.where(np.isfinite(g), g, 0.0)
+        out[k] = (
+            unit * math.sqrt(max(float(g @ cov @ g), 0.0)) if math.isfinite(base[k]) else math.nan
+        )
+    return out

@@ -1,0 +1,75 @@
+"""The ranges of what ``eccjump.analyze`` takes: one table (:data:`BOUNDS`), checked by
+:func:`in_range` in Python and by the parser of ``eccjump analyze`` (with its option names
+and degrees), and the bounds on a track and its marker (the site's page "Limits").
+
+Why these ranges: they hold every lab experiment (a body from a tenth of a millimetre to ten
+metres, filmed at up to ten million frames per second) and keep the model's own inputs --
+the duration in units of sqrt(R/g), the start angle, squares of the noise -- finite and
+inside the core's bounds, so that no message ever names a quantity the user did not give.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+from eccjump._base.checks import real, short
+
+
+@dataclass(frozen=True)
+class Bound:
+    """[lo, hi] in ``unit`` (radians for an angle, which the command line takes in degrees),
+    its option on the command line, and a hint for the message."""
+
+    lo: float
+    hi: float
+    unit: str
+    option: str
+    hint: str = ""
+
+    @property
+    def degrees(self) -> bool:
+        return self.unit == "rad"
+
+
+#: The range of every real parameter of analyze that does not depend on another (chi and km:
+#: ``Cylinder``; marker_radius: :data:`MARKER_IN_R`).
+BOUNDS = {
+    "radius": Bound(1e-4, 10.0, "m", "--radius"),
+    "scale": Bound(1.0, 1e9, "px/m", "--scale"),
+    "g": Bound(0.01, 100.0, "m/s^2", "--g"),
+    "alpha": Bound(0.0, math.pi / 2, "rad", "--alpha", " (math.radians for degrees)"),
+    "marker_angle": Bound(
+        -2 * math.pi, 2 * math.pi, "rad", "--marker-angle", " (math.radians for degrees)"
+    ),
+}
+#: The marker's distance from the axle, given (marker_radius) or tracked, in units of R: a
+#: point of the body, and not so close to the axle that theta drowns in the noise.
+MARKER_IN_R = (1e-3, 2.0)
+#: The largest coordinate of a track [m] (after ``scale``): a lab, not a planet.
+MAX_POSITION = 1e6
+#: The longest track [s] and the shortest median frame interval [s] (10 million fps). A
+#: track's duration in sqrt(R/g) then stays below the model's bound on t_max (10^6).
+MAX_SECONDS = 1e3
+MIN_FRAME_INTERVAL = 1e-7
+
+
+def in_range(name: str, value: object, given: str = "") -> float:
+    """``value`` as a float within BOUNDS[name]; ValueError naming ``name``, its unit and the
+    range (``given`` says where a value came from, e.g. " (from design)")."""
+    b = BOUNDS[name]
+    v = real(name, value)
+    if not b.lo <= v <= b.hi:  # NaN too
+        raise ValueError(
+            f"{name} = {short(v)} {b.unit}{given} is outside the allowed range "
+            f"[{b.lo:.6g}, {b.hi:.6g}] {b.unit}{b.hint if not given else ''}"
+        )
+    return v
+
+
+def cli_range(name: str) -> tuple[float, float, str]:
+    """(lo, hi, unit) of BOUNDS[name] on the command line (angles in degrees)."""
+    b = BOUNDS[name]
+    if b.degrees:
+        return math.degrees(b.lo), math.degrees(b.hi), "deg"
+    return b.lo, b.hi, b.unit

@@ -1,0 +1,15 @@
+"""How sure is a jump? Monte Carlo and quasi-Monte Carlo studies of the JARM and of the
+first flight under tolerances on the body, the ramp, the friction and the start.
+
+- :mod:`.sampling`: which parameters vary and how, the unit-cube points and their inverse
+  CDFs, the physical ranges;
+- :mod:`.questions`: each sample's answer (the JARM classification or the full motion);
+- :mod:`.results`: :class:`Uncertainty` and the Wilson interval;
+- :mod:`.delta`: the place of the first-order (delta-method) estimate;
+- :mod:`.study`: :func:`uncertainty`, which ties them together.
+"""
+
+from eccjump.studies.uncertainty.results import Summary, Uncertainty, wilson
+from eccjump.studies.uncertainty.study import uncertainty
+
+__all__ = ["Summary", "Uncertainty", "uncertainty", "wilson"]

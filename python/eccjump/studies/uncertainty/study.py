@@ -1,0 +1,271 @@
+"""``eccjump.uncertainty``: how sure is a jump when the body, the ramp and the friction are
+known only within tolerances? A Monte Carlo (or quasi-Monte Carlo) study over the
+samples of :mod:`.sampling`, each answered by :mod:`.questions`."""
+
+from __future__ import annotations
+
+from typing import Literal
+
+import numpy as np
+
+from eccjump._base.body import Cylinder
+from eccjump._base.checks import Integrator, Rule, optional_real, real, rule_name, text
+from eccjump._base.sizes import check_fits, uncertainty_bytes
+from eccjump.motion.simulation import checked_motion_options
+from eccjump.studies.uncertainty.delta import delta_method
+from eccjump.studies.uncertainty.questions import Progress, evaluate, jumps, outcome_counts, ran
+from eccjump.studies.uncertainty.results import (
+    QUANTITIES,
+    Summary,
+    Uncertainty,
+    check_confidence,
+    wilson,
+)
+from eccjump.studies.uncertainty.sampling import (
+    PARAMETERS,
+    Invalid,
+    Sampling,
+    draw,
+    options,
+    spread,
+)
+
+#: The parameters the JARM question can vary: :func:`eccjump.jarm` takes one start (theta0,
+#: omega0) for all its points, and neither mu_k nor e enters the classification.
+JARM_PARAMETERS = ("chi", "km", "alpha", "mu_s")
+
+Question = Literal["jarm", "motion"]
+
+
+def uncertainty(
+    body: Cylinder,
+    alpha: float,
+    mu_s: float,
+    *,
+    mu_k: float | None = None,
+    restitution: float = 0.0,
+    theta0: float = 0.0,
+    omega0: float = 0.0,
+    sd: dict[str, float] | None = None,
+    bounds: dict[str, tuple[float, float]] | None = None,
+    n: int = 10_000,
+    seed: int = 0,
+    sampling: Sampling = "random",
+    question: Question = "jarm",
+    invalid: Invalid = "truncate",
+    confidence: float = 0.95,
+    rule: Rule = "paper",
+    t_max: float = 100.0,
+    max_transitions: int = 100,
+    rtol: float = 1e-10,
+    atol: float = 1e-12,
+    integrator: Integrator = "RK45",
+    n_threads: int = 0,
+    progress: Progress | None = None,
+) -> Uncertainty:
+    """The probability of a JARM, of each outcome, and the spread of the lift-off and the
+    first flight, when the inputs vary within tolerances.
+
+    The nominal point is ``body`` on a ramp of angle ``alpha`` with friction ``mu_s`` (and
+    ``mu_k``, ``restitution``, the start ``theta0``, ``omega0``); ``sd`` gives normal
+    standard deviations and ``bounds`` uniform ranges (lo, hi), by parameter name among
+    chi, km (the body's k_m), alpha, mu_s, mu_k, restitution, theta0 and omega0. ``n``
+    samples are drawn (pseudo-random, or scrambled Sobol' with ``sampling="sobol"``) and
+    each is classified by :func:`eccjump.jarm` (``question="jarm"``, the closed form) or run
+    to its first landing by :func:`eccjump.motion_points` (``question="motion"``).
+
+    The argument order is :func:`eccjump.simulate`'s -- the body, then the ramp, then
+    ``mu_s`` -- with ``mu_s`` positional as in :func:`eccjump.jarm`,
+    :func:`eccjump.motion_map` and :func:`eccjump.design` (``mu_s=`` works too); every
+    option is keyword-only, named and defaulted as in ``simulate`` and ``motion_map``.
+
+    Samples outside the physical range (chi outside [0, 1], k_m > 1 - chi, mu < 0,
+    mu_k > mu_s, e outside [0, 1], alpha outside [0, pi/2]) follow ``invalid``:
+    ``"truncate"`` (default) conditions each distribution on its range by the inverse CDF of
+    the truncated distribution (k_m's range is that of the sample's own chi, mu_k's that of
+    its mu_s): no sample is redrawn, so the result is the same for any thread count and the
+    Sobol' structure is kept; ``"count"`` keeps the distributions as given and counts the
+    samples outside as invalid. Invalid samples count in no probability; ``n_valid`` and
+    ``p_invalid`` report them. The samples, and so every result, are bit-identical for any
+    ``n_threads``.
+
+    Parameters
+    ----------
+    body : Cylinder
+        The nominal body (chi, km).
+    alpha : float
+        Nominal ramp angle [rad], in [0, pi/2].
+    mu_s : float
+        Nominal static friction coefficient, in [0, inf).
+    mu_k : float or None, default None
+        Nominal kinetic friction coefficient, in [0, mu_s]; None: each sample's mu_k is its
+        mu_s (if mu_k varies, around the nominal mu_s).
+    restitution : float, default 0.0
+        Nominal Stronge coefficient of restitution, in [0, 1].
+    theta0 : float, default 0.0
+        Nominal initial angle [rad].
+    omega0 : float, default 0.0
+        Nominal initial angular velocity [sqrt(g/R) rad].
+    sd : dict of str to float or None, default None
+        Normal standard deviations (>= 0, in the parameter's unit) by parameter name; 0:
+        the parameter is fixed.
+    bounds : dict of str to (float, float) or None, default None
+        Uniform ranges (lo <= hi, absolute values in the parameter's unit) by parameter
+        name. A parameter is in ``sd`` or in ``bounds``, not both.
+    n : int, default 10_000
+        Samples, 1 ... 10**8.
+    seed : int, default 0
+        Seed of numpy's PCG64 stream or of the Sobol' scrambling, >= 0.
+    sampling : {"random", "sobol"}, default "random"
+        Pseudo-random points, or the first n points of Owen-scrambled Sobol'
+        (``scipy.stats.qmc.Sobol``; best for n a power of 2; normals by the inverse CDF).
+    question : {"jarm", "motion"}, default "jarm"
+        ``"jarm"``: the JARM classification by the closed forms (10**5 samples take well
+        under a second; it can vary chi, km, alpha and mu_s); ``"motion"``: the full motion
+        to the first landing (every parameter; the sequences of modes, the first flight).
+    invalid : {"truncate", "count"}, default "truncate"
+        How samples outside the physical range are treated (see above).
+    confidence : float, default 0.95
+        Level of the Wilson intervals, in (0, 1 - 1e-15] (closer to 1 the two-sided normal
+        quantile is infinite in floating point).
+    rule : {"paper", "normal_force"}, default "paper"
+        Lift-off rule from rolling.
+    t_max, max_transitions, rtol, atol, integrator
+        The full motion's options (``question="motion"``), as in :func:`eccjump.motion_map`.
+    n_threads : int, default 0
+        Threads, 0 (one per core) ... 256; results are identical for any value.
+    progress : callable or None, default None
+        Called as ``progress(done, total)`` after each chunk of valid samples (anything
+        else is a TypeError before any work).
+
+    Returns
+    -------
+    Uncertainty
+        ``p_jarm`` with its Wilson interval ``p_jarm_ci`` (for Sobol' samples the random
+        sampling interval: conservative), ``counts``/``probabilities`` of each outcome, the
+        ``distributions`` of the lift-off angle (and, for "motion", its time, the flight
+        time, apex and distance), the samples and outcomes, and ``delta``, the first-order
+        estimate from the exact derivatives at the nominal point (question "jarm").
+
+    Raises
+    ------
+    ValueError
+        For an unknown parameter name, a negative or non-finite sd, bounds with lo > hi, a
+        parameter varied that the question does not use, n < 1, a nominal value outside
+        its range, or no valid sample at all; the message names the parameter with its
+        unit and range.
+    TypeError
+        If ``body`` is not a Cylinder or an argument has the wrong type.
+    ImportError
+        Without scipy (``pip install "eccjump[analysis]"``).
+
+    See Also
+    --------
+    jarm : the classification of one point.
+    motion_points : the full motion at given points.
+    design : the most robust body and angle.
+
+    Examples
+    --------
+    The paper's JARM point with a 1 degree tolerance on the ramp and 0.01 on chi:
+
+    >>> import math
+    >>> import eccjump
+    >>> body = eccjump.Cylinder(chi=0.15, km=0.02)
+    >>> u = eccjump.uncertainty(
+    ...     body, math.radians(40), 1.0, sd={"alpha": math.radians(1), "chi": 0.01}, n=4096
+    ... )
+    >>> print(f"P(JARM) = {u.p_jarm:.3f}, 95 % [{u.p_jarm_ci[0]:.3f}, {u.p_jarm_ci[1]:.3f}]")
+    P(JARM) = 0.978, 95 % [0.973, 0.982]
+    """
+    if not isinstance(body, Cylinder):
+        raise TypeError(f"body must be a Cylinder, not {type(body).__name__}")
+    alpha_, mu_s_ = real("alpha", alpha), real("mu_s", mu_s)
+    mu_k_ = optional_real("mu_k", mu_k)
+    nominal = {
+        "chi": body.chi,
+        "km": body.km,
+        "alpha": alpha_,
+        "mu_s": mu_s_,
+        "mu_k": mu_s_ if mu_k_ is None else mu_k_,
+        "restitution": real("restitution", restitution),
+        "theta0": real("theta0", theta0),
+        "omega0": real("omega0", omega0),
+    }
+    q = text("question", question)
+    if q not in ("jarm", "motion"):
+        raise ValueError(f"question must be 'jarm' or 'motion', not {q!r}"[:200])
+    allowed = JARM_PARAMETERS if q == "jarm" else PARAMETERS
+    spec = spread(nominal, sd, bounds, allowed, mu_k_follows=mu_k_ is None)
+    size, seed_, how, policy = options(n, seed, sampling, invalid)
+    level = check_confidence(confidence)
+    if progress is not None and not callable(progress):
+        raise TypeError(f"progress must be None or a callable, not {type(progress).__name__}")
+    opts = _question_options(q, rule, t_max, max_transitions, rtol, atol, integrator, n_threads)
+    need = uncertainty_bytes(size, q, len(spec.varied))
+    check_fits("uncertainty", size, need, "n", "samples")
+    cols, valid = draw(spec, size, seed_, how, policy)
+    outcomes = evaluate(q, cols, valid, opts, progress)
+    valid &= ran(q, outcomes)  # k_m = 0 has no full motion (simulate needs k_m > 0)
+    n_valid = int(valid.sum())
+    if n_valid == 0:  # no probability to give: an error, not NaN
+        raise ValueError(
+            "sd, bounds: no sample lies in the physical range (chi in [0, 1], km <= 1 - chi, "
+            "mu_k <= mu_s, ...); narrow them or use invalid='truncate'"
+        )
+    k = int(jumps(q, outcomes)[valid].sum())
+    return Uncertainty(
+        question=q,
+        sampling=how,
+        invalid=policy,
+        n=size,
+        seed=seed_,
+        confidence=level,
+        nominal=nominal,
+        sd=spec.sd,
+        bounds=spec.bounds,
+        samples={p: cols[p] for p in spec.varied},
+        valid=valid,
+        outcomes=outcomes,
+        n_valid=n_valid,
+        p_jarm=k / n_valid,
+        p_jarm_ci=wilson(k, n_valid, level),
+        counts=outcome_counts(q, outcomes, valid),
+        distributions={
+            name: Summary.of(np.where(valid, outcomes[name], np.nan))
+            for name in QUANTITIES
+            if name in outcomes
+        },
+        delta=delta_method(spec, q, rule_name(rule), opts),
+    )
+
+
+def _question_options(
+    question: str,
+    rule: object,
+    t_max: object,
+    max_transitions: object,
+    rtol: object,
+    atol: object,
+    integrator: object,
+    n_threads: object,
+) -> dict[str, object]:
+    """The keyword options of the question's function. The full motion's options are checked
+    whatever the question (by the one path of every entry point of the full motion), so that
+    a bad one is an error even where the closed form does not use it."""
+    opts = checked_motion_options(
+        rule=rule,
+        t_max=t_max,
+        max_transitions=max_transitions,
+        rtol=rtol,
+        atol=atol,
+        max_steps=1_000_000,  # motion_map's default
+        integrator=integrator,
+        n_threads=n_threads,
+    )
+    if question == "jarm":
+        return {"rule": opts["rule"], "n_threads": opts["n_threads"]}
+    return opts
+
+
+__all__ = ["JARM_PARAMETERS", "Question", "uncertainty"]
