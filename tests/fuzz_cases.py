@@ -220,6 +220,16 @@ def wrong(d: Drawer, case: Case) -> Any:
     return d.choice(WRONG)
 
 
+def real_or_none(d: Drawer, case: Case, lo: float, hi: float) -> Any:
+    """:func:`real` for a parameter whose default is None (mu_k, alpha, marker_radius): a
+    drawn None is a valid value there, not a wrong type."""
+    before = case.must_raise
+    x = real(d, case, lo, hi)
+    if x is None:
+        case.must_raise = before
+    return x
+
+
 def real(d: Drawer, case: Case, lo: float, hi: float, *, bad: bool = True) -> Any:
     """A scalar: mostly inside [lo, hi], its ends and one ulp past them, specials, numpy
     scalars, ints, huge ints, and (if ``bad``) a wrong type."""
@@ -758,7 +768,7 @@ def case_simulate(d: Drawer) -> Case:
         "sensitivities": flag(d, c),
     }
     if d.integer(0, 2) == 0:
-        c.kwargs["mu_k"] = real(d, c, 0.0, 3.0)
+        c.kwargs["mu_k"] = real_or_none(d, c, 0.0, 3.0)
     return c
 
 
@@ -812,7 +822,9 @@ def case_motion_map(d: Drawer) -> Case:
         "integrator": text_param(d, c, INTEGRATORS),
     }
     if d.integer(0, 2) == 0:
-        c.kwargs["mu_k"] = d.pick(lambda: real(d, c, 0.0, 3.0), lambda: _axis(d, c, 0.0, 3.0), None)
+        c.kwargs["mu_k"] = d.pick(
+            lambda: real_or_none(d, c, 0.0, 3.0), lambda: _axis(d, c, 0.0, 3.0), None
+        )
     return c
 
 
@@ -1153,6 +1165,8 @@ def case_store(d: Drawer) -> Case:
         )
         c.must_raise = path not in (good, str(good))
         c.args = (path,)
+        if isinstance(path, str | Path):  # a damaged file's error names the file
+            c.params = ("path", Path(path).name)
     return c
 
 
@@ -1473,7 +1487,7 @@ def case_explore(d: Drawer) -> Case:
     c = Case("explore", eccjump.explore, params=EXPLORE_PARAMS, check=check_explore)
     c.kwargs = {k: real(d, c, lo, hi) for k, lo, hi in EXPLORE_RANGES if d.integer(0, 2)}
     if d.integer(0, 2) == 0:
-        c.kwargs["mu_k"] = None if d.integer(0, 1) else real(d, c, 0.0, 3.0)
+        c.kwargs["mu_k"] = None if d.integer(0, 1) else real_or_none(d, c, 0.0, 3.0)
     if d.integer(0, 2) == 0:
         c.kwargs["rule"] = text_param(d, c, ("paper", "normal_force"))
     return c
@@ -1985,12 +1999,12 @@ def case_analyze(d: Drawer) -> Case:
         "radius": 0.05 if d.integer(0, 2) else real(d, c, 1e-4, 10.0),
         "chi": 0.1 if d.integer(0, 2) else real(d, c, 0.0, 1.0),
         "km": 0.3 if d.integer(0, 2) else real(d, c, 0.0, 1.0),
-        "alpha": d.pick(None, 0.2, lambda: real(d, c, 0.0, HALF_PI)),
+        "alpha": d.pick(None, 0.2, lambda: real_or_none(d, c, 0.0, HALF_PI)),
         "marker_angle": 0.0 if d.integer(0, 2) else real(d, c, -2 * math.pi, 2 * math.pi),
         "profile_mu_k": False if d.integer(0, 5) else flag(d, c),
     }
     if d.integer(0, 4) == 0:
-        c.kwargs["marker_radius"] = real(d, c, 0.0, 0.2)
+        c.kwargs["marker_radius"] = real_or_none(d, c, 0.0, 0.2)
     if d.integer(0, 5) == 0:
         c.kwargs["g"] = real(d, c, 0.01, 100.0)
     if d.integer(0, 5) == 0:

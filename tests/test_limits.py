@@ -362,3 +362,28 @@ def test_the_command_line_refuses_bad_options_in_one_line(tmp_path, argv, name):
     assert p.returncode == 2 and len(lines) == 1, (p.returncode, p.stderr)
     assert lines[0].startswith("eccjump: error:") and name in lines[0], lines[0]
     assert p.stdout == "" and list(tmp_path.iterdir()) == []
+
+
+def test_a_body_with_next_to_no_inertia_about_its_centre_of_mass_is_refused_by_the_full_motion():
+    # Issue 46's campaign: at k_m = 1e-100 an impact "lost" -1e168 (energy gained): the
+    # impact law's 1/I_CM loses every digit. simulate refuses I_CM < 1e-10, a map marks it.
+    with pytest.raises(ValueError, match=r"^km = .*I_CM >= 1e-10") as info:
+        eccjump.simulate(eccjump.Cylinder(0.804, 1e-100), 0.6, mu_s=2.5, omega0=-2.6)
+    assert len(str(info.value)) <= 200
+    m = eccjump.motion_map(alpha=[0.6], chi=[0.804], km_frac=[1e-300, 1e-6], mu_s=[2.586])
+    assert m.fields["status"].ravel().tolist()[0] == 255  # invalid point
+    assert np.isfinite(m.fields["energy_lost"].ravel()[1])
+
+
+def test_a_design_at_the_rim_of_the_body_range_keeps_its_odds():
+    # Issue 46's campaign: a rod at the rim gives chi = 1 - km to an ulp above 1 - chi, which
+    # the core's Cylinder accepts; the tolerance sampling refused it ("km = 0.1425 is
+    # outside [0, 0.1425]").
+    from eccjump.studies.uncertainty.sampling import check_nominal
+
+    km = 0.1425
+    chi = 1.0 * (1.0 - km)
+    assert km > 1.0 - chi
+    eccjump.Cylinder(chi, km)
+    nominal = dict(chi=chi, km=km, alpha=0.7, mu_s=0.74, mu_k=0.74, restitution=0.0)
+    check_nominal({**nominal, "theta0": 0.0, "omega0": 0.0})

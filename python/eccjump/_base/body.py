@@ -19,6 +19,10 @@ from eccjump import _core
 from eccjump._base.checks import real
 from eccjump._base.html import card
 
+#: How far k_m may pass 1 - chi and still be a body: the core's slack for the rounding of
+#: 1 - chi (a rod at the rim, chi = 1 - k_m computed, gives k_m an ulp above it).
+KM_ROUNDING = 4.0 * 2.0**-52
+
 
 @dataclass(frozen=True, slots=True)
 class Cylinder:

@@ -27,6 +27,7 @@ from typing import Any, Literal
 import numpy as np
 from numpy.typing import NDArray
 
+from eccjump._base.body import KM_ROUNDING
 from eccjump._base.checks import integer, mapping, real, short, text
 
 #: The parameters that may vary, in the order of the cube's columns: k_m after chi and mu_k
@@ -136,7 +137,7 @@ def _bounds(value: object, allowed: tuple[str, ...]) -> dict[str, tuple[float, f
 
 def check_nominal(nominal: Mapping[str, float]) -> None:
     """ValueError naming the first nominal value outside its physical range."""
-    upper = {"km": 1.0 - nominal["chi"], "mu_k": nominal["mu_s"]}
+    upper = {"km": 1.0 - nominal["chi"] + KM_ROUNDING, "mu_k": nominal["mu_s"]}
     for p in PARAMETERS:
         lo, hi = RANGES[p][0], upper.get(p, RANGES[p][1])
         x = nominal[p]
@@ -259,7 +260,7 @@ def draw(
 def _in_range(cols: Mapping[str, NDArray[np.float64]]) -> NDArray[np.bool_]:
     """The samples whose every value lies in its physical range (NaN never does)."""
     ok = np.ones(cols["chi"].size, dtype=bool)
-    upper = {"km": 1.0 - cols["chi"], "mu_k": cols["mu_s"]}
+    upper = {"km": 1.0 - cols["chi"] + KM_ROUNDING, "mu_k": cols["mu_s"]}
     for p in PARAMETERS:
         lo, hi = RANGES[p][0], upper.get(p, RANGES[p][1])
         ok &= (cols[p] >= lo) & (cols[p] <= hi)

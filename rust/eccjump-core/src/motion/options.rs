@@ -37,6 +37,13 @@ pub const PARAMETERS: [&str; 8] = [
 /// 7e-5 and 4e-9 at 1e-6 (`docs/limits.md`).
 pub const MAX_MOTION_TOL: f64 = 1e-6;
 
+/// The smallest inertia about the centre of mass Ĩ_CM = I_CM/(M R²) of a full-motion run. The
+/// impact law's inverse effective mass carries 1/Ĩ_CM: at Ĩ_CM ≈ 1e-100 an impact "lost"
+/// −1e168 (energy gained, found by the fuzz campaign of issue 46), while random runs at
+/// k_m = 1e-8 and 1e-10 keep the ledger to 1e-9. Ĩ_CM = 0 (k_m = 0) leaves the spin in flight
+/// undetermined.
+pub const MIN_ICM: f64 = 1e-10;
+
 /// max_transitions ≤ this.
 pub const MAX_TRANSITIONS: usize = 1_000_000;
 

@@ -13,7 +13,7 @@ use crate::modes::rolling::run::{roll_until, ContactEvent, RollOptions, RollRun,
 use crate::modes::slipping::F_SWITCH;
 use crate::modes::slipping::{SlipEvent, Slipping};
 use crate::motion::landing::land;
-use crate::motion::options::{SimOptions, MAX_ANGLE_STEP};
+use crate::motion::options::{SimOptions, MAX_ANGLE_STEP, MIN_ICM};
 use crate::motion::record::{
     Crossing, FlightRecord, ImpactRecord, MotionRun, MotionStatus, Point, Segment, Transition,
 };
@@ -305,9 +305,9 @@ impl<'a> Sim<'a> {
 /// The checks of a run's options and its start: the state and what comes first.
 fn opening(ramp: &Ramp, opts: &SimOptions) -> Result<(BodyState, Next)> {
     opts.validate()?;
-    if ramp.body.icm.is_nan() || ramp.body.icm <= 0.0 {
-        let allowed = "(0, 1 - chi] for simulate: with km = 0 all the mass is at the centre of \
-                       mass and the spin in flight is undetermined";
+    if ramp.body.icm.is_nan() || ramp.body.icm < MIN_ICM {
+        let allowed = "(0, 1 - chi] with I_CM >= 1e-10 for simulate: at km = 0 all the mass is at \
+                       the centre of mass, and below it the impact law loses every digit";
         return Err(Error::invalid("km", ramp.body.km, allowed));
     }
     let start = BodyState::in_contact(opts.theta0, opts.omega0, 0.0, opts.omega0 + opts.slip0);
