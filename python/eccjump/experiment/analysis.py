@@ -1,18 +1,21 @@
 """``eccjump.analyze``: a tracked experiment in, a verdict with its evidence out.
 
-Verdicts:
+First the goodness of fit: a reduced chi-square improbable under the model (p below
+:data:`MISFIT_P` by ``fit.misfit_p``) gives ``undetermined`` (``model``) whatever else the
+track shows. Then the verdicts:
 
 * ``jarm``: the body left the ramp straight from pure rolling -- the fitted model rolls up
   to its lift-off (or slips for less than one frame, and a fit that forbids any slip before
   the lift-off is as good), and the track shows the flight beyond its noise;
-* ``slip_first``: it slipped from t1 to t2 before lifting off -- the fitted model slips for
-  at least one frame before its lift-off, and the fit that forbids it is worse by a
-  chi-square of at least :data:`SIGNIFICANT` (3 standard errors);
-* ``undetermined``, with the reason: ``no_liftoff`` (the track never leaves the ramp),
-  ``noise`` (the flight, or the slip, is within the noise), ``frame_rate`` (a slip shorter
-  than :data:`MIN_SLIP_FRAMES` frames that the data cannot confirm), ``short_track`` (no
-  rolling before the lift-off to judge it by) or ``model`` (the track flies where the fitted
-  model does not: check the inputs).
+* ``slip_first``: it slipped before lifting off -- the fitted model slips for at least one
+  frame in all (every episode: slip, stick, slip again, reversals), and the fit that
+  forbids it is worse by a chi-square of at least :data:`SIGNIFICANT` (3 standard errors);
+  a slip the data ask for is never ``jarm``;
+* ``undetermined``, with the reason: ``model`` (the gate, or the track flies where the
+  fitted model does not), ``no_liftoff`` (the track never leaves the ramp), ``noise`` (the
+  flight, or a slip of 3 frames or more, is within the noise), ``frame_rate`` (a slip
+  shorter than :data:`MIN_SLIP_FRAMES` frames that the data cannot confirm, or one they ask
+  for that is shorter than a frame) or ``short_track`` (no rolling before the lift-off).
 """
 
 from __future__ import annotations
