@@ -89,14 +89,15 @@ def test_an_angle_in_the_wrong_unit_fails_the_gate_with_a_note(capsys):
 
 def test_a_rolled_camera_is_named_and_never_confidently_wrong():
     """A camera rolled by 3 degrees: the contact path disagrees with alpha (a note), and the
-    verdict is not `jarm` for a slip (nor `slip_first` for a JARM body)."""
+    verdict is `undetermined (model)` (the campaign's seed 0 had one such slip called `jarm`
+    with chi2_red 1.08 before the contact path was part of the gate)."""
     base = rt.draw("slip", 3, fps=240.0, noise=0.5)
     case, _ = rt.systematic(base, "roll", 1)
     made, res = _analyze(case)
     assert any(n.startswith("alpha: the axle's contact path runs at") for n in res.notes)
-    assert made.slip_frames >= 1 and res.verdict != "jarm"
-    if res.reason == "model":
-        assert res.fit.chi2_reduced > 1
+    assert made.slip_frames >= 1
+    assert (res.verdict, res.reason) == ("undetermined", "model")
+    assert res.evidence[0].startswith("alpha: the axle's contact path runs at")
 
 
 def test_parameters_the_track_does_not_determine_print_as_bounds(capsys):

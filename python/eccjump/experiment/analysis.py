@@ -1,8 +1,9 @@
 """``eccjump.analyze``: a tracked experiment in, a verdict with its evidence out.
 
 First the goodness of fit: a reduced chi-square improbable under the model (p below
-:data:`MISFIT_P` by ``fit.misfit_p``) gives ``undetermined`` (``model``) whatever else the
-track shows. Then the verdicts:
+:data:`MISFIT_P` by ``fit.misfit_p``), or a given alpha that the axle's contact path
+contradicts (:data:`ALPHA_TOLERANCE`), gives ``undetermined`` (``model``) whatever else
+the track shows. Then the verdicts:
 
 * ``jarm``: the body left the ramp straight from pure rolling -- the fitted model rolls up
   to its lift-off (or slips for less than one frame, and a fit that forbids any slip before
@@ -378,7 +379,8 @@ def analyze(
     )
     observed = observe(rec)
     best, jarm_fit = consistent_fits(setup, track, rec)
-    notes += _alpha_note(track, a_given)
+    off_path = _alpha_note(track, a_given)
+    notes += off_path
     p = misfit_p(best, int(rec.line.contact.sum()))
     if p < MISFIT_P:
         notes += _angle_unit_note(track, setup, rec, best, w)
@@ -386,7 +388,7 @@ def analyze(
     if profiled:
         grid, costs = profile(best, setup, track, rec)
         mu_k_iv = profile_interval(grid, costs, best)
-    verdict = _Verdict(observed, best, jarm_fit, p)
+    verdict = _Verdict(observed, best, jarm_fit, p, off_path[0] if off_path else "")
     return _judge(track, rec, verdict, setup, mu_k_iv, notes, started)
 
 
@@ -399,6 +401,7 @@ class _Verdict:
     best: Fit
     jarm_fit: Fit | None
     misfit_p: float
+    off_path: str  # the given alpha contradicted by the track's contact path (or "")
 
 
 def _judge(
@@ -479,6 +482,8 @@ def _decide(
     sigma3 = f"{3 * rec.sigma * 1e3:.2g} mm"
     if v.misfit_p < MISFIT_P:
         return "undetermined", "model", [_misfit_sentence(v.best, v.misfit_p)]
+    if v.off_path:  # the model was fitted in a frame the track contradicts
+        return "undetermined", "model", [v.off_path]
     if seen is None and not math.isfinite(lift):
         return (
             "undetermined",
