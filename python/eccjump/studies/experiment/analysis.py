@@ -1,18 +1,22 @@
 """``eccjump.analyze``: a tracked experiment in, a verdict with its evidence out.
 
-Verdicts:
+First the goodness of fit: a reduced chi-square improbable under the model (p below
+:data:`MISFIT_P` by ``fit.misfit_p``), or a given alpha that the axle's contact path
+contradicts (:data:`ALPHA_TOLERANCE`), gives ``undetermined`` (``model``) whatever else
+the track shows. Then the verdicts:
 
 * ``jarm``: the body left the ramp straight from pure rolling -- the fitted model rolls up
   to its lift-off (or slips for less than one frame, and a fit that forbids any slip before
   the lift-off is as good), and the track shows the flight beyond its noise;
-* ``slip_first``: it slipped from t1 to t2 before lifting off -- the fitted model slips for
-  at least one frame before its lift-off, and the fit that forbids it is worse by a
-  chi-square of at least :data:`SIGNIFICANT` (3 standard errors);
-* ``undetermined``, with the reason: ``no_liftoff`` (the track never leaves the ramp),
-  ``noise`` (the flight, or the slip, is within the noise), ``frame_rate`` (a slip shorter
-  than :data:`MIN_SLIP_FRAMES` frames that the data cannot confirm), ``short_track`` (no
-  rolling before the lift-off to judge it by) or ``model`` (the track flies where the fitted
-  model does not: check the inputs).
+* ``slip_first``: it slipped before lifting off -- the fitted model slips for at least one
+  frame in all (every episode: slip, stick, slip again, reversals), and the fit that
+  forbids it is worse by a chi-square of at least :data:`SIGNIFICANT` (3 standard errors);
+  a slip the data ask for is never ``jarm``;
+* ``undetermined``, with the reason: ``model`` (the gate, or the track flies where the
+  fitted model does not), ``no_liftoff`` (the track never leaves the ramp), ``noise`` (the
+  flight, or a slip of 3 frames or more, is within the noise), ``frame_rate`` (a slip
+  shorter than :data:`MIN_SLIP_FRAMES` frames that the data cannot confirm, or one they ask
+  for that is shorter than a frame) or ``short_track`` (no rolling before the lift-off).
 """
 
 from __future__ import annotations
@@ -20,7 +24,7 @@ from __future__ import annotations
 import math
 import os
 import time
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 from typing import TYPE_CHECKING, Any, get_args
 
 import numpy as np
@@ -29,19 +33,23 @@ from eccjump._base.body import Cylinder
 from eccjump._base.checks import Rule, flag, integer, optional_real, rule_name, short
 from eccjump._base.html import card
 from eccjump.studies.experiment import figure
-from eccjump.studies.experiment.events import Observed, Window, observe
+from eccjump.studies.experiment.events import Flight, Observed, Window, observe
 from eccjump.studies.experiment.fit import (
+    MU_MAX,
     UNITS,
     Fit,
     Setup,
+    consistent_fits,
     event_times,
     fit,
+    misfit_p,
     profile,
     profile_interval,
     rolling_needs,
     slip_intervals,
     time_errors,
 )
+from eccjump.studies.experiment.geometry import fit_contact_line
 from eccjump.studies.experiment.inputs import MARKER_IN_R, in_range
 from eccjump.studies.experiment.reconstruct import MIN_WINDOW, Reconstruction, reconstruct
 from eccjump.studies.experiment.sheet import design_inputs
@@ -56,6 +64,12 @@ REASONS = ("", "no_liftoff", "noise", "frame_rate", "short_track", "model")
 SIGNIFICANT = 9.0
 #: A slip shorter than this (in frames) may be reported as undetermined.
 MIN_SLIP_FRAMES = 3.0
+#: The goodness-of-fit gate: a reduced chi-square this improbable under the model (the F
+#: distribution of ``fit.misfit_p``) means the model does not describe the track.
+MISFIT_P = 1e-3
+#: A given ramp angle further than this [rad] (and 4 standard errors) from the track's own
+#: contact line gets a note: a rolled camera, a wrong alpha or a unit mistake.
+ALPHA_TOLERANCE = math.radians(1.0)
 
 
 @dataclass(frozen=True)
@@ -103,23 +117,53 @@ class Analysis:
         return [tr.to_mode for tr in self.fit.run.transitions if tr.t <= end]
 
     def parameters(self) -> dict[str, dict[str, Any]]:
-        """The fitted parameters (value, ~95 % interval, unit), mu_s as a lower bound or a
-        value, the ramp angle in degrees."""
+        """The fitted parameters (value, ~95 % interval, unit, ``status``), the ramp angle in
+        radians. ``status`` is ``"value"``, ``"not_determined"`` (the track does not
+        constrain it: its value is None, the interval the whole range) or, for mu_s,
+        ``"lower_bound"`` (a fitted run that never slips: mu_s >= what its rolling needed,
+        value None, hi inf)."""
         f, out = self.fit, {}
         for name in f.names:
             if name == "dmu":
                 continue
             lo, hi = self.mu_k_interval if name == "mu_k" else f.interval(name)
-            out[name] = {"value": f.value(name), "lo": lo, "hi": hi, "unit": UNITS.get(name, "")}
-        mu_s = f.value("mu_k") + f.value("dmu")
+            i = f.names.index(name)
+            known = hi - lo < 0.9 * float(f.upper[i] - f.lower[i])
+            if name == "e" and not math.isfinite(self.times["landing"]):
+                known = False  # a run that never lands says nothing of e
+            out[name] = {
+                "value": f.value(name) if known else math.nan,
+                "lo": lo,
+                "hi": hi,
+                "unit": UNITS.get(name, ""),
+                "status": "value" if known else "not_determined",
+            }
         lo_s, hi_s = _mu_s_interval(f)
+        bound = not math.isfinite(hi_s) or hi_s > 1.8 * MU_MAX or not _ever_slips(self)
         out["mu_s"] = {
-            "value": mu_s,
-            "lo": lo_s,
-            "hi": hi_s,
+            "value": math.nan if bound else f.value("mu_k") + f.value("dmu"),
+            "lo": self.mu_s_needed if bound else lo_s,
+            "hi": math.inf if bound else hi_s,
             "unit": "",
             "rolling_needs": self.mu_s_needed,
+            "status": "lower_bound" if bound else "value",
         }
+        return out
+
+    def parameter_lines(self) -> list[tuple[str, str]]:
+        """(name, text) of mu_k, mu_s and e: a value with its interval, a bound, or "not
+        determined"."""
+        out = []
+        for name, p in self.parameters().items():
+            if name not in ("mu_k", "mu_s", "e"):
+                continue
+            if p["status"] == "lower_bound":
+                text = f">= {p['lo']:.3f} (what the fitted rolling needed)"
+            elif p["status"] == "not_determined":
+                text = "not determined by this track"
+            else:
+                text = f"{p['value']:.3f} in [{p['lo']:.3f}, {p['hi']:.3g}]"
+            out.append((name, text))
         return out
 
     def to_dict(self) -> dict[str, Any]:
@@ -186,20 +230,13 @@ class Analysis:
             lines.append(f"  lift-off    t = {self.liftoff_t:.5f} +- {self.liftoff_err:.1e} s")
         for s in self.slips:
             lines.append(f"  slip        {s.t1:.5f} .. {s.t2:.5f} s ({s.frames:.1f} frames)")
-        lo, hi = self.mu_k_interval
-        lines.append(f"  mu_k        {self.fit.value('mu_k'):.3f} in [{lo:.3f}, {hi:.3f}]")
-        mu_s = self.parameters()["mu_s"]
-        lines.append(
-            f"  mu_s        {mu_s['value']:.3f} in [{mu_s['lo']:.3f}, {mu_s['hi']:.3g}]; "
-            f"the rolling needed >= {self.mu_s_needed:.3f}"
-        )
+        lines.extend(f"  {name:<11} {text}" for name, text in self.parameter_lines())
         lines.append(f"  observed    {' -> '.join(self.observed.sequence())}")
         lines.append(f"  model       {' -> '.join(self.model_modes[:8])}")
         lines.extend(f"  - {e}" for e in self.evidence[:6])
         return "\n".join(lines)
 
     def _repr_html_(self) -> str:
-        lo, hi = self.mu_k_interval
         rows = [("verdict", self.verdict + (f" ({self.reason})" if self.reason else ""))]
         if math.isfinite(self.liftoff_t):
             rows.append(("lift-off", f"t = {self.liftoff_t:.5f} ± {self.liftoff_err:.1e} s"))
@@ -207,9 +244,8 @@ class Analysis:
             (f"slip {k + 1}", f"{s.t1:.5f} … {s.t2:.5f} s ({s.frames:.1f} frames)")
             for k, s in enumerate(self.slips)
         ]
+        rows += self.parameter_lines()
         rows += [
-            ("mu_k", f"{self.fit.value('mu_k'):.3f} in [{lo:.3f}, {hi:.3f}]"),
-            ("mu_s", f">= {self.mu_s_needed:.3f} (what the observed rolling needed)"),
             ("observed", " → ".join(self.observed.sequence())),
             ("model", " → ".join(self.model_modes[:8])),
             (
@@ -342,24 +378,42 @@ def analyze(
         fit_alpha=a_given is None,
     )
     observed = observe(rec)
-    best = fit(setup, track, rec)
+    best, jarm_fit = consistent_fits(setup, track, rec)
+    off_path = _alpha_note(track, a_given)
+    notes += off_path
+    p = misfit_p(best, int(rec.line.contact.sum()))
+    if p < MISFIT_P:
+        notes += _angle_unit_note(track, setup, rec, best, w)
     mu_k_iv = best.interval("mu_k")
     if profiled:
         grid, costs = profile(best, setup, track, rec)
         mu_k_iv = profile_interval(grid, costs, best)
-    return _judge(track, rec, observed, best, setup, mu_k_iv, notes, started)
+    verdict = _Verdict(observed, best, jarm_fit, p, off_path[0] if off_path else "")
+    return _judge(track, rec, verdict, setup, mu_k_iv, notes, started)
+
+
+@dataclass(frozen=True, eq=False)
+class _Verdict:
+    """What the verdict rests on: the observed events, the consistent pair of fits (free,
+    slip-forbidden or None) and the goodness of fit (``fit.misfit_p``)."""
+
+    observed: Observed
+    best: Fit
+    jarm_fit: Fit | None
+    misfit_p: float
+    off_path: str  # the given alpha contradicted by the track's contact path (or "")
 
 
 def _judge(
     track: Track,
     rec: Reconstruction,
-    observed: Observed,
-    best: Fit,
+    v: _Verdict,
     setup: Setup,
     mu_k_iv: tuple[float, float],
     notes: tuple[str, ...],
     started: float,
 ) -> Analysis:
+    best, observed = v.best, v.observed
     unit, t0, dt = setup.time_unit, float(track.t[0]), track.dt
     horizon = float(track.t[-1] - t0) / unit
     times = event_times(best.run, horizon)
@@ -368,53 +422,11 @@ def _judge(
     slips_dimless = slip_intervals(best.run, lift if math.isfinite(lift) else horizon)
     slip_frames = sum(b - a for a, b in slips_dimless) * unit / dt
     needs = rolling_needs(best.run, lift if math.isfinite(lift) else horizon)
-    evidence: list[str] = []
-    verdict, reason, delta, jarm_fit = "undetermined", "", math.nan, None
+    delta = math.nan
+    if v.jarm_fit is not None:
+        delta = 2.0 * (v.jarm_fit.cost - best.cost) / max(best.chi2_reduced, 1.0)
     seen = observed.flights[0] if observed.flights else None
-    if seen is None and not math.isfinite(lift):
-        reason = "no_liftoff"
-        evidence.append(
-            "the track never leaves the ramp: the axle stays on its contact line "
-            f"within {3 * rec.sigma * 1e3:.2g} mm (3 sigma), and so does the model"
-        )
-    elif seen is None:
-        reason = "noise"
-        evidence.append(
-            f"the model lifts off at t = {t0 + lift * unit:.4f} s, but its flight "
-            f"stays within 3 sigma = {3 * rec.sigma * 1e3:.2g} mm of the ramp"
-        )
-    elif not math.isfinite(lift):
-        reason = "model"
-        evidence.append(
-            f"the track flies ({seen.apex_height * 1e3:.3g} mm above the ramp) but "
-            "the fitted model does not leave it: check chi, km, alpha, R"
-        )
-    elif (lift * unit) < 4 * dt:
-        reason = "short_track"
-        evidence.append(
-            "the lift-off comes within 4 frames of the track's start: no rolling to judge it by"
-        )
-    else:
-        evidence.append(
-            f"the axle rises {seen.apex_height * 1e3:.3g} mm above the ramp "
-            f"({observed.peak_snr:.0f} sigma); lift-off seen in "
-            f"[{seen.liftoff.lo:.4f}, {seen.liftoff.hi:.4f}] s"
-        )
-        if slip_frames <= 0:
-            verdict = "jarm"
-            evidence.append(
-                f"the fitted model rolls without slipping from the first frame to "
-                f"its lift-off at t = {t0 + lift * unit:.5f} s"
-            )
-        else:
-            jarm_fit = fit(setup, track, rec, jarm_only=True, starts=[_as_start(best)])
-            delta = 2.0 * (jarm_fit.cost - best.cost) / max(best.chi2_reduced, 1e-12)
-            verdict, reason = _slip_verdict(slip_frames, delta)
-            evidence.append(
-                f"the fitted model slips for {slip_frames:.1f} frames before its "
-                f"lift-off; forbidding that slip worsens the fit by chi2 = "
-                f"{delta:.3g} (significant above {SIGNIFICANT:g})"
-            )
+    verdict, reason, evidence = _decide(v, seen, lift, slip_frames, delta, rec, t0, unit, dt)
     evidence.append(
         f"the rolling before it needs mu_s >= {needs:.3f} (the model's friction ratio |F_x|/F_y)"
     )
@@ -422,8 +434,8 @@ def _judge(
         SlipInterval(
             t0 + a * unit,
             t0 + b * unit,
-            errs["slip_onset"] if k == 0 else math.nan,
-            errs["slip_end"] if k == len(slips_dimless) - 1 else math.nan,
+            errs.get(f"slip{k}_t1", math.nan),
+            errs.get(f"slip{k}_t2", math.nan),
             (b - a) * unit / dt,
         )
         for k, (a, b) in enumerate(slips_dimless)
@@ -444,7 +456,7 @@ def _judge(
         rec=rec,
         observed=observed,
         fit=best,
-        fit_jarm=jarm_fit,
+        fit_jarm=v.jarm_fit,
         setup=setup,
         times=times,
         time_errs=errs,
@@ -454,18 +466,142 @@ def _judge(
     )
 
 
+def _decide(
+    v: _Verdict,
+    seen: Flight | None,
+    lift: float,
+    slip_frames: float,
+    delta: float,
+    rec: Reconstruction,
+    t0: float,
+    unit: float,
+    dt: float,
+) -> tuple[str, str, list[str]]:
+    """The verdict, its reason and the evidence (the module docstring's rules, in order:
+    the goodness of fit first, then what the track shows, then the slip test)."""
+    sigma3 = f"{3 * rec.sigma * 1e3:.2g} mm"
+    if v.misfit_p < MISFIT_P:
+        return "undetermined", "model", [_misfit_sentence(v.best, v.misfit_p)]
+    if v.off_path:  # the model was fitted in a frame the track contradicts
+        return "undetermined", "model", [v.off_path]
+    if seen is None and not math.isfinite(lift):
+        return (
+            "undetermined",
+            "no_liftoff",
+            [
+                "the track never leaves the ramp: the axle stays on its contact line "
+                f"within {sigma3} (3 sigma), and so does the model"
+            ],
+        )
+    if seen is None:
+        return (
+            "undetermined",
+            "noise",
+            [
+                f"the model lifts off at t = {t0 + lift * unit:.4f} s, but its flight "
+                f"stays within 3 sigma = {sigma3} of the ramp"
+            ],
+        )
+    if not math.isfinite(lift):
+        return (
+            "undetermined",
+            "model",
+            [
+                f"the track flies ({seen.apex_height * 1e3:.3g} mm above the ramp) but "
+                "the fitted model does not leave it: check chi, km, alpha, R"
+            ],
+        )
+    if (lift * unit) < 4 * dt:
+        return (
+            "undetermined",
+            "short_track",
+            ["the lift-off comes within 4 frames of the track's start: no rolling to judge it by"],
+        )
+    evidence = [
+        f"the axle rises {seen.apex_height * 1e3:.3g} mm above the ramp "
+        f"({v.observed.peak_snr:.0f} sigma); lift-off seen in "
+        f"[{seen.liftoff.lo:.4f}, {seen.liftoff.hi:.4f}] s"
+    ]
+    if slip_frames <= 0:
+        evidence.append(
+            f"the fitted model rolls without slipping from the first frame to "
+            f"its lift-off at t = {t0 + lift * unit:.5f} s"
+        )
+        return "jarm", "", evidence
+    verdict, reason = _slip_verdict(slip_frames, delta)
+    evidence.append(
+        f"the fitted model slips for {slip_frames:.1f} frames in all before its "
+        f"lift-off; forbidding that slip worsens the fit by chi2 = "
+        f"{delta:.3g} (significant above {SIGNIFICANT:g})"
+    )
+    return verdict, reason, evidence
+
+
 def _slip_verdict(frames: float, delta: float) -> tuple[str, str]:
-    if delta >= SIGNIFICANT and frames >= 1.0:
-        return "slip_first", ""
+    """A slip the data ask for (delta >= SIGNIFICANT) is never jarm: slip_first from a frame
+    on, below it undetermined (frame_rate). A slip they do not ask for is jarm below a
+    frame, undetermined (frame_rate, then noise) above."""
+    if delta >= SIGNIFICANT:
+        return ("slip_first", "") if frames >= 1.0 else ("undetermined", "frame_rate")
     if frames < 1.0:
         return "jarm", ""  # a slip shorter than a frame that the data do not ask for
     return "undetermined", "frame_rate" if frames < MIN_SLIP_FRAMES else "noise"
 
 
-def _as_start(f: Fit) -> dict[str, float]:
-    start = {n: f.value(n) for n in f.names}
-    start["omega0"] = max(start["omega0"], 0.0)
-    return start
+def _misfit_sentence(f: Fit, p: float) -> str:
+    return (
+        f"the model does not describe the track: reduced chi2 = {f.chi2_reduced:.3g} for "
+        f"{f.dof} degrees of freedom (p = {p:.1g}, the gate {MISFIT_P:g}); likely causes: "
+        "the radius, the marker's radius or angle, a rolled camera, alpha, an angle or "
+        "length in the wrong unit, or physics outside the rigid model (rolling resistance)"
+    )
+
+
+def _alpha_note(track: Track, given: float | None) -> tuple[str, ...]:
+    """A note when the given ramp angle disagrees with the track's own contact line."""
+    if given is None:
+        return ()
+    line = fit_contact_line(track.c, None)
+    seen, err = line.frame.alpha, line.alpha_err
+    tol = max(4 * err, ALPHA_TOLERANCE)
+    if abs(seen - given) <= tol:
+        return ()
+    hint = ""
+    if min(abs(math.degrees(given) - seen), abs(math.radians(given) - seen)) <= tol:
+        hint = " (an angle in the wrong unit? the command line takes degrees, Python radians)"
+    return (
+        f"alpha: the axle's contact path runs at {math.degrees(seen):.4g} deg "
+        f"(+- {math.degrees(err):.2g}), not the given {math.degrees(given):.4g} deg: a rolled "
+        f"camera or a wrong alpha{hint}",
+    )
+
+
+def _angle_unit_note(
+    track: Track, setup: Setup, rec: Reconstruction, best: Fit, window: int | None
+) -> tuple[str, ...]:
+    """When the fit fails: a note if the marker angle read in the other unit (degrees for
+    radians, or the reverse) fits far better -- a unit mistake."""
+    beta = setup.marker_angle
+    for alt in (math.degrees(beta), math.radians(beta)):
+        if alt == beta or not abs(alt) <= 2 * math.pi:
+            continue
+        rec2 = reconstruct(
+            track,
+            radius=setup.radius,
+            marker_angle=alt,
+            marker_radius=rec.marker_radius,
+            alpha=None if setup.fit_alpha else setup.alpha,
+            window=window,
+        )
+        other = fit(replace(setup, marker_angle=alt), track, rec2)
+        if other.chi2_reduced < 0.25 * best.chi2_reduced:
+            return (
+                f"marker_angle: the fit is far better (reduced chi2 {other.chi2_reduced:.3g}, "
+                f"not {best.chi2_reduced:.3g}) with {alt:.4g} rad ({math.degrees(alt):.4g} deg) "
+                f"than with the {beta:.4g} rad ({math.degrees(beta):.4g} deg) given: an angle "
+                "in the wrong unit? (the command line takes degrees, Python radians)",
+            )
+    return ()
 
 
 def _inputs(
@@ -541,6 +677,12 @@ def _marker_note(rec: Reconstruction, given: float | None) -> tuple[str, ...]:
         f"the tracked marker is {measured * 1e3:.4g} mm from the axle, not the "
         f"{given * 1e3:.4g} mm given as marker_radius",
     )
+
+
+def _ever_slips(res: Analysis) -> bool:
+    """Whether the fitted run slips anywhere within the track (else mu_s is only bounded)."""
+    end = float(res.track.t[-1] - res.track.t[0]) / res.setup.time_unit
+    return any(seg.mode == "SLIP" and seg.t_start < end for seg in res.fit.run.segments)
 
 
 def _mu_s_interval(f: Fit) -> tuple[float, float]:

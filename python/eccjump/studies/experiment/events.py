@@ -9,7 +9,10 @@ both 0 (the lift-off conditions), so the gap grows like (t - t_L)^3 and stays in
 noise for several frames: the lift-off is timed by fitting c tau^3 (tau = t - t_L > 0, c >= 0)
  to the gap over the start of the flight, profiling t_L; its window is where the sum of
 squares is within sigma^2 of its least value (one standard error). A slip is a run of at
-least :data:`MIN_RUN` contact frames whose slip velocity exceeds 3 standard errors; frames
+least :data:`MIN_RUN` contact frames whose slip velocity exceeds 3 standard errors, or where
+the slip displacement's mean over the next 4 frames differs from that over the previous 4
+by more than 3 standard errors (a slip shorter than the smoothing window, which the
+smoothed velocity averages away, moves s from one level to another); frames
 within half a smoothing window of a lift-off window are not judged (the rates there mix
 contact and flight).
 """
@@ -28,6 +31,8 @@ from eccjump.studies.experiment.reconstruct import Reconstruction
 MIN_RUN = 3
 #: The threshold, in standard errors.
 Z = 3.0
+#: The frames on either side of a level shift of the slip displacement (``_steps``).
+STEP_FRAMES = 4
 #: Mode codes (as eccjump.motion.MODES).
 ROLL, SLIP, FLIGHT = 0, 1, 2
 
@@ -105,12 +110,29 @@ def observe(rec: Reconstruction) -> Observed:
         end = land.t if land is not None else math.inf
         mode[(t >= lift.t) & (t < end)] = FLIGHT
         blocked |= (t >= lift.lo - half * rec.dt) & (t < end + half * rec.dt)
-    moving = np.abs(rec.slip) > Z * rec.slip_err
+    moving = (np.abs(rec.slip) > Z * rec.slip_err) | _steps(rec.s, rec.s_err)
     slips = [_slip(rec, a, b) for a, b in runs(moving & ~blocked & (mode != FLIGHT), MIN_RUN)]
     for s in slips:
         mode[(t >= s.onset.t) & (t < s.end.t) & (mode != FLIGHT)] = SLIP
     snr = float(max((f.apex_height / sigma for f in flights), default=0.0))
     return Observed(mode, tuple(flights), tuple(slips), snr)
+
+
+def _steps(s: NDArray[np.float64], err: NDArray[np.float64]) -> NDArray[np.bool_]:
+    """Frames k where the slip displacement's mean over the :data:`STEP_FRAMES` frames from k
+    differs from its mean over those before k by more than Z standard errors: a slip
+    shorter than the smoothing window (a few frames at a low frame rate), which the smoothed
+    slip velocity averages away, shifts s from one level to another."""
+    n, w = s.size, STEP_FRAMES
+    out = np.zeros(n, dtype=bool)
+    if n < 2 * w:
+        return out
+    csum, vsum = np.r_[0.0, np.cumsum(s)], np.r_[0.0, np.cumsum(err**2)]
+    k = np.arange(w, n - w + 1)
+    shift = (csum[k + w] - csum[k]) / w - (csum[k] - csum[k - w]) / w
+    spread = np.sqrt(vsum[k + w] - vsum[k - w]) / w
+    out[k] = np.abs(shift) > Z * spread
+    return out
 
 
 def _liftoff(

@@ -8,7 +8,8 @@ offsets of the ramp frame, l0 and n0 [m] (where the axle starts along the ramp, 
 contact line's height: nuisance parameters); ``alpha`` too when the ramp angle was not
 given. Residuals: the model's C and M minus the tracked ones, both coordinates, divided by
 the noise level sigma, so the cost is half a chi-square and the covariance of the
-parameters is (J^T J)^-1 s^2 (s^2 the reduced chi-square) at the optimum. A direction the
+parameters is (J^T J)^-1 s^2 at the optimum (s^2 the reduced chi-square where it exceeds 1:
+a misfit widens every interval; 1 below). A direction the
 track does not constrain (mu_s above what the observed rolling needed, e when nothing lands)
 has a vanishing singular value: its interval is the parameter's whole range ("not
 identified").
@@ -16,7 +17,9 @@ identified").
 ``jarm_only=True`` fits under the constraint that the body does not slip before its first
 lift-off: mu_s is raised to the largest friction ratio |F_x|/F_y the rolling from the fitted
 start needs up to the lift-off (``eccjump.jarm``'s max_ratio), the bound on mu_s that an
-observed rolling implies. Comparing the two fits tests a slip before the lift-off.
+observed rolling implies. Comparing the two fits tests a slip before the lift-off;
+:func:`consistent_fits` makes the pair consistent (the free fit never worse than the
+constrained one) and :func:`misfit_p` tests the goodness of fit.
 """
 
 from __future__ import annotations
@@ -43,6 +46,8 @@ MU_MAX = 3.0
 MAX_TRANSITIONS = 60
 #: Evaluations of one least-squares run, and of one point of a profile.
 MAX_NFEV, PROFILE_NFEV = 250, 60
+#: Iterations of a screening fit, and the screened starts fitted in full.
+SCREEN_NFEV, KEEP = 10, 3
 
 
 @dataclass(frozen=True)
@@ -233,35 +238,117 @@ def fit(
     jarm_only: bool = False,
     starts: list[dict[str, float]] | None = None,
 ) -> Fit:
-    """The best of a few least-squares fits: from the smoothed start with two friction
-    guesses (the bound the rolling needs up to its lift-off, and 0.5), or from ``starts``
-    (each a dict of some of :data:`NAMES`, on top of that guess)."""
-    from scipy.optimize import least_squares  # the optional extra 'analysis'
-
+    """The best of several least-squares fits. Without ``starts``: a screen of short fits
+    (:data:`SCREEN_NFEV` iterations) from the smoothed start with the friction guesses of
+    :func:`friction_guesses`, each with the smoothed omega0 and with 0 (the edge of the
+    smoothing window makes omega0 noisy), then full fits from the :data:`KEEP` best (the
+    cost has many local minima: a slip, a bounce and a shifted start trade off). With
+    ``starts`` (each a dict of some of :data:`NAMES`, on top of that guess): a full fit from
+    each."""
     model = Model(setup, track, rec, jarm_only=jarm_only)
     guess = start_guess(setup, rec)
+    lo, hi = model.bounds(guess)
     if starts is None:
-        bound = model.mu_bound(guess)
-        mus = sorted({round(m, 3) for m in (1.1 * bound, 0.5) if 0.02 < m < MU_MAX})
-        starts = [{"mu_k": 0.75 * m, "dmu": 0.25 * m, "e": 0.05} for m in mus]
-    best: Any = None
-    for s in starts:
-        x0 = np.array([(guess | s)[n] for n in model.names], dtype=float)
-        lo, hi = model.bounds(guess)
-        x0 = np.clip(x0, lo, hi)
-        res = least_squares(
-            model.residuals,
-            x0,
-            bounds=(lo, hi),
-            x_scale="jac",
-            diff_step=1e-6,
-            max_nfev=MAX_NFEV,
-            method="trf",
-        )
-        if best is None or res.cost < best[0].cost:
-            best = (res, lo, hi)
-    res, lo, hi = best
+        omegas = sorted({guess["omega0"], 0.0})
+        screen = [
+            {"mu_k": 0.75 * m, "dmu": 0.25 * m, "e": 0.05, "omega0": w}
+            for m in friction_guesses(model.mu_bound(guess))
+            for w in omegas
+        ]
+        tried = sorted((_solve(model, guess | s, lo, hi, SCREEN_NFEV) for s in screen), key=_cost)
+        x0s = [r.x for r in tried[:KEEP]]
+    else:
+        x0s = [np.array([(guess | s)[n] for n in model.names], dtype=float) for s in starts]
+    res = min((_solve(model, x0, lo, hi, MAX_NFEV) for x0 in x0s), key=_cost)
     return _result(model, res, lo, hi)
+
+
+#: Rounds of refitting the free and the slip-forbidden fit from the better of the two.
+ROUNDS = 3
+
+
+def consistent_fits(setup: Setup, track: Track, rec: Reconstruction) -> tuple[Fit, Fit | None]:
+    """The free fit and, when it slips before its lift-off, the fit that forbids that slip
+    (else None: the free fit is slip-free itself). The free fit can never be worse than the
+    constrained one; if it is, the optimiser stopped in a local minimum: the free fit is
+    redone from the better solution (and its own), up to :data:`ROUNDS` times; if the pair
+    is still inconsistent, the better one is returned as the free fit."""
+    free = fit(setup, track, rec)
+    constrained: Fit | None = None
+    for _ in range(ROUNDS):
+        if not slips_before_liftoff(free):
+            return free, None
+        starts = [as_start(free)] + ([as_start(constrained)] if constrained else [])
+        constrained = fit(setup, track, rec, jarm_only=True, starts=starts)
+        if free.cost <= constrained.cost * (1 + 1e-9):
+            return free, constrained
+        free = fit(setup, track, rec, starts=[as_start(constrained), as_start(free)])
+    assert constrained is not None
+    if constrained.cost < free.cost:
+        return constrained, None
+    return free, constrained
+
+
+def slips_before_liftoff(f: Fit) -> bool:
+    """Whether the fitted run slips before its first lift-off (or its end)."""
+    horizon = float(f.run.t[-1])
+    lift = event_times(f.run, horizon)["liftoff"]
+    return bool(slip_intervals(f.run, lift if math.isfinite(lift) else horizon))
+
+
+def as_start(f: Fit) -> dict[str, float]:
+    """A start for another fit from ``f``'s parameters (mu_s raised to what ``f``'s run
+    used when it was constrained to roll)."""
+    start = {n: f.value(n) for n in f.names}
+    start["omega0"] = max(start["omega0"], 0.0)
+    if f.jarm_only:
+        mu_s = max(start["mu_k"] + start["dmu"], f.mu_s_bound * (1 + 1e-6))
+        start["dmu"] = min(mu_s - start["mu_k"], MU_MAX)
+    return start
+
+
+def misfit_p(f: Fit, noise_frames: int) -> float:
+    """The probability of a reduced chi-square at least ``f``'s if the model held: the F
+    distribution with (the fit's degrees of freedom, those of the noise level), since
+    sigma is itself estimated from the spread of ``noise_frames`` contact frames (a robust
+    spread: about 0.37 degrees of freedom per frame)."""
+    from scipy.stats import f as f_dist
+
+    nu = max(0.37 * noise_frames, 2.0)
+    return float(f_dist.sf(f.chi2_reduced, f.dof, nu))
+
+
+def friction_guesses(bound: float) -> list[float]:
+    """The mu_s of the starts: 1.1 and 0.6 times the friction the rolling from the smoothed
+    start needs up to its lift-off (no slip, a slip), and a fixed spread."""
+    return sorted({round(m, 3) for m in (1.1 * bound, 0.6 * bound, 0.3, 0.5, 0.8, 1.2)
+                   if 0.02 < m < MU_MAX})  # fmt: skip
+
+
+def _cost(res: Any) -> float:
+    return float(res.cost)
+
+
+def _solve(
+    model: Model,
+    x0: dict[str, float] | NDArray[np.float64],
+    lo: NDArray[np.float64],
+    hi: NDArray[np.float64],
+    nfev: int,
+) -> Any:
+    from scipy.optimize import least_squares  # the optional extra 'analysis'
+
+    if isinstance(x0, dict):
+        x0 = np.array([x0[n] for n in model.names], dtype=float)
+    return least_squares(
+        model.residuals,
+        np.clip(x0, lo, hi),
+        bounds=(lo, hi),
+        x_scale="jac",
+        diff_step=1e-6,
+        max_nfev=nfev,
+        method="trf",
+    )
 
 
 def profile(
@@ -317,7 +404,7 @@ def profile_interval(
     whose cost is within ``level`` / 2 (in units of the reduced chi-square) of the least,
     plus one grid step beyond it (a second minimum narrower than a step can be missed)."""
     lo, hi = best.interval(name)
-    s2 = max(best.chi2_reduced, 1e-12)
+    s2 = max(best.chi2_reduced, 1.0)
     low = min(float(costs.min()), best.cost)
     accepted = grid[2.0 * (costs - low) / s2 <= level]
     far = accepted[(accepted < lo) | (accepted > hi)]
@@ -332,7 +419,7 @@ def profile_interval(
 def _result(model: Model, res: Any, lo: NDArray[np.float64], hi: NDArray[np.float64]) -> Fit:
     m = res.fun.size
     dof = max(m - res.x.size, 1)
-    s2 = max(2.0 * res.cost / dof, 1e-300)
+    s2 = max(2.0 * res.cost / dof, 1.0)  # widened by a misfit, never narrowed below the noise
     J = res.jac
     _, sv, vt = np.linalg.svd(J, full_matrices=False)
     keep = sv > sv[0] * 1e-8 if sv.size and sv[0] > 0 else np.zeros_like(sv, dtype=bool)
@@ -363,8 +450,9 @@ def _result(model: Model, res: Any, lo: NDArray[np.float64], hi: NDArray[np.floa
 
 
 def event_times(run: MotionResult, horizon: float) -> dict[str, float]:
-    """Key times of a run (dimensionless): the first lift-off, the first landing, and the
-    onset and end of the first slip before that lift-off (NaN when absent)."""
+    """Key times of a run (dimensionless): the first lift-off, the first landing, the
+    onset and end of the first slip before that lift-off (NaN when absent), and the start
+    and end of every slip episode k before it (``slip{k}_t1``, ``slip{k}_t2``)."""
     out = dict.fromkeys(("liftoff", "landing", "slip_onset", "slip_end"), math.nan)
     trs = [tr for tr in run.transitions[1:] if tr.t <= horizon]
     lift = next((tr.t for tr in trs if tr.to_mode == "FLIGHT"), math.nan)
@@ -378,6 +466,8 @@ def event_times(run: MotionResult, horizon: float) -> dict[str, float]:
         out["slip_end"] = next(
             (tr.t for tr in before if tr.t > onset.t and tr.from_mode == "SLIP"), lift
         )
+    for k, (a, b) in enumerate(slip_intervals(run, lift if math.isfinite(lift) else horizon)):
+        out[f"slip{k}_t1"], out[f"slip{k}_t2"] = a, b
     return out
 
 
@@ -428,8 +518,8 @@ def time_errors(
             dn = event_times(model.simulate(model.params(x_lo)), horizon)
         except ValueError:
             continue
-        for k in base:
-            grads[k][i] = (up[k] - dn[k]) / (x_hi[i] - x_lo[i])
+        for k in base:  # an episode that comes or goes with the step: no derivative
+            grads[k][i] = (up.get(k, math.nan) - dn.get(k, math.nan)) / (x_hi[i] - x_lo[i])
     cov = np.where(np.isfinite(model_fit.cov), model_fit.cov, 0.0)
     unit = setup.time_unit
     out = {}
