@@ -15,17 +15,15 @@ from __future__ import annotations
 import errno
 import os
 import shutil
-import signal
 import subprocess
 import sys
 import tempfile
-from collections.abc import Callable, Iterator
-from contextlib import contextmanager
+from collections.abc import Callable
 from pathlib import Path
 
 import pytest
 import xarray as xr
-from fuzz_cases import MAX_MESSAGE, run_cli_inprocess
+from fuzz_cases import MAX_MESSAGE, alarm, run_cli_inprocess
 from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 from test_store_hardening import JARM_BAD, MOTION_BAD, _edited, _write_raw, tree
@@ -64,27 +62,11 @@ def maps(tmp_path_factory) -> dict[tuple[str, str], Path]:
     return out
 
 
-@contextmanager
-def alarm(seconds: int = 30) -> Iterator[None]:
-    """Fail (TimeoutError) instead of hanging if the block runs longer than ``seconds``."""
-
-    def ring(signum, frame):
-        raise TimeoutError(f"no answer in {seconds} s: a hang")
-
-    old = signal.signal(signal.SIGALRM, ring)
-    signal.alarm(seconds)
-    try:
-        yield
-    finally:
-        signal.alarm(0)
-        signal.signal(signal.SIGALRM, old)
-
-
 def judge(loader: str, path: Path, *, must_fail: bool = False) -> None:
     """The contract of a loader on ``path``: a result, or a ValueError/TypeError naming the
     file in at most MAX_MESSAGE characters."""
     try:
-        with alarm():
+        with alarm(30):
             LOADERS[loader](path)
     except (ValueError, TypeError) as err:
         msg = str(err)
@@ -273,7 +255,7 @@ def test_writers_fail_cleanly_and_keep_what_was_there(
     if writer == "store.save":
         region = store.load(maps["jarm", suffix])
         with pytest.raises((ValueError, TypeError, OSError)) as info:
-            with alarm():
+            with alarm(30):
                 store.save(region, path)
         assert len(str(info.value)) <= MAX_MESSAGE, str(info.value)
     else:
