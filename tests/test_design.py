@@ -392,3 +392,12 @@ def test_p_success_is_on_the_sheet_and_in_the_json():
     d = design(RANGE, 0.6, 0.1, grid=8, tolerances={"chi": 0.02}, samples=500)
     assert "P(success)" in str(d) and "chi ± 0.02" in str(d)
     assert json.loads(json.dumps(d.to_dict()))["p_success"]["p"] == d.p_success.p
+
+
+def test_a_bad_tolerance_is_named_as_the_design_calls_it():
+    # Issue 46's campaign: design's tolerances were reported as uncertainty's ``sd[...]``.
+    body = eccjump.Cylinder(0.26, 0.1776)
+    for tolerances, kind in (({"chi": -math.inf}, ValueError), ({"chi": 1j}, TypeError)):
+        with pytest.raises(kind, match=r"^tolerances\['chi'\]"):
+            eccjump.design((0.785, 0.864), 0.26, 0.2, target="jarm", grid=5, body=body,
+                           tolerances=tolerances)  # fmt: skip

@@ -29,7 +29,7 @@ def tolerance_spread(tolerances: object, alpha: float, chi: float, km: float, mu
     """The checked normal standard deviations by name (``tolerances``) around a design."""
     nominal = dict.fromkeys(("mu_k", "restitution", "theta0", "omega0"), 0.0)
     nominal.update(chi=chi, km=km, alpha=alpha, mu_s=mu, mu_k=mu)
-    return spread(nominal, tolerances, None, TOLERATED, mu_k_follows=True)
+    return spread(nominal, tolerances, None, TOLERATED, mu_k_follows=True, sd_option="tolerances")
 
 
 def success(spec: _Spec, spreads: Spread, n: int, seed: int, apex_min: float = 0.0) -> Success:

@@ -105,14 +105,16 @@ def _name(option: str, key: object, allowed: tuple[str, ...]) -> str:
     return str(key)
 
 
-def _sd(value: object, allowed: tuple[str, ...]) -> dict[str, float]:
+def _sd(value: object, allowed: tuple[str, ...], option: str = "sd") -> dict[str, float]:
+    """The standard deviations by name; ``option`` is what the caller calls them (``sd``,
+    ``tolerances``), for the messages."""
     out = {}
-    for key, v in (mapping("sd", value) or {}).items():
-        name = _name("sd", key, allowed)
-        x = real(f"sd[{name!r}]", v)
+    for key, v in (mapping(option, value) or {}).items():
+        name = _name(option, key, allowed)
+        x = real(f"{option}[{name!r}]", v)
         if not 0 <= x <= SPREAD_MAX:
             raise ValueError(
-                f"sd[{name!r}] = {short(x)} [{UNITS[name]}] is outside the allowed range "
+                f"{option}[{name!r}] = {short(x)} [{UNITS[name]}] is outside the allowed range "
                 f"[0, {SPREAD_MAX:g}]"
             )
         out[name] = x
@@ -154,10 +156,12 @@ def spread(
     bounds: object,
     allowed: tuple[str, ...],
     mu_k_follows: bool = False,
+    sd_option: str = "sd",
 ) -> Spread:
     """The checked :class:`Spread`: names among ``allowed``, sd >= 0, lo <= hi, no parameter
-    both in ``sd`` and in ``bounds`` (ValueError or TypeError naming it)."""
-    s, b = _sd(sd, allowed), _bounds(bounds, allowed)
+    both in ``sd`` and in ``bounds`` (ValueError or TypeError naming it; ``sd`` as the caller
+    calls it, ``sd_option``)."""
+    s, b = _sd(sd, allowed, sd_option), _bounds(bounds, allowed)
     both = sorted(set(s) & set(b), key=PARAMETERS.index)
     if both:
         raise ValueError(f"{both[0]}: give sd or bounds, not both")
