@@ -307,7 +307,7 @@ def test_cli_design():
         ({"maximise": "odds", "tolerances": {"chi": 0.01}}, ValueError, "maximise"),
         ({"tolerances": {"mu_k": 0.01}}, ValueError, "mu_k"),
         ({"tolerances": {"alpha": -0.01}}, ValueError, "alpha"),
-        ({"tolerances": [0.01]}, TypeError, "sd"),
+        ({"tolerances": [0.01]}, TypeError, "tolerances"),
         ({"tolerances": {"chi": 0.01}, "samples": 99}, ValueError, "samples"),
         ({"tolerances": {"chi": 0.01}, "seed": -1}, ValueError, "seed"),
     ],
