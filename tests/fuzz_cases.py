@@ -924,7 +924,35 @@ def _no_progress(done: int, total: int) -> None:
     """A progress callback that does nothing."""
 
 
+def _is_study(res: Any, case: Case) -> None:
+    expect(isinstance(res, eccjump.Uncertainty), "not an Uncertainty")
+
+
+def case_uncertainty_load(d: Drawer) -> Case:
+    """``Uncertainty.load``: a study saved here (.csv, .nc), or a path that is no study."""
+    where = tmpdir()
+    good = {suffix: where / f"study{suffix}" for suffix in (".csv", ".nc")}
+    if not all(p.exists() for p in good.values()):
+        study = eccjump.uncertainty(
+            eccjump.Cylinder(*JARM_BODY), 0.7, 1.0, sd={"chi": 0.01}, n=16, seed=1
+        )
+        for p in good.values():
+            study.save(p, overwrite=True)
+        (where / "cut.csv").write_bytes(good[".csv"].read_bytes()[:200])
+        (where / "other.csv").write_text("a,b\n1,2\n")
+    path = d.choice((*good.values(), str(good[".csv"]), where / "cut.csv", where / "other.csv",
+                     where / "missing.csv", where / "study.txt", None, 5))  # fmt: skip
+    params = ("path", Path(path).name) if isinstance(path, str | Path) else ("path",)
+    c = Case("Uncertainty.load", eccjump.Uncertainty.load, params=params, allow_oserror=True,
+             check=_is_study)  # fmt: skip
+    c.must_raise = path not in (*good.values(), str(good[".csv"]))
+    c.args = (path,)
+    return c
+
+
 def case_uncertainty(d: Drawer) -> Case:
+    if d.integer(0, 7) == 0:
+        return case_uncertainty_load(d)
     c = Case("uncertainty", eccjump.uncertainty, params=UNCERTAINTY_PARAMS,
              check=check_uncertainty)  # fmt: skip
     question = d.choice(("jarm", "jarm", "motion"))
