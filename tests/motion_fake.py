@@ -19,6 +19,7 @@ from typing import Any
 
 import numpy as np
 from numpy.typing import NDArray
+from reference_points import SLIP_FIRST_ALPHA, SLIP_FIRST_BODY
 
 MODES = ("ROLL", "SLIP", "FLIGHT")
 
@@ -112,7 +113,11 @@ def energy(chi: float, icm: float, alpha: float, theta, omega, l, ldot, b, bdot)
 
 
 def fake_result(
-    chi: float = 0.5, km: float = 0.4, alpha: float = math.radians(30.0), *, with_sol: bool = False
+    chi: float = SLIP_FIRST_BODY[0],
+    km: float = SLIP_FIRST_BODY[1],
+    alpha: float = SLIP_FIRST_ALPHA,
+    *,
+    with_sol: bool = False,
 ) -> FakeMotionResult:
     icm = km + chi**2 / (1.0 - km) - chi**2
     segs: list[dict[str, Array]] = []

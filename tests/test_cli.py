@@ -8,7 +8,7 @@ import sysconfig
 from pathlib import Path
 
 import pytest
-from reference_points import JARM
+from reference_points import JARM, JARM_ARGS, JARM_BODY_ARGS, SLIP_FIRST_ARGS
 
 import eccjump
 from eccjump import roll
@@ -26,14 +26,14 @@ def run(*args: str) -> subprocess.CompletedProcess:
 
 
 def test_roll_table_names_the_event_and_the_angle():
-    p = run("roll", "--alpha", "40", "--chi", "0.15", "--km", "0.02", "--mu-s", "1")
+    p = run("roll", *JARM_ARGS, "--mu-s", "1")
     assert p.returncode == 0, p.stderr
     assert "terminal event: liftoff" in p.stdout
     assert "334.34383" in p.stdout
 
 
 def test_roll_json_is_machine_readable():
-    p = run("roll", "--alpha", "30", "--chi", "0.5", "--km", "0.4", "--mu-s", "1", "--json")
+    p = run("roll", *SLIP_FIRST_ARGS, "--mu-s", "1", "--json")
     data = json.loads(p.stdout)
     assert data["terminal_event"] == "slip"
     assert data["theta_deg"] == pytest.approx(316.4716772, abs=1e-6)
@@ -41,7 +41,7 @@ def test_roll_json_is_machine_readable():
 
 
 def test_roll_takes_the_integrator_and_records_it(capsys):
-    args = ["roll", "--alpha", "40", "--chi", "0.15", "--km", "0.02", "--mu-s", "1", "--json"]
+    args = ["roll", *JARM_ARGS, "--mu-s", "1", "--json"]
     assert main([*args, "--integrator", "DOP853"]) == 0
     data = json.loads(capsys.readouterr().out)
     ref = roll(*JARM, mu_s=1.0, integrator="DOP853")
@@ -89,7 +89,7 @@ def test_version(capsys):
 def test_an_alpha_that_looks_like_radians_gets_a_hint(command):
     """The command line takes degrees, Python radians: --alpha 0.7 runs at 0.7 deg and says
     how to write 0.7 rad; --alpha 40 says nothing."""
-    body = ("--chi", "0.15", "--km", "0.02", "--mu-s", "1")
+    body = (*JARM_BODY_ARGS, "--mu-s", "1")
     small = run(command, *body, "--alpha", "0.7")
     assert small.returncode == 0 and "for 0.7 rad write --alpha 40.107" in small.stderr
     plain = run(command, *body, "--alpha", "40")

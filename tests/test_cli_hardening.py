@@ -14,7 +14,7 @@ import re
 import numpy as np
 import pytest
 from fuzz_cases import MAX_MESSAGE, run_cli_inprocess
-from reference_points import JARM_BODY
+from reference_points import JARM_ARGS, JARM_BODY, SLIP_FIRST_ARGS
 
 import eccjump
 from eccjump import plot
@@ -24,8 +24,8 @@ from eccjump.cli._args import NEGATIVE_NUMBER, Parser
 from eccjump.cli._output import bounded, figure_suffixes
 from eccjump.motion import fields as motion_fields
 
-SIMULATE = ["simulate", "--alpha", "30", "--chi", "0.5", "--km", "0.4", "--mu-s", "1"]
-ROLL = ["roll", "--alpha", "30", "--chi", "0.5", "--km", "0.4"]
+SIMULATE = ["simulate", *SLIP_FIRST_ARGS, "--mu-s", "1"]
+ROLL = ["roll", *SLIP_FIRST_ARGS]
 
 
 def failure(argv: list[str], code: int | None = None) -> str:
@@ -554,7 +554,7 @@ def test_main_returns_the_status_of_a_parse_error():
 
 # --- issue 46, items 12, 14, 15: writes, overwrites and the options of each --kind --------
 
-UNCERTAINTY = ["uncertainty", "--chi", "0.15", "--km", "0.02", "--alpha", "40", "--mu-s", "1",
+UNCERTAINTY = ["uncertainty", *JARM_ARGS, "--mu-s", "1",
                "--sd", "chi", "0.01", "-n", "64", "-q"]  # fmt: skip
 
 

@@ -18,7 +18,7 @@ import pytest
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt
 from motion_fake import MODES, energy, fake_result
-from reference_points import SLIP_FIRST, SLIP_FIRST_ALPHA, SLIP_FIRST_BODY
+from reference_points import SLIP_FIRST, SLIP_FIRST_ALPHA, SLIP_FIRST_ARGS, SLIP_FIRST_BODY
 
 from eccjump import Cylinder, plot
 from eccjump.cli import main
@@ -27,7 +27,7 @@ from eccjump.plot import full_motion
 
 CLI = sys.modules["eccjump.cli.simulate"]
 
-BASE = ["simulate", "--alpha", "30", "--chi", "0.5", "--km", "0.4", "--mu-s", "1"]
+BASE = ["simulate", *SLIP_FIRST_ARGS, "--mu-s", "1"]
 
 
 @pytest.fixture(autouse=True)

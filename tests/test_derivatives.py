@@ -24,6 +24,7 @@ import sympy as sp
 from hypothesis import assume, given, settings
 from hypothesis import strategies as st
 from properties import reach_rate
+from reference_points import JARM_ALPHA, JARM_BODY
 
 import eccjump
 from eccjump import _core
@@ -222,7 +223,7 @@ def test_agree_with_high_precision_central_differences(rule, method):
 
 def test_the_paper_example_is_pinned():
     # alpha = 40 deg, chi = 0.15, km = 0.02 (the README's point): the values of (b).
-    point = (math.radians(40), 0.15, 0.02)
+    point = (JARM_ALPHA, *JARM_BODY)
     r = eccjump.jarm(*point, 1.0, derivatives=True)
     fd = central_differences(point, float(r.theta_J), float(r.Fy_J), "paper")
     assert np.allclose(r.d_theta_J, fd[0], rtol=1e-9)
@@ -316,8 +317,8 @@ def double_root(chi: str, km: str, guess: tuple[float, float]) -> tuple[float, f
 
 def test_a_double_root_of_the_lift_off_function_is_flagged():
     # On the paper's body the maximum of L past 2 pi touches 0 near alpha = 34.9 deg.
-    alpha, theta = double_root("0.15", "0.02", (math.radians(35), 6.5125))
-    arrays = [np.array([v]) for v in (alpha, 0.15, 0.02, 1.0, theta)]
+    alpha, theta = double_root(*map(str, JARM_BODY), (math.radians(35), 6.5125))
+    arrays = [np.array([v]) for v in (alpha, *JARM_BODY, 1.0, theta)]
     *derivs, singular = _core.jarm_derivatives(*arrays, rule="paper", theta0=0.0, omega0=0.0)
     assert singular.tolist() == [True]
     assert all(np.isnan(d).all() for d in derivs)
@@ -328,8 +329,8 @@ def test_a_double_root_of_the_lift_off_function_is_flagged():
     # There F_y < 0 (F_y = -chi theta'^2 sin^2 theta / (2 cos theta) at any double root):
     # the body has lost contact before, so no JARM is ever a double root (paper's rule).
     with mpmath.workdps(30):
-        assert rolling(mpmath.mpf(theta), alpha, 0.15, 0.02, (0, 0))[3] < 0
-    r = eccjump.jarm(alpha, 0.15, 0.02, 1.0, derivatives=True)
+        assert rolling(mpmath.mpf(theta), alpha, *JARM_BODY, (0, 0))[3] < 0
+    r = eccjump.jarm(alpha, *JARM_BODY, 1.0, derivatives=True)
     assert not r.is_jarm and not r.d_singular
 
 
@@ -355,7 +356,7 @@ def test_forces_derivatives_only_where_the_forces_are():
 
 
 def test_without_derivatives_the_fields_are_none():
-    r = eccjump.jarm(0.7, 0.15, 0.02, 1.0)
+    r = eccjump.jarm(0.7, *JARM_BODY, 1.0)
     assert all(getattr(r, name) is None for name in DERIVATIVES) and r.derivatives() == {}
 
 
@@ -368,8 +369,8 @@ def test_shapes_broadcast_with_a_trailing_axis():
 
 def test_the_turn_restriction_and_threads_do_not_change_them():
     a = np.radians(np.linspace(30, 50, 40))
-    one = eccjump.jarm(a, 0.15, 0.02, 1.0, derivatives=True, n_threads=1)
-    two = eccjump.jarm(a, 0.15, 0.02, 1.0, derivatives=True, n_threads=2)
+    one = eccjump.jarm(a, *JARM_BODY, 1.0, derivatives=True, n_threads=1)
+    two = eccjump.jarm(a, *JARM_BODY, 1.0, derivatives=True, n_threads=2)
     assert one == two
 
 
@@ -390,7 +391,7 @@ def test_region_refuses_derivatives_with_chunks():
 
 def test_derivatives_must_be_a_bool():
     with pytest.raises(TypeError, match="derivatives must be True or False"):
-        eccjump.jarm(0.7, 0.15, 0.02, 1.0, derivatives="yes")  # type: ignore[arg-type]
+        eccjump.jarm(0.7, *JARM_BODY, 1.0, derivatives="yes")  # type: ignore[arg-type]
 
 
 @pytest.mark.parametrize("suffix", ["npz", "nc", "zarr"])

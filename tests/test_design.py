@@ -11,7 +11,7 @@ import numpy as np
 import pytest
 import sympy as sp
 from fuzz_cases import run_cli_inprocess
-from reference_points import JARM_BODY
+from reference_points import JARM_BODY, JARM_BODY_ARGS, SLIP_FIRST_BODY
 
 import eccjump
 from eccjump import Cylinder, Reason, build, design, jarm, simulate
@@ -193,7 +193,12 @@ def shell_and_rod_by_integrals():
 
 @pytest.mark.parametrize(
     ("chi", "km", "R", "M"),
-    [(0.15, 0.02, 0.05, 0.5), (0.5, 0.4, 1.0, 1.0), (0.0, 0.3, 0.2, 3.0), (0.9, 0.1, 2.0, 0.1)],
+    [
+        (*JARM_BODY, 0.05, 0.5),
+        (*SLIP_FIRST_BODY, 1.0, 1.0),
+        (0.0, 0.3, 0.2, 3.0),
+        (0.9, 0.1, 2.0, 0.1),
+    ],
 )
 def test_build_round_trips(chi, km, R, M):
     body = Cylinder(chi, km)
@@ -254,7 +259,7 @@ def test_cli_design():
     code, out, err = run_cli_inprocess(["design", "--alpha-range", "10", "40", "--mu-s", "-1"])
     assert code == 2 and "mu_s" in err and "Traceback" not in err
     odds = ["--sd", "alpha", "2", "--sd", "chi", "0.02", "--samples", "200"]
-    fixed = ["--chi", "0.15", "--km", "0.02", "--grid", "4"]  # only the angle is searched
+    fixed = [*JARM_BODY_ARGS, "--grid", "4"]  # only the angle is searched
     code, out, err = run_cli_inprocess(
         [*argv, *fixed, *odds, "--maximise", "probability", "--json"]
     )

@@ -6,8 +6,10 @@ The site itself is built strictly by CI (``mkdocs build --strict``, README "Docu
 
 from __future__ import annotations
 
+import ast
 import doctest
 import importlib
+import importlib.util
 import inspect
 import pkgutil
 import re
@@ -16,6 +18,7 @@ from pathlib import Path
 import pytest
 
 import eccjump
+from eccjump._base import docs
 
 ROOT = Path(__file__).resolve().parents[1]
 REFERENCE = ROOT / "docs" / "reference"
@@ -106,6 +109,86 @@ def test_region_spells_out_its_arguments() -> None:
     assert "Other arguments as" not in doc
     for option in ("method", "rule", "rtol", "max_turns", "stop_at_slip", "integrator"):
         assert re.search(rf"^{option} : ", doc, re.MULTILINE), option
+
+
+# --- the shared entries of eccjump._base.docs -------------------------------------------------
+
+
+def _with_placeholders() -> list[tuple[str, str]]:
+    """(module, qualified name) of every function, class and method whose docstring in the
+    source names a shared entry (``%(alpha)s``)."""
+    found = []
+    for name in _modules():
+        path = Path(importlib.import_module(name).__file__ or "")
+        if path.suffix != ".py":  # the compiled core
+            continue
+        tree = ast.parse(path.read_text(encoding="utf-8"))
+        scopes = [("", tree.body)]
+        for prefix, body in scopes:
+            for node in body:
+                if not isinstance(node, ast.FunctionDef | ast.ClassDef):
+                    continue
+                if "%(" in (ast.get_docstring(node, clean=False) or ""):
+                    found.append((name, prefix + node.name))
+                if isinstance(node, ast.ClassDef):
+                    scopes.append((f"{prefix}{node.name}.", node.body))
+    return found
+
+
+WITH_PLACEHOLDERS = _with_placeholders()
+
+
+def _runtime(module: str, qualname: str) -> object:
+    obj: object = importlib.import_module(module)
+    for part in qualname.split("."):
+        obj = getattr(obj, part)
+    return obj
+
+
+def test_the_shared_entries_are_in_use() -> None:
+    assert len(WITH_PLACEHOLDERS) >= 21  # closed_form, boundary, starts, design.build
+    used = set()
+    for module, qualname in WITH_PLACEHOLDERS:
+        source = inspect.getsource(_runtime(module, qualname))
+        used |= set(re.findall(r"%\((\w+)\)s", source))
+    assert used == set(docs.ENTRIES), f"unused: {set(docs.ENTRIES) - used}"
+
+
+@pytest.mark.parametrize(("module", "qualname"), WITH_PLACEHOLDERS)
+def test_every_placeholder_is_filled_with_the_entry_of_its_parameter(module, qualname) -> None:
+    obj = _runtime(module, qualname)
+    doc = inspect.getdoc(obj) or ""
+    assert "%(" not in doc, f"{module}.{qualname}: a placeholder not filled (no @fill?)"
+    params = _section(doc, "Parameters") or ""
+    documented = [line.split(" : ")[0] for line in params.splitlines() if line[:1].isalpha()]
+    signature = [p for p in inspect.signature(obj).parameters if p != "self"]  # type: ignore[arg-type]
+    assert documented == signature, f"{module}.{qualname}"
+
+
+def test_an_entry_takes_the_indentation_of_its_placeholder() -> None:
+    doc = "One line.\n\n    Parameters\n    ----------\n    %(alpha)s\n    x : int\n"
+    want = "    alpha : array_like of float\n        Ramp angle [rad], in [0, pi/2].\n"
+    assert docs.render(doc) == doc.replace("    %(alpha)s\n", want)
+    assert docs.render("%(alpha)s") == docs.ENTRIES["alpha"]
+    assert docs.render("a 100%(alpha)s share") == "a 100%(alpha)s share"  # not a line of its own
+    with pytest.raises(KeyError, match=r"%\(alpah\)s"):
+        docs.render("    %(alpah)s")
+
+
+def test_the_site_reads_the_filled_docstrings() -> None:
+    griffe = pytest.importorskip("griffe")
+    spec = importlib.util.spec_from_file_location("ext", ROOT / "docs/_ext/griffe_eccjump.py")
+    assert spec is not None and spec.loader is not None
+    ext = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(ext)
+    pkg = griffe.load(
+        "eccjump",
+        search_paths=[str(ROOT / "python")],
+        extensions=griffe.Extensions(ext.EccjumpDocstrings()),
+    )
+    for module, qualname in WITH_PLACEHOLDERS:
+        seen = pkg[f"{module.removeprefix('eccjump.')}.{qualname}"].docstring.value
+        assert "%(" not in seen, f"{module}.{qualname}"
 
 
 def _documented_names() -> set[str]:

@@ -22,7 +22,7 @@ from pathlib import Path
 import numpy as np
 import pytest
 from fuzz_cases import http_exchange
-from reference_points import SLIP_FIRST
+from reference_points import SLIP_FIRST, SLIP_FIRST_KW
 
 import eccjump
 from eccjump.explorer import api, controls, server
@@ -501,7 +501,7 @@ def widget_module():
 
 
 def test_explore_returns_a_widget_holding_the_start(widget_module):
-    w = eccjump.explore(alpha=math.radians(30), chi=0.5, km=0.4, mu_k=0.5, rule="normal_force")
+    w = eccjump.explore(**SLIP_FIRST_KW, mu_k=0.5, rule="normal_force")
     assert float(w.params["alpha"]) == pytest.approx(30.0)
     assert (w.params["chi"], w.params["km"], w.params["mu_k"]) == ("0.5", "0.4", "0.5")
     assert (w.params["rule"], w.params["tie"]) == ("normal_force", "0")

@@ -14,7 +14,7 @@ import time
 
 import numpy as np
 import pytest
-from reference_points import JARM_BODY, SLIP_FIRST_BODY
+from reference_points import JARM_ARGS, JARM_BODY, SLIP_FIRST_BODY
 
 import eccjump
 from eccjump import Cylinder, Reason
@@ -103,8 +103,8 @@ def test_jarm_points_with_derivatives_are_checked_too(small_machine, monkeypatch
     _refuse_work(monkeypatch, classification, "jarm_points")
     a = np.full(5_000_000, 0.5)  # 0.5 GB of inputs and fields; 1.2 GB with derivatives
     with pytest.raises(AssertionError, match="the work began"):
-        eccjump.jarm(a, 0.15, 0.02, 1.0)
-    short_error(MemoryError, eccjump.jarm, a, 0.15, 0.02, 1.0, derivatives=True, name="inputs")
+        eccjump.jarm(a, *JARM_BODY, 1.0)
+    short_error(MemoryError, eccjump.jarm, a, *JARM_BODY, 1.0, derivatives=True, name="inputs")
 
 
 def test_motion_maps_and_points_are_checked_before_the_work(small_machine, monkeypatch):
@@ -115,7 +115,7 @@ def test_motion_maps_and_points_are_checked_before_the_work(small_machine, monke
     a = np.linspace(0.1, 1.5, 400)  # 400^3 points of 73 bytes: 4.7 GB
     short_error(MemoryError, eccjump.motion_map, a, a / 2, a / 2, 1.0, name="the axes")
     b = np.full(10_000_000, 0.5)  # 10^7 points, 1.4 GB with their inputs
-    short_error(MemoryError, eccjump.motion_points, b, 0.15, 0.02, 1.0, name="the inputs")
+    short_error(MemoryError, eccjump.motion_points, b, *JARM_BODY, 1.0, name="the inputs")
 
 
 def test_uncertainty_counts_its_samples_before_drawing_them(small_machine, monkeypatch):
@@ -123,7 +123,7 @@ def test_uncertainty_counts_its_samples_before_drawing_them(small_machine, monke
     from eccjump.studies.uncertainty import study
 
     _refuse_work(monkeypatch, study, "draw", above=-1)
-    body = Cylinder(0.15, 0.02)
+    body = Cylinder(*JARM_BODY)
     msg = short_error(MemoryError, eccjump.uncertainty, body, 0.7, 1.0, sd={"chi": 0.01},
                       n=10**8, name="shrink n")  # fmt: skip
     assert "100,000,000 samples" in msg
@@ -345,7 +345,7 @@ def test_a_long_motion_map_and_simulate_honour_ctrl_c_within_a_second():
         (["map", "--mu-s", "-1", "--grid", "4"], "mu_s"),
         (["map", "--mu-s", "1", "--grid", "4", "--theta0", "1e300"], "theta0"),
         (["map", "--mu-s", "1", "--grid", "4", "--threads", "3000"], "n_threads"),
-        (["roll", "--alpha", "40", "--chi", "0.15", "--km", "0.02", "--omega0", "1e200"], "omega0"),
+        (["roll", *JARM_ARGS, "--omega0", "1e200"], "omega0"),
     ],
 )
 def test_the_command_line_refuses_bad_options_in_one_line(tmp_path, argv, name):

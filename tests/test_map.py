@@ -19,7 +19,9 @@ import pytest
 import eccjump
 from eccjump.classification.classify import FIELDS, Reason, region
 from eccjump.cli import main
-from eccjump.maps import store
+from eccjump.maps import runner, store
+from eccjump.maps.kinds import JARM
+from eccjump.maps.xarray import map_attrs
 
 xr = pytest.importorskip("xarray")
 
@@ -347,6 +349,40 @@ def test_ctrl_c_in_a_subprocess_keeps_finished_chunks_and_resumes(tmp_path):
     assert_same(region(mu_s=MU_S, **grid(40)), store.load(path))
 
 
+class _RegionJob:
+    """A job for the runner made here, not by the command line: the runner computes what
+    its caller gives it (it knows no kind's physics)."""
+
+    kind = JARM
+    matched = ("mu_s",)
+    counted = ("is_jarm",)
+
+    def __init__(self) -> None:
+        self.unrecorded: dict = {}
+        self.attrs = map_attrs(MU_S, None, "paper", "closed_form", 0.0, 0.0)
+        self.calls: list[int] = []
+        self.points = 0
+
+    def compute(self, alpha, chi, km, threads):
+        self.calls.append(alpha.size)
+        r = region(mu_s=MU_S, alpha=alpha, chi=chi, km_frac=km, n_threads=threads)
+        return {f: getattr(r.result, f) for f in FIELDS}
+
+    def count(self, part) -> None:
+        self.points += part["is_jarm"].size
+
+
+@pytest.mark.parametrize("suffix", [".npz", ".zarr"])
+def test_the_runner_computes_the_callers_job_in_chunks(tmp_path, suffix):
+    job, notes = _RegionJob(), []
+    axes = tuple(grid(6).values())
+    options = runner.Options(threads=1, chunk=2, progress=False)
+    out = runner.run(tmp_path / f"m{suffix}", axes, job, options, notes.append)
+    assert (out.complete, out.interrupted, out.done, out.computed) == (True, False, 6, 6**3)
+    assert job.calls == [1, 2, 2, 2] and job.points == 6**3 and notes == []  # a probe first
+    assert_same(region(mu_s=MU_S, **grid(6)), store.load(tmp_path / f"m{suffix}"))
+
+
 # --- a map is never lost: crashes, full disks, bad paths, foreign files -------------------
 
 SMALL = ("--grid", "6", "--chunk", "2", "--threads", "1")  # 3 chunks of 2 alpha slices
@@ -527,10 +563,8 @@ def test_a_read_only_directory_is_one_error_line(tmp_path, suffix, capsys):
 def test_a_grid_too_big_for_memory_is_one_error_line(
     tmp_path, suffix, precheck, monkeypatch, capsys
 ):
-    from eccjump.cli import map as cli_map
-
     if not precheck:  # numpy's own MemoryError (909 TiB: refused at once, nothing touched)
-        monkeypatch.setattr(cli_map, "memory_limit", lambda: None)
+        monkeypatch.setattr(runner, "memory_limit", lambda: None)
     code = map_here(tmp_path / f"big{suffix}", "--grid", "100000")
     assert code == 1
     assert "out of memory" in one_error_line(capsys.readouterr().err)

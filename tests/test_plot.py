@@ -12,9 +12,8 @@ from reference_points import JARM, JARM_BODY, SLIP_FIRST, SLIP_FIRST_BODY
 
 import eccjump
 from eccjump import plot
-from eccjump.classification import closed_form
+from eccjump.classification import closed_form, surfaces
 from eccjump.cli import main
-from eccjump.plot import paper
 
 
 @pytest.fixture(autouse=True)
@@ -72,11 +71,16 @@ def test_fig4_uses_exact_boundaries_and_a_legend_per_turn():
     assert labels and labels[0].startswith("$n = 1$")
 
 
+def test_the_surfaces_are_computed_below_the_figures_and_still_importable_there():
+    for name in ("JarmSurfaces", "jarm_surfaces", "MAX_RESOLUTION"):
+        assert getattr(plot, name) is getattr(plot.paper, name) is getattr(surfaces, name)
+
+
 def test_flood_fill_recovers_intervals_thinner_than_the_scan():
     chi = np.linspace(0.2, 0.45, 6)
     km = np.zeros_like(chi)
     coarse = eccjump.alpha_intervals(chi, km, 0.7, 3, n_scan=20)
-    filled = paper._grid_intervals(chi, km, 0.7, 3, 90)
+    filled = surfaces.grid_intervals(chi, km, 0.7, 3, 90)
     fine = eccjump.alpha_intervals(chi, km, 0.7, 3, n_scan=3000)
     assert sum(map(bool, filled)) >= sum(map(bool, coarse))
     for got, want in zip(filled, fine, strict=True):

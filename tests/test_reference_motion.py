@@ -12,10 +12,11 @@ import math
 import numpy as np
 import pytest
 import reference_motion as rm
+from reference_points import JARM_KW, SLIP_FIRST_KW
 
 D = math.radians
-JARM = {"chi": 0.15, "km": 0.02, "alpha": D(40.0), "mu_s": 1.0}
-SLIPJ = {"chi": 0.5, "km": 0.4, "alpha": D(30.0), "mu_s": 1.0}
+JARM = {**JARM_KW, "mu_s": 1.0}
+SLIPJ = {**SLIP_FIRST_KW, "mu_s": 1.0}
 
 
 def ledger_residual(res):

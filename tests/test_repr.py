@@ -3,8 +3,6 @@ not computed to show it."""
 
 from __future__ import annotations
 
-import math
-
 import numpy as np
 import pytest
 from reference_points import JARM, JARM_ALPHA, JARM_BODY
@@ -86,9 +84,7 @@ def test_repr_of_points_not_computed():
 
 
 def test_uncertainty_repr_is_one_line_with_the_probability():
-    u = eccjump.uncertainty(
-        eccjump.Cylinder(0.15, 0.02), math.radians(40), 1.0, sd={"chi": 0.02}, n=500, seed=3
-    )
+    u = eccjump.uncertainty(*JARM, 1.0, sd={"chi": 0.02}, n=500, seed=3)
     text = repr(u)
     assert "\n" not in text and len(text) < 200, text
     assert f"p_jarm={u.p_jarm:.4g}" in text and "chi ± 0.02" in text

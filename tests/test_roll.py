@@ -8,7 +8,7 @@ import numpy as np
 import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
-from reference_points import JARM, JARM_BODY, SLIP_FIRST
+from reference_points import JARM, JARM_ALPHA_DEG, JARM_BODY, ROLLS, SLIP_FIRST
 from scipy.integrate import solve_ivp
 from scipy.optimize import brentq
 
@@ -127,7 +127,7 @@ def J(theta, alpha, chi, km):
 
 @pytest.mark.parametrize(
     ("alpha_deg", "chi", "km"),
-    [(40, 0.15, 0.02), (60, 0.1, 0.5), (75, 0.05, 0.01), (20, 0.1, 0.1)],
+    [(JARM_ALPHA_DEG, *JARM_BODY), (60, 0.1, 0.5), (75, 0.05, 0.01), (20, 0.1, 0.1)],
 )
 def test_liftoff_from_rest_is_the_first_root_of_J(alpha_deg, chi, km):
     # Points where the paper's lift-off comes first (elsewhere F_y = 0 is met earlier).
@@ -255,7 +255,7 @@ def test_accepted_steps_match_scipy_rk45_step_for_step():
 
 
 def test_dense_output_matches_the_steps():
-    r = roll(Cylinder(0.3, 0.2), 0.5, dense_output=True)
+    r = roll(*ROLLS, dense_output=True)
     y = r.sol(r.t)
     np.testing.assert_allclose(y[0], r.theta, rtol=1e-13, atol=1e-13)
     assert r.sol(float(r.t[1])).shape == (2,)
@@ -276,7 +276,7 @@ def test_dense_output_ends_at_the_terminal_event():
 
 
 def test_dense_kinematics_are_the_recorded_ones_and_l_is_the_distance_rolled():
-    r = roll(Cylinder(0.3, 0.2), 0.5, mu_s=1.0, theta0=0.4, omega0=0.3, dense_output=True)
+    r = roll(*ROLLS, mu_s=1.0, theta0=0.4, omega0=0.3, dense_output=True)
     k = r.sol.kinematics(r.t)
     for name, rec in (("theta", r.theta), ("omega", r.omega), ("Fx", r.Fx), ("Fy", r.Fy)):
         np.testing.assert_allclose(k[name], rec, rtol=0, atol=1e-12, err_msg=name)
@@ -288,7 +288,7 @@ def test_dense_kinematics_are_the_recorded_ones_and_l_is_the_distance_rolled():
 
 
 def test_si_conversion_keeps_angles_and_scales_the_rest():
-    r = roll(Cylinder(0.3, 0.2), 0.5)
+    r = roll(*ROLLS)
     si = r.to_si(g=9.81, R=0.5, M=2.0)
     np.testing.assert_array_equal(si.theta, r.theta)
     np.testing.assert_allclose(si.t, r.t * math.sqrt(0.5 / 9.81))
@@ -351,7 +351,7 @@ def test_singular_body_ends_with_a_status_not_a_crash():
 
 
 def test_step_limit_gives_status_minus_one():
-    r = roll(Cylinder(0.3, 0.2), 0.5, max_steps=3, rtol=1e-12)
+    r = roll(*ROLLS, max_steps=3, rtol=1e-12)
     assert r.status == -1 and "max_steps" in r.message
 
 
@@ -372,10 +372,11 @@ def test_step_limit_gives_status_minus_one():
     ],
 )
 def test_invalid_input_raises_value_error(kwargs, name):
-    args = {"alpha": 0.5, **kwargs}
+    body, alpha = ROLLS
+    args = {"alpha": alpha, **kwargs}
     alpha = args.pop("alpha")
     with pytest.raises(ValueError, match=name):
-        roll(Cylinder(0.3, 0.2), alpha, **args)
+        roll(body, alpha, **args)
 
 
 def test_vertical_ramp_and_flat_ramp():
@@ -564,7 +565,7 @@ def test_verners_pairs_take_the_steps_of_scipys_runge_kutta_with_verners_tableau
 
     *_, extra_stages, rtol = VERNER[name]
     monkeypatch.setattr(rk, "SAFETY", 0.75)
-    for chi, km, deg, t_max in [(0.15, 0.02, 40, 4.0), (0.05, 0.5, 20, 10.0)]:
+    for chi, km, deg, t_max in [(*JARM_BODY, JARM_ALPHA_DEG, 4.0), (0.05, 0.5, 20, 10.0)]:
         body, alpha = Cylinder(chi, km), math.radians(deg)
         kw = dict(rtol=rtol, atol=rtol / 1000)
         r = roll(
@@ -628,7 +629,7 @@ def test_vern7_is_refused_naming_the_integrators_left(route):
 def test_liftoff_by_a_high_order_pair_matches_the_closed_form_root(integrator):
     from eccjump import jarm
 
-    for alpha_deg, chi, km in [(40, 0.15, 0.02), (70, 0.1, 0.27), (30, 0.1, 0.09)]:
+    for alpha_deg, chi, km in [(JARM_ALPHA_DEG, *JARM_BODY), (70, 0.1, 0.27), (30, 0.1, 0.09)]:
         alpha = math.radians(alpha_deg)
         r = roll(Cylinder(chi, km), alpha, integrator=integrator)
         exact = jarm(alpha, chi, km, 1e9, rule="paper").theta_J

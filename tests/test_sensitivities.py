@@ -17,6 +17,7 @@ import pytest
 import reference_motion as rm
 from hypothesis import assume, given, settings
 from hypothesis import strategies as st
+from reference_points import JARM_KW, SLIP_FIRST
 
 import eccjump
 
@@ -38,8 +39,7 @@ REF_TOL = {"rtol": 1e-12, "atol": 1e-14}
 CASES: dict[str, tuple[dict[str, float], dict[str, Any], int]] = {
     # the paper's body: roll, lift-off, flight, two bouncing landings (3e-8)
     "roll-liftoff-bounces": (
-        {"alpha": math.radians(40), "chi": 0.15, "km": 0.02, "mu_s": 1.0, "mu_k": 0.9,
-         "restitution": 0.4, "theta0": 0.0, "omega0": 0.0},
+        {**JARM_KW, "mu_s": 1.0, "mu_k": 0.9, "restitution": 0.4, "theta0": 0.0, "omega0": 0.0},
         {"t_max": 6.0, "max_transitions": 3},
         4 * 16,
     ),
@@ -129,8 +129,7 @@ def test_derivatives_agree_with_central_differences_of_the_reference(case: str) 
 
 #: A landing that sticks (e = 0): roll, lift-off, flight, landing into a slip, stick.
 STICKS = (
-    {"alpha": math.radians(40), "chi": 0.15, "km": 0.02, "mu_s": 1.0, "mu_k": 0.9,
-     "restitution": 0.0, "theta0": 0.0, "omega0": 0.0},
+    {**JARM_KW, "mu_s": 1.0, "mu_k": 0.9, "restitution": 0.0, "theta0": 0.0, "omega0": 0.0},
     {"t_max": 5.5, "max_transitions": 3},
 )  # fmt: skip
 
@@ -154,7 +153,7 @@ def test_the_time_of_a_sticking_landing_has_its_derivatives() -> None:
 
 
 #: A run that settles on the ramp after its bounces (the Zeno rule).
-SETTLES = (eccjump.Cylinder(0.5, 0.4), math.radians(30))
+SETTLES = SLIP_FIRST  # the Fig. 3b body slips first, then bounces and settles
 SETTLES_KW: dict[str, Any] = {"mu_s": 1.0, "mu_k": 0.8, "restitution": 0.3, "t_max": 9.0}
 
 #: Bounces that settle into a slip through the normal impulse (flagged from there on).

@@ -19,6 +19,7 @@ from pathlib import Path
 
 import numpy as np
 import pytest
+from reference_points import JARM_BODY
 
 import eccjump
 from eccjump import _core
@@ -318,7 +319,7 @@ def test_result_fields_come_from_one_table():
 
 
 def test_results_have_the_described_dtypes():
-    r = eccjump.jarm([0.5, 0.7], 0.15, 0.02, 1.0, derivatives=True)
+    r = eccjump.jarm([0.5, 0.7], *JARM_BODY, 1.0, derivatives=True)
     reg = eccjump.region(mu_s=1.0, alpha=[0.5, 0.7], chi=[0.15], km_frac=[0.1], derivatives=True)
     for name, dtype in fields.DTYPES.items():
         assert getattr(r, name).dtype == dtype and getattr(reg.result, name).dtype == dtype

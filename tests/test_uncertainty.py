@@ -10,6 +10,7 @@ from statistics import NormalDist
 
 import numpy as np
 import pytest
+from reference_points import JARM, JARM_ARGS, JARM_BODY, SLIP_FIRST
 
 import eccjump
 from eccjump.cli import main
@@ -18,8 +19,7 @@ from eccjump.studies.uncertainty.sampling import RANGES
 
 pytest.importorskip("scipy")
 
-BODY = eccjump.Cylinder(chi=0.15, km=0.02)
-ALPHA = math.radians(40)
+BODY, ALPHA = JARM
 #: Tolerances wide enough that about one sample in five is no JARM.
 SD = {"alpha": math.radians(2), "chi": 0.02, "km": 0.01, "mu_s": 0.15}
 
@@ -178,7 +178,7 @@ def test_a_study_of_no_spread_is_the_nominal_point():
     u = eccjump.uncertainty(BODY, ALPHA, 1.0, n=10)
     assert u.p_jarm == 1.0 and u.samples == {}
     theta = u.distributions["liftoff_theta"]
-    assert theta.q025 == theta.q975 == eccjump.jarm(ALPHA, 0.15, 0.02, 1.0).theta_J
+    assert theta.q025 == theta.q975 == eccjump.jarm(ALPHA, *JARM_BODY, 1.0).theta_J
     assert u.delta is not None and u.delta.theta_J_sd == 0.0 and u.delta.p_jarm == 1.0
 
 
@@ -316,7 +316,7 @@ def test_bad_nominal_values_name_them_with_unit_and_range():
     with pytest.raises(ValueError, match=r"mu_s = inf"):
         eccjump.uncertainty(BODY, ALPHA, math.inf)
     with pytest.raises(TypeError, match="body"):
-        eccjump.uncertainty((0.15, 0.02), ALPHA, 1.0)  # type: ignore[arg-type]
+        eccjump.uncertainty(JARM_BODY, ALPHA, 1.0)  # type: ignore[arg-type]
 
 
 def test_progress_reaches_the_total():
@@ -357,7 +357,7 @@ def test_plot():
 
 def test_command_line(tmp_path, capsys):
     out, fig = tmp_path / "u.csv", tmp_path / "u.png"
-    argv = ["uncertainty", "--chi", "0.15", "--km", "0.02", "--alpha", "40", "--mu-s", "1",
+    argv = ["uncertainty", *JARM_ARGS, "--mu-s", "1",
             "--sd", "alpha", "2", "--bounds", "mu_s", "0.8", "1.2", "-n", "256", "-q",
             "-o", str(out), "--json"]  # fmt: skip
     if _has_matplotlib():
@@ -454,7 +454,7 @@ def test_no_first_order_p_jarm_where_it_has_no_derivative():
     assert motion.delta is not None and motion.delta.p_jarm is None  # a count, not a margin
     classical = eccjump.uncertainty(BODY, ALPHA, 1.0, sd={"chi": 0.01}, n=8, rule="normal_force")
     assert classical.delta is None or classical.delta.p_jarm is None
-    slips = eccjump.uncertainty(eccjump.Cylinder(0.5, 0.4), math.radians(30), 1.0, sd=SMALL, n=8)
+    slips = eccjump.uncertainty(*SLIP_FIRST, 1.0, sd=SMALL, n=8)
     assert slips.delta is None  # the nominal point is no JARM
 
 

@@ -3,8 +3,9 @@
 Two things the static reading of the sources cannot do by itself:
 
 * a docstring completed at import (``JarmResult`` lists the fields of
-  ``eccjump.classification.fields``) is taken from the imported object, so the page and
-  ``help()`` agree;
+  ``eccjump.classification.fields``; the shared entries of ``eccjump._base.docs`` fill the
+  ``%(alpha)s`` placeholders) is taken from the imported object, so the page and ``help()``
+  agree;
 * the compiled core (``eccjump._core``) is read by inspection, which gives its constants the
   docstring of their type (``str``): their docstrings come from its stub, ``_core.pyi``;
 * a numpydoc "See Also" section (``name : what``) becomes a list of links;
@@ -120,7 +121,8 @@ class EccjumpDocstrings(griffe.Extension):
             if obj.kind in (griffe.Kind.CLASS, griffe.Kind.FUNCTION):
                 runtime = _runtime(obj.path)
                 doc = inspect.getdoc(runtime) if runtime is not None else None
-                if doc and doc != obj.docstring.value and "{" in obj.docstring.value:
+                completed = "{" in obj.docstring.value or "%(" in obj.docstring.value
+                if doc and doc != obj.docstring.value and completed:
                     obj.docstring.value = doc
             obj.docstring.value = _links(obj, _see_also(obj.docstring.value))
         for member in obj.members.values():

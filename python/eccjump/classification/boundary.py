@@ -9,6 +9,7 @@ from numpy.typing import ArrayLike, NDArray
 from eccjump import _core
 from eccjump._base.arrays import broadcast_flat, turn
 from eccjump._base.checks import U64_MAX, Rule, integer, real, text
+from eccjump._base.docs import fill
 
 
 def _options(n: object, rule: object, n_threads: object) -> _core.BoundaryOptions:
@@ -21,6 +22,7 @@ def _options(n: object, rule: object, n_threads: object) -> _core.BoundaryOption
     )
 
 
+@fill
 def alpha_intervals(
     chi: ArrayLike,
     km: ArrayLike,
@@ -43,17 +45,12 @@ def alpha_intervals(
         The bodies' d/R, each in [0, 1] (broadcast with ``km``, then flattened).
     km : array_like of float
         The bodies' shell mass fraction k_m, each in [0, 1 - chi].
-    mu_s : float
-        Static friction coefficient, in [0, inf).
-    n : int or None, default None
-        The turn on which the jump must happen (1 ... 2**32 - 1), or None for the first jump
-        whatever its turn.
-    rule : {"paper", "normal_force"}, default "paper"
-        Lift-off rule: the paper's condition chi theta'^2 cos theta = cos alpha, or Fy = 0.
+    %(mu_s)s
+    %(n_first)s
+    %(rule)s
     n_scan : int, default 180
         Angles of the scan, 2 ... 10**5.
-    n_threads : int, default 0
-        Threads, 0 (one per core) ... 256; results are identical for any value.
+    %(n_threads)s
 
     Returns
     -------
@@ -80,6 +77,7 @@ def alpha_intervals(
     )
 
 
+@fill
 def mu_s_min_path(
     alpha: ArrayLike,
     chi: ArrayLike,
@@ -96,19 +94,12 @@ def mu_s_min_path(
 
     Parameters
     ----------
-    alpha : array_like of float
-        Ramp angle [rad], in [0, pi/2].
-    chi : array_like of float
-        The body's d/R, in [0, 1].
-    km : array_like of float
-        The body's shell mass fraction k_m, in [0, 1 - chi].
-    n : int or None, default None
-        The turn on which the jump must happen (1 ... 2**32 - 1), or None for the first jump
-        whatever its turn.
-    rule : {"paper", "normal_force"}, default "paper"
-        Lift-off rule: the paper's condition chi theta'^2 cos theta = cos alpha, or Fy = 0.
-    n_threads : int, default 0
-        Threads, 0 (one per core) ... 256; results are identical for any value.
+    %(alpha)s
+    %(chi)s
+    %(km)s
+    %(n_first)s
+    %(rule)s
+    %(n_threads)s
 
     Returns
     -------
@@ -133,6 +124,7 @@ def mu_s_min_path(
     return out.reshape(shape)
 
 
+@fill
 def alpha_interval_around(
     seed: ArrayLike,
     chi: ArrayLike,
@@ -155,21 +147,14 @@ def alpha_interval_around(
     seed : array_like of float
         A ramp angle [rad] in [0, pi/2] that gives a JARM for the body (broadcast with
         ``chi`` and ``km``).
-    chi : array_like of float
-        The body's d/R, in [0, 1].
-    km : array_like of float
-        The body's shell mass fraction k_m, in [0, 1 - chi].
-    mu_s : float
-        Static friction coefficient, in [0, inf).
-    n : int or None, default None
-        The turn on which the jump must happen (1 ... 2**32 - 1), or None for the first jump
-        whatever its turn.
-    rule : {"paper", "normal_force"}, default "paper"
-        Lift-off rule: the paper's condition chi theta'^2 cos theta = cos alpha, or Fy = 0.
+    %(chi)s
+    %(km)s
+    %(mu_s)s
+    %(n_first)s
+    %(rule)s
     step : float, default 1e-3
         First step of the search [rad], in (0, pi/2].
-    n_threads : int, default 0
-        Threads, 0 (one per core) ... 256; results are identical for any value.
+    %(n_threads)s
 
     Returns
     -------

@@ -30,6 +30,7 @@ from numpy.typing import ArrayLike, NDArray
 from eccjump import _core
 from eccjump._base.arrays import broadcast_flat, turn
 from eccjump._base.checks import real
+from eccjump._base.docs import fill
 
 F = NDArray[np.float64]
 
@@ -61,6 +62,7 @@ def _n(n: object) -> int:
     return turn(n)  # type: ignore[return-value]
 
 
+@fill
 def jump_forces(alpha: ArrayLike, chi: ArrayLike, km: ArrayLike, theta_J: ArrayLike) -> tuple[F, F]:
     """The friction and normal force at a jump point theta_J (Eqs. jump6, Njumpfn).
 
@@ -69,14 +71,10 @@ def jump_forces(alpha: ArrayLike, chi: ArrayLike, km: ArrayLike, theta_J: ArrayL
 
     Parameters
     ----------
-    alpha : array_like of float
-        Ramp angle [rad], in [0, pi/2].
-    chi : array_like of float
-        The body's d/R, in [0, 1].
-    km : array_like of float
-        The body's shell mass fraction k_m, in [0, 1 - chi].
-    theta_J : array_like of float
-        The jump angle [rad].
+    %(alpha)s
+    %(chi)s
+    %(km)s
+    %(theta_J)s
 
     Returns
     -------
@@ -86,9 +84,7 @@ def jump_forces(alpha: ArrayLike, chi: ArrayLike, km: ArrayLike, theta_J: ArrayL
 
     Raises
     ------
-    ValueError
-        For a value out of its range, naming the parameter and the index of the first
-        invalid point, or arrays that do not broadcast.
+    %(value_error_broadcast)s
 
     Examples
     --------
@@ -103,6 +99,7 @@ def jump_forces(alpha: ArrayLike, chi: ArrayLike, km: ArrayLike, theta_J: ArrayL
     return fx, fy
 
 
+@fill
 def mu(chi: ArrayLike, km: ArrayLike, theta_J: ArrayLike) -> F:
     """mu(chi, k_m, theta_J) of Eq. ineq2: the signed ratio -F_x,J/F_y,J.
 
@@ -110,12 +107,9 @@ def mu(chi: ArrayLike, km: ArrayLike, theta_J: ArrayLike) -> F:
 
     Parameters
     ----------
-    chi : array_like of float
-        The body's d/R, in [0, 1].
-    km : array_like of float
-        The body's shell mass fraction k_m, in [0, 1 - chi].
-    theta_J : array_like of float
-        The jump angle [rad].
+    %(chi)s
+    %(km)s
+    %(theta_J)s
 
     Returns
     -------
@@ -124,9 +118,7 @@ def mu(chi: ArrayLike, km: ArrayLike, theta_J: ArrayLike) -> F:
 
     Raises
     ------
-    ValueError
-        For a value out of its range, naming the parameter and the index of the first
-        invalid point, or arrays that do not broadcast.
+    %(value_error_broadcast)s
 
     Examples
     --------
@@ -138,15 +130,14 @@ def mu(chi: ArrayLike, km: ArrayLike, theta_J: ArrayLike) -> F:
     return _call(_core.mu, chi=chi, km=km, theta_J=theta_J)[0]
 
 
+@fill
 def green_turn(alpha: ArrayLike, theta_J: ArrayLike) -> NDArray[np.int64]:
     """The turn n with 2 pi n - alpha < theta_J < 2 pi n (where F_y,J > 0), or 0 if none.
 
     Parameters
     ----------
-    alpha : array_like of float
-        Ramp angle [rad], in [0, pi/2].
-    theta_J : array_like of float
-        The jump angle [rad].
+    %(alpha)s
+    %(theta_J)s
 
     Returns
     -------
@@ -155,9 +146,7 @@ def green_turn(alpha: ArrayLike, theta_J: ArrayLike) -> NDArray[np.int64]:
 
     Raises
     ------
-    ValueError
-        For a value out of its range, naming the parameter and the index of the first
-        invalid point, or arrays that do not broadcast.
+    %(value_error_broadcast)s
 
     Examples
     --------
@@ -169,6 +158,7 @@ def green_turn(alpha: ArrayLike, theta_J: ArrayLike) -> NDArray[np.int64]:
     return _call(_core.green_turn, alpha=alpha, theta_J=theta_J)[0].astype(np.int64)
 
 
+@fill
 def in_green_interval(
     alpha: ArrayLike, theta_J: ArrayLike, n: int | None = None
 ) -> NDArray[np.bool_]:
@@ -176,10 +166,8 @@ def in_green_interval(
 
     Parameters
     ----------
-    alpha : array_like of float
-        Ramp angle [rad], in [0, pi/2].
-    theta_J : array_like of float
-        The jump angle [rad].
+    %(alpha)s
+    %(theta_J)s
     n : int or None, default None
         The turn, >= 1; None: any turn.
 
@@ -190,9 +178,7 @@ def in_green_interval(
 
     Raises
     ------
-    ValueError
-        For a value out of its range, naming the parameter and the index of the first
-        invalid point, or arrays that do not broadcast.
+    %(value_error_broadcast)s
 
     Examples
     --------
@@ -205,15 +191,14 @@ def in_green_interval(
     return np.asarray(g > 0 if n is None else g == _n(n))
 
 
+@fill
 def mu_s_min(chi: ArrayLike, km: ArrayLike) -> tuple[F, F]:
     """The smallest static friction that allows a JARM for the body, and where.
 
     Parameters
     ----------
-    chi : array_like of float
-        The body's d/R, in [0, 1].
-    km : array_like of float
-        The body's shell mass fraction k_m, in [0, 1 - chi].
+    %(chi)s
+    %(km)s
 
     Returns
     -------
@@ -224,9 +209,7 @@ def mu_s_min(chi: ArrayLike, km: ArrayLike) -> tuple[F, F]:
 
     Raises
     ------
-    ValueError
-        For a value out of its range, naming the parameter and the index of the first
-        invalid point, or arrays that do not broadcast.
+    %(value_error_broadcast)s
 
     Examples
     --------
@@ -242,6 +225,7 @@ def mu_s_min(chi: ArrayLike, km: ArrayLike) -> tuple[F, F]:
     return m, phi
 
 
+@fill
 def theta_J_range(chi: ArrayLike, km: ArrayLike, mu_s: ArrayLike, n: int = 1) -> tuple[F, F]:
     """The jump angles allowed by friction on turn n: (theta_J,min, theta_J,max).
 
@@ -249,14 +233,10 @@ def theta_J_range(chi: ArrayLike, km: ArrayLike, mu_s: ArrayLike, n: int = 1) ->
 
     Parameters
     ----------
-    chi : array_like of float
-        The body's d/R, in [0, 1].
-    km : array_like of float
-        The body's shell mass fraction k_m, in [0, 1 - chi].
-    mu_s : array_like of float
-        Static friction coefficient, in [0, inf).
-    n : int, default 1
-        The turn, >= 1 (not None: these formulas are for one given turn).
+    %(chi)s
+    %(km)s
+    %(mu_s_array)s
+    %(n_turn)s
 
     Returns
     -------
@@ -265,9 +245,7 @@ def theta_J_range(chi: ArrayLike, km: ArrayLike, mu_s: ArrayLike, n: int = 1) ->
 
     Raises
     ------
-    ValueError
-        For a value out of its range, naming the parameter and the index of the first
-        invalid point, or arrays that do not broadcast.
+    %(value_error_broadcast)s
     TypeError
         If ``n`` is None or not an integer.
 
@@ -283,19 +261,16 @@ def theta_J_range(chi: ArrayLike, km: ArrayLike, mu_s: ArrayLike, n: int = 1) ->
     return lo, hi
 
 
+@fill
 def alpha_min(chi: ArrayLike, km: ArrayLike, mu_s: ArrayLike, n: int = 1) -> F:
     """alpha_min = 2 pi n - theta_J,max: no JARM on turn n on a gentler ramp.
 
     Parameters
     ----------
-    chi : array_like of float
-        The body's d/R, in [0, 1].
-    km : array_like of float
-        The body's shell mass fraction k_m, in [0, 1 - chi].
-    mu_s : array_like of float
-        Static friction coefficient, in [0, inf).
-    n : int, default 1
-        The turn, >= 1 (not None: these formulas are for one given turn).
+    %(chi)s
+    %(km)s
+    %(mu_s_array)s
+    %(n_turn)s
 
     Returns
     -------
@@ -304,9 +279,7 @@ def alpha_min(chi: ArrayLike, km: ArrayLike, mu_s: ArrayLike, n: int = 1) -> F:
 
     Raises
     ------
-    ValueError
-        For a value out of its range, naming the parameter and the index of the first
-        invalid point, or arrays that do not broadcast.
+    %(value_error_broadcast)s
     TypeError
         If ``n`` is None or not an integer.
 
@@ -320,15 +293,14 @@ def alpha_min(chi: ArrayLike, km: ArrayLike, mu_s: ArrayLike, n: int = 1) -> F:
     return _call(_core.alpha_min, _n(n), chi=chi, km=km, mu_s=mu_s)[0]
 
 
+@fill
 def gamma(chi: ArrayLike, km: ArrayLike) -> F:
     """gamma = (I_C + 1 + 2 chi)/(4 pi chi) of Eq. dega2.
 
     Parameters
     ----------
-    chi : array_like of float
-        The body's d/R, in [0, 1].
-    km : array_like of float
-        The body's shell mass fraction k_m, in [0, 1 - chi].
+    %(chi)s
+    %(km)s
 
     Returns
     -------
@@ -337,9 +309,7 @@ def gamma(chi: ArrayLike, km: ArrayLike) -> F:
 
     Raises
     ------
-    ValueError
-        For a value out of its range, naming the parameter and the index of the first
-        invalid point, or arrays that do not broadcast.
+    %(value_error_broadcast)s
 
     Examples
     --------
@@ -350,6 +320,7 @@ def gamma(chi: ArrayLike, km: ArrayLike) -> F:
     return _call(_core.gamma, chi=chi, km=km)[0]
 
 
+@fill
 def J(theta: ArrayLike, alpha: ArrayLike, chi: ArrayLike, km: ArrayLike) -> F:
     """The paper's J(theta) (Eq. Jta) as printed, from rest at theta0 = 0.
 
@@ -357,14 +328,10 @@ def J(theta: ArrayLike, alpha: ArrayLike, chi: ArrayLike, km: ArrayLike) -> F:
 
     Parameters
     ----------
-    theta : array_like of float
-        Angle [rad].
-    alpha : array_like of float
-        Ramp angle [rad], in [0, pi/2].
-    chi : array_like of float
-        The body's d/R, in [0, 1].
-    km : array_like of float
-        The body's shell mass fraction k_m, in [0, 1 - chi].
+    %(theta)s
+    %(alpha)s
+    %(chi)s
+    %(km)s
 
     Returns
     -------
@@ -373,9 +340,7 @@ def J(theta: ArrayLike, alpha: ArrayLike, chi: ArrayLike, km: ArrayLike) -> F:
 
     Raises
     ------
-    ValueError
-        For a value out of its range, naming the parameter and the index of the first
-        invalid point, or arrays that do not broadcast.
+    %(value_error_broadcast)s
 
     Examples
     --------
@@ -387,6 +352,7 @@ def J(theta: ArrayLike, alpha: ArrayLike, chi: ArrayLike, km: ArrayLike) -> F:
     return _call(_core.j_paper, theta=theta, alpha=alpha, chi=chi, km=km)[0]
 
 
+@fill
 def liftoff_function(
     theta: ArrayLike,
     alpha: ArrayLike,
@@ -403,18 +369,12 @@ def liftoff_function(
 
     Parameters
     ----------
-    theta : array_like of float
-        Angle [rad].
-    alpha : array_like of float
-        Ramp angle [rad], in [0, pi/2].
-    chi : array_like of float
-        The body's d/R, in [0, 1].
-    km : array_like of float
-        The body's shell mass fraction k_m, in [0, 1 - chi].
-    theta0 : float, default 0.0
-        Initial angle [rad], |theta0| <= 2 pi 1e6.
-    omega0 : float, default 0.0
-        Initial angular velocity [sqrt(g/R) rad], in [0, 1e6].
+    %(theta)s
+    %(alpha)s
+    %(chi)s
+    %(km)s
+    %(theta0)s
+    %(omega0)s
 
     Returns
     -------
@@ -423,9 +383,7 @@ def liftoff_function(
 
     Raises
     ------
-    ValueError
-        For a value out of its range, naming the parameter and the index of the first
-        invalid point, or arrays that do not broadcast.
+    %(value_error_broadcast)s
 
     Examples
     --------
@@ -439,6 +397,7 @@ def liftoff_function(
     )[0]
 
 
+@fill
 def J_brackets(alpha: ArrayLike, chi: ArrayLike, km: ArrayLike, n: int = 1) -> tuple[F, F]:
     """(J(2 pi n - alpha), J(2 pi n)) of Eqs. JtaC1, JtaC2.
 
@@ -446,14 +405,10 @@ def J_brackets(alpha: ArrayLike, chi: ArrayLike, km: ArrayLike, n: int = 1) -> t
 
     Parameters
     ----------
-    alpha : array_like of float
-        Ramp angle [rad], in [0, pi/2].
-    chi : array_like of float
-        The body's d/R, in [0, 1].
-    km : array_like of float
-        The body's shell mass fraction k_m, in [0, 1 - chi].
-    n : int, default 1
-        The turn, >= 1 (not None: these formulas are for one given turn).
+    %(alpha)s
+    %(chi)s
+    %(km)s
+    %(n_turn)s
 
     Returns
     -------
@@ -462,9 +417,7 @@ def J_brackets(alpha: ArrayLike, chi: ArrayLike, km: ArrayLike, n: int = 1) -> t
 
     Raises
     ------
-    ValueError
-        For a value out of its range, naming the parameter and the index of the first
-        invalid point, or arrays that do not broadcast.
+    %(value_error_broadcast)s
     TypeError
         If ``n`` is None or not an integer.
 
@@ -480,6 +433,7 @@ def J_brackets(alpha: ArrayLike, chi: ArrayLike, km: ArrayLike, n: int = 1) -> t
     return c1, c2
 
 
+@fill
 def theta_nJ(alpha: ArrayLike, chi: ArrayLike, km: ArrayLike, n: int = 1) -> F:
     """theta_{n,J}: the root of the lift-off function in [2 pi n - alpha, 2 pi n].
 
@@ -488,14 +442,10 @@ def theta_nJ(alpha: ArrayLike, chi: ArrayLike, km: ArrayLike, n: int = 1) -> F:
 
     Parameters
     ----------
-    alpha : array_like of float
-        Ramp angle [rad], in [0, pi/2].
-    chi : array_like of float
-        The body's d/R, in [0, 1].
-    km : array_like of float
-        The body's shell mass fraction k_m, in [0, 1 - chi].
-    n : int, default 1
-        The turn, >= 1 (not None: these formulas are for one given turn).
+    %(alpha)s
+    %(chi)s
+    %(km)s
+    %(n_turn)s
 
     Returns
     -------
@@ -504,9 +454,7 @@ def theta_nJ(alpha: ArrayLike, chi: ArrayLike, km: ArrayLike, n: int = 1) -> F:
 
     Raises
     ------
-    ValueError
-        For a value out of its range, naming the parameter and the index of the first
-        invalid point, or arrays that do not broadcast.
+    %(value_error_broadcast)s
     TypeError
         If ``n`` is None or not an integer.
 
@@ -520,6 +468,7 @@ def theta_nJ(alpha: ArrayLike, chi: ArrayLike, km: ArrayLike, n: int = 1) -> F:
     return _call(_core.theta_nj, _n(n), alpha=alpha, chi=chi, km=km)[0]
 
 
+@fill
 def path_forces(
     theta: ArrayLike,
     alpha: ArrayLike,
@@ -536,18 +485,12 @@ def path_forces(
 
     Parameters
     ----------
-    theta : array_like of float
-        Angle [rad].
-    alpha : array_like of float
-        Ramp angle [rad], in [0, pi/2].
-    chi : array_like of float
-        The body's d/R, in [0, 1].
-    km : array_like of float
-        The body's shell mass fraction k_m, in [0, 1 - chi].
-    theta0 : float, default 0.0
-        Initial angle [rad], |theta0| <= 2 pi 1e6.
-    omega0 : float, default 0.0
-        Initial angular velocity [sqrt(g/R) rad], in [0, 1e6].
+    %(theta)s
+    %(alpha)s
+    %(chi)s
+    %(km)s
+    %(theta0)s
+    %(omega0)s
 
     Returns
     -------
@@ -556,9 +499,7 @@ def path_forces(
 
     Raises
     ------
-    ValueError
-        For a value out of its range, naming the parameter and the index of the first
-        invalid point, or arrays that do not broadcast.
+    %(value_error_broadcast)s
 
     Examples
     --------

@@ -28,6 +28,7 @@ from numpy.typing import ArrayLike, NDArray
 
 from eccjump._base.arrays import axis
 from eccjump._base.checks import U64_MAX, Rule, integer, real, rule_name, short
+from eccjump._base.docs import fill
 from eccjump._base.html import card, deg, num, span
 from eccjump.classification.classify import region
 from eccjump.classification.fields import Reason
@@ -95,6 +96,7 @@ def _shares(
     return counts[:N_REASONS] / reg.result.reason.size
 
 
+@fill
 def reason_shares(
     mu_s: float,
     theta0: float = 0.0,
@@ -115,18 +117,12 @@ def reason_shares(
 
     Parameters
     ----------
-    mu_s : float
-        Static friction coefficient, in [0, inf).
-    theta0 : float, default 0.0
-        Initial angle [rad], |theta0| <= 2 pi 1e6, taken modulo 2 pi.
-    omega0 : float, default 0.0
-        Initial angular velocity [sqrt(g/R) rad], in [0, 1e6].
-    grid : int, default 40
-        Points per axis of the midpoint grid of (alpha, chi, km_frac), 2 ... 128.
-    rule : {"paper", "normal_force"}, default "paper"
-        Lift-off rule.
-    n_threads : int, default 0
-        Threads, 0 (one per core) ... 256; results are identical for any value.
+    %(mu_s)s
+    %(theta0_modulo)s
+    %(omega0)s
+    %(grid_starts)s
+    %(rule_short)s
+    %(n_threads)s
 
     Returns
     -------
@@ -152,6 +148,7 @@ def reason_shares(
     return {r: float(s[r.value]) for r in Reason}
 
 
+@fill
 def jarm_fraction(
     mu_s: float,
     theta0: float = 0.0,
@@ -169,18 +166,12 @@ def jarm_fraction(
 
     Parameters
     ----------
-    mu_s : float
-        Static friction coefficient, in [0, inf).
-    theta0 : float, default 0.0
-        Initial angle [rad], |theta0| <= 2 pi 1e6, taken modulo 2 pi.
-    omega0 : float, default 0.0
-        Initial angular velocity [sqrt(g/R) rad], in [0, 1e6].
-    grid : int, default 40
-        Points per axis of the midpoint grid of (alpha, chi, km_frac), 2 ... 128.
-    rule : {"paper", "normal_force"}, default "paper"
-        Lift-off rule.
-    n_threads : int, default 0
-        Threads, 0 (one per core) ... 256; results are identical for any value.
+    %(mu_s)s
+    %(theta0_modulo)s
+    %(omega0)s
+    %(grid_starts)s
+    %(rule_short)s
+    %(n_threads)s
 
     Returns
     -------
@@ -297,6 +288,7 @@ class StartMap:
         return card("StartMap", rows)
 
 
+@fill
 def start_map(
     mu_s: float,
     theta0: ArrayLike,
@@ -315,8 +307,7 @@ def start_map(
 
     Parameters
     ----------
-    mu_s : float
-        Static friction coefficient, in [0, inf).
+    %(mu_s)s
     theta0 : array_like of float, 1-D
         Initial angles [rad], |theta0| <= 2 pi 1e6, taken modulo 2 pi.
     omega0 : array_like of float, 1-D
@@ -324,10 +315,8 @@ def start_map(
         all.
     grid : int, default 24
         Points per axis of the midpoint grid of (alpha, chi, km_frac), 2 ... 128.
-    rule : {"paper", "normal_force"}, default "paper"
-        Lift-off rule.
-    n_threads : int, default 0
-        Threads, 0 (one per core) ... 256; results are identical for any value.
+    %(rule_short)s
+    %(n_threads)s
     progress : callable or None, default None
         Called as ``progress(done, total)`` after each start.
 
@@ -571,6 +560,7 @@ def _circle_distance(a: float, b: float) -> float:
     return min(d, TWO_PI - d)
 
 
+@fill
 def optimal_start(
     mu_s: float,
     *,
@@ -596,8 +586,7 @@ def optimal_start(
 
     Parameters
     ----------
-    mu_s : float
-        Static friction coefficient, in [0, inf).
+    %(mu_s)s
     grid : int, default 32
         Points per axis of the coarse grid, 2 ... 64 (the fine grid is 2 grid).
     omega_max : float, default 3.0
@@ -606,10 +595,8 @@ def optimal_start(
         Starts of the first lattice along theta0 and omega0, each 2 ... 1000.
     n_starts : int, default 3
         Lattice starts the local search begins from, 1 ... 50.
-    rule : {"paper", "normal_force"}, default "paper"
-        Lift-off rule.
-    n_threads : int, default 0
-        Threads, 0 (one per core) ... 256; results are identical for any value.
+    %(rule_short)s
+    %(n_threads)s
     max_evaluations : int, default 2000
         Bound of the maps computed in all, 1 ... 10**5.
 

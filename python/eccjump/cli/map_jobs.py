@@ -1,8 +1,8 @@
 """The two kinds of ``eccjump map`` as small job classes: the JARM classification
 (:func:`eccjump.region`) and the full motion to the first landing (:func:`eccjump.motion_map`).
 Each holds its options and file attributes, computes one chunk, counts the finished points
-and writes its summary lines and figure; :mod:`eccjump.cli.map` does the chunking, resume
-and files for both."""
+and writes its summary lines and figure: a :class:`eccjump.maps.runner.Job`, which the
+runner computes in chunks, resumes and writes for both."""
 
 from __future__ import annotations
 
@@ -61,6 +61,7 @@ class JarmJob:
 
     kind: MapKind = JARM
     matched = MAP_OPTIONS
+    unrecorded = UNRECORDED
     counted = ("is_jarm", "n")
 
     def __init__(self, args: argparse.Namespace) -> None:
@@ -126,6 +127,7 @@ class MotionJob:
 
     kind: MapKind = MOTION
     matched = MOTION_OPTIONS
+    unrecorded = UNRECORDED
     counted = ("sequence", "jarm", "slipped_first", "status")
 
     def __init__(self, args: argparse.Namespace) -> None:

@@ -7,6 +7,7 @@ from typing import NamedTuple
 
 from eccjump._base.body import Cylinder
 from eccjump._base.checks import real, short
+from eccjump._base.docs import fill
 
 
 class Build(NamedTuple):
@@ -23,6 +24,7 @@ class Build(NamedTuple):
     I_C: float
 
 
+@fill
 def build(body: Cylinder, *, radius: float = 1.0, mass: float = 1.0) -> Build:
     """``body`` built as the paper's shell plus rod, of radius ``radius`` and mass ``mass``.
 
@@ -32,8 +34,7 @@ def build(body: Cylinder, *, radius: float = 1.0, mass: float = 1.0) -> Build:
 
     Parameters
     ----------
-    body : Cylinder
-        The body (chi, km).
+    %(body)s
     radius : float, default 1.0
         R, finite and > 0, in units of your choice (e.g. m).
     mass : float, default 1.0
