@@ -56,7 +56,6 @@ from eccjump._base.optional import require
 from eccjump._base.overwrite import check_overwrite
 from eccjump._base.userfiles import open_binary
 from eccjump.maps import store
-from eccjump.studies.experiment.geometry import fit_contact_line
 from eccjump.studies.experiment.inputs import in_range
 from eccjump.studies.experiment.track import MAX_FRAMES, MIN_FRAMES, Track
 
@@ -473,7 +472,7 @@ def _scan(video: object, t0: float, t1: float, progress: Any) -> _Scan:
             ) from None
         with container:
             if not container.streams.video:
-                raise ValueError(f"video: {name} holds no video stream")
+                raise ValueError(f"video: {name} has no video frames (no video stream)")
             stream = container.streams.video[0]
             stream.thread_type = "AUTO"
             expected = _expected_frames(stream, t0, t1)
@@ -756,11 +755,8 @@ def _pick_dots(
     paths = {h: _follow(scan.blobs, h) for h in _colours(scan.blobs)}
     for key, rgb in zip(("axle_color", "marker_color"), given, strict=True):
         if rgb is not None and not any(_hue_gap(h, hue(rgb)) <= COLOR_MATCH for h in paths):
-            seen = ", ".join(f"{_name(h)} ({h:.0f} deg)" for h in paths) or "none"
-            raise ValueError(
-                f"{key}: no dot of hue {hue(rgb):.0f} deg ({_hex(rgb)}) in {name}; dots "
-                f"seen: {seen}"
-            )
+            seen = ", ".join(_name(h) for h in paths) or "none"
+            raise ValueError(f"{key}: no dot of colour {_hex(rgb)} in {name}; dots seen: {seen}")
     moving = [p for p in paths.values() if p.moves]
     if len(moving) < 2:
         raise ValueError(_too_few(name, moving))
@@ -786,7 +782,7 @@ def _too_few(name: str, moving: list[_Path]) -> str:
             "end face: the axle's and the marker's)"
         )
     only = moving[0]
-    colour = f"{_name(only.hue)} ({only.hue:.0f} deg)"
+    colour = _name(only.hue)
     if only.twins > 0.5:
         return (
             f"video: {name}: both dots seem to have one colour, {colour}: paint them in "
@@ -864,7 +860,7 @@ def _assemble(
     off = both & (np.abs(dist - d0) > max(3.0, 0.15 * d0))  # one of them is not its dot
     c_px[off], m_px[off] = np.nan, np.nan
     both &= ~off
-    begin = _release(c_px, axle.err)
+    begin = _release(c_px, axle.err, scan.t)
     keep = both & (np.arange(both.size) >= begin)
     if keep.sum() < MIN_FRAMES:
         raise ValueError(
@@ -887,7 +883,7 @@ def _assemble(
         return np.column_stack([p[keep, 0], height - 1 - p[keep, 1]]) / px
 
     c = lab(c_px)
-    line = fit_contact_line(c, None)
+    ramp, ramp_err = _ramp_line(c, float(np.median(widen * axle.err[keep])) / px)
     return VideoTrack(
         t=scan.t[keep],
         c=c,
@@ -902,9 +898,9 @@ def _assemble(
         scale=float(px),
         scale_err=float(px_err),
         scale_from=how,
-        ramp_angle=line.frame.alpha,
-        ramp_angle_err=line.alpha_err,
-        roll=math.nan if alpha is None else line.frame.alpha - alpha,
+        ramp_angle=ramp,
+        ramp_angle_err=ramp_err,
+        roll=math.nan if alpha is None else ramp - alpha,
         axle_color=_mean_colour(scan, axle),
         marker_color=_mean_colour(scan, marker),
         release_t=float(scan.t[begin]) if begin > 0 else math.nan,
@@ -928,6 +924,31 @@ def _error_scale(
     return max(1.0, scatter / typical) if typical > 0 else 1.0
 
 
+def _ramp_line(c: NDArray[np.float64], noise: float) -> tuple[float, float]:
+    """The angle [rad] below the horizontal, in the direction of motion, of the axle's
+    rolling line, and its standard error: the straight line through the axle's positions in
+    contact (C is R above the ramp there), found from the track's first half and then from
+    every frame within 4 noise levels of it (a flight is above it), refitted. The noise is
+    the larger of the scatter about the line and the centroids' error ``noise``: still
+    frames at the start scatter less than the rolling ones."""
+    use = np.arange(c.shape[0]) < max(MIN_FRAMES, c.shape[0] // 2)
+    for _ in range(8):
+        centre = c[use].mean(axis=0)
+        _, _, vt = np.linalg.svd(c[use] - centre, full_matrices=False)
+        along, normal = vt[0], vt[1]
+        res = (c - centre) @ normal
+        sigma = max(1.4826 * float(np.median(np.abs(res[use]))), noise)
+        new = np.abs(res) <= 4.0 * sigma
+        if (new == use).all() or new.sum() < MIN_FRAMES:
+            break
+        use = new
+    along = along if along @ (c[-1] - c[0]) >= 0 else -along
+    s = (c[use] - centre) @ along
+    spread = float(((s - s.mean()) ** 2).sum())
+    err = sigma / math.sqrt(spread) if spread > 0 else math.inf
+    return math.atan2(-along[1], abs(along[0])), err
+
+
 def _median_error(x: NDArray[np.float64]) -> float:
     """The standard error of the median of a series whose neighbours correlate: that of
     independent normal draws (1.25 sigma / sqrt n) over the effective number of draws
@@ -949,18 +970,26 @@ def _usable(path: _Path) -> NDArray[np.float64]:
     return p
 
 
-def _release(c: NDArray[np.float64], err: NDArray[np.float64]) -> int:
-    """The first frame to keep: two frames before the axle leaves its place, if it stays
+def _release(c: NDArray[np.float64], err: NDArray[np.float64], t: NDArray[np.float64]) -> int:
+    """The first frame to keep: the last one still before the release, if the axle stays
     still (within 1 px and 4 standard errors) for MIN_REST_FRAMES frames or more first;
-    else 0."""
+    else 0. Released from rest, the axle's distance from its place grows as (t - t_r)^2 at
+    first, so the release t_r is where the root of that distance, fitted by a line over the
+    frames that leave the place, meets 0 (the frames that move less than the tolerance are
+    kept: they are the start of the motion)."""
     found = np.flatnonzero(np.isfinite(c[:, 0]))
     if found.size < MIN_REST_FRAMES + MIN_FRAMES:
         return 0
-    home = np.median(c[found[:5]], axis=0)
+    dist = np.hypot(*(c[found] - np.median(c[found[:5]], axis=0)).T)
     tol = max(1.0, 4.0 * float(np.nanmedian(err)))
-    moved = np.hypot(*(c[found] - home).T) > tol
-    first = int(np.argmax(moved)) if moved.any() else 0
-    return int(found[first - 2]) if first >= MIN_REST_FRAMES else 0
+    first = int(np.argmax(dist > tol)) if (dist > tol).any() else 0
+    if first < MIN_REST_FRAMES:
+        return 0
+    early = np.arange(first, min(first + 6, found.size))
+    slope, intercept = np.polyfit(t[found[early]], np.sqrt(dist[early]), 1)
+    t_r = -intercept / slope if slope > 0 else t[found[first - 2]]
+    still = np.flatnonzero(t[found[:first]] <= t_r)
+    return int(found[still[-1]]) if still.size else int(found[max(first - 2, 0)])
 
 
 def _mean_colour(scan: _Scan, path: _Path) -> str:
