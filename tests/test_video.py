@@ -16,11 +16,16 @@ from __future__ import annotations
 
 import json
 import math
+import os
+import subprocess
+import sys
+import textwrap
 from dataclasses import replace
 
 import numpy as np
 import pytest
 from fuzz_cases import MAX_MESSAGE, run_cli_inprocess
+from test_limits import interrupted_after
 
 import eccjump
 from eccjump.studies.experiment import render_video
@@ -181,6 +186,23 @@ def test_a_lost_dot_is_a_gap_not_a_guess(slip, tmp_path):
     assert "4 (30-32, 60) left out" in repr(gaps)
 
 
+@pytest.mark.skipif(os.name != "posix", reason="needs POSIX signals")
+def test_tracking_honours_ctrl_c_within_a_second(hd):
+    clip, _ = hd
+    code = textwrap.dedent(
+        f"""
+        import eccjump
+        print("start", flush=True)
+        try:  # 1280 x 720, about 1.5 s
+            eccjump.track({str(clip.path)!r}, marker_radius=0.04)
+            print("finished")
+        except KeyboardInterrupt:
+            print("interrupted", flush=True)
+        """
+    )
+    assert interrupted_after(code, 0.3) < 1.0
+
+
 # --- the command line --------------------------------------------------------------------
 
 
@@ -231,3 +253,19 @@ def test_a_video_is_known_by_its_suffix_or_its_first_bytes(slip, tmp_path):
     text = tmp_path / "track.csv"
     text.write_text("t,xc,yc,xm,ym\n")
     assert not is_video(text) and not is_video("-") and not is_video(tmp_path)
+
+
+def test_pyav_is_imported_only_to_read_a_video_and_named_when_missing(slip, monkeypatch, tmp_path):
+    code = "import sys, eccjump; print('av' in sys.modules, 'scipy' in sys.modules)"
+    p = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True)
+    assert p.stdout.split() == ["False", "False"]
+    clip, _ = slip
+    monkeypatch.setitem(sys.modules, "av", None)  # as if PyAV were not installed
+    with pytest.raises(ImportError, match=r"^av is needed for reading videos: pip install "
+                       r"eccjump\[video\]$"):  # fmt: skip
+        eccjump.track(clip.path, marker_radius=clip.marker_radius)
+    out = tmp_path / "t.csv"
+    code, _, err = run_cli_inprocess(["track", str(clip.path), "-o", str(out), "--marker-radius",
+                                      "0.024"])  # fmt: skip
+    assert code == 1 and "eccjump[video]" in err and len(err.splitlines()) == 1, err
+    assert not out.exists()

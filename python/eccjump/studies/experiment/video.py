@@ -291,7 +291,8 @@ def track(
         The ramp angle [rad], in [0, pi/2]: the camera's roll is then reported (the rolling
         line's angle in the image minus alpha). The track is not rotated.
     start, end : float or None
-        Track only the frames in [start, end] [s] of the video (at most 10,000 frames).
+        Track only the frames between the times start and end [s] of the video (at most
+        10,000 frames).
     progress : callable or None
         Called as ``progress(frames_done, frames_expected)`` (the expected count is 0 if
         the container does not say).
