@@ -147,14 +147,7 @@ def render_video(
         omega0=omega0, radius=radius, g=g, duration=duration,
     )  # fmt: skip
     r_m = 0.8 * radius if marker_radius is None else marker_radius
-    dot = dot_radius * radius
-    if not (dot > 0 and 2 * dot < r_m <= (1 - RIM_WIDTH) * radius - dot):
-        raise ValueError(
-            "marker_radius, dot_radius: both dots must lie on the white face, apart: "
-            f"2 dot_radius R < marker_radius <= {1 - RIM_WIDTH:g} R - dot_radius R"
-        )
-    if wait and omega0:
-        raise ValueError("wait: a body held before its release starts with omega0 = 0")
+    _check_camera(radius, r_m, dot_radius, fps, shutter, wait, omega0, noise, crf)
     shift = 0.5 * shutter / fps - wait  # the run's time minus the video's
     t = np.arange(int((horizon * unit - shift - shutter / fps) * fps) + 1) / fps
     # the sub-frames of each exposure, centred on the frame's time (in the run's time)
@@ -165,8 +158,8 @@ def render_video(
     c_px, m_px = camera.pixels(c), camera.pixels(m)
     colors = [None if k is None else _color(n, k) for n, k in
               (("axle_color", axle_color), ("marker_color", marker_color))]  # fmt: skip
-    scene = _Scene(camera, radius, alpha, c[0], colors, noise, np.random.default_rng(seed))
-    scene.dot = dot_radius * scene.r
+    scene = _Scene(camera, radius, dot_radius, alpha, c[0], colors, noise,
+                   np.random.default_rng(seed))  # fmt: skip
     per_frame = zip(np.split(c_px, t.size), np.split(m_px, t.size), strict=True)
     frames = (scene.frame(ck, mk) for ck, mk in per_frame)
     tmp = store.temp_sibling(target)
@@ -190,6 +183,35 @@ def render_video(
         time_unit=unit,
         t_shift=shift,
     )
+
+
+def _check_camera(
+    radius: float,
+    r_m: float,
+    dot_radius: float,
+    fps: float,
+    shutter: float,
+    wait: float,
+    omega0: float,
+    noise: float,
+    crf: int,
+) -> None:
+    """ValueError naming the parameter for a camera or a face that cannot be rendered."""
+    dot = dot_radius * radius
+    if not (dot > 0 and 2 * dot < r_m <= (1 - RIM_WIDTH) * radius - dot):
+        raise ValueError(
+            "marker_radius, dot_radius: both dots must lie on the white face, apart: "
+            f"2 dot_radius R < marker_radius <= {1 - RIM_WIDTH:g} R - dot_radius R"
+        )
+    ranges = (("fps", fps, 1.0, 1e5), ("shutter", shutter, 0.0, 1.0), ("wait", wait, 0.0, 60.0),
+              ("noise", noise, 0.0, 50.0))  # fmt: skip
+    for name, value, lo, hi in ranges:
+        if not lo <= value <= hi:
+            raise ValueError(f"{name} = {value!r} is outside [{lo:g}, {hi:g}]")
+    if wait and omega0:
+        raise ValueError("wait: a body held before its release starts with omega0 = 0")
+    if not (isinstance(crf, int) and 0 <= crf <= 51):
+        raise ValueError(f"crf must be an int in [0, 51] (x264's quality), got {crf!r}")
 
 
 def _frame(c: NDArray[np.float64], radius: float, roll: float, size: tuple[int, int]) -> _Camera:
@@ -220,6 +242,7 @@ class _Scene:
         self,
         camera: _Camera,
         radius: float,
+        dot_radius: float,
         alpha: float,
         c0: NDArray[np.float64],
         colors: list[tuple[int, int, int] | None],
@@ -228,7 +251,7 @@ class _Scene:
     ) -> None:
         w, h = camera.size
         self.r = radius * camera.scale
-        self.dot = DOT_RADIUS * self.r
+        self.dot = dot_radius * self.r
         self.colors = [None if k is None else np.array(k, dtype=np.float64) for k in colors]
         self.noise, self.rng = noise, rng
         # the ramp's surface: the line R below the axle's contact line, in pixels
