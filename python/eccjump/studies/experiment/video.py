@@ -492,7 +492,7 @@ def _scan(video: object, t0: float, t1: float, progress: Any) -> _Scan:
                     progress(len(times), max(expected, len(times)))
     if not times:
         raise ValueError(
-            f"video: {name} has no frames" + ("" if t0 == -math.inf else " after start")
+            f"video: {name} has no video frames" + ("" if t0 == -math.inf else " after start")
         )
     return _Scan(name, np.array(times), blobs, colors, size)
 
