@@ -2048,9 +2048,133 @@ def case_analyze(d: Drawer) -> Case:
     return c
 
 
+# --- track: videos, good and bad ---------------------------------------------------------
+
+TRACK_PARAMS = ("video", "marker_radius", "scale", "axle_color", "marker_color", "alpha",
+                "start", "end", "progress")  # fmt: skip
+#: The bad videos (the issue's four -- no video, no frames, one dot, one colour -- and more)
+#: and what the message of each must say besides the file's name.
+BAD_VIDEOS = {
+    "text.mp4": "is not a video",
+    "random.mp4": "is not a video",
+    "empty.mp4": "is not a video",
+    "cut.mp4": "is not a video",
+    "no-frames.mp4": "has no video frames",
+    "audio.m4a": "has no video frames",
+    "one-dot.mp4": "only one moving dot found",
+    "one-colour.mp4": "both dots seem to have one colour",
+}
+#: The marker's distance from the axle in the rendered videos [m].
+VIDEO_MARKER = 0.035
+_VIDEOS: dict[str, Path] = {}
+
+
+def videos() -> dict[str, Path]:
+    """A good short video of the design's JARM body (384 x 216, 48 frames) and the bad ones
+    of BAD_VIDEOS, made once per process."""
+    if _VIDEOS:
+        return _VIDEOS
+    import av
+
+    from eccjump.studies.experiment import render_video
+
+    where = Path(tempfile.mkdtemp(dir=tmpdir()))
+    body = eccjump.Cylinder(0.10927, 0.0777)
+    for name, marker in (("good.mp4", "blue"), ("one-dot.mp4", None), ("one-colour.mp4", "red")):
+        render_video(where / name, body, math.radians(66.087), mu_s=1.2, duration=0.2,
+                     size=(384, 216), marker_radius=VIDEO_MARKER, dot_radius=0.2,
+                     marker_color=marker)  # fmt: skip
+    good = (where / "good.mp4").read_bytes()
+    (where / "cut.mp4").write_bytes(good[: len(good) // 2])
+    (where / "text.mp4").write_text("t,xc,yc,xm,ym\n0,0,0,1,1\n")
+    (where / "random.mp4").write_bytes(random.Random(7).randbytes(4000))
+    (where / "empty.mp4").write_bytes(b"")
+    out = av.open(str(where / "no-frames.mp4"), "w")
+    stream = out.add_stream("libx264", rate=240)
+    stream.width, stream.height, stream.pix_fmt = 64, 64, "yuv420p"
+    out.start_encoding()  # the header, and no frame
+    out.close()
+    with av.open(str(where / "audio.m4a"), "w") as out:
+        sound = out.add_stream("aac", rate=8000)
+        frame = av.AudioFrame.from_ndarray(np.zeros((1, 1024), np.float32), format="fltp",
+                                           layout="mono")  # fmt: skip
+        frame.sample_rate, frame.pts = 8000, 0
+        out.mux(sound.encode(frame))
+        out.mux(sound.encode())
+    _VIDEOS.update({p.name: p for p in where.iterdir()})
+    return _VIDEOS
+
+
+def check_video_track(res: Any, case: Case) -> None:
+    import json
+
+    expect(isinstance(res, eccjump.VideoTrack), "not a VideoTrack")
+    expect(res.n >= 12 and np.isfinite(res.c).all() and np.isfinite(res.m).all(), "bad track")
+    expect(math.isfinite(res.scale) and res.scale > 0, f"scale {res.scale}")
+    json.dumps(res.to_dict(), allow_nan=False)
+    expect(len(repr(res)) < 1000, "repr longer than a screen")
+
+
+COLOUR_VALUES = (None, None, "red", "blue", "BLUE", "#dc1e1e", (30, 70, 220), "green")
+COLOUR_BAD = ("mauve", "#12345", "#gggggg", "grey", (128, 128, 128), (300, 0, 0), (1, 2),
+              (1.0, 2.0, 3.0), (True, 0, 0), 5, b"red", ["r", "g", "b"])  # fmt: skip
+
+
+def _colour(d: Drawer, c: Case) -> Any:
+    if d.clean or d.integer(0, 3):
+        return d.choice(COLOUR_VALUES)
+    c.must_raise = True  # a wrong type or a colour that is none (grey: too pale)
+    return d.choice(COLOUR_BAD)
+
+
+def case_track(d: Drawer) -> Case:
+    """``eccjump.track``: the good video with parameters good and bad, or a bad video or a
+    path that is none (a FIFO, a directory, a device, a missing file, a wrong type)."""
+    c = Case("track", eccjump.track, params=TRACK_PARAMS, check=check_video_track)
+    files = videos()
+    what = d.choice(("good.mp4",) * 6 + tuple(BAD_VIDEOS) + ("fifo", "dir", "device", "missing",
+                                                             "int", "bytes"))  # fmt: skip
+    if d.clean:
+        what = "good.mp4"
+    if what in files:
+        c.args = (files[what],)
+    else:
+        c.args = (_not_a_video(what),)
+    c.must_raise = what != "good.mp4"
+    kw: dict[str, Any] = {"marker_radius": VIDEO_MARKER}
+    if d.integer(0, 3) == 0:
+        kw["marker_radius"] = real_or_none(d, c, 1e-3, 20.0)
+    if d.integer(0, 4) == 0:
+        kw["scale"] = real_or_none(d, c, 1.0, 1e9)
+    if kw["marker_radius"] is None and kw.get("scale") is None:
+        c.must_raise = True
+    kw["axle_color"], kw["marker_color"] = _colour(d, c), _colour(d, c)
+    if d.integer(0, 4) == 0:
+        kw["alpha"] = real_or_none(d, c, 0.0, HALF_PI)
+    if d.integer(0, 5) == 0:
+        kw["start"], kw["end"] = real_or_none(d, c, -1.0, 1.0), real_or_none(d, c, -1.0, 1.0)
+    if d.integer(0, 5) == 0:
+        kw["progress"] = d.choice((_no_progress, None, 5))
+        c.must_raise |= kw["progress"] == 5
+    c.kwargs = kw
+    return c
+
+
+def _not_a_video(what: str) -> Any:
+    """A path that names no video: a FIFO (refused without blocking), a directory, a device,
+    a missing file; or a value of a wrong type."""
+    where = Path(tempfile.mkdtemp(dir=tmpdir()))
+    if what == "fifo":
+        os.mkfifo(where / "fifo.mp4")
+        return where / "fifo.mp4"
+    return {"dir": where, "device": os.devnull, "missing": where / "missing.mp4", "int": 5,
+            "bytes": b"clip.mp4"}[what]  # fmt: skip
+
+
 #: Every generator, by entry point family.
 GENERATORS: dict[str, Callable[[Drawer], Case]] = {
     "analyze": case_analyze,
+    "track": case_track,
     "design": case_design,
     "build": case_build,
     "jarm": case_jarm,

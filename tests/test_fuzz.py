@@ -61,6 +61,7 @@ BUDGET = {
     "design": 12,
     "build": 60,
     "analyze": 30,
+    "track": 30,
     "explore": 80,
     "explore_api": 60,
     "explore_http": 60,

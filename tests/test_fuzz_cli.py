@@ -188,8 +188,9 @@ def cli_analyze_argv(d: Drawer) -> list[str]:
     spoilings), with the body and setup's values good, out of range or no number, and a
     design sheet that is no file."""
     spoilt = lambda: str(fuzz_cases._bad_track_file(d, Case("cli.analyze", print)))  # noqa: E731
+    video = lambda: str(d.choice(list(fuzz_cases.videos().values())))  # noqa: E731
     path = d.pick(str(TRACK), str(TRACK), str(outdir() / "none.csv"), "", str(Path(__file__)),
-                  spoilt)  # fmt: skip
+                  spoilt, video)  # fmt: skip
     argv = ["analyze", path] if d.integer(0, 5) else ["analyze"]
     for opt, good, bad in (
         ("--radius", "0.05", ("0", "-1", "nan", "x", "1e300", "1e-300")),
@@ -205,6 +206,29 @@ def cli_analyze_argv(d: Drawer) -> list[str]:
         if d.integer(0, 4) and (opt != "--design" or d.integer(0, 3) == 0):
             argv += [opt, good if d.integer(0, 2) else d.choice(bad)]
     return argv + d.choice(([], ["--json"], ["--rule", d.choice(("normal_force", "bogus"))]))
+
+
+def cli_track_argv(d: Drawer) -> list[str]:
+    """The good short video, a bad one (fuzz_cases.BAD_VIDEOS), a missing path, a directory;
+    an output good or bad; the options good, out of range or no number."""
+    vids = fuzz_cases.videos()
+    path = d.choice((str(vids["good.mp4"]),) * 3 + tuple(str(p) for p in vids.values())
+                    + (str(outdir() / "none.mp4"), "", str(outdir())))  # fmt: skip
+    argv = ["track", path] if d.integer(0, 5) else ["track"]
+    if d.integer(0, 5):
+        argv += ["-o", output_file(d, d.choice((".csv", ".csv", ".txt")))]
+    for opt, good, bad in (
+        ("--marker-radius", "0.035", ("0", "-1", "nan", "x", "1e300")),
+        ("--scale", "1000", ("0", "-5", "1e400", "x")),
+        ("--alpha", "66", ("95", "x", "nan")),
+        ("--axle-color", "red", ("mauve", "#12", "grey", "", "blue")),
+        ("--marker-color", "blue", ("red", "#ffffff", "1,2,3")),
+        ("--start", "0", ("x", "nan", "1e300")),
+        ("--end", "1", ("-1", "x", "-inf")),
+    ):
+        if d.integer(0, 3) == 0 or (opt == "--marker-radius" and d.integer(0, 3)):
+            argv += [opt, good if d.integer(0, 2) else d.choice(bad)]
+    return argv + d.choice(([], ["--json"], ["--overwrite"], ["-q"]))
 
 
 # --- valid argument lists (the wild ones above rarely get past the parser) -----------------------
@@ -312,6 +336,13 @@ def valid_analyze(d: Drawer) -> list[str]:
     return ["analyze", str(TRACK), *TRACK_SETUP, *alpha, *d.choice(([], ["--json"]))]
 
 
+def valid_track(d: Drawer) -> list[str]:
+    out = str(outdir() / f"track{d.integer(0, 2)}.csv")
+    extra = d.choice(([], ["--json"], ["--alpha", value(d, 60, 70)], ["--axle-color", "red"]))
+    video = str(fuzz_cases.videos()["good.mp4"])
+    return ["track", video, "-o", out, "--marker-radius", value(d, 0.03, 0.04), *extra]
+
+
 #: Argument lists of every subcommand: mostly valid, or wild (mostly refused by the parser).
 VALID: dict[str, Callable[[Drawer], list[str]]] = {
     "roll": valid_roll,
@@ -323,6 +354,7 @@ VALID: dict[str, Callable[[Drawer], list[str]]] = {
     "explore": valid_explore,
     "analyze": valid_analyze,
     "uncertainty": valid_uncertainty,
+    "track": valid_track,
 }
 WILD: dict[str, Callable[[Drawer], list[str]]] = {
     "roll": cli_roll_argv,
@@ -334,6 +366,7 @@ WILD: dict[str, Callable[[Drawer], list[str]]] = {
     "explore": cli_explore_argv,
     "analyze": cli_analyze_argv,
     "uncertainty": cli_uncertainty_argv,
+    "track": cli_track_argv,
 }
 
 
@@ -423,7 +456,7 @@ def _in_the_fuzzing_directory(monkeypatch):
 #: Examples per subcommand (about 30 s in all on a 2-core machine).
 BUDGET = {
     "roll": 100, "simulate": 60, "map": 25, "starts": 8, "design": 5, "figures": 10, "explore": 20,
-    "analyze": 6, "uncertainty": 25,
+    "analyze": 6, "uncertainty": 25, "track": 15,
 }  # fmt: skip
 
 

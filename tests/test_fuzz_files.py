@@ -1,5 +1,5 @@
 """Fuzzing of the map files (issue 35): every loader on damaged, foreign and special files,
-every writer on faulty targets.
+every writer on faulty targets; and the bad videos of ``eccjump.track`` (issue 48).
 
 The contract is that of ``fuzz_cases.py``: a loader returns a valid map or raises ValueError/
 TypeError naming the file in at most MAX_MESSAGE characters -- never another exception, a
@@ -23,7 +23,14 @@ from pathlib import Path
 
 import pytest
 import xarray as xr
-from fuzz_cases import MAX_MESSAGE, alarm, run_cli_inprocess
+from fuzz_cases import (
+    BAD_VIDEOS,
+    MAX_MESSAGE,
+    VIDEO_MARKER,
+    alarm,
+    run_cli_inprocess,
+    videos,
+)
 from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 from test_store_hardening import JARM_BAD, MOTION_BAD, _edited, _write_raw, tree
@@ -292,3 +299,28 @@ for p in sorted(Path({str(tmp_path)!r}).iterdir()):
     assert out[3::4] == ["2"] * 3 and all(int(n) <= MAX_MESSAGE for n in out[1::4])
     assert p.stderr.count("eccjump: error: ") == 3
     assert all((tmp_path / f"fifo{s}").is_fifo() for s in SUFFIXES)
+
+
+# --- videos: eccjump.track, eccjump track, eccjump analyze VIDEO -----------------------------
+
+
+@pytest.mark.parametrize("name", sorted(BAD_VIDEOS))
+def test_a_bad_video_is_one_line_naming_the_file_and_what_is_wrong(name, tmp_path):
+    """Not a video, no frames, one dot, both dots of one colour (and a cut file, an audio
+    file): a ValueError of one line that names the file and says what is wrong, from Python
+    and from both commands, and no track written."""
+    pytest.importorskip("av")
+    path = videos()[name]
+    with pytest.raises(ValueError) as info, alarm(60):
+        eccjump.track(path, marker_radius=VIDEO_MARKER)
+    msg = str(info.value)
+    assert "\n" not in msg and len(msg) <= MAX_MESSAGE, msg
+    assert name in msg and BAD_VIDEOS[name] in msg, msg
+    out = tmp_path / "track.csv"
+    body = ["--radius", "0.05", "--chi", "0.10927", "--km", "0.0777", "--alpha", "66.087"]
+    for argv in (["track", str(path), "-o", str(out)], ["analyze", str(path), *body]):
+        code, _, err = run_cli_inprocess([*argv, "--marker-radius", str(VIDEO_MARKER)])
+        lines = err.strip().splitlines()
+        assert code == 2 and len(lines) == 1 and "Traceback" not in err, err
+        assert name in lines[0] and BAD_VIDEOS[name] in lines[0] and len(lines[0]) <= 200
+    assert not out.exists()

@@ -33,6 +33,7 @@ from eccjump.motion.roll import EVENT_NAMES, Event, RollResult, roll
 from eccjump.motion.simulation import SENSITIVITY_PARAMETERS, MotionResult, simulate
 from eccjump.studies.design import Design, build, design
 from eccjump.studies.experiment import Analysis, analyze
+from eccjump.studies.experiment.video import VideoTrack, track
 from eccjump.studies.uncertainty import Uncertainty, uncertainty
 
 __all__ = [
@@ -55,6 +56,7 @@ __all__ = [
     "StartMap",
     "Uncertainty",
     "Units",
+    "VideoTrack",
     "__version__",
     "alpha_interval_around",
     "alpha_intervals",
@@ -78,6 +80,7 @@ __all__ = [
     "simulate",
     "start_map",
     "store",
+    "track",
     "uncertainty",
 ]
 

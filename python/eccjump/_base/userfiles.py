@@ -1,5 +1,5 @@
-"""Reading a file the user names: the one guard every reader of a user's text file goes
-through (the track of ``eccjump.analyze``, a design sheet).
+"""Reading a file the user names: the one guard every reader of a user's file goes through
+(the track of ``eccjump.analyze``, a design sheet, a video for ``eccjump.track``).
 
 Refused before a byte is read, with a ``ValueError`` naming the parameter:
 
@@ -8,8 +8,9 @@ Refused before a byte is read, with a ``ValueError`` naming the parameter:
   stat'ed first; it is then opened with ``O_NONBLOCK`` (a FIFO swapped in after the stat
   cannot block the open) and the open file is fstat'ed again: what is read is what was
   checked;
-* a file larger than :data:`MAX_BYTES`, from its size, so that a sparse 1 TB file is refused
-  at once. The read stops at ``MAX_BYTES + 1`` bytes anyway (a file that grows meanwhile).
+* a file larger than :data:`MAX_BYTES` (a video: :data:`MAX_VIDEO_BYTES`), from its size,
+  so that a sparse 1 TB file is refused at once. The read stops at ``MAX_BYTES + 1`` bytes
+  anyway (a file that grows meanwhile).
 
 ``-`` is the standard input where the caller allows it, read with the same bound.
 
@@ -23,7 +24,7 @@ import os
 import stat
 import sys
 from collections.abc import Callable
-from typing import Any, TypeVar
+from typing import Any, BinaryIO, TypeVar
 
 from eccjump._base.checks import path as path_arg
 
@@ -32,6 +33,10 @@ T = TypeVar("T")
 #: The largest file read [bytes]: 64 MiB, the most frames of a track (10^4) even in a wide
 #: Tracker export many times over (docs/limits.md). A design sheet is a few kilobytes.
 MAX_BYTES = 64 * 2**20
+
+#: The largest video read [bytes]: 8 GiB, a few minutes of a phone's 4K film. Its frames are
+#: streamed, never held: what bounds the work is the frame count (``eccjump.track``).
+MAX_VIDEO_BYTES = 8 * 2**30
 
 #: Opens that cannot block on a FIFO swapped in after the stat (POSIX; 0 where there is none).
 _NONBLOCK = getattr(os, "O_NONBLOCK", 0)
@@ -67,13 +72,13 @@ def _kind(mode: int) -> str:
     return "not a regular file"
 
 
-def _check_stat(name: str, source: object, st: os.stat_result) -> None:
+def _check_stat(name: str, source: object, st: os.stat_result, max_bytes: int = MAX_BYTES) -> None:
     if not stat.S_ISREG(st.st_mode):
         raise ValueError(f"{name}: {_shown(source)} is {_kind(st.st_mode)}, not a regular file")
-    if st.st_size > MAX_BYTES:
+    if st.st_size > max_bytes:
         raise ValueError(
             f"{name}: {_shown(source)} has {st.st_size:,} bytes, more than the "
-            f"{MAX_BYTES // 2**20} MiB allowed"
+            f"{max_bytes // 2**20:,} MiB allowed"
         )
 
 
@@ -106,6 +111,23 @@ def read_bytes(name: str, source: object, *, stdin: bool = False) -> bytes:
         return _read_bounded(name, source, lambda n: _os_call(name, source, os.read, fd, n))
     finally:
         os.close(fd)
+
+
+def open_binary(name: str, source: object, *, max_bytes: int = MAX_VIDEO_BYTES) -> BinaryIO:
+    """The user's file ``source`` open for reading bytes (a seekable file object the caller
+    closes), guarded as the module says with the size bound ``max_bytes``: for readers that
+    stream a large file (a video) rather than read it whole."""
+    source = path_arg(name, source)
+    _check_stat(name, source, _os_call(name, source, os.stat, source), max_bytes)
+    fd = _os_call(name, source, os.open, source, os.O_RDONLY | _NONBLOCK)
+    try:
+        _check_stat(name, source, _os_call(name, source, os.fstat, fd), max_bytes)
+        if _NONBLOCK:
+            _os_call(name, source, os.set_blocking, fd, True)
+        return os.fdopen(fd, "rb")
+    except BaseException:
+        os.close(fd)
+        raise
 
 
 def _os_call(name: str, source: object, fn: Callable[..., T], *args: Any) -> T:

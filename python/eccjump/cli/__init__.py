@@ -16,12 +16,23 @@ from collections.abc import Sequence
 from pathlib import Path
 
 from eccjump import __version__
-from eccjump.cli import analyze, design, explore, figures, map, roll, simulate, starts, uncertainty
+from eccjump.cli import (
+    analyze,
+    design,
+    explore,
+    figures,
+    map,
+    roll,
+    simulate,
+    starts,
+    track,
+    uncertainty,
+)
 from eccjump.cli._args import Parser, one_line, short_text
 from eccjump.cli._output import OutputError
 
 #: The subcommands, in the order of ``eccjump --help``.
-SUBCOMMANDS = (roll, simulate, map, starts, design, uncertainty, figures, analyze, explore)
+SUBCOMMANDS = (roll, simulate, map, starts, design, uncertainty, figures, track, analyze, explore)
 
 
 def build_parser() -> Parser:

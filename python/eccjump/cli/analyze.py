@@ -1,6 +1,8 @@
-"""``eccjump analyze``: a tracked experiment (CSV ``t,xc,yc,xm,ym`` or Tracker's export) in,
-the verdict -- jarm, slip_first or undetermined -- with its evidence out, as text or JSON, and
-optionally a figure of data and model (the site's page "Analysing an experiment").
+"""``eccjump analyze``: a tracked experiment (CSV ``t,xc,yc,xm,ym`` or Tracker's export) or
+its video in, the verdict -- jarm, slip_first or undetermined -- with its evidence out, as
+text or JSON, and optionally a figure of data and model (the site's page "Analysing an
+experiment"). A video (known by its suffix or its first bytes) is tracked first, as
+``eccjump track`` does (``cli.track.track_video``).
 
 The ranges are ``eccjump.studies.experiment.inputs.BOUNDS``'s, checked by the parser (angles in
 degrees); what depends on another value (``--marker-radius`` on R, the track on its scale)
@@ -17,8 +19,10 @@ from collections.abc import Callable
 
 from eccjump.cli._args import degrees_in, radians_hint, real_in
 from eccjump.cli._output import check_output, figure_suffixes, save_figure
+from eccjump.cli.track import add_video_options, track_video
 from eccjump.studies.experiment import analyze
 from eccjump.studies.experiment.inputs import cli_range
+from eccjump.studies.experiment.video import is_video
 
 
 def add_parser(sub: argparse._SubParsersAction) -> None:
@@ -32,7 +36,8 @@ def add_parser(sub: argparse._SubParsersAction) -> None:
     p.add_argument(
         "track",
         help="CSV with t,xc,yc,xm,ym (s; m or px; commas, semicolons or tabs) or Tracker's "
-        "data export; - reads the standard input",
+        "data export; - reads the standard input; or the video (tracked as eccjump track "
+        "does, with --marker-radius or --scale)",
     )
     p.add_argument("--radius", type=_bounded("radius"), default=None, help="R [m] (or --design)")
     p.add_argument("--chi", type=float, default=None, help="d/R (or from --design)")
@@ -65,6 +70,8 @@ def add_parser(sub: argparse._SubParsersAction) -> None:
     )
     p.add_argument("--figure", default=None, help="draw data and model (needs eccjump[plot])")
     p.add_argument("--json", action="store_true", help="print the report as JSON")
+    video = p.add_argument_group("video input (eccjump track's options)")
+    add_video_options(video)
     p.set_defaults(func=run)
 
 
@@ -72,16 +79,17 @@ def run(args: argparse.Namespace) -> int:
     figure = check_output("--figure", args.figure, figure_suffixes()) if args.figure else None
     if args.alpha is not None:
         radians_hint("--alpha", args.alpha)
+    video = track_video(args) if is_video(args.track) else None
     try:
         res = analyze(
-            args.track,
+            args.track if video is None else video,
             radius=args.radius,
             chi=args.chi,
             km=args.km,
             alpha=None if args.alpha is None else math.radians(args.alpha),
             marker_angle=math.radians(args.marker_angle),
             marker_radius=args.marker_radius,
-            scale=args.scale,
+            scale=args.scale if video is None else None,  # a video's track is in metres
             design=args.design,
             g=args.g,
             rule=args.rule,
@@ -89,8 +97,11 @@ def run(args: argparse.Namespace) -> int:
     except (ValueError, TypeError) as err:
         raise type(err)(_as_options(str(err))) from None
     if args.json:
-        print(json.dumps(res.to_dict(), indent=1, allow_nan=False))
+        report = res.to_dict() | ({} if video is None else {"video": video.to_dict()})
+        print(json.dumps(report, indent=1, allow_nan=False))
     else:
+        if video is not None:
+            print("\n".join(f"video: {line}" for line in video.summary()))
         print(res)
         for note in res.notes:
             print(f"note: {note}")

@@ -17,6 +17,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 from eccjump import _core
+from eccjump._base import optional
 from eccjump.classification.fields import BY_NAME, FIELDS, WRT, cf_attrs, reason_table
 
 if TYPE_CHECKING:  # pragma: no cover
@@ -47,15 +48,11 @@ Layout = dict[str, Any]
 
 
 def require(module: str) -> ModuleType:
-    """Import an optional dependency, or fail with the pip command that installs it."""
-    import importlib
-
-    try:
-        return importlib.import_module(module)
-    except ImportError as err:
-        raise ImportError(
-            f"{module} is needed for labelled results, netCDF and zarr files: {EXTRA}"
-        ) from err
+    """Import an optional dependency of the labelled results, or fail with the pip command
+    that installs it."""
+    return optional.require(
+        module, purpose="labelled results, netCDF and zarr files", extra="xarray"
+    )
 
 
 def map_attrs(

@@ -67,6 +67,57 @@ def synthetic_track(
     s without a flight), the marker at ``marker_radius`` (default 0.8 R) and
     ``marker_angle`` from C -> CM, a field of view ``field_px`` pixels across the whole
     track, Gaussian noise of ``noise_px`` pixels on each coordinate."""
+    run, unit, horizon = simulated_run(
+        body,
+        alpha,
+        mu_s=mu_s,
+        mu_k=mu_k,
+        restitution=restitution,
+        theta0=theta0,
+        omega0=omega0,
+        radius=radius,
+        g=g,
+        duration=duration,
+    )
+    tau = np.arange(0.0, horizon, 1.0 / (fps * unit))
+    mode = np.asarray(run.mode)[np.clip(np.searchsorted(run.t, tau, side="right") - 1, 0, None)]
+    r_m = 0.8 * radius if marker_radius is None else marker_radius
+    c, m, (theta, l, b) = lab_points(run, tau, alpha, side, radius, r_m, marker_angle)  # noqa: E741
+    pts = np.vstack([c, m])
+    extent = 1.1 * float(max(np.ptp(pts[:, 0]), np.ptp(pts[:, 1])))
+    scale = field_px / extent
+    rng = np.random.default_rng(seed)
+    c_px = (c - pts.min(axis=0)) * scale + rng.normal(0.0, noise_px, c.shape)
+    m_px = (m - pts.min(axis=0)) * scale + rng.normal(0.0, noise_px, m.shape)
+    track = Track(t=tau * unit, c=c_px / scale, m=m_px / scale, source="synthetic")
+    return SyntheticTrack(
+        track=track,
+        scale=scale,
+        theta=theta,
+        l=l,
+        b=b,
+        mode=mode.astype(np.int8),
+        motion=run,
+        time_unit=unit,
+    )
+
+
+def simulated_run(
+    body: Cylinder,
+    alpha: float,
+    *,
+    mu_s: float,
+    mu_k: float | None,
+    restitution: float,
+    theta0: float,
+    omega0: float,
+    radius: float,
+    g: float,
+    duration: float | None,
+) -> tuple[MotionResult, float, float]:
+    """The run that a synthetic track or video films: ``simulate`` with dense output, the time
+    unit sqrt(R/g) [s] and the horizon (dimensionless): ``duration`` seconds, or by default to
+    the first landing and half a flight more (3 s without a flight)."""
     unit = math.sqrt(radius / g)
     horizon = 3.0 / unit if duration is None else duration / unit
     run = simulate(
@@ -85,32 +136,27 @@ def synthetic_track(
         f = run.flights[0]
         horizon = f.t_landing + 0.5 * (f.t_landing - f.t_liftoff)
     assert run.sol is not None
-    horizon = min(horizon, run.sol.t_max)
-    tau = np.arange(0.0, horizon, 1.0 / (fps * unit))
+    return run, unit, min(horizon, run.sol.t_max)
+
+
+def lab_points(
+    run: MotionResult,
+    tau: NDArray[np.float64],
+    alpha: float,
+    side: int,
+    radius: float,
+    r_m: float,
+    beta: float,
+) -> tuple[NDArray[np.float64], NDArray[np.float64], tuple[NDArray[np.float64], ...]]:
+    """The axle C and the marker M (each (n, 2), lab metres, C's contact line through the
+    origin) at the dimensionless times ``tau``, and (theta [rad], l [m], b [m]) there."""
+    assert run.sol is not None
     theta, _, l, _, b, _ = run.sol(tau)  # noqa: E741
-    mode = np.asarray(run.mode)[np.clip(np.searchsorted(run.t, tau, side="right") - 1, 0, None)]
-    r_m = 0.8 * radius if marker_radius is None else marker_radius
     frame = RampFrame(alpha, side, (0.0, 0.0))
     qc = np.column_stack([radius * l, radius * (b - 1.0)])
     c = frame.to_lab(qc)
-    m = frame.to_lab(qc + marker_offset(theta, r_m, marker_angle))
-    pts = np.vstack([c, m])
-    extent = 1.1 * float(max(np.ptp(pts[:, 0]), np.ptp(pts[:, 1])))
-    scale = field_px / extent
-    rng = np.random.default_rng(seed)
-    c_px = (c - pts.min(axis=0)) * scale + rng.normal(0.0, noise_px, c.shape)
-    m_px = (m - pts.min(axis=0)) * scale + rng.normal(0.0, noise_px, m.shape)
-    track = Track(t=tau * unit, c=c_px / scale, m=m_px / scale, source="synthetic")
-    return SyntheticTrack(
-        track=track,
-        scale=scale,
-        theta=theta,
-        l=radius * l,
-        b=radius * b,
-        mode=mode.astype(np.int8),
-        motion=run,
-        time_unit=unit,
-    )
+    m = frame.to_lab(qc + marker_offset(theta, r_m, beta))
+    return c, m, (theta, radius * l, radius * b)
 
 
 __all__ = ["MODES", "SyntheticTrack", "synthetic_track"]

@@ -1,0 +1,338 @@
+"""A video of what ``eccjump.simulate`` predicts, filmed as a lab camera would (the tests of
+``eccjump.track`` and the tutorial start from one; useful to rehearse an experiment's
+analysis before filming it): the body's end face -- a white disc with a black rim and two
+coloured dots, one on the axle and one at ``marker_radius`` -- rolling down a grey ramp.
+
+What makes it a camera's: motion blur (each frame averages the body over its exposure,
+``shutter`` frames long, centred on the frame's time; the run starts as the first exposure
+opens, or ``wait`` seconds later: ``RenderedVideo.t_shift``), sensor
+noise (Gaussian, ``noise`` grey levels), a camera rolled by ``roll``, and H.264 compression
+(libx264, 4:2:0 chroma, ``crf``). The truth returned beside the file is each dot's centroid in
+each frame (its mean position over the exposure, which is what a centroid of a blurred dot
+measures) and the simulated run. Writing needs PyAV (``pip install eccjump[video]``).
+"""
+
+from __future__ import annotations
+
+import math
+import os
+from collections.abc import Iterable
+from dataclasses import dataclass
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+from numpy.typing import NDArray
+
+from eccjump._base.body import Cylinder
+from eccjump._base.checks import flag
+from eccjump._base.checks import path as path_arg
+from eccjump._base.optional import require
+from eccjump._base.overwrite import check_overwrite, never
+from eccjump.maps import store
+from eccjump.motion.simulation import MotionResult
+from eccjump.studies.experiment.synthetic import lab_points, simulated_run
+from eccjump.studies.experiment.video import _color
+
+#: The scene's grey levels: background, ramp, the face, its rim.
+BACKGROUND, RAMP, FACE, RIM = 175.0, 80.0, 245.0, 20.0
+#: The rim's width and a dot's radius, in units of R.
+RIM_WIDTH, DOT_RADIUS = 0.08, 0.1
+#: Sub-frames averaged over one exposure (the motion blur).
+SUBFRAMES = 8
+#: The frame's margin around the body's path [px].
+MARGIN = 12
+#: x264's speed preset.
+PRESET = "ultrafast"
+
+
+@dataclass(frozen=True, eq=False)
+class RenderedVideo:
+    """A rendered video and its truth: the file, the frame times ``t`` [s], each dot's
+    centroid per frame in image pixels (``axle_px``, ``marker_px``: column, row from the
+    top-left pixel's centre), the scale [px/m], the setup (R, the marker, alpha [rad], the
+    camera's roll [rad]) and the simulated run with its time unit [s]; the run's time [s]
+    is the video's + ``t_shift`` (half an exposure, less the wait before the release)."""
+
+    path: Path
+    t: NDArray[np.float64]
+    axle_px: NDArray[np.float64]
+    marker_px: NDArray[np.float64]
+    scale: float
+    radius: float
+    marker_radius: float
+    marker_angle: float
+    alpha: float
+    roll: float
+    motion: MotionResult
+    time_unit: float
+    t_shift: float
+
+    @property
+    def liftoff_t(self) -> float:
+        """The first lift-off in the video's time [s] (NaN without one)."""
+        f = self.motion.flights
+        return f[0].t_liftoff * self.time_unit - self.t_shift if f else math.nan
+
+    def transitions_si(self) -> list[tuple[float, str, str]]:
+        """(t [s], to_mode, reason) of every transition within the video, in its time."""
+        end = float(self.t[-1])
+        out = [(tr.t * self.time_unit - self.t_shift, tr.to_mode, tr.reason)
+               for tr in self.motion.transitions[1:]]  # fmt: skip
+        return [x for x in out if x[0] <= end]
+
+
+@dataclass(frozen=True)
+class _Camera:
+    """Lab metres to image pixels: turned clockwise by ``roll`` about the lab origin (a ramp
+    descending to the right looks steeper by ``roll``), scaled by ``scale`` [px/m], rows
+    growing downwards, shifted by ``offset`` [px]."""
+
+    roll: float
+    scale: float
+    offset: NDArray[np.float64]
+    size: tuple[int, int]
+
+    def pixels(self, p: NDArray[np.float64]) -> NDArray[np.float64]:
+        cr, sr = math.cos(self.roll), -math.sin(self.roll)
+        x = cr * p[:, 0] - sr * p[:, 1]
+        y = sr * p[:, 0] + cr * p[:, 1]
+        return self.offset + self.scale * np.column_stack([x, -y])
+
+
+def render_video(
+    path: str | os.PathLike[str],
+    body: Cylinder,
+    alpha: float,
+    *,
+    mu_s: float,
+    mu_k: float | None = None,
+    restitution: float = 0.0,
+    theta0: float = 0.0,
+    omega0: float = 0.0,
+    radius: float = 0.05,
+    g: float = 9.81,
+    fps: float = 240.0,
+    duration: float | None = None,
+    size: tuple[int, int] = (1280, 720),
+    marker_radius: float | None = None,
+    marker_angle: float = 0.0,
+    axle_color: str | None = "red",
+    marker_color: str | None = "blue",
+    dot_radius: float = DOT_RADIUS,
+    shutter: float = 0.5,
+    wait: float = 0.0,
+    noise: float = 2.0,
+    roll: float = 0.0,
+    crf: int = 18,
+    seed: int = 0,
+    overwrite: bool = False,
+) -> RenderedVideo:
+    """Simulate ``body`` on a ramp of angle ``alpha`` (the inputs of ``synthetic_track``)
+    and film it into ``path`` (an MP4, H.264): ``size`` (width, height) pixels at ``fps``,
+    the ramp descending to the right across the frame, the marker at ``marker_radius``
+    (default 0.8 R) and ``marker_angle`` from the direction axle -> centre of mass, the dots
+    in ``axle_color`` and ``marker_color`` (None leaves a dot out), ``dot_radius`` R in
+    radius (dots a few pixels across are what the tracker needs), an exposure of
+    ``shutter`` frames, the body held at rest for ``wait`` seconds before its release
+    (``omega0`` must then be 0), Gaussian noise of ``noise`` grey levels, the camera rolled by
+    ``roll`` [rad] (the ramp shows at alpha + roll), x264's quality ``crf`` (0 lossless, 51
+    worst). A file at ``path`` is replaced only with ``overwrite``."""
+    av = require("av", purpose="writing videos", extra="video")
+    target = Path(path_arg("path", path))
+    check_overwrite(target, overwrite=flag("overwrite", overwrite), option="overwrite=True",
+                    ours=never, what="a rendered video", name="path")  # fmt: skip
+    run, unit, horizon = simulated_run(
+        body, alpha, mu_s=mu_s, mu_k=mu_k, restitution=restitution, theta0=theta0,
+        omega0=omega0, radius=radius, g=g, duration=duration,
+    )  # fmt: skip
+    r_m = 0.8 * radius if marker_radius is None else marker_radius
+    _check_camera(radius, r_m, dot_radius, fps, shutter, wait, omega0, noise, crf)
+    shift = 0.5 * shutter / fps - wait  # the run's time minus the video's
+    t = np.arange(int((horizon * unit - shift - shutter / fps) * fps) + 1) / fps
+    # the sub-frames of each exposure, centred on the frame's time (in the run's time)
+    offsets = ((np.arange(SUBFRAMES) + 0.5) / SUBFRAMES - 0.5) * shutter / fps
+    sub = np.clip((t[:, None] + shift + offsets[None, :]).ravel() / unit, 0.0, None)
+    c, m, _ = lab_points(run, sub, alpha, 1, radius, r_m, marker_angle)
+    camera = _frame(c, radius, roll, _size(size))
+    c_px, m_px = camera.pixels(c), camera.pixels(m)
+    colors = [None if k is None else _color(n, k) for n, k in
+              (("axle_color", axle_color), ("marker_color", marker_color))]  # fmt: skip
+    scene = _Scene(camera, radius, dot_radius, alpha, c[0], colors, noise,
+                   np.random.default_rng(seed))  # fmt: skip
+    per_frame = zip(np.split(c_px, t.size), np.split(m_px, t.size), strict=True)
+    frames = (scene.frame(ck, mk) for ck, mk in per_frame)
+    tmp = store.temp_sibling(target)
+    try:
+        _encode(av, tmp, fps, crf, camera.size, frames)
+        store.install(tmp, target)
+    finally:
+        store.remove(tmp)
+    return RenderedVideo(
+        path=target,
+        t=t,
+        axle_px=c_px.reshape(t.size, SUBFRAMES, 2).mean(axis=1),
+        marker_px=m_px.reshape(t.size, SUBFRAMES, 2).mean(axis=1),
+        scale=camera.scale,
+        radius=radius,
+        marker_radius=r_m,
+        marker_angle=marker_angle,
+        alpha=alpha,
+        roll=roll,
+        motion=run,
+        time_unit=unit,
+        t_shift=shift,
+    )
+
+
+def _check_camera(
+    radius: float,
+    r_m: float,
+    dot_radius: float,
+    fps: float,
+    shutter: float,
+    wait: float,
+    omega0: float,
+    noise: float,
+    crf: int,
+) -> None:
+    """ValueError naming the parameter for a camera or a face that cannot be rendered."""
+    dot = dot_radius * radius
+    if not (dot > 0 and 2 * dot < r_m <= (1 - RIM_WIDTH) * radius - dot):
+        raise ValueError(
+            "marker_radius, dot_radius: both dots must lie on the white face, apart: "
+            f"2 dot_radius R < marker_radius <= {1 - RIM_WIDTH:g} R - dot_radius R"
+        )
+    ranges = (("fps", fps, 1.0, 1e5), ("shutter", shutter, 0.0, 1.0), ("wait", wait, 0.0, 60.0),
+              ("noise", noise, 0.0, 50.0))  # fmt: skip
+    for name, value, lo, hi in ranges:
+        if not lo <= value <= hi:
+            raise ValueError(f"{name} = {value!r} is outside [{lo:g}, {hi:g}]")
+    if wait and omega0:
+        raise ValueError("wait: a body held before its release starts with omega0 = 0")
+    if not (isinstance(crf, int) and 0 <= crf <= 51):
+        raise ValueError(f"crf must be an int in [0, 51] (x264's quality), got {crf!r}")
+
+
+def _frame(c: NDArray[np.float64], radius: float, roll: float, size: tuple[int, int]) -> _Camera:
+    """The camera that shows the whole path of the body (its disc) inside the margin,
+    centred in the frame."""
+    q = _Camera(roll, 1.0, np.zeros(2), size).pixels(c)  # rotated metres, rows down
+    span = np.ptp(q, axis=0) + 2.2 * radius
+    w, h = size
+    scale = float(min((w - 2 * MARGIN) / span[0], (h - 2 * MARGIN) / span[1]))
+    mid = (q.min(axis=0) + q.max(axis=0)) / 2
+    return _Camera(roll, scale, np.array([(w - 1) / 2, (h - 1) / 2]) - scale * mid, size)
+
+
+def _size(size: object) -> tuple[int, int]:
+    """(width, height), each even (4:2:0 chroma) and in [16, 4096]."""
+    if isinstance(size, tuple | list) and len(size) == 2:
+        w, h = size
+        if all(isinstance(v, int) and 16 <= v <= 4096 and v % 2 == 0 for v in (w, h)):
+            return int(w), int(h)
+    raise ValueError(f"size must be (width, height), even ints in [16, 4096], got {size!r}")
+
+
+class _Scene:
+    """The static background (grey, the ramp below its surface line) and the body drawn on
+    it, frame by frame."""
+
+    def __init__(
+        self,
+        camera: _Camera,
+        radius: float,
+        dot_radius: float,
+        alpha: float,
+        c0: NDArray[np.float64],
+        colors: list[tuple[int, int, int] | None],
+        noise: float,
+        rng: np.random.Generator,
+    ) -> None:
+        w, h = camera.size
+        self.r = radius * camera.scale
+        self.dot = dot_radius * self.r
+        self.colors = [None if k is None else np.array(k, dtype=np.float64) for k in colors]
+        self.noise, self.rng = noise, rng
+        # the ramp's surface: the line R below the axle's contact line, in pixels
+        normal = np.array([math.sin(alpha), math.cos(alpha)])
+        down = np.array([math.cos(alpha), -math.sin(alpha)])
+        a, b = camera.pixels(np.array([c0 - radius * normal, c0 - radius * normal + down]))
+        d = (b - a) / np.hypot(*(b - a))
+        ys, xs = np.mgrid[0:h, 0:w]
+        below = (xs - a[0]) * d[1] - (ys - a[1]) * d[0]  # > 0 below the line (rows down)
+        ramp = np.clip(below + 0.5, 0.0, 1.0)
+        self.clean = (BACKGROUND * (1 - ramp) + RAMP * ramp)[:, :, None].repeat(3, axis=2)
+        pad = 32
+        self.grain = np.clip(
+            np.pad(self.clean, ((0, pad), (0, pad), (0, 0)), mode="edge")
+            + rng.normal(0.0, noise, (h + pad, w + pad, 3)),
+            0,
+            255,
+        ).astype(np.uint8)
+        self.pad = pad
+
+    def frame(self, c: NDArray[np.float64], m: NDArray[np.float64]) -> NDArray[np.uint8]:
+        """One frame: the body averaged over the sub-frame positions ``c``, ``m`` [px]."""
+        h, w, _ = self.clean.shape
+        dy, dx = self.rng.integers(0, self.pad, 2)
+        out = self.grain[dy : dy + h, dx : dx + w].copy()  # the background's noise, shifted
+        reach = self.r + 2
+        x0, y0 = (np.floor(c.min(axis=0) - reach)).astype(int).clip(0)
+        x1, y1 = np.ceil(c.max(axis=0) + reach).astype(int) + 1
+        x1, y1 = min(x1, w), min(y1, h)
+        ys, xs = np.mgrid[y0:y1, x0:x1].astype(np.float64)
+        bg = self.clean[y0:y1, x0:x1]
+        acc = np.zeros_like(bg)
+        for ck, mk in zip(c, m, strict=True):
+            acc += self._body(xs, ys, bg, ck, mk)
+        acc /= len(c)
+        acc += self.rng.normal(0.0, self.noise, acc.shape)
+        out[y0:y1, x0:x1] = np.clip(np.rint(acc), 0, 255).astype(np.uint8)
+        return out
+
+    def _body(
+        self,
+        xs: NDArray[np.float64],
+        ys: NDArray[np.float64],
+        bg: NDArray[np.float64],
+        c: NDArray[np.float64],
+        m: NDArray[np.float64],
+    ) -> NDArray[np.float64]:
+        """The body at one sub-frame over the background ``bg`` of the pixels (xs, ys)."""
+        r = self.r
+        d = np.hypot(xs - c[0], ys - c[1])[:, :, None]
+        disc = np.clip(r + 0.5 - d, 0.0, 1.0)
+        face = np.clip(r * (1 - RIM_WIDTH) + 0.5 - d, 0.0, 1.0)
+        img = bg * (1 - disc) + RIM * (disc - face) + FACE * face
+        for centre, color in zip((c, m), self.colors, strict=True):
+            if color is None:
+                continue
+            dd = np.hypot(xs - centre[0], ys - centre[1])[:, :, None]
+            dot = np.clip(self.dot + 0.5 - dd, 0.0, 1.0)
+            img = img * (1 - dot) + color * dot
+        return img
+
+
+def _encode(
+    av: Any, path: Path, fps: float, crf: int, size: tuple[int, int], frames: Iterable[Any]
+) -> None:
+    """Write the RGB frames as H.264 (yuv420p) in an MP4 at ``fps``."""
+    from fractions import Fraction
+
+    with av.open(os.fspath(path), mode="w", format="mp4") as out:
+        stream = out.add_stream("libx264", rate=Fraction(fps).limit_denominator(10**6))
+        stream.width, stream.height = size
+        stream.pix_fmt = "yuv420p"
+        # one thread: x264's output then depends on nothing but its input (same bits anywhere)
+        stream.options = {"crf": str(int(crf)), "preset": PRESET, "threads": "1"}
+        for k, rgb in enumerate(frames):
+            frame = av.VideoFrame.from_ndarray(rgb, format="rgb24")
+            frame.pts = k
+            for packet in stream.encode(frame):
+                out.mux(packet)
+        for packet in stream.encode():
+            out.mux(packet)
+
+
+__all__ = ["RenderedVideo", "render_video"]
