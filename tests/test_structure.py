@@ -87,9 +87,6 @@ UPWARD = {
     ("eccjump.maps", "eccjump.motion.maps"),
     # the map layer knows the JARM fields and the motion's by name
     ("eccjump.maps.dask", "eccjump.classification.fields"),
-    ("eccjump.maps.kinds", "eccjump.classification.fields"),
-    ("eccjump.maps.kinds", "eccjump.motion.fields"),
-    ("eccjump.maps.kinds", "eccjump.motion.simulation"),
     ("eccjump.maps.layout", "eccjump.classification.fields"),
     ("eccjump.maps.xarray", "eccjump.classification.fields"),
     # the JARM files make a Region

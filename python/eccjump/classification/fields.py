@@ -3,11 +3,13 @@
 Every result of :func:`eccjump.jarm` and :func:`eccjump.region` has the same fields, in the
 order of the Rust bridge. Each is described ONCE here -- name, numpy dtype, units, meaning
 and the fill value of a point not computed -- and everything else derives from this table:
-the :class:`~eccjump.JarmResult` dataclass and its documentation, the xarray/CF attributes of
-:mod:`eccjump.maps.xarray`, the dask record dtype of :mod:`eccjump.maps.dask`, the files of
-:mod:`eccjump.store` and the ``eccjump map`` command.
+the :class:`~eccjump.JarmResult` dataclass and its documentation, the CF attributes of its
+labelled form, and the map kind :data:`JARM` (:class:`~eccjump.maps.kinds.MapKind`) through
+which the files of :mod:`eccjump.store`, their checks and the ``eccjump map`` command know a
+JARM map.
 
-This module depends on numpy and the compiled core only (for the :class:`Reason` codes).
+This module depends on numpy, the compiled core (for the :class:`Reason` codes) and the map
+layer's :class:`~eccjump.maps.kinds.MapKind`.
 """
 
 from __future__ import annotations
@@ -15,11 +17,14 @@ from __future__ import annotations
 import enum
 import math
 import sys
+from collections.abc import Mapping
 from typing import Any, NamedTuple
 
 import numpy as np
+from numpy.typing import NDArray
 
 from eccjump import _core
+from eccjump.maps.kinds import MapKind, register
 
 
 class Field(NamedTuple):
@@ -215,6 +220,47 @@ def cf_attrs(name: str) -> dict[str, Any]:
     return attrs
 
 
+def _is_jarm_agrees(values: Mapping[str, NDArray]) -> str | None:
+    """What is wrong with a JARM map's codes beyond their table: ``is_jarm`` must say whether
+    ``reason`` is :attr:`Reason.JARM`."""
+    is_jarm = np.asarray(values["is_jarm"], dtype=bool)
+    if not np.array_equal(is_jarm, np.asarray(values["reason"]) == Reason.JARM):
+        return "is_jarm contradicts reason"
+    return None
+
+
+#: The JARM map (:func:`eccjump.region`, ``eccjump map``) as a kind of map file.
+JARM = register(
+    MapKind(
+        "jarm",
+        FIELDS,
+        DTYPES,
+        FILL,
+        cf_attrs,
+        ("mu_s", "n", "rule", "method", "theta0", "omega0"),
+        (
+            ("mu_s", "mu_s"),
+            ("theta0", "theta0"),
+            ("omega0", "omega0"),
+            ("alpha", "alpha"),
+            ("chi", "chi"),
+            ("km_frac", "km_frac"),
+        ),
+        ("alpha", "chi", "km_frac"),
+        {"reason": frozenset([*(int(r) for r in Reason), FILL["reason"]])},
+        computed_mark="reason",
+        valid=VALID,
+        invalid=("reason", frozenset([int(Reason.INVALID_PARAMS), FILL["reason"]])),
+        agree=(
+            ("is_jarm", "Fx_J", True),
+            ("is_jarm", "Fy_J", True),
+            ("is_jarm", "theta_J", False),
+        ),
+        validator=_is_jarm_agrees,
+    )
+)
+
+
 def docstring() -> str:
     """The fields as the ``Attributes`` section of a numpy-style docstring."""
     fields = [
@@ -240,6 +286,7 @@ __all__ = [
     "DTYPES",
     "FIELDS",
     "FILL",
+    "JARM",
     "RECORD",
     "TABLE",
     "VALID",

@@ -29,13 +29,14 @@ from eccjump._base.sizes import check_fits, motion_bytes
 from eccjump.maps import store
 from eccjump.maps.check import file_error
 from eccjump.maps.dask import require_dask
-from eccjump.maps.kinds import MOTION, MapKind, upgrade_attrs
+from eccjump.maps.kinds import MapKind, upgrade_attrs
 from eccjump.maps.map import Map
 from eccjump.motion.fields import (
     DTYPES,
     FIELDS,
     INVALID,
     LANDINGS,
+    MOTION,
     STATUS_NAMES,
     TABLE,
     cf_attrs,
