@@ -11,8 +11,10 @@ import numpy as np
 import pytest
 
 import eccjump
+from eccjump._base.bridge import jarm_grid
 from eccjump.classification.classify import FIELDS, region
-from eccjump.maps.dask import RECORD, grid_block, normalize_chunks
+from eccjump.classification.fields import JARM
+from eccjump.maps.dask import normalize_chunks, records_block
 
 da = pytest.importorskip("dask.array")
 
@@ -66,12 +68,13 @@ def test_lazy_xarray_dataset(reference):
 
 
 def test_block_function_and_graph_pickle():
-    assert pickle.loads(pickle.dumps(grid_block)) is grid_block
+    assert pickle.loads(pickle.dumps(records_block)) is records_block
     lazy = region(mu_s=0.7, **GRID, chunks=4)
     graph = dict(lazy.result.theta_J.__dask_graph__())
     assert pickle.loads(pickle.dumps(graph)).keys() == graph.keys()
-    empty = grid_block(np.empty((0, 1, 1)), np.zeros((1, 2, 1)), np.zeros((1, 1, 3)), 0.7, ())
-    assert empty.shape == (0, 2, 3) and empty.dtype == RECORD
+    axes = (np.empty((0, 1, 1)), np.zeros((1, 2, 1)), np.zeros((1, 1, 3)))
+    empty = records_block(*axes, grid=jarm_grid, fixed=(0.7, ()), record=JARM.record())
+    assert empty.shape == (0, 2, 3) and empty.dtype == JARM.record()
 
 
 def test_chunk_validation():

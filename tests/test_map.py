@@ -18,10 +18,9 @@ import pytest
 
 import eccjump
 from eccjump.classification.classify import FIELDS, Reason, region
-from eccjump.classification.fields import JARM
+from eccjump.classification.fields import JARM, map_attrs
 from eccjump.cli import main
 from eccjump.maps import runner, store
-from eccjump.maps.xarray import map_attrs
 
 xr = pytest.importorskip("xarray")
 

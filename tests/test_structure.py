@@ -25,8 +25,6 @@ import eccjump
 from eccjump import _core
 from eccjump.classification import fields
 from eccjump.classification.classify import JarmResult
-from eccjump.maps import dask as scale
-from eccjump.maps import xarray as labelled
 
 PACKAGE = Path(eccjump.__file__).parent
 ROOT = Path(__file__).resolve().parent.parent
@@ -85,13 +83,8 @@ UPWARD = {
     # load() makes a Region or a MotionMap by the kind in the file
     ("eccjump.maps", "eccjump.classification.classify"),
     ("eccjump.maps", "eccjump.motion.maps"),
-    # the map layer knows the JARM fields and the motion's by name
-    ("eccjump.maps.dask", "eccjump.classification.fields"),
-    ("eccjump.maps.layout", "eccjump.classification.fields"),
-    ("eccjump.maps.xarray", "eccjump.classification.fields"),
     # the JARM files make a Region
     ("eccjump.maps.store", "eccjump.classification.classify"),
-    ("eccjump.maps.xarray", "eccjump.classification.classify"),
     # the analysis figure takes matplotlib through the figures' loader
     ("eccjump.studies.experiment.figure", "eccjump.plot._common"),
 }
@@ -307,10 +300,14 @@ def test_result_fields_come_from_one_table():
     assert fields.DERIVATIVES == derivatives
     assert tuple(f.name for f in dataclasses.fields(JarmResult)) == names + derivatives
     assert eccjump.classification.FIELDS is fields.FIELDS
-    assert scale.RECORD is fields.RECORD and fields.RECORD.names == names
-    assert labelled.DTYPES is fields.DTYPES and labelled.FILL is fields.FILL
+    assert fields.JARM.fields is fields.FIELDS and fields.JARM.record().names == names
+    assert fields.JARM.dtypes is fields.DTYPES and fields.JARM.fill is fields.FILL
     for f in fields.TABLE + fields.DERIVATIVE_TABLE:
-        assert labelled.FIELD_ATTRS[f.name] == {"units": f.units, "long_name": f.description}
+        attrs = fields.JARM.var_attrs(f.name)
+        assert {k: attrs[k] for k in ("units", "long_name")} == {
+            "units": f.units,
+            "long_name": f.description,
+        }
         assert f.name in (JarmResult.__doc__ or "") and f.description in JarmResult.__doc__
         assert np.array(f.fill).astype(f.dtype).dtype == f.dtype
 

@@ -22,17 +22,28 @@ from eccjump._base.checks import Integrator, Rule, flag, real, real_array, short
 from eccjump._base.html import best_slice, card, deg, jarm_slice, num, span
 from eccjump._base.sizes import check_fits, jarm_bytes
 from eccjump.classification.derivatives import derivative_fields
-from eccjump.classification.fields import DERIVATIVES, FIELDS, Reason, docstring
-from eccjump.maps.dask import lazy_fields, lazy_records
+from eccjump.classification.fields import (
+    BY_NAME,
+    DERIVATIVES,
+    DTYPES,
+    FIELDS,
+    JARM,
+    MAP_INFO,
+    WRT,
+    WRT_ATTRS,
+    Reason,
+    docstring,
+    map_attrs,
+)
+from eccjump.maps.dask import lazy_fields, normalize_chunks
 from eccjump.maps.layout import (
     COORD_ATTRS,
-    SWEEPABLE,
+    DIMS,
     Layout,
+    layout_from_xarray,
     layout_to_xarray,
     make_layout,
-    map_attrs,
     require,
-    with_derivatives,
 )
 from eccjump.maps.map import Map
 
@@ -594,9 +605,24 @@ def region_layout(region: Region) -> Layout:
         region.km_frac,
         region.result.fields(),
         attrs,
-        alpha_done=None if done is None else np.asarray(done),
+        None if done is None else np.asarray(done),
+        JARM,
     )
-    return with_derivatives(lay, region.result.derivatives())
+    return _with_derivatives(lay, region.result.derivatives())
+
+
+def _with_derivatives(layout: Layout, derivatives: Mapping[str, Any]) -> Layout:
+    """``layout`` with the derivative fields ``derivatives`` (of
+    :data:`eccjump.classification.fields.DERIVATIVES`; none: ``layout`` itself) as variables,
+    the float ones with the trailing dimension ``wrt`` and its coordinate of parameter names."""
+    if not derivatives:
+        return layout
+    data_vars = dict(layout["data_vars"])
+    for k, v in derivatives.items():
+        dims = (*DIMS, "wrt") if BY_NAME[k].dtype.kind == "f" else DIMS
+        data_vars[k] = (dims, v, JARM.var_attrs(k))
+    wrt = (("wrt",), np.array(WRT), WRT_ATTRS)
+    return {**layout, "coords": {**layout["coords"], "wrt": wrt}, "data_vars": data_vars}
 
 
 @overload
@@ -838,7 +864,8 @@ def region(
         if want_derivatives:
             res = replace(res, **_grid_derivatives(a, c, f, mu, raw, opts))
     else:
-        res = JarmResult(**lazy_fields(lazy_records(a, c, f, mu, opts, chunks)))
+        blocks = normalize_chunks(chunks, (a.size, c.size, f.size))
+        res = JarmResult(**lazy_fields(JARM, jarm_grid, (a, c, f), blocks, (mu, opts)))
     return Region(
         alpha=a,
         chi=c,
@@ -859,6 +886,42 @@ def region(
             "stop_at_slip": opts.stop_at_slip,
         },
     )
+
+
+def to_region(ds: xr.Dataset | Layout) -> Region:
+    """A :class:`Region` back from a dataset or layout of one map (no swept dimensions)."""
+    lay = ds if isinstance(ds, dict) else layout_from_xarray(ds)
+    dv, co, at = lay["data_vars"], lay["coords"], dict(lay["attrs"])
+    if tuple(dv["is_jarm"][0]) != DIMS:
+        raise ValueError(
+            f"a Region has dims {DIMS}; this map has {tuple(dv['is_jarm'][0])} "
+            "(select one value of each swept parameter first)"
+        )
+    names = FIELDS + (DERIVATIVES if "d_theta_J" in dv else ())
+    res = JarmResult(**{k: np.asarray(dv[k][1], dtype=DTYPES[k]) for k in names})
+    made = ("mu_s", "n", "rule", "method", "theta0", "omega0")
+    n = int(at["n"])
+    return Region(
+        alpha=np.asarray(co["alpha"][1], dtype=np.float64),
+        chi=np.asarray(co["chi"][1], dtype=np.float64),
+        km_frac=np.asarray(co["km_frac"][1], dtype=np.float64),
+        result=res,
+        mu_s=float(at["mu_s"]),
+        n=None if n == 0 else n,
+        rule=str(at["rule"]),
+        method=str(at["method"]),
+        theta0=float(at["theta0"]),
+        omega0=float(at["omega0"]),
+        attrs={
+            k: (v.item() if isinstance(v, np.generic) else v)
+            for k, v in at.items()
+            if k not in MAP_INFO and k not in made
+        },
+    )
+
+
+#: Parameters that :func:`region_dataset` can sweep, in the order of their dimensions.
+SWEEPABLE = ("mu_s", "theta0", "omega0")
 
 
 def region_dataset(
@@ -994,4 +1057,5 @@ __all__ = [
     "region_attrs",
     "region_dataset",
     "region_layout",
+    "to_region",
 ]

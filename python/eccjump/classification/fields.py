@@ -97,6 +97,8 @@ FIELDS: tuple[str, ...] = tuple(f.name for f in TABLE)
 #: What the derivative fields differentiate with respect to: their trailing axis (the
 #: dimension ``wrt`` of a labelled map), alpha [rad] and the body's chi and k_m (independent).
 WRT: tuple[str, ...] = ("alpha", "chi", "km")
+#: The attributes of the coordinate ``wrt`` of a labelled map.
+WRT_ATTRS = {"long_name": "parameter of the derivative: alpha [rad], chi or km (k_m itself)"}
 
 #: The fields of a result made with ``derivatives=True`` (None otherwise), after :data:`TABLE`:
 #: each float field has the point's shape plus a trailing axis of length 3 (:data:`WRT`).
@@ -138,8 +140,6 @@ FILL: dict[str, Any] = {f.name: f.fill for f in TABLE}
 VALID: dict[str, tuple[float, float]] = {
     f.name: f.valid for f in TABLE + DERIVATIVE_TABLE if f.dtype.kind == "f"
 }
-#: One record per point holding every field (the dtype of the dask blocks).
-RECORD = np.dtype([(f.name, f.dtype) for f in TABLE])
 
 
 class Reason(enum.IntEnum):
@@ -220,6 +220,36 @@ def cf_attrs(name: str) -> dict[str, Any]:
     return attrs
 
 
+def map_attrs(
+    mu_s: float,
+    n: int | None,
+    rule: str,
+    method: str,
+    theta0: float,
+    omega0: float,
+    **extra: Any,
+) -> dict[str, Any]:
+    """Attributes of a JARM map: how it was made (netCDF-safe scalars and strings only)."""
+    return {
+        "title": "JARM map of an eccentric cylinder on a ramp (eccjump)",
+        "eccjump_version": _core.VERSION,
+        "mu_s": float(mu_s),
+        "n": 0 if n is None else int(n),
+        "n_meaning": "requested turn of the jump; 0: the first jump whatever its turn",
+        "rule": str(rule),
+        "method": str(method),
+        "theta0": float(theta0),
+        "omega0": float(omega0),
+        **{k: (int(v) if isinstance(v, bool) else v) for k, v in extra.items()},
+        "reason_codes": reason_table(),
+        "units": "g = R = M = 1: angles in rad, forces in M g, omega in sqrt(g/R) rad",
+    }
+
+
+#: Attributes written by :func:`map_attrs` that are not options of the map.
+MAP_INFO = ("title", "eccjump_version", "n_meaning", "reason_codes", "units")
+
+
 def _is_jarm_agrees(values: Mapping[str, NDArray]) -> str | None:
     """What is wrong with a JARM map's codes beyond their table: ``is_jarm`` must say whether
     ``reason`` is :attr:`Reason.JARM`."""
@@ -287,13 +317,15 @@ __all__ = [
     "FIELDS",
     "FILL",
     "JARM",
-    "RECORD",
+    "MAP_INFO",
     "TABLE",
     "VALID",
     "WRT",
+    "WRT_ATTRS",
     "Field",
     "Reason",
     "cf_attrs",
     "docstring",
+    "map_attrs",
     "reason_table",
 ]

@@ -16,11 +16,10 @@ from numpy.typing import NDArray
 
 from eccjump import plot
 from eccjump.classification.classify import region
-from eccjump.classification.fields import JARM
+from eccjump.classification.fields import JARM, map_attrs
 from eccjump.cli._output import save_figure
 from eccjump.maps import store
 from eccjump.maps.kinds import MapKind
-from eccjump.maps.xarray import map_attrs
 from eccjump.motion import maps as motion_maps
 from eccjump.motion.fields import MOTION, sequence_name
 

@@ -28,10 +28,12 @@ import math
 import sys
 from collections.abc import Callable, Mapping
 from types import MappingProxyType
-from typing import Any, NamedTuple
+from typing import TYPE_CHECKING, Any, NamedTuple
 
 import numpy as np
 from numpy.typing import NDArray
+
+from eccjump import _compat
 
 
 def _nothing_wrong(values: Mapping[str, NDArray]) -> str | None:
@@ -81,6 +83,10 @@ class MapKind(NamedTuple):
 
     def bytes_per_point(self) -> int:
         return sum(np.dtype(self.dtypes[k]).itemsize for k in self.fields)
+
+    def record(self) -> np.dtype:
+        """One record per point holding every field (the dtype of a map's dask blocks)."""
+        return np.dtype([(k, self.dtypes[k]) for k in self.fields])
 
     def bad_codes(self, values: Mapping[str, NDArray]) -> str | None:
         """What is wrong with the coded fields in ``values`` (None: nothing): a code not in
@@ -164,6 +170,14 @@ def upgrade_attrs(attrs: dict[str, Any]) -> None:
     for old, new in kind.renamed.items() if kind is not None else ():
         if old in attrs and new not in attrs:
             attrs[new] = attrs.pop(old)
+
+
+# JARM, MOTION and valid_sequences, defined here before the kinds joined a registry, for one
+# release.
+if not TYPE_CHECKING:  # (a module __getattr__ would let mypy pass any typo)
+
+    def __getattr__(name: str):
+        return _compat.moved_name(__name__, name)
 
 
 __all__ = [

@@ -46,7 +46,7 @@ from numpy.typing import NDArray
 from eccjump._base.checks import flag, mapping
 from eccjump._base.checks import path as check_path
 from eccjump._base.overwrite import check_overwrite, file_type
-from eccjump.classification.classify import Region
+from eccjump.classification.classify import Region, region_layout, to_region
 from eccjump.maps.check import Invalid, attr_problem, check, check_layout, file_error, shown
 from eccjump.maps.integrity import UncheckedMapWarning as UncheckedMapWarning  # public here
 from eccjump.maps.integrity import (
@@ -57,7 +57,7 @@ from eccjump.maps.integrity import (
     zarr_codecs,
 )
 from eccjump.maps.kinds import MapKind, kind_of, upgrade_attrs
-from eccjump.maps.xarray import (
+from eccjump.maps.layout import (
     COORD_ATTRS,
     DIMS,
     Layout,
@@ -65,9 +65,7 @@ from eccjump.maps.xarray import (
     grid_coords,
     layout_from_xarray,
     layout_to_xarray,
-    region_layout,
     require,
-    to_region,
 )
 
 if TYPE_CHECKING:  # pragma: no cover

@@ -28,7 +28,7 @@ from eccjump._base.html import best_slice, card, deg, jarm_slice, span
 from eccjump._base.sizes import check_fits, motion_bytes
 from eccjump.maps import store
 from eccjump.maps.check import file_error
-from eccjump.maps.dask import require_dask
+from eccjump.maps.dask import lazy_fields
 from eccjump.maps.kinds import MapKind, upgrade_attrs
 from eccjump.maps.map import Map
 from eccjump.motion.fields import (
@@ -389,7 +389,7 @@ def motion_map(
     info = {k: opts[k] for k in OPTIONS}
     _check_scalars(scalars, opts)
     if chunks is not None:
-        return _lazy(axis, rest, coords, scalars, info, opts, shape, chunks)
+        return _lazy(axis, coords, scalars, info, opts, shape, chunks)
     points = int(np.prod(shape, dtype=object))
     check_fits("motion_map", points, motion_bytes(points), "the axes")
     flat = _block(axis["alpha"], rest, opts)
@@ -442,7 +442,6 @@ def _valid_point(values: Mapping[str, float], opts: dict[str, Any]) -> bool:
 
 def _lazy(
     axis: dict[str, NDArray],
-    rest: tuple[NDArray, ...],
     coords: dict[str, NDArray],
     scalars: dict[str, float | None],
     info: dict[str, Any],
@@ -450,27 +449,26 @@ def _lazy(
     shape: tuple[int, ...],
     chunks: object,
 ) -> xr.Dataset:
-    """A dask-backed Dataset: one core call per block of alpha values."""
-    da = require_dask()
-    import dask
-
+    """A dask-backed Dataset: one core call per block of ``chunks`` alpha values."""
     c = integer("chunks", chunks, 1, U64_MAX)
-    alpha = axis["alpha"]
-    inner = tuple(s for name, s in zip(AXES, shape_of(axis), strict=True) if name != "alpha")
-    pieces: dict[str, list[Any]] = {k: [] for k in FIELDS}
-    for i0 in range(0, alpha.size, c):
-        part = dask.delayed(_block)(alpha[i0 : i0 + c], rest, opts)
-        n = min(c, alpha.size - i0)
-        for f in TABLE:
-            arr = da.from_delayed(part[f.name], shape=(n * int(np.prod(inner)),), dtype=f.dtype)
-            pieces[f.name].append(arr.reshape((n, *inner)))
-    fields = {k: da.concatenate(v, axis=0).reshape(shape) for k, v in pieces.items()}
+    same_mu = scalars.get("mu_k", 0.0) is None  # mu_k = mu_s: the core's empty mu_k axis
+    axes = [np.zeros(1) if name == "mu_k" and same_mu else axis[name] for name in AXES]
+    blocks = [
+        min(c, a.size) if name == "alpha" else a.size for name, a in zip(AXES, axes, strict=True)
+    ]
+    lazy = lazy_fields(MOTION, _grid_block, axes, blocks, (opts, same_mu))
+    fields = {k: v.reshape(shape) for k, v in lazy.items()}
     return MotionMap(coords, scalars, fields, info).to_xarray()
 
 
-def shape_of(axis: Mapping[str, NDArray]) -> tuple[int, ...]:
-    """Lengths of the eight grid axes (mu_k empty counts 1)."""
-    return tuple(max(axis[name].size, 1) for name in AXES)
+def _grid_block(*args: Any) -> dict[str, NDArray]:
+    """The grid call of :func:`_block` as :func:`eccjump.maps.dask.lazy_fields` makes it: the
+    eight axes, the options and whether mu_k is mu_s (its axis then a placeholder)."""
+    *axes, opts, same_mu = args
+    rest = tuple(
+        np.empty(0) if same_mu and name == "mu_k" else a for name, a in zip(AXES, axes, strict=True)
+    )
+    return _block(axes[0], rest[1:], opts)
 
 
 def from_dataset(ds: xr.Dataset) -> MotionMap:
