@@ -80,11 +80,6 @@ UPWARD = {
     # the size guard prices a point by the field tables
     ("eccjump._base.sizes", "eccjump.classification.fields"),
     ("eccjump._base.sizes", "eccjump.motion.fields"),
-    # load() makes a Region or a MotionMap by the kind in the file
-    ("eccjump.maps", "eccjump.classification.classify"),
-    ("eccjump.maps", "eccjump.motion.maps"),
-    # the JARM files make a Region
-    ("eccjump.maps.store", "eccjump.classification.classify"),
     # the analysis figure takes matplotlib through the figures' loader
     ("eccjump.studies.experiment.figure", "eccjump.plot._common"),
 }

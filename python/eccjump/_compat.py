@@ -65,10 +65,18 @@ MOVED: dict[str, str] = {
 }
 
 _FIELDS, _CLASSIFY = "eccjump.classification.fields", "eccjump.classification.classify"
+_CLASSIFICATION = "eccjump.classification"
 
 #: Module -> {name that left it: its new place, ``"module"`` (the same name there) or
 #: ``"module:name"``}.
 MOVED_NAMES: dict[str, dict[str, str]] = {
+    "eccjump.maps": {
+        "Region": _CLASSIFICATION,
+        "region": _CLASSIFICATION,
+        "MotionMap": "eccjump.motion.maps",
+        "motion_map": "eccjump.motion.maps",
+    },
+    "eccjump.maps.store": {"load": _CLASSIFICATION},
     "eccjump.maps.kinds": {
         "JARM": _FIELDS,
         "MOTION": "eccjump.motion.fields",
@@ -84,7 +92,7 @@ MOVED_NAMES: dict[str, dict[str, str]] = {
         "region_attrs": _CLASSIFY,
         "region_dataset": _CLASSIFY,
         "region_layout": _CLASSIFY,
-        "to_region": _CLASSIFY,
+        "to_region": _CLASSIFICATION,
     },
 }
 

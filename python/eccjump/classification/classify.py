@@ -35,13 +35,12 @@ from eccjump.classification.fields import (
     docstring,
     map_attrs,
 )
+from eccjump.maps.check import file_error
 from eccjump.maps.dask import lazy_fields, normalize_chunks
 from eccjump.maps.layout import (
     COORD_ATTRS,
     DIMS,
     Layout,
-    layout_from_xarray,
-    layout_to_xarray,
     make_layout,
     require,
 )
@@ -391,7 +390,7 @@ def _fits_in_memory(what: str, points: int, derivatives: bool, inputs: int) -> N
 
 
 @dataclass(frozen=True, repr=False, eq=False)
-class Region(Map):
+class Region(Map, kind=JARM):
     """A JARM map on the grid alpha x chi x km_frac, with k_m = km_frac (1 - chi).
 
     Made by :func:`region`. As every :class:`~eccjump.Map`: ``coords``, ``fields``,
@@ -434,7 +433,6 @@ class Region(Map):
     0.0077022
     """
 
-    kind: ClassVar[str] = "jarm"
     jarm_field: ClassVar[str] = "is_jarm"
 
     alpha: NDArray[np.float64]
@@ -498,21 +496,38 @@ class Region(Map):
 
     __hash__ = None  # type: ignore[assignment]  # mutable numpy arrays inside
 
-    def to_xarray(self) -> xr.Dataset:
-        """The map as a labelled ``xarray.Dataset`` (dask-backed if lazy).
+    def to_layout(self) -> Layout:
+        """The map as a layout (:func:`region_layout`)."""
+        return region_layout(self)
 
-        Returns
-        -------
-        xarray.Dataset
-            Coordinates alpha [rad], chi, km_frac and k_m; one variable per field with its
-            units; the options as attributes.
-
-        Raises
-        ------
-        ImportError
-            Without xarray (``pip install "eccjump[xarray]"``).
-        """
-        return layout_to_xarray(region_layout(self))
+    @classmethod
+    def from_layout(cls, lay: Layout, source: object) -> Region:
+        """The Region of the layout ``lay`` of a valid JARM map read from ``source`` (a path,
+        for messages); ``alpha_done``, if there, goes to :attr:`attrs`. ValueError naming
+        ``source`` if it holds swept maps."""
+        dv, co, at = lay["data_vars"], lay["coords"], dict(lay["attrs"])
+        if tuple(dv["is_jarm"][0]) != DIMS:
+            raise file_error(source, "holds swept maps: open it with eccjump.store.open_dataset")
+        names = FIELDS + (DERIVATIVES if "d_theta_J" in dv else ())
+        res = JarmResult(**{k: np.asarray(dv[k][1], dtype=DTYPES[k]) for k in names})
+        made = JARM.required_attrs
+        attrs = {k: _plain(v) for k, v in at.items() if k not in MAP_INFO and k not in made}
+        if "alpha_done" in dv:
+            attrs["alpha_done"] = np.asarray(dv["alpha_done"][1], dtype=bool)
+        n = int(at["n"])
+        return cls(
+            alpha=np.asarray(co["alpha"][1], dtype=np.float64),
+            chi=np.asarray(co["chi"][1], dtype=np.float64),
+            km_frac=np.asarray(co["km_frac"][1], dtype=np.float64),
+            result=res,
+            mu_s=float(at["mu_s"]),
+            n=None if n == 0 else n,
+            rule=str(at["rule"]),
+            method=str(at["method"]),
+            theta0=float(at["theta0"]),
+            omega0=float(at["omega0"]),
+            attrs=attrs,
+        )
 
     def __repr__(self) -> str:
         def axis_line(name: str, values: NDArray[np.float64], unit: str = "") -> str:
@@ -562,6 +577,11 @@ class Region(Map):
         from eccjump import plot  # figures: the layer on top of every result
 
         return plot.region_map(self, **kwargs)
+
+
+def _plain(value: Any) -> Any:
+    """An attribute read from a file as a Python value (a numpy scalar as its item)."""
+    return value.item() if isinstance(value, np.generic) else value
 
 
 def _grid_derivatives(
@@ -888,38 +908,6 @@ def region(
     )
 
 
-def to_region(ds: xr.Dataset | Layout) -> Region:
-    """A :class:`Region` back from a dataset or layout of one map (no swept dimensions)."""
-    lay = ds if isinstance(ds, dict) else layout_from_xarray(ds)
-    dv, co, at = lay["data_vars"], lay["coords"], dict(lay["attrs"])
-    if tuple(dv["is_jarm"][0]) != DIMS:
-        raise ValueError(
-            f"a Region has dims {DIMS}; this map has {tuple(dv['is_jarm'][0])} "
-            "(select one value of each swept parameter first)"
-        )
-    names = FIELDS + (DERIVATIVES if "d_theta_J" in dv else ())
-    res = JarmResult(**{k: np.asarray(dv[k][1], dtype=DTYPES[k]) for k in names})
-    made = ("mu_s", "n", "rule", "method", "theta0", "omega0")
-    n = int(at["n"])
-    return Region(
-        alpha=np.asarray(co["alpha"][1], dtype=np.float64),
-        chi=np.asarray(co["chi"][1], dtype=np.float64),
-        km_frac=np.asarray(co["km_frac"][1], dtype=np.float64),
-        result=res,
-        mu_s=float(at["mu_s"]),
-        n=None if n == 0 else n,
-        rule=str(at["rule"]),
-        method=str(at["method"]),
-        theta0=float(at["theta0"]),
-        omega0=float(at["omega0"]),
-        attrs={
-            k: (v.item() if isinstance(v, np.generic) else v)
-            for k, v in at.items()
-            if k not in MAP_INFO and k not in made
-        },
-    )
-
-
 #: Parameters that :func:`region_dataset` can sweep, in the order of their dimensions.
 SWEEPABLE = ("mu_s", "theta0", "omega0")
 
@@ -1057,5 +1045,4 @@ __all__ = [
     "region_attrs",
     "region_dataset",
     "region_layout",
-    "to_region",
 ]

@@ -287,6 +287,7 @@ JARM = register(
             ("is_jarm", "theta_J", False),
         ),
         validator=_is_jarm_agrees,
+        title="JARM",
     )
 )
 

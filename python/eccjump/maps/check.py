@@ -157,7 +157,8 @@ def _coordinate(variables: dict, dim: str) -> int:
 
 def _axis_ranges(kind: MapKind, variables: dict, dims: tuple[str, ...], values: dict) -> None:
     """A swept coordinate may leave its physical range (:data:`AXIS_RANGES`) only where every
-    point of the map is invalid: the computation marks such points so and goes on."""
+    point of the map is invalid: the computation marks such points so and goes on (a kind
+    without an invalid mark has no such points)."""
     mark, codes = kind.invalid
     for axis, dim in kind.axes:
         if dim not in dims or axis not in AXIS_RANGES:
@@ -165,8 +166,10 @@ def _axis_ranges(kind: MapKind, variables: dict, dims: tuple[str, ...], values: 
         lo, hi = AXIS_RANGES[axis]
         coord = np.asarray(variables[dim][1], dtype=np.float64)
         out = ~((coord >= lo) & (coord <= hi))
-        at = np.asarray(values[mark]).compress(out, axis=dims.index(dim))
-        if out.any() and not np.isin(at, list(codes)).all():
+        if not out.any():
+            continue
+        at = np.asarray(values[mark]).compress(out, axis=dims.index(dim)) if mark else None
+        if at is None or not np.isin(at, list(codes)).all():
             raise Invalid(
                 f"has a coordinate {dim} = {outside(coord[out][0], lo, hi)} with valid points"
             )

@@ -80,6 +80,12 @@ class MapKind(NamedTuple):
     #: File attributes renamed since they were first written: old name -> today's
     #: (:func:`upgrade_attrs`).
     renamed: Mapping[str, str] = MappingProxyType({})
+    #: The kind in messages, "a JARM map" (empty: its :attr:`name`).
+    title: str = ""
+
+    def words(self) -> str:
+        """The kind in messages: ``"JARM map"``."""
+        return f"{self.title or self.name} map"
 
     def bytes_per_point(self) -> int:
         return sum(np.dtype(self.dtypes[k]).itemsize for k in self.fields)

@@ -211,6 +211,7 @@ MOTION = register(
         validator=_sequences_valid,
         # 0.1 recorded a motion map's scalar fraction axis as km, today the body's k_m
         renamed={"km": "km_frac"},
+        title="motion",
     )
 )
 
