@@ -62,7 +62,7 @@ def test_one_rust_call_per_block(monkeypatch):
 
 
 def test_lazy_xarray_dataset(reference):
-    ds = region(mu_s=0.7, **GRID, chunks=4, output="xarray")
+    ds = region(mu_s=0.7, **GRID, chunks=4).to_xarray()
     assert ds.is_jarm.chunks is not None
     assert_bits(reference, {f: ds[f].values for f in FIELDS})
 
@@ -104,7 +104,7 @@ def test_distributed_cluster_two_processes_bit_identical(reference, monkeypatch)
         lazy = region(mu_s=0.7, **GRID, chunks=(3, 4, -1), n_threads=1)
         done = lazy.compute()  # the client is the default scheduler
         assert_bits(reference, {f: getattr(done.result, f) for f in FIELDS})
-        ds = region(mu_s=[0.7, 0.9], **GRID, chunks=(5, -1, -1), n_threads=1, output="xarray")
+        ds = eccjump.region_dataset(mu_s=[0.7, 0.9], **GRID, chunks=(5, -1, -1), n_threads=1)
         ds = ds.compute()
         assert_bits(reference, {f: ds[f].sel(mu_s=0.7).values for f in FIELDS})
         workers = {w["id"] for w in client.scheduler_info()["workers"].values()}

@@ -19,6 +19,7 @@ import pytest
 import eccjump
 from eccjump.classification import load as load_region
 from eccjump.classification.classify import FIELDS, Reason, region
+from eccjump.classification.dataset import region_dataset
 from eccjump.classification.fields import JARM, map_attrs
 from eccjump.cli import main
 from eccjump.maps import runner, store
@@ -80,7 +81,7 @@ def test_to_xarray_labels_units_and_reason_table():
 
 def test_sweeps_are_extra_dimensions_one_map_each():
     g = grid(6)
-    ds = region(mu_s=[0.5, 0.9], **g, theta0=[0.0, 0.2], omega0=0.1, output="xarray")
+    ds = region_dataset(mu_s=[0.5, 0.9], **g, theta0=[0.0, 0.2], omega0=0.1)
     assert ds.is_jarm.dims == ("mu_s", "theta0", "alpha", "chi", "km_frac")
     assert "mu_s" not in ds.attrs and ds.attrs["omega0"] == 0.1
     for mu in (0.5, 0.9):
@@ -89,8 +90,23 @@ def test_sweeps_are_extra_dimensions_one_map_each():
             sel = ds.sel(mu_s=mu, theta0=th)
             for f in FIELDS:
                 assert sel[f].values.tobytes() == getattr(one.result, f).tobytes()
-    with pytest.raises(ValueError, match="output='xarray'"):
+    with pytest.raises(ValueError, match=r"mu_s must be a number here; region_dataset\(\.\.\.\)"):
         region(mu_s=[0.5, 0.9], **g)
+
+
+def test_output_xarray_is_deprecated_for_to_xarray_and_region_dataset():
+    """region no longer calls up to region_dataset: output="xarray" is the map's own
+    to_xarray() for one release, with a warning; a sweep is region_dataset's."""
+    g = grid(5)
+    deprecated = r"region\(output='xarray'\) is deprecated: use region\(\.\.\.\)\.to_xarray\(\)"
+    with pytest.warns(DeprecationWarning, match=deprecated) as seen:
+        ds = region(mu_s=MU_S, **g, output="xarray")
+    assert seen[0].filename == __file__  # the warning points to the caller
+    xr.testing.assert_identical(ds, region(mu_s=MU_S, **g).to_xarray())
+    with pytest.warns(DeprecationWarning), pytest.raises(ValueError, match="region_dataset"):
+        region(mu_s=[0.5, 0.9], **g, output="xarray")
+    with pytest.raises(ValueError, match="output = 'labels'; use 'region'"):
+        region(mu_s=MU_S, **g, output="labels")
 
 
 @pytest.mark.parametrize("suffix", [".nc", ".zarr", ".npz"])
@@ -100,7 +116,7 @@ def test_save_and_load_round_trip_bit_for_bit(tmp_path, suffix):
     back = load_region(path)
     assert_same(reg, back)
     assert (back.mu_s, back.n, back.rule, back.method) == (MU_S, None, "paper", "closed_form")
-    sweep = region(mu_s=[0.5, 0.9], **grid(4), output="xarray")
+    sweep = region_dataset(mu_s=[0.5, 0.9], **grid(4))
     spath = store.save(sweep, tmp_path / f"s{suffix}")
     xr.testing.assert_equal(store.open_dataset(spath), sweep)
 
@@ -218,7 +234,7 @@ def test_the_integrator_is_recorded_in_every_form_of_a_map(tmp_path, suffix):
     closed = region(mu_s=MU_S, **g, integrator="DOP853")
     assert closed.attrs["integrator"] == "DOP853"
     assert_same(closed, region(mu_s=MU_S, **g))
-    sweep = region(mu_s=[0.5, 0.9], **g, method="ode", integrator="DOP853", output="xarray")
+    sweep = region_dataset(mu_s=[0.5, 0.9], **g, method="ode", integrator="DOP853")
     assert sweep.attrs["integrator"] == "DOP853"
     assert (
         sweep.reason.sel(mu_s=0.9).values.tobytes()

@@ -65,7 +65,7 @@ def test_to_xarray_has_the_same_dims(both):
 
 def test_load_map_refuses_a_swept_jarm_file_naming_it(tmp_path):
     pytest.importorskip("xarray")
-    ds = eccjump.region([0.5], [0.2], [0.3], [0.8, 1.0], output="xarray")
+    ds = eccjump.region_dataset([0.5], [0.2], [0.3], [0.8, 1.0])
     path = eccjump.store.save(ds, tmp_path / "swept.nc")
     with pytest.raises(ValueError, match=r"swept\.nc.*open_dataset"):
         eccjump.load_map(path)

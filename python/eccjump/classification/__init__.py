@@ -13,10 +13,9 @@ from eccjump.classification.classify import (
     jarm,
     region,
     region_attrs,
-    region_dataset,
     region_layout,
 )
-from eccjump.classification.dataset import load, to_region
+from eccjump.classification.dataset import load, region_dataset, to_region
 
 __all__ = [
     "FIELDS",

@@ -9,16 +9,17 @@ from __future__ import annotations
 
 import dataclasses
 import math
+import warnings
 from collections.abc import Mapping
 from dataclasses import dataclass, field, replace
-from typing import TYPE_CHECKING, Any, ClassVar, Literal, overload
+from typing import TYPE_CHECKING, Any, ClassVar, Literal
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from eccjump._base.arrays import axis, broadcast_flat, fields_equal, fraction_axis, turns
 from eccjump._base.bridge import CallOptions, Method, call_options, jarm_grid, jarm_points
-from eccjump._base.checks import Integrator, Rule, flag, real, real_array, short, text
+from eccjump._base.checks import Integrator, Rule, flag, real, short, text
 from eccjump._base.html import best_slice, card, deg, jarm_slice, num, span
 from eccjump._base.sizes import check_fits, jarm_bytes
 from eccjump.classification.derivatives import derivative_fields
@@ -38,16 +39,13 @@ from eccjump.classification.fields import (
 from eccjump.maps.check import file_error
 from eccjump.maps.dask import lazy_fields, normalize_chunks
 from eccjump.maps.layout import (
-    COORD_ATTRS,
     DIMS,
     Layout,
     make_layout,
-    require,
 )
 from eccjump.maps.map import Map
 
 if TYPE_CHECKING:  # pragma: no cover
-    import xarray as xr
     from matplotlib.figure import Figure
 
 
@@ -645,7 +643,6 @@ def _with_derivatives(layout: Layout, derivatives: Mapping[str, Any]) -> Layout:
     return {**layout, "coords": {**layout["coords"], "wrt": wrt}, "data_vars": data_vars}
 
 
-@overload
 def region(
     alpha: ArrayLike,
     chi: ArrayLike,
@@ -668,58 +665,7 @@ def region(
     chunks: Any = None,
     derivatives: bool = False,
     output: Literal["region"] = "region",
-) -> Region: ...
-
-
-@overload
-def region(
-    alpha: ArrayLike,
-    chi: ArrayLike,
-    km_frac: ArrayLike,
-    mu_s: float | ArrayLike,
-    n: int | None = None,
-    *,
-    km: None = None,
-    method: Method = "closed_form",
-    rule: Rule = "paper",
-    theta0: float | ArrayLike = 0.0,
-    omega0: float | ArrayLike = 0.0,
-    rtol: float = 1e-10,
-    atol: float = 1e-12,
-    max_turns: int = 10_000,
-    refine_extrema: bool = False,
-    stop_at_slip: bool = False,
-    n_threads: int = 0,
-    integrator: Integrator = "RK45",
-    chunks: Any = None,
-    derivatives: bool = False,
-    output: Literal["xarray"],
-) -> xr.Dataset: ...
-
-
-def region(
-    alpha: ArrayLike,
-    chi: ArrayLike,
-    km_frac: ArrayLike,
-    mu_s: float | ArrayLike,
-    n: int | None = None,
-    *,
-    km: None = None,
-    method: Method = "closed_form",
-    rule: Rule = "paper",
-    theta0: float | ArrayLike = 0.0,
-    omega0: float | ArrayLike = 0.0,
-    rtol: float = 1e-10,
-    atol: float = 1e-12,
-    max_turns: int = 10_000,
-    refine_extrema: bool = False,
-    stop_at_slip: bool = False,
-    n_threads: int = 0,
-    integrator: Integrator = "RK45",
-    chunks: Any = None,
-    derivatives: bool = False,
-    output: Literal["region", "xarray"] = "region",
-) -> Region | xr.Dataset:
+) -> Region:
     """Map the JARM region on a rectangular grid, in parallel.
 
     The grid first, then ``mu_s``, as every entry point takes the point or body first. Each
@@ -737,9 +683,9 @@ def region(
         The bodies' d/R, each in [0, 1].
     km_frac : array_like of float, 1-D
         k_m/(1 - chi), each in [0, 1].
-    mu_s : float or array_like of float
-        Static friction coefficient, in [0, inf), one value for the whole map; with
-        ``output="xarray"`` a 1-D sequence is swept as an extra leading dimension.
+    mu_s : float
+        Static friction coefficient, in [0, inf), one value for the whole map
+        (:func:`region_dataset` sweeps a sequence of them).
     n : int or None, default None
         The turn on which the jump must happen (1 ... 2**32 - 1), or None for the first
         jump whatever its turn.
@@ -750,10 +696,9 @@ def region(
         The paper's formulas with a rigorous path scan, or integration with events.
     rule : {"paper", "normal_force"}, default "paper"
         Lift-off rule: the paper's condition chi theta'^2 cos theta = cos alpha, or Fy = 0.
-    theta0 : float or array_like of float, default 0.0
-        Initial angle [rad], |theta0| <= 2 pi 1e6 (a 1-D sequence is swept with
-        ``output="xarray"``).
-    omega0 : float or array_like of float, default 0.0
+    theta0 : float, default 0.0
+        Initial angle [rad], |theta0| <= 2 pi 1e6 (:func:`region_dataset` sweeps it).
+    omega0 : float, default 0.0
         Initial angular velocity [sqrt(g/R) rad], in [0, 1e6] (swept as ``theta0``).
     rtol : float, default 1e-10
         Relative tolerance of ``method="ode"``, in [1e-15, 1e-3].
@@ -779,10 +724,10 @@ def region(
         with dask (``pip install "eccjump[dask]"``), one Rust grid call per block,
         bit-identical to the unchunked map; call ``.compute()`` on the result. On a cluster
         use ``n_threads`` = threads per worker / concurrent tasks per worker.
-    output : {"region", "xarray"}, default "region"
-        ``"region"``: a :class:`Region`. ``"xarray"``: a labelled ``xarray.Dataset``, and
-        then ``mu_s``, ``theta0`` and ``omega0`` may be 1-D sequences, swept as extra
-        leading dimensions (one Rust call per combination).
+    output : {"region"}, default "region"
+        A :class:`Region`. ``"xarray"`` is deprecated (it works until the next release,
+        with a DeprecationWarning): write ``region(...).to_xarray()``, or
+        :func:`region_dataset` to sweep ``mu_s``, ``theta0`` and ``omega0``.
     derivatives : bool, default False
         Also give the exact derivatives of theta_J, Fx_J, Fy_J and mu_J with respect to
         (alpha, chi, km) at every grid point, as :func:`jarm` does: the ``d_*`` fields of
@@ -793,7 +738,7 @@ def region(
 
     Returns
     -------
-    Region or xarray.Dataset
+    Region
         The map; its ``attrs`` record the tolerances, the integrator, ``max_turns``,
         ``refine_extrema`` and ``stop_at_slip`` as given, whatever the method (the closed
         form ignores the tolerances and the integrator).
@@ -802,13 +747,14 @@ def region(
     ------
     ValueError
         For an axis that is not a 1-D array of values in range, a bad ``mu_s``, ``n`` or
-        option; the message names the parameter and its range.
+        option (a sequence of ``mu_s``, ``theta0`` or ``omega0``: :func:`region_dataset`
+        sweeps them); the message names the parameter and its range.
     TypeError
         If ``km`` is given, or an argument has the wrong type.
     MemoryError
         If the map does not fit in memory (refused before any work, naming its size).
     ImportError
-        For ``chunks`` without dask, ``output="xarray"`` without xarray.
+        For ``chunks`` without dask.
     KeyboardInterrupt
         On Ctrl-C, within about a second.
 
@@ -831,36 +777,13 @@ def region(
     >>> print(m.is_jarm.shape, f"{m.fraction():.7f}")
     (90, 50, 50) 0.0077022
     """
-    if output == "xarray":
-        return region_dataset(
-            mu_s=mu_s,
-            n=n,
-            alpha=alpha,
-            chi=chi,
-            km_frac=km_frac,
-            km=km,
-            method=method,
-            rule=rule,
-            theta0=theta0,
-            omega0=omega0,
-            rtol=rtol,
-            atol=atol,
-            max_turns=max_turns,
-            refine_extrema=refine_extrema,
-            stop_at_slip=stop_at_slip,
-            n_threads=n_threads,
-            integrator=integrator,
-            chunks=chunks,
-            derivatives=derivatives,
-        )
-    if text("output", output) != "region":
-        raise ValueError(f"output = {short(output)}; use 'region' or 'xarray'")
+    xarray = _deprecated_output(output)
     want_derivatives = flag("derivatives", derivatives)
     if want_derivatives and chunks is not None:
         raise ValueError("derivatives=True needs chunks=None (a map computed now)")
     for name, value in (("mu_s", mu_s), ("theta0", theta0), ("omega0", omega0)):
         if isinstance(value, list | tuple) or (isinstance(value, np.ndarray) and value.ndim):
-            raise ValueError(f"{name} must be a number here; sweeps need output='xarray'")
+            raise ValueError(f"{name} must be a number here; region_dataset(...) sweeps it")
     mu = real("mu_s", mu_s)
     a, c, f = axis("alpha", alpha), axis("chi", chi), axis("km_frac", fraction_axis(km_frac, km))
     opts = call_options(
@@ -886,7 +809,7 @@ def region(
     else:
         blocks = normalize_chunks(chunks, (a.size, c.size, f.size))
         res = JarmResult(**lazy_fields(JARM, jarm_grid, (a, c, f), blocks, (mu, opts)))
-    return Region(
+    reg = Region(
         alpha=a,
         chi=c,
         km_frac=f,
@@ -906,131 +829,23 @@ def region(
             "stop_at_slip": opts.stop_at_slip,
         },
     )
+    # the deprecated output="xarray" (typed away: the signature says what to write instead)
+    return reg.to_xarray() if xarray else reg  # type: ignore[return-value]
 
 
-#: Parameters that :func:`region_dataset` can sweep, in the order of their dimensions.
-SWEEPABLE = ("mu_s", "theta0", "omega0")
-
-
-def region_dataset(
-    alpha: ArrayLike,
-    chi: ArrayLike,
-    km_frac: ArrayLike,
-    mu_s: float | ArrayLike,
-    n: int | None = None,
-    *,
-    km: None = None,
-    theta0: float | ArrayLike = 0.0,
-    omega0: float | ArrayLike = 0.0,
-    **kwargs: Any,
-) -> xr.Dataset:
-    """Map the JARM region as an ``xarray.Dataset``, sweeping ``mu_s``, ``theta0`` and
-    ``omega0`` when they are 1-D sequences.
-
-    One Rust grid call per combination of the swept values; the swept parameters become
-    leading dimensions, in the order mu_s, theta0, omega0. Needs xarray
-    (``pip install "eccjump[xarray]"``).
-
-    Parameters
-    ----------
-    alpha : array_like of float, 1-D
-        Ramp angles [rad], each in [0, pi/2].
-    chi : array_like of float, 1-D
-        The bodies' d/R, each in [0, 1].
-    km_frac : array_like of float, 1-D
-        k_m/(1 - chi), each in [0, 1].
-    mu_s : float or array_like of float
-        Static friction coefficient(s), each in [0, inf); a 1-D sequence is swept.
-    n : int or None, default None
-        The turn on which the jump must happen (>= 1), or None for the first jump.
-    km : None
-        Not accepted (the axis is ``km_frac``): passing it is a TypeError.
-    theta0 : float or array_like of float, default 0.0
-        Initial angle(s) [rad], |theta0| <= 2 pi 1e6; a 1-D sequence is swept.
-    omega0 : float or array_like of float, default 0.0
-        Initial angular velocity(ies) [sqrt(g/R) rad], in [0, 1e6]; a 1-D sequence is swept.
-    **kwargs
-        The options of :func:`region`: ``method``, ``rule``, ``rtol``, ``atol``,
-        ``max_turns``, ``refine_extrema``, ``stop_at_slip``, ``n_threads``, ``integrator``,
-        ``derivatives`` (the ``d_*`` variables, with a trailing dimension ``wrt``) and
-        ``chunks`` (a dask-backed, lazily computed dataset).
-
-    Returns
-    -------
-    xarray.Dataset
-        Dimensions (swept parameters..., alpha, chi, km_frac), one variable per result
-        field with its units, the reasons as CF flags, the options as attributes.
-
-    Raises
-    ------
-    ValueError
-        For a swept value that is not a number or a non-empty 1-D sequence, or any bad
-        argument of :func:`region`.
-    TypeError
-        If ``km`` is given, or an argument has the wrong type.
-    ImportError
-        Without xarray.
-
-    Examples
-    --------
-    >>> import numpy as np
-    >>> import eccjump
-    >>> ds = eccjump.region_dataset(np.radians([35, 40, 45]), [0.1, 0.15], [0.0, 0.1],
-    ...                             mu_s=[0.7, 1.0])
-    >>> dict(ds.sizes)
-    {'mu_s': 2, 'alpha': 3, 'chi': 2, 'km_frac': 2}
-    """
-    xarray = require("xarray")
-    kwargs.pop("output", None)
-    given = {"mu_s": mu_s, "theta0": theta0, "omega0": omega0}
-    scalars: dict[str, float] = {}
-    swept: dict[str, NDArray[np.float64]] = {}
-    for name in SWEEPABLE:
-        arr = real_array(name, given[name])
-        if arr.ndim == 0:
-            scalars[name] = float(arr)
-        elif arr.ndim == 1 and arr.size:
-            swept[name] = arr
-        else:
-            raise ValueError(f"{name} must be a number or a non-empty 1-D sequence")
-    grid = {"alpha": alpha, "chi": chi, "km_frac": fraction_axis(km_frac, km)}
-
-    def one(values: Mapping[str, float]) -> xr.Dataset:
-        reg = region(n=n, **grid, **scalars, **values, **kwargs)  # type: ignore[call-overload]
-        return reg.to_xarray()
-
-    if not swept:
-        return one({})
-    names = list(swept)
-
-    def build(level: int, fixed: dict[str, float]) -> xr.Dataset:
-        name = names[level]
-        parts = []
-        for v in swept[name]:
-            here = {**fixed, name: float(v)}
-            if level + 1 < len(names):
-                ds = build(level + 1, here)
-            else:
-                ds = one(here)
-                for k in names:  # swept values live in coordinates, not attributes
-                    ds.attrs.pop(k, None)
-                ds = ds.assign_coords({k: xarray.Variable((), here[k]) for k in names})
-            parts.append(ds)
-        return xarray.concat(
-            parts,
-            dim=name,
-            data_vars="all",
-            coords="minimal",
-            compat="override",
-            join="exact",
-            combine_attrs="override",
+def _deprecated_output(output: object) -> bool:
+    """Whether ``output`` asks for the deprecated labelled result (with its warning);
+    ValueError for anything but "region" and "xarray"."""
+    if text("output", output) not in ("region", "xarray"):
+        raise ValueError(f"output = {short(output)}; use 'region'")
+    if output == "xarray":
+        warnings.warn(
+            "eccjump.region(output='xarray') is deprecated: use region(...).to_xarray(), or "
+            "region_dataset(...) to sweep mu_s, theta0, omega0 (until the next release)",
+            DeprecationWarning,
+            stacklevel=3,
         )
-
-    out = build(0, {})
-    for k in names:
-        out[k].attrs.update(COORD_ATTRS[k])
-    out.attrs["swept"] = " ".join(names)
-    return out
+    return output == "xarray"
 
 
 __all__ = [
@@ -1043,6 +858,5 @@ __all__ = [
     "jarm",
     "region",
     "region_attrs",
-    "region_dataset",
     "region_layout",
 ]
