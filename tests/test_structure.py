@@ -77,9 +77,6 @@ LAYERS = {
 UPWARD = {
     # the overwrite policy names a file by maps.check's file_error
     ("eccjump._base.overwrite", "eccjump.maps.check"),
-    # the size guard prices a point by the field tables
-    ("eccjump._base.sizes", "eccjump.classification.fields"),
-    ("eccjump._base.sizes", "eccjump.motion.fields"),
     # the analysis figure takes matplotlib through the figures' loader
     ("eccjump.studies.experiment.figure", "eccjump.plot._common"),
 }

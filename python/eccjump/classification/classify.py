@@ -21,10 +21,11 @@ from eccjump._base.arrays import axis, broadcast_flat, fields_equal, fraction_ax
 from eccjump._base.bridge import CallOptions, Method, call_options, jarm_grid, jarm_points
 from eccjump._base.checks import Integrator, Rule, flag, real, short, text
 from eccjump._base.html import best_slice, card, deg, jarm_slice, num, span
-from eccjump._base.sizes import check_fits, jarm_bytes
+from eccjump._base.sizes import F64, check_fits, field_bytes, result_bytes
 from eccjump.classification.derivatives import derivative_fields
 from eccjump.classification.fields import (
     BY_NAME,
+    DERIVATIVE_TABLE,
     DERIVATIVES,
     DTYPES,
     FIELDS,
@@ -380,11 +381,17 @@ def jarm(
     return replace(res, **derivative_fields((a, c, k, m), raw, opts, shape))
 
 
+#: Bytes per point of the derivative fields (each float one of len(WRT) values) and of the
+#: six float64 columns the derivative pass builds (the grid's points, k_m, mu_s).
+_DERIVATIVE_BYTES = field_bytes((f.dtype for f in DERIVATIVE_TABLE), len(WRT)) + 6 * F64
+
+
 def _fits_in_memory(what: str, points: int, derivatives: bool, inputs: int) -> None:
     """MemoryError before any work if the result (with its derivative fields) cannot fit."""
     axes = "alpha, chi or km_frac" if what == "region" else "the inputs"
     shrink = f"{axes} (or derivatives=False)" if derivatives else axes
-    check_fits(what, points, jarm_bytes(points, derivatives, inputs), shrink)
+    per_point = JARM.bytes_per_point() + (_DERIVATIVE_BYTES if derivatives else 0)
+    check_fits(what, points, result_bytes(points, per_point, inputs), shrink)
 
 
 @dataclass(frozen=True, repr=False, eq=False)

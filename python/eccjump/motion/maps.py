@@ -25,7 +25,7 @@ from eccjump import _core
 from eccjump._base.arrays import fields_equal, fraction_axis
 from eccjump._base.checks import U64_MAX, Integrator, integer, real_array, short, text
 from eccjump._base.html import best_slice, card, deg, jarm_slice, span
-from eccjump._base.sizes import check_fits, motion_bytes
+from eccjump._base.sizes import check_fits, result_bytes
 from eccjump.maps import store
 from eccjump.maps.check import file_error
 from eccjump.maps.dask import lazy_fields
@@ -396,7 +396,7 @@ def motion_map(
     if chunks is not None:
         return _lazy(axis, coords, scalars, info, opts, shape, chunks)
     points = int(np.prod(shape, dtype=object))
-    check_fits("motion_map", points, motion_bytes(points), "the axes")
+    check_fits("motion_map", points, result_bytes(points, MOTION.bytes_per_point()), "the axes")
     flat = _block(axis["alpha"], rest, opts)
     fields = {k: flat[k].reshape(shape) for k in FIELDS}
     m = MotionMap(coords, scalars, fields, info)
