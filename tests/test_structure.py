@@ -75,8 +75,6 @@ LAYERS = {
 #: these, a result's ``.plot()`` imports ``eccjump.plot`` inside the method (the figures are
 #: the optional layer on top of every result, as pandas' ``.plot``).
 UPWARD = {
-    # the overwrite policy names a file by maps.check's file_error
-    ("eccjump._base.overwrite", "eccjump.maps.check"),
     # the analysis figure takes matplotlib through the figures' loader
     ("eccjump.studies.experiment.figure", "eccjump.plot._common"),
 }
@@ -312,3 +310,14 @@ def test_results_have_the_described_dtypes():
     ds = pytest.importorskip("xarray") and reg.to_xarray()
     assert ds.theta_J.attrs["units"] == fields.BY_NAME["theta_J"].units
     assert list(ds.reason.attrs["flag_values"]) == [r.value for r in fields.Reason]
+
+
+def test_one_form_of_a_message_naming_a_file():
+    """file_error and shown live in the base, below the overwrite policy and the maps, which
+    re-export them; the command line's longest line is the same constant."""
+    from eccjump._base import checks
+    from eccjump.cli import _args
+    from eccjump.maps import check
+
+    assert check.file_error is checks.file_error and check.shown is checks.shown
+    assert check.MAX_MESSAGE is _args.MAX_MESSAGE is checks.MAX_MESSAGE

@@ -19,7 +19,7 @@ from numpy.typing import ArrayLike, NDArray
 
 from eccjump._base.arrays import axis, broadcast_flat, fields_equal, fraction_axis, turns
 from eccjump._base.bridge import CallOptions, Method, call_options, jarm_grid, jarm_points
-from eccjump._base.checks import Integrator, Rule, flag, real, short, text
+from eccjump._base.checks import Integrator, Rule, file_error, flag, real, short, text
 from eccjump._base.html import best_slice, card, deg, jarm_slice, num, span
 from eccjump._base.sizes import F64, check_fits, field_bytes, result_bytes
 from eccjump.classification.derivatives import derivative_fields
@@ -37,7 +37,6 @@ from eccjump.classification.fields import (
     docstring,
     map_attrs,
 )
-from eccjump.maps.check import file_error
 from eccjump.maps.dask import lazy_fields, normalize_chunks
 from eccjump.maps.layout import (
     DIMS,

@@ -29,10 +29,9 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from eccjump._base.arrays import fraction_axis
-from eccjump._base.checks import real_array
+from eccjump._base.checks import file_error, real_array
 from eccjump.classification.classify import Region, region
 from eccjump.classification.fields import JARM
-from eccjump.maps.check import file_error
 from eccjump.maps.layout import COORD_ATTRS, DIMS, Layout, layout_from_xarray, require
 from eccjump.maps.store import read_layout
 

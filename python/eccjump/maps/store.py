@@ -47,10 +47,10 @@ import numpy as np
 from numpy.typing import NDArray
 
 from eccjump import _compat
-from eccjump._base.checks import flag, mapping
+from eccjump._base.checks import file_error, flag, mapping, shown
 from eccjump._base.checks import path as check_path
 from eccjump._base.overwrite import check_overwrite, file_type
-from eccjump.maps.check import Invalid, attr_problem, check, check_layout, file_error, shown
+from eccjump.maps.check import Invalid, attr_problem, check, check_layout
 from eccjump.maps.integrity import UncheckedMapWarning as UncheckedMapWarning  # public here
 from eccjump.maps.integrity import (
     check_metadata_size,

@@ -23,11 +23,10 @@ from numpy.typing import ArrayLike, NDArray
 
 from eccjump import _core
 from eccjump._base.arrays import fields_equal, fraction_axis
-from eccjump._base.checks import U64_MAX, Integrator, integer, real_array, short, text
+from eccjump._base.checks import U64_MAX, Integrator, file_error, integer, real_array, short, text
 from eccjump._base.html import best_slice, card, deg, jarm_slice, span
 from eccjump._base.sizes import check_fits, result_bytes
 from eccjump.maps import store
-from eccjump.maps.check import file_error
 from eccjump.maps.dask import lazy_fields
 from eccjump.maps.kinds import MapKind, upgrade_attrs
 from eccjump.maps.layout import Layout
