@@ -13,6 +13,7 @@ import importlib.util
 import inspect
 import json
 import os
+import re
 import subprocess
 import sys
 from pathlib import Path
@@ -70,14 +71,11 @@ LAYERS = {
     "eccjump.cli": 8,  # argparse and printing over the public API
 }
 
-#: The imports that still run upward, each to be turned round by one of issue 47's inversions
-#: (a map kind carrying its own fields and validator, ...): this list only shrinks. Besides
-#: these, a result's ``.plot()`` imports ``eccjump.plot`` inside the method (the figures are
-#: the optional layer on top of every result, as pandas' ``.plot``).
-UPWARD = {
-    # the analysis figure takes matplotlib through the figures' loader
-    ("eccjump.studies.experiment.figure", "eccjump.plot._common"),
-}
+#: The imports that still run upward: none since issue 47's inversions (a map kind carries its
+#: own fields and validator, the map layer reads and writes layouts, ...); this set only
+#: shrinks. Besides these, a result's ``.plot()`` imports ``eccjump.plot`` inside the method
+#: (the figures are the optional layer on top of every result, as pandas' ``.plot``).
+UPWARD: set[tuple[str, str]] = set()
 
 
 def layer(module: str) -> int:
@@ -321,3 +319,22 @@ def test_one_form_of_a_message_naming_a_file():
 
     assert check.file_error is checks.file_error and check.shown is checks.shown
     assert check.MAX_MESSAGE is _args.MAX_MESSAGE is checks.MAX_MESSAGE
+
+
+def test_one_helper_imports_the_optional_dependencies(monkeypatch):
+    """Each optional import fails with the pip command of its extra, through one helper in
+    the base (the analysis figure took matplotlib through the figures' layer above it)."""
+    from eccjump.maps import dask, layout
+    from eccjump.plot import _common
+    from eccjump.studies.experiment import figure
+
+    for name in ("matplotlib.pyplot", "dask.array", "zarr"):
+        monkeypatch.setitem(sys.modules, name, None)  # as if not installed
+    for call, message in (
+        (_common._plt, "matplotlib.pyplot is needed for eccjump.plot: pip install eccjump[plot]"),
+        (dask.require_dask, "dask.array is needed for chunks=: pip install eccjump[dask]"),
+        (lambda: layout.require("zarr"), "zarr is needed for labelled results"),
+        (lambda: figure.analysis_figure(None), "needed for the analysis figure"),
+    ):
+        with pytest.raises(ImportError, match=re.escape(message)):
+            call()

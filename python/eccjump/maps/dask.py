@@ -34,6 +34,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 from eccjump._base.checks import integer
+from eccjump._base.optional import require
 from eccjump.maps.kinds import MapKind
 from eccjump.maps.layout import DIMS
 
@@ -44,13 +45,7 @@ GridFunction = Callable[..., Mapping[str, NDArray]]
 
 
 def require_dask() -> Any:
-    try:
-        import dask.array as da
-    except ImportError as err:
-        raise ImportError(
-            "chunks= needs dask: pip install eccjump[dask] (or eccjump[all])"
-        ) from err
-    return da
+    return require("dask.array", purpose="chunks=", extra="dask")
 
 
 def normalize_chunks(

@@ -23,8 +23,6 @@ from eccjump.maps.kinds import MapKind
 if TYPE_CHECKING:  # pragma: no cover
     import xarray as xr
 
-EXTRA = "pip install eccjump[xarray]"
-
 #: The dimensions of a map on the grid alpha x chi x km_frac, in order: a JARM map's, and
 #: those of a map of either kind written in chunks along alpha (``eccjump map``,
 #: :class:`~eccjump.maps.store.ZarrMap`).

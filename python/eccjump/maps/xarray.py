@@ -26,7 +26,6 @@ from eccjump import _compat
 from eccjump.maps.layout import (
     COORD_ATTRS,
     DIMS,
-    EXTRA,
     Layout,
     attrs_json,
     grid_coords,
@@ -57,7 +56,6 @@ if not TYPE_CHECKING:  # (a module __getattr__ would let mypy pass any typo)
 __all__ = [
     "COORD_ATTRS",
     "DIMS",
-    "EXTRA",
     "Layout",
     "attrs_json",
     "grid_coords",
