@@ -39,6 +39,7 @@ from reference_points import JARM_BODY
 
 import eccjump
 from eccjump.classification import closed_form
+from eccjump.classification import load as load_region
 from eccjump.classification.boundary import alpha_interval_around
 from eccjump.maps import store
 from eccjump.studies.design import Build
@@ -1180,7 +1181,9 @@ def case_store(d: Drawer) -> Case:
         c.must_raise = obj is not reg or not isinstance(path, str | Path) or attrs == 3
         c.args, c.kwargs, c.check = (obj, path), {"attrs": attrs}, check_any
     else:
-        name, load = d.choice((("store.load", store.load), ("load_map", eccjump.load_map)))
+        name, load = d.choice(
+            (("classification.load", load_region), ("load_map", eccjump.load_map))
+        )
         c = Case(name, load, params=("path",), allow_oserror=True, check=check_region)
         good = where / "load.npz"
         if not good.exists():
@@ -1207,7 +1210,7 @@ def damaged_maps(where: Path) -> tuple[Path, ...]:
     if all(p.exists() for p in paths):
         return paths
     reg = eccjump.region(mu_s=1.0, alpha=[0.5, 0.7], chi=[0.1, 0.2], km_frac=[0.01, 0.1])
-    lay = store.region_layout(reg)
+    lay = reg.to_layout()
     store.save(reg, paths[0], overwrite=True)
     data = bytearray(paths[0].read_bytes())
     data[data.find(reg.result.theta_J.tobytes()) + 5] ^= 0x10

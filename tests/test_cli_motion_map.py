@@ -10,8 +10,8 @@ from pathlib import Path
 import numpy as np
 import pytest
 
+from eccjump.classification import load as load_region
 from eccjump.cli import main
-from eccjump.maps import store
 from eccjump.motion import maps as motion_maps
 from eccjump.motion.fields import FIELDS, sequence_name
 
@@ -60,7 +60,7 @@ def test_each_format_holds_the_map(tmp_path, reference, suffix, capsys):
     assert re.search(rf"^  {re.escape(name or '(not run)')}\s+[\d.]+ \({count}\)$", out, re.M)
     assert sequence_name(top_code) == name
     with pytest.raises(ValueError, match="motion map"):
-        store.load(path)  # a JARM loader refuses a motion map, naming it
+        load_region(path)  # a JARM loader refuses a motion map, naming it
 
 
 def test_interrupted_zarr_resumes_to_the_same_map(tmp_path, reference):

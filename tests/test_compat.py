@@ -42,6 +42,24 @@ def test_an_old_path_is_the_module_at_its_new_path_and_warns(old, new):
     assert seen[0].filename == __file__  # the warning points to the importing line
 
 
+MOVED_NAMES = sorted(
+    (m, n, new) for m, names in _compat.MOVED_NAMES.items() for n, new in names.items()
+)
+
+
+@pytest.mark.parametrize(("module", "name", "new"), MOVED_NAMES)
+def test_a_name_that_left_a_module_is_served_with_a_warning(module, name, new):
+    path, _, attr = new.partition(":")
+    want = getattr(importlib.import_module(path), attr or name)
+    old = importlib.import_module(module)
+    warning = rf"^{module}\.{name} is deprecated: use {path}\.{attr or name} "
+    with pytest.warns(DeprecationWarning, match=warning) as seen:
+        assert getattr(old, name) is want
+    assert seen[0].filename == __file__  # the warning points to the line that asked
+    with pytest.raises(AttributeError, match="no attribute 'nothing'"):
+        _ = old.nothing
+
+
 def test_the_old_paths_read_as_before():
     with pytest.warns(DeprecationWarning):
         import eccjump.design.search
@@ -50,7 +68,7 @@ def test_the_old_paths_read_as_before():
         from eccjump.motion_points import MotionPoints
     assert eccjump.rolling.roll is eccjump.roll
     assert MotionPoints is eccjump.MotionPoints
-    assert FILL is eccjump.maps.xarray.FILL
+    assert FILL is eccjump.classification.fields.FILL
     assert sys.modules["eccjump.design.search"] is eccjump.studies.design.search
     with pytest.warns(DeprecationWarning, match="eccjump.fields is deprecated"):
         assert eccjump.fields.FIELDS is eccjump.classification.FIELDS  # attribute, no import

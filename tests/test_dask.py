@@ -11,8 +11,10 @@ import numpy as np
 import pytest
 
 import eccjump
+from eccjump._base.bridge import jarm_grid
 from eccjump.classification.classify import FIELDS, region
-from eccjump.maps.dask import RECORD, grid_block, normalize_chunks
+from eccjump.classification.fields import JARM
+from eccjump.maps.dask import normalize_chunks, records_block
 
 da = pytest.importorskip("dask.array")
 
@@ -60,18 +62,19 @@ def test_one_rust_call_per_block(monkeypatch):
 
 
 def test_lazy_xarray_dataset(reference):
-    ds = region(mu_s=0.7, **GRID, chunks=4, output="xarray")
+    ds = region(mu_s=0.7, **GRID, chunks=4).to_xarray()
     assert ds.is_jarm.chunks is not None
     assert_bits(reference, {f: ds[f].values for f in FIELDS})
 
 
 def test_block_function_and_graph_pickle():
-    assert pickle.loads(pickle.dumps(grid_block)) is grid_block
+    assert pickle.loads(pickle.dumps(records_block)) is records_block
     lazy = region(mu_s=0.7, **GRID, chunks=4)
     graph = dict(lazy.result.theta_J.__dask_graph__())
     assert pickle.loads(pickle.dumps(graph)).keys() == graph.keys()
-    empty = grid_block(np.empty((0, 1, 1)), np.zeros((1, 2, 1)), np.zeros((1, 1, 3)), 0.7, ())
-    assert empty.shape == (0, 2, 3) and empty.dtype == RECORD
+    axes = (np.empty((0, 1, 1)), np.zeros((1, 2, 1)), np.zeros((1, 1, 3)))
+    empty = records_block(*axes, grid=jarm_grid, fixed=(0.7, ()), record=JARM.record())
+    assert empty.shape == (0, 2, 3) and empty.dtype == JARM.record()
 
 
 def test_chunk_validation():
@@ -101,7 +104,7 @@ def test_distributed_cluster_two_processes_bit_identical(reference, monkeypatch)
         lazy = region(mu_s=0.7, **GRID, chunks=(3, 4, -1), n_threads=1)
         done = lazy.compute()  # the client is the default scheduler
         assert_bits(reference, {f: getattr(done.result, f) for f in FIELDS})
-        ds = region(mu_s=[0.7, 0.9], **GRID, chunks=(5, -1, -1), n_threads=1, output="xarray")
+        ds = eccjump.region_dataset(mu_s=[0.7, 0.9], **GRID, chunks=(5, -1, -1), n_threads=1)
         ds = ds.compute()
         assert_bits(reference, {f: ds[f].sel(mu_s=0.7).values for f in FIELDS})
         workers = {w["id"] for w in client.scheduler_info()["workers"].values()}

@@ -37,6 +37,7 @@ from test_store_hardening import JARM_BAD, MOTION_BAD, _edited, _write_raw, tree
 
 import eccjump
 from eccjump import maps
+from eccjump.classification import load as load_region
 from eccjump.maps import store
 from eccjump.motion import maps as motion_maps
 
@@ -44,13 +45,13 @@ pytest.importorskip("zarr")
 
 SUFFIXES = (".npz", ".nc", ".zarr")
 LOADERS: dict[str, Callable] = {
-    "store.load": store.load,
+    "classification.load": load_region,
     "store.open_dataset": store.open_dataset,
     "motion_maps.load": motion_maps.load,
     "maps.load": maps.load,
 }
 #: The loader of each kind of map (the other loaders refuse it).
-NATIVE = {"jarm": "store.load", "motion": "motion_maps.load"}
+NATIVE = {"jarm": "classification.load", "motion": "motion_maps.load"}
 #: Hypothesis examples of damaged files per format (a .nc file costs a probe subprocess).
 BUDGET = {".npz": 40, ".zarr": 25, ".nc": 15}
 MAP = ["map", "--mu-s", "1", "--grid", "3", "-q"]
@@ -145,8 +146,9 @@ def test_every_loader_refuses_a_fifo_in_time(tmp_path):
     code = f"""
 from pathlib import Path
 from eccjump import store, motion_maps
+from eccjump.classification import load as load_region
 for p in sorted(Path({str(tmp_path)!r}).iterdir()):
-    for load in (store.load, store.open_dataset, motion_maps.load):
+    for load in (load_region, store.open_dataset, motion_maps.load):
         try:
             load(p)
             print("accepted", p.name)
@@ -260,7 +262,7 @@ def test_writers_fail_cleanly_and_keep_what_was_there(
     if fault in ("read-only", "full-disk"):
         _inject(monkeypatch, errno.EACCES if fault == "read-only" else errno.ENOSPC)
     if writer == "store.save":
-        region = store.load(maps["jarm", suffix])
+        region = load_region(maps["jarm", suffix])
         with pytest.raises((ValueError, TypeError, OSError)) as info:
             with alarm(30):
                 store.save(region, path)
@@ -280,8 +282,9 @@ def test_writers_refuse_a_fifo_in_time(tmp_path, maps):
     code = f"""
 from pathlib import Path
 from eccjump import store
+from eccjump.classification import load as load_region
 from eccjump.cli import main
-region = store.load({str(maps["jarm", ".npz"])!r})
+region = load_region({str(maps["jarm", ".npz"])!r})
 for p in sorted(Path({str(tmp_path)!r}).iterdir()):
     try:
         store.save(region, p)

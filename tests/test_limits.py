@@ -95,6 +95,9 @@ def test_the_size_check_counts_the_derivative_fields(small_machine, monkeypatch)
     msg = short_error(MemoryError, eccjump.region, a, a / 2, a / 2, 1.0, derivatives=True,
                       name="derivatives=False")  # fmt: skip
     assert "GiB" in msg and "8,000,000 points" in msg and "alpha, chi or km_frac" in msg
+    # priced from the field tables by the caller (sizes knows no field): 70 bytes of fields,
+    # 97 of derivative fields and 48 of the derivative pass's columns
+    assert "(215 bytes each)" in msg
 
 
 def test_jarm_points_with_derivatives_are_checked_too(small_machine, monkeypatch):
@@ -113,9 +116,11 @@ def test_motion_maps_and_points_are_checked_before_the_work(small_machine, monke
     _refuse_work(monkeypatch, _core, "motion_grid", above=1)
     _refuse_work(monkeypatch, _core, "motion_points", above=1)
     a = np.linspace(0.1, 1.5, 400)  # 400^3 points of 73 bytes: 4.7 GB
-    short_error(MemoryError, eccjump.motion_map, a, a / 2, a / 2, 1.0, name="the axes")
+    msg = short_error(MemoryError, eccjump.motion_map, a, a / 2, a / 2, 1.0, name="the axes")
+    assert "(73 bytes each)" in msg  # MOTION.bytes_per_point()
     b = np.full(10_000_000, 0.5)  # 10^7 points, 1.4 GB with their inputs
-    short_error(MemoryError, eccjump.motion_points, b, *JARM_BODY, 1.0, name="the inputs")
+    msg = short_error(MemoryError, eccjump.motion_points, b, *JARM_BODY, 1.0, name="the inputs")
+    assert "(129 bytes each)" in msg  # and 7 input columns of float64
 
 
 def test_uncertainty_counts_its_samples_before_drawing_them(small_machine, monkeypatch):

@@ -17,11 +17,12 @@ import numpy as np
 import pytest
 
 import eccjump
+from eccjump.classification import load as load_region
 from eccjump.classification.classify import FIELDS, Reason, region
+from eccjump.classification.dataset import region_dataset
+from eccjump.classification.fields import JARM, map_attrs
 from eccjump.cli import main
 from eccjump.maps import runner, store
-from eccjump.maps.kinds import JARM
-from eccjump.maps.xarray import map_attrs
 
 xr = pytest.importorskip("xarray")
 
@@ -80,7 +81,7 @@ def test_to_xarray_labels_units_and_reason_table():
 
 def test_sweeps_are_extra_dimensions_one_map_each():
     g = grid(6)
-    ds = region(mu_s=[0.5, 0.9], **g, theta0=[0.0, 0.2], omega0=0.1, output="xarray")
+    ds = region_dataset(mu_s=[0.5, 0.9], **g, theta0=[0.0, 0.2], omega0=0.1)
     assert ds.is_jarm.dims == ("mu_s", "theta0", "alpha", "chi", "km_frac")
     assert "mu_s" not in ds.attrs and ds.attrs["omega0"] == 0.1
     for mu in (0.5, 0.9):
@@ -89,18 +90,33 @@ def test_sweeps_are_extra_dimensions_one_map_each():
             sel = ds.sel(mu_s=mu, theta0=th)
             for f in FIELDS:
                 assert sel[f].values.tobytes() == getattr(one.result, f).tobytes()
-    with pytest.raises(ValueError, match="output='xarray'"):
+    with pytest.raises(ValueError, match=r"mu_s must be a number here; region_dataset\(\.\.\.\)"):
         region(mu_s=[0.5, 0.9], **g)
+
+
+def test_output_xarray_is_deprecated_for_to_xarray_and_region_dataset():
+    """region no longer calls up to region_dataset: output="xarray" is the map's own
+    to_xarray() for one release, with a warning; a sweep is region_dataset's."""
+    g = grid(5)
+    deprecated = r"region\(output='xarray'\) is deprecated: use region\(\.\.\.\)\.to_xarray\(\)"
+    with pytest.warns(DeprecationWarning, match=deprecated) as seen:
+        ds = region(mu_s=MU_S, **g, output="xarray")
+    assert seen[0].filename == __file__  # the warning points to the caller
+    xr.testing.assert_identical(ds, region(mu_s=MU_S, **g).to_xarray())
+    with pytest.warns(DeprecationWarning), pytest.raises(ValueError, match="region_dataset"):
+        region(mu_s=[0.5, 0.9], **g, output="xarray")
+    with pytest.raises(ValueError, match="output = 'labels'; use 'region'"):
+        region(mu_s=MU_S, **g, output="labels")
 
 
 @pytest.mark.parametrize("suffix", [".nc", ".zarr", ".npz"])
 def test_save_and_load_round_trip_bit_for_bit(tmp_path, suffix):
     reg = region(mu_s=MU_S, **grid(6))
     path = store.save(reg, tmp_path / f"r{suffix}")
-    back = store.load(path)
+    back = load_region(path)
     assert_same(reg, back)
     assert (back.mu_s, back.n, back.rule, back.method) == (MU_S, None, "paper", "closed_form")
-    sweep = region(mu_s=[0.5, 0.9], **grid(4), output="xarray")
+    sweep = region_dataset(mu_s=[0.5, 0.9], **grid(4))
     spath = store.save(sweep, tmp_path / f"s{suffix}")
     xr.testing.assert_equal(store.open_dataset(spath), sweep)
 
@@ -112,7 +128,7 @@ def test_save_and_load_round_trip_bit_for_bit(tmp_path, suffix):
 def test_cli_writes_each_format_equal_to_region(tmp_path, reference, suffix):
     code, path = run_map(tmp_path, f"map{suffix}", "--chunk", "3")
     assert code == 0
-    back = store.load(path)
+    back = load_region(path)
     assert_same(reference, back)
     assert back.attrs["complete"] == 1 and back.attrs["alpha_done"].all()
     ds = store.open_dataset(path)
@@ -137,7 +153,7 @@ def test_cli_options_reach_region(tmp_path):
         theta0=np.radians(10.0),
         omega0=0.3,
     )
-    back = store.load(path)
+    back = load_region(path)
     assert_same(ref, back)
     assert (back.method, back.rule, back.n) == ("ode", "normal_force", 2)
 
@@ -165,7 +181,7 @@ def test_interrupted_zarr_resumes_to_the_uninterrupted_result(tmp_path, referenc
     code, path = run_map(tmp_path, "r.zarr", "--chunk", "3", "--stop-after", "2")
     assert code == 130
     assert "--resume" in capsys.readouterr().err
-    part = store.load(path)
+    part = load_region(path)
     assert part.attrs["complete"] == 0
     np.testing.assert_array_equal(part.attrs["alpha_done"], np.arange(20) < 6)
     assert (part.result.reason[6:] == 255).all() and np.isnan(part.result.theta_J[6:]).all()
@@ -179,7 +195,7 @@ def test_interrupted_zarr_resumes_to_the_uninterrupted_result(tmp_path, referenc
     assert code == 0
     out = capsys.readouterr().out
     assert "computed      4400 points this run, 8000 of 8000 finished" in out
-    back = store.load(path)
+    back = load_region(path)
     assert back.attrs["complete"] == 1
     assert_same(reference, back)
     assert f"JARM          {reference.fraction():.6f}" in out  # over the whole map
@@ -210,7 +226,7 @@ def test_the_integrator_is_recorded_in_every_form_of_a_map(tmp_path, suffix):
     assert rk.result.theta_J.tobytes() != dop.result.theta_J.tobytes()
     assert (rk.result.reason == dop.result.reason).all()
     assert dop.to_xarray().attrs["integrator"] == "DOP853"
-    back = store.load(store.save(dop, tmp_path / f"d{suffix}"))
+    back = load_region(store.save(dop, tmp_path / f"d{suffix}"))
     assert_same(dop, back)
     assert back.attrs["integrator"] == "DOP853" and back.method == "ode"
     assert store.open_dataset(tmp_path / f"d{suffix}").attrs["integrator"] == "DOP853"
@@ -218,7 +234,7 @@ def test_the_integrator_is_recorded_in_every_form_of_a_map(tmp_path, suffix):
     closed = region(mu_s=MU_S, **g, integrator="DOP853")
     assert closed.attrs["integrator"] == "DOP853"
     assert_same(closed, region(mu_s=MU_S, **g))
-    sweep = region(mu_s=[0.5, 0.9], **g, method="ode", integrator="DOP853", output="xarray")
+    sweep = region_dataset(mu_s=[0.5, 0.9], **g, method="ode", integrator="DOP853")
     assert sweep.attrs["integrator"] == "DOP853"
     assert (
         sweep.reason.sel(mu_s=0.9).values.tobytes()
@@ -248,18 +264,18 @@ def test_cli_ode_route_takes_the_integrator_and_records_it(tmp_path):
         method="ode",
         integrator="DOP853",
     )
-    back = store.load(path)
+    back = load_region(path)
     assert_same(ref, back)
     assert (back.method, back.attrs["integrator"]) == ("ode", "DOP853")
     code, path = run_map(tmp_path, "r.npz", *args[:-4], "--route", "ode")
-    assert store.load(path).attrs["integrator"] == "RK45"  # the default
+    assert load_region(path).attrs["integrator"] == "RK45"  # the default
 
 
 def test_resume_refuses_another_integrator(tmp_path, capsys):
     pytest.importorskip("zarr")
     code, path = run_map(tmp_path, "r.zarr", "--chunk", "5", "--stop-after", "1")
     assert code == 130
-    assert store.load(path).attrs["integrator"] == "RK45"
+    assert load_region(path).attrs["integrator"] == "RK45"
     code, _ = run_map(tmp_path, "r.zarr", "--resume", "--integrator", "DOP853")
     assert code == 2
     err = capsys.readouterr().err
@@ -280,7 +296,7 @@ def test_resume_refuses_another_integrator(tmp_path, capsys):
 def test_stop_at_slip_reaches_the_map_is_recorded_and_checked_on_resume(tmp_path, capsys):
     code, path = run_map(tmp_path, "s.npz", "--stop-at-slip")
     assert code == 0
-    back = store.load(path)
+    back = load_region(path)
     ref = region(mu_s=MU_S, **grid(), stop_at_slip=True)
     assert_same(ref, back)
     assert back.attrs["stop_at_slip"] and (back.result.reason == Reason.SLIP).any()
@@ -298,7 +314,7 @@ def test_interrupted_file_keeps_finished_slices_with_a_flag(tmp_path, reference,
     code, path = run_map(tmp_path, f"i{suffix}", "--chunk", "4", "--stop-after", "2")
     assert code == 130
     assert "complete = 0" in capsys.readouterr().err
-    part = store.load(path)
+    part = load_region(path)
     assert part.attrs["complete"] == 0
     np.testing.assert_array_equal(part.attrs["alpha_done"], np.arange(20) < 8)
     for f in FIELDS:
@@ -313,7 +329,7 @@ def test_npz_works_without_xarray(tmp_path, reference, monkeypatch, capsys):
         import xarray  # noqa: F401
     code, path = run_map(tmp_path, "plain.npz")
     assert code == 0
-    assert_same(reference, store.load(path))
+    assert_same(reference, load_region(path))
     code, _ = run_map(tmp_path, "needs.nc")
     assert code == 2
     assert "pip install eccjump[xarray]" in capsys.readouterr().err
@@ -342,11 +358,11 @@ def test_ctrl_c_in_a_subprocess_keeps_finished_chunks_and_resumes(tmp_path):
     proc.send_signal(signal.SIGINT)
     _, err = proc.communicate(timeout=15)
     assert proc.returncode == 130, err
-    part = store.load(path)
+    part = load_region(path)
     assert part.attrs["complete"] == 0 and 0 < part.attrs["alpha_done"].sum() < 40
     p = subprocess.run([*cmd, "--resume"], env=env, capture_output=True, timeout=30, check=False)
     assert p.returncode == 0, p.stderr
-    assert_same(region(mu_s=MU_S, **grid(40)), store.load(path))
+    assert_same(region(mu_s=MU_S, **grid(40)), load_region(path))
 
 
 class _RegionJob:
@@ -380,7 +396,7 @@ def test_the_runner_computes_the_callers_job_in_chunks(tmp_path, suffix):
     out = runner.run(tmp_path / f"m{suffix}", axes, job, options, notes.append)
     assert (out.complete, out.interrupted, out.done, out.computed) == (True, False, 6, 6**3)
     assert job.calls == [1, 2, 2, 2] and job.points == 6**3 and notes == []  # a probe first
-    assert_same(region(mu_s=MU_S, **grid(6)), store.load(tmp_path / f"m{suffix}"))
+    assert_same(region(mu_s=MU_S, **grid(6)), load_region(tmp_path / f"m{suffix}"))
 
 
 # --- a map is never lost: crashes, full disks, bad paths, foreign files -------------------
@@ -468,7 +484,7 @@ def test_sigkill_of_a_new_zarr_map_leaves_nothing_or_a_resumable_map(
         assert code == 2
         assert "does not exist" in one_error_line(capsys.readouterr().err)
         assert map_here(path) == 0
-    back = store.load(path)
+    back = load_region(path)
     assert back.attrs["complete"] == 1
     assert_same(small[MU_S], back)
     assert os.listdir(tmp_path) == ["k.zarr"]  # the killed run's temporary store is gone
@@ -489,12 +505,12 @@ def test_sigkill_during_overwrite_of_a_zarr_map_keeps_a_whole_map(tmp_path, smal
     p = map_cli(path, "--overwrite", kill_at=step)
     assert p.returncode == -signal.SIGKILL, p.stderr
     new = OVERWRITE_STEPS.index(step) >= OVERWRITE_STEPS.index("replaced")
-    back = store.load(path)
+    back = load_region(path)
     assert back.attrs["complete"] == 1
     assert_same(small[MU_S if new else OLD_MU_S], back)  # old intact, or the new one whole
     # the next run removes what the killed one left behind
     assert map_here(path, *(("--resume",) if new else ("--overwrite",))) == 0
-    assert_same(small[MU_S], store.load(path))
+    assert_same(small[MU_S], load_region(path))
     assert os.listdir(tmp_path) == ["o.zarr"]
 
 
@@ -504,9 +520,9 @@ def test_sigkill_before_the_rename_of_a_file_keeps_the_old_one(tmp_path, small, 
     assert map_here(path, "--mu-s", str(OLD_MU_S)) == 0
     p = map_cli(path, "--overwrite", kill_at="written")
     assert p.returncode == -signal.SIGKILL, p.stderr
-    assert_same(small[OLD_MU_S], store.load(path))
+    assert_same(small[OLD_MU_S], load_region(path))
     assert map_here(path, "--overwrite") == 0
-    assert_same(small[MU_S], store.load(path))
+    assert_same(small[MU_S], load_region(path))
     assert os.listdir(tmp_path) == [path.name]
 
 
@@ -519,7 +535,7 @@ def test_overwrite_on_a_full_disk_keeps_the_old_map(tmp_path, small, suffix):
     assert p.returncode == 1, p.stderr
     line = one_error_line(p.stderr)
     assert f"cannot write {path}" in line
-    assert_same(small[OLD_MU_S], store.load(path))
+    assert_same(small[OLD_MU_S], load_region(path))
     assert sorted(p.relative_to(tmp_path) for p in tmp_path.rglob("*")) == before
 
 
@@ -607,7 +623,7 @@ def test_foreign_files_are_a_clear_value_error(tmp_path, capsys):
     }
     for name, what in expect.items():
         with pytest.raises(ValueError, match=re.escape(what)) as info:
-            store.load(tmp_path / name)
+            load_region(tmp_path / name)
         assert name in str(info.value)
     for name in ("random.zarr", "foreign.zarr"):
         assert map_here(tmp_path / name, "--resume") == 2
@@ -622,14 +638,14 @@ def test_replacing_a_store_without_renameat2_sets_the_old_one_aside(tmp_path, mo
     path = tmp_path / "s.zarr"
     store.save(small[OLD_MU_S], path)
     store.save(small[MU_S], path)
-    assert_same(small[MU_S], store.load(path))
+    assert_same(small[MU_S], load_region(path))
     assert os.listdir(tmp_path) == ["s.zarr"]
     dead = subprocess.run([sys.executable, "-c", "import os; print(os.getpid())"], **_out)
     aside = tmp_path / f".s.zarr.old-{int(dead.stdout)}"
     path.rename(aside)
     (tmp_path / f".s.zarr.tmp-{int(dead.stdout)}").mkdir()
     assert store.recover(path) and sorted(os.listdir(tmp_path)) == ["s.zarr"]
-    assert_same(small[MU_S], store.load(path))
+    assert_same(small[MU_S], load_region(path))
 
 
 _out = {"capture_output": True, "text": True, "check": True, "timeout": 30}

@@ -65,7 +65,7 @@ def test_to_xarray_has_the_same_dims(both):
 
 def test_load_map_refuses_a_swept_jarm_file_naming_it(tmp_path):
     pytest.importorskip("xarray")
-    ds = eccjump.region([0.5], [0.2], [0.3], [0.8, 1.0], output="xarray")
+    ds = eccjump.region_dataset([0.5], [0.2], [0.3], [0.8, 1.0])
     path = eccjump.store.save(ds, tmp_path / "swept.nc")
     with pytest.raises(ValueError, match=r"swept\.nc.*open_dataset"):
         eccjump.load_map(path)
@@ -123,3 +123,61 @@ def test_a_motion_map_is_equal_after_save_and_load(both, tmp_path, suffix):
     given = eccjump.motion_map(*m.coords.values(), 2.0, mu_k=2.0, t_max=20.0)
     back = eccjump.load_map(eccjump.maps.save(given, tmp_path / f"k{suffix}"))
     assert back.scalars["mu_k"] == 2.0 and back == given
+
+
+def test_a_third_kind_of_map_needs_no_change_to_the_map_layer(tmp_path, monkeypatch):
+    """What ``maps/kinds.py`` tells a newcomer: a kind (``register(MapKind(...))``) and a
+    result class (``class M(Map, kind=...)`` with ``to_layout``/``from_layout``) are all a
+    kind needs for ``maps.save``, the checks, ``maps.load`` and ``to_xarray``."""
+    from dataclasses import dataclass
+
+    from eccjump.maps import kinds
+
+    monkeypatch.setattr(kinds, "KINDS", dict(kinds.KINDS))  # leave the registries as found
+    monkeypatch.setattr(Map, "_classes", dict(Map._classes))
+    dtypes, fill = {"hit": np.dtype(bool)}, {"hit": False}
+    axes = (("alpha", "alpha"),)
+    toy = kinds.register(
+        kinds.MapKind("toy", ("hit",), dtypes, fill, lambda _: {}, (), axes, (), {})
+    )
+
+    @dataclass(frozen=True, eq=False)
+    class ToyMap(Map, kind=toy):
+        jarm_field = "hit"  # no annotation: a class attribute, not a field
+        alpha: np.ndarray
+        hit: np.ndarray
+
+        @property
+        def coords(self):
+            return {"alpha": self.alpha}
+
+        @property
+        def fields(self):
+            return {"hit": self.hit}
+
+        def to_layout(self):
+            coords = {"alpha": (("alpha",), self.alpha, {})}
+            attrs = {"kind": "toy", "eccjump_version": "0"}
+            return {
+                "coords": coords,
+                "data_vars": {"hit": (("alpha",), self.hit, {})},
+                "attrs": attrs,
+            }
+
+        @classmethod
+        def from_layout(cls, lay, source):
+            return cls(lay["coords"]["alpha"][1], lay["data_vars"]["hit"][1])
+
+    m = ToyMap(np.array([0.1, 0.2, 0.3]), np.array([True, False, True]))
+    back = eccjump.load_map(eccjump.maps.save(m, tmp_path / "toy.npz"))
+    assert type(back) is ToyMap and back.kind == "toy" and back.fraction() == 2 / 3
+    assert back.hit.tolist() == [True, False, True] and back.alpha.tolist() == [0.1, 0.2, 0.3]
+    with pytest.raises(ValueError, match=r"toy.*registered already"):
+        kinds.register(toy._replace(fields=()))
+    with pytest.raises(TypeError, match=r"toy.*class already"):
+        type("Other", (Map,), {}, kind=toy)
+    # the kind has no invalid mark: a coordinate out of its range has valid points
+    with pytest.raises(ValueError, match=r"coordinate alpha = 2 \(above 1.5708\)"):
+        eccjump.maps.save(ToyMap(np.array([2.0]), np.array([True])), tmp_path / "bad.npz")
+    if pytest.importorskip("xarray"):
+        assert m.to_xarray().hit.dims == ("alpha",)

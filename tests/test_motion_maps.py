@@ -250,7 +250,7 @@ def test_km_is_the_body_and_a_maps_axis_is_km_frac(tmp_path):
     for call in (
         lambda: eccjump.motion_map(alpha=[0.5], chi=[0.2], km=0.4, mu_s=1.0),
         lambda: eccjump.region(mu_s=1.0, alpha=[0.698], chi=[0.15], km=[0.02]),
-        lambda: eccjump.region(mu_s=1.0, alpha=[0.698], chi=[0.15], km=[0.02], output="xarray"),
+        lambda: eccjump.region_dataset(mu_s=1.0, alpha=[0.698], chi=[0.15], km=[0.02]),
     ):
         with pytest.raises(TypeError, match="km_frac"):
             call()

@@ -5,7 +5,7 @@ writers of maps (eccjump.store, eccjump.motion.maps, ``eccjump map -o``).
 2. No loader hangs: a FIFO is refused before it is opened, a damaged .nc file is read by the
    netCDF library in a subprocess with a time limit.
 3. ``--resume`` computes again every chunk that does not read back whole and valid, and never
-   ends with exit 0 and a map that ``store.load`` refuses; a motion map refuses a NaN mu_s.
+   ends with exit 0 and a map that ``classification.load`` refuses; a motion map refuses a NaN mu_s.
 4. One checked loader path: codes out of their tables, NaN coordinates, wrong shapes, foreign
    files are ValueErrors naming the file in < 200 characters, even for long paths.
 5. ``eccjump map``: --grid bounded, a too long output name, both one-line errors.
@@ -31,6 +31,7 @@ import pytest
 from fuzz_cases import MAX_MESSAGE, run_cli_inprocess
 
 import eccjump
+from eccjump.classification import load as load_region
 from eccjump.cli import main
 from eccjump.maps import store
 from eccjump.motion import maps as motion_maps
@@ -120,7 +121,7 @@ def test_a_map_of_ours_is_still_replaced(tmp_path, region):
         assert cli(*MAP, "-o", str(path))[0] == 0
         assert cli(*MAP, "-o", str(path), "--overwrite", "--grid", "2")[0] == 0
         store.save(region, path)
-        assert store.load(path).alpha.size == 3
+        assert load_region(path).alpha.size == 3
 
 
 @pytest.mark.parametrize("suffix", [".npz", ".nc"])
@@ -140,7 +141,7 @@ def test_save_keeps_a_users_file_unless_overwrite_is_given(tmp_path, region, suf
     assert code == 2 and "--overwrite" in one_line(err) and "not a map" in err
     assert path.read_bytes() == user and sorted(os.listdir(tmp_path)) == [path.name]
     store.save(region, path, overwrite=True)
-    assert store.load(path).alpha.size == 3
+    assert load_region(path).alpha.size == 3
     store.save(region, path)  # a map of ours now: replaced without being asked
     with pytest.raises(TypeError, match="overwrite"):
         store.save(region, path, overwrite="yes")
@@ -164,7 +165,7 @@ def test_a_damaged_map_of_ours_is_still_replaced(tmp_path, region):
         data[-200:] = bytes(200)  # the data damaged, the head (whose file it is) not
         path.write_bytes(bytes(data))
         store.save(region, path)
-        assert store.load(path) == region
+        assert load_region(path) == region
 
 
 def test_a_zarr_store_that_is_not_ours_is_not_replaced(tmp_path, region):
@@ -199,8 +200,9 @@ def test_a_netcdf_map_with_zeroed_bytes_is_refused_not_a_hang(tmp_path):
     path.write_bytes(bytes(data))
     code = f"""
 from eccjump import store, motion_maps
+from eccjump.classification import load as load_region
 store.PROBE_SECONDS = 2
-for load in (store.load, store.open_dataset, motion_maps.load):
+for load in (load_region, store.open_dataset, motion_maps.load):
     try:
         load({str(path)!r})
     except ValueError as err:
@@ -240,9 +242,10 @@ def test_the_probe_child_dies_with_its_caller(tmp_path, region, how):
     store.save(region, path)
     code = (
         "from eccjump import store\n"
+        "from eccjump.classification import load as load_region\n"
         "store._PROBE_BODY = 'while True: pass'\n"
         "store.PROBE_SECONDS = 600\n"
-        f"store.load({str(path)!r})\n"
+        f"load_region({str(path)!r})\n"
     )
     parent = subprocess.Popen([sys.executable, "-c", code])
     kids: list[int] = []
@@ -287,8 +290,9 @@ def test_every_loader_refuses_a_fifo_without_opening_it(tmp_path):
     code = f"""
 from pathlib import Path
 from eccjump import store, motion_maps
+from eccjump.classification import load as load_region
 for p in sorted(Path({str(tmp_path)!r}).iterdir()):
-    for load in (store.load, store.open_dataset, store.load_layout, motion_maps.load):
+    for load in (load_region, store.open_dataset, store.load_layout, motion_maps.load):
         try:
             load(p)
         except ValueError as err:
@@ -320,7 +324,7 @@ def test_a_lost_chunk_is_computed_again_on_resume(tmp_path):
     code, _, err = cli(*MAP, "-o", str(path), "--resume")
     assert code == 0 and "chunk 1 is damaged" in err
     assert _same(path, ref)
-    store.load(path)
+    load_region(path)
 
 
 def test_a_garbage_chunk_is_computed_again_on_resume(tmp_path):
@@ -343,7 +347,7 @@ def test_a_resume_of_a_damaged_store_ends_whole_or_with_one_error_line(tmp_path,
     files = sorted(p.relative_to(good) for p in good.rglob("*") if p.is_file())
     rng = random.Random(35)
     cases = [(f, how) for f in files for how in ("delete", "garbage", "zero", "cut")]
-    load = store.load if kind == "jarm" else motion_maps.load
+    load = load_region if kind == "jarm" else motion_maps.load
     for name, how in rng.sample(cases, 12):
         path = tmp_path / "d.zarr"
         shutil.rmtree(path, ignore_errors=True)
@@ -419,10 +423,10 @@ MOTION_BAD = {
 @pytest.mark.slow
 @pytest.mark.parametrize("suffix", SUFFIXES)
 def test_loaders_refuse_bad_codes_nan_coordinates_and_wrong_shapes(tmp_path, region, suffix):
-    good = {"jarm": store.region_layout(region), "motion": store.layout_from_xarray(
+    good = {"jarm": region.to_layout(), "motion": store.layout_from_xarray(
         motion().to_xarray())}  # fmt: skip
     loaders = {
-        "jarm": (store.load, store.open_dataset, store.load_layout),
+        "jarm": (load_region, store.open_dataset, store.load_layout),
         "motion": (motion_maps.load, store.open_dataset),
     }
     for kind, bad in (("jarm", JARM_BAD), ("motion", MOTION_BAD)):
@@ -481,11 +485,11 @@ def _edits(lay: dict, edits: dict) -> dict:
 @pytest.mark.parametrize("suffix", SUFFIXES)
 def test_values_outside_their_physical_range_are_refused(tmp_path, suffix):
     region = eccjump.region(mu_s=1.0, alpha=[0.3, 0.6, 0.9], chi=[0.1, 0.2], km_frac=[0.01, 0.1])
-    good = {"jarm": store.region_layout(region), "motion": store.layout_from_xarray(
+    good = {"jarm": region.to_layout(), "motion": store.layout_from_xarray(
         motion(chi=[0.2, 0.4]).to_xarray())}  # fmt: skip
     assert region.result.is_jarm.any()  # a JARM to lose its theta_J
     assert (good["motion"]["data_vars"]["liftoff_reason"][1] != 255).any()
-    loaders = {"jarm": (store.load, store.open_dataset), "motion": (motion_maps.load,)}
+    loaders = {"jarm": (load_region, store.open_dataset), "motion": (motion_maps.load,)}
     for kind, cases in OUT_OF_RANGE.items():
         for what, edits in cases.items():
             path = tmp_path / f"{kind}-{what.replace(' ', '-')}{suffix}"
@@ -512,7 +516,7 @@ def test_messages_stay_short_for_long_paths(tmp_path):
     for suffix in SUFFIXES:
         path = deep / (("x" * 150) + suffix)
         (path.mkdir() if suffix == ".zarr" else path.write_bytes(b"garbage" * 10))
-        for load in (store.load, store.open_dataset, motion_maps.load):
+        for load in (load_region, store.open_dataset, motion_maps.load):
             refused(load, path, path)
 
 
@@ -523,7 +527,7 @@ def test_save_refuses_attrs_that_contradict_the_data(tmp_path, region):
         assert len(str(info.value)) < MAX_MESSAGE
     assert os.listdir(tmp_path) == []
     store.save(region, tmp_path / "h.npz", attrs={"note": "kept"})
-    assert store.load(tmp_path / "h.npz").attrs["note"] == "kept"
+    assert load_region(tmp_path / "h.npz").attrs["note"] == "kept"
 
 
 @pytest.mark.parametrize(
@@ -708,9 +712,9 @@ def test_an_interrupted_zarr_map_loads_without_its_chunks_not_computed(tmp_path)
     path = tmp_path / "part.zarr"
     assert cli(*MAP, "--chunk", "1", "--stop-after", "1", "-o", str(path))[0] == 130
     assert not (path / "theta_J" / "c" / "1" / "0" / "0").exists()
-    assert store.load(path).attrs["alpha_done"].tolist() == [True, False, False]
+    assert load_region(path).attrs["alpha_done"].tolist() == [True, False, False]
     (path / "theta_J" / "c" / "0" / "0" / "0").unlink()
-    assert "theta_J/c/0/0/0 is missing" in refused(store.load, path, path)
+    assert "theta_J/c/0/0/0 is missing" in refused(load_region, path, path)
 
 
 @pytest.mark.parametrize("suffix", [".nc", ".zarr"])
@@ -718,13 +722,13 @@ def test_a_map_written_without_checksums_loads_with_a_warning(tmp_path, region, 
     """The files of earlier builds (no Fletcher-32, no crc32c) are read, with a warning that
     their damage cannot be found; saving them again adds the checksums."""
     old = tmp_path / f"old{suffix}"
-    _write_raw(store.region_layout(region), old)
+    _write_raw(region.to_layout(), old)
     with pytest.warns(eccjump.store.UncheckedMapWarning, match="no checksums"):
-        assert store.load(old) == region
-    new = store.save(store.load(old), tmp_path / f"new{suffix}")
+        assert load_region(old) == region
+    new = store.save(load_region(old), tmp_path / f"new{suffix}")
     with warnings.catch_warnings():
         warnings.simplefilter("error")
-        assert store.load(new) == region
+        assert load_region(new) == region
 
 
 @pytest.mark.parametrize("where", ["zarr.json", "theta_J/zarr.json"])
@@ -733,7 +737,7 @@ def test_a_huge_sparse_zarr_json_is_refused_before_it_is_read(tmp_path, region, 
     path = store.save(region, tmp_path / "big.zarr")
     with open(path / where, "r+b") as fh:
         fh.truncate(10**12)
-    for load in (store.load, store.open_dataset, eccjump.load_map):
+    for load in (load_region, store.open_dataset, eccjump.load_map):
         msg = refused(load, path, path)
         assert where in msg and "1,000,000,000,000 bytes" in msg, msg
     code, _, err = cli(*MAP, "-o", str(path), "--resume")

@@ -13,6 +13,7 @@ import importlib.util
 import inspect
 import json
 import os
+import re
 import subprocess
 import sys
 from pathlib import Path
@@ -25,8 +26,6 @@ import eccjump
 from eccjump import _core
 from eccjump.classification import fields
 from eccjump.classification.classify import JarmResult
-from eccjump.maps import dask as scale
-from eccjump.maps import xarray as labelled
 
 PACKAGE = Path(eccjump.__file__).parent
 ROOT = Path(__file__).resolve().parent.parent
@@ -72,32 +71,11 @@ LAYERS = {
     "eccjump.cli": 8,  # argparse and printing over the public API
 }
 
-#: The imports that still run upward, each to be turned round by one of issue 47's inversions
-#: (a map kind carrying its own fields and validator, ...): this list only shrinks. Besides
-#: these, a result's ``.plot()`` imports ``eccjump.plot`` inside the method (the figures are
-#: the optional layer on top of every result, as pandas' ``.plot``).
-UPWARD = {
-    # the overwrite policy names a file by maps.check's file_error
-    ("eccjump._base.overwrite", "eccjump.maps.check"),
-    # the size guard prices a point by the field tables
-    ("eccjump._base.sizes", "eccjump.classification.fields"),
-    ("eccjump._base.sizes", "eccjump.motion.fields"),
-    # load() makes a Region or a MotionMap by the kind in the file
-    ("eccjump.maps", "eccjump.classification.classify"),
-    ("eccjump.maps", "eccjump.motion.maps"),
-    # the map layer knows the JARM fields and the motion's by name
-    ("eccjump.maps.dask", "eccjump.classification.fields"),
-    ("eccjump.maps.kinds", "eccjump.classification.fields"),
-    ("eccjump.maps.kinds", "eccjump.motion.fields"),
-    ("eccjump.maps.kinds", "eccjump.motion.simulation"),
-    ("eccjump.maps.layout", "eccjump.classification.fields"),
-    ("eccjump.maps.xarray", "eccjump.classification.fields"),
-    # the JARM files make a Region
-    ("eccjump.maps.store", "eccjump.classification.classify"),
-    ("eccjump.maps.xarray", "eccjump.classification.classify"),
-    # the analysis figure takes matplotlib through the figures' loader
-    ("eccjump.studies.experiment.figure", "eccjump.plot._common"),
-}
+#: The imports that still run upward: none since issue 47's inversions (a map kind carries its
+#: own fields and validator, the map layer reads and writes layouts, ...); this set only
+#: shrinks. Besides these, a result's ``.plot()`` imports ``eccjump.plot`` inside the method
+#: (the figures are the optional layer on top of every result, as pandas' ``.plot``).
+UPWARD: set[tuple[str, str]] = set()
 
 
 def layer(module: str) -> int:
@@ -310,10 +288,14 @@ def test_result_fields_come_from_one_table():
     assert fields.DERIVATIVES == derivatives
     assert tuple(f.name for f in dataclasses.fields(JarmResult)) == names + derivatives
     assert eccjump.classification.FIELDS is fields.FIELDS
-    assert scale.RECORD is fields.RECORD and fields.RECORD.names == names
-    assert labelled.DTYPES is fields.DTYPES and labelled.FILL is fields.FILL
+    assert fields.JARM.fields is fields.FIELDS and fields.JARM.record().names == names
+    assert fields.JARM.dtypes is fields.DTYPES and fields.JARM.fill is fields.FILL
     for f in fields.TABLE + fields.DERIVATIVE_TABLE:
-        assert labelled.FIELD_ATTRS[f.name] == {"units": f.units, "long_name": f.description}
+        attrs = fields.JARM.var_attrs(f.name)
+        assert {k: attrs[k] for k in ("units", "long_name")} == {
+            "units": f.units,
+            "long_name": f.description,
+        }
         assert f.name in (JarmResult.__doc__ or "") and f.description in JarmResult.__doc__
         assert np.array(f.fill).astype(f.dtype).dtype == f.dtype
 
@@ -326,3 +308,33 @@ def test_results_have_the_described_dtypes():
     ds = pytest.importorskip("xarray") and reg.to_xarray()
     assert ds.theta_J.attrs["units"] == fields.BY_NAME["theta_J"].units
     assert list(ds.reason.attrs["flag_values"]) == [r.value for r in fields.Reason]
+
+
+def test_one_form_of_a_message_naming_a_file():
+    """file_error and shown live in the base, below the overwrite policy and the maps, which
+    re-export them; the command line's longest line is the same constant."""
+    from eccjump._base import checks
+    from eccjump.cli import _args
+    from eccjump.maps import check
+
+    assert check.file_error is checks.file_error and check.shown is checks.shown
+    assert check.MAX_MESSAGE is _args.MAX_MESSAGE is checks.MAX_MESSAGE
+
+
+def test_one_helper_imports_the_optional_dependencies(monkeypatch):
+    """Each optional import fails with the pip command of its extra, through one helper in
+    the base (the analysis figure took matplotlib through the figures' layer above it)."""
+    from eccjump.maps import dask, layout
+    from eccjump.plot import _common
+    from eccjump.studies.experiment import figure
+
+    for name in ("matplotlib.pyplot", "dask.array", "zarr"):
+        monkeypatch.setitem(sys.modules, name, None)  # as if not installed
+    for call, message in (
+        (_common._plt, "matplotlib.pyplot is needed for eccjump.plot: pip install eccjump[plot]"),
+        (dask.require_dask, "dask.array is needed for chunks=: pip install eccjump[dask]"),
+        (lambda: layout.require("zarr"), "zarr is needed for labelled results"),
+        (lambda: figure.analysis_figure(None), "needed for the analysis figure"),
+    ):
+        with pytest.raises(ImportError, match=re.escape(message)):
+            call()

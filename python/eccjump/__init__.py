@@ -14,7 +14,8 @@ from eccjump._base.units import Units
 from eccjump._core import VERSION as __version__
 from eccjump.classification import closed_form
 from eccjump.classification.boundary import alpha_interval_around, alpha_intervals, mu_s_min_path
-from eccjump.classification.classify import JarmResult, Reason, Region, jarm, region, region_dataset
+from eccjump.classification.classify import JarmResult, Reason, Region, jarm, region
+from eccjump.classification.dataset import region_dataset
 from eccjump.classification.starts import (
     OptimalStart,
     StartMap,

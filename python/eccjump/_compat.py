@@ -4,6 +4,12 @@ naming the new one. One table (:data:`MOVED`) and one import hook (:class:`_Find
 by ``eccjump/__init__.py``; the public names (``eccjump.roll``, ``eccjump.store``, ...) never
 needed it and do not warn.
 
+The names that left a module of the map layer when it stopped knowing the kinds of map
+(``eccjump.maps.Region``, ``eccjump.maps.xarray.region_dataset``, ...) are served likewise,
+by the module's ``__getattr__`` and :func:`moved_name`, from one table (:data:`MOVED_NAMES`):
+the object at its new place, with a warning naming it. The table names the new places as
+text, so the map layer imports nothing above it.
+
 ``import eccjump.rolling`` imports ``eccjump.motion.roll`` and registers that same module under
 the old name, so ``eccjump.rolling.roll is eccjump.roll``. A module below an old package path
 (``eccjump.design.search``) follows its package (``eccjump.studies.design.search``).
@@ -58,6 +64,38 @@ MOVED: dict[str, str] = {
     }.items()
 }
 
+_FIELDS, _CLASSIFY = "eccjump.classification.fields", "eccjump.classification.classify"
+_CLASSIFICATION = "eccjump.classification"
+
+#: Module -> {name that left it: its new place, ``"module"`` (the same name there) or
+#: ``"module:name"``}.
+MOVED_NAMES: dict[str, dict[str, str]] = {
+    "eccjump.maps": {
+        "Region": _CLASSIFICATION,
+        "region": _CLASSIFICATION,
+        "MotionMap": "eccjump.motion.maps",
+        "motion_map": "eccjump.motion.maps",
+    },
+    "eccjump.maps.store": {"load": _CLASSIFICATION},
+    "eccjump.maps.kinds": {
+        "JARM": _FIELDS,
+        "MOTION": "eccjump.motion.fields",
+        "valid_sequences": "eccjump.motion.fields",
+    },
+    "eccjump.maps.xarray": {
+        "DTYPES": _FIELDS,
+        "FILL": _FIELDS,
+        "reason_table": _FIELDS,
+        "map_attrs": _FIELDS,
+        "field_var": f"{_FIELDS}:cf_attrs",
+        "SWEEPABLE": "eccjump.classification.dataset",
+        "region_attrs": _CLASSIFY,
+        "region_dataset": _CLASSIFICATION,
+        "region_layout": _CLASSIFY,
+        "to_region": _CLASSIFICATION,
+    },
+}
+
 #: Old paths that are also public functions of eccjump: importing the old module binds it as
 #: an attribute of eccjump (the import system does), which must not replace the function.
 _FUNCTIONS = frozenset({"design", "uncertainty", "motion_points"})
@@ -84,11 +122,17 @@ def _stacklevel() -> int:
         name = frame.f_code.co_filename
         return "importlib" in name and "_bootstrap" in name
 
+    def ours(frame: types.FrameType) -> bool:  # this module, or a module's __getattr__
+        module = frame.f_globals.get("__name__", "")
+        return module in (__name__, "eccjump") or (
+            frame.f_code.co_name == "__getattr__" and module.startswith("eccjump.")
+        )
+
     frame, level = sys._getframe(1), 1
     while frame.f_back is not None and (
         bootstrap(frame)
         or frame.f_globals.get("__name__", "").partition(".")[0] == "importlib"
-        or frame.f_globals.get("__name__") in (__name__, "eccjump")
+        or ours(frame)
     ):
         frame = frame.f_back
         level += not bootstrap(frame)
@@ -150,6 +194,22 @@ def old_attribute(name: str) -> types.ModuleType:
     if f"eccjump.{name}" not in MOVED:
         raise AttributeError(f"module 'eccjump' has no attribute {name!r}")
     return importlib.import_module(f"eccjump.{name}")
+
+
+def moved_name(module: str, name: str) -> Any:
+    """``module.name`` for a name that left ``module`` (:data:`MOVED_NAMES`): the object at
+    its new place, with the warning naming it; AttributeError for any other name."""
+    new = MOVED_NAMES.get(module, {}).get(name)
+    if new is None:
+        raise AttributeError(f"module {module!r} has no attribute {name!r}")
+    path, _, attr = new.partition(":")
+    warnings.warn(
+        f"{module}.{name} is deprecated: use {path}.{attr or name} (the old name works until "
+        "the next release)",
+        DeprecationWarning,
+        stacklevel=_stacklevel(),
+    )
+    return getattr(importlib.import_module(path), attr or name)
 
 
 def install(package: types.ModuleType) -> None:

@@ -8,7 +8,8 @@ integer), masked arrays, object arrays of non-numbers and ragged lists; :func:`r
 an array of shape (1,) as well (a scalar is due). Python ints and floats, numpy integer and
 floating scalars and arrays of real dtype are accepted; arrays are returned as native,
 contiguous, aligned float64 (big-endian, strided, read-only, 0-d and empty arrays all work).
-Messages are short (<= 200 characters): numbers are shown with :func:`short`.
+Messages are short (<= :data:`MAX_MESSAGE` characters): numbers are shown with :func:`short`,
+paths with :func:`shown`, and :func:`file_error` is the one form of a message naming a file.
 """
 
 from __future__ import annotations
@@ -30,6 +31,11 @@ Integrator = Literal["RK45", "DOP853", "Vern9"]
 U32_MAX = 2**32 - 1
 U64_MAX = 2**64 - 1
 
+#: Longest error message, the prefix ``eccjump: error: `` of the command line included.
+MAX_MESSAGE = 200
+#: Characters of a path shown in a message (its end, where the file's name is).
+SHOWN = 80
+
 
 def short(value: object) -> str:
     """``value`` for an error message: floats as ``:g``, huge integers as ``~1e+400``,
@@ -49,6 +55,24 @@ def short(value: object) -> str:
             pass
     text = repr(value)
     return text if len(text) <= 40 else text[:37] + "..."
+
+
+def shown(path: object) -> str:
+    """``path`` for a message: its last :data:`SHOWN` characters."""
+    text = os.fspath(path) if isinstance(path, str | os.PathLike) else repr(path)
+    text = text if isinstance(text, str) else repr(text)
+    return text if len(text) <= SHOWN else "..." + text[3 - SHOWN :]
+
+
+def file_error(
+    path: object, what: str, cls: type[Exception] = ValueError, name: str | None = None
+) -> Exception:
+    """``cls("<path> <what>")`` (``"<name>: <path> <what>"`` with the parameter or option
+    ``name`` that gave the path), cut to fit an ``eccjump: error:`` line of MAX_MESSAGE."""
+    text = " ".join(f"{shown(path)} {what}".split())  # one line
+    text = text if name is None else f"{name}: {text}"
+    limit = MAX_MESSAGE - len("eccjump: error: ")
+    return cls(text if len(text) <= limit else text[: limit - 3] + "...")
 
 
 def _kind(value: object) -> str:

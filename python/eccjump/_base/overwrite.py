@@ -22,7 +22,7 @@ import stat
 from collections.abc import Callable
 from pathlib import Path
 
-from eccjump.maps.check import file_error
+from eccjump._base.checks import file_error
 
 
 class ExistsError(FileExistsError, ValueError):

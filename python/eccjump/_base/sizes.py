@@ -1,10 +1,12 @@
 """How much memory a call will hold, checked before any work (the user guide's "Limits",
 section "Memory").
 
-One estimate per kind of result -- JARM points and maps (:func:`jarm_bytes`), full-motion
-points and maps (:func:`motion_bytes`), uncertainty studies (:func:`uncertainty_bytes`) --
-counts every field the call returns (the derivative fields included) and the working columns
-it builds on the way; :func:`check_fits` compares it with the memory this process can have
+One estimate for every result of points -- JARM points and maps, full-motion points and maps
+(:func:`result_bytes`), uncertainty studies (:func:`uncertainty_bytes`) -- counts every field
+the call returns (the derivative fields included) and the working columns it builds on the
+way, at the bytes per point its caller prices from the result's field table
+(:meth:`eccjump.maps.kinds.MapKind.bytes_per_point`, :func:`field_bytes`): this module knows
+no field. :func:`check_fits` compares the estimate with the memory this process can have
 and raises a ``MemoryError`` that says how much was asked for and which parameter to shrink.
 The core's own allocations stay fallible (a second line of defence), but they come after the
 work: a result whose derivative fields do not fit was refused only after the classification
@@ -15,50 +17,31 @@ from __future__ import annotations
 
 import math
 import os
+from collections.abc import Iterable
 
 import numpy as np
 
-from eccjump.classification import fields
-from eccjump.motion import fields as motion_fields
-
 #: Bytes of one float64 column entry.
-_F64 = 8
+F64 = 8
 
 
-def _field_bytes(table: tuple[fields.Field, ...], wrt: int = 1) -> int:
-    """Bytes per point of the fields of ``table``, each float field ``wrt`` values."""
-    return sum(np.dtype(f.dtype).itemsize * (wrt if f.dtype == np.float64 else 1) for f in table)
+def field_bytes(dtypes: Iterable[np.dtype], wrt: int = 1) -> int:
+    """Bytes per point of fields of ``dtypes``, each float field of ``wrt`` values."""
+    return sum(np.dtype(d).itemsize * (wrt if d == np.float64 else 1) for d in dtypes)
 
 
-#: Per point: the classification's fields.
-JARM_POINT = _field_bytes(fields.TABLE)
-#: Per point: the derivative fields (each float one of 3 values,
-#: :data:`eccjump.classification.fields.WRT`) and the six float64 columns the derivative pass
-#: builds (the grid's points, k_m, mu_s).
-JARM_DERIVATIVES = _field_bytes(fields.DERIVATIVE_TABLE, len(fields.WRT)) + 6 * _F64
-#: Per point: the summary fields of a run to its first landing.
-MOTION_POINT = _field_bytes(motion_fields.TABLE)
+def result_bytes(points: int, per_point: int, inputs: int = 0) -> int:
+    """The memory of a result of ``points`` points of ``per_point`` bytes each (its fields and
+    the working columns of each point) with ``inputs`` flat float64 input columns."""
+    return points * (per_point + inputs * F64)
 
 
-def jarm_bytes(points: int, derivatives: bool, inputs: int = 0) -> int:
-    """The memory of a JARM result of ``points`` points (:func:`eccjump.jarm`,
-    :func:`eccjump.region`) with ``inputs`` flat float64 input columns."""
-    per = JARM_POINT + (JARM_DERIVATIVES if derivatives else 0) + inputs * _F64
-    return points * per
-
-
-def motion_bytes(points: int, inputs: int = 0) -> int:
-    """The memory of a full-motion result of ``points`` points (:func:`eccjump.motion_map`,
-    :func:`eccjump.motion_points`) with ``inputs`` flat float64 input columns."""
-    return points * (MOTION_POINT + inputs * _F64)
-
-
-def uncertainty_bytes(n: int, question: str, varied: int) -> int:
+def uncertainty_bytes(n: int, varied: int, per_sample: int) -> int:
     """The memory of an uncertainty study of ``n`` samples: the unit cube (``varied``
     columns), the eight parameter columns, the scipy quantile function's four working
-    columns, the outcome fields of ``question`` and two columns for each summary."""
-    outcomes = JARM_POINT if question == "jarm" else MOTION_POINT
-    return n * ((varied + 8 + 4 + 2) * _F64 + 1 + outcomes)
+    columns, the outcome fields of a sample (``per_sample`` bytes) and two columns for each
+    summary."""
+    return n * ((varied + 8 + 4 + 2) * F64 + 1 + per_sample)
 
 
 def memory_limit() -> int | None:
@@ -114,10 +97,11 @@ def check_fits(what: str, points: int, nbytes: int, shrink: str, unit: str = "po
 
 
 __all__ = [
+    "F64",
     "check_fits",
+    "field_bytes",
     "gib",
-    "jarm_bytes",
     "memory_limit",
-    "motion_bytes",
+    "result_bytes",
     "uncertainty_bytes",
 ]

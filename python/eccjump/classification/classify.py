@@ -9,35 +9,43 @@ from __future__ import annotations
 
 import dataclasses
 import math
+import warnings
 from collections.abc import Mapping
 from dataclasses import dataclass, field, replace
-from typing import TYPE_CHECKING, Any, ClassVar, Literal, overload
+from typing import TYPE_CHECKING, Any, ClassVar, Literal
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from eccjump._base.arrays import axis, broadcast_flat, fields_equal, fraction_axis, turns
 from eccjump._base.bridge import CallOptions, Method, call_options, jarm_grid, jarm_points
-from eccjump._base.checks import Integrator, Rule, flag, real, real_array, short, text
+from eccjump._base.checks import Integrator, Rule, file_error, flag, real, short, text
 from eccjump._base.html import best_slice, card, deg, jarm_slice, num, span
-from eccjump._base.sizes import check_fits, jarm_bytes
+from eccjump._base.sizes import F64, check_fits, field_bytes, result_bytes
 from eccjump.classification.derivatives import derivative_fields
-from eccjump.classification.fields import DERIVATIVES, FIELDS, Reason, docstring
-from eccjump.maps.dask import lazy_fields, lazy_records
-from eccjump.maps.layout import (
-    COORD_ATTRS,
-    SWEEPABLE,
-    Layout,
-    layout_to_xarray,
-    make_layout,
+from eccjump.classification.fields import (
+    BY_NAME,
+    DERIVATIVE_TABLE,
+    DERIVATIVES,
+    DTYPES,
+    FIELDS,
+    JARM,
+    MAP_INFO,
+    WRT,
+    WRT_ATTRS,
+    Reason,
+    docstring,
     map_attrs,
-    require,
-    with_derivatives,
+)
+from eccjump.maps.dask import lazy_fields, normalize_chunks
+from eccjump.maps.layout import (
+    DIMS,
+    Layout,
+    make_layout,
 )
 from eccjump.maps.map import Map
 
 if TYPE_CHECKING:  # pragma: no cover
-    import xarray as xr
     from matplotlib.figure import Figure
 
 
@@ -372,15 +380,21 @@ def jarm(
     return replace(res, **derivative_fields((a, c, k, m), raw, opts, shape))
 
 
+#: Bytes per point of the derivative fields (each float one of len(WRT) values) and of the
+#: six float64 columns the derivative pass builds (the grid's points, k_m, mu_s).
+_DERIVATIVE_BYTES = field_bytes((f.dtype for f in DERIVATIVE_TABLE), len(WRT)) + 6 * F64
+
+
 def _fits_in_memory(what: str, points: int, derivatives: bool, inputs: int) -> None:
     """MemoryError before any work if the result (with its derivative fields) cannot fit."""
     axes = "alpha, chi or km_frac" if what == "region" else "the inputs"
     shrink = f"{axes} (or derivatives=False)" if derivatives else axes
-    check_fits(what, points, jarm_bytes(points, derivatives, inputs), shrink)
+    per_point = JARM.bytes_per_point() + (_DERIVATIVE_BYTES if derivatives else 0)
+    check_fits(what, points, result_bytes(points, per_point, inputs), shrink)
 
 
 @dataclass(frozen=True, repr=False, eq=False)
-class Region(Map):
+class Region(Map, kind=JARM):
     """A JARM map on the grid alpha x chi x km_frac, with k_m = km_frac (1 - chi).
 
     Made by :func:`region`. As every :class:`~eccjump.Map`: ``coords``, ``fields``,
@@ -423,7 +437,6 @@ class Region(Map):
     0.0077022
     """
 
-    kind: ClassVar[str] = "jarm"
     jarm_field: ClassVar[str] = "is_jarm"
 
     alpha: NDArray[np.float64]
@@ -487,21 +500,38 @@ class Region(Map):
 
     __hash__ = None  # type: ignore[assignment]  # mutable numpy arrays inside
 
-    def to_xarray(self) -> xr.Dataset:
-        """The map as a labelled ``xarray.Dataset`` (dask-backed if lazy).
+    def to_layout(self) -> Layout:
+        """The map as a layout (:func:`region_layout`)."""
+        return region_layout(self)
 
-        Returns
-        -------
-        xarray.Dataset
-            Coordinates alpha [rad], chi, km_frac and k_m; one variable per field with its
-            units; the options as attributes.
-
-        Raises
-        ------
-        ImportError
-            Without xarray (``pip install "eccjump[xarray]"``).
-        """
-        return layout_to_xarray(region_layout(self))
+    @classmethod
+    def from_layout(cls, lay: Layout, source: object) -> Region:
+        """The Region of the layout ``lay`` of a valid JARM map read from ``source`` (a path,
+        for messages); ``alpha_done``, if there, goes to :attr:`attrs`. ValueError naming
+        ``source`` if it holds swept maps."""
+        dv, co, at = lay["data_vars"], lay["coords"], dict(lay["attrs"])
+        if tuple(dv["is_jarm"][0]) != DIMS:
+            raise file_error(source, "holds swept maps: open it with eccjump.store.open_dataset")
+        names = FIELDS + (DERIVATIVES if "d_theta_J" in dv else ())
+        res = JarmResult(**{k: np.asarray(dv[k][1], dtype=DTYPES[k]) for k in names})
+        made = JARM.required_attrs
+        attrs = {k: _plain(v) for k, v in at.items() if k not in MAP_INFO and k not in made}
+        if "alpha_done" in dv:
+            attrs["alpha_done"] = np.asarray(dv["alpha_done"][1], dtype=bool)
+        n = int(at["n"])
+        return cls(
+            alpha=np.asarray(co["alpha"][1], dtype=np.float64),
+            chi=np.asarray(co["chi"][1], dtype=np.float64),
+            km_frac=np.asarray(co["km_frac"][1], dtype=np.float64),
+            result=res,
+            mu_s=float(at["mu_s"]),
+            n=None if n == 0 else n,
+            rule=str(at["rule"]),
+            method=str(at["method"]),
+            theta0=float(at["theta0"]),
+            omega0=float(at["omega0"]),
+            attrs=attrs,
+        )
 
     def __repr__(self) -> str:
         def axis_line(name: str, values: NDArray[np.float64], unit: str = "") -> str:
@@ -553,6 +583,11 @@ class Region(Map):
         return plot.region_map(self, **kwargs)
 
 
+def _plain(value: Any) -> Any:
+    """An attribute read from a file as a Python value (a numpy scalar as its item)."""
+    return value.item() if isinstance(value, np.generic) else value
+
+
 def _grid_derivatives(
     alpha: NDArray[np.float64],
     chi: NDArray[np.float64],
@@ -594,12 +629,26 @@ def region_layout(region: Region) -> Layout:
         region.km_frac,
         region.result.fields(),
         attrs,
-        alpha_done=None if done is None else np.asarray(done),
+        None if done is None else np.asarray(done),
+        JARM,
     )
-    return with_derivatives(lay, region.result.derivatives())
+    return _with_derivatives(lay, region.result.derivatives())
 
 
-@overload
+def _with_derivatives(layout: Layout, derivatives: Mapping[str, Any]) -> Layout:
+    """``layout`` with the derivative fields ``derivatives`` (of
+    :data:`eccjump.classification.fields.DERIVATIVES`; none: ``layout`` itself) as variables,
+    the float ones with the trailing dimension ``wrt`` and its coordinate of parameter names."""
+    if not derivatives:
+        return layout
+    data_vars = dict(layout["data_vars"])
+    for k, v in derivatives.items():
+        dims = (*DIMS, "wrt") if BY_NAME[k].dtype.kind == "f" else DIMS
+        data_vars[k] = (dims, v, JARM.var_attrs(k))
+    wrt = (("wrt",), np.array(WRT), WRT_ATTRS)
+    return {**layout, "coords": {**layout["coords"], "wrt": wrt}, "data_vars": data_vars}
+
+
 def region(
     alpha: ArrayLike,
     chi: ArrayLike,
@@ -622,58 +671,7 @@ def region(
     chunks: Any = None,
     derivatives: bool = False,
     output: Literal["region"] = "region",
-) -> Region: ...
-
-
-@overload
-def region(
-    alpha: ArrayLike,
-    chi: ArrayLike,
-    km_frac: ArrayLike,
-    mu_s: float | ArrayLike,
-    n: int | None = None,
-    *,
-    km: None = None,
-    method: Method = "closed_form",
-    rule: Rule = "paper",
-    theta0: float | ArrayLike = 0.0,
-    omega0: float | ArrayLike = 0.0,
-    rtol: float = 1e-10,
-    atol: float = 1e-12,
-    max_turns: int = 10_000,
-    refine_extrema: bool = False,
-    stop_at_slip: bool = False,
-    n_threads: int = 0,
-    integrator: Integrator = "RK45",
-    chunks: Any = None,
-    derivatives: bool = False,
-    output: Literal["xarray"],
-) -> xr.Dataset: ...
-
-
-def region(
-    alpha: ArrayLike,
-    chi: ArrayLike,
-    km_frac: ArrayLike,
-    mu_s: float | ArrayLike,
-    n: int | None = None,
-    *,
-    km: None = None,
-    method: Method = "closed_form",
-    rule: Rule = "paper",
-    theta0: float | ArrayLike = 0.0,
-    omega0: float | ArrayLike = 0.0,
-    rtol: float = 1e-10,
-    atol: float = 1e-12,
-    max_turns: int = 10_000,
-    refine_extrema: bool = False,
-    stop_at_slip: bool = False,
-    n_threads: int = 0,
-    integrator: Integrator = "RK45",
-    chunks: Any = None,
-    derivatives: bool = False,
-    output: Literal["region", "xarray"] = "region",
-) -> Region | xr.Dataset:
+) -> Region:
     """Map the JARM region on a rectangular grid, in parallel.
 
     The grid first, then ``mu_s``, as every entry point takes the point or body first. Each
@@ -691,9 +689,9 @@ def region(
         The bodies' d/R, each in [0, 1].
     km_frac : array_like of float, 1-D
         k_m/(1 - chi), each in [0, 1].
-    mu_s : float or array_like of float
-        Static friction coefficient, in [0, inf), one value for the whole map; with
-        ``output="xarray"`` a 1-D sequence is swept as an extra leading dimension.
+    mu_s : float
+        Static friction coefficient, in [0, inf), one value for the whole map
+        (:func:`region_dataset` sweeps a sequence of them).
     n : int or None, default None
         The turn on which the jump must happen (1 ... 2**32 - 1), or None for the first
         jump whatever its turn.
@@ -704,10 +702,9 @@ def region(
         The paper's formulas with a rigorous path scan, or integration with events.
     rule : {"paper", "normal_force"}, default "paper"
         Lift-off rule: the paper's condition chi theta'^2 cos theta = cos alpha, or Fy = 0.
-    theta0 : float or array_like of float, default 0.0
-        Initial angle [rad], |theta0| <= 2 pi 1e6 (a 1-D sequence is swept with
-        ``output="xarray"``).
-    omega0 : float or array_like of float, default 0.0
+    theta0 : float, default 0.0
+        Initial angle [rad], |theta0| <= 2 pi 1e6 (:func:`region_dataset` sweeps it).
+    omega0 : float, default 0.0
         Initial angular velocity [sqrt(g/R) rad], in [0, 1e6] (swept as ``theta0``).
     rtol : float, default 1e-10
         Relative tolerance of ``method="ode"``, in [1e-15, 1e-3].
@@ -733,10 +730,10 @@ def region(
         with dask (``pip install "eccjump[dask]"``), one Rust grid call per block,
         bit-identical to the unchunked map; call ``.compute()`` on the result. On a cluster
         use ``n_threads`` = threads per worker / concurrent tasks per worker.
-    output : {"region", "xarray"}, default "region"
-        ``"region"``: a :class:`Region`. ``"xarray"``: a labelled ``xarray.Dataset``, and
-        then ``mu_s``, ``theta0`` and ``omega0`` may be 1-D sequences, swept as extra
-        leading dimensions (one Rust call per combination).
+    output : {"region"}, default "region"
+        A :class:`Region`. ``"xarray"`` is deprecated (it works until the next release,
+        with a DeprecationWarning): write ``region(...).to_xarray()``, or
+        :func:`region_dataset` to sweep ``mu_s``, ``theta0`` and ``omega0``.
     derivatives : bool, default False
         Also give the exact derivatives of theta_J, Fx_J, Fy_J and mu_J with respect to
         (alpha, chi, km) at every grid point, as :func:`jarm` does: the ``d_*`` fields of
@@ -747,7 +744,7 @@ def region(
 
     Returns
     -------
-    Region or xarray.Dataset
+    Region
         The map; its ``attrs`` record the tolerances, the integrator, ``max_turns``,
         ``refine_extrema`` and ``stop_at_slip`` as given, whatever the method (the closed
         form ignores the tolerances and the integrator).
@@ -756,13 +753,14 @@ def region(
     ------
     ValueError
         For an axis that is not a 1-D array of values in range, a bad ``mu_s``, ``n`` or
-        option; the message names the parameter and its range.
+        option (a sequence of ``mu_s``, ``theta0`` or ``omega0``: :func:`region_dataset`
+        sweeps them); the message names the parameter and its range.
     TypeError
         If ``km`` is given, or an argument has the wrong type.
     MemoryError
         If the map does not fit in memory (refused before any work, naming its size).
     ImportError
-        For ``chunks`` without dask, ``output="xarray"`` without xarray.
+        For ``chunks`` without dask.
     KeyboardInterrupt
         On Ctrl-C, within about a second.
 
@@ -785,36 +783,13 @@ def region(
     >>> print(m.is_jarm.shape, f"{m.fraction():.7f}")
     (90, 50, 50) 0.0077022
     """
-    if output == "xarray":
-        return region_dataset(
-            mu_s=mu_s,
-            n=n,
-            alpha=alpha,
-            chi=chi,
-            km_frac=km_frac,
-            km=km,
-            method=method,
-            rule=rule,
-            theta0=theta0,
-            omega0=omega0,
-            rtol=rtol,
-            atol=atol,
-            max_turns=max_turns,
-            refine_extrema=refine_extrema,
-            stop_at_slip=stop_at_slip,
-            n_threads=n_threads,
-            integrator=integrator,
-            chunks=chunks,
-            derivatives=derivatives,
-        )
-    if text("output", output) != "region":
-        raise ValueError(f"output = {short(output)}; use 'region' or 'xarray'")
+    xarray = _deprecated_output(output)
     want_derivatives = flag("derivatives", derivatives)
     if want_derivatives and chunks is not None:
         raise ValueError("derivatives=True needs chunks=None (a map computed now)")
     for name, value in (("mu_s", mu_s), ("theta0", theta0), ("omega0", omega0)):
         if isinstance(value, list | tuple) or (isinstance(value, np.ndarray) and value.ndim):
-            raise ValueError(f"{name} must be a number here; sweeps need output='xarray'")
+            raise ValueError(f"{name} must be a number here; region_dataset(...) sweeps it")
     mu = real("mu_s", mu_s)
     a, c, f = axis("alpha", alpha), axis("chi", chi), axis("km_frac", fraction_axis(km_frac, km))
     opts = call_options(
@@ -838,8 +813,9 @@ def region(
         if want_derivatives:
             res = replace(res, **_grid_derivatives(a, c, f, mu, raw, opts))
     else:
-        res = JarmResult(**lazy_fields(lazy_records(a, c, f, mu, opts, chunks)))
-    return Region(
+        blocks = normalize_chunks(chunks, (a.size, c.size, f.size))
+        res = JarmResult(**lazy_fields(JARM, jarm_grid, (a, c, f), blocks, (mu, opts)))
+    reg = Region(
         alpha=a,
         chi=c,
         km_frac=f,
@@ -859,127 +835,23 @@ def region(
             "stop_at_slip": opts.stop_at_slip,
         },
     )
+    # the deprecated output="xarray" (typed away: the signature says what to write instead)
+    return reg.to_xarray() if xarray else reg  # type: ignore[return-value]
 
 
-def region_dataset(
-    alpha: ArrayLike,
-    chi: ArrayLike,
-    km_frac: ArrayLike,
-    mu_s: float | ArrayLike,
-    n: int | None = None,
-    *,
-    km: None = None,
-    theta0: float | ArrayLike = 0.0,
-    omega0: float | ArrayLike = 0.0,
-    **kwargs: Any,
-) -> xr.Dataset:
-    """Map the JARM region as an ``xarray.Dataset``, sweeping ``mu_s``, ``theta0`` and
-    ``omega0`` when they are 1-D sequences.
-
-    One Rust grid call per combination of the swept values; the swept parameters become
-    leading dimensions, in the order mu_s, theta0, omega0. Needs xarray
-    (``pip install "eccjump[xarray]"``).
-
-    Parameters
-    ----------
-    alpha : array_like of float, 1-D
-        Ramp angles [rad], each in [0, pi/2].
-    chi : array_like of float, 1-D
-        The bodies' d/R, each in [0, 1].
-    km_frac : array_like of float, 1-D
-        k_m/(1 - chi), each in [0, 1].
-    mu_s : float or array_like of float
-        Static friction coefficient(s), each in [0, inf); a 1-D sequence is swept.
-    n : int or None, default None
-        The turn on which the jump must happen (>= 1), or None for the first jump.
-    km : None
-        Not accepted (the axis is ``km_frac``): passing it is a TypeError.
-    theta0 : float or array_like of float, default 0.0
-        Initial angle(s) [rad], |theta0| <= 2 pi 1e6; a 1-D sequence is swept.
-    omega0 : float or array_like of float, default 0.0
-        Initial angular velocity(ies) [sqrt(g/R) rad], in [0, 1e6]; a 1-D sequence is swept.
-    **kwargs
-        The options of :func:`region`: ``method``, ``rule``, ``rtol``, ``atol``,
-        ``max_turns``, ``refine_extrema``, ``stop_at_slip``, ``n_threads``, ``integrator``,
-        ``derivatives`` (the ``d_*`` variables, with a trailing dimension ``wrt``) and
-        ``chunks`` (a dask-backed, lazily computed dataset).
-
-    Returns
-    -------
-    xarray.Dataset
-        Dimensions (swept parameters..., alpha, chi, km_frac), one variable per result
-        field with its units, the reasons as CF flags, the options as attributes.
-
-    Raises
-    ------
-    ValueError
-        For a swept value that is not a number or a non-empty 1-D sequence, or any bad
-        argument of :func:`region`.
-    TypeError
-        If ``km`` is given, or an argument has the wrong type.
-    ImportError
-        Without xarray.
-
-    Examples
-    --------
-    >>> import numpy as np
-    >>> import eccjump
-    >>> ds = eccjump.region_dataset(np.radians([35, 40, 45]), [0.1, 0.15], [0.0, 0.1],
-    ...                             mu_s=[0.7, 1.0])
-    >>> dict(ds.sizes)
-    {'mu_s': 2, 'alpha': 3, 'chi': 2, 'km_frac': 2}
-    """
-    xarray = require("xarray")
-    kwargs.pop("output", None)
-    given = {"mu_s": mu_s, "theta0": theta0, "omega0": omega0}
-    scalars: dict[str, float] = {}
-    swept: dict[str, NDArray[np.float64]] = {}
-    for name in SWEEPABLE:
-        arr = real_array(name, given[name])
-        if arr.ndim == 0:
-            scalars[name] = float(arr)
-        elif arr.ndim == 1 and arr.size:
-            swept[name] = arr
-        else:
-            raise ValueError(f"{name} must be a number or a non-empty 1-D sequence")
-    grid = {"alpha": alpha, "chi": chi, "km_frac": fraction_axis(km_frac, km)}
-
-    def one(values: Mapping[str, float]) -> xr.Dataset:
-        reg = region(n=n, **grid, **scalars, **values, **kwargs)  # type: ignore[call-overload]
-        return reg.to_xarray()
-
-    if not swept:
-        return one({})
-    names = list(swept)
-
-    def build(level: int, fixed: dict[str, float]) -> xr.Dataset:
-        name = names[level]
-        parts = []
-        for v in swept[name]:
-            here = {**fixed, name: float(v)}
-            if level + 1 < len(names):
-                ds = build(level + 1, here)
-            else:
-                ds = one(here)
-                for k in names:  # swept values live in coordinates, not attributes
-                    ds.attrs.pop(k, None)
-                ds = ds.assign_coords({k: xarray.Variable((), here[k]) for k in names})
-            parts.append(ds)
-        return xarray.concat(
-            parts,
-            dim=name,
-            data_vars="all",
-            coords="minimal",
-            compat="override",
-            join="exact",
-            combine_attrs="override",
+def _deprecated_output(output: object) -> bool:
+    """Whether ``output`` asks for the deprecated labelled result (with its warning);
+    ValueError for anything but "region" and "xarray"."""
+    if text("output", output) not in ("region", "xarray"):
+        raise ValueError(f"output = {short(output)}; use 'region'")
+    if output == "xarray":
+        warnings.warn(
+            "eccjump.region(output='xarray') is deprecated: use region(...).to_xarray(), or "
+            "region_dataset(...) to sweep mu_s, theta0, omega0 (until the next release)",
+            DeprecationWarning,
+            stacklevel=3,
         )
-
-    out = build(0, {})
-    for k in names:
-        out[k].attrs.update(COORD_ATTRS[k])
-    out.attrs["swept"] = " ".join(names)
-    return out
+    return output == "xarray"
 
 
 __all__ = [
@@ -992,6 +864,5 @@ __all__ = [
     "jarm",
     "region",
     "region_attrs",
-    "region_dataset",
     "region_layout",
 ]

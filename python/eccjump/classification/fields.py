@@ -3,11 +3,13 @@
 Every result of :func:`eccjump.jarm` and :func:`eccjump.region` has the same fields, in the
 order of the Rust bridge. Each is described ONCE here -- name, numpy dtype, units, meaning
 and the fill value of a point not computed -- and everything else derives from this table:
-the :class:`~eccjump.JarmResult` dataclass and its documentation, the xarray/CF attributes of
-:mod:`eccjump.maps.xarray`, the dask record dtype of :mod:`eccjump.maps.dask`, the files of
-:mod:`eccjump.store` and the ``eccjump map`` command.
+the :class:`~eccjump.JarmResult` dataclass and its documentation, the CF attributes of its
+labelled form, and the map kind :data:`JARM` (:class:`~eccjump.maps.kinds.MapKind`) through
+which the files of :mod:`eccjump.store`, their checks and the ``eccjump map`` command know a
+JARM map.
 
-This module depends on numpy and the compiled core only (for the :class:`Reason` codes).
+This module depends on numpy, the compiled core (for the :class:`Reason` codes) and the map
+layer's :class:`~eccjump.maps.kinds.MapKind`.
 """
 
 from __future__ import annotations
@@ -15,11 +17,14 @@ from __future__ import annotations
 import enum
 import math
 import sys
+from collections.abc import Mapping
 from typing import Any, NamedTuple
 
 import numpy as np
+from numpy.typing import NDArray
 
 from eccjump import _core
+from eccjump.maps.kinds import MapKind, register
 
 
 class Field(NamedTuple):
@@ -92,6 +97,8 @@ FIELDS: tuple[str, ...] = tuple(f.name for f in TABLE)
 #: What the derivative fields differentiate with respect to: their trailing axis (the
 #: dimension ``wrt`` of a labelled map), alpha [rad] and the body's chi and k_m (independent).
 WRT: tuple[str, ...] = ("alpha", "chi", "km")
+#: The attributes of the coordinate ``wrt`` of a labelled map.
+WRT_ATTRS = {"long_name": "parameter of the derivative: alpha [rad], chi or km (k_m itself)"}
 
 #: The fields of a result made with ``derivatives=True`` (None otherwise), after :data:`TABLE`:
 #: each float field has the point's shape plus a trailing axis of length 3 (:data:`WRT`).
@@ -133,8 +140,6 @@ FILL: dict[str, Any] = {f.name: f.fill for f in TABLE}
 VALID: dict[str, tuple[float, float]] = {
     f.name: f.valid for f in TABLE + DERIVATIVE_TABLE if f.dtype.kind == "f"
 }
-#: One record per point holding every field (the dtype of the dask blocks).
-RECORD = np.dtype([(f.name, f.dtype) for f in TABLE])
 
 
 class Reason(enum.IntEnum):
@@ -215,6 +220,78 @@ def cf_attrs(name: str) -> dict[str, Any]:
     return attrs
 
 
+def map_attrs(
+    mu_s: float,
+    n: int | None,
+    rule: str,
+    method: str,
+    theta0: float,
+    omega0: float,
+    **extra: Any,
+) -> dict[str, Any]:
+    """Attributes of a JARM map: how it was made (netCDF-safe scalars and strings only)."""
+    return {
+        "title": "JARM map of an eccentric cylinder on a ramp (eccjump)",
+        "eccjump_version": _core.VERSION,
+        "mu_s": float(mu_s),
+        "n": 0 if n is None else int(n),
+        "n_meaning": "requested turn of the jump; 0: the first jump whatever its turn",
+        "rule": str(rule),
+        "method": str(method),
+        "theta0": float(theta0),
+        "omega0": float(omega0),
+        **{k: (int(v) if isinstance(v, bool) else v) for k, v in extra.items()},
+        "reason_codes": reason_table(),
+        "units": "g = R = M = 1: angles in rad, forces in M g, omega in sqrt(g/R) rad",
+    }
+
+
+#: Attributes written by :func:`map_attrs` that are not options of the map.
+MAP_INFO = ("title", "eccjump_version", "n_meaning", "reason_codes", "units")
+
+
+def _is_jarm_agrees(values: Mapping[str, NDArray]) -> str | None:
+    """What is wrong with a JARM map's codes beyond their table: ``is_jarm`` must say whether
+    ``reason`` is :attr:`Reason.JARM`."""
+    is_jarm = np.asarray(values["is_jarm"], dtype=bool)
+    if not np.array_equal(is_jarm, np.asarray(values["reason"]) == Reason.JARM):
+        return "is_jarm contradicts reason"
+    return None
+
+
+#: The JARM map (:func:`eccjump.region`, ``eccjump map``) as a kind of map file.
+JARM = register(
+    MapKind(
+        "jarm",
+        FIELDS,
+        DTYPES,
+        FILL,
+        cf_attrs,
+        ("mu_s", "n", "rule", "method", "theta0", "omega0"),
+        (
+            ("mu_s", "mu_s"),
+            ("theta0", "theta0"),
+            ("omega0", "omega0"),
+            ("alpha", "alpha"),
+            ("chi", "chi"),
+            ("km_frac", "km_frac"),
+        ),
+        ("alpha", "chi", "km_frac"),
+        {"reason": frozenset([*(int(r) for r in Reason), FILL["reason"]])},
+        computed_mark="reason",
+        valid=VALID,
+        invalid=("reason", frozenset([int(Reason.INVALID_PARAMS), FILL["reason"]])),
+        agree=(
+            ("is_jarm", "Fx_J", True),
+            ("is_jarm", "Fy_J", True),
+            ("is_jarm", "theta_J", False),
+        ),
+        validator=_is_jarm_agrees,
+        title="JARM",
+    )
+)
+
+
 def docstring() -> str:
     """The fields as the ``Attributes`` section of a numpy-style docstring."""
     fields = [
@@ -240,13 +317,16 @@ __all__ = [
     "DTYPES",
     "FIELDS",
     "FILL",
-    "RECORD",
+    "JARM",
+    "MAP_INFO",
     "TABLE",
     "VALID",
     "WRT",
+    "WRT_ATTRS",
     "Field",
     "Reason",
     "cf_attrs",
     "docstring",
+    "map_attrs",
     "reason_table",
 ]

@@ -12,7 +12,7 @@ from collections.abc import Callable, Sequence
 from pathlib import Path
 from typing import Any, NoReturn, get_args
 
-from eccjump._base.checks import Integrator, short
+from eccjump._base.checks import MAX_MESSAGE, Integrator, short
 
 #: Which pair to pick, in one sentence (benches/bench_pairs.py measures it): the same words in
 #: the README, the docstrings and ``--help``.
@@ -24,8 +24,6 @@ PAIR_CHOICE = (
 #: The choices of ``--integrator`` (the Runge-Kutta pairs).
 INTEGRATORS: tuple[str, ...] = get_args(Integrator)
 
-#: The longest error line (the project's contract for messages, tests/fuzz_cases.py).
-MAX_MESSAGE = 200
 
 #: A negative number as ``float`` reads it ("-1e-3", "-.5", "-1_000", "-inf", "-nan").
 #: argparse's own pattern (``^-\d+$|^-\d*\.\d+$``) misses exponents and infinities and takes

@@ -11,6 +11,7 @@ from contextlib import contextmanager
 from pathlib import Path
 from typing import Any
 
+from eccjump._base.optional import require
 from eccjump.cli._args import short_text
 from eccjump.maps import store
 
@@ -31,17 +32,13 @@ class OutputError(Exception):
 def figure_suffixes() -> frozenset[str]:
     """The suffixes ``Figure.savefig`` can write here, e.g. ``.png``, ``.pdf``, ``.svg``.
     Not ``.pgf``: matplotlib runs LaTeX for it, which fails only after the work."""
-    try:
-        from matplotlib.backend_bases import FigureCanvasBase
-        from PIL import Image
-    except ImportError as err:
-        raise ImportError("figures need matplotlib: pip install eccjump[plot]") from err
-
-    Image.init()
-    pillow = {ext for ext, fmt in Image.registered_extensions().items() if fmt in Image.SAVE}
+    canvas = require("matplotlib.backend_bases", purpose="figures", extra="plot")
+    image = require("PIL.Image", purpose="figures", extra="plot")
+    image.init()
+    pillow = {ext for ext, fmt in image.registered_extensions().items() if fmt in image.SAVE}
     return frozenset(
         f".{name}"
-        for name in FigureCanvasBase.get_supported_filetypes()
+        for name in canvas.FigureCanvasBase.get_supported_filetypes()
         if name != "pgf" and (name not in _PILLOW_FORMATS or f".{name}" in pillow)
     )
 

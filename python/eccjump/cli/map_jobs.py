@@ -16,12 +16,12 @@ from numpy.typing import NDArray
 
 from eccjump import plot
 from eccjump.classification.classify import region
+from eccjump.classification.dataset import load
+from eccjump.classification.fields import JARM, map_attrs
 from eccjump.cli._output import save_figure
-from eccjump.maps import store
-from eccjump.maps.kinds import JARM, MOTION, MapKind
-from eccjump.maps.xarray import map_attrs
+from eccjump.maps.kinds import MapKind
 from eccjump.motion import maps as motion_maps
-from eccjump.motion.fields import sequence_name
+from eccjump.motion.fields import MOTION, sequence_name
 
 #: Options of a JARM map that must match the store for --resume (attribute names).
 MAP_OPTIONS = (
@@ -118,7 +118,7 @@ class JarmJob:
         return lines
 
     def draw(self, path: str, figure: Path) -> None:
-        save_figure("--figure", plot.region_map(store.load(path)), figure, dpi=110)
+        save_figure("--figure", plot.region_map(load(path)), figure, dpi=110)
 
 
 class MotionJob:

@@ -13,46 +13,30 @@ physical range (:attr:`eccjump.classification.fields.Field.valid`) and the field
 is invalid); the derived coordinates ``alpha_deg`` and ``km`` are what their sources give;
 and (JARM) no slice marked done holds the fill value ``reason`` 255 of a point not computed.
 
-Errors are ValueErrors naming the file (:func:`shown`: at most :data:`SHOWN` characters of
-its path) in at most :data:`MAX_MESSAGE` characters.
+Errors are ValueErrors naming the file (:func:`~eccjump._base.checks.shown`: at most
+:data:`~eccjump._base.checks.SHOWN` characters of its path) in at most
+:data:`~eccjump._base.checks.MAX_MESSAGE` characters.
 """
 
 from __future__ import annotations
 
 import numbers
-import os
 from collections.abc import Mapping
 from typing import Any
 
 import numpy as np
 
+# file_error and shown (the one form of a message naming a file, in _base for the overwrite
+# policy below the maps), re-exported from here where they were before
+from eccjump._base.checks import MAX_MESSAGE as MAX_MESSAGE
+from eccjump._base.checks import SHOWN as SHOWN
+from eccjump._base.checks import file_error
+from eccjump._base.checks import shown as shown
 from eccjump.maps.kinds import AXIS_RANGES, MapKind, kind_of, outside
 
-#: Longest error message, the prefix ``eccjump: error: `` of the command line included.
-MAX_MESSAGE = 200
-#: Characters of a path shown in a message (its end, where the file's name is).
-SHOWN = 80
 #: Attributes that are text, and integer counts (the other attributes checked are numbers).
 TEXT_ATTRS = ("rule", "method")
 COUNT_ATTRS = ("n", "max_transitions")
-
-
-def shown(path: object) -> str:
-    """``path`` for a message: its last :data:`SHOWN` characters."""
-    text = os.fspath(path) if isinstance(path, str | os.PathLike) else repr(path)
-    text = text if isinstance(text, str) else repr(text)
-    return text if len(text) <= SHOWN else "..." + text[3 - SHOWN :]
-
-
-def file_error(
-    path: object, what: str, cls: type[Exception] = ValueError, name: str | None = None
-) -> Exception:
-    """``cls("<path> <what>")`` (``"<name>: <path> <what>"`` with the parameter or option
-    ``name`` that gave the path), cut to fit an ``eccjump: error:`` line of MAX_MESSAGE."""
-    text = " ".join(f"{shown(path)} {what}".split())  # one line
-    text = text if name is None else f"{name}: {text}"
-    limit = MAX_MESSAGE - len("eccjump: error: ")
-    return cls(text if len(text) <= limit else text[: limit - 3] + "...")
 
 
 class Invalid(ValueError):
@@ -157,7 +141,8 @@ def _coordinate(variables: dict, dim: str) -> int:
 
 def _axis_ranges(kind: MapKind, variables: dict, dims: tuple[str, ...], values: dict) -> None:
     """A swept coordinate may leave its physical range (:data:`AXIS_RANGES`) only where every
-    point of the map is invalid: the computation marks such points so and goes on."""
+    point of the map is invalid: the computation marks such points so and goes on (a kind
+    without an invalid mark has no such points)."""
     mark, codes = kind.invalid
     for axis, dim in kind.axes:
         if dim not in dims or axis not in AXIS_RANGES:
@@ -165,8 +150,10 @@ def _axis_ranges(kind: MapKind, variables: dict, dims: tuple[str, ...], values: 
         lo, hi = AXIS_RANGES[axis]
         coord = np.asarray(variables[dim][1], dtype=np.float64)
         out = ~((coord >= lo) & (coord <= hi))
-        at = np.asarray(values[mark]).compress(out, axis=dims.index(dim))
-        if out.any() and not np.isin(at, list(codes)).all():
+        if not out.any():
+            continue
+        at = np.asarray(values[mark]).compress(out, axis=dims.index(dim)) if mark else None
+        if at is None or not np.isin(at, list(codes)).all():
             raise Invalid(
                 f"has a coordinate {dim} = {outside(coord[out][0], lo, hi)} with valid points"
             )

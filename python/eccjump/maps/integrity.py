@@ -30,7 +30,8 @@ from typing import Any
 
 import numpy as np
 
-from eccjump.maps.check import Invalid, shown
+from eccjump._base.checks import shown
+from eccjump.maps.check import Invalid
 
 #: Most bytes of a zarr metadata file (``zarr.json``): an eccjump map's are a few kB, its
 #: consolidated metadata some 100 kB.

@@ -1,12 +1,26 @@
-"""The kinds of map a file can hold -- the JARM region
-(:mod:`eccjump.classification.fields`) and the full motion (:mod:`eccjump.motion.fields`)
--- described by their field tables, so that the files of :mod:`eccjump.store` and
-``eccjump map`` handle both with the same code. A file records its kind in the attribute
-``kind`` (a file without it is a JARM map).
+"""The kinds of map a file can hold, and the registry that the files of :mod:`eccjump.maps.store`
+and ``eccjump map`` read them by: a :class:`MapKind` describes what one kind of map holds per
+point (its fields, dtypes, fill values, axes, attributes and codes) and what a valid map of it
+holds (checked by :mod:`eccjump.maps.check` when a map is read or written). A file records
+its kind in the attribute ``kind`` (a file without it is a JARM map, from before kinds were
+recorded).
 
-Each kind also says what a valid map of it holds (checked by :mod:`eccjump.maps.check` when
-a map is read or written): its axes (each a dimension of the map or one value in the
-attributes) and the allowed values of its coded fields (:meth:`MapKind.bad_codes`)."""
+The map layer knows no kind by itself: each kind is defined next to its field table and joins
+:data:`KINDS` with :func:`register` -- the JARM region (``JARM`` in
+:mod:`eccjump.classification.fields`) and the full motion (``MOTION`` in
+:mod:`eccjump.motion.fields`). ``import eccjump`` imports both.
+
+Where to add a third map kind:
+
+1. a fields module above the map layer (as :mod:`eccjump.motion.fields`): its :class:`Field`
+   table (:class:`eccjump.classification.fields.Field`) and ``register(MapKind(...))``, with a
+   ``validator`` for what its codes must satisfy beyond their tables;
+2. a result class, ``class MyMap(Map, kind=MY_KIND)`` (:class:`eccjump.maps.map.Map`), with
+   ``coords``, ``fields``, ``to_layout()`` and the classmethod ``from_layout()``: then
+   :func:`eccjump.maps.save` writes it, :func:`eccjump.maps.load` reads it back as ``MyMap``
+   and ``to_xarray()`` labels it, with no change to the map layer;
+3. for ``eccjump map``: a job class in :mod:`eccjump.cli.map_jobs`.
+"""
 
 from __future__ import annotations
 
@@ -14,14 +28,16 @@ import math
 import sys
 from collections.abc import Callable, Mapping
 from types import MappingProxyType
-from typing import Any, NamedTuple
+from typing import TYPE_CHECKING, Any, NamedTuple
 
 import numpy as np
 from numpy.typing import NDArray
 
-from eccjump.classification import fields
-from eccjump.motion import fields as motion_fields
-from eccjump.motion.simulation import REASONS
+from eccjump import _compat
+
+
+def _nothing_wrong(values: Mapping[str, NDArray]) -> str | None:
+    return None
 
 
 class MapKind(NamedTuple):
@@ -58,28 +74,35 @@ class MapKind(NamedTuple):
     #: other than the flag's fill), the float field is a number (not NaN); both ways: only
     #: there.
     agree: tuple[tuple[str, str, bool], ...] = ()
+    #: The kind's own rule for its coded fields beyond their tables: what is wrong with the
+    #: fields ``values`` by name (None: nothing), e.g. two fields that contradict each other.
+    validator: Callable[[Mapping[str, NDArray]], str | None] = _nothing_wrong
+    #: File attributes renamed since they were first written: old name -> today's
+    #: (:func:`upgrade_attrs`).
+    renamed: Mapping[str, str] = MappingProxyType({})
+    #: The kind in messages, "a JARM map" (empty: its :attr:`name`).
+    title: str = ""
+
+    def words(self) -> str:
+        """The kind in messages: ``"JARM map"``."""
+        return f"{self.title or self.name} map"
 
     def bytes_per_point(self) -> int:
         return sum(np.dtype(self.dtypes[k]).itemsize for k in self.fields)
 
+    def record(self) -> np.dtype:
+        """One record per point holding every field (the dtype of a map's dask blocks)."""
+        return np.dtype([(k, self.dtypes[k]) for k in self.fields])
+
     def bad_codes(self, values: Mapping[str, NDArray]) -> str | None:
         """What is wrong with the coded fields in ``values`` (None: nothing): a code not in
-        its table, or (JARM) ``is_jarm`` not saying ``reason`` is JARM."""
+        its table, or what the kind's :attr:`validator` finds."""
         for name, allowed in self.codes.items():
             a = np.asarray(values[name])
             bad = ~np.isin(a, list(allowed))
             if a.size and bad.any():
                 return f"{name} holds code {a[bad].flat[0].item()!r}, not in its table"
-        if self.name == "motion":
-            seq = np.asarray(values["sequence"]).astype(np.int64)
-            ok = valid_sequences(seq)
-            if not ok.all():
-                return f"sequence holds code {int(seq[~ok].flat[0])}, not a sequence code"
-        if self.name == "jarm":
-            is_jarm = np.asarray(values["is_jarm"], dtype=bool)
-            if not np.array_equal(is_jarm, np.asarray(values["reason"]) == fields.Reason.JARM):
-                return "is_jarm contradicts reason"
-        return None
+        return self.validator(values)
 
     def bad_values(self, values: Mapping[str, NDArray]) -> str | None:
         """What is wrong with the values in ``values`` (None: nothing): a float field outside
@@ -103,73 +126,6 @@ class MapKind(NamedTuple):
         return None
 
 
-def valid_sequences(codes: NDArray[np.int64]) -> NDArray[np.bool_]:
-    """Which codes are sequence codes (:func:`eccjump.motion.fields.sequence_code`): at most
-    SEQUENCE_LEN modes of 2 bits, none 0 below a later one."""
-    ok = (codes >= 0) & (codes <= motion_fields.SEQUENCE_MAX)
-    for i in range(motion_fields.SEQUENCE_LEN):
-        gap = ((codes >> (2 * i)) & 3) == 0
-        ok &= ~(gap & ((codes >> (2 * i + 2)) != 0))
-    return ok
-
-
-JARM = MapKind(
-    "jarm",
-    fields.FIELDS,
-    fields.DTYPES,
-    fields.FILL,
-    fields.cf_attrs,
-    ("mu_s", "n", "rule", "method", "theta0", "omega0"),
-    (
-        ("mu_s", "mu_s"),
-        ("theta0", "theta0"),
-        ("omega0", "omega0"),
-        ("alpha", "alpha"),
-        ("chi", "chi"),
-        ("km_frac", "km_frac"),
-    ),
-    ("alpha", "chi", "km_frac"),
-    {"reason": frozenset([*(int(r) for r in fields.Reason), fields.FILL["reason"]])},
-    "reason",
-    fields.VALID,
-    ("reason", frozenset([int(fields.Reason.INVALID_PARAMS), fields.FILL["reason"]])),
-    (("is_jarm", "Fx_J", True), ("is_jarm", "Fy_J", True), ("is_jarm", "theta_J", False)),
-)
-MOTION = MapKind(
-    "motion",
-    motion_fields.FIELDS,
-    motion_fields.DTYPES,
-    motion_fields.FILL,
-    motion_fields.cf_attrs,
-    ("mu_s", "mu_k", "restitution", "rule", "theta0", "omega0", "t_max", "max_transitions"),
-    (
-        ("alpha", "alpha"),
-        ("chi", "chi"),
-        ("km_frac", "km_frac"),
-        ("mu_s", "mu_s"),
-        ("mu_k", "mu_k"),
-        ("restitution", "restitution"),
-        ("theta0", "theta0"),
-        ("omega0", "omega0"),
-    ),
-    (),
-    {
-        "status": frozenset(motion_fields.STATUS_NAMES),
-        "landing": frozenset(range(len(motion_fields.LANDINGS))),
-        "liftoff_reason": frozenset([*range(len(REASONS)), motion_fields.FILL["liftoff_reason"]]),
-    },
-    None,
-    motion_fields.VALID,
-    ("status", frozenset([motion_fields.INVALID])),
-    (
-        ("status", "energy_lost", True),
-        ("slipped_first", "slip_t", True),
-        ("slipped_first", "slip_theta", True),
-        ("liftoff_reason", "liftoff_t", True),
-        ("liftoff_reason", "liftoff_theta", True),
-        ("liftoff_reason", "apex", True),
-    ),
-)
 #: The physical range of each axis of a map, a coordinate or (not swept) an attribute; a map
 #: may hold points outside it only as invalid points (:attr:`MapKind.invalid`): the
 #: computation marks them so and goes on.
@@ -190,33 +146,52 @@ def outside(value: float, lo: float, hi: float) -> str:
     return f"{value:g} ({f'below {lo:g}' if value < lo else f'above {hi:g}'})"
 
 
-#: Every kind by name.
-KINDS: dict[str, MapKind] = {k.name: k for k in (JARM, MOTION)}
+#: Every kind by name, each registered by its fields module (:func:`register`).
+KINDS: dict[str, MapKind] = {}
+#: The kind of a file without the attribute ``kind`` (written before kinds were recorded).
+DEFAULT_KIND = "jarm"
+
+
+def register(kind: MapKind) -> MapKind:
+    """``kind``, made known to the files by its name (once: a second kind of that name is a
+    ValueError)."""
+    if KINDS.setdefault(kind.name, kind) is not kind:
+        raise ValueError(f"a map kind named {kind.name!r} is registered already")
+    return kind
 
 
 def kind_of(attrs: Mapping[str, Any]) -> MapKind:
     """The kind of a map from its attributes; ValueError for an unknown ``kind``."""
-    name = attrs.get("kind", "jarm")
+    name = attrs.get("kind", DEFAULT_KIND)
     if not isinstance(name, str) or name not in KINDS:
         raise ValueError(f"unknown map kind {str(name)[:20]!r}; known: {', '.join(KINDS)}")
     return KINDS[name]
 
 
 def upgrade_attrs(attrs: dict[str, Any]) -> None:
-    """The attributes of a map file written before 0.2, in today's names, in place: a motion
-    map's scalar fraction axis was recorded as ``km`` (the parameter's name then); it is
-    ``km_frac`` now, and ``km`` always the body's k_m."""
-    if attrs.get("kind") == "motion" and "km" in attrs and "km_frac" not in attrs:
-        attrs["km_frac"] = attrs.pop("km")
+    """The attributes of a map file written before 0.2, in today's names, in place (the
+    kind's :attr:`MapKind.renamed`; an unknown kind is left to :func:`kind_of`)."""
+    name = attrs.get("kind", DEFAULT_KIND)
+    kind = KINDS.get(name) if isinstance(name, str) else None
+    for old, new in kind.renamed.items() if kind is not None else ():
+        if old in attrs and new not in attrs:
+            attrs[new] = attrs.pop(old)
+
+
+# JARM, MOTION and valid_sequences, defined here before the kinds joined a registry, for one
+# release.
+if not TYPE_CHECKING:  # (a module __getattr__ would let mypy pass any typo)
+
+    def __getattr__(name: str):
+        return _compat.moved_name(__name__, name)
 
 
 __all__ = [
     "AXIS_RANGES",
-    "JARM",
+    "DEFAULT_KIND",
     "KINDS",
-    "MOTION",
     "MapKind",
     "kind_of",
+    "register",
     "upgrade_attrs",
-    "valid_sequences",
 ]

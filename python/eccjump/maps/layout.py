@@ -1,9 +1,10 @@
-"""The layout of a labelled JARM map (names, dimensions, units, attributes), built with numpy
-alone from coordinate and field arrays; the conversion to and from ``xarray.Dataset``.
+"""The layout of a labelled map of any kind (names, dimensions, units, attributes), built with
+numpy alone from coordinate and field arrays; the conversion to and from ``xarray.Dataset``.
 
-Knows nothing of :class:`~eccjump.Region` (so that :mod:`eccjump.classification` can use it);
-the public face is :mod:`eccjump.maps.xarray`, which documents the dataset layout. The units and
-meanings of the fields come from :mod:`eccjump.classification.fields`.
+A layout is what every map file holds and every map result gives (``Map.to_layout()``): the
+names, dtypes and attributes of its fields come from its kind
+(:class:`~eccjump.maps.kinds.MapKind`), the coordinates' from :data:`COORD_ATTRS`. The
+public face is :mod:`eccjump.maps.xarray`.
 """
 
 from __future__ import annotations
@@ -16,19 +17,16 @@ from typing import TYPE_CHECKING, Any
 import numpy as np
 from numpy.typing import NDArray
 
-from eccjump import _core
 from eccjump._base import optional
-from eccjump.classification.fields import BY_NAME, FIELDS, WRT, cf_attrs, reason_table
+from eccjump.maps.kinds import MapKind
 
 if TYPE_CHECKING:  # pragma: no cover
     import xarray as xr
 
-EXTRA = "pip install eccjump[xarray]"
-
-#: Dimensions of a map, in order.
+#: The dimensions of a map on the grid alpha x chi x km_frac, in order: a JARM map's, and
+#: those of a map of either kind written in chunks along alpha (``eccjump map``,
+#: :class:`~eccjump.maps.store.ZarrMap`).
 DIMS = ("alpha", "chi", "km_frac")
-#: Parameters that :func:`eccjump.region_dataset` can sweep, in the order of their dimensions.
-SWEEPABLE = ("mu_s", "theta0", "omega0")
 
 COORD_ATTRS: dict[str, dict[str, str]] = {
     "alpha": {"units": "rad", "long_name": "ramp angle"},
@@ -40,7 +38,6 @@ COORD_ATTRS: dict[str, dict[str, str]] = {
     "theta0": {"units": "rad", "long_name": "initial angle"},
     "omega0": {"units": "sqrt(g/R) rad", "long_name": "initial angular velocity"},
     "alpha_done": {"units": "1", "long_name": "alpha slice computed (False: missing, fill)"},
-    "wrt": {"long_name": "parameter of the derivative: alpha [rad], chi or km (k_m itself)"},
 }
 
 #: A layout: {"coords": {name: (dims, array, attrs)}, "data_vars": {...}, "attrs": {...}}.
@@ -53,36 +50,6 @@ def require(module: str) -> ModuleType:
     return optional.require(
         module, purpose="labelled results, netCDF and zarr files", extra="xarray"
     )
-
-
-def map_attrs(
-    mu_s: float,
-    n: int | None,
-    rule: str,
-    method: str,
-    theta0: float,
-    omega0: float,
-    **extra: Any,
-) -> dict[str, Any]:
-    """Attributes of a map: how it was made (netCDF-safe scalars and strings only)."""
-    return {
-        "title": "JARM map of an eccentric cylinder on a ramp (eccjump)",
-        "eccjump_version": _core.VERSION,
-        "mu_s": float(mu_s),
-        "n": 0 if n is None else int(n),
-        "n_meaning": "requested turn of the jump; 0: the first jump whatever its turn",
-        "rule": str(rule),
-        "method": str(method),
-        "theta0": float(theta0),
-        "omega0": float(omega0),
-        **{k: (int(v) if isinstance(v, bool) else v) for k, v in extra.items()},
-        "reason_codes": reason_table(),
-        "units": "g = R = M = 1: angles in rad, forces in M g, omega in sqrt(g/R) rad",
-    }
-
-
-#: Attributes written by :func:`map_attrs` that are not options of the map.
-MAP_INFO = ("title", "eccjump_version", "n_meaning", "reason_codes", "units")
 
 
 def grid_coords(
@@ -98,25 +65,19 @@ def grid_coords(
     }
 
 
-def field_var(name: str) -> dict[str, Any]:
-    """Attributes of a field variable (with the flag table on ``reason``)."""
-    return cf_attrs(name)
-
-
 def make_layout(
     alpha: NDArray[np.float64],
     chi: NDArray[np.float64],
     km_frac: NDArray[np.float64],
     fields: Mapping[str, Any],
     attrs: Mapping[str, Any],
-    alpha_done: NDArray[np.bool_] | None = None,
-    kind: Any = None,
+    alpha_done: NDArray[np.bool_] | None,
+    kind: MapKind,
 ) -> Layout:
-    """The layout of a map of ``kind`` (an :class:`eccjump.maps.kinds.MapKind`, above this
-    module; default: a JARM map) on alpha x chi x km_frac (numpy only)."""
-    names, var_attrs = (FIELDS, field_var) if kind is None else (kind.fields, kind.var_attrs)
+    """The layout of a map of ``kind`` on alpha x chi x km_frac (numpy only), with the
+    variable ``alpha_done`` unless it is None."""
     data_vars: dict[str, tuple[tuple[str, ...], Any, dict[str, Any]]] = {
-        k: (DIMS, fields[k], var_attrs(k)) for k in names
+        k: (DIMS, fields[k], kind.var_attrs(k)) for k in kind.fields
     }
     if alpha_done is not None:
         data_vars["alpha_done"] = (("alpha",), alpha_done, COORD_ATTRS["alpha_done"])
@@ -125,20 +86,6 @@ def make_layout(
         "data_vars": data_vars,
         "attrs": dict(attrs),
     }
-
-
-def with_derivatives(layout: Layout, derivatives: Mapping[str, Any]) -> Layout:
-    """``layout`` with the derivative fields ``derivatives`` (of
-    :data:`eccjump.classification.fields.DERIVATIVES`; none: ``layout`` itself) as variables,
-    the float ones with the trailing dimension ``wrt`` and its coordinate of parameter names."""
-    if not derivatives:
-        return layout
-    data_vars = dict(layout["data_vars"])
-    for k, v in derivatives.items():
-        dims = (*DIMS, "wrt") if BY_NAME[k].dtype.kind == "f" else DIMS
-        data_vars[k] = (dims, v, field_var(k))
-    wrt = (("wrt",), np.array(WRT), COORD_ATTRS["wrt"])
-    return {**layout, "coords": {**layout["coords"], "wrt": wrt}, "data_vars": data_vars}
 
 
 def layout_to_xarray(layout: Layout) -> xr.Dataset:

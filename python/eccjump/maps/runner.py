@@ -33,9 +33,9 @@ from typing import Any, Protocol
 import numpy as np
 from numpy.typing import NDArray
 
+from eccjump._base.checks import MAX_MESSAGE, shown
 from eccjump._base.sizes import gib, memory_limit
 from eccjump.maps import store
-from eccjump.maps.check import MAX_MESSAGE, shown
 from eccjump.maps.kinds import MapKind
 from eccjump.maps.store import ZarrMap, format_of, save
 from eccjump.maps.xarray import make_layout

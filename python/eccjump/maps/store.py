@@ -1,13 +1,16 @@
-"""JARM maps on disk, the format chosen by the suffix: ``.nc`` (netCDF4, engine h5netcdf or
-netCDF4), ``.zarr`` (zarr v3 directory store) or ``.npz`` (numpy; needs neither xarray nor
+"""Maps of any kind on disk, the format chosen by the suffix: ``.nc`` (netCDF4, engine h5netcdf
+or netCDF4), ``.zarr`` (zarr v3 directory store) or ``.npz`` (numpy; needs neither xarray nor
 zarr).
 
-:func:`save` and :func:`load`/:func:`open_dataset` handle whole maps. :class:`ZarrMap`
+This module reads and writes layouts (:mod:`eccjump.maps.layout`), whatever their kind
+(:mod:`eccjump.maps.kinds`): :func:`save` writes a map, a dataset or a layout,
+:func:`read_layout` reads one back with its kind, checked (:func:`eccjump.maps.load` makes it
+the map's class, :func:`open_dataset` a dataset). :class:`ZarrMap`
 writes a map chunk by chunk along alpha, recording finished alpha slices in the data
 variable ``alpha_done`` (written after the data of its chunk), so that an interrupted map
 keeps what was finished and can be resumed; the attribute ``complete`` (0/1) says whether
-every slice is there. Points not computed hold the fill values: NaN, ``is_jarm`` False,
-``n`` 0 and ``reason`` 255 (not a :class:`~eccjump.Reason`).
+every slice is there. Points not computed hold the kind's fill values (a JARM map: NaN,
+``is_jarm`` False, ``n`` 0 and ``reason`` 255, not a :class:`~eccjump.Reason`).
 
 A map is never half there. Every new file or store is written under a temporary sibling name
 (``.<name>.tmp-<pid>``, same directory) and renamed into place by :func:`install`; a map it
@@ -43,11 +46,11 @@ from typing import TYPE_CHECKING, Any, Literal
 import numpy as np
 from numpy.typing import NDArray
 
-from eccjump._base.checks import flag, mapping
+from eccjump import _compat
+from eccjump._base.checks import file_error, flag, mapping, shown
 from eccjump._base.checks import path as check_path
 from eccjump._base.overwrite import check_overwrite, file_type
-from eccjump.classification.classify import Region
-from eccjump.maps.check import Invalid, attr_problem, check, check_layout, file_error, shown
+from eccjump.maps.check import Invalid, attr_problem, check, check_layout
 from eccjump.maps.integrity import UncheckedMapWarning as UncheckedMapWarning  # public here
 from eccjump.maps.integrity import (
     check_metadata_size,
@@ -57,7 +60,7 @@ from eccjump.maps.integrity import (
     zarr_codecs,
 )
 from eccjump.maps.kinds import MapKind, kind_of, upgrade_attrs
-from eccjump.maps.xarray import (
+from eccjump.maps.layout import (
     COORD_ATTRS,
     DIMS,
     Layout,
@@ -65,10 +68,9 @@ from eccjump.maps.xarray import (
     grid_coords,
     layout_from_xarray,
     layout_to_xarray,
-    region_layout,
     require,
-    to_region,
 )
+from eccjump.maps.map import Map
 
 if TYPE_CHECKING:  # pragma: no cover
     import xarray as xr
@@ -127,14 +129,12 @@ def netcdf_engine() -> Literal["h5netcdf", "netcdf4"]:
 
 
 def _as_layout(obj: object) -> Layout:
-    """The layout of ``obj``: a :class:`Region`, a layout, a dataset, or anything else with a
-    ``to_xarray`` method (a :class:`~eccjump.MotionMap`); TypeError naming ``obj`` else."""
-    if isinstance(obj, Region):
-        return region_layout(obj.compute())
+    """The layout of ``obj``: a map (:class:`~eccjump.Map`, computed if lazy), a layout or a
+    dataset; TypeError naming ``obj`` else."""
+    if isinstance(obj, Map):
+        return obj.compute().to_layout()
     if isinstance(obj, dict):
         return obj
-    if not hasattr(type(obj), "data_vars") and callable(getattr(obj, "to_xarray", None)):
-        obj = obj.to_xarray()  # type: ignore[attr-defined]
     if hasattr(type(obj), "data_vars"):
         return layout_from_xarray(obj)  # type: ignore[arg-type]
     raise TypeError(
@@ -457,9 +457,9 @@ def save(
 
     Parameters
     ----------
-    obj : Region, MotionMap, xarray.Dataset or layout
+    obj : Map (Region, MotionMap), xarray.Dataset or layout
         The map: a result of :func:`eccjump.region` or :func:`eccjump.motion_map`, its
-        dataset (``to_xarray()``, ``region(..., output="xarray")``) or a layout dict.
+        dataset (``to_xarray()``, :func:`eccjump.region_dataset`) or a layout dict.
     path : str or os.PathLike
         ``.nc`` (netCDF4, needs xarray), ``.zarr`` (needs zarr) or ``.npz`` (numpy only); its
         directory must exist.
@@ -778,44 +778,11 @@ def open_dataset(path: str | os.PathLike) -> xr.Dataset:
     return layout_to_xarray(lay) if ds is None else ds
 
 
-def load(path: str | os.PathLike) -> Region:
-    """A JARM map file (of one map, no swept dimensions) as a :class:`Region`.
+# load, which made a Region here before the map layer knew no kind, for one release.
+if not TYPE_CHECKING:  # (a module __getattr__ would let mypy pass any typo)
 
-    ``.npz`` needs numpy only. The file's ``complete`` and ``alpha_done`` go to
-    ``Region.attrs``. :func:`eccjump.maps.load` reads either kind.
-
-    Parameters
-    ----------
-    path : str or os.PathLike
-        A ``.nc``, ``.zarr`` or ``.npz`` JARM map file.
-
-    Returns
-    -------
-    Region
-
-    Raises
-    ------
-    ValueError
-        For a file that is not such a map (a motion map, swept maps, damaged), naming it and
-        what is wrong.
-    FileNotFoundError
-        If there is no file at ``path``.
-    """
-    lay, kind = read_layout(path)
-    if kind.name != "jarm":
-        raise file_error(path, "is a motion map: load it with eccjump.maps.load")
-    return region_of(lay, path)
-
-
-def region_of(lay: Layout, path: str | os.PathLike) -> Region:
-    """The :class:`Region` of the checked layout of a JARM map file ``path``; ValueError
-    naming ``path`` if it holds swept maps."""
-    if tuple(lay["data_vars"]["is_jarm"][0]) != DIMS:
-        raise file_error(path, "holds swept maps: open it with eccjump.store.open_dataset")
-    reg = to_region(lay)
-    if "alpha_done" in lay["data_vars"]:
-        reg.attrs["alpha_done"] = np.asarray(lay["data_vars"]["alpha_done"][1], dtype=bool)
-    return reg
+    def __getattr__(name: str):
+        return _compat.moved_name(__name__, name)
 
 
 class _quiet_consolidation(warnings.catch_warnings):

@@ -3,28 +3,45 @@
 Each field of a point's summary is described ONCE here -- name, numpy dtype, units, meaning,
 fill value of a point not computed -- and the :class:`~eccjump.MotionMap`, its xarray and CF
 attributes, the files of :mod:`eccjump.store` and ``eccjump map --kind motion`` derive from
-this table. Also the codes of the sequence of modes, the statuses and the landing outcomes.
+this table, through the map kind :data:`MOTION` (:class:`~eccjump.maps.kinds.MapKind`). Also
+the codes of the sequence of modes, the statuses and the landing outcomes, read from the core's
+tables.
 """
 
 from __future__ import annotations
 
 import math
 import sys
+from collections.abc import Mapping
 from typing import Any
 
 import numpy as np
+from numpy.typing import NDArray
 
 from eccjump import _core
 from eccjump._base.checks import integer
 from eccjump.classification.fields import ROUNDING, Field
-from eccjump.motion.simulation import MODES, REASONS, STATUSES
+from eccjump.maps.kinds import MapKind, register
+
+
+def _names(codes: list[tuple[int, str]]) -> tuple[str, ...]:
+    """The names of one of the core's code tables, by code (0, 1, ...)."""
+    return tuple(name for _, name in sorted(codes))
+
+
+#: Mode names by code (the core's; :data:`eccjump.motion.MODES` names them too).
+MODES = _names(_core.mode_codes())
+#: Why a mode began, by code: the ``liftoff_reason`` codes (the core's).
+REASONS = _names(_core.transition_reason_codes())
+#: How a run ended, by code (the core's).
+STATUSES = _names(_core.status_codes())
 
 #: Modes kept in the sequence code (the core's).
 SEQUENCE_LEN: int = _core.SEQUENCE_LEN
 #: ``status`` of a point with invalid parameters (mu_k > mu_s, a value out of range).
 INVALID = 255
 #: How the first landing ended, by code.
-LANDINGS: tuple[str, ...] = tuple(name for _, name in sorted(_core.landing_codes()))
+LANDINGS: tuple[str, ...] = _names(_core.landing_codes())
 #: ``status`` names by code (:data:`INVALID` is "invalid").
 STATUS_NAMES: dict[int, str] = {**dict(enumerate(STATUSES)), INVALID: "invalid"}
 
@@ -103,8 +120,8 @@ def sequence_code(modes: list[str] | tuple[str, ...]) -> int:
     """The code of the first :data:`SEQUENCE_LEN` of ``modes`` (names from :data:`MODES`):
     Σ (mode_i + 1)·4^i, so ROLL→FLIGHT is 13. ValueError naming a mode not in MODES.
 
-    A mode's index in MODES is its code in the core (checked at import in
-    :mod:`eccjump.motion`), so this is the code a motion map stores."""
+    A mode's index in MODES is its code in the core (MODES is read from the core's table),
+    so this is the code a motion map stores."""
     if isinstance(modes, str) or not isinstance(modes, list | tuple):
         raise TypeError(f"modes must be a list or tuple of mode names, not {type(modes).__name__}")
     for m in modes:
@@ -135,6 +152,70 @@ def cf_attrs(name: str, sequences: Any = None) -> dict[str, Any]:
     return attrs
 
 
+def valid_sequences(codes: NDArray[np.int64]) -> NDArray[np.bool_]:
+    """Which codes are sequence codes (:func:`sequence_code`): at most SEQUENCE_LEN modes of
+    2 bits, none 0 below a later one."""
+    ok = (codes >= 0) & (codes <= SEQUENCE_MAX)
+    for i in range(SEQUENCE_LEN):
+        gap = ((codes >> (2 * i)) & 3) == 0
+        ok &= ~(gap & ((codes >> (2 * i + 2)) != 0))
+    return ok
+
+
+def _sequences_valid(values: Mapping[str, NDArray]) -> str | None:
+    """What is wrong with a motion map's codes beyond their tables: each ``sequence`` must be
+    a sequence code."""
+    seq = np.asarray(values["sequence"]).astype(np.int64)
+    ok = valid_sequences(seq)
+    if not ok.all():
+        return f"sequence holds code {int(seq[~ok].flat[0])}, not a sequence code"
+    return None
+
+
+#: The motion map (:func:`eccjump.motion_map`, ``eccjump map --kind motion``) as a kind of map
+#: file: any of its eight axes may be swept.
+MOTION = register(
+    MapKind(
+        "motion",
+        FIELDS,
+        DTYPES,
+        FILL,
+        cf_attrs,
+        ("mu_s", "mu_k", "restitution", "rule", "theta0", "omega0", "t_max", "max_transitions"),
+        (
+            ("alpha", "alpha"),
+            ("chi", "chi"),
+            ("km_frac", "km_frac"),
+            ("mu_s", "mu_s"),
+            ("mu_k", "mu_k"),
+            ("restitution", "restitution"),
+            ("theta0", "theta0"),
+            ("omega0", "omega0"),
+        ),
+        (),
+        {
+            "status": frozenset(STATUS_NAMES),
+            "landing": frozenset(range(len(LANDINGS))),
+            "liftoff_reason": frozenset([*range(len(REASONS)), FILL["liftoff_reason"]]),
+        },
+        valid=VALID,
+        invalid=("status", frozenset([INVALID])),
+        agree=(
+            ("status", "energy_lost", True),
+            ("slipped_first", "slip_t", True),
+            ("slipped_first", "slip_theta", True),
+            ("liftoff_reason", "liftoff_t", True),
+            ("liftoff_reason", "liftoff_theta", True),
+            ("liftoff_reason", "apex", True),
+        ),
+        validator=_sequences_valid,
+        # 0.1 recorded a motion map's scalar fraction axis as km, today the body's k_m
+        renamed={"km": "km_frac"},
+        title="motion",
+    )
+)
+
+
 __all__ = [
     "BY_NAME",
     "DTYPES",
@@ -142,8 +223,12 @@ __all__ = [
     "FILL",
     "INVALID",
     "LANDINGS",
+    "MODES",
+    "MOTION",
+    "REASONS",
     "SEQUENCE_LEN",
     "SEQUENCE_MAX",
+    "STATUSES",
     "STATUS_NAMES",
     "TABLE",
     "VALID",
@@ -151,4 +236,5 @@ __all__ = [
     "cf_attrs",
     "sequence_code",
     "sequence_name",
+    "valid_sequences",
 ]

@@ -23,19 +23,20 @@ from numpy.typing import ArrayLike, NDArray
 
 from eccjump import _core
 from eccjump._base.arrays import fields_equal, fraction_axis
-from eccjump._base.checks import U64_MAX, Integrator, integer, real_array, short, text
+from eccjump._base.checks import U64_MAX, Integrator, file_error, integer, real_array, short, text
 from eccjump._base.html import best_slice, card, deg, jarm_slice, span
-from eccjump._base.sizes import check_fits, motion_bytes
+from eccjump._base.sizes import check_fits, result_bytes
 from eccjump.maps import store
-from eccjump.maps.check import file_error
-from eccjump.maps.dask import require_dask
-from eccjump.maps.kinds import MOTION, MapKind, upgrade_attrs
+from eccjump.maps.dask import lazy_fields
+from eccjump.maps.kinds import MapKind, upgrade_attrs
+from eccjump.maps.layout import Layout
 from eccjump.maps.map import Map
 from eccjump.motion.fields import (
     DTYPES,
     FIELDS,
     INVALID,
     LANDINGS,
+    MOTION,
     STATUS_NAMES,
     TABLE,
     cf_attrs,
@@ -56,7 +57,7 @@ DIM_OF = dict(MOTION.axes)
 
 
 @dataclass(frozen=True, eq=False)
-class MotionMap(Map):
+class MotionMap(Map, kind=MOTION):
     """A motion map: one array per summary field, with one dimension per swept axis.
 
     Made by :func:`motion_map`. Each field is also an attribute (``m.apex``, ``m.sequence``,
@@ -92,7 +93,6 @@ class MotionMap(Map):
     334.343838 deg, apex 0.006696 R
     """
 
-    kind: ClassVar[str] = "motion"
     jarm_field: ClassVar[str] = "jarm"
 
     coords: dict[str, NDArray[np.float64]]
@@ -132,29 +132,34 @@ class MotionMap(Map):
         order = np.argsort(-counts, kind="stable")
         return {int(codes[i]): (sequence_name(codes[i]), int(counts[i])) for i in order}
 
-    def to_xarray(self) -> xr.Dataset:
-        """The map as a labelled ``xarray.Dataset``.
-
-        Returns
-        -------
-        xarray.Dataset
-            One variable per field with CF attributes and flag tables (a lazy map's
-            ``sequence`` codes are known once computed: ``sequence_name`` names them), the
-            options as attributes.
-
-        Raises
-        ------
-        ImportError
-            Without xarray (``pip install "eccjump[xarray]"``).
-        """
-        import xarray as xr
-
+    def to_layout(self) -> Layout:
+        """The map as a layout (numpy only; dask arrays if lazy): one variable per field with
+        CF attributes and flag tables (a lazy map's ``sequence`` codes are known once
+        computed: ``sequence_name`` names them), the options as attributes."""
         dims = tuple(DIM_OF[k] for k in self.coords)
         seq = self.fields["sequence"]
         codes = np.unique(seq) if isinstance(seq, np.ndarray) else None
-        data = {f: (dims, self.fields[f], cf_attrs(f, codes)) for f in FIELDS}
-        coords = {DIM_OF[k]: (DIM_OF[k], v) for k, v in self.coords.items()}
-        return xr.Dataset(data, coords=coords, attrs=self.attrs())
+        return {
+            "coords": {DIM_OF[k]: ((DIM_OF[k],), v, {}) for k, v in self.coords.items()},
+            "data_vars": {f: (dims, self.fields[f], cf_attrs(f, codes)) for f in FIELDS},
+            "attrs": self.attrs(),
+        }
+
+    @classmethod
+    def from_layout(cls, lay: Layout, source: object) -> MotionMap:
+        """The MotionMap of the layout ``lay`` of a valid motion map (``source``, the path it
+        was read from, is not needed: every valid motion map is one)."""
+        dims, attrs = lay["data_vars"][FIELDS[0]][0], lay["attrs"]
+        axis_of = {d: a for a, d in DIM_OF.items()}
+        coords = {axis_of[d]: np.asarray(lay["coords"][d][1], dtype=np.float64) for d in dims}
+        scalars: dict[str, float | None] = {}
+        for k in AXES:
+            if k not in coords:
+                # mu_k = mu_s (not given) is recorded as mu_s's value, or as "mu_s" if swept
+                scalars[k] = None if attrs.get(k, "mu_s") == "mu_s" else float(attrs[k])
+        fields = {k: np.asarray(lay["data_vars"][k][1], dtype=DTYPES[k]) for k in FIELDS}
+        opts = {k: attrs[k] for k in OPTIONS if k in attrs}
+        return cls(coords, scalars, fields, opts)
 
     def attrs(self) -> dict[str, Any]:
         """How the map was made, as netCDF-safe file attributes (``mu_k`` the text "mu_s"
@@ -388,9 +393,9 @@ def motion_map(
     info = {k: opts[k] for k in OPTIONS}
     _check_scalars(scalars, opts)
     if chunks is not None:
-        return _lazy(axis, rest, coords, scalars, info, opts, shape, chunks)
+        return _lazy(axis, coords, scalars, info, opts, shape, chunks)
     points = int(np.prod(shape, dtype=object))
-    check_fits("motion_map", points, motion_bytes(points), "the axes")
+    check_fits("motion_map", points, result_bytes(points, MOTION.bytes_per_point()), "the axes")
     flat = _block(axis["alpha"], rest, opts)
     fields = {k: flat[k].reshape(shape) for k in FIELDS}
     m = MotionMap(coords, scalars, fields, info)
@@ -441,7 +446,6 @@ def _valid_point(values: Mapping[str, float], opts: dict[str, Any]) -> bool:
 
 def _lazy(
     axis: dict[str, NDArray],
-    rest: tuple[NDArray, ...],
     coords: dict[str, NDArray],
     scalars: dict[str, float | None],
     info: dict[str, Any],
@@ -449,27 +453,26 @@ def _lazy(
     shape: tuple[int, ...],
     chunks: object,
 ) -> xr.Dataset:
-    """A dask-backed Dataset: one core call per block of alpha values."""
-    da = require_dask()
-    import dask
-
+    """A dask-backed Dataset: one core call per block of ``chunks`` alpha values."""
     c = integer("chunks", chunks, 1, U64_MAX)
-    alpha = axis["alpha"]
-    inner = tuple(s for name, s in zip(AXES, shape_of(axis), strict=True) if name != "alpha")
-    pieces: dict[str, list[Any]] = {k: [] for k in FIELDS}
-    for i0 in range(0, alpha.size, c):
-        part = dask.delayed(_block)(alpha[i0 : i0 + c], rest, opts)
-        n = min(c, alpha.size - i0)
-        for f in TABLE:
-            arr = da.from_delayed(part[f.name], shape=(n * int(np.prod(inner)),), dtype=f.dtype)
-            pieces[f.name].append(arr.reshape((n, *inner)))
-    fields = {k: da.concatenate(v, axis=0).reshape(shape) for k, v in pieces.items()}
+    same_mu = scalars.get("mu_k", 0.0) is None  # mu_k = mu_s: the core's empty mu_k axis
+    axes = [np.zeros(1) if name == "mu_k" and same_mu else axis[name] for name in AXES]
+    blocks = [
+        min(c, a.size) if name == "alpha" else a.size for name, a in zip(AXES, axes, strict=True)
+    ]
+    lazy = lazy_fields(MOTION, _grid_block, axes, blocks, (opts, same_mu))
+    fields = {k: v.reshape(shape) for k, v in lazy.items()}
     return MotionMap(coords, scalars, fields, info).to_xarray()
 
 
-def shape_of(axis: Mapping[str, NDArray]) -> tuple[int, ...]:
-    """Lengths of the eight grid axes (mu_k empty counts 1)."""
-    return tuple(max(axis[name].size, 1) for name in AXES)
+def _grid_block(*args: Any) -> dict[str, NDArray]:
+    """The grid call of :func:`_block` as :func:`eccjump.maps.dask.lazy_fields` makes it: the
+    eight axes, the options and whether mu_k is mu_s (its axis then a placeholder)."""
+    *axes, opts, same_mu = args
+    rest = tuple(
+        np.empty(0) if same_mu and name == "mu_k" else a for name, a in zip(AXES, axes, strict=True)
+    )
+    return _block(axes[0], rest[1:], opts)
 
 
 def from_dataset(ds: xr.Dataset) -> MotionMap:
@@ -480,35 +483,27 @@ def from_dataset(ds: xr.Dataset) -> MotionMap:
         raise TypeError(f"ds must be an xarray.Dataset, not {type(ds).__name__}")
     lay = store.layout_from_xarray(ds)
     upgrade_attrs(lay["attrs"])
-    return from_layout(lay, store.check_layout(lay, "ds"), "ds")
+    return _motion_map_of(lay, store.check_layout(lay, "ds"), "ds")
 
 
-def from_layout(lay: dict[str, Any], kind: MapKind, source: object) -> MotionMap:
-    """A :class:`MotionMap` from a layout checked to be a map of ``kind`` (numpy only);
-    ValueError naming ``source`` if it is a JARM map."""
-    if kind.name != "motion":
-        raise file_error(source, "is a JARM map, not a motion map: load it with eccjump.maps.load")
-    dims, attrs = lay["data_vars"][FIELDS[0]][0], lay["attrs"]
-    axis_of = {d: a for a, d in DIM_OF.items()}
-    coords = {axis_of[d]: np.asarray(lay["coords"][d][1], dtype=np.float64) for d in dims}
-    scalars: dict[str, float | None] = {}
-    for k in AXES:
-        if k not in coords:
-            # mu_k = mu_s (not given) is recorded as mu_s's value, or as "mu_s" if it is swept
-            scalars[k] = None if attrs.get(k, "mu_s") == "mu_s" else float(attrs[k])
-    fields = {k: np.asarray(lay["data_vars"][k][1], dtype=DTYPES[k]) for k in FIELDS}
-    opts = {k: attrs[k] for k in OPTIONS if k in attrs}
-    return MotionMap(coords, scalars, fields, opts)
+def _motion_map_of(lay: Layout, kind: MapKind, source: object) -> MotionMap:
+    """The :class:`MotionMap` of a layout checked to be a map of ``kind``; ValueError naming
+    ``source`` if it is a map of another kind."""
+    if kind is not MOTION:
+        raise file_error(
+            source, f"is a {kind.words()}, not a motion map: load it with eccjump.maps.load"
+        )
+    return MotionMap.from_layout(lay, source)
 
 
 def load(path: str | os.PathLike) -> MotionMap:
     """A motion map file (.nc, .zarr, .npz; .npz needs numpy only) as a :class:`MotionMap`.
 
     ValueError naming the path for a file that is no valid motion map (a JARM map:
-    ``eccjump.store.load``), as every loader of :mod:`eccjump.store`.
+    ``eccjump.maps.load``), as every loader of :mod:`eccjump.store`.
     """
     lay, kind = store.read_layout(path)
-    return from_layout(lay, kind, path)
+    return _motion_map_of(lay, kind, path)
 
 
 __all__ = [

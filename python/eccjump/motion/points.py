@@ -20,8 +20,8 @@ from numpy.typing import ArrayLike, NDArray
 from eccjump import _core
 from eccjump._base.arrays import broadcast_flat, fields_equal
 from eccjump._base.checks import Integrator, Rule
-from eccjump._base.sizes import check_fits, motion_bytes
-from eccjump.motion.fields import FIELDS, INVALID, sequence_name
+from eccjump._base.sizes import check_fits, result_bytes
+from eccjump.motion.fields import FIELDS, INVALID, MOTION, sequence_name
 from eccjump.motion.simulation import checked_motion_options
 
 
@@ -220,7 +220,8 @@ def motion_points(
     )
     shape, flat = broadcast_flat(**named)
     points = flat[0].size
-    check_fits("motion_points", points, motion_bytes(points, len(flat)), "the inputs")
+    need = result_bytes(points, MOTION.bytes_per_point(), len(flat))
+    check_fits("motion_points", points, need, "the inputs")
     columns = dict(zip(named, flat, strict=True))
     raw = _core.motion_points(
         columns["alpha"],

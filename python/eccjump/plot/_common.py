@@ -4,6 +4,8 @@ from __future__ import annotations
 
 from typing import TYPE_CHECKING, Any, cast
 
+from eccjump._base.optional import require
+
 if TYPE_CHECKING:
     from matplotlib.axes import Axes
     from matplotlib.figure import Figure
@@ -18,11 +20,7 @@ MAX_POINTS = 10**7
 
 
 def _plt() -> Any:
-    try:
-        import matplotlib.pyplot as plt
-    except ImportError as err:  # pragma: no cover - depends on the environment
-        raise ImportError("eccjump.plot needs matplotlib: pip install eccjump[plot]") from err
-    return plt
+    return require("matplotlib.pyplot", purpose="eccjump.plot", extra="plot")
 
 
 def _color(n: int) -> str:

@@ -10,7 +10,7 @@ from typing import TYPE_CHECKING, Any
 import numpy as np
 
 from eccjump._base.html import MODE_COLORS
-from eccjump.plot._common import _plt
+from eccjump._base.optional import require
 
 if TYPE_CHECKING:  # pragma: no cover
     from matplotlib.axes import Axes
@@ -23,7 +23,7 @@ def analysis_figure(result: Any, *, figsize: tuple[float, float] = (8.0, 7.5)) -
     """Three panels against time [s]: theta [deg], slip velocity [m/s] and b - R [mm], the
     data with one-standard-error bands, the model as a line; modes as bands (the model's)
     and a strip of the observed modes at the top."""
-    plt = _plt()
+    plt = require("matplotlib.pyplot", purpose="the analysis figure", extra="plot")
     rec, fitted, setup = result.rec, result.fit, result.setup
     t = rec.t
     y = fitted.states

@@ -11,6 +11,8 @@ import numpy as np
 from eccjump._base.body import Cylinder
 from eccjump._base.checks import Integrator, Rule, optional_real, real, rule_name, text
 from eccjump._base.sizes import check_fits, uncertainty_bytes
+from eccjump.classification.fields import JARM
+from eccjump.motion.fields import MOTION
 from eccjump.motion.simulation import checked_motion_options
 from eccjump.studies.uncertainty.delta import delta_method
 from eccjump.studies.uncertainty.questions import Progress, evaluate, jumps, outcome_counts, ran
@@ -202,7 +204,8 @@ def uncertainty(
     if progress is not None and not callable(progress):
         raise TypeError(f"progress must be None or a callable, not {type(progress).__name__}")
     opts = _question_options(q, rule, t_max, max_transitions, rtol, atol, integrator, n_threads)
-    need = uncertainty_bytes(size, q, len(spec.varied))
+    per_sample = (JARM if q == "jarm" else MOTION).bytes_per_point()
+    need = uncertainty_bytes(size, len(spec.varied), per_sample)
     check_fits("uncertainty", size, need, "n", "samples")
     cols, valid = draw(spec, size, seed_, how, policy)
     outcomes = evaluate(q, cols, valid, opts, progress)
