@@ -254,6 +254,28 @@ def test_the_names_and_bounds_are_the_cores():
     ]
     assert (motion.MAX_TRANSITIONS, motion.MAX_STEPS) == (10**6, 10**7)
     assert motion_fields.SEQUENCE_LEN == 8
+    assert motion_fields.INVALID == core.INVALID == 255
+
+
+@given(st.lists(st.sampled_from(MODES), max_size=12))
+def test_a_sequence_code_is_the_cores_and_reads_back(modes):
+    # The code is the core's own (a map stores it), read back by sequence_name.
+    code = motion_fields.sequence_code(modes)
+    assert code == eccjump._core.sequence_code([MODES.index(m) for m in modes])
+    assert motion_fields.sequence_name(code) == "→".join(modes[: motion_fields.SEQUENCE_LEN])
+
+
+def test_a_core_that_packs_sequences_otherwise_is_refused_at_import(monkeypatch):
+    # Three bits per mode instead of two: every sequence_name would be wrong.
+    monkeypatch.setattr(
+        eccjump._core,
+        "sequence_code",
+        lambda codes: sum((c + 1) << (3 * i) for i, c in enumerate(codes)),
+    )
+    spec = importlib.util.spec_from_file_location("fields_again", motion_fields.__file__)
+    assert spec is not None and spec.loader is not None
+    with pytest.raises(ImportError, match="cannot read the core's codes"):
+        spec.loader.exec_module(importlib.util.module_from_spec(spec))
 
 
 @pytest.mark.parametrize("table", ["mode_codes", "transition_reason_codes", "status_codes"])
@@ -388,3 +410,37 @@ def test_the_bridge_takes_simulates_options_by_their_names():
     assert options(_core.simulate) == options(eccjump.simulate)
     positional = inspect.signature(_core.simulate).parameters.values()
     assert [p.name for p in positional if p.kind != p.KEYWORD_ONLY] == ["chi", "km", "alpha"]
+
+
+@pytest.mark.parametrize("sensitivities", [False, True])
+def test_the_bridge_gives_the_run_by_the_names_of_its_result(sensitivities):
+    # One output convention (as the maps): the run by MotionResult's field names, each kind
+    # of record one list per field of its named tuple, so that the field order is written in
+    # the classes only.
+    import dataclasses
+
+    from eccjump import _core
+    from eccjump.motion import FlightRecord, ImpactRecord, MotionResult, Segment, Transition
+
+    body, alpha = Cylinder(0.5, 0.4), math.radians(30)
+    raw = _core.simulate(
+        body.chi, body.km, alpha, mu_s=1.0, mu_k=1.0, restitution=0.0, theta0=0.0,
+        omega0=0.0, slip0=0.0, l_max=math.inf, **motion.motion_options(
+            rule="paper", t_max=9.0, max_transitions=100, rtol=1e-10, atol=1e-12,
+            max_steps=10**6, integrator="RK45"),
+        dense_output=False, sensitivities=sensitivities,
+    )  # fmt: skip
+    added = {"body", "alpha", "mu_s", "mu_k", "restitution", "rule", "units"}  # simulate's
+    assert set(raw) == {f.name for f in dataclasses.fields(MotionResult)} - added
+    kinds = {
+        "transitions": Transition,
+        "flights": FlightRecord,
+        "impacts": ImpactRecord,
+        "segments": Segment,
+    }
+    r = eccjump.simulate(body, alpha, mu_s=1.0, t_max=9.0, sensitivities=sensitivities)
+    for name, cls in kinds.items():
+        assert set(raw[name]) == set(cls._fields), name
+        rows = tuple(map(cls._make, zip(*(raw[name][f] for f in cls._fields), strict=True)))
+        assert repr(getattr(r, name)) == repr(rows) and rows, name  # NaN: by repr
+    assert (raw["d_transitions"] is None) is not sensitivities

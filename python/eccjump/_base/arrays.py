@@ -3,7 +3,8 @@
 from __future__ import annotations
 
 import dataclasses
-from typing import Any, TypeVar
+from collections.abc import Mapping
+from typing import Any, NamedTuple, TypeVar
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
@@ -11,6 +12,7 @@ from numpy.typing import ArrayLike, NDArray
 from eccjump._base.checks import U32_MAX, int_array, integer, real_array
 
 T = TypeVar("T")
+R = TypeVar("R", bound=NamedTuple)
 
 
 def broadcast_flat(
@@ -124,10 +126,18 @@ def fields_equal(self: Any, other: Any) -> bool:
 
 
 def frozen_result(cls: type[T], fields: dict[str, Any]) -> T:
-    """The frozen dataclass ``cls`` holding ``fields`` (every field, in declaration order):
+    """The frozen dataclass ``cls`` holding ``fields`` (every field, by name):
     the object ``cls(**fields)`` makes, without the ``object.__setattr__`` its ``__init__``
     calls per field (for ``RollResult``'s 19 fields, a tenth of a short ``roll``). The tests
     compare the two (``tests/test_roll.py``, ``tests/test_motion.py``)."""
     result = object.__new__(cls)
     object.__setattr__(result, "__dict__", fields)  # the frozen class's own refuses
     return result
+
+
+def records(cls: type[R], columns: Mapping[str, Any]) -> tuple[R, ...]:
+    """The named tuples ``cls`` of a run's records from the bridge's columns, one list per
+    field by name (``rust/eccjump-py/src/columns.rs``, ``Records``): the order of the fields
+    is ``cls``'s, written there only."""
+    rows = zip(*(columns[name] for name in cls._fields), strict=True)
+    return tuple(map(cls._make, rows))

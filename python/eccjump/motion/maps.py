@@ -238,7 +238,7 @@ def _block(
     """One grid call of the core: the flat fields of alpha × the other axes."""
     a = np.array(alpha, dtype=np.float64, order="C").ravel()
     others = [np.array(x, dtype=np.float64, order="C").ravel() for x in rest]
-    return _core.motion_grid(a, *others, options=_core.MotionOptions(**opts))
+    return _core.motion_grid(a, *others, options=_core.MotionMapOptions(**opts))
 
 
 def motion_map(

@@ -231,7 +231,7 @@ def motion_points(
         columns["restitution"],
         columns["theta0"],
         columns["omega0"],
-        options=_core.MotionOptions(**opts),
+        options=_core.MotionMapOptions(**opts),
     )
     return MotionPoints(**{k: raw[k].reshape(shape) for k in FIELDS})
 

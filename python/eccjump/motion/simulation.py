@@ -15,7 +15,7 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from eccjump import _core
-from eccjump._base.arrays import frozen_result, same_values
+from eccjump._base.arrays import frozen_result, records, same_values
 from eccjump._base.body import Cylinder
 from eccjump._base.checks import (
     Integrator,
@@ -492,11 +492,11 @@ def motion_options(
 def checked_motion_options(*, n_threads: object = 0, **options: object) -> dict[str, Any]:
     """:func:`motion_options` with ``n_threads`` (0 ... 256), range-checked by the core
     before any work -- a call on no points checks the options alone: a ValueError naming
-    the first bad one, as ``simulate`` names it. The keywords of ``_core.MotionOptions``."""
+    the first bad one, as ``simulate`` names it. The keywords of ``_core.MotionMapOptions``."""
     opts = {**motion_options(**options), "n_threads": integer("n_threads", n_threads, 0, 256)}
     none = np.empty(0)
     _core.motion_points(
-        none, none, none, none, none, none, none, none, options=_core.MotionOptions(**opts)
+        none, none, none, none, none, none, none, none, options=_core.MotionMapOptions(**opts)
     )
     return opts
 
@@ -647,7 +647,7 @@ def simulate(
         max_steps=max_steps,
         integrator=integrator,
     )
-    points, records, ledger, status, message, nfev, dense, sens = _core.simulate(
+    raw = _core.simulate(
         body.chi,
         body.km,
         alpha,
@@ -662,44 +662,20 @@ def simulate(
         dense_output=flag("dense_output", dense_output),
         sensitivities=flag("sensitivities", sensitivities),
     )
-    d_transitions, d_singular = (None, None) if sens is None else sens
-    t, theta, omega, distance, ldot, b, bdot, Fx, Fy, energy, dissipated, mode = points
-    transitions, flights, impacts, segments = records
-    energy0, dissipated_slip, dissipated_impacts = ledger
-    return frozen_result(
-        MotionResult,
-        {
-            "body": body,
-            "alpha": alpha,
-            "mu_s": mu_s,
-            "mu_k": mu_k,
-            "restitution": restitution,
-            "rule": rule,
-            "t": t,
-            "theta": theta,
-            "omega": omega,
-            "l": distance,
-            "ldot": ldot,
-            "b": b,
-            "bdot": bdot,
-            "Fx": Fx,
-            "Fy": Fy,
-            "energy": energy,
-            "dissipated": dissipated,
-            "mode": mode,
-            "transitions": tuple(map(Transition._make, transitions)),
-            "flights": tuple(map(FlightRecord._make, flights)),
-            "impacts": tuple(map(ImpactRecord._make, impacts)),
-            "segments": tuple(map(Segment._make, segments)),
-            "energy0": energy0,
-            "dissipated_slip": dissipated_slip,
-            "dissipated_impacts": dissipated_impacts,
-            "status": status,
-            "message": message,
-            "nfev": nfev,
-            "sol": None if dense is None else MotionSolution(dense),
-            "d_transitions": d_transitions,
-            "d_singular": d_singular,
-            "units": None,
-        },
-    )
+    # The bridge gives the run by MotionResult's field names.
+    result: dict[str, Any] = {
+        "body": body,
+        "alpha": alpha,
+        "mu_s": mu_s,
+        "mu_k": mu_k,
+        "restitution": restitution,
+        "rule": rule,
+        **raw,
+    }
+    result["transitions"] = records(Transition, raw["transitions"])
+    result["flights"] = records(FlightRecord, raw["flights"])
+    result["impacts"] = records(ImpactRecord, raw["impacts"])
+    result["segments"] = records(Segment, raw["segments"])
+    result["sol"] = None if raw["sol"] is None else MotionSolution(raw["sol"])
+    result["units"] = None
+    return frozen_result(MotionResult, result)
