@@ -307,6 +307,50 @@ def test_bad_input_is_a_value_error_naming_the_parameter(kwargs, param):
     assert len(str(err.value)) <= 200
 
 
+@pytest.mark.parametrize(
+    "kwargs, error, param",
+    [
+        ({"t_max": "1"}, TypeError, "t_max"),
+        ({"rule": None}, TypeError, "rule"),
+        ({"max_transitions": 2.0}, TypeError, "max_transitions"),
+        ({"max_steps": 0}, ValueError, "max_steps"),
+        ({"max_transitions": 10**6 + 1}, ValueError, "max_transitions"),
+        ({"integrator": 45}, TypeError, "integrator"),
+        ({"rtol": 1e-3}, ValueError, "rtol"),  # the core's range, by to_core
+        ({"t_max": -1.0}, ValueError, "t_max"),
+        ({"integrator": "RK4"}, ValueError, "integrator"),
+    ],
+)
+def test_motion_options_name_the_keyword_of_a_bad_option(kwargs, error, param):
+    from eccjump.motion import MotionOptions
+
+    with pytest.raises(error, match=param) as err:
+        MotionOptions(**kwargs).to_core(0)
+    assert len(str(err.value)) <= 200
+    with pytest.raises(ValueError, match="n_threads"):
+        MotionOptions().to_core(257)
+
+
+def test_motion_options_carry_plain_values_and_the_defaults_of_every_entry_point():
+    # One list of the run's options: every entry point of the full motion takes its keywords
+    # with its defaults (uncertainty all but max_steps, the explorer rule and its own t_max),
+    # and a map records them.
+    import inspect
+
+    from eccjump.motion import MotionOptions
+
+    o = MotionOptions(t_max=np.float64(20.0), max_steps=np.int64(50_000))
+    assert type(o.t_max) is float and type(o.max_steps) is int and o.max_steps == 50_000
+    default = MotionOptions().keywords()
+    for f in (eccjump.simulate, eccjump.motion_map, eccjump.motion_points, eccjump.uncertainty):
+        ps = inspect.signature(f).parameters
+        given = {k: ps[k].default for k in default if k in ps}
+        assert given == {k: default[k] for k in given}, f.__name__
+        assert set(default) - set(given) <= {"max_steps"}, f.__name__
+    m = eccjump.motion_map(0.7, 0.15, 0.1, 1.0, t_max=5.0, integrator="Vern9")
+    assert m.options == MotionOptions(t_max=5.0, integrator="Vern9").keywords()
+
+
 def test_a_body_without_inertia_about_its_centre_of_mass_is_refused():
     with pytest.raises(ValueError, match="km") as err:
         eccjump.simulate(Cylinder(0.5, 0.0), 0.5, mu_s=1.0)
@@ -420,14 +464,19 @@ def test_the_bridge_gives_the_run_by_the_names_of_its_result(sensitivities):
     import dataclasses
 
     from eccjump import _core
-    from eccjump.motion import FlightRecord, ImpactRecord, MotionResult, Segment, Transition
+    from eccjump.motion import (
+        FlightRecord,
+        ImpactRecord,
+        MotionOptions,
+        MotionResult,
+        Segment,
+        Transition,
+    )
 
     body, alpha = Cylinder(0.5, 0.4), math.radians(30)
     raw = _core.simulate(
         body.chi, body.km, alpha, mu_s=1.0, mu_k=1.0, restitution=0.0, theta0=0.0,
-        omega0=0.0, slip0=0.0, l_max=math.inf, **motion.motion_options(
-            rule="paper", t_max=9.0, max_transitions=100, rtol=1e-10, atol=1e-12,
-            max_steps=10**6, integrator="RK45"),
+        omega0=0.0, slip0=0.0, l_max=math.inf, **MotionOptions(t_max=9.0).keywords(),
         dense_output=False, sensitivities=sensitivities,
     )  # fmt: skip
     added = {"body", "alpha", "mu_s", "mu_k", "restitution", "rule", "units"}  # simulate's

@@ -21,15 +21,18 @@ from eccjump._base.checks import (
     Integrator,
     Rule,
     flag,
-    integer,
     optional_real,
     real,
     real_array,
     rule_name,
-    text,
 )
 from eccjump._base.html import card, deg, num, timeline
 from eccjump._base.units import Units
+
+# The bounds live with the options; still named here, where they were.
+from eccjump.motion.options import MAX_STEPS as MAX_STEPS
+from eccjump.motion.options import MAX_TRANSITIONS as MAX_TRANSITIONS
+from eccjump.motion.options import MotionOptions
 
 if TYPE_CHECKING:  # pragma: no cover
     from matplotlib.figure import Figure
@@ -51,10 +54,6 @@ REASONS = (
     "impact",
     "settle",
 )
-#: The core's bounds on the work of a run, checked here first so that the error states the
-#: true range.
-MAX_TRANSITIONS: int = _core.MAX_TRANSITIONS
-MAX_STEPS: int = _core.MAX_STEPS
 #: How a run can end.
 STATUSES = ("t_max", "l_max", "max_transitions", "painleve", "jam", "failed", "landed")
 
@@ -463,44 +462,6 @@ def _sensitivities_si(d: NDArray[np.float64] | None, u: Units) -> NDArray[np.flo
     return out
 
 
-def motion_options(
-    *,
-    rule: object,
-    t_max: object,
-    max_transitions: object,
-    rtol: object,
-    atol: object,
-    max_steps: object,
-    integrator: object,
-) -> dict[str, Any]:
-    """The options of a run of the full motion, type-checked here, their ranges by the core
-    (``SimOptions::validate``): every entry point of the full motion passes them through
-    this one path -- :func:`simulate` (whose core call checks them with the body's values)
-    and, through :func:`checked_motion_options`, the maps, the points and the uncertainty
-    studies, whatever their question."""
-    return {
-        "rule": rule_name(rule),
-        "t_max": real("t_max", t_max),
-        "max_transitions": integer("max_transitions", max_transitions, 1, MAX_TRANSITIONS),
-        "rtol": real("rtol", rtol),
-        "atol": real("atol", atol),
-        "max_steps": integer("max_steps", max_steps, 1, MAX_STEPS),
-        "integrator": text("integrator", integrator),
-    }
-
-
-def checked_motion_options(*, n_threads: object = 0, **options: object) -> dict[str, Any]:
-    """:func:`motion_options` with ``n_threads`` (0 ... 256), range-checked by the core
-    before any work -- a call on no points checks the options alone: a ValueError naming
-    the first bad one, as ``simulate`` names it. The keywords of ``_core.MotionMapOptions``."""
-    opts = {**motion_options(**options), "n_threads": integer("n_threads", n_threads, 0, 256)}
-    none = np.empty(0)
-    _core.motion_points(
-        none, none, none, none, none, none, none, none, options=_core.MotionMapOptions(**opts)
-    )
-    return opts
-
-
 def simulate(
     body: Cylinder,
     alpha: float,
@@ -638,7 +599,7 @@ def simulate(
     restitution = real("restitution", restitution)
     rule = rule_name(rule)
     theta0, omega0, slip0 = real("theta0", theta0), real("omega0", omega0), real("slip0", slip0)
-    run = motion_options(
+    run = MotionOptions(
         rule=rule,
         t_max=t_max,
         max_transitions=max_transitions,
@@ -658,7 +619,7 @@ def simulate(
         omega0=omega0,
         slip0=slip0,
         l_max=real("l_max", l_max),
-        **run,
+        **run.keywords(),
         dense_output=flag("dense_output", dense_output),
         sensitivities=flag("sensitivities", sensitivities),
     )

@@ -12,6 +12,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 from eccjump._base.body import Cylinder
+from eccjump.motion.options import MotionOptions
 from eccjump.motion.simulation import MODES, MotionResult, simulate
 from eccjump.studies.experiment.geometry import RampFrame, marker_offset
 from eccjump.studies.experiment.track import Track
@@ -69,6 +70,8 @@ def synthetic_track(
     track, Gaussian noise of ``noise_px`` pixels on each coordinate."""
     unit = math.sqrt(radius / g)
     horizon = 3.0 / unit if duration is None else duration / unit
+    # Past the frames' end, with room for the stick-slip chatter of a long track.
+    options = MotionOptions(t_max=horizon + 2.0, max_transitions=200)
     run = simulate(
         body,
         alpha,
@@ -77,8 +80,7 @@ def synthetic_track(
         restitution=restitution,
         theta0=theta0,
         omega0=omega0,
-        t_max=horizon + 2.0,
-        max_transitions=200,
+        **options.keywords(),
         dense_output=True,
     )
     if duration is None and run.flights and math.isfinite(run.flights[0].t_landing):
