@@ -3,7 +3,9 @@
 from __future__ import annotations
 
 import dataclasses
-from collections.abc import Mapping
+import functools
+import operator
+from collections.abc import Callable, Mapping
 from typing import Any, NamedTuple, TypeVar
 
 import numpy as np
@@ -136,8 +138,15 @@ def frozen_result(cls: type[T], fields: dict[str, Any]) -> T:
 
 
 def records(cls: type[R], columns: Mapping[str, Any]) -> tuple[R, ...]:
-    """The named tuples ``cls`` of a run's records from the bridge's columns, one list per
-    field by name (``rust/eccjump-py/src/columns.rs``, ``Records``): the order of the fields
-    is ``cls``'s, written there only."""
-    rows = zip(*(columns[name] for name in cls._fields), strict=True)
-    return tuple(map(cls._make, rows))
+    """The named tuples ``cls`` (of two fields or more) of a run's records from the bridge's
+    columns, one list per field by name (``rust/eccjump-py/src/columns.rs``, ``Records``):
+    the order of the fields is ``cls``'s, written there only. The columns have one length by
+    construction."""
+    return tuple(map(cls._make, zip(*_columns_of(cls)(columns), strict=False)))
+
+
+@functools.cache
+def _columns_of(cls: type[tuple]) -> Callable[[Mapping[str, Any]], tuple[Any, ...]]:
+    """The getter of ``cls``'s columns in the order of its fields, made once per class: a
+    record of a short run costs little more than its tuple."""
+    return operator.itemgetter(*cls._fields)  # type: ignore[attr-defined]

@@ -3,7 +3,6 @@ that every entry point of the full motion shares, with its checks."""
 
 from __future__ import annotations
 
-import dataclasses
 from dataclasses import dataclass
 from typing import Any
 
@@ -72,22 +71,20 @@ class MotionOptions:
     def __post_init__(self) -> None:
         """The type checks, in the order of the fields (of several bad keywords the first is
         named), each value made the plain Python type the bridge takes."""
-        checked = {
-            "rule": rule_name(self.rule),
-            "t_max": real("t_max", self.t_max),
-            "max_transitions": integer("max_transitions", self.max_transitions, 1, MAX_TRANSITIONS),
-            "rtol": real("rtol", self.rtol),
-            "atol": real("atol", self.atol),
-            "max_steps": integer("max_steps", self.max_steps, 1, MAX_STEPS),
-            "integrator": text("integrator", self.integrator),
-        }
-        for name, value in checked.items():
-            object.__setattr__(self, name, value)  # frozen: the dataclass's own way
+        self.__dict__.update(  # frozen: not through its __setattr__
+            rule=rule_name(self.rule),
+            t_max=real("t_max", self.t_max),
+            max_transitions=integer("max_transitions", self.max_transitions, 1, MAX_TRANSITIONS),
+            rtol=real("rtol", self.rtol),
+            atol=real("atol", self.atol),
+            max_steps=integer("max_steps", self.max_steps, 1, MAX_STEPS),
+            integrator=text("integrator", self.integrator),
+        )
 
     def keywords(self) -> dict[str, Any]:
         """The options by name: the keywords of :func:`eccjump.simulate` (and of every entry
         point above), and the attributes a motion map records."""
-        return {f.name: getattr(self, f.name) for f in dataclasses.fields(self)}
+        return dict(self.__dict__)  # the fields, in their order (no other attribute)
 
     def to_core(self, n_threads: object = 0) -> _core.MotionMapOptions:
         """The options as the core's maps take them, with ``n_threads`` (0 ... 256), their

@@ -15,7 +15,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass, fields, replace
-from typing import TYPE_CHECKING, Any, NamedTuple
+from typing import TYPE_CHECKING, Any, NamedTuple, cast
 
 import numpy as np
 from numpy.typing import NDArray
@@ -444,9 +444,11 @@ def roll(
         rule=rule,
         integrator=text("integrator", integrator),
     )
-    # The bridge gives the run by RollResult's field names.
-    result: dict[str, Any] = {"body": body, "alpha": alpha, "mu_s": mu_s, "rule": rule, **raw}
+    # The bridge gives the run by RollResult's field names; the call's values complete it.
+    result = cast("dict[str, Any]", raw)
     result["events"] = records(Event, raw["events"])
-    result["sol"] = None if raw["sol"] is None else DenseSolution(raw["sol"])
+    if raw["sol"] is not None:
+        result["sol"] = DenseSolution(raw["sol"])
+    result["body"], result["alpha"], result["mu_s"], result["rule"] = body, alpha, mu_s, rule
     result["units"] = None
     return frozen_result(RollResult, result)

@@ -9,7 +9,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass, fields, replace
-from typing import TYPE_CHECKING, Any, NamedTuple
+from typing import TYPE_CHECKING, Any, NamedTuple, cast
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
@@ -623,20 +623,14 @@ def simulate(
         dense_output=flag("dense_output", dense_output),
         sensitivities=flag("sensitivities", sensitivities),
     )
-    # The bridge gives the run by MotionResult's field names.
-    result: dict[str, Any] = {
-        "body": body,
-        "alpha": alpha,
-        "mu_s": mu_s,
-        "mu_k": mu_k,
-        "restitution": restitution,
-        "rule": rule,
-        **raw,
-    }
+    # The bridge gives the run by MotionResult's field names; the call's values complete it.
+    result = cast("dict[str, Any]", raw)
     result["transitions"] = records(Transition, raw["transitions"])
     result["flights"] = records(FlightRecord, raw["flights"])
     result["impacts"] = records(ImpactRecord, raw["impacts"])
     result["segments"] = records(Segment, raw["segments"])
-    result["sol"] = None if raw["sol"] is None else MotionSolution(raw["sol"])
-    result["units"] = None
+    if raw["sol"] is not None:
+        result["sol"] = MotionSolution(raw["sol"])
+    result["body"], result["alpha"], result["rule"], result["units"] = body, alpha, rule, None
+    result["mu_s"], result["mu_k"], result["restitution"] = mu_s, mu_k, restitution
     return frozen_result(MotionResult, result)

@@ -9,13 +9,14 @@ use eccjump_core::error::{short, try_filled};
 use numpy::{Element, IntoPyArray, PyArray1, PyArray2, PyArrayMethods};
 use pyo3::exceptions::{PyMemoryError, PyValueError};
 use pyo3::prelude::*;
-use pyo3::types::{PyDict, PyList};
+use pyo3::types::{PyDict, PyList, PyString};
 
 /// Sets `d[name]` to the column `f(row)` of `rows`, allocated fallibly (a `MemoryError`
-/// naming the field, not an abort, if it does not fit).
+/// naming the field, not an abort, if it does not fit). `name` is a Python string made once
+/// (`intern!`): a run's few points cost no more than its names.
 pub fn set_column<'py, R, T: Element>(
     d: &Bound<'py, PyDict>,
-    name: &str,
+    name: &Bound<'py, PyString>,
     rows: &[R],
     f: impl Fn(&R) -> T,
 ) -> PyResult<()> {
@@ -48,8 +49,12 @@ impl<'py, 'r, R> Records<'py, 'r, R> {
         }
     }
 
-    /// Adds the field `name`: `f` of every record.
-    pub fn field<T: IntoPyObject<'py>>(self, name: &str, f: impl Fn(&R) -> T) -> PyResult<Self> {
+    /// Adds the field `name` (a Python string made once, `intern!`): `f` of every record.
+    pub fn field<T: IntoPyObject<'py>>(
+        self,
+        name: &Bound<'py, PyString>,
+        f: impl Fn(&R) -> T,
+    ) -> PyResult<Self> {
         let list = PyList::new(self.dict.py(), self.rows.iter().map(f))?;
         self.dict.set_item(name, list)?;
         Ok(self)

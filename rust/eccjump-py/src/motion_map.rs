@@ -11,6 +11,7 @@ use eccjump_core::maps::motion::{
 };
 use eccjump_core::maps::motion_points::MotionColumns;
 use numpy::PyReadonlyArray1;
+use pyo3::intern;
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
 
@@ -96,21 +97,21 @@ fn summaries<'py>(
 /// One numpy column per field of the summaries (the names of `eccjump.motion.fields.TABLE`).
 fn summary_columns<'py>(py: Python<'py>, out: &[MotionSummary]) -> PyResult<Bound<'py, PyDict>> {
     let d = PyDict::new(py);
-    set_column(&d, "status", out, |s| s.status)?;
-    set_column(&d, "sequence", out, |s| s.sequence)?;
-    set_column(&d, "n_modes", out, |s| s.n_modes)?;
-    set_column(&d, "jarm", out, |s| s.jarm)?;
-    set_column(&d, "slipped_first", out, |s| s.slipped_first)?;
-    set_column(&d, "slip_t", out, |s| s.slip_t)?;
-    set_column(&d, "slip_theta", out, |s| s.slip_theta)?;
-    set_column(&d, "liftoff_reason", out, |s| s.liftoff_reason)?;
-    set_column(&d, "liftoff_t", out, |s| s.liftoff_t)?;
-    set_column(&d, "liftoff_theta", out, |s| s.liftoff_theta)?;
-    set_column(&d, "flight_time", out, |s| s.flight_time)?;
-    set_column(&d, "apex", out, |s| s.apex)?;
-    set_column(&d, "distance", out, |s| s.distance)?;
-    set_column(&d, "landing", out, |s| s.landing)?;
-    set_column(&d, "energy_lost", out, |s| s.energy_lost)?;
+    set_column(&d, intern!(py, "status"), out, |s| s.status)?;
+    set_column(&d, intern!(py, "sequence"), out, |s| s.sequence)?;
+    set_column(&d, intern!(py, "n_modes"), out, |s| s.n_modes)?;
+    set_column(&d, intern!(py, "jarm"), out, |s| s.jarm)?;
+    set_column(&d, intern!(py, "slipped_first"), out, |s| s.slipped_first)?;
+    set_column(&d, intern!(py, "slip_t"), out, |s| s.slip_t)?;
+    set_column(&d, intern!(py, "slip_theta"), out, |s| s.slip_theta)?;
+    set_column(&d, intern!(py, "liftoff_reason"), out, |s| s.liftoff_reason)?;
+    set_column(&d, intern!(py, "liftoff_t"), out, |s| s.liftoff_t)?;
+    set_column(&d, intern!(py, "liftoff_theta"), out, |s| s.liftoff_theta)?;
+    set_column(&d, intern!(py, "flight_time"), out, |s| s.flight_time)?;
+    set_column(&d, intern!(py, "apex"), out, |s| s.apex)?;
+    set_column(&d, intern!(py, "distance"), out, |s| s.distance)?;
+    set_column(&d, intern!(py, "landing"), out, |s| s.landing)?;
+    set_column(&d, intern!(py, "energy_lost"), out, |s| s.energy_lost)?;
     Ok(d)
 }
 

@@ -9,6 +9,7 @@ use eccjump_core::mechanics::friction::friction_ratio;
 use eccjump_core::modes::rolling::run::{roll_until, RollOptions, RollStatus};
 use eccjump_core::modes::rolling::solution::RollSolution;
 use numpy::{IntoPyArray, PyArray2, PyReadonlyArray1};
+use pyo3::intern;
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
 
@@ -56,31 +57,32 @@ pub fn roll<'py>(
         _ => None,
     };
     let events = Records::new(py, &run.events)
-        .field("name", |e| ROLL_EVENTS.of(py, e.event))?
-        .field("t", |e| e.t)?
-        .field("theta", |e| e.theta)?
-        .field("omega", |e| e.omega)?;
+        .field(intern!(py, "name"), |e| ROLL_EVENTS.of(py, e.event))?
+        .field(intern!(py, "t"), |e| e.t)?
+        .field(intern!(py, "theta"), |e| e.theta)?
+        .field(intern!(py, "omega"), |e| e.omega)?;
     let d = PyDict::new(py);
     // The record's vectors move into numpy (no copy).
     let series = [
-        ("t", run.t),
-        ("theta", run.theta),
-        ("omega", run.omega),
-        ("omega_dot", run.omega_dot),
-        ("Fx", run.fx),
-        ("Fy", run.fy),
-        ("l", run.l),
-        ("friction_ratio", run.ratio),
+        (intern!(py, "t"), run.t),
+        (intern!(py, "theta"), run.theta),
+        (intern!(py, "omega"), run.omega),
+        (intern!(py, "omega_dot"), run.omega_dot),
+        (intern!(py, "Fx"), run.fx),
+        (intern!(py, "Fy"), run.fy),
+        (intern!(py, "l"), run.l),
+        (intern!(py, "friction_ratio"), run.ratio),
     ];
     for (name, values) in series {
         d.set_item(name, values.into_pyarray(py))?;
     }
-    d.set_item("events", events.into_dict())?;
-    d.set_item("terminal_event", terminal_event)?;
-    d.set_item("status", run.status.code())?;
-    d.set_item("message", run.status.message())?;
-    d.set_item("nfev", run.nfev)?;
-    d.set_item("sol", run.dense.map(|sol| DenseSolution { sol }))?;
+    d.set_item(intern!(py, "events"), events.into_dict())?;
+    d.set_item(intern!(py, "terminal_event"), terminal_event)?;
+    d.set_item(intern!(py, "status"), run.status.code())?;
+    d.set_item(intern!(py, "message"), run.status.message())?;
+    d.set_item(intern!(py, "nfev"), run.nfev)?;
+    let sol = run.dense.map(|sol| DenseSolution { sol });
+    d.set_item(intern!(py, "sol"), sol)?;
     Ok(d)
 }
 

@@ -14,6 +14,7 @@ use eccjump_core::motion::sensitivities::{
 use eccjump_core::motion::solution::MotionSolution;
 use eccjump_core::motion::{simulate_until, MotionRun, SimOptions};
 use numpy::{IntoPyArray, PyArray1, PyArray2, PyArray3, PyArrayMethods, PyReadonlyArray1};
+use pyo3::intern;
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
 
@@ -82,20 +83,20 @@ pub fn simulate<'py>(
     })?;
     let d = points(py, &run.points)?;
     records(&d, &run)?;
-    d.set_item("energy0", run.energy0)?;
-    d.set_item("dissipated_slip", run.dissipated_slip)?;
-    d.set_item("dissipated_impacts", run.dissipated_impacts)?;
+    d.set_item(intern!(py, "energy0"), run.energy0)?;
+    d.set_item(intern!(py, "dissipated_slip"), run.dissipated_slip)?;
+    d.set_item(intern!(py, "dissipated_impacts"), run.dissipated_impacts)?;
     let status = run.status.unwrap_or(MotionStatus::Failed);
-    d.set_item("status", STATUSES.of(py, status))?;
-    d.set_item("message", run.message)?;
-    d.set_item("nfev", run.nfev)?;
-    d.set_item("sol", run.dense.map(|sol| MotionDense { sol }))?;
+    d.set_item(intern!(py, "status"), STATUSES.of(py, status))?;
+    d.set_item(intern!(py, "message"), run.message)?;
+    d.set_item(intern!(py, "nfev"), run.nfev)?;
+    d.set_item(intern!(py, "sol"), run.dense.map(|sol| MotionDense { sol }))?;
     let (d_transitions, d_singular) = match sens {
         Some(s) => derivatives(py, s).map(|(dt, ds)| (Some(dt), Some(ds)))?,
         None => (None, None),
     };
-    d.set_item("d_transitions", d_transitions)?;
-    d.set_item("d_singular", d_singular)?;
+    d.set_item(intern!(py, "d_transitions"), d_transitions)?;
+    d.set_item(intern!(py, "d_singular"), d_singular)?;
     Ok(d)
 }
 
@@ -110,18 +111,18 @@ fn derivatives(py: Python<'_>, s: Sensitivities) -> PyResult<Derivatives<'_>> {
 /// The recorded points, one numpy array per field of `MotionResult`.
 fn points<'py>(py: Python<'py>, p: &[Point]) -> PyResult<Bound<'py, PyDict>> {
     let d = PyDict::new(py);
-    set_column(&d, "t", p, |q| q.t)?;
-    set_column(&d, "theta", p, |q| q.state.theta)?;
-    set_column(&d, "omega", p, |q| q.state.omega)?;
-    set_column(&d, "l", p, |q| q.state.l)?;
-    set_column(&d, "ldot", p, |q| q.state.ldot)?;
-    set_column(&d, "b", p, |q| q.state.b)?;
-    set_column(&d, "bdot", p, |q| q.state.bdot)?;
-    set_column(&d, "Fx", p, |q| q.fx)?;
-    set_column(&d, "Fy", p, |q| q.fy)?;
-    set_column(&d, "energy", p, |q| q.energy)?;
-    set_column(&d, "dissipated", p, |q| q.dissipated)?;
-    set_column(&d, "mode", p, |q| q.mode as i8)?;
+    set_column(&d, intern!(py, "t"), p, |q| q.t)?;
+    set_column(&d, intern!(py, "theta"), p, |q| q.state.theta)?;
+    set_column(&d, intern!(py, "omega"), p, |q| q.state.omega)?;
+    set_column(&d, intern!(py, "l"), p, |q| q.state.l)?;
+    set_column(&d, intern!(py, "ldot"), p, |q| q.state.ldot)?;
+    set_column(&d, intern!(py, "b"), p, |q| q.state.b)?;
+    set_column(&d, intern!(py, "bdot"), p, |q| q.state.bdot)?;
+    set_column(&d, intern!(py, "Fx"), p, |q| q.fx)?;
+    set_column(&d, intern!(py, "Fy"), p, |q| q.fy)?;
+    set_column(&d, intern!(py, "energy"), p, |q| q.energy)?;
+    set_column(&d, intern!(py, "dissipated"), p, |q| q.dissipated)?;
+    set_column(&d, intern!(py, "mode"), p, |q| q.mode as i8)?;
     Ok(d)
 }
 
@@ -130,42 +131,44 @@ fn points<'py>(py: Python<'py>, p: &[Point]) -> PyResult<Bound<'py, PyDict>> {
 fn records(d: &Bound<'_, PyDict>, run: &MotionRun) -> PyResult<()> {
     let py = d.py();
     let transitions = Records::new(py, &run.transitions)
-        .field("t", |t| t.t)?
-        .field("from_mode", |t| t.from.map(|m| MODES.of(py, m)))?
-        .field("to_mode", |t| MODES.of(py, t.to))?
-        .field("reason", |t| REASONS.of(py, t.reason))?
-        .field("theta", |t| t.state.theta)?
-        .field("omega", |t| t.state.omega)?
-        .field("l", |t| t.state.l)?
-        .field("ldot", |t| t.state.ldot)?
-        .field("b", |t| t.state.b)?
-        .field("bdot", |t| t.state.bdot)?;
+        .field(intern!(py, "t"), |t| t.t)?
+        .field(intern!(py, "from_mode"), |t| {
+            t.from.map(|m| MODES.of(py, m))
+        })?
+        .field(intern!(py, "to_mode"), |t| MODES.of(py, t.to))?
+        .field(intern!(py, "reason"), |t| REASONS.of(py, t.reason))?
+        .field(intern!(py, "theta"), |t| t.state.theta)?
+        .field(intern!(py, "omega"), |t| t.state.omega)?
+        .field(intern!(py, "l"), |t| t.state.l)?
+        .field(intern!(py, "ldot"), |t| t.state.ldot)?
+        .field(intern!(py, "b"), |t| t.state.b)?
+        .field(intern!(py, "bdot"), |t| t.state.bdot)?;
     let flights = Records::new(py, &run.flights)
-        .field("t_liftoff", |f| f.t_liftoff)?
-        .field("t_landing", |f| f.t_landing)?
-        .field("theta_liftoff", |f| f.theta_liftoff)?
-        .field("theta_landing", |f| f.theta_landing)?
-        .field("apex", |f| f.apex)?
-        .field("distance", |f| f.distance)?;
+        .field(intern!(py, "t_liftoff"), |f| f.t_liftoff)?
+        .field(intern!(py, "t_landing"), |f| f.t_landing)?
+        .field(intern!(py, "theta_liftoff"), |f| f.theta_liftoff)?
+        .field(intern!(py, "theta_landing"), |f| f.theta_landing)?
+        .field(intern!(py, "apex"), |f| f.apex)?
+        .field(intern!(py, "distance"), |f| f.distance)?;
     let impacts = Records::new(py, &run.impacts)
-        .field("t", |i| i.t)?
-        .field("normal_speed", |i| i.normal_speed)?
-        .field("slip_before", |i| i.slip_before)?
-        .field("pt", |i| i.pt)?
-        .field("pn", |i| i.pn)?
-        .field("energy_lost", |i| i.energy_lost)?
-        .field("sticking", |i| i.sticking)?
-        .field("outcome", |i| MODES.of(py, i.outcome))?;
+        .field(intern!(py, "t"), |i| i.t)?
+        .field(intern!(py, "normal_speed"), |i| i.normal_speed)?
+        .field(intern!(py, "slip_before"), |i| i.slip_before)?
+        .field(intern!(py, "pt"), |i| i.pt)?
+        .field(intern!(py, "pn"), |i| i.pn)?
+        .field(intern!(py, "energy_lost"), |i| i.energy_lost)?
+        .field(intern!(py, "sticking"), |i| i.sticking)?
+        .field(intern!(py, "outcome"), |i| MODES.of(py, i.outcome))?;
     let segments = Records::new(py, &run.segments)
-        .field("mode", |s| MODES.of(py, s.mode))?
-        .field("reason", |s| REASONS.of(py, s.reason))?
-        .field("t_start", |s| s.t_start)?
-        .field("t_end", |s| s.t_end)?
-        .field("nfev", |s| s.nfev)?;
-    d.set_item("transitions", transitions.into_dict())?;
-    d.set_item("flights", flights.into_dict())?;
-    d.set_item("impacts", impacts.into_dict())?;
-    d.set_item("segments", segments.into_dict())
+        .field(intern!(py, "mode"), |s| MODES.of(py, s.mode))?
+        .field(intern!(py, "reason"), |s| REASONS.of(py, s.reason))?
+        .field(intern!(py, "t_start"), |s| s.t_start)?
+        .field(intern!(py, "t_end"), |s| s.t_end)?
+        .field(intern!(py, "nfev"), |s| s.nfev)?;
+    d.set_item(intern!(py, "transitions"), transitions.into_dict())?;
+    d.set_item(intern!(py, "flights"), flights.into_dict())?;
+    d.set_item(intern!(py, "impacts"), impacts.into_dict())?;
+    d.set_item(intern!(py, "segments"), segments.into_dict())
 }
 
 /// The dense output of a full-motion run (`MotionResult.sol`), evaluated by the core.
