@@ -15,7 +15,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass, fields, replace
-from typing import TYPE_CHECKING, Any, NamedTuple, cast
+from typing import TYPE_CHECKING, Any, NamedTuple
 
 import numpy as np
 from numpy.typing import NDArray
@@ -445,7 +445,7 @@ def roll(
         integrator=text("integrator", integrator),
     )
     # The bridge gives the run by RollResult's field names; the call's values complete it.
-    result = cast("dict[str, Any]", raw)
+    result: dict[str, Any] = raw  # type: ignore[assignment]  # a TypedDict, completed here
     result["events"] = records(Event, raw["events"])
     if raw["sol"] is not None:
         result["sol"] = DenseSolution(raw["sol"])

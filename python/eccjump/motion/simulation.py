@@ -9,7 +9,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass, fields, replace
-from typing import TYPE_CHECKING, Any, NamedTuple, cast
+from typing import TYPE_CHECKING, Any, NamedTuple
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
@@ -624,7 +624,7 @@ def simulate(
         sensitivities=flag("sensitivities", sensitivities),
     )
     # The bridge gives the run by MotionResult's field names; the call's values complete it.
-    result = cast("dict[str, Any]", raw)
+    result: dict[str, Any] = raw  # type: ignore[assignment]  # a TypedDict, completed here
     result["transitions"] = records(Transition, raw["transitions"])
     result["flights"] = records(FlightRecord, raw["flights"])
     result["impacts"] = records(ImpactRecord, raw["impacts"])
