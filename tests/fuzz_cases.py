@@ -42,6 +42,7 @@ from eccjump.classification import closed_form
 from eccjump.classification import load as load_region
 from eccjump.classification.boundary import alpha_interval_around
 from eccjump.maps import store
+from eccjump.motion import MotionOptions
 from eccjump.studies.design import Build
 
 
@@ -870,6 +871,36 @@ def case_motion_points(d: Drawer) -> Case:
     }
     if d.integer(0, 2) == 0:
         c.kwargs["mu_k"] = array(d, c, 0.0, 3.0)
+    return c
+
+
+MOTION_OPTIONS_PARAMS = (
+    "rule", "t_max", "max_transitions", "rtol", "atol", "max_steps", "integrator", "n_threads",
+)  # fmt: skip
+
+
+def _motion_options_for_core(*, n_threads: Any = 0, **options: Any) -> Any:
+    """``MotionOptions`` made and converted for the core, as a map or ``motion_points`` does."""
+    return MotionOptions(**options).to_core(n_threads)
+
+
+def check_motion_options(res: Any, case: Case) -> None:
+    expect(isinstance(res, eccjump._core.MotionMapOptions), "not the core's options")
+
+
+def case_motion_options(d: Drawer) -> Case:
+    c = Case("motion_options", _motion_options_for_core, params=MOTION_OPTIONS_PARAMS,
+             check=check_motion_options)  # fmt: skip
+    c.kwargs = {
+        "rule": text_param(d, c, ("paper", "normal_force")),
+        "t_max": real(d, c, 0.0, 2e6),
+        "max_transitions": integer_param(d, c, (1, 5, 10**6), (*INT_BAD, 10**6 + 1)),
+        "rtol": d.choice((1e-10, 1e-6, *(() if d.clean else (0.0, math.nan, 1e-16, 1e-3)))),
+        "atol": d.choice((1e-12, 1e-8, *(() if d.clean else (0.0, -1.0, math.nan, math.inf)))),
+        "max_steps": integer_param(d, c, (1, 100, 10**7), (*INT_BAD, 10**7 + 1)),
+        "integrator": text_param(d, c, INTEGRATORS),
+        "n_threads": integer_param(d, c, (0, 1, 256), (*INT_BAD, 257)),
+    }
     return c
 
 
@@ -2187,6 +2218,7 @@ GENERATORS: dict[str, Callable[[Drawer], Case]] = {
     "simulate": case_simulate,
     "motion_map": case_motion_map,
     "motion_points": case_motion_points,
+    "motion_options": case_motion_options,
     "uncertainty": case_uncertainty,
     "to_si": case_to_si,
     "sol": case_sol,

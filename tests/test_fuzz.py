@@ -42,6 +42,7 @@ BUDGET = {
     "simulate": 150,
     "motion_map": 100,
     "motion_points": 100,
+    "motion_options": 60,
     "uncertainty": 60,
     "to_si": 60,
     "sol": 60,

@@ -254,6 +254,28 @@ def test_the_names_and_bounds_are_the_cores():
     ]
     assert (motion.MAX_TRANSITIONS, motion.MAX_STEPS) == (10**6, 10**7)
     assert motion_fields.SEQUENCE_LEN == 8
+    assert motion_fields.INVALID == core.INVALID == 255
+
+
+@given(st.lists(st.sampled_from(MODES), max_size=12))
+def test_a_sequence_code_is_the_cores_and_reads_back(modes):
+    # The code is the core's own (a map stores it), read back by sequence_name.
+    code = motion_fields.sequence_code(modes)
+    assert code == eccjump._core.sequence_code([MODES.index(m) for m in modes])
+    assert motion_fields.sequence_name(code) == "→".join(modes[: motion_fields.SEQUENCE_LEN])
+
+
+def test_a_core_that_packs_sequences_otherwise_is_refused_at_import(monkeypatch):
+    # Three bits per mode instead of two: every sequence_name would be wrong.
+    monkeypatch.setattr(
+        eccjump._core,
+        "sequence_code",
+        lambda codes: sum((c + 1) << (3 * i) for i, c in enumerate(codes)),
+    )
+    spec = importlib.util.spec_from_file_location("fields_again", motion_fields.__file__)
+    assert spec is not None and spec.loader is not None
+    with pytest.raises(ImportError, match="cannot read the core's codes"):
+        spec.loader.exec_module(importlib.util.module_from_spec(spec))
 
 
 @pytest.mark.parametrize("table", ["mode_codes", "transition_reason_codes", "status_codes"])
@@ -283,6 +305,50 @@ def test_bad_input_is_a_value_error_naming_the_parameter(kwargs, param):
     with pytest.raises(ValueError, match=param) as err:
         eccjump.simulate(*SLIP_FIRST, **kwargs)
     assert len(str(err.value)) <= 200
+
+
+@pytest.mark.parametrize(
+    "kwargs, error, param",
+    [
+        ({"t_max": "1"}, TypeError, "t_max"),
+        ({"rule": None}, TypeError, "rule"),
+        ({"max_transitions": 2.0}, TypeError, "max_transitions"),
+        ({"max_steps": 0}, ValueError, "max_steps"),
+        ({"max_transitions": 10**6 + 1}, ValueError, "max_transitions"),
+        ({"integrator": 45}, TypeError, "integrator"),
+        ({"rtol": 1e-3}, ValueError, "rtol"),  # the core's range, by to_core
+        ({"t_max": -1.0}, ValueError, "t_max"),
+        ({"integrator": "RK4"}, ValueError, "integrator"),
+    ],
+)
+def test_motion_options_name_the_keyword_of_a_bad_option(kwargs, error, param):
+    from eccjump.motion import MotionOptions
+
+    with pytest.raises(error, match=param) as err:
+        MotionOptions(**kwargs).to_core(0)
+    assert len(str(err.value)) <= 200
+    with pytest.raises(ValueError, match="n_threads"):
+        MotionOptions().to_core(257)
+
+
+def test_motion_options_carry_plain_values_and_the_defaults_of_every_entry_point():
+    # One list of the run's options: every entry point of the full motion takes its keywords
+    # with its defaults (uncertainty all but max_steps, the explorer rule and its own t_max),
+    # and a map records them.
+    import inspect
+
+    from eccjump.motion import MotionOptions
+
+    o = MotionOptions(t_max=np.float64(20.0), max_steps=np.int64(50_000))
+    assert type(o.t_max) is float and type(o.max_steps) is int and o.max_steps == 50_000
+    default = MotionOptions().keywords()
+    for f in (eccjump.simulate, eccjump.motion_map, eccjump.motion_points, eccjump.uncertainty):
+        ps = inspect.signature(f).parameters
+        given = {k: ps[k].default for k in default if k in ps}
+        assert given == {k: default[k] for k in given}, f.__name__
+        assert set(default) - set(given) <= {"max_steps"}, f.__name__
+    m = eccjump.motion_map(0.7, 0.15, 0.1, 1.0, t_max=5.0, integrator="Vern9")
+    assert m.options == MotionOptions(t_max=5.0, integrator="Vern9").keywords()
 
 
 def test_a_body_without_inertia_about_its_centre_of_mass_is_refused():
@@ -353,7 +419,7 @@ def test_fast_result_construction_equals_the_dataclass_init():
 
     assert r.flights and r.impacts
     names = [f.name for f in dataclasses.fields(MotionResult)]
-    assert list(vars(r)) == names
+    assert set(vars(r)) == set(names)  # every field (in the order the bridge gives them)
     again = MotionResult(**{n: getattr(r, n) for n in names})
     assert repr(again) == repr(r)
     for n in names:
@@ -388,3 +454,42 @@ def test_the_bridge_takes_simulates_options_by_their_names():
     assert options(_core.simulate) == options(eccjump.simulate)
     positional = inspect.signature(_core.simulate).parameters.values()
     assert [p.name for p in positional if p.kind != p.KEYWORD_ONLY] == ["chi", "km", "alpha"]
+
+
+@pytest.mark.parametrize("sensitivities", [False, True])
+def test_the_bridge_gives_the_run_by_the_names_of_its_result(sensitivities):
+    # One output convention (as the maps): the run by MotionResult's field names, each kind
+    # of record one list per field of its named tuple, so that the field order is written in
+    # the classes only.
+    import dataclasses
+
+    from eccjump import _core
+    from eccjump.motion import (
+        FlightRecord,
+        ImpactRecord,
+        MotionOptions,
+        MotionResult,
+        Segment,
+        Transition,
+    )
+
+    body, alpha = Cylinder(0.5, 0.4), math.radians(30)
+    raw = _core.simulate(
+        body.chi, body.km, alpha, mu_s=1.0, mu_k=1.0, restitution=0.0, theta0=0.0,
+        omega0=0.0, slip0=0.0, l_max=math.inf, **MotionOptions(t_max=9.0).keywords(),
+        dense_output=False, sensitivities=sensitivities,
+    )  # fmt: skip
+    added = {"body", "alpha", "mu_s", "mu_k", "restitution", "rule", "units"}  # simulate's
+    assert set(raw) == {f.name for f in dataclasses.fields(MotionResult)} - added
+    kinds = {
+        "transitions": Transition,
+        "flights": FlightRecord,
+        "impacts": ImpactRecord,
+        "segments": Segment,
+    }
+    r = eccjump.simulate(body, alpha, mu_s=1.0, t_max=9.0, sensitivities=sensitivities)
+    for name, cls in kinds.items():
+        assert set(raw[name]) == set(cls._fields), name
+        rows = tuple(map(cls._make, zip(*(raw[name][f] for f in cls._fields), strict=True)))
+        assert repr(getattr(r, name)) == repr(rows) and rows, name  # NaN: by repr
+    assert (raw["d_transitions"] is None) is not sensitivities

@@ -409,7 +409,7 @@ def test_fast_result_construction_equals_the_dataclass_init():
 
     r = roll(*JARM)
     names = [f.name for f in dataclasses.fields(RollResult)]
-    assert list(vars(r)) == names
+    assert set(vars(r)) == set(names)  # every field (in the order the bridge gives them)
     again = RollResult(**{n: getattr(r, n) for n in names})
     assert repr(again) == repr(r) and hash(again.events) == hash(r.events)
     for n in names:  # the repr is a summary: compare every field itself
@@ -436,6 +436,29 @@ def test_the_bridge_takes_rolls_options_by_their_names():
         p for p in inspect.signature(_core.roll).parameters.values() if p.kind != p.KEYWORD_ONLY
     ]
     assert [p.name for p in positional] == ["chi", "km", "alpha"]
+
+
+def test_the_bridge_gives_the_run_by_the_names_of_its_result():
+    # One output convention (as the maps): the run by RollResult's field names, the events
+    # one list per field of Event, so that the field order is written in the classes only.
+    import dataclasses
+
+    from eccjump import _core
+    from eccjump.motion.roll import Event, RollResult
+
+    opts = {"rtol": 1e-10, "atol": 1e-12, "max_steps": 10**6, "rule": "paper"}
+    raw = _core.roll(
+        0.15, 0.02, 0.7, theta0=0.0, omega0=0.0, mu_s=1.0, t_max=1e3, theta_max=math.inf,
+        dense_output=True, integrator="RK45", **opts,
+    )  # fmt: skip
+    added = {"body", "alpha", "mu_s", "rule", "units"}  # roll's own
+    assert set(raw) == {f.name for f in dataclasses.fields(RollResult)} - added
+    assert set(raw["events"]) == set(Event._fields)
+    r = roll(Cylinder(0.15, 0.02), 0.7, mu_s=1.0)
+    assert r.events == tuple(
+        map(Event._make, zip(*(raw["events"][f] for f in Event._fields), strict=True))
+    )
+    assert r.terminal_event == raw["terminal_event"] == "liftoff"
 
 
 def test_arguments_of_any_accepted_type_give_the_run_of_plain_ones():

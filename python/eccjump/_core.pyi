@@ -2,10 +2,11 @@
 
 One convention (``docs/architecture.md``, "The bridge"): the arrays or numbers computed over
 come positionally, every option keyword-only, each of a plain type (the options that several
-entry points share gathered once in a frozen options class, ``ClassifyOptions`` and
-``BoundaryOptions``, itself made from keyword-only plain values); results are plain values
-(numpy arrays, floats, ints, strings, and tuples, lists and dicts of them), from which the
-Python layer makes its result objects.
+entry points share gathered once in a frozen options class, ``ClassifyOptions``,
+``BoundaryOptions`` and ``MotionMapOptions``, itself made from keyword-only plain values);
+results come back by name as plain values: a dict of one numpy array per field for a map or
+a run's series, of one list per field for a run's records (the TypedDicts below), from which
+the Python layer makes its result objects by name.
 """
 
 from typing import Any, TypedDict, final
@@ -15,6 +16,7 @@ from numpy.typing import NDArray
 
 # The module's exports (stubtest compares them with the list pyo3 makes at run time).
 __all__ = [
+    "INVALID",
     "MAX_STEPS",
     "MAX_TRANSITIONS",
     "MOTION_PARAMETERS",
@@ -24,7 +26,7 @@ __all__ = [
     "ClassifyOptions",
     "DenseSolution",
     "MotionDense",
-    "MotionOptions",
+    "MotionMapOptions",
     "alpha_interval_around",
     "alpha_intervals",
     "alpha_min",
@@ -51,6 +53,7 @@ __all__ = [
     "path_forces",
     "reason_codes",
     "roll",
+    "sequence_code",
     "simulate",
     "status_codes",
     "theta_j_range",
@@ -73,11 +76,18 @@ MAX_STEPS: int
 SEQUENCE_LEN: int
 """The modes a motion map's sequence code keeps."""
 
+INVALID: int
+"""The ``status`` of a motion map's point whose parameters are invalid."""
+
 # (code, name) of the full motion's modes, transition reasons and statuses, by code
 # (eccjump.motion checks its MODES, REASONS and STATUSES against them at import).
 def mode_codes() -> list[tuple[int, str]]: ...
 def transition_reason_codes() -> list[tuple[int, str]]: ...
 def status_codes() -> list[tuple[int, str]]: ...
+def sequence_code(codes: list[int]) -> int:
+    """The sequence code a motion map stores for the modes ``codes`` (codes of
+    ``mode_codes``; the first ``SEQUENCE_LEN`` count). ValueError for a code that is no
+    mode."""
 
 _F64 = NDArray[np.float64]
 
@@ -117,10 +127,32 @@ def impact(
     Stronge's energetic restitution (docs/impact_law.md). Private, for the tests. ValueError
     (validated by the core) for a bad parameter, a non-finite state or km = 0."""
 
-#: The series of a rolling run: t, theta, omega, omega_dot, Fx, Fy, l, friction ratio.
-_RollSeries = tuple[_F64, _F64, _F64, _F64, _F64, _F64, _F64, _F64]
-#: An event met: name, t, theta, omega (the fields of ``eccjump.motion.roll.Event``).
-_EventFields = tuple[str, float, float, float]
+class _EventColumns(TypedDict):
+    """The events of a rolling run, one list per field of ``eccjump.motion.roll.Event``."""
+
+    name: list[str]
+    t: list[float]
+    theta: list[float]
+    omega: list[float]
+
+class _RollRun(TypedDict):
+    """A rolling run by the field names of ``RollResult`` (all but the body, alpha, mu_s,
+    rule and units, which ``eccjump.roll`` adds)."""
+
+    t: _F64
+    theta: _F64
+    omega: _F64
+    omega_dot: _F64
+    Fx: _F64
+    Fy: _F64
+    l: _F64
+    friction_ratio: _F64
+    events: _EventColumns
+    terminal_event: str | None
+    status: int
+    message: str
+    nfev: int
+    sol: DenseSolution | None
 
 def roll(
     chi: float,
@@ -138,12 +170,11 @@ def roll(
     max_steps: int,
     rule: str,
     integrator: str,
-) -> tuple[_RollSeries, list[_EventFields], str | None, int, str, int, DenseSolution | None]:
+) -> _RollRun:
     """One pure-rolling run of the body (chi, km) on a ramp of angle alpha, with the GIL
     released. The options of ``eccjump.roll``, all required (it gives the defaults), checked
-    by the core: a ValueError names the parameter. Returns (series, events, terminal event,
-    status, message, nfev, dense output or None), from which ``eccjump.roll`` makes the
-    ``RollResult``."""
+    by the core: a ValueError names the parameter. Returns the run by name, from which
+    ``eccjump.roll`` makes the ``RollResult``."""
 
 @final
 class DenseSolution:
@@ -161,19 +192,80 @@ class DenseSolution:
         """theta, omega, omega_dot, Fx, Fy and ratio at the times ``t`` (1-D float64), each
         of shape (len(t),); errors as :meth:`states`."""
 
-#: The recorded points of a full-motion run: t, theta, omega, l, ldot, b, bdot, Fx, Fy,
-#: energy, dissipated (float64) and the mode codes (int8).
-_MotionPoints = tuple[
-    _F64, _F64, _F64, _F64, _F64, _F64, _F64, _F64, _F64, _F64, _F64, NDArray[np.int8]
-]
-#: The fields of ``eccjump.motion.Transition``, ``FlightRecord``, ``ImpactRecord``, ``Segment``.
-_TransitionFields = tuple[float, str | None, str, str, float, float, float, float, float, float]
-_FlightFields = tuple[float, float, float, float, float, float]
-_ImpactFields = tuple[float, float, float, float, float, float, bool, str]
-_SegmentFields = tuple[str, str, float, float, int]
-_MotionRecords = tuple[
-    list[_TransitionFields], list[_FlightFields], list[_ImpactFields], list[_SegmentFields]
-]
+class _TransitionColumns(TypedDict):
+    """One list per field of ``eccjump.motion.Transition``."""
+
+    t: list[float]
+    from_mode: list[str | None]
+    to_mode: list[str]
+    reason: list[str]
+    theta: list[float]
+    omega: list[float]
+    l: list[float]
+    ldot: list[float]
+    b: list[float]
+    bdot: list[float]
+
+class _FlightColumns(TypedDict):
+    """One list per field of ``eccjump.motion.FlightRecord``."""
+
+    t_liftoff: list[float]
+    t_landing: list[float]
+    theta_liftoff: list[float]
+    theta_landing: list[float]
+    apex: list[float]
+    distance: list[float]
+
+class _ImpactColumns(TypedDict):
+    """One list per field of ``eccjump.motion.ImpactRecord``."""
+
+    t: list[float]
+    normal_speed: list[float]
+    slip_before: list[float]
+    pt: list[float]
+    pn: list[float]
+    energy_lost: list[float]
+    sticking: list[bool]
+    outcome: list[str]
+
+class _SegmentColumns(TypedDict):
+    """One list per field of ``eccjump.motion.Segment``."""
+
+    mode: list[str]
+    reason: list[str]
+    t_start: list[float]
+    t_end: list[float]
+    nfev: list[int]
+
+class _MotionRun(TypedDict):
+    """A full-motion run by the field names of ``MotionResult`` (all but the body, alpha,
+    the friction, restitution, rule and units, which ``eccjump.simulate`` adds)."""
+
+    t: _F64
+    theta: _F64
+    omega: _F64
+    l: _F64
+    ldot: _F64
+    b: _F64
+    bdot: _F64
+    Fx: _F64
+    Fy: _F64
+    energy: _F64
+    dissipated: _F64
+    mode: NDArray[np.int8]
+    transitions: _TransitionColumns
+    flights: _FlightColumns
+    impacts: _ImpactColumns
+    segments: _SegmentColumns
+    energy0: float
+    dissipated_slip: float
+    dissipated_impacts: float
+    status: str
+    message: str
+    nfev: int
+    sol: MotionDense | None
+    d_transitions: NDArray[np.float64] | None
+    d_singular: NDArray[np.bool_] | None
 
 def simulate(
     chi: float,
@@ -196,21 +288,11 @@ def simulate(
     dense_output: bool,
     integrator: str,
     sensitivities: bool,
-) -> tuple[
-    _MotionPoints,
-    _MotionRecords,
-    tuple[float, float, float],
-    str,
-    str,
-    int,
-    MotionDense | None,
-    tuple[NDArray[np.float64], NDArray[np.bool_]] | None,
-]:
+) -> _MotionRun:
     """The full motion of the body (chi, km) on a ramp of angle alpha (docs/motion.md), with
     the GIL released. The options of ``eccjump.simulate``, all required (it gives the
     defaults; mu_k resolved), checked by the core: a ValueError names the parameter. Returns
-    (points, records, (energy0, dissipated by sliding, by impacts), status, message, nfev,
-    dense output or None, (d_transitions, d_singular) or None), from which
+    the run by name (the sensitivities None unless asked for), from which
     ``eccjump.simulate`` makes the ``MotionResult``."""
 
 @final
@@ -333,10 +415,11 @@ def alpha_interval_around(
 ) -> tuple[NDArray[np.float64], NDArray[np.float64]]: ...
 
 @final
-class MotionOptions:
+class MotionMapOptions:
     """The options of ``motion_grid`` and ``motion_points``, converted once: made from
-    keyword-only plain values named as ``eccjump.motion_map`` names them. ValueError for an
-    unknown rule or pair (the core checks the ranges when a call uses them)."""
+    keyword-only plain values named as ``eccjump.motion_map`` names them
+    (``eccjump.motion.options.MotionOptions.to_core``). ValueError for an unknown rule or
+    pair (the core checks the ranges when a call uses them)."""
 
     def __new__(
         cls,
@@ -349,7 +432,7 @@ class MotionOptions:
         max_steps: int,
         n_threads: int,
         integrator: str,
-    ) -> MotionOptions: ...
+    ) -> MotionMapOptions: ...
 
 def motion_grid(
     alpha: NDArray[np.float64],
@@ -361,7 +444,7 @@ def motion_grid(
     theta0: NDArray[np.float64],
     omega0: NDArray[np.float64],
     *,
-    options: MotionOptions,
+    options: MotionMapOptions,
 ) -> dict[str, NDArray[Any]]:
     """The full motion to the first landing at every point of the product of the eight 1-D
     axes (k_m = frac (1 - chi); an empty ``mu_k``: mu_k = mu_s), flat in C order, with the
@@ -378,7 +461,7 @@ def motion_points(
     theta0: NDArray[np.float64],
     omega0: NDArray[np.float64],
     *,
-    options: MotionOptions,
+    options: MotionMapOptions,
 ) -> dict[str, NDArray[Any]]:
     """The full motion to the first landing at each point (alpha[i], chi[i], km[i], mu_s[i],
     mu_k[i], restitution[i], theta0[i], omega0[i]) (km: the body's k_m; columns of one

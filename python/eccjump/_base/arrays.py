@@ -3,7 +3,10 @@
 from __future__ import annotations
 
 import dataclasses
-from typing import Any, TypeVar
+import functools
+import operator
+from collections.abc import Callable, Mapping
+from typing import Any, NamedTuple, TypeVar
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
@@ -11,6 +14,7 @@ from numpy.typing import ArrayLike, NDArray
 from eccjump._base.checks import U32_MAX, int_array, integer, real_array
 
 T = TypeVar("T")
+R = TypeVar("R", bound=NamedTuple)
 
 
 def broadcast_flat(
@@ -124,10 +128,26 @@ def fields_equal(self: Any, other: Any) -> bool:
 
 
 def frozen_result(cls: type[T], fields: dict[str, Any]) -> T:
-    """The frozen dataclass ``cls`` holding ``fields`` (every field, in declaration order):
+    """The frozen dataclass ``cls`` holding ``fields`` (every field, by name):
     the object ``cls(**fields)`` makes, without the ``object.__setattr__`` its ``__init__``
     calls per field (for ``RollResult``'s 19 fields, a tenth of a short ``roll``). The tests
     compare the two (``tests/test_roll.py``, ``tests/test_motion.py``)."""
     result = object.__new__(cls)
     object.__setattr__(result, "__dict__", fields)  # the frozen class's own refuses
     return result
+
+
+def records(cls: type[R], columns: Mapping[str, Any]) -> tuple[R, ...]:
+    """The named tuples ``cls`` (of two fields or more) of a run's records from the bridge's
+    columns, one list per field by name (``rust/eccjump-py/src/columns.rs``, ``Records``):
+    the order of the fields is ``cls``'s, written there only. The columns have one length by
+    construction."""
+    # zip without strict=: its keyword alone costs a fifth of a one-event roll's records.
+    return tuple(map(cls._make, zip(*_columns_of(cls)(columns))))  # noqa: B905
+
+
+@functools.cache
+def _columns_of(cls: type[tuple]) -> Callable[[Mapping[str, Any]], tuple[Any, ...]]:
+    """The getter of ``cls``'s columns in the order of its fields, made once per class: a
+    record of a short run costs little more than its tuple."""
+    return operator.itemgetter(*cls._fields)  # type: ignore[attr-defined]

@@ -14,8 +14,9 @@ import math
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
-from eccjump._base.checks import Rule, optional_real, real, rule_name
+from eccjump._base.checks import Rule, optional_real, real
 from eccjump.explorer import api, controls
+from eccjump.motion.options import MotionOptions
 
 if TYPE_CHECKING:
     import anywidget
@@ -146,15 +147,18 @@ def explore(
         "restitution": real("restitution", restitution),
         "theta0": math.degrees(real("theta0", theta0)),
         "omega0": real("omega0", omega0),
-        "t_max": real("t_max", t_max),
     }
-    controls.rule_checked(rule_name(rule))
+    # The run's options, their types checked as simulate checks them; the sliders' ranges
+    # below.
+    run = MotionOptions(rule=rule, t_max=t_max)
+    point["t_max"] = run.t_max
+    controls.rule_checked(run.rule)
     for key, value in point.items():
         if value is not None:
             _in_range(key, value)
     tie = point["mu_k"] is None
     params = {k: repr(v) for k, v in point.items() if v is not None}
-    params.update(rule=rule, tie="1" if tie else "0")
+    params.update(rule=run.rule, tie="1" if tie else "0")
     return widget_class()(params=params)
 
 

@@ -1,10 +1,10 @@
 """The motion: rolling (``roll``), the full motion (:func:`simulate`, in ``simulation``), its
-dense output, its fields, and motion points and maps. Its public names are those of
-``eccjump.motion.simulation`` (the former ``eccjump.motion`` module), re-exported here."""
+options (:class:`MotionOptions`, in ``options``), its dense output, its fields, and motion
+points and maps. Its public names are those of ``eccjump.motion.simulation`` (the former
+``eccjump.motion`` module) and ``eccjump.motion.options``, re-exported here."""
 
+from eccjump.motion.options import MAX_STEPS, MAX_TRANSITIONS, MotionOptions
 from eccjump.motion.simulation import (
-    MAX_STEPS,
-    MAX_TRANSITIONS,
     MODES,
     REASONS,
     SENSITIVITY_PARAMETERS,
@@ -15,8 +15,6 @@ from eccjump.motion.simulation import (
     MotionSolution,
     Segment,
     Transition,
-    checked_motion_options,
-    motion_options,
     simulate,
 )
 
@@ -29,11 +27,10 @@ __all__ = [
     "STATUSES",
     "FlightRecord",
     "ImpactRecord",
+    "MotionOptions",
     "MotionResult",
     "MotionSolution",
     "Segment",
     "Transition",
-    "checked_motion_options",
-    "motion_options",
     "simulate",
 ]

@@ -38,8 +38,9 @@ STATUSES = _names(_core.status_codes())
 
 #: Modes kept in the sequence code (the core's).
 SEQUENCE_LEN: int = _core.SEQUENCE_LEN
-#: ``status`` of a point with invalid parameters (mu_k > mu_s, a value out of range).
-INVALID = 255
+#: ``status`` of a point with invalid parameters (mu_k > mu_s, a value out of range): the
+#: core's.
+INVALID: int = _core.INVALID
 #: How the first landing ended, by code.
 LANDINGS: tuple[str, ...] = _names(_core.landing_codes())
 #: ``status`` names by code (:data:`INVALID` is "invalid").
@@ -120,15 +121,30 @@ def sequence_code(modes: list[str] | tuple[str, ...]) -> int:
     """The code of the first :data:`SEQUENCE_LEN` of ``modes`` (names from :data:`MODES`):
     Σ (mode_i + 1)·4^i, so ROLL→FLIGHT is 13. ValueError naming a mode not in MODES.
 
-    A mode's index in MODES is its code in the core (MODES is read from the core's table),
-    so this is the code a motion map stores."""
+    The core computes it (its own formula, so this is the code a motion map stores); MODES
+    is read from the core's table, so a mode's index in it is its code in the core."""
     if isinstance(modes, str) or not isinstance(modes, list | tuple):
         raise TypeError(f"modes must be a list or tuple of mode names, not {type(modes).__name__}")
     for m in modes:
         if m not in MODES:
             shown = repr(m) if len(repr(m)) <= 40 else repr(m)[:37] + "..."
             raise ValueError(f"modes: {shown} is not a mode; use {', '.join(MODES)}")
-    return sum((MODES.index(m) + 1) << (2 * i) for i, m in enumerate(modes[:SEQUENCE_LEN]))
+    return _core.sequence_code([MODES.index(m) for m in modes[:SEQUENCE_LEN]])
+
+
+def _reads_the_cores_codes() -> bool:
+    """Whether :func:`sequence_name` reads back the code the core gives every mode."""
+    modes = [*MODES, MODES[0]]
+    try:
+        return sequence_name(sequence_code(modes)) == "→".join(modes)
+    except ValueError:  # a code of another packing
+        return False
+
+
+# A build that packs the codes otherwise is refused at import: a map's sequences would all
+# be misnamed.
+if not _reads_the_cores_codes():
+    raise ImportError("eccjump.motion.fields: sequence_name cannot read the core's codes: rebuild")
 
 
 def _flags(values: Any, names: Any) -> dict[str, Any]:

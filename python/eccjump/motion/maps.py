@@ -13,6 +13,7 @@ The sequence of modes is a compact code (2 bits per mode, the start's mode first
 
 from __future__ import annotations
 
+import dataclasses
 import os
 from collections.abc import Mapping
 from dataclasses import dataclass, field
@@ -43,7 +44,8 @@ from eccjump.motion.fields import (
     sequence_code,
     sequence_name,
 )
-from eccjump.motion.simulation import Rule, checked_motion_options
+from eccjump.motion.options import MotionOptions
+from eccjump.motion.simulation import Rule
 
 if TYPE_CHECKING:
     import xarray as xr
@@ -207,7 +209,7 @@ class MotionMap(Map, kind=MOTION):
 
 
 #: The options shared by every point, recorded with a map.
-OPTIONS = ("rule", "t_max", "max_transitions", "rtol", "atol", "max_steps", "integrator")
+OPTIONS = tuple(f.name for f in dataclasses.fields(MotionOptions))
 
 
 def _axes(values: Mapping[str, object]) -> tuple[dict[str, NDArray], dict[str, float | None]]:
@@ -238,12 +240,12 @@ def _axis(coords: Mapping[str, NDArray], scalars: Mapping[str, float | None], na
 
 
 def _block(
-    alpha: NDArray[np.float64], rest: tuple[NDArray, ...], opts: dict[str, Any]
+    alpha: NDArray[np.float64], rest: tuple[NDArray, ...], opts: MotionOptions, n_threads: int
 ) -> dict[str, NDArray]:
     """One grid call of the core: the flat fields of alpha × the other axes."""
     a = np.array(alpha, dtype=np.float64, order="C").ravel()
     others = [np.array(x, dtype=np.float64, order="C").ravel() for x in rest]
-    return _core.motion_grid(a, *others, options=_core.MotionOptions(**opts))
+    return _core.motion_grid(a, *others, options=opts.to_core(n_threads))
 
 
 def motion_map(
@@ -376,8 +378,7 @@ def motion_map(
     out = text("output", output)
     if out not in ("map", "xarray"):
         raise ValueError(f"output must be 'map' or 'xarray', got {out!r}")
-    # The shared options checked first: a bad one is an error, not a map.
-    opts = checked_motion_options(
+    opts = MotionOptions(
         rule=rule,
         t_max=t_max,
         max_transitions=max_transitions,
@@ -385,20 +386,19 @@ def motion_map(
         atol=atol,
         max_steps=max_steps,
         integrator=integrator,
-        n_threads=n_threads,
     )
+    opts.to_core(n_threads)  # the shared options checked first: a bad one is an error, not a map
     axis = {name: _axis(coords, scalars, name) for name in AXES}
     rest = tuple(axis[name] for name in AXES[1:])
     shape = tuple(c.size for c in coords.values())
-    info = {k: opts[k] for k in OPTIONS}
-    _check_scalars(scalars, opts)
+    _check_scalars(scalars, opts, n_threads)
     if chunks is not None:
-        return _lazy(axis, coords, scalars, info, opts, shape, chunks)
+        return _lazy(axis, coords, scalars, opts, n_threads, shape, chunks)
     points = int(np.prod(shape, dtype=object))
     check_fits("motion_map", points, result_bytes(points, MOTION.bytes_per_point()), "the axes")
-    flat = _block(axis["alpha"], rest, opts)
+    flat = _block(axis["alpha"], rest, opts, n_threads)
     fields = {k: flat[k].reshape(shape) for k in FIELDS}
-    m = MotionMap(coords, scalars, fields, info)
+    m = MotionMap(coords, scalars, fields, opts.keywords())
     return m.to_xarray() if out == "xarray" else m
 
 
@@ -415,41 +415,44 @@ _PROBE: dict[str, float | None] = {
 }
 
 
-def _check_scalars(scalars: Mapping[str, float | None], opts: dict[str, Any]) -> None:
+def _check_scalars(
+    scalars: Mapping[str, float | None], opts: MotionOptions, n_threads: int
+) -> None:
     """ValueError naming an axis given as one number that makes every point of the map
     invalid (NaN, out of range): as in :func:`eccjump.region`, a bad parameter is an error,
     not a map of invalid points. Each is tried alone at :data:`_PROBE` (a swept mu_s taken at
     least as large as mu_k), then all together (mu_k > mu_s). Bad values on a swept axis only
     mark their points invalid. The core alone knows the ranges, so it is asked."""
     given = {k: v for k, v in scalars.items() if v is not None}
-    quick = {**opts, "t_max": min(opts["t_max"], 1e-3)}  # validity is known at the start
+    quick = dataclasses.replace(opts, t_max=min(opts.t_max, 1e-3))  # known at the start
     for name, value in given.items():
-        if not _valid_point({name: value}, quick):
+        if not _valid_point({name: value}, quick, n_threads):
             raise ValueError(
                 f"{name} = {short(value)} is not allowed: every point of the map would be invalid"
             )
-    if len(given) > 1 and not _valid_point(given, quick):
+    if len(given) > 1 and not _valid_point(given, quick, n_threads):
         raise ValueError(
             f"{', '.join(given)}: these values make every point of the map invalid (mu_k > mu_s?)"
         )
 
 
-def _valid_point(values: Mapping[str, float], opts: dict[str, Any]) -> bool:
+def _valid_point(values: Mapping[str, float], opts: MotionOptions, n_threads: int) -> bool:
     """Whether the core runs the point of :data:`_PROBE` with ``values`` (not invalid)."""
     point = {**_PROBE, **values}
     mu_k = values.get("mu_k")
     if "mu_s" not in values and mu_k is not None and np.isfinite(mu_k):
         point["mu_s"] = max(1.0, mu_k)
     rest = tuple(np.empty(0) if point[k] is None else np.array([point[k]]) for k in AXES[1:])
-    return int(_block(np.array([point["alpha"]]), rest, opts)["status"][0]) != INVALID
+    status = _block(np.array([point["alpha"]]), rest, opts, n_threads)["status"]
+    return int(status[0]) != INVALID
 
 
 def _lazy(
     axis: dict[str, NDArray],
     coords: dict[str, NDArray],
     scalars: dict[str, float | None],
-    info: dict[str, Any],
-    opts: dict[str, Any],
+    opts: MotionOptions,
+    n_threads: int,
     shape: tuple[int, ...],
     chunks: object,
 ) -> xr.Dataset:
@@ -460,19 +463,19 @@ def _lazy(
     blocks = [
         min(c, a.size) if name == "alpha" else a.size for name, a in zip(AXES, axes, strict=True)
     ]
-    lazy = lazy_fields(MOTION, _grid_block, axes, blocks, (opts, same_mu))
+    lazy = lazy_fields(MOTION, _grid_block, axes, blocks, (opts, n_threads, same_mu))
     fields = {k: v.reshape(shape) for k, v in lazy.items()}
-    return MotionMap(coords, scalars, fields, info).to_xarray()
+    return MotionMap(coords, scalars, fields, opts.keywords()).to_xarray()
 
 
 def _grid_block(*args: Any) -> dict[str, NDArray]:
     """The grid call of :func:`_block` as :func:`eccjump.maps.dask.lazy_fields` makes it: the
-    eight axes, the options and whether mu_k is mu_s (its axis then a placeholder)."""
-    *axes, opts, same_mu = args
+    eight axes, the options, the threads and whether mu_k is mu_s (its axis then a placeholder)."""
+    *axes, opts, n_threads, same_mu = args
     rest = tuple(
         np.empty(0) if same_mu and name == "mu_k" else a for name, a in zip(AXES, axes, strict=True)
     )
-    return _block(axes[0], rest[1:], opts)
+    return _block(axes[0], rest[1:], opts, n_threads)
 
 
 def from_dataset(ds: xr.Dataset) -> MotionMap:

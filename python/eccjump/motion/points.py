@@ -22,7 +22,7 @@ from eccjump._base.arrays import broadcast_flat, fields_equal
 from eccjump._base.checks import Integrator, Rule
 from eccjump._base.sizes import check_fits, result_bytes
 from eccjump.motion.fields import FIELDS, INVALID, MOTION, sequence_name
-from eccjump.motion.simulation import checked_motion_options
+from eccjump.motion.options import MotionOptions
 
 
 @dataclass(frozen=True, eq=False)
@@ -208,7 +208,7 @@ def motion_points(
     }
     if mu_k is not None:
         named["mu_k"] = mu_k
-    opts = checked_motion_options(
+    opts = MotionOptions(
         rule=rule,
         t_max=t_max,
         max_transitions=max_transitions,
@@ -216,8 +216,7 @@ def motion_points(
         atol=atol,
         max_steps=max_steps,
         integrator=integrator,
-        n_threads=n_threads,
-    )
+    ).to_core(n_threads)
     shape, flat = broadcast_flat(**named)
     points = flat[0].size
     need = result_bytes(points, MOTION.bytes_per_point(), len(flat))
@@ -232,7 +231,7 @@ def motion_points(
         columns["restitution"],
         columns["theta0"],
         columns["omega0"],
-        options=_core.MotionOptions(**opts),
+        options=opts,
     )
     return MotionPoints(**{k: raw[k].reshape(shape) for k in FIELDS})
 

@@ -21,7 +21,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 from eccjump import _core
-from eccjump._base.arrays import frozen_result, same_values
+from eccjump._base.arrays import frozen_result, records, same_values
 from eccjump._base.body import Cylinder
 from eccjump._base.checks import (
     U64_MAX,
@@ -428,7 +428,7 @@ def roll(
     alpha = real("alpha", alpha)
     mu_s = optional_real("mu_s", mu_s)
     rule = rule_name(rule)
-    series, events, terminal_event, status, message, nfev, dense = _core.roll(
+    raw = _core.roll(
         body.chi,
         body.km,
         alpha,
@@ -444,28 +444,11 @@ def roll(
         rule=rule,
         integrator=text("integrator", integrator),
     )
-    t, theta, omega, omega_dot, Fx, Fy, distance, friction_ratio = series
-    return frozen_result(
-        RollResult,
-        {
-            "body": body,
-            "alpha": alpha,
-            "mu_s": mu_s,
-            "rule": rule,
-            "t": t,
-            "theta": theta,
-            "omega": omega,
-            "omega_dot": omega_dot,
-            "Fx": Fx,
-            "Fy": Fy,
-            "l": distance,
-            "friction_ratio": friction_ratio,
-            "events": tuple(map(Event._make, events)),
-            "terminal_event": terminal_event,
-            "status": status,
-            "message": message,
-            "nfev": nfev,
-            "sol": None if dense is None else DenseSolution(dense),
-            "units": None,
-        },
-    )
+    # The bridge gives the run by RollResult's field names; the call's values complete it.
+    result: dict[str, Any] = raw  # type: ignore[assignment]  # a TypedDict, completed here
+    result["events"] = records(Event, raw["events"])
+    if raw["sol"] is not None:
+        result["sol"] = DenseSolution(raw["sol"])
+    result["body"], result["alpha"], result["mu_s"], result["rule"] = body, alpha, mu_s, rule
+    result["units"] = None
+    return frozen_result(RollResult, result)

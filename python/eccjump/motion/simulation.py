@@ -15,21 +15,24 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from eccjump import _core
-from eccjump._base.arrays import frozen_result, same_values
+from eccjump._base.arrays import frozen_result, records, same_values
 from eccjump._base.body import Cylinder
 from eccjump._base.checks import (
     Integrator,
     Rule,
     flag,
-    integer,
     optional_real,
     real,
     real_array,
     rule_name,
-    text,
 )
 from eccjump._base.html import card, deg, num, timeline
 from eccjump._base.units import Units
+
+# The bounds live with the options; still named here, where they were.
+from eccjump.motion.options import MAX_STEPS as MAX_STEPS
+from eccjump.motion.options import MAX_TRANSITIONS as MAX_TRANSITIONS
+from eccjump.motion.options import MotionOptions
 
 if TYPE_CHECKING:  # pragma: no cover
     from matplotlib.figure import Figure
@@ -51,10 +54,6 @@ REASONS = (
     "impact",
     "settle",
 )
-#: The core's bounds on the work of a run, checked here first so that the error states the
-#: true range.
-MAX_TRANSITIONS: int = _core.MAX_TRANSITIONS
-MAX_STEPS: int = _core.MAX_STEPS
 #: How a run can end.
 STATUSES = ("t_max", "l_max", "max_transitions", "painleve", "jam", "failed", "landed")
 
@@ -463,44 +462,6 @@ def _sensitivities_si(d: NDArray[np.float64] | None, u: Units) -> NDArray[np.flo
     return out
 
 
-def motion_options(
-    *,
-    rule: object,
-    t_max: object,
-    max_transitions: object,
-    rtol: object,
-    atol: object,
-    max_steps: object,
-    integrator: object,
-) -> dict[str, Any]:
-    """The options of a run of the full motion, type-checked here, their ranges by the core
-    (``SimOptions::validate``): every entry point of the full motion passes them through
-    this one path -- :func:`simulate` (whose core call checks them with the body's values)
-    and, through :func:`checked_motion_options`, the maps, the points and the uncertainty
-    studies, whatever their question."""
-    return {
-        "rule": rule_name(rule),
-        "t_max": real("t_max", t_max),
-        "max_transitions": integer("max_transitions", max_transitions, 1, MAX_TRANSITIONS),
-        "rtol": real("rtol", rtol),
-        "atol": real("atol", atol),
-        "max_steps": integer("max_steps", max_steps, 1, MAX_STEPS),
-        "integrator": text("integrator", integrator),
-    }
-
-
-def checked_motion_options(*, n_threads: object = 0, **options: object) -> dict[str, Any]:
-    """:func:`motion_options` with ``n_threads`` (0 ... 256), range-checked by the core
-    before any work -- a call on no points checks the options alone: a ValueError naming
-    the first bad one, as ``simulate`` names it. The keywords of ``_core.MotionOptions``."""
-    opts = {**motion_options(**options), "n_threads": integer("n_threads", n_threads, 0, 256)}
-    none = np.empty(0)
-    _core.motion_points(
-        none, none, none, none, none, none, none, none, options=_core.MotionOptions(**opts)
-    )
-    return opts
-
-
 def simulate(
     body: Cylinder,
     alpha: float,
@@ -638,7 +599,7 @@ def simulate(
     restitution = real("restitution", restitution)
     rule = rule_name(rule)
     theta0, omega0, slip0 = real("theta0", theta0), real("omega0", omega0), real("slip0", slip0)
-    run = motion_options(
+    run = MotionOptions(
         rule=rule,
         t_max=t_max,
         max_transitions=max_transitions,
@@ -647,7 +608,7 @@ def simulate(
         max_steps=max_steps,
         integrator=integrator,
     )
-    points, records, ledger, status, message, nfev, dense, sens = _core.simulate(
+    raw = _core.simulate(
         body.chi,
         body.km,
         alpha,
@@ -658,48 +619,18 @@ def simulate(
         omega0=omega0,
         slip0=slip0,
         l_max=real("l_max", l_max),
-        **run,
+        **run.keywords(),
         dense_output=flag("dense_output", dense_output),
         sensitivities=flag("sensitivities", sensitivities),
     )
-    d_transitions, d_singular = (None, None) if sens is None else sens
-    t, theta, omega, distance, ldot, b, bdot, Fx, Fy, energy, dissipated, mode = points
-    transitions, flights, impacts, segments = records
-    energy0, dissipated_slip, dissipated_impacts = ledger
-    return frozen_result(
-        MotionResult,
-        {
-            "body": body,
-            "alpha": alpha,
-            "mu_s": mu_s,
-            "mu_k": mu_k,
-            "restitution": restitution,
-            "rule": rule,
-            "t": t,
-            "theta": theta,
-            "omega": omega,
-            "l": distance,
-            "ldot": ldot,
-            "b": b,
-            "bdot": bdot,
-            "Fx": Fx,
-            "Fy": Fy,
-            "energy": energy,
-            "dissipated": dissipated,
-            "mode": mode,
-            "transitions": tuple(map(Transition._make, transitions)),
-            "flights": tuple(map(FlightRecord._make, flights)),
-            "impacts": tuple(map(ImpactRecord._make, impacts)),
-            "segments": tuple(map(Segment._make, segments)),
-            "energy0": energy0,
-            "dissipated_slip": dissipated_slip,
-            "dissipated_impacts": dissipated_impacts,
-            "status": status,
-            "message": message,
-            "nfev": nfev,
-            "sol": None if dense is None else MotionSolution(dense),
-            "d_transitions": d_transitions,
-            "d_singular": d_singular,
-            "units": None,
-        },
-    )
+    # The bridge gives the run by MotionResult's field names; the call's values complete it.
+    result: dict[str, Any] = raw  # type: ignore[assignment]  # a TypedDict, completed here
+    result["transitions"] = records(Transition, raw["transitions"])
+    result["flights"] = records(FlightRecord, raw["flights"])
+    result["impacts"] = records(ImpactRecord, raw["impacts"])
+    result["segments"] = records(Segment, raw["segments"])
+    if raw["sol"] is not None:
+        result["sol"] = MotionSolution(raw["sol"])
+    result["body"], result["alpha"], result["rule"], result["units"] = body, alpha, rule, None
+    result["mu_s"], result["mu_k"], result["restitution"] = mu_s, mu_k, restitution
+    return frozen_result(MotionResult, result)

@@ -1,8 +1,8 @@
 //! Profiling aid: where a motion map spends its time, by the status of the points, one point
-//! at a time, then the same grid by `motion_grid` on one thread (its first rolling segments
+//! at a time, then the same grid by `motion_map` on one thread (its first rolling segments
 //! side by side) (`cargo run --release -p eccjump-core --features profiling --example motion_map_cost [rk45|dop853]`).
 use eccjump_core::maps::motion::{
-    motion_grid, motion_point, MotionAxes, MotionMapOptions, MotionSummary,
+    motion_map, motion_point, MotionAxes, MotionMapOptions, MotionSummary,
 };
 use eccjump_core::mechanics::Rule;
 use eccjump_core::modes::contact::ContactLaw;
@@ -86,7 +86,7 @@ fn main() {
     };
     let mut out = vec![MotionSummary::invalid(); n * n * n];
     let t0 = Instant::now();
-    motion_grid(&axes, &opts, 1, &mut out, &|| false).unwrap();
+    motion_map(&axes, &opts, 1, &mut out, &|| false).unwrap();
     let dt = t0.elapsed().as_secs_f64();
     let same = out
         .iter()
@@ -94,7 +94,7 @@ fn main() {
         .filter(|(a, b)| format!("{a:?}") == format!("{b:?}"))
         .count();
     println!(
-        "motion_grid, one thread: {:.1} us/pt ({same} of {} summaries the same as point by point)",
+        "motion_map over a grid, one thread: {:.1} us/pt ({same} of {} summaries the same as point by point)",
         dt / (n * n * n) as f64 * 1e6,
         each.len()
     );

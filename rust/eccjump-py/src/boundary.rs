@@ -1,9 +1,8 @@
 //! JARM boundaries: α-intervals per body and μ_s,min along the path, in parallel (the turn,
 //! rule and threads as one [`BoundaryOptions`]; the scan and the step keyword-only).
 
-use crate::errors::detached;
+use crate::errors::{detached, detached_filled};
 use crate::options::BoundaryOptions;
-use eccjump_core::error::try_filled;
 use eccjump_core::maps::boundary::{
     alpha_interval_around_many, alpha_intervals_many, mu_s_min_path_many,
 };
@@ -43,10 +42,8 @@ pub fn mu_s_min_path<'py>(
 ) -> PyResult<Bound<'py, PyArray1<f64>>> {
     let BoundaryOptions { jarm, n_threads } = options;
     let (a, c, k) = (alpha.as_slice()?, chi.as_slice()?, km.as_slice()?);
-    let out = detached(py, |stop| {
-        let mut out = try_filled("the result", a.len(), 0.0)?;
-        mu_s_min_path_many(a, c, k, jarm, *n_threads, &mut out, stop)?;
-        Ok(out)
+    let out = detached_filled(py, "the result", Ok(a.len()), 0.0, |out, stop| {
+        mu_s_min_path_many(a, c, k, jarm, *n_threads, out, stop)
     })?;
     Ok(out.into_pyarray(py))
 }
@@ -66,10 +63,8 @@ pub fn alpha_interval_around<'py>(
 ) -> PyResult<ArrayPair<'py>> {
     let BoundaryOptions { jarm, n_threads } = options;
     let (s, c, k) = (seed.as_slice()?, chi.as_slice()?, km.as_slice()?);
-    let out = detached(py, |stop| {
-        let mut out = try_filled("the result", s.len(), (0.0, 0.0))?;
-        alpha_interval_around_many(s, c, k, mu_s, jarm, step, *n_threads, &mut out, stop)?;
-        Ok(out)
+    let out = detached_filled(py, "the result", Ok(s.len()), (0.0, 0.0), |out, stop| {
+        alpha_interval_around_many(s, c, k, mu_s, jarm, step, *n_threads, out, stop)
     })?;
     let (lo, hi): (Vec<f64>, Vec<f64>) = out.into_iter().unzip();
     Ok((lo.into_pyarray(py), hi.into_pyarray(py)))

@@ -1,6 +1,7 @@
 //! The core's one error enum, mapped to Python exceptions, and the way every long call runs:
 //! with the GIL released and Ctrl-C honoured between chunks of work.
 
+use eccjump_core::error::try_filled;
 use eccjump_core::Error;
 use pyo3::exceptions::{PyKeyboardInterrupt, PyMemoryError, PyRuntimeError, PyValueError};
 use pyo3::prelude::*;
@@ -51,4 +52,22 @@ pub fn detached<T: Send>(
             .unwrap_or_else(|| to_py(Error::Interrupted))),
         Err(e) => Err(to_py(e)),
     }
+}
+
+/// `work` run by [`detached`] into `len` values `init` it overwrites (an error in `len`, e.g.
+/// an axis that is empty, is raised first), allocated fallibly: a `MemoryError` naming
+/// `what` if they do not fit. Every call that fills one value per point goes through here.
+pub fn detached_filled<T: Clone + Send>(
+    py: Python<'_>,
+    what: &'static str,
+    len: Result<usize, Error>,
+    init: T,
+    work: impl FnOnce(&mut [T], &dyn Fn() -> bool) -> Result<(), Error> + Send,
+) -> PyResult<Vec<T>> {
+    let len = len.map_err(to_py)?;
+    detached(py, |stop| {
+        let mut out = try_filled(what, len, init)?;
+        work(&mut out, stop)?;
+        Ok(out)
+    })
 }

@@ -3,6 +3,7 @@
 
 use crate::errors::detached;
 use crate::options::ClassifyOptions;
+use eccjump_core::error::Result;
 use eccjump_core::jarm::Reason;
 use eccjump_core::maps::columns::JarmColumns;
 use eccjump_core::maps::parallel::pool;
@@ -55,12 +56,12 @@ pub fn jarm_points<'py>(
         mu_s.as_slice()?,
         n.as_slice()?,
     );
-    let out = detached(py, |stop| {
-        let mut out = JarmColumns::new(&pool(n_threads)?, a.len())?;
-        classify_points(a, c, k, m, n, method, &opts, n_threads, &mut out, stop)?;
-        Ok(out)
-    })?;
-    into_dict(py, out)
+    classified(
+        py,
+        || Ok(a.len()),
+        n_threads,
+        |out, stop| classify_points(a, c, k, m, n, method, &opts, n_threads, out, stop),
+    )
 }
 
 /// Classifies the grid alpha × chi × frac (k_m = frac·(1 − χ)), flat in C order, on turn n
@@ -78,10 +79,25 @@ pub fn jarm_grid<'py>(
 ) -> PyResult<Bound<'py, PyDict>> {
     let (opts, method, n_threads) = options.on_turn(n);
     let (a, c, f) = (alpha.as_slice()?, chi.as_slice()?, frac.as_slice()?);
+    let len = || grid_size(a.len(), c.len(), f.len());
+    classified(py, len, n_threads, |out, stop| {
+        classify_grid(a, c, f, mu_s, method, &opts, n_threads, out, stop)
+    })
+}
+
+/// The columns `classify` fills, of `len()` points on `n_threads` threads (each column
+/// first touched by the threads that fill it), with the GIL released: the one driver of
+/// `jarm_points` and `jarm_grid`, which differ in their source of points.
+fn classified<'py>(
+    py: Python<'py>,
+    len: impl FnOnce() -> Result<usize> + Send,
+    n_threads: usize,
+    classify: impl FnOnce(&mut JarmColumns, &dyn Fn() -> bool) -> Result<()> + Send,
+) -> PyResult<Bound<'py, PyDict>> {
     let out = detached(py, |stop| {
-        let len = grid_size(a.len(), c.len(), f.len())?;
+        let len = len()?;
         let mut out = JarmColumns::new(&pool(n_threads)?, len)?;
-        classify_grid(a, c, f, mu_s, method, &opts, n_threads, &mut out, stop)?;
+        classify(&mut out, stop)?;
         Ok(out)
     })?;
     into_dict(py, out)

@@ -15,7 +15,6 @@ mod errors;
 mod impact;
 mod jarm;
 mod motion_map;
-mod motion_points;
 mod names;
 mod options;
 mod roll;
@@ -39,6 +38,9 @@ mod _core {
     /// The modes a motion map's sequence code keeps.
     #[pymodule_export]
     const SEQUENCE_LEN: usize = eccjump_core::maps::motion::SEQUENCE_LEN;
+    /// The `status` of a motion map's point whose parameters are invalid.
+    #[pymodule_export]
+    const INVALID: u8 = eccjump_core::maps::motion::INVALID;
 
     #[pymodule_export]
     use crate::body::{body_derived, body_from_inertia, body_from_shell_and_line};
@@ -56,13 +58,11 @@ mod _core {
     #[pymodule_export]
     use crate::jarm::{jarm_grid, jarm_points, reason_codes};
     #[pymodule_export]
-    use crate::motion_map::{landing_codes, motion_grid};
+    use crate::motion_map::{landing_codes, motion_grid, motion_points};
     #[pymodule_export]
-    use crate::motion_points::motion_points;
+    use crate::names::{mode_codes, sequence_code, status_codes, transition_reason_codes};
     #[pymodule_export]
-    use crate::names::{mode_codes, status_codes, transition_reason_codes};
-    #[pymodule_export]
-    use crate::options::{BoundaryOptions, ClassifyOptions, MotionOptions};
+    use crate::options::{BoundaryOptions, ClassifyOptions, MotionMapOptions};
     #[pymodule_export]
     use crate::roll::{roll, DenseSolution};
     #[pymodule_export]

@@ -2,9 +2,11 @@
 //! records repeat a handful of names dozens of times, and a new string for each costs as
 //! much as the float beside it.
 
+use eccjump_core::maps::motion::sequence_code as code_of;
 use eccjump_core::modes::contact::{Mode, TransitionReason};
 use eccjump_core::modes::rolling::events::ContactEvent;
 use eccjump_core::motion::record::MotionStatus;
+use pyo3::exceptions::PyValueError;
 use pyo3::prelude::*;
 use pyo3::sync::PyOnceLock;
 use pyo3::types::PyString;
@@ -74,4 +76,21 @@ pub fn transition_reason_codes() -> Vec<(u8, &'static str)> {
 #[pyfunction]
 pub fn status_codes() -> Vec<(u8, &'static str)> {
     STATUSES.table()
+}
+
+/// The sequence code a motion map stores for the modes `codes` (codes of [`mode_codes`],
+/// the first `SEQUENCE_LEN` counted): the core's own formula, not a copy. ValueError for a
+/// code that is no mode.
+#[pyfunction]
+pub fn sequence_code(codes: Vec<u8>) -> PyResult<u16> {
+    let mode = |&c: &u8| {
+        Mode::ALL.get(usize::from(c)).copied().ok_or_else(|| {
+            PyValueError::new_err(format!(
+                "codes: {c} is not a mode code (0 ... {})",
+                Mode::ALL.len() - 1
+            ))
+        })
+    };
+    let modes = codes.iter().map(mode).collect::<PyResult<Vec<Mode>>>()?;
+    Ok(code_of(modes.into_iter()))
 }

@@ -1,13 +1,12 @@
 //! Names to the core's enums (rule, integrator, route), and the option objects that several
 //! entry points share: [`ClassifyOptions`] (`jarm_points`, `jarm_grid`),
-//! [`BoundaryOptions`] (the three boundary searches) and [`MotionOptions`] (`motion_grid`,
-//! `motion_points`). Only names are converted here; every
-//! range is checked by the core.
+//! [`BoundaryOptions`] (the three boundary searches) and [`MotionMapOptions`] (`motion_grid`,
+//! `motion_points`). Only names are converted here; every range is checked by the core.
 
 use crate::errors::to_py;
 use eccjump_core::jarm::{JarmOptions, Method};
 use eccjump_core::maps::boundary::boundary_options;
-use eccjump_core::maps::motion::MotionMapOptions;
+use eccjump_core::maps::motion::MotionMapOptions as MapOptions;
 use eccjump_core::ode::{Integrator, SolverOptions};
 use eccjump_core::{Cylinder, Ramp, Rule};
 use pyo3::exceptions::PyValueError;
@@ -124,18 +123,19 @@ pub fn parse_rule(rule: &str) -> PyResult<Rule> {
 }
 
 /// The options every point of a motion map or of `motion_points` runs with, and the threads
-/// of the call: made in Python from keyword-only plain values named as `eccjump.motion_map`
-/// names them (ValueError for an unknown rule or pair; ranges are checked by the core).
+/// of the call: made in Python (`eccjump.motion.options.MotionOptions.bridge`) from
+/// keyword-only plain values named as `eccjump.motion_map` names them (ValueError for an
+/// unknown rule or pair; ranges are checked by the core).
 #[pyclass(frozen, module = "eccjump._core")]
-pub struct MotionOptions {
+pub struct MotionMapOptions {
     /// The options every point shares.
-    pub map: MotionMapOptions,
+    pub map: MapOptions,
     /// Threads of the call (0 = one per core).
     pub n_threads: usize,
 }
 
 #[pymethods]
-impl MotionOptions {
+impl MotionMapOptions {
     /// Converts the rule's and the pair's names.
     #[new]
     #[pyo3(signature = (*, rule, t_max, max_transitions, rtol, atol, max_steps, n_threads,
@@ -151,7 +151,7 @@ impl MotionOptions {
         n_threads: usize,
         integrator: &str,
     ) -> PyResult<Self> {
-        let map = MotionMapOptions {
+        let map = MapOptions {
             rule: parse_rule(rule)?,
             t_max,
             max_transitions,

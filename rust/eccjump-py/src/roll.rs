@@ -1,49 +1,24 @@
-//! `roll`: one pure-rolling run, computed with the GIL released, returned as plain values
-//! (`eccjump.roll` makes the `RollResult`).
+//! `roll`: one pure-rolling run, computed with the GIL released, returned by name as plain
+//! values (`eccjump.roll` makes the `RollResult`).
 
-use crate::columns::dense_rows;
+use crate::columns::{dense_rows, Records};
 use crate::errors::detached;
 use crate::names::ROLL_EVENTS;
 use crate::options::{parse_rule, ramp, solver_options};
 use eccjump_core::mechanics::friction::friction_ratio;
 use eccjump_core::modes::rolling::run::{roll_until, RollOptions, RollStatus};
 use eccjump_core::modes::rolling::solution::RollSolution;
-use numpy::{IntoPyArray, PyArray1, PyArray2, PyReadonlyArray1};
+use numpy::{IntoPyArray, PyArray2, PyReadonlyArray1};
+use pyo3::intern;
 use pyo3::prelude::*;
-use pyo3::types::{PyDict, PyString};
-
-/// One recorded series of a run.
-type Series<'py> = Bound<'py, PyArray1<f64>>;
-
-/// One event met: (name, t, θ, θ̇), `Event`'s fields.
-type EventFields<'py> = (Bound<'py, PyString>, f64, f64, f64);
-
-/// A finished run: the series (t, θ, θ̇, θ̈, F_x, F_y, l, |F_x|/F_y), the events, the
-/// terminal event's name (or None), the status code, the message, the evaluations and the
-/// dense output (or None).
-type RollOutput<'py> = (
-    (
-        Series<'py>,
-        Series<'py>,
-        Series<'py>,
-        Series<'py>,
-        Series<'py>,
-        Series<'py>,
-        Series<'py>,
-        Series<'py>,
-    ),
-    Vec<EventFields<'py>>,
-    Option<Bound<'py, PyString>>,
-    i32,
-    String,
-    usize,
-    Option<DenseSolution>,
-);
+use pyo3::types::PyDict;
 
 /// Integrates pure rolling of the body (χ, k_m) on a ramp of angle α, with the options of
 /// `eccjump.roll` (keyword-only, named as there). Bad input raises ValueError (from the
 /// core's checks: the ramp, then the rule and the pair by name, then the options) before
-/// any work is done.
+/// any work is done. The run comes back by the field names of `RollResult`: the series
+/// (numpy arrays), `events` (one list per field of `Event`), `terminal_event` (a name or
+/// None), `status`, `message`, `nfev` and `sol` (None unless `dense_output`).
 #[pyfunction]
 #[pyo3(signature = (chi, km, alpha, *, theta0, omega0, mu_s, t_max, theta_max, rtol, atol,
                     dense_output, max_steps, rule, integrator))]
@@ -64,7 +39,7 @@ pub fn roll<'py>(
     max_steps: usize,
     rule: &str,
     integrator: &str,
-) -> PyResult<RollOutput<'py>> {
+) -> PyResult<Bound<'py, PyDict>> {
     let ramp = ramp(chi, km, alpha)?;
     let opts = RollOptions {
         theta0,
@@ -77,32 +52,38 @@ pub fn roll<'py>(
         dense_output,
     };
     let run = detached(py, |stop| roll_until(&ramp, &opts, stop))?;
-    let events = run.events.iter();
-    let events = events.map(|e| (ROLL_EVENTS.of(py, e.event), e.t, e.theta, e.omega));
     let terminal_event = match run.status {
         RollStatus::Event(e) => Some(ROLL_EVENTS.of(py, e)),
         _ => None,
     };
+    let events = Records::new(py, &run.events)
+        .field(intern!(py, "name"), |e| ROLL_EVENTS.of(py, e.event))?
+        .field(intern!(py, "t"), |e| e.t)?
+        .field(intern!(py, "theta"), |e| e.theta)?
+        .field(intern!(py, "omega"), |e| e.omega)?;
+    let d = PyDict::new(py);
     // The record's vectors move into numpy (no copy).
-    let series = (
-        run.t.into_pyarray(py),
-        run.theta.into_pyarray(py),
-        run.omega.into_pyarray(py),
-        run.omega_dot.into_pyarray(py),
-        run.fx.into_pyarray(py),
-        run.fy.into_pyarray(py),
-        run.l.into_pyarray(py),
-        run.ratio.into_pyarray(py),
-    );
-    Ok((
-        series,
-        events.collect(),
-        terminal_event,
-        run.status.code(),
-        run.status.message(),
-        run.nfev,
-        run.dense.map(|sol| DenseSolution { sol }),
-    ))
+    let series = [
+        (intern!(py, "t"), run.t),
+        (intern!(py, "theta"), run.theta),
+        (intern!(py, "omega"), run.omega),
+        (intern!(py, "omega_dot"), run.omega_dot),
+        (intern!(py, "Fx"), run.fx),
+        (intern!(py, "Fy"), run.fy),
+        (intern!(py, "l"), run.l),
+        (intern!(py, "friction_ratio"), run.ratio),
+    ];
+    for (name, values) in series {
+        d.set_item(name, values.into_pyarray(py))?;
+    }
+    d.set_item(intern!(py, "events"), events.into_dict())?;
+    d.set_item(intern!(py, "terminal_event"), terminal_event)?;
+    d.set_item(intern!(py, "status"), run.status.code())?;
+    d.set_item(intern!(py, "message"), run.status.message())?;
+    d.set_item(intern!(py, "nfev"), run.nfev)?;
+    let sol = run.dense.map(|sol| DenseSolution { sol });
+    d.set_item(intern!(py, "sol"), sol)?;
+    Ok(d)
 }
 
 /// The dense output of a run (`RollResult.sol`): the state and the kinematics at any time

@@ -1,7 +1,8 @@
 //! `simulate`: one full-motion run (rolling, slipping, flight, landing), computed with the
-//! GIL released, returned as plain values (`eccjump.simulate` makes the `MotionResult`).
+//! GIL released, returned by name as plain values (`eccjump.simulate` makes the
+//! `MotionResult`).
 
-use crate::columns::dense_rows;
+use crate::columns::{dense_rows, set_column, Records};
 use crate::errors::detached;
 use crate::names::{MODES, REASONS, STATUSES};
 use crate::options::{parse_rule, ramp, solver_options};
@@ -13,83 +14,20 @@ use eccjump_core::motion::sensitivities::{
 use eccjump_core::motion::solution::MotionSolution;
 use eccjump_core::motion::{simulate_until, MotionRun, SimOptions};
 use numpy::{IntoPyArray, PyArray1, PyArray2, PyArray3, PyArrayMethods, PyReadonlyArray1};
+use pyo3::intern;
 use pyo3::prelude::*;
-use pyo3::types::PyString;
-
-/// A name from [`crate::names`].
-type Name<'py> = Bound<'py, PyString>;
-
-/// One recorded series of a run.
-type Series<'py> = Bound<'py, PyArray1<f64>>;
-
-/// t, θ, θ̇, l, l̇, b, ḃ, F_x, F_y, energy, dissipated, and the mode codes: every recorded
-/// point, one array per field.
-type Points<'py> = (
-    Series<'py>,
-    Series<'py>,
-    Series<'py>,
-    Series<'py>,
-    Series<'py>,
-    Series<'py>,
-    Series<'py>,
-    Series<'py>,
-    Series<'py>,
-    Series<'py>,
-    Series<'py>,
-    Bound<'py, PyArray1<i8>>,
-);
-
-/// t, from mode, to mode, reason, θ, θ̇, l, l̇, b, ḃ: `Transition`'s fields.
-type TransitionFields<'py> = (
-    f64,
-    Option<Name<'py>>,
-    Name<'py>,
-    Name<'py>,
-    f64,
-    f64,
-    f64,
-    f64,
-    f64,
-    f64,
-);
-
-/// `FlightRecord`'s fields.
-type FlightFields = (f64, f64, f64, f64, f64, f64);
-
-/// `ImpactRecord`'s fields.
-type ImpactFields<'py> = (f64, f64, f64, f64, f64, f64, bool, Name<'py>);
-
-/// `Segment`'s fields.
-type SegmentFields<'py> = (Name<'py>, Name<'py>, f64, f64, usize);
-
-/// The records of a run: its transitions, flights, impacts and segments.
-type Records<'py> = (
-    Vec<TransitionFields<'py>>,
-    Vec<FlightFields>,
-    Vec<ImpactFields<'py>>,
-    Vec<SegmentFields<'py>>,
-);
-
-/// A finished run: its points, its records, the energy ledger (energy0, dissipated by
-/// sliding, by impacts), the status's name, the message, the evaluations, the dense
-/// output and the sensitivities (each None unless asked for).
-type MotionOutput<'py> = (
-    Points<'py>,
-    Records<'py>,
-    (f64, f64, f64),
-    Name<'py>,
-    String,
-    usize,
-    Option<MotionDense>,
-    Option<Derivatives<'py>>,
-);
+use pyo3::types::PyDict;
 
 /// A run's sensitivities: d(t, θ)/dp of each transition and its flag.
 type Derivatives<'py> = (Bound<'py, PyArray3<f64>>, Bound<'py, PyArray1<bool>>);
 
 /// The full motion of the body (χ, k_m) on a ramp of angle α, with the options of
 /// `eccjump.simulate` (keyword-only, named as there; μ_k resolved). Bad input raises
-/// ValueError (from the core's checks) before any work is done.
+/// ValueError (from the core's checks) before any work is done. The run comes back by the
+/// field names of `MotionResult`: the recorded points (one numpy array per field), the
+/// records `transitions`, `flights`, `impacts`, `segments` (each one list per field of its
+/// named tuple), the energy ledger, `status`, `message`, `nfev`, `sol` and the
+/// sensitivities `d_transitions`, `d_singular` (each None unless asked for).
 #[pyfunction]
 #[pyo3(signature = (chi, km, alpha, *, mu_s, mu_k, restitution, rule, theta0, omega0, slip0,
                     t_max, l_max, max_transitions, rtol, atol, max_steps, dense_output,
@@ -116,7 +54,7 @@ pub fn simulate<'py>(
     dense_output: bool,
     integrator: &str,
     sensitivities: bool,
-) -> PyResult<MotionOutput<'py>> {
+) -> PyResult<Bound<'py, PyDict>> {
     let ramp = ramp(chi, km, alpha)?;
     let opts = SimOptions {
         law: ContactLaw {
@@ -143,16 +81,23 @@ pub fn simulate<'py>(
         };
         Ok((run, sens))
     })?;
-    Ok((
-        points(py, &run.points),
-        records(py, &run),
-        (run.energy0, run.dissipated_slip, run.dissipated_impacts),
-        STATUSES.of(py, run.status.unwrap_or(MotionStatus::Failed)),
-        run.message,
-        run.nfev,
-        run.dense.map(|sol| MotionDense { sol }),
-        sens.map(|s| derivatives(py, s)).transpose()?,
-    ))
+    let d = points(py, &run.points)?;
+    records(&d, &run)?;
+    d.set_item(intern!(py, "energy0"), run.energy0)?;
+    d.set_item(intern!(py, "dissipated_slip"), run.dissipated_slip)?;
+    d.set_item(intern!(py, "dissipated_impacts"), run.dissipated_impacts)?;
+    let status = run.status.unwrap_or(MotionStatus::Failed);
+    d.set_item(intern!(py, "status"), STATUSES.of(py, status))?;
+    d.set_item(intern!(py, "message"), run.message)?;
+    d.set_item(intern!(py, "nfev"), run.nfev)?;
+    d.set_item(intern!(py, "sol"), run.dense.map(|sol| MotionDense { sol }))?;
+    let (d_transitions, d_singular) = match sens {
+        Some(s) => derivatives(py, s).map(|(dt, ds)| (Some(dt), Some(ds)))?,
+        None => (None, None),
+    };
+    d.set_item(intern!(py, "d_transitions"), d_transitions)?;
+    d.set_item(intern!(py, "d_singular"), d_singular)?;
+    Ok(d)
 }
 
 /// The sensitivities as (d_transitions of shape (transitions, 2, 8), d_singular).
@@ -163,71 +108,67 @@ fn derivatives(py: Python<'_>, s: Sensitivities) -> PyResult<Derivatives<'_>> {
     Ok((d, s.singular.into_pyarray(py)))
 }
 
-/// One field of every recorded point, as a numpy array.
-fn column<'py>(py: Python<'py>, points: &[Point], field: impl Fn(&Point) -> f64) -> Series<'py> {
-    points
-        .iter()
-        .map(field)
-        .collect::<Vec<f64>>()
-        .into_pyarray(py)
+/// The recorded points, one numpy array per field of `MotionResult`.
+fn points<'py>(py: Python<'py>, p: &[Point]) -> PyResult<Bound<'py, PyDict>> {
+    let d = PyDict::new(py);
+    set_column(&d, intern!(py, "t"), p, |q| q.t)?;
+    set_column(&d, intern!(py, "theta"), p, |q| q.state.theta)?;
+    set_column(&d, intern!(py, "omega"), p, |q| q.state.omega)?;
+    set_column(&d, intern!(py, "l"), p, |q| q.state.l)?;
+    set_column(&d, intern!(py, "ldot"), p, |q| q.state.ldot)?;
+    set_column(&d, intern!(py, "b"), p, |q| q.state.b)?;
+    set_column(&d, intern!(py, "bdot"), p, |q| q.state.bdot)?;
+    set_column(&d, intern!(py, "Fx"), p, |q| q.fx)?;
+    set_column(&d, intern!(py, "Fy"), p, |q| q.fy)?;
+    set_column(&d, intern!(py, "energy"), p, |q| q.energy)?;
+    set_column(&d, intern!(py, "dissipated"), p, |q| q.dissipated)?;
+    set_column(&d, intern!(py, "mode"), p, |q| q.mode as i8)?;
+    Ok(d)
 }
 
-/// The recorded points, one array per field.
-fn points<'py>(py: Python<'py>, p: &[Point]) -> Points<'py> {
-    (
-        column(py, p, |q| q.t),
-        column(py, p, |q| q.state.theta),
-        column(py, p, |q| q.state.omega),
-        column(py, p, |q| q.state.l),
-        column(py, p, |q| q.state.ldot),
-        column(py, p, |q| q.state.b),
-        column(py, p, |q| q.state.bdot),
-        column(py, p, |q| q.fx),
-        column(py, p, |q| q.fy),
-        column(py, p, |q| q.energy),
-        column(py, p, |q| q.dissipated),
-        p.iter()
-            .map(|q| q.mode as i8)
-            .collect::<Vec<i8>>()
-            .into_pyarray(py),
-    )
-}
-
-/// The records of `run`, each as a tuple of its fields.
-fn records<'py>(py: Python<'py>, run: &MotionRun) -> Records<'py> {
-    let transitions = run.transitions.iter().map(|t| {
-        let [theta, omega, l, ldot, b, bdot] = t.state.values();
-        let from = t.from.map(|m| MODES.of(py, m));
-        let (to, why) = (MODES.of(py, t.to), REASONS.of(py, t.reason));
-        (t.t, from, to, why, theta, omega, l, ldot, b, bdot)
-    });
-    let flights = run.flights.iter().map(|f| {
-        let (t0, t1) = (f.t_liftoff, f.t_landing);
-        (t0, t1, f.theta_liftoff, f.theta_landing, f.apex, f.distance)
-    });
-    let impacts = run.impacts.iter().map(|i| {
-        let outcome = MODES.of(py, i.outcome);
-        (
-            i.t,
-            i.normal_speed,
-            i.slip_before,
-            i.pt,
-            i.pn,
-            i.energy_lost,
-            i.sticking,
-            outcome,
-        )
-    });
-    let segments = run.segments.iter().map(|s| {
-        let (mode, why) = (MODES.of(py, s.mode), REASONS.of(py, s.reason));
-        (mode, why, s.t_start, s.t_end, s.nfev)
-    });
-    (
-        transitions.collect(),
-        flights.collect(),
-        impacts.collect(),
-        segments.collect(),
-    )
+/// The records of `run` into `d`, each kind by its field of `MotionResult`, one list per
+/// field of its named tuple (`Transition`, `FlightRecord`, `ImpactRecord`, `Segment`).
+fn records(d: &Bound<'_, PyDict>, run: &MotionRun) -> PyResult<()> {
+    let py = d.py();
+    let transitions = Records::new(py, &run.transitions)
+        .field(intern!(py, "t"), |t| t.t)?
+        .field(intern!(py, "from_mode"), |t| {
+            t.from.map(|m| MODES.of(py, m))
+        })?
+        .field(intern!(py, "to_mode"), |t| MODES.of(py, t.to))?
+        .field(intern!(py, "reason"), |t| REASONS.of(py, t.reason))?
+        .field(intern!(py, "theta"), |t| t.state.theta)?
+        .field(intern!(py, "omega"), |t| t.state.omega)?
+        .field(intern!(py, "l"), |t| t.state.l)?
+        .field(intern!(py, "ldot"), |t| t.state.ldot)?
+        .field(intern!(py, "b"), |t| t.state.b)?
+        .field(intern!(py, "bdot"), |t| t.state.bdot)?;
+    let flights = Records::new(py, &run.flights)
+        .field(intern!(py, "t_liftoff"), |f| f.t_liftoff)?
+        .field(intern!(py, "t_landing"), |f| f.t_landing)?
+        .field(intern!(py, "theta_liftoff"), |f| f.theta_liftoff)?
+        .field(intern!(py, "theta_landing"), |f| f.theta_landing)?
+        .field(intern!(py, "apex"), |f| f.apex)?
+        .field(intern!(py, "distance"), |f| f.distance)?;
+    let impacts = Records::new(py, &run.impacts)
+        .field(intern!(py, "t"), |i| i.t)?
+        .field(intern!(py, "normal_speed"), |i| i.normal_speed)?
+        .field(intern!(py, "slip_before"), |i| i.slip_before)?
+        .field(intern!(py, "pt"), |i| i.pt)?
+        .field(intern!(py, "pn"), |i| i.pn)?
+        .field(intern!(py, "energy_lost"), |i| i.energy_lost)?
+        .field(intern!(py, "sticking"), |i| i.sticking)?
+        .field(intern!(py, "outcome"), |i| MODES.of(py, i.outcome))?;
+    let segments = Records::new(py, &run.segments)
+        .field(intern!(py, "mode"), |s| MODES.of(py, s.mode))?
+        .field(intern!(py, "reason"), |s| REASONS.of(py, s.reason))?
+        .field(intern!(py, "t_start"), |s| s.t_start)?
+        .field(intern!(py, "t_end"), |s| s.t_end)?
+        .field(intern!(py, "nfev"), |s| s.nfev)?;
+    d.set_item(intern!(py, "transitions"), transitions.into_dict())?;
+    d.set_item(intern!(py, "flights"), flights.into_dict())?;
+    d.set_item(intern!(py, "impacts"), impacts.into_dict())?;
+    d.set_item(intern!(py, "segments"), segments.into_dict())
 }
 
 /// The dense output of a full-motion run (`MotionResult.sol`), evaluated by the core.

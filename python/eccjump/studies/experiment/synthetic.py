@@ -12,6 +12,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 from eccjump._base.body import Cylinder
+from eccjump.motion.options import MotionOptions
 from eccjump.motion.simulation import MODES, MotionResult, simulate
 from eccjump.studies.experiment.geometry import RampFrame, marker_offset
 from eccjump.studies.experiment.track import Track
@@ -120,6 +121,8 @@ def simulated_run(
     the first landing and half a flight more (3 s without a flight)."""
     unit = math.sqrt(radius / g)
     horizon = 3.0 / unit if duration is None else duration / unit
+    # Past the frames' end, with room for the stick-slip chatter of a long track.
+    options = MotionOptions(t_max=horizon + 2.0, max_transitions=200)
     run = simulate(
         body,
         alpha,
@@ -128,8 +131,7 @@ def simulated_run(
         restitution=restitution,
         theta0=theta0,
         omega0=omega0,
-        t_max=horizon + 2.0,
-        max_transitions=200,
+        **options.keywords(),
         dense_output=True,
     )
     if duration is None and run.flights and math.isfinite(run.flights[0].t_landing):

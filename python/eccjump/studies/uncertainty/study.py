@@ -13,7 +13,7 @@ from eccjump._base.checks import Integrator, Rule, optional_real, real, rule_nam
 from eccjump._base.sizes import check_fits, uncertainty_bytes
 from eccjump.classification.fields import JARM
 from eccjump.motion.fields import MOTION
-from eccjump.motion.simulation import checked_motion_options
+from eccjump.motion.options import MotionOptions
 from eccjump.studies.uncertainty.delta import delta_method
 from eccjump.studies.uncertainty.questions import Progress, evaluate, jumps, outcome_counts, ran
 from eccjump.studies.uncertainty.results import (
@@ -245,30 +245,29 @@ def uncertainty(
 
 def _question_options(
     question: str,
-    rule: object,
-    t_max: object,
-    max_transitions: object,
-    rtol: object,
-    atol: object,
-    integrator: object,
-    n_threads: object,
+    rule: Rule,
+    t_max: float,
+    max_transitions: int,
+    rtol: float,
+    atol: float,
+    integrator: Integrator,
+    n_threads: int,
 ) -> dict[str, object]:
     """The keyword options of the question's function. The full motion's options are checked
     whatever the question (by the one path of every entry point of the full motion), so that
     a bad one is an error even where the closed form does not use it."""
-    opts = checked_motion_options(
+    opts = MotionOptions(
         rule=rule,
         t_max=t_max,
         max_transitions=max_transitions,
         rtol=rtol,
         atol=atol,
-        max_steps=1_000_000,  # motion_map's default
         integrator=integrator,
-        n_threads=n_threads,
     )
+    opts.to_core(n_threads)
     if question == "jarm":
-        return {"rule": opts["rule"], "n_threads": opts["n_threads"]}
-    return opts
+        return {"rule": opts.rule, "n_threads": n_threads}
+    return {**opts.keywords(), "n_threads": n_threads}
 
 
 __all__ = ["JARM_PARAMETERS", "Question", "uncertainty"]

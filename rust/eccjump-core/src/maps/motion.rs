@@ -1,6 +1,8 @@
 //! Maps of the full motion: what the body does at every point of a grid over
-//! (α, χ, k_m fraction, μ_s, μ_k, e, θ0, θ̇0), each point run by [`simulate`] to its first
-//! landing and kept as a fixed-size [`MotionSummary`].
+//! (α, χ, k_m fraction, μ_s, μ_k, e, θ0, θ̇0) ([`MotionAxes`]) or of a list of points
+//! ([`MotionColumns`](crate::maps::motion_points::MotionColumns)), each point run by
+//! [`simulate`] to its first landing and kept as a fixed-size [`MotionSummary`]. Both are
+//! [`MotionPoints`] sources of one driver, [`motion_map`].
 //!
 //! Each point is computed from its index alone and written in place (the parallel driver of
 //! [`crate::maps::parallel`]), so maps are bit-identical for any thread count, and a point's
@@ -172,6 +174,19 @@ pub fn sequence_code(modes: impl Iterator<Item = Mode>) -> u16 {
         .sum()
 }
 
+/// Where the points of a motion map come from: a grid ([`MotionAxes`]) or columns of points
+/// ([`MotionColumns`](crate::maps::motion_points::MotionColumns)). [`motion_map`] runs
+/// either, so the two differ only in how point g's values are found.
+pub trait MotionPoints: Sync {
+    /// The number of points, or an error naming the first bad axis or column.
+    fn count(&self) -> Result<usize>;
+
+    /// The values of point `g` (< [`count`](Self::count)) in the order of
+    /// [`PARAMETERS`](crate::motion::options::PARAMETERS) (α, χ, k_m, μ_s, μ_k, e, θ0, θ̇0),
+    /// μ_k = μ_s where it is not given.
+    fn values(&self, g: usize) -> [f64; 8];
+}
+
 /// The axes of a motion map (each non-empty; `mu_k` empty means μ_k = μ_s at every point).
 /// The grid is their product in C order (α slowest, θ̇0 fastest), with k_m = frac·(1 − χ).
 #[derive(Debug, Clone, Copy)]
@@ -208,10 +223,12 @@ impl MotionAxes<'_> {
             self.omega0.len(),
         ]
     }
+}
 
+impl MotionPoints for MotionAxes<'_> {
     /// The number of grid points (an error if it overflows, or an axis other than μ_k is
     /// empty).
-    pub fn size(&self) -> Result<usize> {
+    fn count(&self) -> Result<usize> {
         let names = crate::motion::options::PARAMETERS;
         let shape = self.shape();
         if let Some(k) = shape.iter().position(|&n| n == 0) {
@@ -230,8 +247,8 @@ impl MotionAxes<'_> {
             })
     }
 
-    /// The body, ramp and options of grid point `g`, or None where a parameter is invalid.
-    fn point(&self, g: usize, base: &SimOptions) -> Option<(Ramp, SimOptions)> {
+    /// Grid point `g`: its index on each axis, C order.
+    fn values(&self, g: usize) -> [f64; 8] {
         let shape = self.shape();
         let mut idx = [0usize; 8];
         let mut rest = g;
@@ -241,7 +258,7 @@ impl MotionAxes<'_> {
         }
         let chi = self.chi[idx[1]];
         let mu_s = self.mu_s[idx[3]];
-        let values = [
+        [
             self.alpha[idx[0]],
             chi,
             self.frac[idx[2]] * (1.0 - chi),
@@ -250,8 +267,7 @@ impl MotionAxes<'_> {
             self.restitution[idx[5]],
             self.theta0[idx[6]],
             self.omega0[idx[7]],
-        ];
-        point_from(values, base)
+        ]
     }
 }
 
@@ -311,7 +327,7 @@ impl MotionMapOptions {
     }
 }
 
-/// The summary of one point, as [`motion_grid`] computes it: invalid parameters (k_m = 0
+/// The summary of one point, as [`motion_map`] computes it: invalid parameters (k_m = 0
 /// included) give [`MotionSummary::invalid`], a run that fails its status.
 pub fn motion_point(ramp: &Ramp, opts: &SimOptions) -> MotionSummary {
     summary(simulate(ramp, opts), opts.law.rule)
@@ -329,30 +345,27 @@ fn summary(result: Result<MotionRun>, rule: Rule) -> MotionSummary {
     }
 }
 
-/// Fills `out` (length [`MotionAxes::size`]) with the summary of every grid point, in
-/// parallel on `n_threads` threads; `stop()` may end the work (`Error::Interrupted`).
-pub fn motion_grid(
-    axes: &MotionAxes<'_>,
+/// Fills `out` (one summary per point of `points`) in parallel on `n_threads` threads, each
+/// exactly [`motion_point`] at its point (an invalid point: [`MotionSummary::invalid`]), the
+/// same bits for any thread count; `stop()` may end the work (`Error::Interrupted`). The
+/// count of `points` is checked first, then the options.
+pub fn motion_map(
+    points: &impl MotionPoints,
     opts: &MotionMapOptions,
     n_threads: usize,
     out: &mut [MotionSummary],
     stop: &dyn Fn() -> bool,
 ) -> Result<()> {
-    crate::maps::parallel::check_len("out", out.len(), axes.size()?)?;
+    crate::maps::parallel::check_len("out", out.len(), points.count()?)?;
     opts.validate()?;
     let base = opts.base();
+    let (rule, method) = (base.law.rule, base.solver.method);
     par_fill_pieces_until(
         out,
         n_threads,
         |start, piece, cancelled| {
-            motion_piece(
-                &|g| axes.point(g, &base),
-                base.law.rule,
-                base.solver.method,
-                start,
-                piece,
-                cancelled,
-            )
+            let point = |g| point_from(points.values(g), &base);
+            motion_piece(&point, rule, method, start, piece, cancelled)
         },
         stop,
     )
@@ -363,8 +376,8 @@ pub fn motion_grid(
 /// runs go on together, in waves: every rolling segment that some run needs is integrated
 /// side by side with the others ([`roll_batch`]), then every sliding segment
 /// ([`solve_lanes_with`]), each run going on (flights, impacts, decisions) as soon as its
-/// segment ends, until every run is over. Grids and point lists share it.
-pub(crate) fn motion_piece(
+/// segment ends, until every run is over.
+fn motion_piece(
     point: &dyn Fn(usize) -> Option<(Ramp, SimOptions)>,
     rule: Rule,
     method: Integrator,
@@ -521,15 +534,15 @@ mod tests {
             theta0: &zero,
             omega0: &zero,
         };
-        let n = axes.size().unwrap();
+        let n = axes.count().unwrap();
         let mut out = vec![MotionSummary::invalid(); n];
-        motion_grid(&axes, &opts(), 1, &mut out, &|| false).unwrap();
+        motion_map(&axes, &opts(), 1, &mut out, &|| false).unwrap();
         let mut two = out.clone();
-        motion_grid(&axes, &opts(), 2, &mut two, &|| false).unwrap();
+        motion_map(&axes, &opts(), 2, &mut two, &|| false).unwrap();
         for (g, (a, b)) in out.iter().zip(&two).enumerate() {
             // Bit-identical for any thread count (NaN fields compared by bits).
             assert_eq!(format!("{a:?}"), format!("{b:?}"), "point {g}");
-            let (ramp, o) = axes.point(g, &opts().base()).unwrap();
+            let (ramp, o) = point_from(axes.values(g), &opts().base()).unwrap();
             let run = simulate(&ramp, &o).unwrap();
             assert_eq!(
                 format!("{a:?}"),
@@ -567,12 +580,12 @@ mod tests {
                 },
                 ..opts()
             };
-            let mut out = vec![MotionSummary::invalid(); axes.size().unwrap()];
-            motion_grid(&axes, &o, 2, &mut out, &|| false).unwrap();
+            let mut out = vec![MotionSummary::invalid(); axes.count().unwrap()];
+            motion_map(&axes, &o, 2, &mut out, &|| false).unwrap();
             // Points by their first mode (none: invalid).
             let mut first = [0; 4];
             for (g, got) in out.iter().enumerate() {
-                let alone = match axes.point(g, &o.base()) {
+                let alone = match point_from(axes.values(g), &o.base()) {
                     Some((ramp, p)) => motion_point(&ramp, &p),
                     None => MotionSummary::invalid(),
                 };
@@ -610,10 +623,10 @@ mod tests {
                 },
                 ..opts()
             };
-            let mut out = vec![MotionSummary::invalid(); axes.size().unwrap()];
-            motion_grid(&axes, &o, 1, &mut out, &|| false).unwrap();
+            let mut out = vec![MotionSummary::invalid(); axes.count().unwrap()];
+            motion_map(&axes, &o, 1, &mut out, &|| false).unwrap();
             for (g, got) in out.iter().enumerate() {
-                let (ramp, p) = axes.point(g, &o.base()).unwrap();
+                let (ramp, p) = point_from(axes.values(g), &o.base()).unwrap();
                 let alone = motion_point(&ramp, &p);
                 assert_eq!(format!("{got:?}"), format!("{alone:?}"), "point {g}");
             }
@@ -638,7 +651,7 @@ mod tests {
             omega0: &[0.0],
         };
         let mut out = vec![MotionSummary::invalid(); 2];
-        motion_grid(&axes, &opts(), 1, &mut out, &|| false).unwrap();
+        motion_map(&axes, &opts(), 1, &mut out, &|| false).unwrap();
         assert_eq!(out[0].status, MotionStatus::Landed as u8);
         assert_eq!(out[1].status, INVALID);
     }

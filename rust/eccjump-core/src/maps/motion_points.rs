@@ -1,17 +1,12 @@
 //! The full motion, to the first landing, at a list of points: one column per parameter
 //! (α, χ, k_m, μ_s, μ_k, e, θ0, θ̇0), each point's values given, as a Monte Carlo sample
-//! needs them. The same machinery as a motion map ([`motion_piece`]: the runs of a piece go
-//! on together in waves), so every point is exactly [`motion_point`] there, for any thread
-//! count.
+//! needs them. A second source of points for the driver of a motion map
+//! ([`motion_map`](crate::maps::motion::motion_map)), so every point is exactly
+//! [`motion_point`](crate::maps::motion::motion_point) there, for any thread count.
 
 use crate::error::Result;
-use crate::maps::motion::{motion_piece, point_from, MotionMapOptions, MotionSummary};
-use crate::maps::parallel::{check_len, par_fill_pieces_until};
-use crate::mechanics::Ramp;
-use crate::motion::SimOptions;
-
-#[cfg(doc)]
-use crate::maps::motion::motion_point;
+use crate::maps::motion::MotionPoints;
+use crate::maps::parallel::check_len;
 
 /// The parameters of each point, one column per parameter, all of one length (`mu_k` may
 /// be empty: μ_k = μ_s at every point). Unlike a map's k_m fraction, `km` is the body's k_m.
@@ -35,10 +30,10 @@ pub struct MotionColumns<'a> {
     pub omega0: &'a [f64],
 }
 
-impl MotionColumns<'_> {
+impl MotionPoints for MotionColumns<'_> {
     /// The number of points: the length of `alpha`, which every other column (and `mu_k`
     /// unless empty) must have; an error naming the first column that does not.
-    pub fn len(&self) -> Result<usize> {
+    fn count(&self) -> Result<usize> {
         let n = self.alpha.len();
         let columns = [
             ("chi", self.chi),
@@ -57,60 +52,29 @@ impl MotionColumns<'_> {
         Ok(n)
     }
 
-    /// Whether there are no points.
-    pub fn is_empty(&self) -> bool {
-        self.alpha.is_empty()
-    }
-
-    /// The body, ramp and options of point `i`, or None where a value is invalid (k_m > 1 − χ,
-    /// μ_k > μ_s, a value out of range).
-    fn point(&self, i: usize, base: &SimOptions) -> Option<(Ramp, SimOptions)> {
+    /// Point `i`: row `i` of the columns.
+    fn values(&self, i: usize) -> [f64; 8] {
         let c = self;
         let mu_s = c.mu_s[i];
-        let mu_k = c.mu_k.get(i).copied().unwrap_or(mu_s);
-        let values = [
+        [
             c.alpha[i],
             c.chi[i],
             c.km[i],
             mu_s,
-            mu_k,
+            c.mu_k.get(i).copied().unwrap_or(mu_s),
             c.restitution[i],
             c.theta0[i],
             c.omega0[i],
-        ];
-        point_from(values, base)
+        ]
     }
-}
-
-/// Fills `out` (one summary per point of `columns`) in parallel on `n_threads` threads, each
-/// exactly [`motion_point`] at its point (an invalid point: [`MotionSummary::invalid`]), the
-/// same bits for any thread count; `stop()` may end the work (`Error::Interrupted`).
-pub fn motion_points(
-    columns: &MotionColumns<'_>,
-    opts: &MotionMapOptions,
-    n_threads: usize,
-    out: &mut [MotionSummary],
-    stop: &dyn Fn() -> bool,
-) -> Result<()> {
-    check_len("out", out.len(), columns.len()?)?;
-    opts.validate()?;
-    let base = opts.base();
-    let (rule, method) = (base.law.rule, base.solver.method);
-    par_fill_pieces_until(
-        out,
-        n_threads,
-        |start, piece, cancelled| {
-            let point = |i| columns.point(i, &base);
-            motion_piece(&point, rule, method, start, piece, cancelled)
-        },
-        stop,
-    )
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::maps::motion::{motion_point, INVALID};
+    use crate::maps::motion::{
+        motion_map, motion_point, point_from, MotionAxes, MotionMapOptions, MotionSummary, INVALID,
+    };
     use crate::mechanics::Rule;
     use crate::motion::MotionStatus;
     use crate::ode::{Integrator, SolverOptions};
@@ -163,14 +127,14 @@ mod tests {
                 },
             };
             let mut one = vec![MotionSummary::invalid(); 600];
-            motion_points(&cols, &opts, 1, &mut one, &|| false).unwrap();
+            motion_map(&cols, &opts, 1, &mut one, &|| false).unwrap();
             let mut two = one.clone();
             two.fill(MotionSummary::invalid());
-            motion_points(&cols, &opts, 2, &mut two, &|| false).unwrap();
+            motion_map(&cols, &opts, 2, &mut two, &|| false).unwrap();
             let base = opts.base();
             for (i, (a, b)) in one.iter().zip(&two).enumerate() {
                 assert_eq!(format!("{a:?}"), format!("{b:?}"), "point {i}");
-                let alone = match cols.point(i, &base) {
+                let alone = match point_from(cols.values(i), &base) {
                     Some((ramp, o)) => motion_point(&ramp, &o),
                     None => MotionSummary::invalid(),
                 };
@@ -181,6 +145,41 @@ mod tests {
             assert!(count(&|s| s.status == MotionStatus::Landed as u8) > 100);
             assert!(count(&|s| s.slipped_first) > 20);
         }
+    }
+
+    #[test]
+    fn a_grid_and_its_points_as_columns_are_one_map() {
+        // Two sources of points for one driver: the grid's points, given as columns, have
+        // the grid's summaries (invalid points and μ_k = μ_s included).
+        let axes = MotionAxes {
+            alpha: &[0.4, 0.7],
+            chi: &[0.15, 0.5],
+            frac: &[0.0, 0.3, 0.9],
+            mu_s: &[0.4, 1.0],
+            mu_k: &[],
+            restitution: &[0.0, 0.6],
+            theta0: &[0.0],
+            omega0: &[0.0, 1.0],
+        };
+        let n = axes.count().unwrap();
+        let rows: Vec<[f64; 8]> = (0..n).map(|g| axes.values(g)).collect();
+        let c: [Vec<f64>; 8] = std::array::from_fn(|k| rows.iter().map(|r| r[k]).collect());
+        let opts = MotionMapOptions {
+            rule: Rule::Paper,
+            t_max: 30.0,
+            max_transitions: 30,
+            solver: SolverOptions::default(),
+        };
+        let mut grid = vec![MotionSummary::invalid(); n];
+        motion_map(&axes, &opts, 2, &mut grid, &|| false).unwrap();
+        let mut points = vec![MotionSummary::invalid(); n];
+        motion_map(&columns(&c), &opts, 1, &mut points, &|| false).unwrap();
+        assert_eq!(format!("{grid:?}"), format!("{points:?}"));
+        assert!(
+            grid.iter().any(|s| s.status == INVALID),
+            "k_m = 0 is invalid"
+        );
+        assert!(grid.iter().any(|s| s.status == MotionStatus::Landed as u8));
     }
 
     #[test]
@@ -198,13 +197,13 @@ mod tests {
             solver: SolverOptions::default(),
         };
         let mut out = vec![MotionSummary::invalid(); 4];
-        let err = motion_points(&cols, &opts, 1, &mut out, &|| false).unwrap_err();
+        let err = motion_map(&cols, &opts, 1, &mut out, &|| false).unwrap_err();
         assert!(err.to_string().contains("theta0"), "{err}");
         let none = MotionColumns {
             mu_k: &[],
             ..columns(&c)
         };
-        motion_points(&none, &opts, 1, &mut out, &|| false).unwrap();
+        motion_map(&none, &opts, 1, &mut out, &|| false).unwrap();
         for (i, s) in out.iter().enumerate() {
             // μ_k = μ_s everywhere: only a k_m beyond 1 − χ makes a point invalid.
             assert_eq!(s.status == INVALID, c[2][i] > 1.0 - c[1][i], "point {i}");
