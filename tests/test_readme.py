@@ -115,6 +115,27 @@ def test_the_two_commands_come_first():
     assert second.strip() in (README.parent / ".ci" / "run").read_text().splitlines()
 
 
+def collected(*args: str) -> str:
+    """The test ids ``pytest --collect-only`` lists with ``args``, from the checkout."""
+    cmd = [sys.executable, "-m", "pytest", "--collect-only", "-q", "-p", "no:cacheprovider"]
+    p = subprocess.run(
+        [*cmd, *args], cwd=README.parent, capture_output=True, text=True, timeout=120, check=False
+    )
+    assert p.returncode == 0, p.stdout[-2000:] + p.stderr[-2000:]
+    return p.stdout
+
+
+@pytest.mark.slow
+def test_the_quick_check_leaves_out_the_campaigns():
+    """`pytest -m "not slow"`, the README's quick check, runs no campaign (minutes each),
+    though a -m of the command line replaces the one of addopts; `-m campaign` runs them."""
+    verdict = "tests/test_analysis_verdict.py"
+    quick = collected("-m", "not slow", verdict)
+    assert "::test_a_slip_the_data_ask_for_is_never_jarm" in quick
+    assert "::test_never_confidently_wrong" not in quick
+    assert "::test_never_confidently_wrong" in collected("-m", "campaign", verdict)
+
+
 @pytest.mark.slow
 def test_first_command_writes_a_map_and_a_figure(tmp_path):
     command = blocks("bash")[0].split("&&", 1)[1].strip()

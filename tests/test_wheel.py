@@ -9,6 +9,10 @@
   install in fresh venvs and run (the wheel without Rust). It compiles the core twice (about
   4 minutes of CPU time, 9-10 minutes on 2 shared cores), so it runs only with
   ECCJUMP_TEST_WHEEL=1.
+- The declared minimum versions are tested: every dependency has one, CI runs
+  `scripts/check_minimums.sh` after the wheel check, and it passes (`pytest -m "not slow"`
+  against the lowest versions; it compiles the core once, so it runs only with
+  ECCJUMP_TEST_MINIMUMS=1).
 """
 
 from __future__ import annotations
@@ -18,6 +22,7 @@ import re
 import shutil
 import subprocess
 import sys
+import tomllib
 from pathlib import Path
 
 import pytest
@@ -114,3 +119,33 @@ def test_sdist_and_portable_wheel_install_and_run():
     p = subprocess.run(["bash", str(script)], env=env, capture_output=True, text=True, timeout=1800)
     assert p.returncode == 0, p.stdout[-3000:] + p.stderr[-3000:]
     assert "done: sdist and wheel install and run" in p.stdout
+
+
+def test_every_dependency_has_a_minimum():
+    """`--resolution lowest-direct` tests the declared minimums; one not declared would be
+    resolved to the oldest release on the index."""
+    project = tomllib.loads((ROOT / "pyproject.toml").read_text())["project"]
+    extras = project["optional-dependencies"]
+    for req in [*project["dependencies"], *(r for name in extras for r in extras[name])]:
+        if not req.startswith("eccjump["):
+            assert ">=" in req, f"{req} declares no minimum version"
+
+
+def test_ci_checks_the_minimums_after_the_wheel():
+    lines = (ROOT / ".ci" / "run").read_text().strip().splitlines()
+    wheel = lines.index("bash scripts/check_wheel.sh")
+    assert lines.index("bash scripts/check_minimums.sh") > wheel
+
+
+@pytest.mark.slow
+@pytest.mark.skipif(
+    os.environ.get("ECCJUMP_TEST_MINIMUMS") != "1",
+    reason="set ECCJUMP_TEST_MINIMUMS=1: installs the lowest versions and runs the tests (minutes)",
+)
+def test_the_lowest_versions_pass_the_tests():
+    script = ROOT / "scripts" / "check_minimums.sh"
+    env = {k: v for k, v in os.environ.items() if k != "PYTHONPATH"}  # not the checkout's
+    env["PYTHON"] = sys.executable
+    p = subprocess.run(["bash", str(script)], env=env, capture_output=True, text=True, timeout=3600)
+    assert p.returncode == 0, p.stdout[-3000:] + p.stderr[-3000:]
+    assert "done: the tests pass with the lowest versions" in p.stdout
