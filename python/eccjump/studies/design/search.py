@@ -24,8 +24,8 @@ from eccjump.studies.design._common import (
     RULES,
     Target,
 )
-from eccjump.studies.design.build import Build, _positive, build
 from eccjump.studies.design.margins import _classify, _holds, _margins, _score, _Spec
+from eccjump.studies.design.physical import Build, _positive, build
 from eccjump.studies.design.probability import apex, best, tolerance_spread
 from eccjump.studies.design.results import Design, Flight, Margin, Sensitivity
 

@@ -52,7 +52,7 @@ from eccjump.studies.experiment.fit import (
 )
 from eccjump.studies.experiment.geometry import fit_contact_line
 from eccjump.studies.experiment.inputs import MARKER_IN_R, in_range
-from eccjump.studies.experiment.reconstruct import MIN_WINDOW, Reconstruction, reconstruct
+from eccjump.studies.experiment.reconstruction import MIN_WINDOW, Reconstruction, reconstruct
 from eccjump.studies.experiment.sheet import design_inputs
 from eccjump.studies.experiment.track import MAX_FRAMES, Track, load_track
 
