@@ -19,7 +19,7 @@ import pytest
 import eccjump
 from eccjump._base import userfiles as _userfiles
 from eccjump.studies.experiment.geometry import RampFrame, marker_offset, theta_from_marker
-from eccjump.studies.experiment.reconstruct import derivative_weights, reconstruct
+from eccjump.studies.experiment.reconstruction import derivative_weights, reconstruct
 from eccjump.studies.experiment.sheet import design_inputs
 from eccjump.studies.experiment.synthetic import synthetic_track
 from eccjump.studies.experiment.track import (

@@ -83,6 +83,26 @@ def test_an_old_path_named_like_a_function_leaves_the_function():
         assert callable(getattr(eccjump, name)), name
 
 
+@pytest.mark.parametrize(
+    "old",
+    [
+        "eccjump.plot.trajectory",
+        "eccjump.plot.uncertainty",
+        "eccjump.studies.design.build",
+        "eccjump.studies.experiment.reconstruct",
+    ],
+)
+def test_a_renamed_module_leaves_the_function_of_its_name(old):
+    """These modules were hidden by the function of their package of the same name: the old
+    path imports the renamed module, and ``package.name`` stays the function."""
+    package, _, name = old.rpartition(".")
+    function = getattr(importlib.import_module(package), name)
+    with pytest.warns(DeprecationWarning, match=rf"^{old} is deprecated"):
+        module = importlib.import_module(old)
+    assert getattr(module, name) is function
+    assert getattr(sys.modules[package], name) is function
+
+
 def test_a_pickle_made_before_the_move_loads():
     made = pickle.dumps(eccjump.Reason.JARM, protocol=0)
     old = made.replace(b"eccjump.classification.fields", b"eccjump.fields")

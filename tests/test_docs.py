@@ -146,7 +146,7 @@ def _runtime(module: str, qualname: str) -> object:
 
 
 def test_the_shared_entries_are_in_use() -> None:
-    assert len(WITH_PLACEHOLDERS) >= 21  # closed_form, boundary, starts, design.build
+    assert len(WITH_PLACEHOLDERS) >= 35  # closed_form, boundary, starts, design, jarm, motion, ...
     used = set()
     for module, qualname in WITH_PLACEHOLDERS:
         source = inspect.getsource(_runtime(module, qualname))
@@ -160,7 +160,12 @@ def test_every_placeholder_is_filled_with_the_entry_of_its_parameter(module, qua
     doc = inspect.getdoc(obj) or ""
     assert "%(" not in doc, f"{module}.{qualname}: a placeholder not filled (no @fill?)"
     params = _section(doc, "Parameters") or ""
-    documented = [line.split(" : ")[0] for line in params.splitlines() if line[:1].isalpha()]
+    documented = [  # numpydoc groups names ("a, b : float") and writes "**kwargs"
+        name.strip().lstrip("*")
+        for line in params.splitlines()
+        if line[:1].isalpha() or line[:1] == "*"
+        for name in line.split(" : ")[0].split(",")
+    ]
     signature = [p for p in inspect.signature(obj).parameters if p != "self"]  # type: ignore[arg-type]
     assert documented == signature, f"{module}.{qualname}"
 

@@ -61,6 +61,11 @@ MOVED: dict[str, str] = {
         "design": "studies.design",
         "uncertainty": "studies.uncertainty",
         "experiment": "studies.experiment",
+        # modules that a function of their package, of the same name, hid (0.2)
+        "plot.trajectory": "plot.trajectories",
+        "plot.uncertainty": "plot.uncertainty_study",
+        "studies.design.build": "studies.design.physical",
+        "studies.experiment.reconstruct": "studies.experiment.reconstruction",
     }.items()
 }
 
@@ -95,10 +100,6 @@ MOVED_NAMES: dict[str, dict[str, str]] = {
         "to_region": _CLASSIFICATION,
     },
 }
-
-#: Old paths that are also public functions of eccjump: importing the old module binds it as
-#: an attribute of eccjump (the import system does), which must not replace the function.
-_FUNCTIONS = frozenset({"design", "uncertainty", "motion_points"})
 
 
 def new_name(name: str) -> str | None:
@@ -155,6 +156,10 @@ class _Loader(importlib.abc.Loader):
         )
         module = importlib.import_module(self.new)
         self.spec = module.__spec__
+        # the import system then binds the module as an attribute of its parent package
+        parent = sys.modules[spec.name.rpartition(".")[0]]
+        if not isinstance(parent, _Package):
+            parent.__class__ = _Package
         return module
 
     def exec_module(self, module: types.ModuleType) -> None:
@@ -179,11 +184,19 @@ class _Finder(importlib.abc.MetaPathFinder):
 
 
 class _Package(types.ModuleType):
-    """The class of the module ``eccjump``: importing an old path named like a public
-    function (``import eccjump.design.search``) leaves ``eccjump.design`` the function."""
+    """The class of ``eccjump`` and of every package an old path was imported from: importing
+    an old path named like a function of its package (``import eccjump.design.search``,
+    ``import eccjump.plot.trajectory``) leaves the function (``eccjump.design``,
+    ``eccjump.plot.trajectory``) bound, not the module."""
 
     def __setattr__(self, name: str, value: Any) -> None:
-        if name in _FUNCTIONS and isinstance(value, types.ModuleType):
+        bound = self.__dict__.get(name)
+        if (
+            isinstance(value, types.ModuleType)
+            and f"{self.__name__}.{name}" in MOVED
+            and bound is not None
+            and not isinstance(bound, types.ModuleType)
+        ):
             return
         super().__setattr__(name, value)
 

@@ -59,6 +59,9 @@ rule : {"paper", "normal_force"}, default "paper"
     "rule_short": """\
 rule : {"paper", "normal_force"}, default "paper"
     Lift-off rule.""",
+    "rule_rolling": """\
+rule : {"paper", "normal_force"}, default "paper"
+    Lift-off rule from rolling.""",
     # -- the start ---------------------------------------------------------------------------
     "theta0": """\
 theta0 : float, default 0.0
@@ -76,11 +79,24 @@ grid : int, default 40
     "n_threads": """\
 n_threads : int, default 0
     Threads, 0 (one per core) ... 256; results are identical for any value.""",
+    # -- the scales of SI units -------------------------------------------------------------
+    "g": """\
+g : float, default 9.81
+    Gravitational acceleration [m/s²], in [1e-50, 1e50].""",
     # -- raised ------------------------------------------------------------------------------
     "value_error_broadcast": """\
 ValueError
     For a value out of its range, naming the parameter and the index of the first
     invalid point, or arrays that do not broadcast.""",
+    "type_error": """\
+TypeError
+    For an argument of the wrong type.""",
+    "type_error_km": """\
+TypeError
+    If ``km`` is given, or an argument has the wrong type.""",
+    "keyboard_interrupt": """\
+KeyboardInterrupt
+    On Ctrl-C, within about a second.""",
 }
 
 _PLACEHOLDER = re.compile(r"^([ \t]*)%\((\w+)\)s[ \t]*$", re.MULTILINE)

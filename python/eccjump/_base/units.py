@@ -18,12 +18,14 @@ import math
 from dataclasses import dataclass
 
 from eccjump._base.checks import real
+from eccjump._base.docs import fill
 
 #: The allowed range of each of g [m/s²], R [m] and M [kg].
 SCALE_RANGE = (1e-50, 1e50)
 _UNITS = {"g": "m/s^2", "R": "m", "M": "kg"}
 
 
+@fill
 @dataclass(frozen=True, slots=True)
 class Units:
     """Physical scales that convert a dimensionless result to SI units.
@@ -34,8 +36,7 @@ class Units:
 
     Parameters
     ----------
-    g : float, default 9.81
-        Gravitational acceleration [m/s²], in [1e-50, 1e50].
+    %(g)s
     R : float, default 1.0
         Radius of the cylinder [m], in [1e-50, 1e50].
     M : float, default 1.0

@@ -20,6 +20,7 @@ from numpy.typing import ArrayLike, NDArray
 from eccjump._base.arrays import axis, broadcast_flat, fields_equal, fraction_axis, turns
 from eccjump._base.bridge import CallOptions, Method, call_options, jarm_grid, jarm_points
 from eccjump._base.checks import Integrator, Rule, file_error, flag, real, short, text
+from eccjump._base.docs import fill
 from eccjump._base.html import best_slice, card, deg, jarm_slice, num, span
 from eccjump._base.sizes import F64, check_fits, field_bytes, result_bytes
 from eccjump.classification.derivatives import derivative_fields
@@ -215,6 +216,7 @@ if (
     raise ImportError("JarmResult and eccjump.classification.fields.FIELDS list different fields")
 
 
+@fill
 def jarm(
     alpha: ArrayLike,
     chi: ArrayLike,
@@ -243,14 +245,11 @@ def jarm(
 
     Parameters
     ----------
-    alpha : array_like of float
-        Ramp angle [rad], in [0, pi/2].
-    chi : array_like of float
-        The body's d/R, in [0, 1].
+    %(alpha)s
+    %(chi)s
     km : array_like of float
         The body's shell mass fraction k_m itself, in [0, 1 - chi].
-    mu_s : array_like of float
-        Static friction coefficient, in [0, inf).
+    %(mu_s_array)s
     n : int, array_like of int or None, default None
         The turn on which the jump must happen: an integer >= 1 (at most 2**32 - 1) or an
         array of them (broadcast with the other inputs), or None for the first jump whatever
@@ -262,10 +261,8 @@ def jarm(
     rule : {"paper", "normal_force"}, default "paper"
         Lift-off rule: the paper's condition chi theta'^2 cos theta = cos alpha, or the
         classical Fy = 0.
-    theta0 : float, default 0.0
-        Initial angle [rad], |theta0| <= 2 pi 1e6.
-    omega0 : float, default 0.0
-        Initial angular velocity [sqrt(g/R) rad], in [0, 1e6].
+    %(theta0)s
+    %(omega0)s
     rtol : float, default 1e-10
         Relative tolerance of ``method="ode"``, in [1e-15, 1e-3] (checked and recorded,
         unused by the closed form).
@@ -282,8 +279,7 @@ def jarm(
         following rolling on to the lift-off to tell SLIP_BEFORE from SLIP_AT_JUMP.
         ``is_jarm`` and every other reason are unchanged; maps where most points slip are
         faster (1.7x with ``method="ode"``). No effect under ``rule="normal_force"``.
-    n_threads : int, default 0
-        Threads, 0 (one per core) ... 256; results are identical for any value.
+    %(n_threads)s
     integrator : {"RK45", "DOP853", "Vern9"}, default "RK45"
         The Runge–Kutta pair of ``method="ode"``: Dormand–Prince 5(4), Dormand–Prince
         8(5,3) or Verner 9(8); the same verdicts. For speed pick ``"Vern9"``
@@ -316,10 +312,8 @@ def jarm(
         For arguments that apply to the whole call (shapes that do not broadcast, rule,
         method, tolerances, max_turns, n_threads, integrator) and for an ``n`` that is not
         None or integers >= 1; the message names the parameter and its range.
-    TypeError
-        For an argument of the wrong type.
-    KeyboardInterrupt
-        On Ctrl-C, within about a second.
+    %(type_error)s
+    %(keyboard_interrupt)s
     MemoryError
         If the result cannot be allocated.
 
@@ -649,6 +643,7 @@ def _with_derivatives(layout: Layout, derivatives: Mapping[str, Any]) -> Layout:
     return {**layout, "coords": {**layout["coords"], "wrt": wrt}, "data_vars": data_vars}
 
 
+@fill
 def region(
     alpha: ArrayLike,
     chi: ArrayLike,
@@ -700,8 +695,7 @@ def region(
         :func:`simulate`; on a map the axis is ``km_frac``. Passing it is a TypeError.
     method : {"closed_form", "ode"}, default "closed_form"
         The paper's formulas with a rigorous path scan, or integration with events.
-    rule : {"paper", "normal_force"}, default "paper"
-        Lift-off rule: the paper's condition chi theta'^2 cos theta = cos alpha, or Fy = 0.
+    %(rule)s
     theta0 : float, default 0.0
         Initial angle [rad], |theta0| <= 2 pi 1e6 (:func:`region_dataset` sweeps it).
     omega0 : float, default 0.0
@@ -730,10 +724,6 @@ def region(
         with dask (``pip install "eccjump[dask]"``), one Rust grid call per block,
         bit-identical to the unchunked map; call ``.compute()`` on the result. On a cluster
         use ``n_threads`` = threads per worker / concurrent tasks per worker.
-    output : {"region"}, default "region"
-        A :class:`Region`. ``"xarray"`` is deprecated (it works until the next release,
-        with a DeprecationWarning): write ``region(...).to_xarray()``, or
-        :func:`region_dataset` to sweep ``mu_s``, ``theta0`` and ``omega0``.
     derivatives : bool, default False
         Also give the exact derivatives of theta_J, Fx_J, Fy_J and mu_J with respect to
         (alpha, chi, km) at every grid point, as :func:`jarm` does: the ``d_*`` fields of
@@ -741,6 +731,10 @@ def region(
         in the labelled form and in the files of :func:`eccjump.maps.save` (not in the
         chunked files of ``eccjump map``). Not with ``chunks``. With respect to k_m itself,
         not km_frac: dk_m = (1 - chi) dkm_frac at fixed chi.
+    output : {"region"}, default "region"
+        A :class:`Region`. ``"xarray"`` is deprecated (it works until the next release,
+        with a DeprecationWarning): write ``region(...).to_xarray()``, or
+        :func:`region_dataset` to sweep ``mu_s``, ``theta0`` and ``omega0``.
 
     Returns
     -------
@@ -755,14 +749,12 @@ def region(
         For an axis that is not a 1-D array of values in range, a bad ``mu_s``, ``n`` or
         option (a sequence of ``mu_s``, ``theta0`` or ``omega0``: :func:`region_dataset`
         sweeps them); the message names the parameter and its range.
-    TypeError
-        If ``km`` is given, or an argument has the wrong type.
+    %(type_error_km)s
     MemoryError
         If the map does not fit in memory (refused before any work, naming its size).
     ImportError
         For ``chunks`` without dask.
-    KeyboardInterrupt
-        On Ctrl-C, within about a second.
+    %(keyboard_interrupt)s
 
     See Also
     --------

@@ -30,6 +30,7 @@ from numpy.typing import ArrayLike, NDArray
 
 from eccjump._base.arrays import fraction_axis
 from eccjump._base.checks import file_error, real_array
+from eccjump._base.docs import fill
 from eccjump.classification.classify import Region, region
 from eccjump.classification.fields import JARM
 from eccjump.maps.layout import COORD_ATTRS, DIMS, Layout, layout_from_xarray, require
@@ -43,6 +44,7 @@ if TYPE_CHECKING:  # pragma: no cover
 SWEEPABLE = ("mu_s", "theta0", "omega0")
 
 
+@fill
 def region_dataset(
     alpha: ArrayLike,
     chi: ArrayLike,
@@ -97,8 +99,7 @@ def region_dataset(
     ValueError
         For a swept value that is not a number or a non-empty 1-D sequence, or any bad
         argument of :func:`region`.
-    TypeError
-        If ``km`` is given, or an argument has the wrong type.
+    %(type_error_km)s
     ImportError
         Without xarray.
 

@@ -25,6 +25,7 @@ from numpy.typing import ArrayLike, NDArray
 from eccjump import _core
 from eccjump._base.arrays import fields_equal, fraction_axis
 from eccjump._base.checks import U64_MAX, Integrator, file_error, integer, real_array, short, text
+from eccjump._base.docs import fill
 from eccjump._base.html import best_slice, card, deg, jarm_slice, span
 from eccjump._base.sizes import check_fits, result_bytes
 from eccjump.maps import store
@@ -248,6 +249,7 @@ def _block(
     return _core.motion_grid(a, *others, options=opts.to_core(n_threads))
 
 
+@fill
 def motion_map(
     alpha: ArrayLike,
     chi: ArrayLike,
@@ -301,8 +303,7 @@ def motion_map(
         Initial angle(s) [rad], |theta0| <= 2 pi 1e6.
     omega0 : float or array_like of float, default 0.0
         Initial angular velocity(ies) [sqrt(g/R) rad], |omega0| <= 1e6.
-    rule : {"paper", "normal_force"}, default "paper"
-        Lift-off rule from rolling.
+    %(rule_rolling)s
     t_max : float, default 100.0
         End time of each run [sqrt(R/g)], in (0, 1e6].
     max_transitions : int, default 100
@@ -313,8 +314,7 @@ def motion_map(
         Absolute tolerance, in [1e-300, 1e-6] (recorded with the map).
     max_steps : int, default 1_000_000
         Accepted steps of each run, 1 ... 10**7.
-    n_threads : int, default 0
-        Threads, 0 (one per core) ... 256; results are identical for any value.
+    %(n_threads)s
     integrator : {"RK45", "DOP853", "Vern9"}, default "RK45"
         The Runge–Kutta pair (recorded with the map). For speed pick ``"Vern9"`` (at the
         default rtol 1.5–1.9× faster than RK45 and about 15× more accurate); keep
@@ -338,8 +338,7 @@ def motion_map(
     ValueError
         For a bad shared option or a malformed axis, or an axis given as one number that
         makes every point invalid; the message names the parameter and its range.
-    TypeError
-        If ``km`` is given, or an argument has the wrong type.
+    %(type_error_km)s
     MemoryError
         If the map does not fit in memory.
     KeyboardInterrupt

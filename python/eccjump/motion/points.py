@@ -20,6 +20,7 @@ from numpy.typing import ArrayLike, NDArray
 from eccjump import _core
 from eccjump._base.arrays import broadcast_flat, fields_equal
 from eccjump._base.checks import Integrator, Rule
+from eccjump._base.docs import fill
 from eccjump._base.sizes import check_fits, result_bytes
 from eccjump.motion.fields import FIELDS, INVALID, MOTION, sequence_name
 from eccjump.motion.options import MotionOptions
@@ -97,6 +98,7 @@ class MotionPoints:
         return {f.name: getattr(self, f.name) for f in dataclasses.fields(self)}
 
 
+@fill
 def motion_points(
     alpha: ArrayLike,
     chi: ArrayLike,
@@ -146,8 +148,7 @@ def motion_points(
         Initial angles [rad], |theta0| <= 2 pi 1e6.
     omega0 : array_like of float, default 0.0
         Initial angular velocities [sqrt(g/R) rad], |omega0| <= 1e6.
-    rule : {"paper", "normal_force"}, default "paper"
-        Lift-off rule from rolling.
+    %(rule_rolling)s
     t_max : float, default 100.0
         End time of each run [sqrt(R/g)], in (0, 1e6].
     max_transitions : int, default 100
@@ -158,8 +159,7 @@ def motion_points(
         Absolute tolerance, in [1e-300, 1e-6].
     max_steps : int, default 1_000_000
         Accepted steps of each run, 1 ... 10**7.
-    n_threads : int, default 0
-        Threads, 0 (one per core) ... 256; results are identical for any value.
+    %(n_threads)s
     integrator : {"RK45", "DOP853", "Vern9"}, default "RK45"
         The Runge–Kutta pair. For speed pick ``"Vern9"`` or ``"DOP853"``; keep ``"RK45"``
         for step-for-step parity with scipy.

@@ -34,6 +34,7 @@ from eccjump._base.checks import (
     rule_name,
     text,
 )
+from eccjump._base.docs import fill
 from eccjump._base.html import card, deg, num
 from eccjump._base.units import Units
 from eccjump.motion.dense import DenseSolution
@@ -229,6 +230,7 @@ class RollResult:
             raise ValueError(f"name = {name!r} is not one of {EVENT_NAMES}")
         return next((e for e in self.events if e.name == name), None)
 
+    @fill
     def to_si(
         self, units: Units | None = None, *, g: float = 9.81, R: float = 1.0, M: float = 1.0
     ) -> RollResult:
@@ -241,8 +243,7 @@ class RollResult:
         ----------
         units : Units, optional
             The scales; if given, ``g``, ``R`` and ``M`` are ignored.
-        g : float, default 9.81
-            Gravitational acceleration [m/s²], in [1e-50, 1e50].
+        %(g)s
         R : float, default 1.0
             Radius [m], in [1e-50, 1e50].
         M : float, default 1.0
@@ -316,6 +317,7 @@ class RollResult:
     __hash__ = None  # type: ignore[assignment]  # mutable numpy arrays inside
 
 
+@fill
 def roll(
     body: Cylinder,
     alpha: float,
@@ -344,8 +346,7 @@ def roll(
 
     Parameters
     ----------
-    body : Cylinder
-        The body (chi, km).
+    %(body)s
     alpha : float
         Ramp angle [rad], in [0, pi/2] (``math.radians`` for degrees).
     theta0 : float, default 0.0

@@ -26,6 +26,7 @@ from eccjump._base.checks import (
     real_array,
     rule_name,
 )
+from eccjump._base.docs import fill
 from eccjump._base.html import card, deg, num, timeline
 from eccjump._base.units import Units
 
@@ -337,6 +338,7 @@ class MotionResult:
 
         return plot.motion(self, **kwargs)
 
+    @fill
     def to_si(
         self, units: Units | None = None, *, g: float = 9.81, R: float = 1.0, M: float = 1.0
     ) -> MotionResult:
@@ -347,8 +349,7 @@ class MotionResult:
         ----------
         units : Units, optional
             The scales; if given, ``g``, ``R`` and ``M`` are ignored.
-        g : float, default 9.81
-            Gravitational acceleration [m/s²], in [1e-50, 1e50].
+        %(g)s
         R : float, default 1.0
             Radius [m], in [1e-50, 1e50].
         M : float, default 1.0
@@ -462,6 +463,7 @@ def _sensitivities_si(d: NDArray[np.float64] | None, u: Units) -> NDArray[np.flo
     return out
 
 
+@fill
 def simulate(
     body: Cylinder,
     alpha: float,
@@ -506,8 +508,7 @@ def simulate(
         flight is undetermined).
     alpha : float
         Ramp angle [rad], in [0, pi/2] (0: flat ground).
-    mu_s : float
-        Static friction coefficient, in [0, inf).
+    %(mu_s)s
     mu_k : float or None, default None
         Kinetic friction coefficient, in [0, mu_s]; None: mu_k = mu_s.
     restitution : float, default 0.0
@@ -515,8 +516,7 @@ def simulate(
     rule : {"paper", "normal_force"}, default "paper"
         Lift-off from rolling: ``"paper"`` (chi theta'^2 cos theta = cos alpha) or
         ``"normal_force"`` (Fy = 0, or the friction cone left without a consistent slip).
-    theta0 : float, default 0.0
-        Initial angle [rad], |theta0| <= 2 pi 1e6.
+    %(theta0)s
     omega0 : float, default 0.0
         Initial angular velocity [sqrt(g/R) rad], |omega0| <= 1e6.
     slip0 : float, default 0.0
@@ -561,8 +561,7 @@ def simulate(
         For any parameter outside its range; the message names it, its range and unit.
     TypeError
         If ``body`` is not a Cylinder or a parameter has the wrong type.
-    KeyboardInterrupt
-        On Ctrl-C, within about a second.
+    %(keyboard_interrupt)s
     MemoryError
         If the record of the run cannot be allocated.
 

@@ -24,8 +24,8 @@ from eccjump.plot.paper import (
     fig4_slices,
     jarm_surfaces,
 )
-from eccjump.plot.trajectory import trajectory
-from eccjump.plot.uncertainty import uncertainty
+from eccjump.plot.trajectories import trajectory
+from eccjump.plot.uncertainty_study import uncertainty
 
 __all__ = [
     "MAX_FRAMES",

@@ -19,7 +19,7 @@ verdict -- found on a coarse grid, then refined by a deterministic compass searc
 """
 
 from eccjump.studies.design._common import GRID_RANGE, RULES, Target
-from eccjump.studies.design.build import Build, build
+from eccjump.studies.design.physical import Build, build
 from eccjump.studies.design.results import Design, Flight, Margin, Sensitivity
 from eccjump.studies.design.search import design
 

@@ -10,7 +10,7 @@ from typing import Any, NamedTuple
 from eccjump._base.body import Cylinder
 from eccjump._base.checks import short
 from eccjump._base.html import card, deg, num
-from eccjump.studies.design.build import Build
+from eccjump.studies.design.physical import Build
 
 
 @dataclass(frozen=True)

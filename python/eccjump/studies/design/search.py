@@ -11,6 +11,7 @@ from numpy.typing import NDArray
 
 from eccjump._base.body import Cylinder
 from eccjump._base.checks import Rule, integer, optional_real, real, short, text
+from eccjump._base.docs import fill
 from eccjump.classification.boundary import mu_s_min_path
 from eccjump.classification.fields import Reason
 from eccjump.motion.simulation import simulate
@@ -23,8 +24,8 @@ from eccjump.studies.design._common import (
     RULES,
     Target,
 )
-from eccjump.studies.design.build import Build, _positive, build
 from eccjump.studies.design.margins import _classify, _holds, _margins, _score, _Spec
+from eccjump.studies.design.physical import Build, _positive, build
 from eccjump.studies.design.probability import apex, best, tolerance_spread
 from eccjump.studies.design.results import Design, Flight, Margin, Sensitivity
 
@@ -73,6 +74,7 @@ def _run_lengths(ok: NDArray[np.bool_], axis: int) -> NDArray[np.float64]:
     return np.moveaxis(np.minimum(down, up) - 0.5, 0, axis)
 
 
+@fill
 def design(
     alpha_range: Sequence[float],
     mu_s: float,
@@ -163,8 +165,7 @@ def design(
     ValueError
         For bad input (naming the parameter and its range), and when no point of the grid
         has the verdict.
-    TypeError
-        For an argument of the wrong type.
+    %(type_error)s
 
     Examples
     --------

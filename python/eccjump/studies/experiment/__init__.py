@@ -8,7 +8,7 @@ theta, l, b in the ramp frame, detect and time slip, lift-off and landing, fit t
 """
 
 from eccjump.studies.experiment.analysis import VERDICTS, Analysis, analyze
-from eccjump.studies.experiment.reconstruct import Reconstruction, reconstruct
+from eccjump.studies.experiment.reconstruction import Reconstruction, reconstruct
 from eccjump.studies.experiment.render import RenderedVideo, render_video
 from eccjump.studies.experiment.synthetic import SyntheticTrack, synthetic_track
 from eccjump.studies.experiment.track import Track, read_track, track_from_arrays

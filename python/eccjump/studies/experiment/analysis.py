@@ -31,6 +31,7 @@ import numpy as np
 
 from eccjump._base.body import Cylinder
 from eccjump._base.checks import Rule, flag, integer, optional_real, rule_name, short
+from eccjump._base.docs import fill
 from eccjump._base.html import card
 from eccjump.studies.experiment import figure
 from eccjump.studies.experiment.events import Flight, Observed, Window, observe
@@ -51,7 +52,7 @@ from eccjump.studies.experiment.fit import (
 )
 from eccjump.studies.experiment.geometry import fit_contact_line
 from eccjump.studies.experiment.inputs import MARKER_IN_R, in_range
-from eccjump.studies.experiment.reconstruct import MIN_WINDOW, Reconstruction, reconstruct
+from eccjump.studies.experiment.reconstruction import MIN_WINDOW, Reconstruction, reconstruct
 from eccjump.studies.experiment.sheet import design_inputs
 from eccjump.studies.experiment.track import MAX_FRAMES, Track, load_track
 
@@ -263,6 +264,7 @@ class Analysis:
         return figure.analysis_figure(self, **kwargs)
 
 
+@fill
 def analyze(
     track: Track | str | os.PathLike[str],
     *,
@@ -335,8 +337,7 @@ def analyze(
         For a bad track (a file that is not a regular file or is too large, a row whose
         cells do not match the header, NaN, unsorted or repeated times, missing columns, too
         few or too many frames) or a parameter outside its range; the message names it.
-    TypeError
-        For an argument of the wrong type.
+    %(type_error)s
 
     Examples
     --------

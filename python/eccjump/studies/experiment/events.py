@@ -25,7 +25,7 @@ from dataclasses import dataclass
 import numpy as np
 from numpy.typing import NDArray
 
-from eccjump.studies.experiment.reconstruct import Reconstruction
+from eccjump.studies.experiment.reconstruction import Reconstruction
 
 #: Consecutive frames beyond the threshold that make a flight or a slip.
 MIN_RUN = 3

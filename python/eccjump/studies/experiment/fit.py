@@ -35,7 +35,7 @@ from eccjump._base.body import Cylinder
 from eccjump.classification.classify import jarm
 from eccjump.motion.simulation import MotionResult, simulate
 from eccjump.studies.experiment.geometry import RampFrame, marker_offset
-from eccjump.studies.experiment.reconstruct import Reconstruction, derivative_weights
+from eccjump.studies.experiment.reconstruction import Reconstruction, derivative_weights
 from eccjump.studies.experiment.track import Track
 
 NAMES = ("theta0", "omega0", "mu_k", "dmu", "e", "l0", "n0", "alpha")

@@ -52,6 +52,7 @@ from numpy.typing import NDArray
 
 from eccjump._base.checks import flag, real, short
 from eccjump._base.checks import path as path_arg
+from eccjump._base.docs import fill
 from eccjump._base.optional import require
 from eccjump._base.overwrite import check_overwrite
 from eccjump._base.userfiles import open_binary
@@ -259,6 +260,7 @@ def _spans(frames: NDArray[np.intp]) -> str:
     return f"{frames.size} ({text})"
 
 
+@fill
 def track(
     video: str | os.PathLike[str],
     *,
@@ -308,8 +310,7 @@ def track(
         For a file that is no video, holds no frames, too many or too large ones, shows
         fewer than two moving dots of distinct colours, or no dot of a colour named; and for
         a parameter outside its range. The message names the file or the parameter.
-    TypeError
-        For an argument of the wrong type.
+    %(type_error)s
     ImportError
         Without PyAV or scipy (``pip install eccjump[video]``).
 

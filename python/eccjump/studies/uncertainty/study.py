@@ -10,6 +10,7 @@ import numpy as np
 
 from eccjump._base.body import Cylinder
 from eccjump._base.checks import Integrator, Rule, optional_real, real, rule_name, text
+from eccjump._base.docs import fill
 from eccjump._base.sizes import check_fits, uncertainty_bytes
 from eccjump.classification.fields import JARM
 from eccjump.motion.fields import MOTION
@@ -39,6 +40,7 @@ JARM_PARAMETERS = ("chi", "km", "alpha", "mu_s")
 Question = Literal["jarm", "motion"]
 
 
+@fill
 def uncertainty(
     body: Cylinder,
     alpha: float,
@@ -130,12 +132,10 @@ def uncertainty(
     confidence : float, default 0.95
         Level of the Wilson intervals, in (0, 1 - 1e-15] (closer to 1 the two-sided normal
         quantile is infinite in floating point).
-    rule : {"paper", "normal_force"}, default "paper"
-        Lift-off rule from rolling.
+    %(rule_rolling)s
     t_max, max_transitions, rtol, atol, integrator
         The full motion's options (``question="motion"``), as in :func:`eccjump.motion_map`.
-    n_threads : int, default 0
-        Threads, 0 (one per core) ... 256; results are identical for any value.
+    %(n_threads)s
     progress : callable or None, default None
         Called as ``progress(done, total)`` after each chunk of valid samples (anything
         else is a TypeError before any work).
