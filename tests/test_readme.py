@@ -213,3 +213,18 @@ def test_python_examples(code, tmp_path):
                 assert number_close(g, w, s), (got, want)
             else:
                 assert g == w, (got, want)
+
+
+def test_ci_stops_at_a_failed_command_inside_a_readme_line():
+    """``set -e`` ignores a failure inside ``a && b && c`` but for its last command, so a
+    failed ``cargo test`` in the README's test line went on to the next step and the run
+    could end 0: each such line of .ci/run is followed by ``check $?``, which stops it."""
+    run = (README.parent / ".ci" / "run").read_text()
+    lines = run.splitlines()
+    commands = [x for x in lines if x and not x[0].isspace() and not x.startswith(("#", "if "))]
+    chained = [i for i, x in enumerate(lines) if x in commands and "&&" in x]
+    assert chained and all(lines[i + 1] == "check $?" for i in chained)
+    define = next(line for line in lines if line.startswith("check()"))
+    script = f"set -euo pipefail\n{define}\ntrue && false && true\ncheck $?\necho reached\n"
+    done = subprocess.run(["bash", "-c", script], capture_output=True, text=True, timeout=10)
+    assert done.returncode != 0 and "reached" not in done.stdout

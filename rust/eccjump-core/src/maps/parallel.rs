@@ -219,8 +219,10 @@ mod tests {
             Err(Error::Interrupted)
         );
         assert!(t.elapsed() < Duration::from_secs(2), "{:?}", t.elapsed());
+        // Few points are done by the stop, and none on a loaded machine where both polls
+        // come before the first point's millisecond is over.
         let done = c.iter().filter(|&&x| x != -1.0).count();
-        assert!(done > 0 && done < 10_000, "{done}");
+        assert!(done < 10_000, "{done}");
         assert!(c
             .iter()
             .zip(&a)
