@@ -8,7 +8,7 @@ made (``ValueError`` naming the keyword). Units: g = R = M = 1, angles in radian
 
 ========================  ====================================================================
 :func:`bodies`            :class:`~eccjump.Cylinder` (χ ∈ [0, 1], k_m ∈ [0, 1 − χ])
-:func:`ramps`             α ∈ [0, π/2] [rad]
+:func:`ramps`             α ∈ [0, π/2] (rad)
 :func:`frictions`         :class:`Friction` (μ_s ≥ 0, 0 ≤ μ_k ≤ μ_s)
 :func:`starts`            :class:`Start` (θ0, θ̇0, and a slip velocity for ``simulate``)
 :func:`motion_inputs`     :class:`MotionInput`, everything :func:`eccjump.simulate` takes
@@ -405,8 +405,8 @@ def tracks(
     >>> import eccjump
     >>> from hypothesis import given, settings
     >>> from eccjump.testing import strategies
-    >>> @settings(max_examples=3, deadline=None)
-    ... @given(strategies.tracks())
+    >>> @settings(max_examples=2, deadline=None)
+    ... @given(strategies.tracks(max_frames=30))
     ... def test_a_verdict_for_every_track(t):
     ...     result = eccjump.analyze(t.track, **t.keywords(), profile_mu_k=False)
     ...     assert result.verdict in ("jarm", "slip_first", "undetermined")
