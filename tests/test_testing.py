@@ -12,7 +12,6 @@ import sys
 import numpy as np
 import pytest
 from hypothesis import HealthCheck, find, given, settings
-from hypothesis import strategies as st
 
 import eccjump
 from eccjump import Reason
@@ -219,9 +218,3 @@ def test_maps_of_two_kinds_or_other_settings_differ(region_map):
 def test_a_saved_and_loaded_map_is_the_map(region_map, tmp_path):
     back = eccjump.load_map(eccjump.maps.save(region_map, tmp_path / "m.npz"))
     assert_maps_equal(back, region_map)
-
-
-# The strategies drive hypothesis's own machinery: a draw is a Cylinder the core built.
-@given(st.data())
-def test_a_body_is_a_cylinder(data):
-    assert isinstance(data.draw(strategies.bodies()), eccjump.Cylinder)
