@@ -24,7 +24,11 @@ ROOT = Path(__file__).resolve().parents[1]
 REFERENCE = ROOT / "docs" / "reference"
 
 #: Modules whose examples take a second or more (searches, maps): marked slow.
-SLOW_MODULES = {"eccjump.studies.design.search", "eccjump.classification.starts"}
+SLOW_MODULES = {
+    "eccjump.studies.design.search",
+    "eccjump.classification.starts",
+    "eccjump.testing.strategies",  # tracks() analyses two tracks
+}
 
 
 def _modules() -> list[str]:
