@@ -226,7 +226,47 @@ def _result_type(path: Path, suffix: str) -> str:
 
 
 def load(path: str | os.PathLike) -> Any:
-    """Any result of eccjump in a file, as its type: see :func:`eccjump.load`."""
+    """Any result of eccjump saved to a file, read back as its type.
+
+    A result's ``save(path)`` writes the file (``.nc`` or ``.json``; a map also ``.npz``
+    or ``.zarr``; an uncertainty study also ``.csv``); the type recorded in it
+    (``eccjump_type``; a map's kind) chooses the class. What is read back equals what was
+    saved, field by field and bit for bit, except a dense solution ``sol`` (None).
+
+    Parameters
+    ----------
+    path : str or os.PathLike
+        A file written by a result's ``save`` (:class:`RollResult`, :class:`MotionResult`,
+        :class:`JarmResult`, :class:`MotionPoints`, :class:`Design`, :class:`Analysis`,
+        :class:`Uncertainty`), a map's (:class:`Region`, :class:`MotionMap`, or
+        :func:`eccjump.maps.save`) or ``eccjump map -o``.
+
+    Returns
+    -------
+    RollResult, MotionResult, JarmResult, MotionPoints, Design, Analysis, Uncertainty,
+    Region or MotionMap
+        The result, as the class that saved it.
+
+    Raises
+    ------
+    ValueError
+        Naming ``path``: for a file that is no saved result (no type recorded, an unknown
+        type, damaged or foreign content) or an unknown suffix.
+    FileNotFoundError
+        If there is no file at ``path``.
+    ImportError
+        For ``.nc`` or ``.zarr`` without xarray (``pip install "eccjump[xarray]"``).
+
+    Examples
+    --------
+    >>> import math, os, tempfile
+    >>> import eccjump
+    >>> run = eccjump.roll(eccjump.Cylinder(chi=0.15, km=0.02), math.radians(40), mu_s=1.0)
+    >>> path = run.save(os.path.join(tempfile.mkdtemp(), "run.json"))
+    >>> back = eccjump.load(path)
+    >>> type(back).__name__, back == run
+    ('RollResult', True)
+    """
     source = Path(path_arg("path", path))
     suffix = _suffix(source, (*SUFFIXES, *MAP_SUFFIXES, *Result._suffix_owners))
     if suffix in Result._suffix_owners:

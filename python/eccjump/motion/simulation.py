@@ -504,6 +504,7 @@ class MotionResult(Result, kind="motion"):
             out["units"] = UNITS[name][self.units is not None]
         if name == "mode":
             out |= {
+                "units": "1",
                 "flag_values": np.arange(len(MODES), dtype=np.int8),
                 "flag_meanings": " ".join(MODES),
             }
