@@ -190,3 +190,21 @@ def test_no_file_of_the_users_is_replaced_or_lost(tmp_path, monkeypatch):
         run.save(mine, overwrite=True)
     assert mine.read_text() == "my notes"
     assert [p.name for p in tmp_path.iterdir()] == ["mine.json"]  # no temporary file left
+
+
+def test_save_writes_no_json_that_load_would_refuse_as_too_large(tmp_path, monkeypatch):
+    monkeypatch.setattr(results, "MAX_BYTES", 1000)
+    run = eccjump.roll(eccjump.Cylinder(*JARM_BODY), 0.7, mu_s=1.0)
+    with pytest.raises(ValueError, match=r"path: .*save it as \.nc"):
+        run.save(tmp_path / "big.json")
+    assert not list(tmp_path.iterdir())
+
+
+def test_a_damaged_netcdf_result_is_refused_not_read_as_numbers(tmp_path):
+    run = eccjump.roll(eccjump.Cylinder(*JARM_BODY), 0.7, mu_s=1.0)
+    path = run.save(tmp_path / "run.nc")
+    data = bytearray(path.read_bytes())
+    data[data.find(run.theta.tobytes()) + 100] ^= 0x10
+    path.write_bytes(bytes(data))
+    with pytest.raises(ValueError, match=r"run\.nc"):
+        eccjump.load(path)

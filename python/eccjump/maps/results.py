@@ -32,12 +32,13 @@ from typing import TYPE_CHECKING, Any, ClassVar, TypeVar
 import numpy as np
 
 from eccjump._base import records
-from eccjump._base.checks import file_error, flag
+from eccjump._base.checks import file_error, flag, shown
 from eccjump._base.checks import path as path_arg
 from eccjump._base.overwrite import check_overwrite, never
-from eccjump._base.userfiles import read_text
+from eccjump._base.userfiles import MAX_BYTES, read_text
 from eccjump._core import VERSION
 from eccjump.maps import store
+from eccjump.maps.integrity import netcdf_encoding
 from eccjump.maps.layout import require
 from eccjump.maps.map import Map
 
@@ -144,13 +145,24 @@ def _write(obj: Result, tmp: Path, suffix: str) -> None:
     if suffix == ".json":
         packed = {k: _pack(a) for k, a in arrays.items()}
         doc = {**type_attrs(obj), "fields": fields, "arrays": packed}
-        tmp.write_text(json.dumps(doc, ensure_ascii=False), encoding="utf-8")
+        tmp.write_bytes(_json_bytes(doc))
     else:
         ds = _with_arrays(obj.to_xarray(), arrays)
         ds.attrs.update({**type_attrs(obj), FIELDS_ATTR: json.dumps(fields, ensure_ascii=False)})
-        ds.to_netcdf(tmp, engine=store.netcdf_engine(), encoding=_no_fill(ds))
+        ds.to_netcdf(tmp, engine=store.netcdf_engine(), encoding=_encoding(ds))
     with open(tmp, "rb") as fh:
         os.fsync(fh.fileno())
+
+
+def _json_bytes(doc: dict[str, Any]) -> bytes:
+    """``doc`` as UTF-8 JSON; ValueError if :func:`load` would refuse it as too large."""
+    data = json.dumps(doc, ensure_ascii=False).encode("utf-8")
+    if len(data) > MAX_BYTES:
+        raise ValueError(
+            f"path: the result is {len(data) / 2**20:.0f} MiB as JSON, more than the "
+            f"{MAX_BYTES // 2**20} MiB a file is read back with; save it as .nc"
+        )
+    return data
 
 
 def _pack(a: np.ndarray) -> dict[str, Any]:
@@ -186,9 +198,11 @@ def _same_bits(x: Any, a: np.ndarray) -> bool:
     return x.dtype == a.dtype and x.shape == a.shape and x.tobytes() == a.tobytes()
 
 
-def _no_fill(ds: xr.Dataset) -> dict[str, dict[str, Any]]:
-    """No fill value: every value, NaN or not, is read back as written."""
-    return {str(k): {"_FillValue": None} for k, v in ds.variables.items() if v.dtype.kind in "biuf"}
+def _encoding(ds: xr.Dataset) -> dict[str, dict[str, Any]]:
+    """Checksums (as a map's: damage is found on reading) and no fill value (every value,
+    NaN or not, is read back as written) on every numeric variable."""
+    checked = netcdf_encoding(ds.variables.items())
+    return {str(k): {**e, "_FillValue": None} for k, e in checked.items()}
 
 
 def _read_json(path: Path) -> tuple[Any, dict[str, np.ndarray]]:
@@ -204,10 +218,12 @@ def _read_netcdf(path: Path) -> tuple[Any, dict[str, np.ndarray]]:
 
 
 def _open_netcdf(path: Path) -> xr.Dataset:
+    """The netCDF file at ``path``, loaded, once the library has read it whole in a child
+    process with a time limit (a damaged file can hang it: the maps' guard)."""
     xr = require("xarray")
-    return xr.open_dataset(
-        path, engine=store.netcdf_engine(), mask_and_scale=False, decode_times=False
-    ).load()
+    engine = store.netcdf_engine()
+    store.probe_netcdf(path, engine)
+    return xr.open_dataset(path, engine=engine, mask_and_scale=False, decode_times=False).load()
 
 
 def _result_type(path: Path, suffix: str) -> str:
@@ -287,7 +303,7 @@ def _guarded(source: Path, read: Callable[[], T]) -> T:
     try:
         return read()
     except (KeyError, TypeError, ValueError, IndexError, AttributeError) as err:
-        if str(err).startswith("path: "):  # already names the file (too large, not text)
+        if str(err).startswith(("path: ", shown(source))):  # names the file (too large, ...)
             raise
         what = f"is no saved result of eccjump ({_detail(err)})"
         raise file_error(source, what, name="path") from err
@@ -346,13 +362,15 @@ def records_of(
     named ``<dim>_<column>`` (an event's ``t`` is ``event_t``, apart from the series' ``t``;
     a column named as ``dim`` keeps its name), with the attributes ``attrs_of(column)``."""
     return {
-        (dim if k == dim else f"{dim}_{k}"): (
-            (dim,),
-            np.array([r[i] for r in rows]) if rows else np.zeros(0),
-            attrs_of(k),
-        )
+        (dim if k == dim else f"{dim}_{k}"): ((dim,), _column(rows, i), attrs_of(k))
         for i, k in enumerate(names)
     }
+
+
+def _column(rows: Sequence[tuple], i: int) -> np.ndarray:
+    """Column ``i`` of ``rows`` (None, the first transition's mode before, as "")."""
+    values = ["" if r[i] is None else r[i] for r in rows]
+    return np.array(values) if values else np.zeros(0)
 
 
 def point_dims(shape: tuple[int, ...]) -> tuple[str, ...]:
