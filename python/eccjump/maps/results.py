@@ -120,12 +120,13 @@ def save(obj: Result, path: str | os.PathLike, *, overwrite: bool = False) -> Pa
     """Write ``obj`` to ``path`` (see :meth:`Result.save`), under a temporary name first."""
     target = Path(path_arg("path", path))
     suffix = _suffix(target, SUFFIXES)
-    what = f"a saved {type(obj).__name__}"
+    # ours=never: a saved result is a file of the user's too, replaced only when asked.
     check_overwrite(
         target, overwrite=flag("overwrite", overwrite), option="overwrite=True", ours=never,
-        what=what, name="path",
+        what="a file eccjump replaces unasked", name="path",
     )  # fmt: skip
     store.check_parent(target)
+    store.check_name(target)
     tmp = store.temp_sibling(target)
     try:
         _write(obj, tmp, suffix)
