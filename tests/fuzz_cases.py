@@ -1232,6 +1232,63 @@ def case_store(d: Drawer) -> Case:
     return c
 
 
+def case_results(d: Drawer) -> Case:
+    """``eccjump.load`` of a saved result, a map, or a path that is none (a foreign or
+    damaged file, a wrong suffix, a wrong type); ``save`` of a result to a good or bad path,
+    over a file of the user's with and without ``overwrite``."""
+    where = tmpdir()
+    run = eccjump.roll(eccjump.Cylinder(*JARM_BODY), 0.7, mu_s=1.0)
+    good = saved_results(where, run)
+    if d.integer(0, 1):
+        c = Case("RollResult.save", run.save, params=("path", "overwrite"), allow_oserror=True)
+        user = where / "user.json"
+        user.write_text("{}")
+        path = d.choice((where / "r2.json", where / "r2.nc", user, where / "r.txt", None, 5))
+        overwrite = d.choice((False, True, True, None, "yes"))
+        c.args, c.kwargs, c.check = (path,), {"overwrite": overwrite}, check_any
+        refused = path == user and not overwrite  # the user's file stays
+        bad_path = not isinstance(path, Path) or path.suffix == ".txt"
+        c.must_raise = bad_path or not isinstance(overwrite, bool) or refused
+        return c
+    c = Case("load", eccjump.load, params=("path",), allow_oserror=True, check=check_any)
+    path = d.choice((*good, None, 7, b"r.json", where / "missing.json", where / "r.txt",
+                     *spoilt_results(where)))  # fmt: skip
+    c.must_raise = path not in good
+    c.args = (path,)
+    if isinstance(path, Path):  # an error about a file names the file
+        c.params = ("path", path.name)
+    return c
+
+
+def saved_results(where: Path, run: Any) -> tuple[Path, ...]:
+    """A roll saved as .json and .nc, a region as .npz (made once in ``where``)."""
+    paths = (where / "r.json", where / "r.nc", where / "reg.npz")
+    if not all(p.exists() for p in paths):
+        run.save(paths[0], overwrite=True)
+        run.save(paths[1], overwrite=True)
+        eccjump.region(mu_s=1.0, alpha=[0.5, 0.7], chi=[0.2], km_frac=[0.1]).save(paths[2])
+    return paths
+
+
+def spoilt_results(where: Path) -> tuple[Path, ...]:
+    """JSON that is no result: not JSON, no type, an unknown type, a type that does not
+    match the fields, an array reference that leads nowhere, truncated."""
+    text = (where / "r.json").read_text()
+    doc = json.loads(text)
+    spoilt = {
+        "text.json": "hello",
+        "untyped.json": "{}",
+        "list.json": "[1, 2]",
+        "bogus.json": json.dumps({**doc, "eccjump_type": "bogus"}),
+        "wrong.json": json.dumps({**doc, "eccjump_type": "motion"}),
+        "lost.json": json.dumps({**doc, "arrays": {}}),
+        "cut.json": text[: len(text) // 2],
+    }
+    for name, content in spoilt.items():
+        (where / name).write_text(content)
+    return tuple(where / n for n in spoilt)
+
+
 def damaged_maps(where: Path) -> tuple[Path, ...]:
     """JARM maps damaged as in issue 46, 6 and 7 (made once in ``where``): a bit flipped in
     the data of theta_J (.npz, .zarr), a chunk of theta_J deleted (.zarr), an alpha of 10 rad
@@ -2230,6 +2287,7 @@ GENERATORS: dict[str, Callable[[Drawer], Case]] = {
     "cylinder": case_cylinder,
     "units": case_units,
     "store": case_store,
+    "results": case_results,
     "plot": case_plot,
     "jarm_fraction": case_jarm_fraction,
     "start_map": case_start_map,

@@ -9,9 +9,11 @@ from __future__ import annotations
 
 import dataclasses
 import math
+import os
 import warnings
 from collections.abc import Mapping
 from dataclasses import dataclass, field, replace
+from pathlib import Path
 from typing import TYPE_CHECKING, Any, ClassVar, Literal
 
 import numpy as np
@@ -38,6 +40,7 @@ from eccjump.classification.fields import (
     docstring,
     map_attrs,
 )
+from eccjump.maps import results, store
 from eccjump.maps.dask import lazy_fields, normalize_chunks
 from eccjump.maps.layout import (
     DIMS,
@@ -45,13 +48,16 @@ from eccjump.maps.layout import (
     make_layout,
 )
 from eccjump.maps.map import Map
+from eccjump.maps.results import Result
 
 if TYPE_CHECKING:  # pragma: no cover
+    import pandas
+    import xarray as xr
     from matplotlib.figure import Figure
 
 
 @dataclass(frozen=True, repr=False, eq=False)
-class JarmResult:
+class JarmResult(Result, kind="jarm_points"):
     """Per-point classification, every field an array of the broadcast shape.
 
     Attributes
@@ -195,6 +201,22 @@ class JarmResult:
     @staticmethod
     def _from_raw(raw: Mapping[str, NDArray], shape: tuple[int, ...]) -> JarmResult:
         return JarmResult(**{k: raw[k].reshape(shape) for k in FIELDS})
+
+    # Taking the result elsewhere (save and eccjump.load: eccjump.maps.results).
+    def to_xarray(self) -> xr.Dataset:
+        """The points as an ``xarray.Dataset`` (needs xarray; computed if lazy): one
+        variable per field over ``point`` (``point_0``, ``point_1``, ... for more than one
+        axis; none for one point) with ``units``, ``long_name`` and the reason codes as CF
+        flags, the derivative fields with a trailing ``wrt`` (alpha, chi, km)."""
+        ds = results.points(self, {**self.fields(), **self.derivatives()}, JARM.var_attrs)
+        if self.d_theta_J is None:
+            return ds
+        return ds.assign_coords(wrt=("wrt", list(WRT), WRT_ATTRS))
+
+    def to_dataframe(self) -> pandas.DataFrame:
+        """The fields as a ``pandas.DataFrame``, one row per point (indexed by its position),
+        the units of the columns in ``attrs["units"]`` (the derivatives: :meth:`to_xarray`)."""
+        return results.to_frame(self.to_xarray(), results.point_dims(self.shape))
 
 
 def _reason(code: int) -> Reason | int:
@@ -493,6 +515,11 @@ class Region(Map, kind=JARM):
     __eq__ = fields_equal
 
     __hash__ = None  # type: ignore[assignment]  # mutable numpy arrays inside
+
+    def save(self, path: str | os.PathLike, *, overwrite: bool = False) -> Path:
+        """Write the map to ``path`` (``.nc``, ``.zarr`` or ``.npz``) by :func:`eccjump.maps.save`,
+        whose rules for what may be replaced hold; :func:`eccjump.load` reads it back."""
+        return store.save(self, path, overwrite=overwrite)
 
     def to_layout(self) -> Layout:
         """The map as a layout (:func:`region_layout`)."""

@@ -17,6 +17,7 @@ import dataclasses
 import os
 from collections.abc import Mapping
 from dataclasses import dataclass, field
+from pathlib import Path
 from typing import TYPE_CHECKING, Any, ClassVar, Literal
 
 import numpy as np
@@ -31,7 +32,7 @@ from eccjump._base.sizes import check_fits, result_bytes
 from eccjump.maps import store
 from eccjump.maps.dask import lazy_fields
 from eccjump.maps.kinds import MapKind, upgrade_attrs
-from eccjump.maps.layout import Layout
+from eccjump.maps.layout import COORD_ATTRS, Layout
 from eccjump.maps.map import Map
 from eccjump.motion.fields import (
     DTYPES,
@@ -135,6 +136,11 @@ class MotionMap(Map, kind=MOTION):
         order = np.argsort(-counts, kind="stable")
         return {int(codes[i]): (sequence_name(codes[i]), int(counts[i])) for i in order}
 
+    def save(self, path: str | os.PathLike, *, overwrite: bool = False) -> Path:
+        """Write the map to ``path`` (``.nc``, ``.zarr`` or ``.npz``) by :func:`eccjump.maps.save`,
+        whose rules for what may be replaced hold; :func:`eccjump.load` reads it back."""
+        return store.save(self, path, overwrite=overwrite)
+
     def to_layout(self) -> Layout:
         """The map as a layout (numpy only; dask arrays if lazy): one variable per field with
         CF attributes and flag tables (a lazy map's ``sequence`` codes are known once
@@ -143,7 +149,9 @@ class MotionMap(Map, kind=MOTION):
         seq = self.fields["sequence"]
         codes = np.unique(seq) if isinstance(seq, np.ndarray) else None
         return {
-            "coords": {DIM_OF[k]: ((DIM_OF[k],), v, {}) for k, v in self.coords.items()},
+            "coords": {
+                DIM_OF[k]: ((DIM_OF[k],), v, COORD_ATTRS[DIM_OF[k]]) for k, v in self.coords.items()
+            },
             "data_vars": {f: (dims, self.fields[f], cf_attrs(f, codes)) for f in FIELDS},
             "attrs": self.attrs(),
         }

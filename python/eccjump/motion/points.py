@@ -12,7 +12,7 @@ from __future__ import annotations
 
 import dataclasses
 from dataclasses import dataclass
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
@@ -22,12 +22,18 @@ from eccjump._base.arrays import broadcast_flat, fields_equal
 from eccjump._base.checks import Integrator, Rule
 from eccjump._base.docs import fill
 from eccjump._base.sizes import check_fits, result_bytes
+from eccjump.maps import results
+from eccjump.maps.results import Result
 from eccjump.motion.fields import FIELDS, INVALID, MOTION, sequence_name
 from eccjump.motion.options import MotionOptions
 
+if TYPE_CHECKING:  # pragma: no cover
+    import pandas
+    import xarray as xr
+
 
 @dataclass(frozen=True, eq=False)
-class MotionPoints:
+class MotionPoints(Result, kind="motion_points"):
     """The summary of the full motion at each point of :func:`motion_points`, one array per
     field of the broadcast shape (the fields of :data:`eccjump.motion.fields.TABLE`, with
     their units and meanings).
@@ -96,6 +102,18 @@ class MotionPoints:
     def as_dict(self) -> dict[str, NDArray[Any]]:
         """The fields by name."""
         return {f.name: getattr(self, f.name) for f in dataclasses.fields(self)}
+
+    # Taking the result elsewhere (save and eccjump.load: eccjump.maps.results).
+    def to_xarray(self) -> xr.Dataset:
+        """The points as an ``xarray.Dataset`` (needs xarray): one variable per field over
+        ``point`` (``point_0``, ``point_1``, ... for more than one axis; none for one
+        point) with ``units``, ``long_name`` and the codes as CF flags."""
+        return results.points(self, self.as_dict(), MOTION.var_attrs)
+
+    def to_dataframe(self) -> pandas.DataFrame:
+        """The fields as a ``pandas.DataFrame``, one row per point (indexed by its
+        position), the units of the columns in ``attrs["units"]``."""
+        return results.to_frame(self.to_xarray(), results.point_dims(self.status.shape))
 
 
 @fill

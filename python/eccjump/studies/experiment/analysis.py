@@ -33,7 +33,8 @@ from eccjump._base.body import Cylinder
 from eccjump._base.checks import Rule, flag, integer, optional_real, rule_name, short
 from eccjump._base.docs import fill
 from eccjump._base.html import card
-from eccjump.studies.experiment import figure
+from eccjump.maps.results import Result
+from eccjump.studies.experiment import figure, report
 from eccjump.studies.experiment.events import Flight, Observed, Window, observe
 from eccjump.studies.experiment.fit import (
     MU_MAX,
@@ -59,6 +60,7 @@ from eccjump.studies.experiment.video import is_video
 from eccjump.studies.experiment.video import track as track_video
 
 if TYPE_CHECKING:  # pragma: no cover
+    import xarray as xr
     from matplotlib.figure import Figure
 
 VERDICTS = ("jarm", "slip_first", "undetermined")
@@ -88,7 +90,7 @@ class SlipInterval:
 
 
 @dataclass(frozen=True, eq=False)
-class Analysis:
+class Analysis(Result, kind="analysis"):
     """The outcome of :func:`analyze`: the verdict, its reason (for ``undetermined``) and
     evidence (sentences), the lift-off time [s] with its standard error (from the fitted
     model) and the observed window, the slips before it, the fits and what they rest on."""
@@ -266,6 +268,11 @@ class Analysis:
         """Data and model: theta, the slip velocity, the height of C, the modes as bands
         (``eccjump.studies.experiment.figure``; needs ``pip install eccjump[plot]``)."""
         return figure.analysis_figure(self, **kwargs)
+
+    def to_xarray(self) -> xr.Dataset:
+        """The track, its reconstruction and the fitted model along ``frame`` with units, the
+        verdict as attributes (needs xarray; :mod:`eccjump.studies.experiment.report`)."""
+        return report.analysis_dataset(self)
 
 
 @fill
