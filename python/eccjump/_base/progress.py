@@ -14,6 +14,7 @@ import math
 import sys
 from collections.abc import Callable, Iterator, Mapping, Sequence
 from contextlib import contextmanager
+from typing import Any
 
 import numpy as np
 from numpy.typing import NDArray
@@ -44,11 +45,12 @@ def checked(progress: object) -> bool | Progress:
 
 @contextmanager
 def reporting(
-    progress: object, unit: str = "pt", *, leave: bool = True
+    progress: object, unit: str = "pt", *, unit_scale: bool = True, leave: bool = True
 ) -> Iterator[Progress | None]:
     """The reporter of ``progress`` (:func:`checked`) for the duration of a call: None when
-    off, the caller's callable, or for True a function that moves a tqdm bar on stderr (its
-    ``total`` follows the one reported) and closes it at the end."""
+    off, the caller's callable, or for True a function that draws a tqdm bar on stderr
+    (made at its first call, its ``total`` following the one reported; ``unit_scale``: 1.2k
+    for counts in thousands) and closes it at the end."""
     how = checked(progress)
     if how is False:
         yield None
@@ -58,14 +60,21 @@ def reporting(
         return
     from tqdm import tqdm
 
-    with tqdm(total=None, unit=unit, unit_scale=True, file=sys.stderr, leave=leave) as bar:
+    bar: Any = None
 
-        def report(done: int, total: int) -> None:
-            if bar.total != total:
-                bar.total = total
-            bar.update(done - bar.n)
+    def report(done: int, total: int) -> None:
+        nonlocal bar
+        if bar is None:
+            bar = tqdm(total=total, unit=unit, unit_scale=unit_scale, file=sys.stderr, leave=leave)
+        elif bar.total != total:
+            bar.total = total
+        bar.update(done - bar.n)
 
+    try:
         yield report
+    finally:
+        if bar is not None:
+            bar.close()
 
 
 def parts(size: int, points_per_item: int, report: Progress | None) -> list[tuple[int, int]]:

@@ -356,7 +356,7 @@ def start_map(
     r, nt = rule_name(rule), _threads(n_threads)
     shares = np.empty((th.size, om.size, N_REASONS))
     total = th.size * om.size
-    with reporting(progress, "start") as report:
+    with reporting(progress, "start", unit_scale=False) as report:
         for i, t in enumerate(ths):
             for j, o in enumerate(oms):
                 shares[i, j] = _shares(mu, t, o, g, r, nt)
@@ -646,7 +646,7 @@ def optimal_start(
     r, nt = rule_name(rule), _threads(n_threads)
     budget = [integer("max_evaluations", max_evaluations, 1, EVALUATIONS_MAX)]
     _shares(mu, 0.0, 0.0, 2, r, nt)  # a bad rule or n_threads is refused before any work
-    with reporting(progress, "map") as report:
+    with reporting(progress, "map", unit_scale=False) as report:
         found = _search(mu, g, r, nt, wmax, (n_th, n_om), k, budget, report)
         if report is not None:
             report(found.evaluations, found.evaluations)

@@ -93,7 +93,7 @@ def add_parser(sub: argparse._SubParsersAction) -> None:
         default=[],
         metavar=("NAME", "SD"),
         help="a lab tolerance (repeatable): the normal standard deviation of chi, km, alpha "
-        "[deg] or mu_s; the sheet then gives P(success), the probability of the verdict",
+        "(in degrees) or mu_s; the sheet then gives P(success), the probability of the verdict",
     )
     p.add_argument(
         "--maximise",

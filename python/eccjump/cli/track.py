@@ -97,7 +97,7 @@ def track_video(args: argparse.Namespace) -> VideoTrack:
     messages naming the options."""
     _scale_source(args)
     video = getattr(args, "video", None) or args.track
-    with reporting(shows_progress(args), "frame", leave=False) as progress:
+    with reporting(shows_progress(args), "frame", unit_scale=False, leave=False) as progress:
         try:
             return track(
                 video,

@@ -227,7 +227,7 @@ def design(
     checked(progress)
 
     stages = 3 if odds is None else 4  # the grid, the search, (the odds,) the sheet
-    with reporting(progress, "stage") as report:
+    with reporting(progress, "stage", unit_scale=False) as report:
         stage = _stage_reporter(report, stages)
         notes: list[str] = []
         if body is not None:
