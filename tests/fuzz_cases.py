@@ -635,12 +635,15 @@ def _axis(d: Drawer, c: Case, lo: float, hi: float) -> Any:
 
 
 def case_region(d: Drawer) -> Case:
-    c = Case("region", eccjump.region, params=(*MAP_PARAMS, "output", "chunks"), check=check_region)
+    c = Case("region", eccjump.region, params=(*MAP_PARAMS, "output", "chunks", "progress"),
+             check=check_region)  # fmt: skip
     opts = _classification_options(d, c, False)
     mu, n = real(d, c, 0.0, 3.0), turn(d, c)
     axes = (_axis(d, c, 0.0, HALF_PI), _axis(d, c, 0.0, 1.0), _axis(d, c, 0.0, 1.0))
     c.args = (*axes, mu, n)  # (alpha, chi, km_frac, mu_s, n): the point first, then mu_s
     c.kwargs = {**opts, "integrator": text_param(d, c, INTEGRATORS), "derivatives": flag(d, c)}
+    if d.integer(0, 3) == 0:
+        c.kwargs["progress"] = progress_param(d, c)
     return c
 
 
@@ -786,6 +789,7 @@ MOTION_MAP_PARAMS = (
     "chunks",
     "output",
     "integrator",
+    "progress",
 )
 
 
@@ -827,12 +831,15 @@ def case_motion_map(d: Drawer) -> Case:
         c.kwargs["mu_k"] = d.pick(
             lambda: real_or_none(d, c, 0.0, 3.0), lambda: _axis(d, c, 0.0, 3.0), None
         )
+    if d.integer(0, 3) == 0:
+        c.kwargs["progress"] = progress_param(d, c)
     return c
 
 
 MOTION_POINTS_PARAMS = (
     "alpha", "chi", "km", "mu_s", "mu_k", "restitution", "theta0", "omega0", "rule", "t_max",
     "max_transitions", "rtol", "atol", "max_steps", "n_threads", "integrator", "shapes",
+    "progress",
 )  # fmt: skip
 
 
@@ -871,6 +878,8 @@ def case_motion_points(d: Drawer) -> Case:
     }
     if d.integer(0, 2) == 0:
         c.kwargs["mu_k"] = array(d, c, 0.0, 3.0)
+    if d.integer(0, 3) == 0:
+        c.kwargs["progress"] = progress_param(d, c)
     return c
 
 
@@ -956,6 +965,25 @@ def _no_progress(done: int, total: int) -> None:
     """A progress callback that does nothing."""
 
 
+def _sane_progress(done: int, total: int) -> None:
+    """A progress callback that holds the calls to their contract: two ints, 0 <= done <=
+    total (an AssertionError out of the call is a wrong exception: a violation)."""
+    assert type(done) is int and type(total) is int, (type(done), type(total))
+    assert 0 <= done <= total, (done, total)
+
+
+#: ``progress=`` values: the good ones (off, a bar, a callable) and the wrong types.
+PROGRESS_GOOD = (None, False, True, np.bool_(False), _sane_progress)
+PROGRESS_BAD = (1, "bar", 2.5, [])
+
+
+def progress_param(d: Drawer, case: Case) -> Any:
+    """A ``progress=`` value, sometimes of a wrong type (then the case must raise)."""
+    value = d.choice(PROGRESS_GOOD + (() if d.clean else PROGRESS_BAD))
+    case.must_raise |= any(value is bad for bad in PROGRESS_BAD)
+    return value
+
+
 def _is_study(res: Any, case: Case) -> None:
     expect(isinstance(res, eccjump.Uncertainty), "not an Uncertainty")
 
@@ -1015,8 +1043,7 @@ def case_uncertainty(d: Drawer) -> Case:
         c.kwargs["integrator"] = text_param(d, c, ("RK45", "Vern9"))
         c.must_raise |= c.kwargs["rtol"] != 1e-8 or c.kwargs["integrator"] not in ("RK45", "Vern9")
     if d.integer(0, 3) == 0:
-        c.kwargs["progress"] = d.choice((None, _no_progress, *(() if d.clean else (1, "bar"))))
-        c.must_raise |= c.kwargs["progress"] in (1, "bar")
+        c.kwargs["progress"] = progress_param(d, c)
     if d.integer(0, 2) == 0:
         c.kwargs["restitution"] = real(d, c, 0.0, 1.0)
     return c
@@ -1433,9 +1460,8 @@ def case_start_map(d: Drawer) -> Case:
         "rule": text_param(d, c, ("paper", "normal_force")),
         "n_threads": threads(d, c),
     }
-    if d.integer(0, 3) == 0 and not d.clean:
-        c.kwargs["progress"] = d.choice((None, print, 3, "x"))
-        c.must_raise = c.must_raise or c.kwargs["progress"] in (3, "x")
+    if d.integer(0, 3) == 0:
+        c.kwargs["progress"] = progress_param(d, c)
     if d.integer(0, 5) == 0 and not d.clean:
         c.args = (c.args[0], np.zeros(101), np.zeros(100))  # past the bound of starts
     return c
@@ -1462,13 +1488,15 @@ def case_optimal_start(d: Drawer) -> Case:
             d, c, (1, 20, 400), (0, -1, 2.5, True, None, 10**5 + 1, 10**400)
         ),
     }
+    if d.integer(0, 3) == 0:
+        c.kwargs["progress"] = progress_param(d, c)
     return c
 
 
 DESIGN_PARAMS = (
     "alpha_range", "mu_s", "mu_s_err", "target", "body", "km_range", "rod_range", "radius",
     "mass", "g", "max_turns", "error", "grid", "min_apex", "tolerances", "maximise", "samples",
-    "seed", "shapes",
+    "seed", "shapes", "progress",
 )  # fmt: skip
 
 
@@ -1554,6 +1582,8 @@ def case_design(d: Drawer) -> Case:
         c.kwargs["tolerances"] = {k: real(d, c, 0.0, 0.05) for k in names}
         c.kwargs["maximise"] = text_param(d, c, ("margin", "probability"))
         c.kwargs["samples"] = integer_param(d, c, (100, 300), (*INT_BAD, 99, 10**6 + 1))
+    if d.integer(0, 3) == 0:
+        c.kwargs["progress"] = progress_param(d, c)
     return c
 
 

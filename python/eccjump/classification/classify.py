@@ -19,12 +19,30 @@ from typing import TYPE_CHECKING, Any, ClassVar, Literal
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-from eccjump._base.arrays import axis, broadcast_flat, fields_equal, fraction_axis, turns
+from eccjump._base.arrays import (
+    axis,
+    broadcast_flat,
+    fields_equal,
+    fraction_axis,
+    refuses_km,
+    turns,
+)
 from eccjump._base.bridge import CallOptions, Method, call_options, jarm_grid, jarm_points
-from eccjump._base.checks import Integrator, Rule, file_error, flag, real, short, text
+from eccjump._base.checks import (
+    Integrator,
+    Rule,
+    file_error,
+    flag,
+    real,
+    short,
+    stacklevel_outside,
+    text,
+)
 from eccjump._base.docs import fill
 from eccjump._base.html import best_slice, card, deg, jarm_slice, num, span
+from eccjump._base.progress import Progress, checked, cut, grid_in_parts, reporting
 from eccjump._base.sizes import F64, check_fits, field_bytes, result_bytes
+from eccjump._base.units import ramp_angles
 from eccjump.classification.derivatives import derivative_fields
 from eccjump.classification.fields import (
     BY_NAME,
@@ -267,7 +285,7 @@ def jarm(
 
     Parameters
     ----------
-    %(alpha)s
+    %(alpha_points)s
     %(chi)s
     km : array_like of float
         The body's shell mass fraction k_m itself, in [0, 1 - chi].
@@ -326,13 +344,15 @@ def jarm(
     JarmResult
         Every field an array of the broadcast shape of the five inputs (0-d for scalars);
         the ``d_*`` fields None unless ``derivatives=True``.
-        Invalid points get ``Reason.INVALID_PARAMS``, not an error.
+        Invalid points get ``Reason.INVALID_PARAMS``, not an error (but a scalar
+        ``alpha`` out of [0, pi/2] is one: see ``alpha``).
 
     Raises
     ------
     ValueError
         For arguments that apply to the whole call (shapes that do not broadcast, rule,
-        method, tolerances, max_turns, n_threads, integrator) and for an ``n`` that is not
+        method, tolerances, max_turns, n_threads, integrator), a scalar ``alpha`` out of
+        [0, pi/2] (radians; degrees are a likely mistake) and for an ``n`` that is not
         None or integers >= 1; the message names the parameter and its range.
     %(type_error)s
     %(keyboard_interrupt)s
@@ -367,6 +387,7 @@ def jarm(
     [-3.5887 -8.8737  1.3812] False
     """
     want_derivatives = flag("derivatives", derivatives)
+    alpha = ramp_angles("alpha", alpha)
     turn_arg = turns(n)
     opts = call_options(
         n=None if isinstance(turn_arg, np.ndarray) else turn_arg,
@@ -670,6 +691,7 @@ def _with_derivatives(layout: Layout, derivatives: Mapping[str, Any]) -> Layout:
     return {**layout, "coords": {**layout["coords"], "wrt": wrt}, "data_vars": data_vars}
 
 
+@refuses_km
 @fill
 def region(
     alpha: ArrayLike,
@@ -693,6 +715,7 @@ def region(
     chunks: Any = None,
     derivatives: bool = False,
     output: Literal["region"] = "region",
+    progress: bool | Progress | None = None,
 ) -> Region:
     """Map the JARM region on a rectangular grid, in parallel.
 
@@ -706,7 +729,8 @@ def region(
     Parameters
     ----------
     alpha : array_like of float, 1-D
-        Ramp angles [rad], each in [0, pi/2].
+        Ramp angles [rad], each in [0, pi/2] (``np.radians`` for degrees): one value out of
+        it is a ValueError; values in (pi/2, 90] (degrees?) give one UserWarning.
     chi : array_like of float, 1-D
         The bodies' d/R, each in [0, 1].
     km_frac : array_like of float, 1-D
@@ -762,6 +786,8 @@ def region(
         A :class:`Region`. ``"xarray"`` is deprecated (it works until the next release,
         with a DeprecationWarning): write ``region(...).to_xarray()``, or
         :func:`region_dataset` to sweep ``mu_s``, ``theta0`` and ``omega0``.
+    %(progress)s
+        Not with ``chunks`` (a ValueError).
 
     Returns
     -------
@@ -806,11 +832,17 @@ def region(
     want_derivatives = flag("derivatives", derivatives)
     if want_derivatives and chunks is not None:
         raise ValueError("derivatives=True needs chunks=None (a map computed now)")
+    if checked(progress) and chunks is not None:
+        raise ValueError("progress needs chunks=None (dask reports the progress of a lazy map)")
     for name, value in (("mu_s", mu_s), ("theta0", theta0), ("omega0", omega0)):
         if isinstance(value, list | tuple) or (isinstance(value, np.ndarray) and value.ndim):
             raise ValueError(f"{name} must be a number here; region_dataset(...) sweeps it")
     mu = real("mu_s", mu_s)
-    a, c, f = axis("alpha", alpha), axis("chi", chi), axis("km_frac", fraction_axis(km_frac, km))
+    a, c, f = (
+        axis("alpha", ramp_angles("alpha", alpha)),
+        axis("chi", chi),
+        axis("km_frac", fraction_axis(km_frac)),
+    )
     opts = call_options(
         n=n,
         rule=rule,
@@ -827,7 +859,13 @@ def region(
     )
     if chunks is None:
         _fits_in_memory("region", a.size * c.size * f.size, want_derivatives, 0)
-        raw = jarm_grid(a, c, f, mu, opts)
+
+        def part(ax: int, values: slice) -> dict[str, NDArray]:
+            x, y, z = cut((a, c, f), ax, values)
+            return jarm_grid(x, y, z, mu, opts)
+
+        with reporting(progress) as report:
+            raw = grid_in_parts(part, (a.size, c.size, f.size), report)
         res = JarmResult._from_raw(raw, (a.size, c.size, f.size))
         if want_derivatives:
             res = replace(res, **_grid_derivatives(a, c, f, mu, raw, opts))
@@ -868,7 +906,7 @@ def _deprecated_output(output: object) -> bool:
             "eccjump.region(output='xarray') is deprecated: use region(...).to_xarray(), or "
             "region_dataset(...) to sweep mu_s, theta0, omega0 (until the next release)",
             DeprecationWarning,
-            stacklevel=3,
+            stacklevel=stacklevel_outside(),
         )
     return output == "xarray"
 

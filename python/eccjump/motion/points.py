@@ -21,7 +21,9 @@ from eccjump import _core
 from eccjump._base.arrays import broadcast_flat, fields_equal
 from eccjump._base.checks import Integrator, Rule
 from eccjump._base.docs import fill
+from eccjump._base.progress import Progress, points_in_parts, reporting
 from eccjump._base.sizes import check_fits, result_bytes
+from eccjump._base.units import ramp_angles
 from eccjump.maps import results
 from eccjump.maps.results import Result
 from eccjump.motion.fields import FIELDS, INVALID, MOTION, sequence_name
@@ -135,6 +137,7 @@ def motion_points(
     max_steps: int = 1_000_000,
     n_threads: int = 0,
     integrator: Integrator = "RK45",
+    progress: bool | Progress | None = None,
 ) -> MotionPoints:
     """The full motion, to the first landing, at each point (alpha, chi, km, mu_s, mu_k,
     restitution, theta0, omega0), broadcasting the eight inputs.
@@ -151,7 +154,8 @@ def motion_points(
     Parameters
     ----------
     alpha : array_like of float
-        Ramp angles [rad], in [0, pi/2].
+        Ramp angles [rad], in [0, pi/2] (``np.radians`` for degrees): a scalar out of it is
+        a ValueError; values in (pi/2, 90] (degrees?) give one UserWarning.
     chi : array_like of float
         The bodies' d/R, in [0, 1].
     km : array_like of float
@@ -181,6 +185,7 @@ def motion_points(
     integrator : {"RK45", "DOP853", "Vern9"}, default "RK45"
         The Runge–Kutta pair. For speed pick ``"Vern9"`` or ``"DOP853"``; keep ``"RK45"``
         for step-for-step parity with scipy.
+    %(progress)s
 
     Returns
     -------
@@ -216,7 +221,7 @@ def motion_points(
     apex 0.006696 R, distance 3.49484 R
     """
     named: dict[str, object] = {
-        "alpha": alpha,
+        "alpha": ramp_angles("alpha", alpha),
         "chi": chi,
         "km": km,
         "mu_s": mu_s,
@@ -240,17 +245,15 @@ def motion_points(
     need = result_bytes(points, MOTION.bytes_per_point(), len(flat))
     check_fits("motion_points", points, need, "the inputs")
     columns = dict(zip(named, flat, strict=True))
-    raw = _core.motion_points(
-        columns["alpha"],
-        columns["chi"],
-        columns["km"],
-        columns["mu_s"],
-        columns.get("mu_k", np.empty(0)),
-        columns["restitution"],
-        columns["theta0"],
-        columns["omega0"],
-        options=opts,
-    )
+    columns.setdefault("mu_k", np.empty(0))  # empty: mu_k = mu_s at every point
+    order = ("alpha", "chi", "km", "mu_s", "mu_k", "restitution", "theta0", "omega0")
+
+    def part(i0: int, i1: int) -> dict[str, NDArray]:
+        cols = (np.ascontiguousarray(columns[k][i0:i1]) for k in order)
+        return _core.motion_points(*cols, options=opts)
+
+    with reporting(progress) as report:
+        raw = points_in_parts(part, points, report)
     return MotionPoints(**{k: raw[k].reshape(shape) for k in FIELDS})
 
 
