@@ -44,7 +44,9 @@ from eccjump.studies.experiment.fit import (
     consistent_fits,
     event_times,
     fit,
+    flight_signal,
     misfit_p,
+    one_frame_slip,
     profile,
     profile_interval,
     rolling_needs,
@@ -67,6 +69,9 @@ VERDICTS = ("jarm", "slip_first", "undetermined")
 REASONS = ("", "no_liftoff", "noise", "frame_rate", "short_track", "model")
 #: The chi-square by which forbidding the slip must worsen the fit for a slip_first verdict.
 SIGNIFICANT = 9.0
+#: The matched-filter z (``fit.flight_signal``) at which the track shows the model's flight
+#: when no frame clears the per-frame threshold of ``events``.
+FLIGHT_Z = 5.0
 #: A slip shorter than this (in frames) may be reported as undetermined.
 MIN_SLIP_FRAMES = 3.0
 #: The goodness-of-fit gate: a reduced chi-square this improbable under the model (the F
@@ -405,7 +410,7 @@ def analyze(
         fit_alpha=a_given is None,
     )
     best, jarm_fit = consistent_fits(setup, track, rec)
-    off_path = _alpha_note(track, a_given)
+    off_path = _alpha_note(track, a_given, _contact_frames(track, best, setup))
     notes += off_path
     p = misfit_p(best, int(rec.line.contact.sum()))
     if p < MISFIT_P:
@@ -414,7 +419,11 @@ def analyze(
     if profiled:
         grid, costs = profile(best, setup, track, rec)
         mu_k_iv = profile_interval(grid, costs, best)
-    verdict = _Verdict(observed, best, jarm_fit, p, off_path[0] if off_path else "")
+    flight = flight_signal(best, setup, rec)
+    power = math.nan  # asked only where the verdict could be jarm: a slip under a frame
+    if _slip_frames(best, setup, track) < 1.0:
+        power = one_frame_slip(jarm_fit or best, setup, track, rec)
+    verdict = _Verdict(observed, best, jarm_fit, p, off_path[0] if off_path else "", flight, power)
     return _judge(track, rec, verdict, setup, mu_k_iv, notes, started)
 
 
@@ -428,6 +437,8 @@ class _Verdict:
     jarm_fit: Fit | None
     misfit_p: float
     off_path: str  # the given alpha contradicted by the track's contact path (or "")
+    flight_z: float  # how clearly the heights show the model's flight (fit.flight_signal)
+    one_frame: float  # what a one-frame slip would cost the rolling fit (fit.one_frame_slip)
 
 
 def _judge(
@@ -446,7 +457,7 @@ def _judge(
     errs = time_errors(best, setup, track, rec)
     lift = times["liftoff"]
     slips_dimless = slip_intervals(best.run, lift if math.isfinite(lift) else horizon)
-    slip_frames = sum(b - a for a, b in slips_dimless) * unit / dt
+    slip_frames = _slip_frames(best, setup, track)
     needs = rolling_needs(best.run, lift if math.isfinite(lift) else horizon)
     delta = math.nan
     if v.jarm_fit is not None:
@@ -522,16 +533,22 @@ def _decide(
                 f"within {sigma3} (3 sigma), and so does the model"
             ],
         )
-    if seen is None:
+    if (
+        seen is None
+        and v.flight_z < FLIGHT_Z
+        and _slip_verdict(slip_frames, delta)[0] != "slip_first"
+    ):
         return (
             "undetermined",
             "noise",
             [
                 f"the model lifts off at t = {t0 + lift * unit:.4f} s, but its flight "
-                f"stays within 3 sigma = {sigma3} of the ramp"
+                f"stays within 3 sigma = {sigma3} of the ramp (the heights follow it at "
+                f"{v.flight_z:.2g} sigma, {FLIGHT_Z:g} needed)"
             ],
         )
     if not math.isfinite(lift):
+        assert seen is not None
         return (
             "undetermined",
             "model",
@@ -546,15 +563,17 @@ def _decide(
             "short_track",
             ["the lift-off comes within 4 frames of the track's start: no rolling to judge it by"],
         )
-    evidence = [
-        f"the axle rises {seen.apex_height * 1e3:.3g} mm above the ramp "
-        f"({v.observed.peak_snr:.0f} sigma); lift-off seen in "
-        f"[{seen.liftoff.lo:.4f}, {seen.liftoff.hi:.4f}] s"
-    ]
+    evidence = [_flight_sentence(v, seen, sigma3)]
     if slip_frames <= 0:
         evidence.append(
             f"the fitted model rolls without slipping from the first frame to "
             f"its lift-off at t = {t0 + lift * unit:.5f} s"
+        )
+        if not v.one_frame >= SIGNIFICANT:  # a slip of a frame would not have shown
+            evidence.append(_unseen_slip_sentence(v.one_frame))
+            return "undetermined", "frame_rate", evidence
+        evidence.append(
+            f"a slip of one frame before it would worsen the fit by chi2 = {v.one_frame:.3g}"
         )
         return "jarm", "", evidence
     verdict, reason = _slip_verdict(slip_frames, delta)
@@ -563,7 +582,46 @@ def _decide(
         f"lift-off; forbidding that slip worsens the fit by chi2 = "
         f"{delta:.3g} (significant above {SIGNIFICANT:g})"
     )
+    if verdict == "jarm" and not v.one_frame >= SIGNIFICANT:
+        evidence.append(_unseen_slip_sentence(v.one_frame))
+        return "undetermined", "frame_rate", evidence
     return verdict, reason, evidence
+
+
+def _flight_sentence(v: _Verdict, seen: Flight | None, sigma3: str) -> str:
+    """What the track shows of the flight: seen frame by frame, along the model's parabola
+    (``fit.flight_signal``), or not at all (then a slip_first rests on the slip alone)."""
+    if seen is not None:
+        return (
+            f"the axle rises {seen.apex_height * 1e3:.3g} mm above the ramp "
+            f"({v.observed.peak_snr:.0f} sigma); lift-off seen in "
+            f"[{seen.liftoff.lo:.4f}, {seen.liftoff.hi:.4f}] s"
+        )
+    if v.flight_z >= FLIGHT_Z:
+        return (
+            f"the axle's heights follow the fitted model's flight at {v.flight_z:.3g} sigma "
+            f"(no frame clears 3 sigma = {sigma3} three times in a row)"
+        )
+    return (
+        f"the model's flight stays within the noise (the heights follow it at "
+        f"{v.flight_z:.2g} sigma): the verdict rests on the slip before it"
+    )
+
+
+def _slip_frames(f: Fit, setup: Setup, track: Track) -> float:
+    """The frames the fitted run slips for in all before its first lift-off (or the end)."""
+    horizon = float(track.t[-1] - track.t[0]) / setup.time_unit
+    lift = event_times(f.run, horizon)["liftoff"]
+    slips = slip_intervals(f.run, lift if math.isfinite(lift) else horizon)
+    return sum(b - a for a, b in slips) * setup.time_unit / track.dt
+
+
+def _unseen_slip_sentence(cost: float) -> str:
+    return (
+        f"but a slip of one frame before the lift-off would worsen the fit by only chi2 = "
+        f"{cost:.2g} (it takes {SIGNIFICANT:g} to show): the frame rate and the noise cannot "
+        "exclude it"
+    )
 
 
 def _slip_verdict(frames: float, delta: float) -> tuple[str, str]:
@@ -586,11 +644,21 @@ def _misfit_sentence(f: Fit, p: float) -> str:
     )
 
 
-def _alpha_note(track: Track, given: float | None) -> tuple[str, ...]:
-    """A note when the given ramp angle disagrees with the track's own contact line."""
+def _contact_frames(track: Track, best: Fit, setup: Setup) -> int:
+    """The frames before the fitted model's first lift-off (all when it does not lift off,
+    at least 8): a flight lower than the noise would bend the contact line."""
+    lift = event_times(best.run, math.inf)["liftoff"]
+    if not math.isfinite(lift):
+        return track.n
+    return max(int(np.searchsorted(track.t - track.t[0], lift * setup.time_unit)), 8)
+
+
+def _alpha_note(track: Track, given: float | None, frames: int) -> tuple[str, ...]:
+    """A note when the given ramp angle disagrees with the track's own contact line (over
+    its first ``frames`` frames)."""
     if given is None:
         return ()
-    line = fit_contact_line(track.c, None)
+    line = fit_contact_line(track.c[:frames], None)
     seen, err = line.frame.alpha, line.alpha_err
     tol = max(4 * err, ALPHA_TOLERANCE)
     if abs(seen - given) <= tol:

@@ -514,6 +514,57 @@ def _result(model: Model, res: Any, lo: NDArray[np.float64], hi: NDArray[np.floa
     )
 
 
+def one_frame_slip(f: Fit, setup: Setup, track: Track, rec: Reconstruction) -> float:
+    """How much worse (a chi-square, scaled like the slip test's) the rolling fit ``f``
+    becomes when its body slips for one frame in all before the lift-off: mu_s lowered
+    below what the rolling needs (bisection) until the run slips that long, mu_k capped at
+    mu_s, the rest as fitted. Whether the track could have shown such a slip: below the
+    slip test's threshold a one-frame slip is not excluded. Not refitted, so an upper
+    bound on what the track can tell. NaN when the fitted run does not lift off."""
+    model = Model(setup, track, rec, jarm_only=False)
+    p = model.params(f.x)
+    horizon = float(model.tau[-1])
+    frame = track.dt / setup.time_unit
+    lo, hi = 0.0, f.mu_s_bound
+    best_res: NDArray[np.float64] | None = None
+    for _ in range(30):
+        mid = 0.5 * (lo + hi)
+        q = p | {"mu_k": min(p["mu_k"], mid)}
+        try:
+            run = model.simulate(q, mu_s=mid)
+        except ValueError:
+            lo = mid
+            continue
+        lift = event_times(run, horizon)["liftoff"]
+        if not math.isfinite(lift):
+            lo = mid
+            continue
+        slipped = sum(b - a for a, b in slip_intervals(run, lift))
+        if slipped >= frame:
+            lo, best_res = mid, model.compare(q, model.states(run))
+        else:
+            hi = mid
+        if hi - lo < 1e-4 * f.mu_s_bound:
+            break
+    if best_res is None:
+        return math.nan
+    return float(best_res @ best_res - 2.0 * f.cost) / f.variance_factor
+
+
+def flight_signal(f: Fit, setup: Setup, rec: Reconstruction) -> float:
+    """How clearly the track shows the fitted model's flights, in standard errors: the
+    matched filter of the model's heights above the ramp h_m on the track's heights h,
+    sum(h h_m) / (sigma |h_m|), widened by the errors' correlation. Frame by frame a flight
+    of a few sigma is lost in the noise (``events.observe`` asks for 3 sigma in 3 frames in
+    a row); summed along the model's parabola it is not. 0 when the model never flies."""
+    h_model = f.value("length_scale") * setup.radius * (f.states[4] - 1.0)
+    up = h_model > 1e-9 * setup.radius
+    norm = float(np.sqrt(h_model[up] @ h_model[up]))
+    if not norm > 0:
+        return 0.0
+    return float(rec.height[up] @ h_model[up]) / (rec.sigma * norm * math.sqrt(f.correlation))
+
+
 def event_times(run: MotionResult, horizon: float) -> dict[str, float]:
     """Key times of a run (dimensionless): the first lift-off, the first landing, the
     onset and end of the first slip before that lift-off (NaN when absent), and the start
