@@ -347,3 +347,15 @@ def _smaller(png: Path) -> None:
 
 if __name__ == "__main__":
     screenshots(Path(sys.argv[1] if len(sys.argv) > 1 else "docs/explorer"))
+
+
+def test_the_page_draws_the_modes_in_eccjumps_one_palette(page):
+    """The timeline's bands and legend take their colours from eccjump._base.palette (sent
+    with the controls), the same as the figures and the notebook views."""
+    from eccjump._base.palette import MODE_COLORS
+
+    fills = page.evaluate(
+        "() => [...document.querySelectorAll('.ej-timeline rect')].map(r => r.getAttribute('fill'))"
+    )
+    assert set(MODE_COLORS.values()) <= set(fills)
+    assert set(fills) <= set(MODE_COLORS.values()) | {None}

@@ -54,7 +54,7 @@ BUDGET = {
     "cylinder": 100,
     "units": 60,
     "store": 30,
-    "plot": 10,
+    "plot": 16,
     "cli": 60,
     "jarm_fraction": 60,
     "start_map": 30,

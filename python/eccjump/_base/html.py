@@ -14,10 +14,7 @@ from typing import Any
 import numpy as np
 from numpy.typing import NDArray
 
-#: The colour of each mode, in every picture of a motion (``eccjump.plot`` uses them too).
-MODE_COLORS = {"ROLL": "#2ca02c", "SLIP": "#ff7f0e", "FLIGHT": "#1f77b4"}
-#: JARM and not JARM in map slices.
-JARM_COLOR, OTHER_COLOR = "#2ca02c", "#e8e8e8"
+from eccjump._base.palette import JARM_COLOR, MODE_COLORS, OTHER_COLOR
 
 #: The most cells a map slice shows along a side (its SVG stays under ~250 kB).
 MAX_CELLS = 60

@@ -12,7 +12,7 @@ import math
 import warnings
 from collections.abc import Mapping
 from dataclasses import dataclass, field, replace
-from typing import TYPE_CHECKING, Any, ClassVar, Literal
+from typing import TYPE_CHECKING, Any, ClassVar, Literal, overload
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
@@ -47,7 +47,8 @@ from eccjump.maps.layout import (
 from eccjump.maps.map import Map
 
 if TYPE_CHECKING:  # pragma: no cover
-    from matplotlib.figure import Figure
+    from matplotlib.axes import Axes
+    from matplotlib.figure import Figure, FigureBase
 
 
 @dataclass(frozen=True, repr=False, eq=False)
@@ -195,6 +196,24 @@ class JarmResult:
     @staticmethod
     def _from_raw(raw: Mapping[str, NDArray], shape: tuple[int, ...]) -> JarmResult:
         return JarmResult(**{k: raw[k].reshape(shape) for k in FIELDS})
+
+    @overload
+    def plot(self, *, ax: Axes, **kwargs: Any) -> Axes: ...
+    @overload
+    def plot(self, *, ax: None = None, fig: FigureBase | None = None, **kwargs: Any) -> Figure: ...
+    def plot(
+        self, *, ax: Axes | None = None, fig: FigureBase | None = None, **kwargs: Any
+    ) -> Axes | Figure:
+        """theta_J, the forces at the jump and the path condition (the largest
+        |F_x|/F_y and the smallest F_y on the rolling path) over the points
+        (``eccjump.plot.jarm_points``; ``x=`` and ``xlabel=``: a coordinate of the points,
+        ``mu_s=``: its line). ``ax=``: only theta_J, drawn into this matplotlib Axes and
+        returned (``eccjump.plot.jarm_panel``), to compose figures; ``fig=``: the full figure
+        in this empty Figure or SubFigure. ``kwargs`` go to the function drawn. Needs
+        ``pip install eccjump[plot]``."""
+        from eccjump import plot  # figures: the layer on top of every result
+
+        return plot.draw(self, ax=ax, fig=fig, **kwargs)
 
 
 def _reason(code: int) -> Reason | int:
@@ -568,13 +587,22 @@ class Region(Map, kind=JARM):
         )
         return card("Region", rows, jarm_slice(cut, caption) if self.km_frac.size else "")
 
-    def plot(self, **kwargs: Any) -> Figure:
-        """The map in the (chi, alpha) plane, JARM points coloured by their turn, a few km_frac
-        slices (``eccjump.plot.region_map``; ``kwargs`` go to it). Needs ``pip install
-        eccjump[plot]``."""
+    @overload
+    def plot(self, *, ax: Axes, **kwargs: Any) -> Axes: ...
+    @overload
+    def plot(self, *, ax: None = None, fig: FigureBase | None = None, **kwargs: Any) -> Figure: ...
+    def plot(
+        self, *, ax: Axes | None = None, fig: FigureBase | None = None, **kwargs: Any
+    ) -> Axes | Figure:
+        """The map in the (chi, alpha) plane, JARM points coloured by their turn, a few
+        km_frac slices (``eccjump.plot.region_map``). ``ax=``: only one slice (``km_frac=``;
+        default: the one with the most JARM points), drawn into this matplotlib Axes and
+        returned (``eccjump.plot.region_panel``), to compose figures; ``fig=``: the full
+        figure in this empty Figure or SubFigure. ``kwargs`` go to the function drawn. Needs
+        ``pip install eccjump[plot]``."""
         from eccjump import plot  # figures: the layer on top of every result
 
-        return plot.region_map(self, **kwargs)
+        return plot.draw(self, ax=ax, fig=fig, **kwargs)
 
 
 def _plain(value: Any) -> Any:

@@ -21,7 +21,7 @@ from __future__ import annotations
 import math
 from collections.abc import Callable
 from dataclasses import dataclass
-from typing import TYPE_CHECKING, Any
+from typing import TYPE_CHECKING, Any, overload
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
@@ -34,7 +34,8 @@ from eccjump.classification.classify import region
 from eccjump.classification.fields import Reason
 
 if TYPE_CHECKING:  # pragma: no cover
-    from matplotlib.figure import Figure
+    from matplotlib.axes import Axes
+    from matplotlib.figure import Figure, FigureBase
 
 TWO_PI = 2.0 * math.pi
 #: The largest grid (points per axis of the parameter cube): 128**3 = 2.1e6 points per start.
@@ -270,13 +271,6 @@ class StartMap:
             f"omega0={om:.6g})"
         )
 
-    def plot(self, **kwargs: Any) -> Figure:
-        """The JARM fraction over the starts (theta0, omega0) (``eccjump.plot.fraction_map``;
-        ``kwargs`` go to it). Needs ``pip install eccjump[plot]``."""
-        from eccjump import plot  # figures: the layer on top of every result
-
-        return plot.fraction_map(self, **kwargs)
-
     def _repr_html_(self) -> str:
         th, om, f = self.best()
         rows = [
@@ -286,6 +280,22 @@ class StartMap:
             ("best start", f"theta0 = {deg(th)}, omega0 = {num(om)}: JARM fraction {f:.4g}"),
         ]
         return card("StartMap", rows)
+
+    @overload
+    def plot(self, *, ax: Axes, **kwargs: Any) -> Axes: ...
+    @overload
+    def plot(self, *, ax: None = None, fig: FigureBase | None = None, **kwargs: Any) -> Figure: ...
+    def plot(
+        self, *, ax: Axes | None = None, fig: FigureBase | None = None, **kwargs: Any
+    ) -> Axes | Figure:
+        """The JARM fraction over the starts (theta0, omega0) and the shares blocked at
+        the start (``eccjump.plot.fraction_map``). ``ax=``: only the JARM fraction, drawn into
+        this matplotlib Axes and returned (``eccjump.plot.fraction_panel``), to compose
+        figures; ``fig=``: the full figure in this empty Figure or SubFigure. ``kwargs`` go
+        to the function drawn. Needs ``pip install eccjump[plot]``."""
+        from eccjump import plot  # figures: the layer on top of every result
+
+        return plot.draw(self, ax=ax, fig=fig, **kwargs)
 
 
 @fill

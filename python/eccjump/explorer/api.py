@@ -22,6 +22,7 @@ from numpy.typing import NDArray
 
 from eccjump._base.body import Cylinder
 from eccjump._base.checks import Rule
+from eccjump._base.palette import MODE_COLORS
 from eccjump.classification.classify import Reason, jarm
 from eccjump.explorer import controls
 from eccjump.motion.simulation import MODES, MotionResult, simulate
@@ -103,7 +104,13 @@ def point(query: Mapping[str, str]) -> dict[str, float]:
 
 
 def controls_spec(query: Mapping[str, str]) -> dict[str, Any]:
-    return {**controls.spec(), "reasons": REASON_TEXT, "modes": list(MODES)}
+    # The page's mode colours come from here: one palette for it, the figures and the reprs.
+    return {
+        **controls.spec(),
+        "reasons": REASON_TEXT,
+        "modes": list(MODES),
+        "mode_colors": dict(MODE_COLORS),
+    }
 
 
 def region(query: Mapping[str, str]) -> dict[str, Any]:

@@ -17,7 +17,7 @@ import dataclasses
 import os
 from collections.abc import Mapping
 from dataclasses import dataclass, field
-from typing import TYPE_CHECKING, Any, ClassVar, Literal
+from typing import TYPE_CHECKING, Any, ClassVar, Literal, overload
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
@@ -50,7 +50,8 @@ from eccjump.motion.simulation import Rule
 
 if TYPE_CHECKING:
     import xarray as xr
-    from matplotlib.figure import Figure
+    from matplotlib.axes import Axes
+    from matplotlib.figure import Figure, FigureBase
 
 #: The axes of a map, in the order of the grid (C order: alpha slowest); ``km_frac`` is the
 #: fraction k_m/(1 - chi), as in JARM maps.
@@ -200,13 +201,21 @@ class MotionMap(Map, kind=MOTION):
             picture = jarm_slice(cut, "JARM (green) over chi (across) and alpha (up)")
         return card(f"MotionMap ({int(np.prod(self.shape))} points)", rows, picture)
 
-    def plot(self, **kwargs: Any) -> Figure:
-        """The map in the (chi, alpha) plane, coloured by the sequence of modes
-        (``eccjump.plot.sequence_map``; ``kwargs`` go to it). Needs ``pip install
-        eccjump[plot]``."""
+    @overload
+    def plot(self, *, ax: Axes, **kwargs: Any) -> Axes: ...
+    @overload
+    def plot(self, *, ax: None = None, fig: FigureBase | None = None, **kwargs: Any) -> Figure: ...
+    def plot(
+        self, *, ax: Axes | None = None, fig: FigureBase | None = None, **kwargs: Any
+    ) -> Axes | Figure:
+        """The map in the (chi, alpha) plane, coloured by the sequence of modes, a few
+        k_m slices (``eccjump.plot.sequence_map``). ``ax=``: only one slice (``km_frac=``),
+        drawn into this matplotlib Axes and returned (``eccjump.plot.sequence_panel``), to
+        compose figures; ``fig=``: the full figure in this empty Figure or SubFigure.
+        ``kwargs`` go to the function drawn. Needs ``pip install eccjump[plot]``."""
         from eccjump import plot  # figures: the layer on top of every result
 
-        return plot.sequence_map(self, **kwargs)
+        return plot.draw(self, ax=ax, fig=fig, **kwargs)
 
 
 #: The options shared by every point, recorded with a map.

@@ -15,7 +15,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass, fields, replace
-from typing import TYPE_CHECKING, Any, NamedTuple
+from typing import TYPE_CHECKING, Any, NamedTuple, overload
 
 import numpy as np
 from numpy.typing import NDArray
@@ -40,7 +40,8 @@ from eccjump._base.units import Units
 from eccjump.motion.dense import DenseSolution
 
 if TYPE_CHECKING:  # pragma: no cover
-    from matplotlib.figure import Figure
+    from matplotlib.axes import Axes
+    from matplotlib.figure import Figure, FigureBase
 
 EVENT_NAMES = ("liftoff", "normal_force_zero", "slip", "theta_limit")
 """The names of the events of :func:`roll`: the paper's lift-off condition (rising), the
@@ -201,14 +202,6 @@ class RollResult:
         rows.append(("steps, nfev", f"{max(self.t.size - 1, 0)}, {self.nfev}"))
         return card("RollResult" + (" (SI units)" if si else ""), rows)
 
-    def plot(self, **kwargs: Any) -> Figure:
-        """The run in four panels: theta against t; omega, F_x, F_y and the friction ratio against
-        theta (``eccjump.plot.trajectory``; ``kwargs`` go to it). Needs ``pip install
-        eccjump[plot]``."""
-        from eccjump import plot  # figures: the layer on top of every result
-
-        return plot.trajectory(self, **kwargs)
-
     def event(self, name: str) -> Event | None:
         """The first event called ``name``, or None if the run did not meet it.
 
@@ -315,6 +308,23 @@ class RollResult:
         return True
 
     __hash__ = None  # type: ignore[assignment]  # mutable numpy arrays inside
+
+    @overload
+    def plot(self, *, ax: Axes, **kwargs: Any) -> Axes: ...
+    @overload
+    def plot(self, *, ax: None = None, fig: FigureBase | None = None, **kwargs: Any) -> Figure: ...
+    def plot(
+        self, *, ax: Axes | None = None, fig: FigureBase | None = None, **kwargs: Any
+    ) -> Axes | Figure:
+        """The run in four panels (``eccjump.plot.trajectory``): theta against t;
+        omega, F_x, F_y and the friction ratio against theta. ``ax=``: only theta against t
+        with its events, drawn into this matplotlib Axes and returned
+        (``eccjump.plot.roll_panel``), to compose figures; ``fig=``: the full figure in this
+        empty Figure or SubFigure. ``kwargs`` go to the function drawn. Needs
+        ``pip install eccjump[plot]``."""
+        from eccjump import plot  # figures: the layer on top of every result
+
+        return plot.draw(self, ax=ax, fig=fig, **kwargs)
 
 
 @fill

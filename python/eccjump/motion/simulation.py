@@ -9,7 +9,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass, fields, replace
-from typing import TYPE_CHECKING, Any, NamedTuple
+from typing import TYPE_CHECKING, Any, NamedTuple, overload
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
@@ -36,7 +36,8 @@ from eccjump.motion.options import MAX_TRANSITIONS as MAX_TRANSITIONS
 from eccjump.motion.options import MotionOptions
 
 if TYPE_CHECKING:  # pragma: no cover
-    from matplotlib.figure import Figure
+    from matplotlib.axes import Axes
+    from matplotlib.figure import Figure, FigureBase
 
 #: Mode codes of :attr:`MotionResult.mode`, by index.
 MODES = ("ROLL", "SLIP", "FLIGHT")
@@ -331,13 +332,6 @@ class MotionResult:
         pic = timeline(self.t, self.mode, MODES)
         return card("MotionResult" + (" (SI units)" if si else ""), rows, pic)
 
-    def plot(self, **kwargs: Any) -> Figure:
-        """The run in six panels against time, the modes as coloured bands (``eccjump.plot.motion``;
-        ``kwargs`` go to it). Needs ``pip install eccjump[plot]``."""
-        from eccjump import plot  # figures: the layer on top of every result
-
-        return plot.motion(self, **kwargs)
-
     @fill
     def to_si(
         self, units: Units | None = None, *, g: float = 9.81, R: float = 1.0, M: float = 1.0
@@ -450,6 +444,22 @@ class MotionResult:
         return True
 
     __hash__ = None  # type: ignore[assignment]
+
+    @overload
+    def plot(self, *, ax: Axes, **kwargs: Any) -> Axes: ...
+    @overload
+    def plot(self, *, ax: None = None, fig: FigureBase | None = None, **kwargs: Any) -> Figure: ...
+    def plot(
+        self, *, ax: Axes | None = None, fig: FigureBase | None = None, **kwargs: Any
+    ) -> Axes | Figure:
+        """The run in six panels against time, the modes as coloured bands
+        (``eccjump.plot.motion``). ``ax=``: only theta' against t with the modes and impacts,
+        drawn into this matplotlib Axes and returned (``eccjump.plot.motion_panel``), to
+        compose figures; ``fig=``: the full figure in this empty Figure or SubFigure.
+        ``kwargs`` go to the function drawn. Needs ``pip install eccjump[plot]``."""
+        from eccjump import plot  # figures: the layer on top of every result
+
+        return plot.draw(self, ax=ax, fig=fig, **kwargs)
 
 
 def _sensitivities_si(d: NDArray[np.float64] | None, u: Units) -> NDArray[np.float64] | None:

@@ -10,7 +10,9 @@
 // dispose() }.
 
 const SVG = "http://www.w3.org/2000/svg";
-const MODE_COLORS = { ROLL: "#2b7bba", SLIP: "#e8910c", FLIGHT: "#d62728" };
+// The colour of each mode: eccjump's one palette (eccjump/_base/palette.py), sent by the
+// Python side with the controls and filled in before anything is drawn.
+const MODE_COLORS = {};
 const REASON_COLORS = {
   JARM: "#1a9641",
   NO_ROOT: "#d9e6f2",
@@ -741,6 +743,7 @@ export function mount(el, host) {
       message.hidden = false;
       return;
     }
+    Object.assign(MODE_COLORS, body.mode_colors);
     const start = {};
     for (const c of body.controls) start[c.key] = c.default;
     Object.assign(start, host.initial());

@@ -158,3 +158,13 @@ def _mu_star(
 
 def _score(margins: tuple[Margin, ...] | None) -> float:
     return -math.inf if margins is None else min(m.relative for m in margins)
+
+
+def verdict_holds(
+    target: str, max_turns: int, turn: int | None, alpha: ArrayLike, chi: ArrayLike,
+    km: ArrayLike, mu: ArrayLike,
+) -> NDArray[np.bool_]:  # fmt: skip
+    """Where a design's verdict holds, for arrays: under both rules, within ``max_turns``,
+    a JARM on ``turn`` (the boundary its margins measure to; ``Design.plot`` draws it)."""
+    spec = _Spec(target, max_turns, turn if target == "jarm" else None)
+    return _classify(alpha, chi, km, mu, spec)[0]

@@ -5,12 +5,16 @@ from __future__ import annotations
 import math
 from collections.abc import Callable
 from dataclasses import dataclass, field
-from typing import Any, NamedTuple
+from typing import TYPE_CHECKING, Any, NamedTuple, overload
 
 from eccjump._base.body import Cylinder
 from eccjump._base.checks import short
 from eccjump._base.html import card, deg, num
 from eccjump.studies.design.physical import Build
+
+if TYPE_CHECKING:  # pragma: no cover
+    from matplotlib.axes import Axes
+    from matplotlib.figure import Figure, FigureBase
 
 
 @dataclass(frozen=True)
@@ -282,6 +286,23 @@ class Design:
             for f in self.flights
         ]
         return card("Design (print it for the lab sheet)", rows)
+
+    @overload
+    def plot(self, *, ax: Axes, **kwargs: Any) -> Axes: ...
+    @overload
+    def plot(self, *, ax: None = None, fig: FigureBase | None = None, **kwargs: Any) -> Figure: ...
+    def plot(
+        self, *, ax: Axes | None = None, fig: FigureBase | None = None, **kwargs: Any
+    ) -> Axes | Figure:
+        """The design on its region slice (``eccjump.plot.design_slice``): where its
+        verdict holds over (chi, alpha) at its k_m and worst-case mu_s, the design and its
+        margins in alpha and in the rod position. ``ax=``: the same, drawn into this
+        matplotlib Axes and returned (``eccjump.plot.design_panel``), to compose figures;
+        ``fig=``: in this empty Figure or SubFigure. ``kwargs`` (``resolution=``) go to it.
+        Needs ``pip install eccjump[plot]``."""
+        from eccjump import plot  # figures: the layer on top of every result
+
+        return plot.draw(self, ax=ax, fig=fig, **kwargs)
 
 
 def _odds(s: Success, tolerances: dict[str, float] | None) -> str:
