@@ -51,7 +51,7 @@ def axis(name: str, values: object) -> NDArray[np.float64]:
 
 def fraction_axis(km_frac: object, km: object) -> object:
     """The grid axis of the shell mass fraction of a map: ``km_frac``, the share
-    k_m/(1 - chi) of its largest value. ``km`` is the body's k_m in every function of the
+    k_m/(1 - χ) of its largest value. ``km`` is the body's k_m in every function of the
     package; a map does not take it as an axis (it would not be rectangular), and before
     0.2 a map's ``km`` meant the fraction: a TypeError that says so, never a silent
     reading of one for the other."""
@@ -70,7 +70,7 @@ MAX_TURN = U32_MAX
 
 
 def turn(n: object, name: str = "n") -> int | None:
-    """Validate a turn number: None (automatic) or an integer >= 1 (TypeError for what is not
+    """Validate a turn number: None (automatic) or an integer ≥ 1 (TypeError for what is not
     an integer, bools and floats included)."""
     if n is None:
         return None
@@ -79,7 +79,7 @@ def turn(n: object, name: str = "n") -> int | None:
 
 def turns(n: object) -> int | NDArray[np.int64] | None:
     """Validate a turn argument that may vary per point: None (automatic; only as a scalar),
-    an integer >= 1, or an array-like of integers >= 1 (returned as an int64 array)."""
+    an integer ≥ 1, or an array-like of integers ≥ 1 (returned as an int64 array)."""
     if n is None or isinstance(n, int | np.integer):  # bool included: integer() rejects it
         return turn(n)
     if isinstance(n, np.ndarray) and n.ndim == 0 and not isinstance(n, np.ma.MaskedArray):

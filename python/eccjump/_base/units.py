@@ -1,8 +1,8 @@
 """Units: the core works in g = R = M = 1; :class:`Units` converts to SI.
 
-The equations of motion are invariant under scaling (paper, Sec. 2.4): with the same chi and
-km, angles are unchanged, lengths scale with R, times with sqrt(R/g), angular velocities with
-sqrt(g/R), angular accelerations with g/R, speeds with sqrt(g R), forces with M g and
+The equations of motion are invariant under scaling (paper, Sec. 2.4): with the same χ and
+km, angles are unchanged, lengths scale with R, times with √(R/g), angular velocities with
+√(g/R), angular accelerations with g/R, speeds with √(g R), forces with M g and
 energies with M g R.
 
 Each of g, R and M lies in :data:`SCALE_RANGE`, [1e-50, 1e50] (SI units), which holds every
@@ -73,7 +73,7 @@ class Units:
 
     @property
     def time(self) -> float:
-        """Seconds per dimensionless time unit, sqrt(R/g)."""
+        """Seconds per dimensionless time unit, √(R/g)."""
         return math.sqrt(self.R / self.g)
 
     @property
@@ -83,7 +83,7 @@ class Units:
 
     @property
     def rate(self) -> float:
-        """rad/s per dimensionless angular velocity, sqrt(g/R)."""
+        """rad/s per dimensionless angular velocity, √(g/R)."""
         return 1.0 / self.time
 
     @property

@@ -183,7 +183,7 @@ def int_in(lo: int, hi: int | None = None) -> Callable[[str], int]:
 
 
 def int_at_least(lo: int) -> Callable[[str], int]:
-    """An integer option >= lo."""
+    """An integer option ≥ lo."""
     return int_in(lo)
 
 
@@ -223,8 +223,8 @@ def real_in(lo: float, hi: float, unit: str) -> Callable[[str], float]:
 
 
 def radians_hint(option: str, degrees: float) -> None:
-    """A note on stderr when an angle given in degrees looks like radians (0 < value <=
-    pi/2: a ramp of a degree or so is rare, radians are what Python takes)."""
+    """A note on stderr when an angle given in degrees looks like radians (0 < value ≤
+    π/2: a ramp of a degree or so is rare, radians are what Python takes)."""
     if 0.0 < degrees <= math.pi / 2:
         print(
             f"note: {option} is in degrees: {degrees:g} deg; for {degrees:g} rad write "

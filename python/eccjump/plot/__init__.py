@@ -10,12 +10,12 @@ plots compose into one figure. The ``*_panel`` functions draw those panels, the 
 return a :class:`matplotlib.figure.Figure` (:func:`animate_motion` writes a GIF instead;
 matplotlib is imported only when a function is called: ``pip install eccjump[plot]``). The
 modes have one palette everywhere (:data:`MODE_COLORS`, colour-blind safe).
-Angles are shown in degrees; units are g = R = M = 1 (forces in M g, rates in sqrt(g/R), times
-in sqrt(R/g)).
+Angles are shown in degrees; units are g = R = M = 1 (forces in M g, rates in √(g/R), times
+in √(R/g)).
 
-The Fig. 4 regions are drawn from their exact boundary surfaces alpha_lo(chi, k_m) and
-alpha_hi(chi, k_m) (:func:`eccjump.alpha_intervals`, bisection to 1e-12), not from a
-thresholded grid, so thin regions keep their true thickness in alpha.
+The Fig. 4 regions are drawn from their exact boundary surfaces alpha_lo(χ, k_m) and
+alpha_hi(χ, k_m) (:func:`eccjump.alpha_intervals`, bisection to 1e-12), not from a
+thresholded grid, so thin regions keep their true thickness in α.
 """
 
 from eccjump._base.palette import MODE_COLORS

@@ -1,6 +1,6 @@
-"""A design (eccjump.design) on its region slice: where its verdict holds over (chi, alpha) at
-its k_m and worst-case mu_s, the design point, and its margins in alpha and in the rod
-position (at fixed masses: along chi)."""
+"""A design (eccjump.design) on its region slice: where its verdict holds over (χ, α) at
+its k_m and worst-case μ_s, the design point, and its margins in α and in the rod
+position (at fixed masses: along χ)."""
 
 from __future__ import annotations
 
@@ -32,10 +32,10 @@ def _window(value: float, lo: float, hi: float, bottom: float, top: float) -> tu
 
 def design_panel(design: Design, ax: Axes, *, resolution: int = 120) -> Axes:
     """A :class:`~eccjump.studies.design.Design` on its region slice, drawn into ``ax``
-    (``Design.plot(ax=ax)``): over (chi, alpha [deg]) at the design's k_m and worst-case
-    mu_s, the cells (``resolution`` a side, at their centres) where its verdict holds under
-    both rules; the design (a star), its alpha margin (vertical bar) and its rod margin
-    (horizontal bar: the rod moves chi = rho (1 - k_m)). Returns ``ax``."""
+    (``Design.plot(ax=ax)``): over (χ, α [deg]) at the design's k_m and worst-case
+    μ_s, the cells (``resolution`` a side, at their centres) where its verdict holds under
+    both rules; the design (a star), its α margin (vertical bar) and its rod margin
+    (horizontal bar: the rod moves χ = ρ (1 - k_m)). Returns ``ax``."""
     if not isinstance(design, Design):
         raise TypeError(f"design must be a Design, not {type(design).__name__}")
     n = integer("resolution", resolution, 2, MAX_RESOLUTION)
@@ -66,7 +66,7 @@ def design_panel(design: Design, ax: Axes, *, resolution: int = 120) -> Axes:
 
 
 def _margins(ax: Axes, design: Design) -> None:
-    """The design point and its margins in alpha and in the rod position."""
+    """The design point and its margins in α and in the rod position."""
     km, chi0, a0 = design.body.km, design.body.chi, math.degrees(design.alpha)
     a_m, r_m, mu_m = (design.margin(k) for k in ("alpha", "rod", "mu_s"))
     # an infinite end (no boundary in the input's range) is drawn to the input's bound

@@ -96,7 +96,7 @@ def _mode_legend(ax: Axes, result: Any, runs: list[tuple[float, float, str]]) ->
 def motion_panel(
     result: Any, ax: Axes, *, body: Cylinder | None = None, alpha: float | None = None
 ) -> Axes:
-    """The main panel of an :func:`eccjump.simulate` run, theta' against time with the modes
+    """The main panel of an :func:`eccjump.simulate` run, θ̇ against time with the modes
     as bands and the impacts as dotted lines, drawn into ``ax`` (``MotionResult.plot(ax=ax)``;
     ``body`` and ``alpha`` [rad] label the title); returns ``ax``."""
     body, alpha = _body_alpha(result, body, alpha)
@@ -122,7 +122,7 @@ def motion(
     alpha: float | None = None,
 ) -> Figure:
     """Six stacked panels of an :func:`eccjump.simulate` run against time (shared axis):
-    theta', the slip velocity v = l' - theta', F_x, F_y, the gap b - 1 between the body and
+    θ̇, the slip velocity v = l̇ - θ̇, F_x, F_y, the gap b - 1 between the body and
     the ramp (b: the height of the axis C above the ramp, 1 in contact), and
     the mechanical energy E with E + dissipated (dashed: flat when the ledger closes). The
     modes are coloured background bands (ROLL, SLIP, FLIGHT), impacts dotted vertical lines.
@@ -185,7 +185,7 @@ def motion(
 def _resample(
     result: Any, ts: NDArray[np.float64]
 ) -> tuple[NDArray[np.float64], NDArray[np.float64], NDArray[np.float64], list[str]]:
-    """(theta, l, b, mode name) at the times ts: from the dense output ``result.sol`` if
+    """(θ, l, b, mode name) at the times ts: from the dense output ``result.sol`` if
     present, else linear interpolation of the recorded points; the mode is that of the last
     transition at or before each time."""
     t = np.asarray(result.t, dtype=float)
@@ -223,7 +223,7 @@ def animate_motion(
     """Write an animated GIF of an :func:`eccjump.simulate` run (pillow's GIF writer).
 
     The ramp slopes down to the right at ``alpha``; the body is the unit circle centred at
-    C = (l, b) in the ramp frame, its centre of mass C + chi (sin theta, cos theta) a dot
+    C = (l, b) in the ramp frame, its centre of mass C + χ (sin θ, cos θ) a dot
     with the spoke C -> CM; the body and the title take the colour of the mode. The camera
     follows C (a window ``view`` R either side); ticks on the ramp every R show the travel,
     a trail the path of the centre of mass. Frames are evenly spaced in simulated time, at
@@ -231,9 +231,9 @@ def animate_motion(
     :data:`FLIGHT_FRAMES` (shown in slow motion: a flight of a few hundredths of the run would
     else fall between two frames); the title gives the time and, in flight, the gap b - 1.
     They play at ``fps`` (or over ``seconds``); the state comes from ``result.sol`` if
-    present, else from the recorded points. 600 x 450 pixels at the default ``dpi``.
+    present, else from the recorded points. 600 × 450 pixels at the default ``dpi``.
 
-    ``body`` (for chi) and ``alpha`` [rad] are required unless the result carries them.
+    ``body`` (for χ) and ``alpha`` [rad] are required unless the result carries them.
     Returns the path written."""
     body, alpha = _body_alpha(result, body, alpha)
     if body is None or alpha is None:

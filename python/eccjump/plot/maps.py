@@ -78,9 +78,9 @@ def _checked_region(region: Region) -> Region:
 
 
 def region_panel(region: Region, ax: Axes, *, km_frac: float | None = None) -> Axes:
-    """One k_m slice of a :class:`~eccjump.Region` in the (chi, alpha) plane, JARM points
+    """One k_m slice of a :class:`~eccjump.Region` in the (χ, α) plane, JARM points
     coloured by their turn, drawn into ``ax`` (``Region.plot(ax=ax)``): the slice nearest
-    ``km_frac`` = k_m/(1 - chi), else the one with the most JARM points. Returns ``ax``."""
+    ``km_frac`` = k_m/(1 - χ), else the one with the most JARM points. Returns ``ax``."""
     cat = _turns(_checked_region(region))[0]
     most = int(np.argmax(np.isfinite(cat).sum(axis=(0, 1)))) if cat.size else 0
     j = _nearest_slice(np.asarray(region.km_frac), km_frac, most)
@@ -92,7 +92,7 @@ def region_panel(region: Region, ax: Axes, *, km_frac: float | None = None) -> A
 
 
 def region_map(region: Region, *, fig: FigureBase | None = None, panels: int = 4) -> Figure:
-    """A computed :class:`~eccjump.Region` in the (chi, alpha) plane, JARM points coloured by
+    """A computed :class:`~eccjump.Region` in the (χ, α) plane, JARM points coloured by
     their turn n (turns past 5 share one colour). The first panel projects over k_m (the
     smallest n of any k_m on the grid); the others are the ``panels - 1`` k_m slices with the
     most JARM points. ``fig``: an empty Figure or SubFigure to draw into (else a new one)."""
@@ -235,7 +235,7 @@ SEQUENCE_COLORS = (
 
 class _Sequences(NamedTuple):
     """A motion map's points by category: the ``top`` sequence codes (category k), the rest
-    (category len(top)), NaN where not run; shaped (alpha, chi, km_frac)."""
+    (category len(top)), NaN where not run; shaped (α, χ, km_frac)."""
 
     cat: NDArray[np.float64]
     top: list[int]
@@ -294,7 +294,7 @@ def _sequence_handles(s: _Sequences, cat: NDArray[np.float64]) -> list[Any]:
 
 
 def sequence_panel(m: MotionMap, ax: Axes, *, km_frac: float | None = None) -> Axes:
-    """One k_m slice of a motion map over (chi, alpha), every point coloured by its sequence
+    """One k_m slice of a motion map over (χ, α), every point coloured by its sequence
     of modes, drawn into ``ax`` (``MotionMap.plot(ax=ax)``): the slice nearest ``km_frac``,
     else the first with points that ran. Returns ``ax``."""
     s = _sequences(m)
@@ -306,7 +306,7 @@ def sequence_panel(m: MotionMap, ax: Axes, *, km_frac: float | None = None) -> A
 
 
 def sequence_map(m: MotionMap, *, fig: FigureBase | None = None, panels: int = 4) -> Figure:
-    """A motion map over (chi, alpha), one panel per k_m slice (``panels`` evenly spaced
+    """A motion map over (χ, α), one panel per k_m slice (``panels`` evenly spaced
     slices), every point coloured by its sequence of modes (the 10 most frequent sequences
     of the map; the others grey, points not run white). Like the paper's Fig. 4, but for
     every outcome; the JARM points are the ROLL→FLIGHT→... sequences. ``fig``: an empty

@@ -1,4 +1,4 @@
-"""A JARM classification over its points (eccjump.jarm): the lift-off angle theta_J, the
+"""A JARM classification over its points (eccjump.jarm): the lift-off angle θ_J, the
 forces at the jump and the path condition (the largest friction ratio and the smallest normal
 force on the rolling path), against the point's index or a coordinate of the caller's."""
 
@@ -57,7 +57,7 @@ def _theta_j(ax: Axes, result: JarmResult, x: NDArray, xlabel: str, jarm: NDArra
 
 
 def jarm_panel(result: JarmResult, ax: Axes, *, x: Any = None, xlabel: str = "") -> Axes:
-    """The main panel of a :func:`eccjump.jarm` result, theta_J [deg] over its points (JARM
+    """The main panel of a :func:`eccjump.jarm` result, θ_J [deg] over its points (JARM
     points in the JARM colour; NaN where the body does not lift off), drawn into ``ax``
     (``JarmResult.plot(ax=ax)``). ``x``: a coordinate of the points (broadcast to the
     result's shape; default the flat index), ``xlabel`` its label. Returns ``ax``."""
@@ -74,7 +74,7 @@ def jarm_points(
     xlabel: str = "",
     mu_s: float | None = None,
 ) -> Figure:
-    """Three panels of a :func:`eccjump.jarm` result over its points: theta_J [deg]; the
+    """Three panels of a :func:`eccjump.jarm` result over its points: θ_J [deg]; the
     forces at the jump F_x and F_y [M g]; and the path condition -- the largest friction
     ratio |F_x|/F_y on the rolling path (with the line ``mu_s`` if given) and the smallest
     normal force [M g] (right axis). ``x``/``xlabel`` as in :func:`jarm_panel`; ``fig``: an

@@ -1,4 +1,4 @@
-"""A pure-rolling run (eccjump.roll): theta against t, and the forces against theta."""
+"""A pure-rolling run (eccjump.roll): θ against t, and the forces against θ."""
 
 from __future__ import annotations
 
@@ -9,6 +9,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 from eccjump._base.checks import integer, optional_real
+from eccjump._base.palette import MODE_COLORS
 from eccjump.motion.roll import RollResult
 
 if TYPE_CHECKING:
@@ -24,13 +25,13 @@ from eccjump.plot._common import MAX_POINTS, checked_target, new_figure
 _EVENT_STYLE = {
     "liftoff": ("#d62728", "lift-off (paper)"),
     "normal_force_zero": ("#9467bd", r"$F_y = 0$"),
-    "slip": ("#ff7f0e", "slip"),
+    "slip": (MODE_COLORS["SLIP"], "slip"),
     "theta_limit": ("0.4", r"$\theta$ limit"),
 }
 
 
 def _dense_run(result: RollResult, n_points: int) -> tuple[NDArray[np.float64], ...]:
-    """(t, theta, omega, Fx, Fy, |Fx|/Fy) on a fine time grid from the dense output (state,
+    """(t, θ, omega, Fx, Fy, |Fx|/Fy) on a fine time grid from the dense output (state,
     forces and friction ratio evaluated by the core), or the accepted steps."""
     r = result
     if r.sol is None or r.units is not None or len(r.t) < 2:
@@ -54,7 +55,7 @@ def _units(result: RollResult) -> tuple[str, str, str]:
 
 
 def roll_panel(result: RollResult, ax: Axes, *, n_points: int = 2000) -> Axes:
-    """The main panel of a :func:`eccjump.roll` run, theta [deg] against t with its events,
+    """The main panel of a :func:`eccjump.roll` run, θ [deg] against t with its events,
     drawn into ``ax`` (``RollResult.plot(ax=ax)``); returns ``ax``."""
     n_points = _checked(result, n_points)
     t, theta = _dense_run(result, n_points)[:2]
@@ -65,7 +66,7 @@ def roll_panel(result: RollResult, ax: Axes, *, n_points: int = 2000) -> Axes:
 
 
 def _event_marks(result: RollResult) -> list[tuple[float, float, str, str | None]]:
-    """(t, theta [deg], colour, legend label) of each event; one label per kind of event."""
+    """(t, θ [deg], colour, legend label) of each event; one label per kind of event."""
     marks: list[tuple[float, float, str, str | None]] = []
     seen: set[str] = set()
     for e in result.events:
@@ -78,7 +79,7 @@ def _event_marks(result: RollResult) -> list[tuple[float, float, str, str | None
 
 
 def _theta_time(ax: Axes, result: RollResult, t: NDArray, th: NDArray) -> None:
-    """theta against t with lines at each event."""
+    """θ against t with lines at each event."""
     ax.plot(t, th, color="k", lw=1.5, label=r"$\theta(t)$", gid="theta")
     ax.set_xlabel(f"time $t$ [{_units(result)[0]}]")
     ax.set_ylabel(r"$\theta$ [deg]")
@@ -95,8 +96,8 @@ def trajectory(
     n_points: int = 2000,
     ratio_max: float | None = None,
 ) -> Figure:
-    """Four panels of a :func:`eccjump.roll` run: theta against t, and theta', F_x, F_y and
-    the friction ratio |F_x|/F_y (only where F_y > 0, with the line mu_s) against theta in
+    """Four panels of a :func:`eccjump.roll` run: θ against t, and θ̇, F_x, F_y and
+    the friction ratio |F_x|/F_y (only where F_y > 0, with the line μ_s) against θ in
     degrees; every event marked with a vertical line. Uses the dense output if present.
     ``fig``: an empty Figure or SubFigure to draw into (else a new one)."""
     n_points = _checked(result, n_points)

@@ -1,4 +1,4 @@
-"""Verdicts under both rules at the worst mu_s, and the margins to the exact boundaries."""
+"""Verdicts under both rules at the worst μ_s, and the margins to the exact boundaries."""
 
 from __future__ import annotations
 
@@ -141,7 +141,7 @@ def _margins(
 def _mu_star(
     holds: Callable[..., NDArray], alpha: float, chi: float, km: float, mu: float, tol: float
 ) -> float:
-    """The smallest mu_s >= mu at which the body no longer slips first (inf up to 1e6)."""
+    """The smallest μ_s ≥ μ at which the body no longer slips first (inf up to 1e6)."""
     lo, hi = mu, max(2.0 * mu, 1e-3)
     while bool(holds(alpha, chi, km, hi)):
         lo, hi = hi, 2.0 * hi

@@ -1,4 +1,4 @@
-"""The figure of an analysis: data and fitted model against time -- theta, the slip velocity
+"""The figure of an analysis: data and fitted model against time -- θ, the slip velocity
 and the height of the axle above the ramp -- with the modes as bands (observed on top of the
 first panel's strip, the model's below). matplotlib is imported only when it is drawn
 (``pip install eccjump[plot]``)."""
@@ -21,10 +21,10 @@ NAMES = ("ROLL", "SLIP", "FLIGHT")
 
 def _panels(result: Any) -> list[tuple[Any, Any, Any, str]]:
     """(data, its standard error, the model, the label) of each panel, against the track's
-    time: theta [deg], the slip velocity [m/s], b - R [mm]."""
+    time: θ [deg], the slip velocity [m/s], b - R [mm]."""
     rec, setup = result.rec, result.setup
     y = result.fit.states
-    model_slip = (y[3] - y[1]) * setup.radius / setup.time_unit  # ldot - R omega in m/s
+    model_slip = (y[3] - y[1]) * setup.radius / setup.time_unit  # l̇ - R θ̇ in m/s
     return [
         (np.degrees(rec.theta), np.degrees(rec.theta_err), np.degrees(y[0]), "theta [deg]"),
         (rec.slip, rec.slip_err, model_slip, "slip velocity [m/s]"),
@@ -55,7 +55,7 @@ def _title(result: Any) -> str:
 
 
 def theta_panel(result: Any, ax: Axes) -> Axes:
-    """The main panel of an analysis, theta [deg] against t [s] (data with its band, the
+    """The main panel of an analysis, θ [deg] against t [s] (data with its band, the
     model, the modes: the model's as bands, the observed as a strip on top), drawn into
     ``ax`` (``Analysis.plot(ax=ax)``); returns ``ax``."""
     checked_target(ax, None)
@@ -70,7 +70,7 @@ def theta_panel(result: Any, ax: Axes) -> Axes:
 def analysis_figure(
     result: Any, *, fig: FigureBase | None = None, figsize: tuple[float, float] = (8.0, 7.5)
 ) -> Figure:
-    """Three panels against time [s]: theta [deg], slip velocity [m/s] and b - R [mm], the
+    """Three panels against time [s]: θ [deg], slip velocity [m/s] and b - R [mm], the
     data with one-standard-error bands, the model as a line; modes as bands (the model's)
     and a strip of the observed modes at the top. ``fig``: an empty Figure or SubFigure to
     draw into (else a new one of ``figsize`` inches)."""

@@ -126,7 +126,7 @@ class Uncertainty:
     confidence : float
         The level of the confidence intervals.
     nominal : dict of str to float
-        The nominal value of every parameter (chi, km, alpha, mu_s, mu_k, restitution,
+        The nominal value of every parameter (χ, km, α, μ_s, μ_k, restitution,
         theta0, omega0).
     sd, bounds : dict
         The normal standard deviations and uniform ranges, by parameter.
@@ -136,7 +136,7 @@ class Uncertainty:
         The samples within the physical range that the question could answer (the others
         count in no probability).
     outcomes : dict of str to numpy.ndarray
-        What each sample did: for "jarm" ``is_jarm``, ``reason``, ``liftoff_theta`` (theta_J of
+        What each sample did: for "jarm" ``is_jarm``, ``reason``, ``liftoff_theta`` (θ_J of
         a JARM, else NaN), ``Fy_J``, ``max_ratio``; for "motion" every field of
         :class:`eccjump.MotionPoints` (``jarm``, ``sequence``, ``liftoff_theta``, ``apex``, ...).
     n_valid : int
