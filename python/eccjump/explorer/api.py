@@ -1,5 +1,6 @@
 """The explorer's three requests, as plain functions of a query (a mapping of strings, as
-a URL gives it): ``controls`` (the sliders), ``region`` (the JARM region slice over (χ, α)
+a URL gives it): ``controls`` (the sliders, and the colours of the modes: the one palette of
+:mod:`eccjump._base.palette`), ``region`` (the JARM region slice over (χ, α)
 at the current k_m and μ_s) and ``motion`` (the full motion of the current point, sampled
 for the animation, and its numbers). The HTTP server and the Jupyter widget both answer
 through :func:`handle`, so the page behaves the same in both.
