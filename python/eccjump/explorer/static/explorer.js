@@ -348,6 +348,11 @@ class MotionView {
     const plate = svg("rect", { x: 4, y: 4, width: 330, height: 46, rx: 4, class: "ej-plate" });
     this.clock = svg("text", { x: 12, y: 22, class: "ej-clock" });
     this.modeLabel = svg("text", { x: 12, y: 42, class: "ej-mode" });
+    // The mode in dark text after a swatch of its colour: light colours (the palette is made
+    // for colour-blind readers) are too pale for text on the plate.
+    this.modeSwatch = svg("tspan", {});
+    this.modeText = svg("tspan", {});
+    this.modeLabel.append(this.modeSwatch, this.modeText);
     const gravity = svg("g", { class: "ej-gravity" });
     gravity.append(
       svg("line", { x1: 610, y1: 16, x2: 610, y2: 46 }),
@@ -464,7 +469,8 @@ class MotionView {
     this.bands.replaceChildren();
     this.axisText.replaceChildren();
     this.clock.textContent = "";
-    this.modeLabel.textContent = "";
+    this.modeSwatch.textContent = "";
+    this.modeText.textContent = "";
   }
 
   tick(now) {
@@ -524,9 +530,10 @@ class MotionView {
     this.cm.setAttribute("cy", -d.gy[i]);
     this.clock.textContent = `t = ${t.toFixed(2)} √(R/g)   l = ${cx.toFixed(2)} R`;
     const height = d.cy[i] - 1;
-    this.modeLabel.textContent =
+    this.modeSwatch.textContent = "■ ";
+    this.modeSwatch.style.fill = MODE_COLORS[mode];
+    this.modeText.textContent =
       mode === "FLIGHT" ? `${mode}: axis ${height.toFixed(3)} R above contact` : mode;
-    this.modeLabel.style.fill = MODE_COLORS[mode];
     const px = TIMELINE.x0 + (t / (d.t_end || 1)) * TIMELINE.w;
     this.playhead.setAttribute("x1", px);
     this.playhead.setAttribute("x2", px);
