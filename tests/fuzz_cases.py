@@ -635,12 +635,15 @@ def _axis(d: Drawer, c: Case, lo: float, hi: float) -> Any:
 
 
 def case_region(d: Drawer) -> Case:
-    c = Case("region", eccjump.region, params=(*MAP_PARAMS, "output", "chunks"), check=check_region)
+    c = Case("region", eccjump.region, params=(*MAP_PARAMS, "output", "chunks", "progress"),
+             check=check_region)  # fmt: skip
     opts = _classification_options(d, c, False)
     mu, n = real(d, c, 0.0, 3.0), turn(d, c)
     axes = (_axis(d, c, 0.0, HALF_PI), _axis(d, c, 0.0, 1.0), _axis(d, c, 0.0, 1.0))
     c.args = (*axes, mu, n)  # (alpha, chi, km_frac, mu_s, n): the point first, then mu_s
     c.kwargs = {**opts, "integrator": text_param(d, c, INTEGRATORS), "derivatives": flag(d, c)}
+    if d.integer(0, 3) == 0:
+        c.kwargs["progress"] = progress_param(d, c)
     return c
 
 
@@ -786,6 +789,7 @@ MOTION_MAP_PARAMS = (
     "chunks",
     "output",
     "integrator",
+    "progress",
 )
 
 
@@ -827,12 +831,15 @@ def case_motion_map(d: Drawer) -> Case:
         c.kwargs["mu_k"] = d.pick(
             lambda: real_or_none(d, c, 0.0, 3.0), lambda: _axis(d, c, 0.0, 3.0), None
         )
+    if d.integer(0, 3) == 0:
+        c.kwargs["progress"] = progress_param(d, c)
     return c
 
 
 MOTION_POINTS_PARAMS = (
     "alpha", "chi", "km", "mu_s", "mu_k", "restitution", "theta0", "omega0", "rule", "t_max",
     "max_transitions", "rtol", "atol", "max_steps", "n_threads", "integrator", "shapes",
+    "progress",
 )  # fmt: skip
 
 
@@ -871,6 +878,8 @@ def case_motion_points(d: Drawer) -> Case:
     }
     if d.integer(0, 2) == 0:
         c.kwargs["mu_k"] = array(d, c, 0.0, 3.0)
+    if d.integer(0, 3) == 0:
+        c.kwargs["progress"] = progress_param(d, c)
     return c
 
 
@@ -956,6 +965,25 @@ def _no_progress(done: int, total: int) -> None:
     """A progress callback that does nothing."""
 
 
+def _sane_progress(done: int, total: int) -> None:
+    """A progress callback that holds the calls to their contract: two ints, 0 <= done <=
+    total (an AssertionError out of the call is a wrong exception: a violation)."""
+    assert type(done) is int and type(total) is int, (type(done), type(total))
+    assert 0 <= done <= total, (done, total)
+
+
+#: ``progress=`` values: the good ones (off, a bar, a callable) and the wrong types.
+PROGRESS_GOOD = (None, False, True, np.bool_(False), _sane_progress)
+PROGRESS_BAD = (1, "bar", 2.5, [])
+
+
+def progress_param(d: Drawer, case: Case) -> Any:
+    """A ``progress=`` value, sometimes of a wrong type (then the case must raise)."""
+    value = d.choice(PROGRESS_GOOD + (() if d.clean else PROGRESS_BAD))
+    case.must_raise |= any(value is bad for bad in PROGRESS_BAD)
+    return value
+
+
 def _is_study(res: Any, case: Case) -> None:
     expect(isinstance(res, eccjump.Uncertainty), "not an Uncertainty")
 
@@ -1015,8 +1043,7 @@ def case_uncertainty(d: Drawer) -> Case:
         c.kwargs["integrator"] = text_param(d, c, ("RK45", "Vern9"))
         c.must_raise |= c.kwargs["rtol"] != 1e-8 or c.kwargs["integrator"] not in ("RK45", "Vern9")
     if d.integer(0, 3) == 0:
-        c.kwargs["progress"] = d.choice((None, _no_progress, *(() if d.clean else (1, "bar"))))
-        c.must_raise |= c.kwargs["progress"] in (1, "bar")
+        c.kwargs["progress"] = progress_param(d, c)
     if d.integer(0, 2) == 0:
         c.kwargs["restitution"] = real(d, c, 0.0, 1.0)
     return c
@@ -1232,6 +1259,63 @@ def case_store(d: Drawer) -> Case:
     return c
 
 
+def case_results(d: Drawer) -> Case:
+    """``eccjump.load`` of a saved result, a map, or a path that is none (a foreign or
+    damaged file, a wrong suffix, a wrong type); ``save`` of a result to a good or bad path,
+    over a file of the user's with and without ``overwrite``."""
+    where = tmpdir()
+    run = eccjump.roll(eccjump.Cylinder(*JARM_BODY), 0.7, mu_s=1.0)
+    good = saved_results(where, run)
+    if d.integer(0, 1):
+        c = Case("RollResult.save", run.save, params=("path", "overwrite"), allow_oserror=True)
+        user = where / "user.json"
+        user.write_text("{}")
+        path = d.choice((where / "r2.json", where / "r2.nc", user, where / "r.txt", None, 5))
+        overwrite = d.choice((False, True, True, None, "yes"))
+        c.args, c.kwargs, c.check = (path,), {"overwrite": overwrite}, check_any
+        refused = path == user and not overwrite  # the user's file stays
+        bad_path = not isinstance(path, Path) or path.suffix == ".txt"
+        c.must_raise = bad_path or not isinstance(overwrite, bool) or refused
+        return c
+    c = Case("load", eccjump.load, params=("path",), allow_oserror=True, check=check_any)
+    path = d.choice((*good, None, 7, b"r.json", where / "missing.json", where / "r.txt",
+                     *spoilt_results(where)))  # fmt: skip
+    c.must_raise = path not in good
+    c.args = (path,)
+    if isinstance(path, Path):  # an error about a file names the file
+        c.params = ("path", path.name)
+    return c
+
+
+def saved_results(where: Path, run: Any) -> tuple[Path, ...]:
+    """A roll saved as .json and .nc, a region as .npz (made once in ``where``)."""
+    paths = (where / "r.json", where / "r.nc", where / "reg.npz")
+    if not all(p.exists() for p in paths):
+        run.save(paths[0], overwrite=True)
+        run.save(paths[1], overwrite=True)
+        eccjump.region(mu_s=1.0, alpha=[0.5, 0.7], chi=[0.2], km_frac=[0.1]).save(paths[2])
+    return paths
+
+
+def spoilt_results(where: Path) -> tuple[Path, ...]:
+    """JSON that is no result: not JSON, no type, an unknown type, a type that does not
+    match the fields, an array reference that leads nowhere, truncated."""
+    text = (where / "r.json").read_text()
+    doc = json.loads(text)
+    spoilt = {
+        "text.json": "hello",
+        "untyped.json": "{}",
+        "list.json": "[1, 2]",
+        "bogus.json": json.dumps({**doc, "eccjump_type": "bogus"}),
+        "wrong.json": json.dumps({**doc, "eccjump_type": "motion"}),
+        "lost.json": json.dumps({**doc, "arrays": {}}),
+        "cut.json": text[: len(text) // 2],
+    }
+    for name, content in spoilt.items():
+        (where / name).write_text(content)
+    return tuple(where / n for n in spoilt)
+
+
 def damaged_maps(where: Path) -> tuple[Path, ...]:
     """JARM maps damaged as in issue 46, 6 and 7 (made once in ``where``): a bit flipped in
     the data of theta_J (.npz, .zarr), a chunk of theta_J deleted (.zarr), an alpha of 10 rad
@@ -1411,9 +1495,8 @@ def case_start_map(d: Drawer) -> Case:
         "rule": text_param(d, c, ("paper", "normal_force")),
         "n_threads": threads(d, c),
     }
-    if d.integer(0, 3) == 0 and not d.clean:
-        c.kwargs["progress"] = d.choice((None, print, 3, "x"))
-        c.must_raise = c.must_raise or c.kwargs["progress"] in (3, "x")
+    if d.integer(0, 3) == 0:
+        c.kwargs["progress"] = progress_param(d, c)
     if d.integer(0, 5) == 0 and not d.clean:
         c.args = (c.args[0], np.zeros(101), np.zeros(100))  # past the bound of starts
     return c
@@ -1440,13 +1523,15 @@ def case_optimal_start(d: Drawer) -> Case:
             d, c, (1, 20, 400), (0, -1, 2.5, True, None, 10**5 + 1, 10**400)
         ),
     }
+    if d.integer(0, 3) == 0:
+        c.kwargs["progress"] = progress_param(d, c)
     return c
 
 
 DESIGN_PARAMS = (
     "alpha_range", "mu_s", "mu_s_err", "target", "body", "km_range", "rod_range", "radius",
     "mass", "g", "max_turns", "error", "grid", "min_apex", "tolerances", "maximise", "samples",
-    "seed", "shapes",
+    "seed", "shapes", "progress",
 )  # fmt: skip
 
 
@@ -1532,6 +1617,8 @@ def case_design(d: Drawer) -> Case:
         c.kwargs["tolerances"] = {k: real(d, c, 0.0, 0.05) for k in names}
         c.kwargs["maximise"] = text_param(d, c, ("margin", "probability"))
         c.kwargs["samples"] = integer_param(d, c, (100, 300), (*INT_BAD, 99, 10**6 + 1))
+    if d.integer(0, 3) == 0:
+        c.kwargs["progress"] = progress_param(d, c)
     return c
 
 
@@ -2265,6 +2352,7 @@ GENERATORS: dict[str, Callable[[Drawer], Case]] = {
     "cylinder": case_cylinder,
     "units": case_units,
     "store": case_store,
+    "results": case_results,
     "plot": case_plot,
     "jarm_fraction": case_jarm_fraction,
     "start_map": case_start_map,

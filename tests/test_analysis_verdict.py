@@ -9,17 +9,24 @@ from __future__ import annotations
 import functools
 import json
 import math
+from dataclasses import replace
 from pathlib import Path
+from types import SimpleNamespace
 
+import numpy as np
 import pytest
 import reference_tracks as rt
 import verdict_campaign as vc
-from hypothesis import given
+from hypothesis import given, settings
 from hypothesis import strategies as st
 
 from eccjump.cli import main
 from eccjump.studies.experiment import analyze
 from eccjump.studies.experiment.analysis import SIGNIFICANT, _slip_verdict
+from eccjump.studies.experiment.events import observe
+from eccjump.studies.experiment.fit import correlation_inflation
+from eccjump.studies.experiment.track import first_frames
+from eccjump.studies.experiment.video import VideoTrack
 
 DATA = Path(__file__).resolve().parent / "data"
 #: The stored JARM track (tests/data/jarm_240fps.csv, pixels) and the README's options.
@@ -162,3 +169,67 @@ def test_the_held_out_targets():
     assert sum(r["verdict"] == "jarm" for r in jarm) >= 0.9 * len(jarm)
     assert sum(r["lift_ok"] for r in rows) >= 0.9 * len(rows)
     assert sum(r["mu_k_ok"] for r in rows) >= 0.9 * len(rows)
+
+
+# --- the track's own length scale, correlated errors, bounces --------------------------------
+
+
+def test_a_scale_off_by_a_part_in_a_thousand_is_not_a_slip():
+    """A scale from the dots' distance is off by 5e-4 to 1e-3 on a video (the marker's dot is
+    blurred along its arc): every length of the track is, and a rolling body seems to slip
+    by that share of its travel. The fit carries the track's length scale as a nuisance
+    parameter: the JARM track stays jarm, and the scale is recovered."""
+    case = rt.draw("jarm", 1, 240.0, 0.2)
+    made = rt.film(case)
+    k = 1.001
+    stretched = replace(made.track, c=made.track.c * k, m=made.track.m * k)
+    res = analyze(stretched, radius=case.radius, chi=case.chi, km=case.km, alpha=case.alpha,
+                  marker_angle=case.marker_angle, marker_radius=0.8 * case.radius * k,
+                  profile_mu_k=False)  # fmt: skip
+    assert res.verdict == "jarm", (res.verdict, res.reason, res.evidence)
+    assert res.fit.value("length_scale") == pytest.approx(k, abs=3 * res.fit.error("length_scale"))
+
+
+@given(st.floats(-0.8, 0.8), st.integers(0, 2**32 - 1))
+@settings(max_examples=20, deadline=None)
+def test_the_correlation_inflation_of_ar1_errors(rho, seed):
+    """AR(1) residuals with lag-1 correlation rho: the inflation is (1 + rho) / (1 - rho) for
+    rho > 0 (the variance of a long mean grows by it), 1 for rho <= 0."""
+    rng = np.random.default_rng(seed)
+    n = 4000
+    e = rng.standard_normal((4, n))
+    r = np.empty_like(e)
+    r[:, 0] = e[:, 0]
+    for i in range(1, n):
+        r[:, i] = rho * r[:, i - 1] + math.sqrt(1 - rho**2) * e[:, i]
+    residuals = r.reshape(2, 2, n).transpose(0, 2, 1).ravel()  # C then M, (frames, 2) each
+    got = correlation_inflation(residuals, n)
+    want = max((1 + rho) / (1 - rho), 1.0)
+    assert got == pytest.approx(want, rel=0.15, abs=0.15)
+
+
+def test_a_second_flights_liftoff_comes_after_the_first_landing():
+    """The lift-off of a bounce was looked for 50 ms back, inside the first flight: the
+    analysis then cut the track mid-flight. A flight's lift-off is after the previous one's
+    last frame."""
+    t = np.arange(200) / 240.0
+    h = np.zeros_like(t)
+    h[50:90] = 0.005 * np.sin(np.linspace(0, math.pi, 40))
+    h[100:140] = 0.004 * np.sin(np.linspace(0, math.pi, 40))
+    rec = SimpleNamespace(t=t, height=h, sigma=1e-4, window=9, dt=t[1],
+                          slip=np.zeros_like(t), slip_err=np.ones_like(t),
+                          s=np.zeros_like(t), s_err=np.ones_like(t))  # fmt: skip
+    flights = observe(rec).flights  # type: ignore[arg-type]
+    assert len(flights) == 2
+    assert flights[1].liftoff.lo > flights[0].landing.hi
+
+
+def test_first_frames_cuts_every_per_frame_array():
+    made = rt.film(rt.draw("jarm", 2, 240.0, 0.5))
+    video = VideoTrack(t=made.track.t, c=made.track.c, m=made.track.m,
+                       c_err=np.ones_like(made.track.c), frame_t=made.track.t.copy(),
+                       scale=1000.0)  # fmt: skip
+    cut = first_frames(video, 10)
+    assert isinstance(cut, VideoTrack) and cut.n == 10 and cut.scale == 1000.0
+    assert cut.c_err.shape == (10, 2) and cut.frame_t.shape == (10,)
+    assert cut.m_err.shape == video.m_err.shape  # not per frame: kept

@@ -8,21 +8,12 @@ from hypothesis import assume, given
 from hypothesis import strategies as st
 
 from eccjump import Cylinder, Units
-
-unit = st.floats(0.0, 1.0)
-
-
-@st.composite
-def bodies(draw):
-    chi = draw(unit)
-    km = draw(st.floats(0.0, 1.0)) * (1.0 - chi)
-    return chi, km
+from eccjump.testing.strategies import bodies
 
 
 @given(bodies())
-def test_inertia_from_the_shell_plus_line_geometry(p):
-    chi, km = p
-    b = Cylinder(chi, km)
+def test_inertia_from_the_shell_plus_line_geometry(b):
+    chi, km = b.chi, b.km
     # Independent route: I_C = m_C R^2 + m_P (d + s)^2 with s = km chi R / (1 - km); the line
     # sits at distance chi/(1 - km) from C (or at C when chi = 0).
     r_line = 0.0 if chi == 0 else chi / max(1.0 - km, chi)
@@ -33,10 +24,9 @@ def test_inertia_from_the_shell_plus_line_geometry(p):
 
 
 @given(bodies(), st.floats(0.1, 10.0), st.floats(0.01, 3.0))
-def test_from_inertia_and_from_shell_and_line_round_trip(p, M, R):
-    chi, km = p
-    assume(1.0 - km >= chi)  # km = f (1 - chi) can round past the boundary
-    b = Cylinder(chi, km)
+def test_from_inertia_and_from_shell_and_line_round_trip(b, M, R):
+    chi, km = b.chi, b.km
+    assume(1.0 - km >= chi)  # 1 - (1 - chi) can round below chi at km = 1 - chi
     c = Cylinder.from_inertia(M, R, chi * R, b.Ic * M * R * R)
     assert c.chi == pytest.approx(chi, abs=1e-12)
     assert c.Ic == pytest.approx(b.Ic, rel=1e-12, abs=1e-14)

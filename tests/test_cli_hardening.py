@@ -20,7 +20,7 @@ import eccjump
 from eccjump import plot
 from eccjump.cli import build_parser, main
 from eccjump.cli import simulate as cli_simulate
-from eccjump.cli._args import NEGATIVE_NUMBER, Parser
+from eccjump.cli._args import NEGATIVE_NUMBER, RAMP_RADIANS, Degrees, Parser
 from eccjump.cli._output import bounded, figure_suffixes
 from eccjump.motion import fields as motion_fields
 
@@ -665,3 +665,62 @@ def test_map_checks_the_range_of_max_turns(tmp_path, kind):
     argv = [*MAP, "--kind", kind, "--max-turns", "4294967296", "-o", str(tmp_path / "m.npz")]
     message = failure(argv, code=2)
     assert "--max-turns" in message and "1000000" in message
+
+
+def _angle_options() -> list[tuple[str, argparse.Action]]:
+    """(subcommand, action) of every option of the command line."""
+    sub = next(a for a in build_parser()._actions if isinstance(a, argparse._SubParsersAction))
+    return [(name, a) for name, p in sub.choices.items() for a in p._actions if a.option_strings]
+
+
+def test_every_option_in_degrees_is_a_degrees_action():
+    """One mechanism for the note on a degree value that looks like radians: an option whose
+    help says [deg] that is not a Degrees action would forget it. (The tolerances --sd
+    alpha SD say "in degrees": a spread's size cannot tell its unit, so they get no note.)"""
+    for command, action in _angle_options():
+        in_degrees = "[deg]" in (action.help or "")
+        assert in_degrees == isinstance(action, Degrees), (command, action.option_strings)
+    degrees = {(c, a.option_strings[0]) for c, a in _angle_options() if isinstance(a, Degrees)}
+    # roll, simulate, map, design, uncertainty, track, analyze: every subcommand with angles
+    assert {c for c, _ in degrees} == {
+        "roll", "simulate", "map", "design", "uncertainty", "track", "analyze"
+    }  # fmt: skip
+
+
+@pytest.mark.parametrize(
+    "command, option",
+    sorted((c, a.option_strings[0]) for c, a in _angle_options() if isinstance(a, Degrees)),
+)
+def test_each_degree_option_notes_a_value_that_looks_like_radians(command, option, capsys):
+    action = next(a for c, a in _angle_options() if c == command and a.option_strings[0] == option)
+    ramp = action.radians_up_to == RAMP_RADIANS  # type: ignore[attr-defined]
+    n = action.nargs if isinstance(action.nargs, int) else 1
+
+    def given(text: str) -> str:
+        value = [action.type(text)] * n if action.nargs else action.type(text)  # type: ignore[misc]
+        action(argparse.ArgumentParser(), argparse.Namespace(), value, option)
+        return capsys.readouterr().err
+
+    note = given("0.698")
+    assert note.startswith(f"note: {option} is in degrees: 0.698") and "39.9925" in note, note
+    assert given("40" if ramp else "200") == ""  # degrees by the look of them
+    assert given("0") == ""  # 0 is 0 in either unit
+    if ramp:
+        assert given("1.6") == ""  # above pi/2: no radian ramp
+
+
+def test_roll_notes_an_alpha_in_radians():
+    """The issue's reproducer: ``eccjump roll --alpha 0.698`` ran at 0.698 deg without a
+    word."""
+    code, _, err = run_cli_inprocess(
+        ["roll", "--alpha", "0.698", "--chi", "0.15", "--km", "0.02", "--mu-s", "1"]
+    )
+    assert code == 0
+    assert "note: --alpha is in degrees: 0.698 deg; for 0.698 rad write --alpha 39.9925" in err
+
+
+def test_uncertainty_notes_bounds_of_an_angle_in_radians():
+    argv = ["uncertainty", "--alpha", "40", "--chi", "0.15", "--km", "0.02", "--mu-s", "1",
+            "--bounds", "alpha", "0.6", "0.8", "-n", "16", "-q"]  # fmt: skip
+    code, _, err = run_cli_inprocess(argv)
+    assert code == 0 and "note: --bounds alpha is in degrees: 0.6 0.8 deg" in err, err

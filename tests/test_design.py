@@ -32,7 +32,10 @@ def control() -> eccjump.Design:
 
 
 def verdict(d, alpha, chi, km, mu, n=None):
-    """The design's verdict at a point under both rules (a JARM on turn n if given)."""
+    """The design's verdict at a point under both rules (a JARM on turn n if given); none
+    beyond the ramp's range (a scalar alpha there is an error of jarm, not a point)."""
+    if not 0.0 <= alpha <= math.pi / 2:
+        return False
     res = [jarm(alpha, chi, km, mu, n, rule=r, max_turns=d.max_turns) for r in RULES]
     if d.target == "jarm":
         return bool(res[0].is_jarm & res[1].is_jarm)

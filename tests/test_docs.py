@@ -24,7 +24,11 @@ ROOT = Path(__file__).resolve().parents[1]
 REFERENCE = ROOT / "docs" / "reference"
 
 #: Modules whose examples take a second or more (searches, maps): marked slow.
-SLOW_MODULES = {"eccjump.studies.design.search", "eccjump.classification.starts"}
+SLOW_MODULES = {
+    "eccjump.studies.design.search",
+    "eccjump.classification.starts",
+    "eccjump.testing.strategies",  # tracks() analyses two tracks
+}
 
 
 def _modules() -> list[str]:
@@ -172,7 +176,10 @@ def test_every_placeholder_is_filled_with_the_entry_of_its_parameter(module, qua
 
 def test_an_entry_takes_the_indentation_of_its_placeholder() -> None:
     doc = "One line.\n\n    Parameters\n    ----------\n    %(alpha)s\n    x : int\n"
-    want = "    alpha : array_like of float\n        Ramp angle [rad], in [0, π/2].\n"
+    want = (
+        "    alpha : array_like of float\n"
+        "        Ramp angle [rad], in [0, π/2] (``math.radians`` for degrees).\n"
+    )
     assert docs.render(doc) == doc.replace("    %(alpha)s\n", want)
     assert docs.render("%(alpha)s") == docs.ENTRIES["alpha"]
     assert docs.render("a 100%(alpha)s share") == "a 100%(alpha)s share"  # not a line of its own

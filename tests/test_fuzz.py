@@ -54,6 +54,7 @@ BUDGET = {
     "cylinder": 100,
     "units": 60,
     "store": 30,
+    "results": 30,
     "plot": 16,
     "cli": 60,
     "jarm_fraction": 60,

@@ -27,6 +27,7 @@ from reference_points import (
 import eccjump
 from eccjump import Cylinder, Reason, jarm, region, roll
 from eccjump.classification import closed_form
+from eccjump.testing import assert_maps_equal
 
 DEG = math.pi / 180
 
@@ -210,13 +211,8 @@ def test_region_is_bit_identical_for_any_thread_count():
     c = np.linspace(0.01, 0.9, 17)
     f = np.linspace(0.0, 0.95, 13)
     r1 = region(mu_s=0.7, alpha=a, chi=c, km_frac=f, n_threads=1)
-    r2 = region(mu_s=0.7, alpha=a, chi=c, km_frac=f, n_threads=2)
-    r3 = region(mu_s=0.7, alpha=a, chi=c, km_frac=f, n_threads=3)
-    for name in eccjump.classification.FIELDS:
-        x1 = getattr(r1.result, name)
-        assert (
-            x1.tobytes() == getattr(r2.result, name).tobytes() == getattr(r3.result, name).tobytes()
-        )
+    assert_maps_equal(region(mu_s=0.7, alpha=a, chi=c, km_frac=f, n_threads=2), r1)
+    assert_maps_equal(region(mu_s=0.7, alpha=a, chi=c, km_frac=f, n_threads=3), r1)
 
 
 @settings(max_examples=25, deadline=None)
@@ -515,8 +511,7 @@ def test_ode_region_is_bit_identical_for_any_thread_count():
     f = np.linspace(0.0, 0.5, 3)
     r1 = region(mu_s=1.0, alpha=a, chi=c, km_frac=f, method="ode", n_threads=1)
     r2 = region(mu_s=1.0, alpha=a, chi=c, km_frac=f, method="ode", n_threads=2)
-    for name in eccjump.classification.FIELDS:
-        assert getattr(r1.result, name).tobytes() == getattr(r2.result, name).tobytes()
+    assert_maps_equal(r2, r1)
 
 
 def test_reason_codes_include_solver_failed_and_slip():

@@ -236,7 +236,9 @@ def test_a_jump_in_the_first_half_turn_is_on_turn_one():
 
 
 def test_invalid_input_is_never_answered_with_a_number():
-    assert math.isnan(float(eccjump.mu_s_min_path(float("nan"), *JARM_BODY)))
+    # a scalar ramp angle out of range is an error (issue 49); a point of an array is NaN
+    short_error(ValueError, eccjump.mu_s_min_path, float("nan"), *JARM_BODY, name="alpha")
+    assert math.isnan(float(eccjump.mu_s_min_path([float("nan")], *JARM_BODY)[0]))
     msg = short_error(ValueError, eccjump.alpha_intervals, 2.0, 0.02, 1.0, name="chi")
     assert "index 0" in msg
     short_error(ValueError, cf.jump_forces, 5.0, *JARM_BODY, 5.8, name="alpha")

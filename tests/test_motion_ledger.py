@@ -23,32 +23,7 @@ from reference_points import SLIP_FIRST, SLIP_FIRST_BODY
 
 import eccjump
 from eccjump.motion.simulation import STATUSES
-
-#: E + dissipated − E0 against the energies in play, at the default tolerances (the largest
-#: seen over 40 000 random runs was 5e-8, near a Painlevé point with forces of 5e7).
-LEDGER = 1e-7
-
-
-def ledger_scale(r: eccjump.MotionResult) -> float:
-    return 1.0 + abs(r.energy0) + float(np.max(np.abs(r.l))) + float(r.dissipated[-1])
-
-
-def check_ledger(r: eccjump.MotionResult) -> None:
-    """The ledger closes at every point and, by the run's totals, at its end; the
-    dissipation never decreases; friction opposes the slip at every slip point but the
-    event points that end a slip (located to the rounding of t, where v may sit a rounding
-    past 0)."""
-    tol = LEDGER * ledger_scale(r)
-    along = r.energy + r.dissipated - r.energy0
-    assert np.max(np.abs(along)) <= tol, (np.max(np.abs(along)), r.status)
-    end = r.energy[-1] + r.dissipated_slip + r.dissipated_impacts - r.energy0
-    assert abs(end) <= tol, (end, r.status)
-    assert np.min(np.diff(r.dissipated), initial=0.0) >= -tol
-    slip = r.mode == 1
-    interior = slip[:-1] & (np.diff(r.t) > 0)
-    work = (r.Fx * r.slip_velocity)[:-1][interior]
-    assert np.max(work, initial=0.0) <= 0.0, np.max(work)
-
+from eccjump.testing import assert_ledger_closes, ledger_scale, strategies
 
 #: One run for each way a run can end (``landed`` is the motion maps' stop at the first
 #: landing, not an option of ``simulate``).
@@ -89,7 +64,7 @@ def test_the_ledger_closes_for_every_status(status: str) -> None:
     (chi, km), alpha_deg, kw = BY_STATUS[status]
     r = eccjump.simulate(eccjump.Cylinder(chi, km), math.radians(alpha_deg), **kw)
     assert r.status == status, r.message
-    check_ledger(r)
+    assert_ledger_closes(r)
 
 
 def test_every_status_but_the_maps_own_is_covered() -> None:
@@ -109,7 +84,7 @@ def test_friction_opposes_the_slip_after_a_reversal() -> None:
             max_transitions=400,
             integrator=integrator,
         )
-        check_ledger(r)
+        assert_ledger_closes(r)
         assert "reverse" in {t.reason for t in r.transitions}
 
 
@@ -123,34 +98,33 @@ def test_a_run_stopped_by_its_budget_at_a_landing_keeps_arrays_and_totals_in_ste
     assert len(r.impacts) == 0 and r.mode[-1] == 2
 
 
+#: Any body with k_m >= 1e-3, ramp, friction (mu_k >= 0.3 mu_s), restitution and start.
+MOTIONS = strategies.motion_inputs(
+    body=strategies.bodies(max_chi=0.995, min_km=1e-3),
+    friction=strategies.frictions(min_mu_s=0.05, max_mu_s=1.5, min_ratio=0.3),
+    start=strategies.starts(min_omega0=-3.0, max_omega0=3.0, max_slip0=1.0),
+)
+
+
 @st.composite
 def runs(draw: st.DrawFn) -> tuple[eccjump.Cylinder, float, dict]:
-    """A valid run: any body with Ĩ_CM > 0, ramp, friction (μ_k ≤ μ_s), restitution and
-    start, and sometimes a small transition budget or a distance limit, so that every
-    status is drawn."""
-    chi = draw(st.floats(0.0, 0.995))
-    km = draw(st.floats(1e-3, 1.0).map(lambda u: u * (1.0 - chi)))
-    alpha = draw(st.floats(0.0, math.pi / 2))
-    mu_s = draw(st.floats(0.05, 1.5))
+    """A valid run, sometimes with a small transition budget or a distance limit, so that
+    every status is drawn."""
+    m = draw(MOTIONS)
     kw = {
-        "mu_s": mu_s,
-        "mu_k": mu_s * draw(st.floats(0.3, 1.0)),
-        "restitution": draw(st.sampled_from([0.0, 0.0, 0.3, 0.8])),
-        "theta0": draw(st.floats(0.0, 2 * math.pi)),
-        "omega0": draw(st.floats(-3.0, 3.0)),
-        "slip0": draw(st.floats(-1.0, 1.0)),
+        **m.keywords(),
         "t_max": 30.0,
         "max_transitions": draw(st.sampled_from([100, 100, 1, 2, 3, 5])),
         "l_max": draw(st.sampled_from([math.inf, math.inf, 2.0, 10.0])),
     }
-    return eccjump.Cylinder(chi, km), alpha, kw
+    return m.body, m.alpha, kw
 
 
 @settings(max_examples=400, deadline=None, suppress_health_check=[HealthCheck.too_slow])
 @given(runs())
 def test_the_ledger_closes_on_random_runs(run: tuple[eccjump.Cylinder, float, dict]) -> None:
     body, alpha, kw = run
-    check_ledger(eccjump.simulate(body, alpha, **kw))
+    assert_ledger_closes(eccjump.simulate(body, alpha, **kw))
 
 
 #: The ledger against the energies in play at the loosest tolerances a run accepts (rtol =

@@ -13,6 +13,7 @@ from scipy.integrate import solve_ivp
 from scipy.optimize import brentq
 
 from eccjump import Cylinder, Units, roll
+from eccjump.testing import strategies
 
 
 def rolling_rhs(alpha, chi, ic):
@@ -45,14 +46,11 @@ def energy(alpha, chi, ic, th, w):
     return 0.5 * (ic + 1 + 2 * chi * np.cos(th)) * w**2 + height
 
 
-@st.composite
-def setups(draw):
-    chi = draw(st.floats(0.0, 0.95))
-    km = draw(st.floats(0.0, 1.0)) * (1 - chi)
-    alpha = draw(st.floats(0.0, math.pi / 2))
-    theta0 = draw(st.floats(-math.pi, math.pi))
-    omega0 = draw(st.floats(0.0, 2.0))
-    return Cylinder(chi, km), alpha, theta0, omega0
+def setups():
+    starts = strategies.starts(min_theta0=-math.pi, max_theta0=math.pi, max_omega0=2.0)
+    return st.tuples(strategies.bodies(max_chi=0.95), strategies.ramps(), starts).map(
+        lambda s: (s[0], s[1], s[2].theta0, s[2].omega0)
+    )
 
 
 @settings(max_examples=60, deadline=None)
@@ -172,7 +170,7 @@ def test_forces_satisfy_newton_euler_recomputed_from_the_trajectory(s):
         theta_max=theta0 + 10,
         dense_output=True,
     )
-    if len(r.t) < 3:
+    if len(r.t) < 3 or r.t[-1] < 0.1:  # below, the differences' rounding eps/h^2 passes 2e-4
         return
     chi = body.chi
     # Centre of mass: x = l + chi sin(theta), y = 1 + chi cos(theta), l = theta - theta0.

@@ -69,6 +69,9 @@ LAYERS = {
     "eccjump.explorer": 6,
     "eccjump": 7,  # the public API, __init__.py
     "eccjump.cli": 8,  # argparse and printing over the public API
+    # hypothesis strategies and assertions for the users' tests: anything public, imported by
+    # nothing of eccjump (hypothesis is an optional dependency)
+    "eccjump.testing": 9,
 }
 
 #: The imports that still run upward: none since issue 47's inversions (a map kind carries its

@@ -88,6 +88,8 @@ def judge(case: rt.Case, kwargs: dict) -> dict:
         "mu_k_ok": lo <= case.mu_k <= hi,
         "mu_k_determined": hi - lo < 2.9,
         "chi2": res.fit.chi2_reduced,
+        "dchi2": res.delta_chi2,
+        "inflation": res.fit.correlation,
         "seconds": time.perf_counter() - started,
     }
 

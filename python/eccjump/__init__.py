@@ -27,6 +27,7 @@ from eccjump.classification.starts import (
 from eccjump.explorer import explore
 from eccjump.maps import Map, store
 from eccjump.maps import load as load_map
+from eccjump.maps.results import load
 from eccjump.motion.dense import DenseSolution
 from eccjump.motion.maps import MotionMap, motion_map
 from eccjump.motion.points import MotionPoints, motion_points
@@ -68,6 +69,7 @@ __all__ = [
     "explore",
     "jarm",
     "jarm_fraction",
+    "load",
     "load_map",
     "maps",
     "motion_map",

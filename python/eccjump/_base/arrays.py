@@ -6,7 +6,7 @@ import dataclasses
 import functools
 import operator
 from collections.abc import Callable, Mapping
-from typing import Any, NamedTuple, TypeVar
+from typing import Any, NamedTuple, ParamSpec, TypeVar
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
@@ -14,6 +14,7 @@ from numpy.typing import ArrayLike, NDArray
 from eccjump._base.checks import U32_MAX, int_array, integer, real_array
 
 T = TypeVar("T")
+P = ParamSpec("P")
 R = TypeVar("R", bound=NamedTuple)
 
 
@@ -49,17 +50,34 @@ def axis(name: str, values: object) -> NDArray[np.float64]:
     return a
 
 
-def fraction_axis(km_frac: object, km: object) -> object:
+def km_on_a_map() -> TypeError:
+    """The error of ``km=`` given to a map. ``km`` is the body's k_m in every function of the
+    package; a map does not take it as an axis (it would not be rectangular), and before 0.2
+    a map's ``km`` meant the fraction: an error that says so, never a silent reading of one
+    for the other."""
+    return TypeError(
+        "km is the body's k_m; a map's axis is km_frac = k_m / (1 - chi), the fraction in "
+        "[0, 1] (a map's km meant it before 0.2)"
+    )
+
+
+def refuses_km(fn: Callable[P, T]) -> Callable[P, T]:
+    """Decorator of the maps over (α, χ, ``km_frac``): ``km=`` in any call form (alone,
+    with ``km_frac``, after positional axes) raises :func:`km_on_a_map`, before Python
+    would report a missing ``km_frac`` instead."""
+
+    @functools.wraps(fn)
+    def call(*args: P.args, **kwargs: P.kwargs) -> T:
+        if kwargs.get("km") is not None:
+            raise km_on_a_map()
+        return fn(*args, **kwargs)
+
+    return call
+
+
+def fraction_axis(km_frac: object) -> object:
     """The grid axis of the shell mass fraction of a map: ``km_frac``, the share
-    k_m/(1 - χ) of its largest value. ``km`` is the body's k_m in every function of the
-    package; a map does not take it as an axis (it would not be rectangular), and before
-    0.2 a map's ``km`` meant the fraction: a TypeError that says so, never a silent
-    reading of one for the other."""
-    if km is not None:
-        raise TypeError(
-            "km is the body's k_m; a map's axis is km_frac, the fraction k_m/(1 - chi) in "
-            "[0, 1] (a map's km meant it before 0.2)"
-        )
+    k_m/(1 − χ) of its largest value (``km`` is refused by :func:`refuses_km`)."""
     if km_frac is None:
         raise TypeError("km_frac is required: the axis of the fraction k_m/(1 - chi) in [0, 1]")
     return km_frac

@@ -16,7 +16,9 @@ from __future__ import annotations
 
 import numbers
 import os
+import sys
 from collections.abc import Mapping
+from types import FrameType
 from typing import Any, Literal, cast
 
 import numpy as np
@@ -232,3 +234,14 @@ def int_array(name: str, value: object, lo: int, hi: int) -> NDArray[np.int64]:
             f"{name}[{i}] = {short(a.ravel()[i])} is outside the allowed range [{lo}, {hi}]"
         )
     return a.astype(np.int64)
+
+
+def stacklevel_outside() -> int:
+    """The ``stacklevel`` for ``warnings.warn`` in the function that calls this one: the first
+    frame outside eccjump (the user's call), however deep in the package the warning is
+    raised and whatever decorators wrap the entry point."""
+    frame: FrameType | None = sys._getframe(1)
+    level = 1
+    while frame is not None and frame.f_globals.get("__name__", "").startswith("eccjump"):
+        frame, level = frame.f_back, level + 1
+    return level

@@ -22,7 +22,12 @@ ENTRIES: dict[str, str] = {
     # -- the point: ramp and body ------------------------------------------------------------
     "alpha": """\
 alpha : array_like of float
-    Ramp angle [rad], in [0, π/2].""",
+    Ramp angle [rad], in [0, π/2] (``math.radians`` for degrees).""",
+    "alpha_points": """\
+alpha : array_like of float
+    Ramp angle [rad], in [0, π/2] (``math.radians`` for degrees). A scalar outside is a
+    ValueError; in an array, a point outside is invalid, and values in (π/2, 90] (degrees,
+    by the look of them) give one UserWarning per call.""",
     "chi": """\
 chi : array_like of float
     The body's d/R, in [0, 1].""",
@@ -79,6 +84,12 @@ grid : int, default 40
     "n_threads": """\
 n_threads : int, default 0
     Threads, 0 (one per core) ... 256; results are identical for any value.""",
+    # -- progress of long calls (eccjump._base.progress) ----------------------------------
+    "progress": """\
+progress : bool, callable or None, default None
+    Progress of the work, in points: None or False, none; True, a bar on stderr (tqdm);
+    a callable, called as ``progress(done, total)`` as the work advances. The results are
+    the same bits either way.""",
     # -- the scales of SI units -------------------------------------------------------------
     "g": """\
 g : float, default 9.81

@@ -10,6 +10,7 @@ from eccjump import _core
 from eccjump._base.arrays import broadcast_flat, turn
 from eccjump._base.checks import U64_MAX, Rule, integer, real, text
 from eccjump._base.docs import fill
+from eccjump._base.units import ramp_angles
 
 
 def _options(n: object, rule: object, n_threads: object) -> _core.BoundaryOptions:
@@ -94,7 +95,7 @@ def mu_s_min_path(
 
     Parameters
     ----------
-    %(alpha)s
+    %(alpha_points)s
     %(chi)s
     %(km)s
     %(n_first)s
@@ -119,7 +120,7 @@ def mu_s_min_path(
     >>> print(f"{eccjump.mu_s_min_path(np.radians(40), 0.15, 0.02):.11f}")
     0.33471000675
     """
-    shape, (a, c, k) = broadcast_flat(alpha=alpha, chi=chi, km=km)
+    shape, (a, c, k) = broadcast_flat(alpha=ramp_angles("alpha", alpha), chi=chi, km=km)
     out = _core.mu_s_min_path(a, c, k, options=_options(n, rule, n_threads))
     return out.reshape(shape)
 
@@ -146,7 +147,7 @@ def alpha_interval_around(
     ----------
     seed : array_like of float
         A ramp angle [rad] in [0, π/2] that gives a JARM for the body (broadcast with
-        ``chi`` and ``km``).
+        ``chi`` and ``km``), guarded as ``alpha`` of :func:`jarm` (radians, not degrees).
     %(chi)s
     %(km)s
     %(mu_s)s
@@ -175,7 +176,7 @@ def alpha_interval_around(
     >>> print(f"[{np.degrees(lo):.4f}, {np.degrees(hi):.4f}] deg")
     [36.2251, 50.4834] deg
     """
-    shape, (s, c, k) = broadcast_flat(seed=seed, chi=chi, km=km)
+    shape, (s, c, k) = broadcast_flat(seed=ramp_angles("seed", seed), chi=chi, km=km)
     lo, hi = _core.alpha_interval_around(
         s, c, k, real("mu_s", mu_s), step=real("step", step), options=_options(n, rule, n_threads)
     )

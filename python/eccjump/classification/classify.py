@@ -9,20 +9,40 @@ from __future__ import annotations
 
 import dataclasses
 import math
+import os
 import warnings
 from collections.abc import Mapping
 from dataclasses import dataclass, field, replace
+from pathlib import Path
 from typing import TYPE_CHECKING, Any, ClassVar, Literal, overload
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-from eccjump._base.arrays import axis, broadcast_flat, fields_equal, fraction_axis, turns
+from eccjump._base.arrays import (
+    axis,
+    broadcast_flat,
+    fields_equal,
+    fraction_axis,
+    refuses_km,
+    turns,
+)
 from eccjump._base.bridge import CallOptions, Method, call_options, jarm_grid, jarm_points
-from eccjump._base.checks import Integrator, Rule, file_error, flag, real, short, text
+from eccjump._base.checks import (
+    Integrator,
+    Rule,
+    file_error,
+    flag,
+    real,
+    short,
+    stacklevel_outside,
+    text,
+)
 from eccjump._base.docs import fill
 from eccjump._base.html import best_slice, card, deg, jarm_slice, num, span
+from eccjump._base.progress import Progress, checked, cut, grid_in_parts, reporting
 from eccjump._base.sizes import F64, check_fits, field_bytes, result_bytes
+from eccjump._base.units import ramp_angles
 from eccjump.classification.derivatives import derivative_fields
 from eccjump.classification.fields import (
     BY_NAME,
@@ -38,6 +58,7 @@ from eccjump.classification.fields import (
     docstring,
     map_attrs,
 )
+from eccjump.maps import results, store
 from eccjump.maps.dask import lazy_fields, normalize_chunks
 from eccjump.maps.layout import (
     DIMS,
@@ -45,14 +66,17 @@ from eccjump.maps.layout import (
     make_layout,
 )
 from eccjump.maps.map import Map
+from eccjump.maps.results import Result
 
 if TYPE_CHECKING:  # pragma: no cover
+    import pandas
+    import xarray as xr
     from matplotlib.axes import Axes
     from matplotlib.figure import Figure, FigureBase
 
 
 @dataclass(frozen=True, repr=False, eq=False)
-class JarmResult:
+class JarmResult(Result, kind="jarm_points"):
     """Per-point classification, every field an array of the broadcast shape.
 
     Attributes
@@ -215,6 +239,22 @@ class JarmResult:
 
         return plot.draw(self, ax=ax, fig=fig, **kwargs)
 
+    # Taking the result elsewhere (save and eccjump.load: eccjump.maps.results).
+    def to_xarray(self) -> xr.Dataset:
+        """The points as an ``xarray.Dataset`` (needs xarray; computed if lazy): one
+        variable per field over ``point`` (``point_0``, ``point_1``, ... for more than one
+        axis; none for one point) with ``units``, ``long_name`` and the reason codes as CF
+        flags, the derivative fields with a trailing ``wrt`` (``alpha``, ``chi``, ``km``)."""
+        ds = results.points(self, {**self.fields(), **self.derivatives()}, JARM.var_attrs)
+        if self.d_theta_J is None:
+            return ds
+        return ds.assign_coords(wrt=("wrt", list(WRT), WRT_ATTRS))
+
+    def to_dataframe(self) -> pandas.DataFrame:
+        """The fields as a ``pandas.DataFrame``, one row per point (indexed by its position),
+        the units of the columns in ``attrs["units"]`` (the derivatives: :meth:`to_xarray`)."""
+        return results.to_frame(self.to_xarray(), results.point_dims(self.shape))
+
 
 def _reason(code: int) -> Reason | int:
     """The :class:`Reason` of ``code``, or the code itself if it is none (fill: 255)."""
@@ -264,7 +304,7 @@ def jarm(
 
     Parameters
     ----------
-    %(alpha)s
+    %(alpha_points)s
     %(chi)s
     km : array_like of float
         The body's shell mass fraction k_m itself, in [0, 1 - χ].
@@ -323,13 +363,15 @@ def jarm(
     JarmResult
         Every field an array of the broadcast shape of the five inputs (0-d for scalars);
         the ``d_*`` fields None unless ``derivatives=True``.
-        Invalid points get ``Reason.INVALID_PARAMS``, not an error.
+        Invalid points get ``Reason.INVALID_PARAMS``, not an error (but a scalar
+        ``alpha`` out of [0, π/2] is one: see ``alpha``).
 
     Raises
     ------
     ValueError
         For arguments that apply to the whole call (shapes that do not broadcast, rule,
-        method, tolerances, max_turns, n_threads, integrator) and for an ``n`` that is not
+        method, tolerances, max_turns, n_threads, integrator), a scalar ``alpha`` out of
+        [0, π/2] (radians; degrees are a likely mistake) and for an ``n`` that is not
         None or integers ≥ 1; the message names the parameter and its range.
     %(type_error)s
     %(keyboard_interrupt)s
@@ -364,6 +406,7 @@ def jarm(
     [-3.5887 -8.8737  1.3812] False
     """
     want_derivatives = flag("derivatives", derivatives)
+    alpha = ramp_angles("alpha", alpha)
     turn_arg = turns(n)
     opts = call_options(
         n=None if isinstance(turn_arg, np.ndarray) else turn_arg,
@@ -512,6 +555,11 @@ class Region(Map, kind=JARM):
     __eq__ = fields_equal
 
     __hash__ = None  # type: ignore[assignment]  # mutable numpy arrays inside
+
+    def save(self, path: str | os.PathLike, *, overwrite: bool = False) -> Path:
+        """Write the map to ``path`` (``.nc``, ``.zarr`` or ``.npz``) by :func:`eccjump.maps.save`,
+        whose rules for what may be replaced hold; :func:`eccjump.load` reads it back."""
+        return store.save(self, path, overwrite=overwrite)
 
     def to_layout(self) -> Layout:
         """The map as a layout (:func:`region_layout`)."""
@@ -671,6 +719,7 @@ def _with_derivatives(layout: Layout, derivatives: Mapping[str, Any]) -> Layout:
     return {**layout, "coords": {**layout["coords"], "wrt": wrt}, "data_vars": data_vars}
 
 
+@refuses_km
 @fill
 def region(
     alpha: ArrayLike,
@@ -694,6 +743,7 @@ def region(
     chunks: Any = None,
     derivatives: bool = False,
     output: Literal["region"] = "region",
+    progress: bool | Progress | None = None,
 ) -> Region:
     """Map the JARM region on a rectangular grid, in parallel.
 
@@ -707,7 +757,8 @@ def region(
     Parameters
     ----------
     alpha : array_like of float, 1-D
-        Ramp angles [rad], each in [0, π/2].
+        Ramp angles [rad], each in [0, π/2] (``np.radians`` for degrees): one value out of
+        it is a ValueError; values in (π/2, 90] (degrees?) give one UserWarning.
     chi : array_like of float, 1-D
         The bodies' d/R, each in [0, 1].
     km_frac : array_like of float, 1-D
@@ -763,6 +814,8 @@ def region(
         A :class:`Region`. ``"xarray"`` is deprecated (it works until the next release,
         with a DeprecationWarning): write ``region(...).to_xarray()``, or
         :func:`region_dataset` to sweep ``mu_s``, ``theta0`` and ``omega0``.
+    %(progress)s
+        Not with ``chunks`` (a ValueError).
 
     Returns
     -------
@@ -807,11 +860,17 @@ def region(
     want_derivatives = flag("derivatives", derivatives)
     if want_derivatives and chunks is not None:
         raise ValueError("derivatives=True needs chunks=None (a map computed now)")
+    if checked(progress) and chunks is not None:
+        raise ValueError("progress needs chunks=None (dask reports the progress of a lazy map)")
     for name, value in (("mu_s", mu_s), ("theta0", theta0), ("omega0", omega0)):
         if isinstance(value, list | tuple) or (isinstance(value, np.ndarray) and value.ndim):
             raise ValueError(f"{name} must be a number here; region_dataset(...) sweeps it")
     mu = real("mu_s", mu_s)
-    a, c, f = axis("alpha", alpha), axis("chi", chi), axis("km_frac", fraction_axis(km_frac, km))
+    a, c, f = (
+        axis("alpha", ramp_angles("alpha", alpha)),
+        axis("chi", chi),
+        axis("km_frac", fraction_axis(km_frac)),
+    )
     opts = call_options(
         n=n,
         rule=rule,
@@ -828,7 +887,13 @@ def region(
     )
     if chunks is None:
         _fits_in_memory("region", a.size * c.size * f.size, want_derivatives, 0)
-        raw = jarm_grid(a, c, f, mu, opts)
+
+        def part(ax: int, values: slice) -> dict[str, NDArray]:
+            x, y, z = cut((a, c, f), ax, values)
+            return jarm_grid(x, y, z, mu, opts)
+
+        with reporting(progress) as report:
+            raw = grid_in_parts(part, (a.size, c.size, f.size), report)
         res = JarmResult._from_raw(raw, (a.size, c.size, f.size))
         if want_derivatives:
             res = replace(res, **_grid_derivatives(a, c, f, mu, raw, opts))
@@ -869,7 +934,7 @@ def _deprecated_output(output: object) -> bool:
             "eccjump.region(output='xarray') is deprecated: use region(...).to_xarray(), or "
             "region_dataset(...) to sweep mu_s, theta0, omega0 (until the next release)",
             DeprecationWarning,
-            stacklevel=3,
+            stacklevel=stacklevel_outside(),
         )
     return output == "xarray"
 

@@ -28,7 +28,7 @@ from typing import TYPE_CHECKING, Any
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-from eccjump._base.arrays import fraction_axis
+from eccjump._base.arrays import fraction_axis, refuses_km
 from eccjump._base.checks import file_error, real_array
 from eccjump._base.docs import fill
 from eccjump.classification.classify import Region, region
@@ -44,6 +44,7 @@ if TYPE_CHECKING:  # pragma: no cover
 SWEEPABLE = ("mu_s", "theta0", "omega0")
 
 
+@refuses_km
 @fill
 def region_dataset(
     alpha: ArrayLike,
@@ -125,7 +126,7 @@ def region_dataset(
             swept[name] = arr
         else:
             raise ValueError(f"{name} must be a number or a non-empty 1-D sequence")
-    grid = {"alpha": alpha, "chi": chi, "km_frac": fraction_axis(km_frac, km)}
+    grid = {"alpha": alpha, "chi": chi, "km_frac": fraction_axis(km_frac)}
     options: dict[str, Any] = {**grid, **scalars, **kwargs}
 
     def one(values: Mapping[str, float]) -> xr.Dataset:

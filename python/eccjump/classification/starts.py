@@ -19,7 +19,6 @@ Everything runs in the Rust core (:func:`eccjump.region`); :func:`optimal_start`
 from __future__ import annotations
 
 import math
-from collections.abc import Callable
 from dataclasses import dataclass
 from typing import TYPE_CHECKING, Any, overload
 
@@ -30,6 +29,7 @@ from eccjump._base.arrays import axis
 from eccjump._base.checks import U64_MAX, Rule, integer, real, rule_name, short
 from eccjump._base.docs import fill
 from eccjump._base.html import card, deg, num, span
+from eccjump._base.progress import Progress, reporting
 from eccjump.classification.classify import region
 from eccjump.classification.fields import Reason
 
@@ -307,7 +307,7 @@ def start_map(
     grid: int = 24,
     rule: Rule = "paper",
     n_threads: int = 0,
-    progress: Callable[[int, int], None] | None = None,
+    progress: bool | Progress | None = None,
 ) -> StartMap:
     """The reason shares (and the JARM fraction) for every start of the lattice
     ``theta0`` x ``omega0``.
@@ -327,8 +327,9 @@ def start_map(
         Points per axis of the midpoint grid of (α, χ, km_frac), 2 ... 128.
     %(rule_short)s
     %(n_threads)s
-    progress : callable or None, default None
-        Called as ``progress(done, total)`` after each start.
+    progress : bool, callable or None, default None
+        Progress of the work, in starts: None or False, none; True, a bar on stderr
+        (tqdm); a callable, called as ``progress(done, total)`` after each start.
 
     Returns
     -------
@@ -339,7 +340,7 @@ def start_map(
     ValueError
         For a parameter out of its range or more than 10**4 starts.
     TypeError
-        If ``progress`` is not callable.
+        If ``progress`` is not None, a bool or a callable.
 
     Examples
     --------
@@ -363,15 +364,14 @@ def start_map(
     oms = [_omega0(float(x)) for x in om]
     g = integer("grid", grid, 2, GRID_MAX)
     r, nt = rule_name(rule), _threads(n_threads)
-    if progress is not None and not callable(progress):
-        raise TypeError(f"progress must be callable or None, not {type(progress).__name__}")
     shares = np.empty((th.size, om.size, N_REASONS))
     total = th.size * om.size
-    for i, t in enumerate(ths):
-        for j, o in enumerate(oms):
-            shares[i, j] = _shares(mu, t, o, g, r, nt)
-            if progress is not None:
-                progress(i * om.size + j + 1, total)
+    with reporting(progress, "start", unit_scale=False) as report:
+        for i, t in enumerate(ths):
+            for j, o in enumerate(oms):
+                shares[i, j] = _shares(mu, t, o, g, r, nt)
+                if report is not None:
+                    report(i * om.size + j + 1, total)
     return StartMap(
         theta0=np.array(ths), omega0=np.array(oms), shares=shares, mu_s=mu, grid=g, rule=r
     )
@@ -483,10 +483,12 @@ class _Objective:
     """The fraction on one grid as a function of the start, cached, counting evaluations."""
 
     def __init__(self, mu: float, grid: int, rule: Rule, n_threads: int, omega_max: float,
-                 budget: list[int]) -> None:  # fmt: skip
+                 budget: list[int], report: Progress | None = None) -> None:  # fmt: skip
         self.mu, self.grid, self.rule, self.n_threads = mu, grid, rule, n_threads
         self.omega_max = omega_max
         self.budget = budget
+        self.total = budget[0]
+        self.report = report
         self.cache: dict[tuple[float, float], float] = {}
 
     def key(self, th: float, om: float) -> tuple[float, float]:
@@ -506,6 +508,8 @@ class _Objective:
             self.budget[0] -= 1
             s = _shares(self.mu, k[0], k[1], self.grid, self.rule, self.n_threads)
             self.cache[k] = float(s[Reason.JARM.value])
+            if self.report is not None:
+                self.report(self.total - self.budget[0], self.total)
         return self.cache[k]
 
 
@@ -581,6 +585,7 @@ def optimal_start(
     rule: Rule = "paper",
     n_threads: int = 0,
     max_evaluations: int = 2000,
+    progress: bool | Progress | None = None,
 ) -> OptimalStart:
     """The start (theta0, omega0) that maximises the JARM fraction (:func:`jarm_fraction`),
     with its uncertainty from the grid. Needs scipy (``pip install "eccjump[analysis]"``).
@@ -609,6 +614,11 @@ def optimal_start(
     %(n_threads)s
     max_evaluations : int, default 2000
         Bound of the maps computed in all, 1 ... 10**5.
+    progress : bool, callable or None, default None
+        Progress of the search, in maps computed: None or False, none; True, a bar on
+        stderr (tqdm); a callable, called as ``progress(done, total)`` after each map,
+        ``total`` the bound ``max_evaluations`` until the last call, where it is the count
+        computed (``done == total``).
 
     Returns
     -------
@@ -646,9 +656,31 @@ def optimal_start(
     r, nt = rule_name(rule), _threads(n_threads)
     budget = [integer("max_evaluations", max_evaluations, 1, EVALUATIONS_MAX)]
     _shares(mu, 0.0, 0.0, 2, r, nt)  # a bad rule or n_threads is refused before any work
+    with reporting(progress, "map", unit_scale=False) as report:
+        found = _search(mu, g, r, nt, wmax, (n_th, n_om), k, budget, report)
+        if report is not None:
+            report(found.evaluations, found.evaluations)
+    return found
+
+
+def _search(
+    mu: float,
+    g: int,
+    r: Rule,
+    nt: int,
+    wmax: float,
+    lattice: tuple[int, int],
+    k: int,
+    budget: list[int],
+    report: Progress | None,
+) -> OptimalStart:
+    """The search of :func:`optimal_start` on checked arguments, ``report(maps computed,
+    budget)`` after each map."""
+    n_th, n_om = lattice
     s_th, s_om = TWO_PI / n_th, wmax / (n_om - 1)
-    coarse = _Objective(mu, g, r, nt, wmax, budget)
-    fine = _Objective(mu, 2 * g, r, nt, wmax, budget)
+    max_evaluations = budget[0]
+    coarse = _Objective(mu, g, r, nt, wmax, budget, report)
+    fine = _Objective(mu, 2 * g, r, nt, wmax, budget, report)
     try:
         lat = [(coarse(i * s_th, j * s_om), i * s_th, j * s_om)
                for i in range(n_th) for j in range(n_om)]  # fmt: skip

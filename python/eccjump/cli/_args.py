@@ -222,12 +222,59 @@ def real_in(lo: float, hi: float, unit: str) -> Callable[[str], float]:
     return parse
 
 
-def radians_hint(option: str, degrees: float) -> None:
-    """A note on stderr when an angle given in degrees looks like radians (0 < value ≤
-    π/2: a ramp of a degree or so is rare, radians are what Python takes)."""
-    if 0.0 < degrees <= math.pi / 2:
-        print(
-            f"note: {option} is in degrees: {degrees:g} deg; for {degrees:g} rad write "
-            f"{option} {math.degrees(degrees):.6g}",
-            file=sys.stderr,
-        )
+#: The largest value an angle option in degrees may be read as radians of: a ramp angle
+#: (π/2) and any other angle (2π).
+RAMP_RADIANS = math.pi / 2
+TURN_RADIANS = 2 * math.pi
+
+
+def radians_hint(option: str, degrees: Sequence[float], up_to: float = TURN_RADIANS) -> None:
+    """A note on stderr when the values of an angle option in degrees look like radians:
+    none above ``up_to`` and one not 0 (an angle of a degree or so is rare; radians are
+    what Python takes)."""
+    if not degrees or any(not abs(x) <= up_to for x in degrees) or not any(degrees):
+        return
+    given = " ".join(f"{x:g}" for x in degrees)
+    meant = " ".join(f"{math.degrees(x):.6g}" for x in degrees)
+    print(
+        f"note: {option} is in degrees: {given} deg; for {given} rad write {option} {meant}",
+        file=sys.stderr,
+    )
+
+
+class Degrees(argparse.Action):
+    """An angle option in degrees: its values are read by ``type`` (by default
+    :func:`degrees_in` over [lo, hi]) and noted by :func:`radians_hint` when they look like
+    radians (up to ``radians_up_to``). Every option whose help says ``[deg]`` is one (the
+    tests check it), so that no angle option forgets the note."""
+
+    def __init__(
+        self,
+        option_strings: Sequence[str],
+        dest: str,
+        *,
+        lo: float = -math.inf,
+        hi: float = math.inf,
+        radians_up_to: float = TURN_RADIANS,
+        **kwargs: Any,
+    ) -> None:
+        kwargs.setdefault("type", degrees_in(lo, hi))
+        super().__init__(option_strings, dest, **kwargs)
+        self.radians_up_to = radians_up_to
+
+    def __call__(
+        self,
+        parser: argparse.ArgumentParser,
+        namespace: argparse.Namespace,
+        values: Any,
+        option_string: str | None = None,
+    ) -> None:
+        shown = values if isinstance(values, list) else [values]
+        radians_hint(option_string or self.dest, shown, self.radians_up_to)
+        setattr(namespace, self.dest, values)
+
+
+def shows_progress(args: argparse.Namespace) -> bool:
+    """Whether a subcommand draws its progress bar on stderr (the ``progress=True`` of the
+    Python API): not with ``--quiet``, nor when stderr is no terminal (a log file)."""
+    return not args.quiet and sys.stderr.isatty()

@@ -17,7 +17,7 @@ import math
 import re
 from collections.abc import Callable
 
-from eccjump.cli._args import degrees_in, radians_hint, real_in
+from eccjump.cli._args import RAMP_RADIANS, Degrees, degrees_in, real_in
 from eccjump.cli._output import check_output, figure_suffixes, save_figure
 from eccjump.cli.track import add_video_options, track_video
 from eccjump.studies.experiment import analyze
@@ -44,7 +44,9 @@ def add_parser(sub: argparse._SubParsersAction) -> None:
     p.add_argument("--km", type=float, default=None, help="shell mass fraction (or --design)")
     p.add_argument(
         "--alpha",
+        action=Degrees,
         type=_bounded("alpha"),
+        radians_up_to=RAMP_RADIANS,
         default=None,
         help="ramp angle [deg] (default: from --design, else estimated from the track)",
     )
@@ -53,6 +55,7 @@ def add_parser(sub: argparse._SubParsersAction) -> None:
     )
     p.add_argument(
         "--marker-angle",
+        action=Degrees,
         type=_bounded("marker_angle"),
         default=0.0,
         help="marker angle from the axle->CM direction, measured like theta [deg] (default 0)",
@@ -77,8 +80,6 @@ def add_parser(sub: argparse._SubParsersAction) -> None:
 
 def run(args: argparse.Namespace) -> int:
     figure = check_output("--figure", args.figure, figure_suffixes()) if args.figure else None
-    if args.alpha is not None:
-        radians_hint("--alpha", args.alpha)
     video = track_video(args) if is_video(args.track) else None
     try:
         res = analyze(

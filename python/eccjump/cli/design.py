@@ -9,7 +9,7 @@ import json
 import math
 
 from eccjump._base.body import Cylinder
-from eccjump.cli._args import degrees_in, int_at_least
+from eccjump.cli._args import RAMP_RADIANS, Degrees, int_at_least
 from eccjump.studies.design import GRID_RANGE, design
 
 
@@ -24,7 +24,10 @@ def add_parser(sub: argparse._SubParsersAction) -> None:
     p.add_argument(
         "--alpha-range",
         nargs=2,
-        type=degrees_in(0.0, 90.0),
+        action=Degrees,
+        lo=0.0,
+        hi=90.0,
+        radians_up_to=RAMP_RADIANS,
         required=True,
         metavar=("LO", "HI"),
         help="ramp angles the lab can set [deg], within [0, 90]",
@@ -90,7 +93,7 @@ def add_parser(sub: argparse._SubParsersAction) -> None:
         default=[],
         metavar=("NAME", "SD"),
         help="a lab tolerance (repeatable): the normal standard deviation of chi, km, alpha "
-        "[deg] or mu_s; the sheet then gives P(success), the probability of the verdict",
+        "(in degrees) or mu_s; the sheet then gives P(success), the probability of the verdict",
     )
     p.add_argument(
         "--maximise",

@@ -33,7 +33,14 @@ from numpy.typing import NDArray
 
 from eccjump._base.checks import U32_MAX, short
 from eccjump.cli import map_jobs
-from eccjump.cli._args import add_integrator, int_at_least, int_in
+from eccjump.cli._args import (
+    RAMP_RADIANS,
+    Degrees,
+    add_integrator,
+    int_at_least,
+    int_in,
+    shows_progress,
+)
 from eccjump.cli._output import check_output, figure_suffixes
 from eccjump.cli.map_jobs import Job
 from eccjump.maps import runner
@@ -97,8 +104,9 @@ def add_parser(sub: argparse._SubParsersAction) -> None:
     g.add_argument("--n-alpha", type=_axis_points, help="points along alpha (default --grid)")
     g.add_argument("--n-chi", type=_axis_points, help="points along chi (default --grid)")
     g.add_argument("--n-km-frac", type=_axis_points, help="points along km_frac (default --grid)")
-    g.add_argument("--alpha-min", type=float, default=0.0, help="[deg] (default 0)")
-    g.add_argument("--alpha-max", type=float, default=90.0, help="[deg] (default 90)")
+    ramp = {"action": Degrees, "radians_up_to": RAMP_RADIANS, "type": float}  # range: _axes
+    g.add_argument("--alpha-min", **ramp, default=0.0, help="[deg] (default 0)")
+    g.add_argument("--alpha-max", **ramp, default=90.0, help="[deg] (default 90)")
     g.add_argument("--chi-min", type=float, default=0.0, help="(default 0)")
     g.add_argument(
         "--chi-max", type=float, default=None, help="(default 1; 0.99 for --kind motion)"
@@ -123,7 +131,7 @@ def add_parser(sub: argparse._SubParsersAction) -> None:
     m.add_argument(
         "--rule", choices=("paper", "normal_force"), default="paper", help="lift-off rule"
     )
-    m.add_argument("--theta0", type=float, default=0.0, help="initial angle [deg]")
+    m.add_argument("--theta0", action=Degrees, default=0.0, help="initial angle [deg]")
     m.add_argument(
         "--omega0", type=float, default=0.0, help="initial angular velocity [sqrt(g/R) rad]"
     )
@@ -245,7 +253,7 @@ def _run(args: argparse.Namespace) -> int:
         chunk=args.chunk,
         resume=args.resume,
         overwrite=args.overwrite,
-        progress=not args.quiet and sys.stderr.isatty(),
+        progress=shows_progress(args),
         stop_after=args.stop_after,
     )
     return _report(runner.run(path, axes, job, options, _note), job, args.figure)

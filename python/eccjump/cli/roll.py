@@ -7,7 +7,7 @@ import json
 import math
 
 from eccjump._base.body import Cylinder
-from eccjump.cli._args import add_integrator, degrees_in, radians_hint
+from eccjump.cli._args import RAMP_RADIANS, Degrees, add_integrator
 from eccjump.cli._output import bounded
 from eccjump.motion.roll import RollResult, roll
 
@@ -25,15 +25,21 @@ def add_parser(sub: argparse._SubParsersAction) -> None:
         "event ends it; print what happened.",
     )
     p.add_argument(
-        "--alpha", type=degrees_in(0.0, 90.0), required=True, help="ramp angle [deg], in [0, 90]"
+        "--alpha",
+        action=Degrees,
+        lo=0.0,
+        hi=90.0,
+        radians_up_to=RAMP_RADIANS,
+        required=True,
+        help="ramp angle [deg], in [0, 90]",
     )
     _add_body_args(p)
     p.add_argument("--mu-s", type=float, default=None, help="static friction coefficient")
-    p.add_argument("--theta0", type=float, default=0.0, help="initial angle [deg]")
+    p.add_argument("--theta0", action=Degrees, default=0.0, help="initial angle [deg]")
     p.add_argument(
         "--omega0", type=float, default=0.0, help="initial angular velocity [sqrt(g/R) rad]"
     )
-    p.add_argument("--theta-max", type=float, default=math.inf, help="stop at this angle [deg]")
+    p.add_argument("--theta-max", action=Degrees, default=math.inf, help="stop at this angle [deg]")
     p.add_argument("--t-max", type=float, default=1000.0, help="stop at this time [sqrt(R/g)]")
     p.add_argument(
         "--rule",
@@ -83,7 +89,6 @@ def _mu(mu_s: float | None) -> str:
 
 def _cmd_roll(args: argparse.Namespace) -> int:
     body = Cylinder(args.chi, args.km)
-    radians_hint("--alpha", args.alpha)
     res = roll(
         body,
         math.radians(args.alpha),

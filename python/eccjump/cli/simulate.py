@@ -17,7 +17,7 @@ import numpy as np
 
 from eccjump import plot
 from eccjump._base.body import Cylinder
-from eccjump.cli._args import add_integrator, degrees_in, int_at_least, radians_hint
+from eccjump.cli._args import RAMP_RADIANS, Degrees, add_integrator, int_at_least
 from eccjump.cli._output import (
     ANIMATION_SUFFIXES,
     bounded,
@@ -44,7 +44,13 @@ def add_parser(sub: argparse._SubParsersAction) -> None:
         "flights and the energy ledger.",
     )
     p.add_argument(
-        "--alpha", type=degrees_in(0.0, 90.0), required=True, help="ramp angle [deg], in [0, 90]"
+        "--alpha",
+        action=Degrees,
+        lo=0.0,
+        hi=90.0,
+        radians_up_to=RAMP_RADIANS,
+        required=True,
+        help="ramp angle [deg], in [0, 90]",
     )
     p.add_argument("--chi", type=float, required=True, help="CM offset d/R, in [0, 1]")
     p.add_argument("--km", type=float, required=True, help="shell mass fraction, in [0, 1-chi]")
@@ -64,7 +70,7 @@ def add_parser(sub: argparse._SubParsersAction) -> None:
         default="paper",
         help="lift-off rule from rolling (default: the paper's)",
     )
-    p.add_argument("--theta0", type=float, default=0.0, help="initial angle [deg]")
+    p.add_argument("--theta0", action=Degrees, default=0.0, help="initial angle [deg]")
     p.add_argument(
         "--omega0", type=float, default=0.0, help="initial angular velocity [sqrt(g/R) rad]"
     )
@@ -319,7 +325,6 @@ def _check_outputs(args: argparse.Namespace) -> tuple[Path | None, Path | None]:
 def _cmd_simulate(args: argparse.Namespace) -> int:
     figure, animation = _check_outputs(args)
     body = Cylinder(args.chi, args.km)
-    radians_hint("--alpha", args.alpha)
     alpha = math.radians(args.alpha)
     res = simulate(
         body,

@@ -17,7 +17,7 @@ import numpy as np
 from eccjump import plot
 from eccjump.classification.classify import Region, region
 from eccjump.classification.starts import GRID_MAX, STARTS_MAX, optimal_start, start_map
-from eccjump.cli._args import directory, int_in, short_text
+from eccjump.cli._args import directory, int_in, short_text, shows_progress
 from eccjump.cli._output import DPI_RANGE, check_outputs, save_figure
 
 
@@ -144,6 +144,7 @@ def _cmd_starts(args: argparse.Namespace) -> int:
             lattice=tuple(args.lattice),
             rule=args.rule,
             n_threads=args.threads,
+            progress=shows_progress(args),
         )
         out: dict[str, Any] = {**opt.as_dict(), "seconds_optimum": time.perf_counter() - start}
         smap = None
@@ -151,13 +152,8 @@ def _cmd_starts(args: argparse.Namespace) -> int:
             start = time.perf_counter()
             thetas = np.linspace(0.0, 2.0 * math.pi, n_th, endpoint=False)
             omegas = np.linspace(0.0, args.omega_max, n_om)
-
-            def progress(done: int, total: int) -> None:
-                if done % max(1, total // 10) == 0 or done == total:
-                    _say(args, f"  map: {done}/{total} starts")
-
             smap = start_map(mu, thetas, omegas, grid=args.map_grid, rule=args.rule,
-                             n_threads=args.threads, progress=progress)  # fmt: skip
+                             n_threads=args.threads, progress=shows_progress(args))  # fmt: skip
             out["map"] = {
                 "grid": args.map_grid,
                 "starts": [n_th, n_om],
@@ -177,7 +173,8 @@ def _cmd_starts(args: argparse.Namespace) -> int:
         out["regions"] = {}
         for name, th, om in (("rest", 0.0, 0.0), ("optimum", opt.theta0, opt.omega0)):
             reg = region(mu_s=mu, alpha=u * math.pi / 2, chi=u, km_frac=u, theta0=th, omega0=om,
-                         rule=args.rule, n_threads=args.threads)  # fmt: skip
+                         rule=args.rule, n_threads=args.threads,
+                         progress=shows_progress(args))  # fmt: skip
             out["regions"][name] = _region_summary(reg)
             if figures:
                 path = figures[f"starts_region_{name}_mu{_tag(mu)}"]

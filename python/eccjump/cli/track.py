@@ -9,10 +9,10 @@ import argparse
 import json
 import math
 import re
-import sys
 
 from eccjump._base.overwrite import check_overwrite
-from eccjump.cli._args import degrees_in, real_in
+from eccjump._base.progress import reporting
+from eccjump.cli._args import RAMP_RADIANS, Degrees, degrees_in, real_in, shows_progress
 from eccjump.cli._output import check_output, writing
 from eccjump.studies.experiment.inputs import cli_range
 from eccjump.studies.experiment.video import COLORS, VideoTrack, is_track_file, track
@@ -44,7 +44,9 @@ def add_parser(sub: argparse._SubParsersAction) -> None:
     add_video_options(p)
     p.add_argument(
         "--alpha",
+        action=Degrees,
         type=degrees_in(*cli_range("alpha")[:2]),
+        radians_up_to=RAMP_RADIANS,
         default=None,
         help="ramp angle [deg]: reports the camera's roll against it",
     )
@@ -93,17 +95,9 @@ def track_video(args: argparse.Namespace) -> VideoTrack:
     """``eccjump.track`` on ``args.video`` (or ``args.track``, analyze's) with the options,
     a progress bar on stderr (none with --quiet or when stderr is no terminal), and the
     messages naming the options."""
-    from tqdm import tqdm
-
     _scale_source(args)
     video = getattr(args, "video", None) or args.track
-    quiet = args.quiet or not sys.stderr.isatty()
-    with tqdm(total=0, unit="frame", disable=quiet, file=sys.stderr, leave=False) as bar:
-
-        def progress(done: int, total: int) -> None:
-            bar.total = total
-            bar.update(done - bar.n)
-
+    with reporting(shows_progress(args), "frame", unit_scale=False, leave=False) as progress:
         try:
             return track(
                 video,

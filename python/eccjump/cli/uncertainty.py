@@ -8,14 +8,21 @@ from __future__ import annotations
 import argparse
 import json
 import math
-import sys
 from pathlib import Path
 from typing import Any
 
 from eccjump import plot
 from eccjump._base.body import Cylinder
 from eccjump._base.overwrite import check_overwrite, never
-from eccjump.cli._args import add_integrator, degrees_in, int_in
+from eccjump.cli._args import (
+    RAMP_RADIANS,
+    TURN_RADIANS,
+    Degrees,
+    add_integrator,
+    int_in,
+    radians_hint,
+    shows_progress,
+)
 from eccjump.cli._output import (
     DPI_RANGE,
     bounded,
@@ -47,12 +54,18 @@ def add_parser(sub: argparse._SubParsersAction) -> None:
     p.add_argument("--chi", type=float, required=True, help="nominal d/R, in [0, 1]")
     p.add_argument("--km", type=float, required=True, help="nominal shell mass fraction k_m")
     p.add_argument(
-        "--alpha", type=degrees_in(0.0, 90.0), required=True, help="nominal ramp angle [deg]"
+        "--alpha",
+        action=Degrees,
+        lo=0.0,
+        hi=90.0,
+        radians_up_to=RAMP_RADIANS,
+        required=True,
+        help="nominal ramp angle [deg]",
     )
     p.add_argument("--mu-s", type=float, required=True, help="nominal static friction")
     p.add_argument("--mu-k", type=float, default=None, help="nominal kinetic friction (mu_s)")
     p.add_argument("--restitution", type=float, default=0.0, help="nominal e (default 0)")
-    p.add_argument("--theta0", type=float, default=0.0, help="nominal start angle [deg]")
+    p.add_argument("--theta0", action=Degrees, default=0.0, help="nominal start angle [deg]")
     p.add_argument("--omega0", type=float, default=0.0, help="nominal start rate [sqrt(g/R)]")
     p.add_argument(
         "--sd",
@@ -144,6 +157,9 @@ def _spreads(args: argparse.Namespace) -> tuple[dict[str, float], dict[str, tupl
         if name in bounds:
             raise ValueError(f"--bounds {name[:40]}: given twice")
         bounds[name] = (_value(name, lo), _value(name, hi))
+        if name in ANGLES:  # a range of angles can look like radians; a spread cannot
+            up_to = RAMP_RADIANS if name == "alpha" else TURN_RADIANS
+            radians_hint(f"--bounds {name}", [float(lo), float(hi)], up_to)
     return sd, bounds
 
 
@@ -185,39 +201,29 @@ def _cmd_uncertainty(args: argparse.Namespace) -> int:
 def _run(
     args: argparse.Namespace, sd: dict[str, float], bounds: dict[str, tuple[float, float]]
 ) -> Uncertainty:
-    from tqdm import tqdm
-
-    quiet = args.quiet or not sys.stderr.isatty()
-    with tqdm(total=args.samples, unit="sample", unit_scale=True, disable=quiet,
-              file=sys.stderr) as bar:  # fmt: skip
-
-        def progress(done: int, total: int) -> None:
-            bar.total = total
-            bar.update(done - bar.n)
-
-        return uncertainty(
-            Cylinder(args.chi, args.km),
-            math.radians(args.alpha),
-            args.mu_s,
-            mu_k=args.mu_k,
-            restitution=args.restitution,
-            theta0=math.radians(args.theta0),
-            omega0=args.omega0,
-            sd=sd,
-            bounds=bounds,
-            n=args.samples,
-            seed=args.seed,
-            sampling=args.sampling,
-            question=args.question,
-            invalid=args.invalid,
-            confidence=args.confidence,
-            rule=args.rule,
-            t_max=args.t_max,
-            max_transitions=args.max_transitions,
-            integrator=args.integrator,
-            n_threads=args.threads,
-            progress=progress,
-        )
+    return uncertainty(
+        Cylinder(args.chi, args.km),
+        math.radians(args.alpha),
+        args.mu_s,
+        mu_k=args.mu_k,
+        restitution=args.restitution,
+        theta0=math.radians(args.theta0),
+        omega0=args.omega0,
+        sd=sd,
+        bounds=bounds,
+        n=args.samples,
+        seed=args.seed,
+        sampling=args.sampling,
+        question=args.question,
+        invalid=args.invalid,
+        confidence=args.confidence,
+        rule=args.rule,
+        t_max=args.t_max,
+        max_transitions=args.max_transitions,
+        integrator=args.integrator,
+        n_threads=args.threads,
+        progress=shows_progress(args),
+    )
 
 
 def _shown(name: str, x: float) -> str:

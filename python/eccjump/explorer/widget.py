@@ -15,6 +15,7 @@ from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
 from eccjump._base.checks import Rule, optional_real, real
+from eccjump._base.units import FOR_DEGREES
 from eccjump.explorer import api, controls
 from eccjump.motion.options import MotionOptions
 
@@ -136,7 +137,7 @@ def explore(
 
     >>> eccjump.explore(alpha=2.0)
     Traceback (most recent call last):
-    ValueError: alpha = 2 rad is outside the explorer's range [0, 1.5708] rad
+    ValueError: alpha = 2 rad is outside the explorer's range [0, 1.5708] rad (math.radians(...)
     """
     point = {
         "alpha": math.degrees(real("alpha", alpha)),
@@ -172,5 +173,5 @@ def _in_range(key: str, value: float) -> None:
         c = controls.BY_KEY[key]
         raise ValueError(
             f"{key} = {math.radians(value):g} rad is outside the explorer's range "
-            f"[{math.radians(c.lo):g}, {math.radians(c.hi):g}] rad"
+            f"[{math.radians(c.lo):g}, {math.radians(c.hi):g}] rad ({FOR_DEGREES})"
         ) from None

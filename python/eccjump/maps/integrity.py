@@ -5,7 +5,7 @@ never read as other numbers.
   (a damaged member is a ``BadZipFile``, refused); nothing to add.
 - ``.nc``: every numeric variable is written with HDF5's Fletcher-32 checksum
   (:func:`netcdf_encoding`), which the library checks on reading (in the probe child of
-  :func:`eccjump.store._probe_netcdf`).
+  :func:`eccjump.store.probe_netcdf`).
 - ``.zarr``: every array is written with the crc32c codec after zstd (:func:`zarr_codecs`),
   and every chunk is stored, even one of fill values: a missing chunk is damage
   (:func:`check_zarr`), except a field's chunk of α slices not marked done (an

@@ -35,6 +35,8 @@ COORD_ATTRS: dict[str, dict[str, str]] = {
     "km_frac": {"units": "1", "long_name": "shell mass fraction as k_m/(1 - chi)"},
     "km": {"units": "1", "long_name": "shell mass fraction k_m = km_frac (1 - chi)"},
     "mu_s": {"units": "1", "long_name": "static friction coefficient"},
+    "mu_k": {"units": "1", "long_name": "kinetic friction coefficient"},
+    "restitution": {"units": "1", "long_name": "energetic coefficient of restitution e"},
     "theta0": {"units": "rad", "long_name": "initial angle"},
     "omega0": {"units": "sqrt(g/R) rad", "long_name": "initial angular velocity"},
     "alpha_done": {"units": "1", "long_name": "alpha slice computed (False: missing, fill)"},

@@ -23,7 +23,6 @@ from __future__ import annotations
 
 import os
 import signal
-import sys
 import time
 from collections.abc import Callable, Mapping
 from dataclasses import dataclass
@@ -34,6 +33,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 from eccjump._base.checks import MAX_MESSAGE, shown
+from eccjump._base.progress import reporting
 from eccjump._base.sizes import gib, memory_limit
 from eccjump.maps import store
 from eccjump.maps.kinds import MapKind
@@ -407,8 +407,6 @@ def _compute(
     stop: Interrupt,
 ) -> tuple[int, float, bool]:
     """Compute the chunks ``todo`` into the target: (points computed, seconds, interrupted)."""
-    from tqdm import tqdm
-
     alpha, chi, km = axes
     todo_points = sum(
         (min((i + 1) * chunk, alpha.size) - i * chunk) * chi.size * km.size for i in todo
@@ -416,8 +414,9 @@ def _compute(
     computed = 0
     interrupted = False
     t0 = time.perf_counter()
-    quiet = not options.progress
-    with tqdm(total=todo_points, unit="pt", unit_scale=True, disable=quiet, file=sys.stderr) as bar:
+    with reporting(options.progress) as report:
+        if report is not None:
+            report(0, todo_points)
         for k, i in enumerate(todo):
             if stop.requested or (options.stop_after is not None and k >= options.stop_after):
                 interrupted = True
@@ -435,5 +434,6 @@ def _compute(
             job.count(part)
             size = part[job.kind.fields[0]].size
             computed += size
-            bar.update(size)
+            if report is not None:
+                report(computed, todo_points)
     return computed, time.perf_counter() - t0, interrupted

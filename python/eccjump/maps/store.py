@@ -574,7 +574,7 @@ def _check_source(path: str | os.PathLike, fmt: str) -> None:
         raise file_error(path, f"is not a {fmt} map: {file_type(mode)}, not a regular file")
 
 
-#: Seconds the netCDF library is given to read a file in :func:`_probe_netcdf`, plus one per
+#: Seconds the netCDF library is given to read a file in :func:`probe_netcdf`, plus one per
 #: :data:`PROBE_BYTES_PER_SECOND` of the file.
 PROBE_SECONDS = 10.0
 PROBE_BYTES_PER_SECOND = 50e6
@@ -638,7 +638,7 @@ def probe_command(engine: str, path: str | os.PathLike, limit: float) -> list[st
     return [sys.executable, "-c", code, str(os.getpid()), cpu, engine, os.fspath(path)]
 
 
-def _probe_netcdf(path: str | os.PathLike, engine: str) -> None:
+def probe_netcdf(path: str | os.PathLike, engine: str) -> None:
     """ValueError naming ``path`` unless the netCDF library reads all of it in a subprocess.
 
     The HDF5 library under both engines (netCDF4 and h5netcdf/h5py) trusts the bytes of a
@@ -687,7 +687,7 @@ def _read(path: str | os.PathLike, fmt: str) -> tuple[Layout, xr.Dataset | None]
         xr = require("xarray")
         if fmt == "netcdf":
             engine = netcdf_engine()
-            _probe_netcdf(path, engine)  # reads it all: the checksums are checked there
+            probe_netcdf(path, engine)  # reads it all: the checksums are checked there
             with xr.open_dataset(path, engine=engine) as ds:
                 ds = ds.load()
             check_netcdf(path, ds)
@@ -704,7 +704,7 @@ def _read(path: str | os.PathLike, fmt: str) -> tuple[Layout, xr.Dataset | None]
             raise
         raise file_error(path, f"is not a readable {fmt} map: {_detail(err)}") from err
     except ValueError as err:
-        if str(err).startswith(shown(path)):  # already names the file (_probe_netcdf)
+        if str(err).startswith(shown(path)):  # already names the file (probe_netcdf)
             raise
         raise file_error(path, f"is not a readable {fmt} map: {_detail(err)}") from err
     except Exception as err:

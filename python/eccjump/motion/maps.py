@@ -17,21 +17,24 @@ import dataclasses
 import os
 from collections.abc import Mapping
 from dataclasses import dataclass, field
+from pathlib import Path
 from typing import TYPE_CHECKING, Any, ClassVar, Literal, overload
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from eccjump import _core
-from eccjump._base.arrays import fields_equal, fraction_axis
+from eccjump._base.arrays import fields_equal, fraction_axis, refuses_km
 from eccjump._base.checks import U64_MAX, Integrator, file_error, integer, real_array, short, text
 from eccjump._base.docs import fill
 from eccjump._base.html import best_slice, card, deg, jarm_slice, span
+from eccjump._base.progress import Progress, checked, cut, grid_in_parts, reporting
 from eccjump._base.sizes import check_fits, result_bytes
+from eccjump._base.units import ramp_angles
 from eccjump.maps import store
 from eccjump.maps.dask import lazy_fields
 from eccjump.maps.kinds import MapKind, upgrade_attrs
-from eccjump.maps.layout import Layout
+from eccjump.maps.layout import COORD_ATTRS, Layout
 from eccjump.maps.map import Map
 from eccjump.motion.fields import (
     DTYPES,
@@ -136,6 +139,11 @@ class MotionMap(Map, kind=MOTION):
         order = np.argsort(-counts, kind="stable")
         return {int(codes[i]): (sequence_name(codes[i]), int(counts[i])) for i in order}
 
+    def save(self, path: str | os.PathLike, *, overwrite: bool = False) -> Path:
+        """Write the map to ``path`` (``.nc``, ``.zarr`` or ``.npz``) by :func:`eccjump.maps.save`,
+        whose rules for what may be replaced hold; :func:`eccjump.load` reads it back."""
+        return store.save(self, path, overwrite=overwrite)
+
     def to_layout(self) -> Layout:
         """The map as a layout (numpy only; dask arrays if lazy): one variable per field with
         CF attributes and flag tables (a lazy map's ``sequence`` codes are known once
@@ -144,7 +152,9 @@ class MotionMap(Map, kind=MOTION):
         seq = self.fields["sequence"]
         codes = np.unique(seq) if isinstance(seq, np.ndarray) else None
         return {
-            "coords": {DIM_OF[k]: ((DIM_OF[k],), v, {}) for k, v in self.coords.items()},
+            "coords": {
+                DIM_OF[k]: ((DIM_OF[k],), v, COORD_ATTRS[DIM_OF[k]]) for k, v in self.coords.items()
+            },
             "data_vars": {f: (dims, self.fields[f], cf_attrs(f, codes)) for f in FIELDS},
             "attrs": self.attrs(),
         }
@@ -258,6 +268,7 @@ def _block(
     return _core.motion_grid(a, *others, options=opts.to_core(n_threads))
 
 
+@refuses_km
 @fill
 def motion_map(
     alpha: ArrayLike,
@@ -280,6 +291,7 @@ def motion_map(
     chunks: int | None = None,
     output: Literal["map", "xarray"] = "map",
     km: None = None,
+    progress: bool | Progress | None = None,
 ) -> MotionMap | xr.Dataset:
     """Map the full motion, to the first landing, over the product of the given axes.
 
@@ -296,7 +308,8 @@ def motion_map(
     Parameters
     ----------
     alpha : float or array_like of float
-        Ramp angle(s) [rad], in [0, π/2].
+        Ramp angle(s) [rad], in [0, π/2] (``np.radians`` for degrees): one number out of
+        it is a ValueError; values in (π/2, 90] (degrees?) give one UserWarning.
     chi : float or array_like of float
         The bodies' d/R, in [0, 1].
     km_frac : float or array_like of float
@@ -336,6 +349,8 @@ def motion_map(
     km : None
         Not accepted: ``km`` is the body's k_m elsewhere; the axis is ``km_frac``. Passing
         it is a TypeError.
+    %(progress)s
+        Not with ``chunks`` (a ValueError).
 
     Returns
     -------
@@ -373,9 +388,9 @@ def motion_map(
     """
     coords, scalars = _axes(
         {
-            "alpha": alpha,
+            "alpha": ramp_angles("alpha", alpha),
             "chi": chi,
-            "km_frac": fraction_axis(km_frac, km),
+            "km_frac": fraction_axis(km_frac),
             "mu_s": mu_s,
             "mu_k": mu_k,
             "restitution": restitution,
@@ -397,14 +412,22 @@ def motion_map(
     )
     opts.to_core(n_threads)  # the shared options checked first: a bad one is an error, not a map
     axis = {name: _axis(coords, scalars, name) for name in AXES}
-    rest = tuple(axis[name] for name in AXES[1:])
     shape = tuple(c.size for c in coords.values())
     _check_scalars(scalars, opts, n_threads)
     if chunks is not None:
+        if checked(progress):
+            raise ValueError("progress needs chunks=None (dask reports a lazy map's progress)")
         return _lazy(axis, coords, scalars, opts, n_threads, shape, chunks)
     points = int(np.prod(shape, dtype=object))
     check_fits("motion_map", points, result_bytes(points, MOTION.bytes_per_point()), "the axes")
-    flat = _block(axis["alpha"], rest, opts, n_threads)
+    grid = [axis[name] for name in AXES]  # mu_k empty for mu_k = mu_s: one value in the grid
+
+    def part(ax: int, values: slice) -> dict[str, NDArray]:
+        a, *others = cut(grid, ax, values)
+        return _block(a, tuple(others), opts, n_threads)
+
+    with reporting(progress) as report:
+        flat = grid_in_parts(part, [max(a.size, 1) for a in grid], report)
     fields = {k: flat[k].reshape(shape) for k in FIELDS}
     m = MotionMap(coords, scalars, fields, opts.keywords())
     return m.to_xarray() if out == "xarray" else m

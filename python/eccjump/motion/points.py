@@ -12,7 +12,7 @@ from __future__ import annotations
 
 import dataclasses
 from dataclasses import dataclass
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
@@ -21,13 +21,21 @@ from eccjump import _core
 from eccjump._base.arrays import broadcast_flat, fields_equal
 from eccjump._base.checks import Integrator, Rule
 from eccjump._base.docs import fill
+from eccjump._base.progress import Progress, points_in_parts, reporting
 from eccjump._base.sizes import check_fits, result_bytes
+from eccjump._base.units import ramp_angles
+from eccjump.maps import results
+from eccjump.maps.results import Result
 from eccjump.motion.fields import FIELDS, INVALID, MOTION, sequence_name
 from eccjump.motion.options import MotionOptions
 
+if TYPE_CHECKING:  # pragma: no cover
+    import pandas
+    import xarray as xr
+
 
 @dataclass(frozen=True, eq=False)
-class MotionPoints:
+class MotionPoints(Result, kind="motion_points"):
     """The summary of the full motion at each point of :func:`motion_points`, one array per
     field of the broadcast shape (the fields of :data:`eccjump.motion.fields.TABLE`, with
     their units and meanings).
@@ -97,6 +105,18 @@ class MotionPoints:
         """The fields by name."""
         return {f.name: getattr(self, f.name) for f in dataclasses.fields(self)}
 
+    # Taking the result elsewhere (save and eccjump.load: eccjump.maps.results).
+    def to_xarray(self) -> xr.Dataset:
+        """The points as an ``xarray.Dataset`` (needs xarray): one variable per field over
+        ``point`` (``point_0``, ``point_1``, ... for more than one axis; none for one
+        point) with ``units``, ``long_name`` and the codes as CF flags."""
+        return results.points(self, self.as_dict(), MOTION.var_attrs)
+
+    def to_dataframe(self) -> pandas.DataFrame:
+        """The fields as a ``pandas.DataFrame``, one row per point (indexed by its
+        position), the units of the columns in ``attrs["units"]``."""
+        return results.to_frame(self.to_xarray(), results.point_dims(self.status.shape))
+
 
 @fill
 def motion_points(
@@ -117,6 +137,7 @@ def motion_points(
     max_steps: int = 1_000_000,
     n_threads: int = 0,
     integrator: Integrator = "RK45",
+    progress: bool | Progress | None = None,
 ) -> MotionPoints:
     """The full motion, to the first landing, at each point (α, χ, km, μ_s, μ_k,
     restitution, theta0, omega0), broadcasting the eight inputs.
@@ -133,7 +154,8 @@ def motion_points(
     Parameters
     ----------
     alpha : array_like of float
-        Ramp angles [rad], in [0, π/2].
+        Ramp angles [rad], in [0, π/2] (``np.radians`` for degrees): a scalar out of it is
+        a ValueError; values in (π/2, 90] (degrees?) give one UserWarning.
     chi : array_like of float
         The bodies' d/R, in [0, 1].
     km : array_like of float
@@ -163,6 +185,7 @@ def motion_points(
     integrator : {"RK45", "DOP853", "Vern9"}, default "RK45"
         The Runge–Kutta pair. For speed pick ``"Vern9"`` or ``"DOP853"``; keep ``"RK45"``
         for step-for-step parity with scipy.
+    %(progress)s
 
     Returns
     -------
@@ -198,7 +221,7 @@ def motion_points(
     apex 0.006696 R, distance 3.49484 R
     """
     named: dict[str, object] = {
-        "alpha": alpha,
+        "alpha": ramp_angles("alpha", alpha),
         "chi": chi,
         "km": km,
         "mu_s": mu_s,
@@ -222,17 +245,15 @@ def motion_points(
     need = result_bytes(points, MOTION.bytes_per_point(), len(flat))
     check_fits("motion_points", points, need, "the inputs")
     columns = dict(zip(named, flat, strict=True))
-    raw = _core.motion_points(
-        columns["alpha"],
-        columns["chi"],
-        columns["km"],
-        columns["mu_s"],
-        columns.get("mu_k", np.empty(0)),
-        columns["restitution"],
-        columns["theta0"],
-        columns["omega0"],
-        options=opts,
-    )
+    columns.setdefault("mu_k", np.empty(0))  # empty: mu_k = mu_s at every point
+    order = ("alpha", "chi", "km", "mu_s", "mu_k", "restitution", "theta0", "omega0")
+
+    def part(i0: int, i1: int) -> dict[str, NDArray]:
+        cols = (np.ascontiguousarray(columns[k][i0:i1]) for k in order)
+        return _core.motion_points(*cols, options=opts)
+
+    with reporting(progress) as report:
+        raw = points_in_parts(part, points, report)
     return MotionPoints(**{k: raw[k].reshape(shape) for k in FIELDS})
 
 

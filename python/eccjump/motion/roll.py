@@ -37,9 +37,13 @@ from eccjump._base.checks import (
 from eccjump._base.docs import fill
 from eccjump._base.html import card, deg, num
 from eccjump._base.units import Units
+from eccjump.maps import results
+from eccjump.maps.results import Result
 from eccjump.motion.dense import DenseSolution
 
 if TYPE_CHECKING:  # pragma: no cover
+    import pandas
+    import xarray as xr
     from matplotlib.axes import Axes
     from matplotlib.figure import Figure, FigureBase
 
@@ -69,8 +73,21 @@ class Event(NamedTuple):
     omega: float
 
 
+#: The series of a :class:`RollResult`: (long name, unit dimensionless, unit after ``to_si``).
+SERIES = {
+    "t": ("time", "sqrt(R/g)", "s"),
+    "theta": ("angle of the vector axis -> centre of mass from the ramp normal", "rad", "rad"),
+    "omega": ("angular velocity theta'", "sqrt(g/R) rad", "rad/s"),
+    "omega_dot": ("angular acceleration theta''", "g/R rad", "rad/s2"),
+    "Fx": ("friction force along the ramp, positive down the ramp", "M g", "N"),
+    "Fy": ("normal force", "M g", "N"),
+    "l": ("distance rolled along the ramp since the start", "R", "m"),
+    "friction_ratio": ("|Fx|/Fy, the friction the rolling needs", "1", "1"),
+}
+
+
 @dataclass(frozen=True, eq=False)
-class RollResult:
+class RollResult(Result, kind="roll"):
     """The outcome of :func:`roll`, in the spirit of scipy's ``OdeResult``.
 
     Arrays hold the accepted steps (the initial point first, the terminal event last), in
@@ -325,6 +342,42 @@ class RollResult:
         from eccjump import plot  # figures: the layer on top of every result
 
         return plot.draw(self, ax=ax, fig=fig, **kwargs)
+
+    # Taking the result elsewhere (save and eccjump.load: eccjump.maps.results).
+    _unsaved = ("sol",)
+
+    def _series_attrs(self, name: str) -> dict[str, str]:
+        long_name, unit, si = SERIES[name]
+        return {"long_name": long_name, "units": unit if self.units is None else si}
+
+    def _column_attrs(self, name: str) -> dict[str, str]:
+        return self._series_attrs(name) if name in SERIES else {}
+
+    def to_xarray(self) -> xr.Dataset:
+        """The run as an ``xarray.Dataset`` (needs xarray): the series along ``t`` with
+        ``units`` and ``long_name``, the events along ``event``, the body, ramp, friction,
+        rule and how the run ended as attributes."""
+        values = {k: getattr(self, k) for k in SERIES if k != "t"}
+        data = results.series("t", values, self._series_attrs)
+        data |= results.records_of("event", self.events, Event._fields, self._column_attrs)
+        attrs = {
+            "chi": self.body.chi,
+            "km": self.body.km,
+            "alpha": self.alpha,
+            "mu_s": self.mu_s,
+            "rule": self.rule,
+            "terminal_event": self.terminal_event,
+            "status": self.status,
+            "message": self.message,
+            "nfev": self.nfev,
+        }
+        coords = {"t": ("t", self.t, self._series_attrs("t"))}
+        return results.dataset(self, data, coords, attrs)
+
+    def to_dataframe(self) -> pandas.DataFrame:
+        """The series as a ``pandas.DataFrame`` indexed by ``t`` (needs xarray), their units
+        in ``attrs["units"]``; the events: ``to_xarray()`` along ``event``."""
+        return results.to_frame(self.to_xarray(), ("t",))
 
 
 @fill

@@ -29,6 +29,8 @@ from eccjump._base.checks import (
 from eccjump._base.docs import fill
 from eccjump._base.html import card, deg, num, timeline
 from eccjump._base.units import Units
+from eccjump.maps import results
+from eccjump.maps.results import Result
 
 # The bounds live with the options; still named here, where they were.
 from eccjump.motion.options import MAX_STEPS as MAX_STEPS
@@ -36,6 +38,8 @@ from eccjump.motion.options import MAX_TRANSITIONS as MAX_TRANSITIONS
 from eccjump.motion.options import MotionOptions
 
 if TYPE_CHECKING:  # pragma: no cover
+    import pandas
+    import xarray as xr
     from matplotlib.axes import Axes
     from matplotlib.figure import Figure, FigureBase
 
@@ -141,8 +145,47 @@ class MotionSolution:
         return y[:, 0] if tt.ndim == 0 else y
 
 
+_TIME, _ANGLE, _LENGTH = ("sqrt(R/g)", "s"), ("rad", "rad"), ("R", "m")
+_SPEED, _ENERGY, _IMPULSE = ("sqrt(g R)", "m/s"), ("M g R", "J"), ("M sqrt(g R)", "N s")
+
+#: The units (dimensionless, after ``to_si``) of the columns of a :class:`MotionResult`,
+#: its series and its records alike, by name.
+UNITS = {
+    **dict.fromkeys(("t", "t_liftoff", "t_landing", "t_start", "t_end"), _TIME),
+    **dict.fromkeys(("theta", "theta_liftoff", "theta_landing"), _ANGLE),
+    **dict.fromkeys(("l", "b", "apex", "distance"), _LENGTH),
+    **dict.fromkeys(("ldot", "bdot", "normal_speed", "slip_before"), _SPEED),
+    **dict.fromkeys(("energy", "dissipated", "energy_lost"), _ENERGY),
+    **dict.fromkeys(("pt", "pn"), _IMPULSE),
+    "omega": ("sqrt(g/R) rad", "rad/s"),
+    **dict.fromkeys(("Fx", "Fy"), ("M g", "N")),
+}
+#: The long names of the series of a :class:`MotionResult`.
+SERIES = {
+    "t": "time",
+    "theta": "angle of the vector C -> centre of mass from the ramp normal",
+    "omega": "angular velocity theta'",
+    "l": "position of C along the ramp from the start",
+    "ldot": "speed of C along the ramp",
+    "b": "height of C above the ramp",
+    "bdot": "rate of b",
+    "Fx": "friction force along the ramp, positive down the ramp",
+    "Fy": "normal force",
+    "energy": "mechanical energy, kinetic + potential",
+    "dissipated": "energy dissipated so far by sliding and impacts",
+    "mode": "mode (ROLL, SLIP, FLIGHT)",
+}
+#: The records of a :class:`MotionResult`: its field, its dimension, its named tuple.
+RECORDS = (
+    ("transitions", "transition", Transition),
+    ("flights", "flight", FlightRecord),
+    ("impacts", "impact", ImpactRecord),
+    ("segments", "segment", Segment),
+)
+
+
 @dataclass(frozen=True, eq=False)
-class MotionResult:
+class MotionResult(Result, kind="motion"):
     """The outcome of :func:`simulate`.
 
     Arrays hold one row per accepted step (contact) or sample (flight), in time order; the
@@ -460,6 +503,66 @@ class MotionResult:
         from eccjump import plot  # figures: the layer on top of every result
 
         return plot.draw(self, ax=ax, fig=fig, **kwargs)
+
+    # Taking the result elsewhere (save and eccjump.load: eccjump.maps.results).
+    _unsaved = ("sol",)
+
+    def _attrs(self, name: str) -> dict[str, Any]:
+        """The ``units`` (and ``long_name``, codes) of a series or record column."""
+        out: dict[str, Any] = {"long_name": SERIES[name]} if name in SERIES else {}
+        if name in UNITS:
+            out["units"] = UNITS[name][self.units is not None]
+        if name == "mode":
+            out |= {
+                "units": "1",
+                "flag_values": np.arange(len(MODES), dtype=np.int8),
+                "flag_meanings": " ".join(MODES),
+            }
+        return out
+
+    def to_xarray(self) -> xr.Dataset:
+        """The run as an ``xarray.Dataset`` (needs xarray): the series along ``step`` (the
+        time ``t`` a coordinate on it: a segment boundary is recorded twice), each record
+        table along its own dimension (``transition``, ``flight``, ``impact``, ``segment``;
+        columns named ``<dimension>_<field>``), the sensitivities (if any) along
+        ``transition`` x ``quantity`` x ``parameter``, the scalar facts as attributes."""
+        values = {k: getattr(self, k) for k in SERIES if k != "t"}
+        data = results.series("step", values, self._attrs)
+        for name, dim, record in RECORDS:
+            data |= results.records_of(dim, getattr(self, name), record._fields, self._attrs)
+        data |= self._sensitivity_vars()
+        coords = {"t": ("step", self.t, self._attrs("t"))}
+        names = ("mu_s", "mu_k", "restitution", "rule", "energy0", "dissipated_slip")
+        attrs = {k: getattr(self, k) for k in (*names, "dissipated_impacts", "status", "nfev")}
+        attrs |= {"chi": self.body.chi, "km": self.body.km, "alpha": self.alpha}
+        return results.dataset(self, data, coords, {**attrs, "message": self.message})
+
+    def _sensitivity_vars(self) -> dict[str, Any]:
+        if self.d_transitions is None or self.d_singular is None:
+            return {}
+        dims = ("transition", "quantity", "parameter")
+        return {
+            "d_transitions": (dims, self.d_transitions, {"long_name": "d(t, theta)/d parameter"}),
+            "d_singular": (("transition",), self.d_singular, {"long_name": "not differentiable"}),
+            "quantity": (("quantity",), np.array(["t", "theta"])),
+            "parameter": (("parameter",), np.array(SENSITIVITY_PARAMETERS)),
+        }
+
+    def to_dataframe(self, table: str = "series") -> pandas.DataFrame:
+        """A table of the run as a ``pandas.DataFrame`` (needs xarray), the units of its
+        columns in ``attrs["units"]``.
+
+        Parameters
+        ----------
+        table : str, default "series"
+            ``"series"`` (one row per step, indexed by ``step``, ``t`` a column),
+            ``"transitions"``, ``"flights"``, ``"impacts"`` or ``"segments"`` (one row per
+            record).
+        """
+        dims = {"series": "step", **{name: dim for name, dim, _ in RECORDS}}
+        if table not in dims:
+            raise ValueError(f"table must be one of {', '.join(dims)}, not {table!r}"[:200])
+        return results.to_frame(self.to_xarray(), (dims[table],))
 
 
 def _sensitivities_si(d: NDArray[np.float64] | None, u: Units) -> NDArray[np.float64] | None:

@@ -2,17 +2,21 @@
 
 from __future__ import annotations
 
+import json
 import math
 from collections.abc import Callable
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, fields
 from typing import TYPE_CHECKING, Any, NamedTuple, overload
 
 from eccjump._base.body import Cylinder
 from eccjump._base.checks import short
 from eccjump._base.html import card, deg, num
+from eccjump.maps import results
+from eccjump.maps.results import Result
 from eccjump.studies.design.physical import Build
 
 if TYPE_CHECKING:  # pragma: no cover
+    import xarray as xr
     from matplotlib.axes import Axes
     from matplotlib.figure import Figure, FigureBase
 
@@ -64,6 +68,16 @@ class Flight:
     duration: float
 
 
+def _names(cls: type) -> tuple[str, ...]:
+    return tuple(f.name for f in fields(cls))
+
+
+def _margin_attrs(name: str) -> dict[str, str]:
+    if name in ("value", "lo", "hi", "margin"):
+        return {"units": "rad for alpha, else 1"}
+    return {}
+
+
 class Success(NamedTuple):
     """The probability that a body built to a design keeps its verdict under the lab's
     tolerances: the share ``p`` of the ``n_valid`` samples, and its 95 % Wilson interval."""
@@ -75,7 +89,7 @@ class Success(NamedTuple):
 
 
 @dataclass(frozen=True)
-class Design:
+class Design(Result, kind="design"):
     """A lab design (:func:`design`): print it (``str(d)`` or :meth:`sheet`) for the lab
     sheet, :meth:`to_dict` for JSON. Angles in radians except the ``*_deg`` fields.
 
@@ -239,6 +253,37 @@ class Design:
             "tolerances": self.tolerances,
             "p_success": None if self.p_success is None else self.p_success._asdict(),
         }
+
+    # Taking the result elsewhere (save and eccjump.load: eccjump.maps.results; a design is
+    # small: save it as .json).
+    def to_xarray(self) -> xr.Dataset:
+        """The design as an ``xarray.Dataset`` (needs xarray): the margins along ``margin``,
+        the sensitivity table along ``input``, the flights along ``rule`` (their modes
+        joined by " -> "), the scalar facts as attributes (angles in radians, build in
+        the sheet's units, the tolerances as JSON text)."""
+        rows = {
+            "margin": [tuple(vars(m).values()) for m in self.margins],
+            "input": [tuple(vars(x).values()) for x in self.sensitivity],
+            "rule": [(*vars(f).values(),) for f in self.flights],
+        }
+        rows["rule"] = [(r[0], " -> ".join(r[1]), *r[2:]) for r in rows["rule"]]
+        data = results.records_of("margin", rows["margin"], _names(Margin), _margin_attrs)
+        data |= results.records_of("input", rows["input"], _names(Sensitivity))
+        data |= results.records_of("rule", rows["rule"], _names(Flight))
+        return results.dataset(self, data, attrs=self._attrs())
+
+    def _attrs(self) -> dict[str, Any]:
+        names = ("target", "alpha", "mu_s", "mu_s_err", "mu_s_worst", "si", "g", "score")
+        out = {k: getattr(self, k) for k in (*names, "turn", "max_turns", "error")}
+        out |= {"evaluations": self.evaluations, "chi": self.body.chi, "km": self.body.km}
+        out |= {f"build_{k}": v for k, v in self.build._asdict().items()}
+        out |= {f"theta_deg_{k}": v for k, v in self.theta_deg.items()}
+        out |= {f"reason_{k}": v for k, v in self.reasons.items()}
+        out["notes"] = "\n".join(self.notes)
+        out["tolerances"] = json.dumps(self.tolerances)
+        if self.p_success is not None:
+            out |= {f"p_success_{k}": v for k, v in self.p_success._asdict().items()}
+        return out
 
     def sheet(self) -> str:
         """The lab sheet, as text.

@@ -12,6 +12,8 @@ from numpy.typing import NDArray
 from eccjump._base.body import Cylinder
 from eccjump._base.checks import Rule, integer, optional_real, real, short, text
 from eccjump._base.docs import fill
+from eccjump._base.progress import Progress, checked, reporting
+from eccjump._base.units import FOR_DEGREES
 from eccjump.classification.boundary import mu_s_min_path
 from eccjump.classification.fields import Reason
 from eccjump.motion.simulation import simulate
@@ -95,6 +97,7 @@ def design(
     maximise: Literal["margin", "probability"] = "margin",
     samples: int = 10_000,
     seed: int = 0,
+    progress: bool | Progress | None = None,
 ) -> Design:
     """The body and ramp angle whose verdict is most robust, with a printable lab sheet.
 
@@ -153,6 +156,11 @@ def design(
         Samples per probability, 100 ... 10**6.
     seed : int, default 0
         The seed of the samples (the same for every candidate), ≥ 0.
+    progress : bool, callable or None, default None
+        Progress of the search, in stages (the grid, the search, the probabilities with
+        ``tolerances``, the sheet): None or False, none; True, a bar on stderr (tqdm); a
+        callable, called as ``progress(done, total)`` after each stage. The design is the
+        same either way.
 
     Returns
     -------
@@ -182,7 +190,7 @@ def design(
     tgt = text("target", target)
     if tgt not in ("jarm", "slip"):
         raise ValueError(f"target = {short(tgt)}; use 'jarm' or 'slip'")
-    a_lo, a_hi = _range("alpha_range", alpha_range, 0.0, _HALF_PI, " rad")
+    a_lo, a_hi = _range("alpha_range", alpha_range, 0.0, _HALF_PI, f" rad ({FOR_DEGREES})")
     mu = real("mu_s", mu_s)
     if not (math.isfinite(mu) and mu > 0):
         raise ValueError(f"mu_s = {short(mu)} is outside the allowed range (0, inf)")
@@ -216,138 +224,162 @@ def design(
         raise ValueError("min_apex: only a JARM design (target='jarm') has a flight to ask for")
     spec = _Spec(tgt, integer("max_turns", max_turns, 1, 1000))
     odds = _odds_options(tolerances, maximise, samples, seed, mu)
+    checked(progress)
 
-    notes: list[str] = []
-    if body is not None:
-        if body.km >= 1.0:
-            raise ValueError("body: km = 1 (all mass in the shell) is never a JARM nor a slip")
-        rho = min(body.chi / (1.0 - body.km), 1.0)
-        k_lo = k_hi = body.km
-        r_lo = r_hi = rho
-    worst = mu - err if tgt == "jarm" else mu + err
+    stages = 3 if odds is None else 4  # the grid, the search, (the odds,) the sheet
+    with reporting(progress, "stage", unit_scale=False) as report:
+        stage = _stage_reporter(report, stages)
+        notes: list[str] = []
+        if body is not None:
+            if body.km >= 1.0:
+                raise ValueError("body: km = 1 (all mass in the shell) is never a JARM nor a slip")
+            rho = min(body.chi / (1.0 - body.km), 1.0)
+            k_lo = k_hi = body.km
+            r_lo = r_hi = rho
+        worst = mu - err if tgt == "jarm" else mu + err
 
-    # 1. coarse grid over the free axes
-    free = sum(lo < hi for lo, hi in ((a_lo, a_hi), (k_lo, k_hi), (r_lo, r_hi)))
-    per_axis = n if free >= 3 else min(512, round(n ** (3 / max(free, 1))))
-    axes = [_axis(a_lo, a_hi, per_axis), _axis(k_lo, k_hi, per_axis), _axis(r_lo, r_hi, per_axis)]
-    A, K, P = np.meshgrid(*axes, indexing="ij")
-    C = P * (1.0 - K)
-    ok = _holds(spec)(A, C, K, worst)
-    evaluations = int(ok.size)
-    if apex_min > 0:
-        ok[ok] = apex(A[ok], C[ok], K[ok], mu) >= apex_min
-    if not ok.any():
-        what = "gives a JARM" if tgt == "jarm" else "slips first"
+        # 1. coarse grid over the free axes
+        free = sum(lo < hi for lo, hi in ((a_lo, a_hi), (k_lo, k_hi), (r_lo, r_hi)))
+        per_axis = n if free >= 3 else min(512, round(n ** (3 / max(free, 1))))
+        axes = [
+            _axis(a_lo, a_hi, per_axis),
+            _axis(k_lo, k_hi, per_axis),
+            _axis(r_lo, r_hi, per_axis),
+        ]
+        A, K, P = np.meshgrid(*axes, indexing="ij")
+        C = P * (1.0 - K)
+        ok = _holds(spec)(A, C, K, worst)
+        evaluations = int(ok.size)
         if apex_min > 0:
-            what += f" with an apex of at least {apex_min:.3g} R"
-        raise ValueError(
-            f"no grid point in alpha_range, km_range, rod_range {what} under both rules within "
-            f"max_turns at mu_s = {worst:.4g}; widen the ranges or raise grid"
+            ok[ok] = apex(A[ok], C[ok], K[ok], mu) >= apex_min
+        if not ok.any():
+            what = "gives a JARM" if tgt == "jarm" else "slips first"
+            if apex_min > 0:
+                what += f" with an apex of at least {apex_min:.3g} R"
+            raise ValueError(
+                f"no grid point in alpha_range, km_range, rod_range {what} under both rules within "
+                f"max_turns at mu_s = {worst:.4g}; widen the ranges or raise grid"
+            )
+        idx = np.flatnonzero(ok.ravel())
+        coarse = np.full(idx.size, math.inf)
+        for ax, vals in ((0, A), (2, P)):
+            if axes[ax].size > 1:
+                h = axes[ax][1] - axes[ax][0]
+                dist = _run_lengths(ok, ax).ravel()[idx] * h
+                v = vals.ravel()[idx]
+                coarse = np.minimum(coarse, np.where(v > 0, dist / np.maximum(v, 1e-300), 0.0))
+        a_i, c_i, k_i = A.ravel()[idx], C.ravel()[idx], K.ravel()[idx]
+        if tgt == "jarm":
+            mu_min = np.maximum.reduce([mu_s_min_path(a_i, c_i, k_i, rule=r) for r in RULES])
+            coarse = np.minimum(coarse, (worst - mu_min) / mu)
+        else:  # a lower bound of the slip margin: the last level of mu_s it still slips at
+            level_margin, alive = np.zeros(idx.size), np.ones(idx.size, dtype=bool)
+            for f in (0.05, 0.1, 0.2, 0.5, 1.0, 2.0, 4.0):
+                alive &= _holds(spec)(a_i, c_i, k_i, worst + f * mu)
+                level_margin = np.where(alive, f, level_margin)
+            coarse = np.minimum(coarse, level_margin)
+        order = np.lexsort((idx, -coarse))[:_CANDIDATES]
+        stage(1)
+
+        # 2. exact margins at the best grid points, 3. compass search from the best few
+        lows = np.array([a_lo, k_lo, r_lo])
+        spans = np.array([a_hi - a_lo, k_hi - k_lo, r_hi - r_lo])
+        cache: dict[tuple[float, ...], tuple[float, tuple[Margin, ...] | None]] = {}
+
+        def evaluate(u: NDArray[np.float64], tol: float = 1e-5) -> float:
+            u = np.clip(u, 0.0, 1.0)
+            key = (*np.round(u, 12).tolist(), tol)
+            if key not in cache:
+                x = lows + u * spans
+                ms = _margins(spec, float(x[0]), float(x[1]), float(x[2]), mu, err, tol)
+                if apex_min > 0 and ms is not None:
+                    c = x[2] * (1.0 - x[1])
+                    ms = ms if apex(x[:1], np.array([c]), x[1:2], mu)[0] >= apex_min else None
+                cache[key] = (_score(ms), ms)
+            return cache[key][0]
+
+        def to_u(i: int) -> NDArray[np.float64]:
+            x = np.array([A.ravel()[i], K.ravel()[i], P.ravel()[i]])
+            return np.where(spans > 0, (x - lows) / np.where(spans > 0, spans, 1.0), 0.0)
+
+        starts = sorted(
+            ((evaluate(to_u(int(idx[j]))), j) for j in order), key=lambda t: (-t[0], t[1])
+        )[:_REFINED]
+        refined = [_compass(evaluate, to_u(int(idx[j])), s, spans, per_axis) for s, j in starts]
+        best_u = max(refined, key=lambda uf: uf[1])[0]  # the first of equals, as before
+        x = lows + np.clip(best_u, 0.0, 1.0) * spans
+        stage(2)
+        success = None
+        if odds is not None:
+            tol, n_samples, seed_, by_odds = odds
+            # the refined designs, then the grid's best points that hold, best margin first
+            us = [u for u, _ in sorted(refined, key=lambda uf: -uf[1])]
+            us += [to_u(int(idx[j])) for j in order if evaluate(to_u(int(idx[j]))) > 0]
+            xs = [lows + np.clip(u, 0.0, 1.0) * spans for u in (us if by_odds else us[:1])]
+            cands = [(float(c[0]), float(c[1]), float(c[2] * (1.0 - c[1]))) for c in xs]
+            pick, all_odds = best(spec, cands, tol, mu, n_samples, seed_, apex_min)
+            x, success = xs[pick], all_odds[pick]
+            stage(3)
+        alpha, km, rho = float(x[0]), float(x[1]), float(x[2])
+        final = _margins(spec, alpha, km, rho, mu, err, 1e-12)
+        if final is None:  # pragma: no cover - the search only keeps points that hold
+            raise ValueError("mu_s: the design lost its verdict at full precision; raise grid")
+        evaluations += len(cache)
+
+        # 4. the sheet
+        chosen = Cylinder(min(rho * (1.0 - km), 1.0 - km), km)
+        _, res = _classify(alpha, chosen.chi, km, mu, spec)
+        theta_deg: dict[str, float] = {}
+        reasons: dict[str, str] = {}
+        for r, one in zip(RULES, res, strict=True):
+            reasons[r] = Reason(int(one.reason)).name
+            theta_deg[r] = math.degrees(_angle(one, tgt))
+        turn = int(res[0].n)
+        b = build(chosen, radius=R, mass=M)
+        flights = tuple(_flight(chosen, alpha, mu, r, tgt, b if si else None, gg) for r in RULES)
+        if chosen.km == 0.0:
+            notes.append("km = 0: the full motion is not simulated (the spin in flight is free)")
+        notes += _on_edges(
+            ((a_lo, a_hi, alpha, "alpha"), (k_lo, k_hi, km, "km"), (r_lo, r_hi, rho, "rod"))
         )
-    idx = np.flatnonzero(ok.ravel())
-    coarse = np.full(idx.size, math.inf)
-    for ax, vals in ((0, A), (2, P)):
-        if axes[ax].size > 1:
-            h = axes[ax][1] - axes[ax][0]
-            dist = _run_lengths(ok, ax).ravel()[idx] * h
-            v = vals.ravel()[idx]
-            coarse = np.minimum(coarse, np.where(v > 0, dist / np.maximum(v, 1e-300), 0.0))
-    a_i, c_i, k_i = A.ravel()[idx], C.ravel()[idx], K.ravel()[idx]
-    if tgt == "jarm":
-        mu_min = np.maximum.reduce([mu_s_min_path(a_i, c_i, k_i, rule=r) for r in RULES])
-        coarse = np.minimum(coarse, (worst - mu_min) / mu)
-    else:  # a lower bound of the slip margin: the last level of mu_s it still slips at
-        level_margin, alive = np.zeros(idx.size), np.ones(idx.size, dtype=bool)
-        for f in (0.05, 0.1, 0.2, 0.5, 1.0, 2.0, 4.0):
-            alive &= _holds(spec)(a_i, c_i, k_i, worst + f * mu)
-            level_margin = np.where(alive, f, level_margin)
-        coarse = np.minimum(coarse, level_margin)
-    order = np.lexsort((idx, -coarse))[:_CANDIDATES]
+        sens = _sensitivity(spec, chosen, alpha, mu, err, b, e)
+        stage(stages)
+        return Design(
+            target=tgt,
+            body=chosen,
+            alpha=alpha,
+            mu_s=mu,
+            mu_s_err=err,
+            mu_s_worst=worst,
+            build=b,
+            si=si,
+            g=gg,
+            margins=final,
+            score=_score(final),
+            theta_deg=theta_deg,
+            turn=turn,
+            max_turns=spec.turns,
+            reasons=reasons,
+            flights=flights,
+            sensitivity=sens,
+            error=e,
+            evaluations=evaluations,
+            notes=tuple(notes),
+            tolerances=None if odds is None else dict(odds[0]),
+            p_success=success,
+        )
 
-    # 2. exact margins at the best grid points, 3. compass search from the best few
-    lows = np.array([a_lo, k_lo, r_lo])
-    spans = np.array([a_hi - a_lo, k_hi - k_lo, r_hi - r_lo])
-    cache: dict[tuple[float, ...], tuple[float, tuple[Margin, ...] | None]] = {}
 
-    def evaluate(u: NDArray[np.float64], tol: float = 1e-5) -> float:
-        u = np.clip(u, 0.0, 1.0)
-        key = (*np.round(u, 12).tolist(), tol)
-        if key not in cache:
-            x = lows + u * spans
-            ms = _margins(spec, float(x[0]), float(x[1]), float(x[2]), mu, err, tol)
-            if apex_min > 0 and ms is not None:
-                c = x[2] * (1.0 - x[1])
-                ms = ms if apex(x[:1], np.array([c]), x[1:2], mu)[0] >= apex_min else None
-            cache[key] = (_score(ms), ms)
-        return cache[key][0]
+def _stage_reporter(report: Progress | None, stages: int) -> Callable[[int], None]:
+    """``stage(k)``: report that ``k`` of the design's ``stages`` are done (nothing without a
+    reporter); stage 0 is reported at once."""
 
-    def to_u(i: int) -> NDArray[np.float64]:
-        x = np.array([A.ravel()[i], K.ravel()[i], P.ravel()[i]])
-        return np.where(spans > 0, (x - lows) / np.where(spans > 0, spans, 1.0), 0.0)
+    def stage(k: int) -> None:
+        if report is not None:
+            report(k, stages)
 
-    starts = sorted(((evaluate(to_u(int(idx[j]))), j) for j in order), key=lambda t: (-t[0], t[1]))[
-        :_REFINED
-    ]
-    refined = [_compass(evaluate, to_u(int(idx[j])), s, spans, per_axis) for s, j in starts]
-    best_u = max(refined, key=lambda uf: uf[1])[0]  # the first of equals, as before
-    x = lows + np.clip(best_u, 0.0, 1.0) * spans
-    success = None
-    if odds is not None:
-        tol, n_samples, seed_, by_odds = odds
-        # the refined designs, then the grid's best points that hold, best margin first
-        us = [u for u, _ in sorted(refined, key=lambda uf: -uf[1])]
-        us += [to_u(int(idx[j])) for j in order if evaluate(to_u(int(idx[j]))) > 0]
-        xs = [lows + np.clip(u, 0.0, 1.0) * spans for u in (us if by_odds else us[:1])]
-        cands = [(float(c[0]), float(c[1]), float(c[2] * (1.0 - c[1]))) for c in xs]
-        pick, all_odds = best(spec, cands, tol, mu, n_samples, seed_, apex_min)
-        x, success = xs[pick], all_odds[pick]
-    alpha, km, rho = float(x[0]), float(x[1]), float(x[2])
-    final = _margins(spec, alpha, km, rho, mu, err, 1e-12)
-    if final is None:  # pragma: no cover - the search only keeps points that hold
-        raise ValueError("mu_s: the design lost its verdict at full precision; raise grid")
-    evaluations += len(cache)
-
-    # 4. the sheet
-    chosen = Cylinder(min(rho * (1.0 - km), 1.0 - km), km)
-    _, res = _classify(alpha, chosen.chi, km, mu, spec)
-    theta_deg: dict[str, float] = {}
-    reasons: dict[str, str] = {}
-    for r, one in zip(RULES, res, strict=True):
-        reasons[r] = Reason(int(one.reason)).name
-        theta_deg[r] = math.degrees(_angle(one, tgt))
-    turn = int(res[0].n)
-    b = build(chosen, radius=R, mass=M)
-    flights = tuple(_flight(chosen, alpha, mu, r, tgt, b if si else None, gg) for r in RULES)
-    if chosen.km == 0.0:
-        notes.append("km = 0: the full motion is not simulated (the spin in flight is free)")
-    notes += _on_edges(
-        ((a_lo, a_hi, alpha, "alpha"), (k_lo, k_hi, km, "km"), (r_lo, r_hi, rho, "rod"))
-    )
-    sens = _sensitivity(spec, chosen, alpha, mu, err, b, e)
-    return Design(
-        target=tgt,
-        body=chosen,
-        alpha=alpha,
-        mu_s=mu,
-        mu_s_err=err,
-        mu_s_worst=worst,
-        build=b,
-        si=si,
-        g=gg,
-        margins=final,
-        score=_score(final),
-        theta_deg=theta_deg,
-        turn=turn,
-        max_turns=spec.turns,
-        reasons=reasons,
-        flights=flights,
-        sensitivity=sens,
-        error=e,
-        evaluations=evaluations,
-        notes=tuple(notes),
-        tolerances=None if odds is None else dict(odds[0]),
-        p_success=success,
-    )
+    stage(0)
+    return stage
 
 
 def _odds_options(

@@ -33,6 +33,8 @@ from eccjump._base.body import Cylinder
 from eccjump._base.checks import Rule, flag, integer, optional_real, rule_name, short
 from eccjump._base.docs import fill
 from eccjump._base.html import card
+from eccjump.maps.results import Result
+from eccjump.studies.experiment import report
 from eccjump.studies.experiment.events import Flight, Observed, Window, observe
 from eccjump.studies.experiment.fit import (
     MU_MAX,
@@ -53,9 +55,12 @@ from eccjump.studies.experiment.geometry import fit_contact_line
 from eccjump.studies.experiment.inputs import MARKER_IN_R, in_range
 from eccjump.studies.experiment.reconstruction import MIN_WINDOW, Reconstruction, reconstruct
 from eccjump.studies.experiment.sheet import design_inputs
-from eccjump.studies.experiment.track import MAX_FRAMES, Track, load_track
+from eccjump.studies.experiment.track import MAX_FRAMES, Track, first_frames, load_track
+from eccjump.studies.experiment.video import is_video
+from eccjump.studies.experiment.video import track as track_video
 
 if TYPE_CHECKING:  # pragma: no cover
+    import xarray as xr
     from matplotlib.axes import Axes
     from matplotlib.figure import Figure, FigureBase
 
@@ -86,7 +91,7 @@ class SlipInterval:
 
 
 @dataclass(frozen=True, eq=False)
-class Analysis:
+class Analysis(Result, kind="analysis"):
     """The outcome of :func:`analyze`: the verdict, its reason (for ``undetermined``) and
     evidence (sentences), the lift-off time [s] with its standard error (from the fitted
     model) and the observed window, the slips before it, the fits and what they rest on."""
@@ -149,6 +154,8 @@ class Analysis:
             "rolling_needs": self.mu_s_needed,
             "status": "lower_bound" if bound else "value",
         }
+        if bound and not self.mu_s_needed <= MU_MAX:  # a ratio near a lift-off's F_y = 0
+            out["mu_s"] |= {"lo": 0.0, "status": "not_determined"}
         return out
 
     def parameter_lines(self) -> list[tuple[str, str]]:
@@ -273,6 +280,11 @@ class Analysis:
 
         return plot.draw(self, ax=ax, fig=fig, **kwargs)
 
+    def to_xarray(self) -> xr.Dataset:
+        """The track, its reconstruction and the fitted model along ``frame`` with units, the
+        verdict as attributes (needs xarray; :mod:`eccjump.studies.experiment.report`)."""
+        return report.analysis_dataset(self)
+
 
 @fill
 def analyze(
@@ -304,7 +316,10 @@ def analyze(
     track : Track, str or path
         A :class:`Track`, or the path of a CSV (``t,xc,yc,xm,ym``; s, and m or px) or of
         Tracker's exported data table (``"-"``: the standard input); a regular file of at
-        most 64 MiB and 10,000 frames (``read_track``).
+        most 64 MiB and 10,000 frames (``read_track``). Or the path of a video (known by
+        its suffix or first bytes): tracked first by :func:`eccjump.track` with
+        ``marker_radius`` or ``scale`` (and ``alpha`` for the camera's roll); needs
+        ``pip install eccjump[video]``.
     radius : float or None
         R [m], in [1e-4, 10]; or from ``design``.
     chi, km : float or None
@@ -371,12 +386,24 @@ def analyze(
     w = None if window is None else integer("window", window, MIN_WINDOW, MAX_FRAMES)
     profiled = flag("profile_mu_k", profile_mu_k)
     rule = _rule(rule)
-    if not isinstance(track, Track):
+    if is_video(track):  # tracked first, as eccjump.track does: in metres
+        track = track_video(track, marker_radius=r_m, scale=px, alpha=a_given)  # type: ignore[arg-type]
+        px = None
+    elif not isinstance(track, Track):
         track = load_track(track, scale=px, fmt="auto", name="track")
     _check_marker_distance(track, R, px)
     rec = reconstruct(
         track, radius=R, marker_angle=beta, marker_radius=r_m, alpha=a_given, window=w
     )
+    observed = observe(rec)
+    n = _before_bounces(track, observed, rec.window)
+    if n < track.n:  # the verdict is about the first lift-off: not the bounces
+        notes += (_bounces_note(track, n),)
+        track = first_frames(track, n)
+        rec = reconstruct(
+            track, radius=R, marker_angle=beta, marker_radius=r_m, alpha=a_given, window=w
+        )
+        observed = observe(rec)
     notes += _marker_note(rec, r_m)
     setup = Setup(
         body,
@@ -388,7 +415,6 @@ def analyze(
         rule,
         fit_alpha=a_given is None,
     )
-    observed = observe(rec)
     best, jarm_fit = consistent_fits(setup, track, rec)
     off_path = _alpha_note(track, a_given)
     notes += off_path
@@ -435,11 +461,14 @@ def _judge(
     needs = rolling_needs(best.run, lift if math.isfinite(lift) else horizon)
     delta = math.nan
     if v.jarm_fit is not None:
-        delta = 2.0 * (v.jarm_fit.cost - best.cost) / max(best.chi2_reduced, 1.0)
+        delta = 2.0 * (v.jarm_fit.cost - best.cost) / best.variance_factor
     seen = observed.flights[0] if observed.flights else None
     verdict, reason, evidence = _decide(v, seen, lift, slip_frames, delta, rec, t0, unit, dt)
     evidence.append(
         f"the rolling before it needs mu_s >= {needs:.3f} (the model's friction ratio |F_x|/F_y)"
+        if needs <= MU_MAX
+        else "the fitted rolling's friction ratio |F_x|/F_y grows without bound (F_y -> 0 "
+        "before the lift-off): it bounds mu_s by nothing the fit can search"
     )
     slips = tuple(
         SlipInterval(
@@ -676,6 +705,23 @@ def _rule(value: object) -> Rule:
     if name not in get_args(Rule):
         raise ValueError(f"rule must be 'paper' or 'normal_force', got {short(name)}")
     return name
+
+
+def _before_bounces(track: Track, observed: Observed, window: int) -> int:
+    """The frames before the second lift-off the track shows (all when there is none, or
+    when fewer than two smoothing windows would be left)."""
+    if len(observed.flights) < 2:
+        return track.n
+    n = int(np.searchsorted(track.t, observed.flights[1].liftoff.lo))
+    return n if n >= 2 * window else track.n
+
+
+def _bounces_note(track: Track, n: int) -> str:
+    return (
+        f"the track is analysed up to its second lift-off, t = {track.t[n]:.4f} s: the "
+        f"{track.n - n} frames after it (bounces, whose impacts the rigid model describes "
+        "worst) are left out"
+    )
 
 
 def _marker_note(rec: Reconstruction, given: float | None) -> tuple[str, ...]:

@@ -100,8 +100,10 @@ def observe(rec: Reconstruction) -> Observed:
     flights: list[Flight] = []
     blocked = np.zeros(t.size, dtype=bool)  # frames not judged for slip
     half = rec.window // 2
+    floor = 0  # a lift-off is looked for after the previous flight's last frame
     for a, b in runs(h > Z * sigma):
-        lift = _liftoff(t, h, sigma, a, b)
+        lift = _liftoff(t, h, sigma, a, b, floor)
+        floor = b + 1
         land = _landing(t, h, b)
         top = a + int(np.argmax(h[a : b + 1]))
         near = np.flatnonzero(h[a : b + 1] >= h[top] - sigma) + a
@@ -136,12 +138,13 @@ def _steps(s: NDArray[np.float64], err: NDArray[np.float64]) -> NDArray[np.bool_
 
 
 def _liftoff(
-    t: NDArray[np.float64], h: NDArray[np.float64], sigma: float, a: int, b: int
+    t: NDArray[np.float64], h: NDArray[np.float64], sigma: float, a: int, b: int, floor: int
 ) -> Window:
     """Profile fit of h = c tau³ (tau > 0, c ≥ 0) from 20 frames (at least 50 ms) before
-    the run to where the gap first reaches 8 sigma (the series holds near the lift-off only)."""
+    the run, but not before frame ``floor`` (the previous flight's landing), to where the
+    gap first reaches 8 sigma (the series holds near the lift-off only)."""
     back = max(20, int(0.05 / float(np.median(np.diff(t)))))
-    lo = max(a - back, 0)
+    lo = max(a - back, floor, 0)
     top = a + int(np.argmax(h[a : b + 1] >= min(8 * sigma, h[a : b + 1].max())))
     hi = max(top, min(a + 2, b))
     tt, hh = t[lo : hi + 1], h[lo : hi + 1]

@@ -38,8 +38,13 @@ from eccjump.studies.experiment.geometry import RampFrame, marker_offset
 from eccjump.studies.experiment.reconstruction import Reconstruction, derivative_weights
 from eccjump.studies.experiment.track import Track
 
-NAMES = ("theta0", "omega0", "mu_k", "dmu", "e", "l0", "n0", "alpha")
+NAMES = ("theta0", "omega0", "mu_k", "dmu", "e", "l0", "n0", "length_scale", "alpha")
 UNITS = {"theta0": "rad", "omega0": "rad/s", "l0": "m", "n0": "m", "alpha": "rad"}
+#: How far the track's length scale may be from the stated one (a ratio): a scale from the
+#: dots' distance or a ruler is good to a few parts in a thousand; a larger error (a
+#: misstated radius, a ruler out of the face's plane) is for the goodness of fit to catch,
+#: and a wider range lets a long slip trade its distance against the scale.
+SCALE_RANGE = (0.97, 1.03)
 #: The friction coefficients searched are below this.
 MU_MAX = 3.0
 #: Most transitions a fitted run may take (bounces after a landing).
@@ -88,6 +93,9 @@ class Fit:
     jarm_only: bool
     mu_s_bound: float
     nfev: int
+    #: The variance inflation of slow signals by the residuals' correlation from frame to
+    #: frame (:func:`correlation_inflation`): 1 for independent errors.
+    correlation: float = 1.0
 
     def value(self, name: str) -> float:
         return float(self.x[self.names.index(name)])
@@ -109,6 +117,12 @@ class Fit:
     def chi2_reduced(self) -> float:
         return 2.0 * self.cost / max(self.dof, 1)
 
+    @property
+    def variance_factor(self) -> float:
+        """What the parameters' variances and a chi-square difference are scaled by: the
+        reduced chi-square where above 1 (a misfit widens), times :attr:`correlation`'s."""
+        return max(self.chi2_reduced, 1.0) * self.correlation
+
 
 class Model:
     """The residuals of a parameter vector against one reconstructed track."""
@@ -116,12 +130,13 @@ class Model:
     def __init__(self, setup: Setup, track: Track, rec: Reconstruction, *, jarm_only: bool):
         self.setup, self.track, self.rec = setup, track, rec
         self.jarm_only = jarm_only
-        self.names = NAMES if setup.fit_alpha else NAMES[:-1]
+        self.names = tuple(n for n in NAMES if n != "alpha" or setup.fit_alpha)
         self.tau = (track.t - track.t[0]) / setup.time_unit
         self.sigma = max(rec.sigma, 1e-12 * setup.radius)
         frame = rec.line.frame
         self.side, self.origin = frame.side, frame.origin
         self.nfev = 0
+        self._bounds: dict[tuple[float, float, float], float] = {}
 
     def frame(self, alpha: float) -> RampFrame:
         return RampFrame(alpha, self.side, self.origin)
@@ -154,7 +169,17 @@ class Model:
         )
 
     def mu_bound(self, p: dict[str, float]) -> float:
-        """The friction the rolling from the start needs up to its lift-off (0 if none)."""
+        """The friction the rolling from the start needs up to its lift-off (0 if none).
+        Remembered by the start and the ramp, all it depends on: the columns of a
+        finite-difference Jacobian that vary the friction, e or the offsets reuse it."""
+        key = (p["alpha"], p["theta0"], p["omega0"])
+        if key not in self._bounds:
+            if len(self._bounds) > 4096:
+                self._bounds.clear()
+            self._bounds[key] = self._rolling_bound(p)
+        return self._bounds[key]
+
+    def _rolling_bound(self, p: dict[str, float]) -> float:
         res = jarm(
             p["alpha"],
             self.setup.body.chi,
@@ -187,8 +212,9 @@ class Model:
         s = self.setup
         frame = self.frame(p["alpha"])
         qc_obs, qm_obs = frame.to_ramp(self.track.c), frame.to_ramp(self.track.m)
-        qc = np.column_stack([p["l0"] + s.radius * y[2], p["n0"] + s.radius * (y[4] - 1.0)])
-        qm = qc + marker_offset(y[0], s.marker_radius, s.marker_angle)
+        k = p["length_scale"] * s.radius  # the model's lengths in the track's metres
+        qc = np.column_stack([p["l0"] + k * y[2], p["n0"] + k * (y[4] - 1.0)])
+        qm = qc + marker_offset(y[0], p["length_scale"] * s.marker_radius, s.marker_angle)
         return np.concatenate([(qc - qc_obs).ravel(), (qm - qm_obs).ravel()]) / self.sigma
 
     def bounds(self, guess: dict[str, float]) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
@@ -202,6 +228,7 @@ class Model:
             "e": 0.0,
             "l0": -r,
             "n0": -0.5 * r,
+            "length_scale": SCALE_RANGE[0],
             "alpha": max(al - 0.2, 0.0),
         }
         hi = {
@@ -212,6 +239,7 @@ class Model:
             "e": 1.0,
             "l0": r,
             "n0": 0.5 * r,
+            "length_scale": SCALE_RANGE[1],
             "alpha": min(al + 0.2, math.pi / 2),
         }
         return np.array([lo[n] for n in self.names]), np.array([hi[n] for n in self.names])
@@ -226,8 +254,16 @@ def start_guess(setup: Setup, rec: Reconstruction) -> dict[str, float]:
         "omega0": float(max(w1[0] @ rec.theta[idx[0]], 0.0)),
         "l0": float(w0[0] @ rec.l[idx[0]]),
         "n0": 0.0,
+        "length_scale": 1.0,
         "alpha": setup.alpha,
     }
+
+
+def mean_rate(rec: Reconstruction) -> float:
+    """theta's mean rate [rad/s] over the first two smoothing windows (>= 0): a start for
+    omega0 where the smoothed derivative at the track's edge is off (a slip, a kick)."""
+    k = min(2 * rec.window, rec.t.size - 1)
+    return float(max((rec.theta[k] - rec.theta[0]) / (rec.t[k] - rec.t[0]), 0.0))
 
 
 def fit(
@@ -237,26 +273,31 @@ def fit(
     *,
     jarm_only: bool = False,
     starts: list[dict[str, float]] | None = None,
+    wide: bool = False,
 ) -> Fit:
     """The best of several least-squares fits. Without ``starts``: a screen of short fits
     (:data:`SCREEN_NFEV` iterations) from the smoothed start with the friction guesses of
     :func:`friction_guesses`, each with the smoothed omega0 and with 0 (the edge of the
     smoothing window makes omega0 noisy), then full fits from the :data:`KEEP` best (the
-    cost has many local minima: a slip, a bounce and a shifted start trade off). With
-    ``starts`` (each a dict of some of :data:`NAMES`, on top of that guess): a full fit from
-    each."""
+    cost has many local minima: a slip, a bounce and a shifted start trade off). ``wide``
+    screens more: mu_k / mu_s of 0.5, 0.75 and 0.95 and e of 0.05 and 0.5, and keeps twice
+    as many (for a fit that failed its goodness-of-fit test). With ``starts`` (each a dict
+    of some of :data:`NAMES`, on top of that guess): a full fit from each."""
     model = Model(setup, track, rec, jarm_only=jarm_only)
     guess = start_guess(setup, rec)
     lo, hi = model.bounds(guess)
     if starts is None:
-        omegas = sorted({guess["omega0"], 0.0})
+        omegas = sorted({guess["omega0"], 0.0, mean_rate(rec)})
+        ratios, bounces = ((0.5, 0.75, 0.95), (0.05, 0.5)) if wide else ((0.75,), (0.05,))
         screen = [
-            {"mu_k": 0.75 * m, "dmu": 0.25 * m, "e": 0.05, "omega0": w}
+            {"mu_k": q * m, "dmu": (1 - q) * m, "e": e, "omega0": w}
             for m in friction_guesses(model.mu_bound(guess))
             for w in omegas
+            for q in ratios
+            for e in bounces
         ]
         tried = sorted((_solve(model, guess | s, lo, hi, SCREEN_NFEV) for s in screen), key=_cost)
-        x0s = [r.x for r in tried[:KEEP]]
+        x0s = [r.x for r in tried[: KEEP * (2 if wide else 1)]]
     else:
         x0s = [np.array([(guess | s)[n] for n in model.names], dtype=float) for s in starts]
     res = min((_solve(model, x0, lo, hi, MAX_NFEV) for x0 in x0s), key=_cost)
@@ -267,13 +308,15 @@ def fit(
 ROUNDS = 3
 
 
-def consistent_fits(setup: Setup, track: Track, rec: Reconstruction) -> tuple[Fit, Fit | None]:
+def consistent_fits(
+    setup: Setup, track: Track, rec: Reconstruction, *, wide: bool = False
+) -> tuple[Fit, Fit | None]:
     """The free fit and, when it slips before its lift-off, the fit that forbids that slip
     (else None: the free fit is slip-free itself). The free fit can never be worse than the
     constrained one; if it is, the optimiser stopped in a local minimum: the free fit is
     redone from the better solution (and its own), up to :data:`ROUNDS` times; if the pair
     is still inconsistent, the better one is returned as the free fit."""
-    free = fit(setup, track, rec)
+    free = fit(setup, track, rec, wide=wide)
     constrained: Fit | None = None
     for _ in range(ROUNDS):
         if not slips_before_liftoff(free):
@@ -404,7 +447,7 @@ def profile_interval(
     whose cost is within ``level`` / 2 (in units of the reduced chi-square) of the least,
     plus one grid step beyond it (a second minimum narrower than a step can be missed)."""
     lo, hi = best.interval(name)
-    s2 = max(best.chi2_reduced, 1.0)
+    s2 = best.variance_factor
     low = min(float(costs.min()), best.cost)
     accepted = grid[2.0 * (costs - low) / s2 <= level]
     far = accepted[(accepted < lo) | (accepted > hi)]
@@ -416,10 +459,31 @@ def profile_interval(
     return lo, hi
 
 
+#: The largest variance inflation :func:`correlation_inflation` gives (rho = 0.82).
+MAX_INFLATION = 10.0
+
+
+def correlation_inflation(residuals: NDArray[np.float64], frames: int) -> float:
+    """(1 + rho) / (1 - rho) for the residuals' lag-1 autocorrelation rho over the frames,
+    pooled over the four coordinate series (C and M, along and across the ramp); 1 for
+    rho <= 0. Errors correlated from frame to frame (a video codec's, a tracker's smoothing,
+    a slow misfit) carry less information on slow signals -- a slip, a start -- than
+    independent ones: for AR(1) errors the variance of a mean over many frames grows by
+    this factor, and so must the parameters' covariance and a chi-square difference."""
+    r = residuals.reshape(2, frames, 2).transpose(0, 2, 1).reshape(4, frames)
+    den = float(np.sum(r * r))
+    if frames < 3 or not den > 0:
+        return 1.0
+    rho = float(np.sum(r[:, 1:] * r[:, :-1])) / den
+    return float(min(max((1 + rho) / (1 - rho), 1.0), MAX_INFLATION)) if rho < 1 else MAX_INFLATION
+
+
 def _result(model: Model, res: Any, lo: NDArray[np.float64], hi: NDArray[np.float64]) -> Fit:
     m = res.fun.size
     dof = max(m - res.x.size, 1)
-    s2 = max(2.0 * res.cost / dof, 1.0)  # widened by a misfit, never narrowed below the noise
+    inflation = correlation_inflation(res.fun, model.tau.size)
+    # widened by a misfit, never narrowed below the noise; and by correlated errors
+    s2 = max(2.0 * res.cost / dof, 1.0) * inflation
     J = res.jac
     _, sv, vt = np.linalg.svd(J, full_matrices=False)
     keep = sv > sv[0] * 1e-8 if sv.size and sv[0] > 0 else np.zeros_like(sv, dtype=bool)
@@ -446,6 +510,7 @@ def _result(model: Model, res: Any, lo: NDArray[np.float64], hi: NDArray[np.floa
         jarm_only=model.jarm_only,
         mu_s_bound=bound,
         nfev=model.nfev,
+        correlation=inflation,
     )
 
 

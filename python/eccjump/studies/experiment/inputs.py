@@ -14,6 +14,7 @@ import math
 from dataclasses import dataclass
 
 from eccjump._base.checks import real, short
+from eccjump._base.units import FOR_DEGREES
 
 
 @dataclass(frozen=True)
@@ -38,10 +39,8 @@ BOUNDS = {
     "radius": Bound(1e-4, 10.0, "m", "--radius"),
     "scale": Bound(1.0, 1e9, "px/m", "--scale"),
     "g": Bound(0.01, 100.0, "m/s^2", "--g"),
-    "alpha": Bound(0.0, math.pi / 2, "rad", "--alpha", " (math.radians for degrees)"),
-    "marker_angle": Bound(
-        -2 * math.pi, 2 * math.pi, "rad", "--marker-angle", " (math.radians for degrees)"
-    ),
+    "alpha": Bound(0.0, math.pi / 2, "rad", "--alpha", f" ({FOR_DEGREES})"),
+    "marker_angle": Bound(-2 * math.pi, 2 * math.pi, "rad", "--marker-angle", f" ({FOR_DEGREES})"),
 }
 #: The marker's distance from the axle, given (marker_radius) or tracked, in units of R: a
 #: point of the body, and not so close to the axle that theta drowns in the noise.

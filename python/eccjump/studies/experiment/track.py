@@ -14,7 +14,7 @@ import io
 import math
 import os
 from collections.abc import Iterator
-from dataclasses import dataclass
+from dataclasses import dataclass, fields, replace
 from pathlib import Path
 
 import numpy as np
@@ -72,6 +72,18 @@ class Track:
             f"Track({self.n} frames, t = {self.t[0]:.4g} ... {self.t[-1]:.4g} s, "
             f"{1 / self.dt:.4g} fps, from {self.source})"
         )
+
+
+def first_frames(track: Track, n: int) -> Track:
+    """The first ``n`` frames of ``track`` (of any Track subclass: every per-frame array is
+    cut, the rest kept)."""
+    cut = {
+        f.name: getattr(track, f.name)[:n]
+        for f in fields(track)
+        if isinstance(getattr(track, f.name), np.ndarray)
+        and getattr(track, f.name).shape[:1] == (track.n,)
+    }
+    return replace(track, **cut)
 
 
 def track_from_arrays(

@@ -5,12 +5,13 @@ chunking and the thread count change no bit."""
 
 from __future__ import annotations
 
-from collections.abc import Callable, Mapping
+from collections.abc import Mapping
 from typing import Any
 
 import numpy as np
 from numpy.typing import NDArray
 
+from eccjump._base.progress import Progress
 from eccjump.classification.classify import jarm
 from eccjump.classification.fields import Reason
 from eccjump.motion.fields import DTYPES, FIELDS, FILL, INVALID, sequence_name
@@ -33,8 +34,6 @@ OUTCOME_DTYPES: dict[str, dict[str, np.dtype]] = {
     "jarm": {k: np.asarray(v).dtype for k, v in JARM_FILL.items()},
     "motion": {k: np.dtype(DTYPES[k]) for k in FIELDS},
 }
-
-Progress = Callable[[int, int], object]
 
 
 def _empty(fill: Mapping[str, Any], dtypes: Mapping[str, Any], n: int) -> dict[str, NDArray[Any]]:

@@ -20,7 +20,8 @@ from eccjump._base.checks import flag, real, short
 from eccjump._base.checks import path as path_arg
 from eccjump._base.html import card, num
 from eccjump._base.overwrite import check_overwrite, never
-from eccjump.maps import store
+from eccjump.maps import results, store
+from eccjump.maps.results import Result
 from eccjump.studies.uncertainty.delta import Delta
 from eccjump.studies.uncertainty.questions import OUTCOME_DTYPES
 from eccjump.studies.uncertainty.sampling import UNITS
@@ -108,7 +109,7 @@ class Summary(NamedTuple):
 
 
 @dataclass(frozen=True, eq=False, repr=False)
-class Uncertainty:
+class Uncertainty(Result, kind="uncertainty", suffixes=(".csv",)):
     """What the spread of the inputs does to a JARM or to the first flight
     (:func:`eccjump.uncertainty`).
 
@@ -236,8 +237,6 @@ class Uncertainty:
         :meth:`to_dict` as attributes (JSON text where nested or None)."""
         import json
 
-        import xarray as xr
-
         units = {**UNITS, **QUANTITIES}
         data = {
             k: ("sample", v, {"units": units[k]} if k in units else {})
@@ -247,7 +246,7 @@ class Uncertainty:
             k: (json.dumps(v) if v is None or isinstance(v, dict | list) else v)
             for k, v in self.to_dict().items()
         }
-        return xr.Dataset(data, coords={"sample": np.arange(self.n)}, attrs=attrs)
+        return results.dataset(self, data, {"sample": np.arange(self.n)}, attrs)
 
     def save(self, path: str | os.PathLike, *, overwrite: bool = False) -> Path:
         """Write the samples and outcomes: ``.csv`` (numpy only; the numbers of
@@ -307,6 +306,11 @@ class Uncertainty:
         except (KeyError, TypeError, ValueError, IndexError) as err:
             shown = str(source) if len(str(source)) <= 60 else str(source)[:57] + "..."
             raise ValueError(f"path {shown!r} is no saved uncertainty study ({err})"[:200]) from err
+
+    @classmethod
+    def _read(cls, path: Path, suffix: str) -> Uncertainty:
+        """:func:`eccjump.load` of a study's file: :meth:`load`."""
+        return cls.load(path)
 
     @classmethod
     def _from_saved(cls, d: Mapping[str, Any], columns: Mapping[str, NDArray]) -> Uncertainty:

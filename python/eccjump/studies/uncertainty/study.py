@@ -11,12 +11,14 @@ import numpy as np
 from eccjump._base.body import Cylinder
 from eccjump._base.checks import Integrator, Rule, optional_real, real, rule_name, text
 from eccjump._base.docs import fill
+from eccjump._base.progress import Progress, checked, reporting
 from eccjump._base.sizes import check_fits, uncertainty_bytes
+from eccjump._base.units import ramp_angle
 from eccjump.classification.fields import JARM
 from eccjump.motion.fields import MOTION
 from eccjump.motion.options import MotionOptions
 from eccjump.studies.uncertainty.delta import delta_method
-from eccjump.studies.uncertainty.questions import Progress, evaluate, jumps, outcome_counts, ran
+from eccjump.studies.uncertainty.questions import evaluate, jumps, outcome_counts, ran
 from eccjump.studies.uncertainty.results import (
     QUANTITIES,
     Summary,
@@ -65,7 +67,7 @@ def uncertainty(
     atol: float = 1e-12,
     integrator: Integrator = "RK45",
     n_threads: int = 0,
-    progress: Progress | None = None,
+    progress: bool | Progress | None = None,
 ) -> Uncertainty:
     """The probability of a JARM, of each outcome, and the spread of the lift-off and the
     first flight, when the inputs vary within tolerances.
@@ -98,7 +100,7 @@ def uncertainty(
     body : Cylinder
         The nominal body (χ, km).
     alpha : float
-        Nominal ramp angle [rad], in [0, π/2].
+        Nominal ramp angle [rad], in [0, π/2] (``math.radians`` for degrees).
     mu_s : float
         Nominal static friction coefficient, in [0, inf).
     mu_k : float or None, default None
@@ -136,9 +138,10 @@ def uncertainty(
     t_max, max_transitions, rtol, atol, integrator
         The full motion's options (``question="motion"``), as in :func:`eccjump.motion_map`.
     %(n_threads)s
-    progress : callable or None, default None
-        Called as ``progress(done, total)`` after each chunk of valid samples (anything
-        else is a TypeError before any work).
+    progress : bool, callable or None, default None
+        Progress of the work, in valid samples: None or False, none; True, a bar on stderr
+        (tqdm); a callable, called as ``progress(done, total)`` after each chunk of them
+        (anything else is a TypeError before any work). The result is the same either way.
 
     Returns
     -------
@@ -182,7 +185,7 @@ def uncertainty(
     """
     if not isinstance(body, Cylinder):
         raise TypeError(f"body must be a Cylinder, not {type(body).__name__}")
-    alpha_, mu_s_ = real("alpha", alpha), real("mu_s", mu_s)
+    alpha_, mu_s_ = ramp_angle("alpha", alpha), real("mu_s", mu_s)
     mu_k_ = optional_real("mu_k", mu_k)
     nominal = {
         "chi": body.chi,
@@ -201,14 +204,14 @@ def uncertainty(
     spec = spread(nominal, sd, bounds, allowed, mu_k_follows=mu_k_ is None)
     size, seed_, how, policy = options(n, seed, sampling, invalid)
     level = check_confidence(confidence)
-    if progress is not None and not callable(progress):
-        raise TypeError(f"progress must be None or a callable, not {type(progress).__name__}")
+    checked(progress)
     opts = _question_options(q, rule, t_max, max_transitions, rtol, atol, integrator, n_threads)
     per_sample = (JARM if q == "jarm" else MOTION).bytes_per_point()
     need = uncertainty_bytes(size, len(spec.varied), per_sample)
     check_fits("uncertainty", size, need, "n", "samples")
     cols, valid = draw(spec, size, seed_, how, policy)
-    outcomes = evaluate(q, cols, valid, opts, progress)
+    with reporting(progress, "sample") as report:
+        outcomes = evaluate(q, cols, valid, opts, report)
     valid &= ran(q, outcomes)  # k_m = 0 has no full motion (simulate needs k_m > 0)
     n_valid = int(valid.sum())
     if n_valid == 0:  # no probability to give: an error, not NaN
