@@ -1345,10 +1345,45 @@ def damaged_maps(where: Path) -> tuple[Path, ...]:
     return paths
 
 
+def check_drawn(res: Any, case: Case) -> None:
+    """``.plot(ax=ax)`` returns that Axes, drawn on; otherwise a Figure (closed at once)."""
+    from matplotlib.figure import Figure
+
+    given = case.kwargs.get("ax")
+    if given is not None:
+        expect(res is given and res.has_data(), f"ax= returned {type(res).__name__}")
+        return
+    import matplotlib.pyplot as plt
+
+    plt.close(res)
+    expect(isinstance(res, Figure), f"returned {type(res).__name__}")
+
+
+def case_plot_target(d: Drawer) -> Case:
+    """A result's ``.plot`` given where to draw: an Axes, an empty or used Figure, both, or
+    something else (a TypeError naming ``ax`` or ``fig``)."""
+    from matplotlib.figure import Figure
+
+    reg = eccjump.region(mu_s=1.0, alpha=[0.5, 0.7], chi=[0.2], km_frac=[0.1])
+    c = Case("Region.plot", reg.plot, params=("ax", "fig", "km_frac"), check=check_drawn)
+    used = Figure()  # not pyplot's: nothing is left open when the call raises
+    ax = used.subplots()
+    empty = Figure()
+    wrong_ax, wrong_fig = ("axes", 3, used, [ax], None), ("fig", 2.5, ax, [empty], None)
+    c.kwargs = {"ax": d.choice((ax, ax, *wrong_ax)), "fig": d.choice((None, empty, *wrong_fig))}
+    if c.kwargs["ax"] is not None:
+        c.kwargs["km_frac"] = real_or_none(d, c, 0.0, 1.0)
+    bad = (c.kwargs["ax"] not in (ax, None)) or (c.kwargs["fig"] not in (empty, None))
+    c.must_raise = c.must_raise or bad or (c.kwargs["ax"] is ax and c.kwargs["fig"] is empty)
+    return c
+
+
 def case_plot(d: Drawer) -> Case:
     from eccjump import plot
 
-    k = d.integer(0, 2)
+    k = d.integer(0, 3)
+    if k == 3:
+        return case_plot_target(d)
     if k == 2:
         c = Case(
             "plot.fraction_map",

@@ -178,7 +178,7 @@ def test_an_entry_takes_the_indentation_of_its_placeholder() -> None:
     doc = "One line.\n\n    Parameters\n    ----------\n    %(alpha)s\n    x : int\n"
     want = (
         "    alpha : array_like of float\n"
-        "        Ramp angle [rad], in [0, pi/2] (``math.radians`` for degrees).\n"
+        "        Ramp angle [rad], in [0, π/2] (``math.radians`` for degrees).\n"
     )
     assert docs.render(doc) == doc.replace("    %(alpha)s\n", want)
     assert docs.render("%(alpha)s") == docs.ENTRIES["alpha"]
@@ -242,3 +242,47 @@ def test_ci_builds_the_site_with_the_readme_command() -> None:
     assert command in lines
     docs = lines.index(command)
     assert any("pytest" in line and "cargo test" in line for line in lines[:docs])
+
+
+# --- equations in the docstrings: the guide's Unicode ----------------------------------------
+
+#: ASCII math the docstrings no longer write (the guide's forms: √, ≤, ≥, θ̇, θ̈, ², π).
+ASCII_MATH = re.compile(r"sqrt\(|<=|>=|\btheta'|\^2\b|\^3\b|\bpi\b|\b(alpha|chi|theta|mu_s)\b")
+#: Where names stay as typed: code spans, roles, options, placeholders, quoted text.
+CODE_SPANS = re.compile(r"--[\w-]+|``.*?``|:\w+:`[^`]*`|`[^`]*`|%\(\w+\)s|\"[^\"]*\"|'[^' ]*'")
+
+
+def _docstring_prose(source: str) -> list[str]:
+    """The lines of every docstring of ``source`` that are prose: not doctest input or
+    output, not a numpydoc ``name : type`` line, code spans removed."""
+    lines = []
+    for node in ast.walk(ast.parse(source)):
+        if not isinstance(node, (ast.Module, ast.ClassDef, ast.FunctionDef)):
+            continue
+        doc = ast.get_docstring(node, clean=False)
+        output = False
+        for line in (doc or "").splitlines():
+            s = line.strip()
+            output = s.startswith((">>>", "...")) or (output and s != "")
+            if output or re.match(r"^\s*\**[\w, *]+ : ", line):
+                continue
+            lines.append(CODE_SPANS.sub("", line))
+    return lines
+
+
+#: Files not yet converted: the lead's, under way (issue 49); this set only shrinks.
+NOT_YET_UNICODE = {"studies/experiment/analysis.py", "studies/experiment/fit.py"}
+
+
+def test_docstring_equations_use_the_guides_unicode() -> None:
+    """The site renders the docstrings next to the guide, which writes θ, √(g/R), ≤ and χ θ̇²
+    cos θ = cos α: the docstrings write the same (names as typed stay in ``code``)."""
+    package = ROOT / "python" / "eccjump"
+    found = [
+        f"{path.relative_to(ROOT)}: {line.strip()}"
+        for path in sorted(package.rglob("*.py"))
+        if path.relative_to(package).as_posix() not in NOT_YET_UNICODE
+        for line in _docstring_prose(path.read_text(encoding="utf-8"))
+        if ASCII_MATH.search(line)
+    ]
+    assert not found, "ASCII math in docstrings:\n" + "\n".join(found[:20])

@@ -308,6 +308,26 @@ def test_zz_log_the_redraw_times():
               f"ms, max {page_ms[-1]:.0f} ms")  # fmt: skip
 
 
+def test_the_page_draws_the_modes_in_eccjumps_one_palette(page):
+    """The timeline's bands and legend and the scene's mode swatch take their colours from
+    eccjump._base.palette (sent with the controls), the same as the figures and the notebook
+    views; the mode's name stays dark text (the palette's colours are too pale for text)."""
+    from eccjump._base.palette import MODE_COLORS
+
+    fills = page.evaluate(
+        "() => [...document.querySelectorAll('.ej-timeline rect')].map(r => r.getAttribute('fill'))"
+    )
+    assert set(MODE_COLORS.values()) <= set(fills)
+    assert set(fills) <= set(MODE_COLORS.values()) | {None}
+    swatch, text = page.evaluate(
+        """() => [...document.querySelectorAll('.ej-mode tspan')]
+        .map(t => getComputedStyle(t).fill)"""
+    )
+    rgb = {"rgb({}, {}, {})".format(*(int(c[i : i + 2], 16) for i in (1, 3, 5))): m
+           for m, c in MODE_COLORS.items()}  # fmt: skip
+    assert swatch in rgb and text == "rgb(0, 0, 0)"
+
+
 # --- screenshots for the docs ---------------------------------------------------------------
 
 

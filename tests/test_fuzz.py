@@ -55,7 +55,7 @@ BUDGET = {
     "units": 60,
     "store": 30,
     "results": 30,
-    "plot": 10,
+    "plot": 16,
     "cli": 60,
     "jarm_fraction": 60,
     "start_map": 30,

@@ -13,6 +13,7 @@ import pytest
 from reference_points import JARM_BODY
 
 import eccjump
+from eccjump._base.palette import JARM_COLOR, MODE_COLORS
 
 BODY = eccjump.Cylinder(*JARM_BODY)
 
@@ -90,9 +91,9 @@ def test_the_views_show_the_key_numbers(every):
 
 def test_the_mode_timeline_has_one_bar_per_mode_run(every):
     r = every["MotionResult"]
-    bars = re.findall(r"<rect x='[^']*' y='0' [^>]*fill='(#[0-9a-f]{6})'", r._repr_html_())
+    bars = re.findall(r"<rect x='[^']*' y='0' [^>]*fill='(#[0-9a-fA-F]{6})'", r._repr_html_())
     runs = 1 + int(np.count_nonzero(np.diff(r.mode)))
-    colors = {"ROLL": "#2ca02c", "SLIP": "#ff7f0e", "FLIGHT": "#1f77b4"}
+    colors = MODE_COLORS  # the one palette (tests/test_plot.py)
     assert len(bars) == runs
     first = eccjump.motion.MODES[int(r.mode[0])]
     assert bars[0] == colors[first]
@@ -101,7 +102,7 @@ def test_the_mode_timeline_has_one_bar_per_mode_run(every):
 def test_the_region_picture_is_its_best_slice(every):
     reg = every["Region"]
     k = int(np.argmax(reg.is_jarm.sum(axis=(0, 1))))
-    green = reg._repr_html_().count("fill='#2ca02c'")
+    green = reg._repr_html_().count(f"fill='{JARM_COLOR}'")
     assert green == int(reg.is_jarm[:, :, k].sum()) > 0
 
 

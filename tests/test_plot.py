@@ -1,6 +1,8 @@
 """The figures layer: each plot function returns a labelled Figure; the CLI writes the files."""
 
 import math
+import re
+from pathlib import Path
 
 import matplotlib
 import numpy as np
@@ -180,3 +182,186 @@ def test_every_first_flight_gets_its_frames():
     even = np.linspace(r.t[0], r.t[-1], MAX_FRAMES)
     first = r.flights[0]
     assert np.count_nonzero((even >= first.t_liftoff) & (even <= first.t_landing)) <= 2
+
+
+# --- every result's .plot(): ax= draws its main panel, fig= the full figure -----------------
+
+
+def _results() -> dict:
+    """One small result of every kind with a ``.plot()``."""
+    from test_analysis import _stored
+
+    body, slip_first = eccjump.Cylinder(*JARM_BODY), eccjump.Cylinder(*SLIP_FIRST_BODY)
+    chi, alpha = np.linspace(0.05, 0.9, 8), np.radians([10.0, 30.0, 50.0])
+    return {
+        "roll": eccjump.roll(*JARM, mu_s=1.0),
+        "motion": eccjump.simulate(slip_first, math.radians(30), mu_s=1.0, t_max=9),
+        "jarm": eccjump.jarm(np.radians(np.linspace(20, 50, 12)), *JARM_BODY, 1.0),
+        "region": eccjump.region(
+            mu_s=1.0, alpha=np.radians(np.linspace(1, 60, 8)), chi=chi, km_frac=[0.05, 0.2]
+        ),
+        "motion_map": eccjump.motion_map(alpha, [0.2, 0.6], [0.1, 0.5], 1.0),
+        "start_map": eccjump.start_map(1.0, [0.0, 4.7], [0.0, 1.0], grid=3),
+        "uncertainty": eccjump.uncertainty(body, JARM[1], 1.0, sd={"mu_s": 0.05}, n=64),
+        "design": eccjump.design((math.radians(10), math.radians(40)), 0.6, 0.1, grid=8),
+        "analysis": _stored("jarm_240fps")[1],
+    }
+
+
+@pytest.fixture(scope="module")
+def results() -> dict:
+    return _results()
+
+
+KINDS = ("roll", "motion", "jarm", "region", "motion_map", "start_map", "uncertainty",
+         "design", "analysis")  # fmt: skip
+
+
+def test_every_result_kind_is_plotted_through_the_one_table(results):
+    assert set(KINDS) == set(results)
+    assert {type(r) for r in results.values()} <= set(plot.compose.PLOTS)
+    assert len(plot.compose.PLOTS) == len(KINDS)
+
+
+@pytest.mark.parametrize("kind", KINDS)
+def test_plot_ax_draws_the_main_panel_into_the_given_axes_and_returns_it(results, kind):
+    fig, (left, right) = plt.subplots(1, 2)
+    right.plot([0, 1], [0, 1])
+    assert results[kind].plot(ax=left) is left
+    assert left.has_data() and left.get_xlabel() and left.get_ylabel()
+    assert right.get_xlabel() == "" and len(right.get_lines()) == 1  # the other is untouched
+    assert fig.axes == [left, right]  # no axes added
+
+
+@pytest.mark.parametrize("kind", KINDS)
+def test_plot_fig_draws_the_full_figure_into_the_given_subfigure(results, kind):
+    root = plt.figure()
+    one, other = root.subfigures(1, 2)
+    assert results[kind].plot(fig=one) is root
+    assert one.axes and not other.axes
+    assert all(a.get_figure() is one for a in root.axes)
+    assert isinstance(results[kind].plot(), matplotlib.figure.Figure)
+
+
+def test_two_results_compose_into_one_figure(results):
+    fig, (a, b) = plt.subplots(1, 2, figsize=(9, 3.5))
+    results["roll"].plot(ax=a)
+    results["region"].plot(ax=b, km_frac=0.2)
+    assert fig.axes == [a, b]
+    assert "0.2" in b.get_title() and a.get_lines()[0].get_gid() == "theta"
+
+
+@pytest.mark.parametrize(
+    ("kwargs", "error", "name"),
+    [
+        ({"ax": "axes"}, TypeError, "ax"),
+        ({"ax": 3}, TypeError, "ax"),
+        ({"fig": []}, TypeError, "fig"),
+        ({"fig": "fig"}, TypeError, "fig"),
+    ],
+)
+def test_bad_ax_or_fig_names_the_parameter(results, kwargs, error, name):
+    with pytest.raises(error, match=rf"^{name} must be"):
+        results["roll"].plot(**kwargs)
+
+
+def test_ax_and_fig_together_and_a_used_fig_are_refused(results):
+    fig, ax = plt.subplots()
+    with pytest.raises(TypeError, match=r"ax=.*fig=.*not both"):
+        results["jarm"].plot(ax=ax, fig=plt.figure())
+    with pytest.raises(ValueError, match=r"^fig must be empty \(it holds 1 axes\)"):
+        results["jarm"].plot(fig=fig)
+    assert fig.axes == [ax]
+
+
+def test_jarm_plot_panels_are_the_results_fields(results):
+    r = results["jarm"]
+    fig = r.plot(x=np.degrees(np.linspace(20, 50, 12)), xlabel="alpha [deg]", mu_s=1.0)
+    lines = {ln.get_gid(): ln for ax in fig.axes for ln in ax.get_lines() if ln.get_gid()}
+    jarm = np.asarray(r.is_jarm)
+    np.testing.assert_array_equal(lines["theta_J"].get_ydata(), np.degrees(r.theta_J[jarm]))
+    for name in ("Fx_J", "Fy_J", "max_ratio", "min_Fy"):
+        np.testing.assert_array_equal(lines[name].get_ydata(), getattr(r, name))
+    assert fig.axes[2].get_xlabel() == "alpha [deg]"
+    with pytest.raises(ValueError, match=r"^x must be .* shape \(12,\)"):
+        r.plot(x=[1.0, 2.0])
+
+
+def test_region_panel_draws_the_slice_asked_for(results):
+    reg = results["region"]
+    _, ax = plt.subplots()
+    reg.plot(ax=ax, km_frac=0.06)  # nearest on the grid: 0.05
+    mesh = ax.collections[0].get_array()
+    cat = np.where(reg.result.is_jarm[:, :, 0], reg.result.n[:, :, 0], np.nan)
+    np.testing.assert_array_equal(np.ma.filled(mesh, np.nan).reshape(cat.shape), cat)
+    with pytest.raises(ValueError, match=r"^km_frac"):
+        reg.plot(ax=ax, km_frac=math.nan)
+
+
+def test_design_plot_marks_the_design_and_its_margins(results):
+    d = results["design"]
+    _, ax = plt.subplots()
+    d.plot(ax=ax, resolution=20)
+    star = next(ln for ln in ax.get_lines() if ln.get_gid() == "design")
+    assert star.get_xdata()[0] == d.body.chi
+    assert star.get_ydata()[0] == pytest.approx(math.degrees(d.alpha))
+    labels = " ".join(t.get_text() for t in ax.get_legend().get_texts())
+    assert "margin" in labels and "rod" in labels
+    with pytest.raises(ValueError, match=r"^resolution"):
+        d.plot(ax=ax, resolution=10**6)
+
+
+# --- one mode palette: figures, notebook views and the explorer ------------------------------
+
+
+def test_one_mode_palette_in_figures_reprs_and_the_explorer(results):
+    """The palette is defined once (eccjump._base.palette); the figures, the notebook views
+    and the explorer's page all draw the modes in its colours."""
+    from matplotlib.colors import to_hex
+
+    from eccjump._base import html, palette
+    from eccjump.explorer import api
+
+    colors = palette.MODE_COLORS
+    assert plot.MODE_COLORS is html.MODE_COLORS is colors
+    assert set(colors) == {"ROLL", "SLIP", "FLIGHT"} and len(set(colors.values())) == 3
+    # the figure's bands
+    run = results["motion"]
+    _, ax = plt.subplots()
+    run.plot(ax=ax)
+    bands = {to_hex(p.get_facecolor(), keep_alpha=False) for p in ax.patches}
+    assert bands == {c.lower() for c in colors.values()}  # this run rolls, slips and flies
+    # the notebook view's timeline
+    svg = run._repr_html_()
+    assert all(f"fill='{c}'" in svg for c in colors.values())
+    # the explorer: the page takes its colours from the server, and has none of its own
+    status, spec = api.handle("controls", {})
+    assert status == 200 and spec["mode_colors"] == colors
+    script = (Path(api.__file__).parent / "static" / "explorer.js").read_text()
+    assert re.search(r"const MODE_COLORS = \{\};", script)
+    assert "Object.assign(MODE_COLORS, body.mode_colors)" in script
+    assert not re.search(r"MODE_COLORS\s*=\s*\{[^}]*#", script)
+
+
+def test_the_mode_palette_is_told_apart_by_colour_blind_readers():
+    """Okabe and Ito's colours: under simulated protanopia, deuteranopia and tritanopia
+    (Machado et al. 2009, severity 1, on linear RGB) every pair stays apart."""
+    from matplotlib.colors import to_rgb
+
+    from eccjump._base.palette import MODE_COLORS
+
+    machado = {
+        "protan": [[0.152286, 1.052583, -0.204868], [0.114503, 0.786281, 0.099216],
+                   [-0.003882, -0.048116, 1.051998]],
+        "deutan": [[0.367322, 0.860646, -0.227968], [0.280085, 0.672501, 0.047413],
+                   [-0.011820, 0.042940, 0.968881]],
+        "tritan": [[1.255528, -0.076749, -0.178779], [-0.078411, 0.930809, 0.147602],
+                   [0.004733, 0.691367, 0.303900]],
+    }  # fmt: skip
+    lin = {m: np.asarray(to_rgb(c)) ** 2.2 for m, c in MODE_COLORS.items()}
+    for matrix in machado.values():
+        seen = {m: np.clip(np.asarray(matrix) @ v, 0, 1) ** (1 / 2.2) for m, v in lin.items()}
+        names = list(seen)
+        for i, a in enumerate(names):
+            for b in names[i + 1 :]:
+                assert np.linalg.norm(seen[a] - seen[b]) > 0.2, (a, b)  # 0.12 for #0072B2

@@ -321,7 +321,8 @@ def test_one_form_of_a_message_naming_a_file():
 
 def test_one_helper_imports_the_optional_dependencies(monkeypatch):
     """Each optional import fails with the pip command of its extra, through one helper in
-    the base (the analysis figure took matplotlib through the figures' layer above it)."""
+    the base (the analysis figure took matplotlib through the figures' layer above it; now
+    it and the figures take it from the base's canvas, with one message)."""
     from eccjump.maps import dask, layout
     from eccjump.plot import _common
     from eccjump.studies.experiment import figure
@@ -332,7 +333,7 @@ def test_one_helper_imports_the_optional_dependencies(monkeypatch):
         (_common._plt, "matplotlib.pyplot is needed for eccjump.plot: pip install eccjump[plot]"),
         (dask.require_dask, "dask.array is needed for chunks=: pip install eccjump[dask]"),
         (lambda: layout.require("zarr"), "zarr is needed for labelled results"),
-        (lambda: figure.analysis_figure(None), "needed for the analysis figure"),
+        (lambda: figure.analysis_figure(None), "matplotlib.pyplot is needed for eccjump.plot"),
     ):
         with pytest.raises(ImportError, match=re.escape(message)):
             call()

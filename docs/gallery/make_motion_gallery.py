@@ -36,6 +36,18 @@ def window(result) -> float:
     return t_end
 
 
+def small_png(path: Path, colors: int = 128) -> None:
+    """Re-save a figure as a palette PNG of ``colors`` colours (a third of its size: the
+    gallery is committed, each picture under 100 kB)."""
+    from PIL import Image
+
+    with Image.open(path) as im:
+        rgb = im.convert("RGB")
+    rgb.quantize(colors, method=Image.Quantize.MEDIANCUT, dither=Image.Dither.NONE).save(
+        path, optimize=True
+    )
+
+
 def main(outdir: str | Path = HERE) -> list[Path]:
     from eccjump.motion import simulate
 
@@ -49,6 +61,7 @@ def main(outdir: str | Path = HERE) -> list[Path]:
     fig = plot.motion(res, body=body, alpha=alpha)
     fig.savefig(png, dpi=110)
     plt.close(fig)
+    small_png(png)
     plot.animate_motion(res, gif, body=body, alpha=alpha)
     for tr in res.transitions:
         print(f"  t = {tr.t:10.6f}  {tr.from_mode or '-':>6} -> {tr.to_mode:<6}  {tr.reason}")

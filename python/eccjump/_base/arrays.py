@@ -62,7 +62,7 @@ def km_on_a_map() -> TypeError:
 
 
 def refuses_km(fn: Callable[P, T]) -> Callable[P, T]:
-    """Decorator of the maps over (alpha, chi, km_frac): ``km=`` in any call form (alone,
+    """Decorator of the maps over (α, χ, ``km_frac``): ``km=`` in any call form (alone,
     with ``km_frac``, after positional axes) raises :func:`km_on_a_map`, before Python
     would report a missing ``km_frac`` instead."""
 
@@ -77,7 +77,7 @@ def refuses_km(fn: Callable[P, T]) -> Callable[P, T]:
 
 def fraction_axis(km_frac: object) -> object:
     """The grid axis of the shell mass fraction of a map: ``km_frac``, the share
-    k_m/(1 - chi) of its largest value (``km`` is refused by :func:`refuses_km`)."""
+    k_m/(1 − χ) of its largest value (``km`` is refused by :func:`refuses_km`)."""
     if km_frac is None:
         raise TypeError("km_frac is required: the axis of the fraction k_m/(1 - chi) in [0, 1]")
     return km_frac
@@ -88,7 +88,7 @@ MAX_TURN = U32_MAX
 
 
 def turn(n: object, name: str = "n") -> int | None:
-    """Validate a turn number: None (automatic) or an integer >= 1 (TypeError for what is not
+    """Validate a turn number: None (automatic) or an integer ≥ 1 (TypeError for what is not
     an integer, bools and floats included)."""
     if n is None:
         return None
@@ -97,7 +97,7 @@ def turn(n: object, name: str = "n") -> int | None:
 
 def turns(n: object) -> int | NDArray[np.int64] | None:
     """Validate a turn argument that may vary per point: None (automatic; only as a scalar),
-    an integer >= 1, or an array-like of integers >= 1 (returned as an int64 array)."""
+    an integer ≥ 1, or an array-like of integers ≥ 1 (returned as an int64 array)."""
     if n is None or isinstance(n, int | np.integer):  # bool included: integer() rejects it
         return turn(n)
     if isinstance(n, np.ndarray) and n.ndim == 0 and not isinstance(n, np.ma.MaskedArray):

@@ -3,11 +3,11 @@
 Its motion depends only on two numbers (paper, Sec. 2.4):
 
 * ``chi`` = d/R in [0, 1], the offset of the centre of mass (CM) from the geometric centre C;
-* ``km`` = m_C/M in [0, 1 - chi], the mass fraction of the uniform thin shell of the paper's
+* ``km`` = m_C/M in [0, 1 - χ], the mass fraction of the uniform thin shell of the paper's
   shell-plus-line-mass model.
 
 Derived, in units of M R²: ``Ic`` = km + chi²/(1 - km) (about C), ``Icm`` = Ic - chi² (about the
-CM), and the paper's ``gamma`` = (Ic + 1 + 2 chi)/(4 pi chi) (Eq. dega2; infinite for chi = 0).
+CM), and the paper's ``gamma`` = (Ic + 1 + 2 χ)/(4π χ) (Eq. dega2; infinite for χ = 0).
 Validation is done by the Rust core, so Python and Rust agree on every boundary.
 """
 
@@ -37,7 +37,7 @@ class Cylinder:
         (dimensionless).
     km : float
         The shell mass fraction m_C/M of the paper's shell-plus-line-mass model, in
-        [0, 1 - chi] (dimensionless).
+        [0, 1 - χ] (dimensionless).
 
     Attributes
     ----------
@@ -50,7 +50,7 @@ class Cylinder:
     Icm : float
         Moment of inertia about the centre of mass, Ic - chi² [M R²].
     gamma : float
-        The paper's gamma = (Ic + 1 + 2 chi)/(4 pi chi) (Eq. dega2); inf for chi = 0.
+        The paper's γ = (Ic + 1 + 2 χ)/(4π χ) (Eq. dega2); inf for χ = 0.
 
     Raises
     ------
@@ -134,7 +134,7 @@ class Cylinder:
         Returns
         -------
         Cylinder
-            chi = d/R and the km of the shell-plus-line-mass body with I_C/(M R²).
+            χ = d/R and the km of the shell-plus-line-mass body with I_C/(M R²).
 
         Raises
         ------
@@ -159,14 +159,14 @@ class Cylinder:
     def from_shell_and_line(cls, m_C: float, m_P: float, R: float, d: float) -> Cylinder:
         """The paper's model: a uniform thin shell of mass ``m_C`` and radius ``R`` plus a line
         mass ``m_P`` parallel to the axis, placed so that the centre of mass is at distance
-        ``d`` from the axis (the line then sits at d/(1 - km) <= R from it).
+        ``d`` from the axis (the line then sits at d/(1 - km) ≤ R from it).
 
         Parameters
         ----------
         m_C : float
-            Mass of the shell [kg], >= 0.
+            Mass of the shell [kg], ≥ 0.
         m_P : float
-            Mass of the line (a rod) [kg], >= 0; m_C + m_P > 0.
+            Mass of the line (a rod) [kg], ≥ 0; m_C + m_P > 0.
         R : float
             Radius of the shell [m], > 0.
         d : float
@@ -175,7 +175,7 @@ class Cylinder:
         Returns
         -------
         Cylinder
-            chi = d/R, km = m_C/(m_C + m_P).
+            χ = d/R, km = m_C/(m_C + m_P).
 
         Raises
         ------

@@ -122,7 +122,7 @@ def jarm_points(
     n: NDArray[np.int64] | None = None,
 ) -> Raw:
     """Classify equal-length contiguous 1-D float64 arrays of points (``mu_s`` may have
-    length 1), with a turn per point ``n`` (validated, >= 1, same length) or ``opts.n`` for
+    length 1), with a turn per point ``n`` (validated, ≥ 1, same length) or ``opts.n`` for
     all: one flat array per field."""
     turns = np.ascontiguousarray([opts.n or 0] if n is None else n, dtype=np.uint32)
     return _core.jarm_points(alpha, chi, km, mu_s, turns, options=_bridge_options(opts))
@@ -135,7 +135,7 @@ def jarm_grid(
     mu_s: float,
     opts: CallOptions,
 ) -> Raw:
-    """Classify the grid alpha x chi x frac (k_m = frac (1 - chi)) on the turn ``opts.n``:
+    """Classify the grid α × χ × frac (k_m = frac (1 - χ)) on the turn ``opts.n``:
     one array per field, flat in C order."""
     mu_s = real("mu_s", mu_s)
     return _core.jarm_grid(alpha, chi, frac, mu_s, n=opts.n or 0, options=_bridge_options(opts))

@@ -8,7 +8,7 @@ integer), masked arrays, object arrays of non-numbers and ragged lists; :func:`r
 an array of shape (1,) as well (a scalar is due). Python ints and floats, numpy integer and
 floating scalars and arrays of real dtype are accepted; arrays are returned as native,
 contiguous, aligned float64 (big-endian, strided, read-only, 0-d and empty arrays all work).
-Messages are short (<= :data:`MAX_MESSAGE` characters): numbers are shown with :func:`short`,
+Messages are short (≤ :data:`MAX_MESSAGE` characters): numbers are shown with :func:`short`,
 paths with :func:`shown`, and :func:`file_error` is the one form of a message naming a file.
 """
 

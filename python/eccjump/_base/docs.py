@@ -22,21 +22,21 @@ ENTRIES: dict[str, str] = {
     # -- the point: ramp and body ------------------------------------------------------------
     "alpha": """\
 alpha : array_like of float
-    Ramp angle [rad], in [0, pi/2] (``math.radians`` for degrees).""",
+    Ramp angle [rad], in [0, π/2] (``math.radians`` for degrees).""",
     "alpha_points": """\
 alpha : array_like of float
-    Ramp angle [rad], in [0, pi/2] (``math.radians`` for degrees). A scalar outside is a
-    ValueError; in an array, a point outside is invalid, and values in (pi/2, 90] (degrees,
+    Ramp angle [rad], in [0, π/2] (``math.radians`` for degrees). A scalar outside is a
+    ValueError; in an array, a point outside is invalid, and values in (π/2, 90] (degrees,
     by the look of them) give one UserWarning per call.""",
     "chi": """\
 chi : array_like of float
     The body's d/R, in [0, 1].""",
     "km": """\
 km : array_like of float
-    The body's shell mass fraction k_m, in [0, 1 - chi].""",
+    The body's shell mass fraction k_m, in [0, 1 - χ].""",
     "body": """\
 body : Cylinder
-    The body (chi, km).""",
+    The body (χ, km).""",
     # -- angles along the rolling path -------------------------------------------------------
     "theta": """\
 theta : array_like of float
@@ -53,14 +53,14 @@ mu_s : array_like of float
     Static friction coefficient, in [0, inf).""",
     "n_turn": """\
 n : int, default 1
-    The turn, >= 1 (not None: these formulas are for one given turn).""",
+    The turn, ≥ 1 (not None: these formulas are for one given turn).""",
     "n_first": """\
 n : int or None, default None
     The turn on which the jump must happen (1 ... 2**32 - 1), or None for the first jump
     whatever its turn.""",
     "rule": """\
 rule : {"paper", "normal_force"}, default "paper"
-    Lift-off rule: the paper's condition chi theta'^2 cos theta = cos alpha, or Fy = 0.""",
+    Lift-off rule: the paper's condition χ θ̇² cos θ = cos α, or Fy = 0.""",
     "rule_short": """\
 rule : {"paper", "normal_force"}, default "paper"
     Lift-off rule.""",
@@ -70,17 +70,17 @@ rule : {"paper", "normal_force"}, default "paper"
     # -- the start ---------------------------------------------------------------------------
     "theta0": """\
 theta0 : float, default 0.0
-    Initial angle [rad], |theta0| <= 2 pi 1e6.""",
+    Initial angle [rad], |theta0| ≤ 2π 1e6.""",
     "theta0_modulo": """\
 theta0 : float, default 0.0
-    Initial angle [rad], |theta0| <= 2 pi 1e6, taken modulo 2 pi.""",
+    Initial angle [rad], |theta0| ≤ 2π 1e6, taken modulo 2π.""",
     "omega0": """\
 omega0 : float, default 0.0
-    Initial angular velocity [sqrt(g/R) rad], in [0, 1e6].""",
+    Initial angular velocity [√(g/R) rad], in [0, 1e6].""",
     # -- the work ----------------------------------------------------------------------------
     "grid_starts": """\
 grid : int, default 40
-    Points per axis of the midpoint grid of (alpha, chi, km_frac), 2 ... 128.""",
+    Points per axis of the midpoint grid of (α, χ, km_frac), 2 ... 128.""",
     "n_threads": """\
 n_threads : int, default 0
     Threads, 0 (one per core) ... 256; results are identical for any value.""",

@@ -14,10 +14,7 @@ from typing import Any
 import numpy as np
 from numpy.typing import NDArray
 
-#: The colour of each mode, in every picture of a motion (``eccjump.plot`` uses them too).
-MODE_COLORS = {"ROLL": "#2ca02c", "SLIP": "#ff7f0e", "FLIGHT": "#1f77b4"}
-#: JARM and not JARM in map slices.
-JARM_COLOR, OTHER_COLOR = "#2ca02c", "#e8e8e8"
+from eccjump._base.palette import JARM_COLOR, MODE_COLORS, OTHER_COLOR
 
 #: The most cells a map slice shows along a side (its SVG stays under ~250 kB).
 MAX_CELLS = 60
@@ -60,7 +57,7 @@ def card(title: str, rows: Sequence[Row], picture: str = "") -> str:
 
 
 def timeline(t: NDArray[np.float64], mode: NDArray[Any], modes: Sequence[str]) -> str:
-    """The modes of a run as coloured bars over time, with a legend (SVG, 400 x 36)."""
+    """The modes of a run as coloured bars over time, with a legend (SVG, 400 × 36)."""
     if t.size < 2 or not t[-1] > t[0]:
         return ""
     width, scale = 400.0, 400.0 / float(t[-1] - t[0])
@@ -85,7 +82,7 @@ def timeline(t: NDArray[np.float64], mode: NDArray[Any], modes: Sequence[str]) -
 
 
 def jarm_slice(is_jarm: NDArray[np.bool_], caption: str) -> str:
-    """A 2-D boolean slice (rows: alpha, bottom to top; columns: chi) as an SVG of cells,
+    """A 2-D boolean slice (rows: α, bottom to top; columns: χ) as an SVG of cells,
     at most :data:`MAX_CELLS` a side (a larger slice is shown at every k-th point)."""
     step = max(1, math.ceil(max(is_jarm.shape) / MAX_CELLS))
     is_jarm = is_jarm[::step, ::step]
@@ -107,8 +104,8 @@ def jarm_slice(is_jarm: NDArray[np.bool_], caption: str) -> str:
 
 
 def best_slice(is_jarm: NDArray[np.bool_]) -> tuple[int, NDArray[np.bool_]]:
-    """The index along the last axis with the most JARM points of an (alpha, chi, k) map, and
-    that (alpha, chi) slice."""
+    """The index along the last axis with the most JARM points of an (α, χ, k) map, and
+    that (α, χ) slice."""
     k = int(np.argmax(is_jarm.sum(axis=(0, 1)))) if is_jarm.size else 0
     return k, is_jarm[:, :, k]
 

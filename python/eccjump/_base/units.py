@@ -1,12 +1,12 @@
 """Units: the core works in g = R = M = 1; :class:`Units` converts to SI.
 
-The equations of motion are invariant under scaling (paper, Sec. 2.4): with the same chi and
-km, angles are unchanged, lengths scale with R, times with sqrt(R/g), angular velocities with
-sqrt(g/R), angular accelerations with g/R, speeds with sqrt(g R), forces with M g and
+The equations of motion are invariant under scaling (paper, Sec. 2.4): with the same χ and
+km, angles are unchanged, lengths scale with R, times with √(R/g), angular velocities with
+√(g/R), angular accelerations with g/R, speeds with √(g R), forces with M g and
 energies with M g R.
 
 Angles are in radians everywhere in the Python API (degrees on the command line). A ramp
-angle lies in [0, pi/2]; :func:`ramp_angle` and :func:`ramp_angles` are the one guard of
+angle lies in [0, π/2]; :func:`ramp_angle` and :func:`ramp_angles` are the one guard of
 every entry point that takes one, so that a value in degrees is never silent: a scalar out
 of the range is a ValueError that says radians and ``math.radians``, and an array (where a
 point out of the range is an invalid point, not an error) with values that look like degrees
@@ -84,7 +84,7 @@ class Units:
 
     @property
     def time(self) -> float:
-        """Seconds per dimensionless time unit, sqrt(R/g)."""
+        """Seconds per dimensionless time unit, √(R/g)."""
         return math.sqrt(self.R / self.g)
 
     @property
@@ -94,7 +94,7 @@ class Units:
 
     @property
     def rate(self) -> float:
-        """rad/s per dimensionless angular velocity, sqrt(g/R)."""
+        """rad/s per dimensionless angular velocity, √(g/R)."""
         return 1.0 / self.time
 
     @property
@@ -126,7 +126,7 @@ def ramp_error(name: str, value: object) -> ValueError:
 
 
 def ramp_angle(name: str, value: object) -> float:
-    """A scalar ramp angle [rad] in [0, pi/2] as a float; ValueError (:func:`ramp_error`)
+    """A scalar ramp angle [rad] in [0, π/2] as a float; ValueError (:func:`ramp_error`)
     outside it, NaN included: a ramp of 40 is 40 degrees meant, not 40 rad."""
     x = real(name, value)
     if not RAMP_RANGE[0] <= x <= RAMP_RANGE[1]:
@@ -138,7 +138,7 @@ def ramp_angles(name: str, value: object) -> NDArray[np.float64]:
     """Ramp angles [rad] given as a number or an array, as a float64 array of their shape:
     a scalar as :func:`ramp_angle`; an array as it is (a value out of the range makes its
     point invalid), with one :class:`AngleUnitWarning` when some values lie in
-    (pi/2, 90]: outside the range in radians, inside it in degrees."""
+    (π/2, 90]: outside the range in radians, inside it in degrees."""
     a = real_array(name, value)
     if a.ndim == 0:
         ramp_angle(name, a)

@@ -1,5 +1,5 @@
-"""JARM boundaries found by bisection, without a dense grid: the alpha-intervals of the
-paper's Figure 4 surfaces for given bodies, and the smallest mu_s that gives a JARM."""
+"""JARM boundaries found by bisection, without a dense grid: the α-intervals of the
+paper's Figure 4 surfaces for given bodies, and the smallest μ_s that gives a JARM."""
 
 from __future__ import annotations
 
@@ -34,10 +34,10 @@ def alpha_intervals(
     n_scan: int = 180,
     n_threads: int = 0,
 ) -> list[list[tuple[float, float]]]:
-    """The intervals of ramp angles that give a JARM, for each body (chi, km).
+    """The intervals of ramp angles that give a JARM, for each body (χ, km).
 
-    A scan of ``n_scan`` angles over (0, pi/2] finds the intervals; each end is then located
-    to 1e-12 rad by bisection. An interval narrower than pi/(2 n_scan) can be missed
+    A scan of ``n_scan`` angles over (0, π/2] finds the intervals; each end is then located
+    to 1e-12 rad by bisection. An interval narrower than π/(2 n_scan) can be missed
     (:func:`alpha_interval_around` finds it from a seed).
 
     Parameters
@@ -45,7 +45,7 @@ def alpha_intervals(
     chi : array_like of float
         The bodies' d/R, each in [0, 1] (broadcast with ``km``, then flattened).
     km : array_like of float
-        The bodies' shell mass fraction k_m, each in [0, 1 - chi].
+        The bodies' shell mass fraction k_m, each in [0, 1 - χ].
     %(mu_s)s
     %(n_first)s
     %(rule)s
@@ -88,10 +88,10 @@ def mu_s_min_path(
     rule: Rule = "paper",
     n_threads: int = 0,
 ) -> NDArray[np.float64]:
-    """The smallest static friction coefficient that gives a JARM at each (alpha, chi, km).
+    """The smallest static friction coefficient that gives a JARM at each (α, χ, km).
 
     Located by bisection to a relative 1e-12. Under the paper's rule it equals the largest
-    friction ratio |Fx|/Fy on the rolling path up to the jump, including mu(theta_J).
+    friction ratio |Fx|/Fy on the rolling path up to the jump, including μ(θ_J).
 
     Parameters
     ----------
@@ -105,7 +105,7 @@ def mu_s_min_path(
     Returns
     -------
     numpy.ndarray of float64
-        mu_s,min of each point, of the broadcast shape: inf where no mu_s up to 1e6 gives
+        μ_s,min of each point, of the broadcast shape: inf where no μ_s up to 1e6 gives
         a JARM, NaN for an invalid point.
 
     Raises
@@ -137,7 +137,7 @@ def alpha_interval_around(
     step: float = 1e-3,
     n_threads: int = 0,
 ) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
-    """The JARM alpha-interval that holds each seed angle, found by stepping out from it.
+    """The JARM α-interval that holds each seed angle, found by stepping out from it.
 
     From each seed the search steps outwards by ``step`` (doubling) until the point is no
     longer a JARM, then bisects each end to 1e-12 rad. It finds thin parts of a region that
@@ -146,7 +146,7 @@ def alpha_interval_around(
     Parameters
     ----------
     seed : array_like of float
-        A ramp angle [rad] in [0, pi/2] that gives a JARM for the body (broadcast with
+        A ramp angle [rad] in [0, π/2] that gives a JARM for the body (broadcast with
         ``chi`` and ``km``), guarded as ``alpha`` of :func:`jarm` (radians, not degrees).
     %(chi)s
     %(km)s
@@ -154,7 +154,7 @@ def alpha_interval_around(
     %(n_first)s
     %(rule)s
     step : float, default 1e-3
-        First step of the search [rad], in (0, pi/2].
+        First step of the search [rad], in (0, π/2].
     %(n_threads)s
 
     Returns

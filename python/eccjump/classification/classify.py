@@ -14,7 +14,7 @@ import warnings
 from collections.abc import Mapping
 from dataclasses import dataclass, field, replace
 from pathlib import Path
-from typing import TYPE_CHECKING, Any, ClassVar, Literal
+from typing import TYPE_CHECKING, Any, ClassVar, Literal, overload
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
@@ -71,7 +71,8 @@ from eccjump.maps.results import Result
 if TYPE_CHECKING:  # pragma: no cover
     import pandas
     import xarray as xr
-    from matplotlib.figure import Figure
+    from matplotlib.axes import Axes
+    from matplotlib.figure import Figure, FigureBase
 
 
 @dataclass(frozen=True, repr=False, eq=False)
@@ -85,7 +86,7 @@ class JarmResult(Result, kind="jarm_points"):
     ``reason`` holds codes of :class:`Reason`; the fields are described once, in
     :mod:`eccjump.classification.fields`.
     The ``d_*`` fields are the exact derivatives of ``theta_J``,
-    ``Fx_J``, ``Fy_J`` and ``mu_J = -Fx_J/Fy_J`` with respect to (alpha, chi, km), in a
+    ``Fx_J``, ``Fy_J`` and ``mu_J = -Fx_J/Fy_J`` with respect to (α, χ, km), in a
     trailing axis of length 3, made by ``derivatives=True`` (see :func:`jarm`).
     """
 
@@ -220,12 +221,30 @@ class JarmResult(Result, kind="jarm_points"):
     def _from_raw(raw: Mapping[str, NDArray], shape: tuple[int, ...]) -> JarmResult:
         return JarmResult(**{k: raw[k].reshape(shape) for k in FIELDS})
 
+    @overload
+    def plot(self, *, ax: Axes, **kwargs: Any) -> Axes: ...
+    @overload
+    def plot(self, *, ax: None = None, fig: FigureBase | None = None, **kwargs: Any) -> Figure: ...
+    def plot(
+        self, *, ax: Axes | None = None, fig: FigureBase | None = None, **kwargs: Any
+    ) -> Axes | Figure:
+        """θ_J, the forces at the jump and the path condition (the largest
+        |F_x|/F_y and the smallest F_y on the rolling path) over the points
+        (``eccjump.plot.jarm_points``; ``x=`` and ``xlabel=``: a coordinate of the points,
+        ``mu_s=``: its line). ``ax=``: only θ_J, drawn into this matplotlib Axes and
+        returned (``eccjump.plot.jarm_panel``), to compose figures; ``fig=``: the full figure
+        in this empty Figure or SubFigure. ``kwargs`` go to the function drawn. Needs
+        ``pip install eccjump[plot]``."""
+        from eccjump import plot  # figures: the layer on top of every result
+
+        return plot.draw(self, ax=ax, fig=fig, **kwargs)
+
     # Taking the result elsewhere (save and eccjump.load: eccjump.maps.results).
     def to_xarray(self) -> xr.Dataset:
         """The points as an ``xarray.Dataset`` (needs xarray; computed if lazy): one
         variable per field over ``point`` (``point_0``, ``point_1``, ... for more than one
         axis; none for one point) with ``units``, ``long_name`` and the reason codes as CF
-        flags, the derivative fields with a trailing ``wrt`` (alpha, chi, km)."""
+        flags, the derivative fields with a trailing ``wrt`` (``alpha``, ``chi``, ``km``)."""
         ds = results.points(self, {**self.fields(), **self.derivatives()}, JARM.var_attrs)
         if self.d_theta_J is None:
             return ds
@@ -277,7 +296,7 @@ def jarm(
     integrator: Integrator = "RK45",
     derivatives: bool = False,
 ) -> JarmResult:
-    """Classify points (alpha, chi, km, mu_s, n) as JARM or not, broadcasting the five inputs.
+    """Classify points (α, χ, km, μ_s, n) as JARM or not, broadcasting the five inputs.
 
     A point is a JARM (a jump after rolling motion) when the body, started at (theta0,
     omega0) in pure rolling, meets the lift-off rule before the friction cone is left or the
@@ -288,10 +307,10 @@ def jarm(
     %(alpha_points)s
     %(chi)s
     km : array_like of float
-        The body's shell mass fraction k_m itself, in [0, 1 - chi].
+        The body's shell mass fraction k_m itself, in [0, 1 - χ].
     %(mu_s_array)s
     n : int, array_like of int or None, default None
-        The turn on which the jump must happen: an integer >= 1 (at most 2**32 - 1) or an
+        The turn on which the jump must happen: an integer ≥ 1 (at most 2**32 - 1) or an
         array of them (broadcast with the other inputs), or None for the first jump whatever
         its turn (None only as a scalar). With first-jump semantics a point has at most one
         n, so the regions of different n never overlap.
@@ -299,7 +318,7 @@ def jarm(
         ``"closed_form"``: the paper's formulas with a rigorous path scan; ``"ode"``:
         integration with events, an independent route (~10x slower).
     rule : {"paper", "normal_force"}, default "paper"
-        Lift-off rule: the paper's condition chi theta'^2 cos theta = cos alpha, or the
+        Lift-off rule: the paper's condition χ θ̇² cos θ = cos α, or the
         classical Fy = 0.
     %(theta0)s
     %(omega0)s
@@ -327,16 +346,16 @@ def jarm(
         ``"RK45"`` for step-for-step parity with scipy.
     derivatives : bool, default False
         Also give the exact derivatives of ``theta_J``, ``Fx_J``, ``Fy_J`` and
-        ``mu_J = -Fx_J/Fy_J`` (:func:`eccjump.closed_form.mu` at theta_J) with respect to
-        (alpha, chi, km), chi and km independent, mu_s and the start fixed: the fields
+        ``mu_J = -Fx_J/Fy_J`` (:func:`eccjump.closed_form.mu` at θ_J) with respect to
+        (α, χ, km), χ and km independent, μ_s and the start fixed: the fields
         ``d_theta_J``, ``d_Fx_J``, ``d_Fy_J``, ``d_mu_J`` (the broadcast shape plus a
-        trailing axis of length 3) and ``d_singular``. NaN where theta_J (for the forces:
-        ``Fx_J``) is NaN. ``d_singular`` is True where theta_J is not differentiable (a
+        trailing axis of length 3) and ``d_singular``. NaN where θ_J (for the forces:
+        ``Fx_J``) is NaN. ``d_singular`` is True where θ_J is not differentiable (a
         double root of the lift-off function, or under ``rule="normal_force"`` a tie
         Fx = Fy = 0); its derivatives are NaN there. At km = 0 the km column is NaN (one-sided:
         km < 0 is no body). On the friction cone (``rule="normal_force"``, Fy_J > 0) ``d_mu_J``
         is exactly 0. By implicit differentiation from the
-        classified theta_J (either method: the ODE route's carry its error in theta_J); the
+        classified θ_J (either method: the ODE route's carry its error in θ_J); the
         user guide's "JARM analysis", section "Derivatives". Without it nothing is computed.
 
     Returns
@@ -345,15 +364,15 @@ def jarm(
         Every field an array of the broadcast shape of the five inputs (0-d for scalars);
         the ``d_*`` fields None unless ``derivatives=True``.
         Invalid points get ``Reason.INVALID_PARAMS``, not an error (but a scalar
-        ``alpha`` out of [0, pi/2] is one: see ``alpha``).
+        ``alpha`` out of [0, π/2] is one: see ``alpha``).
 
     Raises
     ------
     ValueError
         For arguments that apply to the whole call (shapes that do not broadcast, rule,
         method, tolerances, max_turns, n_threads, integrator), a scalar ``alpha`` out of
-        [0, pi/2] (radians; degrees are a likely mistake) and for an ``n`` that is not
-        None or integers >= 1; the message names the parameter and its range.
+        [0, π/2] (radians; degrees are a likely mistake) and for an ``n`` that is not
+        None or integers ≥ 1; the message names the parameter and its range.
     %(type_error)s
     %(keyboard_interrupt)s
     MemoryError
@@ -380,7 +399,7 @@ def jarm(
     >>> bool(abs(ode.theta_J - r.theta_J[1]) < 1e-9)
     True
 
-    How the lift-off angle moves with (alpha, chi, km):
+    How the lift-off angle moves with (α, χ, km):
 
     >>> d = eccjump.jarm(np.radians(40), 0.15, 0.02, 1.0, derivatives=True)
     >>> print(np.round(d.d_theta_J, 4), bool(d.d_singular))
@@ -432,7 +451,7 @@ def _fits_in_memory(what: str, points: int, derivatives: bool, inputs: int) -> N
 
 @dataclass(frozen=True, repr=False, eq=False)
 class Region(Map, kind=JARM):
-    """A JARM map on the grid alpha x chi x km_frac, with k_m = km_frac (1 - chi).
+    """A JARM map on the grid α × χ × km_frac, with k_m = km_frac (1 - χ).
 
     Made by :func:`region`. As every :class:`~eccjump.Map`: ``coords``, ``fields``,
     ``shape``, ``fraction()`` and ``to_xarray()``; :func:`eccjump.maps.save` writes it.
@@ -444,9 +463,9 @@ class Region(Map, kind=JARM):
     chi : numpy.ndarray
         The bodies' d/R of the grid, 1-D.
     km_frac : numpy.ndarray
-        The shell mass fraction as the share k_m/(1 - chi) of its largest value, 1-D.
+        The shell mass fraction as the share k_m/(1 - χ) of its largest value, 1-D.
     result : JarmResult
-        The classification, each field of shape (len(alpha), len(chi), len(km_frac)).
+        The classification, each field of shape ``(len(alpha), len(chi), len(km_frac))``.
     mu_s : float
         Static friction coefficient of the whole map.
     n : int or None
@@ -458,7 +477,7 @@ class Region(Map, kind=JARM):
     theta0 : float
         Initial angle [rad].
     omega0 : float
-        Initial angular velocity [sqrt(g/R) rad].
+        Initial angular velocity [√(g/R) rad].
     attrs : dict
         How it was made: tolerances, integrator, max_turns, refine_extrema, stop_at_slip.
 
@@ -490,12 +509,12 @@ class Region(Map, kind=JARM):
 
     @property
     def km(self) -> NDArray[np.float64]:
-        """k_m on the (chi, km_frac) plane, shape (len(chi), len(km_frac))."""
+        """k_m on the (χ, km_frac) plane, shape ``(len(chi), len(km_frac))``."""
         return self.km_frac[None, :] * (1.0 - self.chi[:, None])
 
     @property
     def coords(self) -> dict[str, NDArray[np.float64]]:
-        """The grid's axes by dimension name: alpha [rad], chi, km_frac."""
+        """The grid's axes by dimension name: ``alpha`` [rad], ``chi``, ``km_frac``."""
         return {"alpha": self.alpha, "chi": self.chi, "km_frac": self.km_frac}
 
     @property
@@ -616,13 +635,22 @@ class Region(Map, kind=JARM):
         )
         return card("Region", rows, jarm_slice(cut, caption) if self.km_frac.size else "")
 
-    def plot(self, **kwargs: Any) -> Figure:
-        """The map in the (chi, alpha) plane, JARM points coloured by their turn, a few km_frac
-        slices (``eccjump.plot.region_map``; ``kwargs`` go to it). Needs ``pip install
-        eccjump[plot]``."""
+    @overload
+    def plot(self, *, ax: Axes, **kwargs: Any) -> Axes: ...
+    @overload
+    def plot(self, *, ax: None = None, fig: FigureBase | None = None, **kwargs: Any) -> Figure: ...
+    def plot(
+        self, *, ax: Axes | None = None, fig: FigureBase | None = None, **kwargs: Any
+    ) -> Axes | Figure:
+        """The map in the (χ, α) plane, JARM points coloured by their turn, a few
+        km_frac slices (``eccjump.plot.region_map``). ``ax=``: only one slice (``km_frac=``;
+        default: the one with the most JARM points), drawn into this matplotlib Axes and
+        returned (``eccjump.plot.region_panel``), to compose figures; ``fig=``: the full
+        figure in this empty Figure or SubFigure. ``kwargs`` go to the function drawn. Needs
+        ``pip install eccjump[plot]``."""
         from eccjump import plot  # figures: the layer on top of every result
 
-        return plot.region_map(self, **kwargs)
+        return plot.draw(self, ax=ax, fig=fig, **kwargs)
 
 
 def _plain(value: Any) -> Any:
@@ -722,19 +750,19 @@ def region(
     The grid first, then ``mu_s``, as every entry point takes the point or body first. Each
     point is classified as by :func:`jarm` (in Rust, with the GIL released), bit-identical
     for any ``n_threads``. The third axis is ``km_frac``, the shell mass fraction as the
-    share k_m/(1 - chi) in [0, 1] of its largest value, so that every (chi, km_frac) pair of
+    share k_m/(1 - χ) in [0, 1] of its largest value, so that every (χ, km_frac) pair of
     the grid is a valid body and the grid stays rectangular (``Region.km`` gives k_m
     itself).
 
     Parameters
     ----------
     alpha : array_like of float, 1-D
-        Ramp angles [rad], each in [0, pi/2] (``np.radians`` for degrees): one value out of
-        it is a ValueError; values in (pi/2, 90] (degrees?) give one UserWarning.
+        Ramp angles [rad], each in [0, π/2] (``np.radians`` for degrees): one value out of
+        it is a ValueError; values in (π/2, 90] (degrees?) give one UserWarning.
     chi : array_like of float, 1-D
         The bodies' d/R, each in [0, 1].
     km_frac : array_like of float, 1-D
-        k_m/(1 - chi), each in [0, 1].
+        k_m/(1 - χ), each in [0, 1].
     mu_s : float
         Static friction coefficient, in [0, inf), one value for the whole map
         (:func:`region_dataset` sweeps a sequence of them).
@@ -748,9 +776,9 @@ def region(
         The paper's formulas with a rigorous path scan, or integration with events.
     %(rule)s
     theta0 : float, default 0.0
-        Initial angle [rad], |theta0| <= 2 pi 1e6 (:func:`region_dataset` sweeps it).
+        Initial angle [rad], |theta0| ≤ 2π 1e6 (:func:`region_dataset` sweeps it).
     omega0 : float, default 0.0
-        Initial angular velocity [sqrt(g/R) rad], in [0, 1e6] (swept as ``theta0``).
+        Initial angular velocity [√(g/R) rad], in [0, 1e6] (swept as ``theta0``).
     rtol : float, default 1e-10
         Relative tolerance of ``method="ode"``, in [1e-15, 1e-3].
     atol : float, default 1e-12
@@ -770,18 +798,18 @@ def region(
         The Runge–Kutta pair of ``method="ode"``. For speed pick ``"Vern9"``; keep
         ``"RK45"`` for step-for-step parity with scipy.
     chunks : int, sequence of int, dict or None, default None
-        None computes now. Otherwise chunk sizes along (alpha, chi, km_frac) -- one int for
+        None computes now. Otherwise chunk sizes along (α, χ, km_frac) -- one int for
         all, a 3-sequence or a dict; -1 or None for a whole axis: the map is built lazily
         with dask (``pip install "eccjump[dask]"``), one Rust grid call per block,
         bit-identical to the unchunked map; call ``.compute()`` on the result. On a cluster
         use ``n_threads`` = threads per worker / concurrent tasks per worker.
     derivatives : bool, default False
-        Also give the exact derivatives of theta_J, Fx_J, Fy_J and mu_J with respect to
-        (alpha, chi, km) at every grid point, as :func:`jarm` does: the ``d_*`` fields of
+        Also give the exact derivatives of θ_J, Fx_J, Fy_J and μ_J with respect to
+        (α, χ, km) at every grid point, as :func:`jarm` does: the ``d_*`` fields of
         ``result`` (shape of the grid plus 3), variables with a trailing dimension ``wrt``
         in the labelled form and in the files of :func:`eccjump.maps.save` (not in the
         chunked files of ``eccjump map``). Not with ``chunks``. With respect to k_m itself,
-        not km_frac: dk_m = (1 - chi) dkm_frac at fixed chi.
+        not km_frac: dk_m = (1 - χ) dkm_frac at fixed χ.
     output : {"region"}, default "region"
         A :class:`Region`. ``"xarray"`` is deprecated (it works until the next release,
         with a DeprecationWarning): write ``region(...).to_xarray()``, or

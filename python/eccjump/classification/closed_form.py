@@ -7,8 +7,8 @@ user guide's "The paper's formulas" page).
 
 Examples
 --------
-The paper's JARM point (alpha = 40 deg, chi = 0.15, k_m = 0.02) and Fig. 3b body
-(chi = 0.5, k_m = 0.4):
+The paper's JARM point (α = 40 deg, χ = 0.15, k_m = 0.02) and Fig. 3b body
+(χ = 0.5, k_m = 0.4):
 
 >>> import numpy as np
 >>> from eccjump import closed_form
@@ -56,7 +56,7 @@ def _call(
 
 
 def _n(n: object) -> int:
-    """A turn n >= 1 (None is not allowed here: these formulas are for one given turn)."""
+    """A turn n ≥ 1 (None is not allowed here: these formulas are for one given turn)."""
     if n is None:
         raise TypeError("n must be an integer >= 1 here, not None")
     return turn(n)  # type: ignore[return-value]
@@ -64,10 +64,10 @@ def _n(n: object) -> int:
 
 @fill
 def jump_forces(alpha: ArrayLike, chi: ArrayLike, km: ArrayLike, theta_J: ArrayLike) -> tuple[F, F]:
-    """The friction and normal force at a jump point theta_J (Eqs. jump6, Njumpfn).
+    """The friction and normal force at a jump point θ_J (Eqs. jump6, Njumpfn).
 
-    With theta'_J^2 = cos(alpha)/(chi cos theta_J): valid only at a true jump point
-    (chi > 0, cos theta_J > 0).
+    With θ̇_J² = cos(α)/(χ cos θ_J): valid only at a true jump point
+    (χ > 0, cos θ_J > 0).
 
     Parameters
     ----------
@@ -101,9 +101,9 @@ def jump_forces(alpha: ArrayLike, chi: ArrayLike, km: ArrayLike, theta_J: ArrayL
 
 @fill
 def mu(chi: ArrayLike, km: ArrayLike, theta_J: ArrayLike) -> F:
-    """mu(chi, k_m, theta_J) of Eq. ineq2: the signed ratio -F_x,J/F_y,J.
+    """μ(χ, k_m, θ_J) of Eq. ineq2: the signed ratio -F_x,J/F_y,J.
 
-    It is the friction ratio |F_x,J|/F_y,J only where sin theta_J < 0 (the green window).
+    It is the friction ratio |F_x,J|/F_y,J only where sin θ_J < 0 (the green window).
 
     Parameters
     ----------
@@ -114,7 +114,7 @@ def mu(chi: ArrayLike, km: ArrayLike, theta_J: ArrayLike) -> F:
     Returns
     -------
     numpy.ndarray of float64
-        mu, dimensionless, of the broadcast shape.
+        μ, dimensionless, of the broadcast shape.
 
     Raises
     ------
@@ -132,7 +132,7 @@ def mu(chi: ArrayLike, km: ArrayLike, theta_J: ArrayLike) -> F:
 
 @fill
 def green_turn(alpha: ArrayLike, theta_J: ArrayLike) -> NDArray[np.int64]:
-    """The turn n with 2 pi n - alpha < theta_J < 2 pi n (where F_y,J > 0), or 0 if none.
+    """The turn n with 2π n - α < θ_J < 2π n (where F_y,J > 0), or 0 if none.
 
     Parameters
     ----------
@@ -142,7 +142,7 @@ def green_turn(alpha: ArrayLike, theta_J: ArrayLike) -> NDArray[np.int64]:
     Returns
     -------
     numpy.ndarray of int64
-        n >= 1, or 0, of the broadcast shape.
+        n ≥ 1, or 0, of the broadcast shape.
 
     Raises
     ------
@@ -162,14 +162,14 @@ def green_turn(alpha: ArrayLike, theta_J: ArrayLike) -> NDArray[np.int64]:
 def in_green_interval(
     alpha: ArrayLike, theta_J: ArrayLike, n: int | None = None
 ) -> NDArray[np.bool_]:
-    """The green-interval test 2 pi n - alpha < theta_J < 2 pi n.
+    """The green-interval test 2π n - α < θ_J < 2π n.
 
     Parameters
     ----------
     %(alpha)s
     %(theta_J)s
     n : int or None, default None
-        The turn, >= 1; None: any turn.
+        The turn, ≥ 1; None: any turn.
 
     Returns
     -------
@@ -203,9 +203,9 @@ def mu_s_min(chi: ArrayLike, km: ArrayLike) -> tuple[F, F]:
     Returns
     -------
     mu_s_min : numpy.ndarray of float64
-        The minimum of mu(chi, k_m, .) over the green window, dimensionless.
+        The minimum of μ(χ, k_m, .) over the green window, dimensionless.
     phi : numpy.ndarray of float64
-        The angle [rad] in (-pi/2, 0), relative to 2 pi n, where it is taken.
+        The angle [rad] in (-π/2, 0), relative to 2π n, where it is taken.
 
     Raises
     ------
@@ -227,9 +227,9 @@ def mu_s_min(chi: ArrayLike, km: ArrayLike) -> tuple[F, F]:
 
 @fill
 def theta_J_range(chi: ArrayLike, km: ArrayLike, mu_s: ArrayLike, n: int = 1) -> tuple[F, F]:
-    """The jump angles allowed by friction on turn n: (theta_J,min, theta_J,max).
+    """The jump angles allowed by friction on turn n: (θ_J,min, θ_J,max).
 
-    Where mu(chi, k_m, theta_J) <= mu_s inside the quarter turn before 2 pi n.
+    Where μ(χ, k_m, θ_J) ≤ μ_s inside the quarter turn before 2π n.
 
     Parameters
     ----------
@@ -241,7 +241,7 @@ def theta_J_range(chi: ArrayLike, km: ArrayLike, mu_s: ArrayLike, n: int = 1) ->
     Returns
     -------
     theta_J_min, theta_J_max : numpy.ndarray of float64
-        [rad], of the broadcast shape; NaN where mu_s < mu_s,min.
+        [rad], of the broadcast shape; NaN where μ_s < μ_s,min.
 
     Raises
     ------
@@ -263,7 +263,7 @@ def theta_J_range(chi: ArrayLike, km: ArrayLike, mu_s: ArrayLike, n: int = 1) ->
 
 @fill
 def alpha_min(chi: ArrayLike, km: ArrayLike, mu_s: ArrayLike, n: int = 1) -> F:
-    """alpha_min = 2 pi n - theta_J,max: no JARM on turn n on a gentler ramp.
+    """alpha_min = 2π n - θ_J,max: no JARM on turn n on a gentler ramp.
 
     Parameters
     ----------
@@ -275,7 +275,7 @@ def alpha_min(chi: ArrayLike, km: ArrayLike, mu_s: ArrayLike, n: int = 1) -> F:
     Returns
     -------
     numpy.ndarray of float64
-        alpha_min [rad], of the broadcast shape; NaN where mu_s < mu_s,min.
+        alpha_min [rad], of the broadcast shape; NaN where μ_s < μ_s,min.
 
     Raises
     ------
@@ -295,7 +295,7 @@ def alpha_min(chi: ArrayLike, km: ArrayLike, mu_s: ArrayLike, n: int = 1) -> F:
 
 @fill
 def gamma(chi: ArrayLike, km: ArrayLike) -> F:
-    """gamma = (I_C + 1 + 2 chi)/(4 pi chi) of Eq. dega2.
+    """γ = (I_C + 1 + 2 χ)/(4π χ) of Eq. dega2.
 
     Parameters
     ----------
@@ -305,7 +305,7 @@ def gamma(chi: ArrayLike, km: ArrayLike) -> F:
     Returns
     -------
     numpy.ndarray of float64
-        gamma, dimensionless; inf for chi = 0.
+        γ, dimensionless; inf for χ = 0.
 
     Raises
     ------
@@ -322,9 +322,9 @@ def gamma(chi: ArrayLike, km: ArrayLike) -> F:
 
 @fill
 def J(theta: ArrayLike, alpha: ArrayLike, chi: ArrayLike, km: ArrayLike) -> F:
-    """The paper's J(theta) (Eq. Jta) as printed, from rest at theta0 = 0.
+    """The paper's J(θ) (Eq. Jta) as printed, from rest at theta0 = 0.
 
-    It divides by cos(alpha): prefer :func:`liftoff_function`, equal to cos(alpha) J(theta).
+    It divides by cos(α): prefer :func:`liftoff_function`, equal to cos(α) J(θ).
 
     Parameters
     ----------
@@ -362,9 +362,9 @@ def liftoff_function(
     theta0: float = 0.0,
     omega0: float = 0.0,
 ) -> F:
-    """The lift-off function chi theta'^2 cos(theta) - cos(alpha) along pure rolling.
+    """The lift-off function χ θ̇² cos(θ) - cos(α) along pure rolling.
 
-    theta'^2 comes from conservation of energy from (theta0, omega0); its rising zero is the
+    θ̇² comes from conservation of energy from (theta0, omega0); its rising zero is the
     paper's lift-off.
 
     Parameters
@@ -399,7 +399,7 @@ def liftoff_function(
 
 @fill
 def J_brackets(alpha: ArrayLike, chi: ArrayLike, km: ArrayLike, n: int = 1) -> tuple[F, F]:
-    """(J(2 pi n - alpha), J(2 pi n)) of Eqs. JtaC1, JtaC2.
+    """(J(2π n - α), J(2π n)) of Eqs. JtaC1, JtaC2.
 
     A root of J on turn n is bracketed iff the first is < 0 and the second > 0.
 
@@ -435,7 +435,7 @@ def J_brackets(alpha: ArrayLike, chi: ArrayLike, km: ArrayLike, n: int = 1) -> t
 
 @fill
 def theta_nJ(alpha: ArrayLike, chi: ArrayLike, km: ArrayLike, n: int = 1) -> F:
-    """theta_{n,J}: the root of the lift-off function in [2 pi n - alpha, 2 pi n].
+    """theta_{n,J}: the root of the lift-off function in [2π n - α, 2π n].
 
     Found by bisection to the last bit. Whether the body gets there in pure rolling is what
     :func:`eccjump.jarm` decides.
@@ -478,10 +478,10 @@ def path_forces(
     theta0: float = 0.0,
     omega0: float = 0.0,
 ) -> tuple[F, F]:
-    """The contact forces (F_x(theta), F_y(theta)) along pure rolling from (theta0, omega0).
+    """The contact forces (F_x(θ), F_y(θ)) along pure rolling from (theta0, omega0).
 
-    The paper's Eqs. FxL2, FyL2 for the start from rest, computed from theta'^2 by energy
-    and theta'' by the rolling equation (not from the long printed forms).
+    The paper's Eqs. FxL2, FyL2 for the start from rest, computed from θ̇² by energy
+    and θ̈ by the rolling equation (not from the long printed forms).
 
     Parameters
     ----------

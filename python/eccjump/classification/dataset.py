@@ -10,7 +10,7 @@ reads a map file of either kind as its class.
 
 Dataset layout
 --------------
-dims ``alpha`` [rad], ``chi``, ``km_frac`` (= k_m/(1 - chi)), preceded by ``mu_s``,
+dims ``alpha`` [rad], ``chi``, ``km_frac`` (= k_m/(1 - χ)), preceded by ``mu_s``,
 ``theta0``, ``omega0`` for the ones swept; coordinates ``alpha_deg`` (on ``alpha``) and the
 2-D ``km`` (on ``chi`` x ``km_frac``); one data variable per field of
 :class:`~eccjump.JarmResult`. ``reason`` carries the CF ``flag_values``/``flag_meanings``;
@@ -62,27 +62,27 @@ def region_dataset(
     ``omega0`` when they are 1-D sequences.
 
     One Rust grid call per combination of the swept values; the swept parameters become
-    leading dimensions, in the order mu_s, theta0, omega0. Needs xarray
+    leading dimensions, in the order μ_s, theta0, omega0. Needs xarray
     (``pip install "eccjump[xarray]"``).
 
     Parameters
     ----------
     alpha : array_like of float, 1-D
-        Ramp angles [rad], each in [0, pi/2].
+        Ramp angles [rad], each in [0, π/2].
     chi : array_like of float, 1-D
         The bodies' d/R, each in [0, 1].
     km_frac : array_like of float, 1-D
-        k_m/(1 - chi), each in [0, 1].
+        k_m/(1 - χ), each in [0, 1].
     mu_s : float or array_like of float
         Static friction coefficient(s), each in [0, inf); a 1-D sequence is swept.
     n : int or None, default None
-        The turn on which the jump must happen (>= 1), or None for the first jump.
+        The turn on which the jump must happen (≥ 1), or None for the first jump.
     km : None
         Not accepted (the axis is ``km_frac``): passing it is a TypeError.
     theta0 : float or array_like of float, default 0.0
-        Initial angle(s) [rad], |theta0| <= 2 pi 1e6; a 1-D sequence is swept.
+        Initial angle(s) [rad], |theta0| ≤ 2π 1e6; a 1-D sequence is swept.
     omega0 : float or array_like of float, default 0.0
-        Initial angular velocity(ies) [sqrt(g/R) rad], in [0, 1e6]; a 1-D sequence is swept.
+        Initial angular velocity(ies) [√(g/R) rad], in [0, 1e6]; a 1-D sequence is swept.
     **kwargs
         The options of :func:`region`: ``method``, ``rule``, ``rtol``, ``atol``,
         ``max_turns``, ``refine_extrema``, ``stop_at_slip``, ``n_threads``, ``integrator``,
@@ -92,7 +92,7 @@ def region_dataset(
     Returns
     -------
     xarray.Dataset
-        Dimensions (swept parameters..., alpha, chi, km_frac), one variable per result
+        Dimensions (swept parameters..., α, χ, km_frac), one variable per result
         field with its units, the reasons as CF flags, the options as attributes.
 
     Raises

@@ -2,9 +2,9 @@
 :func:`eccjump.region`): computed by the core from the classified lift-off angles, after the
 classification call, so that a call without them does no extra work.
 
-The derivatives are exact (implicit differentiation of the function whose root theta_J is;
+The derivatives are exact (implicit differentiation of the function whose root θ_J is;
 the user guide's "JARM analysis" page, section "Derivatives", derives them), with respect to
-(alpha, chi, km) in a trailing axis of length 3 (:data:`eccjump.classification.fields.WRT`).
+(α, χ, km) in a trailing axis of length 3 (:data:`eccjump.classification.fields.WRT`).
 """
 
 from __future__ import annotations

@@ -160,10 +160,10 @@ class Reason(enum.IntEnum):
     NORMAL_FORCE_LOST : 3
         F_y reached 0 before lift-off.
     SLIP_BEFORE : 4
-        The rolling branch needs more than mu_s of friction before lift-off.
+        The rolling branch needs more than μ_s of friction before lift-off.
     SLIP_AT_JUMP : 5
         Friction fails on the final approach, and the paper's jump-point test (Eq. ineq2)
-        fails at theta_J.
+        fails at θ_J.
     ROCKS_BACK : 6
         The body stops and rolls back.
     TURN_LIMIT : 7

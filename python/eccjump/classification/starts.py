@@ -2,15 +2,15 @@
 start maximises it (the paper's open question; the user guide's "Initial conditions" page).
 
 The measure. For a start, the *JARM fraction* is the share of JARM points on the midpoint
-grid of the unit cube of (alpha / (pi/2), chi, km_frac), ``grid`` points per axis:
-alpha_i = (i + 1/2) pi / (2 grid), chi_j = (j + 1/2) / grid, km_frac_l = (l + 1/2) / grid,
-k_m = km_frac (1 - chi) -- uniform in alpha, chi and the k_m fraction, the grid of
+grid of the unit cube of (α / (π/2), χ, km_frac), ``grid`` points per axis:
+alpha_i = (i + 1/2) π / (2 grid), chi_j = (j + 1/2) / grid, km_frac_l = (l + 1/2) / grid,
+k_m = km_frac (1 - χ) -- uniform in α, χ and the k_m fraction, the grid of
 :func:`eccjump.region`. It converges to the volume fraction of the JARM set in that cube
 (midpoint rule) as the grid is refined.
 
-The start. The motion depends on theta0 only modulo 2 pi (the ramp is a translation
-symmetry), so every function here takes theta0 modulo 2 pi, into [0, 2 pi) (the turns of the
-classification count from there). omega0 >= 0 rolls down the ramp.
+The start. The motion depends on theta0 only modulo 2π (the ramp is a translation
+symmetry), so every function here takes theta0 modulo 2π, into [0, 2π) (the turns of the
+classification count from there). omega0 ≥ 0 rolls down the ramp.
 
 Everything runs in the Rust core (:func:`eccjump.region`); :func:`optimal_start` needs scipy
 (``pip install eccjump[analysis]``).
@@ -20,7 +20,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
-from typing import TYPE_CHECKING, Any
+from typing import TYPE_CHECKING, Any, overload
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
@@ -34,7 +34,8 @@ from eccjump.classification.classify import region
 from eccjump.classification.fields import Reason
 
 if TYPE_CHECKING:  # pragma: no cover
-    from matplotlib.figure import Figure
+    from matplotlib.axes import Axes
+    from matplotlib.figure import Figure, FigureBase
 
 TWO_PI = 2.0 * math.pi
 #: The largest grid (points per axis of the parameter cube): 128**3 = 2.1e6 points per start.
@@ -56,14 +57,14 @@ N_REASONS = len(Reason)
 
 
 def _midpoints(grid: int) -> tuple[NDArray[np.float64], NDArray[np.float64], NDArray[np.float64]]:
-    """The (alpha, chi, km_frac) axes of the midpoint grid with ``grid`` points per axis."""
+    """The (α, χ, km_frac) axes of the midpoint grid with ``grid`` points per axis."""
     g = integer("grid", grid, 2, GRID_MAX)
     u = (np.arange(g, dtype=np.float64) + 0.5) / g
     return u * (math.pi / 2), u.copy(), u.copy()
 
 
 def _theta0(theta0: object) -> float:
-    """``theta0`` [rad] modulo 2 pi, in [0, 2 pi) (finite, |theta0| <= 2 pi 1e6)."""
+    """``theta0`` [rad] modulo 2π, in [0, 2π) (finite, |theta0| ≤ 2π 1e6)."""
     th = real("theta0", theta0)
     if not (math.isfinite(th) and abs(th) <= THETA0_MAX):
         raise ValueError(f"theta0 = {short(th)} is outside the allowed range [-2pi 1e6, 2pi 1e6]")
@@ -109,10 +110,10 @@ def reason_shares(
     """The share of every :class:`Reason` over the parameter cube for the start
     (theta0, omega0).
 
-    The cube of (alpha / (pi/2), chi, km_frac) is sampled on its midpoint grid of ``grid``
+    The cube of (α / (π/2), χ, km_frac) is sampled on its midpoint grid of ``grid``
     points per axis (see the module's docstring). What blocks a JARM at a start:
-    ``LIFTOFF_EARLIER`` is the immediate flight (paper's rule: chi omega0^2 cos theta0 > cos
-    alpha, it leaves the ramp at theta0), ``ROCKS_BACK`` a start that rolls back up the ramp
+    ``LIFTOFF_EARLIER`` is the immediate flight (paper's rule: χ omega0² cos theta0 > cos
+    α, it leaves the ramp at theta0), ``ROCKS_BACK`` a start that rolls back up the ramp
     (omega reaches 0) before any event.
 
     Parameters
@@ -160,7 +161,7 @@ def jarm_fraction(
 ) -> float:
     """The JARM fraction of the parameter cube for the start (theta0, omega0).
 
-    The share of JARM points on the midpoint grid of (alpha, chi, km_frac) with ``grid``
+    The share of JARM points on the midpoint grid of (α, χ, km_frac) with ``grid``
     points per axis. At theta0 = omega0 = 0 it equals
     ``eccjump.region(alpha, chi, km_frac, mu_s).fraction()`` on the same grid.
 
@@ -210,9 +211,9 @@ class StartMap:
     Attributes
     ----------
     theta0 : numpy.ndarray
-        The starts' angles [rad], taken modulo 2 pi, 1-D.
+        The starts' angles [rad], taken modulo 2π, 1-D.
     omega0 : numpy.ndarray
-        The starts' angular velocities [sqrt(g/R) rad], 1-D.
+        The starts' angular velocities [√(g/R) rad], 1-D.
     shares : numpy.ndarray
         ``shares[i, j, r]`` is the share of reason code r for the start (theta0[i],
         omega0[j]), shape (len(theta0), len(omega0), number of reasons).
@@ -257,7 +258,7 @@ class StartMap:
         Returns
         -------
         tuple of float
-            (theta0 [rad], omega0 [sqrt(g/R) rad], fraction).
+            (theta0 [rad], omega0 [√(g/R) rad], fraction).
         """
         i, j = np.unravel_index(int(np.argmax(self.fraction)), self.fraction.shape)
         return float(self.theta0[i]), float(self.omega0[j]), float(self.fraction[i, j])
@@ -270,13 +271,6 @@ class StartMap:
             f"omega0={om:.6g})"
         )
 
-    def plot(self, **kwargs: Any) -> Figure:
-        """The JARM fraction over the starts (theta0, omega0) (``eccjump.plot.fraction_map``;
-        ``kwargs`` go to it). Needs ``pip install eccjump[plot]``."""
-        from eccjump import plot  # figures: the layer on top of every result
-
-        return plot.fraction_map(self, **kwargs)
-
     def _repr_html_(self) -> str:
         th, om, f = self.best()
         rows = [
@@ -286,6 +280,22 @@ class StartMap:
             ("best start", f"theta0 = {deg(th)}, omega0 = {num(om)}: JARM fraction {f:.4g}"),
         ]
         return card("StartMap", rows)
+
+    @overload
+    def plot(self, *, ax: Axes, **kwargs: Any) -> Axes: ...
+    @overload
+    def plot(self, *, ax: None = None, fig: FigureBase | None = None, **kwargs: Any) -> Figure: ...
+    def plot(
+        self, *, ax: Axes | None = None, fig: FigureBase | None = None, **kwargs: Any
+    ) -> Axes | Figure:
+        """The JARM fraction over the starts (theta0, omega0) and the shares blocked at
+        the start (``eccjump.plot.fraction_map``). ``ax=``: only the JARM fraction, drawn into
+        this matplotlib Axes and returned (``eccjump.plot.fraction_panel``), to compose
+        figures; ``fig=``: the full figure in this empty Figure or SubFigure. ``kwargs`` go
+        to the function drawn. Needs ``pip install eccjump[plot]``."""
+        from eccjump import plot  # figures: the layer on top of every result
+
+        return plot.draw(self, ax=ax, fig=fig, **kwargs)
 
 
 @fill
@@ -309,12 +319,12 @@ def start_map(
     ----------
     %(mu_s)s
     theta0 : array_like of float, 1-D
-        Initial angles [rad], |theta0| <= 2 pi 1e6, taken modulo 2 pi.
+        Initial angles [rad], |theta0| ≤ 2π 1e6, taken modulo 2π.
     omega0 : array_like of float, 1-D
-        Initial angular velocities [sqrt(g/R) rad], in [0, 1e6]; at most 10**4 starts in
+        Initial angular velocities [√(g/R) rad], in [0, 1e6]; at most 10**4 starts in
         all.
     grid : int, default 24
-        Points per axis of the midpoint grid of (alpha, chi, km_frac), 2 ... 128.
+        Points per axis of the midpoint grid of (α, χ, km_frac), 2 ... 128.
     %(rule_short)s
     %(n_threads)s
     progress : bool, callable or None, default None
@@ -380,35 +390,35 @@ class OptimalStart:
     grid : int
         Points per axis of the coarse grid (the fine grid has 2 grid).
     omega_max : float
-        Largest omega0 searched [sqrt(g/R) rad].
+        Largest omega0 searched [√(g/R) rad].
     theta0 : float
-        The optimum's angle on the fine grid [rad], in [0, 2 pi) -- the answer.
+        The optimum's angle on the fine grid [rad], in [0, 2π) -- the answer.
     omega0 : float
-        The optimum's angular velocity on the fine grid [sqrt(g/R) rad].
+        The optimum's angular velocity on the fine grid [√(g/R) rad].
     fraction : float
         The JARM fraction there, on the fine grid.
     theta0_coarse : float
         The optimum on the coarse grid [rad].
     omega0_coarse : float
-        The optimum on the coarse grid [sqrt(g/R) rad].
+        The optimum on the coarse grid [√(g/R) rad].
     fraction_coarse : float
         The JARM fraction there, on the coarse grid.
     theta0_err : float
         Uncertainty of theta0 from the grid resolution: the difference of the two optima
         on the circle [rad].
     omega0_err : float
-        Uncertainty of omega0 [sqrt(g/R) rad].
+        Uncertainty of omega0 [√(g/R) rad].
     fraction_err : float
         Uncertainty of the fraction.
     step_theta0 : float
         Resolution of the search in theta0 (the last pattern step) [rad]: no start within 3
         steps along an axis or a diagonal does better, on either grid.
     step_omega0 : float
-        Resolution of the search in omega0 [sqrt(g/R) rad].
+        Resolution of the search in omega0 [√(g/R) rad].
     fraction_at_rest : float
         The fraction at theta0 = omega0 = 0 on the fine grid, for comparison.
     evaluations : int
-        Maps computed (each one a grid of grid**3 or (2 grid)**3 points).
+        Maps computed (each one a grid of grid³ or (2 grid)³ points).
     """
 
     mu_s: float
@@ -484,8 +494,8 @@ class _Objective:
     def key(self, th: float, om: float) -> tuple[float, float]:
         """The start evaluated for (th, om), and its cache key: rounded to 12 decimals, so
         that the search's float paths to one start share its map, then put back inside
-        [0, 2 pi) x [0, omega_max], which the rounding can step out of (omega_max =
-        1.0207449999999998 rounds to 1.020745; 2 pi - 1e-14 to 6.28318530718)."""
+        [0, 2π) x [0, omega_max], which the rounding can step out of (omega_max =
+        1.0207449999999998 rounds to 1.020745; 2π - 1e-14 to 6.28318530718)."""
         th = round(_theta0(th), 12)
         om = round(min(max(om, 0.0), self.omega_max), 12)
         return (0.0 if th >= TWO_PI else th, min(om, self.omega_max))
@@ -581,7 +591,7 @@ def optimal_start(
     with its uncertainty from the grid. Needs scipy (``pip install "eccjump[analysis]"``).
 
     The fraction on a finite grid is piecewise constant in the start, so the search uses no
-    derivative: (1) a lattice of ``lattice`` = (n_theta, n_omega) starts (theta0 = 2 pi i /
+    derivative: (1) a lattice of ``lattice`` = (n_theta, n_omega) starts (theta0 = 2π i /
     n_theta, omega0 = omega_max j / (n_omega - 1)) on the grid of ``grid`` points per axis;
     (2) Nelder--Mead (scipy) from the ``n_starts`` best lattice starts, in units of the
     lattice steps; (3) a pattern search polishes the best with a step of 1/8 lattice step
@@ -595,7 +605,7 @@ def optimal_start(
     grid : int, default 32
         Points per axis of the coarse grid, 2 ... 64 (the fine grid is 2 grid).
     omega_max : float, default 3.0
-        Largest omega0 searched [sqrt(g/R) rad], in [1e-6, 100]; theta0 covers [0, 2 pi).
+        Largest omega0 searched [√(g/R) rad], in [1e-6, 100]; theta0 covers [0, 2π).
     lattice : tuple of (int, int), default (24, 12)
         Starts of the first lattice along theta0 and omega0, each 2 ... 1000.
     n_starts : int, default 3

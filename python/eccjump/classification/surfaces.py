@@ -1,4 +1,4 @@
-"""The JARM region's boundary surfaces alpha_lo(chi, k_m) and alpha_hi(chi, k_m) on a mesh of
+"""The JARM region's boundary surfaces alpha_lo(χ, k_m) and alpha_hi(χ, k_m) on a mesh of
 bodies, for the paper's Fig. 4 (drawn by :func:`eccjump.plot.fig4` and
 :func:`eccjump.plot.fig4_slices`): a scan of the ramp angles of every body, then a flood fill
 that recovers the intervals thinner than the scan step next to found ones."""
@@ -23,10 +23,10 @@ MAX_RESOLUTION = 200
 
 @dataclass(frozen=True)
 class JarmSurfaces:
-    """The boundary surfaces of the JARM region for one (mu_s, n) on a (chi, k_m) mesh.
+    """The boundary surfaces of the JARM region for one (μ_s, n) on a (χ, k_m) mesh.
 
-    ``lo``/``hi`` [rad] have shape (len(chi), len(km)): the first JARM alpha-interval of each
-    body (NaN where there is none, or where k_m > 1 - chi); ``n_intervals`` counts the
+    ``lo``/``hi`` [rad] have shape ``(len(chi), len(km))``: the first JARM α-interval of each
+    body (NaN where there is none, or where k_m > 1 - χ); ``n_intervals`` counts the
     intervals (almost always 0 or 1; a second one is only drawn in the slices).
     """
 
@@ -52,12 +52,12 @@ def _is_jarm(
 def grid_intervals(
     c: NDArray[np.float64], k: NDArray[np.float64], mu_s: float, n: int, n_scan: int
 ) -> list[list[tuple[float, float]]]:
-    """alpha-intervals of every body of a 1-D or 2-D grid (c, k), flat in C order, [] where
+    """α-intervals of every body of a 1-D or 2-D grid (c, k), flat in C order, [] where
     k > 1 - c. A first pass scans ``n_scan`` angles (:func:`eccjump.alpha_intervals`). Then a
     flood fill: an empty body next to a body with a JARM (along the grid axes) is probed at
     angles spread over its neighbours' intervals, and where a probe is a JARM the interval
     around it is found by bisection (:func:`eccjump.jarm`), repeatedly. This recovers the
-    thin parts of a region (alpha-intervals narrower than the scan step, common on later
+    thin parts of a region (α-intervals narrower than the scan step, common on later
     turns) at a fraction of the cost of a fine scan."""
     shape = c.shape
     flat_c, flat_k = c.ravel(), k.ravel()
@@ -137,9 +137,9 @@ def jarm_surfaces(
     km_range: tuple[float, float] | None = None,
     n_scan: int = 90,
 ) -> JarmSurfaces:
-    """alpha_lo/alpha_hi of the JARM region on turn ``n`` over a ``resolution``^2 (chi, k_m)
+    """alpha_lo/alpha_hi of the JARM region on turn ``n`` over a ``resolution``² (χ, k_m)
     mesh. Without explicit ranges, a coarse scan of the whole body triangle
-    0 <= k_m <= 1 - chi finds the footprint of the region and the mesh is fitted to it
+    0 ≤ k_m ≤ 1 - χ finds the footprint of the region and the mesh is fitted to it
     (two coarse cells wider).
     Each body's ramp angles are scanned at ``n_scan`` points over (0, 90 deg], and intervals
     narrower than the scan step are recovered next to found ones (see :func:`grid_intervals`).

@@ -183,7 +183,7 @@ def int_in(lo: int, hi: int | None = None) -> Callable[[str], int]:
 
 
 def int_at_least(lo: int) -> Callable[[str], int]:
-    """An integer option >= lo."""
+    """An integer option ≥ lo."""
     return int_in(lo)
 
 
@@ -223,7 +223,7 @@ def real_in(lo: float, hi: float, unit: str) -> Callable[[str], float]:
 
 
 #: The largest value an angle option in degrees may be read as radians of: a ramp angle
-#: (pi/2) and any other angle (2 pi).
+#: (π/2) and any other angle (2π).
 RAMP_RADIANS = math.pi / 2
 TURN_RADIANS = 2 * math.pi
 

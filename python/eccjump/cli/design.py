@@ -109,7 +109,7 @@ def add_parser(sub: argparse._SubParsersAction) -> None:
 
 
 def _tolerances(pairs: list[list[str]]) -> dict[str, float] | None:
-    """--sd as the API's tolerances (alpha from degrees; a name given twice: ValueError)."""
+    """--sd as the API's tolerances (α from degrees; a name given twice: ValueError)."""
     out: dict[str, float] = {}
     for name, text in pairs:
         if name in out:

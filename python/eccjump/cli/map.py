@@ -1,4 +1,4 @@
-"""``eccjump map``: the JARM region over (alpha, chi, k_m), computed in chunks along alpha and
+"""``eccjump map``: the JARM region over (α, χ, k_m), computed in chunks along α and
 written to ``.nc``, ``.zarr`` or ``.npz`` (by suffix).
 
 Ctrl-C stops after the chunk in progress (one Rust call; a second Ctrl-C aborts at once):

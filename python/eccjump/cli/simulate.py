@@ -117,7 +117,7 @@ def _num(x: Any) -> float | None:
 
 
 def state_energy(body: Cylinder, alpha: float, s: Any) -> float:
-    """E = kinetic + potential (per M g R) of a state with fields theta, omega, l, ldot, b,
+    """E = kinetic + potential (per M g R) of a state with fields θ, omega, l, ldot, b,
     bdot (the user guide's "The full motion", Energy ledger)."""
     chi, st, ct = body.chi, math.sin(s.theta), math.cos(s.theta)
     vx = s.ldot + chi * ct * s.omega

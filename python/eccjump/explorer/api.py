@@ -1,5 +1,6 @@
 """The explorer's three requests, as plain functions of a query (a mapping of strings, as
-a URL gives it): ``controls`` (the sliders), ``region`` (the JARM region slice over (χ, α)
+a URL gives it): ``controls`` (the sliders, and the colours of the modes: the one palette of
+:mod:`eccjump._base.palette`), ``region`` (the JARM region slice over (χ, α)
 at the current k_m and μ_s) and ``motion`` (the full motion of the current point, sampled
 for the animation, and its numbers). The HTTP server and the Jupyter widget both answer
 through :func:`handle`, so the page behaves the same in both.
@@ -22,6 +23,7 @@ from numpy.typing import NDArray
 
 from eccjump._base.body import Cylinder
 from eccjump._base.checks import Rule
+from eccjump._base.palette import MODE_COLORS
 from eccjump.classification.classify import Reason, jarm
 from eccjump.explorer import controls
 from eccjump.motion.simulation import MODES, MotionResult, simulate
@@ -103,7 +105,13 @@ def point(query: Mapping[str, str]) -> dict[str, float]:
 
 
 def controls_spec(query: Mapping[str, str]) -> dict[str, Any]:
-    return {**controls.spec(), "reasons": REASON_TEXT, "modes": list(MODES)}
+    # The page's mode colours come from here: one palette for it, the figures and the reprs.
+    return {
+        **controls.spec(),
+        "reasons": REASON_TEXT,
+        "modes": list(MODES),
+        "mode_colors": dict(MODE_COLORS),
+    }
 
 
 def region(query: Mapping[str, str]) -> dict[str, Any]:

@@ -92,7 +92,7 @@ def rule_checked(value: str) -> Rule:
 
 
 def body_problem(chi: float, km: float) -> str | None:
-    """Why (chi, km) is no body, in words for the page, or None for a valid body."""
+    """Why (χ, km) is no body, in words for the page, or None for a valid body."""
     if km > 1.0 - chi + 1e-12:
         return (
             f"No such body: k_m = {km:g} is above 1 − χ = {1.0 - chi:g} (the shell cannot "

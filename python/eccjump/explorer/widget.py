@@ -72,8 +72,8 @@ def explore(
 ) -> anywidget.AnyWidget:
     """The interactive explorer in a Jupyter notebook, starting at the given point.
 
-    Sliders for every parameter below; the JARM region slice over (chi, alpha) at the current
-    km and mu_s, the point marked (click the map to move it); the full motion of the point
+    Sliders for every parameter below; the JARM region slice over (χ, α) at the current
+    km and μ_s, the point marked (click the map to move it); the full motion of the point
     (:func:`eccjump.simulate`) as an animated cylinder on the ramp with its mode timeline; and its
     numbers (lift-off angle and time, slip onset, flight apex and distance). The same
     explorer runs as a local web page with ``eccjump explore`` (the user guide's page "The
@@ -83,26 +83,26 @@ def explore(
     Parameters
     ----------
     alpha : float, default radians(40)
-        Ramp angle [rad], in [0, pi/2].
+        Ramp angle [rad], in [0, π/2].
     chi : float, default 0.15
         Offset of the centre of mass d/R, in [0, 1].
     km : float, default 0.02
-        Shell mass fraction, in [0, 1]; a body needs km <= 1 - chi, and the explorer says so
+        Shell mass fraction, in [0, 1]; a body needs km ≤ 1 - χ, and the explorer says so
         when it is not one.
     mu_s : float, default 1.0
         Static friction coefficient, in [0, 3].
     mu_k : float or None, default None
-        Kinetic friction coefficient, in [0, 3]; None ties it to mu_s (a tick box unties it).
+        Kinetic friction coefficient, in [0, 3]; None ties it to μ_s (a tick box unties it).
     restitution : float, default 0.0
         Energetic coefficient of restitution e of the landings, in [0, 1].
     theta0 : float, default 0.0
-        Start angle [rad], in [-pi, pi].
+        Start angle [rad], in [-π, π].
     omega0 : float, default 0.0
-        Start rate [sqrt(g/R) rad], in [0, 3].
+        Start rate [√(g/R) rad], in [0, 3].
     rule : {"paper", "normal_force"}, default "paper"
         The lift-off rule from rolling.
     t_max : float, default 15.0
-        Duration of the motion [sqrt(R/g)], in [2, 60].
+        Duration of the motion [√(R/g)], in [2, 60].
 
     Returns
     -------

@@ -259,7 +259,7 @@ def _finite(value: object) -> bool:
 
 
 def _count(value: object) -> bool:
-    """Whether ``value`` (a finite number) is a whole number >= 0."""
+    """Whether ``value`` (a finite number) is a whole number ≥ 0."""
     number = float(value.item() if isinstance(value, np.generic) else value)  # type: ignore[arg-type]
     return number.is_integer() and number >= 0
 
@@ -267,8 +267,8 @@ def _count(value: object) -> bool:
 def _done(
     variables: dict, attrs: dict, dims: tuple[str, ...], shape: tuple[int, ...]
 ) -> np.ndarray | None:
-    """Which alpha slices are marked done (``alpha_done``; without it all of a map not
-    marked incomplete); None where the map has no alpha dimension."""
+    """Which α slices are marked done (``alpha_done``; without it all of a map not
+    marked incomplete); None where the map has no α dimension."""
     if "alpha" not in dims:
         return None
     n = shape[dims.index("alpha")]

@@ -10,8 +10,8 @@ Every point is computed exactly as in a single-process call, so a map is bit-ide
 whatever the chunks, the scheduler or the cluster.
 
 ``region(..., chunks=(ca, cc, ck))`` (or a dict ``{"alpha": ca, ...}``, or one int for every
-axis; -1 or None = the whole axis) chunks along (alpha, chi, km_frac);
-``motion_map(..., chunks=c)`` along alpha.
+axis; -1 or None = the whole axis) chunks along (α, χ, km_frac);
+``motion_map(..., chunks=c)`` along α.
 
 Threads: on a ``dask.distributed`` cluster set ``n_threads`` = threads per worker divided
 by the tasks a worker runs at once -- in practice ``n_threads=1`` with

@@ -8,7 +8,7 @@ never read as other numbers.
   :func:`eccjump.store.probe_netcdf`).
 - ``.zarr``: every array is written with the crc32c codec after zstd (:func:`zarr_codecs`),
   and every chunk is stored, even one of fill values: a missing chunk is damage
-  (:func:`check_zarr`), except a field's chunk of alpha slices not marked done (an
+  (:func:`check_zarr`), except a field's chunk of α slices not marked done (an
   interrupted map) and a chunk of ``alpha_done`` (read as not done: a resume computes it
   again). The metadata files are bounded in size before they are read
   (:data:`METADATA_BYTES`).

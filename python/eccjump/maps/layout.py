@@ -76,7 +76,7 @@ def make_layout(
     alpha_done: NDArray[np.bool_] | None,
     kind: MapKind,
 ) -> Layout:
-    """The layout of a map of ``kind`` on alpha x chi x km_frac (numpy only), with the
+    """The layout of a map of ``kind`` on α × χ × km_frac (numpy only), with the
     variable ``alpha_done`` unless it is None."""
     data_vars: dict[str, tuple[tuple[str, ...], Any, dict[str, Any]]] = {
         k: (DIMS, fields[k], kind.var_attrs(k)) for k in kind.fields

@@ -1,5 +1,5 @@
-"""The resumable runner of ``eccjump map``: a map of any kind over (alpha, chi, km_frac),
-computed in chunks along alpha and written to ``.nc``, ``.zarr`` or ``.npz`` (by suffix).
+"""The resumable runner of ``eccjump map``: a map of any kind over (α, χ, km_frac),
+computed in chunks along α and written to ``.nc``, ``.zarr`` or ``.npz`` (by suffix).
 
 What it computes comes from the caller, a :class:`Job` (its :class:`~eccjump.maps.kinds.MapKind`,
 file attributes and ``compute`` of one chunk; ``eccjump.cli.map_jobs`` has one per kind), so
@@ -76,7 +76,7 @@ class Job(Protocol):
 
 @dataclass(frozen=True)
 class Options:
-    """How to run: ``chunk`` alpha slices per chunk (None: about :data:`POINTS_PER_CHUNK`
+    """How to run: ``chunk`` α slices per chunk (None: about :data:`POINTS_PER_CHUNK`
     points), ``resume`` a ``.zarr`` map, ``overwrite`` an existing output, a progress bar
     on stderr, and ``stop_after`` (a testing aid: behave as if interrupted after that many
     chunks)."""
@@ -92,7 +92,7 @@ class Options:
 @dataclass(frozen=True)
 class Outcome:
     """What a run did: ``written`` False when it was interrupted before a chunk was finished
-    (nothing written; ``replacing``: an existing output was kept); ``done`` alpha slices
+    (nothing written; ``replacing``: an existing output was kept); ``done`` α slices
     finished of ``shape[0]``."""
 
     path: Path

@@ -6,7 +6,7 @@ This module reads and writes layouts (:mod:`eccjump.maps.layout`), whatever thei
 (:mod:`eccjump.maps.kinds`): :func:`save` writes a map, a dataset or a layout,
 :func:`read_layout` reads one back with its kind, checked (:func:`eccjump.maps.load` makes it
 the map's class, :func:`open_dataset` a dataset). :class:`ZarrMap`
-writes a map chunk by chunk along alpha, recording finished alpha slices in the data
+writes a map chunk by chunk along α, recording finished α slices in the data
 variable ``alpha_done`` (written after the data of its chunk), so that an interrupted map
 keeps what was finished and can be resumed; the attribute ``complete`` (0/1) says whether
 every slice is there. Points not computed hold the kind's fill values (a JARM map: NaN,
@@ -798,7 +798,7 @@ def _json_attrs(attrs: Mapping[str, Any]) -> dict[str, Any]:
 
 
 class ZarrMap:
-    """A map in a zarr store written chunk by chunk along alpha (``chunk`` slices each).
+    """A map in a zarr store written chunk by chunk along α (``chunk`` slices each).
 
     The store is a regular xarray-readable dataset (``xr.open_zarr``) with the variable
     ``alpha_done`` and the attribute ``complete``.
@@ -930,7 +930,7 @@ class ZarrMap:
         return -(-self.alpha.size // self.chunk)
 
     def bounds(self, i: int) -> tuple[int, int]:
-        """The alpha index range [i0, i1) of chunk ``i``."""
+        """The α index range [i0, i1) of chunk ``i``."""
         return i * self.chunk, min((i + 1) * self.chunk, self.alpha.size)
 
     def alpha_done(self) -> NDArray[np.bool_]:
@@ -985,7 +985,7 @@ class ZarrMap:
         return self.kind.bad_codes(values) or self.kind.bad_values(values)
 
     def rewrite_coords(self) -> None:
-        """Write the coordinates derived from alpha, chi and km_frac again (``alpha_deg``,
+        """Write the coordinates derived from α, χ and km_frac again (``alpha_deg``,
         ``km``): a resume repairs them rather than trust them."""
         for name, (_, values, _) in grid_coords(self.alpha, self.chi, self.km_frac).items():
             if name not in ("alpha", "chi", "km_frac"):

@@ -9,10 +9,10 @@ needed. The layout code itself is in the private ``eccjump.maps.layout``.
 Dataset layout
 --------------
 One dimension per swept axis (a JARM map: ``alpha`` [rad], ``chi``, ``km_frac`` (= k_m/(1 -
-chi)); a motion map: those of its eight axes that are swept), one data variable per field
+χ)); a motion map: those of its eight axes that are swept), one data variable per field
 of the kind with its units (``units``, ``long_name``) and the codes of a coded field as CF
 ``flag_values``/``flag_meanings``; the dataset attributes record the kind (``kind``; none: a
-JARM map), how the map was made and ``eccjump_version``. A map on alpha x chi x km_frac also
+JARM map), how the map was made and ``eccjump_version``. A map on α × χ × km_frac also
 has the coordinates ``alpha_deg`` (on ``alpha``) and the 2-D ``km`` (on ``chi`` x
 ``km_frac``). The JARM layout, and sweeps of ``mu_s``, ``theta0``, ``omega0`` as extra
 dimensions: :func:`eccjump.region_dataset`.

@@ -12,7 +12,7 @@ from eccjump._base.checks import real_array
 
 
 class DenseSolution:
-    """Dense output of a rolling run: callable ``sol(t)`` returning (theta, omega) at ``t``.
+    """Dense output of a rolling run: callable ``sol(t)`` returning (θ, θ̇) at ``t``.
 
     Returned as ``RollResult.sol`` by ``eccjump.roll(..., dense_output=True)``. It
     evaluates the interpolant of every accepted step (as scipy's ``OdeSolution``) and covers
@@ -26,9 +26,9 @@ class DenseSolution:
     Attributes
     ----------
     t_min : float
-        Start of the run [sqrt(R/g)].
+        Start of the run [√(R/g)].
     t_max : float
-        End of the run [sqrt(R/g)]: the interpolant covers [t_min, t_max].
+        End of the run [√(R/g)]: the interpolant covers [t_min, t_max].
 
     Examples
     --------
@@ -83,17 +83,17 @@ class DenseSolution:
     __hash__ = None  # type: ignore[assignment]
 
     def __call__(self, t: ArrayLike) -> NDArray[np.float64]:
-        """The state (theta [rad], omega [sqrt(g/R) rad]) at the times ``t``.
+        """The state (θ [rad], θ̇ [√(g/R) rad]) at the times ``t``.
 
         Parameters
         ----------
         t : float or array_like of shape (n,)
-            Times [sqrt(R/g)], each in [t_min, t_max].
+            Times [√(R/g)], each in [t_min, t_max].
 
         Returns
         -------
         numpy.ndarray
-            Shape (2,) for a scalar ``t``, (2, n) for an array: rows theta and omega.
+            Shape (2,) for a scalar ``t``, (2, n) for an array: rows θ and θ̇.
 
         Raises
         ------
@@ -108,18 +108,18 @@ class DenseSolution:
         return y[:, 0] if scalar else y
 
     def kinematics(self, t: ArrayLike) -> dict[str, NDArray[np.float64]]:
-        """theta, omega, omega_dot, Fx, Fy at times ``t``, from the core's equations of the
+        """θ, θ̇, θ̈, F_x, F_y at times ``t``, from the core's equations of the
         run's mode.
 
         Parameters
         ----------
         t : float or array_like of shape (n,)
-            Times [sqrt(R/g)], each in [t_min, t_max].
+            Times [√(R/g)], each in [t_min, t_max].
 
         Returns
         -------
         dict of str to numpy.ndarray
-            ``theta`` [rad], ``omega`` [sqrt(g/R) rad], ``omega_dot`` [g/R rad], ``Fx`` and
+            ``theta`` [rad], ``omega`` [√(g/R) rad], ``omega_dot`` [g/R rad], ``Fx`` and
             ``Fy`` [M g], each of shape (n,).
 
         Raises

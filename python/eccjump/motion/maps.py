@@ -1,7 +1,7 @@
 """Maps of the full motion: what the cylinder does at every point of a parameter grid.
 
 :func:`motion_map` runs :func:`eccjump.simulate` to the first landing at every point of the
-product of up to eight axes -- (alpha, chi, km fraction, mu_s, mu_k, restitution, theta0,
+product of up to eight axes -- (α, χ, km fraction, μ_s, μ_k, restitution, theta0,
 omega0) -- in parallel in the Rust core with the GIL released, and keeps a fixed-size
 summary per point (:data:`FIELDS`). Each summary is exactly what ``simulate`` gives at that
 point; maps are bit-identical for any thread count or dask chunking.
@@ -18,7 +18,7 @@ import os
 from collections.abc import Mapping
 from dataclasses import dataclass, field
 from pathlib import Path
-from typing import TYPE_CHECKING, Any, ClassVar, Literal
+from typing import TYPE_CHECKING, Any, ClassVar, Literal, overload
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
@@ -53,7 +53,8 @@ from eccjump.motion.simulation import Rule
 
 if TYPE_CHECKING:
     import xarray as xr
-    from matplotlib.figure import Figure
+    from matplotlib.axes import Axes
+    from matplotlib.figure import Figure, FigureBase
 
 #: The axes of a map, in the order of the grid (C order: alpha slowest); ``km_frac`` is the
 #: fraction k_m/(1 - chi), as in JARM maps.
@@ -73,16 +74,16 @@ class MotionMap(Map, kind=MOTION):
     Attributes
     ----------
     coords : dict of str to numpy.ndarray
-        The swept axes (1-D, angles in rad), in the order alpha, chi, km_frac, mu_s, mu_k,
-        restitution, theta0, omega0.
+        The swept axes (1-D, angles in rad), in the order ``alpha``, ``chi``,
+        ``km_frac``, ``mu_s``, ``mu_k``, ``restitution``, ``theta0``, ``omega0``.
     scalars : dict of str to float or None
-        The axes given as one value (``mu_k`` None: mu_k = mu_s).
+        The axes given as one value (``mu_k`` None: μ_k = μ_s).
     fields : dict of str to numpy.ndarray
         The summaries of the runs, each of the map's shape: ``status``, ``sequence`` (the
         first modes as a code, named by ``sequence_name``), ``n_modes``, ``jarm``,
-        ``slipped_first``, ``slip_t`` [sqrt(R/g)], ``slip_theta`` [rad],
-        ``liftoff_reason``, ``liftoff_t`` [sqrt(R/g)], ``liftoff_theta`` [rad],
-        ``flight_time`` [sqrt(R/g)], ``apex`` [R], ``distance`` [R], ``landing`` and
+        ``slipped_first``, ``slip_t`` [√(R/g)], ``slip_theta`` [rad],
+        ``liftoff_reason``, ``liftoff_t`` [√(R/g)], ``liftoff_theta`` [rad],
+        ``flight_time`` [√(R/g)], ``apex`` [R], ``distance`` [R], ``landing`` and
         ``energy_lost`` [M g R]; NaN or a fill code where a run never got there.
     options : dict of str to object
         The options shared by every point (rule, t_max, max_transitions, rtol, atol,
@@ -175,8 +176,8 @@ class MotionMap(Map, kind=MOTION):
         return cls(coords, scalars, fields, opts)
 
     def attrs(self) -> dict[str, Any]:
-        """How the map was made, as netCDF-safe file attributes (``mu_k`` the text "mu_s"
-        where it was not given: mu_k = mu_s, and ``scalars['mu_k']`` None once loaded)."""
+        """How the map was made, as netCDF-safe file attributes (``mu_k`` the text "μ_s"
+        where it was not given: μ_k = μ_s, and ``scalars['mu_k']`` None once loaded)."""
         given: dict[str, Any] = {k: float(v) for k, v in self.scalars.items() if v is not None}
         if "mu_k" in self.scalars and self.scalars["mu_k"] is None:
             given["mu_k"] = "mu_s"
@@ -210,13 +211,21 @@ class MotionMap(Map, kind=MOTION):
             picture = jarm_slice(cut, "JARM (green) over chi (across) and alpha (up)")
         return card(f"MotionMap ({int(np.prod(self.shape))} points)", rows, picture)
 
-    def plot(self, **kwargs: Any) -> Figure:
-        """The map in the (chi, alpha) plane, coloured by the sequence of modes
-        (``eccjump.plot.sequence_map``; ``kwargs`` go to it). Needs ``pip install
-        eccjump[plot]``."""
+    @overload
+    def plot(self, *, ax: Axes, **kwargs: Any) -> Axes: ...
+    @overload
+    def plot(self, *, ax: None = None, fig: FigureBase | None = None, **kwargs: Any) -> Figure: ...
+    def plot(
+        self, *, ax: Axes | None = None, fig: FigureBase | None = None, **kwargs: Any
+    ) -> Axes | Figure:
+        """The map in the (χ, α) plane, coloured by the sequence of modes, a few
+        k_m slices (``eccjump.plot.sequence_map``). ``ax=``: only one slice (``km_frac=``),
+        drawn into this matplotlib Axes and returned (``eccjump.plot.sequence_panel``), to
+        compose figures; ``fig=``: the full figure in this empty Figure or SubFigure.
+        ``kwargs`` go to the function drawn. Needs ``pip install eccjump[plot]``."""
         from eccjump import plot  # figures: the layer on top of every result
 
-        return plot.sequence_map(self, **kwargs)
+        return plot.draw(self, ax=ax, fig=fig, **kwargs)
 
 
 #: The options shared by every point, recorded with a map.
@@ -253,7 +262,7 @@ def _axis(coords: Mapping[str, NDArray], scalars: Mapping[str, float | None], na
 def _block(
     alpha: NDArray[np.float64], rest: tuple[NDArray, ...], opts: MotionOptions, n_threads: int
 ) -> dict[str, NDArray]:
-    """One grid call of the core: the flat fields of alpha × the other axes."""
+    """One grid call of the core: the flat fields of α × the other axes."""
     a = np.array(alpha, dtype=np.float64, order="C").ravel()
     others = [np.array(x, dtype=np.float64, order="C").ravel() for x in rest]
     return _core.motion_grid(a, *others, options=opts.to_core(n_threads))
@@ -293,32 +302,32 @@ def motion_map(
     count or chunking. The grid first, then ``mu_s``, as :func:`region`, then keyword-only
     options. Each of the eight axes (``alpha``, ``chi``, ``km_frac``, ``mu_s``, ``mu_k``,
     ``restitution``, ``theta0``, ``omega0``) is one number or a 1-D array (an axis of the
-    map). A point whose own values are invalid (mu_k > mu_s, km_frac 0, chi = 1, a value
+    map). A point whose own values are invalid (μ_k > μ_s, km_frac 0, χ = 1, a value
     out of range) has status ``"invalid"`` and the fill values: the map goes on.
 
     Parameters
     ----------
     alpha : float or array_like of float
-        Ramp angle(s) [rad], in [0, pi/2] (``np.radians`` for degrees): one number out of
-        it is a ValueError; values in (pi/2, 90] (degrees?) give one UserWarning.
+        Ramp angle(s) [rad], in [0, π/2] (``np.radians`` for degrees): one number out of
+        it is a ValueError; values in (π/2, 90] (degrees?) give one UserWarning.
     chi : float or array_like of float
         The bodies' d/R, in [0, 1].
     km_frac : float or array_like of float
-        The shell mass fraction as the share k_m/(1 - chi) of its largest value, in [0, 1]
+        The shell mass fraction as the share k_m/(1 - χ) of its largest value, in [0, 1]
         (> 0 for a valid run: ``simulate`` needs km > 0).
     mu_s : float or array_like of float
         Static friction coefficient(s), in [0, inf).
     mu_k : float, array_like of float or None, default None
-        Kinetic friction coefficient(s), in [0, mu_s]; None: mu_k = mu_s.
+        Kinetic friction coefficient(s), in [0, μ_s]; None: μ_k = μ_s.
     restitution : float or array_like of float, default 0.0
         Stronge's energetic coefficient of restitution, in [0, 1].
     theta0 : float or array_like of float, default 0.0
-        Initial angle(s) [rad], |theta0| <= 2 pi 1e6.
+        Initial angle(s) [rad], |theta0| ≤ 2π 1e6.
     omega0 : float or array_like of float, default 0.0
-        Initial angular velocity(ies) [sqrt(g/R) rad], |omega0| <= 1e6.
+        Initial angular velocity(ies) [√(g/R) rad], |omega0| ≤ 1e6.
     %(rule_rolling)s
     t_max : float, default 100.0
-        End time of each run [sqrt(R/g)], in (0, 1e6].
+        End time of each run [√(R/g)], in (0, 1e6].
     max_transitions : int, default 100
         Transitions of each run after the start, 1 ... 10**6.
     rtol : float, default 1e-10
@@ -333,7 +342,7 @@ def motion_map(
         default rtol 1.5–1.9× faster than RK45 and about 15× more accurate); keep
         ``"RK45"`` for step-for-step parity with scipy.
     chunks : int or None, default None
-        Alpha values per block (>= 1): the map as a lazily computed, dask-backed
+        Alpha values per block (≥ 1): the map as a lazily computed, dask-backed
         ``xarray.Dataset``, one core call per block (``pip install "eccjump[dask]"``).
     output : {"map", "xarray"}, default "map"
         ``"map"``: a :class:`MotionMap`; ``"xarray"``: a labelled ``xarray.Dataset``.
@@ -366,7 +375,7 @@ def motion_map(
 
     Examples
     --------
-    The paper's JARM point (alpha = 40 deg, chi = 0.15, k_m = 0.02) and three others:
+    The paper's JARM point (α = 40 deg, χ = 0.15, k_m = 0.02) and three others:
 
     >>> import numpy as np
     >>> import eccjump
@@ -442,8 +451,8 @@ def _check_scalars(
 ) -> None:
     """ValueError naming an axis given as one number that makes every point of the map
     invalid (NaN, out of range): as in :func:`eccjump.region`, a bad parameter is an error,
-    not a map of invalid points. Each is tried alone at :data:`_PROBE` (a swept mu_s taken at
-    least as large as mu_k), then all together (mu_k > mu_s). Bad values on a swept axis only
+    not a map of invalid points. Each is tried alone at :data:`_PROBE` (a swept μ_s taken at
+    least as large as μ_k), then all together (μ_k > μ_s). Bad values on a swept axis only
     mark their points invalid. The core alone knows the ranges, so it is asked."""
     given = {k: v for k, v in scalars.items() if v is not None}
     quick = dataclasses.replace(opts, t_max=min(opts.t_max, 1e-3))  # known at the start
@@ -478,7 +487,7 @@ def _lazy(
     shape: tuple[int, ...],
     chunks: object,
 ) -> xr.Dataset:
-    """A dask-backed Dataset: one core call per block of ``chunks`` alpha values."""
+    """A dask-backed Dataset: one core call per block of ``chunks`` α values."""
     c = integer("chunks", chunks, 1, U64_MAX)
     same_mu = scalars.get("mu_k", 0.0) is None  # mu_k = mu_s: the core's empty mu_k axis
     axes = [np.zeros(1) if name == "mu_k" and same_mu else axis[name] for name in AXES]
@@ -492,7 +501,7 @@ def _lazy(
 
 def _grid_block(*args: Any) -> dict[str, NDArray]:
     """The grid call of :func:`_block` as :func:`eccjump.maps.dask.lazy_fields` makes it: the
-    eight axes, the options, the threads and whether mu_k is mu_s (its axis then a placeholder)."""
+    eight axes, the options, the threads and whether μ_k is μ_s (its axis then a placeholder)."""
     *axes, opts, n_threads, same_mu = args
     rest = tuple(
         np.empty(0) if same_mu and name == "mu_k" else a for name, a in zip(AXES, axes, strict=True)

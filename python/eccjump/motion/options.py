@@ -38,7 +38,7 @@ class MotionOptions:
     rule : {"paper", "normal_force"}, default "paper"
         Lift-off rule from rolling.
     t_max : float, default 100.0
-        End time of a run [sqrt(R/g)], in (0, 1e6].
+        End time of a run [√(R/g)], in (0, 1e6].
     max_transitions : int, default 100
         Transitions of a run after the start, 1 ... 10**6.
     rtol : float, default 1e-10

@@ -53,13 +53,13 @@ class MotionPoints(Result, kind="motion_points"):
     slipped_first : numpy.ndarray of bool
         A slip came before the first flight.
     slip_t, slip_theta : numpy.ndarray of float64
-        Time [sqrt(R/g)] and angle [rad] of the first slip onset (NaN: none).
+        Time [√(R/g)] and angle [rad] of the first slip onset (NaN: none).
     liftoff_reason : numpy.ndarray of uint8
         Why the first flight began (255: none).
     liftoff_t, liftoff_theta : numpy.ndarray of float64
-        Time [sqrt(R/g)] and angle [rad] of the first lift-off (NaN: none).
+        Time [√(R/g)] and angle [rad] of the first lift-off (NaN: none).
     flight_time : numpy.ndarray of float64
-        Duration of the first flight [sqrt(R/g)] (NaN: did not land).
+        Duration of the first flight [√(R/g)] (NaN: did not land).
     apex : numpy.ndarray of float64
         Largest height of the first flight above contact [R] (NaN: no flight).
     distance : numpy.ndarray of float64
@@ -139,7 +139,7 @@ def motion_points(
     integrator: Integrator = "RK45",
     progress: bool | Progress | None = None,
 ) -> MotionPoints:
-    """The full motion, to the first landing, at each point (alpha, chi, km, mu_s, mu_k,
+    """The full motion, to the first landing, at each point (α, χ, km, μ_s, μ_k,
     restitution, theta0, omega0), broadcasting the eight inputs.
 
     Each point runs :func:`eccjump.simulate` to its first landing (or ``t_max``,
@@ -148,31 +148,31 @@ def motion_points(
     each exactly what ``simulate`` gives there, bit-identical for any ``n_threads``. The
     point first, as :func:`eccjump.jarm` (``km`` is the body's k_m), then ``mu_s``, then
     keyword-only options with :func:`eccjump.motion_map`'s names and defaults. A point whose
-    own values are invalid (k_m > 1 - chi, k_m = 0, mu_k > mu_s, a value out of range) has
+    own values are invalid (k_m > 1 - χ, k_m = 0, μ_k > μ_s, a value out of range) has
     status 255 and the fill values.
 
     Parameters
     ----------
     alpha : array_like of float
-        Ramp angles [rad], in [0, pi/2] (``np.radians`` for degrees): a scalar out of it is
-        a ValueError; values in (pi/2, 90] (degrees?) give one UserWarning.
+        Ramp angles [rad], in [0, π/2] (``np.radians`` for degrees): a scalar out of it is
+        a ValueError; values in (π/2, 90] (degrees?) give one UserWarning.
     chi : array_like of float
         The bodies' d/R, in [0, 1].
     km : array_like of float
-        The bodies' shell mass fraction k_m, in (0, 1 - chi].
+        The bodies' shell mass fraction k_m, in (0, 1 - χ].
     mu_s : array_like of float
         Static friction coefficients, in [0, inf).
     mu_k : array_like of float or None, default None
-        Kinetic friction coefficients, in [0, mu_s]; None: mu_k = mu_s at every point.
+        Kinetic friction coefficients, in [0, μ_s]; None: μ_k = μ_s at every point.
     restitution : array_like of float, default 0.0
         Stronge's energetic coefficients of restitution, in [0, 1].
     theta0 : array_like of float, default 0.0
-        Initial angles [rad], |theta0| <= 2 pi 1e6.
+        Initial angles [rad], |theta0| ≤ 2π 1e6.
     omega0 : array_like of float, default 0.0
-        Initial angular velocities [sqrt(g/R) rad], |omega0| <= 1e6.
+        Initial angular velocities [√(g/R) rad], |omega0| ≤ 1e6.
     %(rule_rolling)s
     t_max : float, default 100.0
-        End time of each run [sqrt(R/g)], in (0, 1e6].
+        End time of each run [√(R/g)], in (0, 1e6].
     max_transitions : int, default 100
         Transitions of each run after the start, 1 ... 10**6.
     rtol : float, default 1e-10

@@ -4,18 +4,18 @@ Equations (units g = R = M = 1; the user guide's "The paper's formulas" page lis
 was checked):
 
 * rolling equation (paper Eq. roll-eq):
-  theta'' (Ic + 1 + 2 chi cos theta) = chi theta'^2 sin theta + chi sin(alpha + theta) + sin alpha
+  θ̈ (Ic + 1 + 2 χ cos θ) = χ θ̇² sin θ + χ sin(α + θ) + sin α
 * contact force on the cylinder, x down the ramp, y normal to it (paper Eq. Njump):
-  Fx = -sin alpha - chi theta'^2 sin theta + (1 + chi cos theta) theta''
-  Fy =  cos alpha - chi theta'^2 cos theta - chi theta'' sin theta
-* the paper's lift-off condition (Eq. jumpcondition): chi theta'^2 cos theta - cos alpha = 0.
+  Fx = -sin α - χ θ̇² sin θ + (1 + χ cos θ) θ̈
+  Fy =  cos α - χ θ̇² cos θ - χ θ̈ sin θ
+* the paper's lift-off condition (Eq. jumpcondition): χ θ̇² cos θ - cos α = 0.
 """
 
 from __future__ import annotations
 
 import math
 from dataclasses import dataclass, fields, replace
-from typing import TYPE_CHECKING, Any, NamedTuple
+from typing import TYPE_CHECKING, Any, NamedTuple, overload
 
 import numpy as np
 from numpy.typing import NDArray
@@ -44,7 +44,8 @@ from eccjump.motion.dense import DenseSolution
 if TYPE_CHECKING:  # pragma: no cover
     import pandas
     import xarray as xr
-    from matplotlib.figure import Figure
+    from matplotlib.axes import Axes
+    from matplotlib.figure import Figure, FigureBase
 
 EVENT_NAMES = ("liftoff", "normal_force_zero", "slip", "theta_limit")
 """The names of the events of :func:`roll`: the paper's lift-off condition (rising), the
@@ -59,11 +60,11 @@ class Event(NamedTuple):
     name : str
         One of :data:`EVENT_NAMES`.
     t : float
-        Time [sqrt(R/g)] (seconds after ``to_si``).
+        Time [√(R/g)] (seconds after ``to_si``).
     theta : float
         Angle of the vector axis -> centre of mass from the ramp normal [rad].
     omega : float
-        Angular velocity theta' [sqrt(g/R) rad] (rad/s after ``to_si``).
+        Angular velocity θ̇ [√(g/R) rad] (rad/s after ``to_si``).
     """
 
     name: str
@@ -104,13 +105,13 @@ class RollResult(Result, kind="roll"):
     rule : str
         Lift-off rule, ``"paper"`` or ``"normal_force"``.
     t : numpy.ndarray
-        Time [sqrt(R/g)].
+        Time [√(R/g)].
     theta : numpy.ndarray
         Angle of the vector axis -> centre of mass from the ramp normal [rad].
     omega : numpy.ndarray
-        Angular velocity theta' [sqrt(g/R) rad].
+        Angular velocity θ̇ [√(g/R) rad].
     omega_dot : numpy.ndarray
-        Angular acceleration theta'' from the rolling equation [g/R rad].
+        Angular acceleration θ̈ from the rolling equation [g/R rad].
     Fx : numpy.ndarray
         Friction force on the cylinder along the ramp, positive down the ramp [M g].
     Fy : numpy.ndarray
@@ -118,7 +119,7 @@ class RollResult(Result, kind="roll"):
     l : numpy.ndarray
         Distance rolled along the ramp since the start, l - l0 [R].
     friction_ratio : numpy.ndarray
-        |Fx|/Fy, the friction the rolling branch needs (inf where Fy <= 0).
+        |Fx|/Fy, the friction the rolling branch needs (inf where Fy ≤ 0).
     events : tuple of Event
         Every event met, in time order (names in :data:`EVENT_NAMES`).
     terminal_event : str or None
@@ -218,14 +219,6 @@ class RollResult(Result, kind="roll"):
         rows.append(("steps, nfev", f"{max(self.t.size - 1, 0)}, {self.nfev}"))
         return card("RollResult" + (" (SI units)" if si else ""), rows)
 
-    def plot(self, **kwargs: Any) -> Figure:
-        """The run in four panels: theta against t; omega, F_x, F_y and the friction ratio against
-        theta (``eccjump.plot.trajectory``; ``kwargs`` go to it). Needs ``pip install
-        eccjump[plot]``."""
-        from eccjump import plot  # figures: the layer on top of every result
-
-        return plot.trajectory(self, **kwargs)
-
     def event(self, name: str) -> Event | None:
         """The first event called ``name``, or None if the run did not meet it.
 
@@ -251,8 +244,8 @@ class RollResult(Result, kind="roll"):
     def to_si(
         self, units: Units | None = None, *, g: float = 9.81, R: float = 1.0, M: float = 1.0
     ) -> RollResult:
-        """The same run in SI units: angles unchanged, times x sqrt(R/g), rates x sqrt(g/R),
-        angular accelerations x g/R, forces x M g, lengths x R.
+        """The same run in SI units: angles unchanged, times × √(R/g), rates × √(g/R),
+        angular accelerations × g/R, forces × M g, lengths × R.
 
         The dense output is dropped (it stays available on the dimensionless result).
 
@@ -333,6 +326,23 @@ class RollResult(Result, kind="roll"):
 
     __hash__ = None  # type: ignore[assignment]  # mutable numpy arrays inside
 
+    @overload
+    def plot(self, *, ax: Axes, **kwargs: Any) -> Axes: ...
+    @overload
+    def plot(self, *, ax: None = None, fig: FigureBase | None = None, **kwargs: Any) -> Figure: ...
+    def plot(
+        self, *, ax: Axes | None = None, fig: FigureBase | None = None, **kwargs: Any
+    ) -> Axes | Figure:
+        """The run in four panels (``eccjump.plot.trajectory``): θ against t;
+        θ̇, F_x, F_y and the friction ratio against θ. ``ax=``: only θ against t
+        with its events, drawn into this matplotlib Axes and returned
+        (``eccjump.plot.roll_panel``), to compose figures; ``fig=``: the full figure in this
+        empty Figure or SubFigure. ``kwargs`` go to the function drawn. Needs
+        ``pip install eccjump[plot]``."""
+        from eccjump import plot  # figures: the layer on top of every result
+
+        return plot.draw(self, ax=ax, fig=fig, **kwargs)
+
     # Taking the result elsewhere (save and eccjump.load: eccjump.maps.results).
     _unsaved = ("sol",)
 
@@ -390,29 +400,29 @@ def roll(
     """Integrate pure rolling of ``body`` on a ramp of angle ``alpha`` until an event ends it.
 
     The rolling equation (units g = R = M = 1)
-    theta'' (Ic + 1 + 2 chi cos theta) = chi theta'^2 sin theta + chi sin(alpha + theta)
-    + sin alpha, with the contact forces from Newton–Euler, integrated by an adaptive
+    θ̈ (Ic + 1 + 2 χ cos θ) = χ θ̇² sin θ + χ sin(α + θ)
+    + sin α, with the contact forces from Newton–Euler, integrated by an adaptive
     Runge–Kutta pair with events located on its dense output to near machine precision:
-    ``liftoff`` (the paper's condition chi theta'^2 cos theta = cos alpha, rising),
-    ``normal_force_zero`` (Fy = 0), ``slip`` (mu_s Fy = |Fx|) and ``theta_limit``. A contact
+    ``liftoff`` (the paper's condition χ θ̇² cos θ = cos α, rising),
+    ``normal_force_zero`` (Fy = 0), ``slip`` (μ_s Fy = |Fx|) and ``theta_limit``. A contact
     condition already violated at t = 0 ends the run at once.
 
     Parameters
     ----------
     %(body)s
     alpha : float
-        Ramp angle [rad], in [0, pi/2] (``math.radians`` for degrees).
+        Ramp angle [rad], in [0, π/2] (``math.radians`` for degrees).
     theta0 : float, default 0.0
         Initial angle of the vector axis -> centre of mass from the ramp normal [rad],
-        |theta0| <= 2 pi 1e6.
+        |theta0| ≤ 2π 1e6.
     omega0 : float, default 0.0
-        Initial angular velocity [sqrt(g/R) rad], |omega0| <= 1e6.
+        Initial angular velocity [√(g/R) rad], |omega0| ≤ 1e6.
     mu_s : float or None, default None
         Static friction coefficient, in [0, inf); None means enough friction (no slip event).
     t_max : float, default 1000.0
-        Largest time [sqrt(R/g)], > 0.
+        Largest time [√(R/g)], > 0.
     theta_max : float, default inf
-        The run ends when theta reaches this angle [rad] (event ``theta_limit``).
+        The run ends when θ reaches this angle [rad] (event ``theta_limit``).
     rtol : float, default 1e-10
         Relative tolerance of the integrator (scipy's meaning), in [1e-15, 1e-3].
     atol : float, default 1e-12
@@ -469,7 +479,7 @@ def roll(
     >>> print(f"{math.degrees(res.theta[-1]):.6f} deg, Fy = {res.Fy[-1]:.5f} M g")
     334.343838 deg, Fy = 0.01543 M g
 
-    The paper's Fig. 3b body needs more friction than mu_s = 1 before it lifts off:
+    The paper's Fig. 3b body needs more friction than μ_s = 1 before it lifts off:
 
     >>> res = eccjump.roll(eccjump.Cylinder(chi=0.5, km=0.4), math.radians(30), mu_s=1.0)
     >>> print(res.terminal_event, f"at {math.degrees(res.theta[-1]):.2f} deg")

@@ -9,7 +9,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass, fields, replace
-from typing import TYPE_CHECKING, Any, NamedTuple
+from typing import TYPE_CHECKING, Any, NamedTuple, overload
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
@@ -40,7 +40,8 @@ from eccjump.motion.options import MotionOptions
 if TYPE_CHECKING:  # pragma: no cover
     import pandas
     import xarray as xr
-    from matplotlib.figure import Figure
+    from matplotlib.axes import Axes
+    from matplotlib.figure import Figure, FigureBase
 
 #: Mode codes of :attr:`MotionResult.mode`, by index.
 MODES = ("ROLL", "SLIP", "FLIGHT")
@@ -128,7 +129,7 @@ class Segment(NamedTuple):
 
 
 class MotionSolution:
-    """Callable ``sol(t)``: (theta, omega, l, ldot, b, bdot) at times ``t`` across every
+    """Callable ``sol(t)``: (θ, θ̇, l, l̇, b, ḃ) at times ``t`` across every
     segment (the interpolant in contact, the exact motion in flight; at an impact, the state
     after it). Scalar ``t`` gives shape (6,), an array of shape (n,) gives (6, n)."""
 
@@ -208,19 +209,19 @@ class MotionResult(Result, kind="motion"):
     rule : str
         Lift-off rule from rolling, ``"paper"`` or ``"normal_force"``.
     t : numpy.ndarray
-        Time [sqrt(R/g)].
+        Time [√(R/g)].
     theta : numpy.ndarray
         Angle of the vector C -> centre of mass from the ramp normal [rad].
     omega : numpy.ndarray
-        Angular velocity theta' [sqrt(g/R) rad].
+        Angular velocity θ̇ [√(g/R) rad].
     l : numpy.ndarray
         Position of the centre C along the ramp from the start [R].
     ldot : numpy.ndarray
-        Speed of C along the ramp [sqrt(gR)].
+        Speed of C along the ramp [√(gR)].
     b : numpy.ndarray
         Height of C above the ramp [R] (1 in contact).
     bdot : numpy.ndarray
-        Rate of b [sqrt(gR)].
+        Rate of b [√(gR)].
     Fx : numpy.ndarray
         Friction force on the body along the ramp, positive down the ramp [M g] (0 in
         flight).
@@ -263,7 +264,7 @@ class MotionResult(Result, kind="motion"):
     d_transitions : numpy.ndarray or None
         With ``sensitivities=True``, shape (len(transitions), 2, 8): the derivatives of
         each transition's time ``[:, 0]`` and angle ``[:, 1]`` with respect to
-        :data:`SENSITIVITY_PARAMETERS` (alpha, chi, km, mu_s, mu_k, restitution, theta0,
+        :data:`SENSITIVITY_PARAMETERS` (α, χ, km, μ_s, μ_k, restitution, theta0,
         omega0), in the units of the time and angle per unit of each parameter. NaN where
         ``d_singular``.
     d_singular : numpy.ndarray of bool or None
@@ -321,7 +322,7 @@ class MotionResult(Result, kind="motion"):
 
     @property
     def slip_velocity(self) -> NDArray[np.float64]:
-        """The contact point's slip velocity ldot - omega [sqrt(gR)] (0 in pure rolling)."""
+        """The contact point's slip velocity ldot - omega [√(gR)] (0 in pure rolling)."""
         return self.ldot - self.omega
 
     @property
@@ -374,19 +375,12 @@ class MotionResult(Result, kind="motion"):
         pic = timeline(self.t, self.mode, MODES)
         return card("MotionResult" + (" (SI units)" if si else ""), rows, pic)
 
-    def plot(self, **kwargs: Any) -> Figure:
-        """The run in six panels against time, the modes as coloured bands (``eccjump.plot.motion``;
-        ``kwargs`` go to it). Needs ``pip install eccjump[plot]``."""
-        from eccjump import plot  # figures: the layer on top of every result
-
-        return plot.motion(self, **kwargs)
-
     @fill
     def to_si(
         self, units: Units | None = None, *, g: float = 9.81, R: float = 1.0, M: float = 1.0
     ) -> MotionResult:
-        """The same run in SI units: angles unchanged, times x sqrt(R/g), lengths x R,
-        speeds x sqrt(gR), rates x sqrt(g/R), forces x M g, energies x M g R.
+        """The same run in SI units: angles unchanged, times × √(R/g), lengths × R,
+        speeds × √(gR), rates × √(g/R), forces × M g, energies × M g R.
 
         Parameters
         ----------
@@ -494,6 +488,22 @@ class MotionResult(Result, kind="motion"):
 
     __hash__ = None  # type: ignore[assignment]
 
+    @overload
+    def plot(self, *, ax: Axes, **kwargs: Any) -> Axes: ...
+    @overload
+    def plot(self, *, ax: None = None, fig: FigureBase | None = None, **kwargs: Any) -> Figure: ...
+    def plot(
+        self, *, ax: Axes | None = None, fig: FigureBase | None = None, **kwargs: Any
+    ) -> Axes | Figure:
+        """The run in six panels against time, the modes as coloured bands
+        (``eccjump.plot.motion``). ``ax=``: only θ̇ against t with the modes and impacts,
+        drawn into this matplotlib Axes and returned (``eccjump.plot.motion_panel``), to
+        compose figures; ``fig=``: the full figure in this empty Figure or SubFigure.
+        ``kwargs`` go to the function drawn. Needs ``pip install eccjump[plot]``."""
+        from eccjump import plot  # figures: the layer on top of every result
+
+        return plot.draw(self, ax=ax, fig=fig, **kwargs)
+
     # Taking the result elsewhere (save and eccjump.load: eccjump.maps.results).
     _unsaved = ("sol",)
 
@@ -556,8 +566,8 @@ class MotionResult(Result, kind="motion"):
 
 
 def _sensitivities_si(d: NDArray[np.float64] | None, u: Units) -> NDArray[np.float64] | None:
-    """d(t, theta)/dp in SI units: times x sqrt(R/g), and per rad/s of omega0 (a rate x
-    sqrt(g/R)) rather than per dimensionless rate; the other parameters are dimensionless
+    """d(t, θ)/dp in SI units: times × √(R/g), and per rad/s of omega0 (a rate x
+    √(g/R)) rather than per dimensionless rate; the other parameters are dimensionless
     or angles."""
     if d is None:
         return None
@@ -597,7 +607,7 @@ def simulate(
     chosen again. The run ends at ``t_max``, ``l_max`` or ``max_transitions``, or where the
     rigid model cannot continue (Painlevé, a jam): that is a ``status``, not an error.
 
-    Where the sliding normal force grows large (above 1e3 M g: D = I_CM + chi K sin theta
+    Where the sliding normal force grows large (above 1e3 M g: D = I_CM + χ K sin θ
     falls towards 0, the Painlevé singularity) the slip goes on against the normal impulse, in
     which nothing diverges, until it stops, lifts off, or the force falls back below 1e2 M g;
     only a slip whose normal force grows without bound at a finite impulse ends the run
@@ -610,22 +620,22 @@ def simulate(
         The body, with km > 0 (km = 0 puts all the mass at the centre of mass: its spin in
         flight is undetermined).
     alpha : float
-        Ramp angle [rad], in [0, pi/2] (0: flat ground).
+        Ramp angle [rad], in [0, π/2] (0: flat ground).
     %(mu_s)s
     mu_k : float or None, default None
-        Kinetic friction coefficient, in [0, mu_s]; None: mu_k = mu_s.
+        Kinetic friction coefficient, in [0, μ_s]; None: μ_k = μ_s.
     restitution : float, default 0.0
         Stronge's energetic coefficient of restitution e, in [0, 1].
     rule : {"paper", "normal_force"}, default "paper"
-        Lift-off from rolling: ``"paper"`` (chi theta'^2 cos theta = cos alpha) or
+        Lift-off from rolling: ``"paper"`` (χ θ̇² cos θ = cos α) or
         ``"normal_force"`` (Fy = 0, or the friction cone left without a consistent slip).
     %(theta0)s
     omega0 : float, default 0.0
-        Initial angular velocity [sqrt(g/R) rad], |omega0| <= 1e6.
+        Initial angular velocity [√(g/R) rad], |omega0| ≤ 1e6.
     slip0 : float, default 0.0
-        Initial slip velocity ldot - omega of the contact point [sqrt(gR)], |slip0| <= 1e6.
+        Initial slip velocity l̇ - θ̇ of the contact point [√(gR)], |slip0| ≤ 1e6.
     t_max : float, default 100.0
-        End time [sqrt(R/g)], in (0, 1e6].
+        End time [√(R/g)], in (0, 1e6].
     l_max : float, default inf
         Distance of C along the ramp that ends the run [R], in (0, inf]; inf disables it.
     max_transitions : int, default 100
@@ -647,7 +657,7 @@ def simulate(
         accurate); keep ``"RK45"`` for step-for-step parity with scipy.
     sensitivities : bool, default False
         Also give ``d_transitions``, the exact derivatives of every transition's time and
-        angle with respect to (alpha, chi, km, mu_s, mu_k, restitution, theta0, omega0):
+        angle with respect to (α, χ, km, μ_s, μ_k, restitution, theta0, omega0):
         the variational equations along each segment, each event's time correction and the
         landing's Jacobian (the user guide's "The full motion", Sensitivities). About ten
         times the run's cost (2.5 ms for the paper's body over 19 transitions).

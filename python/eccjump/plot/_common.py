@@ -1,10 +1,11 @@
-"""What every figure module shares: the turn colours, the point cap, matplotlib on demand."""
+"""What every figure module shares: the turn colours, the point cap, matplotlib on demand, and
+where a figure is drawn (:mod:`eccjump._base.canvas`, below the analysis figure too)."""
 
 from __future__ import annotations
 
-from typing import TYPE_CHECKING, Any, cast
+from typing import TYPE_CHECKING, cast
 
-from eccjump._base.optional import require
+from eccjump._base.canvas import checked_target, new_figure, pyplot
 
 if TYPE_CHECKING:
     from matplotlib.axes import Axes
@@ -19,8 +20,8 @@ TURN_COLORS = ("#2ca02c", "#8e44ad", "#ff7f0e", "#1f77b4", "#d62728")
 MAX_POINTS = 10**7
 
 
-def _plt() -> Any:
-    return require("matplotlib.pyplot", purpose="eccjump.plot", extra="plot")
+#: matplotlib.pyplot on demand (the base's one import of it).
+_plt = pyplot
 
 
 def _color(n: int) -> str:
@@ -34,3 +35,6 @@ def _new_axes(ax: Axes | None, figsize: tuple[float, float]) -> tuple[Figure, Ax
     plt = _plt()
     fig, ax = plt.subplots(figsize=figsize, layout="constrained")
     return fig, ax
+
+
+__all__ = ["MAX_POINTS", "TURN_COLORS", "checked_target", "new_figure"]

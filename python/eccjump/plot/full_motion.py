@@ -11,14 +11,14 @@ import numpy as np
 from numpy.typing import NDArray
 
 from eccjump._base.checks import integer, real
-from eccjump._base.html import MODE_COLORS
+from eccjump._base.palette import MODE_COLORS
 
 if TYPE_CHECKING:
     from matplotlib.axes import Axes
-    from matplotlib.figure import Figure
+    from matplotlib.figure import Figure, FigureBase
 
     from eccjump._base.body import Cylinder
-from eccjump.plot._common import _plt
+from eccjump.plot._common import _plt, checked_target, new_figure
 
 # --------------------------------------------------------------------------------------------
 # The full motion (eccjump.simulate / eccjump simulate)
@@ -66,48 +66,85 @@ def _motion_title(result: Any, body: Cylinder | None, alpha: float | None) -> st
     return f"{head} — {result.status}: {result.message}"
 
 
+def _motion_units(result: Any) -> tuple[str, ...]:
+    """The units of t, rates, speeds, forces, lengths, energies (SI or g = R = M = 1)."""
+    if getattr(result, "units", None) is not None:
+        return "s", "rad/s", "m/s", "N", "m", "J"
+    return r"$\sqrt{R/g}$", r"$\sqrt{g/R}$", r"$\sqrt{gR}$", "$Mg$", "$R$", "$MgR$"
+
+
+def _modes_and_impacts(ax: Axes, result: Any, runs: list[tuple[float, float, str]]) -> None:
+    """The modes as background bands, each impact a dotted line, a light grid."""
+    for t0, t1, name in runs:
+        ax.axvspan(t0, t1, color=MODE_COLORS.get(name, "0.8"), alpha=0.14, lw=0, zorder=0)
+    for imp in result.impacts:
+        ax.axvline(imp.t, color="0.25", ls=":", lw=1.0)
+    ax.grid(alpha=0.3)
+
+
+def _mode_legend(ax: Axes, result: Any, runs: list[tuple[float, float, str]]) -> None:
+    from matplotlib.lines import Line2D
+    from matplotlib.patches import Patch
+
+    present = [n for n in MODE_NAMES if any(name == n for _, _, name in runs)]
+    handles: list[Any] = [Patch(color=MODE_COLORS[n], alpha=0.35, label=n) for n in present]
+    if result.impacts:
+        handles.append(Line2D([], [], color="0.25", ls=":", lw=1.0, label="impact"))
+    ax.legend(handles=handles, loc="upper left", ncol=len(handles) or 1, fontsize=8)
+
+
+def motion_panel(
+    result: Any, ax: Axes, *, body: Cylinder | None = None, alpha: float | None = None
+) -> Axes:
+    """The main panel of an :func:`eccjump.simulate` run, θ̇ against time with the modes
+    as bands and the impacts as dotted lines, drawn into ``ax`` (``MotionResult.plot(ax=ax)``;
+    ``body`` and ``alpha`` [rad] label the title); returns ``ax``."""
+    body, alpha = _body_alpha(result, body, alpha)
+    u_t, u_w = _motion_units(result)[:2]
+    t = np.asarray(result.t, dtype=float)
+    runs = _mode_runs(t, np.asarray(result.mode))
+    ax.axhline(0.0, color="0.6", lw=0.7)
+    ax.plot(t, np.asarray(result.omega, dtype=float), color="k", lw=1.3, gid="theta_dot")
+    ax.set_ylabel(rf"$\dot\theta$ [{u_w}]")
+    ax.set_xlabel(f"time $t$ [{u_t}]")
+    _modes_and_impacts(ax, result, runs)
+    _mode_legend(ax, result, runs)
+    ax.set_title(_motion_title(result, body, alpha), fontsize=9)
+    return ax
+
+
 def motion(
     result: Any,
     *,
     axes: Sequence[Axes] | None = None,
+    fig: FigureBase | None = None,
     body: Cylinder | None = None,
     alpha: float | None = None,
 ) -> Figure:
     """Six stacked panels of an :func:`eccjump.simulate` run against time (shared axis):
-    theta', the slip velocity v = l' - theta', F_x, F_y, the gap b - 1 between the body and
+    θ̇, the slip velocity v = l̇ - θ̇, F_x, F_y, the gap b - 1 between the body and
     the ramp (b: the height of the axis C above the ramp, 1 in contact), and
     the mechanical energy E with E + dissipated (dashed: flat when the ledger closes). The
     modes are coloured background bands (ROLL, SLIP, FLIGHT), impacts dotted vertical lines.
 
-    ``axes``: six axes to draw into (else a new figure). ``body`` and ``alpha`` [rad] only
+    ``axes``: six axes to draw into, or ``fig``: an empty Figure or SubFigure (else a new
+    figure). ``body`` and ``alpha`` [rad] only
     label the title (taken from the result if it has them). The curves have gids
     ``theta_dot``, ``slip_velocity``, ``Fx``, ``Fy``, ``height``, ``energy``,
     ``energy_total``."""
-    plt = _plt()
-    from matplotlib.lines import Line2D
-    from matplotlib.patches import Patch
-
+    checked_target(None, fig)
     if axes is None:
-        fig, ax_arr = plt.subplots(6, 1, sharex=True, figsize=(9.0, 12.0), layout="constrained")
-        axs = list(ax_arr)
+        canvas, root = new_figure(fig, (9.0, 12.0))
+        axs = list(canvas.subplots(6, 1, sharex=True))
     else:
         axs = list(axes)
         if len(axs) != 6:
             raise ValueError(f"axes must be 6 axes, not {len(axs)}")
-        fig = axs[0].figure
+        if fig is not None:
+            raise TypeError("give axes= (six axes) or fig= (a figure), not both")
+        canvas = root = axs[0].figure
     body, alpha = _body_alpha(result, body, alpha)
-    si = getattr(result, "units", None) is not None
-    if si:
-        u_t, u_w, u_v, u_f, u_l, u_e = "s", "rad/s", "m/s", "N", "m", "J"
-    else:
-        u_t, u_w, u_v, u_f, u_l, u_e = (
-            r"$\sqrt{R/g}$",
-            r"$\sqrt{g/R}$",
-            r"$\sqrt{gR}$",
-            "$Mg$",
-            "$R$",
-            "$MgR$",
-        )
+    u_t, u_w, u_v, u_f, u_l, u_e = _motion_units(result)
     t = np.asarray(result.t, dtype=float)
     mode = np.asarray(result.mode)
     energy = np.asarray(result.energy, dtype=float)
@@ -128,7 +165,7 @@ def motion(
     (line,) = a_e.plot(t, energy, color="k", lw=1.3, label="mechanical $E$")
     line.set_gid("energy")
     (line,) = a_e.plot(
-        t, total, color="#d62728", ls="--", lw=1.3, label="$E$ + dissipated (slip, impacts)"
+        t, total, color="#D55E00", ls="--", lw=1.3, label="$E$ + dissipated (slip, impacts)"
     )
     line.set_gid("energy_total")
     a_e.set_ylabel(f"energy [{u_e}]")
@@ -137,26 +174,18 @@ def motion(
 
     runs = _mode_runs(t, mode)
     for ax in axs:
-        for t0, t1, name in runs:
-            ax.axvspan(t0, t1, color=MODE_COLORS.get(name, "0.8"), alpha=0.14, lw=0, zorder=0)
-        for imp in result.impacts:
-            ax.axvline(imp.t, color="0.25", ls=":", lw=1.0)
-        ax.grid(alpha=0.3)
+        _modes_and_impacts(ax, result, runs)
     if t.size:
         axs[0].set_xlim(t[0], t[-1] if t[-1] > t[0] else t[0] + 1.0)
-    present = [n for n in MODE_NAMES if any(name == n for _, _, name in runs)]
-    handles: list[Any] = [Patch(color=MODE_COLORS[n], alpha=0.35, label=n) for n in present]
-    if result.impacts:
-        handles.append(Line2D([], [], color="0.25", ls=":", lw=1.0, label="impact"))
-    axs[0].legend(handles=handles, loc="upper left", ncol=len(handles) or 1, fontsize=8)
-    fig.suptitle(_motion_title(result, body, alpha), fontsize=11)
-    return fig
+    _mode_legend(axs[0], result, runs)
+    canvas.suptitle(_motion_title(result, body, alpha), fontsize=11)
+    return root
 
 
 def _resample(
     result: Any, ts: NDArray[np.float64]
 ) -> tuple[NDArray[np.float64], NDArray[np.float64], NDArray[np.float64], list[str]]:
-    """(theta, l, b, mode name) at the times ts: from the dense output ``result.sol`` if
+    """(θ, l, b, mode name) at the times ts: from the dense output ``result.sol`` if
     present, else linear interpolation of the recorded points; the mode is that of the last
     transition at or before each time."""
     t = np.asarray(result.t, dtype=float)
@@ -194,7 +223,7 @@ def animate_motion(
     """Write an animated GIF of an :func:`eccjump.simulate` run (pillow's GIF writer).
 
     The ramp slopes down to the right at ``alpha``; the body is the unit circle centred at
-    C = (l, b) in the ramp frame, its centre of mass C + chi (sin theta, cos theta) a dot
+    C = (l, b) in the ramp frame, its centre of mass C + χ (sin θ, cos θ) a dot
     with the spoke C -> CM; the body and the title take the colour of the mode. The camera
     follows C (a window ``view`` R either side); ticks on the ramp every R show the travel,
     a trail the path of the centre of mass. Frames are evenly spaced in simulated time, at
@@ -202,9 +231,9 @@ def animate_motion(
     :data:`FLIGHT_FRAMES` (shown in slow motion: a flight of a few hundredths of the run would
     else fall between two frames); the title gives the time and, in flight, the gap b - 1.
     They play at ``fps`` (or over ``seconds``); the state comes from ``result.sol`` if
-    present, else from the recorded points. 600 x 450 pixels at the default ``dpi``.
+    present, else from the recorded points. 600 × 450 pixels at the default ``dpi``.
 
-    ``body`` (for chi) and ``alpha`` [rad] are required unless the result carries them.
+    ``body`` (for χ) and ``alpha`` [rad] are required unless the result carries them.
     Returns the path written."""
     body, alpha = _body_alpha(result, body, alpha)
     if body is None or alpha is None:

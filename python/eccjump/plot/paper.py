@@ -1,5 +1,5 @@
-"""The paper's figures: Fig. 3b (mu(chi, k_m, theta_J)) and Fig. 4 (the JARM regions in
-(alpha, chi, k_m) from their exact boundary surfaces, and its slices). The surfaces are
+"""The paper's figures: Fig. 3b (μ(χ, k_m, θ_J)) and Fig. 4 (the JARM regions in
+(α, χ, k_m) from their exact boundary surfaces, and its slices). The surfaces are
 computed by :mod:`eccjump.classification.surfaces` (:func:`jarm_surfaces`, re-exported here
 and by :mod:`eccjump.plot`); this module only draws them."""
 
@@ -56,10 +56,10 @@ def fig3b(
     ylim: tuple[float, float] = (-6.0, 6.0),
     n_points: int = 2001,
 ) -> Figure:
-    """The paper's Fig. 3b: mu(chi, k_m, theta_J) of Eq. ineq2 over one turn (n - 1) 360 deg to
+    """The paper's Fig. 3b: μ(χ, k_m, θ_J) of Eq. ineq2 over one turn (n - 1) 360 deg to
     n 360 deg, with the green window (the quarter turn before 360 n deg, where a JARM can
-    happen) shaded, mu_s,min marked, and the line mu = ``mu_s`` with theta_J,min and
-    theta_J,max (the ends of the interval where mu <= mu_s) marked. ``mu_s=None`` omits it.
+    happen) shaded, μ_s,min marked, and the line μ = ``mu_s`` with θ_J,min and
+    θ_J,max (the ends of the interval where μ ≤ μ_s) marked. ``mu_s=None`` omits it.
 
     The curve's line has gid ``"mu"``, the minimum's marker gid ``"mu_s_min"``.
     """
@@ -153,7 +153,7 @@ def fig3b(
 
 def _solid_polygons(s: JarmSurfaces) -> list[NDArray[np.float64]]:
     """Quads of the closed solid between alpha_lo and alpha_hi: bottom, top and the side
-    walls along the edge of the footprint (x = chi, y = k_m, z = alpha in degrees)."""
+    walls along the edge of the footprint (x = χ, y = k_m, z = α in degrees)."""
     c, k = np.meshgrid(s.chi, s.km, indexing="ij")
     lo, hi = np.degrees(s.lo), np.degrees(s.hi)
     ok = np.isfinite(lo) & np.isfinite(hi)
@@ -202,9 +202,9 @@ def fig4(
     azim: float = -128.0,
     title: str | None = None,
 ) -> Figure:
-    """The paper's Fig. 4: the JARM regions in (alpha, chi, k_m) for fixed ``mu_s`` and turns
+    """The paper's Fig. 4: the JARM regions in (α, χ, k_m) for fixed ``mu_s`` and turns
     ``ns`` (green, purple, orange for n = 1, 2, 3), from rest at theta0 = 0, as closed solids
-    between the exact boundary surfaces alpha_lo and alpha_hi on a ``resolution``^2 mesh
+    between the exact boundary surfaces alpha_lo and alpha_hi on a ``resolution``² mesh
     fitted to each region (see :func:`jarm_surfaces`, ``resolution`` 2 ... :data:`MAX_RESOLUTION`;
     pass precomputed ``surfaces`` to skip the computation). ``ax`` must be a 3-D axes if given."""
     plt = _plt()
@@ -289,8 +289,8 @@ def fig4_slices(
     resolution: int = 120,
     n_scan: int = 90,
 ) -> Figure:
-    """2-D slices of the Fig. 4 regions: top row, the JARM alpha-interval against chi at fixed
-    (absolute) k_m; bottom row, against k_m at fixed chi; filled between the exact alpha_lo and
+    """2-D slices of the Fig. 4 regions: top row, the JARM α-interval against χ at fixed
+    (absolute) k_m; bottom row, against k_m at fixed χ; filled between the exact alpha_lo and
     alpha_hi, one colour per turn n. ``resolution`` points along each slice, 2 ...
     :data:`MAX_SLICE_RESOLUTION`."""
     resolution = integer("resolution", resolution, 2, MAX_SLICE_RESOLUTION)

@@ -10,14 +10,14 @@ from typing import TYPE_CHECKING
 import numpy as np
 
 from eccjump._base.checks import integer
-from eccjump._base.html import JARM_COLOR
-from eccjump.plot._common import _plt
+from eccjump._base.palette import JARM_COLOR
+from eccjump.plot._common import checked_target, new_figure
 from eccjump.studies.uncertainty import Uncertainty
 from eccjump.studies.uncertainty.sampling import UNITS
 
 if TYPE_CHECKING:
     from matplotlib.axes import Axes
-    from matplotlib.figure import Figure
+    from matplotlib.figure import Figure, FigureBase
 
 #: How each distribution is shown: its label and the factor to its display unit.
 _SHOWN = {
@@ -32,21 +32,34 @@ _SHOWN = {
 MAX_SCATTER = 20_000
 
 
-def uncertainty(result: Uncertainty, *, outcomes: int = 6) -> Figure:
+def _checked(result: Uncertainty, outcomes: int) -> int:
+    if not isinstance(result, Uncertainty):
+        raise TypeError(f"result must be an Uncertainty, not {type(result).__name__}")
+    return integer("outcomes", outcomes, 1, 64)
+
+
+def outcomes_panel(result: Uncertainty, ax: Axes, *, outcomes: int = 6) -> Axes:
+    """The main distribution of an uncertainty study, that of its outcomes: the ``outcomes``
+    most frequent (reasons or sequences) as bars with their Wilson intervals, drawn into
+    ``ax`` (``Uncertainty.plot(ax=ax)``); returns ``ax``."""
+    _outcome_bars(ax, result, _checked(result, outcomes))
+    return ax
+
+
+def uncertainty(result: Uncertainty, *, fig: FigureBase | None = None, outcomes: int = 6) -> Figure:
     """The study in one figure: the ``outcomes`` most frequent outcomes (reasons or sequences)
     as bars with their Wilson intervals, the samples over the two varied parameters of
     largest relative spread (JARM in green), and a histogram of each distribution with its
-    median and central 95 %."""
-    if not isinstance(result, Uncertainty):
-        raise TypeError(f"result must be an Uncertainty, not {type(result).__name__}")
-    outcomes = integer("outcomes", outcomes, 1, 64)
-    plt = _plt()
+    median and central 95 %. ``fig``: an empty Figure or SubFigure to draw into (else a new
+    one)."""
+    outcomes = _checked(result, outcomes)
+    checked_target(None, fig)
     shown = [k for k, s in result.distributions.items() if s.n]
     panels = 2 + len(shown)
     cols = min(panels, 3)
     rows = math.ceil(panels / cols)
-    fig, axes = plt.subplots(rows, cols, figsize=(4.2 * cols, 3.4 * rows), layout="constrained")
-    flat = list(np.atleast_1d(axes).ravel())
+    canvas, root = new_figure(fig, (4.2 * cols, 3.4 * rows))
+    flat = list(np.atleast_1d(canvas.subplots(rows, cols)).ravel())
     _outcome_bars(flat[0], result, outcomes)
     _scatter(flat[1], result)
     for ax, name in zip(flat[2:], shown, strict=False):
@@ -54,12 +67,12 @@ def uncertainty(result: Uncertainty, *, outcomes: int = 6) -> Figure:
     for ax in flat[panels:]:
         ax.set_visible(False)
     lo, hi = result.p_jarm_ci
-    fig.suptitle(
+    canvas.suptitle(
         f"P(JARM) = {result.p_jarm:.4g} [{lo:.4g}, {hi:.4g}] "
         f"({100 * result.confidence:g} %, {result.n_valid} valid of {result.n}, "
         f"{result.sampling})"
     )
-    return fig
+    return root
 
 
 def _outcome_bars(ax: Axes, result: Uncertainty, most: int) -> None:
@@ -68,11 +81,12 @@ def _outcome_bars(ax: Axes, result: Uncertainty, most: int) -> None:
     ci = np.array([result.interval(k) for k in names]).reshape(-1, 2)
     y = np.arange(len(names))
     err = np.vstack([p - ci[:, 0], ci[:, 1] - p]) if names else None
-    ax.barh(y, p, xerr=err, color="#9ecae1", ecolor="k", capsize=3)
+    ax.barh(y, p, xerr=err, color="#56B4E9", ecolor="k", capsize=3)
     ax.set_yticks(y, [n.replace("→", ">") for n in names], fontsize=7)
     ax.invert_yaxis()
     ax.set_xlim(0, 1)
     ax.set_xlabel("probability")
+    ax.set_ylabel("outcome")
     ax.set_title("outcomes", fontsize=9)
 
 
@@ -116,7 +130,7 @@ def _histogram(ax: Axes, result: Uncertainty, name: str) -> None:
     x = np.asarray(result.outcomes[name], dtype=float)[result.valid] * factor
     x = x[np.isfinite(x)]
     s = result.distributions[name]
-    ax.hist(x, bins=min(80, max(10, int(math.sqrt(x.size)))), color="#9ecae1")
+    ax.hist(x, bins=min(80, max(10, int(math.sqrt(x.size)))), color="#56B4E9")
     for q, style in ((s.median, "-"), (s.q025, "--"), (s.q975, "--")):
         ax.axvline(q * factor, color="k", ls=style, lw=0.8)
     ax.set_xlabel(label)
@@ -124,4 +138,4 @@ def _histogram(ax: Axes, result: Uncertainty, name: str) -> None:
     ax.set_title(f"{name}: median {s.median * factor:.4g} (95 %: dashed)", fontsize=9)
 
 
-__all__ = ["MAX_SCATTER", "uncertainty"]
+__all__ = ["MAX_SCATTER", "outcomes_panel", "uncertainty"]

@@ -40,7 +40,7 @@ HALF_PI = math.pi / 2
 
 
 def _range(name_lo: str, lo: float, name_hi: str, hi: float, bounds: tuple[float, float]) -> None:
-    """lo <= hi, both finite and within ``bounds``; else ValueError naming the keywords."""
+    """lo ≤ hi, both finite and within ``bounds``; else ValueError naming the keywords."""
     a, b = bounds
     for name, v in ((name_lo, lo), (name_hi, hi)):
         if not (isinstance(v, int | float) and a <= v <= b):
@@ -149,7 +149,7 @@ def ramps(*, min_alpha: float = 0.0, max_alpha: float = HALF_PI) -> st.SearchStr
 
 
 class Friction(NamedTuple):
-    """Coulomb friction: static ``mu_s`` and kinetic ``mu_k`` ≤ mu_s (dimensionless)."""
+    """Coulomb friction: static ``mu_s`` and kinetic ``mu_k`` ≤ μ_s (dimensionless)."""
 
     mu_s: float
     mu_k: float
@@ -193,8 +193,8 @@ def frictions(
 
 
 class Start(NamedTuple):
-    """A start: angle ``theta0`` [rad], angular velocity ``omega0`` [sqrt(g/R)] and the slip
-    velocity ``slip0`` = l̇0 − θ̇0 [sqrt(gR)] (``simulate`` only; 0 is rolling)."""
+    """A start: angle ``theta0`` [rad], angular velocity ``omega0`` [√(g/R)] and the slip
+    velocity ``slip0`` = l̇0 − θ̇0 [√(g R)] (``simulate`` only; 0 is rolling)."""
 
     theta0: float
     omega0: float
@@ -220,9 +220,9 @@ def starts(
     min_theta0, max_theta0 : float
         The range of θ0 [rad], within ±2π·10⁶.
     min_omega0, max_omega0 : float
-        The range of θ̇0 [sqrt(g/R)], within ±10⁶.
+        The range of θ̇0 [√(g/R)], within ±10⁶.
     max_slip0 : float
-        The largest |slip0| [sqrt(gR)], in [0, 10⁶]; 0 (default): every start rolls.
+        The largest |slip0| [√(g R)], in [0, 10⁶]; 0 (default): every start rolls.
 
     Returns
     -------
@@ -255,8 +255,9 @@ def starts(
 @dataclass(frozen=True)
 class MotionInput:
     """Everything :func:`eccjump.simulate` takes about the physics: the body, the ramp angle
-    ``alpha`` [rad], friction, restitution and start. ``simulate(m.body, m.alpha,
-    **m.keywords())`` runs it (add the options: ``t_max``, ``rule``, ...)."""
+    ``alpha`` [rad], friction, restitution and start.
+    ``simulate(m.body, m.alpha, **m.keywords())`` runs it (add the options: ``t_max``,
+    ``rule``, ...)."""
 
     body: Cylinder
     alpha: float
@@ -268,7 +269,7 @@ class MotionInput:
     slip0: float
 
     def keywords(self) -> dict[str, float]:
-        """The keyword arguments of :func:`eccjump.simulate` after the body and alpha."""
+        """The keyword arguments of :func:`eccjump.simulate` after the body and ``alpha``."""
         return {
             "mu_s": self.mu_s,
             "mu_k": self.mu_k,

@@ -10,7 +10,9 @@
 // dispose() }.
 
 const SVG = "http://www.w3.org/2000/svg";
-const MODE_COLORS = { ROLL: "#2b7bba", SLIP: "#e8910c", FLIGHT: "#d62728" };
+// The colour of each mode: eccjump's one palette (eccjump/_base/palette.py), sent by the
+// Python side with the controls and filled in before anything is drawn.
+const MODE_COLORS = {};
 const REASON_COLORS = {
   JARM: "#1a9641",
   NO_ROOT: "#d9e6f2",
@@ -346,6 +348,11 @@ class MotionView {
     const plate = svg("rect", { x: 4, y: 4, width: 330, height: 46, rx: 4, class: "ej-plate" });
     this.clock = svg("text", { x: 12, y: 22, class: "ej-clock" });
     this.modeLabel = svg("text", { x: 12, y: 42, class: "ej-mode" });
+    // The mode in dark text after a swatch of its colour: light colours (the palette is made
+    // for colour-blind readers) are too pale for text on the plate.
+    this.modeSwatch = svg("tspan", {});
+    this.modeText = svg("tspan", {});
+    this.modeLabel.append(this.modeSwatch, this.modeText);
     const gravity = svg("g", { class: "ej-gravity" });
     gravity.append(
       svg("line", { x1: 610, y1: 16, x2: 610, y2: 46 }),
@@ -462,7 +469,8 @@ class MotionView {
     this.bands.replaceChildren();
     this.axisText.replaceChildren();
     this.clock.textContent = "";
-    this.modeLabel.textContent = "";
+    this.modeSwatch.textContent = "";
+    this.modeText.textContent = "";
   }
 
   tick(now) {
@@ -522,9 +530,10 @@ class MotionView {
     this.cm.setAttribute("cy", -d.gy[i]);
     this.clock.textContent = `t = ${t.toFixed(2)} √(R/g)   l = ${cx.toFixed(2)} R`;
     const height = d.cy[i] - 1;
-    this.modeLabel.textContent =
+    this.modeSwatch.textContent = "■ ";
+    this.modeSwatch.style.fill = MODE_COLORS[mode];
+    this.modeText.textContent =
       mode === "FLIGHT" ? `${mode}: axis ${height.toFixed(3)} R above contact` : mode;
-    this.modeLabel.style.fill = MODE_COLORS[mode];
     const px = TIMELINE.x0 + (t / (d.t_end || 1)) * TIMELINE.w;
     this.playhead.setAttribute("x1", px);
     this.playhead.setAttribute("x2", px);
@@ -741,6 +750,7 @@ export function mount(el, host) {
       message.hidden = false;
       return;
     }
+    Object.assign(MODE_COLORS, body.mode_colors);
     const start = {};
     for (const c of body.controls) start[c.key] = c.default;
     Object.assign(start, host.initial());

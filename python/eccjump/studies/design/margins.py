@@ -1,4 +1,4 @@
-"""Verdicts under both rules at the worst mu_s, and the margins to the exact boundaries."""
+"""Verdicts under both rules at the worst μ_s, and the margins to the exact boundaries."""
 
 from __future__ import annotations
 
@@ -141,7 +141,7 @@ def _margins(
 def _mu_star(
     holds: Callable[..., NDArray], alpha: float, chi: float, km: float, mu: float, tol: float
 ) -> float:
-    """The smallest mu_s >= mu at which the body no longer slips first (inf up to 1e6)."""
+    """The smallest μ_s ≥ μ at which the body no longer slips first (inf up to 1e6)."""
     lo, hi = mu, max(2.0 * mu, 1e-3)
     while bool(holds(alpha, chi, km, hi)):
         lo, hi = hi, 2.0 * hi
@@ -158,3 +158,13 @@ def _mu_star(
 
 def _score(margins: tuple[Margin, ...] | None) -> float:
     return -math.inf if margins is None else min(m.relative for m in margins)
+
+
+def verdict_holds(
+    target: str, max_turns: int, turn: int | None, alpha: ArrayLike, chi: ArrayLike,
+    km: ArrayLike, mu: ArrayLike,
+) -> NDArray[np.bool_]:  # fmt: skip
+    """Where a design's verdict holds, for arrays: under both rules, within ``max_turns``,
+    a JARM on ``turn`` (the boundary its margins measure to; ``Design.plot`` draws it)."""
+    spec = _Spec(target, max_turns, turn if target == "jarm" else None)
+    return _classify(alpha, chi, km, mu, spec)[0]

@@ -70,7 +70,7 @@ def best(
     seed: int,
     apex_min: float,
 ) -> tuple[int, list[Success]]:
-    """The index of the candidate (alpha, km, chi) most likely to keep its verdict (the
+    """The index of the candidate (α, km, χ) most likely to keep its verdict (the
     first on a tie: the candidates come best margin first), and every candidate's odds."""
     odds = [
         success(spec, tolerance_spread(tolerances, a, c, k, mu), n, seed, apex_min)

@@ -6,7 +6,7 @@ import json
 import math
 from collections.abc import Callable
 from dataclasses import dataclass, field, fields
-from typing import TYPE_CHECKING, Any, NamedTuple
+from typing import TYPE_CHECKING, Any, NamedTuple, overload
 
 from eccjump._base.body import Cylinder
 from eccjump._base.checks import short
@@ -17,6 +17,8 @@ from eccjump.studies.design.physical import Build
 
 if TYPE_CHECKING:  # pragma: no cover
     import xarray as xr
+    from matplotlib.axes import Axes
+    from matplotlib.figure import Figure, FigureBase
 
 
 @dataclass(frozen=True)
@@ -24,7 +26,7 @@ class Margin:
     """The distance of one input from the nearest boundary of the verdict's region.
 
     ``lo``/``hi``: the boundaries below and above ``value`` (-inf/inf: none in the input's
-    whole range); ``margin``: the distance to the nearer one (for mu_s: beyond the stated
+    whole range); ``margin``: the distance to the nearer one (for μ_s: beyond the stated
     uncertainty); ``relative``: margin / value, the fractional error that changes the verdict.
     """
 
@@ -38,7 +40,7 @@ class Margin:
 
 @dataclass(frozen=True)
 class Sensitivity:
-    """One input moved by -error and +error (the others nominal, mu_s at its worst case):
+    """One input moved by -error and +error (the others nominal, μ_s at its worst case):
     the verdict under both rules (``"kept"`` or the reasons) and the angle of the deciding
     event under the paper's rule (lift-off for a JARM, slip for a slip) [deg]."""
 
@@ -53,10 +55,10 @@ class Sensitivity:
 
 @dataclass(frozen=True)
 class Flight:
-    """The full motion at the design point under one rule (nominal mu_s, restitution 0):
+    """The full motion at the design point under one rule (nominal μ_s, restitution 0):
     the first modes, and the first flight (NaN if none): lift-off angle [deg], apex of the
     axis above contact, distance along the ramp and duration (SI if the design has units:
-    m and s; else R and sqrt(R/g))."""
+    m and s; else R and √(R/g))."""
 
     rule: str
     modes: tuple[str, ...]
@@ -104,7 +106,7 @@ class Design(Result, kind="design"):
     mu_s_err : float
         Its uncertainty.
     mu_s_worst : float
-        The end of [mu_s - mu_s_err, mu_s + mu_s_err] where the verdict is weakest.
+        The end of [μ_s - mu_s_err, μ_s + mu_s_err] where the verdict is weakest.
     build : Build
         The body as a shell plus a rod, in SI units or in R and M.
     si : bool
@@ -164,7 +166,7 @@ class Design(Result, kind="design"):
 
     @property
     def rod_position(self) -> float:
-        """rho = r/R."""
+        """ρ = r/R."""
         return self.build.rod_position / self.build.radius
 
     def margin(self, name: str) -> Margin:
@@ -329,6 +331,23 @@ class Design(Result, kind="design"):
             for f in self.flights
         ]
         return card("Design (print it for the lab sheet)", rows)
+
+    @overload
+    def plot(self, *, ax: Axes, **kwargs: Any) -> Axes: ...
+    @overload
+    def plot(self, *, ax: None = None, fig: FigureBase | None = None, **kwargs: Any) -> Figure: ...
+    def plot(
+        self, *, ax: Axes | None = None, fig: FigureBase | None = None, **kwargs: Any
+    ) -> Axes | Figure:
+        """The design on its region slice (``eccjump.plot.design_slice``): where its
+        verdict holds over (χ, α) at its k_m and worst-case μ_s, the design and its
+        margins in α and in the rod position. ``ax=``: the same, drawn into this
+        matplotlib Axes and returned (``eccjump.plot.design_panel``), to compose figures;
+        ``fig=``: in this empty Figure or SubFigure. ``kwargs`` (``resolution=``) go to it.
+        Needs ``pip install eccjump[plot]``."""
+        from eccjump import plot  # figures: the layer on top of every result
+
+        return plot.draw(self, ax=ax, fig=fig, **kwargs)
 
 
 def _odds(s: Success, tolerances: dict[str, float] | None) -> str:

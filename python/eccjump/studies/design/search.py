@@ -103,19 +103,19 @@ def design(
 
     The design space is the ramp angle, the shell mass fraction k_m and the rod position
     r/R of the paper's shell-plus-rod body. The verdict must hold under both lift-off rules
-    and for every mu_s within the uncertainty; the margins -- distances to the exact
-    boundaries of the verdict's region in alpha, mu_s and r/R -- are taken at the worst
-    mu_s, and the design maximises the smallest relative margin (a coarse grid, then a
+    and for every μ_s within the uncertainty; the margins -- distances to the exact
+    boundaries of the verdict's region in α, μ_s and r/R -- are taken at the worst
+    μ_s, and the design maximises the smallest relative margin (a coarse grid, then a
     deterministic compass search).
 
     Parameters
     ----------
     alpha_range : sequence of two floats
-        (lo, hi), the ramp angles the lab can set [rad], 0 <= lo <= hi <= pi/2.
+        (lo, hi), the ramp angles the lab can set [rad], 0 ≤ lo ≤ hi ≤ π/2.
     mu_s : float
         The surface pair's static friction coefficient, finite and > 0.
     mu_s_err : float, default 0.0
-        Its uncertainty, in [0, mu_s).
+        Its uncertainty, in [0, μ_s).
     target : {"jarm", "slip"}, default "jarm"
         ``"jarm"``: a jump straight out of pure rolling; ``"slip"``: a body that certainly
         slips before it lifts off (the control run).
@@ -133,14 +133,14 @@ def design(
         Gravitational acceleration [m/s²] for the SI sheet.
     max_turns : int, default 10
         The turns the ramp allows, 1 ... 1000: the lift-off (or slip) must come within
-        them, i.e. within 2 pi R max_turns of rolling.
+        them, i.e. within 2π R max_turns of rolling.
     error : float, default 0.05
         The fractional error of each input in the sensitivity table, in (0, 0.5].
     grid : int, default 24
         Points per axis of the coarse search grid, 4 ... 64.
     min_apex : float, default 0.0
         The least apex of the first flight (the gap to the ramp, under both rules, at the
-        nominal mu_s) [R, or m with ``radius``], in [0, 10 R]: ask for a jump you can see.
+        nominal μ_s) [R, or m with ``radius``], in [0, 10 R]: ask for a jump you can see.
         0 asks for none (a JARM's first flight is often below 0.01 R); target "jarm" only.
     tolerances : mapping of str to float or None, default None
         The lab's tolerances as normal standard deviations by name, among ``chi``, ``km``,
@@ -155,7 +155,7 @@ def design(
     samples : int, default 10_000
         Samples per probability, 100 ... 10**6.
     seed : int, default 0
-        The seed of the samples (the same for every candidate), >= 0.
+        The seed of the samples (the same for every candidate), ≥ 0.
     progress : bool, callable or None, default None
         Progress of the search, in stages (the grid, the search, the probabilities with
         ``tolerances``, the sheet): None or False, none; True, a bar on stderr (tqdm); a
@@ -498,7 +498,7 @@ def _angle(one: Any, target: str, i: Any = ()) -> float:
 def _sensitivity(
     spec: _Spec, body: Cylinder, alpha: float, mu: float, err: float, b: Build, e: float
 ) -> tuple[Sensitivity, ...]:
-    """Each input moved by -e and +e (the others nominal), re-classified at the worst mu_s.
+    """Each input moved by -e and +e (the others nominal), re-classified at the worst μ_s.
     The body inputs are converted by the core's own constructors (an input that makes the
     body impossible gives the verdict "impossible body")."""
     target = spec.target

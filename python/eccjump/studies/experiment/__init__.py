@@ -1,7 +1,7 @@
 """From a lab video to a verdict: track the axle's and the marker's dots through the video
 (``eccjump.track``, module ``video``; ``render_video`` films a simulated run) or read a
 tracked experiment (axle and marker, module ``track``), reconstruct
-theta, l, b in the ramp frame, detect and time slip, lift-off and landing, fit the model
+θ, l, b in the ramp frame, detect and time slip, lift-off and landing, fit the model
 (``eccjump.simulate``) and say whether the body jumped straight out of pure rolling
 (the site's page "Analysing an experiment"). The fit needs scipy
 (``pip install eccjump[analysis]``).

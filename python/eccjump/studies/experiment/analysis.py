@@ -25,7 +25,7 @@ import math
 import os
 import time
 from dataclasses import dataclass, field, replace
-from typing import TYPE_CHECKING, Any, get_args
+from typing import TYPE_CHECKING, Any, get_args, overload
 
 import numpy as np
 
@@ -34,7 +34,7 @@ from eccjump._base.checks import Rule, flag, integer, optional_real, rule_name, 
 from eccjump._base.docs import fill
 from eccjump._base.html import card
 from eccjump.maps.results import Result
-from eccjump.studies.experiment import figure, report
+from eccjump.studies.experiment import report
 from eccjump.studies.experiment.events import Flight, Observed, Window, observe
 from eccjump.studies.experiment.fit import (
     MU_MAX,
@@ -63,7 +63,8 @@ from eccjump.studies.experiment.video import track as track_video
 
 if TYPE_CHECKING:  # pragma: no cover
     import xarray as xr
-    from matplotlib.figure import Figure
+    from matplotlib.axes import Axes
+    from matplotlib.figure import Figure, FigureBase
 
 VERDICTS = ("jarm", "slip_first", "undetermined")
 REASONS = ("", "no_liftoff", "noise", "frame_rate", "short_track", "model")
@@ -269,10 +270,20 @@ class Analysis(Result, kind="analysis"):
         rows += [("evidence", e) for e in self.evidence]
         return card("Analysis of a tracked experiment", rows)
 
-    def plot(self, **kwargs: Any) -> Figure:
-        """Data and model: theta, the slip velocity, the height of C, the modes as bands
-        (``eccjump.studies.experiment.figure``; needs ``pip install eccjump[plot]``)."""
-        return figure.analysis_figure(self, **kwargs)
+    @overload
+    def plot(self, *, ax: Axes, **kwargs: Any) -> Axes: ...
+    @overload
+    def plot(self, *, ax: None = None, fig: FigureBase | None = None, **kwargs: Any) -> Figure: ...
+    def plot(
+        self, *, ax: Axes | None = None, fig: FigureBase | None = None, **kwargs: Any
+    ) -> Axes | Figure:
+        """Data and model against time: θ, the slip velocity, the height of C,
+        the modes as bands (``eccjump.studies.experiment.figure``). ``ax=``: only θ, drawn
+        into this matplotlib Axes and returned, to compose figures; ``fig=``: the full figure
+        in this empty Figure or SubFigure. Needs ``pip install eccjump[plot]``."""
+        from eccjump import plot  # figures: the layer on top of every result
+
+        return plot.draw(self, ax=ax, fig=fig, **kwargs)
 
     def to_xarray(self) -> xr.Dataset:
         """The track, its reconstruction and the fitted model along ``frame`` with units, the

@@ -5,10 +5,10 @@ error in contact), each timed with a window.
 Thresholds: a frame is off the ramp when b - R > 3 sigma, and a flight is a run of at least
 :data:`MIN_RUN` such frames (a false alarm needs three 3-sigma excursions in a row, about
 1 in 4e8 per frame). At a lift-off from contact the normal velocity and acceleration of C are
-both 0 (the lift-off conditions), so the gap grows like (t - t_L)^3 and stays inside the
-noise for several frames: the lift-off is timed by fitting c tau^3 (tau = t - t_L > 0, c >= 0)
+both 0 (the lift-off conditions), so the gap grows like (t - t_L)³ and stays inside the
+noise for several frames: the lift-off is timed by fitting c tau³ (tau = t - t_L > 0, c ≥ 0)
  to the gap over the start of the flight, profiling t_L; its window is where the sum of
-squares is within sigma^2 of its least value (one standard error). A slip is a run of at
+squares is within sigma² of its least value (one standard error). A slip is a run of at
 least :data:`MIN_RUN` contact frames whose slip velocity exceeds 3 standard errors, or where
 the slip displacement's mean over the next 4 frames differs from that over the previous 4
 by more than 3 standard errors (a slip shorter than the smoothing window, which the
@@ -140,7 +140,7 @@ def _steps(s: NDArray[np.float64], err: NDArray[np.float64]) -> NDArray[np.bool_
 def _liftoff(
     t: NDArray[np.float64], h: NDArray[np.float64], sigma: float, a: int, b: int, floor: int
 ) -> Window:
-    """Profile fit of h = c tau^3 (tau > 0, c >= 0) from 20 frames (at least 50 ms) before
+    """Profile fit of h = c tau³ (tau > 0, c ≥ 0) from 20 frames (at least 50 ms) before
     the run, but not before frame ``floor`` (the previous flight's landing), to where the
     gap first reaches 8 sigma (the series holds near the lift-off only)."""
     back = max(20, int(0.05 / float(np.median(np.diff(t)))))
@@ -156,7 +156,7 @@ def _liftoff(
 
 
 def _onset_sse(t: NDArray[np.float64], h: NDArray[np.float64], t0: float) -> float:
-    """The least sum of squares of h - c tau^3 over c >= 0."""
+    """The least sum of squares of h - c tau³ over c ≥ 0."""
     cube = np.clip(t - t0, 0.0, None) ** 3
     norm = float(cube @ cube)
     c = max(float(cube @ h) / norm, 0.0) if norm > 0 else 0.0

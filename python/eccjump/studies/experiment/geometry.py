@@ -1,22 +1,22 @@
-"""The ramp frame and the marker: from lab positions to (theta, l, b) and back.
+"""The ramp frame and the marker: from lab positions to (θ, l, b) and back.
 
 The ramp frame is the paper's: x down the ramp, y along its normal, away from it. In the lab
-(x right, y up) a ramp of angle alpha that descends to the right (``side = +1``) has
+(x right, y up) a ramp of angle α that descends to the right (``side = +1``) has
 
     x_hat = (cos a, -sin a),   y_hat = (sin a, cos a);
 
 one that descends to the left (``side = -1``) is its mirror image, x_hat = (-cos a, -sin a),
 y_hat = (-sin a, cos a). The body's points are written in that frame, so the same formulas
-hold on either side. The centre of mass sits at C + d (sin theta, cos theta) (the paper's
-Eq. ddef: theta from the normal towards x_hat, growing as the body rolls down). A marker
+hold on either side. The centre of mass sits at C + d (sin θ, cos θ) (the paper's
+Eq. ddef: θ from the normal towards x_hat, growing as the body rolls down). A marker
 fixed on the body at distance r_m from the axle, at angle beta from the direction C -> CM
 (measured the same way), turns with the body:
 
-    M = C + r_m (sin(theta + beta), cos(theta + beta))      (ramp frame),
+    M = C + r_m (sin(θ + beta), cos(θ + beta))      (ramp frame),
 
-so theta = atan2(u, v) - beta with (u, v) the ramp-frame components of M - C, unwrapped
+so θ = atan2(u, v) - beta with (u, v) the ramp-frame components of M - C, unwrapped
 (rolling down turns the body clockwise in a frame with x_hat to the right: a point at the
-top, theta = 0, moves towards x_hat). l is the distance of C along x_hat from an origin on
+top, θ = 0, moves towards x_hat). l is the distance of C along x_hat from an origin on
 C's contact line, b its height above the ramp: b = R in contact.
 """
 
@@ -76,7 +76,7 @@ def descent_side(c: NDArray[np.float64]) -> int:
 @dataclass(frozen=True)
 class ContactLine:
     """The line C follows in contact: the ramp frame, the ramp angle's standard error
-    (0 when alpha was given), the per-coordinate noise ``sigma`` [m] of the tracked points
+    (0 when α was given), the per-coordinate noise ``sigma`` [m] of the tracked points
     (from the residuals about the line), and the frames used (in contact)."""
 
     frame: RampFrame
@@ -92,7 +92,7 @@ def fit_contact_line(
     every contact frame (rolling or slipping) and higher in flight. Starts from the first
     ``lead`` frames (the track must start on the ramp), then takes every frame within 4
     noise levels below or above the line, refits, and repeats. With ``alpha`` None the slope
-    is fitted too (alpha and its standard error from the regression)."""
+    is fitted too (α and its standard error from the regression)."""
     side = descent_side(c)
     n = c.shape[0]
     use = np.zeros(n, dtype=bool)

@@ -4,7 +4,7 @@ and degrees), and the bounds on a track and its marker (the site's page "Limits"
 
 Why these ranges: they hold every lab experiment (a body from a tenth of a millimetre to ten
 metres, filmed at up to ten million frames per second) and keep the model's own inputs --
-the duration in units of sqrt(R/g), the start angle, squares of the noise -- finite and
+the duration in units of √(R/g), the start angle, squares of the noise -- finite and
 inside the core's bounds, so that no message ever names a quantity the user did not give.
 """
 

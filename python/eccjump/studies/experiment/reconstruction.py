@@ -1,17 +1,17 @@
-"""From a track to theta(t), l(t), b(t) in the ramp frame, their rates and the slip, each with
+"""From a track to θ(t), l(t), b(t) in the ramp frame, their rates and the slip, each with
 its standard error.
 
 Noise: the tracked points carry independent noise of one level sigma per coordinate (pixel
 noise of the tracking), estimated from the data: C lies on a straight line in every contact
 frame, so the spread of its distance to that line is sigma (``geometry.fit_contact_line``).
-Per frame: l and b carry sigma; theta = atan2 of M - C carries sigma sqrt(2) / r_m; the slip
-displacement s = l - R (theta - theta_0) carries sigma^2 (1 + 2k cos phi + 2k^2), k = R / r_m,
-phi = theta + beta (C's noise enters both l and theta: the cross term).
+Per frame: l and b carry sigma; θ = atan2 of M - C carries sigma √(2) / r_m; the slip
+displacement s = l - R (θ - theta_0) carries sigma² (1 + 2k cos phi + 2k²), k = R / r_m,
+phi = θ + beta (C's noise enters both l and θ: the cross term).
 
 Rates: local cubic least squares over a window of frames around each frame (Savitzky-Golay
 on the actual frame times, so dropped frames are allowed). Why this method: it is a linear
 filter with known weights, so the standard error of every rate follows exactly from the
-per-frame errors (sum of weight^2 x variance), and it is local, so a landing blurs the rates
+per-frame errors (sum of weight² x variance), and it is local, so a landing blurs the rates
 only within one window. A smoothing spline would need its smoothing parameter chosen
 from the same noise estimate and gives no simpler error formula. The window (odd, at least 7
 frames; by default about 25 ms) trades noise against the blurring of a transition.
@@ -37,10 +37,10 @@ DEGREE = 3
 
 @dataclass(frozen=True, eq=False)
 class Reconstruction:
-    """theta [rad], l [m] (C along the ramp, from its first frame), b [m] (C above the
-    ramp; R in contact), the slip displacement s = l - R (theta - theta[0]) [m] per frame
+    """θ [rad], l [m] (C along the ramp, from its first frame), b [m] (C above the
+    ramp; R in contact), the slip displacement s = l - R (θ - θ[0]) [m] per frame
     with their standard errors, and the smoothed rates omega [rad/s], ldot, bdot and the
-    slip velocity v = ldot - R omega [m/s] with theirs; the contact line (frame, alpha,
+    slip velocity v = l̇ - R θ̇ [m/s] with theirs; the contact line (frame, α,
     noise), the smoothing window (frames), the marker's distance used and the one measured."""
 
     t: NDArray[np.float64]
@@ -97,7 +97,7 @@ def reconstruct(
     alpha: float | None = None,
     window: int | None = None,
 ) -> Reconstruction:
-    """theta, l, b, the rates and the slip of ``track`` (module docstring for the method)."""
+    """θ, l, b, the rates and the slip of ``track`` (module docstring for the method)."""
     line = fit_contact_line(track.c, alpha)
     frame = line.frame
     qc, qm = frame.to_ramp(track.c), frame.to_ramp(track.m)

@@ -50,7 +50,7 @@ PRESET = "ultrafast"
 class RenderedVideo:
     """A rendered video and its truth: the file, the frame times ``t`` [s], each dot's
     centroid per frame in image pixels (``axle_px``, ``marker_px``: column, row from the
-    top-left pixel's centre), the scale [px/m], the setup (R, the marker, alpha [rad], the
+    top-left pixel's centre), the scale [px/m], the setup (R, the marker, α [rad], the
     camera's roll [rad]) and the simulated run with its time unit [s]; the run's time [s]
     is the video's + ``t_shift`` (half an exposure, less the wait before the release)."""
 
@@ -136,7 +136,7 @@ def render_video(
     radius (dots a few pixels across are what the tracker needs), an exposure of
     ``shutter`` frames, the body held at rest for ``wait`` seconds before its release
     (``omega0`` must then be 0), Gaussian noise of ``noise`` grey levels, the camera rolled by
-    ``roll`` [rad] (the ramp shows at alpha + roll), x264's quality ``crf`` (0 lossless, 51
+    ``roll`` [rad] (the ramp shows at α + roll), x264's quality ``crf`` (0 lossless, 51
     worst). A file at ``path`` is replaced only with ``overwrite``."""
     av = require("av", purpose="writing videos", extra="video")
     target = Path(path_arg("path", path))

@@ -1,4 +1,4 @@
-"""The inputs an ``eccjump design --json`` sheet gives the analysis: the body (chi, km), the
+"""The inputs an ``eccjump design --json`` sheet gives the analysis: the body (χ, km), the
 radius R [m] when the design was made in metres, and the ramp angle."""
 
 from __future__ import annotations
@@ -13,7 +13,7 @@ from eccjump._base.userfiles import read_text
 
 
 def design_inputs(design: str | os.PathLike[str] | dict[str, Any]) -> dict[str, float]:
-    """{"chi", "km", "alpha" [rad], and "radius" [m] if the sheet has one} from a design
+    """{"χ", "km", "α" [rad], and "radius" [m] if the sheet has one} from a design
     sheet (a path to its JSON, or the dict of ``Design.to_dict()``)."""
     if isinstance(design, str | os.PathLike):
         text = read_text("design", design)  # the guard of every user's file

@@ -21,7 +21,7 @@ from eccjump.studies.experiment.track import Track
 @dataclass(frozen=True, eq=False)
 class SyntheticTrack:
     """A track (metres), the pixel scale it was drawn at [px/m] and the truth at its frames:
-    theta [rad], l and b [m] (l from the first frame), the mode of each frame, and the
+    θ [rad], l and b [m] (l from the first frame), the mode of each frame, and the
     simulated run (dimensionless, its time 0 at the first frame)."""
 
     track: Track
@@ -117,7 +117,7 @@ def simulated_run(
     duration: float | None,
 ) -> tuple[MotionResult, float, float]:
     """The run that a synthetic track or video films: ``simulate`` with dense output, the time
-    unit sqrt(R/g) [s] and the horizon (dimensionless): ``duration`` seconds, or by default to
+    unit √(R/g) [s] and the horizon (dimensionless): ``duration`` seconds, or by default to
     the first landing and half a flight more (3 s without a flight)."""
     unit = math.sqrt(radius / g)
     horizon = 3.0 / unit if duration is None else duration / unit
@@ -151,7 +151,7 @@ def lab_points(
     beta: float,
 ) -> tuple[NDArray[np.float64], NDArray[np.float64], tuple[NDArray[np.float64], ...]]:
     """The axle C and the marker M (each (n, 2), lab metres, C's contact line through the
-    origin) at the dimensionless times ``tau``, and (theta [rad], l [m], b [m]) there."""
+    origin) at the dimensionless times ``tau``, and (θ [rad], l [m], b [m]) there."""
     assert run.sol is not None
     theta, _, l, _, b, _ = run.sol(tau)  # noqa: E741
     frame = RampFrame(alpha, side, (0.0, 0.0))

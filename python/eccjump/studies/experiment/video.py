@@ -15,7 +15,7 @@ white face, a black rim, a grey ramp). How they are found, and why:
   motion blur) has its centroid there; under blur that is the dot's mean position over the
   exposure (docs: a timing claim finer than a frame must say so). The standard error follows
   from the chroma noise sigma_C (the spread of the chroma inside and around the dot):
-  var(x) = sigma_C^2 sum (x_i - x)^2 / W^2, W the summed weight. That ignores the codec's
+  var(x) = sigma_C² sum (x_i - x)² / W², W the summed weight. That ignores the codec's
   correlation of neighbouring pixels, so the errors are then scaled up to the centroids'
   actual scatter along their paths, when that is larger (the spread of third differences of
   consecutive frames). The analysis estimates the noise from the track itself as well.
@@ -116,8 +116,8 @@ class VideoTrack(Track):
     (N, 2; column, row from the top-left pixel's centre; NaN where lost). ``scale`` [px/m]
     and how it was set (``scale_from``); ``ramp_angle`` [rad] (the axle's rolling line in the
     image, below the horizontal in the direction of motion) with its standard error, and
-    ``roll`` [rad] = ramp_angle - alpha when alpha was given (else NaN: a level camera shows
-    the ramp at alpha); the dots' colours found (``#rrggbb``); ``release_t`` [s], the first
+    ``roll`` [rad] = ramp_angle - α when α was given (else NaN: a level camera shows
+    the ramp at α); the dots' colours found (``#rrggbb``); ``release_t`` [s], the first
     frame kept when a wait before the release was left out (else NaN). ``scale_err``
     [px/m] is the scale's standard error from the spread of the dots' distance (0 when
     ``scale`` was given; the error of ``marker_radius`` itself adds to it): a scale off by
@@ -290,8 +290,8 @@ def track(
         0..255. None finds them: the two colours that move together, the axle's the one
         that moves on a straight line.
     alpha : float or None
-        The ramp angle [rad], in [0, pi/2]: the camera's roll is then reported (the rolling
-        line's angle in the image minus alpha). The track is not rotated.
+        The ramp angle [rad], in [0, π/2]: the camera's roll is then reported (the rolling
+        line's angle in the image minus α). The track is not rotated.
     start, end : float or None
         Track only the frames between the times start and end [s] of the video (at most
         10,000 frames).
@@ -524,7 +524,7 @@ def _expected_frames(stream: Any, t0: float, t1: float) -> int:
 def _frames(
     av: Any, container: Any, stream: Any, name: str, t0: float, t1: float
 ) -> Iterator[tuple[float, Planes]]:
-    """(time [s] = pts x time_base, planes) of each frame in [t0, t1], one at a time."""
+    """(time [s] = pts × time_base, planes) of each frame in [t0, t1], one at a time."""
     if math.isfinite(t0) and t0 > 0 and stream.time_base:
         container.seek(int(t0 / stream.time_base), stream=stream, backward=True)
     last = -math.inf
@@ -914,7 +914,7 @@ def _error_scale(
 ) -> float:
     """The factor (at least 1) that brings the centroids' standard errors from the pixel
     noise up to their scatter along the paths: the robust spread of third differences of
-    four consecutive frames (20 sigma^2 for independent noise; the smooth motion's share is
+    four consecutive frames (20 sigma² for independent noise; the smooth motion's share is
     small at a camera's frame rates, and an impact's is an outlier the median ignores). The
     codec correlates neighbouring pixels, which the pixel-noise errors ignore."""
     d3 = np.concatenate([np.diff(p, n=3, axis=0).ravel() for p in paths])
@@ -975,7 +975,7 @@ def _usable(path: _Path) -> NDArray[np.float64]:
 def _release(c: NDArray[np.float64], err: NDArray[np.float64], t: NDArray[np.float64]) -> int:
     """The first frame to keep: the last one still before the release, if the axle stays
     still (within 1 px and 4 standard errors) for MIN_REST_FRAMES frames or more first;
-    else 0. Released from rest, the axle's distance from its place grows as (t - t_r)^2 at
+    else 0. Released from rest, the axle's distance from its place grows as (t - t_r)² at
     first, so the release t_r is where the root of that distance, fitted by a line over the
     frames that leave the place, meets 0 (the frames that move less than the tolerance are
     kept: they are the start of the motion)."""

@@ -4,21 +4,21 @@ JARM question, of the first lift-off and landing (``simulate(..., sensitivities=
 the full motion.
 
 To first order a quantity q(x) of the inputs x varies as q(x0) + g·(x - x0), g its gradient at
-the nominal point x0, so its standard deviation is sqrt(sum_i g_i^2 var_i) for independent
-inputs (var_i = sd_i^2 for a normal, (hi - lo)^2 / 12 for a uniform). For the lift-off angle
-theta_J, g = ``d_theta_J`` (with respect to alpha, chi, km; mu_s does not move it).
+the nominal point x0, so its standard deviation is √(sum_i g_i² var_i) for independent
+inputs (var_i = sd_i² for a normal, (hi - lo)² / 12 for a uniform). For the lift-off angle
+θ_J, g = ``d_theta_J`` (with respect to α, χ, km; μ_s does not move it).
 
 P(JARM) follows where the verdict is decided by the friction the jump needs: the JARM holds
-while mu_s exceeds the friction ratio at the jump, mu_J, so P(JARM) ~ Phi(m0 / sd_m), m0 = mu_s
-- mu_J at the nominal point and sd_m the first-order spread of mu_s - mu_J. It is given only
-where that ratio is the largest along the path (``max_ratio`` = mu_J): where an earlier
+while μ_s exceeds the friction ratio at the jump, μ_J, so P(JARM) ~ Phi(m0 / sd_m), m0 = μ_s
+- μ_J at the nominal point and sd_m the first-order spread of μ_s - μ_J. It is given only
+where that ratio is the largest along the path (``max_ratio`` = μ_J): where an earlier
 ratio binds, or the nominal point is no JARM, the margin has no derivative here (None). Both
 estimates are exact only in the limit of small tolerances; the Monte Carlo ones are the
 answer, these say how much of it a linearisation explains.
 
 For the full motion the gradients are those of the first lift-off's time and angle and of the
-first flight's duration with respect to all eight inputs (where mu_k follows mu_s, a change of
-mu_s moves both). P(JARM) has no first-order estimate there (None).
+first flight's duration with respect to all eight inputs (where μ_k follows μ_s, a change of
+μ_s moves both). P(JARM) has no first-order estimate there (None).
 """
 
 from __future__ import annotations
@@ -42,11 +42,11 @@ WRT = ("alpha", "chi", "km")
 
 
 class Delta(NamedTuple):
-    """The first-order estimate: the standard deviation of the lift-off angle [rad] (theta_J;
+    """The first-order estimate: the standard deviation of the lift-off angle [rad] (θ_J;
     for the full motion the first lift-off's angle), P(JARM) from the nominal point's
     derivatives (None where the friction ratio at the jump does not decide the verdict, and
     for the full motion), and for the full motion the standard deviations of the first
-    lift-off's time and of the first flight's duration [sqrt(R/g)] (None if it does not
+    lift-off's time and of the first flight's duration [√(R/g)] (None if it does not
     land)."""
 
     theta_J_sd: float
@@ -56,7 +56,7 @@ class Delta(NamedTuple):
 
 
 def _spread(gradient: list[float], var: list[float]) -> float | None:
-    """The delta method's standard deviation sqrt(sum g_i^2 var_i); a parameter held fixed
+    """The delta method's standard deviation √(sum g_i² var_i); a parameter held fixed
     (var 0) takes no part, so its derivative may be NaN (k_m's, one-sided at k_m = 0); None
     where a NaN derivative meets a spread."""
     terms = [g * g * v for g, v in zip(gradient, var, strict=True) if v > 0.0]
@@ -66,7 +66,7 @@ def _spread(gradient: list[float], var: list[float]) -> float | None:
 
 
 def variance(spec: Spread, name: str) -> float:
-    """The variance of one input: sd^2, (hi - lo)^2 / 12, or 0 where it does not vary."""
+    """The variance of one input: sd², (hi - lo)² / 12, or 0 where it does not vary."""
     if name in spec.sd:
         return spec.sd[name] ** 2
     if name in spec.bounds:

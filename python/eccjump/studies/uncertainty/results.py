@@ -10,7 +10,7 @@ import os
 from collections.abc import Mapping
 from dataclasses import dataclass
 from pathlib import Path
-from typing import TYPE_CHECKING, Any, NamedTuple
+from typing import TYPE_CHECKING, Any, NamedTuple, overload
 
 import numpy as np
 from numpy.typing import NDArray
@@ -28,7 +28,8 @@ from eccjump.studies.uncertainty.sampling import UNITS
 
 if TYPE_CHECKING:
     import xarray as xr
-    from matplotlib.figure import Figure
+    from matplotlib.axes import Axes
+    from matplotlib.figure import Figure, FigureBase
 
 #: The quantiles of each distribution's summary.
 QUANTILES = (0.025, 0.25, 0.5, 0.75, 0.975)
@@ -126,7 +127,7 @@ class Uncertainty(Result, kind="uncertainty", suffixes=(".csv",)):
     confidence : float
         The level of the confidence intervals.
     nominal : dict of str to float
-        The nominal value of every parameter (chi, km, alpha, mu_s, mu_k, restitution,
+        The nominal value of every parameter (χ, km, α, μ_s, μ_k, restitution,
         theta0, omega0).
     sd, bounds : dict
         The normal standard deviations and uniform ranges, by parameter.
@@ -136,7 +137,7 @@ class Uncertainty(Result, kind="uncertainty", suffixes=(".csv",)):
         The samples within the physical range that the question could answer (the others
         count in no probability).
     outcomes : dict of str to numpy.ndarray
-        What each sample did: for "jarm" ``is_jarm``, ``reason``, ``liftoff_theta`` (theta_J of
+        What each sample did: for "jarm" ``is_jarm``, ``reason``, ``liftoff_theta`` (θ_J of
         a JARM, else NaN), ``Fy_J``, ``max_ratio``; for "motion" every field of
         :class:`eccjump.MotionPoints` (``jarm``, ``sequence``, ``liftoff_theta``, ``apex``, ...).
     n_valid : int
@@ -340,12 +341,6 @@ class Uncertainty(Result, kind="uncertainty", suffixes=(".csv",)):
             delta=None if delta is None else Delta(**delta),
         )
 
-    def plot(self, **kwargs: Any) -> Figure:
-        """The figure of :func:`eccjump.plot.uncertainty` (needs matplotlib)."""
-        from eccjump import plot  # figures: the layer on top of every result
-
-        return plot.uncertainty(self, **kwargs)
-
     def __repr__(self) -> str:
         lo, hi = self.p_jarm_ci
         varied = "; ".join(self._spreads()) or "nothing"
@@ -377,6 +372,23 @@ class Uncertainty(Result, kind="uncertainty", suffixes=(".csv",)):
         out = [f"{k} ± {num(v, 3)}" for k, v in self.sd.items() if v > 0]
         out += [f"{k} in [{num(lo, 4)}, {num(hi, 4)}]" for k, (lo, hi) in self.bounds.items()]
         return out
+
+    @overload
+    def plot(self, *, ax: Axes, **kwargs: Any) -> Axes: ...
+    @overload
+    def plot(self, *, ax: None = None, fig: FigureBase | None = None, **kwargs: Any) -> Figure: ...
+    def plot(
+        self, *, ax: Axes | None = None, fig: FigureBase | None = None, **kwargs: Any
+    ) -> Axes | Figure:
+        """The study (``eccjump.plot.uncertainty``): its outcomes with their Wilson
+        intervals, the samples and the distributions. ``ax=``: only the distribution of the
+        outcomes, drawn into this matplotlib Axes and returned
+        (``eccjump.plot.outcomes_panel``), to compose figures; ``fig=``: the full figure in
+        this empty Figure or SubFigure. ``kwargs`` go to the function drawn. Needs
+        ``pip install eccjump[plot]``."""
+        from eccjump import plot  # figures: the layer on top of every result
+
+        return plot.draw(self, ax=ax, fig=fig, **kwargs)
 
 
 def _first_order(d: Delta) -> str:

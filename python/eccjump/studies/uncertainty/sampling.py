@@ -3,13 +3,13 @@ unit-cube points (pseudo-random or scrambled Sobol), and their map onto the para
 
 Each varied parameter takes one column of the unit cube, in the order of :data:`PARAMETERS`,
 and is mapped by its inverse CDF: a normal (nominal, sd) or a uniform (lo, hi). The physical
-range of a parameter (:data:`RANGES`; k_m in [0, 1 - chi] and mu_k in [0, mu_s] of the sample's
-own chi and mu_s) is handled by the ``invalid`` policy:
+range of a parameter (:data:`RANGES`; k_m in [0, 1 - χ] and μ_k in [0, μ_s] of the sample's
+own χ and μ_s) is handled by the ``invalid`` policy:
 
 - ``"truncate"``: each distribution is conditioned on the physical range by the inverse CDF
   of the truncated distribution. No sample is redrawn: sample i is always the image of cube
   point i, so the Sobol structure and the seed's stream stay intact. Only a uniform whose
-  (lo, hi) misses the range altogether (k_m bounds above 1 - chi) leaves a sample invalid.
+  (lo, hi) misses the range altogether (k_m bounds above 1 - χ) leaves a sample invalid.
 - ``"count"``: the distributions as given; a sample outside the physical range is invalid.
 
 Invalid samples are counted (``n_valid`` and ``p_invalid`` of the result) and left out of
@@ -76,8 +76,8 @@ SPREAD_MAX = 1e100
 class Spread:
     """How the parameters vary: ``sd`` (normal standard deviations) and ``bounds`` (uniform
     ranges) by name, around the ``nominal`` values of all of :data:`PARAMETERS`;
-    ``mu_k_follows``: mu_k was not given, so a sample's mu_k is its mu_s unless mu_k varies
-    (then around the nominal mu_s)."""
+    ``mu_k_follows``: μ_k was not given, so a sample's μ_k is its μ_s unless μ_k varies
+    (then around the nominal μ_s)."""
 
     nominal: dict[str, float]
     sd: dict[str, float]
@@ -158,7 +158,7 @@ def spread(
     mu_k_follows: bool = False,
     sd_option: str = "sd",
 ) -> Spread:
-    """The checked :class:`Spread`: names among ``allowed``, sd >= 0, lo <= hi, no parameter
+    """The checked :class:`Spread`: names among ``allowed``, sd ≥ 0, lo ≤ hi, no parameter
     both in ``sd`` and in ``bounds`` (ValueError or TypeError naming it; ``sd`` as the caller
     calls it, ``sd_option``)."""
     s, b = _sd(sd, allowed, sd_option), _bounds(bounds, allowed)
@@ -212,7 +212,7 @@ def _scipy() -> Any:
 def _normal(
     u: NDArray[np.float64], m: float, s: float, lo: Any, hi: Any, truncate: bool
 ) -> NDArray[np.float64]:
-    """N(m, s^2) at quantiles u, truncated to [lo, hi] if ``truncate``."""
+    """N(m, s²) at quantiles u, truncated to [lo, hi] if ``truncate``."""
     stats = _scipy()
     if not truncate:
         return m + s * stats.norm.ppf(u)
@@ -237,7 +237,7 @@ def draw(
     spec: Spread, n: int, seed: int, sampling: str, invalid: str
 ) -> tuple[dict[str, NDArray[np.float64]], NDArray[np.bool_]]:
     """The columns of all :data:`PARAMETERS` (a constant one where a parameter does not vary;
-    mu_k follows mu_s where its nominal is None and it does not vary) and the valid samples."""
+    μ_k follows μ_s where its nominal is None and it does not vary) and the valid samples."""
     varied = spec.varied
     cube = unit_cube(n, len(varied), seed, sampling)
     truncate = invalid == "truncate"

@@ -75,7 +75,7 @@ def uncertainty(
     The nominal point is ``body`` on a ramp of angle ``alpha`` with friction ``mu_s`` (and
     ``mu_k``, ``restitution``, the start ``theta0``, ``omega0``); ``sd`` gives normal
     standard deviations and ``bounds`` uniform ranges (lo, hi), by parameter name among
-    chi, km (the body's k_m), alpha, mu_s, mu_k, restitution, theta0 and omega0. ``n``
+    χ, km (the body's k_m), α, μ_s, μ_k, restitution, theta0 and omega0. ``n``
     samples are drawn (pseudo-random, or scrambled Sobol' with ``sampling="sobol"``) and
     each is classified by :func:`eccjump.jarm` (``question="jarm"``, the closed form) or run
     to its first landing by :func:`eccjump.motion_points` (``question="motion"``).
@@ -85,11 +85,11 @@ def uncertainty(
     :func:`eccjump.motion_map` and :func:`eccjump.design` (``mu_s=`` works too); every
     option is keyword-only, named and defaulted as in ``simulate`` and ``motion_map``.
 
-    Samples outside the physical range (chi outside [0, 1], k_m > 1 - chi, mu < 0,
-    mu_k > mu_s, e outside [0, 1], alpha outside [0, pi/2]) follow ``invalid``:
+    Samples outside the physical range (χ outside [0, 1], k_m > 1 - χ, μ < 0,
+    μ_k > μ_s, e outside [0, 1], α outside [0, π/2]) follow ``invalid``:
     ``"truncate"`` (default) conditions each distribution on its range by the inverse CDF of
-    the truncated distribution (k_m's range is that of the sample's own chi, mu_k's that of
-    its mu_s): no sample is redrawn, so the result is the same for any thread count and the
+    the truncated distribution (k_m's range is that of the sample's own χ, μ_k's that of
+    its μ_s): no sample is redrawn, so the result is the same for any thread count and the
     Sobol' structure is kept; ``"count"`` keeps the distributions as given and counts the
     samples outside as invalid. Invalid samples count in no probability; ``n_valid`` and
     ``p_invalid`` report them. The samples, and so every result, are bit-identical for any
@@ -98,36 +98,36 @@ def uncertainty(
     Parameters
     ----------
     body : Cylinder
-        The nominal body (chi, km).
+        The nominal body (χ, km).
     alpha : float
-        Nominal ramp angle [rad], in [0, pi/2] (``math.radians`` for degrees).
+        Nominal ramp angle [rad], in [0, π/2] (``math.radians`` for degrees).
     mu_s : float
         Nominal static friction coefficient, in [0, inf).
     mu_k : float or None, default None
-        Nominal kinetic friction coefficient, in [0, mu_s]; None: each sample's mu_k is its
-        mu_s (if mu_k varies, around the nominal mu_s).
+        Nominal kinetic friction coefficient, in [0, μ_s]; None: each sample's μ_k is its
+        μ_s (if μ_k varies, around the nominal μ_s).
     restitution : float, default 0.0
         Nominal Stronge coefficient of restitution, in [0, 1].
     theta0 : float, default 0.0
         Nominal initial angle [rad].
     omega0 : float, default 0.0
-        Nominal initial angular velocity [sqrt(g/R) rad].
+        Nominal initial angular velocity [√(g/R) rad].
     sd : dict of str to float or None, default None
-        Normal standard deviations (>= 0, in the parameter's unit) by parameter name; 0:
+        Normal standard deviations (≥ 0, in the parameter's unit) by parameter name; 0:
         the parameter is fixed.
     bounds : dict of str to (float, float) or None, default None
-        Uniform ranges (lo <= hi, absolute values in the parameter's unit) by parameter
+        Uniform ranges (lo ≤ hi, absolute values in the parameter's unit) by parameter
         name. A parameter is in ``sd`` or in ``bounds``, not both.
     n : int, default 10_000
         Samples, 1 ... 10**8.
     seed : int, default 0
-        Seed of numpy's PCG64 stream or of the Sobol' scrambling, >= 0.
+        Seed of numpy's PCG64 stream or of the Sobol' scrambling, ≥ 0.
     sampling : {"random", "sobol"}, default "random"
         Pseudo-random points, or the first n points of Owen-scrambled Sobol'
         (``scipy.stats.qmc.Sobol``; best for n a power of 2; normals by the inverse CDF).
     question : {"jarm", "motion"}, default "jarm"
         ``"jarm"``: the JARM classification by the closed forms (10**5 samples take well
-        under a second; it can vary chi, km, alpha and mu_s); ``"motion"``: the full motion
+        under a second; it can vary χ, km, α and μ_s); ``"motion"``: the full motion
         to the first landing (every parameter; the sequences of modes, the first flight).
     invalid : {"truncate", "count"}, default "truncate"
         How samples outside the physical range are treated (see above).
@@ -172,7 +172,7 @@ def uncertainty(
 
     Examples
     --------
-    The paper's JARM point with a 1 degree tolerance on the ramp and 0.01 on chi:
+    The paper's JARM point with a 1 degree tolerance on the ramp and 0.01 on χ:
 
     >>> import math
     >>> import eccjump
