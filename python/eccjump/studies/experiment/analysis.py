@@ -1,22 +1,33 @@
 """``eccjump.analyze``: a tracked experiment in, a verdict with its evidence out.
 
+The fit (``fit.py``) covers the track up to its second lift-off (bounces are left out: the
+verdict is about the first lift-off) and carries the track's length scale as a nuisance
+parameter (a scale from the dots' distance is off by parts in a thousand, which a rolling
+body would read as a slip); errors correlated from frame to frame (a codec's) widen the
+intervals and the slip test by ``fit.correlation_inflation``.
+
 First the goodness of fit: a reduced chi-square improbable under the model (p below
 :data:`MISFIT_P` by ``fit.misfit_p``), or a given alpha that the axle's contact path
-contradicts (:data:`ALPHA_TOLERANCE`), gives ``undetermined`` (``model``) whatever else
-the track shows. Then the verdicts:
+before the model's lift-off contradicts (:data:`ALPHA_TOLERANCE`), gives ``undetermined``
+(``model``) whatever else the track shows. Then the verdicts:
 
 * ``jarm``: the body left the ramp straight from pure rolling -- the fitted model rolls up
   to its lift-off (or slips for less than one frame, and a fit that forbids any slip before
-  the lift-off is as good), and the track shows the flight beyond its noise;
+  the lift-off is as good), a slip of one frame before the lift-off would have shown
+  (``fit.one_frame_slip`` at least :data:`SIGNIFICANT`), and the track shows the flight
+  beyond its noise (frame by frame, or along the model's parabola: ``fit.flight_signal``
+  at least :data:`FLIGHT_Z`);
 * ``slip_first``: it slipped before lifting off -- the fitted model slips for at least one
   frame in all (every episode: slip, stick, slip again, reversals), and the fit that
   forbids it is worse by a chi-square of at least :data:`SIGNIFICANT` (3 standard errors);
-  a slip the data ask for is never ``jarm``;
+  a slip the data ask for is never ``jarm``, and is ``slip_first`` even where the flight
+  after it is within the noise;
 * ``undetermined``, with the reason: ``model`` (the gate, or the track flies where the
   fitted model does not), ``no_liftoff`` (the track never leaves the ramp), ``noise`` (the
   flight, or a slip of 3 frames or more, is within the noise), ``frame_rate`` (a slip
-  shorter than :data:`MIN_SLIP_FRAMES` frames that the data cannot confirm, or one they ask
-  for that is shorter than a frame) or ``short_track`` (no rolling before the lift-off).
+  shorter than :data:`MIN_SLIP_FRAMES` frames that the data cannot confirm, one they ask
+  for that is shorter than a frame, or a rolling fit that a one-frame slip would not have
+  changed visibly) or ``short_track`` (no rolling before the lift-off).
 """
 
 from __future__ import annotations
