@@ -1,6 +1,7 @@
 """The figure of an uncertainty study (:func:`eccjump.uncertainty`): the outcomes with their
 Wilson intervals, the samples over the two most spread parameters coloured JARM or not,
-and the distributions of the lift-off and the first flight."""
+the distributions of the lift-off and the first flight, and the Sobol' indices (which
+tolerance matters) where the study has them."""
 
 from __future__ import annotations
 
@@ -35,14 +36,16 @@ MAX_SCATTER = 20_000
 def uncertainty(result: Uncertainty, *, outcomes: int = 6) -> Figure:
     """The study in one figure: the ``outcomes`` most frequent outcomes (reasons or sequences)
     as bars with their Wilson intervals, the samples over the two varied parameters of
-    largest relative spread (JARM in green), and a histogram of each distribution with its
-    median and central 95 %."""
+    largest relative spread (JARM in green), a histogram of each distribution with its
+    median and central 95 %, and with ``indices=True`` the first-order and total Sobol'
+    indices of each varied parameter as bars with their bootstrap intervals."""
     if not isinstance(result, Uncertainty):
         raise TypeError(f"result must be an Uncertainty, not {type(result).__name__}")
     outcomes = integer("outcomes", outcomes, 1, 64)
     plt = _plt()
     shown = [k for k, s in result.distributions.items() if s.n]
-    panels = 2 + len(shown)
+    has_indices = bool(result.indices)
+    panels = 2 + len(shown) + has_indices
     cols = min(panels, 3)
     rows = math.ceil(panels / cols)
     fig, axes = plt.subplots(rows, cols, figsize=(4.2 * cols, 3.4 * rows), layout="constrained")
@@ -51,6 +54,8 @@ def uncertainty(result: Uncertainty, *, outcomes: int = 6) -> Figure:
     _scatter(flat[1], result)
     for ax, name in zip(flat[2:], shown, strict=False):
         _histogram(ax, result, name)
+    if has_indices:
+        _index_bars(flat[panels - 1], result)
     for ax in flat[panels:]:
         ax.set_visible(False)
     lo, hi = result.p_jarm_ci
@@ -74,6 +79,24 @@ def _outcome_bars(ax: Axes, result: Uncertainty, most: int) -> None:
     ax.set_xlim(0, 1)
     ax.set_xlabel("probability")
     ax.set_title("outcomes", fontsize=9)
+
+
+def _index_bars(ax: Axes, result: Uncertainty) -> None:
+    """Each varied parameter's first-order and total index, side by side, with intervals."""
+    indices = result.indices or {}
+    names = list(indices)
+    y = np.arange(len(names))
+    for k, (what, color) in enumerate((("first", "#9ecae1"), ("total", "#3182bd"))):
+        est = np.array([getattr(indices[n], what) for n in names]).reshape(-1, 3)
+        err = np.vstack([est[:, 0] - est[:, 1], est[:, 2] - est[:, 0]]).clip(min=0)
+        ax.barh(y + (k - 0.5) * 0.4, est[:, 0], height=0.4, xerr=err, color=color,
+                ecolor="k", capsize=2, label=what)  # fmt: skip
+    ax.set_yticks(y, names, fontsize=8)
+    ax.invert_yaxis()
+    ax.set_xlim(min(0.0, ax.get_xlim()[0]), max(1.0, ax.get_xlim()[1]))
+    ax.set_xlabel("Sobol' index of P(JARM)")
+    ax.legend(fontsize=7, loc="best")
+    ax.set_title(f"which tolerance matters ({100 * result.confidence:g} % bootstrap)", fontsize=9)
 
 
 def _spread_order(result: Uncertainty) -> list[str]:
