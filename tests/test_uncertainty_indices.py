@@ -105,6 +105,14 @@ def test_no_row_left_is_a_value_error_naming_indices():
     nan = np.full(8, np.nan)
     with pytest.raises(ValueError, match="indices"):
         sobol_indices(nan, nan, nan[None, :], ["chi"], 0.95, 0)
+    # invalid="count" with tolerances reaching far out of range: few rows of the design have
+    # all d + 2 samples in range (the indices were 1.0 [1.0, 1.0] from a handful of rows)
+    wide = {"chi": 0.3, "km": 0.3, "alpha": 0.5}
+    with pytest.raises(ValueError, match="indices: only"):
+        eccjump.uncertainty(BODY, ALPHA, 1.0, sd=wide, n=256, invalid="count", indices=True)
+    counted = eccjump.uncertainty(BODY, ALPHA, 1.0, sd={"chi": 0.02, "km": 0.01}, n=256,
+                                  invalid="count", indices=True)  # fmt: skip
+    assert 0.9 < counted.n_valid / counted.n < 1 and set(counted.indices) == {"chi", "km"}
 
 
 def test_the_study_is_unchanged_and_the_bits_the_same_for_any_thread_count():
@@ -190,7 +198,7 @@ def test_the_design_maps_ab_columns_as_the_study_maps_its_own():
                    "restitution": 0.0, "theta0": 0.0, "omega0": 0.0},
                   {"chi": 0.02, "alpha": 0.03}, None, ("chi", "km", "alpha", "mu_s"))  # fmt: skip
     study = eccjump.uncertainty(BODY, ALPHA, 1.0, sd={"chi": 0.02, "alpha": 0.03}, n=32)
-    extra = design(spec, 32, 0, "random", "truncate")
+    extra = design(spec, 32, 0, "random", "truncate", np.ones(32, dtype=bool))
     assert extra is not None
     cols, valid = extra
     assert cols["chi"].size == 3 * 32 and valid.all()

@@ -34,7 +34,9 @@ no variance decomposition of them exists; that of the cube's columns does.
 sample is left out of every estimate. Under ``invalid="truncate"`` no sample is invalid except
 where a uniform k_m range misses [0, 1 - chi] (and k_m = 0 in the full motion), so nothing is
 left out; under ``"count"`` the rows kept are not a sample of the whole cube, and the indices
-are only an estimate of those of the model restricted to the physical range.
+are only an estimate of those of the model restricted to the physical range. Where fewer than
+half the rows are in range the estimate would describe a corner of the cube: a ValueError
+naming ``indices``, before any sample is answered.
 
 **The intervals** are percentile bootstrap intervals at the study's ``confidence``: the rows
 of the design are resampled (:data:`RESAMPLES` times; beyond :data:`GROUPS` rows in groups of
@@ -169,9 +171,13 @@ Samples = tuple[dict[str, NDArray[np.float64]], NDArray[np.bool_]]
 Answers = tuple[dict[str, NDArray[Any]], NDArray[np.bool_]]
 
 
-def design(spec: Spread, n: int, seed: int, sampling: str, invalid: str) -> Samples | None:
+def design(
+    spec: Spread, n: int, seed: int, sampling: str, invalid: str, valid: NDArray[np.bool_]
+) -> Samples | None:
     """The samples of B, then of AB_1 ... AB_d, stacked ((d + 1) n of them), as the study
-    maps its own (A); None where nothing varies."""
+    maps its own (A, whose samples in range are ``valid``); None where nothing varies.
+    ValueError naming ``indices`` where fewer than half the rows are in range (before any
+    work: the estimate would describe a corner of the cube, not the study)."""
     d = len(spec.varied)
     if d == 0:
         return None
@@ -187,7 +193,14 @@ def design(spec: Spread, n: int, seed: int, sampling: str, invalid: str) -> Samp
         ab = a.copy()
         ab[:, i] = b[:, i]
         pages.append(ab)
-    return columns(spec, np.vstack(pages), invalid)
+    cols, ok = columns(spec, np.vstack(pages), invalid)
+    rows = int((valid & ok.reshape(d + 1, n).all(axis=0)).sum())
+    if 2 * rows < n:
+        raise ValueError(
+            f"indices: only {rows} of {n} rows of the Saltelli design have all their samples "
+            "in the physical range (half needed); use invalid='truncate' or narrower tolerances"
+        )
+    return cols, ok
 
 
 def evaluate_all(

@@ -142,7 +142,8 @@ def uncertainty(
         samples, n more, and n per varied parameter: **n (d + 2) runs** for d varied
         parameters) and Jansen's estimators, with bootstrap intervals
         (:mod:`eccjump.studies.uncertainty.indices`: how the k_m <= 1 - chi truncation is
-        treated). The study's other results are the same bits either way.
+        treated; fewer than half the design's rows in range is a ValueError). The study's
+        other results are the same bits either way.
     %(rule_rolling)s
     t_max, max_transitions, rtol, atol, integrator
         The full motion's options (``question="motion"``), as in :func:`eccjump.motion_map`.
@@ -223,7 +224,7 @@ def uncertainty(
     need = uncertainty_bytes(runs, len(spec.varied), per_sample)
     check_fits("uncertainty", size, need, "n", "samples")
     cols, valid = draw(spec, size, seed_, how, policy)
-    extra = design(spec, size, seed_, how, policy) if sobol else None
+    extra = design(spec, size, seed_, how, policy, valid) if sobol else None
     with reporting(progress, "sample") as report:
         outcomes, answered = evaluate_all(q, (cols, valid), extra, opts, report)
     found = None
