@@ -230,6 +230,7 @@ def test_files_and_dict_carry_the_indices(tmp_path):
     u = eccjump.uncertainty(BODY, ALPHA, 1.0, sd={"chi": 0.02, "alpha": 0.03}, n=128,
                             indices=True)  # fmt: skip
     d = json.loads(json.dumps(u.to_dict(), allow_nan=False))
+    assert d["liftoff_indices"] is None
     assert d["indices"]["chi"]["total"] == list(u.indices["chi"].total)
     u.save(tmp_path / "u.csv")
     assert eccjump.load(tmp_path / "u.csv") == u
@@ -268,3 +269,34 @@ def test_command_line_prints_the_table(capsys):
     got = json.loads(capsys.readouterr().out)
     assert got["indices"]["chi"]["total"] == list(chi)
     assert main(argv[:-1]) == 0 and "Sobol" not in capsys.readouterr().out
+    motion = [*argv, "--question", "motion", "--t-max", "10", "-n", "16"]
+    assert main(motion) == 0 and "indices of the lift-off time" in capsys.readouterr().out
+
+
+def test_liftoff_time_indices_are_the_shares_of_its_exact_first_order_variance(tmp_path):
+    # Small tolerances: the lift-off time is linear in them, t = t0 + sum g_i dx_i, so its
+    # first-order and total indices are both g_i^2 var_i / sum_j g_j^2 var_j, g from the
+    # exact sensitivities of one simulate (no sampling).
+    from eccjump.motion.simulation import SENSITIVITY_PARAMETERS
+
+    sd = {"chi": 0.001, "alpha": math.radians(0.1), "theta0": 0.002}
+    kw = {"mu_k": 0.9, "restitution": 0.3}
+    u = eccjump.uncertainty(BODY, ALPHA, 1.0, **kw, sd=sd, n=1024, seed=6, question="motion",
+                            t_max=20.0, indices=True)  # fmt: skip
+    run = eccjump.simulate(BODY, ALPHA, mu_s=1.0, **kw, sensitivities=True, max_transitions=3)
+    lift = next(i for i, t in enumerate(run.transitions) if t.to_mode == "FLIGHT")
+    g = run.d_transitions[lift, 0]
+    terms = {k: (g[SENSITIVITY_PARAMETERS.index(k)] * s) ** 2 for k, s in sd.items()}
+    assert u.liftoff_indices is not None and list(u.liftoff_indices) == list(terms)
+    for name, ix in u.liftoff_indices.items():
+        share = terms[name] / sum(terms.values())
+        for est in ix:
+            slack = 0.25 * (est.high - est.low)
+            assert est.low - slack <= share <= est.high + slack, (name, est, share)
+    assert u.liftoff_indices["alpha"].total.low > 0.6  # a test that could fail
+    # every sample jumps: P(JARM) does not vary and no tolerance matters for it
+    assert u.p_jarm == 1.0 and all(ix.total.value == 0.0 for ix in u.indices.values())
+    jarm_only = eccjump.uncertainty(BODY, ALPHA, 1.0, sd={"chi": 0.01}, n=8, indices=True)
+    assert jarm_only.liftoff_indices is None
+    u.save(tmp_path / "m.csv")
+    assert eccjump.load(tmp_path / "m.csv").liftoff_indices == u.liftoff_indices

@@ -32,6 +32,7 @@ from eccjump.cli._output import (
     writing,
 )
 from eccjump.studies.uncertainty import Uncertainty, uncertainty
+from eccjump.studies.uncertainty.indices import SobolIndex
 from eccjump.studies.uncertainty.results import QUANTITIES, _first_order
 from eccjump.studies.uncertainty.sampling import N_MAX, PARAMETERS
 
@@ -266,15 +267,23 @@ def _print(r: Uncertainty, written: dict[str, Path | None]) -> None:
 
 
 def _print_indices(r: Uncertainty) -> None:
-    """The Sobol' indices as a table, one varied parameter a row."""
+    """The Sobol' indices as tables, one varied parameter a row: of P(JARM), and for the
+    full motion of the first lift-off's time."""
     level = f"{100 * r.confidence:g} % bootstrap"
-    print(f"Sobol' indices of P(JARM) ({level}; n (d + 2) = {r.n * (len(r.samples) + 2)} runs)")
+    runs = r.n * (len(r.samples) + 2)
+    _index_table(f"Sobol' indices of P(JARM) ({level}; n (d + 2) = {runs} runs)", r.indices)
+    if r.liftoff_indices is not None:
+        _index_table("Sobol' indices of the lift-off time", r.liftoff_indices)
+
+
+def _index_table(title: str, indices: dict[str, SobolIndex] | None) -> None:
+    print(title)
     print(f"  {'parameter':<12}{'first':>8} {'interval':<18}{'total':>8} interval")
-    for name, ix in (r.indices or {}).items():
+    for name, ix in (indices or {}).items():
         f, t = ix.first, ix.total
         print(
             f"  {name:<12}{f.value:8.3f} [{f.low:6.3f}, {f.high:6.3f}]  "
             f"{t.value:8.3f} [{t.low:6.3f}, {t.high:6.3f}]"
         )
-    if not r.indices:
+    if not indices:
         print("  (no parameter varies)")

@@ -38,6 +38,11 @@ are only an estimate of those of the model restricted to the physical range. Whe
 half the rows are in range the estimate would describe a corner of the cube: a ValueError
 naming ``indices``, before any sample is answered.
 
+**The lift-off time.** For the full motion (``question="motion"``) the same design gives the
+indices of the first lift-off's time [sqrt(R/g)] too, over the rows where every sample lifts
+off within ``t_max`` (the others are left out, as invalid ones: an estimate conditional on the
+lift-off; None where fewer than half the rows lift off).
+
 **The intervals** are percentile bootstrap intervals at the study's ``confidence``: the rows
 of the design are resampled (:data:`RESAMPLES` times; beyond :data:`GROUPS` rows in groups of
 rows i mod :data:`GROUPS`, whose sums are independent, so the work stays bounded for any n),
@@ -134,6 +139,11 @@ def _bootstrap(
     return np.quantile(np.vstack(firsts), q, axis=0), np.quantile(np.vstack(totals), q, axis=0)
 
 
+def _rows(f_a: NDArray, f_b: NDArray, f_ab: NDArray) -> NDArray[np.bool_]:
+    """The rows of the design whose every output is a number."""
+    return np.isfinite(f_a) & np.isfinite(f_b) & np.isfinite(f_ab).all(axis=0)
+
+
 def sobol_indices(
     f_a: NDArray[np.float64],
     f_b: NDArray[np.float64],
@@ -147,7 +157,7 @@ def sobol_indices(
     ``confidence``; a row with a NaN output anywhere is left out. ValueError naming
     ``indices`` where no row is left."""
     f_ab = np.asarray(f_ab, dtype=np.float64).reshape(len(names), -1)
-    keep = np.isfinite(f_a) & np.isfinite(f_b) & np.isfinite(f_ab).all(axis=0)
+    keep = _rows(f_a, f_b, f_ab)
     if not keep.any():
         raise ValueError(
             "indices: no row of the Saltelli design has all its d + 2 samples valid; "
@@ -230,20 +240,29 @@ def study_indices(
     extra: Answers | None,
     confidence: float,
     seed: int,
-) -> dict[str, SobolIndex]:
+) -> tuple[dict[str, SobolIndex], dict[str, SobolIndex] | None]:
     """The indices of the JARM indicator from the outcomes and valid flags of the study (A)
-    and of the design (B, AB_i); {} where nothing varies."""
+    and of the design (B, AB_i), {} where nothing varies; and for the full motion those of
+    the first lift-off's time over the rows where every sample lifts off (None for "jarm", or
+    where fewer than half the rows do: a conditional estimate of so few would mislead)."""
+    motion = question == "motion"
     if extra is None:
-        return {}
+        return {}, ({} if motion else None)
 
-    def indicator(outcomes: Mapping[str, NDArray[Any]], valid: NDArray[np.bool_]) -> NDArray:
-        ok = valid & ran(question, outcomes)
-        return np.where(ok, jumps(question, outcomes), np.nan)
+    def output(answers: Answers, liftoff: bool) -> NDArray:
+        outcomes, valid = answers
+        value = outcomes["liftoff_t"] if liftoff else jumps(question, outcomes)
+        return np.where(valid & ran(question, outcomes), value, np.nan)
 
-    f_a = indicator(*study)
-    f = indicator(*extra)
-    n = f_a.size
-    return sobol_indices(f_a, f[:n], f[n:], names, confidence, seed)
+    n = study[1].size
+    f_a, f = output(study, False), output(extra, False)
+    jarm = sobol_indices(f_a, f[:n], f[n:], names, confidence, seed)
+    if not motion:
+        return jarm, None
+    f_a, f = output(study, True), output(extra, True)
+    if 2 * int(_rows(f_a, f[:n], f[n:].reshape(len(names), n)).sum()) < n:
+        return jarm, None
+    return jarm, sobol_indices(f_a, f[:n], f[n:], names, confidence, seed)
 
 
 def as_json(indices: Mapping[str, SobolIndex] | None) -> dict[str, Any] | None:

@@ -168,6 +168,10 @@ class Uncertainty(Result, kind="uncertainty", suffixes=(".csv",)):
         ``.first`` and ``.total``, each an ``Estimate`` (``value``, ``low``, ``high``: the
         bootstrap interval at ``confidence``)
         (:mod:`eccjump.studies.uncertainty.indices`); None without.
+    liftoff_indices : dict of str to SobolIndex or None
+        With ``indices=True`` and ``question="motion"``, the same for the first lift-off's
+        time, over the rows of the design where every sample lifts off; None otherwise (or
+        where fewer than half the rows do).
     """
 
     question: str
@@ -189,6 +193,7 @@ class Uncertainty(Result, kind="uncertainty", suffixes=(".csv",)):
     distributions: dict[str, Summary]
     delta: Delta | None = None
     indices: dict[str, SobolIndex] | None = None
+    liftoff_indices: dict[str, SobolIndex] | None = None
 
     __eq__ = fields_equal
     __hash__ = None  # type: ignore[assignment]
@@ -234,6 +239,7 @@ class Uncertainty(Result, kind="uncertainty", suffixes=(".csv",)):
             if self.delta is None
             else {k: _json(v) for k, v in self.delta._asdict().items()},
             "indices": as_json(self.indices),
+            "liftoff_indices": as_json(self.liftoff_indices),
         }
 
     def columns(self) -> dict[str, NDArray[Any]]:
@@ -348,6 +354,7 @@ class Uncertainty(Result, kind="uncertainty", suffixes=(".csv",)):
             },
             delta=None if delta is None else Delta(**delta),
             indices=from_json(d.get("indices")),  # files written before indices: none
+            liftoff_indices=from_json(d.get("liftoff_indices")),
         )
 
     def plot(self, **kwargs: Any) -> Figure:
@@ -383,6 +390,8 @@ class Uncertainty(Result, kind="uncertainty", suffixes=(".csv",)):
             rows.append(("first order", _first_order(self.delta)))
         for name, ix in (self.indices or {}).items():
             rows.append((f"Sobol' {name}", index_line(ix)))
+        for name, ix in (self.liftoff_indices or {}).items():
+            rows.append((f"Sobol' {name} (lift-off time)", index_line(ix)))
         return card("Uncertainty", rows)
 
     def _spreads(self) -> list[str]:
@@ -463,6 +472,7 @@ _NESTED = frozenset(
         "distributions",
         "delta",
         "indices",
+        "liftoff_indices",
     }
 )
 

@@ -162,7 +162,8 @@ def uncertainty(
         time, apex and distance), the samples and outcomes, and ``delta``, the first-order
         estimate from the exact derivatives at the nominal point (question "jarm"), and
         with ``indices=True`` the Sobol' ``indices`` by parameter (``.first``, ``.total``,
-        each ``.value``, ``.low``, ``.high``).
+        each ``.value``, ``.low``, ``.high``), for "motion" also ``liftoff_indices``, those
+        of the first lift-off's time.
 
     Raises
     ------
@@ -227,9 +228,9 @@ def uncertainty(
     extra = design(spec, size, seed_, how, policy, valid) if sobol else None
     with reporting(progress, "sample") as report:
         outcomes, answered = evaluate_all(q, (cols, valid), extra, opts, report)
-    found = None
+    found = liftoff = None
     if sobol:  # each row of the design drops what the core refused itself (study_indices)
-        found = study_indices(q, spec.varied, (outcomes, valid), answered, level, seed_)
+        found, liftoff = study_indices(q, spec.varied, (outcomes, valid), answered, level, seed_)
     valid &= ran(q, outcomes)  # k_m = 0 has no full motion (simulate needs k_m > 0)
     n_valid = int(valid.sum())
     if n_valid == 0:  # no probability to give: an error, not NaN
@@ -262,6 +263,7 @@ def uncertainty(
         },
         delta=delta_method(spec, q, rule_name(rule), opts),
         indices=found,
+        liftoff_indices=liftoff,
     )
 
 
