@@ -16,8 +16,8 @@ from reference_points import JARM, JARM_ARGS
 
 import eccjump
 from eccjump.cli import main
-from eccjump.studies.uncertainty.indices import GROUPS, design, sobol_indices
-from eccjump.studies.uncertainty.sampling import spread, unit_cube
+from eccjump.studies.uncertainty.indices import GROUPS, cubes, design, sobol_indices
+from eccjump.studies.uncertainty.sampling import spread
 
 scipy_stats = pytest.importorskip("scipy.stats")
 
@@ -28,8 +28,7 @@ SD = {"alpha": math.radians(2), "chi": 0.02, "km": 0.01, "mu_s": 0.15}
 
 def _saltelli(f, n: int, d: int, seed: int, sampling: str):
     """f at A, B and the AB_i of the study's own design (:func:`design`'s cubes)."""
-    a = unit_cube(n, d, seed, sampling)
-    b = unit_cube(n, 2 * d, seed, sampling, stream=1)[:, d:]
+    a, b = cubes(n, d, seed, sampling)
     ab = []
     for i in range(d):
         m = a.copy()

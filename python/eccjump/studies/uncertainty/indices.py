@@ -181,6 +181,19 @@ Samples = tuple[dict[str, NDArray[np.float64]], NDArray[np.bool_]]
 Answers = tuple[dict[str, NDArray[Any]], NDArray[np.bool_]]
 
 
+def cubes(
+    n: int, d: int, seed: int, sampling: str
+) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
+    """The unit-cube points of A (the study's own) and B, n x d each."""
+    a = unit_cube(n, d, seed, sampling)
+    # B is the last d columns of a 2d-dimensional cube: for Sobol' points, the columns d + 1
+    # ... 2d of the sequence, which with A's columns 1 ... d make one 2d-dimensional net. A
+    # second scramble of the same d columns would pair each row of A with a scramble of the
+    # same point (a correlation of -0.75 between A's and B's first columns at n = 2**14, and
+    # the Ishigami indices off by 0.5).
+    return a, unit_cube(n, 2 * d, seed, sampling, stream=1)[:, d:]
+
+
 def design(
     spec: Spread, n: int, seed: int, sampling: str, invalid: str, valid: NDArray[np.bool_]
 ) -> Samples | None:
@@ -191,13 +204,7 @@ def design(
     d = len(spec.varied)
     if d == 0:
         return None
-    a = unit_cube(n, d, seed, sampling)
-    # B is the last d columns of a 2d-dimensional cube: for Sobol' points, the columns d + 1
-    # ... 2d of the sequence, which with A's columns 1 ... d make one 2d-dimensional net. A
-    # second scramble of the same d columns would pair each row of A with a scramble of the
-    # same point (a correlation of -0.75 between A's and B's first columns at n = 2**14, and
-    # the Ishigami indices off by 0.5).
-    b = unit_cube(n, 2 * d, seed, sampling, stream=1)[:, d:]
+    a, b = cubes(n, d, seed, sampling)
     pages = [b]
     for i in range(d):
         ab = a.copy()
@@ -290,6 +297,7 @@ __all__ = [
     "Estimate",
     "SobolIndex",
     "as_json",
+    "cubes",
     "design",
     "evaluate_all",
     "from_json",
