@@ -917,6 +917,7 @@ UNCERTAINTY_PARAMS = (
     "body", "alpha", "mu_s", "mu_k", "restitution", "theta0", "omega0", "sd", "bounds", "n",
     "seed", "sampling", "question", "invalid", "confidence", "rule", "t_max",
     "max_transitions", "rtol", "atol", "integrator", "n_threads", "chi", "km", "progress",
+    "indices",
 )  # fmt: skip
 
 
@@ -933,6 +934,13 @@ def check_uncertainty(res: Any, case: Case) -> None:
     for p, x in res.samples.items():  # every valid sample in its physical range
         expect(bool(np.isfinite(x[res.valid]).all()), f"sample {p} not finite")
     expect(isinstance(res._repr_html_(), str), "html")
+    if res.indices is not None:  # one per varied parameter, finite, total >= 0
+        expect(list(res.indices) == list(res.samples), f"indices of {list(res.indices)}")
+        for name, ix in res.indices.items():
+            for est in ix:
+                expect(all(map(math.isfinite, est)), f"index of {name}: {est}")
+                expect(est.low <= est.high, f"{name}: {est}")  # a percentile interval
+            expect(ix.total.value >= 0 and ix.total.low >= 0, f"total of {name}: {ix.total}")
     try:  # "JSON-ready": no inf or NaN, whatever the spreads
         json.dumps(res.to_dict(), allow_nan=False)
     except ValueError as err:
@@ -1046,6 +1054,8 @@ def case_uncertainty(d: Drawer) -> Case:
         c.kwargs["progress"] = progress_param(d, c)
     if d.integer(0, 2) == 0:
         c.kwargs["restitution"] = real(d, c, 0.0, 1.0)
+    if d.integer(0, 2) == 0:  # n (d + 2) runs: n stays small (64 at most)
+        c.kwargs["indices"] = flag(d, c)
     return c
 
 
@@ -1939,6 +1949,8 @@ def cli_uncertainty_argv(d: Drawer) -> list[str]:
             argv.append("--overwrite")
     if d.integer(0, 1):
         argv.append("--json")
+    if d.integer(0, 2) == 0:
+        argv.append("--indices")
     return argv
 
 

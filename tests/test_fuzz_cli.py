@@ -174,6 +174,8 @@ def cli_uncertainty_argv(d: Drawer) -> list[str]:
         argv += ["--figure", output_file(d, d.choice((".png", ".svg")))]
     if d.integer(0, 3) == 0:
         argv += ["-o", output_file(d, d.choice((".csv", ".nc", ".txt")))]
+    if d.integer(0, 3) == 0:
+        argv.append("--indices")
     return argv + d.choice(([], ["--json"], ["-q"]))
 
 
@@ -312,7 +314,7 @@ def valid_uncertainty(d: Drawer) -> list[str]:
     for name in sorted({d.choice(names) for _ in range(d.integer(0, 3))}):
         argv += ["--sd", name, value(d, 0, 0.05)]
     argv += ["--question", question, "--t-max", "3"]
-    argv += d.choice(([], ["--sampling", "sobol"], ["--invalid", "count"]))
+    argv += d.choice(([], ["--sampling", "sobol"], ["--invalid", "count"], ["--indices"]))
     if d.integer(0, 3) == 0:
         argv += ["-o", str(outdir() / f"u{d.choice(('.csv', '.nc'))}")]
     if d.integer(0, 4) == 0:

@@ -32,6 +32,7 @@ from eccjump.cli._output import (
     writing,
 )
 from eccjump.studies.uncertainty import Uncertainty, uncertainty
+from eccjump.studies.uncertainty.indices import SobolIndex
 from eccjump.studies.uncertainty.results import QUANTITIES, _first_order
 from eccjump.studies.uncertainty.sampling import N_MAX, PARAMETERS
 
@@ -109,6 +110,12 @@ def add_parser(sub: argparse._SubParsersAction) -> None:
         "count them as invalid",
     )
     p.add_argument("--confidence", type=float, default=0.95, help="interval level (0.95)")
+    p.add_argument(
+        "--indices",
+        action="store_true",
+        help="also the first-order and total Sobol' indices of P(JARM) per varied parameter "
+        "(which tolerance matters; n (d + 2) runs for d varied parameters)",
+    )
     p.add_argument(
         "--rule", choices=("paper", "normal_force"), default="paper", help="lift-off rule"
     )
@@ -217,6 +224,7 @@ def _run(
         question=args.question,
         invalid=args.invalid,
         confidence=args.confidence,
+        indices=args.indices,
         rule=args.rule,
         t_max=args.t_max,
         max_transitions=args.max_transitions,
@@ -251,6 +259,31 @@ def _print(r: Uncertainty, written: dict[str, Path | None]) -> None:
         print(f"{name:<14}{s.n:>8} {cells}  {unit}")
     if r.delta is not None:
         print(f"first order   {_first_order(r.delta)}")
+    if r.indices is not None:
+        _print_indices(r)
     for what, path in written.items():
         if path is not None:
             print(f"{what}: {path}")
+
+
+def _print_indices(r: Uncertainty) -> None:
+    """The Sobol' indices as tables, one varied parameter a row: of P(JARM), and for the
+    full motion of the first lift-off's time."""
+    level = f"{100 * r.confidence:g} % bootstrap"
+    runs = r.n * (len(r.samples) + 2)
+    _index_table(f"Sobol' indices of P(JARM) ({level}; n (d + 2) = {runs} runs)", r.indices)
+    if r.liftoff_indices is not None:
+        _index_table("Sobol' indices of the lift-off time", r.liftoff_indices)
+
+
+def _index_table(title: str, indices: dict[str, SobolIndex] | None) -> None:
+    print(title)
+    print(f"  {'parameter':<12}{'first':>8} {'interval':<18}{'total':>8} interval")
+    for name, ix in (indices or {}).items():
+        f, t = ix.first, ix.total
+        print(
+            f"  {name:<12}{f.value:8.3f} [{f.low:6.3f}, {f.high:6.3f}]  "
+            f"{t.value:8.3f} [{t.low:6.3f}, {t.high:6.3f}]"
+        )
+    if not indices:
+        print("  (no parameter varies)")

@@ -1,6 +1,7 @@
 """The figure of an uncertainty study (:func:`eccjump.uncertainty`): the outcomes with their
 Wilson intervals, the samples over the two most spread parameters coloured JARM or not,
-and the distributions of the lift-off and the first flight."""
+the distributions of the lift-off and the first flight, and the Sobol' indices (which
+tolerance matters) where the study has them."""
 
 from __future__ import annotations
 
@@ -49,13 +50,15 @@ def outcomes_panel(result: Uncertainty, ax: Axes, *, outcomes: int = 6) -> Axes:
 def uncertainty(result: Uncertainty, *, fig: FigureBase | None = None, outcomes: int = 6) -> Figure:
     """The study in one figure: the ``outcomes`` most frequent outcomes (reasons or sequences)
     as bars with their Wilson intervals, the samples over the two varied parameters of
-    largest relative spread (JARM in green), and a histogram of each distribution with its
-    median and central 95 %. ``fig``: an empty Figure or SubFigure to draw into (else a new
-    one)."""
+    largest relative spread (JARM in green), a histogram of each distribution with its
+    median and central 95 %, and with ``indices=True`` the first-order and total Sobol'
+    indices of each varied parameter as bars with their bootstrap intervals. ``fig``: an
+    empty Figure or SubFigure to draw into (else a new one)."""
     outcomes = _checked(result, outcomes)
     checked_target(None, fig)
     shown = [k for k, s in result.distributions.items() if s.n]
-    panels = 2 + len(shown)
+    has_indices = bool(result.indices)
+    panels = 2 + len(shown) + has_indices
     cols = min(panels, 3)
     rows = math.ceil(panels / cols)
     canvas, root = new_figure(fig, (4.2 * cols, 3.4 * rows))
@@ -64,6 +67,8 @@ def uncertainty(result: Uncertainty, *, fig: FigureBase | None = None, outcomes:
     _scatter(flat[1], result)
     for ax, name in zip(flat[2:], shown, strict=False):
         _histogram(ax, result, name)
+    if has_indices:
+        _index_bars(flat[panels - 1], result)
     for ax in flat[panels:]:
         ax.set_visible(False)
     lo, hi = result.p_jarm_ci
@@ -88,6 +93,24 @@ def _outcome_bars(ax: Axes, result: Uncertainty, most: int) -> None:
     ax.set_xlabel("probability")
     ax.set_ylabel("outcome")
     ax.set_title("outcomes", fontsize=9)
+
+
+def _index_bars(ax: Axes, result: Uncertainty) -> None:
+    """Each varied parameter's first-order and total index, side by side, with intervals."""
+    indices = result.indices or {}
+    names = list(indices)
+    y = np.arange(len(names))
+    for k, (what, color) in enumerate((("first", "#9ecae1"), ("total", "#3182bd"))):
+        est = np.array([getattr(indices[n], what) for n in names]).reshape(-1, 3)
+        err = np.vstack([est[:, 0] - est[:, 1], est[:, 2] - est[:, 0]]).clip(min=0)
+        ax.barh(y + (k - 0.5) * 0.4, est[:, 0], height=0.4, xerr=err, color=color,
+                ecolor="k", capsize=2, label=what)  # fmt: skip
+    ax.set_yticks(y, names, fontsize=8)
+    ax.invert_yaxis()
+    ax.set_xlim(min(0.0, ax.get_xlim()[0]), max(1.0, ax.get_xlim()[1]))
+    ax.set_xlabel("Sobol' index of P(JARM)")
+    ax.legend(fontsize=7, loc="best")
+    ax.set_title(f"which tolerance matters ({100 * result.confidence:g} % bootstrap)", fontsize=9)
 
 
 def _spread_order(result: Uncertainty) -> list[str]:

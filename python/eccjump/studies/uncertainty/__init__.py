@@ -6,6 +6,7 @@ first flight under tolerances on the body, the ramp, the friction and the start.
 - :mod:`.questions`: each sample's answer (the JARM classification or the full motion);
 - :mod:`.results`: :class:`Uncertainty` and the Wilson interval;
 - :mod:`.delta`: the place of the first-order (delta-method) estimate;
+- :mod:`.indices`: which tolerance matters, the Sobol' indices (``indices=True``);
 - :mod:`.study`: :func:`uncertainty`, which ties them together.
 """
 

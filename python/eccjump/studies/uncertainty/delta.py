@@ -14,7 +14,10 @@ while μ_s exceeds the friction ratio at the jump, μ_J, so P(JARM) ~ Phi(m0 / s
 where that ratio is the largest along the path (``max_ratio`` = μ_J): where an earlier
 ratio binds, or the nominal point is no JARM, the margin has no derivative here (None). Both
 estimates are exact only in the limit of small tolerances; the Monte Carlo ones are the
-answer, these say how much of it a linearisation explains.
+answer, these say how much of it a linearisation explains. P(JARM)'s fails where the
+tolerances reach another verdict: samples that slip before the jump (the path's largest ratio
+changes hands at a kink: 0.997 against 0.79 by sampling with the tutorial's tolerances), or a
+nominal point that is no JARM (None); ``tests/test_uncertainty.py`` checks both sides.
 
 For the full motion the gradients are those of the first lift-off's time and angle and of the
 first flight's duration with respect to all eight inputs (where μ_k follows μ_s, a change of

@@ -23,6 +23,7 @@ from eccjump._base.overwrite import check_overwrite, never
 from eccjump.maps import results, store
 from eccjump.maps.results import Result
 from eccjump.studies.uncertainty.delta import Delta
+from eccjump.studies.uncertainty.indices import SobolIndex, as_json, from_json
 from eccjump.studies.uncertainty.questions import OUTCOME_DTYPES
 from eccjump.studies.uncertainty.sampling import UNITS
 
@@ -162,6 +163,16 @@ class Uncertainty(Result, kind="uncertainty", suffixes=(".csv",)):
         ``simulate(..., sensitivities=True)`` ("motion") at the nominal point; None where the
         nominal point is no JARM ("jarm") or does not fly ("motion")
         (:func:`eccjump.studies.uncertainty.delta.delta_method`).
+    indices : dict of str to SobolIndex or None
+        With ``indices=True``, which tolerance matters: by varied parameter (a parameter held
+        fixed has none), the first-order and total Sobol' indices of the JARM indicator,
+        ``.first`` and ``.total``, each an ``Estimate`` (``value``, ``low``, ``high``: the
+        bootstrap interval at ``confidence``)
+        (:mod:`eccjump.studies.uncertainty.indices`); None without.
+    liftoff_indices : dict of str to SobolIndex or None
+        With ``indices=True`` and ``question="motion"``, the same for the first lift-off's
+        time, over the rows of the design where every sample lifts off; None otherwise (or
+        where fewer than half the rows do).
     """
 
     question: str
@@ -182,6 +193,8 @@ class Uncertainty(Result, kind="uncertainty", suffixes=(".csv",)):
     counts: dict[str, int]
     distributions: dict[str, Summary]
     delta: Delta | None = None
+    indices: dict[str, SobolIndex] | None = None
+    liftoff_indices: dict[str, SobolIndex] | None = None
 
     __eq__ = fields_equal
     __hash__ = None  # type: ignore[assignment]
@@ -226,6 +239,8 @@ class Uncertainty(Result, kind="uncertainty", suffixes=(".csv",)):
             "delta": None
             if self.delta is None
             else {k: _json(v) for k, v in self.delta._asdict().items()},
+            "indices": as_json(self.indices),
+            "liftoff_indices": as_json(self.liftoff_indices),
         }
 
     def columns(self) -> dict[str, NDArray[Any]]:
@@ -339,6 +354,8 @@ class Uncertainty(Result, kind="uncertainty", suffixes=(".csv",)):
                 for k, s in d["distributions"].items()
             },
             delta=None if delta is None else Delta(**delta),
+            indices=from_json(d.get("indices")),  # files written before indices: none
+            liftoff_indices=from_json(d.get("liftoff_indices")),
         )
 
     def __repr__(self) -> str:
@@ -366,6 +383,10 @@ class Uncertainty(Result, kind="uncertainty", suffixes=(".csv",)):
                 rows.append((name, f"median {num(s.median, 5)} {spread} (95 % of {s.n})"))
         if self.delta is not None:
             rows.append(("first order", _first_order(self.delta)))
+        for name, ix in (self.indices or {}).items():
+            rows.append((f"Sobol' {name}", index_line(ix)))
+        for name, ix in (self.liftoff_indices or {}).items():
+            rows.append((f"Sobol' {name} (lift-off time)", index_line(ix)))
         return card("Uncertainty", rows)
 
     def _spreads(self) -> list[str]:
@@ -402,6 +423,15 @@ def _first_order(d: Delta) -> str:
     p = "n/a (not the friction at the jump)" if d.p_jarm is None else f"{d.p_jarm:.5f}"
     return (
         f"theta_J sd {math.degrees(d.theta_J_sd):.4f} deg, P(JARM) {p} (exact as tolerances -> 0)"
+    )
+
+
+def index_line(ix: SobolIndex) -> str:
+    """A parameter's Sobol' indices in one line: each with its interval."""
+    f, t = ix.first, ix.total
+    return (
+        f"first {f.value:.3f} [{f.low:.3f}, {f.high:.3f}], "
+        f"total {t.value:.3f} [{t.low:.3f}, {t.high:.3f}]"
     )
 
 
@@ -444,7 +474,18 @@ def _read_netcdf(path: Path) -> tuple[dict[str, Any], dict[str, NDArray]]:
 
 #: The numbers of :meth:`Uncertainty.to_dict` that a netCDF file holds as JSON text.
 _NESTED = frozenset(
-    {"nominal", "sd", "bounds", "p_jarm_ci", "counts", "probabilities", "distributions", "delta"}
+    {
+        "nominal",
+        "sd",
+        "bounds",
+        "p_jarm_ci",
+        "counts",
+        "probabilities",
+        "distributions",
+        "delta",
+        "indices",
+        "liftoff_indices",
+    }
 )
 
 

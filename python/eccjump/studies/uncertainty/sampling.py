@@ -184,20 +184,27 @@ def options(
     return size, sd, how, policy
 
 
-def unit_cube(n: int, d: int, seed: int, sampling: str) -> NDArray[np.float64]:
+def unit_cube(n: int, d: int, seed: int, sampling: str, stream: int = 0) -> NDArray[np.float64]:
     """n points of [0, 1)^d: numpy's PCG64 stream of ``seed``, or the first n points of
     Owen-scrambled Sobol' (``scipy.stats.qmc.Sobol``, scrambled with ``seed``). Sobol'
-    points balance best for n a power of 2 (scipy's warning about it is not repeated)."""
+    points balance best for n a power of 2 (scipy's warning about it is not repeated).
+
+    ``stream`` > 0 gives another cube of the same seed, independent of stream 0 (numpy's
+    ``SeedSequence(seed, spawn_key=(stream,))``): the second matrix of a Saltelli design.
+    Stream 0 is the study's own samples, drawn from ``seed`` itself."""
     if d == 0:
         return np.empty((n, 0))
+    source: Any = seed
+    if stream:
+        source = np.random.default_rng(np.random.SeedSequence(seed, spawn_key=(stream,)))
     if sampling == "random":
-        return np.random.default_rng(seed).random((n, d))
+        return np.random.default_rng(source).random((n, d))
     qmc = _scipy().qmc
     with warnings.catch_warnings():
         warnings.filterwarnings(
             "ignore", message=".*balance properties of Sobol", category=UserWarning
         )
-        return np.asarray(qmc.Sobol(d, scramble=True, seed=seed).random(n), dtype=np.float64)
+        return np.asarray(qmc.Sobol(d, scramble=True, seed=source).random(n), dtype=np.float64)
 
 
 def _scipy() -> Any:
@@ -238,8 +245,16 @@ def draw(
 ) -> tuple[dict[str, NDArray[np.float64]], NDArray[np.bool_]]:
     """The columns of all :data:`PARAMETERS` (a constant one where a parameter does not vary;
     μ_k follows μ_s where its nominal is None and it does not vary) and the valid samples."""
+    return columns(spec, unit_cube(n, len(spec.varied), seed, sampling), invalid)
+
+
+def columns(
+    spec: Spread, cube: NDArray[np.float64], invalid: str
+) -> tuple[dict[str, NDArray[np.float64]], NDArray[np.bool_]]:
+    """:func:`draw`'s columns and valid samples from given points of the unit cube (one
+    column per varied parameter, in :attr:`Spread.varied`'s order)."""
     varied = spec.varied
-    cube = unit_cube(n, len(varied), seed, sampling)
+    n = cube.shape[0]
     truncate = invalid == "truncate"
     cols: dict[str, NDArray[np.float64]] = {}
     for p in PARAMETERS:
@@ -281,6 +296,7 @@ __all__ = [
     "Sampling",
     "Spread",
     "check_nominal",
+    "columns",
     "draw",
     "options",
     "spread",

@@ -9,7 +9,7 @@ from typing import Literal
 import numpy as np
 
 from eccjump._base.body import Cylinder
-from eccjump._base.checks import Integrator, Rule, optional_real, real, rule_name, text
+from eccjump._base.checks import Integrator, Rule, flag, optional_real, real, rule_name, text
 from eccjump._base.docs import fill
 from eccjump._base.progress import Progress, checked, reporting
 from eccjump._base.sizes import check_fits, uncertainty_bytes
@@ -18,7 +18,8 @@ from eccjump.classification.fields import JARM
 from eccjump.motion.fields import MOTION
 from eccjump.motion.options import MotionOptions
 from eccjump.studies.uncertainty.delta import delta_method
-from eccjump.studies.uncertainty.questions import evaluate, jumps, outcome_counts, ran
+from eccjump.studies.uncertainty.indices import design, evaluate_all, study_indices
+from eccjump.studies.uncertainty.questions import jumps, outcome_counts, ran
 from eccjump.studies.uncertainty.results import (
     QUANTITIES,
     Summary,
@@ -60,6 +61,7 @@ def uncertainty(
     question: Question = "jarm",
     invalid: Invalid = "truncate",
     confidence: float = 0.95,
+    indices: bool = False,
     rule: Rule = "paper",
     t_max: float = 100.0,
     max_transitions: int = 100,
@@ -133,7 +135,15 @@ def uncertainty(
         How samples outside the physical range are treated (see above).
     confidence : float, default 0.95
         Level of the Wilson intervals, in (0, 1 - 1e-15] (closer to 1 the two-sided normal
-        quantile is infinite in floating point).
+        quantile is infinite in floating point), and of the indices' bootstrap intervals.
+    indices : bool, default False
+        Also estimate which tolerance matters: the first-order and total Sobol' indices of
+        the JARM indicator for each varied parameter, by Saltelli's design (the study's n
+        samples, n more, and n per varied parameter: **n (d + 2) runs** for d varied
+        parameters) and Jansen's estimators, with bootstrap intervals
+        (:mod:`eccjump.studies.uncertainty.indices`: how the k_m <= 1 - chi truncation is
+        treated; fewer than half the design's rows in range is a ValueError). The study's
+        other results are the same bits either way.
     %(rule_rolling)s
     t_max, max_transitions, rtol, atol, integrator
         The full motion's options (``question="motion"``), as in :func:`eccjump.motion_map`.
@@ -150,7 +160,10 @@ def uncertainty(
         sampling interval: conservative), ``counts``/``probabilities`` of each outcome, the
         ``distributions`` of the lift-off angle (and, for "motion", its time, the flight
         time, apex and distance), the samples and outcomes, and ``delta``, the first-order
-        estimate from the exact derivatives at the nominal point (question "jarm").
+        estimate from the exact derivatives at the nominal point (question "jarm"), and
+        with ``indices=True`` the Sobol' ``indices`` by parameter (``.first``, ``.total``,
+        each ``.value``, ``.low``, ``.high``), for "motion" also ``liftoff_indices``, those
+        of the first lift-off's time.
 
     Raises
     ------
@@ -204,14 +217,20 @@ def uncertainty(
     spec = spread(nominal, sd, bounds, allowed, mu_k_follows=mu_k_ is None)
     size, seed_, how, policy = options(n, seed, sampling, invalid)
     level = check_confidence(confidence)
+    sobol = flag("indices", indices)
     checked(progress)
     opts = _question_options(q, rule, t_max, max_transitions, rtol, atol, integrator, n_threads)
     per_sample = (JARM if q == "jarm" else MOTION).bytes_per_point()
-    need = uncertainty_bytes(size, len(spec.varied), per_sample)
+    runs = size * (len(spec.varied) + 2) if sobol else size  # Saltelli's design
+    need = uncertainty_bytes(runs, len(spec.varied), per_sample)
     check_fits("uncertainty", size, need, "n", "samples")
     cols, valid = draw(spec, size, seed_, how, policy)
+    extra = design(spec, size, seed_, how, policy, valid) if sobol else None
     with reporting(progress, "sample") as report:
-        outcomes = evaluate(q, cols, valid, opts, report)
+        outcomes, answered = evaluate_all(q, (cols, valid), extra, opts, report)
+    found = liftoff = None
+    if sobol:  # each row of the design drops what the core refused itself (study_indices)
+        found, liftoff = study_indices(q, spec.varied, (outcomes, valid), answered, level, seed_)
     valid &= ran(q, outcomes)  # k_m = 0 has no full motion (simulate needs k_m > 0)
     n_valid = int(valid.sum())
     if n_valid == 0:  # no probability to give: an error, not NaN
@@ -243,6 +262,8 @@ def uncertainty(
             if name in outcomes
         },
         delta=delta_method(spec, q, rule_name(rule), opts),
+        indices=found,
+        liftoff_indices=liftoff,
     )
 
 
