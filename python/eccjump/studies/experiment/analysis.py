@@ -387,7 +387,7 @@ def analyze(
     >>> body = eccjump.Cylinder(0.10927, 0.0777)
     >>> alpha = math.radians(66.087)
     >>> made = synthetic_track(body, alpha, mu_s=1.2, mu_k=0.9, radius=0.05, fps=240.0,
-    ...                        noise_px=0.5, seed=1)
+    ...                        noise_px=0.1, seed=1)
     >>> res = eccjump.analyze(made.track, radius=0.05, chi=body.chi, km=body.km,
     ...                       alpha=alpha, marker_radius=0.04, profile_mu_k=False)
     >>> print(res.verdict, round(res.liftoff_t, 3))
@@ -591,22 +591,15 @@ def _decide(
             f"the fitted model rolls without slipping from the first frame to "
             f"its lift-off at t = {t0 + lift * unit:.5f} s"
         )
-        if not v.one_frame >= SIGNIFICANT:  # a slip of a frame would not have shown
-            evidence.append(_unseen_slip_sentence(v.one_frame))
-            return "undetermined", "frame_rate", evidence
-        evidence.append(
-            f"a slip of one frame before it would worsen the fit by chi2 = {v.one_frame:.3g}"
-        )
-        return "jarm", "", evidence
+        return _jarm_if_shown(v.one_frame, evidence)
     verdict, reason = _slip_verdict(slip_frames, delta)
     evidence.append(
         f"the fitted model slips for {slip_frames:.1f} frames in all before its "
         f"lift-off; forbidding that slip worsens the fit by chi2 = "
         f"{delta:.3g} (significant above {SIGNIFICANT:g})"
     )
-    if verdict == "jarm" and not v.one_frame >= SIGNIFICANT:
-        evidence.append(_unseen_slip_sentence(v.one_frame))
-        return "undetermined", "frame_rate", evidence
+    if verdict == "jarm":
+        return _jarm_if_shown(v.one_frame, evidence)
     return verdict, reason, evidence
 
 
@@ -638,12 +631,20 @@ def _slip_frames(f: Fit, setup: Setup, track: Track) -> float:
     return sum(b - a for a, b in slips) * setup.time_unit / track.dt
 
 
-def _unseen_slip_sentence(cost: float) -> str:
-    return (
+def _jarm_if_shown(one_frame: float, evidence: list[str]) -> tuple[str, str, list[str]]:
+    """jarm if a slip of one frame before the lift-off would have shown (``one_frame``, what
+    it costs the fit, at least SIGNIFICANT), else undetermined (frame_rate)."""
+    if one_frame >= SIGNIFICANT:
+        evidence.append(
+            f"a slip of one frame before it would worsen the fit by chi2 = {one_frame:.3g}"
+        )
+        return "jarm", "", evidence
+    evidence.append(
         f"but a slip of one frame before the lift-off would worsen the fit by only chi2 = "
-        f"{cost:.2g} (it takes {SIGNIFICANT:g} to show): the frame rate and the noise cannot "
-        "exclude it"
+        f"{one_frame:.2g} (it takes {SIGNIFICANT:g} to show): the frame rate and the noise "
+        "cannot exclude it"
     )
+    return "undetermined", "frame_rate", evidence
 
 
 def _slip_verdict(frames: float, delta: float) -> tuple[str, str]:

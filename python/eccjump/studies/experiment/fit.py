@@ -52,7 +52,7 @@ MAX_TRANSITIONS = 60
 #: Evaluations of one least-squares run, and of one point of a profile.
 MAX_NFEV, PROFILE_NFEV = 250, 60
 #: Iterations of a screening fit, and the screened starts fitted in full.
-SCREEN_NFEV, KEEP = 10, 3
+SCREEN_NFEV, KEEP = 20, 3
 
 
 @dataclass(frozen=True)

@@ -12,8 +12,8 @@ and leaves the study's own results bit-identical.
 **The estimators** (Jansen 1999; Saltelli et al. 2010, table 2 (f)), with V the variance of
 f over A and B together:
 
-- first order S_i = (V - mean((f(B) - f(AB_i))^2) / 2) / V: f(B) and f(AB_i) share only x_i;
-- total S_Ti = mean((f(A) - f(AB_i))^2) / 2 / V: f(A) and f(AB_i) differ only in x_i.
+- first order S_i = (V - mean((f(B) - f(AB_i))²) / 2) / V: f(B) and f(AB_i) share only x_i;
+- total S_Ti = mean((f(A) - f(AB_i))²) / 2 / V: f(A) and f(AB_i) differ only in x_i.
 
 These are the estimators of ``scipy.stats.sobol_indices`` for the total and, for the first
 order, Jansen's in place of scipy's ``saltelli_2010`` (f(B) (f(AB_i) - f(A))): the same limit,
@@ -24,22 +24,22 @@ returned: a first-order index near 0 can come out slightly negative, and an inde
 
 **What the inputs are.** The indices are those of the model on the unit cube, whose columns are
 independent uniforms, as the study maps them (:func:`.sampling.columns`). Where the truncation
-of k_m to [0, 1 - chi] (or of mu_k to [0, mu_s]) does not bind, a column is its parameter and the
+of k_m to [0, 1 − χ] (or of μ_k to [0, μ_s]) does not bind, a column is its parameter and the
 indices are the usual ones of independent inputs. Where it binds, k_m is the quantile u_km of
-its range given the sample's chi, so "km" is the index of that quantile, and chi's index
-includes chi's effect through the range of k_m: the physical k_m and chi are then dependent and
+its range given the sample's χ, so "km" is the index of that quantile, and χ's index
+includes χ's effect through the range of k_m: the physical k_m and χ are then dependent and
 no variance decomposition of them exists; that of the cube's columns does.
 
 **Invalid samples.** A row of the design (A, B and the d AB_i at one index) with an invalid
 sample is left out of every estimate. Under ``invalid="truncate"`` no sample is invalid except
-where a uniform k_m range misses [0, 1 - chi] (and k_m = 0 in the full motion), so nothing is
+where a uniform k_m range misses [0, 1 − χ] (and k_m = 0 in the full motion), so nothing is
 left out; under ``"count"`` the rows kept are not a sample of the whole cube, and the indices
 are only an estimate of those of the model restricted to the physical range. Where fewer than
 half the rows are in range the estimate would describe a corner of the cube: a ValueError
 naming ``indices``, before any sample is answered.
 
 **The lift-off time.** For the full motion (``question="motion"``) the same design gives the
-indices of the first lift-off's time [sqrt(R/g)] too, over the rows where every sample lifts
+indices of the first lift-off's time [√(R/g)] too, over the rows where every sample lifts
 off within ``t_max`` (the others are left out, as invalid ones: an estimate conditional on the
 lift-off; None where fewer than half the rows lift off).
 
@@ -90,8 +90,8 @@ class SobolIndex(NamedTuple):
 
 def _terms(f_a: NDArray, f_b: NDArray, f_ab: NDArray) -> NDArray[np.float64]:
     """The terms of each row whose sums make the estimates: a count, f_A + f_B and
-    f_A^2 + f_B^2 (centred on their mean, so that a variance small against the mean keeps its
-    digits), and per parameter (f_B - f_AB_i)^2 and (f_A - f_AB_i)^2. Shape (n, 3 + 2d)."""
+    f_A² + f_B² (centred on their mean, so that a variance small against the mean keeps its
+    digits), and per parameter (f_B - f_AB_i)² and (f_A - f_AB_i)². Shape (n, 3 + 2d)."""
     centre = (f_a.sum() + f_b.sum()) / (2 * f_a.size) if f_a.size else 0.0
     a, b, ab = f_a - centre, f_b - centre, f_ab - centre
     return np.column_stack(

@@ -141,7 +141,7 @@ def uncertainty(
         the JARM indicator for each varied parameter, by Saltelli's design (the study's n
         samples, n more, and n per varied parameter: **n (d + 2) runs** for d varied
         parameters) and Jansen's estimators, with bootstrap intervals
-        (:mod:`eccjump.studies.uncertainty.indices`: how the k_m <= 1 - chi truncation is
+        (:mod:`eccjump.studies.uncertainty.indices`: how the k_m ≤ 1 − χ truncation is
         treated; fewer than half the design's rows in range is a ValueError). The study's
         other results are the same bits either way.
     %(rule_rolling)s
