@@ -1,6 +1,7 @@
 """Figures: the paper's Fig. 3b and Fig. 4 (JARM regions), a pure-rolling trajectory, and the
 full motion of :func:`eccjump.simulate` (panels and an animated GIF), an uncertainty study
-(:func:`eccjump.uncertainty`).
+(:func:`eccjump.uncertainty`) and P(JARM) under tolerances over a grid
+(:func:`eccjump.uncertainty_map`).
 
 Every function returns a :class:`matplotlib.figure.Figure` (:func:`animate_motion` writes a GIF
 instead; matplotlib is imported only when a function is called: ``pip install eccjump[plot]``).
@@ -14,7 +15,7 @@ thresholded grid, so thin regions keep their true thickness in alpha.
 
 from eccjump.plot._common import TURN_COLORS
 from eccjump.plot.full_motion import MAX_FRAMES, MODE_COLORS, animate_motion, motion
-from eccjump.plot.maps import fraction_map, region_map, sequence_map
+from eccjump.plot.maps import fraction_map, probability_map, region_map, sequence_map
 from eccjump.plot.paper import (
     MAX_RESOLUTION,
     MAX_SLICE_RESOLUTION,
@@ -41,6 +42,7 @@ __all__ = [
     "fraction_map",
     "jarm_surfaces",
     "motion",
+    "probability_map",
     "region_map",
     "sequence_map",
     "trajectory",
