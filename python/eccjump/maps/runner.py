@@ -66,6 +66,10 @@ class Job(Protocol):
     def unrecorded(self) -> Mapping[str, Any]: ...
     @property
     def counted(self) -> tuple[str, ...]: ...
+    @property
+    def cost(self) -> int:
+        """Work per point, in units of a JARM classification (the default chunk's size)."""
+        ...
 
     def compute(
         self, alpha: NDArray, chi: NDArray, km: NDArray, threads: int
@@ -180,7 +184,8 @@ def run(path: Path, axes: Axes, job: Job, options: Options, note: Note) -> Outco
     # Let the core check every option on one point before anything is written (an invalid
     # mu_s, theta0, tolerance or thread count is a one-line error, not a map of INVALID).
     job.compute(alpha[:1], chi[:1], km[:1], options.threads)
-    chunk = options.chunk or max(1, round(POINTS_PER_CHUNK / max(1, chi.size * km.size)))
+    per_slice = max(1, chi.size * km.size * job.cost)
+    chunk = options.chunk or max(1, round(POINTS_PER_CHUNK / per_slice))
     chunk = min(chunk, alpha.size)
     held = shape_points = alpha.size * chi.size * km.size
     if fmt == "zarr":  # one chunk in memory at a time

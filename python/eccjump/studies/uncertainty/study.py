@@ -34,6 +34,7 @@ from eccjump.studies.uncertainty.sampling import (
     options,
     spread,
 )
+from eccjump.studies.uncertainty.scheduled import chunk_size, evaluate_scheduled
 
 #: The parameters the JARM question can vary: :func:`eccjump.jarm` takes one start (theta0,
 #: omega0) for all its points, and neither mu_k nor e enters the classification.
@@ -67,6 +68,7 @@ def uncertainty(
     atol: float = 1e-12,
     integrator: Integrator = "RK45",
     n_threads: int = 0,
+    chunks: int | None = None,
     progress: bool | Progress | None = None,
 ) -> Uncertainty:
     """The probability of a JARM, of each outcome, and the spread of the lift-off and the
@@ -138,10 +140,16 @@ def uncertainty(
     t_max, max_transitions, rtol, atol, integrator
         The full motion's options (``question="motion"``), as in :func:`eccjump.motion_map`.
     %(n_threads)s
+    chunks : int or None, default None
+        None computes here. Otherwise samples per chunk (1 ... 10**8): the chunks are dask
+        tasks computed by the current scheduler (a ``dask.distributed`` cluster when a
+        ``Client`` is active; ``pip install "eccjump[dask]"``), with ``n_threads`` threads
+        each; the result is bit-identical for any chunk size, scheduler or worker count.
     progress : bool, callable or None, default None
         Progress of the work, in valid samples: None or False, none; True, a bar on stderr
         (tqdm); a callable, called as ``progress(done, total)`` after each chunk of them
         (anything else is a TypeError before any work). The result is the same either way.
+        Not with ``chunks`` (a ValueError: dask reports its tasks' progress).
 
     Returns
     -------
@@ -204,14 +212,19 @@ def uncertainty(
     spec = spread(nominal, sd, bounds, allowed, mu_k_follows=mu_k_ is None)
     size, seed_, how, policy = options(n, seed, sampling, invalid)
     level = check_confidence(confidence)
-    checked(progress)
+    if checked(progress) and chunks is not None:
+        raise ValueError("progress needs chunks=None (dask reports the progress of its tasks)")
+    per_chunk = None if chunks is None else chunk_size(chunks)
     opts = _question_options(q, rule, t_max, max_transitions, rtol, atol, integrator, n_threads)
     per_sample = (JARM if q == "jarm" else MOTION).bytes_per_point()
     need = uncertainty_bytes(size, len(spec.varied), per_sample)
     check_fits("uncertainty", size, need, "n", "samples")
     cols, valid = draw(spec, size, seed_, how, policy)
-    with reporting(progress, "sample") as report:
-        outcomes = evaluate(q, cols, valid, opts, report)
+    if per_chunk is not None:
+        outcomes = evaluate_scheduled(q, cols, valid, opts, per_chunk)
+    else:
+        with reporting(progress, "sample") as report:
+            outcomes = evaluate(q, cols, valid, opts, report)
     valid &= ran(q, outcomes)  # k_m = 0 has no full motion (simulate needs k_m > 0)
     n_valid = int(valid.sum())
     if n_valid == 0:  # no probability to give: an error, not NaN
