@@ -106,8 +106,7 @@ def test_chunks_bit_identical(umap, chunks):
     )
     assert lazy.lazy and "lazy" in repr(lazy)
     assert lazy.compute(scheduler="threads") == umap
-    if chunks == 1:
-        assert lazy.compute(scheduler="processes") == umap
+    assert lazy.compute(scheduler="sync") == umap
 
 
 def test_uncertainty_chunks_bit_identical():
@@ -208,3 +207,28 @@ def test_command_line_writes_the_map(tmp_path, capsys):
     assert back == want
     assert "P(JARM)" in capsys.readouterr().out
     assert main([*argv[:-2], "-o", str(tmp_path / "x.npz"), "--route", "ode"]) == 2
+
+
+def test_local_cluster_of_two_processes_bit_identical(umap, monkeypatch):
+    """The tutorial's LocalCluster: both chunked calls on two worker processes."""
+    distributed = pytest.importorskip("distributed")
+    from pathlib import Path
+
+    # Worker processes must import this eccjump (e.g. from a source tree on PYTHONPATH).
+    monkeypatch.setenv("PYTHONPATH", str(Path(eccjump.__file__).parents[1]))
+    body = eccjump.Cylinder(*JARM_BODY)
+    here = eccjump.uncertainty(body, math.radians(40), 1.0, sd=SD, n=2000, seed=2)
+    with (
+        distributed.LocalCluster(
+            n_workers=2, threads_per_worker=1, processes=True, dashboard_address=None
+        ) as cluster,
+        distributed.Client(cluster) as client,
+    ):
+        lazy = eccjump.uncertainty_map(
+            ALPHA, CHI, KM_FRAC, 1.0, sd=SD, bounds=BOUNDS, n=N, seed=7, chunks=(1, 1, -1),
+            n_threads=1,
+        )  # fmt: skip
+        assert lazy.compute() == umap  # the client is the default scheduler
+        there = eccjump.uncertainty(body, math.radians(40), 1.0, sd=SD, n=2000, seed=2, chunks=300)
+        assert there == here
+        assert len(client.scheduler_info()["workers"]) == 2

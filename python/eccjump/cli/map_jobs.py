@@ -65,7 +65,6 @@ class JarmJob:
     """``--kind jarm``: the JARM classification of each point (:func:`eccjump.region`)."""
 
     kind: MapKind = JARM
-    cost = 1
     matched = MAP_OPTIONS
     unrecorded = UNRECORDED
     counted = ("is_jarm", "n")
@@ -132,7 +131,6 @@ class MotionJob:
     (:func:`eccjump.motion_map`)."""
 
     kind: MapKind = MOTION
-    cost = 1
     matched = MOTION_OPTIONS
     unrecorded = UNRECORDED
     counted = ("sequence", "jarm", "slipped_first", "status")
