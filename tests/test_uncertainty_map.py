@@ -154,6 +154,16 @@ def test_a_damaged_map_is_refused(umap, tmp_path):
         eccjump.maps.save(lay, tmp_path / "bad.npz")
 
 
+def test_a_grid_point_out_of_range_has_no_valid_sample(tmp_path):
+    """A ramp angle past pi/2 is an invalid point, as in a region (its samples, truncated to
+    the range, would be those of a point inside); the map is saved and read back."""
+    with pytest.warns(UserWarning, match="alpha"):
+        m = eccjump.uncertainty_map([0.7, 2.0], [0.15], [0.1], 1.0, sd={"alpha": 0.3}, n=50)
+    assert m.n_valid.ravel().tolist() == [50, 0]
+    assert np.isnan(m.p_jarm[1]).all() and np.isnan(m.p_jarm_low[1]).all()
+    assert eccjump.load(m.save(tmp_path / "m.npz")) == m
+
+
 def test_plot_draws_the_contours(umap):
     pytest.importorskip("matplotlib")
     import matplotlib
@@ -201,7 +211,9 @@ def test_command_line_writes_the_map(tmp_path, capsys):
             "--n-alpha", "3", "--chi-min", "0.14", "--chi-max", "0.15", "--n-chi", "2",
             "--km-frac-min", str(KM_FRAC[0]), "--km-frac-max", "0.05", "--n-km-frac", "2",
             "-q", "-o", str(out)]  # fmt: skip
-    assert main(argv) == 0
+    pytest.importorskip("matplotlib")
+    assert main([*argv, "--figure", str(tmp_path / "u.png")]) == 0
+    assert (tmp_path / "u.png").stat().st_size > 0
     back = eccjump.load(out)
     want = eccjump.uncertainty_map(back.alpha, back.chi, back.km_frac, 1.0, sd=SD, n=N, seed=7)
     assert back == want

@@ -89,15 +89,24 @@ def reason_counts(
     samples outside the physical range count as INVALID_PARAMS."""
     grid = columns(nominal, cube, how)
     flat = {p: np.ascontiguousarray(v).ravel() for p, v in grid.items()}
-    zero = np.zeros(())  # the parameters the closed form does not take
-    valid = _in_range(
-        {**flat, "mu_k": flat["mu_s"], "restitution": zero, "theta0": zero, "omega0": zero}
-    )
+    # A grid point outside the physical range (a ramp angle past pi/2, NaN) has no valid
+    # sample, as a region's point there is invalid: its truncated samples would be a point
+    # inside.
+    inside = np.repeat(_physical(nominal), cube.shape[0])
+    valid = _physical(flat) & inside
     opts = {"rule": how.rule, "n_threads": n_threads}
     reason = evaluate("jarm", flat, valid, opts)["reason"].astype(np.int64)
     rows = np.repeat(np.arange(nominal["chi"].size), cube.shape[0])
     size = nominal["chi"].size * CODES
     return np.bincount(rows * CODES + reason, minlength=size).reshape(-1, CODES)
+
+
+def _physical(values: Mapping[str, NDArray[np.float64]]) -> NDArray[np.bool_]:
+    """Whether each (chi, km, alpha, mu_s) lies in its physical range
+    (:func:`.sampling._in_range`, the parameters the closed form does not take at 0)."""
+    zero = np.zeros(())
+    rest = {"mu_k": values["mu_s"], "restitution": zero, "theta0": zero, "omega0": zero}
+    return _in_range({**values, **rest})
 
 
 def _counts_in_blocks(

@@ -84,6 +84,7 @@ UNCERTAINTY = register(
         ("alpha", "chi", "km_frac"),
         {},
         valid=VALID,
+        invalid=("n_valid", frozenset([0])),
         agree=tuple(("n_valid", k, True) for k in FIELDS if k != "n_valid"),
         validator=_interval_holds,
         title="uncertainty",
