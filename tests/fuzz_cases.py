@@ -2328,6 +2328,55 @@ def case_track(d: Drawer) -> Case:
     return c
 
 
+UNCERTAINTY_MAP_PARAMS = (
+    "alpha", "chi", "km_frac", "mu_s", "km", "sd", "bounds", "n", "seed", "sampling",
+    "question", "invalid", "confidence", "rule", "chunks", "n_threads", "progress",
+)  # fmt: skip
+
+
+def check_uncertainty_map(res: Any, case: Case) -> None:
+    expect(isinstance(res, eccjump.UncertaintyMap), "not an UncertaintyMap")
+    f = res.fields
+    has = f["n_valid"] > 0
+    expect(bool(np.all(f["n_valid"] <= res.n)), "n_valid > n")
+    p, lo, hi = f["p_jarm"][has], f["p_jarm_low"][has], f["p_jarm_high"][has]
+    expect(bool(np.all((0 <= lo) & (lo <= p) & (p <= hi) & (hi <= 1))), "p_jarm outside its CI")
+    shares = p + sum(v[has] for k, v in f.items() if k.startswith("p_") and "jarm" not in k)
+    expect(bool(np.all(np.abs(shares - 1) < 1e-9)), "the shares do not add up to 1")
+    expect(bool(np.isnan(f["p_jarm"][~has]).all()), "a share without a valid sample")
+
+
+def case_uncertainty_map(d: Drawer) -> Case:
+    c = Case("uncertainty_map", eccjump.uncertainty_map, params=UNCERTAINTY_MAP_PARAMS,
+             check=check_uncertainty_map)  # fmt: skip
+    names = ("chi", "km", "alpha", "mu_s")
+    axes = (_axis(d, c, 0.0, HALF_PI), _axis(d, c, 0.0, 1.0), _axis(d, c, 0.0, 1.0))
+    c.args = (*axes, real(d, c, 0.0, 2.0))
+    sd = _spread_dict(d, c, names, pair=False)
+    bounds = _spread_dict(d, c, names, pair=True)
+    if isinstance(sd, dict) and isinstance(bounds, dict):
+        bounds = {k: v for k, v in bounds.items() if k not in sd or not d.clean}
+    c.kwargs = {
+        "sd": sd,
+        "bounds": bounds,
+        "question": text_param(d, c, ("jarm",)),
+        "n": integer_param(d, c, (1, 7, 64), (*INT_BAD, 10**9)),
+        "seed": integer_param(d, c, (0, 1, 12345), (-1, 2.5, None, "1", 2**64)),
+        "sampling": text_param(d, c, ("random", "sobol")),
+        "invalid": text_param(d, c, ("truncate", "count")),
+        "confidence": d.choice((0.95, 0.5, *(() if d.clean else BAD_CONFIDENCE))),
+        "rule": text_param(d, c, ("paper", "normal_force")),
+        "n_threads": integer_param(d, c, (0, 1, 2), (*INT_BAD, 257)),
+    }
+    c.must_raise |= c.kwargs["confidence"] in BAD_CONFIDENCE
+    if d.integer(0, 3) == 0:
+        c.kwargs["progress"] = progress_param(d, c)
+    if not d.clean and d.integer(0, 9) == 0:
+        c.kwargs[d.choice(("km", "question"))] = d.choice((0.1, "motion"))
+        c.must_raise = True
+    return c
+
+
 def _not_a_video(what: str) -> Any:
     """A path that names no video: a FIFO (refused without blocking), a directory, a device,
     a missing file; or a value of a wrong type."""
@@ -2354,6 +2403,7 @@ GENERATORS: dict[str, Callable[[Drawer], Case]] = {
     "motion_points": case_motion_points,
     "motion_options": case_motion_options,
     "uncertainty": case_uncertainty,
+    "uncertainty_map": case_uncertainty_map,
     "to_si": case_to_si,
     "sol": case_sol,
     "kinematics": case_kinematics,

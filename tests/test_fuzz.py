@@ -44,6 +44,7 @@ BUDGET = {
     "motion_points": 100,
     "motion_options": 60,
     "uncertainty": 60,
+    "uncertainty_map": 40,
     "to_si": 60,
     "sol": 60,
     "kinematics": 60,

@@ -37,6 +37,7 @@ from eccjump.studies.design import Design, build, design
 from eccjump.studies.experiment import Analysis, analyze
 from eccjump.studies.experiment.video import VideoTrack, track
 from eccjump.studies.uncertainty import Uncertainty, uncertainty
+from eccjump.studies.uncertainty.map import UncertaintyMap, uncertainty_map
 
 __all__ = [
     "EVENT_NAMES",
@@ -57,6 +58,7 @@ __all__ = [
     "RollResult",
     "StartMap",
     "Uncertainty",
+    "UncertaintyMap",
     "Units",
     "VideoTrack",
     "__version__",
@@ -85,6 +87,7 @@ __all__ = [
     "store",
     "track",
     "uncertainty",
+    "uncertainty_map",
 ]
 
 # The module paths before the layers (eccjump.rolling, eccjump.store, ...) for one release.

@@ -46,6 +46,7 @@ from eccjump.cli.map_jobs import Job
 from eccjump.maps import runner
 from eccjump.maps.runner import POINTS_PER_CHUNK
 from eccjump.maps.store import format_of
+from eccjump.studies.uncertainty.sampling import N_MAX
 
 #: Most points along one axis of the grid (--grid, --n-alpha, --n-chi, --n-km-frac).
 MAX_AXIS_POINTS = 1_000_000
@@ -83,10 +84,11 @@ def add_parser(sub: argparse._SubParsersAction) -> None:
     )
     p.add_argument(
         "--kind",
-        choices=("jarm", "motion"),
+        choices=("jarm", "motion", "uncertainty"),
         default="jarm",
         help="jarm: the JARM classification (default); motion: the full motion to the first "
-        "landing (sequence of modes, lift-off, flight, landing)",
+        "landing (sequence of modes, lift-off, flight, landing); uncertainty: P(JARM) under "
+        "the tolerances --sd",
     )
     p.add_argument("--mu-s", type=float, required=True, help="static friction coefficient")
     p.add_argument(
@@ -163,6 +165,21 @@ def add_parser(sub: argparse._SubParsersAction) -> None:
         default=None,
         help="transitions before the first landing (default 100, as simulate)",
     )
+    u = p.add_argument_group("P(JARM) under tolerances (--kind uncertainty)")
+    u.add_argument(
+        "--sd",
+        action="append",
+        default=None,
+        metavar="NAME=SD[,...]",
+        help="normal tolerances around each grid point, e.g. alpha=0.25,chi=0.002 (NAME: "
+        "chi, km, alpha, mu_s; alpha in degrees; repeatable)",
+    )
+    u.add_argument(
+        "--samples", type=int_in(1, N_MAX), default=None, help="samples per point (default 2000)"
+    )
+    u.add_argument("--seed", type=int_in(0, 2**63), default=None, help="seed (default 0)")
+    u.add_argument("--sampling", choices=("random", "sobol"), default=None, help="default random")
+    u.add_argument("--confidence", type=float, default=None, help="interval level (0.95)")
     r = p.add_argument_group("run")
     r.add_argument("--threads", type=int, default=0, help="threads (0 = one per core)")
     r.add_argument(
@@ -184,7 +201,7 @@ def add_parser(sub: argparse._SubParsersAction) -> None:
 #: The default ends of the chi and km_frac axes that differ by kind: the full motion needs
 #: k_m > 0 (simulate), so its default grid leaves out k_m = 0 (chi = 1 and km_frac = 0), which
 #: would be invalid points (4.9 % of a 40^3 map).
-DEFAULT_ENDS = {"jarm": (1.0, 0.0), "motion": (0.99, 0.01)}
+DEFAULT_ENDS = {"jarm": (1.0, 0.0), "motion": (0.99, 0.01), "uncertainty": (1.0, 0.0)}
 
 
 def _axes(args: argparse.Namespace) -> tuple[NDArray, NDArray, NDArray]:

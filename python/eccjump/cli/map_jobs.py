@@ -1,8 +1,9 @@
-"""The two kinds of ``eccjump map`` as small job classes: the JARM classification
-(:func:`eccjump.region`) and the full motion to the first landing (:func:`eccjump.motion_map`).
+"""The kinds of ``eccjump map`` as small job classes: the JARM classification
+(:func:`eccjump.region`), the full motion to the first landing (:func:`eccjump.motion_map`) and
+P(JARM) under tolerances (:func:`eccjump.uncertainty_map`).
 Each holds its options and file attributes, computes one chunk, counts the finished points
 and writes its summary lines and figure: a :class:`eccjump.maps.runner.Job`, which the
-runner computes in chunks, resumes and writes for both."""
+runner computes in chunks, resumes and writes for all."""
 
 from __future__ import annotations
 
@@ -19,9 +20,13 @@ from eccjump.classification.classify import region
 from eccjump.classification.dataset import load
 from eccjump.classification.fields import JARM, map_attrs
 from eccjump.cli._output import save_figure
+from eccjump.cli.uncertainty import _value  # --sd's numbers, as eccjump uncertainty's
+from eccjump.maps import load as load_map
 from eccjump.maps.kinds import MapKind
 from eccjump.motion import maps as motion_maps
 from eccjump.motion.fields import MOTION, sequence_name
+from eccjump.studies.uncertainty.map import MAP_PARAMETERS, UncertaintyMap, uncertainty_map
+from eccjump.studies.uncertainty.map_fields import UNCERTAINTY
 
 #: Options of a JARM map that must match the store for --resume (attribute names).
 MAP_OPTIONS = (
@@ -192,7 +197,87 @@ class MotionJob:
         save_figure("--figure", plot.sequence_map(motion_maps.load(path)), figure, dpi=110)
 
 
-Job = JarmJob | MotionJob
+#: The same for an uncertainty map.
+UNCERTAINTY_OPTIONS = ("mu_s", "n", "seed", "confidence", "rule", "sampling", "invalid", "sd")
+
+
+def tolerances(given: list[str]) -> dict[str, float]:
+    """``--sd NAME=SD[,NAME=SD...]`` (repeatable) as the API's dict, alpha in degrees on the
+    command line as every angle (ValueError naming --sd)."""
+    sd: dict[str, float] = {}
+    for item in (part for text in given for part in text.split(",") if part.strip()):
+        name, sep, value = (x.strip() for x in item.partition("="))
+        if not sep or name not in MAP_PARAMETERS:
+            raise ValueError(
+                f"--sd {item[:30]!r}: use NAME=SD with NAME one of {', '.join(MAP_PARAMETERS)}"
+            )
+        if name in sd:
+            raise ValueError(f"--sd {name}: given twice")
+        try:
+            sd[name] = _value(name, value)
+        except ValueError as err:
+            raise ValueError(f"--sd {err}") from None
+    return sd
+
+
+class UncertaintyJob:
+    """``--kind uncertainty``: P(JARM) under the tolerances ``--sd`` at each point
+    (:func:`eccjump.uncertainty_map`, the same unit-cube points at every point: a chunk's
+    points are those of the whole map)."""
+
+    kind: MapKind = UNCERTAINTY
+    matched = UNCERTAINTY_OPTIONS
+    unrecorded = UNRECORDED
+    counted = ("p_jarm", "p_jarm_low")
+
+    def __init__(self, args: argparse.Namespace) -> None:
+        if args.theta0 or args.omega0:
+            raise ValueError("--theta0, --omega0: --kind uncertainty starts at rest at 0")
+        self.opts: dict[str, Any] = {
+            "mu_s": float(args.mu_s),
+            "sd": tolerances(args.sd),
+            "n": int(args.samples),
+            "seed": int(args.seed),
+            "sampling": args.sampling,
+            "confidence": float(args.confidence),
+            "rule": args.rule,
+        }
+        #: Work per point, in classifications (the runner's chunk size).
+        self.cost = self.opts["n"]
+        empty = np.zeros(0)  # checks every option, computes nothing
+        self.attrs = uncertainty_map(empty, empty, empty, **self.opts).attrs()
+        self.points = self.sure = self.even = 0
+        self.total = 0.0
+
+    def compute(
+        self, alpha: NDArray, chi: NDArray, km: NDArray, threads: int
+    ) -> dict[str, NDArray]:
+        m = uncertainty_map(alpha, chi, km, n_threads=threads, **self.opts)
+        return dict(m.fields)
+
+    def count(self, part: dict[str, NDArray]) -> None:
+        p = np.asarray(part["p_jarm"], dtype=np.float64)
+        self.points += p.size
+        self.total += float(np.nansum(p))
+        self.even += int(np.count_nonzero(p >= 0.5))
+        self.sure += int(np.count_nonzero(np.asarray(part["p_jarm_low"]) >= 0.95))
+
+    def lines(self) -> list[str]:
+        n = self.points
+        mean = f"{self.total / n:.6f}" if n else "n/a"
+        return [
+            f"P(JARM)       mean {mean} over the finished points",
+            f"P >= 0.5      {share(self.even, n)}",
+            f"95 % sure     {share(self.sure, n)} (the interval's lower end >= 0.95)",
+        ]
+
+    def draw(self, path: str, figure: Path) -> None:
+        m = load_map(path)
+        assert isinstance(m, UncertaintyMap)
+        save_figure("--figure", plot.probability_map(m), figure, dpi=110)
+
+
+Job = JarmJob | MotionJob | UncertaintyJob
 
 
 #: The most turns of a JARM search (the core's ``jarm::MAX_TURNS``; the user guide's "Limits").
@@ -203,6 +288,13 @@ MAX_TURNS = 10**6
 KIND_OPTIONS: dict[str, dict[str, Any]] = {
     "jarm": {"n": None, "route": "closed-form", "max_turns": 10_000, "stop_at_slip": False},
     "motion": {"mu_k": None, "restitution": 0.0, "t_max": 100.0, "max_transitions": 100},
+    "uncertainty": {
+        "sd": [],
+        "samples": 2000,
+        "seed": 0,
+        "sampling": "random",
+        "confidence": 0.95,
+    },
 }
 
 
@@ -222,7 +314,12 @@ def kind_options(args: argparse.Namespace) -> None:
 def job(args: argparse.Namespace) -> Job:
     """The job of ``args.kind``, once its options are checked (:func:`kind_options`)."""
     kind_options(args)
-    return MotionJob(args) if args.kind == "motion" else JarmJob(args)
+    jobs: dict[str, type[Job]] = {
+        "jarm": JarmJob,
+        "motion": MotionJob,
+        "uncertainty": UncertaintyJob,
+    }
+    return jobs[args.kind](args)
 
 
 def share(k: int, points: int) -> str:

@@ -1,9 +1,12 @@
-"""Maps: a result at every point of a parameter grid, JARM maps and motion maps alike.
+"""Maps: a result at every point of a parameter grid, JARM maps, motion maps and maps of
+P(JARM) under tolerances alike.
 
-Both kinds are a :class:`Map` -- :class:`~eccjump.Region` from :func:`~eccjump.region` and
-:class:`~eccjump.MotionMap` from :func:`~eccjump.motion_map` -- with the same ``coords``,
-``fields``, ``shape``, ``fraction()`` and ``to_xarray()``. :func:`save` writes a map of either
-kind to a file (``.nc``, ``.zarr`` or ``.npz``) and :func:`load` reads it back as its type.
+Every kind is a :class:`Map` -- :class:`~eccjump.Region` from :func:`~eccjump.region`,
+:class:`~eccjump.MotionMap` from :func:`~eccjump.motion_map` and
+:class:`~eccjump.UncertaintyMap` from :func:`~eccjump.uncertainty_map` -- with the same
+``coords``, ``fields``, ``shape``, ``fraction()`` and ``to_xarray()``. :func:`save` writes a
+map of any kind to a file (``.nc``, ``.zarr`` or ``.npz``) and :func:`load` reads it back as
+its type.
 
 The map layer knows no kind of map: each kind (:mod:`eccjump.maps.kinds`) and its result
 class (:class:`Map`) register themselves, and this layer finds them by the kind in a file.

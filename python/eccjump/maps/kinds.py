@@ -7,8 +7,9 @@ recorded).
 
 The map layer knows no kind by itself: each kind is defined next to its field table and joins
 :data:`KINDS` with :func:`register` -- the JARM region (``JARM`` in
-:mod:`eccjump.classification.fields`) and the full motion (``MOTION`` in
-:mod:`eccjump.motion.fields`). ``import eccjump`` imports both.
+:mod:`eccjump.classification.fields`), the full motion (``MOTION`` in
+:mod:`eccjump.motion.fields`) and P(JARM) under tolerances (``UNCERTAINTY`` in
+:mod:`eccjump.studies.uncertainty.map_fields`). ``import eccjump`` imports all three.
 
 Where to add a third map kind:
 

@@ -53,7 +53,8 @@ class Job(Protocol):
     equal a store's to resume it; ``unrecorded``: the value of an option that a store written
     before the option was recorded was made with), one chunk's fields, and the count of
     finished points (``count`` of the fields ``counted``, read back from a resumed store
-    too)."""
+    too). Optional: ``cost``, the work of a point in JARM classifications (default 1), which
+    sizes the default chunk."""
 
     # Read-only, so that a job may narrow them (``counted = ("is_jarm", "n")``).
     @property
@@ -180,7 +181,10 @@ def run(path: Path, axes: Axes, job: Job, options: Options, note: Note) -> Outco
     # Let the core check every option on one point before anything is written (an invalid
     # mu_s, theta0, tolerance or thread count is a one-line error, not a map of INVALID).
     job.compute(alpha[:1], chi[:1], km[:1], options.threads)
-    chunk = options.chunk or max(1, round(POINTS_PER_CHUNK / max(1, chi.size * km.size)))
+    # A job may say what a point costs, in JARM classifications (P(JARM) under tolerances:
+    # its samples per point), so that the default chunk holds about the same work.
+    per_slice = max(1, chi.size * km.size * int(getattr(job, "cost", 1)))
+    chunk = options.chunk or max(1, round(POINTS_PER_CHUNK / per_slice))
     chunk = min(chunk, alpha.size)
     held = shape_points = alpha.size * chi.size * km.size
     if fmt == "zarr":  # one chunk in memory at a time

@@ -1,7 +1,8 @@
 """Figures: the paper's Fig. 3b and Fig. 4 (JARM regions), a pure-rolling trajectory, and the
 full motion of :func:`eccjump.simulate` (panels and an animated GIF), a JARM classification
 over its points, a design on its region slice, an uncertainty study
-(:func:`eccjump.uncertainty`).
+(:func:`eccjump.uncertainty`) and P(JARM) under tolerances over a grid
+(:func:`eccjump.uncertainty_map`).
 
 Every result's ``.plot()`` goes through :func:`draw`: ``.plot()`` is the full figure,
 ``.plot(fig=fig)`` the same drawn into an empty Figure or SubFigure of the caller's, and
@@ -26,6 +27,7 @@ from eccjump.plot.full_motion import MAX_FRAMES, animate_motion, motion, motion_
 from eccjump.plot.maps import (
     fraction_map,
     fraction_panel,
+    probability_map,
     region_map,
     region_panel,
     sequence_map,
@@ -66,6 +68,7 @@ __all__ = [
     "motion",
     "motion_panel",
     "outcomes_panel",
+    "probability_map",
     "region_map",
     "region_panel",
     "roll_panel",

@@ -1,5 +1,5 @@
 """Maps: a computed JARM region, the JARM fraction over the starts, the motion map's
-sequences of modes."""
+sequences of modes, P(JARM) under tolerances."""
 
 from __future__ import annotations
 
@@ -14,6 +14,7 @@ from eccjump.classification.classify import Region
 from eccjump.classification.starts import OptimalStart, StartMap
 from eccjump.motion.fields import sequence_name
 from eccjump.motion.maps import MotionMap
+from eccjump.studies.uncertainty.map import UncertaintyMap
 
 if TYPE_CHECKING:
     from matplotlib.axes import Axes
@@ -335,10 +336,65 @@ def sequence_map(m: MotionMap, *, fig: FigureBase | None = None, panels: int = 4
     return root
 
 
+# --------------------------------------------------------------------------------------------
+# P(JARM) under tolerances (eccjump.uncertainty_map / eccjump map --kind uncertainty)
+# --------------------------------------------------------------------------------------------
+
+#: The contours of :func:`probability_map`: an even chance and the 95 % design target.
+PROBABILITY_LEVELS = (0.5, 0.95)
+
+
+def probability_map(m: UncertaintyMap, *, km_index: int | None = None) -> Figure:
+    """P(JARM) of an :class:`~eccjump.UncertaintyMap` over (χ, α) on one km_frac slice
+    (``km_index``; None: the slice of largest mean P(JARM)), with its 0.5 and 0.95
+    contours. A lazy map is computed first."""
+    if not isinstance(m, UncertaintyMap):
+        raise TypeError(f"m must be an UncertaintyMap, not {type(m).__name__}")
+    m = m.compute()
+    p = np.asarray(m.fields["p_jarm"], dtype=np.float64)
+    if km_index is None:
+        with np.errstate(invalid="ignore"):
+            means = np.nan_to_num(np.nanmean(p, axis=(0, 1)) if p.size else np.zeros(0), nan=-1)
+        k = int(np.argmax(means)) if means.size else 0
+    else:
+        k = integer("km_index", km_index, 0, max(m.km_frac.size - 1, 0))
+    canvas, fig = new_figure(None, (6.2, 4.6))
+    ax = canvas.subplots()
+    a_deg = np.degrees(m.alpha)
+    mesh = ax.pcolormesh(m.chi, a_deg, p[:, :, k], cmap="viridis", vmin=0.0, vmax=1.0,
+                         shading="nearest")  # fmt: skip
+    fig.colorbar(mesh, ax=ax, label="P(JARM)")
+    if min(m.alpha.size, m.chi.size) >= 2 and np.isfinite(p[:, :, k]).any():
+        lines = ax.contour(m.chi, a_deg, p[:, :, k], levels=PROBABILITY_LEVELS,
+                           colors=["white", "red"], linewidths=[1.0, 1.6])  # fmt: skip
+        ax.clabel(lines, fmt={v: f"{v:g}" for v in PROBABILITY_LEVELS}, fontsize=8)
+    ax.set_xlabel(r"$\chi = d/R$")
+    ax.set_ylabel(r"ramp angle $\alpha$ [deg]")
+    spreads = _tolerances(m)
+    ax.set_title(
+        f"P(JARM) at $k_m = {m.km_frac[k]:.3g}\\,(1-\\chi)$, $\\mu_s = {m.mu_s:g}$, "
+        f"{m.n} samples per point\ntolerances: {spreads}; contours 0.5 (white), 0.95 (red)",
+        fontsize=9,
+    )
+    return fig
+
+
+def _tolerances(m: UncertaintyMap) -> str:
+    """The map's tolerances in a line, the ramp angle's in degrees."""
+
+    def shown(name: str, x: float) -> str:
+        return f"{math.degrees(x):.3g}°" if name == "alpha" else f"{x:.3g}"
+
+    out = [f"{k} ± {shown(k, v)}" for k, v in m.sd.items() if v > 0]
+    out += [f"{k} + [{shown(k, lo)}, {shown(k, hi)}]" for k, (lo, hi) in m.bounds.items()]
+    return "; ".join(out) or "none"
+
+
 __all__ = [
     "SEQUENCE_COLORS",
     "fraction_map",
     "fraction_panel",
+    "probability_map",
     "region_map",
     "region_panel",
     "sequence_map",

@@ -7,7 +7,10 @@ first flight under tolerances on the body, the ramp, the friction and the start.
 - :mod:`.results`: :class:`Uncertainty` and the Wilson interval;
 - :mod:`.delta`: the place of the first-order (delta-method) estimate;
 - :mod:`.indices`: which tolerance matters, the Sobol' indices (``indices=True``);
-- :mod:`.study`: :func:`uncertainty`, which ties them together.
+- :mod:`.study`: :func:`uncertainty`, which ties them together (:mod:`.scheduled`: its
+  ``chunks=`` on Dask);
+- :mod:`.map`: :func:`eccjump.uncertainty_map`, P(JARM) over a region grid (:mod:`.grid`: the
+  batches; :mod:`.map_fields`: its map kind).
 """
 
 from eccjump.studies.uncertainty.results import Summary, Uncertainty, wilson

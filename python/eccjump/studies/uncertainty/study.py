@@ -35,6 +35,7 @@ from eccjump.studies.uncertainty.sampling import (
     options,
     spread,
 )
+from eccjump.studies.uncertainty.scheduled import chunk_size, evaluate_scheduled
 
 #: The parameters the JARM question can vary: :func:`eccjump.jarm` takes one start (theta0,
 #: omega0) for all its points, and neither mu_k nor e enters the classification.
@@ -69,6 +70,7 @@ def uncertainty(
     atol: float = 1e-12,
     integrator: Integrator = "RK45",
     n_threads: int = 0,
+    chunks: int | None = None,
     progress: bool | Progress | None = None,
 ) -> Uncertainty:
     """The probability of a JARM, of each outcome, and the spread of the lift-off and the
@@ -148,10 +150,16 @@ def uncertainty(
     t_max, max_transitions, rtol, atol, integrator
         The full motion's options (``question="motion"``), as in :func:`eccjump.motion_map`.
     %(n_threads)s
+    chunks : int or None, default None
+        None computes here. Otherwise samples per chunk (1 ... 10**8): the chunks are dask
+        tasks computed by the current scheduler (a ``dask.distributed`` cluster when a
+        ``Client`` is active; ``pip install "eccjump[dask]"``), with ``n_threads`` threads
+        each; the result is bit-identical for any chunk size, scheduler or worker count.
     progress : bool, callable or None, default None
         Progress of the work, in valid samples: None or False, none; True, a bar on stderr
         (tqdm); a callable, called as ``progress(done, total)`` after each chunk of them
         (anything else is a TypeError before any work). The result is the same either way.
+        Not with ``chunks`` (a ValueError: dask reports its tasks' progress).
 
     Returns
     -------
@@ -218,7 +226,9 @@ def uncertainty(
     size, seed_, how, policy = options(n, seed, sampling, invalid)
     level = check_confidence(confidence)
     sobol = flag("indices", indices)
-    checked(progress)
+    if checked(progress) and chunks is not None:
+        raise ValueError("progress needs chunks=None (dask reports the progress of its tasks)")
+    per_chunk = None if chunks is None else chunk_size(chunks)
     opts = _question_options(q, rule, t_max, max_transitions, rtol, atol, integrator, n_threads)
     per_sample = (JARM if q == "jarm" else MOTION).bytes_per_point()
     runs = size * (len(spec.varied) + 2) if sobol else size  # Saltelli's design
@@ -226,8 +236,14 @@ def uncertainty(
     check_fits("uncertainty", size, need, "n", "samples")
     cols, valid = draw(spec, size, seed_, how, policy)
     extra = design(spec, size, seed_, how, policy, valid) if sobol else None
-    with reporting(progress, "sample") as report:
-        outcomes, answered = evaluate_all(q, (cols, valid), extra, opts, report)
+    if per_chunk is not None:  # each sample is answered from its own values: same bits
+        outcomes = evaluate_scheduled(q, cols, valid, opts, per_chunk)
+        answered = None
+        if extra is not None:
+            answered = (evaluate_scheduled(q, extra[0], extra[1], opts, per_chunk), extra[1])
+    else:
+        with reporting(progress, "sample") as report:
+            outcomes, answered = evaluate_all(q, (cols, valid), extra, opts, report)
     found = liftoff = None
     if sobol:  # each row of the design drops what the core refused itself (study_indices)
         found, liftoff = study_indices(q, spec.varied, (outcomes, valid), answered, level, seed_)
