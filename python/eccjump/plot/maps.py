@@ -4,7 +4,7 @@ sequences of modes, P(JARM) under tolerances."""
 from __future__ import annotations
 
 import math
-from typing import TYPE_CHECKING, Any, NamedTuple
+from typing import TYPE_CHECKING, Any, NamedTuple, overload
 
 import numpy as np
 from numpy.typing import NDArray
@@ -344,12 +344,32 @@ def sequence_map(m: MotionMap, *, fig: FigureBase | None = None, panels: int = 4
 PROBABILITY_LEVELS = (0.5, 0.95)
 
 
-def probability_map(m: UncertaintyMap, *, km_index: int | None = None) -> Figure:
+@overload
+def probability_map(
+    m: UncertaintyMap, *, km_index: int | None = ..., ax: Axes, fig: None = ...
+) -> Axes: ...
+@overload
+def probability_map(
+    m: UncertaintyMap,
+    *,
+    km_index: int | None = ...,
+    ax: None = ...,
+    fig: FigureBase | None = ...,
+) -> Figure: ...
+def probability_map(
+    m: UncertaintyMap,
+    *,
+    km_index: int | None = None,
+    ax: Axes | None = None,
+    fig: FigureBase | None = None,
+) -> Figure | Axes:
     """P(JARM) of an :class:`~eccjump.UncertaintyMap` over (χ, α) on one km_frac slice
     (``km_index``; None: the slice of largest mean P(JARM)), with its 0.5 and 0.95
-    contours. A lazy map is computed first."""
+    contours. A lazy map is computed first. ``ax``: draw into these Axes and return them;
+    ``fig``: an empty Figure or SubFigure to draw into (else a new one)."""
     if not isinstance(m, UncertaintyMap):
         raise TypeError(f"m must be an UncertaintyMap, not {type(m).__name__}")
+    checked_target(ax, fig)
     m = m.compute()
     p = np.asarray(m.fields["p_jarm"], dtype=np.float64)
     if km_index is None:
@@ -358,25 +378,30 @@ def probability_map(m: UncertaintyMap, *, km_index: int | None = None) -> Figure
         k = int(np.argmax(means)) if means.size else 0
     else:
         k = integer("km_index", km_index, 0, max(m.km_frac.size - 1, 0))
-    canvas, fig = new_figure(None, (6.2, 4.6))
-    ax = canvas.subplots()
+    if ax is not None:
+        _probability_panel(ax, m, p[:, :, k], k)
+        return ax
+    canvas, root = new_figure(fig, (6.2, 4.6))
+    _probability_panel(canvas.subplots(), m, p[:, :, k], k)
+    return root
+
+
+def _probability_panel(ax: Axes, m: UncertaintyMap, p: NDArray[np.float64], k: int) -> None:
     a_deg = np.degrees(m.alpha)
-    mesh = ax.pcolormesh(m.chi, a_deg, p[:, :, k], cmap="viridis", vmin=0.0, vmax=1.0,
-                         shading="nearest")  # fmt: skip
-    fig.colorbar(mesh, ax=ax, label="P(JARM)")
-    if min(m.alpha.size, m.chi.size) >= 2 and np.isfinite(p[:, :, k]).any():
-        lines = ax.contour(m.chi, a_deg, p[:, :, k], levels=PROBABILITY_LEVELS,
+    mesh = ax.pcolormesh(m.chi, a_deg, p, cmap="viridis", vmin=0.0, vmax=1.0, shading="nearest")
+    ax.figure.colorbar(mesh, ax=ax, label="P(JARM)")
+    if min(m.alpha.size, m.chi.size) >= 2 and np.isfinite(p).any():
+        lines = ax.contour(m.chi, a_deg, p, levels=PROBABILITY_LEVELS,
                            colors=["white", "red"], linewidths=[1.0, 1.6])  # fmt: skip
         ax.clabel(lines, fmt={v: f"{v:g}" for v in PROBABILITY_LEVELS}, fontsize=8)
     ax.set_xlabel(r"$\chi = d/R$")
     ax.set_ylabel(r"ramp angle $\alpha$ [deg]")
-    spreads = _tolerances(m)
     ax.set_title(
         f"P(JARM) at $k_m = {m.km_frac[k]:.3g}\\,(1-\\chi)$, $\\mu_s = {m.mu_s:g}$, "
-        f"{m.n} samples per point\ntolerances: {spreads}; contours 0.5 (white), 0.95 (red)",
+        f"{m.n} samples per point\ntolerances: {_tolerances(m)}; contours 0.5 (white), "
+        "0.95 (red)",
         fontsize=9,
     )
-    return fig
 
 
 def _tolerances(m: UncertaintyMap) -> str:
