@@ -181,12 +181,12 @@ def test_plot_composes_into_the_callers_axes_and_figure(umap):
     returns them, ``fig=`` the figure into the given empty Figure; a wrong ax is a
     TypeError naming it."""
     plt = pytest.importorskip("matplotlib.pyplot")
-    fig, (left, right) = plt.subplots(1, 2)
+    _, (left, right) = plt.subplots(1, 2)
     assert umap.plot(ax=right) is right and right.collections and not left.collections
     assert "P(JARM)" in right.get_title()
     empty = plt.figure()
     assert umap.plot(fig=empty) is empty and empty.axes
-    with pytest.raises(TypeError, match="^ax must be"):
+    with pytest.raises(TypeError, match=r"^ax must be"):
         umap.plot(ax="left")
     plt.close("all")
 
