@@ -202,7 +202,7 @@ UNCERTAINTY_OPTIONS = ("mu_s", "n", "seed", "confidence", "rule", "sampling", "i
 
 
 def tolerances(given: list[str]) -> dict[str, float]:
-    """``--sd NAME=SD[,NAME=SD...]`` (repeatable) as the API's dict, alpha in degrees on the
+    """``--sd NAME=SD[,NAME=SD...]`` (repeatable) as the API's dict, α in degrees on the
     command line as every angle (ValueError naming --sd)."""
     sd: dict[str, float] = {}
     for item in (part for text in given for part in text.split(",") if part.strip()):

@@ -60,7 +60,7 @@ def columns(
 ) -> dict[str, NDArray[np.float64]]:
     """The samples of grid points with ``nominal`` values (each of shape (G,)), one row per
     grid point and one column per cube point: shape (G, m) each; k_m's range is that of the
-    sample's own chi, as in :func:`.sampling.draw`."""
+    sample's own χ, as in :func:`.sampling.draw`."""
     cols: dict[str, NDArray[np.float64]] = {}
     shape = (nominal["chi"].size, cube.shape[0])
     for p in VARIED:
@@ -102,7 +102,7 @@ def reason_counts(
 
 
 def _physical(values: Mapping[str, NDArray[np.float64]]) -> NDArray[np.bool_]:
-    """Whether each (chi, km, alpha, mu_s) lies in its physical range
+    """Whether each (χ, km, α, μ_s) lies in its physical range
     (:func:`.sampling._in_range`, the parameters the closed form does not take at 0)."""
     zero = np.zeros(())
     rest = {"mu_k": values["mu_s"], "restitution": zero, "theta0": zero, "omega0": zero}
@@ -164,7 +164,7 @@ def grid_fields(
     n_threads: int = 0,
     report: Progress | None = None,
 ) -> dict[str, NDArray]:
-    """The fields of every point of the grid alpha x chi x km_frac (flat, C order): the
+    """The fields of every point of the grid α × χ × km_frac (flat, C order): the
     grid function of :func:`eccjump.maps.dask.lazy_fields` and of the map computed now."""
     a, c, f = np.meshgrid(alpha, chi, km_frac, indexing="ij")
     nominal = {

@@ -1,5 +1,5 @@
 """``eccjump.uncertainty_map``: P(JARM) under stated tolerances at every point of a region grid
-(alpha x chi x km_frac), with its Wilson interval and the share of each outcome, as a map of
+(α × χ × km_frac), with its Wilson interval and the share of each outcome, as a map of
 kind "uncertainty" (:class:`UncertaintyMap`): saved, loaded and labelled like every map.
 
 The samples are those of :func:`eccjump.uncertainty` around each grid point (the same
@@ -49,7 +49,7 @@ _TEXT = ("sampling", "invalid", "question", "sd", "bounds")
 
 @dataclass(frozen=True, eq=False, repr=False)
 class UncertaintyMap(Map, kind=UNCERTAINTY):
-    """P(JARM) under tolerances on the grid alpha x chi x km_frac (:func:`uncertainty_map`).
+    """P(JARM) under tolerances on the grid α × χ × km_frac (:func:`uncertainty_map`).
 
     As every :class:`~eccjump.Map`: ``coords``, ``fields``, ``shape``, ``to_xarray()``;
     :func:`eccjump.maps.save` (or :meth:`save`) writes it and :func:`eccjump.load` reads it
@@ -58,7 +58,7 @@ class UncertaintyMap(Map, kind=UNCERTAINTY):
     Attributes
     ----------
     alpha, chi, km_frac : numpy.ndarray
-        The grid's axes (alpha in rad; k_m = km_frac (1 - chi)).
+        The grid's axes (α in rad; k_m = km_frac (1 − χ)).
     fields : dict of str to numpy.ndarray
         Per grid point: ``p_jarm``, its Wilson interval ``p_jarm_low`` and ``p_jarm_high``,
         ``n_valid`` (the samples in the physical range) and the share ``p_<reason>`` of each
@@ -68,7 +68,7 @@ class UncertaintyMap(Map, kind=UNCERTAINTY):
         The nominal static friction of the whole map.
     sd, bounds : dict
         The tolerances: normal standard deviations, and uniform ranges as offsets (lo, hi)
-        from each grid point, by parameter (chi, km, alpha [rad], mu_s).
+        from each grid point, by parameter (``chi``, ``km``, ``alpha`` [rad], ``mu_s``).
     n, seed, sampling, invalid, confidence, rule
         As given to :func:`uncertainty_map`.
     """
@@ -100,12 +100,12 @@ class UncertaintyMap(Map, kind=UNCERTAINTY):
 
     @property
     def coords(self) -> dict[str, NDArray[np.float64]]:
-        """The grid's axes by dimension name: alpha [rad], chi, km_frac."""
+        """The grid's axes by dimension name: α [rad], χ, km_frac."""
         return {"alpha": self.alpha, "chi": self.chi, "km_frac": self.km_frac}
 
     @property
     def km(self) -> NDArray[np.float64]:
-        """k_m on the (chi, km_frac) plane, shape (len(chi), len(km_frac))."""
+        """k_m on the (χ, km_frac) plane, shape (len(χ), len(km_frac))."""
         return self.km_frac[None, :] * (1.0 - self.chi[:, None])
 
     @property
@@ -190,7 +190,7 @@ class UncertaintyMap(Map, kind=UNCERTAINTY):
         return store.save(self, path, overwrite=overwrite)
 
     def plot(self, **kwargs: Any) -> Figure:
-        """P(JARM) over (chi, alpha) on a km_frac slice with its 0.5 and 0.95 contours
+        """P(JARM) over (χ, α) on a km_frac slice with its 0.5 and 0.95 contours
         (:func:`eccjump.plot.probability_map`; ``kwargs`` go to it). Needs matplotlib."""
         from eccjump import plot  # figures: the layer on top of every result
 
@@ -267,10 +267,10 @@ def uncertainty_map(
     n_threads: int = 0,
     progress: bool | Progress | None = None,
 ) -> UncertaintyMap:
-    """P(JARM) under tolerances at every point of the grid alpha x chi x km_frac.
+    """P(JARM) under tolerances at every point of the grid α × χ × km_frac.
 
-    At every grid point (the nominal body chi, k_m = km_frac (1 - chi) on a ramp of angle
-    alpha, with the map's ``mu_s``) ``n`` samples spread by ``sd`` and ``bounds`` are
+    At every grid point (the nominal body χ, k_m = km_frac (1 − χ) on a ramp of angle
+    α, with the map's ``mu_s``) ``n`` samples spread by ``sd`` and ``bounds`` are
     classified by the closed form, as :func:`uncertainty` does at one point: the map's fields
     at a grid point are ``uncertainty``'s P(JARM), its interval and its outcome shares
     there. The same ``n`` unit-cube points are used at every grid point (common random
@@ -281,25 +281,25 @@ def uncertainty_map(
     Parameters
     ----------
     alpha : array_like of float, 1-D
-        Nominal ramp angles [rad], each in [0, pi/2].
+        Nominal ramp angles [rad], each in [0, π/2].
     chi : array_like of float, 1-D
         Nominal d/R, each in [0, 1].
     km_frac : array_like of float, 1-D
-        Nominal k_m/(1 - chi), each in [0, 1].
+        Nominal k_m/(1 − χ), each in [0, 1].
     mu_s : float
         Nominal static friction coefficient of the whole map, in [0, inf).
     km : None
         Not accepted (the axis is ``km_frac``); a TypeError.
     sd : dict of str to float or None, default None
-        Normal standard deviations, absolute (in the parameter's unit: alpha in rad), by
-        name among chi, km (k_m itself), alpha and mu_s; >= 0.
+        Normal standard deviations, absolute (in the parameter's unit: α in rad), by
+        name among ``chi``, ``km`` (k_m itself), ``alpha`` and ``mu_s``; ≥ 0.
     bounds : dict of str to (float, float) or None, default None
-        Uniform ranges as offsets (lo <= hi) from each grid point, by the same names:
-        ``{"alpha": (-0.004, 0.004)}`` is alpha +- 0.004 rad at every grid point.
+        Uniform ranges as offsets (lo ≤ hi) from each grid point, by the same names:
+        ``{"alpha": (-0.004, 0.004)}`` is α ± 0.004 rad at every grid point.
     n : int, default 2000
         Samples per grid point, 1 ... 10**8.
     seed : int, default 0
-        Seed of the unit-cube points (numpy's PCG64, or the Sobol' scrambling), >= 0.
+        Seed of the unit-cube points (numpy's PCG64, or the Sobol' scrambling), ≥ 0.
     sampling : {"random", "sobol"}, default "random"
         As in :func:`uncertainty`.
     question : {"jarm"}, default "jarm"
@@ -310,7 +310,7 @@ def uncertainty_map(
         Level of the Wilson intervals, in (0, 1 - 1e-15].
     %(rule_rolling)s
     chunks : int, sequence of int, dict or None, default None
-        None computes now. Otherwise chunk sizes along (alpha, chi, km_frac) as in
+        None computes now. Otherwise chunk sizes along (α, χ, km_frac) as in
         :func:`region`: the map is built lazily with dask, one batch per block, bit-identical
         to the map computed now for any chunking, scheduler or cluster; ``.compute()`` it.
     %(n_threads)s
