@@ -1992,6 +1992,9 @@ def cli_design_argv(d: Drawer) -> list[str]:
         argv += ["--sd", d.choice(("chi", "alpha", "mu_k")), cli_number(d, 0, 0.05)]
         argv += ["--samples", d.choice(("100", "200", "99"))]
         argv += ["--maximise", d.choice(("margin", "probability", "odds"))]
+        if d.integer(0, 1):  # the map's form of --sd, and a P(JARM) to reach
+            argv += ["--sd", d.choice(("km=0.01", "alpha=0.25,chi=0.002", "chi=x", "mu_k=1"))]
+            argv += ["--p-target", cli_number(d, 0, 1)]
     if d.integer(0, 1):
         argv.append("--json")
     return argv
