@@ -1541,7 +1541,7 @@ def case_optimal_start(d: Drawer) -> Case:
 DESIGN_PARAMS = (
     "alpha_range", "mu_s", "mu_s_err", "target", "body", "km_range", "rod_range", "radius",
     "mass", "g", "max_turns", "error", "grid", "min_apex", "tolerances", "maximise", "samples",
-    "seed", "shapes", "progress",
+    "seed", "shapes", "progress", "p_target",
 )  # fmt: skip
 
 
@@ -1567,6 +1567,10 @@ def check_design(res: Any, case: Case) -> None:
     )
     if odds is not None:
         expect(0.0 <= odds.low <= odds.p <= odds.high <= 1.0, f"p_success {odds}")
+    goal = case.kwargs.get("p_target")
+    expect((res.p_jarm is None) == (goal is None), "p_jarm without p_target")
+    if goal is not None:  # the design reaches its target by the Wilson lower bound
+        expect(res.p_jarm.low >= float(goal), f"p_jarm {res.p_jarm} below p_target {goal}")
 
 
 def _pair(d: Drawer, c: Case, lo: float, hi: float) -> Any:
@@ -1627,6 +1631,9 @@ def case_design(d: Drawer) -> Case:
         c.kwargs["tolerances"] = {k: real(d, c, 0.0, 0.05) for k in names}
         c.kwargs["maximise"] = text_param(d, c, ("margin", "probability"))
         c.kwargs["samples"] = integer_param(d, c, (100, 300), (*INT_BAD, 99, 10**6 + 1))
+        target = c.kwargs["target"]
+        if d.integer(0, 1) and isinstance(target, str) and target == "jarm":  # a P(JARM)
+            c.kwargs["p_target"] = real_or_none(d, c, 0.0, 1.0)
     if d.integer(0, 3) == 0:
         c.kwargs["progress"] = progress_param(d, c)
     return c
@@ -1985,6 +1992,9 @@ def cli_design_argv(d: Drawer) -> list[str]:
         argv += ["--sd", d.choice(("chi", "alpha", "mu_k")), cli_number(d, 0, 0.05)]
         argv += ["--samples", d.choice(("100", "200", "99"))]
         argv += ["--maximise", d.choice(("margin", "probability", "odds"))]
+        if d.integer(0, 1):  # the map's form of --sd, and a P(JARM) to reach
+            argv += ["--sd", d.choice(("km=0.01", "alpha=0.25,chi=0.002", "chi=x", "mu_k=1"))]
+            argv += ["--p-target", cli_number(d, 0, 1)]
     if d.integer(0, 1):
         argv.append("--json")
     return argv

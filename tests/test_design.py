@@ -274,6 +274,71 @@ def test_cli_design():
     assert code == 2 and "--sd chi" in err and "Traceback" not in err
 
 
+# --- a design that reaches P(JARM) >= p_target (issue 50, item 5) ---------------------------
+
+WIDE_CHI = {"chi": 0.03}  # the best-margin design has P(JARM) 0.71; another candidate 0.84
+
+
+def test_p_target_moves_the_design_to_one_that_reaches_it():
+    kw = {"grid": 8, "tolerances": WIDE_CHI, "samples": 1000, "seed": 3}
+    plain = design(RANGE, 0.6, 0.1, **kw)
+    d = design(RANGE, 0.6, 0.1, p_target=0.8, **kw)
+    assert d.p_jarm.low >= 0.8 and d.p_jarm.n_valid == 1000
+    assert d.score < plain.score  # it gave up margin to reach the target
+    assert d.reasons == {"paper": "JARM", "normal_force": "JARM"}
+    # checked by an independent uncertainty study at the design: the same samples, bit for bit
+    by_rule = {
+        r: eccjump.uncertainty(d.body, d.alpha, d.mu_s, sd=WIDE_CHI, n=1000, seed=3, rule=r)
+        for r in ("paper", "normal_force")
+    }
+    lower = by_rule[d.p_jarm.rule]
+    assert lower.p_jarm == min(u.p_jarm for u in by_rule.values()) == d.p_jarm.p
+    assert lower.p_jarm_ci == (d.p_jarm.low, d.p_jarm.high)
+    assert "P(JARM)" in str(d) and json.loads(json.dumps(d.to_dict()))["p_jarm"]["p"] == d.p_jarm.p
+
+
+def test_p_target_scores_every_candidate_in_one_batch_per_rule(monkeypatch):
+    from eccjump.studies.design import target
+
+    calls = []
+    real_fields = target.point_fields
+
+    def counted(nominal, *args, **kwargs):
+        calls.append(nominal["alpha"].size)
+        return real_fields(nominal, *args, **kwargs)
+
+    monkeypatch.setattr(target, "point_fields", counted)
+    design(RANGE, 0.6, 0.1, grid=8, tolerances=WIDE_CHI, samples=200, p_target=0.5)
+    assert len(calls) == 2 and calls[0] == calls[1] > 1  # the two rules, all candidates
+
+
+def test_an_unreachable_p_target_says_the_best_found():
+    with pytest.raises(ValueError, match=r"^p_target = 0\.99: no design .* P\(JARM\) 0\.8") as info:
+        design(RANGE, 0.6, 0.1, grid=8, tolerances=WIDE_CHI, samples=1000, seed=3, p_target=0.99)
+    assert len(str(info.value)) <= 200
+
+
+def test_without_a_target_nothing_changes():
+    plain = design(RANGE, 0.6, 0.1, grid=8)
+    assert plain == design(RANGE, 0.6, 0.1, grid=8, p_target=None)
+    assert plain.p_jarm is None and plain.p_target is None
+    odds = design(RANGE, 0.6, 0.1, grid=8, tolerances=WIDE_CHI, samples=500)
+    assert odds.p_jarm is None and odds.alpha == plain.alpha and odds.body == plain.body
+
+
+def test_the_cli_targets_p_jarm_with_the_maps_tolerances():
+    argv = ["design", "--alpha-range", "10", "40", "--mu-s", "0.6", "--mu-s-err", "0.1"]
+    argv += ["--grid", "8", "--samples", "1000", "--sd", "chi=0.03", "--json"]
+    code, out, err = run_cli_inprocess([*argv, "--p-target", "0.8"])
+    assert code == 0, err
+    sheet = json.loads(out)
+    assert sheet["p_target"] == 0.8 and sheet["p_jarm"]["low"] >= 0.8
+    code, out, err = run_cli_inprocess([*argv, "--p-target", "1.5"])
+    assert code == 2 and "p_target" in err and "Traceback" not in err
+    code, out, err = run_cli_inprocess([*argv, "--sd", "alpha=0.25,chi=0.002"])
+    assert code == 2 and "--sd chi: given twice" in err
+
+
 # --- bad input --------------------------------------------------------------------------------
 
 
@@ -318,6 +383,12 @@ def test_cli_design():
         ({"tolerances": [0.01]}, TypeError, "tolerances"),
         ({"tolerances": {"chi": 0.01}, "samples": 99}, ValueError, "samples"),
         ({"tolerances": {"chi": 0.01}, "seed": -1}, ValueError, "seed"),
+        ({"tolerances": {"chi": 0.01}, "p_target": 1.0}, ValueError, "p_target"),
+        ({"tolerances": {"chi": 0.01}, "p_target": 0.0}, ValueError, "p_target"),
+        ({"tolerances": {"chi": 0.01}, "p_target": math.nan}, ValueError, "p_target"),
+        ({"tolerances": {"chi": 0.01}, "p_target": "0.9"}, TypeError, "p_target"),
+        ({"p_target": 0.9}, ValueError, "p_target"),  # without tolerances
+        ({"tolerances": {"chi": 0.01}, "p_target": 0.9, "target": "slip"}, ValueError, "p_target"),
     ],
 )
 def test_bad_input_names_the_parameter(kwargs, exc, name):

@@ -10,6 +10,7 @@ import math
 
 from eccjump._base.body import Cylinder
 from eccjump.cli._args import RAMP_RADIANS, Degrees, int_at_least
+from eccjump.cli.map_jobs import tolerances
 from eccjump.studies.design import GRID_RANGE, design
 
 
@@ -88,12 +89,20 @@ def add_parser(sub: argparse._SubParsersAction) -> None:
     )
     p.add_argument(
         "--sd",
-        nargs=2,
+        nargs="+",
         action="append",
         default=[],
-        metavar=("NAME", "SD"),
-        help="a lab tolerance (repeatable): the normal standard deviation of chi, km, alpha "
-        "(in degrees) or mu_s; the sheet then gives P(success), the probability of the verdict",
+        metavar="NAME=SD[,NAME=SD...]",
+        help="lab tolerances (repeatable; as eccjump map --kind uncertainty, or NAME SD): the "
+        "normal standard deviation of chi, km, alpha (in degrees) or mu_s; the sheet then "
+        "gives P(success), the probability of the verdict",
+    )
+    p.add_argument(
+        "--p-target",
+        type=float,
+        default=None,
+        help="with --sd: the P(JARM) the design must reach, in (0, 1), by its 95 %% Wilson "
+        "lower bound (the lower of the two rules'); an error with the best found if none does",
     )
     p.add_argument(
         "--maximise",
@@ -108,18 +117,15 @@ def add_parser(sub: argparse._SubParsersAction) -> None:
     p.set_defaults(func=_cmd_design)
 
 
-def _tolerances(pairs: list[list[str]]) -> dict[str, float] | None:
-    """--sd as the API's tolerances (α from degrees; a name given twice: ValueError)."""
-    out: dict[str, float] = {}
-    for name, text in pairs:
-        if name in out:
-            raise ValueError(f"--sd {name[:40]}: given twice")
-        try:
-            value = float(text)
-        except ValueError:
-            raise ValueError(f"--sd {name[:40]}: {text[:40]!r} is not a number") from None
-        out[name] = math.radians(value) if name == "alpha" else value
-    return out or None
+def _tolerances(given: list[list[str]]) -> dict[str, float] | None:
+    """--sd as the API's tolerances, by the parser of ``eccjump map --kind uncertainty``
+    (α from degrees; a name given twice: ValueError). ``--sd NAME SD``, the older form, is
+    read as ``--sd NAME=SD``."""
+    items = [
+        f"{words[0]}={words[1]}" if len(words) == 2 and "=" not in words[0] else ",".join(words)
+        for words in given
+    ]
+    return tolerances(items) or None
 
 
 def _cmd_design(args: argparse.Namespace) -> int:
@@ -144,6 +150,7 @@ def _cmd_design(args: argparse.Namespace) -> int:
         tolerances=_tolerances(args.sd),
         maximise=args.maximise,
         samples=args.samples,
+        p_target=args.p_target,
     )
     if args.json:
         print(json.dumps(d.to_dict(), indent=2))

@@ -88,6 +88,18 @@ class Success(NamedTuple):
     n_valid: int
 
 
+class PJarm(NamedTuple):
+    """A design's P(JARM) under the lab's tolerances (``design(..., p_target=)``): as
+    :func:`eccjump.uncertainty` computes it, under the lift-off ``rule`` that gives the
+    lower value; ``p`` of the ``n_valid`` samples, with its 95 % Wilson interval."""
+
+    p: float
+    low: float
+    high: float
+    n_valid: int
+    rule: str
+
+
 @dataclass(frozen=True)
 class Design(Result, kind="design"):
     """A lab design (:func:`design`): print it (``str(d)`` or :meth:`sheet`) for the lab
@@ -139,6 +151,11 @@ class Design(Result, kind="design"):
         The tolerances (normal standard deviations by name) ``p_success`` is for.
     p_success : Success or None
         The probability of the verdict under ``tolerances`` (None without them).
+    p_target : float or None
+        The P(JARM) the design was asked to reach (None: no target).
+    p_jarm : PJarm or None
+        Its P(JARM) under ``tolerances``, the lower rule's, whose Wilson lower bound reaches
+        ``p_target`` (None without a target).
     """
 
     target: str
@@ -163,6 +180,8 @@ class Design(Result, kind="design"):
     notes: tuple[str, ...] = field(default=())
     tolerances: dict[str, float] | None = None
     p_success: Success | None = None
+    p_target: float | None = None
+    p_jarm: PJarm | None = None
 
     @property
     def rod_position(self) -> float:
@@ -252,6 +271,8 @@ class Design(Result, kind="design"):
             "notes": list(self.notes),
             "tolerances": self.tolerances,
             "p_success": None if self.p_success is None else self.p_success._asdict(),
+            "p_target": self.p_target,
+            "p_jarm": None if self.p_jarm is None else self.p_jarm._asdict(),
         }
 
     # Taking the result elsewhere (save and eccjump.load: eccjump.maps.results; a design is
@@ -283,6 +304,9 @@ class Design(Result, kind="design"):
         out["tolerances"] = json.dumps(self.tolerances)
         if self.p_success is not None:
             out |= {f"p_success_{k}": v for k, v in self.p_success._asdict().items()}
+        if self.p_jarm is not None:
+            out |= {"p_target": self.p_target}
+            out |= {f"p_jarm_{k}": v for k, v in self.p_jarm._asdict().items()}
         return out
 
     def sheet(self) -> str:
@@ -318,6 +342,8 @@ class Design(Result, kind="design"):
         ]
         if self.p_success is not None:
             rows.append(("P(success)", _odds(self.p_success, self.tolerances)))
+        if self.p_jarm is not None:
+            rows.append(("P(JARM)", _chance(self.p_jarm, self.p_target)))
         rows += [
             (f"margin {m.name}", f"{num(m.margin, 4)} ({100 * m.relative:.1f} %)")
             for m in self.margins
@@ -357,6 +383,14 @@ def _odds(s: Success, tolerances: dict[str, float] | None) -> str:
         for k, v in (tolerances or {}).items()
     )
     return f"{s.p:.4f} [{s.low:.4f}, {s.high:.4f}] (95 %, {s.n_valid} samples; {tol})"
+
+
+def _chance(s: PJarm, p_target: float | None) -> str:
+    """P(JARM) with its interval, its rule and the target it reaches, in one line."""
+    return (
+        f"{s.p:.4f} [{s.low:.4f}, {s.high:.4f}] (95 %, {s.n_valid} samples, {s.rule} rule, "
+        f"the lower; target {p_target:g} by the lower bound)"
+    )
 
 
 def _num(x: float) -> float | None:
@@ -409,6 +443,7 @@ def _sheet(d: Design) -> str:
         ),
         ("verdict", f"paper rule: {d.reasons['paper']}, classical: {d.reasons['normal_force']}"),
         *([("P(success)", _odds(d.p_success, d.tolerances))] if d.p_success is not None else []),
+        *([("P(JARM)", _chance(d.p_jarm, d.p_target))] if d.p_jarm is not None else []),
         (
             "lift-off" if jump else "slip at",
             f"theta = {d.theta_deg['paper']:.4f} deg (paper rule), "

@@ -29,7 +29,8 @@ from eccjump.studies.design._common import (
 from eccjump.studies.design.margins import _classify, _holds, _margins, _score, _Spec
 from eccjump.studies.design.physical import Build, _positive, build
 from eccjump.studies.design.probability import apex, best, tolerance_spread
-from eccjump.studies.design.results import Design, Flight, Margin, Sensitivity
+from eccjump.studies.design.results import Design, Flight, Margin, PJarm, Sensitivity
+from eccjump.studies.design.target import check_p_target, reach
 
 
 def _range(name: str, value: object, lo: float, hi: float, unit: str = "") -> tuple[float, float]:
@@ -97,6 +98,7 @@ def design(
     maximise: Literal["margin", "probability"] = "margin",
     samples: int = 10_000,
     seed: int = 0,
+    p_target: float | None = None,
     progress: bool | Progress | None = None,
 ) -> Design:
     """The body and ramp angle whose verdict is most robust, with a printable lab sheet.
@@ -156,6 +158,14 @@ def design(
         Samples per probability, 100 ... 10**6.
     seed : int, default 0
         The seed of the samples (the same for every candidate), ≥ 0.
+    p_target : float or None, default None
+        With ``tolerances`` and target "jarm": the P(JARM) the design must reach, in (0, 1).
+        The candidates (those of ``maximise="probability"``) are scored in one batch by
+        P(JARM) as :func:`eccjump.uncertainty` computes it (``samples`` samples of
+        ``seed``), the lower of the two rules' values; the design is the best-margin
+        candidate (the most likely one with ``maximise="probability"``) whose 95 % Wilson
+        lower bound is at least ``p_target``, reported as ``p_jarm``. A ValueError, with
+        the best P(JARM) found, when no candidate reaches it.
     progress : bool, callable or None, default None
         Progress of the search, in stages (the grid, the search, the probabilities with
         ``tolerances``, the sheet): None or False, none; True, a bar on stderr (tqdm); a
@@ -171,8 +181,8 @@ def design(
     Raises
     ------
     ValueError
-        For bad input (naming the parameter and its range), and when no point of the grid
-        has the verdict.
+        For bad input (naming the parameter and its range), when no point of the grid
+        has the verdict, and when no candidate reaches ``p_target``.
     %(type_error)s
 
     Examples
@@ -224,6 +234,7 @@ def design(
         raise ValueError("min_apex: only a JARM design (target='jarm') has a flight to ask for")
     spec = _Spec(tgt, integer("max_turns", max_turns, 1, 1000))
     odds = _odds_options(tolerances, maximise, samples, seed, mu)
+    goal = check_p_target(p_target, tolerances, tgt)
     checked(progress)
 
     stages = 3 if odds is None else 4  # the grid, the search, (the odds,) the sheet
@@ -310,13 +321,18 @@ def design(
         x = lows + np.clip(best_u, 0.0, 1.0) * spans
         stage(2)
         success = None
+        chance: PJarm | None = None
         if odds is not None:
             tol, n_samples, seed_, by_odds = odds
             # the refined designs, then the grid's best points that hold, best margin first
             us = [u for u, _ in sorted(refined, key=lambda uf: -uf[1])]
             us += [to_u(int(idx[j])) for j in order if evaluate(to_u(int(idx[j]))) > 0]
-            xs = [lows + np.clip(u, 0.0, 1.0) * spans for u in (us if by_odds else us[:1])]
+            some = us if by_odds or goal is not None else us[:1]
+            xs = [lows + np.clip(u, 0.0, 1.0) * spans for u in some]
             cands = [(float(c[0]), float(c[1]), float(c[2] * (1.0 - c[1]))) for c in xs]
+            if goal is not None:  # only the candidate that reaches the target goes on
+                got, chance = reach(_bodies(cands), tol, mu, n_samples, seed_, goal, by_odds)
+                xs, cands = [xs[got]], [cands[got]]
             pick, all_odds = best(spec, cands, tol, mu, n_samples, seed_, apex_min)
             x, success = xs[pick], all_odds[pick]
             stage(3)
@@ -367,7 +383,15 @@ def design(
             notes=tuple(notes),
             tolerances=None if odds is None else dict(odds[0]),
             p_success=success,
+            p_target=goal,
+            p_jarm=chance,
         )
+
+
+def _bodies(cands: Sequence[tuple[float, float, float]]) -> list[tuple[float, float, float]]:
+    """The candidates (α, k_m, χ) with χ as the sheet builds the chosen body (the same
+    floats: its P(JARM) is that of the body on the sheet)."""
+    return [(a, k, min(c, 1.0 - k)) for a, k, c in cands]
 
 
 def _stage_reporter(report: Progress | None, stages: int) -> Callable[[int], None]:

@@ -173,7 +173,29 @@ def grid_fields(
         "km": (f * (1.0 - c)).ravel(),
         "mu_s": np.full(a.size, how.mu_s),
     }
+    return point_fields(nominal, cube, how, n_threads, report)
+
+
+def point_fields(
+    nominal: Mapping[str, NDArray[np.float64]],
+    cube: NDArray[np.float64],
+    how: GridSpread,
+    n_threads: int = 0,
+    report: Progress | None = None,
+) -> dict[str, NDArray]:
+    """The fields of any points (``nominal``: flat columns chi, km, alpha, mu_s of shape
+    (G,)), not only a grid's: the batch path of :func:`grid_fields`, also that of
+    ``design(..., p_target=)`` over its candidate designs."""
     return fields_of(_counts_in_blocks(nominal, cube, how, n_threads, report), how.confidence)
 
 
-__all__ = ["BLOCK", "VARIED", "GridSpread", "columns", "fields_of", "grid_fields", "reason_counts"]
+__all__ = [
+    "BLOCK",
+    "VARIED",
+    "GridSpread",
+    "columns",
+    "fields_of",
+    "grid_fields",
+    "point_fields",
+    "reason_counts",
+]
