@@ -183,8 +183,8 @@ def point_fields(
     n_threads: int = 0,
     report: Progress | None = None,
 ) -> dict[str, NDArray]:
-    """The fields of any points (``nominal``: flat columns chi, km, alpha, mu_s of shape
-    (G,)), not only a grid's: the batch path of :func:`grid_fields`, also that of
+    """The fields of any points (``nominal``: flat columns ``chi``, ``km``, ``alpha``,
+    ``mu_s`` of shape (G,)), not only a grid's: the batch path of :func:`grid_fields`, also that of
     ``design(..., p_target=)`` over its candidate designs."""
     return fields_of(_counts_in_blocks(nominal, cube, how, n_threads, report), how.confidence)
 
