@@ -287,7 +287,7 @@ def fit(
     guess = start_guess(setup, rec)
     lo, hi = model.bounds(guess)
     if starts is None:
-        omegas = sorted({guess["omega0"], mean_rate(rec)})
+        omegas = sorted({guess["omega0"], 0.0, mean_rate(rec)})
         ratios, bounces = ((0.5, 0.75, 0.95), (0.05, 0.5)) if wide else ((0.75,), (0.05,))
         screen = [
             {"mu_k": q * m, "dmu": (1 - q) * m, "e": e, "omega0": w}
