@@ -194,7 +194,8 @@ def test_plot_composes_into_the_callers_axes_and_figure(umap):
 @pytest.mark.parametrize(
     ("kwargs", "error", "name"),
     [
-        ({"question": "motion"}, ValueError, "question"),
+        ({"question": "flight"}, ValueError, "question"),
+        ({"question": "motion", "sd": {"restitution": 0.1}}, ValueError, "restitution"),
         ({"sd": {"restitution": 0.1}}, ValueError, "restitution"),
         ({"sd": {"alpha": -1.0}}, ValueError, "sd"),
         ({"km": 0.1}, TypeError, "km"),
@@ -213,10 +214,13 @@ def test_bad_input_names_the_parameter(kwargs, error, name):
     assert len(str(err.value)) < 200
 
 
-def test_absurd_request_is_a_memory_error():
+@pytest.mark.parametrize("question", ["jarm", "motion"])
+def test_absurd_request_is_a_memory_error(question):
     axis = np.linspace(0.0, 1.0, 2000)
     with pytest.raises(MemoryError, match="uncertainty_map"):
-        eccjump.uncertainty_map(np.radians(axis * 90), axis, axis, 1.0, sd=SD, n=10**8)
+        eccjump.uncertainty_map(
+            np.radians(axis * 90), axis, axis, 1.0, sd=SD, n=10**8, question=question
+        )
 
 
 def test_command_line_writes_the_map(tmp_path, capsys):
@@ -259,3 +263,57 @@ def test_local_cluster_of_two_processes_bit_identical(umap, monkeypatch):
         there = eccjump.uncertainty(body, math.radians(40), 1.0, sd=SD, n=2000, seed=2, chunks=300)
         assert there == here
         assert len(client.scheduler_info()["workers"]) == 2
+
+
+# --------------------------------------------------------------------------------------------
+# question="motion": the full motion's first flight at every grid point
+# --------------------------------------------------------------------------------------------
+
+N_MOTION = 96
+
+
+@pytest.fixture(scope="module")
+def mmap() -> eccjump.UncertaintyMap:
+    return eccjump.uncertainty_map(
+        ALPHA, CHI, KM_FRAC, 1.0, sd=SD, bounds=BOUNDS, n=N_MOTION, seed=5, question="motion"
+    )
+
+
+@pytest.mark.parametrize(("i", "j", "k"), [(0, 1, 0), (2, 0, 1)])
+def test_motion_grid_point_is_uncertainty_motion_there(mmap, i, j, k):
+    """At a grid point the motion map holds what ``uncertainty(question="motion")`` gives
+    with the same samples: P(JARM) of the full motion, its interval, the shares that fly
+    and slip first, and the quantiles of the first flight, to the bit."""
+    body = eccjump.Cylinder(CHI[j], KM_FRAC[k] * (1 - CHI[j]))
+    u = eccjump.uncertainty(
+        body, ALPHA[i], 1.0, sd=SD, bounds={"mu_s": (0.9, 1.05)}, n=N_MOTION, seed=5,
+        question="motion",
+    )  # fmt: skip
+    at = {name: v[i, j, k] for name, v in mmap.fields.items()}
+    assert (at["n_valid"], at["p_jarm"]) == (u.n_valid, u.p_jarm)
+    assert (at["p_jarm_low"], at["p_jarm_high"]) == u.p_jarm_ci
+    flies = np.isfinite(u.outcomes["liftoff_t"][u.valid]).sum()
+    assert at["p_flies"] == flies / u.n_valid > 0
+    assert at["p_slipped_first"] == u.outcomes["slipped_first"][u.valid].sum() / u.n_valid
+    for q in ("liftoff_t", "flight_time", "distance"):
+        s = u.distributions[q]
+        assert (at[f"{q}_median"], at[f"{q}_q025"], at[f"{q}_q975"]) == (s.median, s.q025, s.q975)
+    assert 0 < at["liftoff_t_q025"] <= at["liftoff_t_median"] <= at["liftoff_t_q975"]
+
+
+def test_motion_map_files_chunks_and_picture(mmap, tmp_path):
+    """A motion map is saved and loaded as its own kind, chunked by dask to the same bits,
+    and drawn as every uncertainty map."""
+    assert isinstance(mmap, eccjump.UncertaintyMotionMap) and mmap.question == "motion"
+    assert "UncertaintyMotionMap(3 x 2 x 2 grid" in repr(mmap)
+    back = eccjump.load(mmap.save(tmp_path / "m.npz"))
+    assert isinstance(back, eccjump.UncertaintyMotionMap) and back == mmap
+    assert back.attrs()["kind"] == "uncertainty_motion"
+    pytest.importorskip("dask")
+    lazy = eccjump.uncertainty_map(
+        ALPHA, CHI, KM_FRAC, 1.0, sd=SD, bounds=BOUNDS, n=N_MOTION, seed=5, question="motion",
+        chunks=(2, 1, 1),
+    )  # fmt: skip
+    assert lazy.lazy and lazy.compute() == mmap
+    pytest.importorskip("matplotlib")
+    assert mmap.plot().axes

@@ -37,7 +37,7 @@ from eccjump.studies.design import Design, build, design
 from eccjump.studies.experiment import Analysis, analyze
 from eccjump.studies.experiment.video import VideoTrack, track
 from eccjump.studies.uncertainty import Uncertainty, uncertainty
-from eccjump.studies.uncertainty.map import UncertaintyMap, uncertainty_map
+from eccjump.studies.uncertainty.map import UncertaintyMap, UncertaintyMotionMap, uncertainty_map
 
 __all__ = [
     "EVENT_NAMES",
@@ -59,6 +59,7 @@ __all__ = [
     "StartMap",
     "Uncertainty",
     "UncertaintyMap",
+    "UncertaintyMotionMap",
     "Units",
     "VideoTrack",
     "__version__",

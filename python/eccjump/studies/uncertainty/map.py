@@ -4,7 +4,8 @@ kind "uncertainty" (:class:`UncertaintyMap`): saved, loaded and labelled like ev
 
 The samples are those of :func:`eccjump.uncertainty` around each grid point (the same
 unit-cube points at every grid point: common random numbers, :mod:`.grid`), classified in
-batches by the closed form."""
+batches by the closed form, or run to their first landing (``question="motion"``,
+:mod:`.grid_motion`: a map of kind "uncertainty_motion", :class:`UncertaintyMotionMap`)."""
 
 from __future__ import annotations
 
@@ -28,11 +29,14 @@ from eccjump._base.sizes import F64, check_fits, result_bytes
 from eccjump._base.units import ramp_angles
 from eccjump.maps import store
 from eccjump.maps.dask import Chunks, lazy_fields, normalize_chunks
+from eccjump.maps.kinds import MapKind
 from eccjump.maps.layout import Layout, make_layout
 from eccjump.maps.map import Map
+from eccjump.motion.fields import MOTION
 from eccjump.motion.options import MotionOptions
 from eccjump.studies.uncertainty.grid import BLOCK, GridSpread, grid_fields
-from eccjump.studies.uncertainty.map_fields import FIELDS, UNCERTAINTY
+from eccjump.studies.uncertainty.grid_motion import MOTION_BLOCK, motion_grid_fields
+from eccjump.studies.uncertainty.map_fields import UNCERTAINTY, UNCERTAINTY_MOTION
 from eccjump.studies.uncertainty.results import check_confidence
 from eccjump.studies.uncertainty.sampling import Sampling, options, spread, unit_cube
 
@@ -74,6 +78,9 @@ class UncertaintyMap(Map, kind=UNCERTAINTY):
     """
 
     jarm_field: ClassVar[str] = "p_jarm"
+    #: The map's kind (its fields) and the question its samples answered.
+    map_kind: ClassVar[MapKind] = UNCERTAINTY
+    question: ClassVar[str] = "jarm"
 
     alpha: NDArray[np.float64]
     chi: NDArray[np.float64]
@@ -127,14 +134,15 @@ class UncertaintyMap(Map, kind=UNCERTAINTY):
             return self
         import dask  # a lazy map exists only if dask is installed
 
-        values = dask.compute(*(self.fields[k] for k in FIELDS), **kwargs)
-        return replace(self, fields=dict(zip(FIELDS, values, strict=True)))
+        names = self.map_kind.fields
+        values = dask.compute(*(self.fields[k] for k in names), **kwargs)
+        return replace(self, fields=dict(zip(names, values, strict=True)))
 
     def attrs(self) -> dict[str, Any]:
         """How the map was made, as netCDF-safe file attributes (the spreads as JSON)."""
         return {
             "title": "P(JARM) under tolerances of an eccentric cylinder on a ramp (eccjump)",
-            "kind": UNCERTAINTY.name,
+            "kind": self.map_kind.name,
             "eccjump_version": _core.VERSION,
             "mu_s": float(self.mu_s),
             "n": int(self.n),
@@ -143,7 +151,7 @@ class UncertaintyMap(Map, kind=UNCERTAINTY):
             "rule": self.rule,
             "sampling": self.sampling,
             "invalid": self.invalid,
-            "question": "jarm",
+            "question": self.question,
             "sd": json.dumps(self.sd),
             "bounds": json.dumps({k: list(v) for k, v in self.bounds.items()}),
             "units": "alpha and its tolerance in rad; bounds are offsets from each grid point",
@@ -152,7 +160,7 @@ class UncertaintyMap(Map, kind=UNCERTAINTY):
     def to_layout(self) -> Layout:
         """The map as a layout (numpy only; dask arrays if lazy)."""
         return make_layout(
-            self.alpha, self.chi, self.km_frac, self.fields, self.attrs(), None, UNCERTAINTY
+            self.alpha, self.chi, self.km_frac, self.fields, self.attrs(), None, self.map_kind
         )
 
     @classmethod
@@ -172,7 +180,9 @@ class UncertaintyMap(Map, kind=UNCERTAINTY):
             alpha=np.asarray(co["alpha"][1], dtype=np.float64),
             chi=np.asarray(co["chi"][1], dtype=np.float64),
             km_frac=np.asarray(co["km_frac"][1], dtype=np.float64),
-            fields={k: np.asarray(dv[k][1], dtype=UNCERTAINTY.dtypes[k]) for k in FIELDS},
+            fields={
+                k: np.asarray(dv[k][1], dtype=cls.map_kind.dtypes[k]) for k in cls.map_kind.fields
+            },
             mu_s=float(at["mu_s"]),
             sd=sd,
             bounds=bounds,
@@ -205,7 +215,7 @@ class UncertaintyMap(Map, kind=UNCERTAINTY):
         size = " x ".join(str(x.size) for x in self.coords.values())
         mean = "lazy: not computed" if self.lazy else f"mean P(JARM) {self.fraction():.4g}"
         return (
-            f"UncertaintyMap({size} grid; mu_s={self.mu_s:g}, {self.n} {self.sampling} "
+            f"{type(self).__name__}({size} grid; mu_s={self.mu_s:g}, {self.n} {self.sampling} "
             f"samples per point; {self._spreads()}; {mean})"
         )
 
@@ -219,7 +229,26 @@ class UncertaintyMap(Map, kind=UNCERTAINTY):
         ]
         if not self.lazy:
             rows.append(("mean P(JARM)", f"{self.fraction():.4g}"))
-        return card("UncertaintyMap", rows)
+        return card(type(self).__name__, rows)
+
+
+@dataclass(frozen=True, eq=False, repr=False)
+class UncertaintyMotionMap(UncertaintyMap, kind=UNCERTAINTY_MOTION):
+    """P(JARM) of the full motion and its first flight under tolerances on the grid
+    alpha x chi x km_frac (``uncertainty_map(..., question="motion")``): an
+    :class:`UncertaintyMap` (saved, loaded, plotted alike) of kind "uncertainty_motion".
+
+    Its fields per grid point (:data:`.map_fields.MOTION_FIELDS`): ``p_jarm`` (a lift-off
+    straight out of pure rolling, by the full motion), ``p_jarm_low``, ``p_jarm_high``,
+    ``n_valid``, the shares ``p_flies`` (lift off at all) and ``p_slipped_first`` (slip before
+    the first flight), and the median, 2.5 % and 97.5 % quantiles of the first lift-off's time
+    [sqrt(R/g)], the first flight's duration [sqrt(R/g)] and distance down the ramp [R]
+    (``liftoff_t_median``, ``flight_time_q025``, ``distance_q975``, ...; NaN where no valid
+    sample flies), each as ``uncertainty(question="motion").distributions`` gives it there.
+    """
+
+    map_kind: ClassVar[MapKind] = UNCERTAINTY_MOTION
+    question: ClassVar[str] = "motion"
 
 
 def _grid_axes(
@@ -236,13 +265,11 @@ def _grid_axes(
     return tuple(out)
 
 
-def _question(question: object) -> None:
+def _question(question: object) -> str:
     q = text("question", question)
-    if q != "jarm":
-        raise ValueError(
-            f"question = {short(q)}: uncertainty_map supports 'jarm' only (the closed form); "
-            "uncertainty(question='motion') studies one point"
-        )
+    if q not in ("jarm", "motion"):
+        raise ValueError(f"question = {short(q)} is not one of 'jarm', 'motion'")
+    return q
 
 
 @refuses_km
@@ -267,7 +294,8 @@ def uncertainty_map(
     n_threads: int = 0,
     progress: bool | Progress | None = None,
 ) -> UncertaintyMap:
-    """P(JARM) under tolerances at every point of the grid α × χ × km_frac.
+    """P(JARM) under tolerances at every point of the grid α × χ × km_frac (and, with
+    ``question="motion"``, the first flight's statistics).
 
     At every grid point (the nominal body χ, k_m = km_frac (1 − χ) on a ramp of angle
     α, with the map's ``mu_s``) ``n`` samples spread by ``sd`` and ``bounds`` are
@@ -277,6 +305,14 @@ def uncertainty_map(
     numbers), so neighbouring points differ by the physics, not by sampling noise, and a
     point's values do not depend on the rest of the grid. The work runs in the core in
     batches of about 1.3e5 samples (20 x 20 x 4 points with n = 2000: a few seconds).
+
+    With ``question="motion"`` each sample runs the full motion to its first landing
+    (:func:`eccjump.motion_points`, batches of about 6.6e4 samples: about 6 s per 1e5 samples
+    on 2 cores) with the defaults of ``uncertainty(question="motion")`` (μ_k the sample's μ_s,
+    no restitution, a start at rest): an :class:`UncertaintyMotionMap` whose fields at a grid
+    point are that ``uncertainty``'s P(JARM), interval, the shares that fly and that slip
+    first, and the median and 95 % range of the first lift-off's time, flight time and
+    distance.
 
     Parameters
     ----------
@@ -302,8 +338,9 @@ def uncertainty_map(
         Seed of the unit-cube points (numpy's PCG64, or the Sobol' scrambling), ≥ 0.
     sampling : {"random", "sobol"}, default "random"
         As in :func:`uncertainty`.
-    question : {"jarm"}, default "jarm"
-        The closed-form JARM classification (the full motion is not mapped: a ValueError).
+    question : {"jarm", "motion"}, default "jarm"
+        ``"jarm"``: the closed-form JARM classification; ``"motion"``: the full motion to the
+        first landing (the same four parameters vary; its options are the defaults).
     invalid : {"truncate", "count"}, default "truncate"
         Samples outside the physical range, as in :func:`uncertainty`.
     confidence : float, default 0.95
@@ -321,13 +358,16 @@ def uncertainty_map(
     -------
     UncertaintyMap
         The fields per grid point (``p_jarm``, ``p_jarm_low``, ``p_jarm_high``,
-        ``n_valid``, ``p_<reason>``).
+        ``n_valid``, ``p_<reason>``); for "motion" an :class:`UncertaintyMotionMap` (``p_jarm``
+        and its interval, ``n_valid``, ``p_flies``, ``p_slipped_first``, and
+        ``<quantity>_median``, ``_q025``, ``_q975`` of ``liftoff_t``, ``flight_time``,
+        ``distance``).
 
     Raises
     ------
     ValueError
         For an axis out of range, a bad ``mu_s``, tolerance or option, ``question`` other
-        than "jarm"; the message names the parameter and its range.
+        than "jarm" or "motion"; the message names the parameter and its range.
     TypeError
         For ``km=`` or an argument of the wrong type.
     MemoryError
@@ -351,7 +391,7 @@ def uncertainty_map(
     >>> m.shape, sorted(m.fields)[:3]
     ((3, 2, 1), ['n_valid', 'p_jarm', 'p_jarm_high'])
     """
-    _question(question)
+    q = _question(question)
     a, c, f = _grid_axes(alpha, chi, km_frac)
     mu = real("mu_s", mu_s)
     probe = {"chi": 0.0, "km": 0.0, "alpha": 0.0, "mu_s": mu, "mu_k": mu}
@@ -364,20 +404,22 @@ def uncertainty_map(
     spreads = GridSpread(spec.sd, spec.bounds, spec.varied, policy == "truncate", mu, name, level)
     shape = (a.size, c.size, f.size)
     points = math.prod(shape)
-    _fits(points, size, len(spec.varied))
+    _fits(q, points, size, len(spec.varied))
     cube = unit_cube(size, len(spec.varied), seed_, how)
+    kind, grid = (
+        (UNCERTAINTY, grid_fields) if q == "jarm" else (UNCERTAINTY_MOTION, motion_grid_fields)
+    )
     if chunks is None:
         with reporting(progress, "sample") as report:
-            flat = grid_fields(a, c, f, cube, spreads, n_threads, report)
+            flat = grid(a, c, f, cube, spreads, n_threads, report)
         fields = {k: v.reshape(shape) for k, v in flat.items()}
     else:
         if checked(progress):
             raise ValueError("progress needs chunks=None (dask reports the progress of a lazy map)")
         blocks = normalize_chunks(chunks, shape)
-        fields = lazy_fields(
-            UNCERTAINTY, grid_fields, (a, c, f), blocks, (cube, spreads, n_threads)
-        )
-    return UncertaintyMap(
+        fields = lazy_fields(kind, grid, (a, c, f), blocks, (cube, spreads, n_threads))
+    cls = UncertaintyMap if q == "jarm" else UncertaintyMotionMap
+    return cls(
         alpha=a,
         chi=c,
         km_frac=f,
@@ -397,14 +439,22 @@ def uncertainty_map(
 #: Bytes per sample of a batch: its four parameter columns, the grid copies, the cube and the
 #: outcomes of :func:`.questions.evaluate` (about 30 bytes), with room.
 _SAMPLE_BYTES = 24 * F64
+#: The same for the full motion: eight parameter columns, their copies and the outcomes of
+#: a motion point, with room.
+_MOTION_SAMPLE_BYTES = 24 * F64 + 2 * MOTION.bytes_per_point()
 
 
-def _fits(points: int, n: int, varied: int) -> None:
-    """MemoryError before any work if the map, the cube and a batch cannot fit."""
-    per_point = UNCERTAINTY.bytes_per_point() + 3 * F64  # the grid's nominal columns
+def _fits(question: str, points: int, n: int, varied: int) -> None:
+    """MemoryError before any work if the map, the cube and a batch cannot fit (a batch of
+    the full motion holds at least one grid point's n samples)."""
+    kind = UNCERTAINTY if question == "jarm" else UNCERTAINTY_MOTION
+    per_point = kind.bytes_per_point() + 3 * F64  # the grid's nominal columns
     need = result_bytes(points, per_point) + n * max(varied, 1) * F64
-    need += min(BLOCK, max(n, 1) * points) * _SAMPLE_BYTES
+    if question == "jarm":
+        need += min(BLOCK, max(n, 1) * points) * _SAMPLE_BYTES
+    else:
+        need += max(min(MOTION_BLOCK, n * points), n) * _MOTION_SAMPLE_BYTES
     check_fits("uncertainty_map", points, need, "alpha, chi, km_frac or n")
 
 
-__all__ = ["MAP_PARAMETERS", "UncertaintyMap", "uncertainty_map"]
+__all__ = ["MAP_PARAMETERS", "UncertaintyMap", "UncertaintyMotionMap", "uncertainty_map"]

@@ -8,6 +8,7 @@ P(JARM) with its Wilson interval, the valid samples, and the share of each other
 from __future__ import annotations
 
 import math
+import sys
 from collections.abc import Mapping
 from typing import Any
 
@@ -91,4 +92,84 @@ UNCERTAINTY = register(
     )
 )
 
-__all__ = ["BY_NAME", "DTYPES", "FIELDS", "FILL", "OUTCOMES", "SHARE_OF", "TABLE", "UNCERTAINTY"]
+
+#: The first flight's quantities a motion map summarises per grid point (of
+#: ``Uncertainty.distributions``, with their units), each by its median and its 2.5 % and
+#: 97.5 % quantiles among the valid samples that have it: the lift-off's time, the flight's
+#: duration and the distance down the ramp it covers.
+MOTION_QUANTITIES: dict[str, str] = {
+    "liftoff_t": "sqrt(R/g)",
+    "flight_time": "sqrt(R/g)",
+    "distance": "R",
+}
+#: The unit and physical range of each (times: as a motion map's; a distance: any finite).
+_QUANTITY_RANGES = {
+    q: (u, (0.0, 1e6) if u == "sqrt(R/g)" else (-sys.float_info.max, sys.float_info.max))
+    for q, u in MOTION_QUANTITIES.items()
+}
+#: The quantiles of each quantity, as fields ``<quantity>_<statistic>`` (names of
+#: :class:`.results.Summary`).
+MOTION_STATISTICS = ("median", "q025", "q975")
+
+#: The fields of a map of the full motion (``uncertainty_map(question="motion")``): P(JARM)
+#: of the full motion (a lift-off straight out of pure rolling), its interval, the valid
+#: samples, the shares that fly and that slip before their first flight, and the quantiles
+#: of :data:`MOTION_QUANTITIES` (NaN where no valid sample has the quantity).
+MOTION_TABLE: tuple[Field, ...] = (
+    *TABLE[:4],
+    Field("p_flies", _F64, "1", "share of samples that lift off", math.nan, _SHARE),
+    Field(
+        "p_slipped_first", _F64, "1", "share that slip before the first flight", math.nan, _SHARE
+    ),
+    *(
+        Field(f"{q}_{s}", _F64, unit, f"{s} of {q} of the first flight", math.nan, valid)
+        for q, (unit, valid) in _QUANTITY_RANGES.items()
+        for s in MOTION_STATISTICS
+    ),
+)
+MOTION_FIELDS: tuple[str, ...] = tuple(f.name for f in MOTION_TABLE)
+_MOTION_BY_NAME: dict[str, Field] = {f.name: f for f in MOTION_TABLE}
+
+
+def _motion_cf_attrs(name: str) -> dict[str, Any]:
+    f = _MOTION_BY_NAME[name]
+    return {"units": f.units, "long_name": f.description}
+
+
+#: P(JARM) and the first flight under tolerances (``uncertainty_map(question="motion")``)
+#: as a kind of map file: the shares are NaN exactly where no sample is valid; a quantile may
+#: be NaN anywhere (no valid sample flew there).
+UNCERTAINTY_MOTION = register(
+    MapKind(
+        "uncertainty_motion",
+        MOTION_FIELDS,
+        {f.name: f.dtype for f in MOTION_TABLE},
+        {f.name: f.fill for f in MOTION_TABLE},
+        _motion_cf_attrs,
+        ("mu_s", "n", "seed", "confidence", "rule"),
+        (("mu_s", "mu_s"), ("alpha", "alpha"), ("chi", "chi"), ("km_frac", "km_frac")),
+        ("alpha", "chi", "km_frac"),
+        {},
+        valid={f.name: f.valid for f in MOTION_TABLE if f.dtype.kind == "f"},
+        invalid=("n_valid", frozenset([0])),
+        agree=tuple(("n_valid", k, True) for k in MOTION_FIELDS[:6] if k != "n_valid"),
+        validator=_interval_holds,
+        title="uncertainty (full motion)",
+    )
+)
+
+__all__ = [
+    "BY_NAME",
+    "DTYPES",
+    "FIELDS",
+    "FILL",
+    "MOTION_FIELDS",
+    "MOTION_QUANTITIES",
+    "MOTION_STATISTICS",
+    "MOTION_TABLE",
+    "OUTCOMES",
+    "SHARE_OF",
+    "TABLE",
+    "UNCERTAINTY",
+    "UNCERTAINTY_MOTION",
+]
