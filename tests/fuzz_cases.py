@@ -2340,13 +2340,18 @@ def case_track(d: Drawer) -> Case:
 
 UNCERTAINTY_MAP_PARAMS = (
     "alpha", "chi", "km_frac", "mu_s", "km", "sd", "bounds", "n", "seed", "sampling",
-    "question", "invalid", "confidence", "rule", "chunks", "n_threads", "progress",
+    "question", "method", "invalid", "confidence", "rule", "chunks", "n_threads", "progress",
 )  # fmt: skip
 
 
 def check_uncertainty_map(res: Any, case: Case) -> None:
     expect(isinstance(res, eccjump.UncertaintyMap), "not an UncertaintyMap")
     f = res.fields
+    if isinstance(res, eccjump.UncertaintyDeltaMap):  # no samples: an estimate or a status
+        given = f["delta_status"] == 0
+        expect(bool(np.all(np.isnan(f["p_jarm"]) != given)), "p_jarm disagrees with its status")
+        expect(bool(np.all((0 <= f["p_jarm"][given]) & (f["p_jarm"][given] <= 1))), "p_jarm")
+        return
     has = f["n_valid"] > 0
     expect(bool(np.all(f["n_valid"] <= res.n)), "n_valid > n")
     p, lo, hi = f["p_jarm"][has], f["p_jarm_low"][has], f["p_jarm_high"][has]
@@ -2387,6 +2392,8 @@ def case_uncertainty_map(d: Drawer) -> Case:
         "n_threads": integer_param(d, c, (0, 1, 2), (*INT_BAD, 257)),
     }
     c.must_raise |= c.kwargs["confidence"] in BAD_CONFIDENCE
+    if d.integer(0, 1) == 0 and c.kwargs["question"] == "jarm":
+        c.kwargs["method"] = text_param(d, c, ("sampling", "delta"))
     if d.integer(0, 3) == 0:
         c.kwargs["progress"] = progress_param(d, c)
     if not d.clean and d.integer(0, 9) == 0:

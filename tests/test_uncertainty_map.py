@@ -11,7 +11,7 @@ import numpy as np
 import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
-from reference_points import JARM_BODY
+from reference_points import JARM_ALPHA, JARM_BODY
 
 import eccjump
 from eccjump.cli import main
@@ -195,6 +195,9 @@ def test_plot_composes_into_the_callers_axes_and_figure(umap):
     ("kwargs", "error", "name"),
     [
         ({"question": "flight"}, ValueError, "question"),
+        ({"method": "taylor"}, ValueError, "method"),
+        ({"method": "delta", "question": "motion"}, ValueError, "method"),
+        ({"method": 2}, TypeError, "method"),
         ({"question": "motion", "sd": {"restitution": 0.1}}, ValueError, "restitution"),
         ({"sd": {"restitution": 0.1}}, ValueError, "restitution"),
         ({"sd": {"alpha": -1.0}}, ValueError, "sd"),
@@ -317,3 +320,69 @@ def test_motion_map_files_chunks_and_picture(mmap, tmp_path):
     assert lazy.lazy and lazy.compute() == mmap
     pytest.importorskip("matplotlib")
     assert mmap.plot().axes
+
+
+# --------------------------------------------------------------------------------------------
+# method="delta": the first-order P(JARM) over the grid, from the exact derivatives
+# --------------------------------------------------------------------------------------------
+
+#: Small tolerances: the verdict is the sign of a smooth margin (tests/test_uncertainty.py).
+SMALL = {"alpha": math.radians(0.3), "chi": 0.002, "km": 0.001, "mu_s": 0.005}
+
+
+def test_delta_map_agrees_with_sampling_away_from_the_boundary():
+    """mu_s a little above the friction the JARM point's jump needs, small tolerances: on a
+    grid around it P(JARM) runs from 0.2 to 0.87; where the first order gives it (the nominal
+    point a JARM), it is the sampled map's within its interval and the curvature's 0.02, and
+    at a grid point it is ``uncertainty``'s delta there, to the bit."""
+    alpha = JARM_ALPHA + np.radians([-0.3, 0.0, 0.3])
+    chi = JARM_BODY[0] + np.array([-0.002, 0.0, 0.002])
+    frac = np.array([JARM_BODY[1] / (1 - JARM_BODY[0])])
+    r = eccjump.jarm(JARM_ALPHA, *JARM_BODY, 1.0)
+    mu = float(-r.Fx_J / r.Fy_J) + 0.004
+    first = eccjump.uncertainty_map(alpha, chi, frac, mu, sd=SMALL, method="delta")
+    assert isinstance(first, eccjump.UncertaintyDeltaMap) and first.n == 0
+    sampled = eccjump.uncertainty_map(alpha, chi, frac, mu, sd=SMALL, n=20_000, seed=3)
+    given = first.delta_status == 0
+    assert given.sum() == 6 and np.isnan(first.p_jarm[~given]).all()
+    p = first.p_jarm[given]
+    lo, hi = sampled.p_jarm_low[given], sampled.p_jarm_high[given]
+    assert ((lo - 0.02 <= p) & (p <= hi + 0.02)).all(), (p, sampled.p_jarm[given])
+    assert np.ptp(sampled.p_jarm[given]) > 0.3  # the check spans the transition
+    # Where the nominal point is no JARM (a verdict change) sampling still finds JARMs.
+    assert (first.delta_status[~given] == 1).all()
+    assert ((sampled.p_jarm[~given] > 0.1) & (sampled.p_jarm[~given] < 0.5)).all()
+    body = eccjump.Cylinder(JARM_BODY[0], JARM_BODY[1])
+    u = eccjump.uncertainty(body, alpha[1], mu, sd=SMALL, n=8)
+    assert u.delta is not None and u.delta.p_jarm == first.p_jarm[1, 1, 0]
+    assert u.delta.theta_J_sd == first.theta_J_sd[1, 1, 0]
+
+
+def test_delta_map_says_where_it_fails():
+    """NaN and a status where the linearisation fails at the nominal point: a kink (an
+    earlier friction ratio decides: chi 0.15, k_m 0.005 at 40 deg), k_m = 0 (one-sided
+    derivatives) under a tolerance on k_m, a point outside the physical range, a nominal
+    point that is no JARM (a verdict change), the classical rule."""
+    from eccjump.studies.uncertainty.delta import Status
+
+    frac = [0.0, 0.005 / 0.85, JARM_BODY[1] / 0.85]
+    with pytest.warns(UserWarning, match="alpha"):
+        m = eccjump.uncertainty_map([JARM_ALPHA, 1.6], [0.15], frac, 1.0, sd=SMALL, method="delta")
+    want = [[Status.SINGULAR, Status.KINK, Status.ESTIMATE], [Status.INVALID] * 3]
+    assert m.delta_status[:, 0, :].tolist() == want
+    assert np.isnan(m.p_jarm[m.delta_status != 0]).all() and m.p_jarm[0, 0, 2] > 0.99
+    assert np.isfinite(m.theta_J_sd[0, 0, 1:]).all()  # the lift-off's spread is still given
+    for mu_s, rule, status in [(0.05, "paper", Status.NO_JARM), (1.0, "normal_force", 4)]:
+        one = eccjump.uncertainty_map([JARM_ALPHA], [0.15], frac[2:], mu_s, sd=SMALL,
+                                      method="delta", rule=rule)  # fmt: skip
+        assert one.delta_status.item() == status and np.isnan(one.p_jarm.item())
+
+
+def test_delta_map_files_chunks_and_repr(tmp_path):
+    kw = {"sd": SMALL, "method": "delta"}
+    m = eccjump.uncertainty_map(ALPHA, CHI, KM_FRAC, 1.0, **kw)
+    assert "first order (delta method)" in repr(m)
+    back = eccjump.load(m.save(tmp_path / "d.nc"))
+    assert isinstance(back, eccjump.UncertaintyDeltaMap) and back == m
+    pytest.importorskip("dask")
+    assert eccjump.uncertainty_map(ALPHA, CHI, KM_FRAC, 1.0, chunks=(1, 2, 1), **kw).compute() == m

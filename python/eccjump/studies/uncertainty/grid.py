@@ -22,6 +22,7 @@ from typing import Any
 import numpy as np
 from numpy.typing import NDArray
 
+from eccjump._base.checks import Rule
 from eccjump._base.progress import Progress
 from eccjump.classification.fields import Reason
 from eccjump.studies.uncertainty.map_fields import FIELDS, SHARE_OF
@@ -51,7 +52,7 @@ class GridSpread:
     varied: tuple[str, ...]
     truncate: bool
     mu_s: float
-    rule: str
+    rule: Rule
     confidence: float
 
 

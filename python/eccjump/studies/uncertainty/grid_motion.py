@@ -14,12 +14,10 @@ rest at θ = 0, and the full motion's default options under the map's rule.
 from __future__ import annotations
 
 from collections.abc import Mapping
-from typing import cast
 
 import numpy as np
 from numpy.typing import NDArray
 
-from eccjump._base.checks import Rule
 from eccjump._base.progress import Progress
 from eccjump.motion.options import MotionOptions
 from eccjump.studies.uncertainty.grid import GridSpread, _physical, columns, nominal_of
@@ -45,8 +43,7 @@ def _outcomes(
     zero = np.zeros(flat["chi"].size)
     flat |= {"mu_k": flat["mu_s"], "restitution": zero, "theta0": zero, "omega0": zero}
     valid = _physical(flat) & np.repeat(_physical(nominal), cube.shape[0])
-    rule = cast(Rule, how.rule)  # a name rule_name() checked
-    opts = {**MotionOptions(rule=rule).keywords(), "n_threads": n_threads}
+    opts = {**MotionOptions(rule=how.rule).keywords(), "n_threads": n_threads}
     out = evaluate("motion", flat, valid, opts)
     valid &= ran("motion", out)  # k_m = 0 has no full motion, as in uncertainty()
     shape = (nominal["chi"].size, cube.shape[0])
@@ -77,7 +74,7 @@ def motion_grid_fields(
     n_threads: int = 0,
     report: Progress | None = None,
 ) -> dict[str, NDArray]:
-    """The motion fields of every point of the grid alpha x chi x km_frac (flat, C order):
+    """The motion fields of every point of the grid α × χ × km_frac (flat, C order):
     the grid function of :func:`eccjump.maps.dask.lazy_fields` and of the map computed now.
     The statistics of a grid point are computed from its own samples (a short loop of
     quantiles per grid point, after the core's batch)."""

@@ -12,6 +12,7 @@ from __future__ import annotations
 import json
 import math
 import os
+from collections.abc import Callable
 from dataclasses import dataclass, replace
 from pathlib import Path
 from typing import TYPE_CHECKING, Any, ClassVar
@@ -35,8 +36,13 @@ from eccjump.maps.map import Map
 from eccjump.motion.fields import MOTION
 from eccjump.motion.options import MotionOptions
 from eccjump.studies.uncertainty.grid import BLOCK, GridSpread, grid_fields
+from eccjump.studies.uncertainty.grid_delta import delta_grid_fields
 from eccjump.studies.uncertainty.grid_motion import MOTION_BLOCK, motion_grid_fields
-from eccjump.studies.uncertainty.map_fields import UNCERTAINTY, UNCERTAINTY_MOTION
+from eccjump.studies.uncertainty.map_fields import (
+    UNCERTAINTY,
+    UNCERTAINTY_DELTA,
+    UNCERTAINTY_MOTION,
+)
 from eccjump.studies.uncertainty.results import check_confidence
 from eccjump.studies.uncertainty.sampling import Sampling, options, spread, unit_cube
 
@@ -211,12 +217,17 @@ class UncertaintyMap(Map, kind=UNCERTAINTY):
         out += [f"{k} + [{lo:.3g}, {hi:.3g}]" for k, (lo, hi) in self.bounds.items()]
         return "; ".join(out) or "nothing"
 
+    @property
+    def estimate(self) -> str:
+        """How P(JARM) was estimated, in words: ``"2000 random samples per point"``."""
+        return f"{self.n} {self.sampling} samples per point"
+
     def __repr__(self) -> str:
         size = " x ".join(str(x.size) for x in self.coords.values())
         mean = "lazy: not computed" if self.lazy else f"mean P(JARM) {self.fraction():.4g}"
         return (
-            f"{type(self).__name__}({size} grid; mu_s={self.mu_s:g}, {self.n} {self.sampling} "
-            f"samples per point; {self._spreads()}; {mean})"
+            f"{type(self).__name__}({size} grid; mu_s={self.mu_s:g}, {self.estimate}; "
+            f"{self._spreads()}; {mean})"
         )
 
     def _repr_html_(self) -> str:
@@ -225,7 +236,7 @@ class UncertaintyMap(Map, kind=UNCERTAINTY):
             ("chi", span(self.chi)),
             ("km_frac", span(self.km_frac) + " (k_m / (1 - chi))"),
             ("tolerances", self._spreads()),
-            ("samples", f"{self.n} per point ({self.sampling}, seed {self.seed})"),
+            ("estimate", f"{self.estimate} (seed {self.seed})" if self.n else self.estimate),
         ]
         if not self.lazy:
             rows.append(("mean P(JARM)", f"{self.fraction():.4g}"))
@@ -235,20 +246,45 @@ class UncertaintyMap(Map, kind=UNCERTAINTY):
 @dataclass(frozen=True, eq=False, repr=False)
 class UncertaintyMotionMap(UncertaintyMap, kind=UNCERTAINTY_MOTION):
     """P(JARM) of the full motion and its first flight under tolerances on the grid
-    alpha x chi x km_frac (``uncertainty_map(..., question="motion")``): an
+    α × χ × km_frac (``uncertainty_map(..., question="motion")``): an
     :class:`UncertaintyMap` (saved, loaded, plotted alike) of kind "uncertainty_motion".
 
     Its fields per grid point (:data:`.map_fields.MOTION_FIELDS`): ``p_jarm`` (a lift-off
     straight out of pure rolling, by the full motion), ``p_jarm_low``, ``p_jarm_high``,
     ``n_valid``, the shares ``p_flies`` (lift off at all) and ``p_slipped_first`` (slip before
     the first flight), and the median, 2.5 % and 97.5 % quantiles of the first lift-off's time
-    [sqrt(R/g)], the first flight's duration [sqrt(R/g)] and distance down the ramp [R]
+    [√(R/g)], the first flight's duration [√(R/g)] and distance down the ramp [R]
     (``liftoff_t_median``, ``flight_time_q025``, ``distance_q975``, ...; NaN where no valid
     sample flies), each as ``uncertainty(question="motion").distributions`` gives it there.
     """
 
     map_kind: ClassVar[MapKind] = UNCERTAINTY_MOTION
     question: ClassVar[str] = "motion"
+
+
+@dataclass(frozen=True, eq=False, repr=False)
+class UncertaintyDeltaMap(UncertaintyMap, kind=UNCERTAINTY_DELTA):
+    """The first-order (delta-method) P(JARM) on the grid α × χ × km_frac
+    (``uncertainty_map(..., method="delta")``): an :class:`UncertaintyMap` (saved, loaded,
+    plotted alike) of kind "uncertainty_delta", made of no sample (``n`` 0, ``sampling``
+    "delta").
+
+    Its fields per grid point: ``p_jarm`` (Phi of the friction margin at the jump over its
+    first-order spread; NaN where the linearisation fails at the nominal point),
+    ``theta_J_sd`` [rad] (the first-order spread of the lift-off angle) and ``delta_status``,
+    0 where P(JARM) is given, else why not
+    (:class:`eccjump.studies.uncertainty.delta.Status`: 1 the nominal point is no JARM, 2 an
+    earlier friction ratio decides (a kink), 3 singular derivatives, 4 the classical rule,
+    5 a point outside the physical range). Near a kink that only the tolerances reach it is
+    wrong without a flag: check it by sampling there.
+    """
+
+    map_kind: ClassVar[MapKind] = UNCERTAINTY_DELTA
+
+    @property
+    def estimate(self) -> str:
+        """How P(JARM) was estimated, in words."""
+        return "first order (delta method)"
 
 
 def _grid_axes(
@@ -263,6 +299,15 @@ def _grid_axes(
             raise ValueError(f"{name} holds {short(float(bad))}, outside the allowed range [0, 1]")
         out.append(a)
     return tuple(out)
+
+
+def _method(method: object, question: str) -> str:
+    m = text("method", method)
+    if m not in ("sampling", "delta"):
+        raise ValueError(f"method = {short(m)} is not one of 'sampling', 'delta'")
+    if m == "delta" and question != "jarm":
+        raise ValueError("method = 'delta' needs question='jarm' (the closed form's derivatives)")
+    return m
 
 
 def _question(question: object) -> str:
@@ -287,6 +332,7 @@ def uncertainty_map(
     seed: int = 0,
     sampling: Sampling = "random",
     question: str = "jarm",
+    method: str = "sampling",
     invalid: str = "truncate",
     confidence: float = 0.95,
     rule: Rule = "paper",
@@ -341,6 +387,13 @@ def uncertainty_map(
     question : {"jarm", "motion"}, default "jarm"
         ``"jarm"``: the closed-form JARM classification; ``"motion"``: the full motion to the
         first landing (the same four parameters vary; its options are the defaults).
+    method : {"sampling", "delta"}, default "sampling"
+        ``"delta"``: no sample, a fast first look: the first-order (delta-method) P(JARM) of
+        :func:`uncertainty`'s ``delta`` at every grid point, from one batched
+        ``jarm(..., derivatives=True)`` over the grid (``n``, ``seed``, ``sampling`` and
+        ``invalid`` play no part): an :class:`UncertaintyDeltaMap`, NaN with a
+        ``delta_status`` where the linearisation fails at the nominal point (no JARM there,
+        an earlier friction ratio deciding, singular derivatives). Question "jarm" only.
     invalid : {"truncate", "count"}, default "truncate"
         Samples outside the physical range, as in :func:`uncertainty`.
     confidence : float, default 0.95
@@ -361,13 +414,15 @@ def uncertainty_map(
         ``n_valid``, ``p_<reason>``); for "motion" an :class:`UncertaintyMotionMap` (``p_jarm``
         and its interval, ``n_valid``, ``p_flies``, ``p_slipped_first``, and
         ``<quantity>_median``, ``_q025``, ``_q975`` of ``liftoff_t``, ``flight_time``,
-        ``distance``).
+        ``distance``); for ``method="delta"`` an :class:`UncertaintyDeltaMap` (``p_jarm``,
+        ``theta_J_sd``, ``delta_status``).
 
     Raises
     ------
     ValueError
         For an axis out of range, a bad ``mu_s``, tolerance or option, ``question`` other
-        than "jarm" or "motion"; the message names the parameter and its range.
+        than "jarm" or "motion", ``method="delta"`` with "motion"; the message names the
+        parameter and its range.
     TypeError
         For ``km=`` or an argument of the wrong type.
     MemoryError
@@ -392,6 +447,7 @@ def uncertainty_map(
     ((3, 2, 1), ['n_valid', 'p_jarm', 'p_jarm_high'])
     """
     q = _question(question)
+    how_ = _method(method, q)
     a, c, f = _grid_axes(alpha, chi, km_frac)
     mu = real("mu_s", mu_s)
     probe = {"chi": 0.0, "km": 0.0, "alpha": 0.0, "mu_s": mu, "mu_k": mu}
@@ -404,13 +460,13 @@ def uncertainty_map(
     spreads = GridSpread(spec.sd, spec.bounds, spec.varied, policy == "truncate", mu, name, level)
     shape = (a.size, c.size, f.size)
     points = math.prod(shape)
+    if how_ == "delta":  # no sample: the derivatives at the nominal points only
+        size, seed_, how, policy = 0, 0, "delta", "none"
     _fits(q, points, size, len(spec.varied))
-    cube = unit_cube(size, len(spec.varied), seed_, how)
-    kind, grid = (
-        (UNCERTAINTY, grid_fields) if q == "jarm" else (UNCERTAINTY_MOTION, motion_grid_fields)
-    )
+    cube = unit_cube(size, len(spec.varied), seed_, how) if size else np.empty((0, 0))
+    cls, kind, grid = _ESTIMATORS[q if how_ == "sampling" else "delta"]
     if chunks is None:
-        with reporting(progress, "sample") as report:
+        with reporting(progress, "sample" if size else "point") as report:
             flat = grid(a, c, f, cube, spreads, n_threads, report)
         fields = {k: v.reshape(shape) for k, v in flat.items()}
     else:
@@ -418,7 +474,6 @@ def uncertainty_map(
             raise ValueError("progress needs chunks=None (dask reports the progress of a lazy map)")
         blocks = normalize_chunks(chunks, shape)
         fields = lazy_fields(kind, grid, (a, c, f), blocks, (cube, spreads, n_threads))
-    cls = UncertaintyMap if q == "jarm" else UncertaintyMotionMap
     return cls(
         alpha=a,
         chi=c,
@@ -435,6 +490,13 @@ def uncertainty_map(
         rule=name,
     )
 
+
+#: The map class, kind and grid function of each question (sampled) and of the first order.
+_ESTIMATORS: dict[str, tuple[type[UncertaintyMap], MapKind, Callable[..., dict[str, NDArray]]]] = {
+    "jarm": (UncertaintyMap, UNCERTAINTY, grid_fields),
+    "motion": (UncertaintyMotionMap, UNCERTAINTY_MOTION, motion_grid_fields),
+    "delta": (UncertaintyDeltaMap, UNCERTAINTY_DELTA, delta_grid_fields),
+}
 
 #: Bytes per sample of a batch: its four parameter columns, the grid copies, the cube and the
 #: outcomes of :func:`.questions.evaluate` (about 30 bytes), with room.
@@ -457,4 +519,10 @@ def _fits(question: str, points: int, n: int, varied: int) -> None:
     check_fits("uncertainty_map", points, need, "alpha, chi, km_frac or n")
 
 
-__all__ = ["MAP_PARAMETERS", "UncertaintyMap", "UncertaintyMotionMap", "uncertainty_map"]
+__all__ = [
+    "MAP_PARAMETERS",
+    "UncertaintyDeltaMap",
+    "UncertaintyMap",
+    "UncertaintyMotionMap",
+    "uncertainty_map",
+]

@@ -17,6 +17,7 @@ from numpy.typing import NDArray
 
 from eccjump.classification.fields import Field, Reason
 from eccjump.maps.kinds import MapKind, register
+from eccjump.studies.uncertainty.delta import Status
 
 #: The outcomes other than a JARM whose shares a map holds: every verdict the closed form
 #: gives without ``stop_at_slip`` (INVALID_PARAMS is no outcome: such a sample counts in no
@@ -31,7 +32,7 @@ OUTCOMES: tuple[Reason, ...] = (
     Reason.TURN_LIMIT,
 )
 
-_F64, _U32 = np.dtype(np.float64), np.dtype(np.uint32)
+_F64, _U32, _U8 = np.dtype(np.float64), np.dtype(np.uint32), np.dtype(np.uint8)
 _SHARE = (0.0, 1.0)
 
 #: Every field, in order. A point not computed, or without a valid sample, has n_valid 0 and
@@ -158,8 +159,61 @@ UNCERTAINTY_MOTION = register(
     )
 )
 
+#: The fields of a first-order map (``uncertainty_map(..., method="delta")``): P(JARM) and the
+#: spread of θ_J from the derivatives at each nominal point, NaN where the linearisation
+#: fails there, and why (:class:`.delta.Status`; a number only where it is ESTIMATE).
+DELTA_TABLE: tuple[Field, ...] = (
+    Field("p_jarm", _F64, "1", "first-order P(JARM) (NaN: see delta_status)", math.nan, _SHARE),
+    Field(
+        "theta_J_sd",
+        _F64,
+        "rad",
+        "first-order standard deviation of the lift-off angle",
+        math.nan,
+        (0.0, sys.float_info.max),
+    ),
+    Field("delta_status", _U8, "1", "0 an estimate, else why none (Status)", int(Status.INVALID)),
+)
+DELTA_FIELDS: tuple[str, ...] = tuple(f.name for f in DELTA_TABLE)
+_DELTA_BY_NAME: dict[str, Field] = {f.name: f for f in DELTA_TABLE}
+
+
+def _delta_cf_attrs(name: str) -> dict[str, Any]:
+    f = _DELTA_BY_NAME[name]
+    return {"units": f.units, "long_name": f.description}
+
+
+def _estimate_agrees(values: Mapping[str, NDArray]) -> str | None:
+    """P(JARM) is a number exactly where the status says ESTIMATE."""
+    has = np.asarray(values["delta_status"]) == Status.ESTIMATE
+    if (has != ~np.isnan(np.asarray(values["p_jarm"], dtype=np.float64))).any():
+        return "p_jarm disagrees with delta_status (a number exactly where it is 0)"
+    return None
+
+
+#: The first-order P(JARM) over a grid as a kind of map file.
+UNCERTAINTY_DELTA = register(
+    MapKind(
+        "uncertainty_delta",
+        DELTA_FIELDS,
+        {f.name: f.dtype for f in DELTA_TABLE},
+        {f.name: f.fill for f in DELTA_TABLE},
+        _delta_cf_attrs,
+        ("mu_s", "n", "seed", "confidence", "rule"),
+        (("mu_s", "mu_s"), ("alpha", "alpha"), ("chi", "chi"), ("km_frac", "km_frac")),
+        ("alpha", "chi", "km_frac"),
+        {"delta_status": frozenset(int(s) for s in Status)},
+        valid={f.name: f.valid for f in DELTA_TABLE if f.dtype.kind == "f"},
+        invalid=("delta_status", frozenset([int(Status.INVALID)])),
+        validator=_estimate_agrees,
+        title="first-order uncertainty",
+    )
+)
+
 __all__ = [
     "BY_NAME",
+    "DELTA_FIELDS",
+    "DELTA_TABLE",
     "DTYPES",
     "FIELDS",
     "FILL",
@@ -171,5 +225,6 @@ __all__ = [
     "SHARE_OF",
     "TABLE",
     "UNCERTAINTY",
+    "UNCERTAINTY_DELTA",
     "UNCERTAINTY_MOTION",
 ]
