@@ -2348,7 +2348,7 @@ def check_uncertainty_map(res: Any, case: Case) -> None:
     expect(isinstance(res, eccjump.UncertaintyMap), "not an UncertaintyMap")
     f = res.fields
     if isinstance(res, eccjump.UncertaintyDeltaMap):  # no samples: an estimate or a status
-        given = f["delta_status"] == 0
+        given = np.isin(f["delta_status"], (0, 6))  # an estimate, or a flagged one
         expect(bool(np.all(np.isnan(f["p_jarm"]) != given)), "p_jarm disagrees with its status")
         expect(bool(np.all((0 <= f["p_jarm"][given]) & (f["p_jarm"][given] <= 1))), "p_jarm")
         return

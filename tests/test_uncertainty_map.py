@@ -378,6 +378,23 @@ def test_delta_map_says_where_it_fails():
         assert one.delta_status.item() == status and np.isnan(one.p_jarm.item())
 
 
+def test_delta_map_flags_a_kink_the_tolerances_reach():
+    """The lab's tolerances at the JARM point reach samples that slip before the jump (an
+    earlier friction ratio: a kink the margin cannot see): the first order says 0.997,
+    sampling 0.79 (tests/test_uncertainty.py). The map gives the value, flagged REACHES,
+    because a probe at 2 sd along an input slips before the jump; with small tolerances the
+    same point is an ESTIMATE."""
+    lab = {"alpha": math.radians(2), "chi": 0.02, "km": 0.01, "mu_s": 0.15}
+    frac = [JARM_BODY[1] / (1 - JARM_BODY[0])]
+    wide = eccjump.uncertainty_map([JARM_ALPHA], [JARM_BODY[0]], frac, 1.0, sd=lab,
+                                   method="delta")  # fmt: skip
+    sampled = eccjump.uncertainty_map([JARM_ALPHA], [JARM_BODY[0]], frac, 1.0, sd=lab, n=4000)
+    assert wide.delta_status.item() == 6 and wide.p_jarm.item() - sampled.p_jarm.item() > 0.15
+    small = eccjump.uncertainty_map([JARM_ALPHA], [JARM_BODY[0]], frac, 1.0, sd=SMALL,
+                                    method="delta")  # fmt: skip
+    assert small.delta_status.item() == 0
+
+
 def test_delta_map_files_chunks_and_repr(tmp_path):
     kw = {"sd": SMALL, "method": "delta"}
     m = eccjump.uncertainty_map(ALPHA, CHI, KM_FRAC, 1.0, **kw)

@@ -24,7 +24,8 @@ rule to one batched ``jarm(..., derivatives=True)`` over the nominal points (it 
 of :func:`delta_method` too, the same bits), marking where it gives no P(JARM) and why
 (:class:`Status`): no JARM at the nominal point, an earlier ratio deciding there (a kink),
 singular or one-sided derivatives, the classical rule. A kink that only the tolerances reach
-(the 0.997 against 0.79 above) is not seen at the nominal point: no flag there; sample.
+(the 0.997 against 0.79 above) is not seen at the nominal point: the map probes for it
+(:mod:`.grid_delta`, status REACHES); :func:`delta_method` does not.
 
 For the full motion the gradients are those of the first lift-off's time and angle and of the
 first flight's duration with respect to all eight inputs (where μ_k follows μ_s, a change of
@@ -119,6 +120,10 @@ class Status(IntEnum):
     CLASSICAL = 4
     #: The nominal point lies outside the physical range.
     INVALID = 5
+    #: P(JARM) is given but the tolerances reach another verdict than the margin's (a probe
+    #: along a varied input slips before the jump, or finds no jump): near a kink of the
+    #: boundary, where the first order is too high (over a grid only: :mod:`.grid_delta`).
+    REACHES = 6
 
 
 class FirstOrder(NamedTuple):

@@ -275,8 +275,9 @@ class UncertaintyDeltaMap(UncertaintyMap, kind=UNCERTAINTY_DELTA):
     0 where P(JARM) is given, else why not
     (:class:`eccjump.studies.uncertainty.delta.Status`: 1 the nominal point is no JARM, 2 an
     earlier friction ratio decides (a kink), 3 singular derivatives, 4 the classical rule,
-    5 a point outside the physical range). Near a kink that only the tolerances reach it is
-    wrong without a flag: check it by sampling there.
+    5 a point outside the physical range), and 6 where P(JARM) is given but a probe at
+    ± 2 sd along a varied input reaches another verdict (a slip before the jump: near a
+    kink, where the first order is too high). Sample where it matters.
     """
 
     map_kind: ClassVar[MapKind] = UNCERTAINTY_DELTA
@@ -393,7 +394,8 @@ def uncertainty_map(
         ``jarm(..., derivatives=True)`` over the grid (``n``, ``seed``, ``sampling`` and
         ``invalid`` play no part): an :class:`UncertaintyDeltaMap`, NaN with a
         ``delta_status`` where the linearisation fails at the nominal point (no JARM there,
-        an earlier friction ratio deciding, singular derivatives). Question "jarm" only.
+        an earlier friction ratio deciding, singular derivatives), flagged (status 6) where
+        the tolerances reach another verdict. Question "jarm" only.
     invalid : {"truncate", "count"}, default "truncate"
         Samples outside the physical range, as in :func:`uncertainty`.
     confidence : float, default 0.95

@@ -161,7 +161,8 @@ UNCERTAINTY_MOTION = register(
 
 #: The fields of a first-order map (``uncertainty_map(..., method="delta")``): P(JARM) and the
 #: spread of θ_J from the derivatives at each nominal point, NaN where the linearisation
-#: fails there, and why (:class:`.delta.Status`; a number only where it is ESTIMATE).
+#: fails there, and why (:class:`.delta.Status`; a number only where it is ESTIMATE, or
+#: REACHES: given, but the tolerances reach another verdict).
 DELTA_TABLE: tuple[Field, ...] = (
     Field("p_jarm", _F64, "1", "first-order P(JARM) (NaN: see delta_status)", math.nan, _SHARE),
     Field(
@@ -172,9 +173,11 @@ DELTA_TABLE: tuple[Field, ...] = (
         math.nan,
         (0.0, sys.float_info.max),
     ),
-    Field("delta_status", _U8, "1", "0 an estimate, else why none (Status)", int(Status.INVALID)),
+    Field("delta_status", _U8, "1", "0 an estimate, 6 a doubtful one, else why none", 5),
 )
 DELTA_FIELDS: tuple[str, ...] = tuple(f.name for f in DELTA_TABLE)
+#: The statuses with a first-order P(JARM).
+GIVEN = (int(Status.ESTIMATE), int(Status.REACHES))
 _DELTA_BY_NAME: dict[str, Field] = {f.name: f for f in DELTA_TABLE}
 
 
@@ -184,10 +187,10 @@ def _delta_cf_attrs(name: str) -> dict[str, Any]:
 
 
 def _estimate_agrees(values: Mapping[str, NDArray]) -> str | None:
-    """P(JARM) is a number exactly where the status says ESTIMATE."""
-    has = np.asarray(values["delta_status"]) == Status.ESTIMATE
+    """P(JARM) is a number exactly where the status says ESTIMATE or REACHES."""
+    has = np.isin(np.asarray(values["delta_status"]), GIVEN)
     if (has != ~np.isnan(np.asarray(values["p_jarm"], dtype=np.float64))).any():
-        return "p_jarm disagrees with delta_status (a number exactly where it is 0)"
+        return "p_jarm disagrees with delta_status (a number exactly where it is 0 or 6)"
     return None
 
 
