@@ -2340,20 +2340,33 @@ def case_track(d: Drawer) -> Case:
 
 UNCERTAINTY_MAP_PARAMS = (
     "alpha", "chi", "km_frac", "mu_s", "km", "sd", "bounds", "n", "seed", "sampling",
-    "question", "invalid", "confidence", "rule", "chunks", "n_threads", "progress",
+    "question", "method", "invalid", "confidence", "rule", "chunks", "n_threads", "progress",
 )  # fmt: skip
 
 
 def check_uncertainty_map(res: Any, case: Case) -> None:
     expect(isinstance(res, eccjump.UncertaintyMap), "not an UncertaintyMap")
     f = res.fields
+    if isinstance(res, eccjump.UncertaintyDeltaMap):  # no samples: an estimate or a status
+        given = np.isin(f["delta_status"], (0, 6))  # an estimate, or a flagged one
+        expect(bool(np.all(np.isnan(f["p_jarm"]) != given)), "p_jarm disagrees with its status")
+        expect(bool(np.all((0 <= f["p_jarm"][given]) & (f["p_jarm"][given] <= 1))), "p_jarm")
+        return
     has = f["n_valid"] > 0
     expect(bool(np.all(f["n_valid"] <= res.n)), "n_valid > n")
     p, lo, hi = f["p_jarm"][has], f["p_jarm_low"][has], f["p_jarm_high"][has]
     expect(bool(np.all((0 <= lo) & (lo <= p) & (p <= hi) & (hi <= 1))), "p_jarm outside its CI")
+    expect(bool(np.isnan(f["p_jarm"][~has]).all()), "a share without a valid sample")
+    if res.question == "motion":  # a JARM flies and did not slip first
+        flies, slipped = f["p_flies"][has], f["p_slipped_first"][has]
+        expect(bool(np.all((p <= flies) & (p + slipped <= 1 + 1e-12))), "P(JARM) > P(flies)")
+        for q in ("liftoff_t", "flight_time", "distance"):
+            lo, mid, hi = (f[f"{q}_{s}"] for s in ("q025", "median", "q975"))
+            with np.errstate(invalid="ignore"):
+                expect(not bool(np.any((lo > mid) | (mid > hi))), f"{q}'s quantiles disordered")
+        return
     shares = p + sum(v[has] for k, v in f.items() if k.startswith("p_") and "jarm" not in k)
     expect(bool(np.all(np.abs(shares - 1) < 1e-9)), "the shares do not add up to 1")
-    expect(bool(np.isnan(f["p_jarm"][~has]).all()), "a share without a valid sample")
 
 
 def case_uncertainty_map(d: Drawer) -> Case:
@@ -2369,7 +2382,7 @@ def case_uncertainty_map(d: Drawer) -> Case:
     c.kwargs = {
         "sd": sd,
         "bounds": bounds,
-        "question": text_param(d, c, ("jarm",)),
+        "question": text_param(d, c, ("jarm", "jarm", "motion")),
         "n": integer_param(d, c, (1, 7, 64), (*INT_BAD, 10**9)),
         "seed": integer_param(d, c, (0, 1, 12345), (-1, 2.5, None, "1", 2**64)),
         "sampling": text_param(d, c, ("random", "sobol")),
@@ -2379,10 +2392,12 @@ def case_uncertainty_map(d: Drawer) -> Case:
         "n_threads": integer_param(d, c, (0, 1, 2), (*INT_BAD, 257)),
     }
     c.must_raise |= c.kwargs["confidence"] in BAD_CONFIDENCE
+    if d.integer(0, 1) == 0 and c.kwargs["question"] == "jarm":
+        c.kwargs["method"] = text_param(d, c, ("sampling", "delta"))
     if d.integer(0, 3) == 0:
         c.kwargs["progress"] = progress_param(d, c)
     if not d.clean and d.integer(0, 9) == 0:
-        c.kwargs[d.choice(("km", "question"))] = d.choice((0.1, "motion"))
+        c.kwargs[d.choice(("km", "question"))] = d.choice((0.1, "flight"))
         c.must_raise = True
     return c
 

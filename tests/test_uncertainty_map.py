@@ -11,7 +11,7 @@ import numpy as np
 import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
-from reference_points import JARM_BODY
+from reference_points import JARM_ALPHA, JARM_BODY
 
 import eccjump
 from eccjump.cli import main
@@ -194,7 +194,11 @@ def test_plot_composes_into_the_callers_axes_and_figure(umap):
 @pytest.mark.parametrize(
     ("kwargs", "error", "name"),
     [
-        ({"question": "motion"}, ValueError, "question"),
+        ({"question": "flight"}, ValueError, "question"),
+        ({"method": "taylor"}, ValueError, "method"),
+        ({"method": "delta", "question": "motion"}, ValueError, "method"),
+        ({"method": 2}, TypeError, "method"),
+        ({"question": "motion", "sd": {"restitution": 0.1}}, ValueError, "restitution"),
         ({"sd": {"restitution": 0.1}}, ValueError, "restitution"),
         ({"sd": {"alpha": -1.0}}, ValueError, "sd"),
         ({"km": 0.1}, TypeError, "km"),
@@ -213,10 +217,13 @@ def test_bad_input_names_the_parameter(kwargs, error, name):
     assert len(str(err.value)) < 200
 
 
-def test_absurd_request_is_a_memory_error():
+@pytest.mark.parametrize("question", ["jarm", "motion"])
+def test_absurd_request_is_a_memory_error(question):
     axis = np.linspace(0.0, 1.0, 2000)
     with pytest.raises(MemoryError, match="uncertainty_map"):
-        eccjump.uncertainty_map(np.radians(axis * 90), axis, axis, 1.0, sd=SD, n=10**8)
+        eccjump.uncertainty_map(
+            np.radians(axis * 90), axis, axis, 1.0, sd=SD, n=10**8, question=question
+        )
 
 
 def test_command_line_writes_the_map(tmp_path, capsys):
@@ -259,3 +266,140 @@ def test_local_cluster_of_two_processes_bit_identical(umap, monkeypatch):
         there = eccjump.uncertainty(body, math.radians(40), 1.0, sd=SD, n=2000, seed=2, chunks=300)
         assert there == here
         assert len(client.scheduler_info()["workers"]) == 2
+
+
+# --------------------------------------------------------------------------------------------
+# question="motion": the full motion's first flight at every grid point
+# --------------------------------------------------------------------------------------------
+
+N_MOTION = 96
+
+
+@pytest.fixture(scope="module")
+def mmap() -> eccjump.UncertaintyMap:
+    return eccjump.uncertainty_map(
+        ALPHA, CHI, KM_FRAC, 1.0, sd=SD, bounds=BOUNDS, n=N_MOTION, seed=5, question="motion"
+    )
+
+
+@pytest.mark.parametrize(("i", "j", "k"), [(0, 1, 0), (2, 0, 1)])
+def test_motion_grid_point_is_uncertainty_motion_there(mmap, i, j, k):
+    """At a grid point the motion map holds what ``uncertainty(question="motion")`` gives
+    with the same samples: P(JARM) of the full motion, its interval, the shares that fly
+    and slip first, and the quantiles of the first flight, to the bit."""
+    body = eccjump.Cylinder(CHI[j], KM_FRAC[k] * (1 - CHI[j]))
+    u = eccjump.uncertainty(
+        body, ALPHA[i], 1.0, sd=SD, bounds={"mu_s": (0.9, 1.05)}, n=N_MOTION, seed=5,
+        question="motion",
+    )  # fmt: skip
+    at = {name: v[i, j, k] for name, v in mmap.fields.items()}
+    assert (at["n_valid"], at["p_jarm"]) == (u.n_valid, u.p_jarm)
+    assert (at["p_jarm_low"], at["p_jarm_high"]) == u.p_jarm_ci
+    flies = np.isfinite(u.outcomes["liftoff_t"][u.valid]).sum()
+    assert at["p_flies"] == flies / u.n_valid > 0
+    assert at["p_slipped_first"] == u.outcomes["slipped_first"][u.valid].sum() / u.n_valid
+    for q in ("liftoff_t", "flight_time", "distance"):
+        s = u.distributions[q]
+        assert (at[f"{q}_median"], at[f"{q}_q025"], at[f"{q}_q975"]) == (s.median, s.q025, s.q975)
+    assert 0 < at["liftoff_t_q025"] <= at["liftoff_t_median"] <= at["liftoff_t_q975"]
+
+
+def test_motion_map_files_chunks_and_picture(mmap, tmp_path):
+    """A motion map is saved and loaded as its own kind, chunked by dask to the same bits,
+    and drawn as every uncertainty map."""
+    assert isinstance(mmap, eccjump.UncertaintyMotionMap) and mmap.question == "motion"
+    assert "UncertaintyMotionMap(3 x 2 x 2 grid" in repr(mmap)
+    back = eccjump.load(mmap.save(tmp_path / "m.npz"))
+    assert isinstance(back, eccjump.UncertaintyMotionMap) and back == mmap
+    assert back.attrs()["kind"] == "uncertainty_motion"
+    pytest.importorskip("dask")
+    lazy = eccjump.uncertainty_map(
+        ALPHA, CHI, KM_FRAC, 1.0, sd=SD, bounds=BOUNDS, n=N_MOTION, seed=5, question="motion",
+        chunks=(2, 1, 1),
+    )  # fmt: skip
+    assert lazy.lazy and lazy.compute() == mmap
+    pytest.importorskip("matplotlib")
+    assert mmap.plot().axes
+
+
+# --------------------------------------------------------------------------------------------
+# method="delta": the first-order P(JARM) over the grid, from the exact derivatives
+# --------------------------------------------------------------------------------------------
+
+#: Small tolerances: the verdict is the sign of a smooth margin (tests/test_uncertainty.py).
+SMALL = {"alpha": math.radians(0.3), "chi": 0.002, "km": 0.001, "mu_s": 0.005}
+
+
+def test_delta_map_agrees_with_sampling_away_from_the_boundary():
+    """mu_s a little above the friction the JARM point's jump needs, small tolerances: on a
+    grid around it P(JARM) runs from 0.2 to 0.87; where the first order gives it (the nominal
+    point a JARM), it is the sampled map's within its interval and the curvature's 0.02, and
+    at a grid point it is ``uncertainty``'s delta there, to the bit."""
+    alpha = JARM_ALPHA + np.radians([-0.3, 0.0, 0.3])
+    chi = JARM_BODY[0] + np.array([-0.002, 0.0, 0.002])
+    frac = np.array([JARM_BODY[1] / (1 - JARM_BODY[0])])
+    r = eccjump.jarm(JARM_ALPHA, *JARM_BODY, 1.0)
+    mu = float(-r.Fx_J / r.Fy_J) + 0.004
+    first = eccjump.uncertainty_map(alpha, chi, frac, mu, sd=SMALL, method="delta")
+    assert isinstance(first, eccjump.UncertaintyDeltaMap) and first.n == 0
+    sampled = eccjump.uncertainty_map(alpha, chi, frac, mu, sd=SMALL, n=20_000, seed=3)
+    given = first.delta_status == 0
+    assert given.sum() == 6 and np.isnan(first.p_jarm[~given]).all()
+    p = first.p_jarm[given]
+    lo, hi = sampled.p_jarm_low[given], sampled.p_jarm_high[given]
+    assert ((lo - 0.02 <= p) & (p <= hi + 0.02)).all(), (p, sampled.p_jarm[given])
+    assert np.ptp(sampled.p_jarm[given]) > 0.3  # the check spans the transition
+    # Where the nominal point is no JARM (a verdict change) sampling still finds JARMs.
+    assert (first.delta_status[~given] == 1).all()
+    assert ((sampled.p_jarm[~given] > 0.1) & (sampled.p_jarm[~given] < 0.5)).all()
+    body = eccjump.Cylinder(JARM_BODY[0], JARM_BODY[1])
+    u = eccjump.uncertainty(body, alpha[1], mu, sd=SMALL, n=8)
+    assert u.delta is not None and u.delta.p_jarm == first.p_jarm[1, 1, 0]
+    assert u.delta.theta_J_sd == first.theta_J_sd[1, 1, 0]
+
+
+def test_delta_map_says_where_it_fails():
+    """NaN and a status where the linearisation fails at the nominal point: a kink (an
+    earlier friction ratio decides: chi 0.15, k_m 0.005 at 40 deg), k_m = 0 (one-sided
+    derivatives) under a tolerance on k_m, a point outside the physical range, a nominal
+    point that is no JARM (a verdict change), the classical rule."""
+    from eccjump.studies.uncertainty.delta import Status
+
+    frac = [0.0, 0.005 / 0.85, JARM_BODY[1] / 0.85]
+    with pytest.warns(UserWarning, match="alpha"):
+        m = eccjump.uncertainty_map([JARM_ALPHA, 1.6], [0.15], frac, 1.0, sd=SMALL, method="delta")
+    want = [[Status.SINGULAR, Status.KINK, Status.ESTIMATE], [Status.INVALID] * 3]
+    assert m.delta_status[:, 0, :].tolist() == want
+    assert np.isnan(m.p_jarm[m.delta_status != 0]).all() and m.p_jarm[0, 0, 2] > 0.99
+    assert np.isfinite(m.theta_J_sd[0, 0, 1:]).all()  # the lift-off's spread is still given
+    for mu_s, rule, status in [(0.05, "paper", Status.NO_JARM), (1.0, "normal_force", 4)]:
+        one = eccjump.uncertainty_map([JARM_ALPHA], [0.15], frac[2:], mu_s, sd=SMALL,
+                                      method="delta", rule=rule)  # fmt: skip
+        assert one.delta_status.item() == status and np.isnan(one.p_jarm.item())
+
+
+def test_delta_map_flags_a_kink_the_tolerances_reach():
+    """The lab's tolerances at the JARM point reach samples that slip before the jump (an
+    earlier friction ratio: a kink the margin cannot see): the first order says 0.997,
+    sampling 0.79 (tests/test_uncertainty.py). The map gives the value, flagged REACHES,
+    because a probe at 2 sd along an input slips before the jump; with small tolerances the
+    same point is an ESTIMATE."""
+    lab = {"alpha": math.radians(2), "chi": 0.02, "km": 0.01, "mu_s": 0.15}
+    frac = [JARM_BODY[1] / (1 - JARM_BODY[0])]
+    wide = eccjump.uncertainty_map([JARM_ALPHA], [JARM_BODY[0]], frac, 1.0, sd=lab,
+                                   method="delta")  # fmt: skip
+    sampled = eccjump.uncertainty_map([JARM_ALPHA], [JARM_BODY[0]], frac, 1.0, sd=lab, n=4000)
+    assert wide.delta_status.item() == 6 and wide.p_jarm.item() - sampled.p_jarm.item() > 0.15
+    small = eccjump.uncertainty_map([JARM_ALPHA], [JARM_BODY[0]], frac, 1.0, sd=SMALL,
+                                    method="delta")  # fmt: skip
+    assert small.delta_status.item() == 0
+
+
+def test_delta_map_files_chunks_and_repr(tmp_path):
+    kw = {"sd": SMALL, "method": "delta"}
+    m = eccjump.uncertainty_map(ALPHA, CHI, KM_FRAC, 1.0, **kw)
+    assert "first order (delta method)" in repr(m)
+    back = eccjump.load(m.save(tmp_path / "d.nc"))
+    assert isinstance(back, eccjump.UncertaintyDeltaMap) and back == m
+    pytest.importorskip("dask")
+    assert eccjump.uncertainty_map(ALPHA, CHI, KM_FRAC, 1.0, chunks=(1, 2, 1), **kw).compute() == m

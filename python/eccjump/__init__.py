@@ -37,7 +37,12 @@ from eccjump.studies.design import Design, build, design
 from eccjump.studies.experiment import Analysis, analyze
 from eccjump.studies.experiment.video import VideoTrack, track
 from eccjump.studies.uncertainty import Uncertainty, uncertainty
-from eccjump.studies.uncertainty.map import UncertaintyMap, uncertainty_map
+from eccjump.studies.uncertainty.map import (
+    UncertaintyDeltaMap,
+    UncertaintyMap,
+    UncertaintyMotionMap,
+    uncertainty_map,
+)
 
 __all__ = [
     "EVENT_NAMES",
@@ -58,7 +63,9 @@ __all__ = [
     "RollResult",
     "StartMap",
     "Uncertainty",
+    "UncertaintyDeltaMap",
     "UncertaintyMap",
+    "UncertaintyMotionMap",
     "Units",
     "VideoTrack",
     "__version__",

@@ -398,7 +398,7 @@ def _probability_panel(ax: Axes, m: UncertaintyMap, p: NDArray[np.float64], k: i
     ax.set_ylabel(r"ramp angle $\alpha$ [deg]")
     ax.set_title(
         f"P(JARM) at $k_m = {m.km_frac[k]:.3g}\\,(1-\\chi)$, $\\mu_s = {m.mu_s:g}$, "
-        f"{m.n} samples per point\ntolerances: {_tolerances(m)}; contours 0.5 (white), "
+        f"{m.estimate}\ntolerances: {_tolerances(m)}; contours 0.5 (white), "
         "0.95 (red)",
         fontsize=9,
     )

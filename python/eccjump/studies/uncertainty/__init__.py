@@ -10,7 +10,7 @@ first flight under tolerances on the body, the ramp, the friction and the start.
 - :mod:`.study`: :func:`uncertainty`, which ties them together (:mod:`.scheduled`: its
   ``chunks=`` on Dask);
 - :mod:`.map`: :func:`eccjump.uncertainty_map`, P(JARM) over a region grid (:mod:`.grid`: the
-  batches; :mod:`.map_fields`: its map kind).
+  batches; :mod:`.grid_motion`: those of the full motion; :mod:`.map_fields`: its map kinds).
 """
 
 from eccjump.studies.uncertainty.results import Summary, Uncertainty, wilson

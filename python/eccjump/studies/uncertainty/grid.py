@@ -22,6 +22,7 @@ from typing import Any
 import numpy as np
 from numpy.typing import NDArray
 
+from eccjump._base.checks import Rule
 from eccjump._base.progress import Progress
 from eccjump.classification.fields import Reason
 from eccjump.studies.uncertainty.map_fields import FIELDS, SHARE_OF
@@ -51,7 +52,7 @@ class GridSpread:
     varied: tuple[str, ...]
     truncate: bool
     mu_s: float
-    rule: str
+    rule: Rule
     confidence: float
 
 
@@ -155,6 +156,20 @@ def fields_of(counts: NDArray[np.int64], confidence: float) -> dict[str, NDArray
     return {k: np.ascontiguousarray(out[k]) for k in FIELDS}
 
 
+def nominal_of(
+    alpha: NDArray[np.float64], chi: NDArray[np.float64], km_frac: NDArray[np.float64], mu_s: float
+) -> dict[str, NDArray[np.float64]]:
+    """The nominal (α, χ, km, μ_s) of every point of the grid α × χ × km_frac,
+    flat in C order (k_m = km_frac (1 − χ))."""
+    a, c, f = np.meshgrid(alpha, chi, km_frac, indexing="ij")
+    return {
+        "alpha": a.ravel(),
+        "chi": c.ravel(),
+        "km": (f * (1.0 - c)).ravel(),
+        "mu_s": np.full(a.size, mu_s),
+    }
+
+
 def grid_fields(
     alpha: NDArray[np.float64],
     chi: NDArray[np.float64],
@@ -166,13 +181,7 @@ def grid_fields(
 ) -> dict[str, NDArray]:
     """The fields of every point of the grid α × χ × km_frac (flat, C order): the
     grid function of :func:`eccjump.maps.dask.lazy_fields` and of the map computed now."""
-    a, c, f = np.meshgrid(alpha, chi, km_frac, indexing="ij")
-    nominal = {
-        "alpha": a.ravel(),
-        "chi": c.ravel(),
-        "km": (f * (1.0 - c)).ravel(),
-        "mu_s": np.full(a.size, how.mu_s),
-    }
+    nominal = nominal_of(alpha, chi, km_frac, how.mu_s)
     return point_fields(nominal, cube, how, n_threads, report)
 
 
@@ -196,6 +205,7 @@ __all__ = [
     "columns",
     "fields_of",
     "grid_fields",
+    "nominal_of",
     "point_fields",
     "reason_counts",
 ]

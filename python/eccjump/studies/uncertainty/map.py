@@ -4,13 +4,15 @@ kind "uncertainty" (:class:`UncertaintyMap`): saved, loaded and labelled like ev
 
 The samples are those of :func:`eccjump.uncertainty` around each grid point (the same
 unit-cube points at every grid point: common random numbers, :mod:`.grid`), classified in
-batches by the closed form."""
+batches by the closed form, or run to their first landing (``question="motion"``,
+:mod:`.grid_motion`: a map of kind "uncertainty_motion", :class:`UncertaintyMotionMap`)."""
 
 from __future__ import annotations
 
 import json
 import math
 import os
+from collections.abc import Callable
 from dataclasses import dataclass, replace
 from pathlib import Path
 from typing import TYPE_CHECKING, Any, ClassVar
@@ -28,11 +30,19 @@ from eccjump._base.sizes import F64, check_fits, result_bytes
 from eccjump._base.units import ramp_angles
 from eccjump.maps import store
 from eccjump.maps.dask import Chunks, lazy_fields, normalize_chunks
+from eccjump.maps.kinds import MapKind
 from eccjump.maps.layout import Layout, make_layout
 from eccjump.maps.map import Map
+from eccjump.motion.fields import MOTION
 from eccjump.motion.options import MotionOptions
 from eccjump.studies.uncertainty.grid import BLOCK, GridSpread, grid_fields
-from eccjump.studies.uncertainty.map_fields import FIELDS, UNCERTAINTY
+from eccjump.studies.uncertainty.grid_delta import delta_grid_fields
+from eccjump.studies.uncertainty.grid_motion import MOTION_BLOCK, motion_grid_fields
+from eccjump.studies.uncertainty.map_fields import (
+    UNCERTAINTY,
+    UNCERTAINTY_DELTA,
+    UNCERTAINTY_MOTION,
+)
 from eccjump.studies.uncertainty.results import check_confidence
 from eccjump.studies.uncertainty.sampling import Sampling, options, spread, unit_cube
 
@@ -74,6 +84,9 @@ class UncertaintyMap(Map, kind=UNCERTAINTY):
     """
 
     jarm_field: ClassVar[str] = "p_jarm"
+    #: The map's kind (its fields) and the question its samples answered.
+    map_kind: ClassVar[MapKind] = UNCERTAINTY
+    question: ClassVar[str] = "jarm"
 
     alpha: NDArray[np.float64]
     chi: NDArray[np.float64]
@@ -127,14 +140,15 @@ class UncertaintyMap(Map, kind=UNCERTAINTY):
             return self
         import dask  # a lazy map exists only if dask is installed
 
-        values = dask.compute(*(self.fields[k] for k in FIELDS), **kwargs)
-        return replace(self, fields=dict(zip(FIELDS, values, strict=True)))
+        names = self.map_kind.fields
+        values = dask.compute(*(self.fields[k] for k in names), **kwargs)
+        return replace(self, fields=dict(zip(names, values, strict=True)))
 
     def attrs(self) -> dict[str, Any]:
         """How the map was made, as netCDF-safe file attributes (the spreads as JSON)."""
         return {
             "title": "P(JARM) under tolerances of an eccentric cylinder on a ramp (eccjump)",
-            "kind": UNCERTAINTY.name,
+            "kind": self.map_kind.name,
             "eccjump_version": _core.VERSION,
             "mu_s": float(self.mu_s),
             "n": int(self.n),
@@ -143,7 +157,7 @@ class UncertaintyMap(Map, kind=UNCERTAINTY):
             "rule": self.rule,
             "sampling": self.sampling,
             "invalid": self.invalid,
-            "question": "jarm",
+            "question": self.question,
             "sd": json.dumps(self.sd),
             "bounds": json.dumps({k: list(v) for k, v in self.bounds.items()}),
             "units": "alpha and its tolerance in rad; bounds are offsets from each grid point",
@@ -152,7 +166,7 @@ class UncertaintyMap(Map, kind=UNCERTAINTY):
     def to_layout(self) -> Layout:
         """The map as a layout (numpy only; dask arrays if lazy)."""
         return make_layout(
-            self.alpha, self.chi, self.km_frac, self.fields, self.attrs(), None, UNCERTAINTY
+            self.alpha, self.chi, self.km_frac, self.fields, self.attrs(), None, self.map_kind
         )
 
     @classmethod
@@ -172,7 +186,9 @@ class UncertaintyMap(Map, kind=UNCERTAINTY):
             alpha=np.asarray(co["alpha"][1], dtype=np.float64),
             chi=np.asarray(co["chi"][1], dtype=np.float64),
             km_frac=np.asarray(co["km_frac"][1], dtype=np.float64),
-            fields={k: np.asarray(dv[k][1], dtype=UNCERTAINTY.dtypes[k]) for k in FIELDS},
+            fields={
+                k: np.asarray(dv[k][1], dtype=cls.map_kind.dtypes[k]) for k in cls.map_kind.fields
+            },
             mu_s=float(at["mu_s"]),
             sd=sd,
             bounds=bounds,
@@ -201,12 +217,17 @@ class UncertaintyMap(Map, kind=UNCERTAINTY):
         out += [f"{k} + [{lo:.3g}, {hi:.3g}]" for k, (lo, hi) in self.bounds.items()]
         return "; ".join(out) or "nothing"
 
+    @property
+    def estimate(self) -> str:
+        """How P(JARM) was estimated, in words: ``"2000 random samples per point"``."""
+        return f"{self.n} {self.sampling} samples per point"
+
     def __repr__(self) -> str:
         size = " x ".join(str(x.size) for x in self.coords.values())
         mean = "lazy: not computed" if self.lazy else f"mean P(JARM) {self.fraction():.4g}"
         return (
-            f"UncertaintyMap({size} grid; mu_s={self.mu_s:g}, {self.n} {self.sampling} "
-            f"samples per point; {self._spreads()}; {mean})"
+            f"{type(self).__name__}({size} grid; mu_s={self.mu_s:g}, {self.estimate}; "
+            f"{self._spreads()}; {mean})"
         )
 
     def _repr_html_(self) -> str:
@@ -215,11 +236,56 @@ class UncertaintyMap(Map, kind=UNCERTAINTY):
             ("chi", span(self.chi)),
             ("km_frac", span(self.km_frac) + " (k_m / (1 - chi))"),
             ("tolerances", self._spreads()),
-            ("samples", f"{self.n} per point ({self.sampling}, seed {self.seed})"),
+            ("estimate", f"{self.estimate} (seed {self.seed})" if self.n else self.estimate),
         ]
         if not self.lazy:
             rows.append(("mean P(JARM)", f"{self.fraction():.4g}"))
-        return card("UncertaintyMap", rows)
+        return card(type(self).__name__, rows)
+
+
+@dataclass(frozen=True, eq=False, repr=False)
+class UncertaintyMotionMap(UncertaintyMap, kind=UNCERTAINTY_MOTION):
+    """P(JARM) of the full motion and its first flight under tolerances on the grid
+    α × χ × km_frac (``uncertainty_map(..., question="motion")``): an
+    :class:`UncertaintyMap` (saved, loaded, plotted alike) of kind "uncertainty_motion".
+
+    Its fields per grid point (:data:`.map_fields.MOTION_FIELDS`): ``p_jarm`` (a lift-off
+    straight out of pure rolling, by the full motion), ``p_jarm_low``, ``p_jarm_high``,
+    ``n_valid``, the shares ``p_flies`` (lift off at all) and ``p_slipped_first`` (slip before
+    the first flight), and the median, 2.5 % and 97.5 % quantiles of the first lift-off's time
+    [√(R/g)], the first flight's duration [√(R/g)] and distance down the ramp [R]
+    (``liftoff_t_median``, ``flight_time_q025``, ``distance_q975``, ...; NaN where no valid
+    sample flies), each as ``uncertainty(question="motion").distributions`` gives it there.
+    """
+
+    map_kind: ClassVar[MapKind] = UNCERTAINTY_MOTION
+    question: ClassVar[str] = "motion"
+
+
+@dataclass(frozen=True, eq=False, repr=False)
+class UncertaintyDeltaMap(UncertaintyMap, kind=UNCERTAINTY_DELTA):
+    """The first-order (delta-method) P(JARM) on the grid α × χ × km_frac
+    (``uncertainty_map(..., method="delta")``): an :class:`UncertaintyMap` (saved, loaded,
+    plotted alike) of kind "uncertainty_delta", made of no sample (``n`` 0, ``sampling``
+    "delta").
+
+    Its fields per grid point: ``p_jarm`` (Phi of the friction margin at the jump over its
+    first-order spread; NaN where the linearisation fails at the nominal point),
+    ``theta_J_sd`` [rad] (the first-order spread of the lift-off angle) and ``delta_status``,
+    0 where P(JARM) is given, else why not
+    (:class:`eccjump.studies.uncertainty.delta.Status`: 1 the nominal point is no JARM, 2 an
+    earlier friction ratio decides (a kink), 3 singular derivatives, 4 the classical rule,
+    5 a point outside the physical range), and 6 where P(JARM) is given but a probe at
+    ± 2 sd along a varied input reaches another verdict (a slip before the jump: near a
+    kink, where the first order is too high). Sample where it matters.
+    """
+
+    map_kind: ClassVar[MapKind] = UNCERTAINTY_DELTA
+
+    @property
+    def estimate(self) -> str:
+        """How P(JARM) was estimated, in words."""
+        return "first order (delta method)"
 
 
 def _grid_axes(
@@ -236,13 +302,20 @@ def _grid_axes(
     return tuple(out)
 
 
-def _question(question: object) -> None:
+def _method(method: object, question: str) -> str:
+    m = text("method", method)
+    if m not in ("sampling", "delta"):
+        raise ValueError(f"method = {short(m)} is not one of 'sampling', 'delta'")
+    if m == "delta" and question != "jarm":
+        raise ValueError("method = 'delta' needs question='jarm' (the closed form's derivatives)")
+    return m
+
+
+def _question(question: object) -> str:
     q = text("question", question)
-    if q != "jarm":
-        raise ValueError(
-            f"question = {short(q)}: uncertainty_map supports 'jarm' only (the closed form); "
-            "uncertainty(question='motion') studies one point"
-        )
+    if q not in ("jarm", "motion"):
+        raise ValueError(f"question = {short(q)} is not one of 'jarm', 'motion'")
+    return q
 
 
 @refuses_km
@@ -260,6 +333,7 @@ def uncertainty_map(
     seed: int = 0,
     sampling: Sampling = "random",
     question: str = "jarm",
+    method: str = "sampling",
     invalid: str = "truncate",
     confidence: float = 0.95,
     rule: Rule = "paper",
@@ -267,7 +341,8 @@ def uncertainty_map(
     n_threads: int = 0,
     progress: bool | Progress | None = None,
 ) -> UncertaintyMap:
-    """P(JARM) under tolerances at every point of the grid α × χ × km_frac.
+    """P(JARM) under tolerances at every point of the grid α × χ × km_frac (and, with
+    ``question="motion"``, the first flight's statistics).
 
     At every grid point (the nominal body χ, k_m = km_frac (1 − χ) on a ramp of angle
     α, with the map's ``mu_s``) ``n`` samples spread by ``sd`` and ``bounds`` are
@@ -277,6 +352,14 @@ def uncertainty_map(
     numbers), so neighbouring points differ by the physics, not by sampling noise, and a
     point's values do not depend on the rest of the grid. The work runs in the core in
     batches of about 1.3e5 samples (20 x 20 x 4 points with n = 2000: a few seconds).
+
+    With ``question="motion"`` each sample runs the full motion to its first landing
+    (:func:`eccjump.motion_points`, batches of about 6.6e4 samples: about 6 s per 1e5 samples
+    on 2 cores) with the defaults of ``uncertainty(question="motion")`` (μ_k the sample's μ_s,
+    no restitution, a start at rest): an :class:`UncertaintyMotionMap` whose fields at a grid
+    point are that ``uncertainty``'s P(JARM), interval, the shares that fly and that slip
+    first, and the median and 95 % range of the first lift-off's time, flight time and
+    distance.
 
     Parameters
     ----------
@@ -302,8 +385,17 @@ def uncertainty_map(
         Seed of the unit-cube points (numpy's PCG64, or the Sobol' scrambling), ≥ 0.
     sampling : {"random", "sobol"}, default "random"
         As in :func:`uncertainty`.
-    question : {"jarm"}, default "jarm"
-        The closed-form JARM classification (the full motion is not mapped: a ValueError).
+    question : {"jarm", "motion"}, default "jarm"
+        ``"jarm"``: the closed-form JARM classification; ``"motion"``: the full motion to the
+        first landing (the same four parameters vary; its options are the defaults).
+    method : {"sampling", "delta"}, default "sampling"
+        ``"delta"``: no sample, a fast first look: the first-order (delta-method) P(JARM) of
+        :func:`uncertainty`'s ``delta`` at every grid point, from one batched
+        ``jarm(..., derivatives=True)`` over the grid (``n``, ``seed``, ``sampling`` and
+        ``invalid`` play no part): an :class:`UncertaintyDeltaMap`, NaN with a
+        ``delta_status`` where the linearisation fails at the nominal point (no JARM there,
+        an earlier friction ratio deciding, singular derivatives), flagged (status 6) where
+        the tolerances reach another verdict. Question "jarm" only.
     invalid : {"truncate", "count"}, default "truncate"
         Samples outside the physical range, as in :func:`uncertainty`.
     confidence : float, default 0.95
@@ -321,13 +413,18 @@ def uncertainty_map(
     -------
     UncertaintyMap
         The fields per grid point (``p_jarm``, ``p_jarm_low``, ``p_jarm_high``,
-        ``n_valid``, ``p_<reason>``).
+        ``n_valid``, ``p_<reason>``); for "motion" an :class:`UncertaintyMotionMap` (``p_jarm``
+        and its interval, ``n_valid``, ``p_flies``, ``p_slipped_first``, and
+        ``<quantity>_median``, ``_q025``, ``_q975`` of ``liftoff_t``, ``flight_time``,
+        ``distance``); for ``method="delta"`` an :class:`UncertaintyDeltaMap` (``p_jarm``,
+        ``theta_J_sd``, ``delta_status``).
 
     Raises
     ------
     ValueError
         For an axis out of range, a bad ``mu_s``, tolerance or option, ``question`` other
-        than "jarm"; the message names the parameter and its range.
+        than "jarm" or "motion", ``method="delta"`` with "motion"; the message names the
+        parameter and its range.
     TypeError
         For ``km=`` or an argument of the wrong type.
     MemoryError
@@ -351,7 +448,8 @@ def uncertainty_map(
     >>> m.shape, sorted(m.fields)[:3]
     ((3, 2, 1), ['n_valid', 'p_jarm', 'p_jarm_high'])
     """
-    _question(question)
+    q = _question(question)
+    how_ = _method(method, q)
     a, c, f = _grid_axes(alpha, chi, km_frac)
     mu = real("mu_s", mu_s)
     probe = {"chi": 0.0, "km": 0.0, "alpha": 0.0, "mu_s": mu, "mu_k": mu}
@@ -364,20 +462,21 @@ def uncertainty_map(
     spreads = GridSpread(spec.sd, spec.bounds, spec.varied, policy == "truncate", mu, name, level)
     shape = (a.size, c.size, f.size)
     points = math.prod(shape)
-    _fits(points, size, len(spec.varied))
-    cube = unit_cube(size, len(spec.varied), seed_, how)
+    if how_ == "delta":  # no sample: the derivatives at the nominal points only
+        size, seed_, how, policy = 0, 0, "delta", "none"
+    _fits(q, points, size, len(spec.varied))
+    cube = unit_cube(size, len(spec.varied), seed_, how) if size else np.empty((0, 0))
+    cls, kind, grid = _ESTIMATORS[q if how_ == "sampling" else "delta"]
     if chunks is None:
-        with reporting(progress, "sample") as report:
-            flat = grid_fields(a, c, f, cube, spreads, n_threads, report)
+        with reporting(progress, "sample" if size else "point") as report:
+            flat = grid(a, c, f, cube, spreads, n_threads, report)
         fields = {k: v.reshape(shape) for k, v in flat.items()}
     else:
         if checked(progress):
             raise ValueError("progress needs chunks=None (dask reports the progress of a lazy map)")
         blocks = normalize_chunks(chunks, shape)
-        fields = lazy_fields(
-            UNCERTAINTY, grid_fields, (a, c, f), blocks, (cube, spreads, n_threads)
-        )
-    return UncertaintyMap(
+        fields = lazy_fields(kind, grid, (a, c, f), blocks, (cube, spreads, n_threads))
+    return cls(
         alpha=a,
         chi=c,
         km_frac=f,
@@ -394,17 +493,38 @@ def uncertainty_map(
     )
 
 
+#: The map class, kind and grid function of each question (sampled) and of the first order.
+_ESTIMATORS: dict[str, tuple[type[UncertaintyMap], MapKind, Callable[..., dict[str, NDArray]]]] = {
+    "jarm": (UncertaintyMap, UNCERTAINTY, grid_fields),
+    "motion": (UncertaintyMotionMap, UNCERTAINTY_MOTION, motion_grid_fields),
+    "delta": (UncertaintyDeltaMap, UNCERTAINTY_DELTA, delta_grid_fields),
+}
+
 #: Bytes per sample of a batch: its four parameter columns, the grid copies, the cube and the
 #: outcomes of :func:`.questions.evaluate` (about 30 bytes), with room.
 _SAMPLE_BYTES = 24 * F64
+#: The same for the full motion: eight parameter columns, their copies and the outcomes of
+#: a motion point, with room.
+_MOTION_SAMPLE_BYTES = 24 * F64 + 2 * MOTION.bytes_per_point()
 
 
-def _fits(points: int, n: int, varied: int) -> None:
-    """MemoryError before any work if the map, the cube and a batch cannot fit."""
-    per_point = UNCERTAINTY.bytes_per_point() + 3 * F64  # the grid's nominal columns
+def _fits(question: str, points: int, n: int, varied: int) -> None:
+    """MemoryError before any work if the map, the cube and a batch cannot fit (a batch of
+    the full motion holds at least one grid point's n samples)."""
+    kind = UNCERTAINTY if question == "jarm" else UNCERTAINTY_MOTION
+    per_point = kind.bytes_per_point() + 3 * F64  # the grid's nominal columns
     need = result_bytes(points, per_point) + n * max(varied, 1) * F64
-    need += min(BLOCK, max(n, 1) * points) * _SAMPLE_BYTES
+    if question == "jarm":
+        need += min(BLOCK, max(n, 1) * points) * _SAMPLE_BYTES
+    else:
+        need += max(min(MOTION_BLOCK, n * points), n) * _MOTION_SAMPLE_BYTES
     check_fits("uncertainty_map", points, need, "alpha, chi, km_frac or n")
 
 
-__all__ = ["MAP_PARAMETERS", "UncertaintyMap", "uncertainty_map"]
+__all__ = [
+    "MAP_PARAMETERS",
+    "UncertaintyDeltaMap",
+    "UncertaintyMap",
+    "UncertaintyMotionMap",
+    "uncertainty_map",
+]
