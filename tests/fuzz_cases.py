@@ -1754,8 +1754,9 @@ def case_explore_api(d: Drawer) -> Case:
 HTTP_STATUSES = {200, 400, 403, 404, 414, 431, 501, 505}
 HTTP_TARGETS = (
     "/", "/index.html", "/explorer.js", "/explorer.css", "/api/controls", "/api/region",
-    "/api/motion", "/api/motion", "/api/", "/api/nope", "/nope", "/../pyproject.toml",
-    "/%2e%2e/%2e%2e/pyproject.toml", "/static/../server.py", "/api/..%2f..%2fcli",
+    "/api/motion", "/api/motion", "/api/uncertainty", "/api/", "/api/nope", "/nope",
+    "/../pyproject.toml", "/%2e%2e/%2e%2e/pyproject.toml", "/static/../server.py",
+    "/api/..%2f..%2fcli",
     "//evil.example/api/controls", "http://evil.example/api/controls", "*", "/\x00", "/%ff",
 )  # fmt: skip
 #: Host headers: this server's names (PORT becomes the server's port), then other hosts.

@@ -235,6 +235,86 @@ def test_server_serves_the_page_and_answers_requests():
         get(srv.url)
 
 
+# --- the P(JARM) panel of an uncertainty map ------------------------------------------------
+
+#: A small uncertainty map's grid: χ given in descending order (the page draws it ascending).
+U_ALPHA = np.radians([35.0, 40.0, 45.0])
+U_CHI = np.array([0.2, 0.15, 0.1])
+U_KM_FRAC = np.array([0.0, 0.1, 0.4])
+
+
+@pytest.fixture(scope="module")
+def umap():
+    return eccjump.uncertainty_map(U_ALPHA, U_CHI, U_KM_FRAC, 1.0, sd={"alpha": 0.004}, n=100)
+
+
+@pytest.fixture(scope="module")
+def map_files(umap, tmp_path_factory):
+    folder = tmp_path_factory.mktemp("maps")
+    region = eccjump.region(U_ALPHA, U_CHI, U_KM_FRAC, 1.0)
+    return umap.save(folder / "p.npz"), region.save(folder / "region.npz")
+
+
+@pytest.mark.parametrize(
+    ("chi", "km", "k"), [("0.15", "0.02", 0), ("0.2", "0.1", 1), ("0.5", "0.5", 2)]
+)
+def test_uncertainty_panel_is_the_maps_slice_nearest_to_km_over_1_minus_chi(umap, chi, km, k):
+    status, body = api.handle("uncertainty", {"chi": chi, "km": km}, umap)
+    assert status == 200 and body["available"]
+    json.dumps(body, allow_nan=False)
+    assert body["km_frac"] == U_KM_FRAC[k]
+    assert body["wanted_km_frac"] == pytest.approx(float(km) / (1 - float(chi)))
+    ascending = umap.fields["p_jarm"][:, ::-1, k]  # rows α, columns χ ascending
+    assert body["p_jarm"] == pytest.approx(np.round(ascending, 4).ravel().tolist())
+    assert np.all(np.array(body["p_jarm_low"]) <= np.array(body["p_jarm_high"]))
+    assert body["chi_edges"] == pytest.approx([0.075, 0.125, 0.175, 0.225])
+    assert body["alpha_edges"] == pytest.approx([32.5, 37.5, 42.5, 47.5])
+    assert body["levels"] == [0.5, 0.95] and "alpha ± 0.229°" in body["tolerances"]
+
+
+def test_uncertainty_panel_without_a_map_or_with_a_bad_query(umap):
+    assert api.handle("uncertainty", {}) == (200, {"available": False})
+    assert "km" in refused_with("uncertainty", {"km": "2"}, umap)
+
+
+def refused_with(endpoint: str, query: dict[str, str], m: object) -> str:
+    status, body = api.handle(endpoint, query, m)
+    assert status == 400 and len(body["error"]) <= 200
+    return body["error"]
+
+
+def test_server_answers_the_uncertainty_panel_of_its_map_file(map_files, umap):
+    with ExplorerServer(0, uncertainty=map_files[0]) as srv:
+        status, _, data = get(srv.url + "api/uncertainty?chi=0.15&km=0.02")
+    assert status == 200
+    assert json.loads(data)["p_jarm"] == api.handle("uncertainty", {}, umap)[1]["p_jarm"]
+
+
+def test_a_map_of_another_kind_is_refused_naming_it(map_files):
+    with pytest.raises(ValueError, match=r"^uncertainty: .*region\.npz.* holds a 'jarm' map"):
+        ExplorerServer(0, uncertainty=map_files[1])
+    with pytest.raises(ValueError, match=r"^uncertainty is a 'jarm' map, not an uncertainty"):
+        ExplorerServer(0, uncertainty=eccjump.load(map_files[1]))
+    with pytest.raises(TypeError, match="uncertainty must be an UncertaintyMap"):
+        ExplorerServer(0, uncertainty=3)  # type: ignore[arg-type]
+    with pytest.raises(FileNotFoundError):
+        ExplorerServer(0, uncertainty=map_files[1].with_name("none.npz"))
+
+
+def test_cli_refuses_a_map_of_another_kind_in_one_line(map_files, capsys):
+    from eccjump.cli import main
+
+    assert main(["explore", "--no-browser", "--uncertainty", str(map_files[1])]) == 2
+    err = capsys.readouterr().err.strip()
+    assert err.startswith("eccjump: error: --uncertainty: ") and "holds a 'jarm' map" in err
+    assert len(err.splitlines()) == 1 and len(err) <= 200
+    assert (
+        main(["explore", "--no-browser", "--uncertainty", str(map_files[1].with_name("none.npz"))])
+        == 1
+    )
+    assert "--uncertainty" in capsys.readouterr().err
+
+
 # --- the server under abuse (raw requests from this machine) -------------------------------
 
 #: Every kind of route: the page's files, the requests, an unknown request, an unknown file.
@@ -520,6 +600,17 @@ def test_widget_answers_the_page_through_its_messages(widget_module, monkeypatch
     assert sent[0]["status"] == 200
     assert sent[0]["body"]["numbers"]["liftoff"]["theta_deg"] == pytest.approx(334.34383792)
     assert sent[1]["status"] == 400 and sent[1]["body"]["error"].startswith("No such body")
+
+
+def test_widget_answers_the_uncertainty_panel_of_its_map(widget_module, map_files, monkeypatch):
+    sent: list[dict] = []
+    for w, available in ((eccjump.explore(uncertainty=map_files[0]), True),
+                         (eccjump.explore(), False)):  # fmt: skip
+        monkeypatch.setattr(w, "send", lambda content, buffers=None: sent.append(content))
+        w._answer(w, {"kind": "request", "id": 1, "endpoint": "uncertainty", "query": {}}, [])
+        assert sent[-1]["status"] == 200 and sent[-1]["body"]["available"] is available
+    with pytest.raises(ValueError, match=r"uncertainty: .* holds a 'jarm' map"):
+        eccjump.explore(uncertainty=map_files[1])
 
 
 @pytest.mark.parametrize(

@@ -138,6 +138,7 @@ def test_first_view_shows_the_readme_jump(page):
         " return c.toDataURL(); }"
     )
     assert picture(page)["map"] != blank
+    assert page.locator(".ej-prob").is_hidden()  # no uncertainty map given: no such panel
 
 
 def test_every_control_has_a_name_and_a_visible_value(page):
@@ -298,6 +299,38 @@ def test_the_widget_front_end_talks_through_its_model(browser):
     act(pg, "ArrowLeft on chi (widget)", lambda: pg.keyboard.press("ArrowLeft"))
     assert pg.evaluate("window.saved.at(-1).chi") == "0.49"
     pg.close()
+
+
+def test_the_p_jarm_panel_of_an_uncertainty_map(browser):
+    """Given a map, the page draws its P(JARM) below the region, on the same axes, says the
+    value under the cursor and moves the point on a click."""
+    import numpy as np
+
+    import eccjump
+
+    alpha, chi = np.radians([30.0, 40.0, 50.0]), np.array([0.1, 0.15, 0.2, 0.3])
+    m = eccjump.uncertainty_map(alpha, chi, [0.0, 0.1], 1.0, sd={"alpha": 0.004}, n=100)
+    with ExplorerServer(0, uncertainty=m) as server:
+        pg = browser.new_page(viewport={"width": 1280, "height": 1100})
+        pg.goto(server.url)
+        wait_settled(pg, 0)
+        assert pg.locator(".ej-prob").is_visible()
+        assert "km_frac = 0 " in pg.inner_text(".ej-prob .ej-title")
+        box = pg.locator(".ej-prob-map").bounding_box()
+        scale = box["width"] / 460  # PMAP.width
+        at = (MAP["x0"] + 0.15 * MAP["w"]) * scale, (MAP["y0"] + MAP["h"] * (1 - 40 / 90)) * scale
+        pg.mouse.move(box["x"] + at[0], box["y"] + at[1])
+        shown = f"P(JARM) = {m.p_jarm[1, 1, 0]:.3f} [{m.p_jarm_low[1, 1, 0]:.3f}, "
+        assert shown in pg.inner_text(".ej-prob-value")
+        pixels = pg.evaluate("document.querySelector('.ej-prob-map').toDataURL()")
+        act(
+            pg,
+            "click on the P(JARM) map",
+            lambda: pg.mouse.click(box["x"] + at[0], box["y"] + at[1] + 30),
+        )
+        assert value(pg, "alpha") != "40.0°"
+        assert pg.evaluate("document.querySelector('.ej-prob-map').toDataURL()") != pixels
+        pg.close()
 
 
 def test_zz_log_the_redraw_times():

@@ -15,6 +15,7 @@ import webbrowser
 
 from eccjump.cli._args import int_in
 from eccjump.cli._output import OutputError
+from eccjump.explorer.probability import checked_map
 from eccjump.explorer.server import DEFAULT_PORT, ExplorerServer
 
 
@@ -33,14 +34,22 @@ def add_parser(sub: argparse._SubParsersAction) -> None:
         help=f"port on 127.0.0.1 (default {DEFAULT_PORT}; 0: any free port)",
     )
     p.add_argument(
+        "--uncertainty",
+        metavar="FILE",
+        help="an uncertainty map (eccjump map --kind uncertainty -o FILE): its P(JARM) is "
+        "shown beside the JARM region, with the 0.5 and 0.95 contours",
+    )
+    p.add_argument(
         "--no-browser", action="store_true", help="print the address, do not open a browser"
     )
     p.set_defaults(func=_cmd_explore)
 
 
 def _cmd_explore(args: argparse.Namespace) -> int:
+    # the map first: a bad file is refused before the port is taken
+    umap = None if args.uncertainty is None else checked_map(args.uncertainty, "--uncertainty")
     try:
-        server = ExplorerServer(args.port)
+        server = ExplorerServer(args.port, uncertainty=umap)
     except OSError as err:
         why = err.strerror or type(err).__name__
         raise OutputError(

@@ -1,9 +1,11 @@
-"""The explorer's three requests, as plain functions of a query (a mapping of strings, as
+"""The explorer's requests, as plain functions of a query (a mapping of strings, as
 a URL gives it): ``controls`` (the sliders, and the colours of the modes: the one palette of
 :mod:`eccjump._base.palette`), ``region`` (the JARM region slice over (χ, α)
-at the current k_m and μ_s) and ``motion`` (the full motion of the current point, sampled
-for the animation, and its numbers). The HTTP server and the Jupyter widget both answer
-through :func:`handle`, so the page behaves the same in both.
+at the current k_m and μ_s), ``motion`` (the full motion of the current point, sampled
+for the animation, and its numbers) and ``uncertainty`` (P(JARM) of the uncertainty map the
+explorer was given, on the slice of the current k_m: :mod:`.probability`). The HTTP server
+and the Jupyter widget both answer through :func:`handle`, so the page behaves the same in
+both.
 
 Every answer is JSON-ready data; a bad or impossible query is a short message for the page
 (status 400), never a traceback.
@@ -15,7 +17,7 @@ import math
 import time
 import traceback
 from collections.abc import Callable, Mapping
-from functools import lru_cache
+from functools import lru_cache, partial
 from typing import Any
 
 import numpy as np
@@ -25,8 +27,9 @@ from eccjump._base.body import Cylinder
 from eccjump._base.checks import Rule
 from eccjump._base.palette import MODE_COLORS
 from eccjump.classification.classify import Reason, jarm
-from eccjump.explorer import controls
+from eccjump.explorer import controls, probability
 from eccjump.motion.simulation import MODES, MotionResult, simulate
+from eccjump.studies.uncertainty.map import UncertaintyMap
 
 #: What each verdict of the JARM classification means, for the page.
 REASON_TEXT: dict[str, str] = {
@@ -217,6 +220,14 @@ def motion(query: Mapping[str, str]) -> dict[str, Any]:
     }
 
 
+def uncertainty(query: Mapping[str, str], m: UncertaintyMap | None) -> dict[str, Any]:
+    """P(JARM) of the explorer's uncertainty map ``m`` on the slice of the query's k_m and
+    χ (:func:`.probability.panel`); ``{"available": False}`` when it was given none."""
+    if m is None:
+        return {"available": False}
+    return probability.panel(m, number(query, "km"), number(query, "chi"))
+
+
 def sampled(res: MotionResult) -> dict[str, Any]:
     """The run at evenly spaced times: the axis C and the centre of mass G in ramp
     coordinates (x down the ramp, y along its normal, in R), θ and the mode of each time."""
@@ -306,13 +317,19 @@ ENDPOINTS: dict[str, Callable[[Mapping[str, str]], dict[str, Any]]] = {
 }
 
 
-def handle(endpoint: str, query: Mapping[str, str]) -> tuple[int, dict[str, Any]]:
+def handle(
+    endpoint: str, query: Mapping[str, str], uncertainty_map: UncertaintyMap | None = None
+) -> tuple[int, dict[str, Any]]:
     """(HTTP status, JSON-ready answer) of a request: 200 and the data, 400 and
     ``{"error": message}`` for a query the page should explain, 404 for an unknown request.
     Library errors (a ValueError or TypeError naming a parameter) are 400 too; anything else
     is 500 with a one-line message (the page shows it; the traceback goes to the server's
-    stderr, never to the page)."""
+    stderr, never to the page). ``uncertainty_map``: the map of the ``uncertainty`` request
+    (checked by :func:`.probability.checked_map`), the one request that needs the
+    explorer's own data."""
     fn = ENDPOINTS.get(endpoint)
+    if endpoint == "uncertainty":
+        fn = partial(uncertainty, m=uncertainty_map)
     if fn is None:
         return 404, {"error": f"no such request: {endpoint[:40]!r}"}
     try:

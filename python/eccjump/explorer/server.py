@@ -15,6 +15,7 @@ from __future__ import annotations
 
 import io
 import json
+import os
 import socket
 import sys
 import threading
@@ -27,6 +28,8 @@ from typing import Any
 from urllib.parse import parse_qsl
 
 from eccjump.explorer import api
+from eccjump.explorer.probability import checked_map
+from eccjump.studies.uncertainty.map import UncertaintyMap
 
 #: The files of the page: URL path -> (file in static/, content type).
 FILES = {
@@ -132,7 +135,9 @@ class _Handler(BaseHTTPRequestHandler):
         path, _, query = self.path.partition("?")
         if path.startswith("/api/"):
             fields = dict(parse_qsl(query, keep_blank_values=True))
-            status, answer = api.handle(path.removeprefix("/api/"), fields)
+            status, answer = api.handle(
+                path.removeprefix("/api/"), fields, self.server.uncertainty_map
+            )
             self._send(status, _json(answer), "application/json")
         elif path in FILES:
             name, kind = FILES[path]
@@ -159,6 +164,8 @@ class _Server(ThreadingHTTPServer):
     daemon_threads = True
     block_on_close = False
     verbose = False
+    #: The map of the P(JARM) panel (None: no panel).
+    uncertainty_map: UncertaintyMap | None = None
 
     def __init__(self, address: tuple[str, int], handler: type[_Handler]) -> None:
         super().__init__(address, handler)
@@ -216,7 +223,9 @@ def _json(answer: dict[str, Any]) -> bytes:
 class ExplorerServer:
     """The explorer's page and requests on ``http://127.0.0.1:port/``.
 
-    ``port=0`` takes any free port (:attr:`url` tells which). Use :meth:`start` to serve
+    ``port=0`` takes any free port (:attr:`url` tells which). ``uncertainty``: an
+    :class:`~eccjump.UncertaintyMap` (or the path of its file) whose P(JARM) the page shows
+    beside the JARM region, on the slice of the current k_m. Use :meth:`start` to serve
     from a background thread (a notebook, a test) and :meth:`stop` to end it, or
     :meth:`serve_forever` to serve from this thread until Ctrl-C. Also a context manager
     (``with ExplorerServer(0) as server: ...`` serves in the background while inside).
@@ -224,12 +233,25 @@ class ExplorerServer:
     Raises
     ------
     OSError
-        When the port cannot be had (in use, or not allowed).
+        When the port cannot be had (in use, or not allowed), or the uncertainty map's file
+        cannot be read.
+    ValueError
+        For an ``uncertainty`` file that is no uncertainty map (a map of another kind is
+        named).
     """
 
-    def __init__(self, port: int = DEFAULT_PORT, *, verbose: bool = False) -> None:
+    def __init__(
+        self,
+        port: int = DEFAULT_PORT,
+        *,
+        verbose: bool = False,
+        uncertainty: UncertaintyMap | str | os.PathLike | None = None,
+    ) -> None:
+        # the map first: a bad file is refused before the port is taken
+        umap = None if uncertainty is None else checked_map(uncertainty, "uncertainty")
         self._httpd = _Server((HOST, port), _Handler)
         self._httpd.verbose = verbose
+        self._httpd.uncertainty_map = umap
         self._thread: threading.Thread | None = None
 
     @property

@@ -11,16 +11,20 @@ from __future__ import annotations
 
 import functools
 import math
+import os
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
 from eccjump._base.checks import Rule, optional_real, real
 from eccjump._base.units import FOR_DEGREES
 from eccjump.explorer import api, controls
+from eccjump.explorer.probability import checked_map
 from eccjump.motion.options import MotionOptions
 
 if TYPE_CHECKING:
     import anywidget
+
+    from eccjump.studies.uncertainty.map import UncertaintyMap
 
 STATIC = Path(__file__).parent / "static"
 
@@ -42,8 +46,10 @@ def widget_class() -> type[anywidget.AnyWidget]:
         _css = STATIC / "explorer.css"
         params = traitlets.Dict().tag(sync=True)
 
-        def __init__(self, **kwargs: Any) -> None:
+        def __init__(self, uncertainty_map: UncertaintyMap | None = None, **kwargs: Any) -> None:
             super().__init__(**kwargs)
+            # the P(JARM) panel's map stays in the kernel: the page asks for its slices
+            self._uncertainty_map = uncertainty_map
             self.on_msg(self._answer)
 
         def _answer(self, _widget: object, content: object, _buffers: object) -> None:
@@ -51,7 +57,8 @@ def widget_class() -> type[anywidget.AnyWidget]:
                 return
             query = content.get("query")
             query = {str(k): str(v) for k, v in query.items()} if isinstance(query, dict) else {}
-            status, body = api.handle(str(content.get("endpoint")), query)
+            endpoint = str(content.get("endpoint"))
+            status, body = api.handle(endpoint, query, self._uncertainty_map)
             self.send({"kind": "response", "id": content.get("id"), "status": status, "body": body})
 
     return Explorer
@@ -69,6 +76,7 @@ def explore(
     omega0: float = 0.0,
     rule: Rule = "paper",
     t_max: float = 15.0,
+    uncertainty: UncertaintyMap | str | os.PathLike | None = None,
 ) -> anywidget.AnyWidget:
     """The interactive explorer in a Jupyter notebook, starting at the given point.
 
@@ -103,6 +111,11 @@ def explore(
         The lift-off rule from rolling.
     t_max : float, default 15.0
         Duration of the motion [√(R/g)], in [2, 60].
+    uncertainty : UncertaintyMap, str, os.PathLike or None, default None
+        A map of P(JARM) under tolerances (:func:`eccjump.uncertainty_map`), or the path of
+        its file: shown beside the JARM region on the map's km_frac slice nearest to the
+        current k_m / (1 − χ), with its 0.5 and 0.95 contours and the value under the
+        cursor. None: no such panel.
 
     Returns
     -------
@@ -114,8 +127,12 @@ def explore(
     ------
     ValueError
         For a value outside its slider's range; the message names it, its range and unit.
+        For an ``uncertainty`` file that is no uncertainty map (a map of another kind is
+        named).
     TypeError
         For a value of a wrong type (a bool, a string, None where a number is due).
+    OSError
+        For an ``uncertainty`` file that cannot be read.
     ImportError
         Without anywidget: ``pip install "eccjump[explore]"``.
 
@@ -160,7 +177,8 @@ def explore(
     tie = point["mu_k"] is None
     params = {k: repr(v) for k, v in point.items() if v is not None}
     params.update(rule=run.rule, tie="1" if tie else "0")
-    return widget_class()(params=params)
+    umap = None if uncertainty is None else checked_map(uncertainty, "uncertainty")
+    return widget_class()(umap, params=params)
 
 
 def _in_range(key: str, value: float) -> None:

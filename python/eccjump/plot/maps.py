@@ -15,6 +15,7 @@ from eccjump.classification.starts import OptimalStart, StartMap
 from eccjump.motion.fields import sequence_name
 from eccjump.motion.maps import MotionMap
 from eccjump.studies.uncertainty.map import UncertaintyMap
+from eccjump.studies.uncertainty.map_fields import PROBABILITY_LEVELS
 
 if TYPE_CHECKING:
     from matplotlib.axes import Axes
@@ -339,9 +340,6 @@ def sequence_map(m: MotionMap, *, fig: FigureBase | None = None, panels: int = 4
 # --------------------------------------------------------------------------------------------
 # P(JARM) under tolerances (eccjump.uncertainty_map / eccjump map --kind uncertainty)
 # --------------------------------------------------------------------------------------------
-
-#: The contours of :func:`probability_map`: an even chance and the 95 % design target.
-PROBABILITY_LEVELS = (0.5, 0.95)
 
 
 @overload

@@ -1,6 +1,8 @@
 // The eccjump explorer: sliders for a point (α, χ, k_m, μ_s, μ_k, e, θ0, θ̇0, rule), the
 // JARM region slice over (χ, α) with the point marked (click to move it), the full motion of
-// the point as an animated cylinder on the ramp with its mode timeline, and its numbers.
+// the point as an animated cylinder on the ramp with its mode timeline, and its numbers;
+// given an uncertainty map, also P(JARM) under its tolerances below the region, on the
+// same axes.
 //
 // One module for two hosts, with no dependency and nothing fetched from the internet:
 //   - the local page (index.html): mount(el, httpHost()) asks the Python server's /api/…;
@@ -28,10 +30,22 @@ const REASON_COLORS = {
 };
 // The controls whose change asks for a new region slice (the others move only the point).
 const REGION_KEYS = ["km", "mu_s", "theta0", "omega0", "rule"];
+// The controls whose change asks for a new P(JARM) slice (its km_frac is k_m / (1 − χ)).
+const UNCERTAINTY_KEYS = ["km", "chi"];
+// The requests of a redraw, in the order they are sent.
+const ENDPOINTS = ["region", "motion", "uncertainty"];
 // Inputs closer together than this make one request (a held arrow key, a drag).
 const DEBOUNCE_MS = 25;
 // The region map: canvas size and plot area, in canvas pixels.
 const MAP = { width: 400, height: 392, x0: 50, y0: 10, w: 336, h: 336 };
+// The P(JARM) panel: the region map's plot area, and its colour bar on the right.
+const PMAP = { ...MAP, width: 460, bar: { x: 398, w: 12 } };
+// matplotlib's viridis at 0, 1/4, 1/2, 3/4, 1 (the colours of P(JARM) in .plot()), and the
+// colour of a cell without a valid sample.
+const VIRIDIS = ["#440154", "#3b528b", "#21918c", "#5ec962", "#fde725"];
+const NO_SAMPLE = "#e4e4e4";
+// The contours' colours, as .plot() draws them: the even chance and the 95 % target.
+const LEVEL_COLORS = { 0.5: "#ffffff", 0.95: "#e41a1c" };
 // The scene: view box, where the axis C sits, pixels per R.
 const SCENE = { width: 640, height: 300, cx: 320, cy: 165, scale: 48 };
 const TIMELINE = { width: 640, height: 44, x0: 40, w: 580, y0: 6, h: 18 };
@@ -206,12 +220,8 @@ class RegionView {
     this.point = null;
     box.append(this.title, this.canvas, this.legend);
     this.canvas.addEventListener("click", (ev) => {
-      const r = this.canvas.getBoundingClientRect();
-      const x = ((ev.clientX - r.left) * MAP.width) / r.width;
-      const y = ((ev.clientY - r.top) * MAP.height) / r.height;
-      const chi = (x - MAP.x0) / MAP.w;
-      const alpha = (90 * (MAP.y0 + MAP.h - y)) / MAP.h;
-      if (chi >= 0 && chi <= 1 && alpha >= 0 && alpha <= 90) onPick(chi, alpha);
+      const at = mapPoint(this.canvas, MAP, ev);
+      if (at) onPick(...at);
     });
   }
 
@@ -273,53 +283,231 @@ class RegionView {
       ctx.imageSmoothingEnabled = false;
       ctx.drawImage(this.image, MAP.x0, MAP.y0, MAP.w, MAP.h);
     }
+    drawAxes(ctx);
+    if (this.point) drawMark(ctx, ...this.point);
+  }
+}
+
+// The frame, ticks and labels of a (χ, α) map (MAP's plot area).
+function drawAxes(ctx) {
+  ctx.strokeStyle = "#444";
+  ctx.lineWidth = 1;
+  ctx.strokeRect(MAP.x0 + 0.5, MAP.y0 + 0.5, MAP.w, MAP.h);
+  ctx.fillStyle = "#222";
+  ctx.font = "12px system-ui, sans-serif";
+  ctx.textAlign = "center";
+  for (const chi of [0, 0.25, 0.5, 0.75, 1]) {
+    const x = MAP.x0 + chi * MAP.w;
+    ctx.fillRect(x, MAP.y0 + MAP.h, 1, 5);
+    ctx.fillText(String(chi), x, MAP.y0 + MAP.h + 17);
+  }
+  ctx.fillText("χ = d/R", MAP.x0 + MAP.w / 2, MAP.y0 + MAP.h + 33);
+  ctx.textAlign = "right";
+  for (let a = 0; a <= 90; a += 15) {
+    const y = MAP.y0 + MAP.h - (a / 90) * MAP.h;
+    ctx.fillRect(MAP.x0 - 5, y, 5, 1);
+    ctx.fillText(`${a}°`, MAP.x0 - 8, y + 4);
+  }
+  ctx.save();
+  ctx.translate(12, MAP.y0 + MAP.h / 2);
+  ctx.rotate(-Math.PI / 2);
+  ctx.textAlign = "center";
+  ctx.fillText("ramp angle α", 0, 0);
+  ctx.restore();
+}
+
+// The point's marker: a ring and a cross, visible on any colour.
+function drawMark(ctx, chi, alpha) {
+  const x = MAP.x0 + chi * MAP.w;
+  const y = MAP.y0 + MAP.h - (alpha / 90) * MAP.h;
+  ctx.lineWidth = 3;
+  ctx.strokeStyle = "#fff";
+  ctx.beginPath();
+  ctx.arc(x, y, 7, 0, 2 * Math.PI);
+  ctx.stroke();
+  ctx.lineWidth = 1.5;
+  ctx.strokeStyle = "#000";
+  ctx.stroke();
+  ctx.beginPath();
+  ctx.moveTo(x - 11, y);
+  ctx.lineTo(x - 4, y);
+  ctx.moveTo(x + 4, y);
+  ctx.lineTo(x + 11, y);
+  ctx.moveTo(x, y - 11);
+  ctx.lineTo(x, y - 4);
+  ctx.moveTo(x, y + 4);
+  ctx.lineTo(x, y + 11);
+  ctx.stroke();
+}
+
+// (χ, α in degrees) under a mouse event on a map canvas of size `size` (MAP or PMAP), or
+// null outside the plot area.
+function mapPoint(canvas, size, ev) {
+  const r = canvas.getBoundingClientRect();
+  const x = ((ev.clientX - r.left) * size.width) / r.width;
+  const y = ((ev.clientY - r.top) * size.height) / r.height;
+  const chi = (x - MAP.x0) / MAP.w;
+  const alpha = (90 * (MAP.y0 + MAP.h - y)) / MAP.h;
+  return chi >= 0 && chi <= 1 && alpha >= 0 && alpha <= 90 ? [chi, alpha] : null;
+}
+
+// ------------------------------------------------------------------------------------------
+// P(JARM) of an uncertainty map
+// ------------------------------------------------------------------------------------------
+
+function viridis(p) {
+  const t = Math.min(1, Math.max(0, p)) * (VIRIDIS.length - 1);
+  const k = Math.min(VIRIDIS.length - 2, Math.floor(t));
+  const f = t - k;
+  const rgb = (hex, i) => parseInt(hex.slice(1 + 2 * i, 3 + 2 * i), 16);
+  const mix = (i) => Math.round(rgb(VIRIDIS[k], i) * (1 - f) + rgb(VIRIDIS[k + 1], i) * f);
+  return `rgb(${mix(0)}, ${mix(1)}, ${mix(2)})`;
+}
+
+// The index of the cell of `edges` (ascending) holding x, or -1.
+function cellOf(edges, x) {
+  for (let i = 0; i + 1 < edges.length; i++) if (x >= edges[i] && x <= edges[i + 1]) return i;
+  return -1;
+}
+
+class ProbabilityView {
+  constructor(box, onPick) {
+    this.box = element("div", { class: "ej-prob" });
+    this.title = element("p", { class: "ej-title" }, "P(JARM) under tolerances");
+    this.canvas = element("canvas", {
+      width: PMAP.width,
+      height: PMAP.height,
+      class: "ej-prob-map",
+      role: "img",
+      "aria-label": "P(JARM) under the map's tolerances over (χ, α); click to move the point",
+    });
+    this.readout = element("p", { class: "ej-prob-value" }, "");
+    this.note = element("p", { class: "ej-prob-note" });
+    this.box.append(this.title, this.canvas, this.readout, this.note);
+    this.box.hidden = true; // until a map answers
+    box.append(this.box);
+    this.data = null;
+    this.point = null;
+    this.canvas.addEventListener("click", (ev) => {
+      const at = mapPoint(this.canvas, PMAP, ev);
+      if (at) onPick(...at);
+    });
+    const hovered = (ev) => this.hover(mapPoint(this.canvas, PMAP, ev));
+    this.canvas.addEventListener("mousemove", hovered);
+    this.canvas.addEventListener("mouseleave", () => this.hover(null));
+  }
+
+  show(data, q) {
+    this.data = data;
+    this.box.hidden = false;
+    const wanted = data.wanted_km_frac === null ? "—" : data.wanted_km_frac.toFixed(3);
+    this.title.textContent =
+      `P(JARM) under tolerances at km_frac = ${data.km_frac} ` +
+      `(the map's slice nearest to k_m / (1 − χ) = ${wanted}), ` +
+      `μ_s = ${data.mu_s}, ${data.rule.replace("_", " ")} rule`;
+    const differs = Number(q.mu_s) !== data.mu_s || q.rule !== data.rule;
+    this.note.textContent =
+      `Tolerances: ${data.tolerances}; ${data.n} samples a point. Contours: ` +
+      `${data.levels.join(" (white) and ")} (red).` +
+      (differs ? " The map's μ_s and rule, not the sliders'." : "");
+    this.hover(null);
+    this.draw();
+  }
+
+  mark(chi, alpha) {
+    this.point = [chi, alpha];
+    this.draw();
+  }
+
+  hover(at) {
+    const d = this.data;
+    if (!d) return;
+    const i = at ? cellOf(d.chi_edges, at[0]) : -1;
+    const j = at ? cellOf(d.alpha_edges, at[1]) : -1;
+    if (i < 0 || j < 0) {
+      this.readout.textContent = "Point at the map for P(JARM) and its interval.";
+      return;
+    }
+    const k = j * (d.chi_edges.length - 1) + i;
+    const where = `χ = ${at[0].toFixed(3)}, α = ${at[1].toFixed(1)}°`;
+    this.readout.textContent =
+      d.p_jarm[k] === null
+        ? `${where}: no valid sample`
+        : `${where}: P(JARM) = ${d.p_jarm[k].toFixed(3)} ` +
+          `[${fixed(d.p_jarm_low[k], 3)}, ${fixed(d.p_jarm_high[k], 3)}] ` +
+          `(${Math.round(100 * d.confidence)} % interval)`;
+  }
+
+  draw() {
+    const ctx = this.canvas.getContext("2d");
+    ctx.clearRect(0, 0, PMAP.width, PMAP.height);
+    const d = this.data;
+    if (d) {
+      // whole pixels: neighbouring cells share their edge, with no seam between them
+      const X = (chi) => Math.round(MAP.x0 + chi * MAP.w);
+      const Y = (a) => Math.round(MAP.y0 + MAP.h - (a / 90) * MAP.h);
+      const nx = d.chi_edges.length - 1;
+      const ny = d.alpha_edges.length - 1;
+      const at = (i, j) => d.p_jarm[j * nx + i];
+      for (let j = 0; j < ny; j++) {
+        for (let i = 0; i < nx; i++) {
+          const p = at(i, j);
+          ctx.fillStyle = p === null ? NO_SAMPLE : viridis(p);
+          const x0 = X(d.chi_edges[i]);
+          const y1 = Y(d.alpha_edges[j + 1]);
+          ctx.fillRect(x0, y1, X(d.chi_edges[i + 1]) - x0, Y(d.alpha_edges[j]) - y1);
+        }
+      }
+      // each contour along the cell edges where P(JARM) crosses its level
+      for (const level of d.levels) {
+        const crosses = (a, b) => a !== null && b !== null && (a >= level) !== (b >= level);
+        ctx.strokeStyle = LEVEL_COLORS[level] || "#000";
+        ctx.lineWidth = level >= 0.9 ? 2 : 1.5;
+        ctx.beginPath();
+        for (let j = 0; j < ny; j++) {
+          for (let i = 0; i < nx; i++) {
+            if (i + 1 < nx && crosses(at(i, j), at(i + 1, j))) {
+              ctx.moveTo(X(d.chi_edges[i + 1]), Y(d.alpha_edges[j]));
+              ctx.lineTo(X(d.chi_edges[i + 1]), Y(d.alpha_edges[j + 1]));
+            }
+            if (j + 1 < ny && crosses(at(i, j), at(i, j + 1))) {
+              ctx.moveTo(X(d.chi_edges[i]), Y(d.alpha_edges[j + 1]));
+              ctx.lineTo(X(d.chi_edges[i + 1]), Y(d.alpha_edges[j + 1]));
+            }
+          }
+        }
+        ctx.stroke();
+      }
+      this.drawBar(d.levels);
+    }
+    drawAxes(ctx);
+    if (this.point) drawMark(ctx, ...this.point);
+  }
+
+  drawBar(levels) {
+    const ctx = this.canvas.getContext("2d");
+    const { x, w } = PMAP.bar;
+    for (let y = 0; y < MAP.h; y++) {
+      ctx.fillStyle = viridis(1 - y / MAP.h);
+      ctx.fillRect(x, MAP.y0 + y, w, 1);
+    }
     ctx.strokeStyle = "#444";
     ctx.lineWidth = 1;
-    ctx.strokeRect(MAP.x0 + 0.5, MAP.y0 + 0.5, MAP.w, MAP.h);
+    ctx.strokeRect(x + 0.5, MAP.y0 + 0.5, w, MAP.h);
     ctx.fillStyle = "#222";
     ctx.font = "12px system-ui, sans-serif";
-    ctx.textAlign = "center";
-    for (const chi of [0, 0.25, 0.5, 0.75, 1]) {
-      const x = MAP.x0 + chi * MAP.w;
-      ctx.fillRect(x, MAP.y0 + MAP.h, 1, 5);
-      ctx.fillText(String(chi), x, MAP.y0 + MAP.h + 17);
-    }
-    ctx.fillText("χ = d/R", MAP.x0 + MAP.w / 2, MAP.y0 + MAP.h + 33);
-    ctx.textAlign = "right";
-    for (let a = 0; a <= 90; a += 15) {
-      const y = MAP.y0 + MAP.h - (a / 90) * MAP.h;
-      ctx.fillRect(MAP.x0 - 5, y, 5, 1);
-      ctx.fillText(`${a}°`, MAP.x0 - 8, y + 4);
+    ctx.textAlign = "left";
+    for (const p of [0, ...levels, 1]) {
+      const y = MAP.y0 + MAP.h - p * MAP.h;
+      ctx.fillRect(x + w, y, 4, 1);
+      ctx.fillText(String(p), x + w + 6, y + 4);
     }
     ctx.save();
-    ctx.translate(12, MAP.y0 + MAP.h / 2);
+    ctx.translate(PMAP.width - 6, MAP.y0 + MAP.h / 2);
     ctx.rotate(-Math.PI / 2);
     ctx.textAlign = "center";
-    ctx.fillText("ramp angle α", 0, 0);
+    ctx.fillText("P(JARM)", 0, 0);
     ctx.restore();
-    if (this.point) {
-      const [chi, alpha] = this.point;
-      const x = MAP.x0 + chi * MAP.w;
-      const y = MAP.y0 + MAP.h - (alpha / 90) * MAP.h;
-      ctx.lineWidth = 3;
-      ctx.strokeStyle = "#fff";
-      ctx.beginPath();
-      ctx.arc(x, y, 7, 0, 2 * Math.PI);
-      ctx.stroke();
-      ctx.lineWidth = 1.5;
-      ctx.strokeStyle = "#000";
-      ctx.stroke();
-      ctx.beginPath();
-      ctx.moveTo(x - 11, y);
-      ctx.lineTo(x - 4, y);
-      ctx.moveTo(x + 4, y);
-      ctx.lineTo(x + 11, y);
-      ctx.moveTo(x, y - 11);
-      ctx.lineTo(x, y - 4);
-      ctx.moveTo(x, y + 4);
-      ctx.lineTo(x, y + 11);
-      ctx.stroke();
-    }
   }
 }
 
@@ -630,6 +818,7 @@ export function mount(el, host) {
   const root = element("div", { class: "ej-root" });
   root.dataset.regionDraws = "0";
   root.dataset.motionDraws = "0";
+  root.dataset.uncertaintyDraws = "0";
   root.dataset.settled = "0"; // redraws finished: every input answered and drawn
   const heading = element("p", { class: "ej-status", "aria-live": "polite" }, "Loading…");
   const message = element("div", { class: "ej-message", role: "alert" });
@@ -646,7 +835,15 @@ export function mount(el, host) {
 
   let disposed = false;
   let ui = null;
-  const state = { need: { region: true, motion: true }, busy: {}, since: null, timer: null };
+  // `uncertainty` is asked once at the start; a host without a map answers
+  // {available: false}, and the page asks no more (state.noMap)
+  const state = {
+    need: { region: true, motion: true, uncertainty: true },
+    busy: {},
+    since: null,
+    timer: null,
+    noMap: false,
+  };
 
   function query() {
     const q = {};
@@ -671,16 +868,20 @@ export function mount(el, host) {
   function changed(keys) {
     refreshOutputs();
     if (keys.some((k) => REGION_KEYS.includes(k))) state.need.region = true;
+    if (keys.some((k) => UNCERTAINTY_KEYS.includes(k)) && !state.noMap) {
+      state.need.uncertainty = true;
+    }
     state.need.motion = true;
     if (state.since === null) state.since = performance.now();
     ui.region.mark(Number(ui.inputs.chi.value), Number(ui.inputs.alpha.value));
+    ui.prob.mark(Number(ui.inputs.chi.value), Number(ui.inputs.alpha.value));
     clearTimeout(state.timer);
     state.timer = setTimeout(flush, DEBOUNCE_MS);
   }
 
   function flush() {
     host.remember(query());
-    for (const endpoint of ["region", "motion"]) {
+    for (const endpoint of ENDPOINTS) {
       if (state.need[endpoint] && !state.busy[endpoint]) run(endpoint);
     }
   }
@@ -693,7 +894,7 @@ export function mount(el, host) {
     const { status, body } = await host.request(endpoint, q);
     state.busy[endpoint] = false;
     if (disposed) return;
-    draw(endpoint, status, body, alpha);
+    draw(endpoint, status, body, alpha, q);
     if (state.need[endpoint]) {
       run(endpoint); // the point moved while this one was computed
       return;
@@ -701,9 +902,13 @@ export function mount(el, host) {
     settled();
   }
 
-  function draw(endpoint, status, body, alpha) {
+  function draw(endpoint, status, body, alpha, q) {
     const ok = status === 200;
-    if (endpoint === "region") {
+    if (endpoint === "uncertainty") {
+      if (ok && body.available) ui.prob.show(body, q);
+      else if (ok) state.noMap = true;
+      root.dataset.uncertaintyDraws = String(Number(root.dataset.uncertaintyDraws) + 1);
+    } else if (endpoint === "region") {
       if (ok) ui.region.show(body, ui.spec);
       root.dataset.regionDraws = String(Number(root.dataset.regionDraws) + 1);
     } else {
@@ -726,7 +931,7 @@ export function mount(el, host) {
   }
 
   function settled() {
-    if (state.need.region || state.need.motion || state.busy.region || state.busy.motion) return;
+    if (ENDPOINTS.some((e) => state.need[e] || state.busy[e])) return;
     if (state.since === null) return;
     const since = state.since;
     state.since = null;
@@ -757,20 +962,22 @@ export function mount(el, host) {
     const { inputs, outputs } = buildControls(left, body, prefix, start, (keys) => changed(keys));
     ui = { spec: body, inputs, outputs };
     ui.motion = new MotionView(motionBox, prefix);
-    ui.region = new RegionView(mapBox, (chi, alpha) => {
+    const pick = (chi, alpha) => {
       for (const [key, value] of [["chi", chi], ["alpha", alpha]]) {
         const c = body.controls.find((x) => x.key === key);
         ui.inputs[key].value = (Math.round(value / c.step) * c.step).toFixed(decimals(c.step));
       }
       changed(["chi", "alpha"]);
-    });
+    };
+    ui.region = new RegionView(mapBox, pick);
+    ui.prob = new ProbabilityView(mapBox, (chi, alpha) => pick(chi, alpha));
     ui.numbers = new NumbersView(numbersBox);
     suppressNotebookShortcuts(root);
     heading.textContent =
       "Move a slider (or click the map) to change the point; " +
       "units g = R = M = 1, angles in degrees.";
     root.dataset.ready = "1";
-    changed([...REGION_KEYS]);
+    changed([...REGION_KEYS, ...UNCERTAINTY_KEYS]);
   })();
 
   return () => {

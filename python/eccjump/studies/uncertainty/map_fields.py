@@ -52,6 +52,9 @@ BY_NAME: dict[str, Field] = {f.name: f for f in TABLE}
 DTYPES: dict[str, np.dtype] = {f.name: f.dtype for f in TABLE}
 FILL: dict[str, Any] = {f.name: f.fill for f in TABLE}
 VALID: dict[str, tuple[float, float]] = {f.name: f.valid for f in TABLE if f.dtype.kind == "f"}
+#: The contours drawn on P(JARM) (``.plot()`` and the explorer): an even chance and the 95 %
+#: design target.
+PROBABILITY_LEVELS = (0.5, 0.95)
 #: The share field of each outcome.
 SHARE_OF: dict[Reason, str] = {r: f"p_{r.name.lower()}" for r in OUTCOMES}
 
