@@ -75,25 +75,42 @@ def _interval_holds(values: Mapping[str, NDArray]) -> str | None:
     return None
 
 
+def _grid_kind(
+    name: str, fields: Any, dtypes: Any, fill: Any, cf_attrs: Any, codes: Any, **kwargs: Any
+) -> MapKind:
+    """A registered map kind over the region grid (``alpha``, ``chi``, ``km_frac``) that
+    keeps the uncertainty maps' settings (μ_s, n, seed, confidence, rule); the rest as
+    :class:`~eccjump.maps.kinds.MapKind` takes it."""
+    return register(
+        MapKind(
+            name,
+            fields,
+            dtypes,
+            fill,
+            cf_attrs,
+            ("mu_s", "n", "seed", "confidence", "rule"),
+            (("mu_s", "mu_s"), ("alpha", "alpha"), ("chi", "chi"), ("km_frac", "km_frac")),
+            ("alpha", "chi", "km_frac"),
+            codes,
+            **kwargs,
+        )
+    )
+
+
 #: The uncertainty map (:func:`eccjump.uncertainty_map`, ``eccjump map --kind uncertainty``)
 #: as a kind of map file, on alpha x chi x km_frac.
-UNCERTAINTY = register(
-    MapKind(
-        "uncertainty",
-        FIELDS,
-        DTYPES,
-        FILL,
-        cf_attrs,
-        ("mu_s", "n", "seed", "confidence", "rule"),
-        (("mu_s", "mu_s"), ("alpha", "alpha"), ("chi", "chi"), ("km_frac", "km_frac")),
-        ("alpha", "chi", "km_frac"),
-        {},
-        valid=VALID,
-        invalid=("n_valid", frozenset([0])),
-        agree=tuple(("n_valid", k, True) for k in FIELDS if k != "n_valid"),
-        validator=_interval_holds,
-        title="uncertainty",
-    )
+UNCERTAINTY = _grid_kind(
+    "uncertainty",
+    FIELDS,
+    DTYPES,
+    FILL,
+    cf_attrs,
+    {},
+    valid=VALID,
+    invalid=("n_valid", frozenset([0])),
+    agree=tuple(("n_valid", k, True) for k in FIELDS if k != "n_valid"),
+    validator=_interval_holds,
+    title="uncertainty",
 )
 
 
@@ -143,23 +160,18 @@ def _motion_cf_attrs(name: str) -> dict[str, Any]:
 #: P(JARM) and the first flight under tolerances (``uncertainty_map(question="motion")``)
 #: as a kind of map file: the shares are NaN exactly where no sample is valid; a quantile may
 #: be NaN anywhere (no valid sample flew there).
-UNCERTAINTY_MOTION = register(
-    MapKind(
-        "uncertainty_motion",
-        MOTION_FIELDS,
-        {f.name: f.dtype for f in MOTION_TABLE},
-        {f.name: f.fill for f in MOTION_TABLE},
-        _motion_cf_attrs,
-        ("mu_s", "n", "seed", "confidence", "rule"),
-        (("mu_s", "mu_s"), ("alpha", "alpha"), ("chi", "chi"), ("km_frac", "km_frac")),
-        ("alpha", "chi", "km_frac"),
-        {},
-        valid={f.name: f.valid for f in MOTION_TABLE if f.dtype.kind == "f"},
-        invalid=("n_valid", frozenset([0])),
-        agree=tuple(("n_valid", k, True) for k in MOTION_FIELDS[:6] if k != "n_valid"),
-        validator=_interval_holds,
-        title="uncertainty (full motion)",
-    )
+UNCERTAINTY_MOTION = _grid_kind(
+    "uncertainty_motion",
+    MOTION_FIELDS,
+    {f.name: f.dtype for f in MOTION_TABLE},
+    {f.name: f.fill for f in MOTION_TABLE},
+    _motion_cf_attrs,
+    {},
+    valid={f.name: f.valid for f in MOTION_TABLE if f.dtype.kind == "f"},
+    invalid=("n_valid", frozenset([0])),
+    agree=tuple(("n_valid", k, True) for k in MOTION_FIELDS[:6] if k != "n_valid"),
+    validator=_interval_holds,
+    title="uncertainty (full motion)",
 )
 
 #: The fields of a first-order map (``uncertainty_map(..., method="delta")``): P(JARM) and the
@@ -198,22 +210,17 @@ def _estimate_agrees(values: Mapping[str, NDArray]) -> str | None:
 
 
 #: The first-order P(JARM) over a grid as a kind of map file.
-UNCERTAINTY_DELTA = register(
-    MapKind(
-        "uncertainty_delta",
-        DELTA_FIELDS,
-        {f.name: f.dtype for f in DELTA_TABLE},
-        {f.name: f.fill for f in DELTA_TABLE},
-        _delta_cf_attrs,
-        ("mu_s", "n", "seed", "confidence", "rule"),
-        (("mu_s", "mu_s"), ("alpha", "alpha"), ("chi", "chi"), ("km_frac", "km_frac")),
-        ("alpha", "chi", "km_frac"),
-        {"delta_status": frozenset(int(s) for s in Status)},
-        valid={f.name: f.valid for f in DELTA_TABLE if f.dtype.kind == "f"},
-        invalid=("delta_status", frozenset([int(Status.INVALID)])),
-        validator=_estimate_agrees,
-        title="first-order uncertainty",
-    )
+UNCERTAINTY_DELTA = _grid_kind(
+    "uncertainty_delta",
+    DELTA_FIELDS,
+    {f.name: f.dtype for f in DELTA_TABLE},
+    {f.name: f.fill for f in DELTA_TABLE},
+    _delta_cf_attrs,
+    {"delta_status": frozenset(int(s) for s in Status)},
+    valid={f.name: f.valid for f in DELTA_TABLE if f.dtype.kind == "f"},
+    invalid=("delta_status", frozenset([int(Status.INVALID)])),
+    validator=_estimate_agrees,
+    title="first-order uncertainty",
 )
 
 __all__ = [
