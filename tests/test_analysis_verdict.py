@@ -25,7 +25,7 @@ from eccjump.cli import main
 from eccjump.studies.experiment import analyze
 from eccjump.studies.experiment.analysis import SIGNIFICANT, _slip_verdict
 from eccjump.studies.experiment.events import observe
-from eccjump.studies.experiment.fit import correlation_inflation
+from eccjump.studies.experiment.fit import correlation_inflation, flight_signal
 from eccjump.studies.experiment.track import first_frames
 from eccjump.studies.experiment.video import VideoTrack
 
@@ -59,6 +59,22 @@ def test_a_slip_that_comes_and_goes_is_slip_first_with_every_episode():
     seen = res.observed.slips
     assert any(s.onset.lo - 1 / 60 <= t1 and s.end.hi + 1 / 60 >= t2 for s in seen), seen
     assert res.fit_jarm is not None and res.fit.cost <= res.fit_jarm.cost
+
+
+def test_a_gentle_slip_that_sticks_again_is_not_jarm():
+    """Independent model, 60 fps, 2 px: the body slips 34.7-91.4 ms (3.4 frames) with mu_k
+    near mu_s, sticks, and lifts off from rolling at 102.9 ms. The free fit rolled (chi2_red
+    0.58) and a one-frame slip with the rolling fit's own mu_k (a slip with a 12 % drop of
+    friction) cost chi2 = 182: it was `jarm`. The gentlest slip (mu_k = mu_s) is the one to
+    exclude, and the refit from it explains the track better than rolling."""
+    case = rt.Case(chi=0.5346883126741298, km=0.03476102940999703, alpha=1.147337101693883,
+                   mu_s=0.5873991231989188, mu_k=0.5192114130748546, theta0=-2.93335204228217,
+                   omega0=1.600312165917336, fps=60.0, noise_px=2.0,
+                   marker_angle=-0.9740196422725806, seed=1005, family="slip")  # fmt: skip
+    made, res = _analyze(case)
+    assert made.slip_frames > 3
+    assert res.verdict != "jarm", (res.verdict, res.evidence)
+    assert res.fit_jarm is None or res.fit.cost <= res.fit_jarm.cost
 
 
 @pytest.mark.slow
@@ -209,6 +225,32 @@ def test_the_correlation_inflation_of_ar1_errors(rho, seed):
     got = correlation_inflation(residuals, n)
     want = max((1 + rho) / (1 - rho), 1.0)
     assert got == pytest.approx(want, rel=0.15, abs=0.15)
+
+
+@given(st.floats(0.5, 8.0), st.floats(1.0, 4.0), st.integers(0, 2**32 - 1))
+@settings(max_examples=15, deadline=None)
+def test_the_flight_signal_is_the_matched_filter_in_standard_errors(z, inflation, seed):
+    """A parabolic flight of |h| = z sigma (its norm over the frames) in white noise: the
+    matched filter sum(h_obs h) / (sigma |h|) is normal with mean z / sqrt(inflation) and
+    standard deviation 1 / sqrt(inflation), checked over 400 noise draws; contact frames
+    (h = 0) add nothing. A model that never flies gives 0."""
+    rng = np.random.default_rng(seed)
+    radius, sigma, n = 0.05, 1e-3, 120
+    tau = np.linspace(-1.0, 1.0, 80)
+    y = np.ones((6, n))  # the model's states: y[4] = 1 + h / R on the 80 flight frames
+    shape = 1.0 - tau**2
+    h = shape * z * sigma / float(np.linalg.norm(shape))
+    y[4, 20:100] += h / radius
+    fit = SimpleNamespace(value=lambda name: 1.0, states=y, correlation=inflation)
+    setup = SimpleNamespace(radius=radius)
+    heights = (y[4] - 1.0) * radius + sigma * rng.standard_normal((400, n))
+    got = np.array([flight_signal(fit, setup, SimpleNamespace(height=hh, sigma=sigma))
+                    for hh in heights])  # fmt: skip
+    scale = 1.0 / math.sqrt(inflation)
+    assert got.mean() == pytest.approx(z * scale, abs=4 * scale / 20)
+    assert got.std() == pytest.approx(scale, rel=0.2)
+    fit.states = np.ones((6, n))
+    assert flight_signal(fit, setup, SimpleNamespace(height=heights[0], sigma=sigma)) == 0.0
 
 
 def test_a_second_flights_liftoff_comes_after_the_first_landing():

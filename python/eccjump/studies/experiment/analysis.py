@@ -52,6 +52,7 @@ from eccjump.studies.experiment.fit import (
     UNITS,
     Fit,
     Setup,
+    as_start,
     consistent_fits,
     event_times,
     fit,
@@ -61,6 +62,7 @@ from eccjump.studies.experiment.fit import (
     profile,
     profile_interval,
     rolling_needs,
+    slip_frames,
     slip_intervals,
     time_errors,
 )
@@ -432,6 +434,14 @@ def analyze(
         fit_alpha=a_given is None,
     )
     best, jarm_fit = consistent_fits(setup, track, rec)
+    power = math.nan  # asked only where the verdict could be jarm: a slip under a frame
+    if slip_frames(best, setup, track) < 1.0:
+        power, slipping = one_frame_slip(jarm_fit or best, setup, track, rec)
+        if slipping is not None and slipping.cost < best.cost:
+            # a slip the free fit missed explains the track better: judge from it
+            # (a descent from the capped fit's run: never worse than it)
+            best, jarm_fit = fit(setup, track, rec, starts=[as_start(slipping)]), jarm_fit or best
+            power = math.nan
     off_path = _alpha_note(track, a_given, _contact_frames(track, best, setup))
     notes += off_path
     p = misfit_p(best, int(rec.line.contact.sum()))
@@ -442,9 +452,6 @@ def analyze(
         grid, costs = profile(best, setup, track, rec)
         mu_k_iv = profile_interval(grid, costs, best)
     flight = flight_signal(best, setup, rec)
-    power = math.nan  # asked only where the verdict could be jarm: a slip under a frame
-    if _slip_frames(best, setup, track) < 1.0:
-        power = one_frame_slip(jarm_fit or best, setup, track, rec)
     verdict = _Verdict(observed, best, jarm_fit, p, off_path[0] if off_path else "", flight, power)
     return _judge(track, rec, verdict, setup, mu_k_iv, notes, started)
 
@@ -479,13 +486,13 @@ def _judge(
     errs = time_errors(best, setup, track, rec)
     lift = times["liftoff"]
     slips_dimless = slip_intervals(best.run, lift if math.isfinite(lift) else horizon)
-    slip_frames = _slip_frames(best, setup, track)
+    frames = sum(b - a for a, b in slips_dimless) * unit / dt  # fit.slip_frames, reused
     needs = rolling_needs(best.run, lift if math.isfinite(lift) else horizon)
     delta = math.nan
     if v.jarm_fit is not None:
         delta = 2.0 * (v.jarm_fit.cost - best.cost) / best.variance_factor
     seen = observed.flights[0] if observed.flights else None
-    verdict, reason, evidence = _decide(v, seen, lift, slip_frames, delta, rec, t0, unit, dt)
+    verdict, reason, evidence = _decide(v, seen, lift, frames, delta, rec, t0, unit, dt)
     evidence.append(
         f"the rolling before it needs mu_s >= {needs:.3f} (the model's friction ratio |F_x|/F_y)"
         if needs <= MU_MAX
@@ -621,14 +628,6 @@ def _flight_sentence(v: _Verdict, seen: Flight | None, sigma3: str) -> str:
         f"the model's flight stays within the noise (the heights follow it at "
         f"{v.flight_z:.2g} sigma): the verdict rests on the slip before it"
     )
-
-
-def _slip_frames(f: Fit, setup: Setup, track: Track) -> float:
-    """The frames the fitted run slips for in all before its first lift-off (or the end)."""
-    horizon = float(track.t[-1] - track.t[0]) / setup.time_unit
-    lift = event_times(f.run, horizon)["liftoff"]
-    slips = slip_intervals(f.run, lift if math.isfinite(lift) else horizon)
-    return sum(b - a for a, b in slips) * setup.time_unit / track.dt
 
 
 def _jarm_if_shown(one_frame: float, evidence: list[str]) -> tuple[str, str, list[str]]:

@@ -25,7 +25,7 @@ constrained one) and :func:`misfit_p` tests the goodness of fit.
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from typing import Any
 
 import numpy as np
@@ -127,9 +127,18 @@ class Fit:
 class Model:
     """The residuals of a parameter vector against one reconstructed track."""
 
-    def __init__(self, setup: Setup, track: Track, rec: Reconstruction, *, jarm_only: bool):
+    def __init__(
+        self,
+        setup: Setup,
+        track: Track,
+        rec: Reconstruction,
+        *,
+        jarm_only: bool,
+        mu_s_cap: float = math.inf,
+    ):
         self.setup, self.track, self.rec = setup, track, rec
         self.jarm_only = jarm_only
+        self.mu_s_cap = mu_s_cap  # the runs' mu_s (and so mu_k) kept at most this
         self.names = tuple(n for n in NAMES if n != "alpha" or setup.fit_alpha)
         self.tau = (track.t - track.t[0]) / setup.time_unit
         self.sigma = max(rec.sigma, 1e-12 * setup.radius)
@@ -149,8 +158,9 @@ class Model:
     def simulate(self, p: dict[str, float], mu_s: float | None = None) -> MotionResult:
         """The run of ``p`` over the track (dimensionless, dense)."""
         s = self.setup
-        mu_k = p["mu_k"]
-        mu_s = mu_k + p["dmu"] if mu_s is None else mu_s
+        mu_s = p["mu_k"] + p["dmu"] if mu_s is None else mu_s
+        mu_s = min(mu_s, self.mu_s_cap)
+        mu_k = min(p["mu_k"], mu_s)
         if self.jarm_only:
             mu_s = max(mu_s, self.mu_bound(p) * (1 + 1e-9))
         self.nfev += 1
@@ -514,24 +524,46 @@ def _result(model: Model, res: Any, lo: NDArray[np.float64], hi: NDArray[np.floa
     )
 
 
-def one_frame_slip(f: Fit, setup: Setup, track: Track, rec: Reconstruction) -> float:
+def one_frame_slip(
+    f: Fit, setup: Setup, track: Track, rec: Reconstruction
+) -> tuple[float, Fit | None]:
     """How much worse (a chi-square, scaled like the slip test's) the rolling fit ``f``
-    becomes when its body slips for one frame in all before the lift-off: mu_s lowered
-    below what the rolling needs (bisection) until the run slips that long, mu_k capped at
-    mu_s, the rest as fitted. Whether the track could have shown such a slip: below the
-    slip test's threshold a one-frame slip is not excluded. Not refitted, so an upper
-    bound on what the track can tell. NaN when the fitted run does not lift off."""
+    becomes when its body slips for one frame in all before the lift-off, and the refit
+    that slips that long (None if it does not). The slip: mu_s lowered below what the
+    rolling needs (bisection) until ``f``'s run slips one frame, mu_k capped at mu_s. Taken
+    as it is, that run overstates what the track can tell (a slip elsewhere, or with
+    another start, may fit better); so the other parameters are refitted with mu_s kept at
+    most there, and the better of the two runs that slip a frame or more is the
+    alternative. A refit better than ``f`` itself means ``f`` was a local minimum. Below
+    the slip test's threshold a one-frame slip is not excluded. NaN (and None) when no
+    lowered mu_s gives a run that lifts off after a frame's slip."""
     model = Model(setup, track, rec, jarm_only=False)
     p = model.params(f.x)
+    found = _one_frame_mu_s(model, p, f.mu_s_bound, track.dt / setup.time_unit)
+    if found is None:
+        return math.nan, None
+    mu_s, res = found
+    cost = 0.5 * float(res @ res)
+    refit = _capped_fit(f, setup, track, rec, mu_s)
+    if slip_frames(refit, setup, track) < 1.0:
+        refit = None
+    elif refit.cost < cost:
+        cost = refit.cost
+    return 2.0 * (cost - f.cost) / f.variance_factor, refit
+
+
+def _one_frame_mu_s(
+    model: Model, p: dict[str, float], mu_bound: float, frame: float
+) -> tuple[float, NDArray[np.float64]] | None:
+    """The largest mu_s (to 1e-4 of ``mu_bound``) at which the run of ``p`` lifts off after
+    slipping for at least ``frame`` in all, and that run's residuals."""
     horizon = float(model.tau[-1])
-    frame = track.dt / setup.time_unit
-    lo, hi = 0.0, f.mu_s_bound
-    best_res: NDArray[np.float64] | None = None
+    lo, hi = 0.0, mu_bound
+    found = None
     for _ in range(30):
         mid = 0.5 * (lo + hi)
-        q = p | {"mu_k": min(p["mu_k"], mid)}
         try:
-            run = model.simulate(q, mu_s=mid)
+            run = model.simulate(p | {"mu_k": mid}, mu_s=mid)
         except ValueError:
             lo = mid
             continue
@@ -539,16 +571,39 @@ def one_frame_slip(f: Fit, setup: Setup, track: Track, rec: Reconstruction) -> f
         if not math.isfinite(lift):
             lo = mid
             continue
-        slipped = sum(b - a for a, b in slip_intervals(run, lift))
-        if slipped >= frame:
-            lo, best_res = mid, model.compare(q, model.states(run))
+        if sum(b - a for a, b in slip_intervals(run, lift)) >= frame:
+            lo, found = mid, (mid, model.compare(p, model.states(run)))
         else:
             hi = mid
-        if hi - lo < 1e-4 * f.mu_s_bound:
+        if hi - lo < 1e-4 * mu_bound:
             break
-    if best_res is None:
-        return math.nan
-    return float(best_res @ best_res - 2.0 * f.cost) / f.variance_factor
+    return found
+
+
+def _capped_fit(f: Fit, setup: Setup, track: Track, rec: Reconstruction, mu_s: float) -> Fit:
+    """``f`` refitted with its runs' mu_s at most ``mu_s`` (from ``f``, mu_s set there);
+    its mu_k and dmu are those its run used (a start for a free fit that gives that run)."""
+    model = Model(setup, track, rec, jarm_only=False, mu_s_cap=mu_s)
+    lo, hi = model.bounds(start_guess(setup, rec))
+    capped = _result(model, _solve(model, _with_mu_s(f.x, f.names, mu_s), lo, hi, MAX_NFEV), lo, hi)
+    used = min(capped.value("mu_k") + capped.value("dmu"), mu_s)
+    return replace(capped, x=_with_mu_s(capped.x, capped.names, used))
+
+
+def _with_mu_s(x: NDArray[np.float64], names: tuple[str, ...], mu_s: float) -> NDArray[np.float64]:
+    """``x`` with mu_s = mu_k + dmu set to ``mu_s`` (mu_k lowered to it where above)."""
+    y = x.copy()
+    mu_k = min(float(x[names.index("mu_k")]), mu_s)
+    y[names.index("mu_k")], y[names.index("dmu")] = mu_k, mu_s - mu_k
+    return y
+
+
+def slip_frames(f: Fit, setup: Setup, track: Track) -> float:
+    """The frames the fitted run slips for in all before its first lift-off (or the end)."""
+    horizon = float(track.t[-1] - track.t[0]) / setup.time_unit
+    lift = event_times(f.run, horizon)["liftoff"]
+    slips = slip_intervals(f.run, lift if math.isfinite(lift) else horizon)
+    return sum(b - a for a, b in slips) * setup.time_unit / track.dt
 
 
 def flight_signal(f: Fit, setup: Setup, rec: Reconstruction) -> float:
