@@ -545,11 +545,9 @@ def one_frame_slip(
     mu_s, res = found
     cost = 0.5 * float(res @ res)
     refit = _capped_fit(f, setup, track, rec, mu_s)
-    if slip_frames(refit, setup, track) < 1.0:
-        refit = None
-    elif refit.cost < cost:
-        cost = refit.cost
-    return 2.0 * (cost - f.cost) / f.variance_factor, refit
+    if slip_frames(refit, setup, track) < 1.0:  # back to rolling: no alternative
+        return 2.0 * (cost - f.cost) / f.variance_factor, None
+    return 2.0 * (min(cost, refit.cost) - f.cost) / f.variance_factor, refit
 
 
 def _one_frame_mu_s(
