@@ -25,7 +25,11 @@ from eccjump.cli import main
 from eccjump.studies.experiment import analyze
 from eccjump.studies.experiment.analysis import SIGNIFICANT, _slip_verdict
 from eccjump.studies.experiment.events import observe
-from eccjump.studies.experiment.fit import correlation_inflation, flight_signal
+from eccjump.studies.experiment.fit import (
+    correlation_inflation,
+    flight_signal,
+    profile_interval,
+)
 from eccjump.studies.experiment.track import first_frames
 from eccjump.studies.experiment.video import VideoTrack
 
@@ -116,7 +120,8 @@ def test_an_angle_in_the_wrong_unit_fails_the_gate_with_a_note(capsys):
 def test_a_rolled_camera_is_named_and_never_confidently_wrong():
     """A camera rolled by 3 degrees: the contact path disagrees with alpha (a note), and the
     verdict is `undetermined (model)` (the campaign's seed 0 had one such slip called `jarm`
-    with chi2_red 1.08 before the contact path was part of the gate)."""
+    with chi2_red 1.08 before the contact path was part of the gate), and the model's
+    frictions are not printed as values (their intervals missed the truth)."""
     base = rt.draw("slip", 3, fps=240.0, noise=0.5)
     case, _ = rt.systematic(base, "roll", 1)
     made, res = _analyze(case)
@@ -124,6 +129,11 @@ def test_a_rolled_camera_is_named_and_never_confidently_wrong():
     assert made.slip_frames >= 1
     assert (res.verdict, res.reason) == ("undetermined", "model")
     assert res.evidence[0].startswith("alpha: the axle's contact path runs at")
+    # fitted in a frame the track contradicts: no friction printed as a value
+    params = res.parameters()
+    assert {params[n]["status"] for n in ("mu_k", "mu_s", "e")} == {"not_determined"}
+    assert res.mu_k_interval == (0.0, 3.0)
+    assert "mu_k        not determined (the model does not fit this track)" in repr(res)
 
 
 def test_parameters_the_track_does_not_determine_print_as_bounds(capsys):
@@ -251,6 +261,22 @@ def test_the_flight_signal_is_the_matched_filter_in_standard_errors(z, inflation
     assert got.std() == pytest.approx(scale, rel=0.2)
     fit.states = np.ones((6, n))
     assert flight_signal(fit, setup, SimpleNamespace(height=heights[0], sigma=sigma)) == 0.0
+
+
+def test_a_profile_flat_to_the_grids_end_leaves_mu_k_open_above():
+    """A JARM track at 2 px (independent model, mu_k 1.99): the profile of mu_k was within
+    the level from 0.45 to the grid's end, 1.5, and the interval stopped at 1.65; a flat
+    profile says nothing past its grid: up to the bound. A profile that rises again keeps
+    its end (one grid step past the last accepted value)."""
+    grid = np.linspace(0.0, 1.5, 11)
+    best = SimpleNamespace(names=("mu_k",), lower=np.array([0.0]), upper=np.array([3.0]),
+                           cost=10.0, variance_factor=1.0,
+                           interval=lambda name: (0.5, 0.7))  # fmt: skip
+    flat = np.where(grid < 0.4, 500.0, 10.5)
+    assert profile_interval(grid, flat, best) == pytest.approx((0.3, 3.0))
+    rising = flat + np.where(grid > 1.0, 100.0, 0.0)
+    lo, hi = profile_interval(grid, rising, best)
+    assert (lo, hi) == pytest.approx((0.3, 0.9 + 0.15))
 
 
 def test_a_second_flights_liftoff_comes_after_the_first_landing():

@@ -143,18 +143,20 @@ class Analysis(Result, kind="analysis"):
     def parameters(self) -> dict[str, dict[str, Any]]:
         """The fitted parameters (value, ~95 % interval, unit, ``status``), the ramp angle in
         radians. ``status`` is ``"value"``, ``"not_determined"`` (the track does not
-        constrain it: its value is None, the interval the whole range) or, for mu_s,
-        ``"lower_bound"`` (a fitted run that never slips: mu_s >= what its rolling needed,
-        value None, hi inf)."""
+        constrain it: its value is None, the interval the whole range; mu_k, mu_s and e
+        whenever the reason is ``model``, since a model the track rejects fixes none of them)
+        or, for mu_s, ``"lower_bound"`` (a fitted run that never slips: mu_s >= what its
+        rolling needed, value None, hi inf)."""
         f, out = self.fit, {}
+        rejected = self.reason == "model"  # the model does not describe the track
         for name in f.names:
             if name == "dmu":
                 continue
             lo, hi = self.mu_k_interval if name == "mu_k" else f.interval(name)
             i = f.names.index(name)
             known = hi - lo < 0.9 * float(f.upper[i] - f.lower[i])
-            if name == "e" and not math.isfinite(self.times["landing"]):
-                known = False  # a run that never lands says nothing of e
+            if name == "e" and (rejected or not math.isfinite(self.times["landing"])):
+                known = False  # a run that never lands says nothing of e; nor a rejected model
             out[name] = {
                 "value": f.value(name) if known else math.nan,
                 "lo": lo,
@@ -172,8 +174,9 @@ class Analysis(Result, kind="analysis"):
             "rolling_needs": self.mu_s_needed,
             "status": "lower_bound" if bound else "value",
         }
-        if bound and not self.mu_s_needed <= MU_MAX:  # a ratio near a lift-off's F_y = 0
-            out["mu_s"] |= {"lo": 0.0, "status": "not_determined"}
+        if rejected or (bound and not self.mu_s_needed <= MU_MAX):  # or F_y -> 0 at a lift-off
+            out["mu_s"] |= {"value": math.nan, "lo": 0.0, "hi": math.inf}
+            out["mu_s"]["status"] = "not_determined"
         return out
 
     def parameter_lines(self) -> list[tuple[str, str]]:
@@ -187,6 +190,8 @@ class Analysis(Result, kind="analysis"):
                 text = f">= {p['lo']:.3f} (what the fitted rolling needed)"
             elif p["status"] == "not_determined":
                 text = "not determined by this track"
+                if self.reason == "model":
+                    text = "not determined (the model does not fit this track)"
             else:
                 text = f"{p['value']:.3f} in [{p['lo']:.3f}, {p['hi']:.3g}]"
             out.append((name, text))
@@ -448,7 +453,10 @@ def analyze(
     if p < MISFIT_P:
         notes += _angle_unit_note(track, setup, rec, best, w)
     mu_k_iv = best.interval("mu_k")
-    if profiled:
+    if p < MISFIT_P or off_path:  # a model the track rejects fixes none of its parameters
+        i = best.names.index("mu_k")
+        mu_k_iv = (float(best.lower[i]), float(best.upper[i]))
+    elif profiled:
         grid, costs = profile(best, setup, track, rec)
         mu_k_iv = profile_interval(grid, costs, best)
     flight = flight_signal(best, setup, rec)

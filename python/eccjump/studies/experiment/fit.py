@@ -455,17 +455,22 @@ def profile_interval(
 ) -> tuple[float, float]:
     """The local ~95 % interval of ``name``, widened to every grid value of the profile
     whose cost is within ``level`` / 2 (in units of the reduced chi-square) of the least,
-    plus one grid step beyond it (a second minimum narrower than a step can be missed)."""
+    plus one grid step beyond it (a second minimum narrower than a step can be missed); up
+    to the parameter's bound where the grid's last value is accepted (the profile is flat
+    there: a rolling track, or a slip the data do not ask for, leaves mu_k open above)."""
     lo, hi = best.interval(name)
     s2 = best.variance_factor
     low = min(float(costs.min()), best.cost)
-    accepted = grid[2.0 * (costs - low) / s2 <= level]
+    ok = 2.0 * (costs - low) / s2 <= level
+    accepted = grid[ok]
     far = accepted[(accepted < lo) | (accepted > hi)]
+    i = best.names.index(name)
     if far.size:
         step = float(np.max(np.diff(grid))) if grid.size > 1 else 0.0
-        i = best.names.index(name)
         lo = max(min(lo, float(far.min()) - step), float(best.lower[i]))
         hi = min(max(hi, float(far.max()) + step), float(best.upper[i]))
+    if ok[-1]:
+        hi = float(best.upper[i])
     return lo, hi
 
 
