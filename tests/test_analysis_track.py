@@ -15,10 +15,17 @@ from pathlib import Path
 
 import numpy as np
 import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
 
 import eccjump
 from eccjump._base import userfiles as _userfiles
-from eccjump.studies.experiment.geometry import RampFrame, marker_offset, theta_from_marker
+from eccjump.studies.experiment.geometry import (
+    RampFrame,
+    marker_offset,
+    path_angle,
+    theta_from_marker,
+)
 from eccjump.studies.experiment.reconstruction import derivative_weights, reconstruct
 from eccjump.studies.experiment.sheet import design_inputs
 from eccjump.studies.experiment.synthetic import synthetic_track
@@ -60,6 +67,28 @@ def test_the_ramp_frame_is_the_papers():
         assert np.allclose(f.to_ramp(f.to_lab(q)), q)
         ahead = marker_offset(np.array([math.pi / 2]), 1.0, 0.0)
         assert np.allclose(ahead, [[1.0, 0.0]])
+
+
+@given(
+    st.floats(0.05, 1.5),
+    st.floats(-0.05, 0.05),
+    st.sampled_from([-1, 1]),
+    st.integers(0, 2**32 - 1),
+)
+@settings(max_examples=30, deadline=None)
+def test_the_path_angle_is_the_regression_through_every_point(alpha, guess_off, side, seed):
+    """Points from rest along a line at alpha (distance ~ t^2, 0.3 mm of noise): the angle
+    is within 4 of its standard errors of alpha from a guess up to 3 degrees off, and it is
+    numpy's own straight-line fit of the lab points (the same least squares, rotated)."""
+    rng = np.random.default_rng(seed)
+    s = 0.15 * np.linspace(0.0, 1.0, 52) ** 2
+    x_hat = np.array([side * math.cos(alpha), -math.sin(alpha)])
+    c = np.outer(s, x_hat) + 3e-4 * rng.standard_normal((52, 2))
+    got, err = path_angle(c, alpha + guess_off)
+    assert abs(got - alpha) <= 4 * err
+    assert 0 < err < 0.05
+    d = RampFrame(got, side, (float(c[0, 0]), float(c[0, 1]))).to_ramp(c)
+    assert abs(np.polyfit(d[:, 0], d[:, 1], 1)[0]) < 0.01 * err  # no slope left (one step)
 
 
 @pytest.mark.parametrize("side", [1, -1])

@@ -136,6 +136,23 @@ def test_a_rolled_camera_is_named_and_never_confidently_wrong():
     assert "mu_k        not determined (the model does not fit this track)" in repr(res)
 
 
+def test_a_start_from_rest_does_not_turn_the_contact_path():
+    """Independent model, 240 fps, 0.5 px: a long slip from nearly at rest (travel 12 mm in
+    its first 13 frames, 146 mm before the lift-off). The contact path's angle came from a
+    line that had kept 12 of the 52 contact frames (its first-quarter start turned it by
+    degrees, its spread shrank to 0.06 mm): 58.64 +- 0.45 deg against the true 60.65, a
+    false note and `undetermined (model)` on a fit at chi2_red 1.3. Every contact frame
+    weighs in now: no note, `slip_first`."""
+    case = rt.Case(chi=0.41873672909488113, km=0.20709115686339175, alpha=1.058489594330454,
+                   mu_s=0.6574902491251782, mu_k=0.4983894566941508, theta0=2.8786626922206384,
+                   omega0=0.025541959224031574, fps=240.0, noise_px=0.5,
+                   marker_angle=-1.9406165704324552, seed=1019, family="long_slip")  # fmt: skip
+    made, res = _analyze(case)
+    assert not [n for n in res.notes if n.startswith("alpha:")], res.notes
+    assert res.verdict == "slip_first", (res.reason, res.evidence)
+    assert abs(res.liftoff_t - made.liftoff) < 1.96 * res.liftoff_err
+
+
 def test_parameters_the_track_does_not_determine_print_as_bounds(capsys):
     """The README's JARM track printed "mu_k 3.000 in [0, 3]", "mu_s 6.000 in [3, inf]"."""
     assert main([*README[:-1], "--marker-angle", "34.3775"]) == 0

@@ -66,7 +66,7 @@ from eccjump.studies.experiment.fit import (
     slip_intervals,
     time_errors,
 )
-from eccjump.studies.experiment.geometry import fit_contact_line
+from eccjump.studies.experiment.geometry import path_angle
 from eccjump.studies.experiment.inputs import MARKER_IN_R, in_range
 from eccjump.studies.experiment.reconstruction import MIN_WINDOW, Reconstruction, reconstruct
 from eccjump.studies.experiment.sheet import design_inputs
@@ -688,8 +688,7 @@ def _alpha_note(track: Track, given: float | None, frames: int) -> tuple[str, ..
     its first ``frames`` frames)."""
     if given is None:
         return ()
-    line = fit_contact_line(track.c[:frames], None)
-    seen, err = line.frame.alpha, line.alpha_err
+    seen, err = path_angle(track.c[:frames], given)
     tol = max(4 * err, ALPHA_TOLERANCE)
     if abs(seen - given) <= tol:
         return ()

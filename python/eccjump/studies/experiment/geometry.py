@@ -123,6 +123,18 @@ def fit_contact_line(
     return ContactLine(frame, alpha_err, sigma, use)
 
 
+def path_angle(c: NDArray[np.float64], alpha: float) -> tuple[float, float]:
+    """The angle [rad] of the straight line through the lab points ``c`` (all in contact)
+    and its standard error: a regression of their height on their distance in the ramp
+    frame of ``alpha`` (a near guess), every point weighed alike. Unlike
+    :func:`fit_contact_line`, no point is left out: a start from rest crowds the first
+    frames within a millimetre, and a line from them alone turns by degrees."""
+    frame = RampFrame(alpha, descent_side(c), (float(c[0, 0]), float(c[0, 1])))
+    q = frame.to_ramp(c)
+    slope, _, err = _line(q[:, 0], q[:, 1])
+    return alpha - math.atan(slope), err
+
+
 def _slope_angle(c: NDArray[np.float64], side: int) -> float:
     """The ramp angle of the straight-line fit of lab points."""
     x, y = c[:, 0], c[:, 1]
