@@ -646,10 +646,14 @@ def _jarm_if_shown(one_frame: float, evidence: list[str]) -> tuple[str, str, lis
             f"a slip of one frame before it would worsen the fit by chi2 = {one_frame:.3g}"
         )
         return "jarm", "", evidence
+    cost = (
+        f"would worsen the fit by only chi2 = {one_frame:.2g}"
+        if one_frame > 0
+        else f"fits as well (chi2 {one_frame:.2g})"
+    )
     evidence.append(
-        f"but a slip of one frame before the lift-off would worsen the fit by only chi2 = "
-        f"{one_frame:.2g} (it takes {SIGNIFICANT:g} to show): the frame rate and the noise "
-        "cannot exclude it"
+        f"but a slip of one frame before the lift-off {cost} (it takes {SIGNIFICANT:g} to "
+        "show): the frame rate and the noise cannot exclude it"
     )
     return "undetermined", "frame_rate", evidence
 

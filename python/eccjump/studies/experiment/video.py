@@ -973,12 +973,14 @@ def _usable(path: _Path) -> NDArray[np.float64]:
 
 
 def _release(c: NDArray[np.float64], err: NDArray[np.float64], t: NDArray[np.float64]) -> int:
-    """The first frame to keep: the last one still before the release, if the axle stays
-    still (within 1 px and 4 standard errors) for MIN_REST_FRAMES frames or more first;
-    else 0. Released from rest, the axle's distance from its place grows as (t - t_r)² at
-    first, so the release t_r is where the root of that distance, fitted by a line over the
-    frames that leave the place, meets 0 (the frames that move less than the tolerance are
-    kept: they are the start of the motion)."""
+    """The first frame to keep: the first one after the release, if the axle stays still
+    (within 1 px and 4 standard errors) for MIN_REST_FRAMES frames or more first; else 0.
+    Released from rest, the axle's distance from its place grows as (t - t_r)² at first, so
+    the release t_r is where the root of that distance, fitted by a line over the frames
+    that leave the place, meets 0 (the frames that move less than the tolerance are kept:
+    they are the start of the motion). Not the last still frame: the model starts at the
+    first frame kept with omega0 >= 0, and a release up to a frame after it (a delay the
+    start cannot express) failed the fit (chi2_red 34 after a 0.57 s wait)."""
     found = np.flatnonzero(np.isfinite(c[:, 0]))
     if found.size < MIN_REST_FRAMES + MIN_FRAMES:
         return 0
@@ -991,7 +993,7 @@ def _release(c: NDArray[np.float64], err: NDArray[np.float64], t: NDArray[np.flo
     slope, intercept = np.polyfit(t[found[early]], np.sqrt(dist[early]), 1)
     t_r = -intercept / slope if slope > 0 else t[found[first - 2]]
     still = np.flatnonzero(t[found[:first]] <= t_r)
-    return int(found[still[-1]]) if still.size else int(found[max(first - 2, 0)])
+    return int(found[still[-1] + 1]) if still.size else int(found[max(first - 2, 0)])
 
 
 def _mean_colour(scan: _Scan, path: _Path) -> str:
