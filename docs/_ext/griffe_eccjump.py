@@ -1,6 +1,6 @@
 """A griffe extension for the API reference: the site shows what ``help()`` shows.
 
-Two things the static reading of the sources cannot do by itself:
+What the static reading of the sources cannot do by itself:
 
 * a docstring completed at import (``JarmResult`` lists the fields of
   ``eccjump.classification.fields``; the shared entries of ``eccjump._base.docs`` fill the
@@ -8,6 +8,9 @@ Two things the static reading of the sources cannot do by itself:
   agree;
 * the compiled core (``eccjump._core``) is read by inspection, which gives its constants the
   docstring of their type (``str``): their docstrings come from its stub, ``_core.pyi``;
+* a result's ``plot``, made at import from its class's ``_plot_doc``
+  (``eccjump._base.canvas.Plottable``), is shown as a method of the class: the signatures of
+  ``Plottable.plot`` with the class's docstring;
 * a numpydoc "See Also" section (``name : what``) becomes a list of links;
 * the Sphinx roles of the docstrings (``:func:`~eccjump.region```, ``:class:`Reason```, ...),
   which read well in ``help()``, become links to the documented object, or plain code where
@@ -16,6 +19,7 @@ Two things the static reading of the sources cannot do by itself:
 
 from __future__ import annotations
 
+import copy
 import importlib
 import inspect
 import re
@@ -105,6 +109,27 @@ def _stub_docstrings(pkg: griffe.Module) -> None:
             )
 
 
+def _own_plot(cls: griffe.Class, base: griffe.Function) -> None:
+    """The ``plot`` that ``cls`` gets at import from its ``_plot_doc``, where that stands."""
+    runtime = _runtime(f"{cls.path}.plot")
+    doc = cls.members["_plot_doc"]
+    own = griffe.Function(
+        "plot",
+        lineno=doc.lineno,
+        endlineno=doc.endlineno,
+        parameters=griffe.Parameters(*map(copy.copy, base.parameters)),  # a Function owns them
+        returns=base.returns,
+    )
+    own.overloads = base.overloads
+    own.docstring = griffe.Docstring(inspect.getdoc(runtime) or "", parent=own)
+    cls.set_member("plot", own)
+    # in its place: the page lists members in the order of ``members`` (by an alias, it
+    # has no line numbers), so the ones after ``_plot_doc`` move behind ``plot``
+    names = list(cls.members)
+    for name in names[names.index("_plot_doc") + 1 : -1]:
+        cls.members[name] = cls.members.pop(name)
+
+
 class EccjumpDocstrings(griffe.Extension):
     """Runtime docstrings where they differ, and the Sphinx roles as cross-references."""
 
@@ -117,6 +142,8 @@ class EccjumpDocstrings(griffe.Extension):
         if obj.path in seen:
             return
         seen.add(obj.path)
+        if isinstance(obj, griffe.Class) and "_plot_doc" in obj.members:
+            _own_plot(obj, obj.modules_collection["eccjump._base.canvas.Plottable.plot"])
         if obj.docstring is not None:
             if obj.kind in (griffe.Kind.CLASS, griffe.Kind.FUNCTION):
                 runtime = _runtime(obj.path)

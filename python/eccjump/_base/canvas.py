@@ -1,16 +1,19 @@
 """Where a figure is drawn, one rule for every ``.plot()``: ``ax=`` draws one panel into the
 caller's Axes, ``fig=`` the full figure into the caller's empty Figure or SubFigure, neither a
 new figure. In the base so that the figures' layer (``eccjump.plot``) and the analysis
-figure below it (``eccjump.studies.experiment.figure``) share it; matplotlib is imported only
-when a figure is drawn (``pip install eccjump[plot]``)."""
+figure below it (``eccjump.studies.experiment.figure``) share it, with the ``.plot()`` of
+every result (:class:`Plottable`); matplotlib is imported only when a figure is drawn
+(``pip install eccjump[plot]``)."""
 
 from __future__ import annotations
 
-from typing import TYPE_CHECKING, Any
+import types
+from typing import TYPE_CHECKING, Any, ClassVar, overload
 
 from eccjump._base.optional import require
 
 if TYPE_CHECKING:
+    from matplotlib.axes import Axes
     from matplotlib.figure import Figure, FigureBase
 
 
@@ -48,4 +51,45 @@ def new_figure(fig: FigureBase | None, figsize: tuple[float, float]) -> tuple[Fi
     return fig, fig.get_figure(root=True)
 
 
-__all__ = ["checked_target", "new_figure", "pyplot"]
+class Plottable:
+    """A result's ``.plot()``, typed once: ``r.plot()`` is a new Figure, ``r.plot(ax=ax)``
+    the Axes drawn into. A class says what its figure shows in ``_plot_doc``, and gets a
+    ``plot`` of its own with that docstring (``help()``; the API reference reads it through
+    ``docs/_ext/griffe_eccjump.py``)."""
+
+    #: The docstring of the class's ``plot``: what its figure shows and what ``ax=`` draws.
+    _plot_doc: ClassVar[str]
+
+    def __init_subclass__(cls, **kwargs: Any) -> None:
+        super().__init_subclass__(**kwargs)
+        if "_plot_doc" in vars(cls):
+            cls.plot = _own_plot(cls)  # type: ignore[method-assign]  # typed as Plottable.plot
+
+    @overload
+    def plot(self, *, ax: Axes, **kwargs: Any) -> Axes: ...
+    @overload
+    def plot(self, *, ax: None = None, fig: FigureBase | None = None, **kwargs: Any) -> Figure: ...
+    def plot(
+        self, *, ax: Axes | None = None, fig: FigureBase | None = None, **kwargs: Any
+    ) -> Axes | Figure:
+        """The result's figure (``eccjump.plot.draw``). ``ax=``: one panel, drawn into this
+        matplotlib Axes and returned, to compose figures; ``fig=``: the full figure in this
+        empty Figure or SubFigure. Needs ``pip install eccjump[plot]``."""
+        from eccjump import plot  # figures: the layer on top of every result
+
+        return plot.draw(self, ax=ax, fig=fig, **kwargs)
+
+
+def _own_plot(cls: type[Plottable]) -> types.FunctionType:
+    """:meth:`Plottable.plot` as a method of ``cls`` with its ``_plot_doc``: the same code (no
+    wrapper in tracebacks), named where ``help()`` and tracebacks look."""
+    impl: Any = Plottable.plot
+    own = types.FunctionType(impl.__code__, impl.__globals__, "plot", impl.__defaults__)
+    own.__kwdefaults__ = impl.__kwdefaults__
+    own.__annotations__ = impl.__annotations__
+    own.__module__, own.__qualname__ = cls.__module__, f"{cls.__qualname__}.plot"
+    own.__doc__ = cls._plot_doc
+    return own
+
+
+__all__ = ["Plottable", "checked_target", "new_figure", "pyplot"]

@@ -14,7 +14,7 @@ import warnings
 from collections.abc import Mapping
 from dataclasses import dataclass, field, replace
 from pathlib import Path
-from typing import TYPE_CHECKING, Any, ClassVar, Literal, overload
+from typing import TYPE_CHECKING, Any, ClassVar, Literal
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
@@ -28,6 +28,7 @@ from eccjump._base.arrays import (
     turns,
 )
 from eccjump._base.bridge import CallOptions, Method, call_options, jarm_grid, jarm_points
+from eccjump._base.canvas import Plottable
 from eccjump._base.checks import (
     Integrator,
     Rule,
@@ -71,12 +72,10 @@ from eccjump.maps.results import Result
 if TYPE_CHECKING:  # pragma: no cover
     import pandas
     import xarray as xr
-    from matplotlib.axes import Axes
-    from matplotlib.figure import Figure, FigureBase
 
 
 @dataclass(frozen=True, repr=False, eq=False)
-class JarmResult(Result, kind="jarm_points"):
+class JarmResult(Result, Plottable, kind="jarm_points"):
     """Per-point classification, every field an array of the broadcast shape.
 
     Attributes
@@ -221,23 +220,13 @@ class JarmResult(Result, kind="jarm_points"):
     def _from_raw(raw: Mapping[str, NDArray], shape: tuple[int, ...]) -> JarmResult:
         return JarmResult(**{k: raw[k].reshape(shape) for k in FIELDS})
 
-    @overload
-    def plot(self, *, ax: Axes, **kwargs: Any) -> Axes: ...
-    @overload
-    def plot(self, *, ax: None = None, fig: FigureBase | None = None, **kwargs: Any) -> Figure: ...
-    def plot(
-        self, *, ax: Axes | None = None, fig: FigureBase | None = None, **kwargs: Any
-    ) -> Axes | Figure:
-        """θ_J, the forces at the jump and the path condition (the largest
-        |F_x|/F_y and the smallest F_y on the rolling path) over the points
-        (``eccjump.plot.jarm_points``; ``x=`` and ``xlabel=``: a coordinate of the points,
-        ``mu_s=``: its line). ``ax=``: only θ_J, drawn into this matplotlib Axes and
-        returned (``eccjump.plot.jarm_panel``), to compose figures; ``fig=``: the full figure
-        in this empty Figure or SubFigure. ``kwargs`` go to the function drawn. Needs
-        ``pip install eccjump[plot]``."""
-        from eccjump import plot  # figures: the layer on top of every result
-
-        return plot.draw(self, ax=ax, fig=fig, **kwargs)
+    _plot_doc = """θ_J, the forces at the jump and the path condition (the largest
+    |F_x|/F_y and the smallest F_y on the rolling path) over the points
+    (``eccjump.plot.jarm_points``; ``x=`` and ``xlabel=``: a coordinate of the points,
+    ``mu_s=``: its line). ``ax=``: only θ_J, drawn into this matplotlib Axes and
+    returned (``eccjump.plot.jarm_panel``), to compose figures; ``fig=``: the full figure
+    in this empty Figure or SubFigure. ``kwargs`` go to the function drawn. Needs
+    ``pip install eccjump[plot]``."""
 
     # Taking the result elsewhere (save and eccjump.load: eccjump.maps.results).
     def to_xarray(self) -> xr.Dataset:
@@ -450,7 +439,7 @@ def _fits_in_memory(what: str, points: int, derivatives: bool, inputs: int) -> N
 
 
 @dataclass(frozen=True, repr=False, eq=False)
-class Region(Map, kind=JARM):
+class Region(Map, Plottable, kind=JARM):
     """A JARM map on the grid α × χ × km_frac, with k_m = km_frac (1 - χ).
 
     Made by :func:`region`. As every :class:`~eccjump.Map`: ``coords``, ``fields``,
@@ -635,22 +624,12 @@ class Region(Map, kind=JARM):
         )
         return card("Region", rows, jarm_slice(cut, caption) if self.km_frac.size else "")
 
-    @overload
-    def plot(self, *, ax: Axes, **kwargs: Any) -> Axes: ...
-    @overload
-    def plot(self, *, ax: None = None, fig: FigureBase | None = None, **kwargs: Any) -> Figure: ...
-    def plot(
-        self, *, ax: Axes | None = None, fig: FigureBase | None = None, **kwargs: Any
-    ) -> Axes | Figure:
-        """The map in the (χ, α) plane, JARM points coloured by their turn, a few
-        km_frac slices (``eccjump.plot.region_map``). ``ax=``: only one slice (``km_frac=``;
-        default: the one with the most JARM points), drawn into this matplotlib Axes and
-        returned (``eccjump.plot.region_panel``), to compose figures; ``fig=``: the full
-        figure in this empty Figure or SubFigure. ``kwargs`` go to the function drawn. Needs
-        ``pip install eccjump[plot]``."""
-        from eccjump import plot  # figures: the layer on top of every result
-
-        return plot.draw(self, ax=ax, fig=fig, **kwargs)
+    _plot_doc = """The map in the (χ, α) plane, JARM points coloured by their turn, a few
+    km_frac slices (``eccjump.plot.region_map``). ``ax=``: only one slice (``km_frac=``;
+    default: the one with the most JARM points), drawn into this matplotlib Axes and
+    returned (``eccjump.plot.region_panel``), to compose figures; ``fig=``: the full
+    figure in this empty Figure or SubFigure. ``kwargs`` go to the function drawn. Needs
+    ``pip install eccjump[plot]``."""
 
 
 def _plain(value: Any) -> Any:

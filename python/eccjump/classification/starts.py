@@ -20,22 +20,19 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
-from typing import TYPE_CHECKING, Any, overload
+from typing import Any
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from eccjump._base.arrays import axis
+from eccjump._base.canvas import Plottable
 from eccjump._base.checks import U64_MAX, Rule, integer, real, rule_name, short
 from eccjump._base.docs import fill
 from eccjump._base.html import card, deg, num, span
 from eccjump._base.progress import Progress, reporting
 from eccjump.classification.classify import region
 from eccjump.classification.fields import Reason
-
-if TYPE_CHECKING:  # pragma: no cover
-    from matplotlib.axes import Axes
-    from matplotlib.figure import Figure, FigureBase
 
 TWO_PI = 2.0 * math.pi
 #: The largest grid (points per axis of the parameter cube): 128**3 = 2.1e6 points per start.
@@ -205,7 +202,7 @@ def _threads(n_threads: object) -> int:
 
 
 @dataclass(frozen=True, eq=False)
-class StartMap:
+class StartMap(Plottable):
     """The reason shares over a lattice of starts (:func:`start_map`).
 
     Attributes
@@ -281,21 +278,11 @@ class StartMap:
         ]
         return card("StartMap", rows)
 
-    @overload
-    def plot(self, *, ax: Axes, **kwargs: Any) -> Axes: ...
-    @overload
-    def plot(self, *, ax: None = None, fig: FigureBase | None = None, **kwargs: Any) -> Figure: ...
-    def plot(
-        self, *, ax: Axes | None = None, fig: FigureBase | None = None, **kwargs: Any
-    ) -> Axes | Figure:
-        """The JARM fraction over the starts (theta0, omega0) and the shares blocked at
-        the start (``eccjump.plot.fraction_map``). ``ax=``: only the JARM fraction, drawn into
-        this matplotlib Axes and returned (``eccjump.plot.fraction_panel``), to compose
-        figures; ``fig=``: the full figure in this empty Figure or SubFigure. ``kwargs`` go
-        to the function drawn. Needs ``pip install eccjump[plot]``."""
-        from eccjump import plot  # figures: the layer on top of every result
-
-        return plot.draw(self, ax=ax, fig=fig, **kwargs)
+    _plot_doc = """The JARM fraction over the starts (theta0, omega0) and the shares blocked at
+    the start (``eccjump.plot.fraction_map``). ``ax=``: only the JARM fraction, drawn into
+    this matplotlib Axes and returned (``eccjump.plot.fraction_panel``), to compose
+    figures; ``fig=``: the full figure in this empty Figure or SubFigure. ``kwargs`` go
+    to the function drawn. Needs ``pip install eccjump[plot]``."""
 
 
 @fill

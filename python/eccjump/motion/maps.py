@@ -18,13 +18,14 @@ import os
 from collections.abc import Mapping
 from dataclasses import dataclass, field
 from pathlib import Path
-from typing import TYPE_CHECKING, Any, ClassVar, Literal, overload
+from typing import TYPE_CHECKING, Any, ClassVar, Literal
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from eccjump import _core
 from eccjump._base.arrays import fields_equal, fraction_axis, refuses_km
+from eccjump._base.canvas import Plottable
 from eccjump._base.checks import U64_MAX, Integrator, file_error, integer, real_array, short, text
 from eccjump._base.docs import fill
 from eccjump._base.html import best_slice, card, deg, jarm_slice, span
@@ -53,8 +54,6 @@ from eccjump.motion.simulation import Rule
 
 if TYPE_CHECKING:
     import xarray as xr
-    from matplotlib.axes import Axes
-    from matplotlib.figure import Figure, FigureBase
 
 #: The axes of a map, in the order of the grid (C order: alpha slowest); ``km_frac`` is the
 #: fraction k_m/(1 - chi), as in JARM maps.
@@ -64,7 +63,7 @@ DIM_OF = dict(MOTION.axes)
 
 
 @dataclass(frozen=True, eq=False)
-class MotionMap(Map, kind=MOTION):
+class MotionMap(Map, Plottable, kind=MOTION):
     """A motion map: one array per summary field, with one dimension per swept axis.
 
     Made by :func:`motion_map`. Each field is also an attribute (``m.apex``, ``m.sequence``,
@@ -211,21 +210,11 @@ class MotionMap(Map, kind=MOTION):
             picture = jarm_slice(cut, "JARM (green) over chi (across) and alpha (up)")
         return card(f"MotionMap ({int(np.prod(self.shape))} points)", rows, picture)
 
-    @overload
-    def plot(self, *, ax: Axes, **kwargs: Any) -> Axes: ...
-    @overload
-    def plot(self, *, ax: None = None, fig: FigureBase | None = None, **kwargs: Any) -> Figure: ...
-    def plot(
-        self, *, ax: Axes | None = None, fig: FigureBase | None = None, **kwargs: Any
-    ) -> Axes | Figure:
-        """The map in the (χ, α) plane, coloured by the sequence of modes, a few
-        k_m slices (``eccjump.plot.sequence_map``). ``ax=``: only one slice (``km_frac=``),
-        drawn into this matplotlib Axes and returned (``eccjump.plot.sequence_panel``), to
-        compose figures; ``fig=``: the full figure in this empty Figure or SubFigure.
-        ``kwargs`` go to the function drawn. Needs ``pip install eccjump[plot]``."""
-        from eccjump import plot  # figures: the layer on top of every result
-
-        return plot.draw(self, ax=ax, fig=fig, **kwargs)
+    _plot_doc = """The map in the (χ, α) plane, coloured by the sequence of modes, a few
+    k_m slices (``eccjump.plot.sequence_map``). ``ax=``: only one slice (``km_frac=``),
+    drawn into this matplotlib Axes and returned (``eccjump.plot.sequence_panel``), to
+    compose figures; ``fig=``: the full figure in this empty Figure or SubFigure.
+    ``kwargs`` go to the function drawn. Needs ``pip install eccjump[plot]``."""
 
 
 #: The options shared by every point, recorded with a map.

@@ -15,7 +15,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass, fields, replace
-from typing import TYPE_CHECKING, Any, NamedTuple, overload
+from typing import TYPE_CHECKING, Any, NamedTuple
 
 import numpy as np
 from numpy.typing import NDArray
@@ -23,6 +23,7 @@ from numpy.typing import NDArray
 from eccjump import _core
 from eccjump._base.arrays import frozen_result, records, same_values
 from eccjump._base.body import Cylinder
+from eccjump._base.canvas import Plottable
 from eccjump._base.checks import (
     U64_MAX,
     Integrator,
@@ -44,8 +45,6 @@ from eccjump.motion.dense import DenseSolution
 if TYPE_CHECKING:  # pragma: no cover
     import pandas
     import xarray as xr
-    from matplotlib.axes import Axes
-    from matplotlib.figure import Figure, FigureBase
 
 EVENT_NAMES = ("liftoff", "normal_force_zero", "slip", "theta_limit")
 """The names of the events of :func:`roll`: the paper's lift-off condition (rising), the
@@ -87,7 +86,7 @@ SERIES = {
 
 
 @dataclass(frozen=True, eq=False)
-class RollResult(Result, kind="roll"):
+class RollResult(Result, Plottable, kind="roll"):
     """The outcome of :func:`roll`, in the spirit of scipy's ``OdeResult``.
 
     Arrays hold the accepted steps (the initial point first, the terminal event last), in
@@ -326,22 +325,12 @@ class RollResult(Result, kind="roll"):
 
     __hash__ = None  # type: ignore[assignment]  # mutable numpy arrays inside
 
-    @overload
-    def plot(self, *, ax: Axes, **kwargs: Any) -> Axes: ...
-    @overload
-    def plot(self, *, ax: None = None, fig: FigureBase | None = None, **kwargs: Any) -> Figure: ...
-    def plot(
-        self, *, ax: Axes | None = None, fig: FigureBase | None = None, **kwargs: Any
-    ) -> Axes | Figure:
-        """The run in four panels (``eccjump.plot.trajectory``): θ against t;
-        θ̇, F_x, F_y and the friction ratio against θ. ``ax=``: only θ against t
-        with its events, drawn into this matplotlib Axes and returned
-        (``eccjump.plot.roll_panel``), to compose figures; ``fig=``: the full figure in this
-        empty Figure or SubFigure. ``kwargs`` go to the function drawn. Needs
-        ``pip install eccjump[plot]``."""
-        from eccjump import plot  # figures: the layer on top of every result
-
-        return plot.draw(self, ax=ax, fig=fig, **kwargs)
+    _plot_doc = """The run in four panels (``eccjump.plot.trajectory``): θ against t;
+    θ̇, F_x, F_y and the friction ratio against θ. ``ax=``: only θ against t
+    with its events, drawn into this matplotlib Axes and returned
+    (``eccjump.plot.roll_panel``), to compose figures; ``fig=``: the full figure in this
+    empty Figure or SubFigure. ``kwargs`` go to the function drawn. Needs
+    ``pip install eccjump[plot]``."""
 
     # Taking the result elsewhere (save and eccjump.load: eccjump.maps.results).
     _unsaved = ("sol",)

@@ -9,7 +9,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass, fields, replace
-from typing import TYPE_CHECKING, Any, NamedTuple, overload
+from typing import TYPE_CHECKING, Any, NamedTuple
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
@@ -17,6 +17,7 @@ from numpy.typing import ArrayLike, NDArray
 from eccjump import _core
 from eccjump._base.arrays import frozen_result, records, same_values
 from eccjump._base.body import Cylinder
+from eccjump._base.canvas import Plottable
 from eccjump._base.checks import (
     Integrator,
     Rule,
@@ -40,8 +41,6 @@ from eccjump.motion.options import MotionOptions
 if TYPE_CHECKING:  # pragma: no cover
     import pandas
     import xarray as xr
-    from matplotlib.axes import Axes
-    from matplotlib.figure import Figure, FigureBase
 
 #: Mode codes of :attr:`MotionResult.mode`, by index.
 MODES = ("ROLL", "SLIP", "FLIGHT")
@@ -185,7 +184,7 @@ RECORDS = (
 
 
 @dataclass(frozen=True, eq=False)
-class MotionResult(Result, kind="motion"):
+class MotionResult(Result, Plottable, kind="motion"):
     """The outcome of :func:`simulate`.
 
     Arrays hold one row per accepted step (contact) or sample (flight), in time order; the
@@ -488,21 +487,11 @@ class MotionResult(Result, kind="motion"):
 
     __hash__ = None  # type: ignore[assignment]
 
-    @overload
-    def plot(self, *, ax: Axes, **kwargs: Any) -> Axes: ...
-    @overload
-    def plot(self, *, ax: None = None, fig: FigureBase | None = None, **kwargs: Any) -> Figure: ...
-    def plot(
-        self, *, ax: Axes | None = None, fig: FigureBase | None = None, **kwargs: Any
-    ) -> Axes | Figure:
-        """The run in six panels against time, the modes as coloured bands
-        (``eccjump.plot.motion``). ``ax=``: only θ̇ against t with the modes and impacts,
-        drawn into this matplotlib Axes and returned (``eccjump.plot.motion_panel``), to
-        compose figures; ``fig=``: the full figure in this empty Figure or SubFigure.
-        ``kwargs`` go to the function drawn. Needs ``pip install eccjump[plot]``."""
-        from eccjump import plot  # figures: the layer on top of every result
-
-        return plot.draw(self, ax=ax, fig=fig, **kwargs)
+    _plot_doc = """The run in six panels against time, the modes as coloured bands
+    (``eccjump.plot.motion``). ``ax=``: only θ̇ against t with the modes and impacts,
+    drawn into this matplotlib Axes and returned (``eccjump.plot.motion_panel``), to
+    compose figures; ``fig=``: the full figure in this empty Figure or SubFigure.
+    ``kwargs`` go to the function drawn. Needs ``pip install eccjump[plot]``."""
 
     # Taking the result elsewhere (save and eccjump.load: eccjump.maps.results).
     _unsaved = ("sol",)

@@ -6,9 +6,10 @@ import json
 import math
 from collections.abc import Callable
 from dataclasses import dataclass, field, fields
-from typing import TYPE_CHECKING, Any, NamedTuple, overload
+from typing import TYPE_CHECKING, Any, NamedTuple
 
 from eccjump._base.body import Cylinder
+from eccjump._base.canvas import Plottable
 from eccjump._base.checks import short
 from eccjump._base.html import card, deg, num
 from eccjump.maps import results
@@ -17,8 +18,6 @@ from eccjump.studies.design.physical import Build
 
 if TYPE_CHECKING:  # pragma: no cover
     import xarray as xr
-    from matplotlib.axes import Axes
-    from matplotlib.figure import Figure, FigureBase
 
 
 @dataclass(frozen=True)
@@ -101,7 +100,7 @@ class PJarm(NamedTuple):
 
 
 @dataclass(frozen=True)
-class Design(Result, kind="design"):
+class Design(Result, Plottable, kind="design"):
     """A lab design (:func:`design`): print it (``str(d)`` or :meth:`sheet`) for the lab
     sheet, :meth:`to_dict` for JSON. Angles in radians except the ``*_deg`` fields.
 
@@ -358,22 +357,12 @@ class Design(Result, kind="design"):
         ]
         return card("Design (print it for the lab sheet)", rows)
 
-    @overload
-    def plot(self, *, ax: Axes, **kwargs: Any) -> Axes: ...
-    @overload
-    def plot(self, *, ax: None = None, fig: FigureBase | None = None, **kwargs: Any) -> Figure: ...
-    def plot(
-        self, *, ax: Axes | None = None, fig: FigureBase | None = None, **kwargs: Any
-    ) -> Axes | Figure:
-        """The design on its region slice (``eccjump.plot.design_slice``): where its
-        verdict holds over (χ, α) at its k_m and worst-case μ_s, the design and its
-        margins in α and in the rod position. ``ax=``: the same, drawn into this
-        matplotlib Axes and returned (``eccjump.plot.design_panel``), to compose figures;
-        ``fig=``: in this empty Figure or SubFigure. ``kwargs`` (``resolution=``) go to it.
-        Needs ``pip install eccjump[plot]``."""
-        from eccjump import plot  # figures: the layer on top of every result
-
-        return plot.draw(self, ax=ax, fig=fig, **kwargs)
+    _plot_doc = """The design on its region slice (``eccjump.plot.design_slice``): where its
+    verdict holds over (χ, α) at its k_m and worst-case μ_s, the design and its
+    margins in α and in the rod position. ``ax=``: the same, drawn into this
+    matplotlib Axes and returned (``eccjump.plot.design_panel``), to compose figures;
+    ``fig=``: in this empty Figure or SubFigure. ``kwargs`` (``resolution=``) go to it.
+    Needs ``pip install eccjump[plot]``."""
 
 
 def _odds(s: Success, tolerances: dict[str, float] | None) -> str:

@@ -36,11 +36,12 @@ import math
 import os
 import time
 from dataclasses import dataclass, field, replace
-from typing import TYPE_CHECKING, Any, get_args, overload
+from typing import TYPE_CHECKING, Any, get_args
 
 import numpy as np
 
 from eccjump._base.body import Cylinder
+from eccjump._base.canvas import Plottable
 from eccjump._base.checks import Rule, flag, integer, optional_real, rule_name, short
 from eccjump._base.docs import fill
 from eccjump._base.html import card
@@ -76,8 +77,6 @@ from eccjump.studies.experiment.video import track as track_video
 
 if TYPE_CHECKING:  # pragma: no cover
     import xarray as xr
-    from matplotlib.axes import Axes
-    from matplotlib.figure import Figure, FigureBase
 
 VERDICTS = ("jarm", "slip_first", "undetermined")
 REASONS = ("", "no_liftoff", "noise", "frame_rate", "short_track", "model")
@@ -109,7 +108,7 @@ class SlipInterval:
 
 
 @dataclass(frozen=True, eq=False)
-class Analysis(Result, kind="analysis"):
+class Analysis(Result, Plottable, kind="analysis"):
     """The outcome of :func:`analyze`: the verdict, its reason (for ``undetermined``) and
     evidence (sentences), the lift-off time [s] with its standard error (from the fitted
     model) and the observed window, the slips before it, the fits and what they rest on."""
@@ -288,20 +287,10 @@ class Analysis(Result, kind="analysis"):
         rows += [("evidence", e) for e in self.evidence]
         return card("Analysis of a tracked experiment", rows)
 
-    @overload
-    def plot(self, *, ax: Axes, **kwargs: Any) -> Axes: ...
-    @overload
-    def plot(self, *, ax: None = None, fig: FigureBase | None = None, **kwargs: Any) -> Figure: ...
-    def plot(
-        self, *, ax: Axes | None = None, fig: FigureBase | None = None, **kwargs: Any
-    ) -> Axes | Figure:
-        """Data and model against time: θ, the slip velocity, the height of C,
-        the modes as bands (``eccjump.studies.experiment.figure``). ``ax=``: only θ, drawn
-        into this matplotlib Axes and returned, to compose figures; ``fig=``: the full figure
-        in this empty Figure or SubFigure. Needs ``pip install eccjump[plot]``."""
-        from eccjump import plot  # figures: the layer on top of every result
-
-        return plot.draw(self, ax=ax, fig=fig, **kwargs)
+    _plot_doc = """Data and model against time: θ, the slip velocity, the height of C,
+    the modes as bands (``eccjump.studies.experiment.figure``). ``ax=``: only θ, drawn
+    into this matplotlib Axes and returned, to compose figures; ``fig=``: the full figure
+    in this empty Figure or SubFigure. Needs ``pip install eccjump[plot]``."""
 
     def to_xarray(self) -> xr.Dataset:
         """The track, its reconstruction and the fitted model along ``frame`` with units, the

@@ -10,12 +10,13 @@ import os
 from collections.abc import Mapping
 from dataclasses import dataclass
 from pathlib import Path
-from typing import TYPE_CHECKING, Any, NamedTuple, overload
+from typing import TYPE_CHECKING, Any, NamedTuple
 
 import numpy as np
 from numpy.typing import NDArray
 
 from eccjump._base.arrays import fields_equal
+from eccjump._base.canvas import Plottable
 from eccjump._base.checks import flag, real, short
 from eccjump._base.checks import path as path_arg
 from eccjump._base.html import card, num
@@ -29,8 +30,6 @@ from eccjump.studies.uncertainty.sampling import UNITS
 
 if TYPE_CHECKING:
     import xarray as xr
-    from matplotlib.axes import Axes
-    from matplotlib.figure import Figure, FigureBase
 
 #: The quantiles of each distribution's summary.
 QUANTILES = (0.025, 0.25, 0.5, 0.75, 0.975)
@@ -110,7 +109,7 @@ class Summary(NamedTuple):
 
 
 @dataclass(frozen=True, eq=False, repr=False)
-class Uncertainty(Result, kind="uncertainty", suffixes=(".csv",)):
+class Uncertainty(Result, Plottable, kind="uncertainty", suffixes=(".csv",)):
     """What the spread of the inputs does to a JARM or to the first flight
     (:func:`eccjump.uncertainty`).
 
@@ -394,22 +393,12 @@ class Uncertainty(Result, kind="uncertainty", suffixes=(".csv",)):
         out += [f"{k} in [{num(lo, 4)}, {num(hi, 4)}]" for k, (lo, hi) in self.bounds.items()]
         return out
 
-    @overload
-    def plot(self, *, ax: Axes, **kwargs: Any) -> Axes: ...
-    @overload
-    def plot(self, *, ax: None = None, fig: FigureBase | None = None, **kwargs: Any) -> Figure: ...
-    def plot(
-        self, *, ax: Axes | None = None, fig: FigureBase | None = None, **kwargs: Any
-    ) -> Axes | Figure:
-        """The study (``eccjump.plot.uncertainty``): its outcomes with their Wilson
-        intervals, the samples and the distributions. ``ax=``: only the distribution of the
-        outcomes, drawn into this matplotlib Axes and returned
-        (``eccjump.plot.outcomes_panel``), to compose figures; ``fig=``: the full figure in
-        this empty Figure or SubFigure. ``kwargs`` go to the function drawn. Needs
-        ``pip install eccjump[plot]``."""
-        from eccjump import plot  # figures: the layer on top of every result
-
-        return plot.draw(self, ax=ax, fig=fig, **kwargs)
+    _plot_doc = """The study (``eccjump.plot.uncertainty``): its outcomes with their Wilson
+    intervals, the samples and the distributions. ``ax=``: only the distribution of the
+    outcomes, drawn into this matplotlib Axes and returned
+    (``eccjump.plot.outcomes_panel``), to compose figures; ``fig=``: the full figure in
+    this empty Figure or SubFigure. ``kwargs`` go to the function drawn. Needs
+    ``pip install eccjump[plot]``."""
 
 
 def _first_order(d: Delta) -> str:
