@@ -87,11 +87,21 @@ def judge(case: rt.Case, kwargs: dict) -> dict:
         else math.inf,
         "mu_k_ok": lo <= case.mu_k <= hi,
         "mu_k_determined": hi - lo < 2.9,
+        "mu_s_ok": _covers(res.parameters()["mu_s"], case.mu_s),
+        "mu_s_status": res.parameters()["mu_s"]["status"],
         "chi2": res.fit.chi2_reduced,
         "dchi2": res.delta_chi2,
         "inflation": res.fit.correlation,
         "seconds": time.perf_counter() - started,
     }
+
+
+def _covers(p: dict, truth: float) -> bool:
+    """Whether a printed mu_s covers the truth: its interval, its lower bound, or anything
+    when it is not determined."""
+    if p["status"] == "lower_bound":
+        return truth >= p["lo"]
+    return p["status"] == "not_determined" or p["lo"] <= truth <= p["hi"]
 
 
 def summary(rows: list[dict]) -> str:
@@ -132,6 +142,9 @@ def summary(rows: list[dict]) -> str:
     det = [r for r in rows if r["mu_k_determined"]]
     lines.append(f"mu_k covered: {sum(r['mu_k_ok'] for r in rows)} / {len(rows)} "
                  f"({sum(r['mu_k_ok'] for r in det)} / {len(det)} where determined)")  # fmt: skip
+    val = [r for r in rows if r.get("mu_s_status") == "value"]
+    lines.append(f"mu_s covered: {sum(r.get('mu_s_ok', True) for r in rows)} / {len(rows)} "
+                 f"({sum(r['mu_s_ok'] for r in val)} / {len(val)} as values)")  # fmt: skip
     return "\n".join(lines)
 
 

@@ -7,7 +7,7 @@ every result (:class:`Plottable`); matplotlib is imported only when a figure is 
 
 from __future__ import annotations
 
-import types
+import functools
 from typing import TYPE_CHECKING, Any, ClassVar, overload
 
 from eccjump._base.optional import require
@@ -80,16 +80,17 @@ class Plottable:
         return plot.draw(self, ax=ax, fig=fig, **kwargs)
 
 
-def _own_plot(cls: type[Plottable]) -> types.FunctionType:
-    """:meth:`Plottable.plot` as a method of ``cls`` with its ``_plot_doc``: the same code (no
-    wrapper in tracebacks), named where ``help()`` and tracebacks look."""
-    impl: Any = Plottable.plot
-    own = types.FunctionType(impl.__code__, impl.__globals__, "plot", impl.__defaults__)
-    own.__kwdefaults__ = impl.__kwdefaults__
-    own.__annotations__ = impl.__annotations__
-    own.__module__, own.__qualname__ = cls.__module__, f"{cls.__qualname__}.plot"
-    own.__doc__ = cls._plot_doc
-    return own
+def _own_plot(cls: type[Plottable]) -> Any:
+    """:meth:`Plottable.plot` as a method of ``cls`` with its ``_plot_doc`` (a wrapper:
+    ``help()`` follows it to the signature), named where ``help()`` and tracebacks look."""
+
+    @functools.wraps(Plottable.plot)
+    def plot(self: Plottable, **kwargs: Any) -> Any:
+        return Plottable.plot(self, **kwargs)
+
+    plot.__module__, plot.__qualname__ = cls.__module__, f"{cls.__qualname__}.plot"
+    plot.__doc__ = cls._plot_doc
+    return plot
 
 
 __all__ = ["Plottable", "checked_target", "new_figure", "pyplot"]
