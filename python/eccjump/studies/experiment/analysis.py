@@ -383,7 +383,7 @@ def analyze(
     >>> body = eccjump.Cylinder(0.10927, 0.0777)
     >>> alpha = math.radians(66.087)
     >>> made = synthetic_track(body, alpha, mu_s=1.2, mu_k=0.9, radius=0.05, fps=240.0,
-    ...                        noise_px=0.1, seed=1)
+    ...                        noise_px=0.05, seed=1)
     >>> res = eccjump.analyze(made.track, radius=0.05, chi=body.chi, km=body.km,
     ...                       alpha=alpha, marker_radius=0.04, profile_mu_k=False)
     >>> print(res.verdict, round(res.liftoff_t, 3))
