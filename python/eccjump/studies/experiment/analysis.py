@@ -59,6 +59,7 @@ from eccjump.studies.experiment.fit import (
     fit,
     flight_signal,
     misfit_p,
+    mu_s_interval,
     one_frame_slip,
     profile,
     profile_interval,
@@ -121,6 +122,8 @@ class Analysis(Result, Plottable, kind="analysis"):
     liftoff_window: Window | None
     slips: tuple[SlipInterval, ...]
     mu_k_interval: tuple[float, float]
+    #: mu_s's ~95 % interval: (lo, inf) a lower bound, (0, inf) not determined.
+    mu_s_interval: tuple[float, float]
     delta_chi2: float
     track: Track
     rec: Reconstruction
@@ -144,8 +147,8 @@ class Analysis(Result, Plottable, kind="analysis"):
         radians. ``status`` is ``"value"``, ``"not_determined"`` (the track does not
         constrain it: its value is None, the interval the whole range; mu_k, mu_s and e
         whenever the reason is ``model``, since a model the track rejects fixes none of them)
-        or, for mu_s, ``"lower_bound"`` (a fitted run that never slips: mu_s >= what its
-        rolling needed, value None, hi inf)."""
+        or, for mu_s, ``"lower_bound"`` (``mu_s_interval`` open above: a track that rolls,
+        or slips only where its profile is flat; value None, hi inf)."""
         f, out = self.fit, {}
         rejected = self.reason == "model"  # the model does not describe the track
         for name in f.names:
@@ -163,19 +166,18 @@ class Analysis(Result, Plottable, kind="analysis"):
                 "unit": UNITS.get(name, ""),
                 "status": "value" if known else "not_determined",
             }
-        lo_s, hi_s = _mu_s_interval(f)
-        bound = not math.isfinite(hi_s) or hi_s > 1.8 * MU_MAX or not _ever_slips(self)
+        lo_s, hi_s = self.mu_s_interval
+        status = "lower_bound" if math.isinf(hi_s) else "value"
+        if rejected or (lo_s <= 0.0 and math.isinf(hi_s)):
+            lo_s, status = 0.0, "not_determined"
         out["mu_s"] = {
-            "value": math.nan if bound else f.value("mu_k") + f.value("dmu"),
-            "lo": self.mu_s_needed if bound else lo_s,
-            "hi": math.inf if bound else hi_s,
+            "value": f.value("mu_k") + f.value("dmu") if status == "value" else math.nan,
+            "lo": lo_s,
+            "hi": hi_s if status == "value" else math.inf,
             "unit": "",
             "rolling_needs": self.mu_s_needed,
-            "status": "lower_bound" if bound else "value",
+            "status": status,
         }
-        if rejected or (bound and not self.mu_s_needed <= MU_MAX):  # or F_y -> 0 at a lift-off
-            out["mu_s"] |= {"value": math.nan, "lo": 0.0, "hi": math.inf}
-            out["mu_s"]["status"] = "not_determined"
         return out
 
     def parameter_lines(self) -> list[tuple[str, str]]:
@@ -186,7 +188,10 @@ class Analysis(Result, Plottable, kind="analysis"):
             if name not in ("mu_k", "mu_s", "e"):
                 continue
             if p["status"] == "lower_bound":
-                text = f">= {p['lo']:.3f} (what the fitted rolling needed)"
+                text = (
+                    f">= {p['lo']:.3f} (the track's 95 % bound; the fitted rolling needs "
+                    f"{p['rolling_needs']:.3f})"
+                )
             elif p["status"] == "not_determined":
                 text = "not determined by this track"
                 if self.reason == "model":
@@ -357,8 +362,9 @@ def analyze(
         The smoothing window in frames (an odd int, at least 7, at most the frames); None
         chooses it from the frame rate.
     profile_mu_k : bool, default True
-        Widen mu_k's interval by its profile (a few seconds; the local interval alone can
-        miss a second minimum). True or False, nothing else.
+        Widen the intervals of mu_k and mu_s by their profiles (a few seconds; a local
+        interval alone can miss a second minimum, or a slip's onset, a kink in mu_s). True
+        or False, nothing else.
 
     Returns
     -------
@@ -441,16 +447,35 @@ def analyze(
     p = misfit_p(best, int(rec.line.contact.sum()))
     if p < MISFIT_P:
         notes += _angle_unit_note(track, setup, rec, best, w)
-    mu_k_iv = best.interval("mu_k")
+    intervals = _friction_intervals(best, setup, track, rec, profiled)
     if p < MISFIT_P or off_path:  # a model the track rejects fixes none of its parameters
         i = best.names.index("mu_k")
-        mu_k_iv = (float(best.lower[i]), float(best.upper[i]))
-    elif profiled:
-        grid, costs = profile(best, setup, track, rec)
-        mu_k_iv = profile_interval(grid, costs, best)
+        intervals = ((float(best.lower[i]), float(best.upper[i])), (0.0, math.inf))
     flight = flight_signal(best, setup, rec)
     verdict = _Verdict(observed, best, jarm_fit, p, off_path[0] if off_path else "", flight, power)
-    return _judge(track, rec, verdict, setup, mu_k_iv, notes, started)
+    return _judge(track, rec, verdict, setup, intervals, notes, started)
+
+
+def _friction_intervals(
+    best: Fit, setup: Setup, track: Track, rec: Reconstruction, profiled: bool
+) -> tuple[tuple[float, float], tuple[float, float]]:
+    """mu_k's and mu_s's ~95 % intervals: local, widened by their profiles if ``profiled``.
+    mu_s's local interval is a lower bound (what the rolling needs, to infinity) when the
+    fitted run never slips or the fit does not constrain it."""
+    mu_k_iv = best.interval("mu_k")
+    lo_s, hi_s = mu_s_interval(best)
+    if not math.isfinite(hi_s) or hi_s > 1.8 * MU_MAX or not _slips_in_track(best, setup, track):
+        needs = _rolling_needs(best, setup, track)  # inf where F_y -> 0 before a lift-off
+        lo_s, hi_s = needs if needs <= MU_MAX else 0.0, math.inf
+    if not profiled:
+        return mu_k_iv, (lo_s, hi_s)
+    i = best.names.index("mu_k")
+    grid, costs = profile(best, setup, track, rec, "mu_k")
+    mu_k_iv = profile_interval(
+        grid, costs, best, mu_k_iv, (float(best.lower[i]), float(best.upper[i]))
+    )
+    grid, costs = profile(best, setup, track, rec, "mu_s")
+    return mu_k_iv, profile_interval(grid, costs, best, (lo_s, hi_s), (0.0, math.inf))
 
 
 @dataclass(frozen=True, eq=False)
@@ -472,7 +497,7 @@ def _judge(
     rec: Reconstruction,
     v: _Verdict,
     setup: Setup,
-    mu_k_iv: tuple[float, float],
+    intervals: tuple[tuple[float, float], tuple[float, float]],
     notes: tuple[str, ...],
     started: float,
 ) -> Analysis:
@@ -484,7 +509,7 @@ def _judge(
     lift = times["liftoff"]
     slips_dimless = slip_intervals(best.run, lift if math.isfinite(lift) else horizon)
     frames = sum(b - a for a, b in slips_dimless) * unit / dt  # fit.slip_frames, reused
-    needs = rolling_needs(best.run, lift if math.isfinite(lift) else horizon)
+    needs = _rolling_needs(best, setup, track)
     delta = math.nan
     if v.jarm_fit is not None:
         delta = 2.0 * (v.jarm_fit.cost - best.cost) / best.variance_factor
@@ -516,7 +541,8 @@ def _judge(
         liftoff_err=errs["liftoff"],
         liftoff_window=seen.liftoff if seen else None,
         slips=slips,
-        mu_k_interval=mu_k_iv,
+        mu_k_interval=intervals[0],
+        mu_s_interval=intervals[1],
         delta_chi2=delta,
         track=track,
         rec=rec,
@@ -815,20 +841,18 @@ def _marker_note(rec: Reconstruction, given: float | None) -> tuple[str, ...]:
     )
 
 
-def _ever_slips(res: Analysis) -> bool:
+def _rolling_needs(f: Fit, setup: Setup, track: Track) -> float:
+    """The largest friction ratio |F_x|/F_y of the fitted run's rolling before its first
+    lift-off (or the track's end): what mu_s must be for that rolling."""
+    horizon = float(track.t[-1] - track.t[0]) / setup.time_unit
+    lift = event_times(f.run, horizon)["liftoff"]
+    return rolling_needs(f.run, lift if math.isfinite(lift) else horizon)
+
+
+def _slips_in_track(f: Fit, setup: Setup, track: Track) -> bool:
     """Whether the fitted run slips anywhere within the track (else mu_s is only bounded)."""
-    end = float(res.track.t[-1] - res.track.t[0]) / res.setup.time_unit
-    return any(seg.mode == "SLIP" and seg.t_start < end for seg in res.fit.run.segments)
-
-
-def _mu_s_interval(f: Fit) -> tuple[float, float]:
-    i, j = f.names.index("mu_k"), f.names.index("dmu")
-    var = f.cov[i, i] + f.cov[j, j] + 2 * f.cov[i, j]
-    v = f.value("mu_k") + f.value("dmu")
-    if not math.isfinite(var):
-        return f.value("mu_k"), math.inf
-    e = 1.96 * math.sqrt(max(var, 0.0))
-    return max(v - e, 0.0), v + e
+    end = float(track.t[-1] - track.t[0]) / setup.time_unit
+    return any(seg.mode == "SLIP" and seg.t_start < end for seg in f.run.segments)
 
 
 def _abs(t: float, t0: float, unit: float) -> float:

@@ -134,11 +134,11 @@ class Model:
         rec: Reconstruction,
         *,
         jarm_only: bool,
-        mu_s_cap: float = math.inf,
+        mu_s_range: tuple[float, float] = (0.0, math.inf),
     ):
         self.setup, self.track, self.rec = setup, track, rec
         self.jarm_only = jarm_only
-        self.mu_s_cap = mu_s_cap  # the runs' mu_s (and so mu_k) kept at most this
+        self.mu_s_range = mu_s_range  # the runs' mu_s kept within (mu_k at most mu_s)
         self.names = tuple(n for n in NAMES if n != "alpha" or setup.fit_alpha)
         self.tau = (track.t - track.t[0]) / setup.time_unit
         self.sigma = max(rec.sigma, 1e-12 * setup.radius)
@@ -159,7 +159,7 @@ class Model:
         """The run of ``p`` over the track (dimensionless, dense)."""
         s = self.setup
         mu_s = p["mu_k"] + p["dmu"] if mu_s is None else mu_s
-        mu_s = min(mu_s, self.mu_s_cap)
+        mu_s = min(max(mu_s, self.mu_s_range[0]), self.mu_s_range[1])
         mu_k = min(p["mu_k"], mu_s)
         if self.jarm_only:
             mu_s = max(mu_s, self.mu_bound(p) * (1 + 1e-9))
@@ -410,68 +410,99 @@ def profile(
     """The profile of the cost along one parameter: at each of ``n`` values over its range
     the other parameters are refitted (from the best fit). A local (Jacobian) interval
     misses a second minimum (e.g. a landing that a lower mu_k with some bounce explains as
-    well); the profile does not, within its grid."""
+    well) or a kink (a slip's onset, where mu_s acts); the profile does not, within its
+    grid. ``name`` is one of the fit's parameters or ``"mu_s"`` (mu_k + dmu: each value
+    held by the model, every parameter refitted; the grid also brackets by 5 and 15 % the
+    fitted mu_s, or what the fitted rolling needs where that is less: a rolling fit's mu_s
+    is anything above it)."""
+    if name == "mu_s":
+        v0 = min(float(best.run.mu_s), best.mu_s_bound) if best.mu_s_bound > 0 else best.run.mu_s
+        grid = np.unique(
+            np.r_[np.linspace(0.0, MU_MAX / 2, n), v0 * np.array([0.85, 0.95, 1.0, 1.05, 1.15])]
+        )
+        costs = [
+            _profile_cost(best, Model(setup, track, rec, jarm_only=False, mu_s_range=(v, v)))
+            for v in grid
+        ]
+        return grid, np.array(costs)
+    i = best.names.index(name)
+    grid = np.unique(np.r_[np.linspace(best.lower[i], best.upper[i] / 2, n), best.x[i]])
+    model = Model(setup, track, rec, jarm_only=best.jarm_only)
+    return grid, np.array([_profile_cost(best, model, (i, float(v))) for v in grid])
+
+
+def _profile_cost(best: Fit, model: Model, held: tuple[int, float] | None = None) -> float:
+    """The least cost of ``model`` with parameter ``held[0]`` at ``held[1]`` (None: every
+    parameter free), refitted from the best fit and, where that bounces, from no bounce (a
+    bounce can mimic friction)."""
     from scipy.optimize import least_squares
 
-    model = Model(setup, track, rec, jarm_only=best.jarm_only)
-    i = best.names.index(name)
-    others = [j for j in range(best.x.size) if j != i]
-    grid = np.unique(np.r_[np.linspace(best.lower[i], best.upper[i] / 2, n), best.x[i]])
-    starts = [best.x[others]]
-    if "e" in best.names and best.value("e") > 0.05:  # a bounce can mimic friction: try none
+    free = [j for j in range(best.x.size) if held is None or j != held[0]]
+    starts = [best.x[free]]
+    if "e" in best.names and best.value("e") > 0.05:
         y = best.x.copy()
         y[best.names.index("e")] = 0.0
-        starts.append(y[others])
-    costs = np.empty(grid.size)
-    for k, v in enumerate(grid):
+        starts.append(y[free])
 
-        def fun(y: NDArray[np.float64], v: float = float(v)) -> NDArray[np.float64]:
-            x = best.x.copy()
-            x[others] = y
-            x[i] = v
-            return model.residuals(x)
+    def fun(y: NDArray[np.float64]) -> NDArray[np.float64]:
+        x = best.x.copy()
+        x[free] = y
+        if held is not None:
+            x[held[0]] = held[1]
+        return model.residuals(x)
 
-        costs[k] = best.cost if v == best.x[i] else math.inf
-        for y0 in starts:
-            res = least_squares(
-                fun,
-                y0,
-                bounds=(best.lower[others], best.upper[others]),
-                x_scale="jac",
-                diff_step=1e-6,
-                max_nfev=PROFILE_NFEV,
-                method="trf",
-            )
-            costs[k] = min(costs[k], res.cost)
-    return grid, costs
+    cost = math.inf
+    for y0 in starts:
+        res = least_squares(
+            fun,
+            y0,
+            bounds=(best.lower[free], best.upper[free]),
+            x_scale="jac",
+            diff_step=1e-6,
+            max_nfev=PROFILE_NFEV,
+            method="trf",
+        )
+        cost = min(cost, float(res.cost))
+    return cost
 
 
 def profile_interval(
     grid: NDArray[np.float64],
     costs: NDArray[np.float64],
     best: Fit,
-    name: str = "mu_k",
+    local: tuple[float, float],
+    bounds: tuple[float, float],
     level: float = 3.84,
 ) -> tuple[float, float]:
-    """The local ~95 % interval of ``name``, widened to every grid value of the profile
-    whose cost is within ``level`` / 2 (in units of the reduced chi-square) of the least,
-    plus one grid step beyond it (a second minimum narrower than a step can be missed); up
-    to the parameter's bound where the grid's last value is accepted (the profile is flat
-    there: a rolling track, or a slip the data do not ask for, leaves mu_k open above)."""
-    lo, hi = best.interval(name)
-    s2 = best.variance_factor
+    """The ``local`` ~95 % interval, widened to every grid value of the profile whose cost
+    is within ``level`` / 2 (in units of the reduced chi-square) of the least, plus one
+    grid step beyond it (a second minimum narrower than a step can be missed), within
+    ``bounds``; out to the bound where the grid's end value is accepted (the profile is
+    flat there: a rolling track leaves mu_k open above, and mu_s too)."""
+    lo, hi = local
     low = min(float(costs.min()), best.cost)
-    ok = 2.0 * (costs - low) / s2 <= level
+    ok = 2.0 * (costs - low) / best.variance_factor <= level
     accepted = grid[ok]
     far = accepted[(accepted < lo) | (accepted > hi)]
-    i = best.names.index(name)
     if far.size:
         step = float(np.max(np.diff(grid))) if grid.size > 1 else 0.0
-        lo = max(min(lo, float(far.min()) - step), float(best.lower[i]))
-        hi = min(max(hi, float(far.max()) + step), float(best.upper[i]))
+        lo = max(min(lo, float(far.min()) - step), bounds[0])
+        hi = min(max(hi, float(far.max()) + step), bounds[1])
     if ok[-1]:
-        hi = float(best.upper[i])
+        hi = bounds[1]
     return lo, hi
+
+
+def mu_s_interval(f: Fit) -> tuple[float, float]:
+    """mu_s's local ~95 % interval (mu_k + dmu, from the covariance), (mu_k, inf) where the
+    fit does not constrain it."""
+    i, j = f.names.index("mu_k"), f.names.index("dmu")
+    var = f.cov[i, i] + f.cov[j, j] + 2 * f.cov[i, j]
+    v = f.value("mu_k") + f.value("dmu")
+    if not math.isfinite(var):
+        return f.value("mu_k"), math.inf
+    e = 1.96 * math.sqrt(max(var, 0.0))
+    return max(v - e, 0.0), v + e
 
 
 #: The largest variance inflation :func:`correlation_inflation` gives (rho = 0.82).
@@ -586,7 +617,7 @@ def _one_frame_mu_s(
 def _capped_fit(f: Fit, setup: Setup, track: Track, rec: Reconstruction, mu_s: float) -> Fit:
     """``f`` refitted with its runs' mu_s at most ``mu_s`` (from ``f``, mu_s set there);
     its mu_k and dmu are those its run used (a start for a free fit that gives that run)."""
-    model = Model(setup, track, rec, jarm_only=False, mu_s_cap=mu_s)
+    model = Model(setup, track, rec, jarm_only=False, mu_s_range=(0.0, mu_s))
     lo, hi = model.bounds(start_guess(setup, rec))
     capped = _result(model, _solve(model, _with_mu_s(f.x, f.names, mu_s), lo, hi, MAX_NFEV), lo, hi)
     used = min(capped.value("mu_k") + capped.value("dmu"), mu_s)

@@ -979,7 +979,7 @@ def _release(c: NDArray[np.float64], err: NDArray[np.float64], t: NDArray[np.flo
     the release t_r is where the root of that distance, fitted by a line over the frames
     that leave the place, meets 0 (the frames that move less than the tolerance are kept:
     they are the start of the motion). Not the last still frame: the model starts at the
-    first frame kept with omega0 >= 0, and a release up to a frame after it (a delay the
+    first frame kept with θ̇₀ ≥ 0, and a release up to a frame after it (a delay the
     start cannot express) failed the fit (chi2_red 34 after a 0.57 s wait)."""
     found = np.flatnonzero(np.isfinite(c[:, 0]))
     if found.size < MIN_REST_FRAMES + MIN_FRAMES:
