@@ -408,50 +408,64 @@ def profile(
     best: Fit, setup: Setup, track: Track, rec: Reconstruction, name: str = "mu_k", n: int = 11
 ) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
     """The profile of the cost along one parameter: at each of ``n`` values over its range
-    the other parameters are refitted (from the best fit). A local (Jacobian) interval
-    misses a second minimum (e.g. a landing that a lower mu_k with some bounce explains as
-    well) or a kink (a slip's onset, where mu_s acts); the profile does not, within its
-    grid. ``name`` is one of the fit's parameters or ``"mu_s"`` (mu_k + dmu: each value
-    held by the model, every parameter refitted; the grid also brackets by 5 and 15 % the
-    fitted mu_s, or what the fitted rolling needs where that is less: a rolling fit's mu_s
-    is anything above it)."""
+    the other parameters are refitted. A local (Jacobian) interval misses a second minimum
+    (e.g. a landing that a lower mu_k with some bounce explains as well) or a kink (a
+    slip's onset, where mu_s acts); the profile does not, within its grid. ``name`` is one
+    of the fit's parameters or ``"mu_s"`` (mu_k + dmu, each value held by the model: the
+    grid also brackets by 5 and 15 % the fitted mu_s, or what the fitted rolling needs
+    where that is less, a rolling fit's mu_s being anything above it). The values are
+    refitted outward from the fitted one, each from its neighbour's solution (half the
+    work of starting each from the best fit)."""
     if name == "mu_s":
         v0 = min(float(best.run.mu_s), best.mu_s_bound) if best.mu_s_bound > 0 else best.run.mu_s
         grid = np.unique(
             np.r_[np.linspace(0.0, MU_MAX / 2, n), v0 * np.array([0.85, 0.95, 1.0, 1.05, 1.15])]
         )
-        costs = [
-            _profile_cost(best, Model(setup, track, rec, jarm_only=False, mu_s_range=(v, v)))
-            for v in grid
-        ]
-        return grid, np.array(costs)
-    i = best.names.index(name)
-    grid = np.unique(np.r_[np.linspace(best.lower[i], best.upper[i] / 2, n), best.x[i]])
-    model = Model(setup, track, rec, jarm_only=best.jarm_only)
-    return grid, np.array([_profile_cost(best, model, (i, float(v))) for v in grid])
+        held = best.names.index("dmu")  # no say while the model holds mu_s
+
+        def fit_at(k: int, x: NDArray[np.float64]) -> tuple[float, NDArray[np.float64]]:
+            model = Model(setup, track, rec, jarm_only=False, mu_s_range=(grid[k], grid[k]))
+            return _profile_fit(best, model, held, x, float(best.x[held]))
+    else:
+        held = best.names.index(name)
+        v0 = float(best.x[held])
+        grid = np.unique(np.r_[np.linspace(best.lower[held], best.upper[held] / 2, n), v0])
+        model = Model(setup, track, rec, jarm_only=best.jarm_only)
+
+        def fit_at(k: int, x: NDArray[np.float64]) -> tuple[float, NDArray[np.float64]]:
+            return _profile_fit(best, model, held, x, float(grid[k]))
+
+    costs = np.empty(grid.size)
+    k0 = int(np.argmin(np.abs(grid - v0)))
+    for sweep in (range(k0, grid.size), range(k0 - 1, -1, -1)):
+        x = best.x
+        for k in sweep:
+            costs[k], x = fit_at(k, x)
+    return grid, costs
 
 
-def _profile_cost(best: Fit, model: Model, held: tuple[int, float] | None = None) -> float:
-    """The least cost of ``model`` with parameter ``held[0]`` at ``held[1]`` (None: every
-    parameter free), refitted from the best fit and, where that bounces, from no bounce (a
-    bounce can mimic friction)."""
+def _profile_fit(
+    best: Fit, model: Model, held: int, x0: NDArray[np.float64], value: float
+) -> tuple[float, NDArray[np.float64]]:
+    """The least cost of ``model`` with parameter ``held`` at ``value`` and the solution,
+    refitted from ``x0`` and, where the best fit bounces, from no bounce (a bounce can
+    mimic friction)."""
     from scipy.optimize import least_squares
 
-    free = [j for j in range(best.x.size) if held is None or j != held[0]]
-    starts = [best.x[free]]
+    free = [j for j in range(best.x.size) if j != held]
+    starts = [x0[free]]
     if "e" in best.names and best.value("e") > 0.05:
-        y = best.x.copy()
+        y = x0.copy()
         y[best.names.index("e")] = 0.0
         starts.append(y[free])
 
     def fun(y: NDArray[np.float64]) -> NDArray[np.float64]:
         x = best.x.copy()
         x[free] = y
-        if held is not None:
-            x[held[0]] = held[1]
+        x[held] = value
         return model.residuals(x)
 
-    cost = math.inf
+    out = (math.inf, x0)
     for y0 in starts:
         res = least_squares(
             fun,
@@ -462,8 +476,11 @@ def _profile_cost(best: Fit, model: Model, held: tuple[int, float] | None = None
             max_nfev=PROFILE_NFEV,
             method="trf",
         )
-        cost = min(cost, float(res.cost))
-    return cost
+        if res.cost < out[0]:
+            x = best.x.copy()
+            x[free], x[held] = res.x, value
+            out = (float(res.cost), x)
+    return out
 
 
 def profile_interval(
