@@ -433,7 +433,7 @@ def analyze(
         rule,
         fit_alpha=a_given is None,
     )
-    best, jarm_fit = consistent_fits(setup, track, rec)
+    best, jarm_fit = _consistent_fits(setup, track, rec)
     power = math.nan  # asked only where the verdict could be jarm: a slip under a frame
     if slip_frames(best, setup, track) < 1.0:
         power, slipping = one_frame_slip(jarm_fit or best, setup, track, rec)
@@ -454,6 +454,18 @@ def analyze(
     flight = flight_signal(best, setup, rec)
     verdict = _Verdict(observed, best, jarm_fit, p, off_path[0] if off_path else "", flight, power)
     return _judge(track, rec, verdict, setup, intervals, notes, started)
+
+
+def _consistent_fits(setup: Setup, track: Track, rec: Reconstruction) -> tuple[Fit, Fit | None]:
+    """``fit.consistent_fits``, screened again more widely where the first pair fails the
+    goodness-of-fit gate (a failed gate may be a local minimum: a long slip at 2 px stopped
+    at chi2_red 31.7); the better pair."""
+    fits = consistent_fits(setup, track, rec)
+    if misfit_p(fits[0], int(rec.line.contact.sum())) < MISFIT_P:
+        wider = consistent_fits(setup, track, rec, wide=True)
+        if wider[0].cost < fits[0].cost:
+            fits = wider
+    return fits
 
 
 def _friction_intervals(
