@@ -33,7 +33,6 @@ from eccjump.studies.experiment.track import (
     MAX_FRAMES,
     MIN_FRAMES,
     read_track,
-    still_noise,
     track_from_arrays,
     write_csv,
 )
@@ -68,22 +67,6 @@ def test_the_ramp_frame_is_the_papers():
         assert np.allclose(f.to_ramp(f.to_lab(q)), q)
         ahead = marker_offset(np.array([math.pi / 2]), 1.0, 0.0)
         assert np.allclose(ahead, [[1.0, 0.0]])
-
-
-@given(st.floats(1e-5, 1e-2), st.floats(0.0, 20.0), st.integers(0, 2**32 - 1))
-@settings(max_examples=30, deadline=None)
-def test_the_still_noise_is_the_noise_of_a_smooth_path(sigma, accel, seed):
-    """Points along a parabola (any acceleration a frame rate shows smoothly) with white
-    noise sigma: the noise from the second differences is sigma within 15 %; two impacts
-    (jumps of 100 sigma) change nothing. 2000 frames: the estimate's spread is 2 %."""
-    rng = np.random.default_rng(seed)
-    t = np.arange(2000) / 240.0
-    c = np.column_stack([0.5 * accel * t**2, -0.3 * accel * t**2])
-    c += sigma * rng.standard_normal(c.shape)
-    assert still_noise(c) == pytest.approx(sigma, rel=0.15)
-    c[1000:] += 100 * sigma
-    c[1500:] -= 100 * sigma
-    assert still_noise(c) == pytest.approx(sigma, rel=0.15)
 
 
 @given(

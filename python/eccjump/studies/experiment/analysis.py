@@ -72,15 +72,7 @@ from eccjump.studies.experiment.geometry import path_angle
 from eccjump.studies.experiment.inputs import MARKER_IN_R, in_range
 from eccjump.studies.experiment.reconstruction import MIN_WINDOW, Reconstruction, reconstruct
 from eccjump.studies.experiment.sheet import design_inputs
-from eccjump.studies.experiment.track import (
-    MAX_FRAMES,
-    Track,
-    first_frames,
-    frames_from,
-    load_track,
-    release_frame,
-    still_noise,
-)
+from eccjump.studies.experiment.track import MAX_FRAMES, Track, first_frames, load_track
 from eccjump.studies.experiment.video import is_video
 from eccjump.studies.experiment.video import track as track_video
 
@@ -417,13 +409,6 @@ def analyze(
         px = None
     elif not isinstance(track, Track):
         track = load_track(track, scale=px, fmt="auto", name="track")
-    begin = release_frame(track.t, track.c, 4.0 * still_noise(track.c))
-    if begin > 0:  # a wait before the release: the model starts after it
-        notes += (
-            f"the body waits until its release at t = {track.t[begin]:.4f} s: the "
-            f"{begin} frames before it are left out",
-        )
-        track = frames_from(track, begin)
     _check_marker_distance(track, R, px)
     rec = reconstruct(
         track, radius=R, marker_angle=beta, marker_radius=r_m, alpha=a_given, window=w

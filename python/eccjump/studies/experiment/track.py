@@ -44,8 +44,6 @@ MAX_LINES = 100_000
 #: The longest line of a track file [characters]: a row of Tracker's widest exports fits many
 #: times; a longer one is refused before it is split into cells.
 MAX_LINE = 2**16
-#: The fewest still frames before the release taken as a wait (:func:`release_frame`).
-MIN_REST_FRAMES = 8
 #: The cell delimiters of a CSV track: whichever splits its header into the five names.
 DELIMITERS = (",", ";", "\t")
 
@@ -79,58 +77,13 @@ class Track:
 def first_frames(track: Track, n: int) -> Track:
     """The first ``n`` frames of ``track`` (of any Track subclass: every per-frame array is
     cut, the rest kept)."""
-    return _frames(track, slice(None, n))
-
-
-def frames_from(track: Track, k: int) -> Track:
-    """``track`` from its frame ``k`` on (as :func:`first_frames`)."""
-    return _frames(track, slice(k, None))
-
-
-def _frames(track: Track, frames: slice) -> Track:
     cut = {
-        f.name: getattr(track, f.name)[frames]
+        f.name: getattr(track, f.name)[:n]
         for f in fields(track)
         if isinstance(getattr(track, f.name), np.ndarray)
         and getattr(track, f.name).shape[:1] == (track.n,)
     }
     return replace(track, **cut)
-
-
-def release_frame(t: NDArray[np.float64], c: NDArray[np.float64], tol: float) -> int:
-    """The first frame after the body's release, if the axle ``c`` stays still (within
-    ``tol`` of its place) for :data:`MIN_REST_FRAMES` frames or more before it; else 0.
-    Frames where ``c`` is NaN (a dot lost) are skipped. Released from rest, the axle's
-    distance from its place grows as (t - t_r)² at first, so the release t_r is where the
-    root of that distance, fitted by a line over the frames that leave the place, meets 0.
-    Not the last still frame: the model starts at the first frame kept with θ̇₀ ≥ 0, and a
-    release up to a frame after it (a delay the start cannot express) failed the fit
-    (χ²_red 34 after a 0.57 s wait). A body released at its first frame has no still
-    frames before t_r: nothing is cut."""
-    found = np.flatnonzero(np.isfinite(c[:, 0]))
-    if found.size < MIN_REST_FRAMES + MIN_FRAMES:
-        return 0
-    dist = np.hypot(*(c[found] - np.median(c[found[:5]], axis=0)).T)
-    first = int(np.argmax(dist > tol)) if (dist > tol).any() else 0
-    if first < MIN_REST_FRAMES:
-        return 0
-    early = np.arange(first, min(first + 6, found.size))
-    slope, intercept = np.polyfit(t[found[early]], np.sqrt(dist[early]), 1)
-    t_r = -intercept / slope if slope > 0 else t[found[first - 2]]
-    still = np.flatnonzero(t[found[:first]] <= t_r)
-    return int(found[still[-1] + 1]) if still.size >= MIN_REST_FRAMES else 0
-
-
-def still_noise(c: NDArray[np.float64]) -> float:
-    """The per-coordinate noise [the track's unit] of the points ``c``, from the spread of
-    each coordinate's second differences about their median (a smooth motion's are far
-    smaller at any frame rate a track has; a flight's impacts are outliers a median
-    ignores): 1.4826 MAD / √6."""
-    d2 = np.diff(c[np.isfinite(c[:, 0])], n=2, axis=0)
-    if d2.shape[0] == 0:
-        return 0.0
-    mad = np.median(np.abs(d2 - np.median(d2, axis=0)), axis=0)  # each coordinate's own
-    return float(1.4826 * math.sqrt(float(np.mean(mad**2))) / math.sqrt(6.0))
 
 
 def track_from_arrays(
