@@ -447,10 +447,11 @@ def analyze(
     p = misfit_p(best, int(rec.line.contact.sum()))
     if p < MISFIT_P:
         notes += _angle_unit_note(track, setup, rec, best, w)
-    intervals = _friction_intervals(best, setup, track, rec, profiled)
     if p < MISFIT_P or off_path:  # a model the track rejects fixes none of its parameters
         i = best.names.index("mu_k")
         intervals = ((float(best.lower[i]), float(best.upper[i])), (0.0, math.inf))
+    else:  # (its profiles would be work for nothing)
+        intervals = _friction_intervals(best, setup, track, rec, profiled)
     flight = flight_signal(best, setup, rec)
     verdict = _Verdict(observed, best, jarm_fit, p, off_path[0] if off_path else "", flight, power)
     return _judge(track, rec, verdict, setup, intervals, notes, started)

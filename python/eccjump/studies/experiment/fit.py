@@ -583,7 +583,8 @@ def one_frame_slip(
     """How much worse (a chi-square, scaled like the slip test's) the rolling fit ``f``
     becomes when its body slips for one frame in all before the lift-off, and the refit
     that slips that long (None if it does not). The slip: mu_s lowered below what the
-    rolling needs (bisection) until ``f``'s run slips one frame, mu_k capped at mu_s. Taken
+    rolling needs (bisection) until ``f``'s run slips one frame, with mu_k = mu_s (the
+    gentlest slip: a rolling track does not fix mu_k, and a lower one shows more). Taken
     as it is, that run overstates what the track can tell (a slip elsewhere, or with
     another start, may fit better); so the other parameters are refitted with mu_s kept at
     most there, and the better of the two runs that slip a frame or more is the
