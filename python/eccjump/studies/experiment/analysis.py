@@ -16,7 +16,9 @@ before the model's lift-off contradicts (:data:`ALPHA_TOLERANCE`), gives ``undet
   the lift-off is as good), a slip of one frame before the lift-off would have shown
   (``fit.one_frame_slip`` at least :data:`SIGNIFICANT`), and the track shows the flight
   beyond its noise (frame by frame, or along the model's parabola: ``fit.flight_signal``
-  at least :data:`FLIGHT_Z`);
+  at least :data:`FLIGHT_Z`) or the lift-off follows from the rolling (a rigid body whose
+  fitted rolling loses its normal force leaves the ramp: inside the track, by
+  :data:`FRAMES_AFTER` frames, and with heights that do not contradict the flight);
 * ``slip_first``: it slipped before lifting off -- the fitted model slips for at least one
   frame in all (every episode: slip, stick, slip again, reversals), and the fit that
   forbids it is worse by a chi-square of at least :data:`SIGNIFICANT` (3 standard errors);
@@ -24,7 +26,8 @@ before the model's lift-off contradicts (:data:`ALPHA_TOLERANCE`), gives ``undet
   after it is within the noise;
 * ``undetermined``, with the reason: ``model`` (the gate, or the track flies where the
   fitted model does not), ``no_liftoff`` (the track never leaves the ramp), ``noise`` (the
-  flight, or a slip of 3 frames or more, is within the noise), ``frame_rate`` (a slip
+  flight is within the noise and the rolling does not fix the lift-off, or a slip of 3
+  frames or more is within the noise), ``frame_rate`` (a slip
   shorter than :data:`MIN_SLIP_FRAMES` frames that the data cannot confirm, one they ask
   for that is shorter than a frame, or a rolling fit that a one-frame slip would not have
   changed visibly) or ``short_track`` (no rolling before the lift-off).
@@ -86,6 +89,9 @@ SIGNIFICANT = 9.0
 #: The matched-filter z (``fit.flight_signal``) at which the track shows the model's flight
 #: when no frame clears the per-frame threshold of ``events``.
 FLIGHT_Z = 5.0
+#: Where the flight is within the noise, the lift-off follows from the rolling only if the
+#: track runs on at least this many frames after the lift-off's 95 % interval.
+FRAMES_AFTER = 2.0
 #: A slip shorter than this (in frames) may be reported as undetermined.
 MIN_SLIP_FRAMES = 3.0
 #: The goodness-of-fit gate: a reduced chi-square this improbable under the model (the F
@@ -452,8 +458,9 @@ def analyze(
         intervals = ((float(best.lower[i]), float(best.upper[i])), (0.0, math.inf))
     else:  # (its profiles would be work for nothing)
         intervals = _friction_intervals(best, setup, track, rec, profiled)
-    flight = flight_signal(best, setup, rec)
-    verdict = _Verdict(observed, best, jarm_fit, p, off_path[0] if off_path else "", flight, power)
+    z, size = flight_signal(best, setup, rec)
+    off = off_path[0] if off_path else ""
+    verdict = _Verdict(observed, best, jarm_fit, p, off, z, size, power)
     return _judge(track, rec, verdict, setup, intervals, notes, started)
 
 
@@ -502,6 +509,7 @@ class _Verdict:
     misfit_p: float
     off_path: str  # the given alpha contradicted by the track's contact path (or "")
     flight_z: float  # how clearly the heights show the model's flight (fit.flight_signal)
+    flight_size: float  # what they would show on the model's own heights (ditto)
     one_frame: float  # what a one-frame slip would cost the rolling fit (fit.one_frame_slip)
 
 
@@ -527,7 +535,9 @@ def _judge(
     if v.jarm_fit is not None:
         delta = 2.0 * (v.jarm_fit.cost - best.cost) / best.variance_factor
     seen = observed.flights[0] if observed.flights else None
-    verdict, reason, evidence = _decide(v, seen, lift, frames, delta, rec, t0, unit, dt)
+    # frames between the lift-off's 95 % interval and the track's end (NaN: no lift-off)
+    after = ((horizon - lift) * unit - 1.96 * errs["liftoff"]) / dt
+    verdict, reason, evidence = _decide(v, seen, (lift, after), frames, delta, rec, t0, unit, dt)
     evidence.append(
         f"the rolling before it needs mu_s >= {needs:.3f} (the model's friction ratio |F_x|/F_y)"
         if needs <= MU_MAX
@@ -574,7 +584,7 @@ def _judge(
 def _decide(
     v: _Verdict,
     seen: Flight | None,
-    lift: float,
+    lift_after: tuple[float, float],
     slip_frames: float,
     delta: float,
     rec: Reconstruction,
@@ -583,7 +593,10 @@ def _decide(
     dt: float,
 ) -> tuple[str, str, list[str]]:
     """The verdict, its reason and the evidence (the module docstring's rules, in order:
-    the goodness of fit first, then what the track shows, then the slip test)."""
+    the goodness of fit first, then what the track shows, then the slip test).
+    ``lift_after``: the model's lift-off and how many frames the track runs on after its
+    95 % interval."""
+    lift, after = lift_after
     sigma3 = f"{3 * rec.sigma * 1e3:.2g} mm"
     if v.misfit_p < MISFIT_P:
         return "undetermined", "model", [_misfit_sentence(v.best, v.misfit_p)]
@@ -602,6 +615,7 @@ def _decide(
         seen is None
         and v.flight_z < FLIGHT_Z
         and _slip_verdict(slip_frames, delta)[0] != "slip_first"
+        and not _liftoff_follows(v, after)
     ):
         return (
             "undetermined",
@@ -609,7 +623,8 @@ def _decide(
             [
                 f"the model lifts off at t = {t0 + lift * unit:.4f} s, but its flight "
                 f"stays within 3 sigma = {sigma3} of the ramp (the heights follow it at "
-                f"{v.flight_z:.2g} sigma, {FLIGHT_Z:g} needed)"
+                f"{v.flight_z:.2g} sigma, {FLIGHT_Z:g} needed), and the rolling does not "
+                f"fix the lift-off either ({_unfixed(v, after)})"
             ],
         )
     if not math.isfinite(lift):
@@ -628,7 +643,7 @@ def _decide(
             "short_track",
             ["the lift-off comes within 4 frames of the track's start: no rolling to judge it by"],
         )
-    evidence = [_flight_sentence(v, seen, sigma3)]
+    evidence = [_flight_sentence(v, seen, sigma3, after)]
     if slip_frames <= 0:
         evidence.append(
             f"the fitted model rolls without slipping from the first frame to "
@@ -646,9 +661,29 @@ def _decide(
     return verdict, reason, evidence
 
 
-def _flight_sentence(v: _Verdict, seen: Flight | None, sigma3: str) -> str:
+def _liftoff_follows(v: _Verdict, after: float) -> bool:
+    """Whether the lift-off follows from the rolling where the flight is within the noise:
+    a rigid body whose fitted rolling loses its normal force must leave the ramp there, if
+    that comes inside the track (its 95 % interval ends :data:`FRAMES_AFTER` frames before
+    the track does) and the heights do not contradict the model's flight (they follow it
+    within 3 standard errors of what its own heights would give, ``fit.flight_signal``)."""
+    return after >= FRAMES_AFTER and v.flight_z >= v.flight_size - 3.0
+
+
+def _unfixed(v: _Verdict, after: float) -> str:
+    """Why ``_liftoff_follows`` is false, for the evidence."""
+    if not after >= FRAMES_AFTER:
+        return (
+            f"its 95 % interval ends {after:.1f} frames before the track does, "
+            f"{FRAMES_AFTER:g} needed"
+        )
+    return f"the heights give {v.flight_z:.2g} sigma where its flight gives {v.flight_size:.2g}"
+
+
+def _flight_sentence(v: _Verdict, seen: Flight | None, sigma3: str, after: float) -> str:
     """What the track shows of the flight: seen frame by frame, along the model's parabola
-    (``fit.flight_signal``), or not at all (then a slip_first rests on the slip alone)."""
+    (``fit.flight_signal``), or not at all (then a slip_first rests on the slip alone, and
+    a jarm on the lift-off that the rolling implies, ``_liftoff_follows``)."""
     if seen is not None:
         return (
             f"the axle rises {seen.apex_height * 1e3:.3g} mm above the ramp "
@@ -659,6 +694,13 @@ def _flight_sentence(v: _Verdict, seen: Flight | None, sigma3: str) -> str:
         return (
             f"the axle's heights follow the fitted model's flight at {v.flight_z:.3g} sigma "
             f"(no frame clears 3 sigma = {sigma3} three times in a row)"
+        )
+    if _liftoff_follows(v, after):
+        return (
+            f"the model's flight stays within the noise (the heights follow it at "
+            f"{v.flight_z:.2g} sigma, its own heights would give {v.flight_size:.2g}): the "
+            "lift-off is where the fitted rolling loses its normal force, inside the track "
+            f"({after:.0f} frames before its end beyond the lift-off's 95 % interval)"
         )
     return (
         f"the model's flight stays within the noise (the heights follow it at "

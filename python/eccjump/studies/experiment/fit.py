@@ -658,18 +658,21 @@ def slip_frames(f: Fit, setup: Setup, track: Track) -> float:
     return sum(b - a for a, b in slips) * setup.time_unit / track.dt
 
 
-def flight_signal(f: Fit, setup: Setup, rec: Reconstruction) -> float:
+def flight_signal(f: Fit, setup: Setup, rec: Reconstruction) -> tuple[float, float]:
     """How clearly the track shows the fitted model's flights, in standard errors: the
     matched filter of the model's heights above the ramp h_m on the track's heights h,
-    sum(h h_m) / (sigma |h_m|), widened by the errors' correlation. Frame by frame a flight
-    of a few sigma is lost in the noise (``events.observe`` asks for 3 sigma in 3 frames in
-    a row); summed along the model's parabola it is not. 0 when the model never flies."""
+    sum(h h_m) / (sigma |h_m|), widened by the errors' correlation; and what the filter
+    gives on the model's own heights, |h_m| / sigma (its expected value where the model is
+    right). Frame by frame a flight of a few sigma is lost in the noise (``events.observe``
+    asks for 3 sigma in 3 frames in a row); summed along the model's parabola it is not.
+    (0, 0) when the model never flies."""
     h_model = f.value("length_scale") * setup.radius * (f.states[4] - 1.0)
     up = h_model > 1e-9 * setup.radius
     norm = float(np.sqrt(h_model[up] @ h_model[up]))
     if not norm > 0:
-        return 0.0
-    return float(rec.height[up] @ h_model[up]) / (rec.sigma * norm * math.sqrt(f.correlation))
+        return 0.0, 0.0
+    scale = rec.sigma * math.sqrt(f.correlation)
+    return float(rec.height[up] @ h_model[up]) / (scale * norm), norm / scale
 
 
 def event_times(run: MotionResult, horizon: float) -> dict[str, float]:
