@@ -14,6 +14,7 @@ import importlib.util
 import json
 import math
 import re
+from dataclasses import replace
 from pathlib import Path
 
 import numpy as np
@@ -304,6 +305,39 @@ def test_other_frame_rates_and_noise(fps, noise):
     out = [run_case(f, seed, fps, noise) for f in ("jarm", "slip") for seed in range(3)]
     assert sum(o["right"] for o in out) >= 5, [o["verdict"] for o in out]
     assert sum(o["lift_frames"] < 1.5 for o in out) >= 5
+
+
+def _with_a_wait(made, frames: int, seed: int = 3):
+    """``made``'s track (from rest) with ``frames`` still frames before it: the first frame's
+    place with fresh noise of the track's own level."""
+    tr, rng = made.track, np.random.default_rng(seed)
+    sigma = 0.5 / made.scale
+    t = np.r_[tr.t[0] - tr.dt * np.arange(frames, 0, -1), tr.t]
+    still = [np.repeat(p[:1], frames, 0) + sigma * rng.standard_normal((frames, 2))
+             for p in (tr.c, tr.m)]  # fmt: skip
+    return replace(tr, t=t, c=np.r_[still[0], tr.c], m=np.r_[still[1], tr.m])
+
+
+def test_a_tracks_wait_before_the_release_is_left_out():
+    """A track that starts 0.2 s before the release (a hand holding the body, 48 frames):
+    the model starts at the first frame with θ̇₀ ≥ 0 and cannot wait, so the fit failed its
+    gate (`undetermined (model)`). The still frames are left out, with a note, and the
+    analysis is the one of the track from its release. A body released at its first frame
+    loses nothing."""
+    body = eccjump.Cylinder(0.10927, 0.0777)
+    alpha = math.radians(66.087)
+    made = synthetic_track(body, alpha, mu_s=1.2, mu_k=0.9, radius=0.05, fps=240.0,
+                           noise_px=0.5, seed=2)  # fmt: skip
+    args = dict(radius=0.05, chi=body.chi, km=body.km, alpha=alpha, marker_radius=0.04,
+                profile_mu_k=False)  # fmt: skip
+    plain = analyze(made.track, **args)
+    assert not [n for n in plain.notes if "wait before the release" in n]
+    res = analyze(_with_a_wait(made, 48), **args)
+    assert [n for n in res.notes if "wait before the release" in n], res.notes
+    assert 0.0 <= res.track.t[0] - made.track.t[0] < 0.1  # after the release, not far
+    assert res.reason != "model" and res.fit.chi2_reduced < 2.0, (res.reason, res.evidence)
+    assert (res.verdict, res.reason) == (plain.verdict, plain.reason)
+    assert abs(res.liftoff_t - plain.liftoff_t) < 2 * plain.liftoff_err
 
 
 def test_a_jarm_track_with_less_noise_is_jarm():

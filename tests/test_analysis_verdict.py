@@ -18,7 +18,7 @@ import numpy as np
 import pytest
 import reference_tracks as rt
 import verdict_campaign as vc
-from hypothesis import given, settings
+from hypothesis import assume, example, given, settings
 from hypothesis import strategies as st
 
 from eccjump.cli import main
@@ -27,6 +27,7 @@ from eccjump.studies.experiment.analysis import SIGNIFICANT, _slip_verdict
 from eccjump.studies.experiment.events import observe
 from eccjump.studies.experiment.fit import (
     correlation_inflation,
+    covariance,
     flight_signal,
     profile_interval,
 )
@@ -142,7 +143,7 @@ def test_a_rolled_camera_is_named_and_never_confidently_wrong():
     """A camera rolled by 3 degrees: the contact path disagrees with alpha (a note), and the
     verdict is `undetermined (model)` (the campaign's seed 0 had one such slip called `jarm`
     with chi2_red 1.08 before the contact path was part of the gate), and the model's
-    frictions are not printed as values (their intervals missed the truth)."""
+    frictions and times are not printed as values (their intervals missed the truth)."""
     base = rt.draw("slip", 3, fps=240.0, noise=0.5)
     case, _ = rt.systematic(base, "roll", 1)
     made, res = _analyze(case)
@@ -155,6 +156,8 @@ def test_a_rolled_camera_is_named_and_never_confidently_wrong():
     assert {params[n]["status"] for n in ("mu_k", "mu_s", "e")} == {"not_determined"}
     assert res.mu_k_interval == (0.0, 3.0)
     assert "mu_k        not determined (the model does not fit this track)" in repr(res)
+    # nor its times (the misstated setups' lift-offs were 4-5 standard errors off)
+    assert res.liftoff_err == math.inf and "not fixed by the track" in repr(res)
 
 
 def test_a_start_from_rest_does_not_turn_the_contact_path():
@@ -332,6 +335,28 @@ def test_the_flight_signal_is_the_matched_filter_in_standard_errors(z, inflation
     assert got[:, 1] == pytest.approx(z * scale)  # the filter on the model's own heights
     fit.states = np.ones((6, n))
     assert flight_signal(fit, setup, SimpleNamespace(height=heights[0], sigma=sigma)) == (0, 0)
+
+
+@given(st.integers(0, 2**32 - 1), st.floats(0.0, 0.3))
+@settings(max_examples=60, deadline=None)
+@example(0, 0.13)
+def test_a_parameter_the_jacobian_does_not_fix_has_an_infinite_variance(seed, weight):
+    """A Jacobian of rank 4 in 6 parameters whose two unresolved directions carry parameter
+    5 with weight w/√2 each (a projection of length w) and parameter 0 not at all: the
+    variance is infinite exactly where w > 0.1 (judged by the largest single part, w = 0.13
+    was lost in neither direction and its variance came out near 0), finite elsewhere."""
+    assume(abs(weight - 0.1) > 1e-6)  # (the boundary itself: rounding decides)
+    rng = np.random.default_rng(seed)
+    a, a_perp = np.linalg.qr(rng.standard_normal((4, 2)))[0].T  # in parameters 1-4
+    c2 = 1.0 - weight**2 / 2.0
+    beta = -(weight**2 / 2.0) / c2  # makes the two directions orthogonal
+    b = beta * a + math.sqrt(1.0 - beta**2) * a_perp
+    null = np.array([[0.0, *(math.sqrt(c2) * v), weight / math.sqrt(2.0)] for v in (a, b)]).T
+    resolved = np.linalg.svd(np.eye(6) - null @ null.T)[0][:, :4]
+    jac = rng.standard_normal((40, 4)) @ resolved.T * 10.0
+    cov = covariance(jac, 1.0)
+    assert math.isfinite(cov[0, 0])  # parameter 0: resolved
+    assert (not math.isfinite(cov[5, 5])) == (weight > 0.1)
 
 
 def test_a_profile_flat_to_the_grids_end_leaves_mu_k_open_above():

@@ -149,7 +149,7 @@ def test_a_rolled_camera_and_a_wait_before_the_release(tmp_path):
     tr = eccjump.track(clip.path, marker_radius=0.035, alpha=math.radians(JARM["alpha"]))
     assert abs(math.degrees(tr.roll) - 2.0) < 0.1, math.degrees(tr.roll)
     release = -clip.t_shift  # the video's time of the release
-    assert release < tr.t[0] <= release + 3 / FPS, (tr.t[0], release)  # late is harmless
+    assert release < tr.t[0] <= release + 5 / FPS, (tr.t[0], release)  # late is harmless
     assert tr.release_t == tr.t[0] and tr.lost.size == round(tr.t[0] * FPS)
 
 
@@ -160,7 +160,7 @@ def test_a_wait_before_the_release_is_cut_where_the_fit_can_start(tmp_path):
     clip = render(tmp_path / "wait.mp4", JARM, wait=0.57)
     tr = eccjump.track(clip.path, marker_radius=clip.marker_radius,
                        alpha=math.radians(JARM["alpha"]))  # fmt: skip
-    assert -clip.t_shift < tr.t[0] <= -clip.t_shift + 3 / FPS
+    assert -clip.t_shift < tr.t[0] <= -clip.t_shift + 5 / FPS
     res = analyze(tr, JARM, clip.marker_radius)
     assert res.reason != "model" and res.fit.chi2_reduced < 2.0, (res.reason, res.evidence)
     assert abs(res.liftoff_t - clip.liftoff_t) < 2 / FPS

@@ -74,9 +74,16 @@ from eccjump.studies.experiment.fit import (
 from eccjump.studies.experiment.geometry import path_angle
 from eccjump.studies.experiment.inputs import MARKER_IN_R, in_range
 from eccjump.studies.experiment.reconstruction import MIN_WINDOW, Reconstruction, reconstruct
+from eccjump.studies.experiment.release import REACH, release_frame
 from eccjump.studies.experiment.sheet import design_inputs
-from eccjump.studies.experiment.track import MAX_FRAMES, Track, first_frames, load_track
-from eccjump.studies.experiment.video import is_video
+from eccjump.studies.experiment.track import (
+    MAX_FRAMES,
+    Track,
+    first_frames,
+    frames_from,
+    load_track,
+)
+from eccjump.studies.experiment.video import VideoTrack, is_video
 from eccjump.studies.experiment.video import track as track_video
 
 if TYPE_CHECKING:  # pragma: no cover
@@ -264,11 +271,18 @@ class Analysis(Result, Plottable, kind="analysis"):
         }
         return _clean(d)
 
+    def _liftoff_text(self, pm: str) -> str:
+        if math.isfinite(self.liftoff_err):
+            return f"t = {self.liftoff_t:.5f} {pm} {self.liftoff_err:.1e} s"
+        seen = self.liftoff_window
+        shown = f"; the track shows [{seen.lo:.4f}, {seen.hi:.4f}] s" if seen else ""
+        return f"t = {self.liftoff_t:.5f} s (the model's, not fixed by the track{shown})"
+
     def __repr__(self) -> str:
         head = f"Analysis: {self.verdict}" + (f" ({self.reason})" if self.reason else "")
         lines = [head]
         if math.isfinite(self.liftoff_t):
-            lines.append(f"  lift-off    t = {self.liftoff_t:.5f} +- {self.liftoff_err:.1e} s")
+            lines.append(f"  lift-off    {self._liftoff_text('+-')}")
         for s in self.slips:
             lines.append(f"  slip        {s.t1:.5f} .. {s.t2:.5f} s ({s.frames:.1f} frames)")
         lines.extend(f"  {name:<11} {text}" for name, text in self.parameter_lines())
@@ -280,7 +294,7 @@ class Analysis(Result, Plottable, kind="analysis"):
     def _repr_html_(self) -> str:
         rows = [("verdict", self.verdict + (f" ({self.reason})" if self.reason else ""))]
         if math.isfinite(self.liftoff_t):
-            rows.append(("lift-off", f"t = {self.liftoff_t:.5f} ± {self.liftoff_err:.1e} s"))
+            rows.append(("lift-off", self._liftoff_text("±")))
         rows += [
             (f"slip {k + 1}", f"{s.t1:.5f} … {s.t2:.5f} s ({s.frames:.1f} frames)")
             for k, s in enumerate(self.slips)
@@ -415,6 +429,8 @@ def analyze(
         px = None
     elif not isinstance(track, Track):
         track = load_track(track, scale=px, fmt="auto", name="track")
+    if not isinstance(track, VideoTrack):  # (a video's track is cut by the tracker)
+        track, notes = _after_release(track, R, notes)
     _check_marker_distance(track, R, px)
     rec = reconstruct(
         track, radius=R, marker_angle=beta, marker_radius=r_m, alpha=a_given, window=w
@@ -538,6 +554,8 @@ def _judge(
     # frames between the lift-off's 95 % interval and the track's end (NaN: no lift-off)
     after = ((horizon - lift) * unit - 1.96 * errs["liftoff"]) / dt
     verdict, reason, evidence = _decide(v, seen, (lift, after), frames, delta, rec, t0, unit, dt)
+    if reason == "model":  # a model the track rejects times nothing (liftoff_window does)
+        errs = dict.fromkeys(errs, math.inf)
     evidence.append(
         f"the rolling before it needs mu_s >= {needs:.3f} (the model's friction ratio |F_x|/F_y)"
         if needs <= MU_MAX
@@ -746,6 +764,21 @@ def _misfit_sentence(f: Fit, p: float) -> str:
         "the radius, the marker's radius or angle, a rolled camera, alpha, an angle or "
         "length in the wrong unit, or physics outside the rigid model (rolling resistance)"
     )
+
+
+def _after_release(
+    track: Track, radius: float, notes: tuple[str, ...]
+) -> tuple[Track, tuple[str, ...]]:
+    """The track from the first frame after a wait before the release
+    (``release.release_frame``), with a note; else as it is."""
+    begin = release_frame(track.t, track.c, REACH * radius)
+    if begin == 0:
+        return track, notes
+    note = (
+        f"the axle stays still for the first {begin} frames (a wait before the release): "
+        f"the fit starts after the release, at t = {track.t[begin]:.4f} s"
+    )
+    return frames_from(track, begin), (*notes, note)
 
 
 def _contact_frames(track: Track, best: Fit, setup: Setup) -> int:

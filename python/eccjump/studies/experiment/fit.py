@@ -541,22 +541,28 @@ def correlation_inflation(residuals: NDArray[np.float64], frames: int) -> float:
     return float(min(max((1 + rho) / (1 - rho), 1.0), MAX_INFLATION)) if rho < 1 else MAX_INFLATION
 
 
+def covariance(jac: NDArray[np.float64], scale: float) -> NDArray[np.float64]:
+    """The parameters' covariance ``scale`` (J^T J)^+ from the Jacobian ``jac`` (its
+    singular values above 1e-8 of the largest). A parameter with weight in the directions
+    no singular value is left for (its projection on them longer than 0.1) has an infinite
+    variance: the track does not fix it. The projection, not its parts: a weight spread
+    over several such directions is lost as much as one in one."""
+    _, sv, vt = np.linalg.svd(jac, full_matrices=False)
+    keep = sv > sv[0] * 1e-8 if sv.size and sv[0] > 0 else np.zeros_like(sv, dtype=bool)
+    inv = np.where(keep, 1.0 / np.where(keep, sv, 1.0) ** 2, 0.0)
+    cov = (vt.T * inv) @ vt * scale
+    lost = (vt[~keep] ** 2).sum(axis=0) > 0.01
+    cov[lost, lost] = np.inf
+    return cov
+
+
 def _result(model: Model, res: Any, lo: NDArray[np.float64], hi: NDArray[np.float64]) -> Fit:
     m = res.fun.size
     dof = max(m - res.x.size, 1)
     inflation = correlation_inflation(res.fun, model.tau.size)
     # widened by a misfit, never narrowed below the noise; and by correlated errors
     s2 = max(2.0 * res.cost / dof, 1.0) * inflation
-    J = res.jac
-    _, sv, vt = np.linalg.svd(J, full_matrices=False)
-    keep = sv > sv[0] * 1e-8 if sv.size and sv[0] > 0 else np.zeros_like(sv, dtype=bool)
-    inv = np.where(keep, 1.0 / np.where(keep, sv, 1.0) ** 2, 0.0)
-    cov = (vt.T * inv) @ vt * s2
-    # a direction with no singular value left gets an infinite variance
-    free = ~keep
-    if free.any():
-        lost = (np.abs(vt[free]) > 0.1).any(axis=0)
-        cov[lost, lost] = np.inf
+    cov = covariance(res.jac, s2)
     p = model.params(res.x)
     run = model.simulate(p)
     bound = model.mu_bound(p)

@@ -77,8 +77,17 @@ class Track:
 def first_frames(track: Track, n: int) -> Track:
     """The first ``n`` frames of ``track`` (of any Track subclass: every per-frame array is
     cut, the rest kept)."""
+    return _frames(track, slice(None, n))
+
+
+def frames_from(track: Track, k: int) -> Track:
+    """``track`` from its frame ``k`` on (as :func:`first_frames`)."""
+    return _frames(track, slice(k, None))
+
+
+def _frames(track: Track, frames: slice) -> Track:
     cut = {
-        f.name: getattr(track, f.name)[:n]
+        f.name: getattr(track, f.name)[frames]
         for f in fields(track)
         if isinstance(getattr(track, f.name), np.ndarray)
         and getattr(track, f.name).shape[:1] == (track.n,)

@@ -28,9 +28,8 @@ white face, a black rim, a grey ramp). How they are found, and why:
   its usual size (partly hidden), or not at the other dot's distance, is **lost** in that
   frame: the frame is left out of the track (a gap, not a guess; the analysis works on the
   frames' actual times).
-* Frames where the body waits before its release (the axle still, for at least
-  :data:`MIN_REST_FRAMES` frames) are left out but the last two: the analysis starts the
-  model at the first frame.
+* Frames where the body waits before its release are left out (``release.release_frame``:
+  the track starts at the first frame after the release, erring late, never early).
 
 Work and memory are bounded: frames are decoded one at a time and only the blobs of each are
 kept (at most :data:`MAX_BLOBS`); at most ``track.MAX_FRAMES`` frames between ``start`` and
@@ -58,6 +57,7 @@ from eccjump._base.overwrite import check_overwrite
 from eccjump._base.userfiles import open_binary
 from eccjump.maps import store
 from eccjump.studies.experiment.inputs import in_range
+from eccjump.studies.experiment.release import REACH, release_frame
 from eccjump.studies.experiment.track import MAX_FRAMES, MIN_FRAMES, Track
 
 #: A colour: a name of :data:`COLORS`, ``"#rrggbb"``, or (r, g, b) in 0..255.
@@ -98,8 +98,6 @@ HUE_GAP, COLOR_MATCH = 25.0, 40.0
 RIGID = 0.08
 #: A path is the straight one if the other's residual about its line is this many times its.
 STRAIGHTER = 2.0
-#: The fewest still frames at the start taken as a wait before the release.
-MIN_REST_FRAMES = 8
 #: A frame's luma (H, W) and chroma offsets Cb, Cr (H/2, W/2).
 Planes = tuple[NDArray[np.uint8], NDArray[np.float32], NDArray[np.float32]]
 #: The columns of a blob row (internal): centroid, its standard errors, area, hue, weight.
@@ -862,7 +860,7 @@ def _assemble(
     off = both & (np.abs(dist - d0) > max(3.0, 0.15 * d0))  # one of them is not its dot
     c_px[off], m_px[off] = np.nan, np.nan
     both &= ~off
-    begin = _release(c_px, axle.err, scan.t)
+    begin = release_frame(scan.t, c_px, REACH * d0)
     keep = both & (np.arange(both.size) >= begin)
     if keep.sum() < MIN_FRAMES:
         raise ValueError(
@@ -970,30 +968,6 @@ def _usable(path: _Path) -> NDArray[np.float64]:
     p = path.p.copy()
     p[path.area < 0.5 * np.nanmedian(path.area)] = np.nan
     return p
-
-
-def _release(c: NDArray[np.float64], err: NDArray[np.float64], t: NDArray[np.float64]) -> int:
-    """The first frame to keep: the first one after the release, if the axle stays still
-    (within 1 px and 4 standard errors) for MIN_REST_FRAMES frames or more first; else 0.
-    Released from rest, the axle's distance from its place grows as (t - t_r)² at first, so
-    the release t_r is where the root of that distance, fitted by a line over the frames
-    that leave the place, meets 0 (the frames that move less than the tolerance are kept:
-    they are the start of the motion). Not the last still frame: the model starts at the
-    first frame kept with θ̇₀ ≥ 0, and a release up to a frame after it (a delay the
-    start cannot express) failed the fit (chi2_red 34 after a 0.57 s wait)."""
-    found = np.flatnonzero(np.isfinite(c[:, 0]))
-    if found.size < MIN_REST_FRAMES + MIN_FRAMES:
-        return 0
-    dist = np.hypot(*(c[found] - np.median(c[found[:5]], axis=0)).T)
-    tol = max(1.0, 4.0 * float(np.nanmedian(err)))
-    first = int(np.argmax(dist > tol)) if (dist > tol).any() else 0
-    if first < MIN_REST_FRAMES:
-        return 0
-    early = np.arange(first, min(first + 6, found.size))
-    slope, intercept = np.polyfit(t[found[early]], np.sqrt(dist[early]), 1)
-    t_r = -intercept / slope if slope > 0 else t[found[first - 2]]
-    still = np.flatnonzero(t[found[:first]] <= t_r)
-    return int(found[still[-1] + 1]) if still.size else int(found[max(first - 2, 0)])
 
 
 def _mean_colour(scan: _Scan, path: _Path) -> str:
