@@ -160,6 +160,23 @@ def test_a_rolled_camera_is_named_and_never_confidently_wrong():
     assert res.liftoff_err == math.inf and "not fixed by the track" in repr(res)
 
 
+def test_a_lift_off_moved_by_a_start_the_track_does_not_fix_is_not_timed():
+    """Independent model, 60 fps, 2 px (a field of metres: the noise is 9 mm), a slip of 32
+    frames: the fit's start (θ₀, θ̇₀) has an infinite variance, and its lift-off, which the
+    start moves, was printed with an error of 0 (the derivatives of parameters without a
+    variance were left out): 0.279 s against the true 0.533 s. Not fixed: infinite."""
+    made, res = _analyze(rt.draw("long_slip", 2008, fps=60.0, noise=2.0))
+    assert made.slip_frames > 30 and not math.isfinite(res.fit.error("theta0"))
+    assert res.liftoff_err == math.inf, res.liftoff_err
+    assert "not fixed by the track" in repr(res)
+    # a start from rest (the issue's body at 240 fps) has θ̇₀ at its bound, where least
+    # squares returns a zero column: an infinite variance, but not a start the track
+    # leaves open; its lift-off stays timed (and covered)
+    made, res = _analyze(rt.draw("stick_slip", 2021, fps=240.0, noise=0.2))
+    assert res.fit.value("omega0") < 1e-9 and not math.isfinite(res.fit.error("omega0"))
+    assert abs(res.liftoff_t - made.liftoff) < 1.96 * res.liftoff_err < 1e-3
+
+
 def test_a_start_from_rest_does_not_turn_the_contact_path():
     """Independent model, 240 fps, 0.5 px: a long slip from nearly at rest (travel 12 mm in
     its first 13 frames, 146 mm before the lift-off). The contact path's angle came from a

@@ -39,6 +39,8 @@ from eccjump.studies.experiment.reconstruction import Reconstruction, derivative
 from eccjump.studies.experiment.track import Track
 
 NAMES = ("theta0", "omega0", "mu_k", "dmu", "e", "l0", "n0", "length_scale", "alpha")
+#: The parameters of the start and of the frame (not the friction or e).
+KINEMATIC = ("theta0", "omega0", "l0", "n0", "length_scale", "alpha")
 UNITS = {"theta0": "rad", "omega0": "rad/s", "l0": "m", "n0": "m", "alpha": "rad"}
 #: How far the track's length scale may be from the stated one (a ratio): a scale from the
 #: dots' distance or a ruler is good to a few parts in a thousand; a larger error (a
@@ -730,19 +732,25 @@ def time_errors(
     model_fit: Fit, setup: Setup, track: Track, rec: Reconstruction
 ) -> dict[str, float]:
     """Standard errors [s] of the key times of the fitted run, from their derivatives with
-    respect to the parameters (central differences) and the covariance."""
+    respect to the parameters (central differences) and the covariance. A time that a
+    start or frame parameter the track does not fix (an infinite variance) moves is not
+    fixed either: infinite. (Not the friction: a rolling fit's μ_s is bounded from below
+    only, and lowering it makes a slip the track rejects; nor a parameter at its bound, such
+    as θ̇₀ = 0 from rest, whose column least squares returns as zero.)"""
     model = Model(setup, track, rec, jarm_only=model_fit.jarm_only)
     horizon = float(model.tau[-1])
     base = event_times(model_fit.run, horizon)
     grads = {k: np.zeros(model_fit.x.size) for k in base}
-    for i in range(model_fit.x.size):
-        err = math.sqrt(model_fit.cov[i, i]) if math.isfinite(model_fit.cov[i, i]) else math.nan
-        if not (math.isfinite(err) and err > 0):
-            continue
-        h = 0.1 * err
+    unfixed: set[str] = set()
+    for i, name in enumerate(model_fit.names):
+        err = math.sqrt(model_fit.cov[i, i]) if math.isfinite(model_fit.cov[i, i]) else math.inf
+        lo, hi = model_fit.lower[i], model_fit.upper[i]
+        at_bound = min(model_fit.x[i] - lo, hi - model_fit.x[i]) <= 1e-9 * (hi - lo)
+        if not err > 0 or (math.isinf(err) and (name not in KINEMATIC or at_bound)):
+            continue  # (scipy's Jacobian has a zero column at an active bound: not lost)
+        h = 0.1 * err if math.isfinite(err) else 1e-4 * (hi - lo)
         x_hi, x_lo = model_fit.x.copy(), model_fit.x.copy()
-        x_hi[i] = min(x_hi[i] + h, model_fit.upper[i])
-        x_lo[i] = max(x_lo[i] - h, model_fit.lower[i])
+        x_hi[i], x_lo[i] = min(x_hi[i] + h, hi), max(x_lo[i] - h, lo)
         if x_hi[i] == x_lo[i]:
             continue
         try:
@@ -752,6 +760,8 @@ def time_errors(
             continue
         for k in base:  # an episode that comes or goes with the step: no derivative
             grads[k][i] = (up.get(k, math.nan) - dn.get(k, math.nan)) / (x_hi[i] - x_lo[i])
+            if math.isinf(err) and up.get(k) != dn.get(k):
+                unfixed.add(k)
     cov = np.where(np.isfinite(model_fit.cov), model_fit.cov, 0.0)
     unit = setup.time_unit
     out = {}
@@ -760,4 +770,6 @@ def time_errors(
         out[k] = (
             unit * math.sqrt(max(float(g @ cov @ g), 0.0)) if math.isfinite(base[k]) else math.nan
         )
+        if k in unfixed and math.isfinite(base[k]):
+            out[k] = math.inf
     return out
