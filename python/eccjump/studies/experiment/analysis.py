@@ -61,6 +61,7 @@ from eccjump.studies.experiment.fit import (
     event_times,
     fit,
     flight_signal,
+    horizon,
     misfit_p,
     mu_s_interval,
     one_frame_slip,
@@ -70,6 +71,7 @@ from eccjump.studies.experiment.fit import (
     slip_frames,
     slip_intervals,
     time_errors,
+    until_liftoff,
 )
 from eccjump.studies.experiment.geometry import path_angle
 from eccjump.studies.experiment.inputs import MARKER_IN_R, in_range
@@ -540,11 +542,11 @@ def _judge(
 ) -> Analysis:
     best, observed = v.best, v.observed
     unit, t0, dt = setup.time_unit, float(track.t[0]), track.dt
-    horizon = float(track.t[-1] - t0) / unit
-    times = event_times(best.run, horizon)
+    end = horizon(setup, track)
+    times = event_times(best.run, end)
     errs = time_errors(best, setup, track, rec)
     lift = times["liftoff"]
-    slips_dimless = slip_intervals(best.run, lift if math.isfinite(lift) else horizon)
+    slips_dimless = slip_intervals(best.run, until_liftoff(best, setup, track))
     frames = sum(b - a for a, b in slips_dimless) * unit / dt  # fit.slip_frames, reused
     needs = _rolling_needs(best, setup, track)
     delta = math.nan
@@ -552,7 +554,7 @@ def _judge(
         delta = 2.0 * (v.jarm_fit.cost - best.cost) / best.variance_factor
     seen = observed.flights[0] if observed.flights else None
     # frames between the lift-off's 95 % interval and the track's end (NaN: no lift-off)
-    after = ((horizon - lift) * unit - 1.96 * errs["liftoff"]) / dt
+    after = ((end - lift) * unit - 1.96 * errs["liftoff"]) / dt
     verdict, reason, evidence = _decide(v, seen, (lift, after), frames, delta, rec, t0, unit, dt)
     if reason == "model":  # a model the track rejects times nothing (liftoff_window does)
         errs = dict.fromkeys(errs, math.inf)
@@ -932,14 +934,12 @@ def _marker_note(rec: Reconstruction, given: float | None) -> tuple[str, ...]:
 def _rolling_needs(f: Fit, setup: Setup, track: Track) -> float:
     """The largest friction ratio |F_x|/F_y of the fitted run's rolling before its first
     lift-off (or the track's end): what mu_s must be for that rolling."""
-    horizon = float(track.t[-1] - track.t[0]) / setup.time_unit
-    lift = event_times(f.run, horizon)["liftoff"]
-    return rolling_needs(f.run, lift if math.isfinite(lift) else horizon)
+    return rolling_needs(f.run, until_liftoff(f, setup, track))
 
 
 def _slips_in_track(f: Fit, setup: Setup, track: Track) -> bool:
     """Whether the fitted run slips anywhere within the track (else mu_s is only bounded)."""
-    end = float(track.t[-1] - track.t[0]) / setup.time_unit
+    end = horizon(setup, track)
     return any(seg.mode == "SLIP" and seg.t_start < end for seg in f.run.segments)
 
 

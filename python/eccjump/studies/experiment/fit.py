@@ -658,11 +658,21 @@ def _with_mu_s(x: NDArray[np.float64], names: tuple[str, ...], mu_s: float) -> N
     return y
 
 
+def horizon(setup: Setup, track: Track) -> float:
+    """The track's length in the model's time (dimensionless)."""
+    return float(track.t[-1] - track.t[0]) / setup.time_unit
+
+
+def until_liftoff(f: Fit, setup: Setup, track: Track) -> float:
+    """The fitted run's first lift-off within the track, or the track's end (dimensionless)."""
+    end = horizon(setup, track)
+    lift = event_times(f.run, end)["liftoff"]
+    return lift if math.isfinite(lift) else end
+
+
 def slip_frames(f: Fit, setup: Setup, track: Track) -> float:
     """The frames the fitted run slips for in all before its first lift-off (or the end)."""
-    horizon = float(track.t[-1] - track.t[0]) / setup.time_unit
-    lift = event_times(f.run, horizon)["liftoff"]
-    slips = slip_intervals(f.run, lift if math.isfinite(lift) else horizon)
+    slips = slip_intervals(f.run, until_liftoff(f, setup, track))
     return sum(b - a for a, b in slips) * setup.time_unit / track.dt
 
 

@@ -860,7 +860,7 @@ def _assemble(
     off = both & (np.abs(dist - d0) > max(3.0, 0.15 * d0))  # one of them is not its dot
     c_px[off], m_px[off] = np.nan, np.nan
     both &= ~off
-    begin = release_frame(scan.t, c_px, REACH * d0)
+    begin = release_frame(scan.t, c_px, REACH * d0)  # (the dots' distance: a little under R)
     keep = both & (np.arange(both.size) >= begin)
     if keep.sum() < MIN_FRAMES:
         raise ValueError(
