@@ -2082,6 +2082,7 @@ def case_cli(d: Drawer) -> Case:
 ANALYZE_PARAMS = (
     "track", "radius", "chi", "km", "alpha", "marker_angle", "marker_radius",
     "scale", "g", "rule", "window", "design", "profile_mu_k", "t", "xc", "yc", "xm", "ym",
+    "mu_s", "mu_s_err",
 )  # fmt: skip
 _ROLLING_TRACK: list[Any] = []
 
@@ -2220,6 +2221,10 @@ def case_analyze(d: Drawer) -> Case:
         c.kwargs["window"] = integer_param(d, c, (7, 9, 11), (6, 8, 10**9, "7", 7.0, True))
     if d.integer(0, 5) == 0:
         c.kwargs["rule"] = text_param(d, c, ("paper", "normal_force"))
+    if d.integer(0, 5) == 0:  # a measured friction: both or neither
+        c.kwargs["mu_s"] = real_or_none(d, c, 1e-3, 10.0)
+        c.kwargs["mu_s_err"] = real_or_none(d, c, 1e-4, 10.0)
+        c.must_raise |= (c.kwargs["mu_s"] is None) != (c.kwargs["mu_s_err"] is None)
     kw = c.kwargs
     same = kw["radius"] == 0.05 and kw["chi"] == 0.1 and kw["km"] == 0.3
     if not (same and kw["alpha"] in (None, 0.2)):

@@ -203,6 +203,8 @@ def cli_analyze_argv(d: Drawer) -> list[str]:
         ("--marker-radius", "0.04", ("0", "1", "nan")),
         ("--marker-angle", "34.3775", ("1e300", "inf", "361")),
         ("--g", "9.81", ("1e300", "1e-300", "0")),
+        ("--mu-s", "1.2", ("0", "-1", "nan", "11")),
+        ("--mu-s-err", "0.1", ("0", "inf", "x")),
         ("--design", str(TRACK), (os.devnull, str(outdir()), str(outdir() / "none.json"))),
     ):
         if d.integer(0, 4) and (opt != "--design" or d.integer(0, 3) == 0):

@@ -114,6 +114,20 @@ def test_a_jarm_video_with_the_dots_scale_is_not_called_a_slip(hd):
     assert abs(res.fit.value("length_scale") - off) < 1.5e-3, (res.fit.value("length_scale"), off)
 
 
+def test_the_design_videos_verdict_is_jarm_with_the_friction_it_was_designed_for(hd):
+    """The "done when" of issue 48: the design's body, from its video, with the mu_s the
+    design was made for (1.2 +- 0.1 on its sheet) is `jarm`. From the track alone it is
+    `undetermined (frame_rate)` at 240 fps: a one-frame slip at the lift-off would not show."""
+    clip, tr = hd
+    sheet = {"body": {"chi": JARM["chi"], "km": JARM["km"], "radius": JARM["radius"]},
+             "alpha_deg": JARM["alpha"], "mu_s": 1.2, "mu_s_err": 0.1}  # fmt: skip
+    res = eccjump.analyze(tr, design=sheet, marker_radius=clip.marker_radius,
+                          marker_angle=JARM["marker_angle"], profile_mu_k=False)  # fmt: skip
+    assert res.verdict == "jarm", (res.verdict, res.reason, res.evidence)
+    assert abs(res.liftoff_t - clip.liftoff_t) < 2 / FPS
+    assert any("(from the design sheet)" in e for e in res.evidence)
+
+
 def test_a_slip_first_video_is_slip_first(slip):
     clip, tr = slip
     assert rms(tr.axle_px - clip.axle_px) < 0.3 and rms(tr.marker_px - clip.marker_px) < 0.3

@@ -210,15 +210,15 @@ def real_in(lo: float, hi: float, unit: str) -> Callable[[str], float]:
             value = float(text)
         except ValueError:
             raise argparse.ArgumentTypeError(
-                f"{short_text(text)!r} is not a number in [{lo:g}, {hi:g}] {unit}"
+                f"{short_text(text)!r} is not a number in [{lo:g}, {hi:g}] {unit}".rstrip()
             ) from None
         if not lo <= value <= hi:
             raise argparse.ArgumentTypeError(
-                f"{short(value)} is outside the allowed range [{lo:g}, {hi:g}] {unit}"
+                f"{short(value)} is outside the allowed range [{lo:g}, {hi:g}] {unit}".rstrip()
             )
         return value
 
-    parse.__name__ = f"number in {unit}"
+    parse.__name__ = f"number in {unit}" if unit else "number"
     return parse
 
 

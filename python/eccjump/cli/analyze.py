@@ -64,6 +64,20 @@ def add_parser(sub: argparse._SubParsersAction) -> None:
         "--scale", type=_bounded("scale"), default=None, help="pixels per metre (pixel tracks)"
     )
     p.add_argument("--design", default=None, help="a sheet of eccjump design --json")
+    p.add_argument(
+        "--mu-s",
+        type=_bounded("mu_s"),
+        default=None,
+        help="static friction measured apart from the track, e.g. by a tilt test (with "
+        "--mu-s-err; default: --design's if it gives an uncertainty): lets the verdict "
+        "exclude a slip the track alone cannot",
+    )
+    p.add_argument(
+        "--mu-s-err",
+        type=_bounded("mu_s_err"),
+        default=None,
+        help="the standard deviation of --mu-s",
+    )
     p.add_argument("--g", type=_bounded("g"), default=9.81, help="gravity [m/s^2] (default 9.81)")
     p.add_argument(
         "--rule",
@@ -92,6 +106,8 @@ def run(args: argparse.Namespace) -> int:
             marker_radius=args.marker_radius,
             scale=args.scale if video is None else None,  # a video's track is in metres
             design=args.design,
+            mu_s=args.mu_s,
+            mu_s_err=args.mu_s_err,
             g=args.g,
             rule=args.rule,
         )
@@ -129,6 +145,8 @@ _OPTIONS = {
     "marker_angle": "--marker-angle",
     "scale": "--scale",
     "design": "--design",
+    "mu_s": "--mu-s",
+    "mu_s_err": "--mu-s-err",
     "g": "--g",
     "rule": "--rule",
 }

@@ -14,11 +14,13 @@ before the model's lift-off contradicts (:data:`ALPHA_TOLERANCE`), gives ``undet
 * ``jarm``: the body left the ramp straight from pure rolling -- the fitted model rolls up
   to its lift-off (or slips for less than one frame, and a fit that forbids any slip before
   the lift-off is as good), a slip of one frame before the lift-off would have shown
-  (``fit.one_frame_slip`` at least :data:`SIGNIFICANT`), and the track shows the flight
-  beyond its noise (frame by frame, or along the model's parabola: ``fit.flight_signal``
-  at least :data:`FLIGHT_Z`) or the lift-off follows from the rolling (a rigid body whose
-  fitted rolling loses its normal force leaves the ramp: inside the track, by
-  :data:`FRAMES_AFTER` frames, and with heights that do not contradict the flight);
+  (``fit.one_frame_slip`` at least :data:`SIGNIFICANT`; with a friction measured apart
+  from the track, what the measurement says against that slip is added: ``friction``),
+  and the track shows the flight beyond its noise (frame by frame, or along the model's
+  parabola: ``fit.flight_signal`` at least :data:`FLIGHT_Z`) or the lift-off follows from
+  the rolling (a rigid body whose fitted rolling loses its normal force leaves the ramp:
+  inside the track, by :data:`FRAMES_AFTER` frames, and with heights that do not
+  contradict the flight);
 * ``slip_first``: it slipped before lifting off -- the fitted model slips for at least one
   frame in all (every episode: slip, stick, slip again, reversals), and the fit that
   forbids it is worse by a chi-square of at least :data:`SIGNIFICANT` (3 standard errors);
@@ -60,6 +62,7 @@ from eccjump.studies.experiment.fit import (
     consistent_fits,
     event_times,
     fit,
+    fitted_needs,
     flight_signal,
     horizon,
     misfit_p,
@@ -67,12 +70,12 @@ from eccjump.studies.experiment.fit import (
     one_frame_slip,
     profile,
     profile_interval,
-    rolling_needs,
     slip_frames,
     slip_intervals,
     time_errors,
     until_liftoff,
 )
+from eccjump.studies.experiment.friction import MeasuredFriction, measured_friction, weigh
 from eccjump.studies.experiment.geometry import path_angle
 from eccjump.studies.experiment.inputs import MARKER_IN_R, in_range
 from eccjump.studies.experiment.reconstruction import MIN_WINDOW, Reconstruction, reconstruct
@@ -151,6 +154,8 @@ class Analysis(Result, Plottable, kind="analysis"):
     mu_s_needed: float
     seconds: float
     notes: tuple[str, ...] = field(default=())
+    #: The static friction measured apart from the track, if given (``friction``).
+    mu_s_measured: MeasuredFriction | None = None
 
     @property
     def model_modes(self) -> list[str]:
@@ -260,6 +265,7 @@ class Analysis(Result, Plottable, kind="analysis"):
                 "marker_radius": self.setup.marker_radius,
                 "marker_angle_deg": math.degrees(self.setup.marker_angle),
                 "g": self.setup.g,
+                "mu_s_measured": self.mu_s_measured.as_dict() if self.mu_s_measured else None,
             },
             "track": {
                 "source": self.track.source,
@@ -337,6 +343,8 @@ def analyze(
     marker_radius: float | None = None,
     scale: float | None = None,
     design: str | os.PathLike[str] | dict[str, Any] | None = None,
+    mu_s: float | None = None,
+    mu_s_err: float | None = None,
     g: float = 9.81,
     rule: Rule = "paper",
     window: int | None = None,
@@ -375,7 +383,15 @@ def analyze(
     scale : float or None
         Pixels per metre, in [1, 1e9], when the file holds pixels.
     design : str, path, dict or None
-        A sheet of ``eccjump design --json`` (its path or its dict) for the body, R and alpha.
+        A sheet of ``eccjump design --json`` (its path or its dict) for the body, R and alpha,
+        and the measured mu_s if the sheet gives it with an uncertainty above 0.
+    mu_s, mu_s_err : float or None
+        The static friction measured apart from the track (a tilt test) and its standard
+        deviation, in [0.001, 10] and [0.0001, 10]; both or neither. A track that rolls up
+        to its lift-off cannot exclude a slip of one frame just before it (that slip needs
+        only a mu_s a little below the rolling's need, and barely moves the body); a
+        measured mu_s can, and the verdict's evidence then says it rests on it
+        (``friction``).
     g : float, default 9.81
         Gravity [m/s^2], in [0.01, 100].
     rule : {"paper", "normal_force"}, default "paper"
@@ -418,7 +434,9 @@ def analyze(
     jarm 0.246
     """
     started = time.perf_counter()
-    body, R, a_given, notes = _inputs(radius, chi, km, alpha, design)
+    sheet = design_inputs(design) if design is not None else {}
+    body, R, a_given = _inputs(radius, chi, km, alpha, sheet)
+    friction, notes = measured_friction(mu_s, mu_s_err, sheet)
     beta = in_range("marker_angle", marker_angle)
     gg = in_range("g", g)
     px = None if scale is None else in_range("scale", scale)
@@ -458,14 +476,20 @@ def analyze(
         fit_alpha=a_given is None,
     )
     best, jarm_fit = _consistent_fits(setup, track, rec)
-    power = math.nan  # asked only where the verdict could be jarm: a slip under a frame
+    one = None  # asked only where the verdict could be jarm: a slip under a frame
     if slip_frames(best, setup, track) < 1.0:
-        power, slipping = one_frame_slip(jarm_fit or best, setup, track, rec)
-        if slipping is not None and slipping.cost < best.cost:
+        one = one_frame_slip(jarm_fit or best, setup, track, rec)
+        if one.refit is not None and one.refit.cost < best.cost:
             # a slip the free fit missed explains the track better: judge from it
             # (a descent from the capped fit's run: never worse than it)
-            best, jarm_fit = fit(setup, track, rec, starts=[as_start(slipping)]), jarm_fit or best
-            power = math.nan
+            best, jarm_fit = fit(setup, track, rec, starts=[as_start(one.refit)]), jarm_fit or best
+            one = None
+    power = math.nan if one is None else one.cost
+    weighed: tuple[str, ...] = ()
+    if friction is not None:
+        best, jarm_fit, power, weighed = weigh(
+            friction, (best, jarm_fit), one, (setup, track, rec), SIGNIFICANT
+        )
     off_path = _alpha_note(track, a_given, _contact_frames(track, best, setup))
     notes += off_path
     p = misfit_p(best, int(rec.line.contact.sum()))
@@ -478,8 +502,8 @@ def analyze(
         intervals = _friction_intervals(best, setup, track, rec, profiled)
     z, size = flight_signal(best, setup, rec)
     off = off_path[0] if off_path else ""
-    verdict = _Verdict(observed, best, jarm_fit, p, off, z, size, power)
-    return _judge(track, rec, verdict, setup, intervals, notes, started)
+    verdict = _Verdict(observed, best, jarm_fit, p, off, z, size, power, weighed)
+    return _judge(track, rec, verdict, setup, intervals, notes, started, friction)
 
 
 def _consistent_fits(setup: Setup, track: Track, rec: Reconstruction) -> tuple[Fit, Fit | None]:
@@ -503,7 +527,7 @@ def _friction_intervals(
     mu_k_iv = best.interval("mu_k")
     lo_s, hi_s = mu_s_interval(best)
     if not math.isfinite(hi_s) or hi_s > 1.8 * MU_MAX or not _slips_in_track(best, setup, track):
-        needs = _rolling_needs(best, setup, track)  # inf where F_y -> 0 before a lift-off
+        needs = fitted_needs(best, setup, track)  # inf where F_y -> 0 before a lift-off
         lo_s, hi_s = needs if needs <= MU_MAX else 0.0, math.inf
     if not profiled:
         return mu_k_iv, (lo_s, hi_s)
@@ -529,6 +553,7 @@ class _Verdict:
     flight_z: float  # how clearly the heights show the model's flight (fit.flight_signal)
     flight_size: float  # what they would show on the model's own heights (ditto)
     one_frame: float  # what a one-frame slip would cost the rolling fit (fit.one_frame_slip)
+    friction: tuple[str, ...] = ()  # what the measured mu_s adds (friction.weigh)
 
 
 def _judge(
@@ -539,6 +564,7 @@ def _judge(
     intervals: tuple[tuple[float, float], tuple[float, float]],
     notes: tuple[str, ...],
     started: float,
+    friction: MeasuredFriction | None,
 ) -> Analysis:
     best, observed = v.best, v.observed
     unit, t0, dt = setup.time_unit, float(track.t[0]), track.dt
@@ -548,7 +574,7 @@ def _judge(
     lift = times["liftoff"]
     slips_dimless = slip_intervals(best.run, until_liftoff(best, setup, track))
     frames = sum(b - a for a, b in slips_dimless) * unit / dt  # fit.slip_frames, reused
-    needs = _rolling_needs(best, setup, track)
+    needs = fitted_needs(best, setup, track)
     delta = math.nan
     if v.jarm_fit is not None:
         delta = 2.0 * (v.jarm_fit.cost - best.cost) / best.variance_factor
@@ -598,6 +624,7 @@ def _judge(
         mu_s_needed=needs,
         seconds=time.perf_counter() - started,
         notes=notes,
+        mu_s_measured=friction,
     )
 
 
@@ -669,7 +696,7 @@ def _decide(
             f"the fitted model rolls without slipping from the first frame to "
             f"its lift-off at t = {t0 + lift * unit:.5f} s"
         )
-        return _jarm_if_shown(v.one_frame, evidence)
+        return _jarm_if_shown(v.one_frame, evidence + list(v.friction), bool(v.friction))
     verdict, reason = _slip_verdict(slip_frames, delta)
     evidence.append(
         f"the fitted model slips for {slip_frames:.1f} frames in all before its "
@@ -677,8 +704,8 @@ def _decide(
         f"{delta:.3g} (significant above {SIGNIFICANT:g})"
     )
     if verdict == "jarm":
-        return _jarm_if_shown(v.one_frame, evidence)
-    return verdict, reason, evidence
+        return _jarm_if_shown(v.one_frame, evidence + list(v.friction), bool(v.friction))
+    return verdict, reason, evidence + list(v.friction)
 
 
 def _liftoff_follows(v: _Verdict, after: float) -> bool:
@@ -728,22 +755,27 @@ def _flight_sentence(v: _Verdict, seen: Flight | None, sigma3: str, after: float
     )
 
 
-def _jarm_if_shown(one_frame: float, evidence: list[str]) -> tuple[str, str, list[str]]:
+def _jarm_if_shown(
+    one_frame: float, evidence: list[str], weighed: bool
+) -> tuple[str, str, list[str]]:
     """jarm if a slip of one frame before the lift-off would have shown (``one_frame``, what
-    it costs the fit, at least SIGNIFICANT), else undetermined (frame_rate)."""
+    it costs the fit -- with the measured mu_s if ``weighed`` -- at least SIGNIFICANT), else
+    undetermined (frame_rate)."""
+    fit_ = "the fit and the measured mu_s together" if weighed else "the fit"
     if one_frame >= SIGNIFICANT:
         evidence.append(
-            f"a slip of one frame before it would worsen the fit by chi2 = {one_frame:.3g}"
+            f"a slip of one frame before it would worsen {fit_} by chi2 = {one_frame:.3g}"
         )
         return "jarm", "", evidence
     cost = (
-        f"would worsen the fit by only chi2 = {one_frame:.2g}"
+        f"would worsen {fit_} by only chi2 = {one_frame:.2g}"
         if one_frame > 0
         else f"fits as well (chi2 {one_frame:.2g})"
     )
+    cannot = "the frame rate and the noise" + (", and the measured mu_s," if weighed else "")
     evidence.append(
         f"but a slip of one frame before the lift-off {cost} (it takes {SIGNIFICANT:g} to "
-        "show): the frame rate and the noise cannot exclude it"
+        f"show): {cannot} cannot exclude it"
     )
     return "undetermined", "frame_rate", evidence
 
@@ -844,10 +876,8 @@ def _inputs(
     chi: float | None,
     km: float | None,
     alpha: float | None,
-    design: str | os.PathLike[str] | dict[str, Any] | None,
-) -> tuple[Cylinder, float, float | None, tuple[str, ...]]:
-    sheet = design_inputs(design) if design is not None else {}
-    notes: tuple[str, ...] = ()
+    sheet: dict[str, float],
+) -> tuple[Cylinder, float, float | None]:
     given = {"radius": radius, "chi": chi, "km": km, "alpha": alpha}
     for name, v in given.items():
         optional_real(name, v)  # the type first, as given
@@ -862,7 +892,7 @@ def _inputs(
     body = Cylinder(chi=c, km=k)
     if not body.km > 0:
         raise ValueError("km must be > 0: the model's spin in flight is undetermined at km = 0")
-    return body, R, a, notes
+    return body, R, a
 
 
 def _marker_radius(value: object, radius: float) -> float | None:
@@ -929,12 +959,6 @@ def _marker_note(rec: Reconstruction, given: float | None) -> tuple[str, ...]:
         f"the tracked marker is {measured * 1e3:.4g} mm from the axle, not the "
         f"{given * 1e3:.4g} mm given as marker_radius",
     )
-
-
-def _rolling_needs(f: Fit, setup: Setup, track: Track) -> float:
-    """The largest friction ratio |F_x|/F_y of the fitted run's rolling before its first
-    lift-off (or the track's end): what mu_s must be for that rolling."""
-    return rolling_needs(f.run, until_liftoff(f, setup, track))
 
 
 def _slips_in_track(f: Fit, setup: Setup, track: Track) -> bool:

@@ -26,7 +26,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass, replace
-from typing import Any
+from typing import Any, NamedTuple
 
 import numpy as np
 from numpy.typing import NDArray
@@ -585,9 +585,20 @@ def _result(model: Model, res: Any, lo: NDArray[np.float64], hi: NDArray[np.floa
     )
 
 
-def one_frame_slip(
-    f: Fit, setup: Setup, track: Track, rec: Reconstruction
-) -> tuple[float, Fit | None]:
+#: The largest measured mu_s that :func:`slipping_mu_s` compares with (``inputs.BOUNDS``).
+MU_MEASURED_MAX = 10.0
+
+
+class OneFrameSlip(NamedTuple):
+    """What :func:`one_frame_slip` found: the chi-square ``cost``, the ``refit`` that slips
+    (or None) and ``mu_s``, the largest mu_s at which the run slips a frame (NaN: none)."""
+
+    cost: float
+    refit: Fit | None
+    mu_s: float
+
+
+def one_frame_slip(f: Fit, setup: Setup, track: Track, rec: Reconstruction) -> OneFrameSlip:
     """How much worse (a chi-square, scaled like the slip test's) the rolling fit ``f``
     becomes when its body slips for one frame in all before the lift-off, and the refit
     that slips that long (None if it does not). The slip: mu_s lowered below what the
@@ -603,13 +614,24 @@ def one_frame_slip(
     p = model.params(f.x)
     found = _one_frame_mu_s(model, p, f.mu_s_bound, track.dt / setup.time_unit)
     if found is None:
-        return math.nan, None
+        return OneFrameSlip(math.nan, None, math.nan)
     mu_s, res = found
     cost = 0.5 * float(res @ res)
     refit = _capped_fit(f, setup, track, rec, mu_s)
     if slip_frames(refit, setup, track) < 1.0:  # back to rolling: no alternative
-        return 2.0 * (cost - f.cost) / f.variance_factor, None
-    return 2.0 * (min(cost, refit.cost) - f.cost) / f.variance_factor, refit
+        return OneFrameSlip(2.0 * (cost - f.cost) / f.variance_factor, None, mu_s)
+    return OneFrameSlip(2.0 * (min(cost, refit.cost) - f.cost) / f.variance_factor, refit, mu_s)
+
+
+def slipping_mu_s(f: Fit, setup: Setup, track: Track, rec: Reconstruction) -> float:
+    """The largest mu_s (with mu_k = mu_s, the gentlest slip) at which ``f``'s run slips a
+    frame or more before it lifts off; NaN if none up to what its rolling needs (or
+    MU_MEASURED_MAX, where that is unbounded). A measured mu_s above it weighs against
+    ``f``'s slip (``friction``)."""
+    model = Model(setup, track, rec, jarm_only=False)
+    bound = min(f.mu_s_bound, MU_MEASURED_MAX) if f.mu_s_bound > 0 else MU_MEASURED_MAX
+    found = _one_frame_mu_s(model, model.params(f.x), bound, track.dt / setup.time_unit)
+    return math.nan if found is None else found[0]
 
 
 def _one_frame_mu_s(
@@ -668,6 +690,12 @@ def until_liftoff(f: Fit, setup: Setup, track: Track) -> float:
     end = horizon(setup, track)
     lift = event_times(f.run, end)["liftoff"]
     return lift if math.isfinite(lift) else end
+
+
+def fitted_needs(f: Fit, setup: Setup, track: Track) -> float:
+    """The largest friction ratio |F_x|/F_y of the fitted run's rolling before its first
+    lift-off (or the track's end): what mu_s must be for that rolling."""
+    return rolling_needs(f.run, until_liftoff(f, setup, track))
 
 
 def slip_frames(f: Fit, setup: Setup, track: Track) -> float:

@@ -41,6 +41,10 @@ BOUNDS = {
     "g": Bound(0.01, 100.0, "m/s^2", "--g"),
     "alpha": Bound(0.0, math.pi / 2, "rad", "--alpha", f" ({FOR_DEGREES})"),
     "marker_angle": Bound(-2 * math.pi, 2 * math.pi, "rad", "--marker-angle", f" ({FOR_DEGREES})"),
+    # a friction measured apart from the track (friction.py): a coefficient, and its
+    # standard deviation (zero would be a certainty no measurement has)
+    "mu_s": Bound(1e-3, 10.0, "", "--mu-s"),
+    "mu_s_err": Bound(1e-4, 10.0, "", "--mu-s-err"),
 }
 #: The marker's distance from the axle, given (marker_radius) or tracked, in units of R: a
 #: point of the body, and not so close to the axle that theta drowns in the noise.
@@ -59,9 +63,10 @@ def in_range(name: str, value: object, given: str = "") -> float:
     b = BOUNDS[name]
     v = real(name, value)
     if not b.lo <= v <= b.hi:  # NaN too
+        unit = f" {b.unit}" if b.unit else ""
         raise ValueError(
-            f"{name} = {short(v)} {b.unit}{given} is outside the allowed range "
-            f"[{b.lo:.6g}, {b.hi:.6g}] {b.unit}{b.hint if not given else ''}"
+            f"{name} = {short(v)}{unit}{given} is outside the allowed range "
+            f"[{b.lo:.6g}, {b.hi:.6g}]{unit}{b.hint if not given else ''}"
         )
     return v
 

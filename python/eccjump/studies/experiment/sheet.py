@@ -1,5 +1,6 @@
 """The inputs an ``eccjump design --json`` sheet gives the analysis: the body (χ, km), the
-radius R [m] when the design was made in metres, and the ramp angle."""
+radius R [m] when the design was made in metres, the ramp angle, and the static friction
+the design was made for (``friction.measured_friction``)."""
 
 from __future__ import annotations
 
@@ -13,8 +14,8 @@ from eccjump._base.userfiles import read_text
 
 
 def design_inputs(design: str | os.PathLike[str] | dict[str, Any]) -> dict[str, float]:
-    """{"χ", "km", "α" [rad], and "radius" [m] if the sheet has one} from a design
-    sheet (a path to its JSON, or the dict of ``Design.to_dict()``)."""
+    """{"χ", "km", "α" [rad], and "radius" [m], "mu_s" and "mu_s_err" where the sheet has
+    them} from a design sheet (a path to its JSON, or the dict of ``Design.to_dict()``)."""
     if isinstance(design, str | os.PathLike):
         text = read_text("design", design)  # the guard of every user's file
         try:
@@ -33,6 +34,9 @@ def design_inputs(design: str | os.PathLike[str] | dict[str, Any]) -> dict[str, 
         out["radius"] = _number(body["radius"], "radius")
     if sheet.get("alpha_deg") is not None:
         out["alpha"] = math.radians(_number(sheet["alpha_deg"], "alpha_deg"))
+    for name in ("mu_s", "mu_s_err"):  # the friction the body was designed for
+        if sheet.get(name) is not None:
+            out[name] = _number(sheet[name], name)
     return out
 
 
