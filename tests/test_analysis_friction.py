@@ -94,6 +94,8 @@ def test_a_design_sheet_gives_its_friction_only_with_an_uncertainty():
     assert measured_friction(None, None, {}) == (None, ())
     given_ = measured_friction(1.1, 0.2, sheet)[0]  # what is given wins over the sheet
     assert given_ == MeasuredFriction(1.1, 0.2, "given")
+    percent, notes = measured_friction(0.8, 5.0, {})  # 5 %, given as 5
+    assert percent == MeasuredFriction(0.8, 5.0, "given") and "not a percentage?" in notes[0]
     with pytest.raises(ValueError, match=r"^mu_s_err = 20 \(from design\) is outside"):
         measured_friction(None, None, {"mu_s": 0.9, "mu_s_err": 20.0})
 
@@ -117,12 +119,16 @@ def test_the_measurement_weighs_as_a_normal_chi_square(value, err, mu, shift):
 
 
 def test_the_command_line_takes_the_measured_friction(capsys, tmp_path: Path):
+    """The README's track with the README's measurement (the design's mu_s = 1, to 5 %) is
+    `jarm`, as the README and the page "Analysing an experiment" say (chi2 = 10.1: the
+    track's 3.2 and the measurement's 6.9)."""
     data = Path(__file__).resolve().parent / "data" / "jarm_240fps.csv"
     argv = ["analyze", str(data), "--radius", "0.05", "--chi", "0.10927", "--km", "0.0777",
-            "--alpha", "66.087", "--marker-radius", "0.04", "--scale", "1230.539145",
-            "--mu-s", "1.2", "--mu-s-err", "0.1", "--json"]  # fmt: skip
+            "--alpha", "66.087", "--marker-radius", "0.04", "--marker-angle", "34.3775",
+            "--scale", "1230.539145", "--mu-s", "1", "--mu-s-err", "0.05", "--json"]  # fmt: skip
     assert main(argv) == 0
     report = json.loads(capsys.readouterr().out)
-    assert report["inputs"]["mu_s_measured"] == {"value": 1.2, "err": 0.1, "source": "given"}
-    assert main([*argv[:-5], "--mu-s", "1.2"]) == 2
+    assert report["inputs"]["mu_s_measured"] == {"value": 1.0, "err": 0.05, "source": "given"}
+    assert report["verdict"] == "jarm", report["evidence"]
+    assert main([*argv[:-5], "--mu-s", "1"]) == 2
     assert "error: --mu-s-err is needed too" in capsys.readouterr().err

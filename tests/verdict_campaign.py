@@ -2,7 +2,8 @@
 model (``reference_tracks.py``) at 60, 240 and 1000 fps with 0.2 to 2 px of noise, the
 confusion table of the verdicts and the coverage of the 95 % intervals.
 
-``python tests/verdict_campaign.py [--seed S] [--quick]`` prints them;
+``python tests/verdict_campaign.py [--seed S] [--quick] [--measured 0.05]`` prints them
+(``--measured``: with mu_s measured apart from the track, to 5 %);
 ``pytest -m campaign tests/test_analysis_verdict.py`` checks the targets.
 """
 
@@ -17,6 +18,7 @@ from pathlib import Path
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
 
+import numpy as np
 import reference_tracks as rt
 
 from eccjump.studies.experiment import analyze
@@ -54,12 +56,18 @@ def expected(frames: float) -> str:
     return "jarm" if frames == 0 else "slip_first"
 
 
-def judge(case: rt.Case, kwargs: dict) -> dict:
-    """Analyse the track of ``case``; the verdict against the truth and the coverage."""
+def judge(case: rt.Case, kwargs: dict, measured: float = 0.0) -> dict:
+    """Analyse the track of ``case``; the verdict against the truth and the coverage. With
+    ``measured`` > 0, analyze is also told mu_s as a tilt test would give it: the truth
+    plus a normal error of ``measured`` times it (seeded by the case), with that error."""
     made = rt.film(case)
     args = {"radius": case.radius, "chi": case.chi, "km": case.km, "alpha": case.alpha,
             "marker_angle": case.marker_angle,
             "marker_radius": case.marker_in_r * case.radius} | kwargs  # fmt: skip
+    if measured > 0:
+        err = measured * case.mu_s
+        draw = np.random.default_rng([case.seed, 48]).standard_normal()
+        args |= {"mu_s": max(case.mu_s + err * draw, 1e-3), "mu_s_err": err}
     started = time.perf_counter()
     res = analyze(made.track, **args)
     frames = made.slip_frames
@@ -152,10 +160,14 @@ def main() -> None:
     p = argparse.ArgumentParser()
     p.add_argument("--seed", type=int, default=0)
     p.add_argument("--quick", action="store_true")
+    p.add_argument(
+        "--measured", type=float, default=0.0,
+        help="tell analyze mu_s with this relative error (a tilt test's; e.g. 0.05)",
+    )  # fmt: skip
     args = p.parse_args()
     rows = []
     for case, kwargs in cases(args.seed, args.quick):
-        r = judge(case, kwargs)
+        r = judge(case, kwargs, args.measured)
         rows.append(r)
         line = (f"{k}={v:.3g}" if isinstance(v, float) else f"{k}={v}" for k, v in r.items())
         print(" ".join(line), flush=True)

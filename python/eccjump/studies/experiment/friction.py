@@ -93,7 +93,13 @@ def measured_friction(
             f"{missing} is needed too: a measured static friction (mu_s) and its standard "
             "deviation (mu_s_err) come together"
         )
-    return MeasuredFriction(in_range("mu_s", mu_s), in_range("mu_s_err", mu_s_err), "given"), ()
+    measured = MeasuredFriction(in_range("mu_s", mu_s), in_range("mu_s_err", mu_s_err), "given")
+    if measured.err < measured.value:
+        return measured, ()
+    return measured, (
+        f"mu_s_err = {measured.err:.3g} is not below mu_s = {measured.value:.3g}: the "
+        "measurement says little (a standard deviation, not a percentage?)",
+    )
 
 
 def weigh(
