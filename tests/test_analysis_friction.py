@@ -43,6 +43,7 @@ def test_a_measured_mu_s_excludes_the_slip_a_rolling_track_cannot(design_track):
     res = analyze(design_track, design=sheet, **SETUP)
     assert res.verdict == "jarm", res.evidence
     assert res.mu_s_measured == MeasuredFriction(1.2, 0.1, "design")
+    assert "; measured 1.2 +- 0.1" in repr(res)
     assert any("the measured mu_s = 1.2 +- 0.1 (from the design sheet)" in e for e in res.evidence)
     measured = res.to_dict()["inputs"]["mu_s_measured"]
     assert measured == {"value": 1.2, "err": 0.1, "source": "design"}

@@ -274,9 +274,10 @@ def test_the_held_out_intervals_cover():
 
 @pytest.mark.campaign
 @pytest.mark.xfail(
-    reason="issue 48 open: JARM tracks called jarm in 6-11 of 12 per seed, slips >= 3 frames "
-    "in 80-87 % (a one-frame slip before the lift-off would not show at 1000 fps, a slip "
-    "inside 2 px of noise); the misses are `undetermined`",
+    reason="issue 48 open: from the track alone, JARM tracks called jarm in 6-11 of 12 per "
+    "seed (with a measured mu_s: 10-12, test_with_a_measured_friction_...), slips >= 3 "
+    "frames in 80-87 % (a one-frame slip before the lift-off would not show at 1000 fps, a "
+    "slip inside 2 px of noise); the misses are `undetermined`",
     strict=False,
 )
 def test_the_held_out_verdicts():
@@ -287,6 +288,35 @@ def test_the_held_out_verdicts():
     jarm = [r for r in clean if r["frames"] == 0]
     assert sum(r["verdict"] == "slip_first" for r in ge3) >= 0.9 * len(ge3)
     assert sum(r["verdict"] == "jarm" for r in jarm) >= 0.9 * len(jarm)
+
+
+@functools.cache
+def measured_rows() -> list[dict]:
+    """Seed 0's sweep and the JARM tracks of seeds 1-3, with mu_s measured apart from each
+    track to 5 % (``judge``)."""
+    picked = vc.cases(seed=0) + [
+        (case, kwargs)
+        for seed in (1, 2, 3)
+        for case, kwargs in vc.cases(seed=seed)
+        if case.family == "jarm" and not kwargs and not case.roll_deg
+    ]
+    rows = [vc.judge(case, kwargs, measured=0.05) for case, kwargs in picked]
+    print(vc.summary(rows))
+    return rows
+
+
+@pytest.mark.campaign
+def test_with_a_measured_friction_jarm_is_called_and_never_wrong():
+    """What the track alone cannot exclude (a slip of one frame at the lift-off) a measured
+    mu_s can: the JARM tracks of seeds 0-3 are `jarm` in 43 of 48 (35 of 48 from the tracks
+    alone; 45 of 48 with another draw of the measurement errors: where the need comes within
+    the measurement's 3 sigma it depends on the draw), and still no confidently wrong
+    verdict. The bar is 85 %: the issue's 90 % is for the track alone."""
+    rows = measured_rows()
+    assert not [r for r in rows if r["wrong"]]
+    jarm = [r for r in rows if r["frames"] == 0 and "/" not in r["family"]]
+    assert len(jarm) == 48
+    assert sum(r["verdict"] == "jarm" for r in jarm) >= 0.85 * len(jarm)
 
 
 # --- the track's own length scale, correlated errors, bounces --------------------------------

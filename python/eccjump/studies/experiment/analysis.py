@@ -218,6 +218,8 @@ class Analysis(Result, Plottable, kind="analysis"):
                     text = "not determined (the model does not fit this track)"
             else:
                 text = f"{p['value']:.3f} in [{p['lo']:.3f}, {p['hi']:.3g}]"
+            if name == "mu_s" and self.mu_s_measured is not None:
+                text += f"; measured {self.mu_s_measured.value:.3g} +- {self.mu_s_measured.err:.2g}"
             out.append((name, text))
         return out
 

@@ -179,8 +179,9 @@ def _one_frame_with(
         return math.nan, "no lowered mu_s gives a run that slips a frame and lifts off"
     needs = fitted_needs(rolling, *scene[:2])
     against = friction.against_slip(max(one.mu_s, needs)) - friction.against_rolling(needs)
+    whose = "the slip-forbidden fit's rolling" if rolling.jarm_only else "the fitted rolling"
     return one.cost + against, (
-        f"a slip of one frame before the lift-off needs mu_s below the rolling's {needs:.3g}: "
-        f"the measured {friction.text()} weighs chi2 = {against:.3g} against it, the track "
-        f"{one.cost:.2g}"
+        f"a slip of one frame before the lift-off needs mu_s below what {whose} needs, "
+        f"{needs:.3g}: the measured {friction.text()} weighs chi2 = {against:.3g} against "
+        f"it, the track {one.cost:.2g}"
     )
