@@ -7,7 +7,7 @@ need, and then the body slips with almost the friction it had: the positions mov
 micrometres, and no frame rate or noise level can exclude it (the design's JARM body at
 240 fps: χ² −0.7 to 5 against the 9 needed). A measured μ_s can. Such a slip needs μ_s at
 most ``mu_slip``, and a measurement μ ± σ (normal) makes that less likely by
-((μ − mu_slip)/σ)², a chi-square of one degree of freedom added to the track's. A rolling
+((μ − mu_slip)/σ)², a χ² of one degree of freedom added to the track's. A rolling
 that needs more than the measured μ_s pays ((need − μ)/σ)² the same way.
 
 Both penalties are lower bounds on what the measurement says against the run, so a verdict
@@ -49,7 +49,7 @@ class MeasuredFriction:
     source: str
 
     def against_slip(self, mu_slip: float) -> float:
-        """How much less likely (a chi-square) the measurement makes a run that slips only
+        """How much less likely (a χ²) the measurement makes a run that slips only
         with μ_s at most ``mu_slip``: 0 if the measured value is below it."""
         return (max(self.value - mu_slip, 0.0) / self.err) ** 2
 
@@ -110,11 +110,11 @@ def weigh(
     significant: float,
 ) -> tuple[Fit, Fit | None, float, tuple[str, ...]]:
     """The free and slip-forbidden fits to judge from, what a slip of one frame would cost
-    the track and the measured mu_s together (``one``: the track's part, where the free fit
+    the track and the measured μ_s together (``one``: the track's part, where the free fit
     rolls), and the evidence of that.
 
-    A slip needs mu_s below what the rolling needs: a measured mu_s above that weighs
-    against every slip (against the largest mu_s found to slip a frame, if higher: the
+    A slip needs μ_s below what the rolling needs: a measured μ_s above that weighs
+    against every slip (against the largest μ_s found to slip a frame, if higher: the
     penalty errs low). A free fit that slips where the track does not ask for it (below
     ``significant``, the slip test's threshold) gives way to the rolling fit when the
     measurement makes its slip less likely than the rolling by more than the slip gains on
@@ -156,8 +156,8 @@ def weigh(
 def _contradicted(
     friction: MeasuredFriction, mu_slip: float, frames: float, significant: float
 ) -> tuple[str, ...]:
-    """The evidence where the measured mu_s makes unlikely (at least ``significant``) a
-    slip the track asks for, which needs mu_s below ``mu_slip``: none where it does not."""
+    """The evidence where the measured μ_s makes unlikely (at least ``significant``) a
+    slip the track asks for, which needs μ_s below ``mu_slip``: none where it does not."""
     against = friction.against_slip(mu_slip) if math.isfinite(mu_slip) else 0.0
     if against < significant:
         return ()
@@ -171,9 +171,9 @@ def _contradicted(
 def _one_frame_with(
     friction: MeasuredFriction, one: OneFrameSlip, rolling: Fit, scene: Scene
 ) -> tuple[float, str]:
-    """What a slip of one frame costs the ``rolling`` fit and the measured mu_s together:
-    the track's chi-square (``fit.one_frame_slip``) plus what the measurement says against
-    a mu_s below the rolling's need, less what it says against that need; and the
+    """What a slip of one frame costs the ``rolling`` fit and the measured μ_s together:
+    the track's χ² (``fit.one_frame_slip``) plus what the measurement says against
+    a μ_s below the rolling's need, less what it says against that need; and the
     sentence."""
     if not math.isfinite(one.mu_s):
         return math.nan, "no lowered mu_s gives a run that slips a frame and lifts off"
