@@ -10,8 +10,9 @@ most ``mu_slip``, and a measurement μ ± σ (normal) makes that less likely by
 ((μ − mu_slip)/σ)², a χ² of one degree of freedom added to the track's. A rolling
 that needs more than the measured μ_s pays ((need − μ)/σ)² the same way.
 
-Both penalties are lower bounds on what the measurement says against the run, so a verdict
-that rests on them errs towards ``undetermined``. The measurement is trusted as given: a
+The penalty against a slip is taken at the rolling's need, the largest μ_s a slip can
+have at the fitted start: it errs low, and a verdict that rests on it errs towards
+``undetermined``. The measurement is trusted as given: a
 μ_s measured too high makes a slip look unlikely, and the evidence says that the verdict
 rests on it.
 """
