@@ -89,7 +89,10 @@ def test_a_measured_mu_s_comes_with_its_error(mu_s, mu_s_err, error, match):
 
 def test_a_design_sheet_gives_its_friction_only_with_an_uncertainty():
     sheet = {"mu_s": 0.9, "mu_s_err": 0.05}
-    assert measured_friction(None, None, sheet) == (MeasuredFriction(0.9, 0.05, "design"), ())
+    from_sheet, notes = measured_friction(None, None, sheet)
+    assert from_sheet == MeasuredFriction(0.9, 0.05, "design")
+    assert notes == ("the design sheet's mu_s = 0.9 +- 0.05 is taken as the measured static "
+                     "friction (give mu_s and mu_s_err to override it)",)  # fmt: skip
     none, notes = measured_friction(None, None, {"mu_s": 0.9, "mu_s_err": 0.0})
     assert none is None and "no uncertainty" in notes[0]
     assert measured_friction(None, None, {}) == (None, ())

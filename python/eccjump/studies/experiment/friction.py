@@ -85,9 +85,13 @@ def measured_friction(
                 "measurement; give mu_s and mu_s_err to use it",
             )
         given = " (from design)"
-        return MeasuredFriction(
+        measured = MeasuredFriction(
             in_range("mu_s", value, given), in_range("mu_s_err", err, given), "design"
-        ), ()
+        )
+        return measured, (
+            f"the design sheet's mu_s = {measured.value:.3g} +- {measured.err:.2g} is taken "
+            "as the measured static friction (give mu_s and mu_s_err to override it)",
+        )
     if mu_s is None or mu_s_err is None:
         missing = "mu_s" if mu_s is None else "mu_s_err"
         raise ValueError(
