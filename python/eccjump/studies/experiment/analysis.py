@@ -219,7 +219,7 @@ class Analysis(Result, Plottable, kind="analysis"):
             else:
                 text = f"{p['value']:.3f} in [{p['lo']:.3f}, {p['hi']:.3g}]"
             if name == "mu_s" and self.mu_s_measured is not None:
-                text += f"; measured {self.mu_s_measured.value:.3g} +- {self.mu_s_measured.err:.2g}"
+                text += f"; measured {self.mu_s_measured.shown}"
             out.append((name, text))
         return out
 
@@ -698,16 +698,18 @@ def _decide(
             f"the fitted model rolls without slipping from the first frame to "
             f"its lift-off at t = {t0 + lift * unit:.5f} s"
         )
-        return _jarm_if_shown(v.one_frame, evidence + list(v.friction), bool(v.friction))
+        evidence += v.friction
+        return _jarm_if_shown(v.one_frame, evidence, bool(v.friction))
     verdict, reason = _slip_verdict(slip_frames, delta)
     evidence.append(
         f"the fitted model slips for {slip_frames:.1f} frames in all before its "
         f"lift-off; forbidding that slip worsens the fit by chi2 = "
         f"{delta:.3g} (significant above {SIGNIFICANT:g})"
     )
+    evidence += v.friction
     if verdict == "jarm":
-        return _jarm_if_shown(v.one_frame, evidence + list(v.friction), bool(v.friction))
-    return verdict, reason, evidence + list(v.friction)
+        return _jarm_if_shown(v.one_frame, evidence, bool(v.friction))
+    return verdict, reason, evidence
 
 
 def _liftoff_follows(v: _Verdict, after: float) -> bool:

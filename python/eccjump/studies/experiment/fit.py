@@ -35,6 +35,7 @@ from eccjump._base.body import Cylinder
 from eccjump.classification.classify import jarm
 from eccjump.motion.simulation import MotionResult, simulate
 from eccjump.studies.experiment.geometry import RampFrame, marker_offset
+from eccjump.studies.experiment.inputs import BOUNDS
 from eccjump.studies.experiment.reconstruction import Reconstruction, derivative_weights
 from eccjump.studies.experiment.track import Track
 
@@ -585,8 +586,8 @@ def _result(model: Model, res: Any, lo: NDArray[np.float64], hi: NDArray[np.floa
     )
 
 
-#: The largest measured mu_s that :func:`slipping_mu_s` compares with (``inputs.BOUNDS``).
-MU_MEASURED_MAX = 10.0
+#: The largest measured mu_s that :func:`slipping_mu_s` compares with.
+MU_MEASURED_MAX = BOUNDS["mu_s"].hi
 
 
 class OneFrameSlip(NamedTuple):

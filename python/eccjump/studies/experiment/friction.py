@@ -61,9 +61,14 @@ class MeasuredFriction:
             return math.inf
         return (max(needs - self.value, 0.0) / self.err) ** 2
 
+    @property
+    def shown(self) -> str:
+        """The value and its error as the report prints them."""
+        return f"{self.value:.3g} +- {self.err:.2g}"
+
     def text(self) -> str:
         where = " (from the design sheet)" if self.source == "design" else ""
-        return f"mu_s = {self.value:.3g} +- {self.err:.2g}{where}"
+        return f"mu_s = {self.shown}{where}"
 
     def as_dict(self) -> dict[str, Any]:
         return {"value": self.value, "err": self.err, "source": self.source}
@@ -89,8 +94,8 @@ def measured_friction(
             in_range("mu_s", value, given), in_range("mu_s_err", err, given), "design"
         )
         return measured, (
-            f"the design sheet's mu_s = {measured.value:.3g} +- {measured.err:.2g} is taken "
-            "as the measured static friction (give mu_s and mu_s_err to override it)",
+            f"the design sheet's mu_s = {measured.shown} is taken as the measured static "
+            "friction (give mu_s and mu_s_err to override it)",
         )
     if mu_s is None or mu_s_err is None:
         missing = "mu_s" if mu_s is None else "mu_s_err"
