@@ -37,7 +37,7 @@ from eccjump.motion.simulation import MotionResult, simulate
 from eccjump.studies.experiment.geometry import RampFrame, marker_offset
 from eccjump.studies.experiment.inputs import BOUNDS
 from eccjump.studies.experiment.reconstruction import Reconstruction, derivative_weights
-from eccjump.studies.experiment.track import Track
+from eccjump.studies.experiment.track import Track, first_frames
 
 NAMES = ("theta0", "omega0", "mu_k", "dmu", "e", "l0", "n0", "length_scale", "alpha")
 #: The parameters of the start and of the frame (not the friction or e).
@@ -287,15 +287,17 @@ def fit(
     jarm_only: bool = False,
     starts: list[dict[str, float]] | None = None,
     wide: bool = False,
+    grow: bool = True,
 ) -> Fit:
     """The best of several least-squares fits. Without ``starts``: a screen of short fits
     (:data:`SCREEN_NFEV` iterations) from the smoothed start with the friction guesses of
     :func:`friction_guesses`, each with the smoothed omega0 and with 0 (the edge of the
     smoothing window makes omega0 noisy), then full fits from the :data:`KEEP` best (the
-    cost has many local minima: a slip, a bounce and a shifted start trade off). ``wide``
-    screens more: mu_k / mu_s of 0.5, 0.75 and 0.95 and e of 0.05 and 0.5, and keeps twice
-    as many (for a fit that failed its goodness-of-fit test). With ``starts`` (each a dict
-    of some of :data:`NAMES`, on top of that guess): a full fit from each."""
+    cost has many local minima: a slip, a bounce and a shifted start trade off), and with
+    ``grow`` one more from :func:`grown_start`. ``wide`` screens more: mu_k / mu_s of 0.5,
+    0.75 and 0.95 and e of 0.05 and 0.5, and keeps twice as many (for a fit that failed its
+    goodness-of-fit test). With ``starts`` (each a dict of some of :data:`NAMES`, on top of
+    that guess): a full fit from each."""
     model = Model(setup, track, rec, jarm_only=jarm_only)
     guess = start_guess(setup, rec)
     lo, hi = model.bounds(guess)
@@ -311,10 +313,34 @@ def fit(
         ]
         tried = sorted((_solve(model, guess | s, lo, hi, SCREEN_NFEV) for s in screen), key=_cost)
         x0s = [r.x for r in tried[: KEEP * (2 if wide else 1)]]
+        if grow and track.n >= 2 * GROW_FIRST:
+            start = grown_start(setup, track, rec, jarm_only=jarm_only, wide=wide)
+            x0s.append(np.array([(guess | start)[n] for n in model.names], dtype=float))
     else:
         x0s = [np.array([(guess | s)[n] for n in model.names], dtype=float) for s in starts]
     res = min((_solve(model, x0, lo, hi, MAX_NFEV) for x0 in x0s), key=_cost)
     return _result(model, res, lo, hi)
+
+
+#: The frames of the first window of :func:`grown_start` (at least; an eighth of the track).
+GROW_FIRST = 16
+
+
+def grown_start(
+    setup: Setup, track: Track, rec: Reconstruction, *, jarm_only: bool, wide: bool
+) -> dict[str, float]:
+    """A start for the whole track from fits of its first frames, the window doubled from
+    an eighth of it (at least :data:`GROW_FIRST` frames), each window's fit started from
+    the last one's. Over a long track the cost has a local minimum for every turn the
+    marker's phase can slip by (a start that is a little off in theta0 or omega0 ends turns
+    away after a slip of a hundred frames, in a basin of its own); a short window has few
+    turns, and each doubling moves the phase by less than one."""
+    k = max(GROW_FIRST, track.n // 8)
+    f = fit(setup, first_frames(track, k), rec, jarm_only=jarm_only, wide=wide, grow=False)
+    while 2 * k < track.n:
+        k *= 2
+        f = fit(setup, first_frames(track, k), rec, jarm_only=jarm_only, starts=[as_start(f)])
+    return as_start(f)
 
 
 #: Rounds of refitting the free and the slip-forbidden fit from the better of the two.
