@@ -23,14 +23,19 @@ from hypothesis import strategies as st
 
 from eccjump.cli import main
 from eccjump.studies.experiment import analysis, analyze
+from eccjump.studies.experiment import fit as fitmod
 from eccjump.studies.experiment.analysis import SIGNIFICANT, _slip_verdict
 from eccjump.studies.experiment.events import observe
 from eccjump.studies.experiment.fit import (
+    ROUGH,
+    Model,
+    coarse_jacobian,
     correlation_inflation,
     covariance,
     fit,
     flight_signal,
     profile_interval,
+    rough,
     time_errors,
 )
 from eccjump.studies.experiment.track import first_frames
@@ -240,6 +245,55 @@ def test_a_long_track_is_fitted_in_growing_windows(monkeypatch):
     assert abs(res.liftoff_t - made.liftoff) < 1.96 * res.liftoff_err
     screened = fit(*inputs[0], grow=False)
     assert screened.cost > res.fit.cost + 1000.0
+
+
+def test_a_hop_the_heights_contradict_is_not_timed(monkeypatch):
+    """Independent model, 60 fps, 2 px (noise of 13 mm), a slip of 124 frames and a
+    lift-off at 2.07 s that no frame shows. The fit (χ²_red 1.5) hops at 0.77 s and
+    chatters through bounces: its residuals jump by sigmas for the smallest step, least
+    squares' Jacobian grew like 1/step, and the hop was timed to 4 µs. The Jacobian at a
+    coarse step says the cost is rough and widens the covariance; and since the heights
+    contradict the model's flight (they follow it at -0.2 sigma where its own would give
+    6.4), its lift-off is not fixed by the track. The slip stays `slip_first`."""
+    inputs = _spy_fit_inputs(monkeypatch)
+    made, res = _analyze(rt.draw("long_slip", 3008, fps=60.0, noise=2.0))
+    assert made.slip_frames > 100 and not res.observed.flights
+    assert res.verdict == "slip_first", (res.reason, res.evidence)
+    assert res.liftoff_err == math.inf and "not fixed by the track" in repr(res)
+    assert any("the heights contradict it" in e for e in res.evidence), res.evidence
+    assert res.slips[-1].t2_err == math.inf and math.isfinite(res.slips[0].t1_err)
+    model = Model(*inputs[0], jarm_only=res.fit.jarm_only)
+    lo, hi = res.fit.lower, res.fit.upper
+    coarse = coarse_jacobian(model, res.fit.x, lo, hi)
+    monkeypatch.setattr(fitmod, "COARSE_STEP", 1e-7)
+    assert rough(coarse_jacobian(model, res.fit.x, lo, hi), coarse)
+
+
+def test_a_smooth_cost_keeps_least_squares_covariance(monkeypatch):
+    """On a clean JARM track the Jacobians at the fine and the coarse step agree: no
+    rough cost, the covariance is least squares' own."""
+    inputs = _spy_fit_inputs(monkeypatch)
+    _, res = _analyze(rt.draw("jarm", 1, fps=240.0, noise=0.2))
+    model = Model(*inputs[0], jarm_only=res.fit.jarm_only)
+    lo, hi = res.fit.lower, res.fit.upper
+    coarse = coarse_jacobian(model, res.fit.x, lo, hi)
+    monkeypatch.setattr(fitmod, "COARSE_STEP", 1e-7)
+    assert not rough(coarse_jacobian(model, res.fit.x, lo, hi), coarse)
+
+
+@given(
+    st.lists(st.floats(0.2, 5.0), min_size=1, max_size=9),
+    st.floats(ROUGH * 1.01, 1e6),
+    st.integers(0, 2**32 - 1),
+)
+def test_a_column_rough_only_when_much_longer_at_the_fine_step(scales, jump, seed):
+    coarse = np.random.default_rng(seed).normal(size=(40, len(scales)))
+    coarse[:, 0] = 0.0  # a parameter with no effect: zero at either step, not rough
+    assert not rough(coarse * np.array(scales), coarse)
+    fine = coarse.copy()
+    k = len(scales) - 1
+    fine[:, k] = coarse[:, k] * jump if k else 1.0
+    assert rough(fine, coarse)
 
 
 def test_parameters_the_track_does_not_determine_print_as_bounds(capsys):

@@ -586,6 +586,8 @@ def _judge(
     verdict, reason, evidence = _decide(v, seen, (lift, after), frames, delta, rec, t0, unit, dt)
     if reason == "model":  # a model the track rejects times nothing (liftoff_window does)
         errs = dict.fromkeys(errs, math.inf)
+    elif _unseen_hop(v, seen):  # nor the hop, and what ends with it, of one it does not
+        errs = {k: math.inf if times.get(k, math.nan) >= lift else e for k, e in errs.items()}
     evidence.append(
         f"the rolling before it needs mu_s >= {needs:.3f} (the model's friction ratio |F_x|/F_y)"
         if needs <= MU_MAX
@@ -718,7 +720,19 @@ def _liftoff_follows(v: _Verdict, after: float) -> bool:
     that comes inside the track (its 95 % interval ends :data:`FRAMES_AFTER` frames before
     the track does) and the heights do not contradict the model's flight (they follow it
     within 3 standard errors of what its own heights would give, ``fit.flight_signal``)."""
-    return after >= FRAMES_AFTER and v.flight_z >= v.flight_size - 3.0
+    return after >= FRAMES_AFTER and not _heights_contradict(v)
+
+
+def _heights_contradict(v: _Verdict) -> bool:
+    """Whether the heights fall 3 standard errors or more short of what the model's own
+    flight would give them (``fit.flight_signal``): a flight the track does not have."""
+    return v.flight_z < v.flight_size - 3.0
+
+
+def _unseen_hop(v: _Verdict, seen: Flight | None) -> bool:
+    """Whether the model's lift-off is a hop the track does not show and its heights
+    contradict: then its time is the model's guess, fixed by nothing in the track."""
+    return seen is None and v.flight_z < FLIGHT_Z and _heights_contradict(v)
 
 
 def _unfixed(v: _Verdict, after: float) -> str:
@@ -752,6 +766,13 @@ def _flight_sentence(v: _Verdict, seen: Flight | None, sigma3: str, after: float
             f"{v.flight_z:.2g} sigma, its own heights would give {v.flight_size:.2g}): the "
             "lift-off is where the fitted rolling loses its normal force, inside the track "
             f"({after:.0f} frames before its end beyond the lift-off's 95 % interval)"
+        )
+    if _heights_contradict(v):
+        return (
+            f"the model's flight stays within the noise and the heights contradict it "
+            f"(they follow it at {v.flight_z:.2g} sigma, its own heights would give "
+            f"{v.flight_size:.2g}): its lift-off is not fixed by the track, and the "
+            "verdict rests on the slip before it"
         )
     return (
         f"the model's flight stays within the noise (the heights follow it at "

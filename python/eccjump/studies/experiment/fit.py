@@ -585,6 +585,39 @@ def covariance(jac: NDArray[np.float64], scale: float) -> NDArray[np.float64]:
     return cov
 
 
+#: The step of :func:`coarse_jacobian`, a fraction of each parameter's range.
+COARSE_STEP = 1e-3
+#: How much longer than at the coarse step a column may be at least squares' own step
+#: before the cost counts as rough (:func:`rough`).
+ROUGH = 10.0
+
+
+def coarse_jacobian(
+    model: Model, x: NDArray[np.float64], lo: NDArray[np.float64], hi: NDArray[np.float64]
+) -> NDArray[np.float64]:
+    """The residuals' Jacobian at ``x`` by central differences over :data:`COARSE_STEP` of
+    each parameter's range (one-sided at a bound)."""
+    cols = []
+    for i in range(x.size):
+        h = COARSE_STEP * (hi[i] - lo[i])
+        up, dn = x.copy(), x.copy()
+        up[i], dn[i] = min(x[i] + h, hi[i]), max(x[i] - h, lo[i])
+        cols.append((model.residuals(up) - model.residuals(dn)) / (up[i] - dn[i]))
+    return np.column_stack(cols)
+
+
+def rough(fine: NDArray[np.float64], coarse: NDArray[np.float64]) -> bool:
+    """Whether the cost is rough where it was fitted: a column of least squares' Jacobian
+    (a step of 1e-6) :data:`ROUGH` times longer than the coarse one. A run that chatters
+    through bounces inside the track moves its residuals by sigmas for the smallest step,
+    so that Jacobian grows like 1/step and its covariance shrinks to nothing (a lift-off
+    timed to 4 us, seconds from the truth). The coarse one measures the cost's curvature
+    on the scale a parameter can move, but across a kink (a slip that starts or ends within
+    its step) it can be the longer one: a rough fit's covariance is the sum of both."""
+    f, c = np.linalg.norm(fine, axis=0), np.linalg.norm(coarse, axis=0)
+    return bool(np.any((f > ROUGH * c) & (f > 1e-6 * f.max(initial=0.0))))
+
+
 def _result(model: Model, res: Any, lo: NDArray[np.float64], hi: NDArray[np.float64]) -> Fit:
     m = res.fun.size
     dof = max(m - res.x.size, 1)
@@ -592,6 +625,9 @@ def _result(model: Model, res: Any, lo: NDArray[np.float64], hi: NDArray[np.floa
     # widened by a misfit, never narrowed below the noise; and by correlated errors
     s2 = max(2.0 * res.cost / dof, 1.0) * inflation
     cov = covariance(res.jac, s2)
+    coarse = coarse_jacobian(model, res.x, lo, hi)
+    if rough(res.jac, coarse):  # neither Jacobian alone: the sum is wider than both
+        cov = cov + covariance(coarse, s2)
     p = model.params(res.x)
     run = model.simulate(p)
     bound = model.mu_bound(p)
