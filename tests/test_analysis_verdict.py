@@ -57,10 +57,17 @@ def _analyze(case: rt.Case, **kwargs):
 
 
 def _spy_fit_inputs(monkeypatch) -> list[tuple]:
-    """The (setup, track, rec) that each analyze call fits, as they come."""
+    """The (setup, track, rec) that each analyze call fits, as they come (the setup its fits
+    were made with)."""
     inputs: list[tuple] = []
     real = analysis._consistent_fits
-    monkeypatch.setattr(analysis, "_consistent_fits", lambda *a: inputs.append(a) or real(*a))
+
+    def spy(setup, track, rec, released):
+        used, fits = real(setup, track, rec, released)
+        inputs.append((used, track, rec))
+        return used, fits
+
+    monkeypatch.setattr(analysis, "_consistent_fits", spy)
     return inputs
 
 

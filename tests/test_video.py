@@ -170,7 +170,7 @@ def test_a_rolled_camera_and_a_wait_before_the_release(tmp_path):
 def test_a_wait_before_the_release_is_cut_where_the_fit_can_start(tmp_path):
     """Held still for 0.57 s, then released (a one-second clip): the track starts after the
     release and the fit passes its gate (it failed at chi2_red 34 from the last still frame,
-    half a frame before the release)."""
+    half a frame before the release), from rolling: its start's slip is not fitted."""
     clip = render(tmp_path / "wait.mp4", JARM, wait=0.57)
     tr = eccjump.track(clip.path, marker_radius=clip.marker_radius,
                        alpha=math.radians(JARM["alpha"]))  # fmt: skip
@@ -178,6 +178,8 @@ def test_a_wait_before_the_release_is_cut_where_the_fit_can_start(tmp_path):
     res = analyze(tr, JARM, clip.marker_radius)
     assert res.reason != "model" and res.fit.chi2_reduced < 2.0, (res.reason, res.evidence)
     assert abs(res.liftoff_t - clip.liftoff_t) < 2 / FPS
+    # rolling from its release: no slip at the start (a free slip0 fitted the codec's errors)
+    assert res.verdict != "slip_first" and "slip0" not in res.parameters(), res.evidence
 
 
 def _hide_marker(clip, target, frames) -> None:

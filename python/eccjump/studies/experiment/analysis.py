@@ -174,6 +174,9 @@ class Analysis(Result, Plottable, kind="analysis"):
         for name in f.names:
             if name == "dmu":
                 continue
+            if name == "slip0" and f.jarm_only:  # a run that rolls from the start
+                out[name] = {"value": 0.0, "lo": 0.0, "hi": 0.0, "unit": "m/s", "status": "value"}
+                continue
             lo, hi = self.mu_k_interval if name == "mu_k" else f.interval(name)
             i = f.names.index(name)
             known = hi - lo < 0.9 * float(f.upper[i] - f.lower[i])
@@ -451,8 +454,10 @@ def analyze(
         px = None
     elif not isinstance(track, Track):
         track = load_track(track, scale=px, fmt="auto", name="track")
-    if not isinstance(track, VideoTrack):  # (a video's track is cut by the tracker)
-        track, notes = _after_release(track, R, notes)
+    if isinstance(track, VideoTrack):  # (a video's track is cut by the tracker)
+        released = math.isfinite(track.release_t)
+    else:
+        track, notes, released = _after_release(track, R, notes)
     _check_marker_distance(track, R, px)
     rec = reconstruct(
         track, radius=R, marker_angle=beta, marker_radius=r_m, alpha=a_given, window=w
@@ -477,7 +482,7 @@ def analyze(
         rule,
         fit_alpha=a_given is None,
     )
-    best, jarm_fit = _consistent_fits(setup, track, rec)
+    setup, (best, jarm_fit) = _consistent_fits(setup, track, rec, released)
     one = None  # asked only where the verdict could be jarm: a slip under a frame
     if slip_frames(best, setup, track) < 1.0:
         one = one_frame_slip(jarm_fit or best, setup, track, rec)
@@ -508,16 +513,30 @@ def analyze(
     return _judge(track, rec, verdict, setup, intervals, notes, started, friction)
 
 
-def _consistent_fits(setup: Setup, track: Track, rec: Reconstruction) -> tuple[Fit, Fit | None]:
+def _consistent_fits(
+    setup: Setup, track: Track, rec: Reconstruction, released: bool
+) -> tuple[Setup, tuple[Fit, Fit | None]]:
     """``fit.consistent_fits``, screened again more widely where the first pair fails the
     goodness-of-fit gate (a failed gate may be a local minimum: a long slip at 2 px stopped
-    at chi2_red 31.7); the better pair."""
+    at chi2_red 31.7), and, on a track cut after a wait before the release, fitted again
+    with the slip velocity at its first frame free (``Setup.slip_at_start``); the best pair
+    and its setup."""
     fits = consistent_fits(setup, track, rec)
-    if misfit_p(fits[0], int(rec.line.contact.sum())) < MISFIT_P:
-        wider = consistent_fits(setup, track, rec, wide=True)
-        if wider[0].cost < fits[0].cost:
-            fits = wider
-    return fits
+    if _passes(fits[0], rec):
+        return setup, fits
+    wider = consistent_fits(setup, track, rec, wide=True)
+    if wider[0].cost < fits[0].cost:
+        fits = wider
+    if released and not _passes(fits[0], rec):
+        sliding = replace(setup, slip_at_start=True)
+        slid = consistent_fits(sliding, track, rec)
+        if slid[0].cost < fits[0].cost:
+            return sliding, slid
+    return setup, fits
+
+
+def _passes(f: Fit, rec: Reconstruction) -> bool:
+    return misfit_p(f, int(rec.line.contact.sum())) >= MISFIT_P
 
 
 def _friction_intervals(
@@ -827,17 +846,17 @@ def _misfit_sentence(f: Fit, p: float) -> str:
 
 def _after_release(
     track: Track, radius: float, notes: tuple[str, ...]
-) -> tuple[Track, tuple[str, ...]]:
+) -> tuple[Track, tuple[str, ...], bool]:
     """The track from the first frame after a wait before the release
-    (``release.release_frame``), with a note; else as it is."""
+    (``release.release_frame``), with a note, and True; else as it is, and False."""
     begin = release_frame(track.t, track.c, REACH * radius)
     if begin == 0:
-        return track, notes
+        return track, notes, False
     note = (
         f"the axle stays still for the first {begin} frames (a wait before the release): "
         f"the fit starts after the release, at t = {track.t[begin]:.4f} s"
     )
-    return frames_from(track, begin), (*notes, note)
+    return frames_from(track, begin), (*notes, note), True
 
 
 def _contact_frames(track: Track, best: Fit, setup: Setup) -> int:

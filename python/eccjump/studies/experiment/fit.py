@@ -2,15 +2,16 @@
 friction and restitution, by least squares on the tracked points (scipy's
 ``least_squares``).
 
-Parameters (:data:`NAMES`): the start theta0 [rad] and omega0 [rad/s] at the first frame,
-mu_k, dmu = mu_s - mu_k >= 0 (so mu_k <= mu_s always holds), the restitution e, and two
-offsets of the ramp frame, l0 and n0 [m] (where the axle starts along the ramp, and the
-contact line's height: nuisance parameters); ``alpha`` too when the ramp angle was not
-given. Residuals: the model's C and M minus the tracked ones, both coordinates, divided by
-the noise level sigma, so the cost is half a chi-square and the covariance of the
-parameters is (J^T J)^-1 s^2 at the optimum (s^2 the reduced chi-square where it exceeds 1:
-a misfit widens every interval; 1 below). A direction the
-track does not constrain (mu_s above what the observed rolling needed, e when nothing lands)
+Parameters (:data:`NAMES`): the start theta0 [rad] and omega0 [rad/s] at the first frame
+(and its slip velocity slip0 [m/s] where the track starts after a release: see
+:class:`Setup`), mu_k, dmu = mu_s - mu_k >= 0 (so mu_k <= mu_s always holds), the
+restitution e, and two offsets of the ramp frame, l0 and n0 [m] (where the axle starts along
+the ramp, and the contact line's height: nuisance parameters); ``alpha`` too when the ramp
+angle was not given. Residuals: the model's C and M minus the tracked ones, both
+coordinates, divided by the noise level sigma, so the cost is half a chi-square and the
+covariance of the parameters is (J^T J)^-1 s^2 at the optimum (s^2 the reduced chi-square
+where it exceeds 1: a misfit widens every interval; 1 below). A direction the track does
+not constrain (mu_s above what the observed rolling needed, e when nothing lands)
 has a vanishing singular value: its interval is the parameter's whole range ("not
 identified").
 
@@ -39,10 +40,10 @@ from eccjump.studies.experiment.inputs import BOUNDS
 from eccjump.studies.experiment.reconstruction import Reconstruction, derivative_weights
 from eccjump.studies.experiment.track import Track, first_frames
 
-NAMES = ("theta0", "omega0", "mu_k", "dmu", "e", "l0", "n0", "length_scale", "alpha")
+NAMES = ("theta0", "omega0", "slip0", "mu_k", "dmu", "e", "l0", "n0", "length_scale", "alpha")
 #: The parameters of the start and of the frame (not the friction or e).
-KINEMATIC = ("theta0", "omega0", "l0", "n0", "length_scale", "alpha")
-UNITS = {"theta0": "rad", "omega0": "rad/s", "l0": "m", "n0": "m", "alpha": "rad"}
+KINEMATIC = ("theta0", "omega0", "slip0", "l0", "n0", "length_scale", "alpha")
+UNITS = {"theta0": "rad", "omega0": "rad/s", "slip0": "m/s", "l0": "m", "n0": "m", "alpha": "rad"}
 #: How far the track's length scale may be from the stated one (a ratio): a scale from the
 #: dots' distance or a ruler is good to a few parts in a thousand; a larger error (a
 #: misstated radius, a ruler out of the face's plane) is for the goodness of fit to catch,
@@ -52,6 +53,9 @@ SCALE_RANGE = (0.97, 1.03)
 MU_MAX = 3.0
 #: Most transitions a fitted run may take (bounces after a landing).
 MAX_TRANSITIONS = 60
+#: The largest slip velocity at the first frame that a fit tries [√(gR)]: released from rest
+#: and cut a few frames late, a body slips at most g Δt (about 0.1 √(gR) after 10 ms at R = 1 cm).
+SLIP0_MAX = 2.0
 #: Evaluations of one least-squares run, and of one point of a profile.
 MAX_NFEV, PROFILE_NFEV = 250, 60
 #: Iterations of a screening fit, and the screened starts fitted in full.
@@ -61,7 +65,14 @@ SCREEN_NFEV, KEEP = 20, 3
 @dataclass(frozen=True)
 class Setup:
     """What the fit knows: the body, the ramp (``alpha`` fixed unless ``fit_alpha``), the
-    radius R [m], g [m/s^2], the marker, the lift-off rule."""
+    radius R [m], g [m/s^2], the marker, the lift-off rule; and whether the free fit also
+    fits the slip velocity at the first frame, slip0, and lets θ̇₀ be negative
+    (``slip_at_start``): for a track cut after a wait before the release, whose rolling
+    fit fails (the analysis' ``_consistent_fits``). Such a track starts late (the cut errs
+    late, ``release.release_frame``), and a body that slips from its release is slipping,
+    turning backwards, at the first frame: rolling from there cannot describe it (χ²_red
+    160-250 at 240 and 1000 fps). Not for every cut track: on a rolling body's video the
+    freedom fitted the codec's errors as a slip of a frame (Δχ² 12)."""
 
     body: Cylinder
     alpha: float
@@ -71,6 +82,7 @@ class Setup:
     marker_angle: float
     rule: str
     fit_alpha: bool
+    slip_at_start: bool = False
 
     @property
     def time_unit(self) -> float:
@@ -142,7 +154,7 @@ class Model:
         self.setup, self.track, self.rec = setup, track, rec
         self.jarm_only = jarm_only
         self.mu_s_range = mu_s_range  # the runs' mu_s kept within (mu_k at most mu_s)
-        self.names = tuple(n for n in NAMES if n != "alpha" or setup.fit_alpha)
+        self.names = tuple(n for n in NAMES if n not in self._fixed())
         self.tau = (track.t - track.t[0]) / setup.time_unit
         self.sigma = max(rec.sigma, 1e-12 * setup.radius)
         frame = rec.line.frame
@@ -150,12 +162,23 @@ class Model:
         self.nfev = 0
         self._bounds: dict[tuple[float, float, float], float] = {}
 
+    def _fixed(self) -> tuple[str, ...]:
+        """The parameters held: alpha where given, slip0 (at 0) unless the setup frees it.
+        (Every model of one setup has the same parameters: a fit that
+        rolls to its lift-off keeps slip0 but runs with 0, a slip at the start being a slip.)"""
+        slip0 = () if self.setup.slip_at_start else ("slip0",)
+        return slip0 + (() if self.setup.fit_alpha else ("alpha",))
+
+    def _slips_at_start(self) -> bool:
+        return self.setup.slip_at_start and not self.jarm_only
+
     def frame(self, alpha: float) -> RampFrame:
         return RampFrame(alpha, self.side, self.origin)
 
     def params(self, x: NDArray[np.float64]) -> dict[str, float]:
         p = dict(zip(self.names, (float(v) for v in x), strict=True))
         p.setdefault("alpha", self.setup.alpha)
+        p.setdefault("slip0", 0.0)
         return p
 
     def simulate(self, p: dict[str, float], mu_s: float | None = None) -> MotionResult:
@@ -176,6 +199,7 @@ class Model:
             rule=s.rule,  # type: ignore[arg-type]
             theta0=p["theta0"],
             omega0=p["omega0"] * s.time_unit,
+            slip0=0.0 if self.jarm_only else p["slip0"] * s.time_unit / s.radius,
             t_max=float(self.tau[-1]) + 1e-9,
             max_transitions=MAX_TRANSITIONS,
             dense_output=True,
@@ -233,9 +257,13 @@ class Model:
     def bounds(self, guess: dict[str, float]) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
         """The range of each parameter around the smoothed start ``guess``."""
         r, th, om, al = self.setup.radius, guess["theta0"], guess["omega0"], guess["alpha"]
+        # slip0 held near 0 where the run rolls from the start (its x then says what it ran)
+        slip0 = SLIP0_MAX * r / self.setup.time_unit * (1.0 if self._slips_at_start() else 1e-12)
         lo = {
             "theta0": th - 1.5,
-            "omega0": 0.0,
+            # a body that slips from its release may turn backwards as it slides
+            "omega0": -SLIP0_MAX / self.setup.time_unit if self._slips_at_start() else 0.0,
+            "slip0": -slip0,
             "mu_k": 0.0,
             "dmu": 0.0,
             "e": 0.0,
@@ -247,6 +275,7 @@ class Model:
         hi = {
             "theta0": th + 1.5,
             "omega0": max(3 * om, 50.0 / self.setup.time_unit),
+            "slip0": slip0,
             "mu_k": MU_MAX,
             "dmu": MU_MAX,
             "e": 1.0,
@@ -259,12 +288,17 @@ class Model:
 
 
 def start_guess(setup: Setup, rec: Reconstruction) -> dict[str, float]:
-    """theta0, omega0 and l0 from the smoothed track at its first frame."""
+    """theta0, omega0 (≥ 0 unless the setup frees slip0), slip0 (l̇ - R θ̇,
+    within its range) and l0 from the smoothed track at its first frame."""
     idx, w0 = derivative_weights(rec.t, rec.window, deriv=0)
     _, w1 = derivative_weights(rec.t, rec.window, deriv=1)
+    omega = float(w1[0] @ rec.theta[idx[0]])
+    slip = float(w1[0] @ rec.l[idx[0]]) - setup.radius * omega
+    most = 0.5 * SLIP0_MAX * setup.radius / setup.time_unit
     return {
         "theta0": float(w0[0] @ rec.theta[idx[0]]),
-        "omega0": float(max(w1[0] @ rec.theta[idx[0]], 0.0)),
+        "omega0": omega if setup.slip_at_start else max(omega, 0.0),
+        "slip0": min(max(slip, -most), most),
         "l0": float(w0[0] @ rec.l[idx[0]]),
         "n0": 0.0,
         "length_scale": 1.0,
@@ -382,8 +416,7 @@ def slips_before_liftoff(f: Fit) -> bool:
 def as_start(f: Fit) -> dict[str, float]:
     """A start for another fit from ``f``'s parameters (mu_s raised to what ``f``'s run
     used when it was constrained to roll)."""
-    start = {n: f.value(n) for n in f.names}
-    start["omega0"] = max(start["omega0"], 0.0)
+    start = {n: f.value(n) for n in f.names}  # (clipped to the next fit's bounds there)
     if f.jarm_only:
         mu_s = max(start["mu_k"] + start["dmu"], f.mu_s_bound * (1 + 1e-6))
         start["dmu"] = min(mu_s - start["mu_k"], MU_MAX)
