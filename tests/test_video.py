@@ -153,6 +153,16 @@ def test_colours_pick_the_dots(slip):
     assert len(str(info.value)) <= MAX_MESSAGE
 
 
+def test_dots_too_small_to_track_are_not_rendered(tmp_path):
+    """The Fig. 3b body slides from rest for 3 s: a 1280 x 720 frame that shows the whole
+    run draws its dots 0.5 px in radius, which the tracker cannot find ("no moving dot").
+    The renderer says so, naming the parameter, and writes nothing."""
+    target = tmp_path / "tiny.mp4"
+    with pytest.raises(ValueError, match=r"^dot_radius: the dots would be 0\.5\d* px") as info:
+        render(target, dict(SLIP, omega0=0.0))
+    assert len(str(info.value)) <= MAX_MESSAGE and not target.exists()
+
+
 def test_a_rolled_camera_and_a_wait_before_the_release(tmp_path):
     """The roll is measured against alpha; the still frames before the release are left out,
     the track starting at the first frame after it (the model starts at the first frame

@@ -779,7 +779,7 @@ def _too_few(name: str, moving: list[_Path]) -> str:
     if not moving:
         return (
             f"video: {name}: no moving dot of a saturated colour found (two are due, on the "
-            "end face: the axle's and the marker's)"
+            "end face: the axle's and the marker's, each 3 px across or more)"
         )
     only = moving[0]
     colour = _name(only.hue)
