@@ -62,8 +62,8 @@ def _spy_fit_inputs(monkeypatch) -> list[tuple]:
     inputs: list[tuple] = []
     real = analysis._consistent_fits
 
-    def spy(setup, track, rec, released):
-        used, fits = real(setup, track, rec, released)
+    def spy(setup, track, rec):
+        used, fits = real(setup, track, rec)
         inputs.append((used, track, rec))
         return used, fits
 

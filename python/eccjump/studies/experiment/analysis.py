@@ -454,10 +454,8 @@ def analyze(
         px = None
     elif not isinstance(track, Track):
         track = load_track(track, scale=px, fmt="auto", name="track")
-    if isinstance(track, VideoTrack):  # (a video's track is cut by the tracker)
-        released = math.isfinite(track.release_t)
-    else:
-        track, notes, released = _after_release(track, R, notes)
+    if not isinstance(track, VideoTrack):  # (a video's track is cut by the tracker)
+        track, notes = _after_release(track, R, notes)
     _check_marker_distance(track, R, px)
     rec = reconstruct(
         track, radius=R, marker_angle=beta, marker_radius=r_m, alpha=a_given, window=w
@@ -482,7 +480,7 @@ def analyze(
         rule,
         fit_alpha=a_given is None,
     )
-    setup, (best, jarm_fit) = _consistent_fits(setup, track, rec, released)
+    setup, (best, jarm_fit) = _consistent_fits(setup, track, rec)
     one = None  # asked only where the verdict could be jarm: a slip under a frame
     if slip_frames(best, setup, track) < 1.0:
         one = one_frame_slip(jarm_fit or best, setup, track, rec)
@@ -514,20 +512,19 @@ def analyze(
 
 
 def _consistent_fits(
-    setup: Setup, track: Track, rec: Reconstruction, released: bool
+    setup: Setup, track: Track, rec: Reconstruction
 ) -> tuple[Setup, tuple[Fit, Fit | None]]:
     """``fit.consistent_fits``, screened again more widely where the first pair fails the
     goodness-of-fit gate (a failed gate may be a local minimum: a long slip at 2 px stopped
-    at chi2_red 31.7), and, on a track cut after a wait before the release, fitted again
-    with the slip velocity at its first frame free (``Setup.slip_at_start``); the best pair
-    and its setup."""
+    at chi2_red 31.7), and then fitted again with the slip velocity at the first frame free
+    (``Setup.slip_at_start``: a track that starts mid-slip); the best pair and its setup."""
     fits = consistent_fits(setup, track, rec)
     if _passes(fits[0], rec):
         return setup, fits
     wider = consistent_fits(setup, track, rec, wide=True)
     if wider[0].cost < fits[0].cost:
         fits = wider
-    if released and not _passes(fits[0], rec):
+    if not _passes(fits[0], rec):
         sliding = replace(setup, slip_at_start=True)
         slid = consistent_fits(sliding, track, rec)
         if slid[0].cost < fits[0].cost:
@@ -846,17 +843,17 @@ def _misfit_sentence(f: Fit, p: float) -> str:
 
 def _after_release(
     track: Track, radius: float, notes: tuple[str, ...]
-) -> tuple[Track, tuple[str, ...], bool]:
+) -> tuple[Track, tuple[str, ...]]:
     """The track from the first frame after a wait before the release
-    (``release.release_frame``), with a note, and True; else as it is, and False."""
+    (``release.release_frame``), with a note; else as it is."""
     begin = release_frame(track.t, track.c, REACH * radius)
     if begin == 0:
-        return track, notes, False
+        return track, notes
     note = (
         f"the axle stays still for the first {begin} frames (a wait before the release): "
         f"the fit starts after the release, at t = {track.t[begin]:.4f} s"
     )
-    return frames_from(track, begin), (*notes, note), True
+    return frames_from(track, begin), (*notes, note)
 
 
 def _contact_frames(track: Track, best: Fit, setup: Setup) -> int:

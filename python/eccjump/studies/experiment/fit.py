@@ -67,12 +67,12 @@ class Setup:
     """What the fit knows: the body, the ramp (``alpha`` fixed unless ``fit_alpha``), the
     radius R [m], g [m/s^2], the marker, the lift-off rule; and whether the free fit also
     fits the slip velocity at the first frame, slip0, and lets θ̇₀ be negative
-    (``slip_at_start``): for a track cut after a wait before the release, whose rolling
-    fit fails (the analysis' ``_consistent_fits``). Such a track starts late (the cut errs
-    late, ``release.release_frame``), and a body that slips from its release is slipping,
-    turning backwards, at the first frame: rolling from there cannot describe it (χ²_red
-    160-250 at 240 and 1000 fps). Not for every cut track: on a rolling body's video the
-    freedom fitted the codec's errors as a slip of a frame (Δχ² 12)."""
+    (``slip_at_start``): for a track whose fit from a rolling start fails the gate (the
+    analysis' ``_consistent_fits``). A track cut after a wait before the release starts
+    late (the cut errs late, ``release.release_frame``), and a body that slips from its
+    release is slipping, turning backwards, at the first frame: rolling from there cannot
+    describe it (χ²_red 160-250 at 240 and 1000 fps). Not for every track: on a rolling
+    body's video the freedom fitted the codec's errors as a slip of a frame (Δχ² 12)."""
 
     body: Cylinder
     alpha: float
