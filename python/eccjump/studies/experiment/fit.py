@@ -3,17 +3,16 @@ friction and restitution, by least squares on the tracked points (scipy's
 ``least_squares``).
 
 Parameters (:data:`NAMES`): the start theta0 [rad] and omega0 [rad/s] at the first frame
-(and its slip velocity slip0 [m/s] where the track starts after a release: see
-:class:`Setup`), mu_k, dmu = mu_s - mu_k >= 0 (so mu_k <= mu_s always holds), the
-restitution e, and two offsets of the ramp frame, l0 and n0 [m] (where the axle starts along
-the ramp, and the contact line's height: nuisance parameters); ``alpha`` too when the ramp
-angle was not given. Residuals: the model's C and M minus the tracked ones, both
-coordinates, divided by the noise level sigma, so the cost is half a chi-square and the
-covariance of the parameters is (J^T J)^-1 s^2 at the optimum (s^2 the reduced chi-square
-where it exceeds 1: a misfit widens every interval; 1 below). A direction the track does
-not constrain (mu_s above what the observed rolling needed, e when nothing lands)
-has a vanishing singular value: its interval is the parameter's whole range ("not
-identified").
+(and its slip velocity slip0 [m/s] where a rolling start fails: see :class:`Setup`), mu_k,
+dmu = mu_s - mu_k >= 0 (so mu_k <= mu_s always holds), the restitution e, and two offsets of
+the ramp frame, l0 and n0 [m] (where the axle starts along the ramp, and the contact line's
+height: nuisance parameters); ``alpha`` too when the ramp angle was not given. Residuals:
+the model's C and M minus the tracked ones, both coordinates, divided by the noise level
+sigma, so the cost is half a chi-square and the covariance of the parameters is (J^T J)^-1
+s^2 at the optimum (s^2 the reduced chi-square where it exceeds 1: a misfit widens every
+interval; 1 below). A direction the track does not constrain (mu_s above what the observed
+rolling needed, e when nothing lands) has a vanishing singular value: its interval is the
+parameter's whole range ("not identified").
 
 ``jarm_only=True`` fits under the constraint that the body does not slip before its first
 lift-off: mu_s is raised to the largest friction ratio |F_x|/F_y the rolling from the fitted
@@ -54,7 +53,8 @@ MU_MAX = 3.0
 #: Most transitions a fitted run may take (bounces after a landing).
 MAX_TRANSITIONS = 60
 #: The largest slip velocity at the first frame that a fit tries [√(gR)]: released from rest
-#: and cut a few frames late, a body slips at most g Δt (about 0.1 √(gR) after 10 ms at R = 1 cm).
+#: and cut a few frames late, a body slips at most g Δt (0.1 m/s after 10 ms: 0.3 √(gR) at
+#: R = 1 cm).
 SLIP0_MAX = 2.0
 #: Evaluations of one least-squares run, and of one point of a profile.
 MAX_NFEV, PROFILE_NFEV = 250, 60
@@ -164,8 +164,8 @@ class Model:
 
     def _fixed(self) -> tuple[str, ...]:
         """The parameters held: alpha where given, slip0 (at 0) unless the setup frees it.
-        (Every model of one setup has the same parameters: a fit that
-        rolls to its lift-off keeps slip0 but runs with 0, a slip at the start being a slip.)"""
+        Every model of one setup has the same parameters: a fit that rolls to its lift-off
+        keeps slip0 but runs with 0 (a slip at the start is a slip before the lift-off)."""
         slip0 = () if self.setup.slip_at_start else ("slip0",)
         return slip0 + (() if self.setup.fit_alpha else ("alpha",))
 
