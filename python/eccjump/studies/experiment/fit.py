@@ -327,12 +327,11 @@ def fit(
     (:data:`SCREEN_NFEV` iterations) from the smoothed start with the friction guesses of
     :func:`friction_guesses`, each with the smoothed omega0, θ's mean rate
     (:func:`mean_rate`) and 0 (the edge of the smoothing window makes omega0 noisy), then
-    full fits from the :data:`KEEP` best (the
-    cost has many local minima: a slip, a bounce and a shifted start trade off), and with
-    ``grow`` one more from :func:`grown_start`. ``wide`` screens more: mu_k / mu_s of 0.5,
-    0.75 and 0.95 and e of 0.05 and 0.5, and keeps twice as many (for a fit that failed its
-    goodness-of-fit test). With ``starts`` (each a dict of some of :data:`NAMES`, on top of
-    that guess): a full fit from each."""
+    full fits from the :data:`KEEP` best (the cost has many local minima: a slip, a bounce
+    and a shifted start trade off), and with ``grow`` one more from :func:`grown_start`.
+    ``wide`` screens more: mu_k / mu_s of 0.5, 0.75 and 0.95 and e of 0.05 and 0.5, and
+    keeps twice as many (for a fit that failed its goodness-of-fit test). With ``starts``
+    (each a dict of some of :data:`NAMES`, on top of that guess): a full fit from each."""
     model = Model(setup, track, rec, jarm_only=jarm_only)
     guess = start_guess(setup, rec)
     lo, hi = model.bounds(guess)

@@ -159,9 +159,10 @@ def render_video(
     sub = np.clip((t[:, None] + shift + offsets[None, :]).ravel() / unit, 0.0, None)
     c, m, _ = lab_points(run, sub, alpha, 1, radius, r_m, marker_angle)
     camera = _frame(c, radius, roll, _size(size))
-    if dot_radius * radius * camera.scale < MIN_DOT_PX:  # the whole run fills the frame
+    dot_px = dot_radius * radius * camera.scale
+    if dot_px < MIN_DOT_PX:  # the whole run fills the frame
         raise ValueError(
-            f"dot_radius: the dots would be {dot_radius * radius * camera.scale:.2g} px in radius"
+            f"dot_radius: the dots would be {dot_px:.2g} px in radius"
             f" (a frame that shows the whole run; the tracker needs {MIN_DOT_PX:g}): a shorter "
             "duration, a larger size or a larger dot_radius"
         )
