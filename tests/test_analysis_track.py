@@ -424,3 +424,28 @@ def test_a_bad_path_is_a_value_error_naming_source(path, message):
     with pytest.raises(ValueError, match=message) as err:
         read_track(path)
     assert len(str(err.value)) <= 200
+
+
+#: Bad inputs of synthetic_track and render_video's scene (a radius of 0 divided by zero, one
+#: below 0 gave "math domain error", a negative noise numpy's "scale < 0", a side of 5 or a
+#: field of 0 px passed), each with the exception it must raise.
+BAD_SCENES = [
+    ("radius", 0.0, ValueError), ("radius", -1.0, ValueError), ("radius", math.nan, ValueError),
+    ("radius", "5 cm", TypeError), ("g", 0.0, ValueError), ("g", 1e3, ValueError),
+    ("marker_radius", 0.0, ValueError), ("marker_radius", 1.0, ValueError),
+    ("marker_angle", 34.4, ValueError), ("seed", -1, ValueError), ("seed", 1.5, TypeError),
+]  # fmt: skip
+BAD_TRACKS = [
+    ("fps", 0.0, ValueError), ("fps", 1e9, ValueError), ("fps", "240", TypeError),
+    ("noise_px", -1.0, ValueError), ("noise_px", math.inf, ValueError),
+    ("field_px", 0.0, ValueError), ("side", 5, ValueError), ("side", "left", ValueError),
+]  # fmt: skip
+
+
+@pytest.mark.parametrize(("name", "value", "error"), BAD_SCENES + BAD_TRACKS)
+def test_synthetic_track_names_a_bad_input(name, value, error):
+    body = eccjump.Cylinder(0.1, 0.3)
+    with pytest.raises(error) as info:
+        synthetic_track(body, 0.2, mu_s=1.0, duration=0.1, **{name: value})
+    msg = str(info.value)
+    assert msg.startswith(name) and len(msg) < 200 and "\n" not in msg, msg

@@ -24,6 +24,7 @@ import textwrap
 import numpy as np
 import pytest
 from fuzz_cases import MAX_MESSAGE, run_cli_inprocess
+from test_analysis_track import BAD_SCENES
 from test_limits import interrupted_after
 
 import eccjump
@@ -151,6 +152,21 @@ def test_colours_pick_the_dots(slip):
     with pytest.raises(ValueError, match=r"^marker_color: no dot of colour #f5cb14") as info:
         eccjump.track(clip.path, marker_radius=clip.marker_radius, marker_color="#f5cb14")
     assert len(str(info.value)) <= MAX_MESSAGE
+
+
+@pytest.mark.parametrize(
+    ("name", "value", "error"),
+    [*BAD_SCENES, ("roll", 3.0, ValueError), ("roll", "3 deg", TypeError),
+     ("fps", "240", TypeError), ("shutter", 2.0, ValueError)],
+)  # fmt: skip
+def test_render_video_names_a_bad_input(tmp_path, name, value, error):
+    """Each bad input of the scene or the camera: its own error, naming it, and no file."""
+    with pytest.raises(error) as info:
+        render_video(tmp_path / "v.mp4", eccjump.Cylinder(0.1, 0.3), 0.3, mu_s=1.0,
+                     duration=0.1, **{name: value})  # fmt: skip
+    msg = str(info.value)
+    assert msg.startswith(name) and len(msg) < 200 and "\n" not in msg, msg
+    assert not list(tmp_path.iterdir())
 
 
 def test_dots_too_small_to_track_are_not_rendered(tmp_path):

@@ -77,7 +77,7 @@ from eccjump.studies.experiment.fit import (
 )
 from eccjump.studies.experiment.friction import MeasuredFriction, measured_friction, weigh
 from eccjump.studies.experiment.geometry import path_angle
-from eccjump.studies.experiment.inputs import MARKER_IN_R, in_range
+from eccjump.studies.experiment.inputs import MARKER_IN_R, in_range, marker_radius_in_range
 from eccjump.studies.experiment.reconstruction import MIN_WINDOW, Reconstruction, reconstruct
 from eccjump.studies.experiment.release import REACH, release_frame
 from eccjump.studies.experiment.sheet import design_inputs
@@ -445,7 +445,7 @@ def analyze(
     beta = in_range("marker_angle", marker_angle)
     gg = in_range("g", g)
     px = None if scale is None else in_range("scale", scale)
-    r_m = _marker_radius(marker_radius, R)
+    r_m = marker_radius_in_range(marker_radius, R)
     w = None if window is None else integer("window", window, MIN_WINDOW, MAX_FRAMES)
     profiled = flag("profile_mu_k", profile_mu_k)
     rule = _rule(rule)
@@ -934,18 +934,6 @@ def _inputs(
     if not body.km > 0:
         raise ValueError("km must be > 0: the model's spin in flight is undetermined at km = 0")
     return body, R, a
-
-
-def _marker_radius(value: object, radius: float) -> float | None:
-    """marker_radius [m] within MARKER_IN_R times R, or None."""
-    r = optional_real("marker_radius", value)
-    lo, hi = MARKER_IN_R
-    if r is not None and not lo * radius <= r <= hi * radius:
-        raise ValueError(
-            f"marker_radius = {short(r)} m is outside the allowed range [R/{1 / lo:g}, "
-            f"{hi:g} R] = [{lo * radius:.4g}, {hi * radius:.4g}] m"
-        )
-    return r
 
 
 def _check_marker_distance(track: Track, radius: float, scale: float | None) -> None:

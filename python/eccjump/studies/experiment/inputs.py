@@ -13,7 +13,7 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass
 
-from eccjump._base.checks import real, short
+from eccjump._base.checks import optional_real, real, short
 from eccjump._base.units import FOR_DEGREES
 
 
@@ -69,6 +69,27 @@ def in_range(name: str, value: object, given: str = "") -> float:
             f"[{b.lo:.6g}, {b.hi:.6g}]{unit}{b.hint if not given else ''}"
         )
     return v
+
+
+def between(name: str, value: object, lo: float, hi: float, unit: str) -> float:
+    """``value`` as a float in [lo, hi] ``unit``: a range that is not :data:`BOUNDS`' (a
+    camera's, a synthetic track's); ValueError naming ``name``, its unit and the range."""
+    v = real(name, value)
+    if not lo <= v <= hi:  # NaN too
+        raise ValueError(f"{name} = {short(v)} {unit} is outside [{lo:g}, {hi:g}] {unit}")
+    return v
+
+
+def marker_radius_in_range(value: object, radius: float) -> float | None:
+    """marker_radius [m] within :data:`MARKER_IN_R` times R, or None."""
+    r = optional_real("marker_radius", value)
+    lo, hi = MARKER_IN_R
+    if r is not None and not lo * radius <= r <= hi * radius:
+        raise ValueError(
+            f"marker_radius = {short(r)} m is outside the allowed range [R/{1 / lo:g}, "
+            f"{hi:g} R] = [{lo * radius:.4g}, {hi * radius:.4g}] m"
+        )
+    return r
 
 
 def cli_range(name: str) -> tuple[float, float, str]:

@@ -25,13 +25,14 @@ import numpy as np
 from numpy.typing import NDArray
 
 from eccjump._base.body import Cylinder
-from eccjump._base.checks import flag
+from eccjump._base.checks import flag, integer, real
 from eccjump._base.checks import path as path_arg
 from eccjump._base.optional import require
 from eccjump._base.overwrite import check_overwrite, never
 from eccjump.maps import store
 from eccjump.motion.simulation import MotionResult
-from eccjump.studies.experiment.synthetic import lab_points, simulated_run
+from eccjump.studies.experiment.inputs import between
+from eccjump.studies.experiment.synthetic import MAX_FPS, lab_points, scene_inputs, simulated_run
 from eccjump.studies.experiment.video import _color
 
 #: The scene's grey levels: background, ramp, the face, its rim.
@@ -132,26 +133,115 @@ def render_video(
     seed: int = 0,
     overwrite: bool = False,
 ) -> RenderedVideo:
-    """Simulate ``body`` on a ramp of angle ``alpha`` (the inputs of ``synthetic_track``)
-    and film it into ``path`` (an MP4, H.264): ``size`` (width, height) pixels at ``fps``,
-    the ramp descending to the right across the frame, the marker at ``marker_radius``
-    (default 0.8 R) and ``marker_angle`` from the direction axle -> centre of mass, the dots
-    in ``axle_color`` and ``marker_color`` (None leaves a dot out), ``dot_radius`` R in
-    radius (dots a few pixels across are what the tracker needs), an exposure of
-    ``shutter`` frames, the body held at rest for ``wait`` seconds before its release
-    (``omega0`` must then be 0), Gaussian noise of ``noise`` grey levels, the camera rolled by
-    ``roll`` [rad] (the ramp shows at α + roll), x264's quality ``crf`` (0 lossless, 51
-    worst). A file at ``path`` is replaced only with ``overwrite``."""
+    """Film what ``eccjump.simulate`` predicts into an MP4, as a lab camera would.
+
+    Simulates ``body`` on a ramp of angle ``alpha`` (the inputs of :func:`synthetic_track`)
+    and films its end face (a white disc with a black rim, a dot on the axle and one on the
+    marker) on a grey ramp descending to the right across the frame, which shows the whole
+    run: motion blur over each exposure, sensor noise, a rolled camera and H.264 compression
+    (libx264, 4:2:0 chroma). Writing needs PyAV (``pip install eccjump[video]``).
+
+    Parameters
+    ----------
+    path : str or path
+        The MP4 file to write (H.264); a file already there is replaced only with
+        ``overwrite``.
+    body : Cylinder
+        The body, with km > 0 (as :func:`eccjump.simulate` takes it).
+    alpha : float
+        The ramp angle [rad], in [0, π/2].
+    mu_s : float
+        Static friction coefficient, in [0, inf).
+    mu_k : float or None, default None
+        Kinetic friction coefficient, in [0, μ_s]; None: μ_k = μ_s.
+    restitution : float, default 0.0
+        Stronge's energetic coefficient of restitution e, in [0, 1].
+    theta0 : float, default 0.0
+        Initial angle [rad], |theta0| ≤ 2π 1e6.
+    omega0 : float, default 0.0
+        Initial angular velocity [√(g/R) rad], |omega0| ≤ 1e6; it must be 0 when ``wait``
+        > 0.
+    radius : float, default 0.05
+        R [m], the body's radius, in [1e-4, 10].
+    g : float, default 9.81
+        Gravity [m/s²], in [0.01, 100].
+    fps : float, default 240.0
+        The frame rate [1/s], in [1, 1e5].
+    duration : float or None, default None
+        The run filmed after its release [s] (the last exposure ends by then; the video adds
+        the ``wait`` before it); None: to the first landing and half a flight more, or 3 s
+        without a flight. The run it needs, ``duration`` / √(R/g) + 2, must be in (0, 1e6]
+        (``simulate``'s ``t_max``).
+    size : (int, int), default (1280, 720)
+        The frame's (width, height) [px], each an even int in [16, 4096] (4:2:0 chroma).
+    marker_radius : float or None, default None
+        The marker dot's distance from the axle [m]; None: 0.8 R. Both dots must lie on the
+        white face, apart: 2 ``dot_radius`` R < ``marker_radius`` ≤ 0.92 R − ``dot_radius`` R.
+    marker_angle : float, default 0.0
+        The marker's angle from the direction axle -> centre of mass [rad], measured like θ
+        (towards the direction of rolling), in [−2π, 2π].
+    axle_color : str, (r, g, b) or None, default "red"
+        The axle dot's colour: a name (``"red"``, ``"orange"``, ``"yellow"``, ``"green"``,
+        ``"cyan"``, ``"blue"``, ``"purple"``, ``"magenta"``), ``"#rrggbb"`` or three ints in
+        0..255, saturated enough for a dot (a chroma of at least 50); None leaves the dot out.
+    marker_color : str, (r, g, b) or None, default "blue"
+        The marker dot's colour, as ``axle_color``; None leaves the dot out.
+    dot_radius : float, default 0.1
+        A dot's radius [R], > 0 and bounded by ``marker_radius`` as above. In the frame a dot
+        must be at least 1.5 px in radius (``MIN_DOT_PX``): dots a few pixels across are what
+        the tracker needs, and a long run in a small frame shrinks them.
+    shutter : float, default 0.5
+        The exposure [frames], in [0, 1], centred on each frame's time: the motion blur
+        (0: none).
+    wait : float, default 0.0
+        How long the body is held at rest before its release [s], in [0, 60]; ``omega0``
+        must then be 0.
+    noise : float, default 2.0
+        The sensor's Gaussian noise [8-bit grey levels], in [0, 50].
+    roll : float, default 0.0
+        The camera's roll [rad], clockwise, in [−π/2, π/2]: the ramp shows at α + roll.
+    crf : int, default 18
+        x264's quality (its constant rate factor), an int in [0, 51]: 0 lossless, 51 worst.
+    seed : int, default 0
+        The seed of the sensor noise (``numpy.random.default_rng``), an int ≥ 0.
+    overwrite : bool, default False
+        Replace a regular file at ``path`` (anything else there is never replaced). True or
+        False, nothing else.
+
+    Returns
+    -------
+    RenderedVideo
+        The file and its truth: the frame times ``t`` [s], each dot's centroid per frame in
+        image pixels (``axle_px``, ``marker_px``: its mean position over the exposure, what
+        the centroid of a blurred dot measures), the ``scale`` [px/m], the setup and the
+        simulated run (``motion``, its ``time_unit`` [s]; the run's time is the video's +
+        ``t_shift``), with ``liftoff_t`` and ``transitions_si()`` in the video's time.
+
+    Raises
+    ------
+    ValueError
+        For a parameter outside its range, dots that would not both fit on the face or would
+        be too small, or a colour that is no colour or too pale; the message names it.
+    FileExistsError
+        If ``path`` holds a file and ``overwrite`` is False, or holds anything but a regular
+        file (the error is also a ValueError).
+    TypeError
+        If ``body`` is not a Cylinder or a parameter has the wrong type.
+    ImportError
+        Without PyAV (``pip install eccjump[video]``).
+    """
     av = require("av", purpose="writing videos", extra="video")
     target = Path(path_arg("path", path))
     check_overwrite(target, overwrite=flag("overwrite", overwrite), option="overwrite=True",
                     ours=never, what="a rendered video", name="path")  # fmt: skip
+    radius, g, r_m, marker_angle = scene_inputs(radius, g, marker_radius, marker_angle)
+    roll = between("roll", roll, -math.pi / 2, math.pi / 2, "rad")
+    seed = integer("seed", seed)
+    _check_camera(radius, r_m, dot_radius, fps, shutter, wait, omega0, noise, crf)
     run, unit, horizon = simulated_run(
         body, alpha, mu_s=mu_s, mu_k=mu_k, restitution=restitution, theta0=theta0,
         omega0=omega0, radius=radius, g=g, duration=duration,
     )  # fmt: skip
-    r_m = 0.8 * radius if marker_radius is None else marker_radius
-    _check_camera(radius, r_m, dot_radius, fps, shutter, wait, omega0, noise, crf)
     shift = 0.5 * shutter / fps - wait  # the run's time minus the video's
     t = np.arange(int((horizon * unit - shift - shutter / fps) * fps) + 1) / fps
     # the sub-frames of each exposure, centred on the frame's time (in the run's time)
@@ -208,17 +298,16 @@ def _check_camera(
     crf: int,
 ) -> None:
     """ValueError naming the parameter for a camera or a face that cannot be rendered."""
-    dot = dot_radius * radius
+    dot = real("dot_radius", dot_radius) * radius
     if not (dot > 0 and 2 * dot < r_m <= (1 - RIM_WIDTH) * radius - dot):
         raise ValueError(
             "marker_radius, dot_radius: both dots must lie on the white face, apart: "
             f"2 dot_radius R < marker_radius <= {1 - RIM_WIDTH:g} R - dot_radius R"
         )
-    ranges = (("fps", fps, 1.0, 1e5), ("shutter", shutter, 0.0, 1.0), ("wait", wait, 0.0, 60.0),
-              ("noise", noise, 0.0, 50.0))  # fmt: skip
-    for name, value, lo, hi in ranges:
-        if not lo <= value <= hi:
-            raise ValueError(f"{name} = {value!r} is outside [{lo:g}, {hi:g}]")
+    between("fps", fps, 1.0, MAX_FPS, "1/s")
+    between("shutter", shutter, 0.0, 1.0, "frames")
+    between("wait", wait, 0.0, 60.0, "s")
+    between("noise", noise, 0.0, 50.0, "grey levels")
     if wait and omega0:
         raise ValueError("wait: a body held before its release starts with omega0 = 0")
     if not (isinstance(crf, int) and 0 <= crf <= 51):

@@ -12,9 +12,11 @@ import numpy as np
 from numpy.typing import NDArray
 
 from eccjump._base.body import Cylinder
+from eccjump._base.checks import integer
 from eccjump.motion.options import MotionOptions
 from eccjump.motion.simulation import MODES, MotionResult, simulate
 from eccjump.studies.experiment.geometry import RampFrame, marker_offset
+from eccjump.studies.experiment.inputs import between, in_range, marker_radius_in_range
 from eccjump.studies.experiment.track import Track
 
 
@@ -63,11 +65,80 @@ def synthetic_track(
     side: int = 1,
     seed: int = 0,
 ) -> SyntheticTrack:
-    """Simulate ``body`` from (theta0, omega0) and film it: frames at ``fps`` from t = 0
-    for ``duration`` seconds (default: to the first landing and half a flight more, or 3
-    s without a flight), the marker at ``marker_radius`` (default 0.8 R) and
-    ``marker_angle`` from C -> CM, a field of view ``field_px`` pixels across the whole
-    track, Gaussian noise of ``noise_px`` pixels on each coordinate."""
+    """The track an ideal experiment would give: a simulated run, filmed with pixel noise.
+
+    Simulates ``body`` on a ramp of angle ``alpha`` from (theta0, omega0) and films it: the
+    axle C and the marker M in the lab frame at ``fps`` from t = 0, in a field of view
+    ``field_px`` pixels across the whole track, with Gaussian noise of ``noise_px`` pixels on
+    each coordinate. The track is in metres (the pixels divided by the scale), given with
+    the truth at its frames.
+
+    Parameters
+    ----------
+    body : Cylinder
+        The body, with km > 0 (as :func:`eccjump.simulate` takes it).
+    alpha : float
+        The ramp angle [rad], in [0, π/2].
+    mu_s : float
+        Static friction coefficient, in [0, inf).
+    mu_k : float or None, default None
+        Kinetic friction coefficient, in [0, μ_s]; None: μ_k = μ_s.
+    restitution : float, default 0.0
+        Stronge's energetic coefficient of restitution e, in [0, 1].
+    theta0 : float, default 0.0
+        Initial angle [rad], |theta0| ≤ 2π 1e6.
+    omega0 : float, default 0.0
+        Initial angular velocity [√(g/R) rad], |omega0| ≤ 1e6.
+    radius : float, default 0.05
+        R [m], the body's radius, in [1e-4, 10].
+    g : float, default 9.81
+        Gravity [m/s²], in [0.01, 100].
+    fps : float, default 240.0
+        The frame rate [1/s], in [1, 1e5].
+    duration : float or None, default None
+        The track's length [s] (its frames are the ones before it); None: to the first
+        landing and half a flight more, or 3 s without a flight. The run it needs,
+        ``duration`` / √(R/g) + 2, must be in (0, 1e6] (``simulate``'s ``t_max``).
+    marker_radius : float or None, default None
+        The marker's distance from the axle [m], in [R/1000, 2 R]; None: 0.8 R.
+    marker_angle : float, default 0.0
+        The marker's angle from the direction C -> CM [rad], measured like θ (towards the
+        direction of rolling), in [−2π, 2π].
+    noise_px : float, default 0.5
+        The standard deviation of the Gaussian noise on each coordinate of each point [px],
+        in [0, 100].
+    field_px : float, default 1000.0
+        The field of view [px]: 1.1 times the larger span of C's and M's paths (x or y) is
+        ``field_px`` pixels, in [10, 1e6]; it sets the ``scale`` [px/m], and so the noise in
+        metres.
+    side : int, default 1
+        The ramp's direction in the lab: 1 descends to the right, -1 to the left.
+    seed : int, default 0
+        The seed of the noise (``numpy.random.default_rng``), an int ≥ 0.
+
+    Returns
+    -------
+    SyntheticTrack
+        ``track`` (a :class:`Track` in metres, t [s] from 0), the ``scale`` it was drawn at
+        [px/m], the truth at its frames (``theta`` [rad], ``l`` and ``b`` [m], ``mode``), the
+        simulated run (``motion``, dimensionless, with its ``time_unit`` [s]) and
+        ``transitions_si()``.
+
+    Raises
+    ------
+    ValueError
+        For a parameter outside its range (above; a body with km = 0); the message names
+        it.
+    TypeError
+        If ``body`` is not a Cylinder or a parameter has the wrong type.
+    """
+    radius, g, r_m, marker_angle = scene_inputs(radius, g, marker_radius, marker_angle)
+    fps = between("fps", fps, 1.0, MAX_FPS, "1/s")
+    noise_px = between("noise_px", noise_px, 0.0, 100.0, "px")
+    field_px = between("field_px", field_px, 10.0, 1e6, "px")
+    if side not in (1, -1):
+        raise ValueError(f"side must be 1 (the ramp descends to the right) or -1, not {side!r}")
+    rng = np.random.default_rng(integer("seed", seed))
     run, unit, horizon = simulated_run(
         body,
         alpha,
@@ -82,12 +153,10 @@ def synthetic_track(
     )
     tau = np.arange(0.0, horizon, 1.0 / (fps * unit))
     mode = np.asarray(run.mode)[np.clip(np.searchsorted(run.t, tau, side="right") - 1, 0, None)]
-    r_m = 0.8 * radius if marker_radius is None else marker_radius
     c, m, (theta, l, b) = lab_points(run, tau, alpha, side, radius, r_m, marker_angle)  # noqa: E741
     pts = np.vstack([c, m])
     extent = 1.1 * float(max(np.ptp(pts[:, 0]), np.ptp(pts[:, 1])))
     scale = field_px / extent
-    rng = np.random.default_rng(seed)
     c_px = (c - pts.min(axis=0)) * scale + rng.normal(0.0, noise_px, c.shape)
     m_px = (m - pts.min(axis=0)) * scale + rng.normal(0.0, noise_px, m.shape)
     track = Track(t=tau * unit, c=c_px / scale, m=m_px / scale, source="synthetic")
@@ -100,6 +169,26 @@ def synthetic_track(
         mode=mode.astype(np.int8),
         motion=run,
         time_unit=unit,
+    )
+
+
+#: The highest frame rate of a synthetic track or video [1/s].
+MAX_FPS = 1e5
+
+
+def scene_inputs(
+    radius: object, g: object, marker_radius: object, marker_angle: object
+) -> tuple[float, float, float, float]:
+    """R [m], g [m/s²], the marker's distance from the axle [m] (None: 0.8 R) and its angle
+    [rad], each in the range ``analyze`` takes (``inputs``): ValueError or TypeError naming
+    it (a radius of 0 divided by zero, one below 0 gave "math domain error")."""
+    r = in_range("radius", radius)
+    r_m = marker_radius_in_range(marker_radius, r)
+    return (
+        r,
+        in_range("g", g),
+        0.8 * r if r_m is None else r_m,
+        in_range("marker_angle", marker_angle),
     )
 
 
