@@ -29,6 +29,7 @@ from eccjump.studies.experiment.events import observe
 from eccjump.studies.experiment.fit import (
     ROUGH,
     Model,
+    branch_step,
     coarse_jacobian,
     correlation_inflation,
     covariance,
@@ -180,6 +181,56 @@ def test_a_rolled_camera_is_named_and_never_confidently_wrong():
     assert "mu_k        not determined (the model does not fit this track)" in repr(res)
     # nor its times (the misstated setups' lift-offs were 4-5 standard errors off)
     assert res.liftoff_err == math.inf and "not fixed by the track" in repr(res)
+
+
+def test_a_step_across_a_branch_is_a_jump_not_a_slope():
+    """A run stepped down by 0.01 slips before its lift-off, which comes 0.05 later; stepped
+    up, it rolls like the fitted run. The derivative is the rolling side's (0.1), the jump
+    what the slip adds beyond it (where the track allows that run); the central difference
+    would have been 2.55."""
+    base = {"liftoff": 1.0, "slip_onset": math.nan}
+    up = {"liftoff": 1.001, "slip_onset": math.nan}
+    dn = {"liftoff": 1.05, "slip_onset": 1.04, "slip0_t1": 1.04, "slip0_t2": 1.05}
+    g, jump = branch_step(base, up, dn, "liftoff", (0.01, -0.01))
+    assert g == pytest.approx(0.1) and jump == pytest.approx(0.051)
+    assert branch_step(base, up, up, "liftoff", (0.01, -0.01)) == (0.0, 0.0)
+    g, jump = branch_step(base, up, base, "liftoff", (0.01, -0.01))
+    assert g == pytest.approx(0.05) and jump == 0.0  # one branch: central
+    g, jump = branch_step(base, dn, base, "liftoff", (0.01, 0.0))  # at a bound, then a slip
+    assert g == 0.0 and jump == pytest.approx(0.05)
+    g, jump = branch_step(base, dn, dn, "liftoff", (0.01, -0.01))  # a branch of its own
+    assert g == 0.0 and jump == pytest.approx(0.05)
+    # a run on the same branch that the track rejects (a slip from an earlier peak of the
+    # friction ratio): the other side's slope, and no jump
+    far = {"liftoff": 1.3, "slip_onset": math.nan}
+    assert branch_step(base, far, up, "liftoff", (0.01, -0.01))[0] == pytest.approx(14.95)
+    g, jump = branch_step(base, far, up, "liftoff", (0.01, -0.01), (False, True))
+    assert g == pytest.approx(-0.1) and jump == 0.0
+    g, jump = branch_step(base, up, dn, "liftoff", (0.01, -0.01), (True, False))
+    assert g == pytest.approx(0.1) and jump == 0.0
+    # at a bound, toward a rejected run: the time moves no further than to that run
+    # over the standard error (20), whatever the slope over the bound's short step
+    near = {"liftoff": 1.0001, "slip_onset": math.nan}
+    g, jump = branch_step(base, far, near, "liftoff", (2.0, -1e-4), (False, True), 20.0)
+    assert g == pytest.approx(-0.3 / 20.0) and jump == 0.0
+    g, jump = branch_step(base, far, near, "liftoff", (2.0, -1e-4), (False, True))
+    assert g == pytest.approx(-1.0)  # (an error unknown: the slope)
+
+
+def test_a_lift_off_on_the_edge_of_a_slip_is_timed_from_the_fitted_side():
+    """Independent model, a JARM body at 240 fps and 0.2 px. Its rolling fit sits where a
+    step of a tenth of a standard error in θ₀, θ̇₀ or μ_k starts a slip a fraction of a
+    frame before the lift-off, which then comes 0.9 ms later. Differenced across that
+    switch, the lift-off printed ± 11 ms for an error of 8 µs. That slip is a run the track
+    rejects: the lift-off is timed from the rolling side (tens of µs), the truth inside."""
+    case = rt.Case(chi=0.5148544751270913, km=0.16702607048477652, alpha=1.1759328953619526,
+                   mu_s=1.1026692398407802, mu_k=0.7288040418825077, theta0=-1.8878380530244832,
+                   omega0=0.22702892288570298, restitution=0.0, radius=0.05, fps=240.0,
+                   noise_px=0.2, marker_angle=-0.25830006248049386, marker_in_r=0.8,
+                   roll_deg=0.0, seed=4012, family="jarm")  # fmt: skip
+    made, res = _analyze(case)
+    assert res.verdict == "jarm"
+    assert abs(res.liftoff_t - made.liftoff) < 1.96 * res.liftoff_err < 3e-4
 
 
 def test_a_lift_off_moved_by_a_start_the_track_does_not_fix_is_not_timed(monkeypatch):
