@@ -7,6 +7,7 @@ from __future__ import annotations
 
 import json
 import math
+import re
 from pathlib import Path
 
 import pytest
@@ -36,8 +37,12 @@ def design_track():
     return made.track
 
 
-def test_a_measured_mu_s_excludes_the_slip_a_rolling_track_cannot(design_track):
-    alone = analyze(design_track, **SETUP)
+@pytest.fixture(scope="module")
+def alone(design_track):
+    return analyze(design_track, **SETUP)
+
+
+def test_a_measured_mu_s_excludes_the_slip_a_rolling_track_cannot(design_track, alone):
     assert (alone.verdict, alone.reason) == ("undetermined", "frame_rate")
     sheet = SHEET | {"mu_s": 1.2, "mu_s_err": 0.1}  # the friction the body was designed for
     res = analyze(design_track, design=sheet, **SETUP)
@@ -49,6 +54,24 @@ def test_a_measured_mu_s_excludes_the_slip_a_rolling_track_cannot(design_track):
     assert measured == {"value": 1.2, "err": 0.1, "source": "design"}
     # the lift-off is the track's: the measured friction only rules out the slip
     assert abs(res.liftoff_t - alone.liftoff_t) < 0.5 * design_track.dt
+
+
+def test_the_friction_an_undetermined_verdict_asks_for_settles_it(design_track, alone):
+    """The track alone cannot exclude a slip of one frame, and its evidence says what
+    measurement would: mu_s above what rolling to the lift-off needs by k standard
+    deviations. A measurement 10 % beyond that gives jarm on the same track, one 20 % short
+    of it does not (the printed figures are rounded to 2-3 digits)."""
+    line = next(e for e in alone.evidence if e.startswith("what would settle it"))
+    found = re.search(r"above ([0-9.]+), what rolling to the lift-off needs, by ([0-9.]+) of", line)
+    assert found, line
+    needs, k = float(found[1]), float(found[2])
+    assert needs >= alone.mu_s_needed and 2.0 < k <= 3.0  # sqrt(9 - chi2) with chi2 in [0, 9)
+    err = 0.05
+    enough = analyze(design_track, mu_s=needs + 1.1 * k * err, mu_s_err=err, **SETUP)
+    assert enough.verdict == "jarm", enough.evidence
+    short = analyze(design_track, mu_s=needs + 0.8 * k * err, mu_s_err=err, **SETUP)
+    assert (short.verdict, short.reason) == ("undetermined", "frame_rate"), short.evidence
+    assert not any(e.startswith("what would settle it") for e in short.evidence)
 
 
 def test_a_measured_mu_s_below_what_the_rolling_needs_is_no_jarm(design_track):

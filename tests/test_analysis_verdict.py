@@ -24,7 +24,6 @@ from hypothesis import strategies as st
 from eccjump.cli import main
 from eccjump.studies.experiment import analysis, analyze
 from eccjump.studies.experiment import fit as fitmod
-from eccjump.studies.experiment.analysis import SIGNIFICANT, _slip_verdict
 from eccjump.studies.experiment.events import observe
 from eccjump.studies.experiment.fit import (
     ROUGH,
@@ -39,7 +38,16 @@ from eccjump.studies.experiment.fit import (
     rough,
     time_errors,
 )
+from eccjump.studies.experiment.friction import MeasuredFriction
 from eccjump.studies.experiment.track import first_frames
+from eccjump.studies.experiment.verdict import (
+    SIGNIFICANT,
+    Verdict,
+    decide,
+    needs_sentence,
+    settle,
+    slip_verdict,
+)
 from eccjump.studies.experiment.video import VideoTrack
 
 DATA = Path(__file__).resolve().parent / "data"
@@ -392,12 +400,53 @@ def test_parameters_the_track_does_not_determine_print_as_bounds(capsys):
 
 @given(st.floats(0.0, 1e3), st.floats(-1e3, 1e3))
 def test_a_slip_the_data_ask_for_is_never_jarm(frames, delta):
-    verdict, reason = _slip_verdict(frames, delta)
+    verdict, reason = slip_verdict(frames, delta)
     if delta >= SIGNIFICANT:
         assert verdict != "jarm"
     if verdict == "slip_first":
         assert delta >= SIGNIFICANT and frames >= 1
     assert (verdict == "undetermined") == (reason != "")
+
+
+def _rolling_verdict(one: float, needs: float, friction: tuple[str, ...] = ()) -> tuple:
+    """decide() on a track whose fitted model rolls to a lift-off seen in the track, fits
+    it, and leaves a slip of one frame costing ``one``."""
+    seen = SimpleNamespace(apex_height=8e-3, liftoff=SimpleNamespace(lo=0.23, hi=0.24))
+    observed = SimpleNamespace(peak_snr=20.0, flights=(seen,))
+    v = Verdict(observed, None, None, 0.5, "", 20.0, 20.0, one, needs, friction)  # type: ignore[arg-type]
+    rec = SimpleNamespace(sigma=4e-4)
+    return decide(v, seen, (10.0, 30.0), 0.0, math.nan, rec, 0.0, 0.02, 1 / 240)  # type: ignore[arg-type]
+
+
+@given(st.floats(-20.0, 8.99), st.floats(0.05, 2.9))
+def test_an_undetermined_one_frame_test_says_what_settles_it(one, needs):
+    """Below SIGNIFICANT the verdict is frame_rate, and the evidence names the measured mu_s
+    that would settle it: the measurement's chi-square at the printed mu_s
+    (``MeasuredFriction.against_slip``, the route ``friction.weigh`` takes) plus the
+    track's reaches SIGNIFICANT (the figures are rounded up, never short of it)."""
+    verdict, reason, evidence = _rolling_verdict(one, needs)
+    assert (verdict, reason) == ("undetermined", "frame_rate")
+    assert evidence[-1] == settle(one, needs)[0]
+    found = re.search(r"above ([0-9.]+), .* by ([0-9.]+) of its standard deviations", evidence[-1])
+    mu = float(found[1]) + float(found[2]) * 0.1  # as printed
+    against = MeasuredFriction(mu, 0.1, "given").against_slip(needs)
+    total = against + max(one, 0.0)
+    assert SIGNIFICANT - 1e-9 <= total <= SIGNIFICANT + 0.2  # the figures are rounded up
+    assert _rolling_verdict(9.0, needs)[0] == "jarm"
+    assert not any("settle" in e for e in _rolling_verdict(one, needs, ("weighed",))[2])
+
+
+def test_evidence_without_a_number_to_give_says_so():
+    """No one-frame slip could be made (NaN), a rolling that needs no finite mu_s, a run
+    with no rolling: the evidence says what is missing, never 'chi2 nan' or '>= 0.000'."""
+    verdict, reason, evidence = _rolling_verdict(math.nan, 0.5)
+    assert (verdict, reason) == ("undetermined", "frame_rate")
+    assert "could be tried" in evidence[-1] and "nan" not in " ".join(evidence)
+    assert settle(3.0, math.inf) == settle(3.0, 0.0)
+    assert "mu_s" not in settle(3.0, math.inf)[0]
+    assert "no rolling" in needs_sentence(0.0) and "0.000" not in needs_sentence(0.0)
+    assert "without bound" in needs_sentence(math.inf)
+    assert needs_sentence(0.8685).startswith("the rolling before it needs mu_s >= 0.869")
 
 
 # --- the campaign ------------------------------------------------------------------------

@@ -7,11 +7,12 @@ tracked experiment (axle and marker, module ``track``), reconstruct
 (``pip install eccjump[analysis]``).
 """
 
-from eccjump.studies.experiment.analysis import VERDICTS, Analysis, analyze
+from eccjump.studies.experiment.analysis import Analysis, analyze
 from eccjump.studies.experiment.reconstruction import Reconstruction, reconstruct
 from eccjump.studies.experiment.render import RenderedVideo, render_video
 from eccjump.studies.experiment.synthetic import SyntheticTrack, synthetic_track
 from eccjump.studies.experiment.track import Track, read_track, track_from_arrays
+from eccjump.studies.experiment.verdict import VERDICTS
 from eccjump.studies.experiment.video import VideoTrack
 
 __all__ = [
