@@ -28,17 +28,21 @@ from eccjump.studies.experiment.events import observe
 from eccjump.studies.experiment.fit import (
     ROUGH,
     Model,
-    branch_step,
     coarse_jacobian,
     correlation_inflation,
     covariance,
     fit,
     flight_signal,
-    profile_interval,
     rough,
-    time_errors,
 )
 from eccjump.studies.experiment.friction import MeasuredFriction
+from eccjump.studies.experiment.profiles import (
+    profile_interval,
+)
+from eccjump.studies.experiment.times import (
+    branch_step,
+    time_errors,
+)
 from eccjump.studies.experiment.track import first_frames
 from eccjump.studies.experiment.verdict import (
     SIGNIFICANT,

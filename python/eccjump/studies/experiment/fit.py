@@ -25,8 +25,8 @@ constrained one) and :func:`misfit_p` tests the goodness of fit.
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass, replace
-from typing import Any, NamedTuple
+from dataclasses import dataclass
+from typing import Any
 
 import numpy as np
 from numpy.typing import NDArray
@@ -35,8 +35,8 @@ from eccjump._base.body import Cylinder
 from eccjump.classification.classify import jarm
 from eccjump.motion.simulation import MotionResult, simulate
 from eccjump.studies.experiment.geometry import RampFrame, marker_offset
-from eccjump.studies.experiment.inputs import BOUNDS
 from eccjump.studies.experiment.reconstruction import Reconstruction, derivative_weights
+from eccjump.studies.experiment.runs import event_times, rolling_needs, slip_intervals
 from eccjump.studies.experiment.track import Track, first_frames
 
 NAMES = ("theta0", "omega0", "slip0", "mu_k", "dmu", "e", "l0", "n0", "length_scale", "alpha")
@@ -345,15 +345,15 @@ def fit(
             for q in ratios
             for e in bounces
         ]
-        tried = sorted((_solve(model, guess | s, lo, hi, SCREEN_NFEV) for s in screen), key=_cost)
+        tried = sorted((solve(model, guess | s, lo, hi, SCREEN_NFEV) for s in screen), key=_cost)
         x0s = [r.x for r in tried[: KEEP * (2 if wide else 1)]]
         if grow and track.n >= 2 * GROW_SHORT:
             start = grown_start(setup, track, rec, jarm_only=jarm_only, wide=wide)
             x0s.append(np.array([(guess | start)[n] for n in model.names], dtype=float))
     else:
         x0s = [np.array([(guess | s)[n] for n in model.names], dtype=float) for s in starts]
-    res = min((_solve(model, x0, lo, hi, MAX_NFEV) for x0 in x0s), key=_cost)
-    return _result(model, res, lo, hi)
+    res = min((solve(model, x0, lo, hi, MAX_NFEV) for x0 in x0s), key=_cost)
+    return fitted(model, res, lo, hi)
 
 
 #: The frames of the first window of :func:`grown_start` (at least; an eighth of the track).
@@ -451,7 +451,7 @@ def _cost(res: Any) -> float:
     return float(res.cost)
 
 
-def _solve(
+def solve(
     model: Model,
     x0: dict[str, float] | NDArray[np.float64],
     lo: NDArray[np.float64],
@@ -471,124 +471,6 @@ def _solve(
         max_nfev=nfev,
         method="trf",
     )
-
-
-def profile(
-    best: Fit, setup: Setup, track: Track, rec: Reconstruction, name: str = "mu_k", n: int = 11
-) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
-    """The profile of the cost along one parameter: at each of ``n`` values over its range
-    the other parameters are refitted. A local (Jacobian) interval misses a second minimum
-    (e.g. a landing that a lower mu_k with some bounce explains as well) or a kink (a
-    slip's onset, where mu_s acts); the profile does not, within its grid. ``name`` is one
-    of the fit's parameters or ``"mu_s"`` (mu_k + dmu, each value held by the model: the
-    grid also brackets by 5 and 15 % the fitted mu_s, or what the fitted rolling needs
-    where that is less, a rolling fit's mu_s being anything above it). The values are
-    refitted outward from the fitted one, each from its neighbour's solution (half the
-    work of starting each from the best fit)."""
-    if name == "mu_s":
-        v0 = min(float(best.run.mu_s), best.mu_s_bound) if best.mu_s_bound > 0 else best.run.mu_s
-        grid = np.unique(
-            np.r_[np.linspace(0.0, MU_MAX / 2, n), v0 * np.array([0.85, 0.95, 1.0, 1.05, 1.15])]
-        )
-        held = best.names.index("dmu")  # no say while the model holds mu_s
-
-        def fit_at(k: int, x: NDArray[np.float64]) -> tuple[float, NDArray[np.float64]]:
-            model = Model(setup, track, rec, jarm_only=False, mu_s_range=(grid[k], grid[k]))
-            return _profile_fit(best, model, held, x, float(best.x[held]))
-    else:
-        held = best.names.index(name)
-        v0 = float(best.x[held])
-        grid = np.unique(np.r_[np.linspace(best.lower[held], best.upper[held] / 2, n), v0])
-        model = Model(setup, track, rec, jarm_only=best.jarm_only)
-
-        def fit_at(k: int, x: NDArray[np.float64]) -> tuple[float, NDArray[np.float64]]:
-            return _profile_fit(best, model, held, x, float(grid[k]))
-
-    costs = np.empty(grid.size)
-    k0 = int(np.argmin(np.abs(grid - v0)))
-    for sweep in (range(k0, grid.size), range(k0 - 1, -1, -1)):
-        x = best.x
-        for k in sweep:
-            costs[k], x = fit_at(k, x)
-    return grid, costs
-
-
-def _profile_fit(
-    best: Fit, model: Model, held: int, x0: NDArray[np.float64], value: float
-) -> tuple[float, NDArray[np.float64]]:
-    """The least cost of ``model`` with parameter ``held`` at ``value`` and the solution,
-    refitted from ``x0`` and, where the best fit bounces, from no bounce (a bounce can
-    mimic friction)."""
-    from scipy.optimize import least_squares
-
-    free = [j for j in range(best.x.size) if j != held]
-    starts = [x0[free]]
-    if "e" in best.names and best.value("e") > 0.05:
-        y = x0.copy()
-        y[best.names.index("e")] = 0.0
-        starts.append(y[free])
-
-    def fun(y: NDArray[np.float64]) -> NDArray[np.float64]:
-        x = best.x.copy()
-        x[free] = y
-        x[held] = value
-        return model.residuals(x)
-
-    out = (math.inf, x0)
-    for y0 in starts:
-        res = least_squares(
-            fun,
-            y0,
-            bounds=(best.lower[free], best.upper[free]),
-            x_scale="jac",
-            diff_step=1e-6,
-            max_nfev=PROFILE_NFEV,
-            method="trf",
-        )
-        if res.cost < out[0]:
-            x = best.x.copy()
-            x[free], x[held] = res.x, value
-            out = (float(res.cost), x)
-    return out
-
-
-def profile_interval(
-    grid: NDArray[np.float64],
-    costs: NDArray[np.float64],
-    best: Fit,
-    local: tuple[float, float],
-    bounds: tuple[float, float],
-    level: float = 3.84,
-) -> tuple[float, float]:
-    """The ``local`` ~95 % interval, widened to every grid value of the profile whose cost
-    is within ``level`` / 2 (in units of the reduced chi-square) of the least, plus one
-    grid step beyond it (a second minimum narrower than a step can be missed), within
-    ``bounds``; out to the bound where the grid's end value is accepted (the profile is
-    flat there: a rolling track leaves mu_k open above, and mu_s too)."""
-    lo, hi = local
-    low = min(float(costs.min()), best.cost)
-    ok = 2.0 * (costs - low) / best.variance_factor <= level
-    accepted = grid[ok]
-    far = accepted[(accepted < lo) | (accepted > hi)]
-    if far.size:
-        step = float(np.max(np.diff(grid))) if grid.size > 1 else 0.0
-        lo = max(min(lo, float(far.min()) - step), bounds[0])
-        hi = min(max(hi, float(far.max()) + step), bounds[1])
-    if ok[-1]:
-        hi = bounds[1]
-    return lo, hi
-
-
-def mu_s_interval(f: Fit) -> tuple[float, float]:
-    """mu_s's local ~95 % interval (mu_k + dmu, from the covariance), (mu_k, inf) where the
-    fit does not constrain it."""
-    i, j = f.names.index("mu_k"), f.names.index("dmu")
-    var = f.cov[i, i] + f.cov[j, j] + 2 * f.cov[i, j]
-    v = f.value("mu_k") + f.value("dmu")
-    if not math.isfinite(var):
-        return f.value("mu_k"), math.inf
-    e = 1.96 * math.sqrt(max(var, 0.0))
-    return max(v - e, 0.0), v + e
 
 
 #: The largest variance inflation :func:`correlation_inflation` gives (rho = 0.82).
@@ -658,7 +540,7 @@ def rough(fine: NDArray[np.float64], coarse: NDArray[np.float64]) -> bool:
     return bool(np.any((f > ROUGH * c) & (f > 1e-6 * f.max(initial=0.0))))
 
 
-def _result(model: Model, res: Any, lo: NDArray[np.float64], hi: NDArray[np.float64]) -> Fit:
+def fitted(model: Model, res: Any, lo: NDArray[np.float64], hi: NDArray[np.float64]) -> Fit:
     m = res.fun.size
     dof = max(m - res.x.size, 1)
     inflation = correlation_inflation(res.fun, model.tau.size)
@@ -688,101 +570,6 @@ def _result(model: Model, res: Any, lo: NDArray[np.float64], hi: NDArray[np.floa
     )
 
 
-#: The largest measured mu_s that :func:`slipping_mu_s` compares with.
-MU_MEASURED_MAX = BOUNDS["mu_s"].hi
-
-
-class OneFrameSlip(NamedTuple):
-    """What :func:`one_frame_slip` found: the chi-square ``cost``, the ``refit`` that slips
-    (or None) and ``mu_s``, the largest mu_s at which the run slips a frame (NaN: none)."""
-
-    cost: float
-    refit: Fit | None
-    mu_s: float
-
-
-def one_frame_slip(f: Fit, setup: Setup, track: Track, rec: Reconstruction) -> OneFrameSlip:
-    """How much worse (a chi-square, scaled like the slip test's) the rolling fit ``f``
-    becomes when its body slips for one frame in all before the lift-off, and the refit
-    that slips that long (None if it does not). The slip: mu_s lowered below what the
-    rolling needs (bisection) until ``f``'s run slips one frame, with mu_k = mu_s (the
-    gentlest slip: a rolling track does not fix mu_k, and a lower one shows more). Taken
-    as it is, that run overstates what the track can tell (a slip elsewhere, or with
-    another start, may fit better); so the other parameters are refitted with mu_s kept at
-    most there, and the better of the two runs that slip a frame or more is the
-    alternative. A refit better than ``f`` itself means ``f`` was a local minimum. Below
-    the slip test's threshold a one-frame slip is not excluded. NaN (and None) when no
-    lowered mu_s gives a run that lifts off after a frame's slip."""
-    model = Model(setup, track, rec, jarm_only=False)
-    p = model.params(f.x)
-    found = _one_frame_mu_s(model, p, f.mu_s_bound, track.dt / setup.time_unit)
-    if found is None:
-        return OneFrameSlip(math.nan, None, math.nan)
-    mu_s, res = found
-    cost = 0.5 * float(res @ res)
-    refit = _capped_fit(f, setup, track, rec, mu_s)
-    if slip_frames(refit, setup, track) < 1.0:  # back to rolling: no alternative
-        return OneFrameSlip(2.0 * (cost - f.cost) / f.variance_factor, None, mu_s)
-    return OneFrameSlip(2.0 * (min(cost, refit.cost) - f.cost) / f.variance_factor, refit, mu_s)
-
-
-def slipping_mu_s(f: Fit, setup: Setup, track: Track, rec: Reconstruction) -> float:
-    """The largest mu_s (with mu_k = mu_s, the gentlest slip) at which ``f``'s run slips a
-    frame or more before it lifts off; NaN if none up to what its rolling needs (or
-    MU_MEASURED_MAX, where that is unbounded). A measured mu_s above it weighs against
-    ``f``'s slip (``friction``)."""
-    model = Model(setup, track, rec, jarm_only=False)
-    bound = min(f.mu_s_bound, MU_MEASURED_MAX) if f.mu_s_bound > 0 else MU_MEASURED_MAX
-    found = _one_frame_mu_s(model, model.params(f.x), bound, track.dt / setup.time_unit)
-    return math.nan if found is None else found[0]
-
-
-def _one_frame_mu_s(
-    model: Model, p: dict[str, float], mu_bound: float, frame: float
-) -> tuple[float, NDArray[np.float64]] | None:
-    """The largest mu_s (to 1e-4 of ``mu_bound``) at which the run of ``p`` lifts off after
-    slipping for at least ``frame`` in all, and that run's residuals."""
-    horizon = float(model.tau[-1])
-    lo, hi = 0.0, mu_bound
-    found = None
-    for _ in range(30):
-        mid = 0.5 * (lo + hi)
-        try:
-            run = model.simulate(p | {"mu_k": mid}, mu_s=mid)
-        except ValueError:
-            lo = mid
-            continue
-        lift = event_times(run, horizon)["liftoff"]
-        if not math.isfinite(lift):
-            lo = mid
-            continue
-        if sum(b - a for a, b in slip_intervals(run, lift)) >= frame:
-            lo, found = mid, (mid, model.compare(p, model.states(run)))
-        else:
-            hi = mid
-        if hi - lo < 1e-4 * mu_bound:
-            break
-    return found
-
-
-def _capped_fit(f: Fit, setup: Setup, track: Track, rec: Reconstruction, mu_s: float) -> Fit:
-    """``f`` refitted with its runs' mu_s at most ``mu_s`` (from ``f``, mu_s set there);
-    its mu_k and dmu are those its run used (a start for a free fit that gives that run)."""
-    model = Model(setup, track, rec, jarm_only=False, mu_s_range=(0.0, mu_s))
-    lo, hi = model.bounds(start_guess(setup, rec))
-    capped = _result(model, _solve(model, _with_mu_s(f.x, f.names, mu_s), lo, hi, MAX_NFEV), lo, hi)
-    used = min(capped.value("mu_k") + capped.value("dmu"), mu_s)
-    return replace(capped, x=_with_mu_s(capped.x, capped.names, used))
-
-
-def _with_mu_s(x: NDArray[np.float64], names: tuple[str, ...], mu_s: float) -> NDArray[np.float64]:
-    """``x`` with mu_s = mu_k + dmu set to ``mu_s`` (mu_k lowered to it where above)."""
-    y = x.copy()
-    mu_k = min(float(x[names.index("mu_k")]), mu_s)
-    y[names.index("mu_k")], y[names.index("dmu")] = mu_k, mu_s - mu_k
-    return y
-
-
 def horizon(setup: Setup, track: Track) -> float:
     """The track's length in the model's time (dimensionless)."""
     return float(track.t[-1] - track.t[0]) / setup.time_unit
@@ -797,7 +584,7 @@ def until_liftoff(f: Fit, setup: Setup, track: Track) -> float:
 
 def fitted_needs(f: Fit, setup: Setup, track: Track) -> float:
     """The largest friction ratio |F_x|/F_y of the fitted run's rolling before its first
-    lift-off (or the track's end): what mu_s must be for that rolling."""
+    lift-off (or the track's end): what μ_s must be for that rolling."""
     return rolling_needs(f.run, until_liftoff(f, setup, track))
 
 
@@ -810,10 +597,10 @@ def slip_frames(f: Fit, setup: Setup, track: Track) -> float:
 def flight_signal(f: Fit, setup: Setup, rec: Reconstruction) -> tuple[float, float]:
     """How clearly the track shows the fitted model's flights, in standard errors: the
     matched filter of the model's heights above the ramp h_m on the track's heights h,
-    sum(h h_m) / (sigma |h_m|), widened by the errors' correlation; and what the filter
-    gives on the model's own heights, |h_m| / sigma (its expected value where the model is
-    right). Frame by frame a flight of a few sigma is lost in the noise (``events.observe``
-    asks for 3 sigma in 3 frames in a row); summed along the model's parabola it is not.
+    sum(h h_m) / (σ |h_m|), widened by the errors' correlation; and what the filter
+    gives on the model's own heights, |h_m| / σ (its expected value where the model is
+    right). Frame by frame a flight of a few σ is lost in the noise (``events.observe``
+    asks for 3 σ in 3 frames in a row); summed along the model's parabola it is not.
     (0, 0) when the model never flies."""
     h_model = f.value("length_scale") * setup.radius * (f.states[4] - 1.0)
     up = h_model > 1e-9 * setup.radius
@@ -822,164 +609,3 @@ def flight_signal(f: Fit, setup: Setup, rec: Reconstruction) -> tuple[float, flo
         return 0.0, 0.0
     scale = rec.sigma * math.sqrt(f.correlation)
     return float(rec.height[up] @ h_model[up]) / (scale * norm), norm / scale
-
-
-def event_times(run: MotionResult, horizon: float) -> dict[str, float]:
-    """Key times of a run (dimensionless): the first lift-off, the first landing, the
-    onset and end of the first slip before that lift-off (NaN when absent), and the start
-    and end of every slip episode k before it (``slip{k}_t1``, ``slip{k}_t2``)."""
-    out = dict.fromkeys(("liftoff", "landing", "slip_onset", "slip_end"), math.nan)
-    trs = [tr for tr in run.transitions[1:] if tr.t <= horizon]
-    lift = next((tr.t for tr in trs if tr.to_mode == "FLIGHT"), math.nan)
-    out["liftoff"] = lift
-    if math.isfinite(lift):
-        out["landing"] = next((tr.t for tr in trs if tr.from_mode == "FLIGHT"), math.nan)
-    before = [tr for tr in trs if not tr.t > lift or math.isnan(lift)]
-    onset = next((tr for tr in before if tr.to_mode == "SLIP"), None)
-    if onset is not None:
-        out["slip_onset"] = onset.t
-        out["slip_end"] = next(
-            (tr.t for tr in before if tr.t > onset.t and tr.from_mode == "SLIP"), lift
-        )
-    for k, (a, b) in enumerate(slip_intervals(run, lift if math.isfinite(lift) else horizon)):
-        out[f"slip{k}_t1"], out[f"slip{k}_t2"] = a, b
-    return out
-
-
-def slip_intervals(run: MotionResult, until: float) -> list[tuple[float, float]]:
-    """(start, end) of every slip of the run before ``until`` (dimensionless); a reversal
-    continues the slip."""
-    out: list[tuple[float, float]] = []
-    for seg in run.segments:
-        if seg.mode == "SLIP" and seg.t_start < until:
-            end = min(seg.t_end, until)
-            if out and seg.t_start <= out[-1][1]:
-                out[-1] = (out[-1][0], end)
-            else:
-                out.append((seg.t_start, end))
-    return out
-
-
-def rolling_needs(run: MotionResult, until: float) -> float:
-    """The largest friction ratio |F_x|/F_y of the run's rolling before ``until``: the
-    lower bound on mu_s that the rolling implies (0 without rolling)."""
-    rows = (np.asarray(run.mode) == 0) & (np.asarray(run.t) <= until) & (np.asarray(run.Fy) > 0)
-    if not rows.any():
-        return 0.0
-    return float(np.max(np.abs(run.Fx[rows]) / run.Fy[rows]))
-
-
-#: The chi-square increase (in units of the reduced chi-square) beyond which the track
-#: rejects a stepped run: the 95 % level of one parameter, as the profiles' intervals.
-REJECTED = 3.84
-
-
-def time_errors(
-    model_fit: Fit, setup: Setup, track: Track, rec: Reconstruction
-) -> dict[str, float]:
-    """Standard errors [s] of the key times of the fitted run, from their derivatives with
-    respect to the parameters and the covariance, plus the jump where a step crosses to
-    another branch the track allows (:func:`branch_step`). A time that a start or frame
-    parameter the track does not fix (an infinite variance) moves is not fixed either:
-    infinite. (Not the friction: a rolling fit's μ_s is bounded from below only, and
-    lowering it makes a slip the track rejects; nor a parameter at its bound, such as
-    θ̇₀ = 0 from rest, whose column least squares returns as zero.)"""
-    model = Model(setup, track, rec, jarm_only=model_fit.jarm_only)
-    horizon = float(model.tau[-1])
-    base = event_times(model_fit.run, horizon)
-    grads = {k: np.zeros(model_fit.x.size) for k in base}
-    jumps = dict.fromkeys(base, 0.0)
-    unfixed: set[str] = set()
-    for i, name in enumerate(model_fit.names):
-        err = math.sqrt(model_fit.cov[i, i]) if math.isfinite(model_fit.cov[i, i]) else math.inf
-        lo, hi = model_fit.lower[i], model_fit.upper[i]
-        at_bound = min(model_fit.x[i] - lo, hi - model_fit.x[i]) <= 1e-9 * (hi - lo)
-        if not err > 0 or (math.isinf(err) and (name not in KINEMATIC or at_bound)):
-            continue  # (scipy's Jacobian has a zero column at an active bound: not lost)
-        h = 0.1 * err if math.isfinite(err) else 1e-4 * (hi - lo)
-        x_hi, x_lo = model_fit.x.copy(), model_fit.x.copy()
-        x_hi[i], x_lo[i] = min(x_hi[i] + h, hi), max(x_lo[i] - h, lo)
-        if x_hi[i] == x_lo[i]:
-            continue
-        try:
-            up, dn = stepped(model, x_hi, horizon), stepped(model, x_lo, horizon)
-        except ValueError:
-            continue
-        steps = (x_hi[i] - model_fit.x[i], x_lo[i] - model_fit.x[i])
-        rise = 2.0 / model_fit.variance_factor  # what a cost difference is in chi-square
-        allowed = (
-            (up[1] - model_fit.cost) * rise <= REJECTED,
-            (dn[1] - model_fit.cost) * rise <= REJECTED,
-        )
-        for k in base:
-            grads[k][i], jump = branch_step(base, up[0], dn[0], k, steps, allowed, err)
-            jumps[k] = max(jumps[k], jump)
-            if math.isinf(err) and up[0].get(k) != dn[0].get(k):
-                unfixed.add(k)
-    cov = np.where(np.isfinite(model_fit.cov), model_fit.cov, 0.0)
-    unit = setup.time_unit
-    out = {}
-    for k, g in grads.items():
-        g = np.where(np.isfinite(g), g, 0.0)
-        var = max(float(g @ cov @ g), 0.0) + jumps[k] ** 2
-        out[k] = unit * math.sqrt(var) if math.isfinite(base[k]) else math.nan
-        if k in unfixed and math.isfinite(base[k]):
-            out[k] = math.inf
-    return out
-
-
-def stepped(model: Model, x: NDArray[np.float64], horizon: float) -> tuple[dict[str, float], float]:
-    """The key times (:func:`event_times`) and the cost of the run at ``x``."""
-    p = model.params(x)
-    run = model.simulate(p)
-    r = model.compare(p, model.states(run))
-    return event_times(run, horizon), 0.5 * float(r @ r)
-
-
-def branch(times: dict[str, float]) -> frozenset[str]:
-    """Which of a run's key times (:func:`event_times`) exist: its branch (a slip before the
-    lift-off or none, how many episodes, a lift-off and a landing or not)."""
-    return frozenset(k for k, v in times.items() if math.isfinite(v))
-
-
-def branch_step(
-    base: dict[str, float],
-    up: dict[str, float],
-    dn: dict[str, float],
-    key: str,
-    steps: tuple[float, float],
-    allowed: tuple[bool, bool] = (True, True),
-    err: float = math.inf,
-) -> tuple[float, float]:
-    """The derivative of the time ``key`` (per unit of the parameter) from the runs stepped
-    up and down by ``steps`` (above and below 0), and its jump, where a stepped run is on
-    another branch (a slip that appears or goes within the step) or is one the track
-    rejects (``allowed`` False: a slip that starts at another peak of the friction ratio,
-    frames earlier). A central difference across such a switch is the jump over the step,
-    a tenth of a standard error: lift-offs printed hundreds of times wider than their
-    error. The derivative comes from the side that continues the fitted run (0 where that
-    side is a bound); the jump is what the other side adds beyond it, where the track
-    allows that side; NaN (no derivative) where the time is missing. Where the fitted side
-    ends at a bound (its step the shorter) and the other is rejected, the parameter moves
-    only toward a run the track rejects: over its standard error ``err`` the time moves no
-    further than to that run (a μ at its bound with an error of 20 on a range of 3, whose
-    one-sided slope over 4e-5 printed a lift-off ± 68 ms for an error of 77 µs)."""
-    b = base.get(key, math.nan)
-    vu, vd = up.get(key, math.nan), dn.get(key, math.nan)
-    same_up = branch(up) == branch(base) and allowed[0]
-    same_dn = branch(dn) == branch(base) and allowed[1]
-    central = (vu - vd) / (steps[0] - steps[1])
-    if (same_up and same_dn) or not math.isfinite(b):
-        return central, 0.0
-    if not (same_up or same_dn):  # the fitted run sits on a branch of its own
-        mid = (vu + vd) / 2 - b
-        return central, abs(mid) if math.isfinite(mid) and all(allowed) else 0.0
-    (v, s), (w, t, ok) = (
-        ((vu, steps[0]), (vd, steps[1], allowed[1]))
-        if same_up
-        else ((vd, steps[1]), (vu, steps[0], allowed[0]))
-    )
-    g = (v - b) / s if s else 0.0
-    if not ok and abs(s) < abs(t) and math.isfinite(w + err) and abs(g) * err > abs(w - b):
-        g = math.copysign(abs(w - b) / err, g)
-    return g, abs(w - b - g * t) if ok and math.isfinite(w) else 0.0

@@ -25,14 +25,16 @@ from typing import Any
 
 from eccjump.studies.experiment.fit import (
     Fit,
-    OneFrameSlip,
     Setup,
     fitted_needs,
-    one_frame_slip,
     slip_frames,
-    slipping_mu_s,
 )
 from eccjump.studies.experiment.inputs import in_range
+from eccjump.studies.experiment.one_frame import (
+    OneFrameSlip,
+    one_frame_slip,
+    slipping_mu_s,
+)
 from eccjump.studies.experiment.reconstruction import Reconstruction
 from eccjump.studies.experiment.track import Track
 
@@ -182,7 +184,7 @@ def _one_frame_with(
     friction: MeasuredFriction, one: OneFrameSlip, rolling: Fit, scene: Scene
 ) -> tuple[float, str]:
     """What a slip of one frame costs the ``rolling`` fit and the measured μ_s together:
-    the track's χ² (``fit.one_frame_slip``) plus what the measurement says against
+    the track's χ² (``one_frame.one_frame_slip``) plus what the measurement says against
     a μ_s below the rolling's need, less what it says against that need; and the
     sentence."""
     if not math.isfinite(one.mu_s):

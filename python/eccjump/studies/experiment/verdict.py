@@ -9,7 +9,7 @@ before the model's lift-off contradicts (``analysis.ALPHA_TOLERANCE``), gives ``
 * ``jarm``: the body left the ramp straight from pure rolling -- the fitted model rolls up
   to its lift-off (or slips for less than one frame, and a fit that forbids any slip before
   the lift-off is as good), a slip of one frame before the lift-off would have shown
-  (``fit.one_frame_slip`` at least :data:`SIGNIFICANT`; with a friction measured apart
+  (``one_frame.one_frame_slip`` at least :data:`SIGNIFICANT`; with a friction measured apart
   from the track, what the measurement says against that slip is added: ``friction``),
   and the track shows the flight beyond its noise (frame by frame, or along the model's
   parabola: ``fit.flight_signal`` at least :data:`FLIGHT_Z`) or the lift-off follows from
@@ -69,7 +69,7 @@ class Verdict:
     off_path: str  # the given alpha contradicted by the track's contact path (or "")
     flight_z: float  # how clearly the heights show the model's flight (fit.flight_signal)
     flight_size: float  # what they would show on the model's own heights (ditto)
-    one_frame: float  # what a one-frame slip would cost the rolling fit (fit.one_frame_slip)
+    one_frame: float  # what a one-frame slip would cost the rolling fit (one_frame.one_frame_slip)
     needs: float  # what the rolling the one-frame test tried needs (fit.fitted_needs)
     friction: tuple[str, ...] = ()  # what the measured mu_s adds (friction.weigh)
 
