@@ -2,21 +2,21 @@
 friction and restitution, by least squares on the tracked points (scipy's
 ``least_squares``).
 
-Parameters (:data:`NAMES`): the start theta0 [rad] and omega0 [rad/s] at the first frame
-(and its slip velocity slip0 [m/s] where a rolling start fails: see :class:`Setup`), mu_k,
-dmu = mu_s - mu_k >= 0 (so mu_k <= mu_s always holds), the restitution e, and two offsets of
-the ramp frame, l0 and n0 [m] (where the axle starts along the ramp, and the contact line's
-height: nuisance parameters); ``alpha`` too when the ramp angle was not given. Residuals:
-the model's C and M minus the tracked ones, both coordinates, divided by the noise level
-sigma, so the cost is half a chi-square and the covariance of the parameters is (J^T J)^-1
-s^2 at the optimum (s^2 the reduced chi-square where it exceeds 1: a misfit widens every
-interval; 1 below). A direction the track does not constrain (mu_s above what the observed
-rolling needed, e when nothing lands) has a vanishing singular value: its interval is the
-parameter's whole range ("not identified").
+Parameters (:data:`NAMES`): the start θ₀ (``theta0``) [rad] and θ̇₀ (``omega0``) [rad/s] at
+the first frame (and its slip velocity ``slip0`` [m/s] where a rolling start fails: see
+:class:`Setup`), μ_k (``mu_k``), Δμ = μ_s − μ_k ≥ 0 (``dmu``, so μ_k ≤ μ_s always holds), the
+restitution e, and two offsets of the ramp frame, l0 and n0 [m] (where the axle starts
+along the ramp, and the contact line's height: nuisance parameters); ``alpha`` too when the
+ramp angle was not given. Residuals: the model's C and M minus the tracked ones, both
+coordinates, divided by the noise level σ, so the cost is half a χ² and the covariance of
+the parameters is (JᵀJ)⁻¹ s² at the optimum (s² the reduced χ² where it exceeds 1: a misfit
+widens every interval; 1 below). A direction the track does not constrain (μ_s above what
+the observed rolling needed, e when nothing lands) has a vanishing singular value: its
+interval is the parameter's whole range ("not identified").
 
 ``jarm_only=True`` fits under the constraint that the body does not slip before its first
-lift-off: mu_s is raised to the largest friction ratio |F_x|/F_y the rolling from the fitted
-start needs up to the lift-off (``eccjump.jarm``'s max_ratio), the bound on mu_s that an
+lift-off: μ_s is raised to the largest friction ratio |F_x|/F_y the rolling from the fitted
+start needs up to the lift-off (``eccjump.jarm``'s max_ratio), the bound on μ_s that an
 observed rolling implies. Comparing the two fits tests a slip before the lift-off;
 :func:`consistent_fits` makes the pair consistent (the free fit never worse than the
 constrained one) and :func:`misfit_p` tests the goodness of fit.
@@ -65,7 +65,7 @@ SCREEN_NFEV, KEEP = 20, 3
 @dataclass(frozen=True)
 class Setup:
     """What the fit knows: the body, the ramp (``alpha`` fixed unless ``fit_alpha``), the
-    radius R [m], g [m/s^2], the marker, the lift-off rule; and whether the free fit also
+    radius R [m], g [m/s²], the marker, the lift-off rule; and whether the free fit also
     fits the slip velocity at the first frame, slip0, and lets θ̇₀ be negative
     (``slip_at_start``): for a track whose fit from a rolling start fails the gate (the
     analysis' ``_consistent_fits``). A track cut after a wait before the release starts
@@ -134,8 +134,8 @@ class Fit:
 
     @property
     def variance_factor(self) -> float:
-        """What the parameters' variances and a chi-square difference are scaled by: the
-        reduced chi-square where above 1 (a misfit widens), times :attr:`correlation`'s."""
+        """What the parameters' variances and a χ² difference are scaled by: the
+        reduced χ² where above 1 (a misfit widens), times :attr:`correlation`'s."""
         return max(self.chi2_reduced, 1.0) * self.correlation
 
 
@@ -163,7 +163,7 @@ class Model:
         self._bounds: dict[tuple[float, float, float], float] = {}
 
     def _fixed(self) -> tuple[str, ...]:
-        """The parameters held: alpha where given, slip0 (at 0) unless the setup frees it.
+        """The parameters held: α where given, slip0 (at 0) unless the setup frees it.
         Every model of one setup has the same parameters: a fit that rolls to its lift-off
         keeps slip0 but runs with 0 (a slip at the start is a slip before the lift-off)."""
         slip0 = () if self.setup.slip_at_start else ("slip0",)
@@ -288,7 +288,7 @@ class Model:
 
 
 def start_guess(setup: Setup, rec: Reconstruction) -> dict[str, float]:
-    """theta0, omega0 (≥ 0 unless the setup frees slip0), slip0 (l̇ - R θ̇,
+    """θ₀, θ̇₀ (≥ 0 unless the setup frees slip0), slip0 (l̇ - R θ̇,
     within its range) and l0 from the smoothed track at its first frame."""
     idx, w0 = derivative_weights(rec.t, rec.window, deriv=0)
     _, w1 = derivative_weights(rec.t, rec.window, deriv=1)
@@ -307,8 +307,8 @@ def start_guess(setup: Setup, rec: Reconstruction) -> dict[str, float]:
 
 
 def mean_rate(rec: Reconstruction) -> float:
-    """theta's mean rate [rad/s] over the first two smoothing windows (>= 0): a start for
-    omega0 where the smoothed derivative at the track's edge is off (a slip, a kick)."""
+    """θ's mean rate [rad/s] over the first two smoothing windows (≥ 0): a start for
+    θ̇₀ where the smoothed derivative at the track's edge is off (a slip, a kick)."""
     k = min(2 * rec.window, rec.t.size - 1)
     return float(max((rec.theta[k] - rec.theta[0]) / (rec.t[k] - rec.t[0]), 0.0))
 
@@ -325,11 +325,11 @@ def fit(
 ) -> Fit:
     """The best of several least-squares fits. Without ``starts``: a screen of short fits
     (:data:`SCREEN_NFEV` iterations) from the smoothed start with the friction guesses of
-    :func:`friction_guesses`, each with the smoothed omega0, θ's mean rate
-    (:func:`mean_rate`) and 0 (the edge of the smoothing window makes omega0 noisy), then
+    :func:`friction_guesses`, each with the smoothed θ̇₀, θ's mean rate
+    (:func:`mean_rate`) and 0 (the edge of the smoothing window makes θ̇₀ noisy), then
     full fits from the :data:`KEEP` best (the cost has many local minima: a slip, a bounce
     and a shifted start trade off), and with ``grow`` one more from :func:`grown_start`.
-    ``wide`` screens more: mu_k / mu_s of 0.5, 0.75 and 0.95 and e of 0.05 and 0.5, and
+    ``wide`` screens more: μ_k / μ_s of 0.5, 0.75 and 0.95 and e of 0.05 and 0.5, and
     keeps twice as many (for a fit that failed its goodness-of-fit test). With ``starts``
     (each a dict of some of :data:`NAMES`, on top of that guess): a full fit from each."""
     model = Model(setup, track, rec, jarm_only=jarm_only)
@@ -370,11 +370,11 @@ def grown_start(
     an eighth of it (at least :data:`GROW_FIRST` frames; :data:`GROW_SHORT` on a short
     track), each window's fit started from the last one's. Over a long track the cost has
     a local minimum for every turn the marker's phase can slip by (a start that is a
-    little off in theta0 or omega0 ends turns away after a slip of a hundred frames, in a
+    little off in θ₀ or θ̇₀ ends turns away after a slip of a hundred frames, in a
     basin of its own); a short window has few turns, and each doubling moves the phase by
     less than one. A short track gains too: at 60 fps a slip, the flight and the landing
     come within 30 frames, and a screen of the whole track went from a start 10 % off in
-    omega0 to a body that barely turns and bounces (chi2_red 163); grown from its first 8
+    θ̇₀ to a body that barely turns and bounces (chi2_red 163); grown from its first 8
     frames it fits (chi2_red 0.75; from 15, it did not)."""
     k = max(GROW_FIRST, track.n // 8) if track.n >= 2 * GROW_FIRST else GROW_SHORT
     f = fit(setup, first_frames(track, k), rec, jarm_only=jarm_only, wide=wide, grow=False)
@@ -420,7 +420,7 @@ def slips_before_liftoff(f: Fit) -> bool:
 
 
 def as_start(f: Fit) -> dict[str, float]:
-    """A start for another fit from ``f``'s parameters (mu_s raised to what ``f``'s run
+    """A start for another fit from ``f``'s parameters (μ_s raised to what ``f``'s run
     used when it was constrained to roll)."""
     start = {n: f.value(n) for n in f.names}  # (clipped to the next fit's bounds there)
     if f.jarm_only:
@@ -430,9 +430,9 @@ def as_start(f: Fit) -> dict[str, float]:
 
 
 def misfit_p(f: Fit, noise_frames: int) -> float:
-    """The probability of a reduced chi-square at least ``f``'s if the model held: the F
+    """The probability of a reduced χ² at least ``f``'s if the model held: the F
     distribution with (the fit's degrees of freedom, those of the noise level), since
-    sigma is itself estimated from the spread of ``noise_frames`` contact frames (a robust
+    σ is itself estimated from the spread of ``noise_frames`` contact frames (a robust
     spread: about 0.37 degrees of freedom per frame)."""
     from scipy.stats import f as f_dist
 
@@ -441,7 +441,7 @@ def misfit_p(f: Fit, noise_frames: int) -> float:
 
 
 def friction_guesses(bound: float) -> list[float]:
-    """The mu_s of the starts: 1.1 and 0.6 times the friction the rolling from the smoothed
+    """The μ_s of the starts: 1.1 and 0.6 times the friction the rolling from the smoothed
     start needs up to its lift-off (no slip, a slip), and a fixed spread."""
     return sorted({round(m, 3) for m in (1.1 * bound, 0.6 * bound, 0.3, 0.5, 0.8, 1.2)
                    if 0.02 < m < MU_MAX})  # fmt: skip
@@ -478,12 +478,12 @@ MAX_INFLATION = 10.0
 
 
 def correlation_inflation(residuals: NDArray[np.float64], frames: int) -> float:
-    """(1 + rho) / (1 - rho) for the residuals' lag-1 autocorrelation rho over the frames,
+    """(1 + ρ) / (1 - ρ) for the residuals' lag-1 autocorrelation ρ over the frames,
     pooled over the four coordinate series (C and M, along and across the ramp); 1 for
-    rho <= 0. Errors correlated from frame to frame (a video codec's, a tracker's smoothing,
+    ρ ≤ 0. Errors correlated from frame to frame (a video codec's, a tracker's smoothing,
     a slow misfit) carry less information on slow signals -- a slip, a start -- than
     independent ones: for AR(1) errors the variance of a mean over many frames grows by
-    this factor, and so must the parameters' covariance and a chi-square difference."""
+    this factor, and so must the parameters' covariance and a χ² difference."""
     r = residuals.reshape(2, frames, 2).transpose(0, 2, 1).reshape(4, frames)
     den = float(np.sum(r * r))
     if frames < 3 or not den > 0:
