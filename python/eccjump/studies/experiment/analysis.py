@@ -136,9 +136,9 @@ class Analysis(Result, Plottable, kind="analysis"):
     def parameters(self) -> dict[str, dict[str, Any]]:
         """The fitted parameters (value, ~95 % interval, unit, ``status``), the ramp angle in
         radians. ``status`` is ``"value"``, ``"not_determined"`` (the track does not
-        constrain it: its value is None, the interval the whole range; mu_k, mu_s and e
+        constrain it: its value is None, the interval the whole range; μ_k, μ_s and e
         whenever the reason is ``model``, since a model the track rejects fixes none of them)
-        or, for mu_s, ``"lower_bound"`` (``mu_s_interval`` open above: a track that rolls,
+        or, for μ_s, ``"lower_bound"`` (``mu_s_interval`` open above: a track that rolls,
         or slips only where its profile is flat; value None, hi inf)."""
         f, out = self.fit, {}
         rejected = self.reason == "model"  # the model does not describe the track
@@ -175,7 +175,7 @@ class Analysis(Result, Plottable, kind="analysis"):
         return out
 
     def parameter_lines(self) -> list[tuple[str, str]]:
-        """(name, text) of mu_k, mu_s and e: a value with its interval, a bound, or "not
+        """(name, text) of μ_k, μ_s and e: a value with its interval, a bound, or "not
         determined"."""
         out = []
         for name, p in self.parameters().items():
@@ -328,10 +328,10 @@ def analyze(
 ) -> Analysis:
     """Analyse a tracked experiment: did the body jump straight out of pure rolling?
 
-    Reads the track (axle C and a marker M in the lab frame), reconstructs theta, l, b and
+    Reads the track (axle C and a marker M in the lab frame), reconstructs θ, l, b and
     the slip velocity in the ramp frame with their errors from the data's noise, detects and
     times slips, lift-off, apex and landing, fits ``eccjump.simulate`` to the tracked points
-    (the start, mu_k, mu_s, e, and alpha if not given) and gives the verdict with its
+    (the start, μ_k, μ_s, e, and α if not given) and gives the verdict with its
     evidence. The fit needs scipy (``pip install eccjump[analysis]``).
 
     Parameters
@@ -346,38 +346,38 @@ def analyze(
     radius : float or None
         R [m], in [1e-4, 10]; or from ``design``.
     chi, km : float or None
-        The body (chi in [0, 1], km in (0, 1 - chi]); or from ``design``. Explicit values win.
+        The body (χ in [0, 1], k_m in (0, 1 − χ]); or from ``design``. Explicit values win.
     alpha : float or None
-        The ramp angle [rad], in [0, pi/2]; None estimates it from the axle's path in
+        The ramp angle [rad], in [0, π/2]; None estimates it from the axle's path in
         contact, with its standard error.
     marker_angle : float, default 0.0
         The marker's angle from the direction axle -> centre of mass [rad], measured like
-        theta (towards the direction of rolling), in [-2 pi, 2 pi].
+        θ (towards the direction of rolling), in [−2π, 2π].
     marker_radius : float or None
         The marker's distance from the axle [m], in [R/1000, 2 R]; None measures it from the
         track (which must put it there too: a track in pixels without ``scale`` does not).
     scale : float or None
         Pixels per metre, in [1, 1e9], when the file holds pixels.
     design : str, path, dict or None
-        A sheet of ``eccjump design --json`` (its path or its dict) for the body, R and alpha,
-        and the measured mu_s if the sheet gives it with an uncertainty above 0.
+        A sheet of ``eccjump design --json`` (its path or its dict) for the body, R and α,
+        and the measured μ_s if the sheet gives it with an uncertainty above 0.
     mu_s, mu_s_err : float or None
         The static friction measured apart from the track (a tilt test) and its standard
         deviation, in [0.001, 10] and [0.0001, 10]; both or neither. A track that rolls up
         to its lift-off cannot exclude a slip of one frame just before it (that slip needs
-        only a mu_s a little below the rolling's need, and barely moves the body); a
-        measured mu_s can, and the verdict's evidence then says it rests on it
+        only a μ_s a little below the rolling's need, and barely moves the body); a
+        measured μ_s can, and the verdict's evidence then says it rests on it
         (``friction``).
     g : float, default 9.81
-        Gravity [m/s^2], in [0.01, 100].
+        Gravity [m/s²], in [0.01, 100].
     rule : {"paper", "normal_force"}, default "paper"
         The lift-off rule of the model.
     window : int or None
         The smoothing window in frames (an odd int, at least 7, at most the frames); None
         chooses it from the frame rate.
     profile_mu_k : bool, default True
-        Widen the intervals of mu_k and mu_s by their profiles (a few seconds; a local
-        interval alone can miss a second minimum, or a slip's onset, a kink in mu_s). True
+        Widen the intervals of μ_k and μ_s by their profiles (a few seconds; a local
+        interval alone can miss a second minimum, or a slip's onset, a kink in μ_s). True
         or False, nothing else.
 
     Returns
@@ -511,8 +511,8 @@ def _passes(f: Fit, rec: Reconstruction) -> bool:
 def _friction_intervals(
     best: Fit, setup: Setup, track: Track, rec: Reconstruction, profiled: bool
 ) -> tuple[tuple[float, float], tuple[float, float]]:
-    """mu_k's and mu_s's ~95 % intervals: local, widened by their profiles if ``profiled``.
-    mu_s's local interval is a lower bound (what the rolling needs, to infinity) when the
+    """μ_k's and μ_s's ~95 % intervals: local, widened by their profiles if ``profiled``.
+    μ_s's local interval is a lower bound (what the rolling needs, to infinity) when the
     fitted run never slips or the fit does not constrain it."""
     mu_k_iv = best.interval("mu_k")
     lo_s, hi_s = mu_s_interval(best)
@@ -749,7 +749,7 @@ def _marker_note(rec: Reconstruction, given: float | None) -> tuple[str, ...]:
 
 
 def _slips_in_track(f: Fit, setup: Setup, track: Track) -> bool:
-    """Whether the fitted run slips anywhere within the track (else mu_s is only bounded)."""
+    """Whether the fitted run slips anywhere within the track (else μ_s is only bounded)."""
     end = horizon(setup, track)
     return any(seg.mode == "SLIP" and seg.t_start < end for seg in f.run.segments)
 
