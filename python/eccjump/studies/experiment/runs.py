@@ -1,5 +1,5 @@
-"""What a run of the model says in the track's terms: its key times, its slip episodes and
-the friction its rolling needs.
+"""What a run of the model says up to a time (all dimensionless): its key times, its slip
+episodes and the friction its rolling needs.
 """
 
 from __future__ import annotations
