@@ -36,9 +36,7 @@ from eccjump.studies.experiment.fit import (
     rough,
 )
 from eccjump.studies.experiment.friction import MeasuredFriction
-from eccjump.studies.experiment.profiles import (
-    profile_interval,
-)
+from eccjump.studies.experiment.profiles import profile_interval
 from eccjump.studies.experiment.times import (
     branch_step,
     time_errors,

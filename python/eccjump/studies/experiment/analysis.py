@@ -44,9 +44,7 @@ from eccjump.studies.experiment.fit import (
 from eccjump.studies.experiment.friction import MeasuredFriction, measured_friction, weigh
 from eccjump.studies.experiment.geometry import path_angle
 from eccjump.studies.experiment.inputs import MARKER_IN_R, in_range, marker_radius_in_range
-from eccjump.studies.experiment.one_frame import (
-    one_frame_slip,
-)
+from eccjump.studies.experiment.one_frame import one_frame_slip
 from eccjump.studies.experiment.profiles import (
     mu_s_interval,
     profile,
@@ -56,9 +54,7 @@ from eccjump.studies.experiment.reconstruction import MIN_WINDOW, Reconstruction
 from eccjump.studies.experiment.release import REACH, release_frame
 from eccjump.studies.experiment.runs import event_times, slip_intervals
 from eccjump.studies.experiment.sheet import design_inputs
-from eccjump.studies.experiment.times import (
-    time_errors,
-)
+from eccjump.studies.experiment.times import time_errors
 from eccjump.studies.experiment.track import (
     MAX_FRAMES,
     Track,

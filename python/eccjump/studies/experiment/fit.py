@@ -458,6 +458,8 @@ def solve(
     hi: NDArray[np.float64],
     nfev: int,
 ) -> Any:
+    """scipy's least squares of ``model`` from ``x0`` (clipped into [``lo``, ``hi``]) with at
+    most ``nfev`` evaluations: its result object."""
     from scipy.optimize import least_squares  # the optional extra 'analysis'
 
     if isinstance(x0, dict):
@@ -541,6 +543,8 @@ def rough(fine: NDArray[np.float64], coarse: NDArray[np.float64]) -> bool:
 
 
 def fitted(model: Model, res: Any, lo: NDArray[np.float64], hi: NDArray[np.float64]) -> Fit:
+    """The :class:`Fit` of ``model`` from least squares' result ``res`` within [``lo``,
+    ``hi``]: its covariance, goodness of fit and run."""
     m = res.fun.size
     dof = max(m - res.x.size, 1)
     inflation = correlation_inflation(res.fun, model.tau.size)
