@@ -20,6 +20,7 @@ from hypothesis import strategies as st
 
 import eccjump
 from eccjump._base import userfiles as _userfiles
+from eccjump.studies.experiment import fit as fit_module
 from eccjump.studies.experiment.geometry import (
     RampFrame,
     marker_offset,
@@ -189,6 +190,43 @@ def test_rates_are_exact_for_a_cubic_and_their_errors_follow_the_weights():
     idx, w = derivative_weights(t, 9)
     y = 2 - t + 3 * t**2 - t**3
     assert np.allclose((w * y[idx]).sum(axis=1), -1 + 6 * t - 3 * t**2)
+
+
+@pytest.mark.parametrize(("field_px", "marker_in_r"), [(1000.0, 0.8), (60.0, 0.5)])
+def test_the_starts_theta0_error_is_the_spread_of_the_smoothed_first_frame(field_px, marker_in_r):
+    # 40 noise draws of one run: the smoothed θ at the first frame scatters about the true
+    # θ₀ by theta0_error; the second case is a marker a few pixels from the axle, whose
+    # error is large enough for the fit's screen to spread its starts in θ₀
+    z, errs = [], []
+    for seed in range(40):
+        st = synthetic_track(JARM_BODY, JARM_ALPHA, mu_s=1.0, fps=240, noise_px=1.0,
+                             field_px=field_px, marker_radius=marker_in_r * 0.05,
+                             theta0=0.3, seed=seed)  # fmt: skip
+        r = reconstruct(st.track, radius=0.05, marker_angle=0.0, marker_radius=marker_in_r * 0.05)
+        idx, w0 = derivative_weights(r.t, r.window, deriv=0)
+        guess = float(w0[0] @ r.theta[idx[0]])  # start_guess's θ₀
+        err = fit_module.theta0_error(r)
+        z.append(math.remainder(guess - 0.3, 2 * math.pi) / err)
+        errs.append(err)
+    assert 0.6 < np.std(z) < 1.5 and abs(np.mean(z)) < 0.6
+    offsets = fit_module.theta0_offsets(r)
+    if field_px < 100:
+        assert np.median(errs) > fit_module.THETA0_STEP / 2  # the screen spreads
+        assert len(offsets) >= 3
+    assert offsets == sorted(offsets) and 0.0 in offsets
+    assert np.allclose(np.diff(offsets), fit_module.THETA0_STEP)
+    assert max(offsets) <= min(2 * err, math.pi) + 1e-12
+    reach = fit_module.theta0_reach(r)
+    assert fit_module.THETA0_RANGE <= reach <= math.pi and reach >= max(offsets)
+    # the fit's ranges: θ₀ that reach; l0 (counted from the first frame's noisy axle) at
+    # least four noise levels, and R
+    setup = fit_module.Setup(JARM_BODY, JARM_ALPHA, 0.05, 9.81, r.marker_radius, 0.0, "paper",
+                             fit_alpha=False)  # fmt: skip
+    model = fit_module.Model(setup, st.track, r, jarm_only=False)
+    lo, hi = model.bounds(fit_module.start_guess(setup, r))
+    th, l0 = model.names.index("theta0"), model.names.index("l0")
+    assert hi[th] - lo[th] == pytest.approx(2 * reach)
+    assert hi[l0] == -lo[l0] == pytest.approx(max(0.05, 4 * r.sigma))
 
 
 def test_csv_round_trip_in_pixels(tmp_path):

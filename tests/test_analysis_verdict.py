@@ -225,6 +225,20 @@ def test_a_step_across_a_branch_is_a_jump_not_a_slope():
     assert g == pytest.approx(-0.3 / 20.0) and jump == 0.0
     g, jump = branch_step(base, far, near, "liftoff", (2.0, -1e-4), (False, True))
     assert g == pytest.approx(-1.0)  # (an error unknown: the slope)
+    # no side continues the fitted run where the track allows: one side starts a slip, the
+    # other stays on the fitted branch but is rejected; over the error (0.1, ten steps)
+    # the time moves no further than that rejected run (0.3), not the slope across (12.5)
+    g, jump = branch_step(base, far, dn, "liftoff", (0.01, -0.01), (False, False), 0.1)
+    assert g == pytest.approx(3.0) and jump == 0.0
+    g, jump = branch_step(base, far, dn, "liftoff", (0.01, -0.01), (False, True), 0.1)
+    assert g == pytest.approx(3.0) and jump == pytest.approx(0.05)  # the slip allowed: a jump
+    # both sides on the fitted branch, both rejected with the other parameters held: the
+    # slope (a 10.7-frame slip at 60 fps lost its lift-off at 8.7 errors when bounded)
+    g, jump = branch_step(base, far, up, "liftoff", (0.01, -0.01), (False, False), 0.1)
+    assert g == pytest.approx(14.95) and jump == 0.0
+    later = dn | {"liftoff": 1.2}
+    g, jump = branch_step(base, later, dn, "liftoff", (0.01, -0.01), (False, False), 0.1)
+    assert g == 0.0 and jump == 0.0  # both sides on other branches the track rejects
 
 
 def test_a_lift_off_on_the_edge_of_a_slip_is_timed_from_the_fitted_side():
@@ -241,6 +255,26 @@ def test_a_lift_off_on_the_edge_of_a_slip_is_timed_from_the_fitted_side():
     made, res = _analyze(case)
     assert res.verdict == "jarm"
     assert abs(res.liftoff_t - made.liftoff) < 1.96 * res.liftoff_err < 3e-4
+
+
+def test_a_marker_a_few_pixels_from_the_axle_is_fitted_from_a_walk_along_theta0():
+    """Independent model, 60 fps, 2 px with R only 3.4 px: a slip of 59 frames from the
+    release. A frame's θ is uncertain by 1.3 rad and the smoothed θ₀ by 1.25, so the fit
+    from it stopped Δχ² 166 above the truth and saw no lift-off (`undetermined`). Screened
+    with θ₀ spread, it found a basin at the truth's cost but μ_k 0.316 ± 0.005 (the truth
+    0.382), and its lift-off, differenced across a switch to rolling, printed ± 7.6 s. The
+    walk along θ₀ finds the deeper basin (Δχ² 59 lower); a step the track rejects bounds
+    the lift-off's error."""
+    case = rt.Case(chi=0.5821308597718936, km=0.22716469362763725, alpha=1.2364671772472517,
+                   mu_s=0.5696185492449404, mu_k=0.38240657248548016, theta0=-2.114789013012084,
+                   omega0=0.5491227579176716, restitution=0.0, radius=0.05, fps=60.0,
+                   noise_px=2.0, marker_angle=0.39968330731283386, marker_in_r=0.8,
+                   roll_deg=0.0, seed=1008, family="long_slip")  # fmt: skip
+    made, res = _analyze(case, profile_mu_k=True)
+    assert made.slip_frames > 50 and res.verdict == "slip_first"
+    lo, hi = res.mu_k_interval
+    assert lo <= case.mu_k <= hi and hi - lo < 0.1
+    assert abs(res.liftoff_t - made.liftoff) < 1.96 * res.liftoff_err < 0.5
 
 
 def test_a_lift_off_moved_by_a_start_the_track_does_not_fix_is_not_timed(monkeypatch):

@@ -49,6 +49,7 @@ from eccjump.studies.experiment.profiles import (
     mu_s_interval,
     profile,
     profile_interval,
+    theta0_walk,
 )
 from eccjump.studies.experiment.reconstruction import MIN_WINDOW, Reconstruction, reconstruct
 from eccjump.studies.experiment.release import REACH, release_frame
@@ -482,11 +483,17 @@ def analyze(
 def _consistent_fits(
     setup: Setup, track: Track, rec: Reconstruction
 ) -> tuple[Setup, tuple[Fit, Fit | None]]:
-    """``fit.consistent_fits``, screened again more widely where the first pair fails the
-    goodness-of-fit gate (a failed gate may be a local minimum: a long slip at 2 px stopped
+    """``fit.consistent_fits``, refitted from a deeper basin where the walk along a loose θ₀
+    finds one (``profiles.theta0_walk``), screened again more widely where the pair fails
+    the goodness-of-fit gate (a failed gate may be a local minimum: a long slip at 2 px stopped
     at chi2_red 31.7), and then fitted again with the slip velocity at the first frame free
     (``Setup.slip_at_start``: a track that starts mid-slip); the best pair and its setup."""
     fits = consistent_fits(setup, track, rec)
+    deeper = theta0_walk(fits[0], setup, track, rec)
+    if deeper is not None:
+        walked = consistent_fits(setup, track, rec, start=deeper)
+        if walked[0].cost < fits[0].cost:
+            fits = walked
     if _passes(fits[0], rec):
         return setup, fits
     wider = consistent_fits(setup, track, rec, wide=True)
