@@ -218,14 +218,16 @@ def test_the_starts_theta0_error_is_the_spread_of_the_smoothed_first_frame(field
     assert max(offsets) <= min(2 * err, math.pi) + 1e-12
     reach = fit_module.theta0_reach(r)
     assert fit_module.THETA0_RANGE <= reach <= math.pi and reach >= max(offsets)
-    # the fit's ranges: θ₀ that reach; l0 (counted from the first frame's noisy axle) at
-    # least four noise levels, and R
+    # the fit's ranges: θ₀ that reach; l0 (counted from the first frame's noisy axle) R,
+    # and where a fit is held there four noise levels if that is more
     setup = fit_module.Setup(JARM_BODY, JARM_ALPHA, 0.05, 9.81, r.marker_radius, 0.0, "paper",
                              fit_alpha=False)  # fmt: skip
     model = fit_module.Model(setup, st.track, r, jarm_only=False)
     lo, hi = model.bounds(fit_module.start_guess(setup, r))
     th, l0 = model.names.index("theta0"), model.names.index("l0")
     assert hi[th] - lo[th] == pytest.approx(2 * reach)
+    assert hi[l0] == -lo[l0] == pytest.approx(0.05)
+    lo, hi = model.bounds(fit_module.start_guess(setup, r), roomy=True)
     assert hi[l0] == -lo[l0] == pytest.approx(max(0.05, 4 * r.sigma))
 
 
