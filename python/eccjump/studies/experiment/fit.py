@@ -316,7 +316,8 @@ THETA0_RANGE, THETA0_STEP = 1.5, 0.5
 
 def theta0_error(rec: Reconstruction) -> float:
     """The standard error [rad] of the smoothed θ at the first frame, the start's θ₀."""
-    first = rec.t[: rec.window]  # the first frame's window (the weights of the others: work)
+    first = rec.t[: rec.window]  # that frame's window alone: every frame's weights cost
+    # 23 ms on a track of 1200 frames, and each fit's ranges ask for this
     _, w0 = derivative_weights(first, rec.window, deriv=0)
     return float(np.sqrt(w0[0] ** 2 @ rec.theta_err[: rec.window] ** 2))
 
@@ -363,12 +364,14 @@ def fit(
     """The best of several least-squares fits. Without ``starts``: a screen of short fits
     (:data:`SCREEN_NFEV` iterations) from the smoothed start with the friction guesses of
     :func:`friction_guesses`, each with the smoothed θ̇₀, θ's mean rate
-    (:func:`mean_rate`) and 0 (the edge of the smoothing window makes θ̇₀ noisy), then
-    full fits from the :data:`KEEP` best (the cost has many local minima: a slip, a bounce
-    and a shifted start trade off), and with ``grow`` one more from :func:`grown_start`.
-    ``wide`` screens more: μ_k / μ_s of 0.5, 0.75 and 0.95 and e of 0.05 and 0.5, and
-    keeps twice as many (for a fit that failed its goodness-of-fit test). With ``starts``
-    (each a dict of some of :data:`NAMES`, on top of that guess): a full fit from each."""
+    (:func:`mean_rate`) and 0 (the edge of the smoothing window makes θ̇₀ noisy), and
+    θ₀ at :func:`theta0_offsets` from the smoothed one, then full fits from the
+    :data:`KEEP` best (the cost has many local minima: a slip, a bounce and a shifted start
+    trade off), and with ``grow`` one more from :func:`grown_start`. ``wide`` screens
+    more: μ_k / μ_s of 0.5, 0.75 and 0.95 and e of 0.05 and 0.5, and keeps twice as many
+    (for a fit that failed its goodness-of-fit test). With ``starts`` (each a dict of some
+    of :data:`NAMES`, on top of that guess): a full fit from each. The best is fitted
+    again with room where it is held at l0's bound (:func:`with_room`)."""
     model = Model(setup, track, rec, jarm_only=jarm_only)
     guess = start_guess(setup, rec)
     lo, hi = model.bounds(guess)
@@ -391,17 +394,30 @@ def fit(
     else:
         x0s = [np.array([(guess | s)[n] for n in model.names], dtype=float) for s in starts]
     res = min((solve(model, x0, lo, hi, MAX_NFEV) for x0 in x0s), key=_cost)
-    # l is counted from the first frame's axle, off by that frame's noise: beyond R on a
-    # track of a few pixels per radius (σ 53 mm at R = 50 mm held l0 at -R and μ_k's
-    # interval off the truth). Widened only for a fit held there: from the start, the
-    # wider range led another long slip's fit to a minimum worse by Δχ² 220.
+    return fitted(model, *with_room(model, guess, res, lo, hi))
+
+
+def with_room(
+    model: Model,
+    guess: dict[str, float],
+    res: Any,
+    lo: NDArray[np.float64],
+    hi: NDArray[np.float64],
+) -> tuple[Any, NDArray[np.float64], NDArray[np.float64]]:
+    """``res`` and its ranges, or, where it is held at l0's bound and four noise levels
+    are more than R, the better of it and a fit from it with l0 that far (and those
+    ranges). l is counted from the first frame's axle, off by that frame's noise: beyond R
+    on a track of a few pixels per radius (σ 53 mm at R = 50 mm held l0 at -R and μ_k's
+    interval off the truth). Only a fit held there gets the room: given from the start,
+    it led another long slip's fit to a minimum worse by Δχ² 220."""
     j = model.names.index("l0")
-    if min(res.x[j] - lo[j], hi[j] - res.x[j]) <= 1e-9 * (hi[j] - lo[j]):
-        roomy = model.bounds(guess, roomy=True)
-        if roomy[1][j] > hi[j]:
-            lo, hi = roomy
-            res = min((res, solve(model, res.x, lo, hi, MAX_NFEV)), key=_cost)
-    return fitted(model, res, lo, hi)
+    if min(res.x[j] - lo[j], hi[j] - res.x[j]) > 1e-9 * (hi[j] - lo[j]):
+        return res, lo, hi
+    roomy_lo, roomy_hi = model.bounds(guess, roomy=True)
+    if not roomy_hi[j] > hi[j]:
+        return res, lo, hi
+    roomy = solve(model, res.x, roomy_lo, roomy_hi, MAX_NFEV)
+    return min((res, roomy), key=_cost), roomy_lo, roomy_hi
 
 
 #: The frames of the first window of :func:`grown_start` (at least; an eighth of the track).
