@@ -368,9 +368,25 @@ def test_a_hop_the_heights_contradict_is_not_timed(monkeypatch):
     squares' Jacobian grew like 1/step, and the hop was timed to 4 µs. The Jacobian at a
     coarse step says the cost is rough and widens the covariance; and since the heights
     contradict the model's flight (they follow it at -0.2 sigma where its own would give
-    6.4), its lift-off is not fixed by the track. The slip stays `slip_first`."""
+    6.4), its lift-off is not fixed by the track. The slip stays `slip_first`. That fit came
+    from the smoothed θ₀ alone; with R at 2 px θ₀ is loose, and the full search (θ₀ spread
+    and walked, l0 given room) finds a better fit (χ²_red 1.17) that does not lift off
+    inside the track, nor does the track show one: `undetermined (no_liftoff)`, μ_k
+    covered. The rules are checked on the fit from the smoothed θ₀."""
+    made = rt.film(rt.draw("long_slip", 3008, fps=60.0, noise=2.0))
+    args = {"radius": made.case.radius, "chi": made.case.chi, "km": made.case.km,
+            "alpha": made.case.alpha, "marker_angle": made.case.marker_angle,
+            "marker_radius": 0.8 * made.case.radius}  # fmt: skip
+    searched = analyze(made.track, **args)
+    assert searched.verdict == "undetermined" and searched.reason == "no_liftoff"
+    lo, hi = searched.mu_k_interval
+    assert lo <= made.case.mu_k <= hi
+    monkeypatch.setattr(fitmod, "theta0_offsets", lambda rec: [0.0])  # (and no walk)
+    monkeypatch.setattr(fitmod, "theta0_reach", lambda rec: fitmod.THETA0_RANGE)
+    monkeypatch.setattr(fitmod, "with_room", lambda model, guess, res, lo, hi: (res, lo, hi))
     inputs = _spy_fit_inputs(monkeypatch)
-    made, res = _analyze(rt.draw("long_slip", 3008, fps=60.0, noise=2.0))
+    res = analyze(made.track, **args, profile_mu_k=False)
+    assert res.fit.cost > searched.fit.cost
     assert made.slip_frames > 100 and not res.observed.flights
     assert res.verdict == "slip_first", (res.reason, res.evidence)
     assert res.liftoff_err == math.inf and "not fixed by the track" in repr(res)
