@@ -260,11 +260,12 @@ class Model:
         """The range of each parameter around the smoothed start ``guess``; ``roomy``: l0
         out to four noise levels where that is more than R (:func:`fit`)."""
         r, th, om, al = self.setup.radius, guess["theta0"], guess["omega0"], guess["alpha"]
+        reach = theta0_reach(self.rec)
         # slip0 held near 0 where the run rolls from the start (its x then says what it ran)
         slip0 = SLIP0_MAX * r / self.setup.time_unit * (1.0 if self._slips_at_start() else 1e-12)
         l0 = max(r, 4.0 * self.rec.sigma) if roomy else r
         lo = {
-            "theta0": th - theta0_reach(self.rec),
+            "theta0": th - reach,
             # a body that slips from its release may turn backwards as it slides
             "omega0": -SLIP0_MAX / self.setup.time_unit if self._slips_at_start() else 0.0,
             "slip0": -slip0,
@@ -277,7 +278,7 @@ class Model:
             "alpha": max(al - 0.2, 0.0),
         }
         hi = {
-            "theta0": th + theta0_reach(self.rec),
+            "theta0": th + reach,
             "omega0": max(3 * om, 50.0 / self.setup.time_unit),
             "slip0": slip0,
             "mu_k": MU_MAX,
@@ -378,13 +379,14 @@ def fit(
     if starts is None:
         omegas = sorted({guess["omega0"], 0.0, mean_rate(rec)})
         ratios, bounces = ((0.5, 0.75, 0.95), (0.05, 0.5)) if wide else ((0.75,), (0.05,))
+        offsets = theta0_offsets(rec)
         screen = [
             {"mu_k": q * m, "dmu": (1 - q) * m, "e": e, "omega0": w, "theta0": guess["theta0"] + d}
             for m in friction_guesses(model.mu_bound(guess))
             for w in omegas
             for q in ratios
             for e in bounces
-            for d in theta0_offsets(rec)
+            for d in offsets
         ]
         tried = sorted((solve(model, guess | s, lo, hi, SCREEN_NFEV) for s in screen), key=_cost)
         x0s = [r.x for r in tried[: KEEP * (2 if wide else 1)]]
@@ -466,8 +468,7 @@ def consistent_fits(
     optimiser stopped in a local minimum: the free fit is redone from the better solution
     (and its own), up to :data:`ROUNDS` times; if the pair is still inconsistent, the
     better one is returned as the free fit."""
-    starts = None if start is None else [start]
-    free = fit(setup, track, rec, wide=wide, starts=starts)
+    free = fit(setup, track, rec, wide=wide, starts=None if start is None else [start])
     constrained: Fit | None = None
     for _ in range(ROUNDS):
         if not slips_before_liftoff(free):

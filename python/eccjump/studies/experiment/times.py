@@ -120,10 +120,10 @@ def branch_step(
     central = (vu - vd) / (steps[0] - steps[1])
     if (same_up and same_dn) or not math.isfinite(b):
         return central, 0.0
-    if not (same_up or same_dn) and all(allowed):  # the fitted run: a branch of its own
-        mid = (vu + vd) / 2 - b
-        return central, abs(mid) if math.isfinite(mid) else 0.0
     if not (same_up or same_dn):
+        if all(allowed):  # the fitted run: a branch of its own
+            mid = (vu + vd) / 2 - b
+            return central, abs(mid) if math.isfinite(mid) else 0.0
         if branch(up) == branch(base) == branch(dn):  # both rejected, neither a switch
             return central, 0.0
         return _within_rejected(base, (up, dn), key, central, allowed, err)
